@@ -1,0 +1,453 @@
+//! [`Lemke`]: Lemke's complementary pivoting with a lexicographic ratio test, statically
+//! sized, no heap, no panics. The algorithm is described in the [module docs](super).
+
+use nalgebra::SVector;
+
+use super::basis::Basis;
+use super::error::LcpError;
+use super::problem::Lcp;
+use super::verify::{default_tolerance, verify};
+use crate::real::{Real, max};
+
+/// A variable of the Lemke tableau `[I, -M, -d | q]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Var {
+    W(u8),
+    Z(u8),
+    Artificial,
+}
+
+impl Var {
+    /// The complement of a complementary variable (`w_i <-> z_i`).
+    const fn complement(self) -> Self {
+        match self {
+            Self::W(i) => Self::Z(i),
+            Self::Z(i) => Self::W(i),
+            Self::Artificial => Self::Artificial,
+        }
+    }
+}
+
+/// A verified solution of an LCP.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[must_use]
+pub struct LcpSolution<T: Real, const N: usize> {
+    /// `z >= 0`.
+    pub z: SVector<T, N>,
+    /// `w = M z + q >= 0`, recomputed from the original data.
+    pub w: SVector<T, N>,
+    /// Complementary pivots performed after the artificial variable entered (its entry is
+    /// not counted, as in Murty's `2^n - 1`); 0 when `q >= 0` or the warm basis was feasible.
+    pub pivots: u32,
+    /// Gauss-Jordan eliminations spent setting up a warm-start basis (0 for a cold start).
+    pub setup_eliminations: u32,
+    /// `true` when the returned solution came from the warm-start basis.
+    pub warm_start_used: bool,
+    /// The terminal complementary basis; pass it to [`Lemke::solve_warm`] next time.
+    pub basis: Basis<N>,
+    /// Normalised verification residual (see [`super::verify`]).
+    pub residual: T,
+}
+
+/// Lemke's method for LCPs of size `N` in scalar `T`, with its pivot cap and verification
+/// tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lemke<T: Real, const N: usize> {
+    max_pivots: u32,
+    tolerance: T,
+}
+
+impl<T: Real, const N: usize> Default for Lemke<T, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The default pivot cap: `2^min(N, 10) + 4 N`.
+///
+/// Lemke's method can need `2^N - 1` pivots (Murty's example); the cap allows that up to
+/// `N = 10` and grows linearly beyond. `N = 6`: 88, `N = 8`: 288, `N = 16`: 1088.
+#[must_use]
+pub const fn default_max_pivots(n: usize) -> u32 {
+    let exp = if n < 10 { n } else { 10 };
+    (1u32 << exp) + 4 * n as u32
+}
+
+struct Tableau<T: Real, const N: usize> {
+    /// Columns of `w` in the current tableau: `B^-1` (row-major, `binv[row][col]`).
+    binv: [[T; N]; N],
+    /// Columns of `z`: `-B^-1 M`.
+    zc: [[T; N]; N],
+    /// Column of the artificial variable: `-B^-1 d`.
+    art: [T; N],
+    /// Right-hand side: values of the basic variables, `B^-1 q`.
+    rhs: [T; N],
+    /// Basic variable of each row.
+    basis: [Var; N],
+}
+
+impl<T: Real, const N: usize> Tableau<T, N> {
+    /// The cold-start tableau `[I, -M, -e | q]` with every `w_i` basic (covering vector `e`).
+    fn cold(lcp: &Lcp<T, N>) -> Self {
+        let mut t = Self {
+            binv: [[T::zero(); N]; N],
+            zc: [[T::zero(); N]; N],
+            art: [-T::one(); N],
+            rhs: [T::zero(); N],
+            basis: [Var::Artificial; N],
+        };
+        for i in 0..N {
+            t.binv[i][i] = T::one();
+            for j in 0..N {
+                t.zc[i][j] = -lcp.m[(i, j)];
+            }
+            t.rhs[i] = lcp.q[i];
+            t.basis[i] = Var::W(i as u8);
+        }
+        t
+    }
+
+    /// The tableau of the complementary basis `warm`, reached from the cold tableau by
+    /// Gauss-Jordan elimination with partial pivoting. The artificial column is then reset
+    /// to `-e` in these coordinates (covering vector `d = B e`). `None` when the basis
+    /// matrix is numerically singular. Returns the eliminations spent.
+    fn warm(lcp: &Lcp<T, N>, warm: Basis<N>, scale: T) -> Option<(Self, u32)> {
+        let mut t = Self::cold(lcp);
+        let mut eliminations = 0;
+        for i in 0..N {
+            if !warm.is_z_basic(i) {
+                continue;
+            }
+            // Bring z_i in, replacing a w_k (k also in the warm basis) still basic.
+            let mut best: Option<(usize, T)> = None;
+            for r in 0..N {
+                if let Var::W(k) = t.basis[r]
+                    && warm.is_z_basic(k as usize)
+                {
+                    let a = t.zc[r][i].abs_exact();
+                    if best.is_none_or(|(_, b)| a > b) {
+                        best = Some((r, a));
+                    }
+                }
+            }
+            let (r, a) = best?;
+            // `a` is finite (checked input) and non-negative: too small means singular.
+            if a <= T::of(N as f64) * T::EPS * scale {
+                return None;
+            }
+            t.pivot(r, Var::Z(i as u8));
+            eliminations += 1;
+        }
+        t.art = [-T::one(); N];
+        Some((t, eliminations))
+    }
+
+    #[inline]
+    fn entry(&self, var: Var, row: usize) -> T {
+        match var {
+            Var::W(j) => self.binv[row][j as usize],
+            Var::Z(j) => self.zc[row][j as usize],
+            Var::Artificial => self.art[row],
+        }
+    }
+
+    /// Pivots `entering` into the basis at row `r` (the pivot entry must be non-zero).
+    fn pivot(&mut self, r: usize, entering: Var) {
+        let inv = T::one() / self.entry(entering, r);
+        for j in 0..N {
+            self.binv[r][j] *= inv;
+            self.zc[r][j] *= inv;
+        }
+        self.art[r] *= inv;
+        self.rhs[r] *= inv;
+        // The pivot entry becomes exactly one (no round-off left in the basic column).
+        match entering {
+            Var::W(j) => self.binv[r][j as usize] = T::one(),
+            Var::Z(j) => self.zc[r][j as usize] = T::one(),
+            Var::Artificial => self.art[r] = T::one(),
+        }
+        let (binv_r, zc_r, art_r, rhs_r) = (self.binv[r], self.zc[r], self.art[r], self.rhs[r]);
+        for i in 0..N {
+            if i == r {
+                continue;
+            }
+            let f = self.entry(entering, i);
+            if f == T::zero() {
+                continue;
+            }
+            for j in 0..N {
+                self.binv[i][j] -= f * binv_r[j];
+                self.zc[i][j] -= f * zc_r[j];
+            }
+            self.art[i] -= f * art_r;
+            self.rhs[i] -= f * rhs_r;
+            match entering {
+                Var::W(j) => self.binv[i][j as usize] = T::zero(),
+                Var::Z(j) => self.zc[i][j as usize] = T::zero(),
+                Var::Artificial => self.art[i] = T::zero(),
+            }
+        }
+        self.basis[r] = entering;
+    }
+
+    /// Breaks a tie among the rows in `ties` (bit mask) lexicographically: the row whose
+    /// `binv[row] / div(row)` is lexicographically smallest. `B^-1` is non-singular, so in
+    /// exact arithmetic exactly one row remains; with round-off the lowest index of the
+    /// survivors is taken.
+    fn lex_min(&self, mut ties: u32, div: impl Fn(usize) -> T) -> usize {
+        let n_eps = T::of(N as f64) * T::EPS;
+        for j in 0..N {
+            if ties.count_ones() <= 1 {
+                break;
+            }
+            let mut lo = T::zero();
+            let mut mag = T::zero();
+            let mut first = true;
+            for i in 0..N {
+                if ties >> i & 1 == 1 {
+                    let v = self.binv[i][j] / div(i);
+                    mag = max(mag, v.abs_exact());
+                    if first || v < lo {
+                        lo = v;
+                        first = false;
+                    }
+                }
+            }
+            let tol = n_eps * mag;
+            for i in 0..N {
+                if ties >> i & 1 == 1 && self.binv[i][j] / div(i) > lo + tol {
+                    ties &= !(1 << i);
+                }
+            }
+        }
+        ties.trailing_zeros() as usize
+    }
+
+    /// Row that leaves when the artificial variable enters first: the most negative
+    /// right-hand side, ties broken by the lexicographically smallest row of `B^-1`
+    /// (the artificial column is `-e`, so this is the lexicographic minimum ratio).
+    fn first_leaving_row(&self) -> usize {
+        let mut lo = self.rhs[0];
+        let mut mag = T::zero();
+        for i in 0..N {
+            mag = max(mag, self.rhs[i].abs_exact());
+            if self.rhs[i] < lo {
+                lo = self.rhs[i];
+            }
+        }
+        let tol = T::of(N as f64) * T::EPS * mag;
+        let mut ties = 0u32;
+        for i in 0..N {
+            if self.rhs[i] <= lo + tol {
+                ties |= 1 << i;
+            }
+        }
+        self.lex_min(ties, |_| T::one())
+    }
+
+    /// Lexicographic minimum-ratio test for the column of `entering`. `None` means the
+    /// column has no positive entry: ray termination. The artificial variable leaves
+    /// whenever it is among the tied rows.
+    fn leaving_row(&self, entering: Var) -> Option<usize> {
+        let mut col = [T::zero(); N];
+        let mut col_max = T::zero();
+        let mut rhs_max = T::zero();
+        for i in 0..N {
+            col[i] = self.entry(entering, i);
+            col_max = max(col_max, col[i].abs_exact());
+            rhs_max = max(rhs_max, self.rhs[i].abs_exact());
+        }
+        let n_eps = T::of(N as f64) * T::EPS;
+        let piv_tol = n_eps * col_max;
+        let mut theta: Option<T> = None;
+        for i in 0..N {
+            if col[i] > piv_tol {
+                let ratio = max(self.rhs[i], T::zero()) / col[i];
+                if theta.is_none_or(|t| ratio < t) {
+                    theta = Some(ratio);
+                }
+            }
+        }
+        let theta = theta?;
+        let tie_tol = n_eps * max(theta, rhs_max / col_max);
+        let mut ties = 0u32;
+        for i in 0..N {
+            if col[i] > piv_tol && max(self.rhs[i], T::zero()) / col[i] <= theta + tie_tol {
+                if self.basis[i] == Var::Artificial {
+                    return Some(i);
+                }
+                ties |= 1 << i;
+            }
+        }
+        Some(self.lex_min(ties, |i| col[i]))
+    }
+
+    /// Runs Lemke's pivoting from this tableau. Returns the pivots on success (the
+    /// artificial variable left the basis, or was never needed).
+    fn run(&mut self, max_pivots: u32) -> Result<u32, LcpError> {
+        let n_eps = T::of(N as f64) * T::EPS;
+        let rhs_max = self.rhs.iter().fold(T::zero(), |acc, x| max(acc, x.abs_exact()));
+        if self.rhs.iter().all(|&x| x >= -n_eps * rhs_max) {
+            return Ok(0);
+        }
+        let r = self.first_leaving_row();
+        let mut leaving = self.basis[r];
+        self.pivot(r, Var::Artificial);
+        // The artificial variable's entry is not counted (the convention of Murty's
+        // 2^n - 1 bound and of the corpus): `pivots` counts the complementary pivots.
+        let mut pivots = 0u32;
+        loop {
+            let entering = leaving.complement();
+            if pivots >= max_pivots {
+                return Err(LcpError::MaxPivots { pivots });
+            }
+            let Some(r) = self.leaving_row(entering) else {
+                return Err(LcpError::Ray { pivots });
+            };
+            leaving = self.basis[r];
+            self.pivot(r, entering);
+            pivots += 1;
+            if leaving == Var::Artificial {
+                return Ok(pivots);
+            }
+        }
+    }
+
+    /// `z` and the basis of the current (terminal) tableau; tiny negative basic values
+    /// left by round-off are clamped to zero (verification judges the result).
+    fn solution(&self) -> (SVector<T, N>, Basis<N>) {
+        let mut z = SVector::<T, N>::zeros();
+        let mut basis = Basis::all_w();
+        for r in 0..N {
+            if let Var::Z(i) = self.basis[r] {
+                z[i as usize] = max(self.rhs[r], T::zero());
+                basis.set_z_basic(i as usize, true);
+            }
+        }
+        (z, basis)
+    }
+}
+
+impl<T: Real, const N: usize> Lemke<T, N> {
+    const SIZE_CHECK: () = assert!(N > 0 && N <= 32, "Lemke<T, N> needs 1 <= N <= 32");
+
+    /// A solver with the default pivot cap ([`default_max_pivots`]) and verification
+    /// tolerance ([`default_tolerance`]).
+    #[must_use]
+    pub fn new() -> Self {
+        let () = Self::SIZE_CHECK;
+        Self { max_pivots: default_max_pivots(N), tolerance: default_tolerance::<T, N>() }
+    }
+
+    /// Sets the pivot cap (at least 1).
+    #[must_use]
+    pub fn with_max_pivots(mut self, max_pivots: u32) -> Self {
+        self.max_pivots = max_pivots.max(1);
+        self
+    }
+
+    /// Sets the verification tolerance on the normalised residual.
+    #[must_use]
+    pub fn with_tolerance(mut self, tolerance: T) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// The pivot cap.
+    #[must_use]
+    pub const fn max_pivots(&self) -> u32 {
+        self.max_pivots
+    }
+
+    /// The verification tolerance.
+    #[must_use]
+    pub const fn tolerance(&self) -> T {
+        self.tolerance
+    }
+
+    /// Solves `lcp` from the trivial basis (cold start).
+    ///
+    /// # Errors
+    /// [`LcpError::NonFiniteInput`], [`LcpError::Ray`], [`LcpError::MaxPivots`] or
+    /// [`LcpError::Unverified`]; never a solution that failed verification.
+    pub fn solve(&self, lcp: &Lcp<T, N>) -> Result<LcpSolution<T, N>, LcpError> {
+        self.solve_warm(lcp, Basis::all_w())
+    }
+
+    /// Solves `lcp`, trying the complementary basis `warm` (e.g. the previous time step's
+    /// [`LcpSolution::basis`]) first. When that basis is still feasible the solve takes no
+    /// pivot; otherwise Lemke's method runs from it, and if that fails, from the cold start.
+    /// [`LcpSolution::warm_start_used`] tells which one produced the answer; the reported
+    /// pivots are the total spent.
+    ///
+    /// # Errors
+    /// As [`Lemke::solve`].
+    pub fn solve_warm(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Result<LcpSolution<T, N>, LcpError> {
+        let () = Self::SIZE_CHECK;
+        if !lcp.is_finite() {
+            return Err(LcpError::NonFiniteInput);
+        }
+        if lcp.q.iter().all(|&x| x >= T::zero()) {
+            return Ok(LcpSolution {
+                z: SVector::zeros(),
+                w: lcp.q,
+                pivots: 0,
+                setup_eliminations: 0,
+                warm_start_used: false,
+                basis: Basis::all_w(),
+                residual: T::zero(),
+            });
+        }
+        let mut spent = 0;
+        let mut eliminations = 0;
+        if warm != Basis::all_w() {
+            let scale = max(lcp.m_norm_inf(), T::TINY);
+            if let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) {
+                eliminations = elim;
+                match tab.run(self.max_pivots) {
+                    Ok(pivots) => match self.finish(lcp, &tab, pivots, elim, true) {
+                        Ok(sol) => return Ok(sol),
+                        Err(e) => spent = e.pivots(),
+                    },
+                    Err(e) => spent = e.pivots(),
+                }
+            }
+        }
+        let mut tab = Tableau::cold(lcp);
+        let budget = self.max_pivots.saturating_sub(spent).max(1);
+        match tab.run(budget) {
+            Ok(pivots) => self.finish(lcp, &tab, spent + pivots, eliminations, false),
+            Err(LcpError::Ray { pivots }) => Err(LcpError::Ray { pivots: spent + pivots }),
+            Err(LcpError::MaxPivots { pivots }) => Err(LcpError::MaxPivots { pivots: spent + pivots }),
+            Err(e) => Err(e),
+        }
+    }
+
+    fn finish(
+        &self,
+        lcp: &Lcp<T, N>,
+        tab: &Tableau<T, N>,
+        pivots: u32,
+        setup_eliminations: u32,
+        warm_start_used: bool,
+    ) -> Result<LcpSolution<T, N>, LcpError> {
+        let (z, basis) = tab.solution();
+        let check = verify(lcp, &z, self.tolerance);
+        if !check.passed() {
+            return Err(LcpError::Unverified {
+                residual: check.residual.as_f32(),
+                tolerance: check.tolerance.as_f32(),
+                pivots,
+            });
+        }
+        Ok(LcpSolution {
+            z,
+            w: lcp.w_of(&z),
+            pivots,
+            setup_eliminations,
+            warm_start_used,
+            basis,
+            residual: check.residual,
+        })
+    }
+}

@@ -1,0 +1,127 @@
+//! Named problems from the literature, with known answers.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use super::*;
+use nalgebra::SVector;
+
+fn solve<const N: usize>(m: [[f64; N]; N], q: [f64; N]) -> Result<LcpSolution<f64, N>, LcpError> {
+    Lemke::<f64, N>::new().solve(&Lcp::from_rows(&m, &q))
+}
+
+fn assert_z<const N: usize>(z: &SVector<f64, N>, expect: [f64; N]) {
+    for i in 0..N {
+        assert!((z[i] - expect[i]).abs() < 1e-12, "z = {z:?}, expected {expect:?}");
+    }
+}
+
+/// Kostreva's 3x3 example (Cottle-Pang-Stone, Example 4.9.2 family): every ratio ties in
+/// the first step, and Lemke's method without a tie-breaking rule cycles on it.
+#[test]
+fn cycling_example_terminates() {
+    let m = [[1.0, 2.0, 0.0], [0.0, 1.0, 2.0], [2.0, 0.0, 1.0]];
+    let sol = solve(m, [-1.0, -1.0, -1.0]).unwrap();
+    assert_z(&sol.z, [1.0 / 3.0; 3]);
+    assert!(sol.pivots <= 7, "pivots {}", sol.pivots);
+}
+
+/// Murty (1988), chapter 6: plain Lemke needs 2^n - 1 pivots on this n = 6 problem.
+#[test]
+fn murty_exponential_example() {
+    let mut m = [[0.0; 6]; 6];
+    for i in 0..6 {
+        m[i][i] = 1.0;
+        for j in i + 1..6 {
+            m[i][j] = 2.0;
+        }
+    }
+    let q = [-126.0, -124.0, -120.0, -112.0, -96.0, -64.0];
+    let sol = solve(m, q).unwrap();
+    assert_z(&sol.z, [0.0, 0.0, 0.0, 0.0, 0.0, 64.0]);
+    assert_eq!(sol.pivots, 63);
+    // A cap below 2^n - 1 is a named error, not a silent stop.
+    let capped = Lemke::<f64, 6>::new().with_max_pivots(40).solve(&Lcp::from_rows(&m, &q));
+    assert_eq!(capped, Err(LcpError::MaxPivots { pivots: 40 }));
+}
+
+/// Cottle-Pang-Stone Example 4.4.7 (corpus lcp_CPS_2): z = (0, 1, 3).
+#[test]
+fn cps_example_4_4_7() {
+    let m = [[0.0, -1.0, 2.0], [2.0, 0.0, -2.0], [-1.0, 1.0, 0.0]];
+    let sol = solve(m, [-3.0, 6.0, -1.0]).unwrap();
+    assert_z(&sol.z, [0.0, 1.0, 3.0]);
+}
+
+/// CPS Remark 4.1.14 (corpus lcp_CPS_1): PSD M = ones, tied q; every z with
+/// z1 + z2 = 1 solves it. The lexicographic rule picks one, deterministically.
+#[test]
+fn psd_tie_case() {
+    let sol = solve([[1.0, 1.0], [1.0, 1.0]], [-1.0, -1.0]).unwrap();
+    assert!((sol.z[0] + sol.z[1] - 1.0).abs() < 1e-12);
+    assert_eq!(sol.pivots, 1);
+    assert!(is_solution(&Lcp::from_rows(&[[1.0, 1.0], [1.0, 1.0]], &[-1.0, -1.0]), &sol.z));
+}
+
+/// w = -z - 1 >= 0 has no solution with z >= 0: ray termination.
+#[test]
+fn unsolvable_is_ray() {
+    assert_eq!(solve([[-1.0]], [-1.0]), Err(LcpError::Ray { pivots: 0 }));
+    // Pang's isolated solution, perturbed (corpus): no complementary solution.
+    let m = [[0.0, -1.0, -1.0], [1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]];
+    let r = solve(m, [-0.0001, -1.0, 1.0]);
+    assert!(matches!(r, Err(LcpError::Ray { .. })), "{r:?}");
+}
+
+#[test]
+fn nonnegative_q_takes_zero_pivots() {
+    let sol = solve([[2.0, -7.0], [3.0, 1.0]], [0.0, 4.0]).unwrap();
+    assert_eq!(sol.pivots, 0);
+    assert_eq!(sol.z, SVector::<f64, 2>::zeros());
+    assert_eq!(sol.w, SVector::<f64, 2>::new(0.0, 4.0));
+}
+
+#[test]
+fn non_finite_input_is_rejected() {
+    assert_eq!(solve([[f64::NAN]], [-1.0]), Err(LcpError::NonFiniteInput));
+    assert_eq!(solve([[1.0]], [f64::NEG_INFINITY]), Err(LcpError::NonFiniteInput));
+}
+
+/// The previous solution's basis, on a slightly changed q, solves with no pivot.
+#[test]
+fn warm_start_takes_at_most_one_pivot() {
+    let m = [[4.0, 1.0, 0.0], [1.0, 4.0, 1.0], [0.0, 1.0, 4.0]];
+    let solver = Lemke::<f64, 3>::new();
+    let first = solver.solve(&Lcp::from_rows(&m, &[-1.0, 2.0, -3.0])).unwrap();
+    assert!(first.pivots >= 2);
+    let lcp2 = Lcp::from_rows(&m, &[-1.1, 2.0, -2.9]);
+    let warm = solver.solve_warm(&lcp2, first.basis).unwrap();
+    assert!(warm.warm_start_used);
+    assert!(warm.pivots <= 1, "pivots {}", warm.pivots);
+    let cold = solver.solve(&lcp2).unwrap();
+    assert!((warm.z - cold.z).norm() < 1e-12);
+    // A basis that is no longer feasible still gives the right answer.
+    let lcp3 = Lcp::from_rows(&m, &[1.0, -2.0, 3.0]);
+    let moved = solver.solve_warm(&lcp3, first.basis).unwrap();
+    let cold3 = solver.solve(&lcp3).unwrap();
+    assert!((moved.z - cold3.z).norm() < 1e-12);
+}
+
+/// f32 gets its own tolerance: the same problem verifies in f32.
+#[test]
+fn f32_solves_with_f32_tolerance() {
+    let m = [[1.0f32, 2.0, 0.0], [0.0, 1.0, 2.0], [2.0, 0.0, 1.0]];
+    let lcp = Lcp::from_rows(&m, &[-1.0, -1.0, -1.0]);
+    let sol = Lemke::<f32, 3>::new().solve(&lcp).unwrap();
+    assert!(sol.residual <= default_tolerance::<f32, 3>());
+    for i in 0..3 {
+        assert!((sol.z[i] - 1.0 / 3.0).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn verification_rejects_wrong_answers() {
+    let lcp = Lcp::from_rows(&[[2.0, 1.0], [1.0, 2.0]], &[-5.0, -6.0]);
+    assert!(is_solution(&lcp, &SVector::<f64, 2>::new(4.0 / 3.0, 7.0 / 3.0)));
+    assert!(!is_solution(&lcp, &SVector::<f64, 2>::new(1.3, 2.3)));
+    assert!(!is_solution(&lcp, &SVector::<f64, 2>::new(0.0, 0.0)));
+    assert!(!is_solution(&lcp, &SVector::<f64, 2>::new(-1.0, 3.5)));
+}

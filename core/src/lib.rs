@@ -1,0 +1,24 @@
+//! # meterstick-core
+//!
+//! A `no_std`, heap-free simulation core for the meter-stick trick (Leong & Lv, "Linear
+//! Complementarity Problem Simulation of The Meter Stick Trick"): a rod resting on two
+//! fingers, one finger moving toward the other, contact modes (stick, slide, separate)
+//! emerging from a linear complementarity problem solved by Lemke's method every step.
+//!
+//! * [`lcp`]: the statically sized Lemke solver ([`lcp::Lemke`]) and its verification.
+//! * [`Real`]: the scalar trait (`f32` on a microcontroller, `f64` on a host).
+//!
+//! With the `defmt` feature, public types derive `defmt::Format`.
+#![cfg_attr(not(test), no_std)]
+#![deny(missing_docs)]
+
+#[macro_use]
+#[allow(unused_macros)]
+mod fmt;
+pub mod lcp;
+mod real;
+
+pub use real::Real;
+
+/// The version of this crate.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -1,0 +1,27 @@
+//! Picks the memory layout: a QEMU machine's (`firmware/memory/*.x`, by feature) or the
+//! demo rig's (`memory.x` at the workspace root), and passes the linker scripts.
+//!
+//! cortex-m-rt's `link.x` says `INCLUDE memory.x`. The selected layout is written as
+//! `memory.x` into `OUT_DIR`, which goes first on the linker's search path.
+use std::{env, fs, path::PathBuf};
+
+fn main() {
+    let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
+    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    let layout = if env::var_os("CARGO_FEATURE_QEMU_MPS2_AN386").is_some() {
+        manifest.join("memory/mps2-an386.x")
+    } else if env::var_os("CARGO_FEATURE_QEMU_MICROBIT").is_some() {
+        manifest.join("memory/microbit.x")
+    } else {
+        manifest.join("../memory.x")
+    };
+    fs::copy(&layout, out.join("memory.x")).expect("copy the memory layout into OUT_DIR");
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rerun-if-changed={}", layout.display());
+    println!("cargo:rerun-if-changed=build.rs");
+    let target = env::var("TARGET").unwrap_or_default();
+    if target.starts_with("thumb") {
+        println!("cargo:rustc-link-arg-bins=-Tlink.x");
+        println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
+    }
+}

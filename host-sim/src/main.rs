@@ -1,0 +1,92 @@
+//! `host-sim`: the meterstick host harness.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Duration;
+
+use anyhow::Context as _;
+use clap::{Parser, Subcommand};
+use meterstick_host_sim::{lcp_io, qemu};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "host-sim",
+    version,
+    about = "meterstick host harness: LCP solves, scenes, reports, QEMU runs"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Cmd,
+}
+
+#[derive(Subcommand, Debug)]
+enum Cmd {
+    /// Print the versions of host-sim and of meterstick-core.
+    Version,
+    /// Solve one LCP from a file (JSON {"M": [[row]...], "q": [...]} or Siconos .dat) and
+    /// print one JSON object.
+    Lcp {
+        /// The LCP file.
+        file: PathBuf,
+        /// Scalar precision of the core solver.
+        #[arg(long, value_enum, default_value = "f64")]
+        precision: lcp_io::Precision,
+    },
+    /// Run a firmware ELF under QEMU, print its decoded defmt output, and exit with the
+    /// firmware's status.
+    Qemu {
+        /// The firmware ELF.
+        elf: PathBuf,
+        /// The QEMU machine.
+        #[arg(long, value_enum)]
+        machine: qemu::Machine,
+        /// Kill the run after this many seconds.
+        #[arg(long, default_value_t = 60)]
+        timeout_s: u64,
+        /// Deterministic instruction counting (`-icount shift=0`).
+        #[arg(long)]
+        icount: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("host-sim: error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Cmd::Version => {
+            println!("host-sim {}", meterstick_host_sim::VERSION);
+            println!("meterstick-core {}", meterstick_core::VERSION);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Lcp { file, precision } => {
+            let text =
+                std::fs::read_to_string(&file).with_context(|| format!("reading {}", file.display()))?;
+            let data =
+                lcp_io::parse(&text).with_context(|| format!("reading the LCP in {}", file.display()))?;
+            let report = lcp_io::solve(&data, precision)?;
+            println!("{}", serde_json::to_string(&report)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Qemu { elf, machine, timeout_s, icount } => {
+            let run = qemu::run(&elf, machine, Duration::from_secs(timeout_s), icount)?;
+            for line in &run.lines {
+                println!("{line}");
+            }
+            if run.timed_out {
+                eprintln!("host-sim: firmware timed out after {timeout_s} s");
+                return Ok(ExitCode::from(124));
+            }
+            let code = run.exit_code.unwrap_or(125);
+            eprintln!("host-sim: firmware exit status {code}");
+            Ok(ExitCode::from(u8::try_from(code).unwrap_or(125)))
+        }
+    }
+}

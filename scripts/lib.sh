@@ -1,0 +1,37 @@
+# Shared helpers, sourced by the other scripts (after scripts/setup.sh has run).
+# shellcheck shell=bash
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# shellcheck disable=SC1091
+. "$ROOT/target/meterstick-toolchain.env"
+
+# Host cargo: rustup's when present, else Debian's.
+if command -v cargo >/dev/null 2>&1; then HOST_CARGO=cargo; else HOST_CARGO=/usr/bin/cargo; fi
+
+# cargo for a Cortex-M target: rustup's, or Debian's building `core` from source.
+# Usage: cross_cargo <cargo args...>   (the caller passes --target)
+cross_cargo() {
+  if [ "$MS_CROSS_MODE" = debian ]; then
+    RUSTC=/usr/bin/rustc RUSTDOC=/usr/bin/rustdoc RUSTC_BOOTSTRAP=1 \
+      /usr/bin/cargo "$@" -Z build-std=core
+  else
+    cargo "$@"
+  fi
+}
+
+# Target directory for cross builds of the host workspace's crates (core): kept apart from
+# the host build, and per mode, so neither invalidates the other.
+CROSS_TARGET_DIR="$ROOT/target/cross-$MS_CROSS_MODE"
+FIRMWARE_TARGET_DIR="$ROOT/firmware/target/$MS_CROSS_MODE"
+
+# Builds one firmware variant and copies the ELF to firmware/target/<mode>/elf/<name>.elf
+# (variants of one target share cargo's output path); prints that path.
+# Usage: build_firmware <name> <target> <features-or-empty>
+build_firmware() {
+  local name=$1 target=$2 features=$3 args=()
+  [ -n "$features" ] && args+=(--features "$features")
+  (cd "$ROOT/firmware" && cross_cargo build --release --locked --target "$target" \
+      --target-dir "$FIRMWARE_TARGET_DIR" "${args[@]}" >&2)
+  mkdir -p "$FIRMWARE_TARGET_DIR/elf"
+  cp "$FIRMWARE_TARGET_DIR/$target/release/meterstick-firmware" "$FIRMWARE_TARGET_DIR/elf/$name.elf"
+  echo "$FIRMWARE_TARGET_DIR/elf/$name.elf"
+}

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Installs what meterstick needs on this machine, idempotently:
+#   - qemu-system-arm (Debian package) for the firmware runs;
+#   - the Cortex-M targets thumbv7em-none-eabihf and thumbv6m-none-eabi:
+#       1. the idiomatic way, `rustup target add` (the machine's rustup toolchain);
+#       2. when rustup is missing or cannot download, Debian's toolchain with the std
+#          sources (rustc-web, cargo-web, rust-web-src, rust-web-llvm, lld-22), which
+#          builds `core` itself (`-Z build-std=core`).
+# Writes the chosen mode to target/meterstick-toolchain.env for scripts/lib.sh.
+# Set MS_CROSS=debian to force the fallback, MS_CROSS=rustup to forbid it.
+# As root it installs what is missing; otherwise it stops with the exact command to run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+TARGETS=(thumbv7em-none-eabihf thumbv6m-none-eabi)
+DEBIAN_RUST=(rustc-web cargo-web rust-web-src rust-web-llvm lld-22)
+APT_UPDATED=0
+
+say() { printf 'setup: %s\n' "$*" >&2; }
+
+apt_install() {
+  if [ "$(id -u)" != 0 ]; then
+    say "missing: $*"
+    say "run as root:  apt-get update && apt-get install -y --no-install-recommends $*"
+    exit 1
+  fi
+  if [ "$APT_UPDATED" = 0 ]; then
+    say "apt-get update"
+    DEBIAN_FRONTEND=noninteractive apt-get update -qq >/dev/null
+    APT_UPDATED=1
+  fi
+  say "apt-get install $*"
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$@" >/dev/null
+}
+
+# --- QEMU --------------------------------------------------------------------------------
+if ! command -v qemu-system-arm >/dev/null 2>&1; then
+  apt_install qemu-system-arm
+fi
+
+# --- host toolchain -----------------------------------------------------------------------
+if ! command -v cargo >/dev/null 2>&1 && [ ! -x /usr/bin/cargo ]; then
+  say "no cargo on PATH and no rustup: installing Debian's Rust toolchain"
+  apt_install "${DEBIAN_RUST[@]}"
+fi
+
+# --- Cortex-M targets ---------------------------------------------------------------------
+mode=""
+want=${MS_CROSS:-auto}
+if [ "$want" != debian ] && command -v rustup >/dev/null 2>&1; then
+  installed=$(rustup target list --installed 2>/dev/null || true)
+  missing=()
+  for t in "${TARGETS[@]}"; do grep -qx "$t" <<<"$installed" || missing+=("$t"); done
+  if [ ${#missing[@]} -eq 0 ]; then
+    mode=rustup
+  else
+    say "rustup target add ${missing[*]}"
+    if timeout 300 rustup target add "${missing[@]}" >&2; then
+      mode=rustup
+    else
+      say "rustup could not add the targets; falling back to Debian's toolchain"
+    fi
+  fi
+fi
+if [ -z "$mode" ]; then
+  if [ "$want" = rustup ]; then say "MS_CROSS=rustup but rustup cannot provide the targets"; exit 1; fi
+  need=()
+  [ -x /usr/bin/rustc ] && [ -x /usr/bin/cargo ] || need+=(rustc-web cargo-web)
+  sysroot=$( [ -x /usr/bin/rustc ] && /usr/bin/rustc --print sysroot || echo /usr)
+  [ -d "$sysroot/lib/rustlib/src/rust/library/core" ] || need+=(rust-web-src)
+  dpkg -s rust-web-llvm >/dev/null 2>&1 || need+=(rust-web-llvm)
+  dpkg -s lld-22 >/dev/null 2>&1 || need+=(lld-22)
+  if [ ${#need[@]} -gt 0 ]; then apt_install "${need[@]}"; fi
+  mode=debian
+fi
+
+mkdir -p target
+{
+  echo "MS_CROSS_MODE=$mode"
+} > target/meterstick-toolchain.env
+say "cross toolchain: $mode ($(if [ "$mode" = debian ]; then /usr/bin/rustc --version; else rustc --version; fi))"

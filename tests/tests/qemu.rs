@@ -1,0 +1,51 @@
+//! The firmware, cross-built by `scripts/test.sh`, run under QEMU: its decoded defmt output
+//! and its exit status are checked. Ignored in a plain `cargo test` (they need the ELFs);
+//! `scripts/test.sh` builds them and runs these with `--ignored`, passing the paths in
+//! `MS_FIRMWARE_M4` and `MS_FIRMWARE_M0`.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use meterstick_host_sim::qemu::{self, FirmwareRun, Machine};
+
+fn run(var: &str, machine: Machine) -> FirmwareRun {
+    let elf =
+        PathBuf::from(std::env::var(var).unwrap_or_else(|_| panic!("{var} is not set: run scripts/test.sh")));
+    let run = qemu::run(&elf, machine, Duration::from_secs(120), false).expect("QEMU run");
+    for line in &run.lines {
+        println!("[{}] {line}", machine.qemu_name());
+    }
+    assert!(!run.timed_out, "firmware hung (killed after the timeout)");
+    assert_eq!(run.exit_code, Some(0), "firmware exit status; output: {:#?}", run.lines);
+    run
+}
+
+fn check_common(run: &FirmwareRun) {
+    assert!(
+        run.lines.first().is_some_and(|l| l.starts_with("meterstick-firmware ")),
+        "banner: {:?}",
+        run.lines
+    );
+    let lcp = run.lines.iter().find(|l| l.starts_with("lcp3 z = ")).expect("the LCP line");
+    // z = (1/3, 1/3, 1/3) in f32.
+    let inner = lcp.trim_start_matches("lcp3 z = [").split(']').next().unwrap();
+    let z: Vec<f32> = inner.split(", ").map(|x| x.parse().unwrap()).collect();
+    assert_eq!(z.len(), 3);
+    for v in z {
+        assert!((v - 1.0 / 3.0).abs() < 1e-6, "{lcp}");
+    }
+    assert_eq!(run.lines.last().map(String::as_str), Some("exit 0"));
+}
+
+#[test]
+#[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
+fn cortex_m4f_on_mps2_an386() {
+    check_common(&run("MS_FIRMWARE_M4", Machine::Mps2An386));
+}
+
+#[test]
+#[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
+fn cortex_m0_on_microbit() {
+    check_common(&run("MS_FIRMWARE_M0", Machine::Microbit));
+}
