@@ -6,6 +6,7 @@
 //! emerging from a linear complementarity problem solved by Lemke's method every step.
 //!
 //! * [`lcp`]: the statically sized Lemke solver ([`lcp::Lemke`]) and its verification.
+//! * [`scene`]: the meter-stick scene, 6x6 or 8x8, stepped in f32 or f64.
 //! * [`Real`]: the scalar trait (`f32` on a microcontroller, `f64` on a host).
 //!
 //! With the `defmt` feature, public types derive `defmt::Format`.
@@ -17,8 +18,12 @@
 mod fmt;
 pub mod lcp;
 mod real;
+pub mod scene;
 
 pub use real::Real;
+
+/// The `nalgebra` this crate is built with (its `SMatrix`/`SVector` appear in the API).
+pub use nalgebra;
 
 /// The version of this crate.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -5,7 +5,7 @@
 use anyhow::{Context as _, bail, ensure};
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, LcpError, Lemke};
-use nalgebra::{SMatrix, SVector};
+use meterstick_core::nalgebra::{SMatrix, SVector};
 use serde::Serialize;
 
 /// The largest size the `lcp` command solves (the core solver is instantiated for 1..=16).

@@ -1,0 +1,507 @@
+//! [`Scene`]: the meter-stick scene stepped in time, with its switch events and outcome.
+
+use heapless::Vec;
+
+use super::assemble::{StepInputs, assemble, friction_directions, sigma_index};
+use super::contact::{ContactFrame, ContactMode, Slide};
+use super::params::{ParamError, SceneParams};
+use crate::lcp::{Basis, LcpError, Lemke};
+use crate::real::{Real, max};
+
+/// Position and velocity of the rod's centre of mass.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RodState<T> {
+    /// `x` of the centre of mass (m).
+    pub x: T,
+    /// `y` of the centre of mass (m).
+    pub y: T,
+    /// Angle `theta` (rad, counter-clockwise).
+    pub theta: T,
+    /// `dx/dt` (m/s).
+    pub vx: T,
+    /// `dy/dt` (m/s).
+    pub vy: T,
+    /// `d theta / dt` (rad/s).
+    pub omega: T,
+}
+
+impl<T: Real> RodState<T> {
+    /// The rod at rest, horizontal, its bottom face on the finger tips (`y = t/2`).
+    #[must_use]
+    pub fn resting(params: &SceneParams<T>) -> Self {
+        Self {
+            x: T::zero(),
+            y: params.rod_thickness / T::of(2.0),
+            theta: T::zero(),
+            vx: T::zero(),
+            vy: T::zero(),
+            omega: T::zero(),
+        }
+    }
+
+    fn is_finite(&self) -> bool {
+        [self.x, self.y, self.theta, self.vx, self.vy, self.omega].iter().all(|v| v.finite())
+    }
+}
+
+/// A change of one finger's contact mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SwitchEvent<T> {
+    /// Time at the end of the step where the new mode was found (s).
+    pub time: T,
+    /// The finger: 0 (moving) or 1 (fixed).
+    pub finger: u8,
+    /// Its new mode.
+    pub mode: ContactMode,
+    /// Both fingers' signed distances from the centre of mass along the rod (m) at the
+    /// start of that step.
+    pub along: [T; 2],
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Outcome {
+    /// The fingers met with the centre of mass between them, and the rod stayed on them
+    /// for the hold time.
+    Balanced,
+    /// The rod tipped past the tilt limit, dropped past the drop limit, or left both fingers.
+    Fell,
+    /// `max_time` passed without either.
+    Unfinished,
+    /// A step's LCP could not be solved; the state is that before the step.
+    SolverFailed(LcpError),
+    /// The state became non-finite.
+    NonFinite,
+}
+
+/// When and where the fingers met.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Meeting<T> {
+    /// Time the moving finger stopped (s).
+    pub time: T,
+    /// Offset of the centre of mass from the midpoint between the fingers, along the rod
+    /// (m): the meeting-point error.
+    pub com_offset: T,
+}
+
+/// Counters over a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RunStats {
+    /// Steps taken.
+    pub steps: u64,
+    /// Complementary pivots, summed.
+    pub pivots: u64,
+    /// Most pivots in one step.
+    pub max_pivots: u32,
+    /// Steps whose answer came from the warm-start basis.
+    pub warm_starts: u64,
+    /// Steps where the 6x6 model's dropped-direction check failed.
+    pub reduced_check_fired: u64,
+    /// Of those, steps before the fingers met.
+    pub reduced_check_fired_before_meeting: u64,
+    /// Switch events that did not fit the event buffer.
+    pub events_dropped: u32,
+}
+
+/// What one step did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport<T> {
+    /// Time at the end of the step (s).
+    pub time: T,
+    /// Rod state at the end of the step.
+    pub state: RodState<T>,
+    /// Finger tip `x` positions at the end of the step (m).
+    pub fingers: [T; 2],
+    /// Each finger's signed distance from the centre of mass along the rod, at the start.
+    pub along: [T; 2],
+    /// Each finger's contact mode after the step.
+    pub modes: [ContactMode; 2],
+    /// Normal impulse of each finger (N s).
+    pub normal_impulse: [T; 2],
+    /// Net friction impulse of each finger along the rod's `+x` direction (N s).
+    pub friction_impulse: [T; 2],
+    /// Complementary pivots of this step's solve(s).
+    pub pivots: u32,
+    /// `true` when the warm-start basis gave the answer.
+    pub warm_start_used: bool,
+    /// 6x6 model only: the dropped friction direction's row went negative, or the reduced
+    /// LCP had no solution, so the step was re-solved with the full 8x8 model (the reported
+    /// values are the 8x8 ones).
+    pub reduced_check_failed: bool,
+    /// The solver's error, when the step failed (the state is then unchanged).
+    pub error: Option<LcpError>,
+}
+
+/// The meter-stick scene with an `N x N` LCP per step (`N = 8`: the paper's form; `N = 6`:
+/// the reduced form, see [`super::assemble`]) and room for `E` switch events.
+#[derive(Debug, Clone)]
+pub struct Scene<T: Real, const N: usize, const E: usize = 64> {
+    params: SceneParams<T>,
+    m_inv: [T; 3],
+    state: RodState<T>,
+    fingers: [T; 2],
+    time: T,
+    modes: [ContactMode; 2],
+    basis: Basis<N>,
+    solver: Lemke<T, N>,
+    events: Vec<SwitchEvent<T>, E>,
+    meeting: Option<Meeting<T>>,
+    outcome: Option<Outcome>,
+    stats: RunStats,
+    start_y: T,
+}
+
+/// The paper's 8x8 scene.
+pub type Scene8<T, const E: usize = 64> = Scene<T, 8, E>;
+/// The reduced 6x6 scene.
+pub type Scene6<T, const E: usize = 64> = Scene<T, 6, E>;
+
+impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
+    /// The scene at rest on the fingers ([`RodState::resting`]).
+    ///
+    /// # Errors
+    /// The first invalid parameter ([`SceneParams::validate`]).
+    pub fn new(params: SceneParams<T>) -> Result<Self, ParamError> {
+        Self::with_state(params, RodState::resting(&params))
+    }
+
+    /// The scene from a given initial rod state (e.g. slightly above the fingers).
+    ///
+    /// # Errors
+    /// An invalid parameter, or a non-finite state.
+    pub fn with_state(params: SceneParams<T>, state: RodState<T>) -> Result<Self, ParamError> {
+        const { assert!(N == 6 || N == 8, "the meter-stick scene has N = 6 or N = 8") };
+        params.validate()?;
+        if !state.is_finite() {
+            return Err(ParamError::NonFiniteState);
+        }
+        Ok(Self {
+            m_inv: [T::one() / params.rod_mass, T::one() / params.rod_mass, T::one() / params.inertia()],
+            params,
+            state,
+            fingers: [params.finger1_x, params.finger2_x],
+            time: T::zero(),
+            modes: [ContactMode::Sticking; 2],
+            basis: Basis::all_w(),
+            solver: Lemke::new(),
+            events: Vec::new(),
+            meeting: None,
+            outcome: None,
+            stats: RunStats::default(),
+            start_y: state.y,
+        })
+    }
+
+    /// The parameters.
+    #[must_use]
+    pub const fn params(&self) -> &SceneParams<T> {
+        &self.params
+    }
+    /// The rod's current state.
+    #[must_use]
+    pub const fn state(&self) -> &RodState<T> {
+        &self.state
+    }
+    /// Finger tip `x` positions (m).
+    #[must_use]
+    pub const fn fingers(&self) -> [T; 2] {
+        self.fingers
+    }
+    /// Simulated time (s).
+    #[must_use]
+    pub const fn time(&self) -> T {
+        self.time
+    }
+    /// The contact modes found by the last step (both `Sticking` at the start).
+    #[must_use]
+    pub const fn modes(&self) -> [ContactMode; 2] {
+        self.modes
+    }
+    /// The switch events so far (at most `E`; see [`RunStats::events_dropped`]).
+    #[must_use]
+    pub fn events(&self) -> &[SwitchEvent<T>] {
+        &self.events
+    }
+    /// When and where the fingers met, once they have.
+    #[must_use]
+    pub const fn meeting(&self) -> Option<Meeting<T>> {
+        self.meeting
+    }
+    /// The outcome, once the run has ended.
+    #[must_use]
+    pub const fn outcome(&self) -> Option<Outcome> {
+        self.outcome
+    }
+    /// Counters so far.
+    #[must_use]
+    pub const fn stats(&self) -> &RunStats {
+        &self.stats
+    }
+
+    /// Runs until an outcome, calling `observe` after every step; returns the outcome.
+    pub fn run(&mut self, mut observe: impl FnMut(&StepReport<T>)) -> Outcome {
+        while let Some(report) = self.step() {
+            observe(&report);
+        }
+        self.outcome.unwrap_or(Outcome::Unfinished)
+    }
+
+    fn frames(&self) -> [ContactFrame<T>; 2] {
+        let p = &self.params;
+        let sc = self.state.theta.sin_cos_libm();
+        let frame = |fx| {
+            ContactFrame::new(fx, T::zero(), self.state.x, self.state.y, sc, p.rod_length, p.rod_thickness)
+        };
+        [frame(self.fingers[0]), frame(self.fingers[1])]
+    }
+
+    fn mu(&self, mode: ContactMode) -> T {
+        if mode.is_sliding() { self.params.mu_kinetic } else { self.params.mu_static }
+    }
+
+    /// Advances one step of `h`. `None` once the run has an outcome.
+    ///
+    /// One step (paper, eqs. 13-18): contact frames from the current state, friction
+    /// coefficients from the previous modes (`mu_s` while sticking or separated, `mu_k`
+    /// while sliding), the LCP solved warm-started from the previous basis, then
+    /// `v+ = v~ + M^-1 W p` and `q+ = q + h v+`.
+    pub fn step(&mut self) -> Option<StepReport<T>> {
+        if self.outcome.is_some() {
+            return None;
+        }
+        let p = self.params;
+        let h = p.step;
+        let gap_left = max(self.fingers[1] - self.fingers[0] - p.finger_width, T::zero());
+        let travel = if p.finger_speed * h < gap_left { p.finger_speed * h } else { gap_left };
+        let finger_velocity = [[travel / h, T::zero()], [T::zero(), T::zero()]];
+        let frames = self.frames();
+        let v_free = [self.state.vx, self.state.vy - h * p.gravity, self.state.omega];
+        let inputs = StepInputs {
+            frames: &frames,
+            mu: [self.mu(self.modes[0]), self.mu(self.modes[1])],
+            finger_velocity,
+            v_free,
+            m_inv: self.m_inv,
+            h,
+        };
+        let step_lcp = assemble::<T, N>(&inputs);
+        let mut report = StepReport {
+            time: self.time,
+            state: self.state,
+            fingers: self.fingers,
+            along: [frames[0].along, frames[1].along],
+            modes: self.modes,
+            normal_impulse: [T::zero(); 2],
+            friction_impulse: [T::zero(); 2],
+            pivots: 0,
+            warm_start_used: false,
+            reduced_check_failed: false,
+            error: None,
+        };
+        let mut z = [T::zero(); 8];
+        let mut columns = [[T::zero(); 3]; 8];
+        let mut dirs = friction_directions(N);
+        let mut v_plus = v_free;
+        let reduced_ok = match self.solver.solve_warm(&step_lcp.lcp, self.basis) {
+            Ok(sol) => {
+                self.basis = sol.basis;
+                report.pivots = sol.pivots;
+                report.warm_start_used = sol.warm_start_used;
+                z[..N].copy_from_slice(sol.z.as_slice());
+                columns[..N].copy_from_slice(&step_lcp.columns);
+                v_plus = velocity_after(&v_free, &self.m_inv, &columns[..N - 2], &z[..N - 2]);
+                true
+            }
+            // The reduced LCP may have no solution when a dropped direction is needed:
+            // that too is the reduced model leaving its range.
+            Err(e) if N == 6 => {
+                report.pivots = e.pivots();
+                self.basis = Basis::all_w();
+                false
+            }
+            Err(e) => return Some(self.fail(report, e)),
+        };
+        if N == 6 && (!reduced_ok || reduced_check_fails(&frames, &finger_velocity, &v_plus, &z, &p)) {
+            report.reduced_check_failed = true;
+            self.stats.reduced_check_fired += 1;
+            if self.meeting.is_none() && travel >= p.finger_speed * h {
+                self.stats.reduced_check_fired_before_meeting += 1;
+            }
+            let full = assemble::<T, 8>(&inputs);
+            match Lemke::<T, 8>::new().solve_warm(&full.lcp, widen_basis(self.basis)) {
+                Ok(sol8) => {
+                    report.pivots += sol8.pivots;
+                    z.copy_from_slice(sol8.z.as_slice());
+                    columns = full.columns;
+                    dirs = friction_directions(8);
+                    v_plus = velocity_after(&v_free, &self.m_inv, &columns[..6], &z[..6]);
+                }
+                Err(e) => return Some(self.fail(report, e)),
+            }
+        }
+        self.stats.steps += 1;
+        self.stats.pivots += u64::from(report.pivots);
+        self.stats.max_pivots = self.stats.max_pivots.max(report.pivots);
+        self.stats.warm_starts += u64::from(report.warm_start_used);
+        for (k, &(i, sign)) in dirs.iter().enumerate() {
+            let s = if sign > 0 { T::one() } else { -T::one() };
+            report.friction_impulse[i] += s * z[2 + k];
+        }
+        report.normal_impulse = [z[0], z[1]];
+
+        // Integrate (eq. 14): q+ = q + h v+, and move finger 1.
+        let s = &mut self.state;
+        s.vx = v_plus[0];
+        s.vy = v_plus[1];
+        s.omega = v_plus[2];
+        s.x += h * s.vx;
+        s.y += h * s.vy;
+        s.theta += h * s.omega;
+        self.fingers[0] += travel;
+        self.time += h;
+
+        // Modes after the step, and switch events.
+        let modes = self.classify(&frames, &z, v_plus, &finger_velocity);
+        self.record_switches(modes, report.along);
+        self.modes = modes;
+        report.modes = modes;
+        report.time = self.time;
+        report.state = self.state;
+        report.fingers = self.fingers;
+        self.update_outcome(travel, &report);
+        Some(report)
+    }
+
+    /// Each contact's mode after a step: separated without a normal impulse, sticking when
+    /// the slip speed is at most `stick_speed`, sliding otherwise.
+    fn classify(
+        &self,
+        frames: &[ContactFrame<T>; 2],
+        z: &[T; 8],
+        v_plus: [T; 3],
+        finger_velocity: &[[T; 2]; 2],
+    ) -> [ContactMode; 2] {
+        let p = &self.params;
+        let impulse_floor =
+            T::of(64.0) * T::EPS * p.rod_mass * (p.gravity * p.step + p.finger_speed) + T::TINY;
+        let mut modes = [ContactMode::Separated; 2];
+        for i in 0..2 {
+            if frames[i].active && z[i] > impulse_floor {
+                let slip = frames[i].slip(v_plus, finger_velocity[i]);
+                modes[i] = if slip.abs_exact() <= p.stick_speed {
+                    ContactMode::Sticking
+                } else if slip > T::zero() {
+                    ContactMode::Sliding(Slide::TowardPositiveEnd)
+                } else {
+                    ContactMode::Sliding(Slide::TowardNegativeEnd)
+                };
+            }
+        }
+        modes
+    }
+
+    /// Appends a [`SwitchEvent`] for each finger whose mode changed (counting overflow).
+    fn record_switches(&mut self, modes: [ContactMode; 2], along: [T; 2]) {
+        for i in 0..2 {
+            if modes[i] != self.modes[i] {
+                let event = SwitchEvent { time: self.time, finger: i as u8, mode: modes[i], along };
+                if self.events.push(event).is_err() {
+                    self.stats.events_dropped += 1;
+                }
+            }
+        }
+    }
+
+    fn fail(&mut self, mut report: StepReport<T>, e: LcpError) -> StepReport<T> {
+        report.error = Some(e);
+        self.outcome = Some(Outcome::SolverFailed(e));
+        report
+    }
+
+    fn update_outcome(&mut self, travel: T, report: &StepReport<T>) {
+        let p = &self.params;
+        if !self.state.is_finite() {
+            self.outcome = Some(Outcome::NonFinite);
+            return;
+        }
+        let frames = self.frames();
+        if self.meeting.is_none() && travel < p.finger_speed * p.step {
+            let com_offset = -(frames[0].along + frames[1].along) / T::of(2.0);
+            self.meeting = Some(Meeting { time: self.time, com_offset });
+        }
+        let fell = self.state.theta.abs_exact() > p.tilt_limit
+            || self.state.y < self.start_y - p.drop_limit
+            || !(frames[0].active || frames[1].active);
+        if fell {
+            self.outcome = Some(Outcome::Fell);
+        } else if let Some(meeting) = self.meeting
+            && self.time - meeting.time >= p.hold_time
+            && report.modes.iter().all(|m| *m != ContactMode::Separated)
+            && frames[0].along <= T::zero()
+            && frames[1].along >= T::zero()
+        {
+            self.outcome = Some(Outcome::Balanced);
+        } else if self.time >= p.max_time {
+            self.outcome = Some(Outcome::Unfinished);
+        }
+    }
+}
+
+/// The 8x8 basis holding the same basic variables as a 6x6 one: 6x6 `z` is
+/// `(p_n1, p_n2, p_f1+, p_f2-, s1, s2)`, 8x8 `z` is `(p_n1, p_n2, p_f1+, p_f1-, p_f2+, p_f2-, s1, s2)`.
+fn widen_basis<const N: usize>(b: Basis<N>) -> Basis<8> {
+    const SLOT: [usize; 6] = [0, 1, 2, 5, 6, 7];
+    let mut wide = Basis::<8>::all_w();
+    if N == 6 {
+        for (i, &slot) in SLOT.iter().enumerate() {
+            wide.set_z_basic(slot, b.is_z_basic(i));
+        }
+    }
+    wide
+}
+
+/// `v+ = v~ + M^-1 sum_j c_j z_j` (eq. 16).
+fn velocity_after<T: Real>(v_free: &[T; 3], m_inv: &[T; 3], columns: &[[T; 3]], z: &[T]) -> [T; 3] {
+    let mut v = *v_free;
+    for (c, &zj) in columns.iter().zip(z) {
+        for k in 0..3 {
+            v[k] += m_inv[k] * c[k] * zj;
+        }
+    }
+    v
+}
+
+/// The 6x6 model's validity check: for each contact in touch, the complementarity row of
+/// the friction direction the reduced model dropped, `-s (W_t^T v+ - d . u) + sigma`, must
+/// not be negative (beyond round-off): otherwise the slip goes the dropped way and the
+/// reduced LCP's answer is not a solution of the full one.
+fn reduced_check_fails<T: Real>(
+    frames: &[ContactFrame<T>; 2],
+    finger_velocity: &[[T; 2]; 2],
+    v_plus: &[T; 3],
+    z: &[T; 8],
+    p: &SceneParams<T>,
+) -> bool {
+    let speed_scale = p.finger_speed
+        + p.gravity * p.step
+        + v_plus[0].abs_exact()
+        + v_plus[1].abs_exact()
+        + (v_plus[2] * p.rod_length).abs_exact();
+    let tol = T::of(64.0 * 6.0) * T::EPS * speed_scale + T::TINY;
+    friction_directions(6).iter().any(|&(i, sign)| {
+        if !frames[i].active {
+            return false;
+        }
+        let f = &frames[i];
+        let g = f.wt[0] * v_plus[0] + f.wt[1] * v_plus[1] + f.wt[2] * v_plus[2]
+            - (f.tangent[0] * finger_velocity[i][0] + f.tangent[1] * finger_velocity[i][1]);
+        let kept_sign = if sign > 0 { T::one() } else { -T::one() };
+        let dropped_row = -kept_sign * g + z[sigma_index(6, i)];
+        dropped_row < -tol
+    })
+}

@@ -1,0 +1,184 @@
+//! Property tests: the core solver against exhaustive enumeration of complementary bases
+//! (`meterstick_tests::enumeration`, f64, independent of the core), sizes 1..=8.
+//!
+//! * P-matrices (non-symmetric positive definite): exactly one solution exists; the f64
+//!   solve matches it to `1e-9` relative, and the f32 solve within
+//!   `64 n eps32 L (||M|| ||z|| + ||q||)`, where `L = max_S ||M_SS^-1||` is the Lipschitz
+//!   constant of the solution in `q`: a backward-stable f32 solve is the exact solution of
+//!   a problem whose `q` moved by `O(n eps32)` times the size of the terms of `w`.
+//! * PSD matrices (copositive-plus): Lemke finds a solution exactly when enumeration finds
+//!   one, and reports a ray otherwise.
+//! * Degenerate right-hand sides: q drawn from {-2, -1, 0, 1} makes zeros and ties.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use meterstick_core::lcp::{Lcp, LcpError, Lemke};
+use meterstick_core::nalgebra::{SMatrix, SVector};
+use meterstick_tests::enumeration::{Mat, all_solutions, is_lcp_solution, max_principal_inverse_norm};
+use meterstick_tests::generate::{positive_definite, psd};
+use proptest::prelude::*;
+
+/// Solves with the core solver of size `N` (dispatched from the runtime size).
+fn core_solve<T: meterstick_core::Real>(m: &Mat, q: &[f64]) -> Result<Vec<f64>, LcpError> {
+    fn sized<T: meterstick_core::Real, const N: usize>(m: &Mat, q: &[f64]) -> Result<Vec<f64>, LcpError> {
+        let lcp = Lcp::new(
+            SMatrix::<T, N, N>::from_fn(|i, j| T::of(m[i][j])),
+            SVector::from_fn(|i, _| T::of(q[i])),
+        );
+        Lemke::<T, N>::new().solve(&lcp).map(|s| s.z.iter().map(|x| x.as_f64()).collect())
+    }
+    match q.len() {
+        1 => sized::<T, 1>(m, q),
+        2 => sized::<T, 2>(m, q),
+        3 => sized::<T, 3>(m, q),
+        4 => sized::<T, 4>(m, q),
+        5 => sized::<T, 5>(m, q),
+        6 => sized::<T, 6>(m, q),
+        7 => sized::<T, 7>(m, q),
+        8 => sized::<T, 8>(m, q),
+        n => panic!("size {n}"),
+    }
+}
+
+fn norm_inf(m: &Mat) -> f64 {
+    m.iter().map(|r| r.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max)
+}
+
+fn vmax(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+fn q_strategy(n: usize) -> impl Strategy<Value = Vec<f64>> {
+    prop_oneof![
+        prop::collection::vec(-10.0..10.0f64, n),
+        prop::collection::vec(prop::sample::select(vec![-2.0, -1.0, 0.0, 1.0]), n),
+    ]
+}
+
+fn p_matrix_case() -> impl Strategy<Value = (Mat, Vec<f64>)> {
+    (1usize..=8).prop_flat_map(|n| {
+        (
+            prop::collection::vec(-2.0..2.0f64, n * n),
+            prop::collection::vec(-2.0..2.0f64, n * n),
+            0.2..3.0f64,
+            q_strategy(n),
+        )
+            .prop_map(move |(a, s, c, q)| (positive_definite(n, &a, &s, c), q))
+    })
+}
+
+fn psd_case() -> impl Strategy<Value = (Mat, Vec<f64>)> {
+    (1usize..=8).prop_flat_map(|n| {
+        (1..=n).prop_flat_map(move |k| {
+            (
+                prop::collection::vec(-2.0..2.0f64, n * k),
+                prop::collection::vec(-1.0..1.0f64, n * n),
+                q_strategy(n),
+            )
+                .prop_map(move |(a, s, q)| (psd(n, k, &a, &s), q))
+        })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn p_matrix_matches_enumeration((m, q) in p_matrix_case()) {
+        let exact = all_solutions(&m, &q);
+        prop_assert_eq!(exact.len(), 1, "a P-matrix LCP has exactly one solution");
+        let exact = &exact[0];
+        let scale = norm_inf(&m) * vmax(exact) + vmax(&q);
+        let z64 = core_solve::<f64>(&m, &q).unwrap();
+        for (a, b) in z64.iter().zip(exact) {
+            prop_assert!((a - b).abs() <= 1e-9 * (1.0 + scale), "f64 z {:?} vs {:?}", z64, exact);
+        }
+        let lipschitz = max_principal_inverse_norm(&m);
+        let tol = 64.0 * m.len() as f64 * f64::from(f32::EPSILON) * lipschitz * (1.0 + scale);
+        let z32 = core_solve::<f32>(&m, &q).unwrap();
+        for (a, b) in z32.iter().zip(exact) {
+            prop_assert!((a - b).abs() <= tol, "f32 z {:?} vs {:?} (tol {})", z32, exact, tol);
+        }
+    }
+
+    #[test]
+    fn psd_solution_exists_exactly_when_enumeration_finds_one((m, q) in psd_case()) {
+        let exact = all_solutions(&m, &q);
+        match core_solve::<f64>(&m, &q) {
+            Ok(z) => {
+                prop_assert!(!exact.is_empty(), "solver found {:?} where enumeration found none", z);
+                prop_assert!(is_lcp_solution(&m, &q, &z, 1e-9));
+            }
+            Err(LcpError::Ray { .. }) => prop_assert!(exact.is_empty(), "ray, but {:?} solve it", exact),
+            Err(e) => prop_assert!(false, "unexpected error {:?}", e),
+        }
+    }
+}
+
+/// A long run over many random problems (not in the default test path; run with
+/// `MS_LONG_RUN=1000000 cargo test --release -p meterstick-tests --test lemke_props -- --ignored --nocapture`).
+/// Alternates P-matrix and PSD problems, sizes 1..=8, both q kinds; prints the tally.
+#[test]
+#[ignore = "long: run by hand, see the doc comment"]
+fn long_random_run() {
+    let count: u64 = std::env::var("MS_LONG_RUN").ok().and_then(|s| s.parse().ok()).unwrap_or(100_000);
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut p_ok, mut psd_solved, mut psd_ray, mut worst_f32_ratio, mut worst_res64) =
+        (0u64, 0u64, 0u64, 0.0f64, 0.0f64);
+    for case in 0..count {
+        let n = 1 + (case % 8) as usize;
+        let degenerate = case % 3 == 0;
+        let q: Vec<f64> = (0..n)
+            .map(|_| {
+                if degenerate {
+                    [-2.0, -1.0, 0.0, 1.0][(next() * 4.0) as usize % 4]
+                } else {
+                    20.0 * next() - 10.0
+                }
+            })
+            .collect();
+        let s: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
+        if case % 2 == 0 {
+            let a: Vec<f64> = (0..n * n).map(|_| 4.0 * next() - 2.0).collect();
+            let m = positive_definite(n, &a, &s, 0.2 + 2.8 * next());
+            let exact = all_solutions(&m, &q);
+            assert_eq!(exact.len(), 1, "case {case}: P-matrix with {} solutions", exact.len());
+            let scale = norm_inf(&m) * vmax(&exact[0]) + vmax(&q);
+            let z64 = core_solve::<f64>(&m, &q).unwrap_or_else(|e| panic!("case {case}: {e:?}"));
+            let err64 = z64.iter().zip(&exact[0]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            assert!(err64 <= 1e-9 * (1.0 + scale), "case {case}: f64 error {err64}");
+            worst_res64 = worst_res64.max(err64 / (1.0 + scale));
+            let z32 = core_solve::<f32>(&m, &q).unwrap_or_else(|e| panic!("case {case}: f32 {e:?}"));
+            let err32 = z32.iter().zip(&exact[0]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            let bound = n as f64 * f64::from(f32::EPSILON) * max_principal_inverse_norm(&m) * (1.0 + scale);
+            worst_f32_ratio = worst_f32_ratio.max(err32 / bound);
+            assert!(err32 <= 64.0 * bound, "case {case}: f32 error {err32} > 64 x {bound}");
+            p_ok += 1;
+        } else {
+            let k = 1 + (next() * n as f64) as usize % n;
+            let a: Vec<f64> = (0..n * k).map(|_| 4.0 * next() - 2.0).collect();
+            let m = psd(n, k, &a, &s);
+            let exact = all_solutions(&m, &q);
+            match core_solve::<f64>(&m, &q) {
+                Ok(z) => {
+                    assert!(!exact.is_empty() && is_lcp_solution(&m, &q, &z, 1e-9), "case {case}");
+                    psd_solved += 1;
+                }
+                Err(LcpError::Ray { .. }) => {
+                    assert!(exact.is_empty(), "case {case}: ray but solvable");
+                    psd_ray += 1;
+                }
+                Err(e) => panic!("case {case}: {e:?}"),
+            }
+        }
+    }
+    println!(
+        "long run: {count} problems; P-matrix {p_ok} all matched (worst f64 error/scale {worst_res64:.2e}, \
+         worst f32 error / (n eps32 L scale) {worst_f32_ratio:.2}); PSD {psd_solved} solved, {psd_ray} rays, all agreeing with enumeration"
+    );
+}
