@@ -1,13 +1,21 @@
 #!/usr/bin/env bash
-# The main job: run the firmware on both emulated Cortex-M cores and show what it printed.
+# The main job: the paper's scenes in the core (f32, 6x6, as the firmware runs them), then the
+# firmware itself on both emulated Cortex-M cores. Installs what it needs first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 . scripts/lib.sh
 $HOST_CARGO build --locked --release -p meterstick-host-sim
+echo "== slow finger (the paper's figs. 2-3)"
+target/release/host-sim scene --speed 0.1
+echo
+echo "== fast finger (the paper's fig. 5c)"
+target/release/host-sim scene --speed 5
 M4=$(build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386)
 M0=$(build_firmware qemu-m0 thumbv6m-none-eabi qemu-microbit)
-echo "== Cortex-M4F (QEMU mps2-an386)"
-target/release/host-sim qemu --machine mps2-an386 "$M4"
-echo "== Cortex-M0 (QEMU microbit)"
-target/release/host-sim qemu --machine microbit "$M0"
+echo
+echo "== firmware on Cortex-M4F (QEMU mps2-an386)"
+target/release/host-sim qemu --machine mps2-an386 "$M4" | grep -v ' event '
+echo
+echo "== firmware on Cortex-M0 (QEMU microbit)"
+target/release/host-sim qemu --machine microbit "$M0" | grep -v ' event '

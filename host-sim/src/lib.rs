@@ -5,6 +5,7 @@
 
 pub mod lcp_io;
 pub mod qemu;
+pub mod scene_cmd;
 
 /// This crate's version.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
-use meterstick_host_sim::{lcp_io, qemu};
+use meterstick_host_sim::{lcp_io, qemu, scene_cmd};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -32,6 +32,9 @@ enum Cmd {
         #[arg(long, value_enum, default_value = "f64")]
         precision: lcp_io::Precision,
     },
+    /// Run the meter-stick scene in the core and print its outcome, meeting point, switch
+    /// events (with the eq. 21 ratio) and solver statistics. Units: m, s, m/s.
+    Scene(scene_cmd::SceneArgs),
     /// Run a firmware ELF under QEMU, print its decoded defmt output, and exit with the
     /// firmware's status.
     Qemu {
@@ -73,6 +76,10 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
                 lcp_io::parse(&text).with_context(|| format!("reading the LCP in {}", file.display()))?;
             let report = lcp_io::solve(&data, precision)?;
             println!("{}", serde_json::to_string(&report)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Scene(args) => {
+            print!("{}", scene_cmd::run(&args)?);
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Qemu { elf, machine, timeout_s, icount } => {

@@ -36,6 +36,34 @@ fn check_common(run: &FirmwareRun) {
         assert!((v - 1.0 / 3.0).abs() < 1e-6, "{lcp}");
     }
     assert_eq!(run.lines.last().map(String::as_str), Some("exit 0"));
+    for (name, speed, outcome) in [("slow", 0.1f32, "Balanced"), ("fast", 5.0, "Fell")] {
+        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
+        assert!(line.starts_with(&format!("{name} outcome={outcome} ")), "{line}");
+        let (steps, checksum) = host_checksum(speed);
+        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+        assert!(
+            line.ends_with(&format!("checksum={checksum:08x}")),
+            "{line}: the host f32 build's trajectory checksum is {checksum:08x}"
+        );
+    }
+}
+
+/// The same f32 6x6 scene on the host, with the firmware's checksum (FNV-1a over the bits of
+/// the rod state after every step): bit-identical IEEE f32 arithmetic gives the same value.
+fn host_checksum(speed: f32) -> (u64, u32) {
+    use meterstick_core::scene::{Scene6, SceneParams};
+    let params = SceneParams { finger_speed: speed, finger1_x: -0.35, ..SceneParams::<f32>::paper() };
+    let mut scene = Scene6::<f32, 32>::new(params).unwrap();
+    let mut hash = 0x811c_9dc5u32;
+    scene.run(|r| {
+        for v in [r.state.x, r.state.y, r.state.theta, r.state.vx, r.state.vy, r.state.omega] {
+            for byte in v.to_bits().to_le_bytes() {
+                hash ^= u32::from(byte);
+                hash = hash.wrapping_mul(0x0100_0193);
+            }
+        }
+    });
+    (scene.stats().steps, hash)
 }
 
 #[test]

@@ -25,7 +25,7 @@ fn eq21_switches<T: Real>(events: &[SwitchEvent<T>], meeting_time: f64, h: f64) 
     let mut step_time = f64::NAN;
     let mut out = Vec::new();
     for e in events {
-        if e.time.as_f64() != step_time {
+        if e.time.as_f64().to_bits() != step_time.to_bits() {
             step_time = e.time.as_f64();
             before = mode;
         }
