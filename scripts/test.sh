@@ -27,6 +27,14 @@ for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
   done
 done
 
+step "firmware clippy"
+if [ "$MS_CROSS_MODE" = rustup ]; then
+  (cd firmware && cargo clippy --locked --release --target thumbv7em-none-eabihf --features qemu-mps2-an386 \
+      --target-dir "$FIRMWARE_TARGET_DIR" -- -D warnings)
+else
+  echo "Debian fallback: no clippy for the cross toolchain; skipped"
+fi
+
 step "firmware builds"
 M4=$(build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386)
 M0=$(build_firmware qemu-m0 thumbv6m-none-eabi qemu-microbit)
