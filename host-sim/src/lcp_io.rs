@@ -4,7 +4,7 @@
 
 use anyhow::{Context as _, bail, ensure};
 use meterstick_core::Real;
-use meterstick_core::lcp::{Lcp, LcpError, Lemke};
+use meterstick_core::lcp::{Lcp, Lemke};
 use meterstick_core::nalgebra::{SMatrix, SVector};
 use serde::Serialize;
 
@@ -173,14 +173,8 @@ fn solve_sized<T: Real, const N: usize>(data: &LcpData, precision: Precision) ->
             pivots: sol.pivots,
             precision,
         },
-        Err(e) => LcpReport { n: N, status: status_of(&e), z: None, w: None, pivots: e.pivots(), precision },
+        Err(e) => LcpReport { n: N, status: e.kind(), z: None, w: None, pivots: e.pivots(), precision },
     }
-}
-
-/// The status string of an error.
-#[must_use]
-pub fn status_of(e: &LcpError) -> &'static str {
-    e.kind()
 }
 
 /// Solves `data` with the core solver of size `n` in the requested precision.

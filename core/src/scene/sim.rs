@@ -154,6 +154,8 @@ pub struct Scene<T: Real, const N: usize, const E: usize = 64> {
     outcome: Option<Outcome>,
     stats: RunStats,
     start_y: T,
+    /// Contact frames of the current state (computed once per step, at its end).
+    frames: [ContactFrame<T>; 2],
 }
 
 /// The paper's 8x8 scene.
@@ -180,7 +182,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         if !state.is_finite() {
             return Err(ParamError::NonFiniteState);
         }
-        Ok(Self {
+        let mut scene = Self {
             m_inv: [T::one() / params.rod_mass, T::one() / params.rod_mass, T::one() / params.inertia()],
             params,
             state,
@@ -194,7 +196,18 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             outcome: None,
             stats: RunStats::default(),
             start_y: state.y,
-        })
+            frames: [ContactFrame::new(
+                T::zero(),
+                T::zero(),
+                T::zero(),
+                T::zero(),
+                (T::zero(), T::one()),
+                T::one(),
+                T::one(),
+            ); 2],
+        };
+        scene.frames = scene.compute_frames();
+        Ok(scene)
     }
 
     /// The parameters.
@@ -251,7 +264,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         self.outcome.unwrap_or(Outcome::Unfinished)
     }
 
-    fn frames(&self) -> [ContactFrame<T>; 2] {
+    fn compute_frames(&self) -> [ContactFrame<T>; 2] {
         let p = &self.params;
         let sc = self.state.theta.sin_cos_libm();
         let frame = |fx| {
@@ -279,7 +292,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         let gap_left = max(self.fingers[1] - self.fingers[0] - p.finger_width, T::zero());
         let travel = if p.finger_speed * h < gap_left { p.finger_speed * h } else { gap_left };
         let finger_velocity = [[travel / h, T::zero()], [T::zero(), T::zero()]];
-        let frames = self.frames();
+        let frames = self.frames;
         let v_free = [self.state.vx, self.state.vy - h * p.gravity, self.state.omega];
         let inputs = StepInputs {
             frames: &frames,
@@ -429,7 +442,8 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             self.outcome = Some(Outcome::NonFinite);
             return;
         }
-        let frames = self.frames();
+        self.frames = self.compute_frames();
+        let frames = self.frames;
         if self.meeting.is_none() && travel < p.finger_speed * p.step {
             let com_offset = -(frames[0].along + frames[1].along) / T::of(2.0);
             self.meeting = Some(Meeting { time: self.time, com_offset });
