@@ -9,7 +9,11 @@
 //! * [`scene`]: the meter-stick scene, 6x6 or 8x8, stepped in f32 or f64.
 //! * [`Real`]: the scalar trait (`f32` on a microcontroller, `f64` on a host).
 //!
-//! With the `defmt` feature, public types derive `defmt::Format`.
+//! * [`rig`] (feature `rig`): the demo rig's control loop over `embedded-hal` 1.0 pins.
+//!
+//! Features: `defmt` (public types derive `defmt::Format`; logging goes to defmt, and
+//! compiles to nothing without it), `fallback-8x8` (default: the 6x6 scene re-solves a step
+//! with the 8x8 form when its check fails; without it no 8x8 code is linked), `rig`.
 #![cfg_attr(not(test), no_std)]
 #![deny(missing_docs)]
 
@@ -18,6 +22,8 @@
 mod fmt;
 pub mod lcp;
 mod real;
+#[cfg(feature = "rig")]
+pub mod rig;
 pub mod scene;
 
 pub use real::Real;

@@ -144,6 +144,17 @@ pub enum Precision {
     F64,
 }
 
+impl Precision {
+    /// `f32` or `f64`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::F32 => "f32",
+            Self::F64 => "f64",
+        }
+    }
+}
+
 /// The JSON line the `lcp` command prints.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LcpReport {

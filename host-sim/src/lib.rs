@@ -1,11 +1,18 @@
 //! # meterstick-host-sim
 //!
 //! The std host harness around `meterstick-core`: the `host-sim` command line, the LCP
-//! file reader ([`lcp_io`]) and the QEMU firmware runner ([`qemu`]).
+//! file reader ([`lcp_io`]), the independent f64 reference of the scene ([`reference`]), the
+//! main job ([`run_cmd`]), the error-vs-run-time report ([`report`]) and the QEMU firmware
+//! runner ([`qemu`]).
 
 pub mod lcp_io;
+pub mod plot;
 pub mod qemu;
+pub mod reference;
+pub mod report;
+pub mod run_cmd;
 pub mod scene_cmd;
+pub mod trajectory;
 
 /// This crate's version.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

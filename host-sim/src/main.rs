@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
-use meterstick_host_sim::{lcp_io, qemu, scene_cmd};
+use meterstick_host_sim::{lcp_io, qemu, report, run_cmd, scene_cmd};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -32,9 +32,17 @@ enum Cmd {
         #[arg(long, value_enum, default_value = "f64")]
         precision: lcp_io::Precision,
     },
-    /// Run the meter-stick scene in the core and print its outcome, meeting point, switch
-    /// events (with the eq. 21 ratio) and solver statistics. Units: m, s, m/s.
-    Scene(scene_cmd::SceneArgs),
+    /// The main job: the paper's scenes (slow 0.1 m/s and the fast cases of fig. 5) in the core
+    /// (f32 6x6 by default, as the firmware) beside the independent f64 reference; writes
+    /// trajectory and event CSVs, summary.json and SVG plots per scene, and prints a summary.
+    /// Units: m, s, kg, m/s.
+    Run(run_cmd::RunArgs),
+    /// Error against run time over a sweep of h (core f32 6x6, f32 8x8, f64 8x8, reference),
+    /// and a success map over finger speed and mu_k/mu_s; writes report.md with pictures.
+    Report(report::ReportArgs),
+    /// Run one scene in the core and print its outcome, meeting point, switch events (with
+    /// the eq. 21 ratio) and solver statistics. Units: m, s, kg, m/s.
+    Scene(scene_cmd::SceneCmd),
     /// Run a firmware ELF under QEMU, print its decoded defmt output, and exit with the
     /// firmware's status.
     Qemu {
@@ -76,6 +84,14 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
                 lcp_io::parse(&text).with_context(|| format!("reading the LCP in {}", file.display()))?;
             let report = lcp_io::solve(&data, precision)?;
             println!("{}", serde_json::to_string(&report)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Run(args) => {
+            print!("{}", run_cmd::run(&args)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Report(args) => {
+            print!("{}", report::run(&args)?);
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Scene(args) => {

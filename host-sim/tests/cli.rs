@@ -76,6 +76,143 @@ fn lcp_rejects_unreadable_and_oversized_files() {
     assert!(err.contains("size 17 is not supported"), "{err}");
 }
 
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("meterstick-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// Parses a CSV with a header, checks every row has the header's width, and returns the rows.
+fn read_csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_owned).collect();
+    let rows: Vec<Vec<String>> = lines.map(|l| l.split(',').map(str::to_owned).collect()).collect();
+    for r in &rows {
+        assert_eq!(r.len(), header.len(), "{}: {r:?}", path.display());
+    }
+    (header, rows)
+}
+
+fn num(s: &str) -> f64 {
+    s.parse().unwrap_or_else(|e| panic!("{s:?}: {e}"))
+}
+
+#[test]
+fn run_writes_every_output_file() {
+    let out = temp_dir("run");
+    let (code, stdout, err) =
+        host_sim(&["run", "--speed", "0.1,5", "--duration", "2", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("core f32 6x6") && stdout.contains("reference f64 8x8"), "{stdout}");
+    let all: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(all["scenes"].as_array().unwrap().len(), 2);
+    for (scene, outcome) in [("v0.1", "Unfinished"), ("v5", "Fell")] {
+        let dir = out.join(scene);
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+        assert_eq!(s["core"]["outcome"], outcome, "{scene}");
+        assert_eq!(s["reference"]["outcome"], outcome, "{scene}");
+        assert_eq!(s["core"]["label"], "core f32 6x6");
+        assert!(s["comparison"]["max_com_deviation_m"].as_f64().unwrap() < 1e-3, "{s}");
+        assert_eq!(s["parameters"]["step_s"], serde_json::json!(1e-3));
+        for (name, steps_key) in [("core.csv", "core"), ("reference.csv", "reference")] {
+            let (header, rows) = read_csv(&dir.join(name));
+            assert_eq!(header.join(","), "t,x,y,theta,finger1,finger2,mode1,mode2,pn1,pn2,pf1,pf2");
+            assert_eq!(rows.len() as u64, s[steps_key]["steps"].as_u64().unwrap() + 1, "{name}");
+            for r in &rows {
+                for (k, cell) in r.iter().enumerate() {
+                    if k == 6 || k == 7 {
+                        assert!(["separated", "sticking", "sliding+", "sliding-"].contains(&cell.as_str()));
+                    } else {
+                        assert!(num(cell).is_finite(), "{name}: {r:?}");
+                    }
+                }
+            }
+        }
+        for name in ["core-events.csv", "reference-events.csv"] {
+            let (header, rows) = read_csv(&dir.join(name));
+            assert_eq!(header.join(","), "t,finger,mode,x1_from_com,x2_from_com,finger1,finger2");
+            assert!(!rows.is_empty(), "{name}");
+            for r in &rows {
+                assert!(num(&r[0]) > 0.0 && ["1", "2"].contains(&r[1].as_str()), "{r:?}");
+            }
+        }
+        for name in ["positions.svg", "relative.svg"] {
+            let svg = std::fs::read_to_string(dir.join(name)).unwrap();
+            assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{name}");
+            assert!(svg.contains("<polyline") || svg.contains("<path"), "{name} has no lines");
+        }
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn report_quick_writes_its_tables_and_pictures() {
+    let out = temp_dir("report");
+    let (code, stdout, err) = host_sim(&["report", "--quick", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("order"), "{stdout}");
+    let (header, rows) = read_csv(&out.join("error_vs_runtime.csv"));
+    assert_eq!(header[0], "config");
+    assert_eq!(rows.len(), 3 * 4, "3 values of h x 4 configurations");
+    for r in &rows {
+        assert!(num(&r[4]) > 0.0 && num(&r[7]) > 0.0, "{r:?}"); // an error and a run time
+    }
+    let (_, map) = read_csv(&out.join("success_map.csv"));
+    assert_eq!(map.len(), 4);
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for pic in ["error_vs_runtime.svg", "error_vs_h.svg", "success_map.svg"] {
+        assert!(md.contains(pic), "report.md does not link {pic}");
+        assert!(std::fs::read_to_string(out.join(pic)).unwrap().starts_with("<svg"));
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(json["sweep"].as_array().unwrap().len(), 12);
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// Every documented parameter error, through the command line.
+#[test]
+fn run_and_scene_reject_each_invalid_parameter() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["--h", "0"], "parameter step must be positive"),
+        (&["--h", "-1e-3"], "parameter step must be positive"),
+        (&["--h", "NaN"], "parameter step is not finite"),
+        (&["--duration", "inf"], "parameter max_time is not finite"),
+        (&["--mass", "-0.2"], "parameter rod_mass must be positive"),
+        (&["--length", "0"], "parameter rod_length must be positive"),
+        (&["--thickness", "0"], "parameter rod_thickness must be positive"),
+        (&["--speed", "-1"], "parameter finger_speed must not be negative"),
+        (&["--mu-s", "-0.1"], "parameter mu_static must not be negative"),
+        (&["--gravity", "-9.81"], "parameter gravity must not be negative"),
+        (&["--finger-width", "-0.01"], "parameter finger_width must not be negative"),
+        (&["--mu-k", "0.7"], "mu_kinetic must not exceed mu_static"),
+        (&["--x1", "-0.6"], "a finger starts outside the rod"),
+        (&["--x2", "0.51"], "a finger starts outside the rod"),
+        (&["--x1", "0.3", "--x2", "0.305"], "finger 1 must start left of finger 2"),
+        (&["--lcp-size", "7"], "--lcp-size must be 6 or 8"),
+        (&["--lcp-size", "9"], "9 is not in 6..=8"),
+        (&["--precision", "f16"], "invalid value 'f16'"),
+        (&["--speed", "fast"], "invalid value 'fast'"),
+    ];
+    let out = temp_dir("bad");
+    for (args, expected) in cases {
+        for cmd in ["scene", "run"] {
+            let mut all = vec![cmd];
+            all.extend_from_slice(args);
+            if cmd == "run" {
+                all.extend_from_slice(&["--out", out.to_str().unwrap()]);
+            }
+            let (code, _, err) = host_sim(&all);
+            assert_ne!(code, 0, "{all:?} should fail");
+            assert!(err.contains(expected), "{all:?}: expected {expected:?} in {err}");
+        }
+    }
+    assert!(!out.exists(), "a rejected run must not write anything");
+}
+
 #[test]
 fn scene_and_version_run() {
     let (code, out, _) = host_sim(&["version"]);

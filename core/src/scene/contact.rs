@@ -37,6 +37,20 @@ impl ContactMode {
         }
     }
 
+    /// The mode of a contact that carries a normal impulse, from the finger's tangential slip
+    /// relative to the rod ([`ContactFrame::slip`]): sticking when `|slip| <= stick_speed`,
+    /// sliding in the slip's direction otherwise.
+    #[must_use]
+    pub fn from_slip<T: Real>(slip: T, stick_speed: T) -> Self {
+        if slip.abs_exact() <= stick_speed {
+            Self::Sticking
+        } else if slip > T::zero() {
+            Self::Sliding(Slide::TowardPositiveEnd)
+        } else {
+            Self::Sliding(Slide::TowardNegativeEnd)
+        }
+    }
+
     /// `true` for either sliding direction.
     #[must_use]
     pub const fn is_sliding(self) -> bool {

@@ -25,7 +25,12 @@
 //! separated) and `mu_k` while it was sliding. After a step, a contact with a normal
 //! impulse sticks when its tangential slip speed `|d . (u_f - v_point)|` is at most
 //! [`SceneParams::stick_speed`] (default `1e-5` m/s, i.e. 1e-4 of the slow finger speed),
-//! and slides otherwise.
+//! and slides otherwise. Before the first step the same rule is applied to the prescribed
+//! motion at `t = 0`: finger 1 starts at full speed under a resting rod, so it is sliding
+//! (`mu_k`) from the start and finger 2 sticks. (Starting both as sticking gave finger 1
+//! `mu_s` in step 1, which dragged the rod when `mu_s N_1 > mu_s N_2` and, once finger 2 had
+//! slipped, left both on `mu_k`: a start artefact whose size depended on `h` through
+//! `stick_speed`, found by the convergence study of `host-sim report`.)
 //!
 //! **Sizes.** `N = 8` is the paper's form (two friction directions per finger).
 //! `N = 6` keeps only the direction each finger can use while finger 1 moves toward
@@ -49,7 +54,7 @@
 //! assert!(first.error.is_none());
 //! assert_eq!(scene.run(|_| {}), Outcome::Balanced);
 //! let meeting = scene.meeting().expect("the fingers met");
-//! assert!(meeting.com_offset.abs() < 0.002);
+//! assert!(meeting.com_offset.abs() < 0.003); // the fingers stop 1 cm apart
 //! ```
 
 pub mod assemble;

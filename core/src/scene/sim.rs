@@ -3,7 +3,7 @@
 use heapless::Vec;
 
 use super::assemble::{StepInputs, assemble, friction_directions, sigma_index};
-use super::contact::{ContactFrame, ContactMode, Slide};
+use super::contact::{ContactFrame, ContactMode};
 use super::params::{ParamError, SceneParams};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::real::{Real, max};
@@ -75,6 +75,9 @@ pub enum Outcome {
     SolverFailed(LcpError),
     /// The state became non-finite.
     NonFinite,
+    /// 6x6 scene built without the `fallback-8x8` feature: a step's 6x6 check failed (the
+    /// reduced model left its range); the state is that before the step.
+    ReducedModelLeftRange,
 }
 
 /// When and where the fingers met.
@@ -207,6 +210,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             ); 2],
         };
         scene.frames = scene.compute_frames();
+        scene.modes = scene.initial_modes();
         Ok(scene)
     }
 
@@ -230,7 +234,8 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
     pub const fn time(&self) -> T {
         self.time
     }
-    /// The contact modes found by the last step (both `Sticking` at the start).
+    /// The contact modes found by the last step (before the first step: from the prescribed
+    /// motion at `t = 0`, so finger 1 under a resting rod is sliding and finger 2 sticking).
     #[must_use]
     pub const fn modes(&self) -> [ContactMode; 2] {
         self.modes
@@ -273,6 +278,26 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         [frame(self.fingers[0]), frame(self.fingers[1])]
     }
 
+    /// The modes before the first step, from the prescribed motion at `t = 0`: a finger
+    /// touching the rod (gap at most round-off) slides when its velocity relative to the rod's
+    /// material point exceeds `stick_speed` (finger 1 starts at full speed under a resting rod,
+    /// so it slides from `t = 0+` and gets `mu_k` in the first step), and sticks otherwise; a
+    /// finger that does not touch the rod is separated.
+    fn initial_modes(&self) -> [ContactMode; 2] {
+        let p = &self.params;
+        let v = [self.state.vx, self.state.vy, self.state.omega];
+        let finger_velocity = [[p.finger_speed, T::zero()], [T::zero(), T::zero()]];
+        let touch_tol = T::of(64.0) * T::EPS * (p.rod_thickness + self.state.y.abs_exact());
+        let mut modes = [ContactMode::Separated; 2];
+        for i in 0..2 {
+            let f = &self.frames[i];
+            if f.active && f.gap <= touch_tol {
+                modes[i] = ContactMode::from_slip(f.slip(v, finger_velocity[i]), p.stick_speed);
+            }
+        }
+        modes
+    }
+
     fn mu(&self, mode: ContactMode) -> T {
         if mode.is_sliding() { self.params.mu_kinetic } else { self.params.mu_static }
     }
@@ -283,6 +308,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
     /// coefficients from the previous modes (`mu_s` while sticking or separated, `mu_k`
     /// while sliding), the LCP solved warm-started from the previous basis, then
     /// `v+ = v~ + M^-1 W p` and `q+ = q + h v+`.
+    #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate
     pub fn step(&mut self) -> Option<StepReport<T>> {
         if self.outcome.is_some() {
             return None;
@@ -318,6 +344,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         };
         let mut z = [T::zero(); 8];
         let mut columns = [[T::zero(); 3]; 8];
+        #[cfg_attr(not(feature = "fallback-8x8"), allow(unused_mut))]
         let mut dirs = friction_directions(N);
         let mut v_plus = v_free;
         let reduced_ok = match self.solver.solve_warm(&step_lcp.lcp, self.basis) {
@@ -345,16 +372,25 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             if self.meeting.is_none() && travel >= p.finger_speed * h {
                 self.stats.reduced_check_fired_before_meeting += 1;
             }
-            let full = assemble::<T, 8>(&inputs);
-            match Lemke::<T, 8>::new().solve_warm(&full.lcp, widen_basis(self.basis)) {
-                Ok(sol8) => {
-                    report.pivots += sol8.pivots;
-                    z.copy_from_slice(sol8.z.as_slice());
-                    columns = full.columns;
-                    dirs = friction_directions(8);
-                    v_plus = velocity_after(&v_free, &self.m_inv, &columns[..6], &z[..6]);
+            #[cfg(feature = "fallback-8x8")]
+            {
+                let full = assemble::<T, 8>(&inputs);
+                match Lemke::<T, 8>::new().solve_warm(&full.lcp, widen_basis(self.basis)) {
+                    Ok(sol8) => {
+                        report.pivots += sol8.pivots;
+                        z.copy_from_slice(sol8.z.as_slice());
+                        columns = full.columns;
+                        dirs = friction_directions(8);
+                        v_plus = velocity_after(&v_free, &self.m_inv, &columns[..6], &z[..6]);
+                    }
+                    Err(e) => return Some(self.fail(report, e)),
                 }
-                Err(e) => return Some(self.fail(report, e)),
+            }
+            #[cfg(not(feature = "fallback-8x8"))]
+            {
+                log_warn!("6x6 check failed at t={}: no 8x8 fallback compiled in", self.time.as_f32());
+                self.outcome = Some(Outcome::ReducedModelLeftRange);
+                return Some(report);
             }
         }
         self.stats.steps += 1;
@@ -405,14 +441,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         let mut modes = [ContactMode::Separated; 2];
         for i in 0..2 {
             if frames[i].active && z[i] > impulse_floor {
-                let slip = frames[i].slip(v_plus, finger_velocity[i]);
-                modes[i] = if slip.abs_exact() <= p.stick_speed {
-                    ContactMode::Sticking
-                } else if slip > T::zero() {
-                    ContactMode::Sliding(Slide::TowardPositiveEnd)
-                } else {
-                    ContactMode::Sliding(Slide::TowardNegativeEnd)
-                };
+                modes[i] = ContactMode::from_slip(frames[i].slip(v_plus, finger_velocity[i]), p.stick_speed);
             }
         }
         modes
@@ -466,6 +495,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
     }
 }
 
+#[cfg(feature = "fallback-8x8")]
 /// The 8x8 basis holding the same basic variables as a 6x6 one: 6x6 `z` is
 /// `(p_n1, p_n2, p_f1+, p_f2-, s1, s2)`, 8x8 `z` is `(p_n1, p_n2, p_f1+, p_f1-, p_f2+, p_f2-, s1, s2)`.
 fn widen_basis<const N: usize>(b: Basis<N>) -> Basis<8> {

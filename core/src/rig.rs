@@ -1,0 +1,302 @@
+//! [`Rig`]: the demo rig's control loop, generic over `embedded-hal` 1.0 pins and delay,
+//! separate from any board (feature `rig`).
+//!
+//! The rig is a motor-driven finger carriage (finger 1) moving toward a fixed finger under a
+//! real meter stick, with lights that show what the model predicts each finger is doing.
+//! The board calls [`Rig::tick`] once per timer period `h` (real time: one scene step per
+//! tick); each tick:
+//!
+//! 1. before the start: reads the start button; when pressed, sets the stepper's direction
+//!    pin (toward finger 2) and lights each finger's initial mode;
+//! 2. running: advances the scene one step, emits the stepper pulses that bring the carriage
+//!    to the scene's finger 1 position (`round((x1(t) - x1(0)) * steps_per_meter)` pulses in
+//!    all), switches a finger's light when its mode changes, and stops at the outcome;
+//! 3. a solver error (or a non-finite state, or more pulses due in one tick than
+//!    [`RigConfig::max_pulses_per_tick`]) never panics: the rig turns the mode lights off,
+//!    turns the fault light on, logs it, and stays in [`RigState::Fault`].
+//!
+//! Lights: per finger one pin for each of sticking / sliding / separated; exactly one is on
+//! while running. Pins are driven only when their state changes. Logging (mode switches,
+//! outcome, faults) goes to `defmt` with the `defmt` feature and compiles to nothing without it.
+
+use embedded_hal::delay::DelayNs;
+use embedded_hal::digital::{InputPin, OutputPin};
+
+use crate::lcp::LcpError;
+use crate::scene::{ContactMode, Outcome, ParamError, Scene, SceneParams};
+
+/// Rig constants.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RigConfig {
+    /// Stepper pulses per metre of carriage travel (e.g. 80 steps/mm for a GT2 belt on a
+    /// 200-step motor at 1/16 microstepping: 80,000).
+    pub steps_per_meter: f32,
+    /// High and low time of one step pulse (ns); drivers such as the A4988 need >= 1 us.
+    pub pulse_ns: u32,
+    /// The most pulses one tick may emit (they must fit in the tick's time budget); more is
+    /// a fault ([`RigFault::ActuatorOverrun`]), not a silently lagging carriage.
+    pub max_pulses_per_tick: u32,
+    /// The start button reads low when pressed (a button to ground with a pull-up).
+    pub button_active_low: bool,
+}
+
+impl RigConfig {
+    /// 80 steps/mm, 2 us pulses, at most 100 pulses per tick, active-low button.
+    #[must_use]
+    pub const fn default_rig() -> Self {
+        Self { steps_per_meter: 80_000.0, pulse_ns: 2_000, max_pulses_per_tick: 100, button_active_low: true }
+    }
+}
+
+/// One finger's three mode lights.
+#[derive(Debug)]
+pub struct ModeLights<P> {
+    /// On while the finger sticks.
+    pub sticking: P,
+    /// On while it slides.
+    pub sliding: P,
+    /// On while it does not touch the rod.
+    pub separated: P,
+}
+
+/// The rig's pins: `B` an input (the start button), `P` outputs.
+#[derive(Debug)]
+pub struct RigPins<B, P> {
+    /// Start button.
+    pub start: B,
+    /// Stepper driver STEP (one pulse per step).
+    pub step: P,
+    /// Stepper driver DIR (high: toward finger 2).
+    pub dir: P,
+    /// Mode lights of finger 1 (moving) and finger 2 (fixed).
+    pub lights: [ModeLights<P>; 2],
+    /// Fault light.
+    pub fault: P,
+}
+
+/// Why the rig stopped in a fault state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RigFault {
+    /// A step's LCP failed (see the error).
+    Solver(LcpError),
+    /// The scene's state became non-finite.
+    NonFinite,
+    /// The 6x6 model left its range and the 8x8 fallback is not compiled in.
+    ReducedModelLeftRange,
+    /// More stepper pulses were due in one tick than `max_pulses_per_tick`.
+    ActuatorOverrun,
+}
+
+/// Where the rig is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RigState {
+    /// Waiting for the start button.
+    WaitingForStart,
+    /// Stepping the scene in real time.
+    Running,
+    /// The scene ended: balanced, fell, or unfinished.
+    Finished(Outcome),
+    /// Stopped on a fault (fault light on).
+    Fault(RigFault),
+}
+
+/// The demo rig's loop over the scene `Scene<f32, N>` (6: reduced, 8: the paper's form).
+#[derive(Debug)]
+pub struct Rig<B, P, D, const N: usize> {
+    scene: Scene<f32, N, 8>,
+    pins: RigPins<B, P>,
+    delay: D,
+    config: RigConfig,
+    state: RigState,
+    origin: f32,
+    pulses: i64,
+    lit: [Option<ContactMode>; 2],
+}
+
+/// What went wrong with a pin (the HAL's error type).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RigError<E> {
+    /// The parameters are invalid.
+    Params(ParamError),
+    /// A pin operation failed.
+    Pin(E),
+}
+
+fn light<P: OutputPin>(lights: &mut ModeLights<P>, mode: ContactMode) -> &mut P {
+    match mode {
+        ContactMode::Sticking => &mut lights.sticking,
+        ContactMode::Sliding(_) => &mut lights.sliding,
+        ContactMode::Separated => &mut lights.separated,
+    }
+}
+
+impl<B, P, D, E, const N: usize> Rig<B, P, D, N>
+where
+    B: InputPin<Error = E>,
+    P: OutputPin<Error = E>,
+    D: DelayNs,
+{
+    /// A rig for `params`, with every output driven low.
+    ///
+    /// # Errors
+    /// Invalid parameters, or a pin error.
+    pub fn new(
+        params: SceneParams<f32>,
+        config: RigConfig,
+        pins: RigPins<B, P>,
+        delay: D,
+    ) -> Result<Self, RigError<E>> {
+        let scene = Scene::new(params).map_err(RigError::Params)?;
+        let mut rig = Self {
+            scene,
+            pins,
+            delay,
+            config,
+            state: RigState::WaitingForStart,
+            origin: params.finger1_x,
+            pulses: 0,
+            lit: [None; 2],
+        };
+        let p = &mut rig.pins;
+        p.step.set_low().map_err(RigError::Pin)?;
+        p.dir.set_low().map_err(RigError::Pin)?;
+        p.fault.set_low().map_err(RigError::Pin)?;
+        for l in &mut p.lights {
+            l.sticking.set_low().map_err(RigError::Pin)?;
+            l.sliding.set_low().map_err(RigError::Pin)?;
+            l.separated.set_low().map_err(RigError::Pin)?;
+        }
+        Ok(rig)
+    }
+
+    /// The scene being shown.
+    #[must_use]
+    pub const fn scene(&self) -> &Scene<f32, N, 8> {
+        &self.scene
+    }
+
+    /// The rig's state.
+    #[must_use]
+    pub const fn state(&self) -> RigState {
+        self.state
+    }
+
+    /// Stepper pulses emitted so far.
+    #[must_use]
+    pub const fn pulses(&self) -> i64 {
+        self.pulses
+    }
+
+    /// Gives the pins and the delay back.
+    pub fn release(self) -> (RigPins<B, P>, D) {
+        (self.pins, self.delay)
+    }
+
+    /// One timer tick (call once per `h`); returns the state after it.
+    ///
+    /// # Errors
+    /// A pin error (the rig's state is unchanged by it).
+    pub fn tick(&mut self) -> Result<RigState, RigError<E>> {
+        match self.state {
+            RigState::WaitingForStart => {
+                let level_low = self.pins.start.is_low().map_err(RigError::Pin)?;
+                if level_low == self.config.button_active_low {
+                    self.pins.dir.set_high().map_err(RigError::Pin)?;
+                    self.show_modes(self.scene.modes())?;
+                    log_info!("rig: start");
+                    self.state = RigState::Running;
+                }
+            }
+            RigState::Running => self.advance()?,
+            RigState::Finished(_) | RigState::Fault(_) => {}
+        }
+        Ok(self.state)
+    }
+
+    fn advance(&mut self) -> Result<(), RigError<E>> {
+        let Some(report) = self.scene.step() else {
+            return self.finish(self.scene.outcome().unwrap_or(Outcome::Unfinished));
+        };
+        if let Some(e) = report.error {
+            return self.fault(RigFault::Solver(e));
+        }
+        let target = libm::roundf((report.fingers[0] - self.origin) * self.config.steps_per_meter);
+        if !target.is_finite() {
+            return self.fault(RigFault::NonFinite);
+        }
+        let due = target as i64 - self.pulses;
+        if due > i64::from(self.config.max_pulses_per_tick) {
+            return self.fault(RigFault::ActuatorOverrun);
+        }
+        for _ in 0..due.max(0) {
+            self.pins.step.set_high().map_err(RigError::Pin)?;
+            self.delay.delay_ns(self.config.pulse_ns);
+            self.pins.step.set_low().map_err(RigError::Pin)?;
+            self.delay.delay_ns(self.config.pulse_ns);
+            self.pulses += 1;
+        }
+        self.show_modes(report.modes)?;
+        match self.scene.outcome() {
+            None => Ok(()),
+            Some(o) => self.finish(o),
+        }
+    }
+
+    fn finish(&mut self, outcome: Outcome) -> Result<(), RigError<E>> {
+        match outcome {
+            Outcome::SolverFailed(e) => self.fault(RigFault::Solver(e)),
+            Outcome::NonFinite => self.fault(RigFault::NonFinite),
+            Outcome::ReducedModelLeftRange => self.fault(RigFault::ReducedModelLeftRange),
+            o => {
+                log_info!("rig: outcome {} at t={=f32}, {=i64} pulses", o, self.scene.time(), self.pulses);
+                self.state = RigState::Finished(o);
+                Ok(())
+            }
+        }
+    }
+
+    fn fault(&mut self, fault: RigFault) -> Result<(), RigError<E>> {
+        log_error!("rig: fault {} at t={=f32}", fault, self.scene.time());
+        self.state = RigState::Fault(fault);
+        for i in 0..2 {
+            if let Some(m) = self.lit[i].take() {
+                light(&mut self.pins.lights[i], m).set_low().map_err(RigError::Pin)?;
+            }
+        }
+        self.pins.fault.set_high().map_err(RigError::Pin)
+    }
+
+    /// Lights each finger's mode (turning the previous light off first); pins that keep
+    /// their state are not touched.
+    fn show_modes(&mut self, modes: [ContactMode; 2]) -> Result<(), RigError<E>> {
+        for i in 0..2 {
+            let new = modes[i];
+            let old = self.lit[i];
+            if old != Some(new) {
+                log_info!("rig: t={=f32} finger {=usize} -> {=str}", self.scene.time(), i + 1, new.name());
+            }
+            if old.map(light_index) == Some(light_index(new)) {
+                self.lit[i] = Some(new);
+                continue;
+            }
+            if let Some(m) = old {
+                light(&mut self.pins.lights[i], m).set_low().map_err(RigError::Pin)?;
+            }
+            light(&mut self.pins.lights[i], new).set_high().map_err(RigError::Pin)?;
+            self.lit[i] = Some(new);
+        }
+        Ok(())
+    }
+}
+
+const fn light_index(m: ContactMode) -> u8 {
+    match m {
+        ContactMode::Sticking => 0,
+        ContactMode::Sliding(_) => 1,
+        ContactMode::Separated => 2,
+    }
+}

@@ -1,0 +1,231 @@
+//! SVG plots (plotters, SVG backend only: no font or image libraries needed).
+
+use std::path::Path;
+
+use anyhow::anyhow;
+pub use plotters::prelude::SeriesLabelPosition;
+use plotters::prelude::*;
+
+use crate::trajectory::Trajectory;
+
+/// At most this many points per plotted series (trajectories are thinned evenly).
+const MAX_POINTS: usize = 3000;
+
+fn thin<T: Copy>(v: &[T]) -> impl Iterator<Item = T> + '_ {
+    let stride = v.len().div_ceil(MAX_POINTS).max(1);
+    v.iter().step_by(stride).copied().chain(v.last().copied().filter(|_| v.len() % stride != 1))
+}
+
+fn err<E: std::fmt::Display>(e: E) -> anyhow::Error {
+    anyhow!("plotting: {e}")
+}
+
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
+
+/// One line of a chart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend text.
+    pub label: String,
+    /// `(x, y)` points; non-finite ones (and non-positive ones on log axes) are skipped.
+    pub points: Vec<(f64, f64)>,
+    /// Dashed (a second implementation) or solid.
+    pub dashed: bool,
+}
+
+/// A line chart of several series, optionally log-log, written as SVG.
+///
+/// # Errors
+/// Nothing to plot, or I/O.
+pub fn lines(
+    path: &Path,
+    title: &str,
+    (x_desc, y_desc): (&str, &str),
+    series: &[Series],
+    log_log: bool,
+    legend: &SeriesLabelPosition,
+) -> anyhow::Result<()> {
+    let finite =
+        |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!log_log || (p.0 > 0.0 && p.1 > 0.0));
+    let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().filter(finite).copied()).collect();
+    anyhow::ensure!(!pts.is_empty(), "plotting {}: no finite points", path.display());
+    let (mut x0, mut x1, mut y0, mut y1) = pts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(a, b, c, d), p| {
+            (a.min(p.0), b.max(p.0), c.min(p.1), d.max(p.1))
+        });
+    if log_log {
+        (x0, x1, y0, y1) = (x0 / 1.5, x1 * 1.5, y0 / 2.0, y1 * 2.0);
+    } else {
+        let (dx, dy) = ((x1 - x0).max(1e-12) * 0.03, (y1 - y0).max(1e-12) * 0.05);
+        (x0, x1, y0, y1) = (x0 - dx, x1 + dx, y0 - dy, y1 + dy);
+    }
+    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let mut builder = ChartBuilder::on(&root);
+    builder.caption(title, ("sans-serif", 20)).margin(12).x_label_area_size(45).y_label_area_size(75);
+    macro_rules! draw {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            chart.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw().map_err(err)?;
+            // Solid and dashed series are coloured in the same order, so that a quantity has
+            // one colour in both implementations.
+            let (mut solid, mut dash) = (0, 0);
+            for Series { label, points, dashed } in series {
+                let k = if *dashed { &mut dash } else { &mut solid };
+                let color = PALETTE[*k % PALETTE.len()];
+                *k += 1;
+                let style = if *dashed { color.stroke_width(1) } else { color.stroke_width(2) };
+                let data: Vec<(f64, f64)> = thin(points).filter(|p| finite(&p)).collect();
+                if log_log {
+                    chart
+                        .draw_series(PointSeries::of_element(data.clone(), 4, style.filled(), &|c, s, st| {
+                            Circle::new(c, s, st)
+                        }))
+                        .map_err(err)?;
+                }
+                let anno = if *dashed {
+                    chart.draw_series(DashedLineSeries::new(data, 6, 4, style)).map_err(err)?
+                } else {
+                    chart.draw_series(LineSeries::new(data, style)).map_err(err)?
+                };
+                anno.label(label.as_str())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .position(legend.clone())
+                .draw()
+                .map_err(err)?;
+        }};
+    }
+    if log_log {
+        draw!(builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(err)?);
+    } else {
+        draw!(builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?);
+    }
+    root.present().map_err(err)
+}
+
+/// The paper's figs. 2, 3 and 5: both fingers and the centre of mass over time, for the core
+/// (solid) and the reference (dashed).
+///
+/// # Errors
+/// I/O.
+pub fn positions(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
+    let mut series = Vec::new();
+    for (k, run) in runs.iter().enumerate() {
+        let dashed = k > 0;
+        let pick = |f: fn(&crate::trajectory::Row) -> f64| run.rows.iter().map(|r| (r.t, f(r))).collect();
+        series.push(Series {
+            label: format!("finger 1 ({})", run.label),
+            points: pick(|r| r.fingers[0]),
+            dashed,
+        });
+        series.push(Series {
+            label: format!("finger 2 ({})", run.label),
+            points: pick(|r| r.fingers[1]),
+            dashed,
+        });
+        series.push(Series {
+            label: format!("centre of mass ({})", run.label),
+            points: pick(|r| r.q[0]),
+            dashed,
+        });
+    }
+    lines(path, title, ("t (s)", "x (m)"), &series, false, &SeriesLabelPosition::LowerRight)
+}
+
+/// Finger positions relative to the centre of mass, along the rod, over time.
+///
+/// # Errors
+/// I/O.
+pub fn relative(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
+    let mut series = Vec::new();
+    for (k, run) in runs.iter().enumerate() {
+        let dashed = k > 0;
+        for i in 0..2 {
+            let points = run.rows.iter().map(|r| (r.t, r.along[i])).collect();
+            series.push(Series { label: format!("finger {} - COM ({})", i + 1, run.label), points, dashed });
+        }
+    }
+    lines(
+        path,
+        title,
+        ("t (s)", "distance from the COM along the rod (m)"),
+        &series,
+        false,
+        &SeriesLabelPosition::MiddleLeft,
+    )
+}
+
+/// A heat map of outcomes: one cell per `(column, row)`, coloured by class, with axis labels.
+///
+/// # Errors
+/// I/O.
+pub fn outcome_map(
+    path: &Path,
+    title: &str,
+    (x_desc, x_labels): (&str, &[String]),
+    (y_desc, y_labels): (&str, &[String]),
+    cells: &[Vec<&str>],
+) -> anyhow::Result<()> {
+    let (nx, ny) = (x_labels.len(), y_labels.len());
+    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(0f64..nx as f64, 0f64..ny as f64)
+        .map_err(err)?;
+    let xl = x_labels.to_vec();
+    let yl = y_labels.to_vec();
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_labels(nx)
+        .y_labels(ny)
+        .x_label_formatter(&|v| xl.get(*v as usize).cloned().unwrap_or_default())
+        .y_label_formatter(&|v| yl.get(*v as usize).cloned().unwrap_or_default())
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()
+        .map_err(err)?;
+    let color = |c: &str| match c {
+        "Balanced" => RGBColor(44, 160, 44),
+        "Fell" => RGBColor(214, 39, 40),
+        "Unfinished" => RGBColor(200, 200, 200),
+        _ => RGBColor(0, 0, 0),
+    };
+    for (j, row) in cells.iter().enumerate() {
+        for (i, c) in row.iter().enumerate() {
+            let (x, y) = (i as f64, j as f64);
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x + 0.02, y + 0.02), (x + 0.98, y + 0.98)],
+                    color(c).filled(),
+                )))
+                .map_err(err)?;
+        }
+    }
+    for name in ["Balanced", "Fell", "Unfinished", "Failed"] {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label(name)
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], color(name).filled()));
+    }
+    chart.configure_series_labels().background_style(WHITE).border_style(BLACK).draw().map_err(err)?;
+    root.present().map_err(err)
+}

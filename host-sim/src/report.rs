@@ -1,0 +1,525 @@
+//! `host-sim report`: error against run time over a sweep of `h`, and a success map.
+//!
+//! **Error against run time.** The asymmetric slow scene (`x1 = -0.35 m`, `v = 0.1 m/s`, paper
+//! otherwise) is run with each `h` of the sweep in four configurations: core f32 6x6, core f32
+//! 8x8, core f64 8x8 and the f64 reference. Errors are measured against a *converged reference*:
+//! the reference with `h_min / 4`. Quantities (all well defined for a run that balances):
+//! * COM error: `max_t |com(t) - com_ref(t)|` on a 10 ms grid over a fixed horizon (positions
+//!   interpolated linearly between steps);
+//! * meeting error: `|offset - offset_ref|` of the COM from the fingers' midpoint when they meet;
+//! * eq. 21 ratio error: the largest `|ratio_k - ratio_ref,k|` over the first four switches.
+//!
+//! Run time is host nanoseconds per step, the median of repeated runs of the whole scene without
+//! recording (one repeat when a run takes over a second), and from it the host time to simulate
+//! one second. The observed order in `h` is the least-squares slope of `log(COM error)` against
+//! `log h` from the largest `h` down to the `h` of the smallest error (below that, the f32
+//! rounding floor or the reference's own error dominates).
+//!
+//! **Success map.** The outcome over a grid of finger speed and `mu_k/mu_s` (`mu_s = 0.6`), for
+//! the core f32 6x6 (the firmware's configuration), the core f64 8x8 and the reference.
+#![allow(clippy::format_push_string)]
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context as _;
+use meterstick_core::scene::SceneParams;
+use rayon::prelude::*;
+use serde_json::json;
+
+use crate::lcp_io::Precision;
+use crate::plot;
+use crate::reference::Reference;
+use crate::run_cmd::{progress, write_json};
+use crate::scene_cmd::run_configured;
+use crate::trajectory::{Record, Trajectory, switches};
+
+/// `host-sim report` options.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ReportArgs {
+    /// Output directory (created; files in it are overwritten).
+    #[arg(long, default_value = "out/report")]
+    pub out: PathBuf,
+    /// A small sweep and map (seconds, for tests): h in {1e-3, 1e-2, 1e-1}, a 2x2 map.
+    #[arg(long)]
+    pub quick: bool,
+    /// Horizon of the COM error (s).
+    #[arg(long, default_value_t = 2.0)]
+    pub horizon: f64,
+    /// Cortex-M instructions per step as `machine=count` pairs (e.g. from `scripts/icount.sh`),
+    /// shown in the table beside the host run time.
+    #[arg(long, value_delimiter = ',')]
+    pub instructions: Vec<String>,
+}
+
+/// An implementation of the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Config {
+    /// Core, f32, 6x6 (the firmware's).
+    CoreF32x6,
+    /// Core, f32, 8x8.
+    CoreF32x8,
+    /// Core, f64, 8x8.
+    CoreF64x8,
+    /// The f64 reference (8x8 by enumeration).
+    Reference,
+}
+
+impl Config {
+    /// All four.
+    pub const ALL: [Self; 4] = [Self::CoreF32x6, Self::CoreF32x8, Self::CoreF64x8, Self::Reference];
+
+    /// A label.
+    #[must_use]
+    pub const fn label(self) -> &'static str {
+        match self {
+            Self::CoreF32x6 => "core f32 6x6",
+            Self::CoreF32x8 => "core f32 8x8",
+            Self::CoreF64x8 => "core f64 8x8",
+            Self::Reference => "reference f64 8x8",
+        }
+    }
+
+    /// Runs the scene.
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn run(self, p: &SceneParams<f64>, record: Record) -> anyhow::Result<Trajectory> {
+        match self {
+            Self::CoreF32x6 => run_configured(Precision::F32, 6, p, record),
+            Self::CoreF32x8 => run_configured(Precision::F32, 8, p, record),
+            Self::CoreF64x8 => run_configured(Precision::F64, 8, p, record),
+            Self::Reference => Ok(Reference::new(*p)?.run(record)),
+        }
+    }
+}
+
+/// The sweep's scene with step `h`.
+#[must_use]
+pub fn sweep_scene(h: f64) -> SceneParams<f64> {
+    SceneParams { finger1_x: -0.35, step: h, ..SceneParams::paper() }
+}
+
+const GRID_DT: f64 = 0.01;
+const RATIOS_COMPARED: usize = 4;
+
+/// Errors of one run against the converged reference.
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct Errors {
+    /// Max COM distance over the horizon (m).
+    pub com_m: f64,
+    /// Meeting offset difference (m); NaN when either did not meet.
+    pub meeting_m: f64,
+    /// Largest eq. 21 ratio difference over the first switches; NaN when none to compare.
+    pub ratio: f64,
+}
+
+/// Compares `run` (recorded on the 10 ms grid) with the converged reference.
+#[must_use]
+pub fn errors(run: &Trajectory, converged: &Trajectory, horizon: f64) -> Errors {
+    let mut com_m: f64 = 0.0;
+    for (a, b) in run.rows.iter().zip(&converged.rows) {
+        if a.t > horizon + 1e-9 {
+            break;
+        }
+        com_m = com_m.max((a.q[0] - b.q[0]).hypot(a.q[1] - b.q[1]));
+    }
+    let covered = run.rows.last().is_some_and(|r| r.t >= horizon - 1e-9);
+    if !covered {
+        com_m = f64::NAN; // the run ended (fell) before the horizon
+    }
+    let meeting_m = match (run.meeting, converged.meeting) {
+        (Some(a), Some(b)) => (a.1 - b.1).abs(),
+        _ => f64::NAN,
+    };
+    let (sa, sb) = (switches(run), switches(converged));
+    let k = sa.len().min(sb.len()).min(RATIOS_COMPARED);
+    let ratio = if k == 0 {
+        f64::NAN
+    } else {
+        sa.iter().zip(&sb).take(k).map(|(a, b)| (a.ratio - b.ratio).abs()).fold(0.0, f64::max)
+    };
+    Errors { com_m, meeting_m, ratio }
+}
+
+/// One row of the error-vs-run-time table.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct SweepRow {
+    /// Configuration label.
+    pub config: &'static str,
+    /// Step (s).
+    pub h: f64,
+    /// Steps of the whole run.
+    pub steps: u64,
+    /// Outcome class.
+    pub outcome: &'static str,
+    /// Errors against the converged reference.
+    pub errors: Errors,
+    /// Median host ns per step.
+    pub ns_per_step: f64,
+    /// Host ms to simulate one second (`ns_per_step / h`).
+    pub ms_per_sim_second: f64,
+    /// Timing repeats.
+    pub repeats: usize,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn time_run(config: Config, p: &SceneParams<f64>) -> anyhow::Result<(f64, usize)> {
+    let mut samples = Vec::new();
+    loop {
+        let start = Instant::now();
+        let t = config.run(p, Record::Nothing)?;
+        let s = start.elapsed().as_secs_f64();
+        samples.push(1e9 * s / t.steps.max(1) as f64);
+        if samples.len() >= 5 || s > 1.0 || (s > 0.3 && samples.len() >= 3) {
+            break;
+        }
+    }
+    let n = samples.len();
+    Ok((median(samples), n))
+}
+
+/// Least-squares slope of `log y` against `log x`.
+#[must_use]
+pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> =
+        points.iter().filter(|p| p.0 > 0.0 && p.1 > 0.0).map(|p| (p.0.ln(), p.1.ln())).collect();
+    if pts.len() < 3 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The order fit of one configuration: `(order, h range of the fit, floor error, h at floor)`.
+#[must_use]
+pub fn order_fit(rows: &[&SweepRow]) -> (Option<f64>, (f64, f64), f64, f64) {
+    let mut pts: Vec<(f64, f64)> =
+        rows.iter().map(|r| (r.h, r.errors.com_m)).filter(|p| p.1.is_finite() && p.1 > 0.0).collect();
+    pts.sort_by(|a, b| b.0.total_cmp(&a.0)); // largest h first
+    let Some(best) = pts.iter().enumerate().min_by(|a, b| a.1.1.total_cmp(&b.1.1)).map(|(i, _)| i) else {
+        return (None, (f64::NAN, f64::NAN), f64::NAN, f64::NAN);
+    };
+    let fit = &pts[..=best];
+    (loglog_slope(fit), (fit[fit.len() - 1].0, fit[0].0), pts[best].1, pts[best].0)
+}
+
+fn sci(x: f64) -> String {
+    if x.is_finite() { format!("{x:.2e}") } else { "n/a".into() }
+}
+
+/// Runs the report and writes `report.md`, the tables and the pictures; returns a short text.
+///
+/// # Errors
+/// I/O or plotting.
+#[allow(clippy::too_many_lines)] // one linear script: sweep, fit, map, write
+pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
+    let out = &args.out;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let hs: Vec<f64> = if args.quick {
+        vec![1e-1, 1e-2, 1e-3]
+    } else {
+        vec![1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5]
+    };
+    let h_min = hs.iter().copied().fold(f64::INFINITY, f64::min);
+    let h_conv = h_min / 4.0;
+
+    // 1. Error runs (parallel), converged reference first in the queue (the longest job).
+    let mut jobs: Vec<(Option<Config>, f64)> = vec![(None, h_conv)];
+    for &h in hs.iter().rev() {
+        for c in Config::ALL {
+            jobs.push((Some(c), h));
+        }
+    }
+    let bar = progress(jobs.len() as u64, "error runs");
+    let runs: Vec<anyhow::Result<Trajectory>> = jobs
+        .par_iter()
+        .map(|&(c, h)| {
+            let r = c.unwrap_or(Config::Reference).run(&sweep_scene(h), Record::Grid(GRID_DT));
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+    let mut runs = runs.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
+    let converged = runs.remove(0);
+    jobs.remove(0);
+
+    // 2. Timing runs (sequential, so that runs do not share a core).
+    let bar = progress(jobs.len() as u64, "timing runs");
+    let mut rows = Vec::new();
+    for ((c, h), run) in jobs.iter().zip(&runs) {
+        let config = c.unwrap_or(Config::Reference);
+        let (ns, repeats) = time_run(config, &sweep_scene(*h))?;
+        bar.inc(1);
+        rows.push(SweepRow {
+            config: config.label(),
+            h: *h,
+            steps: run.steps,
+            outcome: run.outcome.class(),
+            errors: errors(run, &converged, args.horizon),
+            ns_per_step: ns,
+            ms_per_sim_second: ns / h * 1e-6,
+            repeats,
+        });
+    }
+    bar.finish_and_clear();
+
+    // 3. Success map.
+    let (speeds, ratios): (Vec<f64>, Vec<f64>) = if args.quick {
+        (vec![0.1, 5.0], vec![0.5, 2.0 / 3.0])
+    } else {
+        (
+            vec![0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.7, 1.0, 2.0, 5.0, 10.0],
+            vec![0.2, 0.4, 0.6, 2.0 / 3.0, 0.8, 1.0],
+        )
+    };
+    let map_configs = [Config::CoreF32x6, Config::CoreF64x8, Config::Reference];
+    let cells: Vec<(usize, usize, Config)> = (0..ratios.len())
+        .flat_map(|j| (0..speeds.len()).flat_map(move |i| map_configs.map(|c| (i, j, c))))
+        .collect();
+    let bar = progress(cells.len() as u64, "success map");
+    let outcomes: Vec<anyhow::Result<&'static str>> = cells
+        .par_iter()
+        .map(|&(i, j, c)| {
+            let p = SceneParams {
+                finger_speed: speeds[i],
+                mu_kinetic: 0.6 * ratios[j],
+                mu_static: 0.6,
+                ..SceneParams::paper()
+            };
+            let r = c.run(&p, Record::Nothing).map(|t| t.outcome.class());
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+    let outcomes = outcomes.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
+    let outcome_of = |i: usize, j: usize, c: Config| {
+        cells
+            .iter()
+            .zip(&outcomes)
+            .find(|((a, b, cc), _)| *a == i && *b == j && *cc == c)
+            .map_or("?", |(_, o)| *o)
+    };
+
+    // 4. Write tables, pictures and report.md.
+    let mut csv = String::from(
+        "config,h_s,steps,outcome,com_error_m,meeting_error_m,ratio_error,ns_per_step,ms_per_sim_second,repeats\n",
+    );
+    for r in &rows {
+        writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{:.1},{:.4},{}",
+            r.config,
+            r.h,
+            r.steps,
+            r.outcome,
+            r.errors.com_m,
+            r.errors.meeting_m,
+            r.errors.ratio,
+            r.ns_per_step,
+            r.ms_per_sim_second,
+            r.repeats
+        )?;
+    }
+    std::fs::write(out.join("error_vs_runtime.csv"), csv)?;
+    let mut series = Vec::new();
+    let mut fits = Vec::new();
+    for c in Config::ALL {
+        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.config == c.label()).collect();
+        let points = mine.iter().map(|r| (r.ms_per_sim_second, r.errors.com_m)).collect();
+        series.push(plot::Series { label: c.label().to_string(), points, dashed: false });
+        fits.push((c, order_fit(&mine), mine.iter().map(|r| r.ns_per_step).fold(f64::NAN, f64::min)));
+    }
+    plot::lines(
+        &out.join("error_vs_runtime.svg"),
+        &format!("COM error over {} s vs host run time (each point one h)", args.horizon),
+        ("host run time per simulated second (ms)", "max COM error (m)"),
+        &series,
+        true,
+        &plot::SeriesLabelPosition::UpperRight,
+    )?;
+    let conv_series: Vec<plot::Series> = Config::ALL
+        .iter()
+        .map(|c| {
+            let points =
+                rows.iter().filter(|r| r.config == c.label()).map(|r| (r.h, r.errors.com_m)).collect();
+            plot::Series { label: c.label().to_string(), points, dashed: false }
+        })
+        .collect();
+    plot::lines(
+        &out.join("error_vs_h.svg"),
+        &format!("COM error over {} s vs h (converged: reference, h = {h_conv:e} s)", args.horizon),
+        ("h (s)", "max COM error (m)"),
+        &conv_series,
+        true,
+        &plot::SeriesLabelPosition::LowerRight,
+    )?;
+    let speed_labels: Vec<String> = speeds.iter().map(|v| format!("{v}")).collect();
+    let ratio_labels: Vec<String> = ratios.iter().map(|r| format!("{r:.2}")).collect();
+    let grid: Vec<Vec<&str>> = (0..ratios.len())
+        .map(|j| (0..speeds.len()).map(|i| outcome_of(i, j, Config::CoreF32x6)).collect())
+        .collect();
+    plot::outcome_map(
+        &out.join("success_map.svg"),
+        "outcome, core f32 6x6 (fingers at -/+0.4 m, mu_s = 0.6)",
+        ("finger speed (m/s)", &speed_labels),
+        ("mu_k / mu_s", &ratio_labels),
+        &grid,
+    )?;
+    let mut map_csv = String::from("speed_m_s,mu_k_over_mu_s,core_f32_6x6,core_f64_8x8,reference\n");
+    let mut disagreements = Vec::new();
+    for j in 0..ratios.len() {
+        for i in 0..speeds.len() {
+            let o = map_configs.map(|c| outcome_of(i, j, c));
+            writeln!(map_csv, "{},{},{},{},{}", speeds[i], ratios[j], o[0], o[1], o[2])?;
+            if o[0] != o[1] || o[1] != o[2] {
+                disagreements.push(format!(
+                    "v = {} m/s, mu_k/mu_s = {:.2}: {} / {} / {}",
+                    speeds[i], ratios[j], o[0], o[1], o[2]
+                ));
+            }
+        }
+    }
+    std::fs::write(out.join("success_map.csv"), &map_csv)?;
+    write_json(
+        &out.join("report.json"),
+        &json!({ "sweep": rows, "h_converged_s": h_conv, "horizon_s": args.horizon }),
+    )?;
+
+    // report.md
+    let mut md = String::new();
+    md += "# meterstick report: error against run time, and where the trick works\n\n";
+    md += &format!(
+        "Generated by `host-sim report{}`. Scene of the sweep: the paper's rod, fingers starting at -0.35 / +0.40 m \
+         (asymmetric), v = 0.1 m/s, mu_s = 0.6, mu_k = 0.4. Errors are against a converged reference: the \
+         independent f64 reference with h = {h_conv:e} s.\n\n",
+        if args.quick { " --quick" } else { "" }
+    );
+    md += "## Error against run time\n\n![error vs run time](error_vs_runtime.svg)\n\n![error vs h](error_vs_h.svg)\n\n";
+    md += "| config | h (s) | steps | outcome | COM error (m) | meeting error (m) | eq.21 ratio error | host ns/step | host ms per simulated s |";
+    let instr: Vec<(String, String)> = args
+        .instructions
+        .iter()
+        .filter_map(|s| s.split_once('=').map(|(a, b)| (a.to_string(), b.to_string())))
+        .collect();
+    md += "\n|---|---|---|---|---|---|---|---|---|\n";
+    for r in &rows {
+        md += &format!(
+            "| {} | {:e} | {} | {} | {} | {} | {} | {:.0} | {:.3} |\n",
+            r.config,
+            r.h,
+            r.steps,
+            r.outcome,
+            sci(r.errors.com_m),
+            sci(r.errors.meeting_m),
+            sci(r.errors.ratio),
+            r.ns_per_step,
+            r.ms_per_sim_second
+        );
+    }
+    md += "\n(also in `error_vs_runtime.csv`; NaN/n/a: the quantity does not exist for that run, e.g. no switch to compare).\n\n";
+    md += "### What the pictures show\n\n";
+    for (c, (order, (h_lo, h_hi), floor, h_floor), ns) in &fits {
+        md += &format!(
+            "- **{}**: observed order {} in h (fit over h = {h_lo:e} .. {h_hi:e} s); smallest COM error {} m at h = {h_floor:e} s; fastest {:.0} ns/step.\n",
+            c.label(),
+            order.map_or_else(|| "n/a".into(), |o| format!("{o:.2}")),
+            sci(*floor),
+            ns
+        );
+    }
+    md += "\n";
+    for (c, (order, _, floor, h_floor), _) in &fits {
+        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.config == c.label()).collect();
+        let at_min = mine.iter().find(|r| r.h <= h_min * 1.0001).map_or(f64::NAN, |r| r.errors.com_m);
+        let order_text = order.map_or_else(
+            || "no order could be fitted".to_string(),
+            |o| format!("converges with order {o:.2}"),
+        );
+        if *h_floor > h_min * 1.0001 {
+            md += &format!(
+                "- {}: {order_text} down to h = {h_floor:e} s, where its error bottoms out at {} m (its floor); \
+                 below that h the error grows again, to {} m at h = {h_min:e} s, while the run time per simulated \
+                 second keeps rising: f32 round-off (about 6e-8 m per position update, accumulated over 1/h \
+                 steps, plus stick/slip decisions that flip on round-off) overtakes the discretisation error.\n",
+                c.label(),
+                sci(*floor),
+                sci(at_min)
+            );
+        } else {
+            md += &format!(
+                "- {}: {order_text} all the way to the smallest h swept ({h_min:e} s, error {} m): no floor in range.\n",
+                c.label(),
+                sci(*floor)
+            );
+        }
+    }
+    md += "\nThe scheme is a first-order time-stepping method (semi-implicit Euler with contact and friction \
+           resolved as one LCP per step; switches happen at step boundaries), so about one decade of error per \
+           decade of h is expected; the pictures show where each configuration stops paying off.\n\n";
+    if !instr.is_empty() {
+        md += "Cortex-M instructions per step (core f32 6x6, slow scene, measured under QEMU with `-icount`):\n\n";
+        for (m, n) in &instr {
+            md += &format!("- {m}: {n}\n");
+        }
+        md += "\n";
+    }
+    md += "## Success map\n\n![success map](success_map.svg)\n\n";
+    md += &format!(
+        "Outcome of the paper's symmetric start (fingers at -/+0.4 m, h = 1 ms) over finger speed and mu_k/mu_s, \
+         mu_s = 0.6, in the core f32 6x6 (the picture), the core f64 8x8 and the reference (`success_map.csv`). \
+         Green: balanced (the fingers met under the centre of mass); red: the rod fell. {}\n\n",
+        if disagreements.is_empty() {
+            "All three implementations agree on every cell.".to_string()
+        } else {
+            format!(
+                "They disagree on {} of {} cells: {}.",
+                disagreements.len(),
+                speeds.len() * ratios.len(),
+                disagreements.join("; ")
+            )
+        }
+    );
+    md += "| v (m/s) \\ mu_k/mu_s |";
+    for r in &ratio_labels {
+        md += &format!(" {r} |");
+    }
+    md += "\n|---|";
+    md += &"---|".repeat(ratios.len());
+    md += "\n";
+    for (i, v) in speeds.iter().enumerate() {
+        md += &format!("| {v} |");
+        for j in 0..ratios.len() {
+            md += &format!(" {} |", outcome_of(i, j, Config::CoreF32x6));
+        }
+        md += "\n";
+    }
+    std::fs::write(out.join("report.md"), &md)?;
+    let mut text = String::new();
+    for (c, (order, _, floor, h_floor), ns) in &fits {
+        text += &format!(
+            "{:<18} order {:>5}  best COM error {} m at h = {h_floor:e} s  {:>7.0} ns/step\n",
+            c.label(),
+            order.map_or_else(|| "n/a".into(), |o| format!("{o:.2}")),
+            sci(*floor),
+            ns
+        );
+    }
+    text += &format!(
+        "success map: {} cells, {} disagreements; report in {}\n",
+        speeds.len() * ratios.len(),
+        disagreements.len(),
+        out.join("report.md").display()
+    );
+    Ok(text)
+}

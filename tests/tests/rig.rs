@@ -1,0 +1,226 @@
+//! The demo rig's loop (`meterstick_core::rig`) against `embedded-hal-mock` pins: the exact
+//! pin transitions of a short scene, the fault path, and a whole run.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::convert::Infallible;
+
+use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
+use embedded_hal_mock::eh1::delay::NoopDelay;
+use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
+use meterstick_core::rig::{ModeLights, Rig, RigConfig, RigFault, RigPins, RigState};
+use meterstick_core::scene::{ContactMode, Outcome, Scene6, SceneParams};
+
+/// Finger 1 close to the eq. 21 switch (x1/x2 = 0.675 > mu_k/mu_s), moving fast: finger 2
+/// starts to slide within a few steps, so a short run changes a light. 1 mm per step at
+/// 1000 steps/m: one pulse per tick.
+fn short_scene() -> SceneParams<f32> {
+    SceneParams { finger1_x: -0.27, finger_speed: 1.0, ..SceneParams::paper() }
+}
+
+const CONFIG: RigConfig =
+    RigConfig { steps_per_meter: 1000.0, pulse_ns: 2_000, max_pulses_per_tick: 10, button_active_low: true };
+
+fn light_of(m: ContactMode) -> usize {
+    match m {
+        ContactMode::Sticking => 0,
+        ContactMode::Sliding(_) => 1,
+        ContactMode::Separated => 2,
+    }
+}
+
+struct Expect {
+    button: Vec<T>,
+    step: Vec<T>,
+    dir: Vec<T>,
+    fault: Vec<T>,
+    lights: [[Vec<T>; 3]; 2],
+}
+
+impl Expect {
+    /// Every output driven low by `Rig::new`.
+    fn new() -> Self {
+        let low = || vec![T::set(State::Low)];
+        Self {
+            button: vec![],
+            step: low(),
+            dir: low(),
+            fault: low(),
+            lights: [[low(), low(), low()], [low(), low(), low()]],
+        }
+    }
+
+    fn pins(&self) -> RigPins<PinMock, PinMock> {
+        let m = |t: &Vec<T>| PinMock::new(t);
+        RigPins {
+            start: m(&self.button),
+            step: m(&self.step),
+            dir: m(&self.dir),
+            lights: [0, 1].map(|i| ModeLights {
+                sticking: m(&self.lights[i][0]),
+                sliding: m(&self.lights[i][1]),
+                separated: m(&self.lights[i][2]),
+            }),
+            fault: m(&self.fault),
+        }
+    }
+}
+
+fn done(pins: RigPins<PinMock, PinMock>) {
+    let RigPins { mut start, mut step, mut dir, lights, mut fault } = pins;
+    start.done();
+    step.done();
+    dir.done();
+    fault.done();
+    for l in lights {
+        let ModeLights { mut sticking, mut sliding, mut separated } = l;
+        sticking.done();
+        sliding.done();
+        separated.done();
+    }
+}
+
+#[test]
+fn a_short_scene_drives_the_expected_pin_transitions() {
+    const TICKS: usize = 12;
+    // What the rig must show, from the scene itself: its modes and finger 1 after each step.
+    let params = short_scene();
+    let mut scene = Scene6::<f32, 8>::new(params).unwrap();
+    let initial = scene.modes();
+    let steps: Vec<([ContactMode; 2], f32)> =
+        (0..TICKS).map(|_| scene.step().map(|r| (r.modes, r.fingers[0])).unwrap()).collect();
+    assert!(
+        steps.iter().any(|(m, _)| m[1].is_sliding()),
+        "finger 2 should start to slide within {TICKS} steps: {steps:?}"
+    );
+
+    let mut e = Expect::new();
+    // Tick 1: button not pressed (reads high); tick 2: pressed.
+    e.button = vec![T::get(State::High), T::get(State::Low)];
+    e.dir.push(T::set(State::High));
+    let mut lit = [light_of(initial[0]), light_of(initial[1])];
+    for i in 0..2 {
+        e.lights[i][lit[i]].push(T::set(State::High));
+    }
+    let mut pulses = 0i64;
+    for (modes, x1) in &steps {
+        let target = ((x1 - params.finger1_x) * CONFIG.steps_per_meter).round() as i64;
+        for _ in pulses..target {
+            e.step.extend([T::set(State::High), T::set(State::Low)]);
+        }
+        pulses = pulses.max(target);
+        for i in 0..2 {
+            let now = light_of(modes[i]);
+            if now != lit[i] {
+                e.lights[i][lit[i]].push(T::set(State::Low));
+                e.lights[i][now].push(T::set(State::High));
+                lit[i] = now;
+            }
+        }
+    }
+    assert_eq!(pulses, i64::try_from(TICKS).unwrap(), "1 mm per step at 1000 steps/m");
+
+    let mut rig = Rig::<_, _, _, 6>::new(params, CONFIG, e.pins(), NoopDelay::new()).unwrap();
+    assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart);
+    assert_eq!(rig.tick().unwrap(), RigState::Running);
+    for _ in 0..TICKS {
+        assert_eq!(rig.tick().unwrap(), RigState::Running);
+    }
+    assert_eq!(rig.pulses(), pulses);
+    let (pins, _) = rig.release();
+    done(pins);
+}
+
+#[test]
+fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
+    // 1 mm per tick but at most 0 pulses per tick: the carriage cannot follow.
+    let config = RigConfig { max_pulses_per_tick: 0, ..CONFIG };
+    let params = short_scene();
+    let initial = Scene6::<f32, 8>::new(params).unwrap().modes();
+    let mut e = Expect::new();
+    e.button = vec![T::get(State::Low)];
+    e.dir.push(T::set(State::High));
+    for i in 0..2 {
+        let l = light_of(initial[i]);
+        e.lights[i][l].extend([T::set(State::High), T::set(State::Low)]); // on at start, off at the fault
+    }
+    e.fault.push(T::set(State::High));
+    let mut rig = Rig::<_, _, _, 6>::new(params, config, e.pins(), NoopDelay::new()).unwrap();
+    assert_eq!(rig.tick().unwrap(), RigState::Running);
+    let fault = RigState::Fault(RigFault::ActuatorOverrun);
+    assert_eq!(rig.tick().unwrap(), fault);
+    // It stays there and touches no pin (the mocks would fail on an unexpected call).
+    for _ in 0..5 {
+        assert_eq!(rig.tick().unwrap(), fault);
+    }
+    assert_eq!(rig.pulses(), 0);
+    let (pins, _) = rig.release();
+    done(pins);
+}
+
+/// A pin that counts its rising edges, and a pressed button.
+#[derive(Debug, Default)]
+struct Counting {
+    high: bool,
+    rises: u32,
+}
+impl ErrorType for Counting {
+    type Error = Infallible;
+}
+impl OutputPin for Counting {
+    fn set_low(&mut self) -> Result<(), Infallible> {
+        self.high = false;
+        Ok(())
+    }
+    fn set_high(&mut self) -> Result<(), Infallible> {
+        self.rises += u32::from(!self.high);
+        self.high = true;
+        Ok(())
+    }
+}
+impl InputPin for Counting {
+    fn is_high(&mut self) -> Result<bool, Infallible> {
+        Ok(false)
+    }
+    fn is_low(&mut self) -> Result<bool, Infallible> {
+        Ok(true)
+    }
+}
+
+#[test]
+fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
+    let params = SceneParams::<f32> { finger1_x: -0.35, ..SceneParams::paper() };
+    let config = RigConfig::default_rig();
+    let lights = || ModeLights {
+        sticking: Counting::default(),
+        sliding: Counting::default(),
+        separated: Counting::default(),
+    };
+    let pins = RigPins {
+        start: Counting::default(),
+        step: Counting::default(),
+        dir: Counting::default(),
+        lights: [lights(), lights()],
+        fault: Counting::default(),
+    };
+    let mut rig = Rig::<_, _, _, 6>::new(params, config, pins, NoopDelay::new()).unwrap();
+    let mut ticks = 0;
+    let state = loop {
+        let s = rig.tick().unwrap();
+        ticks += 1;
+        if matches!(s, RigState::Finished(_) | RigState::Fault(_)) || ticks > 100_000 {
+            break s;
+        }
+    };
+    assert_eq!(state, RigState::Finished(Outcome::Balanced));
+    let travel = rig.scene().fingers()[0] - params.finger1_x;
+    assert_eq!(rig.pulses(), (travel * config.steps_per_meter).round() as i64);
+    assert_eq!(rig.pulses(), 59_200, "0.74 m at 80 steps/mm");
+    let switches = rig.scene().events().len() as u32 + rig.scene().stats().events_dropped;
+    let (pins, _) = rig.release();
+    assert_eq!(pins.step.rises, 59_200);
+    assert_eq!(pins.fault.rises, 0);
+    // Each finger's light changes at its switches: as many rises in all as mode changes
+    // between light classes, plus the two lit at the start.
+    let rises: u32 = pins.lights.iter().map(|l| l.sticking.rises + l.sliding.rises + l.separated.rises).sum();
+    assert!(rises >= 2 + 8 && rises <= 2 + switches, "{rises} light rises for {switches} switch events");
+}
