@@ -22,6 +22,8 @@ fn main() {
     let target = env::var("TARGET").unwrap_or_default();
     if target.starts_with("thumb") {
         println!("cargo:rustc-link-arg-bins=-Tlink.x");
-        println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
+        if env::var_os("CARGO_FEATURE_LOG").is_some() {
+            println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
+        }
     }
 }

@@ -35,3 +35,15 @@ build_firmware() {
   cp "$FIRMWARE_TARGET_DIR/$target/release/meterstick-firmware" "$FIRMWARE_TARGET_DIR/elf/$name.elf"
   echo "$FIRMWARE_TARGET_DIR/elf/$name.elf"
 }
+
+# Every firmware build: "<name> <target> <features>". qemu-*: the QEMU board binding (run in the
+# tests); rig-*: the demo rig on the STM32F411 Black Pill, with and without defmt logging (`log`)
+# and the 8x8 fallback (the 6x6-only builds link no 8x8 code).
+FIRMWARE_BUILDS=(
+  "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback-8x8"
+  "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback-8x8"
+  "rig-m4f thumbv7em-none-eabihf board-blackpill,log,fallback-8x8"
+  "rig-m4f-nolog thumbv7em-none-eabihf board-blackpill,fallback-8x8"
+  "rig-m4f-6x6 thumbv7em-none-eabihf board-blackpill,log"
+  "rig-m4f-6x6-nolog thumbv7em-none-eabihf board-blackpill"
+)

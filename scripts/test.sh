@@ -29,17 +29,24 @@ done
 
 step "firmware clippy"
 if [ "$MS_CROSS_MODE" = rustup ]; then
-  (cd firmware && cargo clippy --locked --release --target thumbv7em-none-eabihf --features qemu-mps2-an386 \
-      --target-dir "$FIRMWARE_TARGET_DIR" -- -D warnings)
+  # The distinct code paths: QEMU binding; rig with logging and fallback; rig with neither.
+  for spec in "${FIRMWARE_BUILDS[0]}" "${FIRMWARE_BUILDS[2]}" "${FIRMWARE_BUILDS[5]}"; do
+    set -- $spec
+    (cd firmware && cargo clippy --locked --release --target "$2" --features "$3" \
+        --target-dir "$FIRMWARE_TARGET_DIR" -- -D warnings)
+  done
 else
   echo "Debian fallback: no clippy for the cross toolchain; skipped"
 fi
 
-step "firmware builds"
-M4=$(build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386)
-M0=$(build_firmware qemu-m0 thumbv6m-none-eabi qemu-microbit)
-RIG=$(build_firmware rig-m4f thumbv7em-none-eabihf "")
-for elf in "$M4" "$M0" "$RIG"; do size "$elf" | tail -n 1; done
+step "firmware builds (QEMU machines; the rig with and without defmt and the 8x8 fallback)"
+for spec in "${FIRMWARE_BUILDS[@]}"; do
+  set -- $spec
+  elf=$(build_firmware "$1" "$2" "$3")
+  printf '%-18s %s\n' "$1" "$(size "$elf" | tail -n 1)"
+done
+M4="$FIRMWARE_TARGET_DIR/elf/qemu-m4f.elf"
+M0="$FIRMWARE_TARGET_DIR/elf/qemu-m0.elf"
 
 step "firmware under QEMU"
 MS_FIRMWARE_M4="$M4" MS_FIRMWARE_M0="$M0" \

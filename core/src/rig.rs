@@ -103,10 +103,11 @@ pub enum RigState {
     Fault(RigFault),
 }
 
-/// The demo rig's loop over the scene `Scene<f32, N>` (6: reduced, 8: the paper's form).
+/// The demo rig's loop over the scene `Scene<f32, N, E>` (`N` 6: reduced, 8: the paper's
+/// form; room for `E` switch events).
 #[derive(Debug)]
-pub struct Rig<B, P, D, const N: usize> {
-    scene: Scene<f32, N, 8>,
+pub struct Rig<B, P, D, const N: usize, const E: usize = 8> {
+    scene: Scene<f32, N, E>,
     pins: RigPins<B, P>,
     delay: D,
     config: RigConfig,
@@ -134,10 +135,10 @@ fn light<P: OutputPin>(lights: &mut ModeLights<P>, mode: ContactMode) -> &mut P 
     }
 }
 
-impl<B, P, D, E, const N: usize> Rig<B, P, D, N>
+impl<B, P, D, PinError, const N: usize, const E: usize> Rig<B, P, D, N, E>
 where
-    B: InputPin<Error = E>,
-    P: OutputPin<Error = E>,
+    B: InputPin<Error = PinError>,
+    P: OutputPin<Error = PinError>,
     D: DelayNs,
 {
     /// A rig for `params`, with every output driven low.
@@ -149,7 +150,7 @@ where
         config: RigConfig,
         pins: RigPins<B, P>,
         delay: D,
-    ) -> Result<Self, RigError<E>> {
+    ) -> Result<Self, RigError<PinError>> {
         let scene = Scene::new(params).map_err(RigError::Params)?;
         let mut rig = Self {
             scene,
@@ -175,7 +176,7 @@ where
 
     /// The scene being shown.
     #[must_use]
-    pub const fn scene(&self) -> &Scene<f32, N, 8> {
+    pub const fn scene(&self) -> &Scene<f32, N, E> {
         &self.scene
     }
 
@@ -200,7 +201,7 @@ where
     ///
     /// # Errors
     /// A pin error (the rig's state is unchanged by it).
-    pub fn tick(&mut self) -> Result<RigState, RigError<E>> {
+    pub fn tick(&mut self) -> Result<RigState, RigError<PinError>> {
         match self.state {
             RigState::WaitingForStart => {
                 let level_low = self.pins.start.is_low().map_err(RigError::Pin)?;
@@ -217,7 +218,7 @@ where
         Ok(self.state)
     }
 
-    fn advance(&mut self) -> Result<(), RigError<E>> {
+    fn advance(&mut self) -> Result<(), RigError<PinError>> {
         let Some(report) = self.scene.step() else {
             return self.finish(self.scene.outcome().unwrap_or(Outcome::Unfinished));
         };
@@ -246,7 +247,7 @@ where
         }
     }
 
-    fn finish(&mut self, outcome: Outcome) -> Result<(), RigError<E>> {
+    fn finish(&mut self, outcome: Outcome) -> Result<(), RigError<PinError>> {
         match outcome {
             Outcome::SolverFailed(e) => self.fault(RigFault::Solver(e)),
             Outcome::NonFinite => self.fault(RigFault::NonFinite),
@@ -259,7 +260,7 @@ where
         }
     }
 
-    fn fault(&mut self, fault: RigFault) -> Result<(), RigError<E>> {
+    fn fault(&mut self, fault: RigFault) -> Result<(), RigError<PinError>> {
         log_error!("rig: fault {} at t={=f32}", fault, self.scene.time());
         self.state = RigState::Fault(fault);
         for i in 0..2 {
@@ -272,7 +273,7 @@ where
 
     /// Lights each finger's mode (turning the previous light off first); pins that keep
     /// their state are not touched.
-    fn show_modes(&mut self, modes: [ContactMode; 2]) -> Result<(), RigError<E>> {
+    fn show_modes(&mut self, modes: [ContactMode; 2]) -> Result<(), RigError<PinError>> {
         for i in 0..2 {
             let new = modes[i];
             let old = self.lit[i];

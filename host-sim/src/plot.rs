@@ -29,6 +29,10 @@ const PALETTE: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
+fn tick_label(v: f64, log: bool) -> String {
+    if log { format!("{v:.0e}") } else { format!("{}", (v * 1e6).round() / 1e6) }
+}
+
 /// One line of a chart.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series {
@@ -74,7 +78,14 @@ pub fn lines(
     macro_rules! draw {
         ($chart:expr) => {{
             let mut chart = $chart;
-            chart.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw().map_err(err)?;
+            chart
+                .configure_mesh()
+                .x_desc(x_desc)
+                .y_desc(y_desc)
+                .x_label_formatter(&|v| tick_label(*v, log_log))
+                .y_label_formatter(&|v| tick_label(*v, log_log))
+                .draw()
+                .map_err(err)?;
             // Solid and dashed series are coloured in the same order, so that a quantity has
             // one colour in both implementations.
             let (mut solid, mut dash) = (0, 0);
@@ -187,17 +198,20 @@ pub fn outcome_map(
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(75)
-        .build_cartesian_2d(0f64..nx as f64, 0f64..ny as f64)
+        // A segmented `0..n` has segments 0..=n; `0..n-1` has the n cells.
+        .build_cartesian_2d((0..nx.max(2) - 1).into_segmented(), (0..ny.max(2) - 1).into_segmented())
         .map_err(err)?;
-    let xl = x_labels.to_vec();
-    let yl = y_labels.to_vec();
+    let label = |labels: &[String], v: &SegmentValue<usize>| match v {
+        SegmentValue::CenterOf(i) => labels.get(*i).cloned().unwrap_or_default(),
+        _ => String::new(),
+    };
     chart
         .configure_mesh()
         .disable_mesh()
         .x_labels(nx)
         .y_labels(ny)
-        .x_label_formatter(&|v| xl.get(*v as usize).cloned().unwrap_or_default())
-        .y_label_formatter(&|v| yl.get(*v as usize).cloned().unwrap_or_default())
+        .x_label_formatter(&|v| label(x_labels, v))
+        .y_label_formatter(&|v| label(y_labels, v))
         .x_desc(x_desc)
         .y_desc(y_desc)
         .draw()
@@ -210,18 +224,29 @@ pub fn outcome_map(
     };
     for (j, row) in cells.iter().enumerate() {
         for (i, c) in row.iter().enumerate() {
-            let (x, y) = (i as f64, j as f64);
             chart
                 .draw_series(std::iter::once(Rectangle::new(
-                    [(x + 0.02, y + 0.02), (x + 0.98, y + 0.98)],
+                    [
+                        (SegmentValue::Exact(i), SegmentValue::Exact(j)),
+                        (SegmentValue::Exact(i + 1), SegmentValue::Exact(j + 1)),
+                    ],
                     color(c).filled(),
+                )))
+                .map_err(err)?;
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [
+                        (SegmentValue::Exact(i), SegmentValue::Exact(j)),
+                        (SegmentValue::Exact(i + 1), SegmentValue::Exact(j + 1)),
+                    ],
+                    WHITE.stroke_width(2),
                 )))
                 .map_err(err)?;
         }
     }
     for name in ["Balanced", "Fell", "Unfinished", "Failed"] {
         chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .draw_series(std::iter::empty::<Circle<(SegmentValue<usize>, SegmentValue<usize>), i32>>())
             .map_err(err)?
             .label(name)
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], color(name).filled()));

@@ -39,18 +39,42 @@ fn check_common(run: &FirmwareRun) {
     for (name, speed, outcome) in [("slow", 0.1f32, "Balanced"), ("fast", 5.0, "Fell")] {
         let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
         assert!(line.starts_with(&format!("{name} outcome={outcome} ")), "{line}");
-        let (steps, checksum) = host_checksum(speed);
+        let host = host_run(speed);
+        let steps = host.stats().steps;
         assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+        let checksum = host_checksum(speed);
         assert!(
             line.ends_with(&format!("checksum={checksum:08x}")),
             "{line}: the host f32 build's trajectory checksum is {checksum:08x}"
         );
+        // The switch events: same steps (f32 times bit-identical), fingers and modes.
+        let events: Vec<&String> =
+            run.lines.iter().filter(|l| l.starts_with(&format!("{name} event "))).collect();
+        assert_eq!(events.len(), host.events().len(), "{name}: {events:#?}");
+        for (line, e) in events.iter().zip(host.events()) {
+            let field = |key: &str| line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap().to_owned();
+            assert_eq!(field("t=").parse::<f32>().unwrap().to_bits(), e.time.to_bits(), "{line} vs {e:?}");
+            assert_eq!(field("finger="), (e.finger + 1).to_string(), "{line}");
+            assert_eq!(field("mode="), e.mode.name(), "{line}");
+        }
+        // The rig drove the carriage to finger 1's end position: 0.1 mm per pulse.
+        let rig = run.lines.iter().find(|l| l.starts_with(&format!("{name} rig "))).expect("rig line");
+        let travel = host.fingers()[0] - (-0.35f32);
+        assert!(rig.contains(&format!(" pulses={} ", (travel * 10_000.0).round())), "{rig}: travel {travel}");
     }
+}
+
+fn host_run(speed: f32) -> meterstick_core::scene::Scene6<f32, 32> {
+    use meterstick_core::scene::{Scene6, SceneParams};
+    let params = SceneParams { finger_speed: speed, finger1_x: -0.35, ..SceneParams::<f32>::paper() };
+    let mut scene = Scene6::<f32, 32>::new(params).unwrap();
+    scene.run(|_| {});
+    scene
 }
 
 /// The same f32 6x6 scene on the host, with the firmware's checksum (FNV-1a over the bits of
 /// the rod state after every step): bit-identical IEEE f32 arithmetic gives the same value.
-fn host_checksum(speed: f32) -> (u64, u32) {
+fn host_checksum(speed: f32) -> u32 {
     use meterstick_core::scene::{Scene6, SceneParams};
     let params = SceneParams { finger_speed: speed, finger1_x: -0.35, ..SceneParams::<f32>::paper() };
     let mut scene = Scene6::<f32, 32>::new(params).unwrap();
@@ -63,7 +87,7 @@ fn host_checksum(speed: f32) -> (u64, u32) {
             }
         }
     });
-    (scene.stats().steps, hash)
+    hash
 }
 
 #[test]
@@ -76,4 +100,32 @@ fn cortex_m4f_on_mps2_an386() {
 #[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
 fn cortex_m0_on_microbit() {
     check_common(&run("MS_FIRMWARE_M0", Machine::Microbit));
+}
+
+/// The instruction-count method: under `-icount shift=0` the firmware's SysTick calibration
+/// (a loop of 2,000,002 instructions) reads 1e9 / f_SysTick instructions per tick:
+/// 40 on mps2-an386 (25 MHz), 62.5 on the micro:bit (16 MHz). Deterministic: two runs agree.
+#[test]
+#[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
+fn icount_calibration_is_exact_and_deterministic() {
+    for (var, machine, per_tick) in
+        [("MS_FIRMWARE_M4", Machine::Mps2An386, 40.0), ("MS_FIRMWARE_M0", Machine::Microbit, 62.5)]
+    {
+        let elf = PathBuf::from(
+            std::env::var(var).unwrap_or_else(|_| panic!("{var} is not set: run scripts/test.sh")),
+        );
+        let runs: Vec<FirmwareRun> = (0..2)
+            .map(|_| qemu::run(&elf, machine, Duration::from_secs(120), true).expect("QEMU run"))
+            .collect();
+        let cal = |r: &FirmwareRun| r.lines.iter().find(|l| l.starts_with("calibration ")).unwrap().clone();
+        let line = cal(&runs[0]);
+        assert_eq!(line, cal(&runs[1]), "icount runs differ");
+        let nums: Vec<f64> =
+            line.split(' ').filter_map(|w| w.split_once('=')).map(|(_, v)| v.parse().unwrap()).collect();
+        // Exact up to the few instructions around the loop (reading SysTick, the call).
+        let measured = nums[0] / nums[1];
+        assert!((measured / per_tick - 1.0).abs() < 1e-4, "{line}: {measured} instructions per tick");
+        let rig = |r: &FirmwareRun| r.lines.iter().find(|l| l.starts_with("slow rig ")).unwrap().clone();
+        assert_eq!(rig(&runs[0]), rig(&runs[1]), "the slow scene's tick count is not deterministic");
+    }
 }

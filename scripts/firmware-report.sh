@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Firmware figures: flash/RAM of every build (with and without defmt, with and without the 8x8
+# fallback), and Cortex-M instructions per scene step on the emulated Cortex-M4F and Cortex-M0,
+# counted deterministically (QEMU -icount shift=0, SysTick, calibrated against a loop of known
+# length). Writes out/firmware/report.md and prints it. Installs what it needs first.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+. scripts/lib.sh
+$HOST_CARGO build --locked --release -p meterstick-host-sim >&2
+mkdir -p out/firmware
+declare -A ELF
+for spec in "${FIRMWARE_BUILDS[@]}"; do
+  set -- $spec
+  ELF[$1]=$(build_firmware "$1" "$2" "$3")
+done
+{
+  echo "# Firmware figures"
+  echo
+  echo "| build | features | flash (text+data, B) | static RAM (data+bss, B) |"
+  echo "|---|---|---|---|"
+  for b in qemu-m4f qemu-m0 rig-m4f rig-m4f-nolog rig-m4f-6x6 rig-m4f-6x6-nolog; do
+    read -r text data bss _ < <(size "${ELF[$b]}" | tail -n 1)
+    feats=$(printf '%s\n' "${FIRMWARE_BUILDS[@]}" | awk -v b="$b" '$1 == b { print $3 }')
+    echo "| $b | $feats | $((text + data)) | $((data + bss)) |"
+  done
+  echo
+  echo "Instructions per step (slow scene v = 0.1 m/s and fast v = 5 m/s, x1 = -0.35 m, f32 6x6 with the 8x8"
+  echo "fallback, through the rig loop; QEMU -icount shift=0, SysTick ticks converted with the calibration loop):"
+  echo
+  echo "| core (QEMU machine) | scene | steps | instructions/step (mean) | worst step (instructions) |"
+  echo "|---|---|---|---|---|"
+  for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0"; do
+    set -- $m
+    out=$(target/release/host-sim qemu --icount --machine "$2" "${ELF[$1]}" 2>/dev/null)
+    echo "$out" > "out/firmware/$1-icount.log"
+    cal=$(echo "$out" | sed -n 's/^calibration instructions=\([0-9]*\) systicks=\([0-9]*\)$/\1 \2/p')
+    for scene in slow fast; do
+      line=$(echo "$out" | grep "^$scene rig ")
+      ticks=$(echo "$line" | sed 's/.* systicks=\([0-9]*\) .*/\1/')
+      worst=$(echo "$line" | sed 's/.*worst_step_systicks=\([0-9]*\).*/\1/')
+      steps=$(echo "$line" | sed 's/.* steps=\([0-9]*\)$/\1/')
+      python3 - "$cal" "$ticks" "$worst" "$steps" "$3 ($2)" "$scene" <<'PY'
+import sys
+insn, cal_ticks = map(int, sys.argv[1].split())
+ticks, worst, steps = int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
+per_tick = insn / cal_ticks
+print(f"| {sys.argv[5]} | {sys.argv[6]} | {steps} | {ticks * per_tick / steps:,.0f} | {worst * per_tick:,.0f} |")
+PY
+    done
+  done
+} | tee out/firmware/report.md
