@@ -49,23 +49,34 @@ pub fn default_tolerance<T: Real, const N: usize>() -> T {
 
 /// Computes the normalised residual of `z` for `lcp` and compares it with `tolerance`.
 pub fn verify<T: Real, const N: usize>(lcp: &Lcp<T, N>, z: &SVector<T, N>, tolerance: T) -> Verification<T> {
+    verify_with(lcp, z, tolerance, lcp.m_norm_inf()).0
+}
+
+/// [`verify`] with `||M||_inf` given, also returning `w = M z + q` (the solver's hot path
+/// computes both once).
+pub(crate) fn verify_with<T: Real, const N: usize>(
+    lcp: &Lcp<T, N>,
+    z: &SVector<T, N>,
+    tolerance: T,
+    m_norm: T,
+) -> (Verification<T>, SVector<T, N>) {
     let w = lcp.w_of(z);
     let z_norm = z.iter().fold(T::zero(), |acc, x| max(acc, x.abs_exact()));
     let s_z = max(z_norm, T::TINY);
-    let s_w = max(lcp.m_norm_inf() * z_norm + lcp.q_norm_inf(), T::TINY);
+    let s_w = max(m_norm * z_norm + lcp.q_norm_inf(), T::TINY);
     let mut residual = T::zero();
     for i in 0..N {
         let zi = z[i];
         let wi = w[i];
         if !(zi.finite() && wi.finite()) {
-            return Verification { residual: T::of(f64::INFINITY), tolerance };
+            return (Verification { residual: T::of(f64::INFINITY), tolerance }, w);
         }
         let neg_z = max(-zi, T::zero()) / s_z;
         let neg_w = max(-wi, T::zero()) / s_w;
         let comp = min(zi.abs_exact() / s_z, wi.abs_exact() / s_w);
         residual = max(residual, max(neg_z, max(neg_w, comp)));
     }
-    Verification { residual, tolerance }
+    (Verification { residual, tolerance }, w)
 }
 
 /// `true` when `z` solves `lcp` within the default tolerance ([`default_tolerance`]).
