@@ -19,8 +19,10 @@
 //! while running. Pins are driven only when their state changes. Logging (mode switches,
 //! outcome, faults) goes to `defmt` with the `defmt` feature and compiles to nothing without it.
 
+use core::convert::Infallible;
+
 use embedded_hal::delay::DelayNs;
-use embedded_hal::digital::{InputPin, OutputPin};
+use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 
 use crate::lcp::LcpError;
 use crate::scene::{ContactMode, Outcome, ParamError, Scene, SceneParams};
@@ -299,5 +301,80 @@ const fn light_index(m: ContactMode) -> u8 {
         ContactMode::Sticking => 0,
         ContactMode::Sliding(_) => 1,
         ContactMode::Separated => 2,
+    }
+}
+
+/// A headless pin, for running the rig without hardware (QEMU, host tests): as an output it
+/// counts its rising edges; as an input it reads low, i.e. a pressed active-low button.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct HeadlessPin {
+    high: bool,
+    rises: u32,
+}
+
+impl HeadlessPin {
+    /// Rising edges so far (for STEP: the pulses; for a light: the times it came on).
+    #[must_use]
+    pub const fn rises(&self) -> u32 {
+        self.rises
+    }
+}
+
+impl ErrorType for HeadlessPin {
+    type Error = Infallible;
+}
+
+impl OutputPin for HeadlessPin {
+    fn set_low(&mut self) -> Result<(), Infallible> {
+        self.high = false;
+        Ok(())
+    }
+    fn set_high(&mut self) -> Result<(), Infallible> {
+        self.rises += u32::from(!self.high);
+        self.high = true;
+        Ok(())
+    }
+}
+
+impl InputPin for HeadlessPin {
+    fn is_high(&mut self) -> Result<bool, Infallible> {
+        Ok(false)
+    }
+    fn is_low(&mut self) -> Result<bool, Infallible> {
+        Ok(true)
+    }
+}
+
+/// A delay that does not wait (headless runs).
+#[derive(Debug, Default, Clone, Copy)]
+pub struct NoDelay;
+
+impl DelayNs for NoDelay {
+    fn delay_ns(&mut self, _ns: u32) {}
+}
+
+impl<D: DelayNs, const N: usize, const E: usize> Rig<HeadlessPin, HeadlessPin, D, N, E> {
+    /// A rig on [`HeadlessPin`]s (the start button reads pressed).
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn headless(
+        params: SceneParams<f32>,
+        config: RigConfig,
+        delay: D,
+    ) -> Result<Self, RigError<Infallible>> {
+        let lights = || ModeLights {
+            sticking: HeadlessPin::default(),
+            sliding: HeadlessPin::default(),
+            separated: HeadlessPin::default(),
+        };
+        let pins = RigPins {
+            start: HeadlessPin::default(),
+            step: HeadlessPin::default(),
+            dir: HeadlessPin::default(),
+            lights: [lights(), lights()],
+            fault: HeadlessPin::default(),
+        };
+        Self::new(params, config, pins, delay)
     }
 }

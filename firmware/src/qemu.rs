@@ -6,60 +6,12 @@
 //! against instructions. Exit status: 0 when the LCP was solved and both scenes ended as the
 //! paper says (balanced, fell).
 
-use core::convert::Infallible;
-
 use defmt_semihosting as _;
-use embedded_hal::delay::DelayNs;
-use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 use meterstick_core::lcp::{Lcp, Lemke};
-use meterstick_core::rig::{ModeLights, Rig, RigConfig, RigPins, RigState};
+use meterstick_core::rig::{NoDelay, Rig, RigConfig, RigState};
 use meterstick_core::scene::{Outcome, SceneParams};
 
 use crate::systick;
-
-/// An output that counts its rising edges; as an input it reads low (a pressed active-low
-/// button).
-#[derive(Debug, Default)]
-struct QemuPin {
-    high: bool,
-    rises: u32,
-}
-
-impl ErrorType for QemuPin {
-    type Error = Infallible;
-}
-
-impl OutputPin for QemuPin {
-    fn set_low(&mut self) -> Result<(), Infallible> {
-        self.high = false;
-        Ok(())
-    }
-    fn set_high(&mut self) -> Result<(), Infallible> {
-        self.rises += u32::from(!self.high);
-        self.high = true;
-        Ok(())
-    }
-}
-
-impl InputPin for QemuPin {
-    fn is_high(&mut self) -> Result<bool, Infallible> {
-        Ok(false)
-    }
-    fn is_low(&mut self) -> Result<bool, Infallible> {
-        Ok(true)
-    }
-}
-
-/// Headless: no waiting between step pulses.
-struct NoDelay;
-
-impl DelayNs for NoDelay {
-    fn delay_ns(&mut self, _ns: u32) {}
-}
-
-fn lights() -> ModeLights<QemuPin> {
-    ModeLights { sticking: QemuPin::default(), sliding: QemuPin::default(), separated: QemuPin::default() }
-}
 
 /// FNV-1a over 32-bit words.
 fn fnv1a(hash: u32, word: u32) -> u32 {
@@ -83,14 +35,7 @@ const CONFIG: RigConfig = RigConfig {
 /// reports it; `None` on a rig fault.
 fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     let params = SceneParams { finger_speed: speed, finger1_x: -0.35, ..SceneParams::<f32>::paper() };
-    let pins = RigPins {
-        start: QemuPin::default(),
-        step: QemuPin::default(),
-        dir: QemuPin::default(),
-        lights: [lights(), lights()],
-        fault: QemuPin::default(),
-    };
-    let mut rig = match Rig::<_, _, _, 6, 32>::new(params, CONFIG, pins, NoDelay) {
+    let mut rig = match Rig::<_, _, _, 6, 32>::headless(params, CONFIG, NoDelay) {
         Ok(rig) => rig,
         Err(e) => {
             defmt::println!("{=str}: rig not started: {}", name, e);
@@ -158,7 +103,7 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     defmt::println!(
         "{=str} rig pulses={=u32} systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
         name,
-        pins.step.rises,
+        pins.step.rises(),
         ticks,
         worst,
         steps

@@ -2,12 +2,9 @@
 //! pin transitions of a short scene, the fault path, and a whole run.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::convert::Infallible;
-
-use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 use embedded_hal_mock::eh1::delay::NoopDelay;
 use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
-use meterstick_core::rig::{ModeLights, Rig, RigConfig, RigFault, RigPins, RigState};
+use meterstick_core::rig::{ModeLights, NoDelay, Rig, RigConfig, RigFault, RigPins, RigState};
 use meterstick_core::scene::{ContactMode, Outcome, Scene6, SceneParams};
 
 /// Finger 1 close to the eq. 21 switch (x1/x2 = 0.675 > mu_k/mu_s), moving fast: finger 2
@@ -157,52 +154,11 @@ fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
     done(pins);
 }
 
-/// A pin that counts its rising edges, and a pressed button.
-#[derive(Debug, Default)]
-struct Counting {
-    high: bool,
-    rises: u32,
-}
-impl ErrorType for Counting {
-    type Error = Infallible;
-}
-impl OutputPin for Counting {
-    fn set_low(&mut self) -> Result<(), Infallible> {
-        self.high = false;
-        Ok(())
-    }
-    fn set_high(&mut self) -> Result<(), Infallible> {
-        self.rises += u32::from(!self.high);
-        self.high = true;
-        Ok(())
-    }
-}
-impl InputPin for Counting {
-    fn is_high(&mut self) -> Result<bool, Infallible> {
-        Ok(false)
-    }
-    fn is_low(&mut self) -> Result<bool, Infallible> {
-        Ok(true)
-    }
-}
-
 #[test]
 fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
     let params = SceneParams::<f32> { finger1_x: -0.35, ..SceneParams::paper() };
     let config = RigConfig::default_rig();
-    let lights = || ModeLights {
-        sticking: Counting::default(),
-        sliding: Counting::default(),
-        separated: Counting::default(),
-    };
-    let pins = RigPins {
-        start: Counting::default(),
-        step: Counting::default(),
-        dir: Counting::default(),
-        lights: [lights(), lights()],
-        fault: Counting::default(),
-    };
-    let mut rig = Rig::<_, _, _, 6>::new(params, config, pins, NoopDelay::new()).unwrap();
+    let mut rig = Rig::<_, _, _, 6>::headless(params, config, NoDelay).unwrap();
     let mut ticks = 0;
     let state = loop {
         let s = rig.tick().unwrap();
@@ -217,10 +173,11 @@ fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
     assert_eq!(rig.pulses(), 59_200, "0.74 m at 80 steps/mm");
     let switches = rig.scene().events().len() as u32 + rig.scene().stats().events_dropped;
     let (pins, _) = rig.release();
-    assert_eq!(pins.step.rises, 59_200);
-    assert_eq!(pins.fault.rises, 0);
+    assert_eq!(pins.step.rises(), 59_200);
+    assert_eq!(pins.fault.rises(), 0);
     // Each finger's light changes at its switches: as many rises in all as mode changes
     // between light classes, plus the two lit at the start.
-    let rises: u32 = pins.lights.iter().map(|l| l.sticking.rises + l.sliding.rises + l.separated.rises).sum();
+    let rises: u32 =
+        pins.lights.iter().map(|l| l.sticking.rises() + l.sliding.rises() + l.separated.rises()).sum();
     assert!(rises >= 2 + 8 && rises <= 2 + switches, "{rises} light rises for {switches} switch events");
 }
