@@ -424,16 +424,6 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     }
     md += "\n(also in `error_vs_runtime.csv`; NaN/n/a: the quantity does not exist for that run, e.g. no switch to compare).\n\n";
     md += "### What the pictures show\n\n";
-    for (c, (order, (h_lo, h_hi), floor, h_floor), ns) in &fits {
-        md += &format!(
-            "- **{}**: observed order {} in h (fit over h = {h_lo:e} .. {h_hi:e} s); smallest COM error {} m at h = {h_floor:e} s; fastest {:.0} ns/step.\n",
-            c.label(),
-            order.map_or_else(|| "n/a".into(), |o| format!("{o:.2}")),
-            sci(*floor),
-            ns
-        );
-    }
-    md += "\n";
     for (c, (order, _, floor, h_floor), _) in &fits {
         let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.config == c.label()).collect();
         let at_min = mine.iter().find(|r| r.h <= h_min * 1.0001).map_or(f64::NAN, |r| r.errors.com_m);

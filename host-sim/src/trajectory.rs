@@ -350,18 +350,25 @@ pub fn max_deviation(a: &Trajectory, b: &Trajectory) -> (f64, f64) {
     (com, angle)
 }
 
+/// Writes a CSV file: the header line, then one line per item.
+fn write_lines<I: IntoIterator<Item = String>>(path: &Path, header: &str, lines: I) -> anyhow::Result<()> {
+    let mut w = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
+    );
+    writeln!(w, "{header}")?;
+    for line in lines {
+        writeln!(w, "{line}")?;
+    }
+    w.flush().with_context(|| format!("writing {}", path.display()))
+}
+
 /// Writes the trajectory CSV: `t,x,y,theta,finger1,finger2,mode1,mode2,pn1,pn2,pf1,pf2`.
 ///
 /// # Errors
 /// I/O.
 pub fn write_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
-    let mut w = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
-    );
-    writeln!(w, "t,x,y,theta,finger1,finger2,mode1,mode2,pn1,pn2,pf1,pf2")?;
-    for r in &traj.rows {
-        writeln!(
-            w,
+    let lines = traj.rows.iter().map(|r| {
+        format!(
             "{},{},{},{},{},{},{},{},{},{},{},{}",
             r.t,
             r.q[0],
@@ -375,9 +382,9 @@ pub fn write_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
             r.normal_impulse[1],
             r.friction_impulse[0],
             r.friction_impulse[1]
-        )?;
-    }
-    w.flush().with_context(|| format!("writing {}", path.display()))
+        )
+    });
+    write_lines(path, "t,x,y,theta,finger1,finger2,mode1,mode2,pn1,pn2,pf1,pf2", lines)
 }
 
 /// Writes the events CSV: `t,finger,mode,x1_from_com,x2_from_com,finger1,finger2`.
@@ -385,13 +392,8 @@ pub fn write_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
 /// # Errors
 /// I/O.
 pub fn write_events_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
-    let mut w = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
-    );
-    writeln!(w, "t,finger,mode,x1_from_com,x2_from_com,finger1,finger2")?;
-    for e in &traj.events {
-        writeln!(
-            w,
+    let lines = traj.events.iter().map(|e| {
+        format!(
             "{},{},{},{},{},{},{}",
             e.t,
             e.finger + 1,
@@ -400,7 +402,7 @@ pub fn write_events_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
             e.along[1],
             e.fingers[0],
             e.fingers[1]
-        )?;
-    }
-    w.flush().with_context(|| format!("writing {}", path.display()))
+        )
+    });
+    write_lines(path, "t,finger,mode,x1_from_com,x2_from_com,finger1,finger2", lines)
 }

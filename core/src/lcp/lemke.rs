@@ -505,8 +505,10 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         }
         let mut spent = 0;
         let mut eliminations = 0;
+        // `||M||_inf` once per solve: the warm path's scale and the verification's.
+        let m_norm = lcp.m_norm_inf();
         if warm != Basis::all_w() {
-            let scale = max(lcp.m_norm_inf(), T::TINY);
+            let scale = max(m_norm, T::TINY);
             // Fast path: the warm basis solved directly, kept only when strictly feasible.
             if let Some((z, k)) = basis_solution(lcp, warm, scale) {
                 let (check, w) = verify_with(lcp, &z, self.tolerance, scale);
@@ -525,7 +527,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
             if let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) {
                 eliminations = elim;
                 match tab.run(self.max_pivots) {
-                    Ok(pivots) => match self.finish(lcp, &tab, pivots, elim, true) {
+                    Ok(pivots) => match self.finish(lcp, m_norm, &tab, pivots, elim, true) {
                         Ok(sol) => return Ok(sol),
                         Err(e) => spent = e.pivots(),
                     },
@@ -536,7 +538,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         let mut tab = Tableau::cold(lcp);
         let budget = self.max_pivots.saturating_sub(spent).max(1);
         match tab.run(budget) {
-            Ok(pivots) => self.finish(lcp, &tab, spent + pivots, eliminations, false),
+            Ok(pivots) => self.finish(lcp, m_norm, &tab, spent + pivots, eliminations, false),
             Err(LcpError::Ray { pivots }) => Err(LcpError::Ray { pivots: spent + pivots }),
             Err(LcpError::MaxPivots { pivots }) => Err(LcpError::MaxPivots { pivots: spent + pivots }),
             Err(e) => Err(e),
@@ -546,13 +548,14 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     fn finish(
         &self,
         lcp: &Lcp<T, N>,
+        m_norm: T,
         tab: &Tableau<T, N>,
         pivots: u32,
         setup_eliminations: u32,
         warm_start_used: bool,
     ) -> Result<LcpSolution<T, N>, LcpError> {
         let (z, basis) = tab.solution(lcp);
-        let (check, w) = verify_with(lcp, &z, self.tolerance, lcp.m_norm_inf());
+        let (check, w) = verify_with(lcp, &z, self.tolerance, m_norm);
         if !check.passed() {
             return Err(LcpError::Unverified {
                 residual: check.residual.as_f32(),
