@@ -3,7 +3,7 @@
 //! [`Real`] extends [`nalgebra::RealField`] with the few things the core needs that
 //! must behave identically on every target:
 //! * the machine epsilon as a constant, used to scale every tolerance;
-//! * `sin`/`cos` through the `libm` crate, never the platform's C library, so a host build
+//! * `sin`/`cos` and `sqrt` through the `libm` crate, never the platform's C library, so a host build
 //!   and a Cortex-M build of the same f32 scene perform the same IEEE operations and
 //!   produce bit-identical trajectories (the firmware issue checks this with a checksum).
 //!
@@ -35,6 +35,12 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     /// `(sin x, cos x)` computed by `libm`, identical on every target.
     #[must_use]
     fn sin_cos_libm(self) -> (Self, Self);
+    /// `sqrt x` computed by `libm` (correctly rounded), identical on every target.
+    #[must_use]
+    fn sqrt_libm(self) -> Self;
+    /// A step count as a scalar, rounding to nearest (exact up to 2^24 in f32, 2^53 in f64).
+    #[must_use]
+    fn of_count(n: u64) -> Self;
     /// `|x|` by clearing the sign bit (exact; no library call).
     #[must_use]
     fn abs_exact(self) -> Self;
@@ -61,6 +67,14 @@ impl Real for f32 {
     #[inline]
     fn sin_cos_libm(self) -> (Self, Self) {
         libm::sincosf(self)
+    }
+    #[inline]
+    fn sqrt_libm(self) -> Self {
+        libm::sqrtf(self)
+    }
+    #[inline]
+    fn of_count(n: u64) -> Self {
+        n as f32
     }
     #[inline]
     fn abs_exact(self) -> Self {
@@ -91,6 +105,14 @@ impl Real for f64 {
     #[inline]
     fn sin_cos_libm(self) -> (Self, Self) {
         libm::sincos(self)
+    }
+    #[inline]
+    fn sqrt_libm(self) -> Self {
+        libm::sqrt(self)
+    }
+    #[inline]
+    fn of_count(n: u64) -> Self {
+        n as f64
     }
     #[inline]
     fn abs_exact(self) -> Self {

@@ -2,7 +2,7 @@
 //!
 //! The std host harness around `meterstick-core`: the `host-sim` command line, the LCP
 //! file reader ([`lcp_io`]), the independent f64 reference of the scene ([`reference`]), the
-//! main job ([`run_cmd`]), the error-vs-run-time report ([`report`]) and the QEMU firmware
+//! main job ([`run_cmd`]), the error-vs-run-time report ([`report`]), the stress grid ([`stress`]) and the QEMU firmware
 //! runner ([`qemu`]).
 
 pub mod lcp_io;
@@ -12,6 +12,7 @@ pub mod reference;
 pub mod report;
 pub mod run_cmd;
 pub mod scene_cmd;
+pub mod stress;
 pub mod trajectory;
 
 /// This crate's version.

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
-use meterstick_host_sim::{lcp_io, qemu, report, run_cmd, scene_cmd};
+use meterstick_host_sim::{lcp_io, qemu, report, run_cmd, scene_cmd, stress};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -40,6 +40,12 @@ enum Cmd {
     /// Error against run time over a sweep of h (core f32 6x6, f32 8x8, f64 8x8, reference),
     /// and a success map over finger speed and mu_k/mu_s; writes report.md with pictures.
     Report(report::ReportArgs),
+    /// Numerical stability on stiff and extreme cases: a grid of scenes (speed, h, friction,
+    /// mass, rod shape, gravity, edge geometry, drops and penetrations, 10^6-step runs) in
+    /// core f32 6x6, f32 8x8 and f64 8x8, judged by residual, penetration, energy and
+    /// physics criteria; writes report.md, cases.csv, summary.json and criteria.svg. Exits 1
+    /// when a case fails.
+    Stress(stress::StressArgs),
     /// Run one scene in the core and print its outcome, meeting point, switch events (with
     /// the eq. 21 ratio) and solver statistics. Units: m, s, kg, m/s.
     Scene(scene_cmd::SceneCmd),
@@ -93,6 +99,11 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Cmd::Report(args) => {
             print!("{}", report::run(&args)?);
             Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Stress(args) => {
+            let (text, all_passed) = stress::run(&args)?;
+            print!("{text}");
+            Ok(if all_passed { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
         Cmd::Scene(args) => {
             print!("{}", scene_cmd::run(&args)?);

@@ -186,18 +186,76 @@ pub fn relative(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Resul
 pub fn outcome_map(
     path: &Path,
     title: &str,
-    (x_desc, x_labels): (&str, &[String]),
-    (y_desc, y_labels): (&str, &[String]),
+    x: (&str, &[String]),
+    y: (&str, &[String]),
     cells: &[Vec<&str>],
 ) -> anyhow::Result<()> {
+    let color = |c: &str| match c {
+        "Balanced" => RGBColor(44, 160, 44),
+        "Fell" => RGBColor(214, 39, 40),
+        "Unfinished" => RGBColor(200, 200, 200),
+        _ => RGBColor(0, 0, 0),
+    };
+    let colors: Vec<Vec<RGBColor>> = cells.iter().map(|row| row.iter().map(|c| color(c)).collect()).collect();
+    let legend = ["Balanced", "Fell", "Unfinished", "Failed"].map(|n| (n.to_string(), color(n)));
+    heat_map(path, title, x, y, &colors, &legend, (900, 560))
+}
+
+/// A heat map of ratios to a bound: one cell per `(column, row)`, coloured by
+/// `log10(value)`: green up to 1e-3 of the bound, yellow to orange up to the bound, red
+/// beyond it; grey where there is no value.
+///
+/// # Errors
+/// I/O.
+pub fn ratio_map(
+    path: &Path,
+    title: &str,
+    columns: &[String],
+    rows: &[String],
+    values: &[Vec<Option<f64>>],
+) -> anyhow::Result<()> {
+    let color = |v: Option<f64>| match v {
+        None => RGBColor(200, 200, 200),
+        Some(r) if r > 1.0 || r.is_nan() => RGBColor(214, 39, 40),
+        Some(r) => {
+            // -3 (or less) -> green, 0 -> orange.
+            let a = ((r.max(1e-30).log10() + 3.0) / 3.0).clamp(0.0, 1.0);
+            let mix = |g: f64, o: f64| (g + a * (o - g)).round() as u8;
+            RGBColor(mix(44.0, 255.0), mix(160.0, 160.0), mix(44.0, 0.0))
+        }
+    };
+    let colors: Vec<Vec<RGBColor>> =
+        values.iter().map(|row| row.iter().map(|&v| color(v)).collect()).collect();
+    let legend = [
+        ("<= 1e-3 of the bound".to_string(), color(Some(1e-3))),
+        ("1e-1 of the bound".to_string(), color(Some(0.1))),
+        ("at the bound".to_string(), color(Some(1.0))),
+        ("beyond: fails".to_string(), color(Some(2.0))),
+        ("no value".to_string(), color(None)),
+    ];
+    let height = 140 + 22 * rows.len() as u32;
+    heat_map(path, title, ("", columns), ("", rows), &colors, &legend, (1100, height))
+}
+
+/// Coloured cells `colors[row][column]` with labelled axes and a legend.
+fn heat_map(
+    path: &Path,
+    title: &str,
+    (x_desc, x_labels): (&str, &[String]),
+    (y_desc, y_labels): (&str, &[String]),
+    colors: &[Vec<RGBColor>],
+    legend: &[(String, RGBColor)],
+    size: (u32, u32),
+) -> anyhow::Result<()> {
     let (nx, ny) = (x_labels.len(), y_labels.len());
-    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
+    let y_area = 12 + 7 * y_labels.iter().map(String::len).max().unwrap_or(4) as u32;
+    let root = SVGBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
         .margin(12)
         .x_label_area_size(45)
-        .y_label_area_size(75)
+        .y_label_area_size(y_area.max(75))
         // A segmented `0..n` has segments 0..=n; `0..n-1` has the n cells.
         .build_cartesian_2d((0..nx.max(2) - 1).into_segmented(), (0..ny.max(2) - 1).into_segmented())
         .map_err(err)?;
@@ -216,40 +274,23 @@ pub fn outcome_map(
         .y_desc(y_desc)
         .draw()
         .map_err(err)?;
-    let color = |c: &str| match c {
-        "Balanced" => RGBColor(44, 160, 44),
-        "Fell" => RGBColor(214, 39, 40),
-        "Unfinished" => RGBColor(200, 200, 200),
-        _ => RGBColor(0, 0, 0),
-    };
-    for (j, row) in cells.iter().enumerate() {
-        for (i, c) in row.iter().enumerate() {
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [
-                        (SegmentValue::Exact(i), SegmentValue::Exact(j)),
-                        (SegmentValue::Exact(i + 1), SegmentValue::Exact(j + 1)),
-                    ],
-                    color(c).filled(),
-                )))
-                .map_err(err)?;
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [
-                        (SegmentValue::Exact(i), SegmentValue::Exact(j)),
-                        (SegmentValue::Exact(i + 1), SegmentValue::Exact(j + 1)),
-                    ],
-                    WHITE.stroke_width(2),
-                )))
-                .map_err(err)?;
+    for (j, row) in colors.iter().enumerate() {
+        for (i, &c) in row.iter().enumerate() {
+            let cell = [
+                (SegmentValue::Exact(i), SegmentValue::Exact(j)),
+                (SegmentValue::Exact(i + 1), SegmentValue::Exact(j + 1)),
+            ];
+            chart.draw_series(std::iter::once(Rectangle::new(cell.clone(), c.filled()))).map_err(err)?;
+            chart.draw_series(std::iter::once(Rectangle::new(cell, WHITE.stroke_width(2)))).map_err(err)?;
         }
     }
-    for name in ["Balanced", "Fell", "Unfinished", "Failed"] {
+    for (name, c) in legend {
+        let c = *c;
         chart
             .draw_series(std::iter::empty::<Circle<(SegmentValue<usize>, SegmentValue<usize>), i32>>())
             .map_err(err)?
             .label(name)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], color(name).filled()));
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], c.filled()));
     }
     chart.configure_series_labels().background_style(WHITE).border_style(BLACK).draw().map_err(err)?;
     root.present().map_err(err)

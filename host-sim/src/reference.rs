@@ -27,8 +27,11 @@
 //!   sticking or separated after the previous step, `mu_k` for one that was sliding (before the
 //!   first step, finger 1 slides, as it moves under a resting rod, and finger 2 sticks); after a
 //!   step a contact with a positive normal impulse sticks when its slip speed is at most
-//!   `stick_speed`; finger 1 moves `min(v h, gap left)` per step and stops `finger_width` from
-//!   finger 2; the outcome tests are those of `core`'s `Outcome` docs.
+//!   `stick_speed`; time after `n` steps is `n h`; finger 1 is at `x1 + v t` until it stops
+//!   `finger_width` from finger 2, and the LCP sees its velocity `v` (on the stopping step, the
+//!   partial travel over `h`); a penetration `psi < 0` is pushed out at most at the speed of a
+//!   fall through it, `sqrt(2 g |psi|)`, instead of `|psi| / h`; the outcome tests are those of
+//!   `core`'s `Outcome` docs.
 
 use meterstick_core::scene::{ContactMode, SceneParams, Slide};
 
@@ -102,7 +105,11 @@ fn assemble(
         columns.push(wn);
         b[slot] = (0..3).map(|c| wn[c] * v_free[c]).sum::<f64>()
             - (t.normal[0] * finger_v[i][0] + t.normal[1] * finger_v[i][1])
-            + t.gap / p.step;
+            + if t.gap >= 0.0 {
+                t.gap / p.step
+            } else {
+                (t.gap / p.step).max(-(2.0 * p.gravity * -t.gap).sqrt())
+            };
     }
     for (slot, &i) in contacts.iter().enumerate() {
         let t = &touches[i];
@@ -285,9 +292,15 @@ impl Reference {
         }
         let p = self.p;
         let h = p.step;
-        let room = (self.fingers[1] - self.fingers[0] - p.finger_width).max(0.0);
-        let travel = (p.finger_speed * h).min(room);
-        let finger_v = [[travel / h, 0.0], [0.0, 0.0]];
+        let stop = p.finger2_x - p.finger_width;
+        let free = p.finger1_x + p.finger_speed * ((self.steps + 1) as f64 * h);
+        let finger_stopped = free >= stop;
+        let finger_end = free.min(stop);
+        let finger_v = if finger_stopped {
+            [[(finger_end - self.fingers[0]).max(0.0) / h, 0.0], [0.0, 0.0]]
+        } else {
+            [[p.finger_speed, 0.0], [0.0, 0.0]]
+        };
         let touches = [touch(&p, self.q, self.fingers[0]), touch(&p, self.q, self.fingers[1])];
         let mu = self.modes.map(|m| if m.is_sliding() { p.mu_kinetic } else { p.mu_static });
         let v_free = [self.v[0], self.v[1] - h * p.gravity, self.v[2]];
@@ -340,9 +353,9 @@ impl Reference {
         for d in 0..3 {
             self.q[d] += h * v_plus[d];
         }
-        self.fingers[0] += travel;
-        self.t += h;
+        self.fingers[0] = finger_end;
         self.steps += 1;
+        self.t = self.steps as f64 * h;
         let impulse_floor = 1e-12 * p.rod_mass * (p.gravity * h + p.finger_speed);
         let mut modes = [ContactMode::Separated; 2];
         for i in 0..2 {
@@ -363,7 +376,7 @@ impl Reference {
         }
         self.modes = modes;
         let along = [touches[0].local[0], touches[1].local[0]];
-        self.judge(travel < p.finger_speed * h);
+        self.judge(finger_stopped);
         Some(self.row(along, pn, pf))
     }
 

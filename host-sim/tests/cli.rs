@@ -225,3 +225,21 @@ fn scene_and_version_run() {
     assert_ne!(code, 0);
     assert!(err.contains("step must be positive"), "{err}");
 }
+
+#[test]
+fn stress_quick_passes_and_writes_its_report() {
+    let out = std::env::temp_dir().join(format!("meterstick-cli-{}-stress", std::process::id()));
+    let (code, stdout, stderr) = host_sim(&["stress", "--quick", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains(" 0 failed"), "{stdout}");
+    let csv = std::fs::read_to_string(out.join("cases.csv")).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let cases = summary["cases"].as_u64().unwrap();
+    assert!(cases >= 8, "{summary}");
+    // One CSV line per case and implementation (3), after the header.
+    assert_eq!(csv.lines().count() as u64, 1 + 3 * cases);
+    assert!(std::fs::read_to_string(out.join("report.md")).unwrap().contains("| v=0 |"));
+    assert!(std::fs::read_to_string(out.join("criteria.svg")).unwrap().starts_with("<svg"));
+    std::fs::remove_dir_all(&out).unwrap();
+}

@@ -47,6 +47,9 @@ pub struct LcpSolution<T: Real, const N: usize> {
     pub basis: Basis<N>,
     /// Normalised verification residual (see [`super::verify`]).
     pub residual: T,
+    /// `true` when the answer came from the regularised retry after a ray termination
+    /// ([`Lemke::solve_warm`]); it is verified against the original `(M, q)` all the same.
+    pub regularized: bool,
 }
 
 /// Lemke's method for LCPs of size `N` in scalar `T`, with its pivot cap and verification
@@ -501,6 +504,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
                 warm_start_used: false,
                 basis: Basis::all_w(),
                 residual: T::zero(),
+                regularized: false,
             });
         }
         let mut spent = 0;
@@ -521,13 +525,14 @@ impl<T: Real, const N: usize> Lemke<T, N> {
                         warm_start_used: true,
                         basis: warm,
                         residual: check.residual,
+                        regularized: false,
                     });
                 }
             }
             if let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) {
                 eliminations = elim;
                 match tab.run(self.max_pivots) {
-                    Ok(pivots) => match self.finish(lcp, m_norm, &tab, pivots, elim, true) {
+                    Ok(pivots) => match self.finish(lcp, m_norm, &tab, pivots, elim, true, false) {
                         Ok(sol) => return Ok(sol),
                         Err(e) => spent = e.pivots(),
                     },
@@ -538,13 +543,44 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         let mut tab = Tableau::cold(lcp);
         let budget = self.max_pivots.saturating_sub(spent).max(1);
         match tab.run(budget) {
-            Ok(pivots) => self.finish(lcp, m_norm, &tab, spent + pivots, eliminations, false),
+            Ok(pivots) => return self.finish(lcp, m_norm, &tab, spent + pivots, eliminations, false, false),
+            Err(LcpError::Ray { pivots }) => spent += pivots,
+            Err(LcpError::MaxPivots { pivots }) => {
+                return Err(LcpError::MaxPivots { pivots: spent + pivots });
+            }
+            Err(e) => return Err(e),
+        }
+        // A ray on a degenerate problem can be round-off: with nearly parallel columns (the
+        // two fingers' friction directions have the same lever arm `t/2` on a level rod) a
+        // column entry that is positive in exact arithmetic computes as zero, although a
+        // solution exists (found by `host-sim stress` at mu = 10, in f64 too). One retry on
+        // `M + delta I`, `delta = 4 N eps ||M||_inf`: for copositive `M` (the friction LCP)
+        // that is strictly copositive, which Lemke's method always processes. An infeasible
+        // LCP becomes feasible that way, with `z ~ 1/delta` (the corpus's CPS_3 got
+        // z = 3e12 in f64): its `w < 0` is invisible to the backward-error residual, which
+        // is relative to `||M|| ||z||`. So this answer is verified against the original
+        // `(M, q)` on the data's own scale, `s_w = ||q||_inf` ([`Self::finish`]): `delta z`
+        // then costs about `4 N eps ||M|| ||z|| / ||q||` of the `256 N eps` tolerance, and an
+        // inflated `z` fails.
+        let delta = T::of(4.0 * N as f64) * T::EPS * max(m_norm, T::TINY);
+        let mut regularized = *lcp;
+        for i in 0..N {
+            regularized.m[(i, i)] += delta;
+        }
+        let mut tab = Tableau::cold(&regularized);
+        let budget = self.max_pivots.saturating_sub(spent).max(1);
+        // When the retry does not rescue the solve, the error is the first one: a ray.
+        match tab.run(budget) {
+            Ok(pivots) => self
+                .finish(lcp, m_norm, &tab, spent + pivots, eliminations, false, true)
+                .map_err(|_| LcpError::Ray { pivots: spent + pivots }),
             Err(LcpError::Ray { pivots }) => Err(LcpError::Ray { pivots: spent + pivots }),
             Err(LcpError::MaxPivots { pivots }) => Err(LcpError::MaxPivots { pivots: spent + pivots }),
             Err(e) => Err(e),
         }
     }
 
+    #[allow(clippy::too_many_arguments)] // the solve's bookkeeping, passed through once
     fn finish(
         &self,
         lcp: &Lcp<T, N>,
@@ -553,9 +589,12 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         pivots: u32,
         setup_eliminations: u32,
         warm_start_used: bool,
+        regularized: bool,
     ) -> Result<LcpSolution<T, N>, LcpError> {
         let (z, basis) = tab.solution(lcp);
-        let (check, w) = verify_with(lcp, &z, self.tolerance, m_norm);
+        // A regularised answer is held to `w`'s scale `||q||` alone (see `solve_warm`).
+        let w_scale = if regularized { T::zero() } else { m_norm };
+        let (check, w) = verify_with(lcp, &z, self.tolerance, w_scale);
         if !check.passed() {
             return Err(LcpError::Unverified {
                 residual: check.residual.as_f32(),
@@ -563,6 +602,15 @@ impl<T: Real, const N: usize> Lemke<T, N> {
                 pivots,
             });
         }
-        Ok(LcpSolution { z, w, pivots, setup_eliminations, warm_start_used, basis, residual: check.residual })
+        Ok(LcpSolution {
+            z,
+            w,
+            pivots,
+            setup_eliminations,
+            warm_start_used,
+            basis,
+            residual: check.residual,
+            regularized,
+        })
     }
 }

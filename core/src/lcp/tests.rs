@@ -71,6 +71,48 @@ fn unsolvable_is_ray() {
     assert!(matches!(r, Err(LcpError::Ray { .. })), "{r:?}");
 }
 
+/// A bimatrix game (Siconos corpus, CPS_3) has no solution. The regularised retry after the
+/// ray finds `z ~ 1/delta` with `w = -1`, which must not pass as a solution (f32 and f64).
+#[test]
+fn infeasible_game_stays_a_ray() {
+    let m = [[0.0, 0.0, 10.0, 30.0], [0.0, 0.0, 20.0, 15.0], [10.0, 30.0, 0.0, 0.0], [20.0, 15.0, 0.0, 0.0]];
+    let r = solve(m, [-1.0; 4]);
+    assert!(matches!(r, Err(LcpError::Ray { .. })), "{r:?}");
+    let m32 = m.map(|row| row.map(|x| x as f32));
+    let r32 = Lemke::<f32, 4>::new().solve(&Lcp::from_rows(&m32, &[-1.0; 4]));
+    assert!(matches!(r32, Err(LcpError::Ray { .. })), "{r32:?}");
+}
+
+/// A step of the mu = 10 scene (`host-sim stress`): the two fingers' friction columns are
+/// parallel up to round-off, and plain Lemke ends on a ray in f64 although the LCP has a
+/// solution (exhaustive enumeration of the 256 complementary bases finds exactly one, whose
+/// impulses are checked below). The regularised retry solves it, verified on the original
+/// data.
+#[test]
+fn round_off_ray_on_a_degenerate_friction_lcp_is_rescued() {
+    let (a, b, c) = (1.000_075, 7.494_790_117_123_762e-4, 7.505_209_882_876_218e-4);
+    let m = [
+        [1.007_489_583_853_298_2, 0.992_500_003_619_050_7, -b, b, -b, b, 0.0, 0.0],
+        [0.992_500_003_619_050_7, 1.007_510_423_384_803_1, c, -c, c, -c, 0.0, 0.0],
+        [-b, c, a, -a, a, -a, 1.0, 0.0],
+        [b, -c, -a, a, -a, a, 1.0, 0.0],
+        [-b, c, a, -a, a, -a, 0.0, 1.0],
+        [b, -c, -a, a, -a, a, 0.0, 1.0],
+        [10.0, 0.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 10.0, 0.0, 0.0, -1.0, -1.0, 0.0, 0.0],
+    ];
+    let q = [-0.009_81, -0.009_81, -0.1, 0.1, -1.076_279_950_579_24e-19, 1.076_279_950_579_24e-19, 0.0, 0.0];
+    let lcp = Lcp::from_rows(&m, &q);
+    let sol = Lemke::<f64, 8>::new().solve(&lcp).unwrap();
+    assert!(sol.regularized);
+    assert!(is_solution(&lcp, &sol.z));
+    // All the weight on finger 1, which drags the rod with mu p_n.
+    let expected = [0.009_810_051_073_714_03, 0.0, 0.098_100_510_737_140_3, 0.0, 0.0, 0.0];
+    for (i, e) in expected.iter().enumerate() {
+        assert!((sol.z[i] - e).abs() < 1e-12, "{:?}", sol.z);
+    }
+}
+
 #[test]
 fn nonnegative_q_takes_zero_pivots() {
     let sol = solve([[2.0, -7.0], [3.0, 1.0]], [0.0, 4.0]).unwrap();

@@ -13,10 +13,21 @@
 //! A[j][k] = c_j^T M^-1 c_k                         (impulse rows and columns, eq. 18)
 //! A[f][sigma_i] = 1      for the friction rows f of contact i      (E)
 //! A[sigma_i][n_i] = mu_i,  A[sigma_i][f] = -1                      (U, -E^T)
-//! b_n = W_n^T v~ - n . u_i + psi_i / h                             (eq. 13, normal row)
+//! b_n = W_n^T v~ - n . u_i + beta(psi_i)                            (eq. 13, normal row)
 //! b_f = +-(W_t^T v~ - d . u_i)                                    (friction rows)
 //! b_sigma = 0
 //! ```
+//!
+//! **Penetration recovery.** The paper's normal row has `beta = psi / h`: a gap may close in
+//! one step, and a penetration is pushed out in one step. Pushing out at `|psi| / h` gives the
+//! rod the kinetic energy `m psi^2 / (2 h^2)`, which exceeds the potential energy the
+//! penetration represents, `m g |psi|`, by `|psi| / (2 g h^2)` (5x for 0.1 mm at h = 1 ms,
+//! 5e4x at h = 1e-5 s: the rod is shot up; found by `host-sim stress`). So for `psi < 0` the
+//! push-out speed is capped at the speed of a fall through the penetration depth:
+//! `beta = max(psi / h, -sqrt(2 g |psi|))`. The rod then climbs at most back to where it
+//! should rest. (Without gravity the cap is zero: a penetration stays and does not grow.)
+//! Mass scaling: every row of the LCP is a velocity when `m_inv` is `diag(M^-1)` times the
+//! rod mass (the scene's choice, impulses per unit mass); see [`StepInputs::m_inv`].
 //!
 //! A contact whose finger is not under the rod is decoupled: its rows and columns become
 //! those of the identity and `b = 1`, so its variables are zero.
@@ -59,10 +70,29 @@ pub struct StepInputs<'a, T> {
     pub finger_velocity: [[T; 2]; 2],
     /// `v~ = v + h M^-1 w_ext`.
     pub v_free: [T; 3],
-    /// `diag(M^-1)`.
+    /// `diag(M^-1)` times any positive mass scale `s`; the impulses `z` then come out
+    /// divided by `s`. The scene uses `s = m`, i.e. `(1, 1, m / J)`: impulses per unit mass,
+    /// in m/s like every `w` row, so the LCP's entries are O(1) whatever the rod's mass.
+    /// (With the physical `M^-1`, the impulse block scales as `1/m` and the friction-cone
+    /// rows do not, and tolerances scaled by `||M||_inf` go blind to one block or the other:
+    /// at m = 1e4 kg, f32 let 1e-5 m/s velocity errors through and the rod rocked.)
     pub m_inv: [T; 3],
     /// Step `h`.
     pub h: T,
+    /// Gravity `g` (for the penetration-recovery cap).
+    pub gravity: T,
+}
+
+/// The normal row's stabilisation term `beta(psi)` (module docs): `psi / h` for a gap, the
+/// push-out speed capped at `sqrt(2 g |psi|)` for a penetration.
+#[must_use]
+pub fn normal_bias<T: Real>(gap: T, h: T, gravity: T) -> T {
+    let one_step = gap / h;
+    if gap >= T::zero() {
+        return one_step;
+    }
+    let cap = -(T::of(2.0) * gravity * -gap).sqrt_libm();
+    if one_step > cap { one_step } else { cap }
 }
 
 #[inline]
@@ -88,7 +118,8 @@ pub fn assemble<T: Real, const N: usize>(input: &StepInputs<'_, T>) -> StepLcp<T
         let f = &input.frames[i];
         columns[i] = f.wn;
         owner[i] = i;
-        b[i] = dot3(&f.wn, &input.v_free) - dot2(&f.normal, &input.finger_velocity[i]) + f.gap / input.h;
+        b[i] = dot3(&f.wn, &input.v_free) - dot2(&f.normal, &input.finger_velocity[i])
+            + normal_bias(f.gap, input.h, input.gravity);
     }
     for (k, &(i, sign)) in dirs.iter().enumerate() {
         let f = &input.frames[i];

@@ -109,6 +109,9 @@ pub struct RunStats {
     pub reduced_check_fired_before_meeting: u64,
     /// Switch events that did not fit the event buffer.
     pub events_dropped: u32,
+    /// Solves answered by the regularised retry after a round-off ray
+    /// ([`crate::lcp::LcpSolution::regularized`]).
+    pub regularized_solves: u64,
 }
 
 /// What one step did.
@@ -136,6 +139,10 @@ pub struct StepReport<T> {
     /// LCP had no solution, so the step was re-solved with the full 8x8 model (the reported
     /// values are the 8x8 ones).
     pub reduced_check_failed: bool,
+    /// The normalised verification residual of the solution used (see
+    /// [`crate::lcp::verify`]; at most the solver's tolerance, `256 N eps` by default, with
+    /// `N = 8` when the 6x6 check sent the step to the 8x8 model). Zero when the step failed.
+    pub residual: T,
     /// The solver's error, when the step failed (the state is then unchanged).
     pub error: Option<LcpError>,
 }
@@ -145,8 +152,14 @@ pub struct StepReport<T> {
 #[derive(Debug, Clone)]
 pub struct Scene<T: Real, const N: usize, const E: usize = 64> {
     params: SceneParams<T>,
+    /// `diag(M^-1)` per unit mass, `(1, 1, m / J)`: the LCP solves for impulses per unit
+    /// mass (see [`StepInputs::m_inv`]); reported impulses are these times `m`.
     m_inv: [T; 3],
     state: RodState<T>,
+    /// Compensated-summation carries of `x`, `y`, `theta` (Kahan): `q += h v` adds a
+    /// `1e-7` m increment to a coordinate of `0.3` m at the slowest finger speeds, where
+    /// f32's rounding was a systematic 10 % of the increment (found by `host-sim stress`).
+    carry: [T; 3],
     fingers: [T; 2],
     time: T,
     modes: [ContactMode; 2],
@@ -186,9 +199,10 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             return Err(ParamError::NonFiniteState);
         }
         let mut scene = Self {
-            m_inv: [T::one() / params.rod_mass, T::one() / params.rod_mass, T::one() / params.inertia()],
+            m_inv: [T::one(), T::one(), params.rod_mass / params.inertia()],
             params,
             state,
+            carry: [T::zero(); 3],
             fingers: [params.finger1_x, params.finger2_x],
             time: T::zero(),
             modes: [ContactMode::Sticking; 2],
@@ -315,8 +329,18 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         }
         let p = self.params;
         let h = p.step;
-        let gap_left = max(self.fingers[1] - self.fingers[0] - p.finger_width, T::zero());
-        let travel = if p.finger_speed * h < gap_left { p.finger_speed * h } else { gap_left };
+        // Finger 1 at the step's end from the step count, not by accumulating `v h`: in
+        // f32, `x += 1e-7` at `x = 0.35` rounds by a systematic 10 %, and `t += h` at
+        // `t = 1000` s by 6 % (both found by `host-sim stress`).
+        let (finger_end, stopped) = {
+            let free = p.finger1_x + p.finger_speed * (T::of_count(self.stats.steps + 1) * h);
+            let stop = p.finger2_x - p.finger_width;
+            if free < stop { (free, false) } else { (stop, true) }
+        };
+        // The LCP sees the prescribed speed; only the stopping step's partial travel is a
+        // difference of positions (a difference of rounded positions every step would make
+        // the speed jitter by ulp(x) / h: 3e-5 m/s at h = 1 ms in f32, above stick_speed).
+        let travel = if stopped { max(finger_end - self.fingers[0], T::zero()) } else { p.finger_speed * h };
         let finger_velocity = [[travel / h, T::zero()], [T::zero(), T::zero()]];
         let frames = self.frames;
         let v_free = [self.state.vx, self.state.vy - h * p.gravity, self.state.omega];
@@ -327,6 +351,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             v_free,
             m_inv: self.m_inv,
             h,
+            gravity: p.gravity,
         };
         let step_lcp = assemble::<T, N>(&inputs);
         let mut report = StepReport {
@@ -340,6 +365,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             pivots: 0,
             warm_start_used: false,
             reduced_check_failed: false,
+            residual: T::zero(),
             error: None,
         };
         let mut z = [T::zero(); 8];
@@ -352,6 +378,8 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
                 self.basis = sol.basis;
                 report.pivots = sol.pivots;
                 report.warm_start_used = sol.warm_start_used;
+                report.residual = sol.residual;
+                self.stats.regularized_solves += u64::from(sol.regularized);
                 z[..N].copy_from_slice(sol.z.as_slice());
                 columns[..N].copy_from_slice(&step_lcp.columns);
                 v_plus = velocity_after(&v_free, &self.m_inv, &columns[..N - 2], &z[..N - 2]);
@@ -366,10 +394,10 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             }
             Err(e) => return Some(self.fail(report, e)),
         };
-        if N == 6 && (!reduced_ok || reduced_check_fails(&frames, &finger_velocity, &v_plus, &z, &p)) {
+        if N == 6 && (!reduced_ok || reduced_check_fails(&inputs, &v_plus, &z, &p)) {
             report.reduced_check_failed = true;
             self.stats.reduced_check_fired += 1;
-            if self.meeting.is_none() && travel >= p.finger_speed * h {
+            if self.meeting.is_none() && !stopped {
                 self.stats.reduced_check_fired_before_meeting += 1;
             }
             #[cfg(feature = "fallback-8x8")]
@@ -378,6 +406,8 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
                 match Lemke::<T, 8>::new().solve_warm(&full.lcp, widen_basis(self.basis)) {
                     Ok(sol8) => {
                         report.pivots += sol8.pivots;
+                        report.residual = sol8.residual;
+                        self.stats.regularized_solves += u64::from(sol8.regularized);
                         z.copy_from_slice(sol8.z.as_slice());
                         columns = full.columns;
                         dirs = friction_directions(8);
@@ -397,22 +427,27 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         self.stats.pivots += u64::from(report.pivots);
         self.stats.max_pivots = self.stats.max_pivots.max(report.pivots);
         self.stats.warm_starts += u64::from(report.warm_start_used);
+        // z holds impulses per unit mass.
         for (k, &(i, sign)) in dirs.iter().enumerate() {
             let s = if sign > 0 { T::one() } else { -T::one() };
-            report.friction_impulse[i] += s * z[2 + k];
+            report.friction_impulse[i] += s * z[2 + k] * p.rod_mass;
         }
-        report.normal_impulse = [z[0], z[1]];
+        report.normal_impulse = [z[0] * p.rod_mass, z[1] * p.rod_mass];
 
-        // Integrate (eq. 14): q+ = q + h v+, and move finger 1.
+        // Integrate (eq. 14): q+ = q + h v+ (compensated sums), and move finger 1.
         let s = &mut self.state;
         s.vx = v_plus[0];
         s.vy = v_plus[1];
         s.omega = v_plus[2];
-        s.x += h * s.vx;
-        s.y += h * s.vy;
-        s.theta += h * s.omega;
-        self.fingers[0] += travel;
-        self.time += h;
+        let q = [&mut s.x, &mut s.y, &mut s.theta];
+        for (k, coordinate) in q.into_iter().enumerate() {
+            let increment = h * v_plus[k] - self.carry[k];
+            let sum = *coordinate + increment;
+            self.carry[k] = (sum - *coordinate) - increment;
+            *coordinate = sum;
+        }
+        self.fingers[0] = finger_end;
+        self.time = T::of_count(self.stats.steps) * h;
 
         // Modes after the step, and switch events.
         let modes = self.classify(&frames, &z, v_plus, &finger_velocity);
@@ -422,7 +457,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         report.time = self.time;
         report.state = self.state;
         report.fingers = self.fingers;
-        self.update_outcome(travel, &report);
+        self.update_outcome(stopped, &report);
         Some(report)
     }
 
@@ -436,8 +471,8 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         finger_velocity: &[[T; 2]; 2],
     ) -> [ContactMode; 2] {
         let p = &self.params;
-        let impulse_floor =
-            T::of(64.0) * T::EPS * p.rod_mass * (p.gravity * p.step + p.finger_speed) + T::TINY;
+        // `z` is per unit mass: a velocity scale.
+        let impulse_floor = T::of(64.0) * T::EPS * (p.gravity * p.step + p.finger_speed) + T::TINY;
         let mut modes = [ContactMode::Separated; 2];
         for i in 0..2 {
             if frames[i].active && z[i] > impulse_floor {
@@ -465,7 +500,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         report
     }
 
-    fn update_outcome(&mut self, travel: T, report: &StepReport<T>) {
+    fn update_outcome(&mut self, stopped: bool, report: &StepReport<T>) {
         let p = &self.params;
         if !self.state.is_finite() {
             self.outcome = Some(Outcome::NonFinite);
@@ -473,7 +508,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         }
         self.frames = self.compute_frames();
         let frames = self.frames;
-        if self.meeting.is_none() && travel < p.finger_speed * p.step {
+        if self.meeting.is_none() && stopped {
             let com_offset = -(frames[0].along + frames[1].along) / T::of(2.0);
             self.meeting = Some(Meeting { time: self.time, com_offset });
         }
@@ -524,9 +559,14 @@ fn velocity_after<T: Real>(v_free: &[T; 3], m_inv: &[T; 3], columns: &[[T; 3]], 
 /// the friction direction the reduced model dropped, `-s (W_t^T v+ - d . u) + sigma`, must
 /// not be negative (beyond round-off): otherwise the slip goes the dropped way and the
 /// reduced LCP's answer is not a solution of the full one.
+///
+/// Except where `sigma` is free: when the kept direction carries no impulse and the cone
+/// row `mu p_n - p_f` is zero too (`mu = 0`, or no normal impulse), `sigma` can be raised to
+/// `|W_t^T v+ - d . u|` without breaking any complementarity, and the reduced answer (same
+/// impulses) extends to a solution of the full LCP. (Without this exception the frictionless
+/// scene fell back to 8x8 in 441 of 3,998 steps; `host-sim stress`.)
 fn reduced_check_fails<T: Real>(
-    frames: &[ContactFrame<T>; 2],
-    finger_velocity: &[[T; 2]; 2],
+    inputs: &StepInputs<'_, T>,
     v_plus: &[T; 3],
     z: &[T; 8],
     p: &SceneParams<T>,
@@ -537,13 +577,18 @@ fn reduced_check_fails<T: Real>(
         + v_plus[1].abs_exact()
         + (v_plus[2] * p.rod_length).abs_exact();
     let tol = T::of(64.0 * 6.0) * T::EPS * speed_scale + T::TINY;
-    friction_directions(6).iter().any(|&(i, sign)| {
-        if !frames[i].active {
+    friction_directions(6).iter().enumerate().any(|(k, &(i, sign))| {
+        let f = &inputs.frames[i];
+        if !f.active {
             return false;
         }
-        let f = &frames[i];
+        let kept_impulse = z[2 + k];
+        if kept_impulse <= tol && inputs.mu[i] * z[i] <= tol {
+            return false; // sigma is free
+        }
+        let u = &inputs.finger_velocity[i];
         let g = f.wt[0] * v_plus[0] + f.wt[1] * v_plus[1] + f.wt[2] * v_plus[2]
-            - (f.tangent[0] * finger_velocity[i][0] + f.tangent[1] * finger_velocity[i][1]);
+            - (f.tangent[0] * u[0] + f.tangent[1] * u[1]);
         let kept_sign = if sign > 0 { T::one() } else { -T::one() };
         let dropped_row = -kept_sign * g + z[sigma_index(6, i)];
         dropped_row < -tol
