@@ -19,7 +19,8 @@ fn step_lcp<T: Real, const N: usize>() -> Lcp<T, N> {
     let sc = (T::zero(), T::one());
     let frames = [-0.3, 0.4]
         .map(|fx| ContactFrame::new(T::of(fx), T::zero(), T::zero(), y, sc, p.rod_length, p.rod_thickness));
-    let m_inv = [T::one() / p.rod_mass, T::one() / p.rod_mass, T::one() / p.inertia()];
+    // Per unit mass, as the scene assembles it.
+    let m_inv = [T::one(), T::one(), p.rod_mass / p.inertia()];
     let inputs = StepInputs {
         frames: &frames,
         mu: [p.mu_kinetic, p.mu_static],
@@ -27,6 +28,7 @@ fn step_lcp<T: Real, const N: usize>() -> Lcp<T, N> {
         v_free: [T::zero(), -p.step * p.gravity, T::zero()],
         m_inv,
         h: p.step,
+        gravity: p.gravity,
     };
     assemble::<T, N>(&inputs).lcp
 }
