@@ -278,7 +278,7 @@ fn invalid_parameters_are_rejected() {
         assert_eq!(Scene::<f64, 8>::new(params).err(), Some(expected));
         assert_eq!(params.validate(), Err(expected));
     }
-    let bad_state = meterstick_core::scene::RodState { vx: f64::NAN, ..Default::default() };
+    let bad_state = RodState { vx: f64::NAN, ..Default::default() };
     assert_eq!(Scene::<f64, 6>::with_state(ok, bad_state).err(), Some(ParamError::NonFiniteState));
 }
 
