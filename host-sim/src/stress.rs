@@ -732,9 +732,11 @@ fn plot_criteria(path: &Path, results: &[CaseResult]) -> anyhow::Result<()> {
             columns.push(format!("{short} {what}"));
         }
     }
-    let rows: Vec<String> = results.iter().map(|r| r.case.name.clone()).collect();
+    // Rows are drawn bottom-up: reversed, the first case is at the top.
+    let rows: Vec<String> = results.iter().rev().map(|r| r.case.name.clone()).collect();
     let values: Vec<Vec<Option<f64>>> = results
         .iter()
+        .rev()
         .map(|r| {
             r.runs
                 .iter()
