@@ -38,9 +38,10 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     /// `sqrt x` computed by `libm` (correctly rounded), identical on every target.
     #[must_use]
     fn sqrt_libm(self) -> Self;
-    /// A step count as a scalar, rounding to nearest (exact up to 2^24 in f32, 2^53 in f64).
+    /// A step count as a scalar, rounding to nearest (exact up to 2^24 in f32). `u32`, not
+    /// `u64`: on Cortex-M a `u32` converts in one instruction, a `u64` through a library call.
     #[must_use]
-    fn of_count(n: u64) -> Self;
+    fn of_count(n: u32) -> Self;
     /// `|x|` by clearing the sign bit (exact; no library call).
     #[must_use]
     fn abs_exact(self) -> Self;
@@ -73,7 +74,7 @@ impl Real for f32 {
         libm::sqrtf(self)
     }
     #[inline]
-    fn of_count(n: u64) -> Self {
+    fn of_count(n: u32) -> Self {
         n as f32
     }
     #[inline]
@@ -111,8 +112,8 @@ impl Real for f64 {
         libm::sqrt(self)
     }
     #[inline]
-    fn of_count(n: u64) -> Self {
-        n as f64
+    fn of_count(n: u32) -> Self {
+        f64::from(n)
     }
     #[inline]
     fn abs_exact(self) -> Self {

@@ -333,7 +333,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
         // f32, `x += 1e-7` at `x = 0.35` rounds by a systematic 10 %, and `t += h` at
         // `t = 1000` s by 6 % (both found by `host-sim stress`).
         let (finger_end, stopped) = {
-            let free = p.finger1_x + p.finger_speed * (T::of_count(self.stats.steps + 1) * h);
+            let free = p.finger1_x + p.finger_speed * (T::of_count(count_u32(self.stats.steps + 1)) * h);
             let stop = p.finger2_x - p.finger_width;
             if free < stop { (free, false) } else { (stop, true) }
         };
@@ -447,7 +447,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             *coordinate = sum;
         }
         self.fingers[0] = finger_end;
-        self.time = T::of_count(self.stats.steps) * h;
+        self.time = T::of_count(count_u32(self.stats.steps)) * h;
 
         // Modes after the step, and switch events.
         let modes = self.classify(&frames, &z, v_plus, &finger_velocity);
@@ -542,6 +542,12 @@ fn widen_basis<const N: usize>(b: Basis<N>) -> Basis<8> {
         }
     }
     wide
+}
+
+/// A step count for [`Real::of_count`], saturating at `u32::MAX` (4.3e9 steps: 50 days at
+/// h = 1 ms; f32 time is exact only to 2^24 steps anyway).
+fn count_u32(n: u64) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
 }
 
 /// `v+ = v~ + M^-1 sum_j c_j z_j` (eq. 16).
