@@ -213,6 +213,7 @@ fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
     let mut fingers = scene.fingers().map(Real::as_f64);
     let pen0 = penetrations(p, &s, fingers).iter().fold(0.0_f64, |a, &b| a.max(b));
     let e0 = energy(p, &s);
+    let mut e_before = e0;
     let mut work = 0.0;
     let mut pen = penetrations(p, &s, fingers);
     m.trace.push([s[0], s[1], s[2]]);
@@ -230,7 +231,6 @@ fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
         let u = (fingers_after[0] - fingers[0]) / p.step;
         let (sn, cn) = s[2].sin_cos();
         let step_work = u * (-sn * r.normal_impulse[0].as_f64() + cn * r.friction_impulse[0].as_f64());
-        let e_before = energy(p, &s);
         let e_after = energy(p, &after);
         if e_after.is_finite() {
             m.step_energy_gain = m.step_energy_gain.max(e_after - e_before - step_work);
@@ -259,6 +259,7 @@ fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
             Claim::None => {}
         }
         s = after;
+        e_before = e_after;
         fingers = fingers_after;
         pen = pen_after;
         if scene.stats().steps % stride == 0 {
