@@ -3,9 +3,11 @@
 //! [`Real`] extends [`nalgebra::RealField`] with the few things the core needs that
 //! must behave identically on every target:
 //! * the machine epsilon as a constant, used to scale every tolerance;
-//! * `sin`/`cos` and `sqrt` through the `libm` crate, never the platform's C library, so a host build
-//!   and a Cortex-M build of the same f32 scene perform the same IEEE operations and
-//!   produce bit-identical trajectories (the firmware issue checks this with a checksum).
+//! * `sin`/`cos` and `sqrt` computed by the crate's own code or the `libm` crate, never the
+//!   platform's C library, so a host build and a Cortex-M build of the same f32 scene
+//!   perform the same IEEE operations and produce bit-identical trajectories (the firmware
+//!   issue checks this with a checksum). Rust never contracts `a * b + c` into a fused
+//!   multiply-add on its own, so a polynomial evaluates identically on every target.
 //!
 //! The trait is sealed: only `f32` and `f64` implement it.
 
@@ -32,9 +34,10 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     fn as_f64(self) -> f64;
     /// Converts to `f32`, rounding to nearest (used for compact diagnostics).
     fn as_f32(self) -> f32;
-    /// `(sin x, cos x)` computed by `libm`, identical on every target.
+    /// `(sin x, cos x)`, identical on every target (`sin_cos_f32` in this module for f32, `libm::sincos`
+    /// for f64).
     #[must_use]
-    fn sin_cos_libm(self) -> (Self, Self);
+    fn sin_cos_portable(self) -> (Self, Self);
     /// `sqrt x` computed by `libm` (correctly rounded), identical on every target.
     #[must_use]
     fn sqrt_libm(self) -> Self;
@@ -66,8 +69,8 @@ impl Real for f32 {
         self
     }
     #[inline]
-    fn sin_cos_libm(self) -> (Self, Self) {
-        libm::sincosf(self)
+    fn sin_cos_portable(self) -> (Self, Self) {
+        sin_cos_f32(self)
     }
     #[inline]
     fn sqrt_libm(self) -> Self {
@@ -104,7 +107,7 @@ impl Real for f64 {
         self as f32
     }
     #[inline]
-    fn sin_cos_libm(self) -> (Self, Self) {
+    fn sin_cos_portable(self) -> (Self, Self) {
         libm::sincos(self)
     }
     #[inline]
@@ -125,6 +128,52 @@ impl Real for f64 {
     }
 }
 
+/// `(sin x, cos x)` in f32 arithmetic alone for `|x| <= pi/4`, `libm::sincosf` beyond.
+///
+/// `libm::sincosf` evaluates its polynomials in f64, which a Cortex-M4F (single-precision
+/// FPU) runs in software: about 1,100 instructions per call, more than the rest of a scene
+/// step. The rod's angle stays below the tilt limit while a run lasts (0.35 rad by
+/// default), so the scene lives in the reduced range; larger angles go to `libm`.
+/// `|x| < 2^-12` gives `(x, 1)`, the correctly rounded values (as in `libm`); otherwise musl's
+/// kernels `__sindf` and `__cosdf` (minimax polynomials for `[-pi/4, pi/4]`, same coefficients)
+/// evaluated in f32 instead of f64: the sine's correction summed before its one addition to
+/// `x`, the cosine's leading `1 - x^2/2` with its rounding error carried (as in musl's f64
+/// `__cos`). Error against the f64 values on a dense grid of the range (unit test): 0.78 ulp
+/// (sin) and 0.77 ulp (cos); `libm`'s f64 evaluation is within about 0.5.
+#[inline]
+#[must_use]
+pub(crate) fn sin_cos_f32(x: f32) -> (f32, f32) {
+    // musl `__sindf.c` / `__cosdf.c`, rounded to f32.
+    const S1: f32 = -0.166_666_666_416_265_24_f64 as f32;
+    const S2: f32 = 0.008_333_329_385_889_463_f64 as f32;
+    const S3: f32 = -0.000_198_393_348_360_966_32_f64 as f32;
+    const S4: f32 = 0.000_002_718_311_493_989_822_f64 as f32;
+    const C0: f32 = -0.499_999_997_251_031_f64 as f32;
+    const C1: f32 = 0.041_666_623_323_739_06_f64 as f32;
+    const C2: f32 = -0.001_388_676_377_460_993_f64 as f32;
+    const C3: f32 = 0.000_024_390_448_796_277_41_f64 as f32;
+    let a = x.abs_exact();
+    if a < 1.0 / 4096.0 {
+        return (x, 1.0);
+    }
+    if a > core::f32::consts::FRAC_PI_4 || a.is_nan() {
+        return libm::sincosf(x);
+    }
+    let z = x * x;
+    let w = z * z;
+    let s = z * x;
+    // One rounding at the end (musl adds the `S3`, `S4` terms last, which in f32 rounds twice
+    // near `x`'s magnitude: 1.27 ulp at x = pi/6).
+    let sin = x + s * ((S1 + z * S2) + w * (S3 + z * S4));
+    // `1 + C0 z` with `C0 = -1/2` (its f32 rounding), and the rounding error of `1 - z/2`
+    // (exactly `(1 - v) - z/2`, Sterbenz) carried into the sum, as musl's f64 `__cos` does.
+    let half_z = -C0 * z;
+    let v = 1.0 - half_z;
+    let tail = w * C1 + (w * z) * (C2 + z * C3);
+    let cos = v + (((1.0 - v) - half_z) + tail);
+    (sin, cos)
+}
+
 /// `max(a, b)` for partially ordered scalars (NaN-free inputs).
 #[inline]
 pub(crate) fn max<T: Real>(a: T, b: T) -> T {
@@ -135,4 +184,58 @@ pub(crate) fn max<T: Real>(a: T, b: T) -> T {
 #[inline]
 pub(crate) fn min<T: Real>(a: T, b: T) -> T {
     if a < b { a } else { b }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sin_cos_f32;
+
+    /// `|got - exact|` in units of the f32 ulp of `exact`'s binade, `2^(floor(log2 |exact|) - 23)`.
+    fn ulps(got: f32, exact: f64) -> f64 {
+        if exact == 0.0 {
+            return if got == 0.0 { 0.0 } else { f64::INFINITY };
+        }
+        let ulp = 2f64.powi(exact.abs().log2().floor() as i32 - 23);
+        (f64::from(got) - exact).abs() / ulp
+    }
+
+    #[test]
+    fn sin_cos_f32_within_one_ulp_over_the_kernel_range() {
+        let mut worst = (0.0f64, 0.0f64);
+        let mut at = (0.0f32, 0.0f32);
+        let n = 1 << 20;
+        for k in 0..=n {
+            // Dense in [-pi/4, pi/4], plus the kernel's edges exactly.
+            let x = (-core::f32::consts::FRAC_PI_4) + (k as f32) * (core::f32::consts::FRAC_PI_2 / n as f32);
+            let x = x.clamp(-core::f32::consts::FRAC_PI_4, core::f32::consts::FRAC_PI_4);
+            let (s, c) = sin_cos_f32(x);
+            let xd = f64::from(x);
+            let (us, uc) = (ulps(s, xd.sin()), ulps(c, xd.cos()));
+            if us > worst.0 {
+                (worst.0, at.0) = (us, x);
+            }
+            if uc > worst.1 {
+                (worst.1, at.1) = (uc, x);
+            }
+        }
+        for x in [1.0 / 4096.0, -1.0 / 4096.0, 0.000_25, 1e-3, -0.1, 0.35, -0.35] {
+            let (s, c) = sin_cos_f32(x);
+            worst.0 = worst.0.max(ulps(s, f64::from(x).sin()));
+            worst.1 = worst.1.max(ulps(c, f64::from(x).cos()));
+        }
+        assert!(worst.0 <= 1.0 && worst.1 <= 1.0, "worst errors (sin, cos) in ulps: {worst:?} at x = {at:?}");
+    }
+
+    #[test]
+    fn sin_cos_f32_outside_the_kernel_and_special_values() {
+        assert_eq!(sin_cos_f32(0.0), (0.0, 1.0));
+        assert_eq!(sin_cos_f32(1e-30), (1e-30, 1.0));
+        for x in [0.8f32, -1.0, 3.0, 100.0, -1e6] {
+            assert_eq!(sin_cos_f32(x), libm::sincosf(x), "{x}");
+        }
+        let (s, c) = sin_cos_f32(f32::NAN);
+        assert!(s.is_nan() && c.is_nan());
+        let (s, c) = sin_cos_f32(f32::INFINITY);
+        assert!(s.is_nan() && c.is_nan());
+    }
 }

@@ -5,8 +5,8 @@ use nalgebra::SVector;
 
 use super::basis::Basis;
 use super::error::LcpError;
-use super::problem::Lcp;
-use super::verify::{default_tolerance, verify_with};
+use super::problem::{Lcp, Scales};
+use super::verify::{Verification, default_tolerance, residual};
 use crate::real::{Real, max};
 
 /// A variable of the Lemke tableau `[I, -M, -d | q]`.
@@ -145,37 +145,66 @@ impl<T: Real, const N: usize> Tableau<T, N> {
         Some((t, eliminations))
     }
 
-    #[inline]
-    fn entry(&self, var: Var, row: usize) -> T {
+    /// The tableau column of `var`. One `match` and one index check per column, not per row:
+    /// variable indices are below `N` by construction, and the first arm (never taken) lets
+    /// the compiler drop the bounds checks in the loops.
+    fn column(&self, var: Var) -> [T; N] {
+        let mut column = [T::zero(); N];
         match var {
-            Var::W(j) => self.binv[row][j as usize],
-            Var::Z(j) => self.zc[row][j as usize],
-            Var::Artificial => self.art[row],
+            Var::W(j) | Var::Z(j) if usize::from(j) >= N => {}
+            Var::W(j) => {
+                for i in 0..N {
+                    column[i] = self.binv[i][usize::from(j)];
+                }
+            }
+            Var::Z(j) => {
+                for i in 0..N {
+                    column[i] = self.zc[i][usize::from(j)];
+                }
+            }
+            Var::Artificial => column = self.art,
+        }
+        column
+    }
+
+    /// Sets the tableau column of `var` to the unit vector `e_r` (index checks as in
+    /// [`Self::column`]).
+    fn set_unit_column(&mut self, var: Var, r: usize) {
+        match var {
+            Var::W(j) | Var::Z(j) if usize::from(j) >= N => {}
+            Var::W(j) => {
+                for i in 0..N {
+                    self.binv[i][usize::from(j)] = T::zero();
+                }
+                self.binv[r][usize::from(j)] = T::one();
+            }
+            Var::Z(j) => {
+                for i in 0..N {
+                    self.zc[i][usize::from(j)] = T::zero();
+                }
+                self.zc[r][usize::from(j)] = T::one();
+            }
+            Var::Artificial => {
+                self.art = [T::zero(); N];
+                self.art[r] = T::one();
+            }
         }
     }
 
     /// Pivots `entering` into the basis at row `r` (the pivot entry must be non-zero).
     fn pivot(&mut self, r: usize, entering: Var) {
-        let inv = T::one() / self.entry(entering, r);
+        let column = self.column(entering);
+        let inv = T::one() / column[r];
         for j in 0..N {
             self.binv[r][j] *= inv;
             self.zc[r][j] *= inv;
         }
         self.art[r] *= inv;
         self.rhs[r] *= inv;
-        // The pivot entry becomes exactly one (no round-off left in the basic column).
-        match entering {
-            Var::W(j) => self.binv[r][j as usize] = T::one(),
-            Var::Z(j) => self.zc[r][j as usize] = T::one(),
-            Var::Artificial => self.art[r] = T::one(),
-        }
         let (binv_r, zc_r, art_r, rhs_r) = (self.binv[r], self.zc[r], self.art[r], self.rhs[r]);
         for i in 0..N {
-            if i == r {
-                continue;
-            }
-            let f = self.entry(entering, i);
-            if f == T::zero() {
+            let f = column[i];
+            if i == r || f == T::zero() {
                 continue;
             }
             for j in 0..N {
@@ -184,12 +213,9 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             }
             self.art[i] -= f * art_r;
             self.rhs[i] -= f * rhs_r;
-            match entering {
-                Var::W(j) => self.binv[i][j as usize] = T::zero(),
-                Var::Z(j) => self.zc[i][j as usize] = T::zero(),
-                Var::Artificial => self.art[i] = T::zero(),
-            }
         }
+        // The basic column becomes exactly `e_r` (no round-off left in it).
+        self.set_unit_column(entering, r);
         self.basis[r] = entering;
     }
 
@@ -252,11 +278,10 @@ impl<T: Real, const N: usize> Tableau<T, N> {
     /// column has no positive entry: ray termination. The artificial variable leaves
     /// whenever it is among the tied rows.
     fn leaving_row(&self, entering: Var) -> Option<usize> {
-        let mut col = [T::zero(); N];
+        let col = self.column(entering);
         let mut col_max = T::zero();
         let mut rhs_max = T::zero();
         for i in 0..N {
-            col[i] = self.entry(entering, i);
             col_max = max(col_max, col[i].abs_exact());
             rhs_max = max(rhs_max, self.rhs[i].abs_exact());
         }
@@ -356,84 +381,87 @@ impl<T: Real, const N: usize> Tableau<T, N> {
     }
 }
 
-/// The complementary solution of basis `warm` (set `a` of basic `z`): `M_aa z_a = -q_a` by
-/// Gaussian elimination with partial pivoting (`k = |a|` eliminations, `O(k^3)`), `z = 0`
-/// elsewhere. `Some((z, k))` only when it is strictly feasible as computed: `z_a >= 0` and
-/// `w = M z + q >= 0` in every row outside `a` (no tolerance: a basis that is infeasible by
-/// round-off goes through Lemke's lexicographic pivoting instead, so switches are not
-/// delayed). `None` when `M_aa` is numerically singular or the basis is infeasible. (A NaN
-/// cannot arise from the finite input checked before; verification would reject one.)
+/// The complementary solution of basis `warm` (set `a` of basic `z`): `M_aa z_a = -q_a`,
+/// `z = 0` elsewhere, by Gaussian elimination with partial pivoting (`|a|^3 / 3`
+/// multiply-adds). `Some(z)` only when `z_a >= 0` as computed (no tolerance: a basis that is
+/// infeasible by round-off goes through Lemke's lexicographic pivoting instead, so switches
+/// are not delayed); `None` when `M_aa` is numerically singular (a pivot at most
+/// `N eps scale`) or `z_a` has a negative entry. The caller checks the other half of
+/// feasibility, `w >= 0` outside `a`, on the `w` it verifies with.
+///
+/// `M_aa` is not gathered into a smaller matrix: the elimination works in a copy of `M` and
+/// visits only the rows and columns of `a` (bit tests on the basis mask; a pivot swap
+/// exchanges two rows of `a`, so they stay in place). Every loop has the constant bound `N`
+/// (no index vector, no bounds checks), and the floating-point work is exactly that of the
+/// `|a| x |a|` system: on a Cortex-M0 every float operation, compares included, is a
+/// library call.
 fn basis_solution<T: Real, const N: usize>(
     lcp: &Lcp<T, N>,
     warm: Basis<N>,
     scale: T,
-) -> Option<(SVector<T, N>, u32)> {
-    let mut idx = [0usize; N];
-    let mut k = 0;
-    for i in 0..N {
-        if warm.is_z_basic(i) {
-            idx[k] = i;
-            k += 1;
-        }
-    }
-    let mut a = [[T::zero(); N]; N];
-    let mut x = [T::zero(); N];
-    for r in 0..k {
-        for c in 0..k {
-            a[r][c] = lcp.m[(idx[r], idx[c])];
-        }
-        x[r] = -lcp.q[idx[r]];
-    }
+) -> Option<SVector<T, N>> {
+    let set = warm.z_mask();
+    let in_set = |i: usize| (set >> i) & 1 == 1;
+    let mut a = lcp.m;
+    let mut x = -lcp.q;
     let tiny = T::of(N as f64) * T::EPS * scale;
-    for col in 0..k {
+    let mut inv_pivot = [T::zero(); N];
+    for col in 0..N {
+        if !in_set(col) {
+            continue;
+        }
         let mut piv = col;
-        for r in col + 1..k {
-            if a[r][col].abs_exact() > a[piv][col].abs_exact() {
+        let mut piv_abs = a[(col, col)].abs_exact();
+        for r in col + 1..N {
+            if in_set(r) && a[(r, col)].abs_exact() > piv_abs {
                 piv = r;
+                piv_abs = a[(r, col)].abs_exact();
             }
         }
-        if a[piv][col].abs_exact() <= tiny {
+        if piv_abs <= tiny {
             return None;
         }
-        a.swap(col, piv);
-        x.swap(col, piv);
-        let inv = T::one() / a[col][col];
-        for r in col + 1..k {
-            let f = a[r][col] * inv;
-            if f != T::zero() {
-                for c in col + 1..k {
-                    a[r][c] -= f * a[col][c];
+        if piv != col {
+            a.swap_rows(col, piv);
+            x.swap_rows(col, piv);
+        }
+        let inv = T::one() / a[(col, col)];
+        inv_pivot[col] = inv;
+        for r in col + 1..N {
+            if !in_set(r) {
+                continue;
+            }
+            let f = a[(r, col)] * inv;
+            if f == T::zero() {
+                continue;
+            }
+            for c in col + 1..N {
+                if in_set(c) {
+                    let update = f * a[(col, c)];
+                    a[(r, c)] -= update;
                 }
-                x[r] -= f * x[col];
             }
-        }
-    }
-    for r in (0..k).rev() {
-        let mut acc = x[r];
-        for c in r + 1..k {
-            acc -= a[r][c] * x[c];
-        }
-        x[r] = acc / a[r][r];
-        if x[r] < T::zero() {
-            return None;
+            let update = f * x[col];
+            x[r] -= update;
         }
     }
     let mut z = SVector::<T, N>::zeros();
-    for r in 0..k {
-        z[idx[r]] = x[r];
-    }
-    for i in 0..N {
-        if !warm.is_z_basic(i) {
-            let mut w = lcp.q[i];
-            for r in 0..k {
-                w += lcp.m[(i, idx[r])] * x[r];
-            }
-            if w < T::zero() {
-                return None;
+    for col in (0..N).rev() {
+        if !in_set(col) {
+            continue;
+        }
+        let mut acc = x[col];
+        for c in col + 1..N {
+            if in_set(c) {
+                acc -= a[(col, c)] * z[c];
             }
         }
+        z[col] = acc * inv_pivot[col];
+        if z[col] < T::zero() {
+            return None;
+        }
     }
-    Some((z, k as u32))
+    Some(z)
 }
 
 impl<T: Real, const N: usize> Lemke<T, N> {
@@ -492,10 +520,10 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     /// As [`Lemke::solve`].
     pub fn solve_warm(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Result<LcpSolution<T, N>, LcpError> {
         let () = Self::SIZE_CHECK;
-        if !lcp.is_finite() {
+        let Some(scales) = lcp.scales() else {
             return Err(LcpError::NonFiniteInput);
-        }
-        if lcp.q.iter().all(|&x| x >= T::zero()) {
+        };
+        if scales.q_min >= T::zero() {
             return Ok(LcpSolution {
                 z: SVector::zeros(),
                 w: lcp.q,
@@ -509,19 +537,26 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         }
         let mut spent = 0;
         let mut eliminations = 0;
-        // `||M||_inf` once per solve: the warm path's scale and the verification's.
-        let m_norm = lcp.m_norm_inf();
         if warm != Basis::all_w() {
-            let scale = max(m_norm, T::TINY);
-            // Fast path: the warm basis solved directly, kept only when strictly feasible.
-            if let Some((z, k)) = basis_solution(lcp, warm, scale) {
-                let (check, w) = verify_with(lcp, &z, self.tolerance, scale);
-                if check.passed() {
+            let scale = max(scales.m_norm, T::TINY);
+            // Fast path: the warm basis solved directly, kept only when strictly feasible
+            // (`z_a >= 0` there, `w >= 0` outside `a` here) and verified.
+            if let Some(z) = basis_solution(lcp, warm, scale) {
+                let w = lcp.w_of(&z);
+                let mut feasible = true;
+                for i in 0..N {
+                    feasible &= warm.is_z_basic(i) || w[i] >= T::zero();
+                }
+                let check = Verification {
+                    residual: residual(&z, &w, scales.m_norm, scales.q_norm),
+                    tolerance: self.tolerance,
+                };
+                if feasible && check.passed() {
                     return Ok(LcpSolution {
                         z,
                         w,
                         pivots: 0,
-                        setup_eliminations: k,
+                        setup_eliminations: warm.z_mask().count_ones(),
                         warm_start_used: true,
                         basis: warm,
                         residual: check.residual,
@@ -532,7 +567,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
             if let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) {
                 eliminations = elim;
                 match tab.run(self.max_pivots) {
-                    Ok(pivots) => match self.finish(lcp, m_norm, &tab, pivots, elim, true, false) {
+                    Ok(pivots) => match self.finish(lcp, &scales, &tab, pivots, elim, true, false) {
                         Ok(sol) => return Ok(sol),
                         Err(e) => spent = e.pivots(),
                     },
@@ -543,7 +578,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         let mut tab = Tableau::cold(lcp);
         let budget = self.max_pivots.saturating_sub(spent).max(1);
         match tab.run(budget) {
-            Ok(pivots) => return self.finish(lcp, m_norm, &tab, spent + pivots, eliminations, false, false),
+            Ok(pivots) => return self.finish(lcp, &scales, &tab, spent + pivots, eliminations, false, false),
             Err(LcpError::Ray { pivots }) => spent += pivots,
             Err(LcpError::MaxPivots { pivots }) => {
                 return Err(LcpError::MaxPivots { pivots: spent + pivots });
@@ -562,7 +597,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         // `(M, q)` on the data's own scale, `s_w = ||q||_inf` ([`Self::finish`]): `delta z`
         // then costs about `4 N eps ||M|| ||z|| / ||q||` of the `256 N eps` tolerance, and an
         // inflated `z` fails.
-        let delta = T::of(4.0 * N as f64) * T::EPS * max(m_norm, T::TINY);
+        let delta = T::of(4.0 * N as f64) * T::EPS * max(scales.m_norm, T::TINY);
         let mut regularized = *lcp;
         for i in 0..N {
             regularized.m[(i, i)] += delta;
@@ -572,7 +607,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         // When the retry does not rescue the solve, the error is the first one: a ray.
         match tab.run(budget) {
             Ok(pivots) => self
-                .finish(lcp, m_norm, &tab, spent + pivots, eliminations, false, true)
+                .finish(lcp, &scales, &tab, spent + pivots, eliminations, false, true)
                 .map_err(|_| LcpError::Ray { pivots: spent + pivots }),
             Err(LcpError::Ray { pivots }) => Err(LcpError::Ray { pivots: spent + pivots }),
             Err(LcpError::MaxPivots { pivots }) => Err(LcpError::MaxPivots { pivots: spent + pivots }),
@@ -584,7 +619,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     fn finish(
         &self,
         lcp: &Lcp<T, N>,
-        m_norm: T,
+        scales: &Scales<T>,
         tab: &Tableau<T, N>,
         pivots: u32,
         setup_eliminations: u32,
@@ -593,8 +628,10 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     ) -> Result<LcpSolution<T, N>, LcpError> {
         let (z, basis) = tab.solution(lcp);
         // A regularised answer is held to `w`'s scale `||q||` alone (see `solve_warm`).
-        let w_scale = if regularized { T::zero() } else { m_norm };
-        let (check, w) = verify_with(lcp, &z, self.tolerance, w_scale);
+        let m_scale = if regularized { T::zero() } else { scales.m_norm };
+        let w = lcp.w_of(&z);
+        let check =
+            Verification { residual: residual(&z, &w, m_scale, scales.q_norm), tolerance: self.tolerance };
         if !check.passed() {
             return Err(LcpError::Unverified {
                 residual: check.residual.as_f32(),

@@ -2,7 +2,18 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::real::{Real, max};
+use crate::real::{Real, max, min};
+
+/// The scales of an LCP's data, from one pass over it ([`Lcp::scales`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Scales<T> {
+    /// `||M||_inf`.
+    pub m_norm: T,
+    /// `||q||_inf`.
+    pub q_norm: T,
+    /// `min_i q_i`.
+    pub q_min: T,
+}
 
 /// One linear complementarity problem of size `N`:
 /// find `z` with `w = M z + q`, `z >= 0`, `w >= 0`, `z . w = 0`.
@@ -30,7 +41,14 @@ impl<T: Real, const N: usize> Lcp<T, N> {
     /// `true` when every entry of `M` and `q` is finite.
     #[must_use]
     pub fn is_finite(&self) -> bool {
-        self.m.iter().all(|x| x.finite()) && self.q.iter().all(|x| x.finite())
+        let mut finite = true;
+        for i in 0..N {
+            finite &= self.q[i].finite();
+            for j in 0..N {
+                finite &= self.m[(i, j)].finite();
+            }
+        }
+        finite
     }
 
     /// `||M||_inf`, the largest absolute row sum of `M`.
@@ -47,21 +65,54 @@ impl<T: Real, const N: usize> Lcp<T, N> {
         norm
     }
 
+    /// `||M||_inf`, `||q||_inf` and `min q` in one pass over the data (the solver's entry:
+    /// one read of `M` instead of one each for finiteness, the norm and `q >= 0`). `None`
+    /// when an entry is not finite, or when the sum of all `|entries|` overflows: then there
+    /// is no finite scale to measure round-off against (the solver reports
+    /// [`super::LcpError::NonFiniteInput`]). The sum is finite exactly when every entry is
+    /// finite and the `N^2 + N` magnitudes add up within the type's range.
+    #[must_use]
+    pub(crate) fn scales(&self) -> Option<Scales<T>> {
+        let mut m_norm = T::zero();
+        let mut total = T::zero();
+        for i in 0..N {
+            let mut row = T::zero();
+            for j in 0..N {
+                row += self.m[(i, j)].abs_exact();
+            }
+            m_norm = max(m_norm, row);
+            total += row;
+        }
+        let mut q_norm = T::zero();
+        let mut q_min = self.q[0];
+        for i in 0..N {
+            let q = self.q[i];
+            total += q.abs_exact();
+            q_norm = max(q_norm, q.abs_exact());
+            q_min = min(q_min, q);
+        }
+        total.finite().then_some(Scales { m_norm, q_norm, q_min })
+    }
+
     /// `||q||_inf`.
     #[must_use]
     pub fn q_norm_inf(&self) -> T {
-        self.q.iter().fold(T::zero(), |acc, x| max(acc, x.abs_exact()))
+        let mut norm = T::zero();
+        for i in 0..N {
+            norm = max(norm, self.q[i].abs_exact());
+        }
+        norm
     }
 
     /// `w = M z + q`, computed from the original data in a fixed order of operations.
     #[must_use]
     pub fn w_of(&self, z: &SVector<T, N>) -> SVector<T, N> {
-        SVector::from_fn(|i, _| {
-            let mut acc = self.q[i];
+        let mut w = self.q;
+        for i in 0..N {
             for j in 0..N {
-                acc += self.m[(i, j)] * z[j];
+                w[i] += self.m[(i, j)] * z[j];
             }
-            acc
-        })
+        }
+        w
     }
 }

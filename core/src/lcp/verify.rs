@@ -49,34 +49,39 @@ pub fn default_tolerance<T: Real, const N: usize>() -> T {
 
 /// Computes the normalised residual of `z` for `lcp` and compares it with `tolerance`.
 pub fn verify<T: Real, const N: usize>(lcp: &Lcp<T, N>, z: &SVector<T, N>, tolerance: T) -> Verification<T> {
-    verify_with(lcp, z, tolerance, lcp.m_norm_inf()).0
+    let w = lcp.w_of(z);
+    Verification { residual: residual(z, &w, lcp.m_norm_inf(), lcp.q_norm_inf()), tolerance }
 }
 
-/// [`verify`] with `||M||_inf` given, also returning `w = M z + q` (the solver's hot path
-/// computes both once).
-pub(crate) fn verify_with<T: Real, const N: usize>(
-    lcp: &Lcp<T, N>,
+/// The normalised residual of `z` with `w = M z + q` already computed and the data's scales
+/// `||M||_inf`, `||q||_inf` given (the solver's hot path has all three). Infinite when `z` or
+/// `w` has a non-finite entry. The scales are inverted once: two divisions, not `3 N`.
+pub(crate) fn residual<T: Real, const N: usize>(
     z: &SVector<T, N>,
-    tolerance: T,
+    w: &SVector<T, N>,
     m_norm: T,
-) -> (Verification<T>, SVector<T, N>) {
-    let w = lcp.w_of(z);
-    let z_norm = z.iter().fold(T::zero(), |acc, x| max(acc, x.abs_exact()));
-    let s_z = max(z_norm, T::TINY);
-    let s_w = max(m_norm * z_norm + lcp.q_norm_inf(), T::TINY);
-    let mut residual = T::zero();
+    q_norm: T,
+) -> T {
+    let mut z_norm = T::zero();
     for i in 0..N {
-        let zi = z[i];
-        let wi = w[i];
-        if !(zi.finite() && wi.finite()) {
-            return (Verification { residual: T::of(f64::INFINITY), tolerance }, w);
-        }
-        let neg_z = max(-zi, T::zero()) / s_z;
-        let neg_w = max(-wi, T::zero()) / s_w;
-        let comp = min(zi.abs_exact() / s_z, wi.abs_exact() / s_w);
+        z_norm = max(z_norm, z[i].abs_exact());
+    }
+    let inv_s_z = T::one() / max(z_norm, T::TINY);
+    let inv_s_w = T::one() / max(m_norm * z_norm + q_norm, T::TINY);
+    let mut residual = T::zero();
+    let mut finite = true;
+    for i in 0..N {
+        let (zi, wi) = (z[i], w[i]);
+        finite &= zi.finite() & wi.finite();
+        let neg_z = max(-zi, T::zero()) * inv_s_z;
+        let neg_w = max(-wi, T::zero()) * inv_s_w;
+        let comp = min(zi.abs_exact() * inv_s_z, wi.abs_exact() * inv_s_w);
         residual = max(residual, max(neg_z, max(neg_w, comp)));
     }
-    (Verification { residual, tolerance }, w)
+    if !finite {
+        return T::of(f64::INFINITY);
+    }
+    residual
 }
 
 /// `true` when `z` solves `lcp` within the default tolerance ([`default_tolerance`]).

@@ -105,7 +105,22 @@ fn dot2<T: Real>(a: &[T; 2], b: &[T; 2]) -> T {
     a[0] * b[0] + a[1] * b[1]
 }
 
+/// The contact (0 or 1) variable `j` of the size-`n` model belongs to.
+const fn owner(n: usize, j: usize) -> usize {
+    if j < 2 {
+        j
+    } else if j < n - 2 {
+        friction_directions(n)[j - 2].0
+    } else {
+        j - (n - 2)
+    }
+}
+
 /// Assembles the LCP of eq. 18 for the size-`N` model (`N` is 6 or 8).
+///
+/// The impulse block `A = W^T M^-1 W` is symmetric: its upper triangle is computed and
+/// mirrored (10 of the 16 dot products for `N = 6`, 21 of 36 for `N = 8`), which also makes
+/// the computed block exactly symmetric.
 #[must_use]
 pub fn assemble<T: Real, const N: usize>(input: &StepInputs<'_, T>) -> StepLcp<T, N> {
     const { assert!(N == 6 || N == 8, "the meter-stick LCP has size 6 or 8") };
@@ -113,11 +128,9 @@ pub fn assemble<T: Real, const N: usize>(input: &StepInputs<'_, T>) -> StepLcp<T
     let n_imp = N - 2;
     let mut columns = [[T::zero(); 3]; N];
     let mut b = SVector::<T, N>::zeros();
-    let mut owner = [0usize; N];
     for i in 0..2 {
         let f = &input.frames[i];
         columns[i] = f.wn;
-        owner[i] = i;
         b[i] = dot3(&f.wn, &input.v_free) - dot2(&f.normal, &input.finger_velocity[i])
             + normal_bias(f.gap, input.h, input.gravity);
     }
@@ -126,18 +139,16 @@ pub fn assemble<T: Real, const N: usize>(input: &StepInputs<'_, T>) -> StepLcp<T
         let s = if sign > 0 { T::one() } else { -T::one() };
         let j = 2 + k;
         columns[j] = [s * f.wt[0], s * f.wt[1], s * f.wt[2]];
-        owner[j] = i;
         b[j] = s * (dot3(&f.wt, &input.v_free) - dot2(&f.tangent, &input.finger_velocity[i]));
-    }
-    for i in 0..2 {
-        owner[sigma_index(N, i)] = i;
     }
     let mut a = SMatrix::<T, N, N>::zeros();
     for j in 0..n_imp {
         let mc =
             [columns[j][0] * input.m_inv[0], columns[j][1] * input.m_inv[1], columns[j][2] * input.m_inv[2]];
-        for k in 0..n_imp {
-            a[(j, k)] = dot3(&mc, &columns[k]);
+        for k in j..n_imp {
+            let entry = dot3(&mc, &columns[k]);
+            a[(j, k)] = entry;
+            a[(k, j)] = entry;
         }
     }
     for (k, &(i, _)) in dirs.iter().enumerate() {
@@ -152,7 +163,7 @@ pub fn assemble<T: Real, const N: usize>(input: &StepInputs<'_, T>) -> StepLcp<T
             continue;
         }
         for j in 0..N {
-            if owner[j] != i {
+            if owner(N, j) != i {
                 continue;
             }
             for k in 0..N {

@@ -285,7 +285,7 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
 
     fn compute_frames(&self) -> [ContactFrame<T>; 2] {
         let p = &self.params;
-        let sc = self.state.theta.sin_cos_libm();
+        let sc = self.state.theta.sin_cos_portable();
         let frame = |fx| {
             ContactFrame::new(fx, T::zero(), self.state.x, self.state.y, sc, p.rod_length, p.rod_thickness)
         };
@@ -508,21 +508,22 @@ impl<T: Real, const N: usize, const E: usize> Scene<T, N, E> {
             return;
         }
         self.frames = self.compute_frames();
-        let frames = self.frames;
+        let along = [self.frames[0].along, self.frames[1].along];
+        let any_active = self.frames[0].active || self.frames[1].active;
         if self.meeting.is_none() && stopped {
-            let com_offset = -(frames[0].along + frames[1].along) / T::of(2.0);
+            let com_offset = -(along[0] + along[1]) / T::of(2.0);
             self.meeting = Some(Meeting { time: self.time, com_offset });
         }
         let fell = self.state.theta.abs_exact() > p.tilt_limit
             || self.state.y < self.start_y - p.drop_limit
-            || !(frames[0].active || frames[1].active);
+            || !any_active;
         if fell {
             self.outcome = Some(Outcome::Fell);
         } else if let Some(meeting) = self.meeting
             && self.time - meeting.time >= p.hold_time
             && report.modes.iter().all(|m| *m != ContactMode::Separated)
-            && frames[0].along <= T::zero()
-            && frames[1].along >= T::zero()
+            && along[0] <= T::zero()
+            && along[1] >= T::zero()
         {
             self.outcome = Some(Outcome::Balanced);
         } else if self.time >= p.max_time {
