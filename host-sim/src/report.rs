@@ -51,6 +51,11 @@ pub struct ReportArgs {
     /// `scripts/firmware-report.sh`; included in report.md when the file exists.
     #[arg(long, default_value = "out/firmware/report.md")]
     pub firmware_figures: PathBuf,
+    /// The side-by-side figures (core and rapier2d in one process) written by
+    /// `cargo bench -p meterstick-tests --features rapier --bench rapier`; included in
+    /// report.md when the file exists.
+    #[arg(long, default_value = "out/bench/rapier.md")]
+    pub bench_figures: PathBuf,
 }
 
 /// An implementation of the scene.
@@ -160,6 +165,9 @@ pub struct SweepRow {
     pub ns_per_step: f64,
     /// Host ms to simulate one second (`ns_per_step / h`).
     pub ms_per_sim_second: f64,
+    /// Lemke pivots per step, averaged over the run (the core's warm-started solver; `None`
+    /// for the reference, which enumerates).
+    pub pivots_per_step: Option<f64>,
     /// Timing repeats.
     pub repeats: usize,
 }
@@ -210,6 +218,54 @@ pub fn order_fit(rows: &[&SweepRow]) -> (Option<f64>, (f64, f64), f64, f64) {
     };
     let fit = &pts[..=best];
     (loglog_slope(fit), (fit[fit.len() - 1].0, fit[0].0), pts[best].1, pts[best].0)
+}
+
+/// The report's "Performance" section: host ns/step, steps/s and pivots/step of each
+/// configuration at h = 1 ms (from the timing runs above), then the side-by-side run against
+/// rapier2d and the firmware figures when their files exist.
+fn performance_section(rows: &[SweepRow], args: &ReportArgs) -> String {
+    let mut md = String::from("## Performance\n\n");
+    md += "The sweep's scene at h = 1 ms, timed above (median of the repeats, one run at a time):\n\n";
+    md += "| config | host ns/step | steps/s | pivots/step |\n|---|---|---|---|\n";
+    for r in rows.iter().filter(|r| (r.h - 1e-3).abs() < 1e-12) {
+        md += &format!(
+            "| {} | {:.0} | {:.2e} | {} |\n",
+            r.config,
+            r.ns_per_step,
+            1e9 / r.ns_per_step,
+            r.pivots_per_step.map_or_else(|| "- (enumeration)".into(), |p| format!("{p:.4}"))
+        );
+    }
+    md += "\nCriterion benchmarks of each piece (one Lemke solve, cold and warm, 6x6 and 8x8, f32 and f64; one \
+           step; a whole run): `cargo bench -p meterstick-tests --bench core`.\n\n";
+    match std::fs::read_to_string(&args.bench_figures) {
+        Ok(figures) => {
+            md += &format!(
+                "### Against rapier2d\n\nFrom `{}` (`cargo bench -p meterstick-tests --features rapier --bench rapier`): \
+                 the same scene stepped by rapier2d and by the core in one process.\n\n{figures}\n",
+                args.bench_figures.display()
+            );
+        }
+        Err(_) => {
+            md += "(Against rapier2d: run `cargo bench -p meterstick-tests --features rapier --bench rapier` before this \
+                   report to include it.)\n\n";
+        }
+    }
+    match std::fs::read_to_string(&args.firmware_figures) {
+        Ok(figures) => {
+            md += &format!(
+                "### On the microcontroller\n\nFrom `{}` (`scripts/firmware-report.sh`): the same f32 6x6 core, \
+                 counted in instructions per step under QEMU.\n\n",
+                args.firmware_figures.display()
+            );
+            md += &figures.replacen("# Firmware figures", "", 1);
+            md += "\n";
+        }
+        Err(_) => {
+            md += "(Cortex-M instructions per step: run `scripts/firmware-report.sh` before this report to include them.)\n\n";
+        }
+    }
+    md
 }
 
 fn sci(x: f64) -> String {
@@ -268,6 +324,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
             errors: errors(run, &converged, args.horizon),
             ns_per_step: ns,
             ms_per_sim_second: ns / h * 1e-6,
+            pivots_per_step: (config != Config::Reference)
+                .then(|| run.counters.pivots as f64 / run.steps.max(1) as f64),
             repeats,
         });
     }
@@ -313,12 +371,12 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
 
     // 4. Write tables, pictures and report.md.
     let mut csv = String::from(
-        "config,h_s,steps,outcome,com_error_m,meeting_error_m,ratio_error,ns_per_step,ms_per_sim_second,repeats\n",
+        "config,h_s,steps,outcome,com_error_m,meeting_error_m,ratio_error,ns_per_step,ms_per_sim_second,pivots_per_step,repeats\n",
     );
     for r in &rows {
         writeln!(
             csv,
-            "{},{},{},{},{},{},{},{:.1},{:.4},{}",
+            "{},{},{},{},{},{},{},{:.1},{:.4},{},{}",
             r.config,
             r.h,
             r.steps,
@@ -328,6 +386,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
             r.errors.ratio,
             r.ns_per_step,
             r.ms_per_sim_second,
+            r.pivots_per_step.map_or_else(|| "NaN".into(), |p| format!("{p:.5}")),
             r.repeats
         )?;
     }
@@ -406,11 +465,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
         if args.quick { " --quick" } else { "" }
     );
     md += "## Error against run time\n\n![error vs run time](error_vs_runtime.svg)\n\n![error vs h](error_vs_h.svg)\n\n";
-    md += "| config | h (s) | steps | outcome | COM error (m) | meeting error (m) | eq.21 ratio error | host ns/step | host ms per simulated s |";
-    md += "\n|---|---|---|---|---|---|---|---|---|\n";
+    md += "| config | h (s) | steps | outcome | COM error (m) | meeting error (m) | eq.21 ratio error | host ns/step | host ms per simulated s | pivots/step |";
+    md += "\n|---|---|---|---|---|---|---|---|---|---|\n";
     for r in &rows {
         md += &format!(
-            "| {} | {:e} | {} | {} | {} | {} | {} | {:.0} | {:.3} |\n",
+            "| {} | {:e} | {} | {} | {} | {} | {} | {:.0} | {:.3} | {} |\n",
             r.config,
             r.h,
             r.steps,
@@ -419,7 +478,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
             sci(r.errors.meeting_m),
             sci(r.errors.ratio),
             r.ns_per_step,
-            r.ms_per_sim_second
+            r.ms_per_sim_second,
+            r.pivots_per_step.map_or_else(|| "-".into(), |p| format!("{p:.4}"))
         );
     }
     md += "\n(also in `error_vs_runtime.csv`; NaN/n/a: the quantity does not exist for that run, e.g. no switch to compare).\n\n";
@@ -452,20 +512,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     md += "\nThe scheme is a first-order time-stepping method (semi-implicit Euler with contact and friction \
            resolved as one LCP per step; switches happen at step boundaries), so about one decade of error per \
            decade of h is expected; the pictures show where each configuration stops paying off.\n\n";
-    match std::fs::read_to_string(&args.firmware_figures) {
-        Ok(figures) => {
-            md += &format!(
-                "### On the microcontroller\n\nFrom `{}` (`scripts/firmware-report.sh`): the same f32 6x6 core, \
-                 counted in instructions per step under QEMU.\n\n",
-                args.firmware_figures.display()
-            );
-            md += &figures.replacen("# Firmware figures", "", 1);
-            md += "\n";
-        }
-        Err(_) => {
-            md += "(Cortex-M instructions per step: run `scripts/firmware-report.sh` before this report to include them.)\n\n";
-        }
-    }
+    md += &performance_section(&rows, args);
     md += "## Success map\n\n![success map](success_map.svg)\n\n";
     md += &format!(
         "Outcome of the paper's symmetric start (fingers at -/+0.4 m, h = 1 ms) over finger speed and mu_k/mu_s, \

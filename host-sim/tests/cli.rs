@@ -151,18 +151,43 @@ fn run_writes_every_output_file() {
 #[test]
 fn report_quick_writes_its_tables_and_pictures() {
     let out = temp_dir("report");
-    let (code, stdout, err) = host_sim(&["report", "--quick", "--out", out.to_str().unwrap()]);
+    std::fs::create_dir_all(&out).unwrap();
+    // The side-by-side figures are included when their file exists; the firmware's are not here.
+    let bench = out.join("rapier.md");
+    std::fs::write(&bench, "ratio rapier2d / core: 12.3x (test figure)\n").unwrap();
+    let (code, stdout, err) = host_sim(&[
+        "report",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+        "--bench-figures",
+        bench.to_str().unwrap(),
+        "--firmware-figures",
+        out.join("missing.md").to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("order"), "{stdout}");
     let (header, rows) = read_csv(&out.join("error_vs_runtime.csv"));
     assert_eq!(header[0], "config");
+    assert_eq!(header[9], "pivots_per_step");
     assert_eq!(rows.len(), 3 * 4, "3 values of h x 4 configurations");
     for r in &rows {
         assert!(num(&r[4]) > 0.0 && num(&r[7]) > 0.0, "{r:?}"); // an error and a run time
+        // Pivots per step: the core's count (warm-started: well below one), none for the reference.
+        if r[0].starts_with("core") {
+            assert!((0.0..1.0).contains(&num(&r[9])), "{r:?}");
+        } else {
+            assert!(num(&r[9]).is_nan(), "{r:?}");
+        }
     }
     let (_, map) = read_csv(&out.join("success_map.csv"));
     assert_eq!(map.len(), 4);
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("## Performance\n") && md.contains("| config | host ns/step | steps/s | pivots/step |")
+    );
+    assert!(md.contains("### Against rapier2d") && md.contains("12.3x (test figure)"));
+    assert!(md.contains("run `scripts/firmware-report.sh` before this report"));
     for pic in ["error_vs_runtime.svg", "error_vs_h.svg", "success_map.svg"] {
         assert!(md.contains(pic), "report.md does not link {pic}");
         assert!(std::fs::read_to_string(out.join(pic)).unwrap().starts_with("<svg"));

@@ -8,7 +8,7 @@
 //! it gets mu_k; contact recycling (on by default: a pair that moved less than a threshold
 //! keeps its previous contacts) is turned off for honest contacts. Each engine runs the slow
 //! scene to its outcome; run time is the median over repeats of the stepping loop alone.
-#![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::print_stderr, missing_docs)]
 
 use std::time::Instant;
 
@@ -131,10 +131,13 @@ fn main() {
     }
     let (c, r) = (core_end.unwrap(), rapier_end.unwrap());
     let (cm, rm) = (median(core_ns), median(rapier_ns));
-    println!("meter-stick slow scene (v = 0.1 m/s, x1 = -0.35 m, h = 1 ms), {repeats} runs each, median:");
+    let mut text = format!(
+        "meter-stick slow scene (v = 0.1 m/s, x1 = -0.35 m, h = 1 ms), {repeats} runs each, median, on {}:\n",
+        machine()
+    );
     for (name, e, ns) in [("meterstick core f32 6x6", &c, cm), ("rapier2d 0.36 (f32)", &r, rm)] {
-        println!(
-            "  {name:<24} {:>9.1} ns/step  {:>6} steps  ends {} at t = {:.3} s, COM {} from the fingers' midpoint at the meeting",
+        text += &format!(
+            "  {name:<24} {:>9.1} ns/step  {:>6} steps  ends {} at t = {:.3} s, COM {} from the fingers' midpoint at the meeting\n",
             ns,
             e.steps,
             e.outcome,
@@ -142,5 +145,28 @@ fn main() {
             e.meeting_offset.map_or_else(|| "-".to_string(), |m| format!("{:+.2} mm", 1e3 * m))
         );
     }
-    println!("  ratio rapier2d / core: {:.1}x", rm / cm);
+    text += &format!("  ratio rapier2d / core: {:.1}x\n", rm / cm);
+    print!("{text}");
+    // For `host-sim report` (its "Performance" section includes this file when present).
+    if repeats > 1 {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../out/bench");
+        let written = std::fs::create_dir_all(&dir)
+            .and_then(|()| std::fs::write(dir.join("rapier.md"), format!("```text\n{text}```\n")));
+        if let Err(e) = written {
+            eprintln!("could not write {}: {e}", dir.join("rapier.md").display());
+        }
+    }
+}
+
+/// The CPU model and the number of cores, from `/proc/cpuinfo` where it exists.
+fn machine() -> String {
+    let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    let model = info
+        .lines()
+        .find_map(|l| {
+            l.strip_prefix("model name").and_then(|r| r.split_once(':')).map(|(_, m)| m.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+    let cores = std::thread::available_parallelism().map_or(0, std::num::NonZero::get);
+    format!("{model}, {cores} cores")
 }

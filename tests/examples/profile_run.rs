@@ -2,7 +2,7 @@
 //! slow scene (x1 = -0.35 m, v = 0.1 m/s), run start to end `runs` times, for a profiler
 //! (`valgrind --tool=callgrind target/release/examples/profile_run`). Prints steps, pivots and
 //! the outcome so the run can be checked against `host-sim run`.
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::print_stderr, missing_docs)]
 
 use std::hint::black_box;
 
@@ -23,7 +23,7 @@ fn run<T: Real, const N: usize>(runs: u32) {
     println!("{} {N}x{N}: {runs} runs, {steps} steps, {pivots} pivots, outcome {outcome:?}", T::NAME);
 }
 
-fn main() {
+fn main() -> std::process::ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let real = args.first().map_or("f32", String::as_str);
     let n = args.get(1).map_or("6", String::as_str);
@@ -33,6 +33,10 @@ fn main() {
         ("f32", "8") => run::<f32, 8>(runs),
         ("f64", "6") => run::<f64, 6>(runs),
         ("f64", "8") => run::<f64, 8>(runs),
-        _ => panic!("usage: profile_run [f32|f64] [6|8] [runs]"),
+        _ => {
+            eprintln!("usage: profile_run [f32|f64] [6|8] [runs]");
+            return std::process::ExitCode::FAILURE;
+        }
     }
+    std::process::ExitCode::SUCCESS
 }
