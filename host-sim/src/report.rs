@@ -238,34 +238,35 @@ fn performance_section(rows: &[SweepRow], args: &ReportArgs) -> String {
     }
     md += "\nCriterion benchmarks of each piece (one Lemke solve, cold and warm, 6x6 and 8x8, f32 and f64; one \
            step; a whole run): `cargo bench -p meterstick-tests --bench core`.\n\n";
-    match std::fs::read_to_string(&args.bench_figures) {
-        Ok(figures) => {
-            md += &format!(
-                "### Against rapier2d\n\nFrom `{}` (`cargo bench -p meterstick-tests --features rapier --bench rapier`): \
-                 the same scene stepped by rapier2d and by the core in one process.\n\n{figures}\n",
-                args.bench_figures.display()
-            );
-        }
-        Err(_) => {
-            md += "(Against rapier2d: run `cargo bench -p meterstick-tests --features rapier --bench rapier` before this \
-                   report to include it.)\n\n";
-        }
-    }
-    match std::fs::read_to_string(&args.firmware_figures) {
-        Ok(figures) => {
-            md += &format!(
-                "### On the microcontroller\n\nFrom `{}` (`scripts/firmware-report.sh`): the same f32 6x6 core, \
-                 counted in instructions per step under QEMU.\n\n",
-                args.firmware_figures.display()
-            );
-            md += &figures.replacen("# Firmware figures", "", 1);
-            md += "\n";
-        }
-        Err(_) => {
-            md += "(Cortex-M instructions per step: run `scripts/firmware-report.sh` before this report to include them.)\n\n";
-        }
-    }
+    md += &included_figures(
+        &args.bench_figures,
+        "### Against rapier2d",
+        "`cargo bench -p meterstick-tests --features rapier --bench rapier`",
+        "the same scene stepped by rapier2d and by the core in one process",
+    );
+    md += &included_figures(
+        &args.firmware_figures,
+        "### On the microcontroller",
+        "`scripts/firmware-report.sh`",
+        "the same f32 6x6 core, counted in instructions per step under QEMU",
+    );
     md
+}
+
+/// A subsection holding the figures file `path` written by `command`, or a line saying how
+/// to include them when the file does not exist.
+fn included_figures(path: &std::path::Path, heading: &str, command: &str, what: &str) -> String {
+    match std::fs::read_to_string(path) {
+        Ok(figures) => format!(
+            "{heading}\n\nFrom `{}` ({command}): {what}.\n\n{}\n",
+            path.display(),
+            figures.replacen("# Firmware figures", "", 1)
+        ),
+        Err(_) => format!(
+            "({heading}: run {command} before this report to include {what}.)\n\n",
+            heading = heading.trim_start_matches("### ")
+        ),
+    }
 }
 
 fn sci(x: f64) -> String {

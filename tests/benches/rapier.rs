@@ -10,6 +10,7 @@
 //! scene to its outcome; run time is the median over repeats of the stepping loop alone.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::print_stderr, missing_docs)]
 
+use std::fmt::Write as _;
 use std::time::Instant;
 
 use meterstick_core::scene::{Outcome, Scene6, SceneParams};
@@ -136,16 +137,18 @@ fn main() {
         machine()
     );
     for (name, e, ns) in [("meterstick core f32 6x6", &c, cm), ("rapier2d 0.36 (f32)", &r, rm)] {
-        text += &format!(
-            "  {name:<24} {:>9.1} ns/step  {:>6} steps  ends {} at t = {:.3} s, COM {} from the fingers' midpoint at the meeting\n",
+        writeln!(
+            text,
+            "  {name:<24} {:>9.1} ns/step  {:>6} steps  ends {} at t = {:.3} s, COM {} from the fingers' midpoint at the meeting",
             ns,
             e.steps,
             e.outcome,
             e.time,
             e.meeting_offset.map_or_else(|| "-".to_string(), |m| format!("{:+.2} mm", 1e3 * m))
-        );
+        )
+        .unwrap();
     }
-    text += &format!("  ratio rapier2d / core: {:.1}x\n", rm / cm);
+    writeln!(text, "  ratio rapier2d / core: {:.1}x", rm / cm).unwrap();
     print!("{text}");
     // For `host-sim report` (its "Performance" section includes this file when present).
     if repeats > 1 {

@@ -56,13 +56,19 @@ impl<T: Real, const N: usize> Lcp<T, N> {
     pub fn m_norm_inf(&self) -> T {
         let mut norm = T::zero();
         for i in 0..N {
-            let mut row = T::zero();
-            for j in 0..N {
-                row += self.m[(i, j)].abs_exact();
-            }
-            norm = max(norm, row);
+            norm = max(norm, self.row_abs_sum(i));
         }
         norm
+    }
+
+    /// `sum_j |M_ij|`.
+    #[inline]
+    fn row_abs_sum(&self, i: usize) -> T {
+        let mut row = T::zero();
+        for j in 0..N {
+            row += self.m[(i, j)].abs_exact();
+        }
+        row
     }
 
     /// `||M||_inf`, `||q||_inf` and `min q` in one pass over the data (the solver's entry:
@@ -76,10 +82,7 @@ impl<T: Real, const N: usize> Lcp<T, N> {
         let mut m_norm = T::zero();
         let mut total = T::zero();
         for i in 0..N {
-            let mut row = T::zero();
-            for j in 0..N {
-                row += self.m[(i, j)].abs_exact();
-            }
+            let row = self.row_abs_sum(i);
             m_norm = max(m_norm, row);
             total += row;
         }
