@@ -40,10 +40,10 @@ build_firmware() {
 # tests); rig-*: the demo rig on the STM32F411 Black Pill, with and without defmt logging (`log`)
 # and the 8x8 fallback (the 6x6-only builds link no 8x8 code).
 FIRMWARE_BUILDS=(
-  "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback-8x8"
-  "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback-8x8"
-  "rig-m4f thumbv7em-none-eabihf board-blackpill,log,fallback-8x8"
-  "rig-m4f-nolog thumbv7em-none-eabihf board-blackpill,fallback-8x8"
+  "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback"
+  "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback"
+  "rig-m4f thumbv7em-none-eabihf board-blackpill,log,fallback"
+  "rig-m4f-nolog thumbv7em-none-eabihf board-blackpill,fallback"
   "rig-m4f-6x6 thumbv7em-none-eabihf board-blackpill,log"
   "rig-m4f-6x6-nolog thumbv7em-none-eabihf board-blackpill"
 )

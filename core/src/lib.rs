@@ -1,19 +1,22 @@
 //! # meterstick-core
 //!
-//! A `no_std`, heap-free simulation core for the meter-stick trick (Leong & Lv, "Linear
-//! Complementarity Problem Simulation of The Meter Stick Trick"): a rod resting on two
-//! fingers, one finger moving toward the other, contact modes (stick, slide, separate)
-//! emerging from a linear complementarity problem solved by Lemke's method every step.
+//! A `no_std`, heap-free simulation core for planar rigid contact, born from the meter-stick trick
+//! (Leong & Lv, "Linear Complementarity Problem Simulation of The Meter Stick Trick"): one rigid
+//! body on supports the scene moves, contact modes (stick, slide, separate) emerging from a linear
+//! complementarity problem solved by Lemke's method every step. The model is written out in
+//! `docs/formulation.md`, the scenes in `docs/scenes.md`.
 //!
 //! * [`lcp`]: the statically sized Lemke solver ([`lcp::Lemke`]) and its verification.
-//! * [`scene`]: the meter-stick scene, 6x6 or 8x8, stepped in f32 or f64.
+//! * [`planar`]: the generic stepper: a body, its contacts, a friction [`planar::Layout`] that
+//!   fixes the LCP size at compile time, supports a scene moves.
+//! * [`scene`]: the meter stick (6x6 or 8x8), a block on an incline, a ladder.
 //! * [`Real`]: the scalar trait (`f32` on a microcontroller, `f64` on a host).
-//!
 //! * [`rig`] (feature `rig`): the demo rig's control loop over `embedded-hal` 1.0 pins.
 //!
-//! Features: `defmt` (public types derive `defmt::Format`; logging goes to defmt, and
-//! compiles to nothing without it), `fallback-8x8` (default: the 6x6 scene re-solves a step
-//! with the 8x8 form when its check fails; without it no 8x8 code is linked), `rig`.
+//! Features: `defmt` (public types derive `defmt::Format`; logging goes to defmt, and compiles to
+//! nothing without it), `fallback` (default: a step of a reduced friction layout whose dropped
+//! direction is needed is solved again in the full layout; without it no full-layout code is
+//! linked and such a step ends the run), `rig`.
 #![cfg_attr(not(test), no_std)]
 #![deny(missing_docs)]
 
@@ -21,11 +24,14 @@
 #[allow(unused_macros)]
 mod fmt;
 pub mod lcp;
+mod params;
+pub mod planar;
 mod real;
 #[cfg(feature = "rig")]
 pub mod rig;
 pub mod scene;
 
+pub use params::{Check, ParamError, check_fields};
 pub use real::Real;
 
 /// The `nalgebra` this crate is built with (its `SMatrix`/`SVector` appear in the API).

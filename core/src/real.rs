@@ -3,7 +3,7 @@
 //! [`Real`] extends [`nalgebra::RealField`] with the few things the core needs that
 //! must behave identically on every target:
 //! * the machine epsilon as a constant, used to scale every tolerance;
-//! * `sin`/`cos` and `sqrt` computed by the crate's own code or the `libm` crate, never the
+//! * `sin`/`cos`, `sqrt` and `atan` computed by the crate's own code or the `libm` crate, never the
 //!   platform's C library, so a host build and a Cortex-M build of the same f32 scene
 //!   perform the same IEEE operations and produce bit-identical trajectories (the firmware
 //!   issue checks this with a checksum). Rust never contracts `a * b + c` into a fused
@@ -27,6 +27,8 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     const TINY: Self;
     /// Short name of the type, `"f32"` or `"f64"`.
     const NAME: &'static str;
+    /// Size in bytes (4 or 8).
+    const BYTES: usize;
     /// Converts from `f64`, rounding to nearest.
     #[must_use]
     fn of(x: f64) -> Self;
@@ -41,6 +43,9 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     /// `sqrt x` computed by `libm` (correctly rounded), identical on every target.
     #[must_use]
     fn sqrt_libm(self) -> Self;
+    /// `atan x` computed by `libm`, identical on every target.
+    #[must_use]
+    fn atan_libm(self) -> Self;
     /// A step count as a scalar, rounding to nearest (exact up to 2^24 in f32). `u32`, not
     /// `u64`: on Cortex-M a `u32` converts in one instruction, a `u64` through a library call.
     #[must_use]
@@ -50,12 +55,15 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     fn abs_exact(self) -> Self;
     /// `true` when the value is neither infinite nor NaN.
     fn finite(self) -> bool;
+    /// The IEEE bits in little-endian bytes, zero-padded to 8 (the first [`Self::BYTES`] count).
+    fn to_le_bytes_u64(self) -> [u8; 8];
 }
 
 impl Real for f32 {
     const EPS: Self = f32::EPSILON;
     const TINY: Self = f32::MIN_POSITIVE;
     const NAME: &'static str = "f32";
+    const BYTES: usize = 4;
     #[inline]
     fn of(x: f64) -> Self {
         x as f32
@@ -77,6 +85,10 @@ impl Real for f32 {
         libm::sqrtf(self)
     }
     #[inline]
+    fn atan_libm(self) -> Self {
+        libm::atanf(self)
+    }
+    #[inline]
     fn of_count(n: u32) -> Self {
         n as f32
     }
@@ -88,12 +100,17 @@ impl Real for f32 {
     fn finite(self) -> bool {
         self.is_finite()
     }
+    #[inline]
+    fn to_le_bytes_u64(self) -> [u8; 8] {
+        u64::from(self.to_bits()).to_le_bytes()
+    }
 }
 
 impl Real for f64 {
     const EPS: Self = f64::EPSILON;
     const TINY: Self = f64::MIN_POSITIVE;
     const NAME: &'static str = "f64";
+    const BYTES: usize = 8;
     #[inline]
     fn of(x: f64) -> Self {
         x
@@ -115,6 +132,10 @@ impl Real for f64 {
         libm::sqrt(self)
     }
     #[inline]
+    fn atan_libm(self) -> Self {
+        libm::atan(self)
+    }
+    #[inline]
     fn of_count(n: u32) -> Self {
         f64::from(n)
     }
@@ -125,6 +146,10 @@ impl Real for f64 {
     #[inline]
     fn finite(self) -> bool {
         self.is_finite()
+    }
+    #[inline]
+    fn to_le_bytes_u64(self) -> [u8; 8] {
+        self.to_bits().to_le_bytes()
     }
 }
 
@@ -140,7 +165,11 @@ impl Real for f64 {
 /// `x`, the cosine's leading `1 - x^2/2` with its rounding error carried (as in musl's f64
 /// `__cos`). Error against the f64 values on a dense grid of the range (unit test): 0.78 ulp
 /// (sin) and 0.77 ulp (cos); `libm`'s f64 evaluation is within about 0.5.
-#[inline]
+///
+/// On a microcontroller out of line: one copy per program (inlined, it was copied into every
+/// caller: flash); on a host inlined (a call per step costs time there, not flash).
+#[cfg_attr(target_os = "none", inline(never))]
+#[cfg_attr(not(target_os = "none"), inline)]
 #[must_use]
 pub(crate) fn sin_cos_f32(x: f32) -> (f32, f32) {
     // musl `__sindf.c` / `__cosdf.c`, rounded to f32.
@@ -157,7 +186,10 @@ pub(crate) fn sin_cos_f32(x: f32) -> (f32, f32) {
         return (x, 1.0);
     }
     if a > core::f32::consts::FRAC_PI_4 || a.is_nan() {
-        return libm::sincosf(x);
+        // Through an opaque pointer: inlined into this opt-level-3 function, `libm`'s size-optimised
+        // `sincosf` was re-expanded to 1.6 KB more flash on a Cortex-M4F; it is the cold path.
+        let libm_sincosf: fn(f32) -> (f32, f32) = core::hint::black_box(libm::sincosf);
+        return libm_sincosf(x);
     }
     let z = x * x;
     let w = z * z;

@@ -24,8 +24,9 @@ use core::convert::Infallible;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 
-use crate::lcp::LcpError;
-use crate::scene::{ContactMode, Outcome, ParamError, Scene, SceneParams};
+use crate::ParamError;
+use crate::planar::{ContactMode, StepError};
+use crate::scene::{MeterStick, MeterStickParams, Outcome, Scene};
 
 /// Rig constants.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -81,12 +82,11 @@ pub struct RigPins<B, P> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RigFault {
-    /// A step's LCP failed (see the error).
-    Solver(LcpError),
-    /// The scene's state became non-finite.
+    /// A scene step failed: the solver, a non-finite state, or the 6x6 model leaving its range
+    /// without the 8x8 fallback compiled in.
+    Step(StepError),
+    /// The carriage target became non-finite.
     NonFinite,
-    /// The 6x6 model left its range and the 8x8 fallback is not compiled in.
-    ReducedModelLeftRange,
     /// More stepper pulses were due in one tick than `max_pulses_per_tick`.
     ActuatorOverrun,
 }
@@ -105,11 +105,11 @@ pub enum RigState {
     Fault(RigFault),
 }
 
-/// The demo rig's loop over the scene `Scene<f32, N, E>` (`N` 6: reduced, 8: the paper's
+/// The demo rig's loop over the scene `MeterStick<f32, N, E>` (`N` 6: reduced, 8: the paper's
 /// form; room for `E` switch events).
 #[derive(Debug)]
 pub struct Rig<B, P, D, const N: usize, const E: usize = 8> {
-    scene: Scene<f32, N, E>,
+    scene: MeterStick<f32, N, E>,
     pins: RigPins<B, P>,
     delay: D,
     config: RigConfig,
@@ -148,12 +148,12 @@ where
     /// # Errors
     /// Invalid parameters, or a pin error.
     pub fn new(
-        params: SceneParams<f32>,
+        params: MeterStickParams<f32>,
         config: RigConfig,
         pins: RigPins<B, P>,
         delay: D,
     ) -> Result<Self, RigError<PinError>> {
-        let scene = Scene::new(params).map_err(RigError::Params)?;
+        let scene = MeterStick::new(params).map_err(RigError::Params)?;
         let mut rig = Self {
             scene,
             pins,
@@ -178,7 +178,7 @@ where
 
     /// The scene being shown.
     #[must_use]
-    pub const fn scene(&self) -> &Scene<f32, N, E> {
+    pub const fn scene(&self) -> &MeterStick<f32, N, E> {
         &self.scene
     }
 
@@ -224,10 +224,7 @@ where
         let Some(report) = self.scene.step() else {
             return self.finish(self.scene.outcome().unwrap_or(Outcome::Unfinished));
         };
-        if let Some(e) = report.error {
-            return self.fault(RigFault::Solver(e));
-        }
-        let target = libm::roundf((report.fingers[0] - self.origin) * self.config.steps_per_meter);
+        let target = libm::roundf((self.scene.fingers()[0] - self.origin) * self.config.steps_per_meter);
         if !target.is_finite() {
             return self.fault(RigFault::NonFinite);
         }
@@ -242,7 +239,7 @@ where
             self.delay.delay_ns(self.config.pulse_ns);
             self.pulses += 1;
         }
-        self.show_modes(report.modes)?;
+        self.show_modes(report.modes())?;
         match self.scene.outcome() {
             None => Ok(()),
             Some(o) => self.finish(o),
@@ -251,9 +248,7 @@ where
 
     fn finish(&mut self, outcome: Outcome) -> Result<(), RigError<PinError>> {
         match outcome {
-            Outcome::SolverFailed(e) => self.fault(RigFault::Solver(e)),
-            Outcome::NonFinite => self.fault(RigFault::NonFinite),
-            Outcome::ReducedModelLeftRange => self.fault(RigFault::ReducedModelLeftRange),
+            Outcome::Failed(e) => self.fault(RigFault::Step(e)),
             o => {
                 log_info!("rig: outcome {} at t={=f32}, {=i64} pulses", o, self.scene.time(), self.pulses);
                 self.state = RigState::Finished(o);
@@ -359,7 +354,7 @@ impl<D: DelayNs, const N: usize, const E: usize> Rig<HeadlessPin, HeadlessPin, D
     /// # Errors
     /// Invalid parameters.
     pub fn headless(
-        params: SceneParams<f32>,
+        params: MeterStickParams<f32>,
         config: RigConfig,
         delay: D,
     ) -> Result<Self, RigError<Infallible>> {

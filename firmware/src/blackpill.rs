@@ -15,7 +15,7 @@
 
 use embedded_hal::delay::DelayNs;
 use meterstick_core::rig::{ModeLights, Rig, RigConfig, RigError, RigPins, RigState};
-use meterstick_core::scene::SceneParams;
+use meterstick_core::scene::MeterStickParams;
 use stm32f4xx_hal::gpio::{AnyPin, Input, Output, PA0};
 use stm32f4xx_hal::pac;
 use stm32f4xx_hal::prelude::*;
@@ -65,7 +65,7 @@ pub fn main() -> ! {
         ],
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
-    let params = SceneParams { finger1_x: -0.35, step: 1.0 / STEP_HZ as f32, ..SceneParams::<f32>::paper() };
+    let params = MeterStickParams { finger1_x: -0.35, step: 1.0 / STEP_HZ as f32, ..MeterStickParams::<f32>::paper() };
     let mut rig = match Rig::<_, _, _, 6>::new(params, RigConfig::default_rig(), pins, CycleDelay) {
         Ok(rig) => rig,
         #[cfg_attr(not(feature = "log"), allow(unused_variables))]

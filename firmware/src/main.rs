@@ -4,7 +4,7 @@
 //! * `qemu-mps2-an386` / `qemu-microbit` ([`qemu`]): headless (no real-time waiting) on QEMU's
 //!   Cortex-M4F and Cortex-M0 machines, pins that count their edges, defmt over semihosting and
 //!   a semihosting exit status; it also counts SysTick ticks per step for the instruction
-//!   count (`scripts/icount.sh`).
+//!   count (`scripts/firmware-report.sh`).
 //! * `board-blackpill` ([`blackpill`]): the tabletop rig on an STM32F411CEU6 "Black Pill"
 //!   (stm32f4xx-hal): one scene step per SysTick period h = 1 ms, stepper STEP/DIR, mode and
 //!   fault lights, start button; defmt over RTT with the `log` feature.

@@ -1,26 +1,49 @@
 //! The QEMU board binding: the rig loop headless, with pins that count their edges and a start
-//! button that reads pressed. Runs a small LCP, then the slow (0.1 m/s) and fast (5 m/s) scenes
-//! (finger 1 from -0.35 m) in f32 with the 6x6 LCP, and prints for each its switch events, its
-//! outcome, statistics and a checksum of the f32 trajectory (FNV-1a over the bits of the rod
-//! state after every step), then the SysTick ticks the steps took and a calibration of ticks
-//! against instructions. Exit status: 0 when the LCP was solved and both scenes ended as the
-//! paper says (balanced, fell).
+//! button that reads pressed. Runs a small LCP, then the slow (0.1 m/s) and fast (5 m/s) meter-stick
+//! scenes (finger 1 from -0.35 m) through the rig, and the default incline and ladder scenes
+//! directly, all in f32 with the 6x6 LCP, and prints for each its switch events, its outcome,
+//! statistics and the trajectory checksum (`meterstick_core::planar::Checksum`), then the SysTick
+//! ticks the rig's steps took and a calibration of ticks against instructions. Exit status: 0 when
+//! the LCP was solved and every scene ended as physics says (balanced, fell, slid, fell).
 
 use defmt_semihosting as _;
 use meterstick_core::lcp::{Lcp, Lemke};
+use meterstick_core::planar::{Checksum, SwitchEvent};
 use meterstick_core::rig::{NoDelay, Rig, RigConfig, RigState};
-use meterstick_core::scene::{Outcome, SceneParams};
+use meterstick_core::scene::{Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome, Scene};
 
 use crate::systick;
 
-/// FNV-1a over 32-bit words.
-fn fnv1a(hash: u32, word: u32) -> u32 {
-    let mut h = hash;
-    for byte in word.to_le_bytes() {
-        h ^= u32::from(byte);
-        h = h.wrapping_mul(0x0100_0193);
+/// Prints a run's switch events (1-based contacts).
+fn print_events(name: &str, events: &[SwitchEvent<f32, 2>]) {
+    for e in events {
+        defmt::println!(
+            "{=str} event t={=f32} contact={=u8} mode={=str} along1={=f32} along2={=f32}",
+            name,
+            e.time,
+            e.contact + 1,
+            e.mode.name(),
+            e.along[0],
+            e.along[1]
+        );
     }
-    h
+}
+
+/// Runs a scene to its outcome outside the rig and prints its checksum and outcome.
+fn run_plain<S: Scene<f32, 2>>(name: &str, scene: &mut S) -> Outcome {
+    let mut checksum = Checksum::new();
+    let outcome = scene.run(|r| checksum.add(&r.state));
+    defmt::println!(
+        "{=str} outcome={} t={=f32} steps={=u64} pivots={=u64} checks={=u64} checksum={=u32:08x}",
+        name,
+        outcome,
+        scene.time(),
+        scene.stats().steps,
+        scene.stats().pivots,
+        scene.stats().reduced_check_fired,
+        checksum.value()
+    );
+    outcome
 }
 
 /// 0.1 mm per stepper pulse, so that the fast scene (5 mm per step) fits a tick's budget.
@@ -34,7 +57,7 @@ const CONFIG: RigConfig = RigConfig {
 /// Runs the paper's scene at `speed` (finger 1 starting at -0.35 m) through the rig and
 /// reports it; `None` on a rig fault.
 fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
-    let params = SceneParams { finger_speed: speed, finger1_x: -0.35, ..SceneParams::<f32>::paper() };
+    let params = MeterStickParams { finger1_velocity: speed, finger1_x: -0.35, ..MeterStickParams::<f32>::paper() };
     let mut rig = match Rig::<_, _, _, 6, 32>::headless(params, CONFIG, NoDelay) {
         Ok(rig) => rig,
         Err(e) => {
@@ -42,7 +65,7 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
             return None;
         }
     };
-    let mut checksum = 0x811c_9dc5u32;
+    let mut checksum = Checksum::new();
     let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
     let state = loop {
         let t0 = systick::now();
@@ -60,27 +83,14 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
             let used = systick::elapsed(t0, t1);
             ticks += u64::from(used);
             worst = worst.max(used);
-            let s = rig.scene().state();
-            for v in [s.x, s.y, s.theta, s.vx, s.vy, s.omega] {
-                checksum = fnv1a(checksum, v.to_bits());
-            }
+            checksum.add(rig.scene().state());
         }
         if !matches!(state, RigState::WaitingForStart | RigState::Running) {
             break state;
         }
     };
     let scene = rig.scene();
-    for e in scene.events() {
-        defmt::println!(
-            "{=str} event t={=f32} finger={=u8} mode={=str} x1={=f32} x2={=f32}",
-            name,
-            e.time,
-            e.finger + 1,
-            e.mode.name(),
-            e.along[0],
-            e.along[1]
-        );
-    }
+    print_events(name, scene.events());
     let st = scene.stats();
     let outcome = match state {
         RigState::Finished(o) => o,
@@ -97,7 +107,7 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
         st.steps,
         st.pivots,
         st.reduced_check_fired,
-        checksum
+        checksum.value()
     );
     let (pins, _) = rig.release();
     defmt::println!(
@@ -146,6 +156,28 @@ pub fn main() -> ! {
     }
     if run_scene("fast", 5.0) != Some(Outcome::Fell) {
         failures += 1;
+    }
+    match Incline::<f32, 6, 16>::new(InclineParams::default()) {
+        Ok(mut incline) => {
+            let outcome = run_plain("incline", &mut incline);
+            print_events("incline", incline.events());
+            failures += i32::from(outcome != Outcome::Slid);
+        }
+        Err(e) => {
+            defmt::println!("incline: {}", e);
+            failures += 1;
+        }
+    }
+    match Ladder::<f32, 6, 16>::new(LadderParams::default()) {
+        Ok(mut ladder) => {
+            let outcome = run_plain("ladder", &mut ladder);
+            print_events("ladder", ladder.events());
+            failures += i32::from(outcome != Outcome::Fell);
+        }
+        Err(e) => {
+            defmt::println!("ladder: {}", e);
+            failures += 1;
+        }
     }
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)

@@ -135,10 +135,11 @@ pub fn parse_siconos(text: &str) -> anyhow::Result<LcpData> {
 }
 
 /// Scalar precision of a solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Precision {
     /// `f32`, as on the microcontroller.
+    #[default]
     F32,
     /// `f64`.
     F64,

@@ -1,8 +1,8 @@
 //! # meterstick-host-sim
 //!
 //! The std host harness around `meterstick-core`: the `host-sim` command line, the LCP
-//! file reader ([`lcp_io`]), the independent f64 reference of the scene ([`reference`]), the
-//! main job ([`run_cmd`]), the error-vs-run-time report ([`report`]), the stress grid ([`stress`]) and the QEMU firmware
+//! file reader ([`lcp_io`]), the scenes and their flags ([`scenes`]), the independent f64
+//! reference of the scenes ([`mod@reference`]), the main job ([`run_cmd`]), the error-vs-run-time report ([`report`]), the stress grid ([`stress`]) and the QEMU firmware
 //! runner ([`qemu`]).
 
 pub mod lcp_io;
@@ -12,6 +12,7 @@ pub mod reference;
 pub mod report;
 pub mod run_cmd;
 pub mod scene_cmd;
+pub mod scenes;
 pub mod stress;
 pub mod trajectory;
 

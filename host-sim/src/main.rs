@@ -23,8 +23,8 @@ struct Cli {
 enum Cmd {
     /// Print the versions of host-sim and of meterstick-core.
     Version,
-    /// Solve one LCP from a file (JSON {"M": [[row]...], "q": [...]} or Siconos .dat) and
-    /// print one JSON object.
+    /// Solve one LCP from a file (JSON with "M", a list of rows, and "q"; or a Siconos .dat
+    /// file) and print one JSON object.
     Lcp {
         /// The LCP file.
         file: PathBuf,
@@ -32,10 +32,10 @@ enum Cmd {
         #[arg(long, value_enum, default_value = "f64")]
         precision: lcp_io::Precision,
     },
-    /// The main job: the paper's scenes (slow 0.1 m/s and the fast cases of fig. 5) in the core
-    /// (f32 6x6 by default, as the firmware) beside the independent f64 reference; writes
-    /// trajectory and event CSVs, summary.json and SVG plots per scene, and prints a summary.
-    /// Units: m, s, kg, m/s.
+    /// The main job: a scene (default: the meter stick at the paper's slow 0.1 m/s and the fast
+    /// speeds of fig. 5) in the core (f32 6x6 by default, as the firmware) beside the independent
+    /// f64 reference; writes trajectory and event CSVs, summary.json and SVG plots per run, and
+    /// prints a summary. Units: m, s, kg, m/s, degrees for angles.
     Run(run_cmd::RunArgs),
     /// Error against run time over a sweep of h (core f32 6x6, f32 8x8, f64 8x8, reference),
     /// and a success map over finger speed and mu_k/mu_s; writes report.md with pictures.
@@ -46,8 +46,8 @@ enum Cmd {
     /// physics criteria; writes report.md, cases.csv, summary.json and criteria.svg. Exits 1
     /// when a case fails.
     Stress(stress::StressArgs),
-    /// Run one scene in the core and print its outcome, meeting point, switch events (with
-    /// the eq. 21 ratio) and solver statistics. Units: m, s, kg, m/s.
+    /// Run one scene in the core and print its outcome, measured quantities, switch events (with
+    /// the eq. 21 ratio), solver statistics and trajectory checksum. Units: m, s, kg, m/s, degrees.
     Scene(scene_cmd::SceneCmd),
     /// Run a firmware ELF under QEMU, print its decoded defmt output, and exit with the
     /// firmware's status.
@@ -93,7 +93,7 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Run(args) => {
-            print!("{}", run_cmd::run(&args)?);
+            print!("{}", run_cmd::run_cmd(&args)?);
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Report(args) => {
@@ -106,7 +106,7 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             Ok(if all_passed { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
         Cmd::Scene(args) => {
-            print!("{}", scene_cmd::run(&args)?);
+            print!("{}", scene_cmd::run_scene(&args)?);
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Qemu { elf, machine, timeout_s, icount } => {

@@ -2,11 +2,12 @@
 
 use std::path::Path;
 
-use anyhow::anyhow;
+use anyhow::{Context as _, anyhow};
 pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
 
-use crate::trajectory::Trajectory;
+use crate::scenes::SceneKind;
+use crate::trajectory::{Row, Trajectory};
 
 /// At most this many points per plotted series (trajectories are thinned evenly).
 const MAX_POINTS: usize = 3000;
@@ -51,15 +52,36 @@ pub struct Series {
 pub fn lines(
     path: &Path,
     title: &str,
-    (x_desc, y_desc): (&str, &str),
+    axes: (&str, &str),
     series: &[Series],
     log_log: bool,
     legend: &SeriesLabelPosition,
 ) -> anyhow::Result<()> {
+    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    draw_lines(&root, title, axes, series, log_log, legend)
+        .with_context(|| format!("plotting {}", path.display()))?;
+    root.present().map_err(err)
+}
+
+/// Draws a line chart on `area`. Solid series are thick; dashed ones (a second implementation)
+/// thin, dashed, with a marker every few points, and a dashed legend swatch, so that two
+/// implementations on top of each other can be told apart.
+fn draw_lines<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    (x_desc, y_desc): (&str, &str),
+    series: &[Series],
+    log_log: bool,
+    legend: &SeriesLabelPosition,
+) -> anyhow::Result<()>
+where
+    DB::ErrorType: 'static,
+{
     let finite =
         |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!log_log || (p.0 > 0.0 && p.1 > 0.0));
     let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().filter(finite).copied()).collect();
-    anyhow::ensure!(!pts.is_empty(), "plotting {}: no finite points", path.display());
+    anyhow::ensure!(!pts.is_empty(), "no finite points");
     let (mut x0, mut x1, mut y0, mut y1) = pts
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(a, b, c, d), p| {
@@ -71,10 +93,8 @@ pub fn lines(
         let (dx, dy) = ((x1 - x0).max(1e-12) * 0.03, (y1 - y0).max(1e-12) * 0.05);
         (x0, x1, y0, y1) = (x0 - dx, x1 + dx, y0 - dy, y1 + dy);
     }
-    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    let mut builder = ChartBuilder::on(&root);
-    builder.caption(title, ("sans-serif", 20)).margin(12).x_label_area_size(45).y_label_area_size(75);
+    let mut builder = ChartBuilder::on(area);
+    builder.caption(title, ("sans-serif", 18)).margin(12).x_label_area_size(45).y_label_area_size(75);
     macro_rules! draw {
         ($chart:expr) => {{
             let mut chart = $chart;
@@ -93,22 +113,32 @@ pub fn lines(
                 let k = if *dashed { &mut dash } else { &mut solid };
                 let color = PALETTE[*k % PALETTE.len()];
                 *k += 1;
-                let style = if *dashed { color.stroke_width(1) } else { color.stroke_width(2) };
+                let style = if *dashed { color.stroke_width(1) } else { color.stroke_width(3) };
                 let data: Vec<(f64, f64)> = thin(points).filter(|p| finite(&p)).collect();
-                if log_log {
+                if log_log || *dashed {
+                    let every = if log_log { 1 } else { (data.len() / 25).max(1) };
+                    let marks: Vec<(f64, f64)> = data.iter().copied().step_by(every).collect();
+                    let size = if *dashed { 3 } else { 4 };
                     chart
-                        .draw_series(PointSeries::of_element(data.clone(), 4, style.filled(), &|c, s, st| {
-                            Circle::new(c, s, st)
+                        .draw_series(PointSeries::of_element(marks, size, style, &|c, s, st| {
+                            EmptyElement::at(c) + Circle::new((0, 0), s, st)
                         }))
                         .map_err(err)?;
                 }
                 let anno = if *dashed {
-                    chart.draw_series(DashedLineSeries::new(data, 6, 4, style)).map_err(err)?
+                    chart.draw_series(DashedLineSeries::new(data, 7, 5, style)).map_err(err)?
                 } else {
                     chart.draw_series(LineSeries::new(data, style)).map_err(err)?
                 };
-                anno.label(label.as_str())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                let dashed = *dashed;
+                // A dashed swatch with a marker for a dashed series, a thick line otherwise.
+                let (gap, marker, width) = if dashed { (4, 3, 2) } else { (0, 0, 3) };
+                anno.label(label.as_str()).legend(move |(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (10 - gap / 2, 0)], color.stroke_width(width))
+                        + PathElement::new(vec![(10 + gap / 2, 0), (20, 0)], color.stroke_width(width))
+                        + Circle::new((24, 0), marker, color.stroke_width(1))
+                });
             }
             chart
                 .configure_series_labels()
@@ -124,51 +154,64 @@ pub fn lines(
     } else {
         draw!(builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?);
     }
-    root.present().map_err(err)
+    Ok(())
 }
 
-/// The paper's figs. 2, 3 and 5: both fingers and the centre of mass over time, for the core
-/// (solid) and the reference (dashed).
+/// Series of one quantity of every run: solid for the first run, dashed for the others.
+fn per_run(runs: &[&Trajectory], name: &str, value: impl Fn(&Row) -> f64) -> Vec<Series> {
+    runs.iter()
+        .enumerate()
+        .map(|(k, run)| Series {
+            label: format!("{name} ({})", run.implementation),
+            points: run.rows.iter().map(|r| (r.t, value(r))).collect(),
+            dashed: k > 0,
+        })
+        .collect()
+}
+
+/// The paper's figs. 2, 3 and 5: each support's and the centre of mass's `x` over time (for a
+/// scene on fixed lines: the centre of mass's `x` and `y`), core solid, reference dashed.
 ///
 /// # Errors
 /// I/O.
 pub fn positions(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
     let mut series = Vec::new();
-    for (k, run) in runs.iter().enumerate() {
-        let dashed = k > 0;
-        let pick = |f: fn(&crate::trajectory::Row) -> f64| run.rows.iter().map(|r| (r.t, f(r))).collect();
-        series.push(Series {
-            label: format!("finger 1 ({})", run.label),
-            points: pick(|r| r.fingers[0]),
-            dashed,
-        });
-        series.push(Series {
-            label: format!("finger 2 ({})", run.label),
-            points: pick(|r| r.fingers[1]),
-            dashed,
-        });
-        series.push(Series {
-            label: format!("centre of mass ({})", run.label),
-            points: pick(|r| r.q[0]),
-            dashed,
-        });
+    if runs.first().is_some_and(|r| r.scene == SceneKind::MeterStick) {
+        series.extend(per_run(runs, "finger 1", |r| r.supports[0][0]));
+        series.extend(per_run(runs, "finger 2", |r| r.supports[1][0]));
+        series.extend(per_run(runs, "centre of mass", |r| r.q[0]));
+        return lines(path, title, ("t (s)", "x (m)"), &series, false, &SeriesLabelPosition::LowerRight);
     }
-    lines(path, title, ("t (s)", "x (m)"), &series, false, &SeriesLabelPosition::LowerRight)
+    series.extend(per_run(runs, "centre of mass x", |r| r.q[0]));
+    series.extend(per_run(runs, "centre of mass y", |r| r.q[1]));
+    lines(path, title, ("t (s)", "position (m)"), &series, false, &SeriesLabelPosition::LowerLeft)
 }
 
-/// Finger positions relative to the centre of mass, along the rod, over time.
+/// The body's angle and its centre of mass's height over time, in two panels (so that a fall,
+/// a tip or a slide shows even where the `x` plot looks calm).
+///
+/// # Errors
+/// I/O.
+pub fn motion(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
+    let root = SVGBackend::new(path, (900, 760)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let (top, bottom) = root.split_vertically(380);
+    let angle = per_run(runs, "angle", |r| r.q[2].to_degrees());
+    draw_lines(&top, title, ("t (s)", "angle (deg)"), &angle, false, &SeriesLabelPosition::UpperLeft)
+        .with_context(|| format!("plotting {}", path.display()))?;
+    let height = per_run(runs, "centre of mass height", |r| r.q[1]);
+    draw_lines(&bottom, "", ("t (s)", "height y (m)"), &height, false, &SeriesLabelPosition::LowerLeft)
+        .with_context(|| format!("plotting {}", path.display()))?;
+    root.present().map_err(err)
+}
+
+/// Finger positions relative to the centre of mass, along the rod, over time (meter stick).
 ///
 /// # Errors
 /// I/O.
 pub fn relative(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
-    let mut series = Vec::new();
-    for (k, run) in runs.iter().enumerate() {
-        let dashed = k > 0;
-        for i in 0..2 {
-            let points = run.rows.iter().map(|r| (r.t, r.along[i])).collect();
-            series.push(Series { label: format!("finger {} - COM ({})", i + 1, run.label), points, dashed });
-        }
-    }
+    let mut series = per_run(runs, "finger 1 - COM", |r| r.contacts[0].along);
+    series.extend(per_run(runs, "finger 2 - COM", |r| r.contacts[1].along));
     lines(
         path,
         title,
@@ -191,13 +234,17 @@ pub fn outcome_map(
     cells: &[Vec<&str>],
 ) -> anyhow::Result<()> {
     let color = |c: &str| match c {
-        "Balanced" => RGBColor(44, 160, 44),
-        "Fell" => RGBColor(214, 39, 40),
+        "Balanced" | "Held" => RGBColor(44, 160, 44),
+        "Fell" | "Tipped" => RGBColor(214, 39, 40),
+        "Slid" => RGBColor(255, 127, 14),
         "Unfinished" => RGBColor(200, 200, 200),
         _ => RGBColor(0, 0, 0),
     };
     let colors: Vec<Vec<RGBColor>> = cells.iter().map(|row| row.iter().map(|c| color(c)).collect()).collect();
-    let legend = ["Balanced", "Fell", "Unfinished", "Failed"].map(|n| (n.to_string(), color(n)));
+    let mut present: Vec<&str> = cells.iter().flatten().copied().collect();
+    present.sort_unstable();
+    present.dedup();
+    let legend: Vec<(String, RGBColor)> = present.iter().map(|n| ((*n).to_string(), color(n))).collect();
     heat_map(path, title, x, y, &colors, &legend, (900, 560))
 }
 

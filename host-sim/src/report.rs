@@ -24,16 +24,14 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context as _;
-use meterstick_core::scene::SceneParams;
+use meterstick_core::scene::MeterStickParams;
 use rayon::prelude::*;
 use serde_json::json;
 
-use crate::lcp_io::Precision;
 use crate::plot;
-use crate::reference::Reference;
 use crate::run_cmd::{progress, write_json};
-use crate::scene_cmd::run_configured;
-use crate::trajectory::{Record, Trajectory, switches};
+use crate::scenes::{Implementation, SceneSpec};
+use crate::trajectory::{OutcomeClass, Record, Trajectory, run as run_scene, switches};
 
 /// `host-sim report` options.
 #[derive(Debug, Clone, clap::Args)]
@@ -58,52 +56,18 @@ pub struct ReportArgs {
     pub bench_figures: PathBuf,
 }
 
-/// An implementation of the scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Config {
-    /// Core, f32, 6x6 (the firmware's).
-    CoreF32x6,
-    /// Core, f32, 8x8.
-    CoreF32x8,
-    /// Core, f64, 8x8.
-    CoreF64x8,
-    /// The f64 reference (8x8 by enumeration).
-    Reference,
-}
+/// The implementations the report compares.
+pub const CONFIGS: [Implementation; 4] = [
+    Implementation::CORE_F32_6,
+    Implementation::CORE_F32_8,
+    Implementation::CORE_F64_8,
+    Implementation::Reference,
+];
 
-impl Config {
-    /// All four.
-    pub const ALL: [Self; 4] = [Self::CoreF32x6, Self::CoreF32x8, Self::CoreF64x8, Self::Reference];
-
-    /// A label.
-    #[must_use]
-    pub const fn label(self) -> &'static str {
-        match self {
-            Self::CoreF32x6 => "core f32 6x6",
-            Self::CoreF32x8 => "core f32 8x8",
-            Self::CoreF64x8 => "core f64 8x8",
-            Self::Reference => "reference f64 8x8",
-        }
-    }
-
-    /// Runs the scene.
-    ///
-    /// # Errors
-    /// Invalid parameters.
-    pub fn run(self, p: &SceneParams<f64>, record: Record) -> anyhow::Result<Trajectory> {
-        match self {
-            Self::CoreF32x6 => run_configured(Precision::F32, 6, p, record),
-            Self::CoreF32x8 => run_configured(Precision::F32, 8, p, record),
-            Self::CoreF64x8 => run_configured(Precision::F64, 8, p, record),
-            Self::Reference => Ok(Reference::new(*p)?.run(record)),
-        }
-    }
-}
-
-/// The sweep's scene with step `h`.
+/// The sweep's scene with step `h`: the paper's, finger 1 from -0.35 m.
 #[must_use]
-pub fn sweep_scene(h: f64) -> SceneParams<f64> {
-    SceneParams { finger1_x: -0.35, step: h, ..SceneParams::paper() }
+pub fn sweep_scene(h: f64) -> SceneSpec {
+    SceneSpec::MeterStick(MeterStickParams { finger1_x: -0.35, step: h, ..MeterStickParams::paper() })
 }
 
 const GRID_DT: f64 = 0.01;
@@ -134,8 +98,8 @@ pub fn errors(run: &Trajectory, converged: &Trajectory, horizon: f64) -> Errors 
     if !covered {
         com_m = f64::NAN; // the run ended (fell) before the horizon
     }
-    let meeting_m = match (run.meeting, converged.meeting) {
-        (Some(a), Some(b)) => (a.1 - b.1).abs(),
+    let meeting_m = match (run.measured.meeting, converged.measured.meeting) {
+        (Some(a), Some(b)) => (a.com_offset_m - b.com_offset_m).abs(),
         _ => f64::NAN,
     };
     let (sa, sb) = (switches(run), switches(converged));
@@ -151,14 +115,14 @@ pub fn errors(run: &Trajectory, converged: &Trajectory, horizon: f64) -> Errors 
 /// One row of the error-vs-run-time table.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct SweepRow {
-    /// Configuration label.
-    pub config: &'static str,
+    /// Implementation.
+    pub config: Implementation,
     /// Step (s).
     pub h: f64,
     /// Steps of the whole run.
     pub steps: u64,
     /// Outcome class.
-    pub outcome: &'static str,
+    pub outcome: OutcomeClass,
     /// Errors against the converged reference.
     pub errors: Errors,
     /// Median host ns per step.
@@ -177,11 +141,11 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn time_run(config: Config, p: &SceneParams<f64>) -> anyhow::Result<(f64, usize)> {
+fn time_run(config: Implementation, p: &SceneSpec) -> anyhow::Result<(f64, usize)> {
     let mut samples = Vec::new();
     loop {
         let start = Instant::now();
-        let t = config.run(p, Record::Nothing)?;
+        let t = run_scene(p, config, Record::Nothing)?;
         let s = start.elapsed().as_secs_f64();
         samples.push(1e9 * s / t.steps.max(1) as f64);
         if samples.len() >= 5 || s > 1.0 || (s > 0.3 && samples.len() >= 3) {
@@ -290,9 +254,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     let h_conv = h_min / 4.0;
 
     // 1. Error runs (parallel), converged reference first in the queue (the longest job).
-    let mut jobs: Vec<(Option<Config>, f64)> = vec![(None, h_conv)];
+    let mut jobs: Vec<(Option<Implementation>, f64)> = vec![(None, h_conv)];
     for &h in hs.iter().rev() {
-        for c in Config::ALL {
+        for c in CONFIGS {
             jobs.push((Some(c), h));
         }
     }
@@ -300,7 +264,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     let runs: Vec<anyhow::Result<Trajectory>> = jobs
         .par_iter()
         .map(|&(c, h)| {
-            let r = c.unwrap_or(Config::Reference).run(&sweep_scene(h), Record::Grid(GRID_DT));
+            let r = run_scene(&sweep_scene(h), c.unwrap_or(Implementation::Reference), Record::Grid(GRID_DT));
             bar.inc(1);
             r
         })
@@ -314,18 +278,18 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     let bar = progress(jobs.len() as u64, "timing runs");
     let mut rows = Vec::new();
     for ((c, h), run) in jobs.iter().zip(&runs) {
-        let config = c.unwrap_or(Config::Reference);
+        let config = c.unwrap_or(Implementation::Reference);
         let (ns, repeats) = time_run(config, &sweep_scene(*h))?;
         bar.inc(1);
         rows.push(SweepRow {
-            config: config.label(),
+            config,
             h: *h,
             steps: run.steps,
-            outcome: run.outcome.class(),
+            outcome: run.outcome.class,
             errors: errors(run, &converged, args.horizon),
             ns_per_step: ns,
             ms_per_sim_second: ns / h * 1e-6,
-            pivots_per_step: (config != Config::Reference)
+            pivots_per_step: (config != Implementation::Reference)
                 .then(|| run.counters.pivots as f64 / run.steps.max(1) as f64),
             repeats,
         });
@@ -341,28 +305,28 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
             vec![0.2, 0.4, 0.6, 2.0 / 3.0, 0.8, 1.0],
         )
     };
-    let map_configs = [Config::CoreF32x6, Config::CoreF64x8, Config::Reference];
-    let cells: Vec<(usize, usize, Config)> = (0..ratios.len())
+    let map_configs = [Implementation::CORE_F32_6, Implementation::CORE_F64_8, Implementation::Reference];
+    let cells: Vec<(usize, usize, Implementation)> = (0..ratios.len())
         .flat_map(|j| (0..speeds.len()).flat_map(move |i| map_configs.map(|c| (i, j, c))))
         .collect();
     let bar = progress(cells.len() as u64, "success map");
     let outcomes: Vec<anyhow::Result<&'static str>> = cells
         .par_iter()
         .map(|&(i, j, c)| {
-            let p = SceneParams {
-                finger_speed: speeds[i],
+            let p = SceneSpec::MeterStick(MeterStickParams {
+                finger1_velocity: speeds[i],
                 mu_kinetic: 0.6 * ratios[j],
                 mu_static: 0.6,
-                ..SceneParams::paper()
-            };
-            let r = c.run(&p, Record::Nothing).map(|t| t.outcome.class());
+                ..MeterStickParams::paper()
+            });
+            let r = run_scene(&p, c, Record::Nothing).map(|t| t.outcome.class.name());
             bar.inc(1);
             r
         })
         .collect();
     bar.finish_and_clear();
     let outcomes = outcomes.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
-    let outcome_of = |i: usize, j: usize, c: Config| {
+    let outcome_of = |i: usize, j: usize, c: Implementation| {
         cells
             .iter()
             .zip(&outcomes)
@@ -394,10 +358,10 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     std::fs::write(out.join("error_vs_runtime.csv"), csv)?;
     let mut series = Vec::new();
     let mut fits = Vec::new();
-    for c in Config::ALL {
-        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.config == c.label()).collect();
+    for c in CONFIGS {
+        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.config == c).collect();
         let points = mine.iter().map(|r| (r.ms_per_sim_second, r.errors.com_m)).collect();
-        series.push(plot::Series { label: c.label().to_string(), points, dashed: false });
+        series.push(plot::Series { label: c.to_string(), points, dashed: false });
         fits.push((c, order_fit(&mine), mine.iter().map(|r| r.ns_per_step).fold(f64::NAN, f64::min)));
     }
     plot::lines(
@@ -408,12 +372,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
         true,
         &plot::SeriesLabelPosition::UpperRight,
     )?;
-    let conv_series: Vec<plot::Series> = Config::ALL
+    let conv_series: Vec<plot::Series> = CONFIGS
         .iter()
         .map(|c| {
-            let points =
-                rows.iter().filter(|r| r.config == c.label()).map(|r| (r.h, r.errors.com_m)).collect();
-            plot::Series { label: c.label().to_string(), points, dashed: false }
+            let points = rows.iter().filter(|r| r.config == *c).map(|r| (r.h, r.errors.com_m)).collect();
+            plot::Series { label: c.to_string(), points, dashed: false }
         })
         .collect();
     plot::lines(
@@ -427,7 +390,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     let speed_labels: Vec<String> = speeds.iter().map(|v| format!("{v}")).collect();
     let ratio_labels: Vec<String> = ratios.iter().map(|r| format!("{r:.2}")).collect();
     let grid: Vec<Vec<&str>> = (0..ratios.len())
-        .map(|j| (0..speeds.len()).map(|i| outcome_of(i, j, Config::CoreF32x6)).collect())
+        .map(|j| (0..speeds.len()).map(|i| outcome_of(i, j, Implementation::CORE_F32_6)).collect())
         .collect();
     plot::outcome_map(
         &out.join("success_map.svg"),
@@ -486,7 +449,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     md += "\n(also in `error_vs_runtime.csv`; NaN/n/a: the quantity does not exist for that run, e.g. no switch to compare).\n\n";
     md += "### What the pictures show\n\n";
     for (c, (order, _, floor, h_floor), _) in &fits {
-        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.config == c.label()).collect();
+        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.config == *c).collect();
         let at_min = mine.iter().find(|r| r.h <= h_min * 1.0001).map_or(f64::NAN, |r| r.errors.com_m);
         let order_text = order.map_or_else(
             || "no order could be fitted".to_string(),
@@ -498,14 +461,14 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
                  below that h the error grows again, to {} m at h = {h_min:e} s, while the run time per simulated \
                  second keeps rising: f32 round-off (about 6e-8 m per position update, accumulated over 1/h \
                  steps, plus stick/slip decisions that flip on round-off) overtakes the discretisation error.\n",
-                c.label(),
+                c,
                 sci(*floor),
                 sci(at_min)
             );
         } else {
             md += &format!(
                 "- {}: {order_text} all the way to the smallest h swept ({h_min:e} s, error {} m): no floor in range.\n",
-                c.label(),
+                c,
                 sci(*floor)
             );
         }
@@ -544,7 +507,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     for (i, v) in speeds.iter().enumerate() {
         md += &format!("| {v} |");
         for j in 0..ratios.len() {
-            md += &format!(" {} |", outcome_of(i, j, Config::CoreF32x6));
+            md += &format!(" {} |", outcome_of(i, j, Implementation::CORE_F32_6));
         }
         md += "\n";
     }
@@ -553,7 +516,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     for (c, (order, _, floor, h_floor), ns) in &fits {
         text += &format!(
             "{:<18} order {:>5}  best COM error {} m at h = {h_floor:e} s  {:>7.0} ns/step\n",
-            c.label(),
+            c.to_string(),
             order.map_or_else(|| "n/a".into(), |o| format!("{o:.2}")),
             sci(*floor),
             ns

@@ -1,7 +1,8 @@
 //! One run of a scene as the host records it, whichever implementation produced it: the
-//! trajectory (one [`Row`] per step), the switch events, the outcome and counters. The core
-//! ([`run_core`]) and the f64 reference ([`crate::reference`]) both fill a [`Trajectory`], so
-//! everything downstream (CSV, plots, comparison, eq. 21 ratios) has one implementation.
+//! trajectory (one [`Row`] per step), the switch events, the outcome, the scene's measured
+//! quantities and counters. The core ([`run`] with [`Implementation::Core`]) and the independent
+//! reference ([`Implementation::Reference`]) both fill a [`Trajectory`], so everything downstream
+//! (CSV, plots, comparison, eq. 21 ratios) has one implementation.
 
 use std::fmt;
 use std::io::Write;
@@ -9,8 +10,29 @@ use std::path::Path;
 
 use anyhow::Context as _;
 use meterstick_core::Real;
-use meterstick_core::scene::{ContactMode, Outcome, RunStats, Scene, SceneParams};
+use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
+use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, Scene};
 use serde::Serialize;
+
+use crate::lcp_io::Precision;
+use crate::reference;
+use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec};
+
+/// Every scene `host-sim` runs has two contacts.
+pub const CONTACTS: usize = 2;
+
+/// One contact after a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRow {
+    /// Mode after the step.
+    pub mode: ContactMode,
+    /// Normal impulse (N s).
+    pub normal_impulse: f64,
+    /// Net friction impulse along the contact's `+d` (N s).
+    pub friction_impulse: f64,
+    /// The contact's coordinate along its tangent at the step's start (m).
+    pub along: f64,
+}
 
 /// The state after one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -19,65 +41,93 @@ pub struct Row {
     pub t: f64,
     /// Centre of mass `x`, `y` (m) and angle `theta` (rad).
     pub q: [f64; 3],
-    /// Finger tip `x` positions (m).
-    pub fingers: [f64; 2],
-    /// Each finger's signed distance from the centre of mass along the rod, at the start of
-    /// the step (m).
-    pub along: [f64; 2],
-    /// Each finger's mode after the step.
-    pub modes: [ContactMode; 2],
-    /// Normal impulses (N s).
-    pub normal_impulse: [f64; 2],
-    /// Net friction impulses along the rod's `+x` (N s).
-    pub friction_impulse: [f64; 2],
+    /// `vx`, `vy` (m/s), `omega` (rad/s).
+    pub v: [f64; 3],
+    /// Where each support touches: a finger tip, or the foot of the body's contact point on a
+    /// support line (m).
+    pub supports: [[f64; 2]; CONTACTS],
+    /// Each contact.
+    pub contacts: [ContactRow; CONTACTS],
 }
 
-/// A change of one finger's mode.
+/// A change of one contact's mode.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Event {
-    /// Time at the end of the step where the new mode was found (s).
+    /// Time at the end of the step after which the new mode was found (s).
     pub t: f64,
-    /// 0 (moving finger) or 1 (fixed finger).
-    pub finger: usize,
+    /// The contact, 0-based.
+    pub contact: usize,
     /// The new mode.
     pub mode: ContactMode,
-    /// Both fingers' signed distances from the centre of mass along the rod (m).
-    pub along: [f64; 2],
-    /// Both fingers' world `x` positions at the end of that step (m).
-    pub fingers: [f64; 2],
+    /// Every contact's coordinate along it at that step's start (m).
+    pub along: [f64; CONTACTS],
+    /// Where the supports touch at the end of that step (m).
+    pub supports: [[f64; 2]; CONTACTS],
 }
 
-/// How a run ended, for any implementation.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum RunOutcome {
+/// How a run ended, by class.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum OutcomeClass {
     /// See [`Outcome::Balanced`].
     Balanced,
     /// See [`Outcome::Fell`].
     Fell,
-    /// `max_time` passed.
+    /// See [`Outcome::Held`].
+    Held,
+    /// See [`Outcome::Slid`].
+    Slid,
+    /// See [`Outcome::Tipped`].
+    Tipped,
+    /// The time limit passed.
     Unfinished,
-    /// The implementation could not continue (solver error, non-finite state): why.
-    Failed(String),
+    /// The implementation could not continue (a solver error, a non-finite state).
+    Failed,
 }
 
-impl RunOutcome {
-    /// `Balanced`, `Fell`, `Unfinished` or `Failed`.
+impl OutcomeClass {
+    /// The class's name, as in CSV files.
     #[must_use]
-    pub fn class(&self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Self::Balanced => "Balanced",
             Self::Fell => "Fell",
+            Self::Held => "Held",
+            Self::Slid => "Slid",
+            Self::Tipped => "Tipped",
             Self::Unfinished => "Unfinished",
-            Self::Failed(_) => "Failed",
+            Self::Failed => "Failed",
         }
+    }
+}
+
+impl fmt::Display for OutcomeClass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How a run ended: its class, and for a failure why.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct RunOutcome {
+    /// The class.
+    pub class: OutcomeClass,
+    /// Why it failed (`None` unless [`OutcomeClass::Failed`]).
+    pub detail: Option<String>,
+}
+
+impl RunOutcome {
+    /// A physical outcome.
+    #[must_use]
+    pub const fn of(class: OutcomeClass) -> Self {
+        Self { class, detail: None }
     }
 }
 
 impl fmt::Display for RunOutcome {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Failed(why) => write!(f, "Failed({why})"),
-            other => f.write_str(other.class()),
+        match &self.detail {
+            Some(why) => write!(f, "{} ({why})", self.class),
+            None => write!(f, "{}", self.class),
         }
     }
 }
@@ -85,14 +135,38 @@ impl fmt::Display for RunOutcome {
 impl From<Outcome> for RunOutcome {
     fn from(o: Outcome) -> Self {
         match o {
-            Outcome::Balanced => Self::Balanced,
-            Outcome::Fell => Self::Fell,
-            Outcome::Unfinished => Self::Unfinished,
-            Outcome::NonFinite => Self::Failed("non-finite state".into()),
-            Outcome::SolverFailed(e) => Self::Failed(format!("solver: {e}")),
-            Outcome::ReducedModelLeftRange => Self::Failed("the 6x6 model left its range".into()),
+            Outcome::Balanced => Self::of(OutcomeClass::Balanced),
+            Outcome::Fell => Self::of(OutcomeClass::Fell),
+            Outcome::Held => Self::of(OutcomeClass::Held),
+            Outcome::Slid => Self::of(OutcomeClass::Slid),
+            Outcome::Tipped => Self::of(OutcomeClass::Tipped),
+            Outcome::Failed(e) => Self { class: OutcomeClass::Failed, detail: Some(e.to_string()) },
+            // `Outcome` is non-exhaustive: anything new is reported as unfinished.
+            _ => Self::of(OutcomeClass::Unfinished),
         }
     }
+}
+
+/// The meter stick's meeting.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Meeting {
+    /// When the fingers stopped (s).
+    pub time_s: f64,
+    /// Centre of mass from the fingers' midpoint, along the rod (m).
+    pub com_offset_m: f64,
+}
+
+/// The scene's measured quantities (`docs/scenes.md`, "Measured").
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Measured {
+    /// Meter stick: the meeting.
+    pub meeting: Option<Meeting>,
+    /// Incline: the acceleration down the slope while sliding (m/s^2).
+    pub acceleration_m_s2: Option<f64>,
+    /// Ladder: height of the top when it left the wall (m).
+    pub wall_release_height_m: Option<f64>,
+    /// Ladder: that height over the top's initial height (2/3 when frictionless).
+    pub wall_release_ratio: Option<f64>,
 }
 
 /// Solver counters of a run (zero where an implementation has no such thing).
@@ -104,11 +178,13 @@ pub struct SolverCounters {
     pub max_pivots: u32,
     /// Steps answered by the warm-start basis (core).
     pub warm_starts: u64,
-    /// 6x6 check firings, and those before the fingers met (core, 6x6).
+    /// Steps of a reduced layout that needed the full one (core, 6x6).
     pub reduced_check_fired: u64,
-    /// See [`RunStats::reduced_check_fired_before_meeting`].
+    /// Of those, steps before the fingers met (meter stick).
     pub reduced_check_fired_before_meeting: u64,
-    /// Steps whose LCP had solutions with different rod velocities (reference).
+    /// Solves answered by the solver's regularised retry (core).
+    pub regularized_solves: u64,
+    /// Steps whose LCP had solutions with different motions (reference).
     pub ambiguous_steps: u64,
 }
 
@@ -119,8 +195,8 @@ impl From<&RunStats> for SolverCounters {
             max_pivots: s.max_pivots,
             warm_starts: s.warm_starts,
             reduced_check_fired: s.reduced_check_fired,
-            reduced_check_fired_before_meeting: s.reduced_check_fired_before_meeting,
-            ambiguous_steps: 0,
+            regularized_solves: s.regularized_solves,
+            ..Self::default()
         }
     }
 }
@@ -128,24 +204,29 @@ impl From<&RunStats> for SolverCounters {
 /// One run, recorded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
-    /// Which implementation: e.g. `core f32 6x6`, `reference f64 8x8`.
-    pub label: String,
+    /// Who computed it.
+    pub implementation: Implementation,
+    /// Which scene.
+    pub scene: SceneKind,
     /// Steps taken.
     pub steps: u64,
     /// Simulated time at the end (s).
     pub end_time: f64,
     /// The recorded rows ([`Record`]).
     pub rows: Vec<Row>,
-    /// Both fingers' modes before the first step.
-    pub initial_modes: [ContactMode; 2],
+    /// The contacts' modes before the first step.
+    pub initial_modes: [ContactMode; CONTACTS],
     /// Switch events in order.
     pub events: Vec<Event>,
     /// How it ended.
     pub outcome: RunOutcome,
-    /// `(time, COM offset from the fingers' midpoint)` when the fingers met.
-    pub meeting: Option<(f64, f64)>,
+    /// The scene's measured quantities.
+    pub measured: Measured,
     /// Solver counters.
     pub counters: SolverCounters,
+    /// The core's trajectory checksum ([`meterstick_core::planar::Checksum`]: FNV-1a over the
+    /// state's bits after every step, as the firmware and the browser page compute it).
+    pub checksum: Option<u32>,
 }
 
 /// Which rows a run keeps.
@@ -206,91 +287,244 @@ impl Recorder {
     }
 }
 
-/// The events buffer of the core runs made here (the summary reports any overflow).
-pub const CORE_EVENTS: usize = 1024;
+/// Runs `spec` in `implementation` to its outcome and records it.
+///
+/// # Errors
+/// Invalid parameters.
+pub fn run(spec: &SceneSpec, implementation: Implementation, record: Record) -> anyhow::Result<Trajectory> {
+    match implementation {
+        Implementation::Reference => run_reference(spec, record),
+        Implementation::Core(Precision::F32, LcpSize::Reduced) => run_core::<f32, 6>(spec, record),
+        Implementation::Core(Precision::F32, LcpSize::Full) => run_core::<f32, 8>(spec, record),
+        Implementation::Core(Precision::F64, LcpSize::Reduced) => run_core::<f64, 6>(spec, record),
+        Implementation::Core(Precision::F64, LcpSize::Full) => run_core::<f64, 8>(spec, record),
+    }
+}
+
+fn invalid(e: meterstick_core::ParamError) -> anyhow::Error {
+    anyhow::anyhow!("invalid scene: {e}")
+}
 
 /// Runs the core scene (scalar `T`, LCP size `N`) to its outcome and records it.
 ///
 /// # Errors
 /// Invalid parameters.
-pub fn run_core<T: Real, const N: usize>(
-    params: &SceneParams<f64>,
-    record: Record,
-) -> anyhow::Result<Trajectory> {
-    let p = convert(params);
-    let mut scene = Scene::<T, N, CORE_EVENTS>::new(p).map_err(|e| anyhow::anyhow!("invalid scene: {e}"))?;
+pub fn run_core<T: Real, const N: usize>(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory> {
+    let implementation =
+        Implementation::Core(if T::NAME == "f32" { Precision::F32 } else { Precision::F64 }, size_of(N));
+    Ok(match *spec {
+        SceneSpec::MeterStick(p) => {
+            let mut s = MeterStick::<T, N, 0>::new(p.cast()).map_err(invalid)?;
+            let mut t = drive(&mut s, implementation, SceneKind::MeterStick, record);
+            t.measured.meeting =
+                s.meeting().map(|m| Meeting { time_s: m.time.as_f64(), com_offset_m: m.com_offset.as_f64() });
+            t.counters.reduced_check_fired_before_meeting = s.reduced_check_fired_before_meeting();
+            t
+        }
+        SceneSpec::Incline(p) => {
+            let mut s = Incline::<T, N, 0>::new(p.cast()).map_err(invalid)?;
+            let mut t = drive(&mut s, implementation, SceneKind::Incline, record);
+            t.measured.acceleration_m_s2 = s.acceleration().map(Real::as_f64);
+            t
+        }
+        SceneSpec::Ladder(p) => {
+            let mut s = Ladder::<T, N, 0>::new(p.cast()).map_err(invalid)?;
+            let mut t = drive(&mut s, implementation, SceneKind::Ladder, record);
+            let height = s.wall_release_height().map(Real::as_f64);
+            t.measured.wall_release_height_m = height;
+            t.measured.wall_release_ratio = height.map(|h| h / s.start_top_height().as_f64());
+            t
+        }
+    })
+}
+
+fn size_of(n: usize) -> LcpSize {
+    if n == 6 { LcpSize::Reduced } else { LcpSize::Full }
+}
+
+/// Where each support touches the body: the contact point `com + r` moved back by the gap along
+/// the normal (a finger's tip; the foot of a corner on a line).
+fn touch_points<T: Real, S: Scene<T, CONTACTS>>(scene: &S) -> [[f64; 2]; CONTACTS] {
     let s = scene.state();
-    let f = scene.fingers();
+    let mut out = [[0.0; 2]; CONTACTS];
+    for (o, f) in out.iter_mut().zip(scene.frames()) {
+        let (r, n, gap) = (f.r.map(Real::as_f64), f.normal().map(Real::as_f64), f.gap.as_f64());
+        *o = [s.x.as_f64() + r[0] - gap * n[0], s.y.as_f64() + r[1] - gap * n[1]];
+    }
+    out
+}
+
+/// Steps `scene` to its outcome, recording rows and events.
+fn drive<T: Real, S: Scene<T, CONTACTS>>(
+    scene: &mut S,
+    implementation: Implementation,
+    kind: SceneKind,
+    record: Record,
+) -> Trajectory {
     let initial_modes = scene.modes();
     let mut rows = Recorder::new(record);
-    rows.push(Row {
+    let s = *scene.state();
+    let contact0 =
+        ContactRow { mode: ContactMode::Separated, normal_impulse: 0.0, friction_impulse: 0.0, along: 0.0 };
+    let mut first = Row {
         t: 0.0,
-        q: [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()],
-        fingers: [f[0].as_f64(), f[1].as_f64()],
-        along: [f[0].as_f64() - s.x.as_f64(), f[1].as_f64() - s.x.as_f64()],
-        modes: scene.modes(),
-        normal_impulse: [0.0; 2],
-        friction_impulse: [0.0; 2],
-    });
-    let mut events = Vec::new();
-    while let Some(r) = scene.step() {
-        let fingers = [r.fingers[0].as_f64(), r.fingers[1].as_f64()];
-        for e in &scene.events()[events.len()..] {
-            events.push(Event {
-                t: e.time.as_f64(),
-                finger: usize::from(e.finger),
-                mode: e.mode,
-                along: [e.along[0].as_f64(), e.along[1].as_f64()],
-                fingers,
-            });
-        }
-        if r.error.is_some() {
-            break;
-        }
-        rows.push(Row {
-            t: r.time.as_f64(),
-            q: [r.state.x.as_f64(), r.state.y.as_f64(), r.state.theta.as_f64()],
-            fingers,
-            along: [r.along[0].as_f64(), r.along[1].as_f64()],
-            modes: r.modes,
-            normal_impulse: [r.normal_impulse[0].as_f64(), r.normal_impulse[1].as_f64()],
-            friction_impulse: [r.friction_impulse[0].as_f64(), r.friction_impulse[1].as_f64()],
-        });
+        q: [s.x, s.y, s.theta].map(Real::as_f64),
+        v: s.velocity().map(Real::as_f64),
+        supports: touch_points(scene),
+        contacts: [contact0; CONTACTS],
+    };
+    for (c, m) in first.contacts.iter_mut().zip(initial_modes) {
+        c.mode = m;
     }
-    Ok(Trajectory {
-        label: format!("core {} {N}x{N}", T::NAME),
+    rows.push(first);
+    let mut events = Vec::new();
+    let mut checksum = Checksum::new();
+    while let Some(r) = scene.step() {
+        checksum.add(&r.state);
+        let supports = touch_points(scene);
+        let row = row_of(&r, supports);
+        for (i, mode) in r.switches() {
+            events.push(Event { t: row.t, contact: i, mode, along: row.contacts.map(|c| c.along), supports });
+        }
+        rows.push(row);
+    }
+    let mut counters = SolverCounters::from(scene.stats());
+    counters.reduced_check_fired_before_meeting = 0;
+    Trajectory {
+        implementation,
+        scene: kind,
         steps: scene.stats().steps,
         end_time: scene.time().as_f64(),
         rows: rows.finish(),
         initial_modes,
         events,
         outcome: scene.outcome().unwrap_or(Outcome::Unfinished).into(),
-        meeting: scene.meeting().map(|m| (m.time.as_f64(), m.com_offset.as_f64())),
-        counters: scene.stats().into(),
-    })
+        measured: Measured::default(),
+        counters,
+        checksum: Some(checksum.value()),
+    }
 }
 
-/// The parameters in scalar `T`.
-#[must_use]
-pub fn convert<T: Real>(p: &SceneParams<f64>) -> SceneParams<T> {
-    SceneParams {
-        rod_length: T::of(p.rod_length),
-        rod_thickness: T::of(p.rod_thickness),
-        rod_mass: T::of(p.rod_mass),
-        gravity: T::of(p.gravity),
-        finger1_x: T::of(p.finger1_x),
-        finger2_x: T::of(p.finger2_x),
-        finger_width: T::of(p.finger_width),
-        finger_speed: T::of(p.finger_speed),
-        mu_static: T::of(p.mu_static),
-        mu_kinetic: T::of(p.mu_kinetic),
-        step: T::of(p.step),
-        stick_speed: T::of(p.stick_speed),
-        tilt_limit: T::of(p.tilt_limit),
-        drop_limit: T::of(p.drop_limit),
-        hold_time: T::of(p.hold_time),
-        max_time: T::of(p.max_time),
+fn row_of<T: Real>(r: &StepReport<T, CONTACTS>, supports: [[f64; 2]; CONTACTS]) -> Row {
+    let s = &r.state;
+    Row {
+        t: r.time.as_f64(),
+        q: [s.x, s.y, s.theta].map(Real::as_f64),
+        v: s.velocity().map(Real::as_f64),
+        supports,
+        contacts: r.contacts.map(|c| ContactRow {
+            mode: c.mode,
+            normal_impulse: c.normal_impulse.as_f64(),
+            friction_impulse: c.friction_impulse.as_f64(),
+            along: c.along.as_f64(),
+        }),
     }
+}
+
+/// The reference's mode as the core names it (data only).
+fn mode_of(m: reference::Mode) -> ContactMode {
+    match m {
+        reference::Mode::Separated => ContactMode::Separated,
+        reference::Mode::Sticking => ContactMode::Sticking,
+        reference::Mode::SlidingPositive => ContactMode::Sliding(Direction::Plus),
+        reference::Mode::SlidingNegative => ContactMode::Sliding(Direction::Minus),
+    }
+}
+
+fn pair<T: Copy + Default>(v: &[T]) -> [T; CONTACTS] {
+    [v.first().copied().unwrap_or_default(), v.get(1).copied().unwrap_or_default()]
+}
+
+/// Runs the independent reference and records it as a [`Trajectory`].
+///
+/// # Errors
+/// Invalid parameters (the reference's own checks).
+pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory> {
+    let sample = match record {
+        Record::All => reference::Sample::All,
+        Record::Nothing => reference::Sample::None,
+        // Keep every n-th step when n h = dt exactly, else every step (the grid interpolates).
+        Record::Grid(dt) => {
+            let n = (dt / spec.step()).round();
+            if n >= 1.0 && (n * spec.step() - dt).abs() <= 1e-9 * dt {
+                reference::Sample::Every(n as u64)
+            } else {
+                reference::Sample::All
+            }
+        }
+    };
+    let run =
+        reference::run(&spec.to_reference(), sample).map_err(|e| anyhow::anyhow!("invalid scene: {e}"))?;
+    let mut rows = Recorder::new(record);
+    for r in &run.rows {
+        let contact = |c: &reference::Contact| ContactRow {
+            mode: mode_of(c.mode),
+            normal_impulse: c.normal_impulse,
+            friction_impulse: c.friction_impulse,
+            along: c.along,
+        };
+        let contacts: Vec<ContactRow> = r.contacts.iter().map(contact).collect();
+        let c0 = ContactRow {
+            mode: ContactMode::Separated,
+            normal_impulse: 0.0,
+            friction_impulse: 0.0,
+            along: 0.0,
+        };
+        rows.push(Row {
+            t: r.t,
+            q: r.q,
+            v: r.v,
+            supports: pair(&r.supports),
+            contacts: [contacts.first().copied().unwrap_or(c0), contacts.get(1).copied().unwrap_or(c0)],
+        });
+    }
+    let events = run
+        .events
+        .iter()
+        .map(|e| Event {
+            t: e.t,
+            contact: e.contact,
+            mode: mode_of(e.mode),
+            along: pair(&e.along),
+            supports: [[f64::NAN; 2]; CONTACTS],
+        })
+        .collect();
+    let outcome = match &run.outcome {
+        reference::Outcome::Balanced => RunOutcome::of(OutcomeClass::Balanced),
+        reference::Outcome::Fell => RunOutcome::of(OutcomeClass::Fell),
+        reference::Outcome::Held => RunOutcome::of(OutcomeClass::Held),
+        reference::Outcome::Slid => RunOutcome::of(OutcomeClass::Slid),
+        reference::Outcome::Tipped => RunOutcome::of(OutcomeClass::Tipped),
+        reference::Outcome::Unfinished => RunOutcome::of(OutcomeClass::Unfinished),
+        reference::Outcome::Failed(why) => {
+            RunOutcome { class: OutcomeClass::Failed, detail: Some(why.clone()) }
+        }
+    };
+    let start_top = match spec {
+        SceneSpec::Ladder(p) => p.length * p.angle.sin(),
+        _ => f64::NAN,
+    };
+    Ok(Trajectory {
+        implementation: Implementation::Reference,
+        scene: spec.kind(),
+        steps: run.steps,
+        end_time: run.end_time,
+        rows: rows.finish(),
+        initial_modes: [
+            run.initial_modes.first().map_or(ContactMode::Separated, |m| mode_of(*m)),
+            run.initial_modes.get(1).map_or(ContactMode::Separated, |m| mode_of(*m)),
+        ],
+        events,
+        outcome,
+        measured: Measured {
+            meeting: run.meeting.map(|(time_s, com_offset_m)| Meeting { time_s, com_offset_m }),
+            acceleration_m_s2: run.acceleration,
+            wall_release_height_m: run.wall_release_height,
+            wall_release_ratio: run.wall_release_height.map(|h| h / start_top),
+        },
+        counters: SolverCounters { ambiguous_steps: run.ambiguous_steps, ..SolverCounters::default() },
+        checksum: None,
+    })
 }
 
 /// One eq. 21 switch: a sticking finger starts to slide while the other slides.
@@ -308,9 +542,8 @@ pub struct Switch {
     pub ratio: f64,
 }
 
-/// The eq. 21 switches of a run: a finger that was sticking starts to slide while the other
-/// finger was sliding before that step (modes before a step: the run's initial modes, then
-/// its events).
+/// The eq. 21 switches of a run: a contact that was sticking starts to slide while the other was
+/// sliding before that step (modes before a step: the run's initial modes, then its events).
 #[must_use]
 pub fn switches(run: &Trajectory) -> Vec<Switch> {
     let mut mode = run.initial_modes;
@@ -322,8 +555,12 @@ pub fn switches(run: &Trajectory) -> Vec<Switch> {
             step_time = Some(e.t.to_bits());
             before = mode;
         }
-        let i = e.finger;
-        if before[i] == ContactMode::Sticking && e.mode.is_sliding() && before[1 - i].is_sliding() {
+        let i = e.contact;
+        if i < CONTACTS
+            && before[i] == ContactMode::Sticking
+            && e.mode.is_sliding()
+            && before[1 - i].is_sliding()
+        {
             out.push(Switch {
                 t: e.t,
                 finger: i + 1,
@@ -332,12 +569,14 @@ pub fn switches(run: &Trajectory) -> Vec<Switch> {
                 ratio: (e.along[1 - i] / e.along[i]).abs(),
             });
         }
-        mode[i] = e.mode;
+        if i < CONTACTS {
+            mode[i] = e.mode;
+        }
     }
     out
 }
 
-/// Largest `|a - b|` of the COM position (m) and of the angle (rad) over the steps both runs
+/// Largest `|a - b|` of the centre of mass (m) and of the angle (rad) over the steps both runs
 /// have (same `h`: row `k` is time `k h` in both).
 #[must_use]
 pub fn max_deviation(a: &Trajectory, b: &Trajectory) -> (f64, f64) {
@@ -351,58 +590,72 @@ pub fn max_deviation(a: &Trajectory, b: &Trajectory) -> (f64, f64) {
 }
 
 /// Writes a CSV file: the header line, then one line per item.
-fn write_lines<I: IntoIterator<Item = String>>(path: &Path, header: &str, lines: I) -> anyhow::Result<()> {
+///
+/// # Errors
+/// I/O, naming the file.
+pub fn write_lines<I: IntoIterator<Item = String>>(
+    path: &Path,
+    header: &str,
+    lines: I,
+) -> anyhow::Result<()> {
     let mut w = std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
     );
-    writeln!(w, "{header}")?;
-    for line in lines {
-        writeln!(w, "{line}")?;
-    }
-    w.flush().with_context(|| format!("writing {}", path.display()))
+    let write = || -> std::io::Result<()> {
+        writeln!(w, "{header}")?;
+        for line in lines {
+            writeln!(w, "{line}")?;
+        }
+        w.flush()
+    };
+    write().with_context(|| format!("writing {}", path.display()))
 }
 
-/// Writes the trajectory CSV: `t,x,y,theta,finger1,finger2,mode1,mode2,pn1,pn2,pf1,pf2`.
+/// The trajectory CSV's header.
+pub const CSV_HEADER: &str = "t,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,\
+                              mode1,mode2,pn1,pn2,pf1,pf2,along1,along2";
+
+/// Writes the trajectory CSV ([`CSV_HEADER`]; SI units, impulses in N s).
 ///
 /// # Errors
-/// I/O.
+/// I/O, naming the file.
 pub fn write_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
     let lines = traj.rows.iter().map(|r| {
+        let [c1, c2] = &r.contacts;
         format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.t,
             r.q[0],
             r.q[1],
             r.q[2],
-            r.fingers[0],
-            r.fingers[1],
-            r.modes[0].name(),
-            r.modes[1].name(),
-            r.normal_impulse[0],
-            r.normal_impulse[1],
-            r.friction_impulse[0],
-            r.friction_impulse[1]
+            r.v[0],
+            r.v[1],
+            r.v[2],
+            r.supports[0][0],
+            r.supports[0][1],
+            r.supports[1][0],
+            r.supports[1][1],
+            c1.mode.name(),
+            c2.mode.name(),
+            c1.normal_impulse,
+            c2.normal_impulse,
+            c1.friction_impulse,
+            c2.friction_impulse,
+            c1.along,
+            c2.along
         )
     });
-    write_lines(path, "t,x,y,theta,finger1,finger2,mode1,mode2,pn1,pn2,pf1,pf2", lines)
+    write_lines(path, CSV_HEADER, lines)
 }
 
-/// Writes the events CSV: `t,finger,mode,x1_from_com,x2_from_com,finger1,finger2`.
+/// Writes the events CSV: `t,contact,mode,along1,along2` (contact 1 or 2).
 ///
 /// # Errors
-/// I/O.
+/// I/O, naming the file.
 pub fn write_events_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
-    let lines = traj.events.iter().map(|e| {
-        format!(
-            "{},{},{},{},{},{},{}",
-            e.t,
-            e.finger + 1,
-            e.mode.name(),
-            e.along[0],
-            e.along[1],
-            e.fingers[0],
-            e.fingers[1]
-        )
-    });
-    write_lines(path, "t,finger,mode,x1_from_com,x2_from_com,finger1,finger2", lines)
+    let lines = traj
+        .events
+        .iter()
+        .map(|e| format!("{},{},{},{},{}", e.t, e.contact + 1, e.mode.name(), e.along[0], e.along[1]));
+    write_lines(path, "t,contact,mode,along1,along2", lines)
 }

@@ -107,23 +107,24 @@ fn run_writes_every_output_file() {
     assert!(stdout.contains("core f32 6x6") && stdout.contains("reference f64 8x8"), "{stdout}");
     let all: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(all["scenes"].as_array().unwrap().len(), 2);
-    for (scene, outcome) in [("v0.1", "Unfinished"), ("v5", "Fell")] {
-        let dir = out.join(scene);
+    assert_eq!(all["runs"].as_array().unwrap().len(), 2);
+    for (run, outcome) in [("v0.1", "Unfinished"), ("v5", "Fell")] {
+        let dir = out.join(run);
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
-        assert_eq!(s["core"]["outcome"], outcome, "{scene}");
-        assert_eq!(s["reference"]["outcome"], outcome, "{scene}");
-        assert_eq!(s["core"]["label"], "core f32 6x6");
+        assert_eq!(s["scene"], "meter-stick");
+        assert_eq!(s["core"]["outcome"], outcome, "{run}");
+        assert_eq!(s["reference"]["outcome"], outcome, "{run}");
+        assert_eq!(s["core"]["implementation"], "core f32 6x6");
         assert!(s["comparison"]["max_com_deviation_m"].as_f64().unwrap() < 1e-3, "{s}");
-        assert_eq!(s["parameters"]["step_s"], serde_json::json!(1e-3));
+        assert_eq!(s["parameters"]["step"], serde_json::json!(1e-3));
         for (name, steps_key) in [("core.csv", "core"), ("reference.csv", "reference")] {
             let (header, rows) = read_csv(&dir.join(name));
-            assert_eq!(header.join(","), "t,x,y,theta,finger1,finger2,mode1,mode2,pn1,pn2,pf1,pf2");
+            assert_eq!(header.join(","), meterstick_host_sim::trajectory::CSV_HEADER);
             assert_eq!(rows.len() as u64, s[steps_key]["steps"].as_u64().unwrap() + 1, "{name}");
             for r in &rows {
                 for (k, cell) in r.iter().enumerate() {
-                    if k == 6 || k == 7 {
+                    if header[k].starts_with("mode") {
                         assert!(["separated", "sticking", "sliding+", "sliding-"].contains(&cell.as_str()));
                     } else {
                         assert!(num(cell).is_finite(), "{name}: {r:?}");
@@ -133,19 +134,52 @@ fn run_writes_every_output_file() {
         }
         for name in ["core-events.csv", "reference-events.csv"] {
             let (header, rows) = read_csv(&dir.join(name));
-            assert_eq!(header.join(","), "t,finger,mode,x1_from_com,x2_from_com,finger1,finger2");
+            assert_eq!(header.join(","), "t,contact,mode,along1,along2");
             assert!(!rows.is_empty(), "{name}");
             for r in &rows {
                 assert!(num(&r[0]) > 0.0 && ["1", "2"].contains(&r[1].as_str()), "{r:?}");
             }
         }
-        for name in ["positions.svg", "relative.svg"] {
+        for name in ["positions.svg", "motion.svg", "relative.svg"] {
             let svg = std::fs::read_to_string(dir.join(name)).unwrap();
             assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{name}");
             assert!(svg.contains("<polyline") || svg.contains("<path"), "{name} has no lines");
+            assert!(svg.contains(&format!("reference {outcome}")), "{name}: the outcome is in the title");
         }
     }
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `--scene incline` and `--scene ladder`: one run each, beside the reference, with the scene's
+/// measured quantity in summary.json.
+#[test]
+fn run_takes_every_scene() {
+    for (scene, extra, key, outcome) in [
+        ("incline", &["--angle", "35"][..], "acceleration_m_s2", "Slid"),
+        (
+            "ladder",
+            &["--mu-floor", "0", "--mu-wall", "0", "--angle", "60"][..],
+            "wall_release_height_m",
+            "Fell",
+        ),
+    ] {
+        let out = temp_dir(scene);
+        let mut args = vec!["run", "--scene", scene, "--out", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let (code, stdout, err) = host_sim(&args);
+        assert_eq!(code, 0, "{err}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(scene).join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(s["scene"], scene);
+        for who in ["core", "reference"] {
+            assert_eq!(s[who]["outcome"], outcome, "{scene} {who}: {stdout}");
+            assert!(s[who]["measured"][key].as_f64().unwrap() > 0.0, "{scene} {who}: {}", s[who]["measured"]);
+        }
+        assert!(s["comparison"]["max_com_deviation_m"].as_f64().unwrap() < 1e-3, "{s}");
+        assert!(out.join(scene).join("motion.svg").exists());
+        std::fs::remove_dir_all(&out).unwrap();
+    }
 }
 
 #[test]
@@ -198,29 +232,34 @@ fn report_quick_writes_its_tables_and_pictures() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
-/// Every documented parameter error, through the command line.
+/// Every documented parameter error, through the command line, in the user's words: the flag,
+/// the value given and what is allowed.
 #[test]
 fn run_and_scene_reject_each_invalid_parameter() {
     let cases: &[(&[&str], &str)] = &[
-        (&["--h", "0"], "parameter step must be positive"),
-        (&["--h", "-1e-3"], "parameter step must be positive"),
-        (&["--h", "NaN"], "parameter step is not finite"),
-        (&["--duration", "inf"], "parameter max_time is not finite"),
-        (&["--mass", "-0.2"], "parameter rod_mass must be positive"),
-        (&["--length", "0"], "parameter rod_length must be positive"),
-        (&["--thickness", "0"], "parameter rod_thickness must be positive"),
-        (&["--speed", "-1"], "parameter finger_speed must not be negative"),
-        (&["--mu-s", "-0.1"], "parameter mu_static must not be negative"),
-        (&["--gravity", "-9.81"], "parameter gravity must not be negative"),
-        (&["--finger-width", "-0.01"], "parameter finger_width must not be negative"),
-        (&["--mu-k", "0.7"], "mu_kinetic must not exceed mu_static"),
-        (&["--x1", "-0.6"], "a finger starts outside the rod"),
-        (&["--x2", "0.51"], "a finger starts outside the rod"),
+        (&["--h", "0"], "--h 0 s: must be greater than 0"),
+        (&["--h", "-1e-3"], "--h -0.001 s: must be greater than 0"),
+        (&["--h", "NaN"], "--h NaN s: not a finite number"),
+        (&["--duration", "inf"], "--duration inf s: not a finite number"),
+        (&["--mass", "-0.2"], "--mass -0.2 kg: must be greater than 0"),
+        (&["--length", "0"], "--length 0 m: must be greater than 0"),
+        (&["--thickness", "0"], "--thickness 0 m: must be greater than 0"),
+        (&["--mu-s", "-0.1"], "--mu-s -0.1: must not be negative"),
+        (&["--gravity", "-9.81"], "--gravity -9.81 m/s^2: must not be negative"),
+        (&["--finger-width", "-0.01"], "--finger-width -0.01 m: must not be negative"),
+        (&["--mu-k", "0.7"], "--mu-k 0.7 must not exceed --mu-s 0.6"),
+        (&["--x1", "-0.6"], "a finger starts beyond an end of the rod: --x1 -0.6 m"),
+        (&["--x2", "0.51"], "--x2 0.51 m"),
         (&["--x1", "0.3", "--x2", "0.305"], "finger 1 must start left of finger 2"),
-        (&["--lcp-size", "7"], "--lcp-size must be 6 or 8"),
-        (&["--lcp-size", "9"], "9 is not in 6..=8"),
+        (&["--scene", "incline", "--angle", "95"], "--angle 95 deg: out of range (0 <= angle < 90 deg)"),
+        (&["--scene", "ladder", "--angle", "0"], "--angle 0 deg: out of range (0 < angle < 90 deg)"),
+        (&["--scene", "ladder", "--mu-s", "0.3"], "--mu-s does not apply to --scene ladder"),
+        (&["--width", "0.2"], "--width does not apply to --scene meter-stick (it is a parameter of incline)"),
+        (&["--speed", "0.1,0.2", "--h", "1e-3,1e-4"], "only one flag may"),
+        (&["--lcp-size", "7"], "invalid value '7' for '--lcp-size"),
         (&["--precision", "f16"], "invalid value 'f16'"),
-        (&["--speed", "fast"], "invalid value 'fast'"),
+        (&["--speed", "fast"], "\"fast\" is not a number"),
+        (&["--scene", "pendulum"], "invalid value 'pendulum' for '--scene"),
     ];
     let out = temp_dir("bad");
     for (args, expected) in cases {
@@ -245,10 +284,11 @@ fn scene_and_version_run() {
     assert!(out.contains("meterstick-core"));
     let (code, out, _) = host_sim(&["scene", "--speed", "5"]);
     assert_eq!(code, 0);
-    assert!(out.contains("outcome: Fell"), "{out}");
-    let (code, _, err) = host_sim(&["scene", "--h", "0"]);
-    assert_ne!(code, 0);
-    assert!(err.contains("step must be positive"), "{err}");
+    assert!(out.contains("outcome Fell"), "{out}");
+    assert!(out.contains("checksum "), "{out}");
+    let (code, out, err) = host_sim(&["scene", "--scene", "ladder", "--angle", "70"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("outcome Held"), "{out}");
 }
 
 #[test]

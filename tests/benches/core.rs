@@ -8,29 +8,30 @@ use std::hint::black_box;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
-use meterstick_core::scene::assemble::{StepInputs, assemble};
-use meterstick_core::scene::{ContactFrame, Scene, SceneParams};
+use meterstick_core::planar::assemble::{StepInputs, assemble};
+use meterstick_core::planar::{ContactFrame, Layout, Pose, Tangents};
+use meterstick_core::scene::{MeterStick, MeterStickParams, Scene};
 
 /// The step LCP of the slow scene while finger 1 slides under a resting rod (finger 1 at
 /// -0.3 m, finger 2 at +0.4 m): both fingers touch, finger 1 on mu_k, finger 2 on mu_s.
 fn step_lcp<T: Real, const N: usize>() -> Lcp<T, N> {
-    let p = SceneParams::<T>::paper();
-    let y = p.rod_thickness / T::of(2.0);
-    let sc = (T::zero(), T::one());
-    let frames = [-0.3, 0.4]
-        .map(|fx| ContactFrame::new(T::of(fx), T::zero(), T::zero(), y, sc, p.rod_length, p.rod_thickness));
+    let p = MeterStickParams::<T>::paper();
+    let pose = Pose { com: [T::zero(), p.rod_thickness / T::of(2.0)], sin_cos: (T::zero(), T::one()) };
+    let half = [p.rod_length / T::of(2.0), p.rod_thickness / T::of(2.0)];
+    let frames = [-0.3, 0.4].map(|fx| ContactFrame::under_lower_face([T::of(fx), T::zero()], &pose, half));
     // Per unit mass, as the scene assembles it.
     let m_inv = [T::one(), T::one(), p.rod_mass / p.inertia()];
     let inputs = StepInputs {
         frames: &frames,
         mu: [p.mu_kinetic, p.mu_static],
-        finger_velocity: [[p.finger_speed, T::zero()], [T::zero(), T::zero()]],
+        support_velocity: [[p.finger1_velocity, T::zero()], [T::zero(), T::zero()]],
         v_free: [T::zero(), -p.step * p.gravity, T::zero()],
         m_inv,
         h: p.step,
         gravity: p.gravity,
     };
-    assemble::<T, N>(&inputs).lcp
+    let tangents = if N == 8 { [Tangents::Both; 2] } else { [Tangents::Plus, Tangents::Minus] };
+    assemble(&Layout::<2, N>::try_new(tangents).expect("N is 6 or 8"), &inputs).lcp
 }
 
 fn lemke_case<T: Real, const N: usize>(c: &mut Criterion) {
@@ -57,14 +58,14 @@ fn lemke(c: &mut Criterion) {
     lemke_case::<f64, 8>(c);
 }
 
-fn slow_params<T: Real>() -> SceneParams<T> {
-    SceneParams { finger1_x: T::of(-0.35), ..SceneParams::paper() }
+fn slow_params<T: Real>() -> MeterStickParams<T> {
+    MeterStickParams { finger1_x: T::of(-0.35), ..MeterStickParams::paper() }
 }
 
 fn scene_case<T: Real, const N: usize>(c: &mut Criterion) {
     let name = format!("{} {}x{}", T::NAME, N, N);
     // One step, in the middle of the slow run (t = 2 s: finger 1 sticks, finger 2 slides).
-    let mut mid = Scene::<T, N, 64>::new(slow_params()).unwrap();
+    let mut mid = MeterStick::<T, N, 64>::new(slow_params()).unwrap();
     for _ in 0..2000 {
         mid.step().unwrap();
     }
@@ -76,7 +77,7 @@ fn scene_case<T: Real, const N: usize>(c: &mut Criterion) {
     g.finish();
     // The whole slow run (7,902 steps at h = 1 ms), in steps per second.
     let steps = {
-        let mut s = Scene::<T, N, 64>::new(slow_params()).unwrap();
+        let mut s = MeterStick::<T, N, 64>::new(slow_params()).unwrap();
         s.run(|_| {});
         s.stats().steps
     };
@@ -85,7 +86,7 @@ fn scene_case<T: Real, const N: usize>(c: &mut Criterion) {
     g.sample_size(20);
     g.bench_function(&name, |b| {
         b.iter(|| {
-            let mut s = Scene::<T, N, 64>::new(slow_params()).unwrap();
+            let mut s = MeterStick::<T, N, 64>::new(slow_params()).unwrap();
             black_box(s.run(|_| {}))
         });
     });

@@ -13,13 +13,13 @@
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use meterstick_core::scene::{Outcome, Scene6, SceneParams};
+use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use rapier2d::prelude::*;
 
 const REPEATS: usize = 7;
 
-fn params() -> SceneParams<f32> {
-    SceneParams { finger1_x: -0.35, ..SceneParams::paper() }
+fn params() -> MeterStickParams<f32> {
+    MeterStickParams { finger1_x: -0.35, ..MeterStickParams::paper() }
 }
 
 struct End {
@@ -30,8 +30,8 @@ struct End {
     ns_per_step: f64,
 }
 
-fn core_run(p: &SceneParams<f32>) -> End {
-    let mut s = Scene6::<f32, 64>::new(*p).unwrap();
+fn core_run(p: &MeterStickParams<f32>) -> End {
+    let mut s = MeterStick6::<f32, 64>::new(*p).unwrap();
     let start = Instant::now();
     let outcome = s.run(|_| {});
     let ns = start.elapsed().as_nanos() as f64;
@@ -49,7 +49,7 @@ fn core_run(p: &SceneParams<f32>) -> End {
     }
 }
 
-fn rapier_run(p: &SceneParams<f32>) -> End {
+fn rapier_run(p: &MeterStickParams<f32>) -> End {
     let mut world = PhysicsWorld { gravity: Vector::new(0.0, -p.gravity), ..Default::default() };
     world.integration_parameters.dt = p.step;
     world.integration_parameters.contact_recycling = false;
@@ -79,14 +79,14 @@ fn rapier_run(p: &SceneParams<f32>) -> End {
         let x1 = world.bodies[f1].translation().x;
         let x2 = world.bodies[f2].translation().x;
         let room = (x2 - x1 - p.finger_width).max(0.0);
-        let v = (p.finger_speed * p.step).min(room) / p.step;
+        let v = (p.finger1_velocity * p.step).min(room) / p.step;
         world.bodies[f1].set_linvel(Vector::new(v, 0.0), true);
         world.step();
         steps += 1;
         let t = steps as f32 * p.step;
         let body = &world.bodies[rod];
         let (pos, angle) = (body.translation(), body.rotation().angle());
-        if meeting.is_none() && v < p.finger_speed {
+        if meeting.is_none() && v < p.finger1_velocity {
             meeting = Some(pos.x - f32::midpoint(x1, x2));
             met_at = Some(t);
         }

@@ -7,15 +7,15 @@
 use std::hint::black_box;
 
 use meterstick_core::Real;
-use meterstick_core::scene::{Scene, SceneParams};
+use meterstick_core::scene::{MeterStick, MeterStickParams, Scene};
 
 fn run<T: Real, const N: usize>(runs: u32) {
-    let params = SceneParams { finger1_x: T::of(-0.35), ..SceneParams::<T>::paper() };
+    let params = MeterStickParams { finger1_x: T::of(-0.35), ..MeterStickParams::<T>::paper() };
     let mut steps = 0;
     let mut pivots = 0;
     let mut outcome = None;
     for _ in 0..runs {
-        let mut scene = Scene::<T, N, 64>::new(black_box(params)).expect("valid parameters");
+        let mut scene = MeterStick::<T, N, 64>::new(black_box(params)).expect("valid parameters");
         outcome = Some(scene.run(|_| {}));
         steps += scene.stats().steps;
         pivots += scene.stats().pivots;

@@ -6,7 +6,10 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use meterstick_core::Real;
-use meterstick_core::scene::{Outcome, RodState, Scene, SceneParams};
+use meterstick_core::planar::BodyState;
+use meterstick_core::scene::{
+    Incline, InclineParams, Ladder, LadderParams, MeterStick, MeterStickParams, Outcome, Scene,
+};
 use proptest::prelude::*;
 
 /// Mostly plausible values, often an edge or garbage.
@@ -24,81 +27,161 @@ fn raw(typical: std::ops::Range<f64>) -> impl Strategy<Value = f64> {
     ]
 }
 
-fn params() -> impl Strategy<Value = SceneParams<f64>> {
+fn params() -> impl Strategy<Value = MeterStickParams<f64>> {
     (
         (raw(0.1..3.0), raw(1e-4..0.1), raw(1e-3..10.0), raw(0.0..20.0), raw(-0.5..0.0), raw(0.0..0.5)),
-        (raw(0.0..0.05), raw(0.0..10.0), raw(0.0..2.0), raw(0.0..1.0), raw(1e-5..1e-2), raw(0.0..1e-3)),
+        (raw(0.0..0.05), raw(-1.0..10.0), raw(0.0..2.0), raw(0.0..1.0), raw(1e-5..1e-2), raw(0.0..1e-3)),
+        (raw(-0.02..0.02), raw(-0.02..0.02), raw(-1.0..1.0)),
     )
-        .prop_map(|((l, t, m, g, x1, x2), (w, v, mu_s, mu_k, h, stick))| SceneParams {
-            rod_length: l,
-            rod_thickness: t,
-            rod_mass: m,
-            gravity: g,
-            finger1_x: x1 * l,
-            finger2_x: x2 * l,
-            finger_width: w,
-            finger_speed: v,
-            mu_static: mu_s,
-            mu_kinetic: mu_k * mu_s, // typically a fraction of mu_s
-            step: h,
-            stick_speed: stick,
-            max_time: 0.2,
-            ..SceneParams::paper()
+        .prop_map(|((l, t, m, g, x1, x2), (w, v, mu_s, mu_k, h, stick), (y1, y2, v2))| {
+            MeterStickParams {
+                rod_length: l,
+                rod_thickness: t,
+                rod_mass: m,
+                gravity: g,
+                finger1_x: x1 * l,
+                finger2_x: x2 * l,
+                finger1_y: y1,
+                finger2_y: y2,
+                finger_width: w,
+                finger1_velocity: v,
+                finger2_velocity: v2,
+                mu_static: mu_s,
+                mu_kinetic: mu_k * mu_s, // typically a fraction of mu_s
+                step: h,
+                stick_speed: stick,
+                max_time: 0.2,
+                ..MeterStickParams::paper()
+            }
         })
 }
 
-fn state() -> impl Strategy<Value = RodState<f64>> {
+fn incline_params() -> impl Strategy<Value = InclineParams<f64>> {
+    (
+        (raw(0.01..1.0), raw(0.01..1.0), raw(1e-3..10.0), raw(0.0..20.0), raw(0.0..1.5)),
+        (raw(0.0..2.0), raw(0.0..1.0), raw(1e-5..1e-2), raw(0.0..1e-3)),
+    )
+        .prop_map(|((w, hgt, m, g, angle), (mu_s, mu_k, h, stick))| InclineParams {
+            width: w,
+            height: hgt,
+            mass: m,
+            gravity: g,
+            angle,
+            mu_static: mu_s,
+            mu_kinetic: mu_k * mu_s,
+            step: h,
+            stick_speed: stick,
+            max_time: 0.2,
+        })
+}
+
+fn ladder_params() -> impl Strategy<Value = LadderParams<f64>> {
+    (
+        (raw(0.1..5.0), raw(1e-3..0.1), raw(1e-3..10.0), raw(0.0..20.0), raw(0.05..1.5)),
+        (raw(0.0..2.0), raw(0.0..2.0), raw(1e-5..1e-2), raw(0.0..1e-3)),
+    )
+        .prop_map(|((l, t, m, g, angle), (mu_f, mu_w, h, stick))| LadderParams {
+            length: l,
+            thickness: t,
+            mass: m,
+            gravity: g,
+            angle,
+            mu_floor: mu_f,
+            mu_wall: mu_w,
+            step: h,
+            stick_speed: stick,
+            max_time: 0.2,
+        })
+}
+
+fn state() -> impl Strategy<Value = BodyState<f64>> {
     (raw(-0.01..0.01), raw(0.0..0.01), raw(-0.05..0.05), raw(-0.1..0.1), raw(-0.1..0.1), raw(-0.5..0.5))
-        .prop_map(|(x, y, theta, vx, vy, omega)| RodState { x, y, theta, vx, vy, omega })
+        .prop_map(|(x, y, theta, vx, vy, omega)| BodyState { x, y, theta, vx, vy, omega })
 }
 
-fn convert<T: Real>(p: &SceneParams<f64>) -> SceneParams<T> {
-    meterstick_host_sim::trajectory::convert(p)
-}
-
-/// Runs at most `cap` steps and checks the invariants; returns how the run went.
-fn exercise<T: Real, const N: usize>(
-    p: &SceneParams<f64>,
-    s: Option<&RodState<f64>>,
-    cap: usize,
-) -> &'static str {
-    let pt = convert::<T>(p);
-    let made = match s {
-        None => Scene::<T, N, 16>::new(pt),
-        Some(s) => Scene::<T, N, 16>::with_state(
-            pt,
-            RodState {
-                x: T::of(s.x),
-                y: T::of(s.y + p.rod_thickness / 2.0),
-                theta: T::of(s.theta),
-                vx: T::of(s.vx),
-                vy: T::of(s.vy),
-                omega: T::of(s.omega),
-            },
-        ),
-    };
-    let mut scene = match made {
-        Ok(scene) => scene,
-        Err(e) => {
-            // Validation is the only way in: the same parameters fail `validate` (in T).
-            assert!(pt.validate().is_err() || s.is_some(), "{e:?} but validate() passed");
-            return "rejected";
-        }
-    };
+/// Steps a built scene at most `cap` times: every report's state is finite; returns how the run
+/// went.
+fn steps<T: Real, S: Scene<T, 2>>(mut scene: S, cap: usize) -> &'static str {
     for _ in 0..cap {
         let Some(r) = scene.step() else { break };
-        if r.error.is_none() && scene.outcome() != Some(Outcome::NonFinite) {
-            let st = r.state;
-            for v in [st.x, st.y, st.theta, st.vx, st.vy, st.omega] {
-                assert!(v.finite(), "non-finite state without an outcome: {st:?}");
-            }
-        }
+        assert!(r.state.is_finite(), "a step returned a non-finite state: {:?}", r.state);
     }
     match scene.outcome() {
         None => "running",
-        Some(Outcome::SolverFailed(e)) => e.kind(),
-        Some(Outcome::NonFinite) => "non-finite",
+        Some(Outcome::Failed(e)) => match e {
+            meterstick_core::planar::StepError::Solver(e) => e.kind(),
+            meterstick_core::planar::StepError::NonFinite => "non-finite",
+            _ => "failed",
+        },
         Some(_) => "ended",
+    }
+}
+
+/// Builds the meter stick from raw parameters (and a raw start offset) in scalar `T`: it is built
+/// exactly when the parameters validate (in `T`), then stepped.
+fn exercise<T: Real, const N: usize>(
+    p: &MeterStickParams<f64>,
+    s: Option<&BodyState<f64>>,
+    cap: usize,
+) -> &'static str {
+    let pt = p.cast::<T>();
+    let made = match s {
+        None => MeterStick::<T, N, 16>::new(pt),
+        Some(s) => MeterStick::<T, N, 16>::with_state(
+            pt,
+            BodyState { y: s.y + p.rod_thickness / 2.0, ..*s }.cast_state::<T>(),
+        ),
+    };
+    match made {
+        Ok(scene) => steps(scene, cap),
+        Err(e) => {
+            // Validation is the only way in: the same parameters fail `validate` (in T).
+            assert!(pt.validate().is_err() || s.is_some(), "{e:?} but validate() passed");
+            "rejected"
+        }
+    }
+}
+
+/// Like [`exercise`] for the incline and the ladder.
+fn exercise_other<T: Real, const N: usize>(p: &Other, cap: usize) -> &'static str {
+    match p {
+        Other::Incline(p) => match Incline::<T, N, 16>::new(p.cast()) {
+            Ok(scene) => steps(scene, cap),
+            Err(e) => {
+                assert!(p.cast::<T>().validate().is_err(), "{e:?} but validate() passed");
+                "rejected"
+            }
+        },
+        Other::Ladder(p) => match Ladder::<T, N, 16>::new(p.cast()) {
+            Ok(scene) => steps(scene, cap),
+            Err(e) => {
+                assert!(p.cast::<T>().validate().is_err(), "{e:?} but validate() passed");
+                "rejected"
+            }
+        },
+    }
+}
+
+#[derive(Debug, Clone)]
+enum Other {
+    Incline(InclineParams<f64>),
+    Ladder(LadderParams<f64>),
+}
+
+trait CastState {
+    fn cast_state<T: Real>(self) -> BodyState<T>;
+}
+
+impl CastState for BodyState<f64> {
+    fn cast_state<T: Real>(self) -> BodyState<T> {
+        BodyState {
+            x: T::of(self.x),
+            y: T::of(self.y),
+            theta: T::of(self.theta),
+            vx: T::of(self.vx),
+            vy: T::of(self.vy),
+            omega: T::of(self.omega),
+        }
     }
 }
 
@@ -130,7 +213,14 @@ fn raw_parameters_run_or_are_rejected() {
 }
 
 #[test]
+fn raw_incline_and_ladder_parameters_run_or_are_rejected() {
+    let other =
+        prop_oneof![incline_params().prop_map(Other::Incline), ladder_params().prop_map(Other::Ladder)];
+    fuzz(other, |p| [exercise_other::<f32, 6>(p, 300), exercise_other::<f64, 8>(p, 300)]);
+}
+
+#[test]
 fn raw_initial_states_run_or_are_rejected() {
-    let p = SceneParams::<f64> { max_time: 0.2, ..SceneParams::paper() };
+    let p = MeterStickParams::<f64> { max_time: 0.2, ..MeterStickParams::paper() };
     fuzz(state(), |s| [exercise::<f32, 6>(&p, Some(s), 300), exercise::<f64, 8>(&p, Some(s), 300)]);
 }

@@ -7,6 +7,10 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
+use meterstick_core::planar::Checksum;
+use meterstick_core::scene::{
+    Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams, Scene,
+};
 use meterstick_host_sim::qemu::{self, FirmwareRun, Machine};
 
 fn run(var: &str, machine: Machine) -> FirmwareRun {
@@ -54,7 +58,7 @@ fn check_common(run: &FirmwareRun) {
         for (line, e) in events.iter().zip(host.events()) {
             let field = |key: &str| line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap().to_owned();
             assert_eq!(field("t=").parse::<f32>().unwrap().to_bits(), e.time.to_bits(), "{line} vs {e:?}");
-            assert_eq!(field("finger="), (e.finger + 1).to_string(), "{line}");
+            assert_eq!(field("contact="), (e.contact + 1).to_string(), "{line}");
             assert_eq!(field("mode="), e.mode.name(), "{line}");
         }
         // The rig drove the carriage to finger 1's end position: 0.1 mm per pulse.
@@ -64,42 +68,71 @@ fn check_common(run: &FirmwareRun) {
     }
 }
 
-fn host_run(speed: f32) -> meterstick_core::scene::Scene6<f32, 32> {
-    use meterstick_core::scene::{Scene6, SceneParams};
-    let params = SceneParams { finger_speed: speed, finger1_x: -0.35, ..SceneParams::<f32>::paper() };
-    let mut scene = Scene6::<f32, 32>::new(params).unwrap();
+fn host_run(speed: f32) -> MeterStick6<f32, 32> {
+    let params =
+        MeterStickParams { finger1_velocity: speed, finger1_x: -0.35, ..MeterStickParams::<f32>::paper() };
+    let mut scene = MeterStick6::<f32, 32>::new(params).unwrap();
     scene.run(|_| {});
     scene
 }
 
-/// The same f32 6x6 scene on the host, with the firmware's checksum (FNV-1a over the bits of
-/// the rod state after every step): bit-identical IEEE f32 arithmetic gives the same value.
+/// The same f32 6x6 scene on the host, with the firmware's checksum ([`Checksum`]): bit-identical
+/// IEEE f32 arithmetic gives the same value.
 fn host_checksum(speed: f32) -> u32 {
-    use meterstick_core::scene::{Scene6, SceneParams};
-    let params = SceneParams { finger_speed: speed, finger1_x: -0.35, ..SceneParams::<f32>::paper() };
-    let mut scene = Scene6::<f32, 32>::new(params).unwrap();
-    let mut hash = 0x811c_9dc5u32;
-    scene.run(|r| {
-        for v in [r.state.x, r.state.y, r.state.theta, r.state.vx, r.state.vy, r.state.omega] {
-            for byte in v.to_bits().to_le_bytes() {
-                hash ^= u32::from(byte);
-                hash = hash.wrapping_mul(0x0100_0193);
-            }
+    let params =
+        MeterStickParams { finger1_velocity: speed, finger1_x: -0.35, ..MeterStickParams::<f32>::paper() };
+    checksum_of(MeterStick6::<f32, 32>::new(params).unwrap())
+}
+
+fn checksum_of<S: Scene<f32, 2>>(mut scene: S) -> u32 {
+    let mut sum = Checksum::new();
+    scene.run(|r| sum.add(&r.state));
+    sum.value()
+}
+
+/// The incline and the ladder, run outside the rig: outcome, steps, checksum and every switch
+/// event equal to the host's f32 6x6 run of the same scene.
+fn check_other_scenes(run: &FirmwareRun) {
+    let mut incline = Incline::<f32, 6, 32>::new(InclineParams::default()).unwrap();
+    let incline_sum = checksum_of(Incline::<f32, 6, 32>::new(InclineParams::default()).unwrap());
+    incline.run(|_| {});
+    let mut ladder = Ladder::<f32, 6, 32>::new(LadderParams::default()).unwrap();
+    let ladder_sum = checksum_of(Ladder::<f32, 6, 32>::new(LadderParams::default()).unwrap());
+    ladder.run(|_| {});
+    for (name, outcome, steps, sum, events) in [
+        ("incline", incline.outcome().unwrap(), incline.stats().steps, incline_sum, incline.events()),
+        ("ladder", ladder.outcome().unwrap(), ladder.stats().steps, ladder_sum, ladder.events()),
+    ] {
+        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
+        assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
+        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+        assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
+        let lines: Vec<&String> =
+            run.lines.iter().filter(|l| l.starts_with(&format!("{name} event "))).collect();
+        assert_eq!(lines.len(), events.len(), "{name}: {lines:#?}");
+        for (line, e) in lines.iter().zip(events) {
+            let field = |key: &str| line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap().to_owned();
+            assert_eq!(field("t=").parse::<f32>().unwrap().to_bits(), e.time.to_bits(), "{line} vs {e:?}");
+            assert_eq!(field("contact="), (e.contact + 1).to_string(), "{line}");
+            assert_eq!(field("mode="), e.mode.name(), "{line}");
         }
-    });
-    hash
+    }
 }
 
 #[test]
 #[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
 fn cortex_m4f_on_mps2_an386() {
-    check_common(&run("MS_FIRMWARE_M4", Machine::Mps2An386));
+    let run = run("MS_FIRMWARE_M4", Machine::Mps2An386);
+    check_common(&run);
+    check_other_scenes(&run);
 }
 
 #[test]
 #[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
 fn cortex_m0_on_microbit() {
-    check_common(&run("MS_FIRMWARE_M0", Machine::Microbit));
+    let run = run("MS_FIRMWARE_M0", Machine::Microbit);
+    check_common(&run);
+    check_other_scenes(&run);
 }
 
 /// The instruction-count method: under `-icount shift=0` the firmware's SysTick calibration

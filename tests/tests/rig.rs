@@ -4,14 +4,15 @@
 
 use embedded_hal_mock::eh1::delay::NoopDelay;
 use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
+use meterstick_core::planar::ContactMode;
 use meterstick_core::rig::{ModeLights, NoDelay, Rig, RigConfig, RigFault, RigPins, RigState};
-use meterstick_core::scene::{ContactMode, Outcome, Scene6, SceneParams};
+use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 
 /// Finger 1 close to the eq. 21 switch (x1/x2 = 0.675 > mu_k/mu_s), moving fast: finger 2
 /// starts to slide within a few steps, so a short run changes a light. 1 mm per step at
 /// 1000 steps/m: one pulse per tick.
-fn short_scene() -> SceneParams<f32> {
-    SceneParams { finger1_x: -0.27, finger_speed: 1.0, ..SceneParams::paper() }
+fn short_scene() -> MeterStickParams<f32> {
+    MeterStickParams { finger1_x: -0.27, finger1_velocity: 1.0, ..MeterStickParams::paper() }
 }
 
 const CONFIG: RigConfig =
@@ -81,10 +82,10 @@ fn a_short_scene_drives_the_expected_pin_transitions() {
     const TICKS: usize = 12;
     // What the rig must show, from the scene itself: its modes and finger 1 after each step.
     let params = short_scene();
-    let mut scene = Scene6::<f32, 8>::new(params).unwrap();
+    let mut scene = MeterStick6::<f32, 8>::new(params).unwrap();
     let initial = scene.modes();
     let steps: Vec<([ContactMode; 2], f32)> =
-        (0..TICKS).map(|_| scene.step().map(|r| (r.modes, r.fingers[0])).unwrap()).collect();
+        (0..TICKS).map(|_| scene.step().map(|r| (r.modes(), scene.fingers()[0])).unwrap()).collect();
     assert!(
         steps.iter().any(|(m, _)| m[1].is_sliding()),
         "finger 2 should start to slide within {TICKS} steps: {steps:?}"
@@ -132,7 +133,7 @@ fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
     // 1 mm per tick but at most 0 pulses per tick: the carriage cannot follow.
     let config = RigConfig { max_pulses_per_tick: 0, ..CONFIG };
     let params = short_scene();
-    let initial = Scene6::<f32, 8>::new(params).unwrap().modes();
+    let initial = MeterStick6::<f32, 8>::new(params).unwrap().modes();
     let mut e = Expect::new();
     e.button = vec![T::get(State::Low)];
     e.dir.push(T::set(State::High));
@@ -156,7 +157,7 @@ fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
 
 #[test]
 fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
-    let params = SceneParams::<f32> { finger1_x: -0.35, ..SceneParams::paper() };
+    let params = MeterStickParams::<f32> { finger1_x: -0.35, ..MeterStickParams::paper() };
     let config = RigConfig::default_rig();
     let mut rig = Rig::<_, _, _, 6>::headless(params, config, NoDelay).unwrap();
     let mut ticks = 0;
@@ -171,7 +172,7 @@ fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
     let travel = rig.scene().fingers()[0] - params.finger1_x;
     assert_eq!(rig.pulses(), (travel * config.steps_per_meter).round() as i64);
     assert_eq!(rig.pulses(), 59_200, "0.74 m at 80 steps/mm");
-    let switches = rig.scene().events().len() as u32 + rig.scene().stats().events_dropped;
+    let switches = rig.scene().events().len() as u32 + rig.scene().events_dropped();
     let (pins, _) = rig.release();
     assert_eq!(pins.step.rises(), 59_200);
     assert_eq!(pins.fault.rises(), 0);

@@ -3,30 +3,30 @@
 //! with the paper's 8x8 form.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use meterstick_core::ParamError;
 use meterstick_core::Real;
-use meterstick_core::scene::{
-    ContactMode, Outcome, ParamError, RodState, Scene, Scene6, Scene8, SceneParams,
-};
+use meterstick_core::planar::{BodyState, ContactMode};
+use meterstick_core::scene::{MeterStick, MeterStick6, MeterStick8, MeterStickParams, Outcome, Scene};
+use meterstick_host_sim::scenes::SceneSpec;
 use meterstick_host_sim::trajectory::{Record, run_core, switches};
 
 /// The paper's scene with an asymmetric start, so the first slip is determined.
-fn slow<T: Real>() -> SceneParams<T> {
-    SceneParams { finger1_x: T::of(-0.35), ..SceneParams::paper() }
+fn slow<T: Real>() -> MeterStickParams<T> {
+    MeterStickParams { finger1_x: T::of(-0.35), ..MeterStickParams::paper() }
 }
 
-fn with_speed<T: Real>(v: f64) -> SceneParams<T> {
-    SceneParams { finger_speed: T::of(v), ..slow() }
+fn with_speed<T: Real>(v: f64) -> MeterStickParams<T> {
+    MeterStickParams { finger1_velocity: T::of(v), ..slow() }
 }
 
 /// The eq. 21 switches (host-sim's one implementation) strictly before the fingers met:
 /// `(x_start, x_stop)` distances from the centre of mass.
-fn eq21_switches<T: Real, const N: usize>(params: &SceneParams<T>, meeting_time: f64) -> Vec<(f64, f64)> {
-    let p64 = SceneParams {
-        finger1_x: params.finger1_x.as_f64(),
-        finger_speed: params.finger_speed.as_f64(),
-        ..SceneParams::paper()
-    };
-    let run = run_core::<T, N>(&p64, Record::Nothing).unwrap();
+fn eq21_switches<T: Real, const N: usize>(
+    params: &MeterStickParams<T>,
+    meeting_time: f64,
+) -> Vec<(f64, f64)> {
+    let p64 = params.cast::<f64>();
+    let run = run_core::<T, N>(&SceneSpec::MeterStick(p64), Record::Nothing).unwrap();
     switches(&run).iter().filter(|s| s.t < meeting_time - p64.step).map(|s| (s.x_start, s.x_stop)).collect()
 }
 
@@ -39,8 +39,8 @@ const MEETING_BOUND: f64 = 0.003;
 
 fn check_slow_case<T: Real, const N: usize>() {
     let params = slow::<T>();
-    let mut scene = Scene::<T, N, 128>::new(params).unwrap();
-    let outcome = scene.run(|r| assert!(r.error.is_none(), "{:?}", r.error));
+    let mut scene = MeterStick::<T, N, 128>::new(params).unwrap();
+    let outcome = scene.run(|_| {});
     let name = format!("{}x{} {}", N, N, T::NAME);
     assert_eq!(outcome, Outcome::Balanced, "{name}");
     let meeting = scene.meeting().unwrap();
@@ -65,11 +65,11 @@ fn check_slow_case<T: Real, const N: usize>() {
     // Both fingers alternate: each one sticks at least twice.
     for finger in 0..2u8 {
         let sticks =
-            scene.events().iter().filter(|e| e.finger == finger && e.mode == ContactMode::Sticking).count();
+            scene.events().iter().filter(|e| e.contact == finger && e.mode == ContactMode::Sticking).count();
         assert!(sticks >= 2, "{name}: finger {finger} stuck {sticks} times");
     }
-    assert_eq!(scene.stats().reduced_check_fired_before_meeting, 0, "{name}");
-    assert_eq!(scene.stats().events_dropped, 0);
+    assert_eq!(scene.reduced_check_fired_before_meeting(), 0, "{name}");
+    assert_eq!(scene.events_dropped(), 0);
 }
 
 #[test]
@@ -91,20 +91,20 @@ fn slow_case_alternates_and_obeys_the_switch_law_6x6_f32() {
 
 /// Eq. 19: on a horizontal rod at rest, W1 x1 = W2 x2 and W1 + W2 = m g (impulses over h).
 fn check_torque_balance<T: Real, const N: usize>(tol: f64) {
-    let params = SceneParams::<T> {
-        finger_speed: T::zero(),
+    let params = MeterStickParams::<T> {
+        finger1_velocity: T::zero(),
         finger1_x: T::of(-0.3),
         finger2_x: T::of(0.45),
-        ..SceneParams::paper()
+        ..MeterStickParams::paper()
     };
-    let mut scene = Scene::<T, N>::new(params).unwrap();
+    let mut scene = MeterStick::<T, N>::new(params).unwrap();
     let mut last = None;
     for _ in 0..500 {
         last = scene.step();
     }
     let r = last.unwrap();
-    let (w1, w2) = (r.normal_impulse[0].as_f64(), r.normal_impulse[1].as_f64());
-    let (x1, x2) = (r.along[0].as_f64().abs(), r.along[1].as_f64().abs());
+    let (w1, w2) = (r.contacts[0].normal_impulse.as_f64(), r.contacts[1].normal_impulse.as_f64());
+    let (x1, x2) = (r.contacts[0].along.as_f64().abs(), r.contacts[1].along.as_f64().abs());
     let weight = params.rod_mass.as_f64() * params.gravity.as_f64() * params.step.as_f64();
     assert!((w1 * x1 - w2 * x2).abs() <= tol * weight * x2, "W1 x1 = {} vs W2 x2 = {}", w1 * x1, w2 * x2);
     assert!((w1 + w2 - weight).abs() <= tol * weight);
@@ -126,8 +126,8 @@ fn static_rod_obeys_torque_balance() {
     check_torque_balance::<f32, 6>(1e-4);
 }
 
-fn outcome<T: Real, const N: usize>(params: SceneParams<T>) -> Outcome {
-    Scene::<T, N, 128>::new(params).unwrap().run(|_| {})
+fn outcome<T: Real, const N: usize>(params: MeterStickParams<T>) -> Outcome {
+    MeterStick::<T, N, 128>::new(params).unwrap().run(|_| {})
 }
 
 #[test]
@@ -163,12 +163,12 @@ fn fall_threshold_is_bracketed() {
 
 #[test]
 fn equal_friction_coefficients_still_balance_at_low_speed() {
-    let params = SceneParams::<f64> { mu_static: 0.5, mu_kinetic: 0.5, ..slow() };
-    let mut scene = Scene::<f64, 8, 128>::new(params).unwrap();
+    let params = MeterStickParams::<f64> { mu_static: 0.5, mu_kinetic: 0.5, ..slow() };
+    let mut scene = MeterStick::<f64, 8, 128>::new(params).unwrap();
     assert_eq!(scene.run(|_| {}), Outcome::Balanced);
     assert!(scene.meeting().unwrap().com_offset.abs() < MEETING_BOUND);
     assert_eq!(
-        outcome::<f32, 6>(SceneParams { mu_static: 0.5, mu_kinetic: 0.5, ..slow() }),
+        outcome::<f32, 6>(MeterStickParams { mu_static: 0.5, mu_kinetic: 0.5, ..slow() }),
         Outcome::Balanced
     );
 }
@@ -179,8 +179,8 @@ fn equal_friction_coefficients_still_balance_at_low_speed() {
 /// the rod by up to one step of finger travel, v h; measured 1.02e-4 m).
 fn check_sizes_agree<T: Real>(v: f64, tol: f64) {
     let params = with_speed::<T>(v);
-    let mut s6 = Scene::<T, 6, 128>::new(params).unwrap();
-    let mut s8 = Scene::<T, 8, 128>::new(params).unwrap();
+    let mut s6 = MeterStick::<T, 6, 128>::new(params).unwrap();
+    let mut s8 = MeterStick::<T, 8, 128>::new(params).unwrap();
     let mut worst: f64 = 0.0;
     while s8.meeting().is_none() && s8.outcome().is_none() {
         let (a, b) = (s6.step().unwrap(), s8.step().unwrap());
@@ -209,18 +209,18 @@ fn reduced_check_fires_only_after_the_fingers_stop() {
     for v in [0.5, 1.0, 5.0, 10.0] {
         for stats in [
             {
-                let mut s = Scene::<f64, 6, 128>::new(with_speed(v)).unwrap();
+                let mut s = MeterStick::<f64, 6, 128>::new(with_speed(v)).unwrap();
                 s.run(|_| {});
-                *s.stats()
+                (s.stats().reduced_check_fired, s.reduced_check_fired_before_meeting())
             },
             {
-                let mut s = Scene::<f32, 6, 128>::new(with_speed(v)).unwrap();
+                let mut s = MeterStick::<f32, 6, 128>::new(with_speed(v)).unwrap();
                 s.run(|_| {});
-                *s.stats()
+                (s.stats().reduced_check_fired, s.reduced_check_fired_before_meeting())
             },
         ] {
-            fired += stats.reduced_check_fired;
-            assert_eq!(stats.reduced_check_fired_before_meeting, 0, "v={v}: {stats:?}");
+            fired += stats.0;
+            assert_eq!(stats.1, 0, "v={v}: {stats:?}");
         }
     }
     assert!(fired > 0, "the 6x6 check never fired");
@@ -232,14 +232,14 @@ fn reduced_check_fires_only_after_the_fingers_stop() {
 /// `mu_k x2 = mu_s x1` (eq. 21), where finger 2 is the first to change mode. Deterministic.
 #[test]
 fn symmetric_start_is_deterministic_and_finger_2_switches_first() {
-    let params = SceneParams::<f32>::paper();
-    let mut a = Scene::<f32, 6, 128>::new(params).unwrap();
-    let mut b = Scene::<f32, 6, 128>::new(params).unwrap();
+    let params = MeterStickParams::<f32>::paper();
+    let mut a = MeterStick::<f32, 6, 128>::new(params).unwrap();
+    let mut b = MeterStick::<f32, 6, 128>::new(params).unwrap();
     assert_eq!(a.modes()[0].name(), "sliding+");
     assert_eq!(a.modes()[1], ContactMode::Sticking);
     let (mut moved_before_first_switch, mut switched) = (0.0_f32, false);
     let outcome = a.run(|r| {
-        switched |= r.modes[1] != ContactMode::Sticking;
+        switched |= r.contacts[1].mode != ContactMode::Sticking;
         if !switched {
             moved_before_first_switch = moved_before_first_switch.max(r.state.x.abs());
         }
@@ -249,7 +249,7 @@ fn symmetric_start_is_deterministic_and_finger_2_switches_first() {
     assert_eq!(a.events(), b.events());
     assert_eq!(a.state().x.to_bits(), b.state().x.to_bits());
     let first = a.events()[0];
-    assert_eq!((first.finger, first.mode.name()), (1, "sliding-"), "{first:?}");
+    assert_eq!((first.contact, first.mode.name()), (1, "sliding-"), "{first:?}");
     let ratio = (first.along[0] / first.along[1]).abs();
     assert!((ratio / (0.4 / 0.6) - 1.0).abs() < 0.01, "x_stop/x_start = {ratio}");
     assert!(moved_before_first_switch < 1e-6, "the rod moved {moved_before_first_switch} m before");
@@ -257,29 +257,28 @@ fn symmetric_start_is_deterministic_and_finger_2_switches_first() {
 
 #[test]
 fn invalid_parameters_are_rejected() {
-    let ok = SceneParams::<f64>::paper();
-    let cases: Vec<(SceneParams<f64>, ParamError)> = vec![
-        (SceneParams { rod_mass: f64::NAN, ..ok }, ParamError::NonFinite("rod_mass")),
-        (SceneParams { step: f64::INFINITY, ..ok }, ParamError::NonFinite("step")),
-        (SceneParams { rod_mass: -1.0, ..ok }, ParamError::NotPositive("rod_mass")),
-        (SceneParams { rod_length: 0.0, ..ok }, ParamError::NotPositive("rod_length")),
-        (SceneParams { rod_thickness: 0.0, ..ok }, ParamError::NotPositive("rod_thickness")),
-        (SceneParams { step: 0.0, ..ok }, ParamError::NotPositive("step")),
-        (SceneParams { step: -1e-3, ..ok }, ParamError::NotPositive("step")),
-        (SceneParams { mu_static: -0.1, ..ok }, ParamError::Negative("mu_static")),
-        (SceneParams { finger_speed: -1.0, ..ok }, ParamError::Negative("finger_speed")),
-        (SceneParams { mu_kinetic: 0.7, ..ok }, ParamError::KineticAboveStatic),
-        (SceneParams { finger1_x: -0.6, ..ok }, ParamError::FingerOutsideRod),
-        (SceneParams { finger2_x: 0.51, ..ok }, ParamError::FingerOutsideRod),
-        (SceneParams { finger1_x: 0.3, finger2_x: 0.2, ..ok }, ParamError::FingersCrossed),
-        (SceneParams { finger1_x: 0.0, finger2_x: 0.005, ..ok }, ParamError::FingersCrossed),
+    let ok = MeterStickParams::<f64>::paper();
+    let cases: Vec<(MeterStickParams<f64>, ParamError)> = vec![
+        (MeterStickParams { rod_mass: f64::NAN, ..ok }, ParamError::NonFinite("rod_mass")),
+        (MeterStickParams { step: f64::INFINITY, ..ok }, ParamError::NonFinite("step")),
+        (MeterStickParams { rod_mass: -1.0, ..ok }, ParamError::NotPositive("rod_mass")),
+        (MeterStickParams { rod_length: 0.0, ..ok }, ParamError::NotPositive("rod_length")),
+        (MeterStickParams { rod_thickness: 0.0, ..ok }, ParamError::NotPositive("rod_thickness")),
+        (MeterStickParams { step: 0.0, ..ok }, ParamError::NotPositive("step")),
+        (MeterStickParams { step: -1e-3, ..ok }, ParamError::NotPositive("step")),
+        (MeterStickParams { mu_static: -0.1, ..ok }, ParamError::Negative("mu_static")),
+        (MeterStickParams { mu_kinetic: 0.7, ..ok }, ParamError::KineticAboveStatic),
+        (MeterStickParams { finger1_x: -0.6, ..ok }, ParamError::FingerOutsideRod),
+        (MeterStickParams { finger2_x: 0.51, ..ok }, ParamError::FingerOutsideRod),
+        (MeterStickParams { finger1_x: 0.3, finger2_x: 0.2, ..ok }, ParamError::FingersCrossed),
+        (MeterStickParams { finger1_x: 0.0, finger2_x: 0.005, ..ok }, ParamError::FingersCrossed),
     ];
     for (params, expected) in cases {
-        assert_eq!(Scene::<f64, 8>::new(params).err(), Some(expected));
+        assert_eq!(MeterStick::<f64, 8>::new(params).err(), Some(expected));
         assert_eq!(params.validate(), Err(expected));
     }
-    let bad_state = RodState { vx: f64::NAN, ..Default::default() };
-    assert_eq!(Scene::<f64, 6>::with_state(ok, bad_state).err(), Some(ParamError::NonFiniteState));
+    let bad_state = BodyState { vx: f64::NAN, ..Default::default() };
+    assert_eq!(MeterStick::<f64, 6>::with_state(ok, bad_state).err(), Some(ParamError::NonFiniteState));
 }
 
 /// The LCP is solved per unit mass, so the motion does not depend on the rod's mass at
@@ -289,10 +288,10 @@ fn invalid_parameters_are_rejected() {
 #[test]
 fn motion_does_not_depend_on_the_mass() {
     let run = |mass: f32| {
-        let mut p = SceneParams::<f32>::paper();
+        let mut p = MeterStickParams::<f32>::paper();
         p.finger1_x = -0.35;
         p.rod_mass = mass;
-        let mut s = Scene6::<f32, 64>::new(p).unwrap();
+        let mut s = MeterStick6::<f32, 64>::new(p).unwrap();
         let mut trace = Vec::new();
         let outcome = s.run(|r| trace.push([r.state.x, r.state.y, r.state.theta].map(f32::to_bits)));
         (outcome, trace)
@@ -310,13 +309,13 @@ fn motion_does_not_depend_on_the_mass() {
 #[test]
 fn penetration_recovery_does_not_launch_the_rod() {
     for h in [1e-3, 1e-5] {
-        let mut p = SceneParams::<f64>::paper();
+        let mut p = MeterStickParams::<f64>::paper();
         p.step = h;
         p.max_time = 0.2;
-        let rest = RodState::resting(&p);
+        let rest = p.resting_state();
         let mut start = rest;
         start.y -= 1e-3;
-        let mut s = Scene8::<f64, 64>::with_state(p, start).unwrap();
+        let mut s = MeterStick8::<f64, 64>::with_state(p, start).unwrap();
         let mut highest = f64::MIN;
         s.run(|r| highest = highest.max(r.state.y));
         let one_step = h * (2.0 * p.gravity * 1e-3_f64).sqrt();
@@ -330,11 +329,11 @@ fn penetration_recovery_does_not_launch_the_rod() {
 /// systematic 10 % slow; `host-sim stress`).
 #[test]
 fn f32_time_and_finger_do_not_drift() {
-    let mut p = SceneParams::<f32>::paper();
-    p.finger_speed = 1e-4;
+    let mut p = MeterStickParams::<f32>::paper();
+    p.finger1_velocity = 1e-4;
     p.stick_speed = 1e-8;
     p.max_time = 1000.0;
-    let mut s = Scene6::<f32, 64>::new(p).unwrap();
+    let mut s = MeterStick6::<f32, 64>::new(p).unwrap();
     for _ in 0..100_000 {
         s.step().unwrap();
     }

@@ -14,7 +14,7 @@
 //! tableau is 6 x 14 floats (336 bytes).
 //!
 //! # The algorithm
-//! Lemke's complementary pivoting, as in the paper's reference [4] (P. L. Fackler and
+//! Lemke's complementary pivoting, as in the paper's reference \[4\] (P. L. Fackler and
 //! M. J. Miranda, `lemke.m`, 1997) and Cottle, Pang and Stone, *The Linear Complementarity
 //! Problem* (1992), section 4.4. An artificial variable `z0` with covering vector `d = e`
 //! is added, `w - M z - d z0 = q`, and the tableau `[I, -M, -d | q]` starts from the basis

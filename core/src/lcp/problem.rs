@@ -109,6 +109,7 @@ impl<T: Real, const N: usize> Lcp<T, N> {
 
     /// `w = M z + q`, computed from the original data in a fixed order of operations.
     #[must_use]
+    #[inline]
     pub fn w_of(&self, z: &SVector<T, N>) -> SVector<T, N> {
         let mut w = self.q;
         for i in 0..N {

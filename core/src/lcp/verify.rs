@@ -56,6 +56,7 @@ pub fn verify<T: Real, const N: usize>(lcp: &Lcp<T, N>, z: &SVector<T, N>, toler
 /// The normalised residual of `z` with `w = M z + q` already computed and the data's scales
 /// `||M||_inf`, `||q||_inf` given (the solver's hot path has all three). Infinite when `z` or
 /// `w` has a non-finite entry. The scales are inverted once: two divisions, not `3 N`.
+#[inline]
 pub(crate) fn residual<T: Real, const N: usize>(
     z: &SVector<T, N>,
     w: &SVector<T, N>,

@@ -1,0 +1,174 @@
+//! Assembly of one time step's LCP (`docs/formulation.md`, "One time step"; paper, eqs. 13-18) for
+//! any [`Layout`].
+//!
+//! With `c_j` the wrench column of impulse variable `j` (`W_n` of its contact, or `+-W_d` for a
+//! friction row along `+-d`), `M^-1` per unit mass and `v~ = v + h M^-1 w_ext`:
+//!
+//! ```text
+//! A[j][k] = c_j^T M^-1 c_k                      impulse rows and columns (symmetric)
+//! A[f][sigma_i] = 1, A[sigma_i][f] = -1         for each friction row f of contact i (E, -E^T)
+//! A[sigma_i][n_i] = mu_i                        (U)
+//! b_n = W_n^T v~ - n . u_i + beta(psi_i)        normal rows (eq. 13)
+//! b_f = +-(W_d^T v~ - d . u_i)                  friction rows
+//! b_sigma = 0
+//! ```
+//!
+//! `beta(psi) = psi / h` for a gap, and for a penetration the push-out speed capped at the speed of
+//! a fall through it, `max(psi / h, -sqrt(2 g |psi|))` ([`normal_bias`]). An inactive contact keeps
+//! its rows decoupled: identity rows and columns and `b = 1`, so its variables are zero.
+
+use super::contact::ContactFrame;
+use super::layout::{Direction, Layout};
+use crate::lcp::Lcp;
+use crate::nalgebra::{SMatrix, SVector};
+use crate::real::Real;
+
+/// What one step's assembly needs besides the layout.
+#[derive(Debug, Clone, Copy)]
+pub struct StepInputs<'a, T, const K: usize> {
+    /// Each contact's frame at the step's start.
+    pub frames: &'a [ContactFrame<T>; K],
+    /// Each contact's friction coefficient for this step.
+    pub mu: [T; K],
+    /// Each support's velocity over the step (world).
+    pub support_velocity: [[T; 2]; K],
+    /// `v~ = v + h M^-1 w_ext`.
+    pub v_free: [T; 3],
+    /// `diag(M^-1)` times the body's mass, `(1, 1, m / J)`: the impulses `z` then come out per unit
+    /// mass and every row of the LCP is a velocity ([`super::Body::inverse_mass_per_unit_mass`]).
+    pub m_inv: [T; 3],
+    /// Step `h`.
+    pub h: T,
+    /// Gravity `g` (for the penetration-recovery cap).
+    pub gravity: T,
+}
+
+/// The step's LCP and the wrench column of each variable (zero for `sigma` and for the rows of an
+/// inactive contact).
+#[derive(Debug, Clone, Copy)]
+pub struct StepLcp<T: Real, const N: usize> {
+    /// `(A, b)`.
+    pub lcp: Lcp<T, N>,
+    /// Wrench column of each variable of `z`.
+    pub columns: [[T; 3]; N],
+}
+
+/// The normal row's stabilisation term `beta(psi)`: `psi / h` for a gap, the push-out speed capped
+/// at `sqrt(2 g |psi|)` for a penetration.
+#[must_use]
+pub fn normal_bias<T: Real>(gap: T, h: T, gravity: T) -> T {
+    let one_step = gap / h;
+    if gap >= T::zero() {
+        return one_step;
+    }
+    let cap = -(T::of(2.0) * gravity * -gap).sqrt_libm();
+    if one_step > cap { one_step } else { cap }
+}
+
+#[inline]
+fn dot3<T: Real>(a: &[T; 3], b: &[T; 3]) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+fn dot2<T: Real>(a: &[T; 2], b: &[T; 2]) -> T {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// `+1` or `-1`.
+#[inline]
+pub(crate) fn sign<T: Real>(direction: Direction) -> T {
+    match direction {
+        Direction::Plus => T::one(),
+        Direction::Minus => -T::one(),
+    }
+}
+
+/// Assembles the LCP of eq. 18 for `layout`.
+///
+/// The impulse block `W^T M^-1 W` is symmetric: its upper triangle is computed and mirrored (10 of
+/// the 16 dot products for two contacts with one direction each), which also makes it exactly
+/// symmetric. The result is built in place in the returned value (zeroed once, then filled):
+/// building `A` and `b` as locals and moving them out cost a 240-byte copy every step.
+#[must_use]
+pub fn assemble<T: Real, const K: usize, const N: usize>(
+    layout: &Layout<K, N>,
+    input: &StepInputs<'_, T, K>,
+) -> StepLcp<T, N> {
+    let mut out = StepLcp::zeros();
+    assemble_into(layout, input, &mut out);
+    out
+}
+
+impl<T: Real, const N: usize> StepLcp<T, N> {
+    /// Every entry zero (what [`assemble_into`] writes into).
+    #[must_use]
+    pub fn zeros() -> Self {
+        Self { lcp: Lcp::new(SMatrix::zeros(), SVector::zeros()), columns: [[T::zero(); 3]; N] }
+    }
+}
+
+/// Writes the entries of eq. 18 for `layout` into `out`, which must hold zeros
+/// ([`StepLcp::zeros`]): only the entries that can be non-zero are written. The stepper assembles
+/// into a zeroed local this way, with no copy of the result.
+#[inline]
+pub fn assemble_into<T: Real, const K: usize, const N: usize>(
+    layout: &Layout<K, N>,
+    input: &StepInputs<'_, T, K>,
+    out: &mut StepLcp<T, N>,
+) {
+    let sigma_start = Layout::<K, N>::SIGMA_START;
+    let StepLcp { lcp: Lcp { m: a, q: b }, columns } = out;
+    for i in 0..K {
+        let f = &input.frames[i];
+        columns[i] = f.wn;
+        b[i] = dot3(&f.wn, &input.v_free) - dot2(&f.normal(), &input.support_velocity[i])
+            + normal_bias(f.gap, input.h, input.gravity);
+    }
+    // Friction rows in the layout's order: contact by contact, `+d` before `-d` (the running index
+    // is guarded, so every index is provably in range).
+    let mut j = K;
+    for i in 0..K {
+        let f = &input.frames[i];
+        for direction in [Direction::Plus, Direction::Minus] {
+            if !layout.tangents()[i].keeps(direction) || j >= sigma_start {
+                continue;
+            }
+            let s = sign::<T>(direction);
+            columns[j] = [s * f.wt[0], s * f.wt[1], s * f.wt[2]];
+            b[j] = s * (dot3(&f.wt, &input.v_free) - dot2(&f.tangent(), &input.support_velocity[i]));
+            a[(j, sigma_start + i)] = T::one();
+            a[(sigma_start + i, j)] = -T::one();
+            j += 1;
+        }
+    }
+    for j in 0..sigma_start {
+        let mc =
+            [columns[j][0] * input.m_inv[0], columns[j][1] * input.m_inv[1], columns[j][2] * input.m_inv[2]];
+        for k in j..sigma_start {
+            let entry = dot3(&mc, &columns[k]);
+            a[(j, k)] = entry;
+            a[(k, j)] = entry;
+        }
+    }
+    for i in 0..K {
+        a[(sigma_start + i, i)] = input.mu[i];
+    }
+    for i in 0..K {
+        if input.frames[i].active {
+            continue;
+        }
+        for j in 0..N {
+            if layout.variables()[j].contact() != i {
+                continue;
+            }
+            for k in 0..N {
+                a[(j, k)] = T::zero();
+                a[(k, j)] = T::zero();
+            }
+            a[(j, j)] = T::one();
+            b[j] = T::one();
+            columns[j] = [T::zero(); 3];
+        }
+    }
+}

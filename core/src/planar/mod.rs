@@ -1,0 +1,52 @@
+//! The planar contact core: one rigid body against `K` supports, stepped by an LCP per step.
+//!
+//! The model is that of `docs/formulation.md` (the paper's eqs. 13-18 generalised from two finger
+//! contacts to `K` contacts). A scene declares:
+//!
+//! * the **body** ([`Body`]: a box, with its mass and inertia) and its **contacts** ([`Contact`]:
+//!   which [`Feature`] of the body touches a support, with `mu_s` and `mu_k`);
+//! * the **layout** of each step's LCP ([`Layout`]): which friction directions each contact keeps,
+//!   and from that the LCP size `N`, checked at compile time; optionally a reduced layout with a
+//!   full one to fall back to;
+//! * each step, where its **supports** are ([`Support`]: a point or a line, position and velocity).
+//!
+//! The [`Stepper`] does the rest: assembly ([`assemble`](mod@assemble)), the warm-started verified
+//! solve, the reduced layout's check and fallback, integration, contact modes ([`ContactMode`]) and
+//! the [`StepReport`] with each contact's impulses and mode switches. Scenes built on it are in
+//! [`crate::scene`]; `core/examples/three_fingers.rs` writes one outside the crate.
+//!
+//! # Example: a block at rest on a floor
+//! ```
+//! use meterstick_core::planar::{
+//!     Body, BodyState, Contact, Feature, Layout, Model, Settings, Stepper, Support,
+//! };
+//!
+//! let body = Body::block(1.0_f64, 0.2, 0.1);
+//! let corner = |x: f64| Contact { feature: Feature::Point([x, -0.05]), mu_static: 0.5, mu_kinetic: 0.5 };
+//! let settings = Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, speed_scale: 0.0 };
+//! let model = Model { body, contacts: [corner(-0.1), corner(0.1)], settings };
+//! const FULL: Layout<2, 8> = Layout::full();
+//! let floor = Support::fixed_line([0.0, 0.0], [0.0, 1.0]);
+//! let mut stepper = Stepper::new(model, FULL, FULL, BodyState::at_rest(0.0, 0.05, 0.0), [floor; 2])?;
+//! let report = stepper.step(&[floor; 2])?;
+//! // The floor carries the block's weight, half on each corner: m g h / 2 each.
+//! let weight = 1.0 * 9.81 * 1e-3;
+//! assert!((report.contacts[0].normal_impulse - weight / 2.0).abs() < 1e-12);
+//! assert!(report.state.vy.abs() < 1e-12);
+//! # Ok::<(), Box<dyn core::error::Error>>(())
+//! ```
+
+pub mod assemble;
+mod body;
+mod checksum;
+mod contact;
+mod events;
+mod layout;
+mod stepper;
+
+pub use body::{Body, BodyState};
+pub use checksum::Checksum;
+pub use contact::{Contact, ContactFrame, ContactMode, Feature, Pose, Support};
+pub use events::{EventLog, SwitchEvent};
+pub use layout::{Direction, Layout, Tangents, Variable};
+pub use stepper::{ContactReport, Model, RunStats, Settings, StepError, StepReport, Stepper};

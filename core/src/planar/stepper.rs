@@ -1,0 +1,646 @@
+//! [`Stepper`]: one rigid body against `K` supports, stepped by an LCP per step.
+//!
+//! One [`Stepper::step`] (`docs/formulation.md`, "One time step"):
+//!
+//! 1. the contact frames of the step's start (computed at the end of the previous step) and the
+//!    supports' velocities over the step, given by the scene;
+//! 2. each contact's friction coefficient from its mode after the previous step (`mu_s` while
+//!    sticking or separated, `mu_k` while sliding);
+//! 3. the LCP of eq. 18 for the solved [`Layout`], solved by [`Lemke`] warm-started from the
+//!    previous step's basis;
+//! 4. for a reduced layout, the dropped directions checked; when one is needed (or the reduced LCP
+//!    has no solution) the step is solved again in the full layout, warm-started from the reduced
+//!    basis mapped into it (feature `fallback`; without it the step fails with
+//!    [`StepError::ReducedModelLeftRange`] and no full-layout code is linked);
+//! 5. `v+ = v~ + M^-1 W z` (eq. 16) and `q+ = q + h v+` with compensated sums (eq. 14), refused
+//!    when not finite;
+//! 6. each contact's mode after the step, the [`StepReport`], and the frames for the next step.
+//!
+//! A failed step leaves the state as it was and returns a [`StepError`]; nothing here panics.
+
+use super::assemble::{StepInputs, StepLcp, assemble_into, sign};
+use super::body::{Body, BodyState};
+use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
+use super::layout::{Direction, Layout, Variable};
+use crate::lcp::{Basis, LcpError, Lemke};
+use crate::params::ParamError;
+use crate::real::Real;
+
+/// The stepper's numbers, besides the body and its contacts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Settings<T> {
+    /// Time step `h` (s, > 0).
+    pub step: T,
+    /// Gravity `g` along `-y` (m/s^2, >= 0).
+    pub gravity: T,
+    /// A touching contact whose slip speed is at most this sticks (m/s, >= 0).
+    pub stick_speed: T,
+    /// The scene's characteristic support speed `V` (m/s, >= 0): the scale of velocity round-off
+    /// in the "separated" impulse floor and the reduced-layout check. The fastest prescribed support
+    /// speed (0 for supports at rest).
+    pub speed_scale: T,
+}
+
+/// What the stepper moves: the body, its contacts and the numbers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Model<T, const K: usize> {
+    /// The body.
+    pub body: Body<T>,
+    /// Its contacts, in the order of the LCP's variables.
+    pub contacts: [Contact<T>; K],
+    /// Step, gravity, thresholds.
+    pub settings: Settings<T>,
+}
+
+/// Why a step failed. The state is that before the step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum StepError {
+    /// The step's LCP could not be solved.
+    Solver(LcpError),
+    /// The state after the step would not be finite.
+    NonFinite,
+    /// A reduced layout's dropped direction was needed and the `fallback` feature is off.
+    ReducedModelLeftRange,
+    /// A support cannot carry its contact's feature (the contact's index).
+    SupportMismatch(u8),
+}
+
+impl core::fmt::Display for StepError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Solver(e) => write!(f, "solver: {e}"),
+            Self::NonFinite => f.write_str("the state became non-finite"),
+            Self::ReducedModelLeftRange => {
+                f.write_str("the reduced friction model left its range (no fallback compiled in)")
+            }
+            Self::SupportMismatch(i) => write!(f, "the support of contact {i} cannot carry its feature"),
+        }
+    }
+}
+
+impl core::error::Error for StepError {}
+
+/// One contact's part of a [`StepReport`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactReport<T> {
+    /// Mode after the step.
+    pub mode: ContactMode,
+    /// Mode before it (after the previous step; before the first, the initial mode).
+    pub previous_mode: ContactMode,
+    /// Normal impulse on the body (N s).
+    pub normal_impulse: T,
+    /// Net friction impulse on the body along the contact's `+d` (N s).
+    pub friction_impulse: T,
+    /// The contact's coordinate along its tangent at the step's start ([`ContactFrame::along`]).
+    pub along: T,
+}
+
+/// What one step did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport<T, const K: usize> {
+    /// Time at the end of the step (s).
+    pub time: T,
+    /// State at the end of the step.
+    pub state: BodyState<T>,
+    /// Each contact.
+    pub contacts: [ContactReport<T>; K],
+    /// Complementary pivots of the step's solve(s).
+    pub pivots: u32,
+    /// `true` when the warm-start basis gave the answer.
+    pub warm_start_used: bool,
+    /// Reduced layout only: a dropped direction was needed (or the reduced LCP had no solution),
+    /// so the step was solved in the full layout (the reported values are the full layout's).
+    pub full_layout_used: bool,
+    /// The normalised verification residual of the solution used ([`crate::lcp::verify`]).
+    pub residual: T,
+}
+
+impl<T: Real, const K: usize> StepReport<T, K> {
+    /// Each contact's mode after the step.
+    #[must_use]
+    pub fn modes(&self) -> [ContactMode; K] {
+        let mut modes = [ContactMode::Separated; K];
+        for (m, c) in modes.iter_mut().zip(&self.contacts) {
+            *m = c.mode;
+        }
+        modes
+    }
+
+    /// Each contact's coordinate along it at the step's start.
+    #[must_use]
+    pub fn along(&self) -> [T; K] {
+        let mut along = [T::zero(); K];
+        for (a, c) in along.iter_mut().zip(&self.contacts) {
+            *a = c.along;
+        }
+        along
+    }
+
+    /// The contacts whose mode changed in this step, with their new mode.
+    pub fn switches(&self) -> impl Iterator<Item = (usize, ContactMode)> + '_ {
+        self.contacts.iter().enumerate().filter(|(_, c)| c.mode != c.previous_mode).map(|(i, c)| (i, c.mode))
+    }
+}
+
+/// Counters over a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RunStats {
+    /// Steps taken.
+    pub steps: u64,
+    /// Complementary pivots, summed.
+    pub pivots: u64,
+    /// Most pivots in one step.
+    pub max_pivots: u32,
+    /// Steps whose answer came from the warm-start basis.
+    pub warm_starts: u64,
+    /// Steps where a reduced layout's dropped direction was needed.
+    pub reduced_check_fired: u64,
+    /// Solves answered by the solver's regularised retry after a round-off ray
+    /// ([`crate::lcp::LcpSolution::regularized`]).
+    pub regularized_solves: u64,
+}
+
+/// One rigid body against `K` supports; each step solves the `N`-variable LCP of a [`Layout`],
+/// and, when that layout is reduced, falls back to the `NF`-variable full layout (`NF = N`: no
+/// reduction, no check).
+#[derive(Debug, Clone)]
+pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N> {
+    contacts: [Contact<T>; K],
+    settings: Settings<T>,
+    mass: T,
+    /// `diag(M^-1)` per unit mass ([`Body::inverse_mass_per_unit_mass`]).
+    m_inv: [T; 3],
+    half: [T; 2],
+    size: T,
+    /// A contact with at most this normal impulse per unit mass is separated:
+    /// `64 eps (g h + V)` (constant, so computed once).
+    impulse_floor: T,
+    layout: Layout<K, N>,
+    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    full: Layout<K, NF>,
+    /// Where each solved variable sits in the full layout.
+    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    to_full: [usize; N],
+    /// For each contact that keeps one direction of two: the kept friction row and direction.
+    kept_alone: [Option<(usize, Direction)>; K],
+    state: BodyState<T>,
+    /// Compensated-summation carries of `x`, `y`, `theta` (Kahan): `q += h v` adds a `1e-7` m
+    /// increment to a coordinate of `0.3` m at the slowest finger speeds, where f32's rounding was a
+    /// systematic 10 % of the increment.
+    carry: [T; 3],
+    time: T,
+    supports: [Support<T>; K],
+    frames: [ContactFrame<T>; K],
+    modes: [ContactMode; K],
+    basis: Basis<N>,
+    solver: Lemke<T, N>,
+    stats: RunStats,
+}
+
+impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, NF> {
+    const SIZES: () = assert!(
+        K >= 1 && N >= 3 * K && N <= NF && NF <= 4 * K && NF <= 32,
+        "Stepper<T, K, N, NF>: 3K <= N <= NF <= 4K, NF <= 32"
+    );
+
+    /// A stepper for `model`, solving `layout` each step with `full` as its fallback, from the state
+    /// `start` with the supports where they are at `t = 0` and moving as they do at `t = 0+`.
+    /// Contact modes before the first step come from that motion (`docs/formulation.md`).
+    ///
+    /// # Errors
+    /// A non-finite or out-of-range setting, body value or friction coefficient, a non-finite start
+    /// state or support, a support that does not fit its contact's feature, or a `full` that lacks a
+    /// variable of `layout`.
+    pub fn new(
+        model: Model<T, K>,
+        layout: Layout<K, N>,
+        full: Layout<K, NF>,
+        start: BodyState<T>,
+        supports: [Support<T>; K],
+    ) -> Result<Self, ParamError> {
+        validate(&model, &start, &supports)?;
+        Self::from_valid(model, layout, full, start, supports)
+    }
+
+    /// [`Self::new`] for a model, start and supports already known to be valid (a built-in scene
+    /// whose own validation implies the stepper's); only the layouts are checked.
+    pub(crate) fn from_valid(
+        model: Model<T, K>,
+        layout: Layout<K, N>,
+        full: Layout<K, NF>,
+        start: BodyState<T>,
+        supports: [Support<T>; K],
+    ) -> Result<Self, ParamError> {
+        let () = Self::SIZES;
+        let to_full = layout.index_in(&full).ok_or(ParamError::LayoutNotInFull)?;
+        let mut kept_alone = [None; K];
+        for (j, v) in layout.variables().iter().enumerate() {
+            if let Variable::Friction(i, direction) = *v
+                && layout.kept_alone(&full, usize::from(i)).is_some()
+                && let Some(slot) = kept_alone.get_mut(usize::from(i))
+            {
+                *slot = Some((j, direction));
+            }
+        }
+        let body = model.body;
+        let s = &model.settings;
+        let impulse_floor = T::of(64.0) * T::EPS * (s.gravity * s.step + s.speed_scale) + T::TINY;
+        let mut stepper = Self {
+            contacts: model.contacts,
+            settings: model.settings,
+            mass: body.mass,
+            m_inv: body.inverse_mass_per_unit_mass(),
+            half: body.half_extents(),
+            size: body.size(),
+            impulse_floor,
+            layout,
+            full,
+            to_full,
+            kept_alone,
+            state: start,
+            carry: [T::zero(); 3],
+            time: T::zero(),
+            supports,
+            frames: [ContactFrame {
+                along: T::zero(),
+                gap: T::zero(),
+                active: false,
+                wn: [T::zero(); 3],
+                wt: [T::zero(); 3],
+                r: [T::zero(); 2],
+            }; K],
+            modes: [ContactMode::Separated; K],
+            basis: Basis::all_w(),
+            solver: Lemke::new(),
+            stats: RunStats::default(),
+        };
+        stepper.update_frames(&supports);
+        stepper.modes = stepper.initial_modes();
+        Ok(stepper)
+    }
+
+    /// The body's state.
+    #[must_use]
+    pub const fn state(&self) -> &BodyState<T> {
+        &self.state
+    }
+    /// Simulated time (s).
+    #[must_use]
+    pub const fn time(&self) -> T {
+        self.time
+    }
+    /// The time at the end of the next step, `(steps + 1) h`: the scene's supports must be given
+    /// where they are then.
+    #[must_use]
+    pub fn next_time(&self) -> T {
+        T::of_count(count_u32(self.stats.steps + 1)) * self.settings.step
+    }
+    /// The settings.
+    #[must_use]
+    pub const fn settings(&self) -> &Settings<T> {
+        &self.settings
+    }
+    /// The contacts.
+    #[must_use]
+    pub const fn contacts(&self) -> &[Contact<T>; K] {
+        &self.contacts
+    }
+    /// The supports where the last step left them (at `t = 0`: the initial ones).
+    #[must_use]
+    pub const fn supports(&self) -> &[Support<T>; K] {
+        &self.supports
+    }
+    /// The contact frames of the current state.
+    #[must_use]
+    pub const fn frames(&self) -> &[ContactFrame<T>; K] {
+        &self.frames
+    }
+    /// Each contact's mode after the last step (before the first: from the prescribed motion).
+    #[must_use]
+    pub const fn modes(&self) -> [ContactMode; K] {
+        self.modes
+    }
+    /// The layout each step solves.
+    #[must_use]
+    pub const fn layout(&self) -> &Layout<K, N> {
+        &self.layout
+    }
+    /// Counters so far.
+    #[must_use]
+    pub const fn stats(&self) -> &RunStats {
+        &self.stats
+    }
+
+    /// Recomputes the contact frames for the current state against `supports`, in place (a
+    /// support that does not fit gives an inactive frame; `new` and `step` refuse those first).
+    /// The supports are passed in, not read back from `self.supports` just after they were
+    /// copied there: an 8-byte load of a position stored as two 4-byte halves cannot be forwarded
+    /// from the store buffer, and that stall alone was 4 % of a host step. Out of line on a
+    /// microcontroller: called from `new` and `step`, inlined it was two copies of flash.
+    #[cfg_attr(target_os = "none", inline(never))]
+    fn update_frames(&mut self, supports: &[Support<T>; K]) {
+        let pose = Pose { com: [self.state.x, self.state.y], sin_cos: self.state.theta.sin_cos_portable() };
+        for i in 0..K {
+            match ContactFrame::new(&self.contacts[i].feature, &supports[i], &pose, self.half) {
+                Some(f) => self.frames[i] = f,
+                None => self.frames[i].active = false,
+            }
+        }
+    }
+
+    /// The modes before the first step: a contact that is active and touching (gap at most
+    /// `64 eps (size + |y|)`) gets its mode from the slip of its support's velocity against the
+    /// body's; one that does not touch is separated.
+    fn initial_modes(&self) -> [ContactMode; K] {
+        let v = self.state.velocity();
+        let touch_tol = T::of(64.0) * T::EPS * (self.size + self.state.y.abs_exact());
+        let mut modes = [ContactMode::Separated; K];
+        for i in 0..K {
+            let f = &self.frames[i];
+            if f.active && f.gap <= touch_tol {
+                modes[i] =
+                    ContactMode::from_slip(f.slip(v, self.supports[i].velocity()), self.settings.stick_speed);
+            }
+        }
+        modes
+    }
+
+    /// Advances one step of `h`; `supports` are where the supports are at its end
+    /// ([`Self::next_time`]) and how fast they moved over it.
+    ///
+    /// # Errors
+    /// [`StepError`]; the state is then unchanged.
+    #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
+    pub fn step(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
+        let s = self.settings;
+        let h = s.step;
+        let mut support_velocity = [[T::zero(); 2]; K];
+        let mut mu = [T::zero(); K];
+        for i in 0..K {
+            let c = &self.contacts[i];
+            if !supports[i].fits(&c.feature) {
+                return Err(StepError::SupportMismatch(i as u8));
+            }
+            support_velocity[i] = supports[i].velocity();
+            mu[i] = if self.modes[i].is_sliding() { c.mu_kinetic } else { c.mu_static };
+        }
+        let v_free = [self.state.vx, self.state.vy - h * s.gravity, self.state.omega];
+        let inputs = StepInputs {
+            frames: &self.frames,
+            mu,
+            support_velocity,
+            v_free,
+            m_inv: self.m_inv,
+            h,
+            gravity: s.gravity,
+        };
+        let mut step_lcp = StepLcp::zeros();
+        assemble_into(&self.layout, &inputs, &mut step_lcp);
+        let mut z = [T::zero(); NF];
+        let mut columns = [[T::zero(); 3]; NF];
+        let mut v_plus = v_free;
+        let reduced = N != NF;
+        #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
+        let (mut pivots, warm_start_used, mut residual, solved) =
+            match self.solver.solve_warm(&step_lcp.lcp, self.basis) {
+                Ok(sol) => {
+                    self.basis = sol.basis;
+                    self.stats.regularized_solves += u64::from(sol.regularized);
+                    z[..N].copy_from_slice(sol.z.as_slice());
+                    columns[..N].copy_from_slice(&step_lcp.columns);
+                    v_plus = velocity_after(&v_free, &self.m_inv, &columns[..N - K], &z[..N - K]);
+                    (sol.pivots, sol.warm_start_used, sol.residual, true)
+                }
+                // A reduced LCP may have no solution when a dropped direction is needed: that too
+                // is the reduced model leaving its range.
+                Err(e) if reduced => {
+                    self.basis = Basis::all_w();
+                    (e.pivots(), false, T::zero(), false)
+                }
+                Err(e) => return Err(StepError::Solver(e)),
+            };
+        let full_layout_used = reduced && (!solved || self.dropped_direction_needed(&inputs, &v_plus, &z));
+        if full_layout_used {
+            self.stats.reduced_check_fired += 1;
+            #[cfg(feature = "fallback")]
+            {
+                let mut full = StepLcp::zeros();
+                assemble_into(&self.full, &inputs, &mut full);
+                let mut wide = Basis::<NF>::all_w();
+                for (j, &k) in self.to_full.iter().enumerate() {
+                    wide.set_z_basic(k, self.basis.is_z_basic(j));
+                }
+                let sol = Lemke::<T, NF>::new().solve_warm(&full.lcp, wide).map_err(StepError::Solver)?;
+                pivots += sol.pivots;
+                residual = sol.residual;
+                self.stats.regularized_solves += u64::from(sol.regularized);
+                z.copy_from_slice(sol.z.as_slice());
+                columns = full.columns;
+                v_plus = velocity_after(&v_free, &self.m_inv, &columns[..NF - K], &z[..NF - K]);
+            }
+            #[cfg(not(feature = "fallback"))]
+            {
+                log_warn!(
+                    "reduced layout left its range at t={}: no fallback compiled in",
+                    self.time.as_f32()
+                );
+                return Err(StepError::ReducedModelLeftRange);
+            }
+        }
+
+        // Integrate (eq. 14): q+ = q + h v+, compensated sums; refused when not finite.
+        let mut state = self.state;
+        let mut carry = self.carry;
+        state.vx = v_plus[0];
+        state.vy = v_plus[1];
+        state.omega = v_plus[2];
+        for (k, coordinate) in [&mut state.x, &mut state.y, &mut state.theta].into_iter().enumerate() {
+            let increment = h * v_plus[k] - carry[k];
+            let sum = *coordinate + increment;
+            carry[k] = (sum - *coordinate) - increment;
+            *coordinate = sum;
+        }
+        if !state.is_finite() {
+            return Err(StepError::NonFinite);
+        }
+        let time = self.next_time();
+        self.stats.steps += 1;
+        self.stats.pivots += u64::from(pivots);
+        self.stats.max_pivots = self.stats.max_pivots.max(pivots);
+        self.stats.warm_starts += u64::from(warm_start_used);
+
+        // Impulses (z is per unit mass) and modes after the step.
+        let (normal, friction) = if full_layout_used {
+            impulses(&self.full, &z, self.mass)
+        } else {
+            impulses(&self.layout, &z, self.mass)
+        };
+        let impulse_floor = self.impulse_floor;
+        let mut contacts = [ContactReport {
+            mode: ContactMode::Separated,
+            previous_mode: ContactMode::Separated,
+            normal_impulse: T::zero(),
+            friction_impulse: T::zero(),
+            along: T::zero(),
+        }; K];
+        for i in 0..K {
+            let f = &self.frames[i];
+            let mode = if f.active && z[i] > impulse_floor {
+                ContactMode::from_slip(f.slip(v_plus, support_velocity[i]), s.stick_speed)
+            } else {
+                ContactMode::Separated
+            };
+            contacts[i] = ContactReport {
+                mode,
+                previous_mode: self.modes[i],
+                normal_impulse: normal[i],
+                friction_impulse: friction[i],
+                along: f.along,
+            };
+            self.modes[i] = mode;
+        }
+        self.state = state;
+        self.carry = carry;
+        self.time = time;
+        self.update_frames(supports);
+        self.supports = *supports;
+        Ok(StepReport { time, state, contacts, pivots, warm_start_used, full_layout_used, residual })
+    }
+
+    /// The reduced layout's check (`docs/formulation.md`, "Reduced friction layouts"): for each
+    /// active contact that keeps one direction `s` of two, the row of the dropped direction,
+    /// `-s (W_d^T v+ - d . u) + sigma`, must not be negative beyond round-off.
+    ///
+    /// Except where `sigma` is free: when the kept direction carries no impulse and the cone row
+    /// `mu p_n - p_f` is zero too (`mu = 0`, or no normal impulse), `sigma` can be raised to
+    /// `|W_d^T v+ - d . u|` without breaking any complementarity, and the reduced answer (same
+    /// impulses) extends to a solution of the full LCP. (Without this exception the frictionless
+    /// meter stick fell back to the full layout in 441 of 3,998 steps; `host-sim stress`.)
+    fn dropped_direction_needed(&self, inputs: &StepInputs<'_, T, K>, v_plus: &[T; 3], z: &[T; NF]) -> bool {
+        let s = &self.settings;
+        let speed_scale = s.speed_scale
+            + s.gravity * s.step
+            + v_plus[0].abs_exact()
+            + v_plus[1].abs_exact()
+            + (v_plus[2] * self.size).abs_exact();
+        let tol = T::of(64.0 * N as f64) * T::EPS * speed_scale + T::TINY;
+        for i in 0..K {
+            let Some((j, kept)) = self.kept_alone[i] else { continue };
+            let f = &inputs.frames[i];
+            if !f.active || j >= NF {
+                continue;
+            }
+            if z[j] <= tol && inputs.mu[i] * z[i] <= tol {
+                continue; // sigma is free
+            }
+            let u = &inputs.support_velocity[i];
+            let g = f.wt[0] * v_plus[0] + f.wt[1] * v_plus[1] + f.wt[2] * v_plus[2]
+                - (f.wt[0] * u[0] + f.wt[1] * u[1]);
+            let sigma = Layout::<K, N>::SIGMA_START + i;
+            if sigma < NF && -sign::<T>(kept) * g + z[sigma] < -tol {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Each contact's normal and net friction impulse (physical, N s) from `z` (per unit mass) in
+/// `layout`'s order (friction rows contact by contact, `+d` before `-d`).
+fn impulses<T: Real, const K: usize, const M: usize, const NF: usize>(
+    layout: &Layout<K, M>,
+    z: &[T; NF],
+    mass: T,
+) -> ([T; K], [T; K]) {
+    let mut normal = [T::zero(); K];
+    let mut friction = [T::zero(); K];
+    let mut j = K;
+    for i in 0..K {
+        normal[i] = z[i] * mass;
+        for direction in [Direction::Plus, Direction::Minus] {
+            if layout.tangents()[i].keeps(direction) && j < NF {
+                friction[i] += sign::<T>(direction) * z[j] * mass;
+                j += 1;
+            }
+        }
+    }
+    (normal, friction)
+}
+
+/// `v+ = v~ + M^-1 sum_j c_j z_j` (eq. 16).
+fn velocity_after<T: Real>(v_free: &[T; 3], m_inv: &[T; 3], columns: &[[T; 3]], z: &[T]) -> [T; 3] {
+    let mut v = *v_free;
+    for (c, &zj) in columns.iter().zip(z) {
+        for k in 0..3 {
+            v[k] += m_inv[k] * c[k] * zj;
+        }
+    }
+    v
+}
+
+/// A step count for [`Real::of_count`], saturating at `u32::MAX` (4.3e9 steps: 50 days at
+/// h = 1 ms; f32 time is exact only to 2^24 steps anyway).
+fn count_u32(n: u64) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
+/// The set-up checks of [`Stepper::new`].
+fn validate<T: Real, const K: usize>(
+    model: &Model<T, K>,
+    start: &BodyState<T>,
+    supports: &[Support<T>; K],
+) -> Result<(), ParamError> {
+    use crate::params::{Check, check_fields};
+    let (b, s) = (&model.body, &model.settings);
+    check_fields(&[
+        ("width", b.width, Check::Positive),
+        ("height", b.height, Check::NonNegative),
+        ("mass", b.mass, Check::Positive),
+        ("inertia", b.inertia, Check::Positive),
+        ("step", s.step, Check::Positive),
+        ("gravity", s.gravity, Check::NonNegative),
+        ("stick_speed", s.stick_speed, Check::NonNegative),
+        ("speed_scale", s.speed_scale, Check::NonNegative),
+    ])?;
+    for (i, c) in model.contacts.iter().enumerate() {
+        check_fields(&[
+            ("mu_static", c.mu_static, Check::NonNegative),
+            ("mu_kinetic", c.mu_kinetic, Check::NonNegative),
+        ])?;
+        if c.mu_kinetic > c.mu_static {
+            return Err(ParamError::KineticAboveStatic);
+        }
+        if let super::Feature::Point(p) = c.feature
+            && !(p[0].finite() && p[1].finite())
+        {
+            return Err(ParamError::NonFinite("feature"));
+        }
+        let sup = &supports[i];
+        if !sup.fits(&c.feature) {
+            return Err(ParamError::SupportMismatch(i as u8));
+        }
+        let mut values = [
+            sup.position()[0],
+            sup.position()[1],
+            sup.velocity()[0],
+            sup.velocity()[1],
+            T::zero(),
+            T::zero(),
+        ];
+        if let Support::Line { normal, .. } = sup {
+            values[4] = normal[0];
+            values[5] = normal[1];
+        }
+        if !values.iter().all(|v| v.finite()) {
+            return Err(ParamError::NonFinite("support"));
+        }
+    }
+    if !start.is_finite() {
+        return Err(ParamError::NonFiniteState);
+    }
+    Ok(())
+}

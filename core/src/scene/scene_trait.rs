@@ -1,0 +1,75 @@
+//! [`Scene`]: what every scene offers its drivers (host tools, firmware, the browser page).
+
+use super::outcome::Outcome;
+use crate::planar::{BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support};
+use crate::real::Real;
+
+/// A scene: one body on `K` supports the scene moves, stepped to an [`Outcome`].
+///
+/// Implemented by [`super::MeterStick`], [`super::Incline`] and [`super::Ladder`]; a scene of your
+/// own implements it the same way (`core/examples/three_fingers.rs`).
+pub trait Scene<T: Real, const K: usize> {
+    /// Advances one step; `None` once the run has an outcome (a failed step ends the run with
+    /// [`Outcome::Failed`]).
+    fn step(&mut self) -> Option<StepReport<T, K>>;
+    /// The outcome, once the run has ended.
+    fn outcome(&self) -> Option<Outcome>;
+    /// The body's state now.
+    fn state(&self) -> &BodyState<T>;
+    /// Simulated time (s).
+    fn time(&self) -> T;
+    /// The supports where the last step left them.
+    fn supports(&self) -> &[Support<T>; K];
+    /// Each contact's geometry now (contact point, normal, tangent, gap).
+    fn frames(&self) -> &[ContactFrame<T>; K];
+    /// Each contact's mode after the last step (before the first: from the prescribed motion).
+    fn modes(&self) -> [ContactMode; K];
+    /// The stepper's counters.
+    fn stats(&self) -> &RunStats;
+
+    /// Runs until an outcome, calling `observe` after every step; returns the outcome.
+    fn run(&mut self, mut observe: impl FnMut(&StepReport<T, K>)) -> Outcome
+    where
+        Self: Sized,
+    {
+        while let Some(report) = self.step() {
+            observe(&report);
+        }
+        self.outcome().unwrap_or(Outcome::Unfinished)
+    }
+}
+
+/// Implements [`Scene`] for a scene struct with a `stepper` field, an `outcome` field and an
+/// inherent `advance` method (its step).
+macro_rules! impl_scene {
+    ($scene:ident, $k:literal) => {
+        impl<T: Real, const N: usize, const E: usize> $crate::scene::Scene<T, $k> for $scene<T, N, E> {
+            fn step(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
+                self.advance()
+            }
+            fn outcome(&self) -> Option<$crate::scene::Outcome> {
+                self.outcome
+            }
+            fn state(&self) -> &$crate::planar::BodyState<T> {
+                self.stepper.state()
+            }
+            fn time(&self) -> T {
+                self.stepper.time()
+            }
+            fn supports(&self) -> &[$crate::planar::Support<T>; $k] {
+                self.stepper.supports()
+            }
+            fn frames(&self) -> &[$crate::planar::ContactFrame<T>; $k] {
+                self.stepper.frames()
+            }
+            fn modes(&self) -> [$crate::planar::ContactMode; $k] {
+                self.stepper.modes()
+            }
+            fn stats(&self) -> &$crate::planar::RunStats {
+                self.stepper.stats()
+            }
+        }
+    };
+}
+
+pub(crate) use impl_scene;

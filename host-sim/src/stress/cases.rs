@@ -1,0 +1,395 @@
+//! The grid of `host-sim stress`: one [`Case`] per stiff or extreme scene, with what physics says
+//! about it where physics decides.
+
+use meterstick_core::scene::{InclineParams, LadderParams, MeterStickParams};
+
+use crate::scenes::SceneSpec;
+use crate::trajectory::OutcomeClass;
+
+/// A physics claim a case makes beyond the generic criteria.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Claim {
+    /// None: the generic criteria only.
+    None,
+    /// While finger 1 is left of the centre of mass (by 1 % of `L`), the rod does not move along
+    /// `x` (frictionless contacts or `mu_k = 0`: no force can drag it).
+    NotDragged,
+    /// The body does not move at all (zero finger speed, zero gravity, a block held by friction).
+    BodyStill,
+}
+
+/// One scene of the grid.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// Which part of the grid.
+    pub group: &'static str,
+    /// A short name, unique.
+    pub name: String,
+    /// The scene.
+    pub spec: SceneSpec,
+    /// Meter stick: start height above the resting position (m; negative: penetrating).
+    pub start_dy: f64,
+    /// The outcome class physics decides, if any.
+    pub outcome: Option<OutcomeClass>,
+    /// Further claim.
+    pub claim: Claim,
+}
+
+/// The base scene: the paper's with finger 1 at -0.35 (asymmetric, as the main job's slow scene).
+fn base() -> MeterStickParams<f64> {
+    MeterStickParams { finger1_x: -0.35, ..MeterStickParams::paper() }
+}
+
+/// The base scene at finger speed `v`, with `stick_speed` 1e-4 of it (as the paper's 1e-5 of
+/// 0.1 m/s) and room for the fingers to meet and the hold time.
+fn at_speed(v: f64) -> MeterStickParams<f64> {
+    let mut p = base();
+    p.finger1_velocity = v;
+    p.stick_speed = if v > 0.0 { 1e-4 * v } else { 1e-5 };
+    p.max_time = if v > 0.0 { (1.2 * (p.finger2_x - p.finger1_x) / v + 5.0).min(1000.0) } else { 2.0 };
+    p
+}
+
+/// The base scene scaled to rod length `l` with every dimensionless group kept
+/// (`v / sqrt(g L)`, `h sqrt(g / L)`, `t / L`, ...): by similarity it ends as the base does.
+fn similar(l: f64) -> MeterStickParams<f64> {
+    let mut p = base();
+    let k = l / p.rod_length;
+    let kt = k.sqrt();
+    for field in ["rod_length", "rod_thickness", "finger1_x", "finger2_x", "finger_width", "drop_limit"] {
+        p.set(field, p.get(field).unwrap_or(f64::NAN) * k);
+    }
+    for field in ["finger1_velocity", "stick_speed", "step", "hold_time", "max_time"] {
+        p.set(field, p.get(field).unwrap_or(f64::NAN) * kt);
+    }
+    p
+}
+
+/// A block on an incline at `deg` degrees, `w x hgt`, friction `mu_s / mu_k`.
+fn incline(deg: f64, (w, hgt): (f64, f64), (mu_s, mu_k): (f64, f64)) -> SceneSpec {
+    SceneSpec::Incline(InclineParams {
+        angle: deg.to_radians(),
+        width: w,
+        height: hgt,
+        mu_static: mu_s,
+        mu_kinetic: mu_k,
+        ..InclineParams::default()
+    })
+}
+
+/// The incline's outcome by statics (`docs/formulation.md`): held when `tan a <= mu_s` and
+/// `tan a < w/h`; tipped when `w/h < tan a < mu_s`; slid when `tan a > mu_s` and it tips neither
+/// at rest (`tan a < w/h`) nor while sliding (friction at the base tips a sliding block when
+/// `mu_k > w/h`). `None` near a boundary (within 2 %).
+fn incline_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
+    let SceneSpec::Incline(p) = spec else { return None };
+    let (tan, aspect) = (p.angle.tan(), p.width / p.height);
+    let clear = |a: f64, b: f64| (a - b).abs() > 0.02 * a.abs().max(b.abs());
+    if !(clear(tan, p.mu_static) && clear(tan, aspect) && clear(p.mu_kinetic, aspect)) {
+        return None;
+    }
+    if tan < p.mu_static && tan < aspect {
+        Some(OutcomeClass::Held)
+    } else if aspect < tan && tan < p.mu_static {
+        Some(OutcomeClass::Tipped)
+    } else if tan > p.mu_static && tan < aspect && p.mu_kinetic < aspect {
+        Some(OutcomeClass::Slid)
+    } else {
+        None
+    }
+}
+
+/// A ladder at `deg` degrees with `mu_floor`, `mu_wall`.
+fn ladder(deg: f64, mu_f: f64, mu_w: f64) -> SceneSpec {
+    SceneSpec::Ladder(LadderParams {
+        angle: deg.to_radians(),
+        mu_floor: mu_f,
+        mu_wall: mu_w,
+        ..LadderParams::default()
+    })
+}
+
+/// The ladder's outcome by statics: it stands iff `tan theta >= (1 - mu_f mu_w) / (2 mu_f)`;
+/// `None` within 2 degrees of the critical angle (a near-critical ladder slips too slowly to
+/// reach the floor in the run, or stands by round-off).
+fn ladder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
+    let SceneSpec::Ladder(p) = spec else { return None };
+    let critical = if p.mu_floor > 0.0 {
+        ((1.0 - p.mu_floor * p.mu_wall) / (2.0 * p.mu_floor)).atan()
+    } else {
+        std::f64::consts::FRAC_PI_2
+    };
+    let margin = 2f64.to_radians();
+    if p.angle > critical + margin {
+        Some(OutcomeClass::Held)
+    } else if p.angle < critical - margin {
+        Some(OutcomeClass::Fell)
+    } else {
+        None
+    }
+}
+
+/// The grid (`quick`: the subset the test command runs).
+#[must_use]
+#[allow(clippy::too_many_lines)] // one table of cases
+pub fn cases(quick: bool) -> Vec<Case> {
+    use OutcomeClass::{Balanced, Fell, Unfinished};
+    let mut out = Vec::new();
+    let mut add = |group, name: &str, spec: SceneSpec, start_dy, outcome, claim| {
+        out.push(Case { group, name: name.into(), spec, start_dy, outcome, claim });
+    };
+    let stick = SceneSpec::MeterStick;
+    let (balanced, fell, unfinished) = (Some(Balanced), Some(Fell), Some(Unfinished));
+
+    // Finger speed, h = 1 ms.
+    add("speed", "v=0", stick(at_speed(0.0)), 0.0, unfinished, Claim::BodyStill);
+    if !quick {
+        add("speed", "v=1e-4 (10^6 steps)", stick(at_speed(1e-4)), 0.0, unfinished, Claim::None);
+        add("speed", "v=1e-3", stick(at_speed(1e-3)), 0.0, balanced, Claim::None);
+        add("speed", "v=1e-2", stick(at_speed(1e-2)), 0.0, balanced, Claim::None);
+    }
+    add("speed", "v=0.1", stick(at_speed(0.1)), 0.0, balanced, Claim::None);
+    if !quick {
+        add("speed", "v=1", stick(at_speed(1.0)), 0.0, fell, Claim::None);
+        add("speed", "v=10", stick(at_speed(10.0)), 0.0, fell, Claim::None);
+        let both = MeterStickParams { finger2_velocity: -0.05, finger1_velocity: 0.05, ..at_speed(0.05) };
+        add("speed", "both fingers inward 0.05", stick(both), 0.0, balanced, Claim::None);
+        let second = MeterStickParams {
+            finger1_x: -0.4,
+            finger2_x: 0.35,
+            finger1_velocity: 0.0,
+            finger2_velocity: -0.1,
+            ..at_speed(0.1)
+        };
+        add("speed", "finger 2 moves", stick(second), 0.0, balanced, Claim::None);
+    }
+    add("speed", "v=100", stick(at_speed(100.0)), 0.0, fell, Claim::None);
+
+    // Time step.
+    let with_h = |v: f64, h: f64, max_time: Option<f64>| {
+        let mut p = at_speed(v);
+        p.step = h;
+        if let Some(t) = max_time {
+            p.max_time = t;
+        }
+        stick(p)
+    };
+    if !quick {
+        add("h", "v=0.1 h=1e-5", with_h(0.1, 1e-5, None), 0.0, balanced, Claim::None);
+        add("h", "v=0.1 h=1e-4", with_h(0.1, 1e-4, None), 0.0, balanced, Claim::None);
+        add("h", "v=0.1 h=1e-2", with_h(0.1, 1e-2, None), 0.0, None, Claim::None);
+        add("h", "v=0.1 h=5e-2", with_h(0.1, 5e-2, None), 0.0, None, Claim::None);
+        add("h", "v=1 h=1e-6", with_h(1.0, 1e-6, Some(1.0)), 0.0, fell, Claim::None);
+        add("h", "v=1 h=5e-2", with_h(1.0, 5e-2, None), 0.0, None, Claim::None);
+        add("h", "v=0.1 h=10 (> crossing time 7 s)", with_h(0.1, 10.0, None), 0.0, None, Claim::None);
+    }
+    add("h", "v=10 h=0.1 (> crossing time 0.07 s)", with_h(10.0, 0.1, None), 0.0, None, Claim::None);
+
+    // Friction.
+    let with_mu =
+        |mu_s: f64, mu_k: f64| stick(MeterStickParams { mu_static: mu_s, mu_kinetic: mu_k, ..base() });
+    add("friction", "mu=0 (frictionless)", with_mu(0.0, 0.0), 0.0, fell, Claim::NotDragged);
+    if !quick {
+        add("friction", "mu_s=0.6 mu_k=0", with_mu(0.6, 0.0), 0.0, fell, Claim::NotDragged);
+        add("friction", "mu_s=mu_k=0.4", with_mu(0.4, 0.4), 0.0, None, Claim::None);
+        add("friction", "mu_s=0.05 mu_k=0.04", with_mu(0.05, 0.04), 0.0, None, Claim::None);
+        add("friction", "mu_s=mu_k=10", with_mu(10.0, 10.0), 0.0, None, Claim::None);
+        add("friction", "mu_s=10 mu_k=5", with_mu(10.0, 5.0), 0.0, None, Claim::None);
+    }
+
+    // Mass: every force scales with m, so the motion does not depend on it.
+    for (k, mass) in [1e-4, 1e-2, 1.0, 1e2, 1e4].into_iter().enumerate() {
+        if quick && k != 0 && k != 4 {
+            continue;
+        }
+        add(
+            "mass",
+            &format!("m={mass:e} kg"),
+            stick(MeterStickParams { rod_mass: mass, ..base() }),
+            0.0,
+            balanced,
+            Claim::None,
+        );
+    }
+
+    // Rod shape: similar rods end as the base does; thin and thick rods, and unscaled short and
+    // long rods, make no claim.
+    if !quick {
+        add("shape", "similar L=0.01 m", stick(similar(0.01)), 0.0, balanced, Claim::None);
+        add("shape", "similar L=100 m", stick(similar(100.0)), 0.0, balanced, Claim::None);
+        let short = MeterStickParams {
+            rod_length: 0.01,
+            finger1_x: -0.0035,
+            finger2_x: 0.004,
+            finger_width: 1e-4,
+            ..base()
+        };
+        add("shape", "short L=0.01 m, v=0.1", stick(short), 0.0, None, Claim::None);
+        let long = MeterStickParams {
+            rod_length: 100.0,
+            finger1_x: -35.0,
+            finger2_x: 40.0,
+            finger_width: 1.0,
+            drop_limit: 2.0,
+            ..base()
+        };
+        add("shape", "long L=100 m, v=0.1", stick(long), 0.0, None, Claim::None);
+        add(
+            "shape",
+            "thin t=1e-5 m",
+            stick(MeterStickParams { rod_thickness: 1e-5, ..base() }),
+            0.0,
+            balanced,
+            Claim::None,
+        );
+        add(
+            "shape",
+            "thick t=0.2 m",
+            stick(MeterStickParams { rod_thickness: 0.2, ..base() }),
+            0.0,
+            None,
+            Claim::None,
+        );
+    }
+
+    // Gravity.
+    let gravities =
+        [(0.0, unfinished, Claim::BodyStill), (1.0, None, Claim::None), (100.0, balanced, Claim::None)];
+    for (k, (g, outcome, claim)) in gravities.into_iter().enumerate() {
+        if quick && k != 0 {
+            continue;
+        }
+        add(
+            "gravity",
+            &format!("g={g}"),
+            stick(MeterStickParams { gravity: g, max_time: 10.0, ..base() }),
+            0.0,
+            outcome,
+            claim,
+        );
+    }
+
+    // Geometry at the edges.
+    if !quick {
+        let p = MeterStickParams { finger1_x: -0.5, finger2_x: 0.5, ..base() };
+        add("edges", "fingers at the rod ends", stick(p), 0.0, None, Claim::None);
+        let p = MeterStickParams { finger1_x: -0.0051, finger2_x: 0.005, ..base() };
+        add("edges", "fingers nearly together", stick(p), 0.0, balanced, Claim::None);
+        add(
+            "edges",
+            "finger width 1e-6 m",
+            stick(MeterStickParams { finger_width: 1e-6, ..base() }),
+            0.0,
+            None,
+            Claim::None,
+        );
+        add(
+            "edges",
+            "finger 1 under the COM",
+            stick(MeterStickParams { finger1_x: 0.0, ..base() }),
+            0.0,
+            None,
+            Claim::None,
+        );
+        let p = MeterStickParams { finger1_x: -0.4, finger2_x: 0.0, ..base() };
+        add("edges", "finger 2 under the COM", stick(p), 0.0, None, Claim::None);
+        let p = MeterStickParams { finger1_y: 0.02, ..base() };
+        add("edges", "finger 1 raised 2 cm", stick(p), 0.0, None, Claim::None);
+        add("edges", "drop from 1 cm", stick(base()), 0.01, None, Claim::None);
+    }
+    add("edges", "drop from 1 mm", stick(base()), 1e-3, balanced, Claim::None);
+    add("edges", "penetrating 0.1 mm", stick(base()), -1e-4, balanced, Claim::None);
+    if !quick {
+        add("edges", "penetrating 1 mm", stick(base()), -1e-3, balanced, Claim::None);
+        add(
+            "edges",
+            "penetrating 0.1 mm, h=1e-5",
+            stick(MeterStickParams { step: 1e-5, ..base() }),
+            -1e-4,
+            balanced,
+            Claim::None,
+        );
+    }
+
+    // Block on an incline (outcome by statics, where it is clear).
+    let mut add_incline = |name: &str, spec: SceneSpec, claim: Claim| {
+        let outcome = incline_claim(&spec);
+        out.push(Case { group: "incline", name: name.into(), spec, start_dy: 0.0, outcome, claim });
+    };
+    add_incline("incline 35 deg (slides)", incline(35.0, (0.1, 0.05), (0.6, 0.4)), Claim::None);
+    add_incline("incline tall box tips", incline(20.0, (0.05, 0.2), (0.6, 0.4)), Claim::None);
+    if !quick {
+        add_incline("incline 1 deg (held)", incline(1.0, (0.1, 0.05), (0.6, 0.4)), Claim::BodyStill);
+        add_incline(
+            "incline 80 deg flat box mu=10 (held)",
+            incline(80.0, (1.0, 0.01), (10.0, 10.0)),
+            Claim::BodyStill,
+        );
+        add_incline("incline 80 deg mu=0.6 flat box", incline(80.0, (1.0, 0.01), (0.6, 0.4)), Claim::None);
+        add_incline("incline 30 deg frictionless", incline(30.0, (0.1, 0.05), (0.0, 0.0)), Claim::None);
+        add_incline("incline very tall box 5 deg", incline(5.0, (0.01, 1.0), (0.6, 0.4)), Claim::None);
+        add_incline("incline very flat box 40 deg", incline(40.0, (1.0, 0.001), (0.6, 0.4)), Claim::None);
+        add_incline("incline 0 deg (level)", incline(0.0, (0.1, 0.05), (0.6, 0.4)), Claim::BodyStill);
+    }
+
+    // Ladder (outcome by statics, away from the critical angle).
+    let mut add_ladder = |name: &str, spec: SceneSpec, claim: Claim| {
+        let outcome = ladder_claim(&spec);
+        out.push(Case { group: "ladder", name: name.into(), spec, start_dy: 0.0, outcome, claim });
+    };
+    add_ladder("ladder 60 deg (stands)", ladder(60.0, 0.4, 0.3), Claim::BodyStill);
+    add_ladder("ladder frictionless 60 deg", ladder(60.0, 0.0, 0.0), Claim::None);
+    if !quick {
+        let critical = ((1.0 - 0.4 * 0.3) / (2.0 * 0.4_f64)).atan().to_degrees();
+        add_ladder("ladder at the critical angle", ladder(critical, 0.4, 0.3), Claim::None);
+        add_ladder("ladder 40 deg (slips)", ladder(40.0, 0.4, 0.3), Claim::None);
+        add_ladder("ladder 5 deg mu=10", ladder(5.0, 10.0, 10.0), Claim::BodyStill);
+        add_ladder("ladder 89 deg frictionless", ladder(89.0, 0.0, 0.0), Claim::None);
+        add_ladder("ladder 10 deg mu_floor=0.4", ladder(10.0, 0.4, 0.0), Claim::None);
+    }
+
+    if quick {
+        // Short runs (at most 5 s simulated): the subset checks the criteria, not long physics; a
+        // run cut short cannot balance.
+        for c in &mut out {
+            if c.spec.max_time() > 5.0 {
+                c.spec.set("max_time", 5.0);
+                if c.outcome == balanced {
+                    c.outcome = unfinished;
+                }
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_quick_grid_is_a_subset_with_unique_names() {
+        let full = cases(false);
+        let quick = cases(true);
+        assert!(quick.len() < full.len());
+        for c in &quick {
+            assert!(full.iter().any(|f| f.name == c.name), "{}", c.name);
+        }
+        let mut names: Vec<&str> = full.iter().map(|c| c.name.as_str()).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), full.len());
+    }
+
+    #[test]
+    fn statics_claims() {
+        assert_eq!(incline_claim(&incline(35.0, (0.1, 0.05), (0.6, 0.4))), Some(OutcomeClass::Slid));
+        assert_eq!(incline_claim(&incline(20.0, (0.05, 0.2), (0.6, 0.4))), Some(OutcomeClass::Tipped));
+        assert_eq!(incline_claim(&incline(10.0, (0.1, 0.05), (0.6, 0.4))), Some(OutcomeClass::Held));
+        assert_eq!(incline_claim(&incline(30.96, (0.1, 0.05), (0.6, 0.4))), None); // tan = 0.6: boundary
+        assert_eq!(ladder_claim(&ladder(60.0, 0.4, 0.3)), Some(OutcomeClass::Held));
+        assert_eq!(ladder_claim(&ladder(40.0, 0.4, 0.3)), Some(OutcomeClass::Fell));
+        assert_eq!(ladder_claim(&ladder(47.7, 0.4, 0.3)), None);
+        assert_eq!(ladder_claim(&ladder(60.0, 0.0, 0.0)), Some(OutcomeClass::Fell));
+    }
+}

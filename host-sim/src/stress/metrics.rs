@@ -1,0 +1,298 @@
+//! What one run of a stress case measures, in f64, from what the core reports after every step:
+//! physics the core does not compute for itself.
+//!
+//! * **Penetration** of each contact, from the state after the step, with this module's own
+//!   geometry (`docs/formulation.md`, "Contacts"): a finger tip under the rod,
+//!   `l = R(theta)^T (f - com)`, `psi = -l_y - t/2`; a corner or an end on a line, `psi = (P - o).n`.
+//! * **Energy** `E = m (vx^2 + vy^2) / 2 + J omega^2 / 2 + m g y`, and the work the moving supports
+//!   do over a step, `sum_i u_i . P_i` with `u_i` a support's velocity over the step and
+//!   `P_i = n p_n + d p_f` its impulse on the body (`n`, `d` at the step's start angle). For the
+//!   implicit step of eqs. 13-18 one has exactly
+//!   `E+ - E <= sum u . P - sum_i p_ni min(psi_i, 0) / h - (v+ - v)^T M (v+ - v) / 2`
+//!   (the normal and friction rows' complementarity, `sigma >= 0`, and `y+ = y + h vy+`), so apart
+//!   from round-off the body gains energy beyond the supports' work only by pushing out of a
+//!   penetration.
+//! * **LCP residual**: each step's verified residual over the solver's tolerance (`256 N eps`).
+
+use std::time::Instant;
+
+use meterstick_core::Real;
+use meterstick_core::lcp::default_tolerance;
+use meterstick_core::planar::{BodyState, StepReport};
+use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, Scene};
+
+use super::cases::{Case, Claim};
+use crate::scenes::SceneSpec;
+use crate::trajectory::{OutcomeClass, RunOutcome};
+
+/// What one run of one case measured.
+#[derive(Debug, Clone, Default)]
+pub struct Metrics {
+    /// How it ended (`None`: it panicked).
+    pub outcome: Option<RunOutcome>,
+    /// Steps taken.
+    pub steps: u64,
+    /// Largest verification residual over the tolerance.
+    pub residual_ratio: f64,
+    /// Largest penetration (m).
+    pub penetration: f64,
+    /// Largest penetration over its bound.
+    pub penetration_ratio: f64,
+    /// Largest `E+ - E - W_supports` over one step (J).
+    pub step_energy_gain: f64,
+    /// Largest `E(t) - E(0) - W_supports(0, t)` (J).
+    pub energy_gain: f64,
+    /// `energy_gain` over its allowance (`m g pen_0 + tolerance`).
+    pub energy_ratio: f64,
+    /// Most pivots in one step.
+    pub max_pivots: u32,
+    /// Mean pivots per step.
+    pub mean_pivots: f64,
+    /// Reduced-layout check firings.
+    pub reduced_check_fired: u64,
+    /// For [`Claim::NotDragged`]: largest `|x - x_0|` while finger 1 was left of the centre of
+    /// mass; for [`Claim::BodyStill`]: largest change of `x`, `y`, `size theta / 2` (m).
+    pub claim_motion: f64,
+    /// Solves answered by the solver's regularised retry.
+    pub regularized_solves: u64,
+    /// Machine epsilon of the run's scalar.
+    pub eps: f64,
+    /// Sampled `(x, y, theta)` for the f32-vs-f64 deviation.
+    pub trace: Vec<[f64; 3]>,
+    /// Wall-clock time (s).
+    pub wall_s: f64,
+}
+
+impl Metrics {
+    /// The outcome's class (`None`: the run panicked).
+    #[must_use]
+    pub fn class(&self) -> Option<OutcomeClass> {
+        self.outcome.as_ref().map(|o| o.class)
+    }
+}
+
+/// Round-off of a claim of no motion, in units of `eps size`: a position's rounding (a tilt of
+/// `eps` gives a normal impulse a horizontal part).
+pub const STILL_TOLERANCE: f64 = 64.0;
+
+/// The body's mass, inertia, size and the scene's characteristic support speed.
+fn body_of(spec: &SceneSpec) -> (f64, f64, f64, f64) {
+    match spec {
+        SceneSpec::MeterStick(p) => (
+            p.rod_mass,
+            p.rod_mass * p.rod_length * p.rod_length / 12.0,
+            p.rod_length,
+            p.finger1_velocity.abs().max(p.finger2_velocity.abs()),
+        ),
+        SceneSpec::Incline(p) => {
+            (p.mass, p.mass * (p.width * p.width + p.height * p.height) / 12.0, p.width.max(p.height), 0.0)
+        }
+        SceneSpec::Ladder(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, 0.0),
+    }
+}
+
+/// The penetration bound of one step: what the step started with, the second-order terms of the
+/// step's geometry (`h^2` times `|omega| (|u| + |v|)` for the contact point's turning,
+/// `size omega^2 / 2` for the arc, `g` for gravity within the step), and round-off of the
+/// coordinates (`64 eps (size + |x| + |y|)`).
+#[must_use]
+pub fn penetration_bound(spec: &SceneSpec, eps: f64, pen_before: f64, s: &[f64; 6], u: f64) -> f64 {
+    let (_, _, size, _) = body_of(spec);
+    let h = spec.step();
+    let g = spec.get("gravity").unwrap_or(0.0);
+    let omega = s[5].abs();
+    let speed = s[3].abs() + s[4].abs();
+    pen_before
+        + h * h * (omega * (u.abs() + speed) + size * omega * omega / 2.0 + g)
+        + 64.0 * eps * (size + s[0].abs() + s[1].abs())
+}
+
+/// Round-off allowance of the run's energy balance: `4096 N eps` of the energy scale
+/// `m (g (size + |y|) + V^2 + |v|^2 + (size omega)^2)` at the step (`V` the characteristic support
+/// speed), `N` the LCP size (the verification tolerance is `256 N eps`, and each of `N`
+/// complementarity products contributes up to it times the impulse and velocity scales).
+#[must_use]
+pub fn energy_tolerance(spec: &SceneSpec, eps: f64, n: usize, s: &[f64; 6]) -> f64 {
+    let (m, _, size, v_f) = body_of(spec);
+    let g = spec.get("gravity").unwrap_or(0.0);
+    let v2 = s[3] * s[3] + s[4] * s[4] + (size * s[5]).powi(2);
+    4096.0 * n as f64 * eps * m * (g * (size + s[1].abs()) + v_f * v_f + v2)
+}
+
+/// The body's energy.
+#[must_use]
+pub fn energy(spec: &SceneSpec, s: &[f64; 6]) -> f64 {
+    let (m, j, _, _) = body_of(spec);
+    let g = spec.get("gravity").unwrap_or(0.0);
+    0.5 * m * (s[3] * s[3] + s[4] * s[4]) + 0.5 * j * s[5] * s[5] + m * g * s[1]
+}
+
+/// Each contact's penetration (0 when apart, or a finger not under the rod), with this module's
+/// own geometry; `supports` are the finger tips (meter stick).
+#[must_use]
+pub fn penetrations(spec: &SceneSpec, s: &[f64; 6], supports: [[f64; 2]; 2]) -> [f64; 2] {
+    let (sn, cs) = s[2].sin_cos();
+    let world = |p: [f64; 2]| [s[0] + cs * p[0] - sn * p[1], s[1] + sn * p[0] + cs * p[1]];
+    match spec {
+        SceneSpec::MeterStick(p) => supports.map(|f| {
+            let (dx, dy) = (f[0] - s[0], f[1] - s[1]);
+            let lx = cs * dx + sn * dy;
+            let ly = -sn * dx + cs * dy;
+            if lx.abs() <= p.rod_length / 2.0 && ly <= 0.0 {
+                (ly + p.rod_thickness / 2.0).max(0.0)
+            } else {
+                0.0
+            }
+        }),
+        SceneSpec::Incline(p) => {
+            let n = [-p.angle.sin(), p.angle.cos()];
+            [-1.0, 1.0].map(|side| {
+                let c = world([side * p.width / 2.0, -p.height / 2.0]);
+                (-(c[0] * n[0] + c[1] * n[1])).max(0.0)
+            })
+        }
+        SceneSpec::Ladder(p) => {
+            let (bottom, top) = (world([-p.length / 2.0, 0.0]), world([p.length / 2.0, 0.0]));
+            [(-bottom[1]).max(0.0), top[0].max(0.0)]
+        }
+    }
+}
+
+fn state_of<T: Real>(s: &BodyState<T>) -> [f64; 6] {
+    s.to_array().map(Real::as_f64)
+}
+
+/// Each support's position (finger tips; fixed lines give zero velocity anyway).
+fn support_points<T: Real, S: Scene<T, 2>>(scene: &S) -> [[f64; 2]; 2] {
+    scene.supports().map(|s| s.position().map(Real::as_f64))
+}
+
+/// Runs `case` in scalar `T` with LCP size `N`, measuring as it goes; samples the state every
+/// `stride` steps.
+#[must_use]
+pub fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
+    let failed = |e: meterstick_core::ParamError| Metrics {
+        outcome: Some(RunOutcome { class: OutcomeClass::Failed, detail: Some(format!("invalid: {e}")) }),
+        ..Metrics::default()
+    };
+    match case.spec {
+        SceneSpec::MeterStick(p) => {
+            let p = p.cast::<T>();
+            let mut start = p.resting_state();
+            start.y += T::of(case.start_dy);
+            match MeterStick::<T, N, 0>::with_state(p, start) {
+                Ok(mut s) => measure_scene::<T, N, _>(&mut s, case, stride),
+                Err(e) => failed(e),
+            }
+        }
+        SceneSpec::Incline(p) => match Incline::<T, N, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, N, _>(&mut s, case, stride),
+            Err(e) => failed(e),
+        },
+        SceneSpec::Ladder(p) => match Ladder::<T, N, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, N, _>(&mut s, case, stride),
+            Err(e) => failed(e),
+        },
+    }
+}
+
+/// The work of the supports on the body over a step: `sum_i u_i . (n p_n + d p_f)`, `u_i` from
+/// the supports' positions before and after, `n = R(theta) (0, 1)`, `d = R(theta) (1, 0)` for a
+/// finger under the rod at the step's start angle (supports on lines do not move).
+fn support_work<T: Real>(
+    spec: &SceneSpec,
+    r: &StepReport<T, 2>,
+    before: [[f64; 2]; 2],
+    after: [[f64; 2]; 2],
+    theta: f64,
+) -> f64 {
+    if !matches!(spec, SceneSpec::MeterStick(_)) {
+        return 0.0;
+    }
+    let (sn, cs) = theta.sin_cos();
+    let h = spec.step();
+    let mut work = 0.0;
+    for i in 0..2 {
+        let u = [(after[i][0] - before[i][0]) / h, (after[i][1] - before[i][1]) / h];
+        let (pn, pf) = (r.contacts[i].normal_impulse.as_f64(), r.contacts[i].friction_impulse.as_f64());
+        work += u[0] * (-sn * pn + cs * pf) + u[1] * (cs * pn + sn * pf);
+    }
+    work
+}
+
+fn measure_scene<T: Real, const N: usize, S: Scene<T, 2>>(
+    scene: &mut S,
+    case: &Case,
+    stride: u64,
+) -> Metrics {
+    let started = Instant::now();
+    let spec = &case.spec;
+    let (m_body, _, size, _) = body_of(spec);
+    let eps = T::EPS.as_f64();
+    let g = spec.get("gravity").unwrap_or(0.0);
+    let mut m = Metrics { eps, ..Metrics::default() };
+    let mut s = state_of(scene.state());
+    let s0 = s;
+    let mut supports = support_points(scene);
+    let mut pen = penetrations(spec, &s, supports);
+    let pen0 = pen[0].max(pen[1]);
+    let e0 = energy(spec, &s);
+    let mut e_before = e0;
+    let mut work = 0.0;
+    m.trace.push([s[0], s[1], s[2]]);
+    while let Some(r) = scene.step() {
+        // The full layout's tolerance when the reduced check sent the step to it.
+        let n_used = if r.full_layout_used { 8.0 } else { N as f64 };
+        let tolerance = default_tolerance::<T, 8>().as_f64() * n_used / 8.0;
+        m.residual_ratio = m.residual_ratio.max(r.residual.as_f64() / tolerance);
+        m.max_pivots = m.max_pivots.max(r.pivots);
+        let after = state_of(&r.state);
+        let supports_after = support_points(scene);
+        let step_work = support_work(spec, &r, supports, supports_after, s[2]);
+        let u =
+            (supports_after[0][0] - supports[0][0]).abs().max((supports_after[1][0] - supports[1][0]).abs())
+                / spec.step();
+        let e_after = energy(spec, &after);
+        if e_after.is_finite() {
+            m.step_energy_gain = m.step_energy_gain.max(e_after - e_before - step_work);
+            work += step_work;
+            let gain = e_after - e0 - work;
+            m.energy_gain = m.energy_gain.max(gain);
+            let allowance = m_body * g * pen0 + energy_tolerance(spec, eps, N, &after);
+            m.energy_ratio = m.energy_ratio.max(gain / allowance);
+        }
+        let pen_after = penetrations(spec, &after, supports_after);
+        for i in 0..2 {
+            let bound = penetration_bound(spec, eps, pen[i], &s, u);
+            m.penetration = m.penetration.max(pen_after[i]);
+            m.penetration_ratio = m.penetration_ratio.max(pen_after[i] / bound);
+        }
+        match case.claim {
+            Claim::NotDragged => {
+                if supports_after[0][0] < after[0] - 0.01 * size {
+                    m.claim_motion = m.claim_motion.max((after[0] - s0[0]).abs());
+                }
+            }
+            Claim::BodyStill => {
+                let moved = [after[0] - s0[0], after[1] - s0[1], size / 2.0 * (after[2] - s0[2])];
+                m.claim_motion = moved.iter().fold(m.claim_motion, |a, d| a.max(d.abs()));
+            }
+            Claim::None => {}
+        }
+        s = after;
+        e_before = e_after;
+        supports = supports_after;
+        pen = pen_after;
+        if scene.stats().steps % stride == 0 {
+            m.trace.push([s[0], s[1], s[2]]);
+        }
+    }
+    let stats = scene.stats();
+    m.steps = stats.steps;
+    m.mean_pivots = stats.pivots as f64 / stats.steps.max(1) as f64;
+    m.reduced_check_fired = stats.reduced_check_fired;
+    m.regularized_solves = stats.regularized_solves;
+    m.outcome = Some(scene.outcome().unwrap_or(Outcome::Unfinished).into());
+    m.wall_s = started.elapsed().as_secs_f64();
+    m
+}

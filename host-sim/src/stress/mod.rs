@@ -1,0 +1,141 @@
+//! `host-sim stress`: numerical stability on stiff and extreme cases.
+//!
+//! A grid of scenes ([`cases`]: the meter stick at extreme speeds, steps, friction, masses, shapes,
+//! gravities and edge geometries; blocks on steep and shallow inclines, very tall and very flat;
+//! ladders frictionless, at and near the critical angle), each run in the core as f32 6x6 (the
+//! firmware's), f32 8x8 and f64 8x8, with metrics computed here in f64 from what the core reports
+//! after every step ([`metrics`]) and judged by the criteria of [`mod@judge`]; [`output`] writes the
+//! report.
+
+pub mod cases;
+pub mod judge;
+pub mod metrics;
+pub mod output;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context as _;
+use rayon::prelude::*;
+
+use self::cases::Case;
+use self::judge::{Verdict, judge};
+use self::metrics::{Metrics, measure};
+use crate::run_cmd::progress;
+use crate::scenes::Implementation;
+
+/// `host-sim stress` options.
+#[derive(Debug, Clone, clap::Args)]
+pub struct StressArgs {
+    /// Output directory (created; files in it are overwritten).
+    #[arg(long, default_value = "out/stress")]
+    pub out: PathBuf,
+    /// The small subset (a few seconds, for tests).
+    #[arg(long)]
+    pub quick: bool,
+    /// Only cases whose name contains this (an error lists the names when none does).
+    #[arg(long)]
+    pub only: Option<String>,
+}
+
+/// The core configurations the grid runs.
+pub const CONFIGS: [Implementation; 3] =
+    [Implementation::CORE_F32_6, Implementation::CORE_F32_8, Implementation::CORE_F64_8];
+
+/// Runs `case` in `config`, catching a panic.
+#[must_use]
+pub fn run_case(case: &Case, config: Implementation) -> Metrics {
+    let stride = ((case.spec.max_time() / case.spec.step()) / 100_000.0).ceil().max(1.0) as u64;
+    let run = std::panic::catch_unwind(|| match config {
+        Implementation::CORE_F32_6 => measure::<f32, 6>(case, stride),
+        Implementation::CORE_F32_8 => measure::<f32, 8>(case, stride),
+        _ => measure::<f64, 8>(case, stride),
+    });
+    run.unwrap_or_default()
+}
+
+/// One case's runs.
+#[derive(Debug, Clone)]
+pub struct CaseResult {
+    /// The case.
+    pub case: Case,
+    /// One per [`CONFIGS`] entry.
+    pub runs: Vec<(Metrics, Verdict)>,
+    /// Largest `|COM_f32 - COM_f64|` (m) of the f32 6x6 and f32 8x8 runs against f64 8x8, over the
+    /// sampled steps both have.
+    pub deviation: [f64; 2],
+}
+
+impl CaseResult {
+    /// `true` when every implementation passed.
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.runs.iter().all(|(_, v)| v.passed())
+    }
+}
+
+fn deviation(a: &Metrics, b: &Metrics) -> f64 {
+    a.trace.iter().zip(&b.trace).fold(0.0, |acc, (x, y)| acc.max((x[0] - y[0]).hypot(x[1] - y[1])))
+}
+
+/// Runs every case in every configuration (in parallel).
+#[must_use]
+pub fn run_all(cases: Vec<Case>) -> Vec<CaseResult> {
+    let jobs: Vec<(usize, Implementation)> =
+        (0..cases.len()).flat_map(|i| CONFIGS.iter().map(move |&c| (i, c))).collect();
+    let bar = progress(jobs.len() as u64, "stress runs");
+    let mut done: Vec<(usize, usize, Metrics)> = jobs
+        .par_iter()
+        .map(|&(i, config)| {
+            let m = run_case(&cases[i], config);
+            bar.inc(1);
+            (i, CONFIGS.iter().position(|c| *c == config).unwrap_or(0), m)
+        })
+        .collect();
+    bar.finish_and_clear();
+    done.sort_by_key(|(i, c, _)| (*i, *c));
+    let mut results: Vec<CaseResult> = Vec::new();
+    let mut runs = done.into_iter().peekable();
+    for case in cases {
+        let mut mine = Vec::new();
+        while let Some((_, _, m)) = runs.next_if(|(i, _, _)| *i == results.len()) {
+            let v = judge(&case, &m);
+            mine.push((m, v));
+        }
+        let dev = |a: usize| match (mine.get(a), mine.get(2)) {
+            (Some(x), Some(y)) => deviation(&x.0, &y.0),
+            _ => f64::NAN,
+        };
+        let deviation = [dev(0), dev(1)];
+        for (m, _) in &mut mine {
+            m.trace = Vec::new();
+        }
+        results.push(CaseResult { case, runs: mine, deviation });
+    }
+    results
+}
+
+/// `host-sim stress`: runs the grid, writes `report.md`, `cases.csv`, `summary.json` and
+/// `criteria.svg` to `args.out`, and returns the terminal summary and whether every case passed.
+///
+/// # Errors
+/// `--only` matching no case (the error lists the names), or I/O.
+pub fn run(args: &StressArgs) -> anyhow::Result<(String, bool)> {
+    let mut cases = cases::cases(args.quick);
+    if let Some(only) = &args.only {
+        let names: Vec<String> = cases.iter().map(|c| c.name.clone()).collect();
+        cases.retain(|c| c.name.contains(only.as_str()));
+        anyhow::ensure!(
+            !cases.is_empty(),
+            "--only {only:?} matches no case{}; the cases are:\n  {}",
+            if args.quick { " of --quick" } else { "" },
+            names.join("\n  ")
+        );
+    }
+    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    let started = Instant::now();
+    let results = run_all(cases);
+    let wall = started.elapsed().as_secs_f64();
+    output::write(&args.out, &results, wall)?;
+    Ok((output::terminal(&results, wall, &args.out), results.iter().all(CaseResult::passed)))
+}
