@@ -29,6 +29,7 @@ fn step_lcp<T: Real, const N: usize>() -> Lcp<T, N> {
         m_inv,
         h: p.step,
         gravity: p.gravity,
+        gap_round_off: T::zero(),
     };
     let tangents = if N == 8 { [Tangents::Both; 2] } else { [Tangents::Plus, Tangents::Minus] };
     assemble(&Layout::<2, N>::try_new(tangents).expect("N is 6 or 8"), &inputs).lcp

@@ -123,6 +123,7 @@ fn indeterminate_friction_still_gives_a_unique_verified_motion() {
         m_inv,
         h: p.step,
         gravity: p.gravity,
+        gap_round_off: 0.0,
     };
     let step = assemble(&Layout::<2, 8>::full(), &input);
     let velocity = |z: &[f64]| {

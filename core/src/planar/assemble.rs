@@ -14,7 +14,8 @@
 //! ```
 //!
 //! `beta(psi) = psi / h` for a gap, and for a penetration the push-out speed capped at the speed of
-//! a fall through it, `max(psi / h, -sqrt(2 g |psi|))` ([`normal_bias`]). An inactive contact keeps
+//! a fall through it, `max(psi / h, -sqrt(2 g |psi|))`, the gap first shrunk toward zero by its
+//! round-off, `4 eps (|x| + |y| + size)` ([`normal_bias`]). An inactive contact keeps
 //! its rows decoupled: identity rows and columns and `b = 1`, so its variables are zero.
 
 use super::contact::ContactFrame;
@@ -41,6 +42,9 @@ pub struct StepInputs<'a, T, const K: usize> {
     pub h: T,
     /// Gravity `g` (for the penetration-recovery cap).
     pub gravity: T,
+    /// A gap with at most this magnitude counts as zero: the round-off of the positions it is
+    /// computed from ([`normal_bias`]).
+    pub gap_round_off: T,
 }
 
 /// The step's LCP and the wrench column of each variable (zero for `sigma` and for the rows of an
@@ -54,14 +58,30 @@ pub struct StepLcp<T: Real, const N: usize> {
 }
 
 /// The normal row's stabilisation term `beta(psi)`: `psi / h` for a gap, the push-out speed capped
-/// at `sqrt(2 g |psi|)` for a penetration.
+/// at `sqrt(2 g |psi|)` for a penetration, after the gap is shrunk toward zero by its round-off:
+/// `psi' = sign(psi) max(|psi| - round_off, 0)`.
+///
+/// **Round-off is not a gap.** A gap is a difference of positions of order `|x| + |y| + size`,
+/// computed with a few roundings: its error is a few `eps` of that. Divided by `h` it becomes a
+/// velocity: in f32, one ulp of a 0.5 m coordinate over h = 1e-4 s is 6e-4 m/s, more than a ladder's
+/// fall in its first steps, and the contact flickered between touching and apart every step (the
+/// top of a frictionless ladder "left the wall" at once); at h = 1 ms it is 3e-5 m/s against a
+/// 1e-5 m/s stick threshold, and the slow meter stick drifted 2.2e-4 m from the f64 reference at
+/// 0.001 m/s. Within `round_off` (the stepper passes `4 eps (|x| + |y| + size)`: 0.8 um in f32 for a
+/// 1 m rod, 1e-15 m in f64) the contact counts as exactly touching; beyond it the gap counts less
+/// that much, so the term is continuous (a cut-off would turn the drift that reaches its edge into a
+/// jump of `round_off / h`).
 #[must_use]
-pub fn normal_bias<T: Real>(gap: T, h: T, gravity: T) -> T {
-    let one_step = gap / h;
-    if gap >= T::zero() {
-        return one_step;
+pub fn normal_bias<T: Real>(gap: T, h: T, gravity: T, round_off: T) -> T {
+    let excess = gap.abs_exact() - round_off;
+    if excess <= T::zero() {
+        return T::zero();
     }
-    let cap = -(T::of(2.0) * gravity * -gap).sqrt_libm();
+    if gap > T::zero() {
+        return excess / h;
+    }
+    let one_step = -excess / h;
+    let cap = -(T::of(2.0) * gravity * excess).sqrt_libm();
     if one_step > cap { one_step } else { cap }
 }
 
@@ -123,7 +143,7 @@ pub fn assemble_into<T: Real, const K: usize, const N: usize>(
         let f = &input.frames[i];
         columns[i] = f.wn;
         b[i] = dot3(&f.wn, &input.v_free) - dot2(&f.normal(), &input.support_velocity[i])
-            + normal_bias(f.gap, input.h, input.gravity);
+            + normal_bias(f.gap, input.h, input.gravity, input.gap_round_off);
     }
     // Friction rows in the layout's order: contact by contact, `+d` before `-d` (the running index
     // is guarded, so every index is provably in range).

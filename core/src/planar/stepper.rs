@@ -389,6 +389,9 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             mu[i] = if self.modes[i].is_sliding() { c.mu_kinetic } else { c.mu_static };
         }
         let v_free = [self.state.vx, self.state.vy - h * s.gravity, self.state.omega];
+        // The round-off of a gap (`normal_bias`): a few eps of the positions it comes from.
+        let gap_round_off =
+            T::of(4.0) * T::EPS * (self.state.x.abs_exact() + self.state.y.abs_exact() + self.size);
         let inputs = StepInputs {
             frames: &self.frames,
             mu,
@@ -397,6 +400,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             m_inv: self.m_inv,
             h,
             gravity: s.gravity,
+            gap_round_off,
         };
         let mut step_lcp = StepLcp::zeros();
         assemble_into(&self.layout, &inputs, &mut step_lcp);

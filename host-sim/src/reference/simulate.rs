@@ -128,7 +128,7 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
                 Mode::Sticking | Mode::Separated => mu_s,
             })
             .collect();
-        let result = match solve(&model, v, &start, &u, &mu) {
+        let result = match solve(&model, q, v, &start, &u, &mu) {
             Ok(result) => result,
             Err(why) => break Outcome::Failed(format!("{why} at t = {}", steps as f64 * h)),
         };
