@@ -1,0 +1,444 @@
+//! The wire types: what the host sends ([`Command`]), what the rig sends ([`Report`]), and the
+//! small enums and structs they carry.
+//!
+//! Every type here is plain data, independent of `meterstick-core` (whose types are free to
+//! change): the firmware maps between the two. Enums are encoded by postcard as a varint of the
+//! variant's index in declaration order, so **the order of variants is part of the protocol**:
+//! new variants go at the end, and any change bumps [`PROTOCOL_VERSION`](crate::PROTOCOL_VERSION).
+//! A tag the receiver does not know fails decoding and is counted in
+//! [`LinkStats::decode_errors`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::LinkStats;
+
+/// A meter-stick parameter the teacher can set with [`Command::SetParam`]. Values are `f32`
+/// in SI units; the rig's core validates them and answers [`Report::Rejected`] naming the
+/// parameter when it refuses one.
+///
+/// Coordinates as in the core: `x` to the right along the rod at rest, `y` up, origin at the
+/// rod's centre of mass at the start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ParamId {
+    /// Start `x` of finger 1 (left), relative to the rod's centre of mass (m).
+    Finger1X,
+    /// Start `x` of finger 2 (right) (m).
+    Finger2X,
+    /// Height `y` of finger 1's tip (m).
+    Finger1Y,
+    /// Height `y` of finger 2's tip (m).
+    Finger2Y,
+    /// Velocity of finger 1 along `x` (m/s; positive to the right).
+    Finger1Velocity,
+    /// Velocity of finger 2 along `x` (m/s; positive to the right).
+    Finger2Velocity,
+    /// Finger width (m): the fingers stop when their tips are this far apart.
+    FingerWidth,
+    /// Static friction coefficient (dimensionless).
+    MuStatic,
+    /// Kinetic friction coefficient (dimensionless, at most `MuStatic`).
+    MuKinetic,
+    /// Rod length (m).
+    RodLength,
+    /// Rod thickness (m).
+    RodThickness,
+    /// Rod mass (kg).
+    RodMass,
+    /// Gravitational acceleration (m/s^2, acting in `-y`).
+    Gravity,
+    /// Time step `h` (s).
+    Step,
+    /// A contact whose slip speed is at most this sticks (m/s).
+    StickSpeed,
+}
+
+impl ParamId {
+    /// Every parameter, in tag order.
+    pub const ALL: [Self; 15] = [
+        Self::Finger1X,
+        Self::Finger2X,
+        Self::Finger1Y,
+        Self::Finger2Y,
+        Self::Finger1Velocity,
+        Self::Finger2Velocity,
+        Self::FingerWidth,
+        Self::MuStatic,
+        Self::MuKinetic,
+        Self::RodLength,
+        Self::RodThickness,
+        Self::RodMass,
+        Self::Gravity,
+        Self::Step,
+        Self::StickSpeed,
+    ];
+
+    /// The parameter's name in snake case, as the core's and `host-sim`'s parameters are
+    /// spelled (`"finger1_x"`, `"mu_static"`, ...): for messages such as "rejected: mu_kinetic
+    /// above mu_static".
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Finger1X => "finger1_x",
+            Self::Finger2X => "finger2_x",
+            Self::Finger1Y => "finger1_y",
+            Self::Finger2Y => "finger2_y",
+            Self::Finger1Velocity => "finger1_velocity",
+            Self::Finger2Velocity => "finger2_velocity",
+            Self::FingerWidth => "finger_width",
+            Self::MuStatic => "mu_static",
+            Self::MuKinetic => "mu_kinetic",
+            Self::RodLength => "rod_length",
+            Self::RodThickness => "rod_thickness",
+            Self::RodMass => "rod_mass",
+            Self::Gravity => "gravity",
+            Self::Step => "step",
+            Self::StickSpeed => "stick_speed",
+        }
+    }
+
+    /// The SI unit of the parameter's value (`""` for the friction coefficients).
+    #[must_use]
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Self::Finger1X
+            | Self::Finger2X
+            | Self::Finger1Y
+            | Self::Finger2Y
+            | Self::FingerWidth
+            | Self::RodLength
+            | Self::RodThickness => "m",
+            Self::Finger1Velocity | Self::Finger2Velocity | Self::StickSpeed => "m/s",
+            Self::MuStatic | Self::MuKinetic => "",
+            Self::RodMass => "kg",
+            Self::Gravity => "m/s^2",
+            Self::Step => "s",
+        }
+    }
+}
+
+/// A preset scene the firmware knows ([`Command::Preset`]): only an id; the firmware maps it
+/// to a full parameter set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Preset {
+    /// The paper's slow finger: 0.1 m/s (the rod balances).
+    Slow,
+    /// A fast finger: 5 m/s (the rod falls).
+    Fast,
+    /// Near the fall threshold, e.g. 0.3 m/s: the outcome is sensitive to the parameters.
+    NearThreshold,
+}
+
+impl Preset {
+    /// Every preset, in tag order.
+    pub const ALL: [Self; 3] = [Self::Slow, Self::Fast, Self::NearThreshold];
+}
+
+/// The scene the rig runs, announced in [`Report::Hello`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum SceneId {
+    /// A rod on two fingers, one moving toward the other (Leong & Lv).
+    MeterStick,
+    /// A block on an incline.
+    Incline,
+    /// A ladder against a wall.
+    Ladder,
+}
+
+/// The mode of one contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Mode {
+    /// No contact force (the rod left the finger).
+    Separated,
+    /// Normal force, no slip.
+    Sticking,
+    /// Sliding, the rod moving in `+x` relative to the finger.
+    SlidingPositive,
+    /// Sliding, the rod moving in `-x` relative to the finger.
+    SlidingNegative,
+}
+
+/// How a run ended ([`Report::Outcome`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum OutcomeCode {
+    /// The fingers met under the rod and it stayed on them (the trick worked).
+    Balanced,
+    /// The rod fell off the fingers.
+    Fell,
+    /// The rod is held (a static scene at rest).
+    Held,
+    /// The body slid (incline, ladder).
+    Slid,
+    /// The body tipped over.
+    Tipped,
+    /// The run reached its time limit, or was stopped, without an outcome.
+    Unfinished,
+    /// The LCP solver failed on a step.
+    SolverFailed,
+    /// The state became NaN or infinite.
+    NonFinite,
+    /// The reduced (6x6) model left its range of validity and no fallback was linked.
+    ReducedModelLeftRange,
+}
+
+/// The rig's run state ([`Report::State`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RigState {
+    /// Parameters may be set; waiting for [`Command::Start`].
+    Waiting,
+    /// A run is in progress.
+    Running,
+    /// The run ended ([`Report::Outcome`] was sent); [`Command::Reset`] returns to `Waiting`.
+    Finished,
+    /// The rig hit a fault (see the preceding [`Report::Error`]); [`Command::Reset`] clears it.
+    Fault,
+}
+
+/// Why the core refused a parameter ([`Report::Rejected`]); mirrors the core's validation
+/// errors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RejectReason {
+    /// The value is NaN or infinite.
+    NotFinite,
+    /// The value must be positive.
+    NotPositive,
+    /// The value must not be negative.
+    Negative,
+    /// `mu_kinetic` would exceed `mu_static`.
+    KineticAboveStatic,
+    /// A finger would start beyond an end of the rod.
+    FingerOutsideRod,
+    /// Finger 1 would not start left of finger 2 by more than the finger width.
+    FingersCrossed,
+    /// Parameters cannot change while a run is in progress.
+    Busy,
+    /// Any other reason.
+    Other,
+}
+
+/// The data-free tag of a [`Command`], acknowledged by [`Report::Ack`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum CommandTag {
+    /// [`Command::Hello`].
+    Hello,
+    /// [`Command::SetParam`].
+    SetParam,
+    /// [`Command::Preset`].
+    Preset,
+    /// [`Command::Start`].
+    Start,
+    /// [`Command::Stop`].
+    Stop,
+    /// [`Command::Reset`].
+    Reset,
+    /// [`Command::SetTelemetry`].
+    SetTelemetry,
+    /// [`Command::GetStats`].
+    GetStats,
+    /// [`Command::Ping`].
+    Ping,
+}
+
+/// A rig-side error ([`Report::Error`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ErrorCode {
+    /// The command is not allowed in the rig's current state (e.g. `Start` while running).
+    NotAllowed {
+        /// The refused command.
+        command: CommandTag,
+        /// The rig's state when it was refused.
+        state: RigState,
+    },
+    /// Reports were dropped because the transmit path was full (the telemetry rate is too
+    /// high for the link); `count` reports since the last such error.
+    TxDropped {
+        /// Reports dropped.
+        count: u32,
+    },
+    /// The receive hardware lost bytes (e.g. a UART overrun).
+    RxOverrun,
+    /// The core faulted; the rig is now in [`RigState::Fault`].
+    CoreFault,
+    /// A firmware-specific error number.
+    Other(u16),
+}
+
+/// One contact's part of a [`Report::Telemetry`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ContactTelemetry {
+    /// The contact's mode at the end of the step.
+    pub mode: Mode,
+    /// Normal impulse over the step (N s).
+    pub normal_impulse: f32,
+    /// Friction (tangential) impulse over the step (N s, along `+x` of the rod).
+    pub friction_impulse: f32,
+}
+
+/// Host to rig. The rig answers every command it decodes with exactly one report:
+///
+/// | command | reply |
+/// |---|---|
+/// | `Hello` | [`Report::Hello`] |
+/// | `SetParam` | [`Report::Ack`], or [`Report::Rejected`] naming the parameter |
+/// | `Preset`, `Start`, `Stop`, `Reset`, `SetTelemetry` | [`Report::Ack`], or [`Report::Error`] with [`ErrorCode::NotAllowed`] |
+/// | `GetStats` | [`Report::Stats`] (the rig's receive counters) |
+/// | `Ping` | [`Report::Pong`] with the same nonce |
+///
+/// A frame that fails to decode gets no reply (it is counted): the host times out and may
+/// retry, or ask [`Command::GetStats`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Command {
+    /// Ask for [`Report::Hello`]. Tag 0 in every protocol version.
+    Hello,
+    /// Set one parameter (validated by the core; applies to the next run).
+    SetParam {
+        /// Which parameter.
+        id: ParamId,
+        /// Its value, SI units (see [`ParamId`]).
+        value: f32,
+    },
+    /// Load a preset parameter set.
+    Preset(Preset),
+    /// Start a run with the current parameters.
+    Start,
+    /// Stop the run (the outcome is [`OutcomeCode::Unfinished`]).
+    Stop,
+    /// Back to [`RigState::Waiting`] with the current parameters (clears a fault).
+    Reset,
+    /// Send [`Report::Telemetry`] every `every_n_steps` steps; 0 turns telemetry off.
+    /// Default [`DEFAULT_TELEMETRY_EVERY`](crate::DEFAULT_TELEMETRY_EVERY).
+    SetTelemetry {
+        /// Decimation: one telemetry report every this many steps (0 = off).
+        every_n_steps: u16,
+    },
+    /// Ask for [`Report::Stats`].
+    GetStats,
+    /// Ask for [`Report::Pong`] echoing `nonce` (liveness, round-trip time).
+    Ping {
+        /// Echoed back.
+        nonce: u32,
+    },
+}
+
+impl Command {
+    /// The command's data-free tag.
+    #[must_use]
+    pub const fn tag(&self) -> CommandTag {
+        match self {
+            Self::Hello => CommandTag::Hello,
+            Self::SetParam { .. } => CommandTag::SetParam,
+            Self::Preset(_) => CommandTag::Preset,
+            Self::Start => CommandTag::Start,
+            Self::Stop => CommandTag::Stop,
+            Self::Reset => CommandTag::Reset,
+            Self::SetTelemetry { .. } => CommandTag::SetTelemetry,
+            Self::GetStats => CommandTag::GetStats,
+            Self::Ping { .. } => CommandTag::Ping,
+        }
+    }
+}
+
+/// Rig to host. The rig sends [`Report::Hello`] then [`Report::State`] at boot, unasked;
+/// after that, one reply per command (see [`Command`]) and, while running, telemetry,
+/// switch events, the outcome and real-time margins.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Report {
+    /// Who the rig is. Tag 0 with `protocol` first in every protocol version, so a host can
+    /// always read the rig's protocol version (fields are only ever appended to it).
+    Hello {
+        /// The rig's [`PROTOCOL_VERSION`](crate::PROTOCOL_VERSION).
+        protocol: u16,
+        /// Firmware version (major, minor, patch).
+        firmware: (u8, u8, u8),
+        /// Core version (major, minor, patch).
+        core: (u8, u8, u8),
+        /// Build id, e.g. the first 8 characters of the git hash in ASCII.
+        build: [u8; 8],
+        /// The scene the firmware runs.
+        scene: SceneId,
+        /// The LCP size of the scene (6 or 8).
+        lcp_size: u8,
+        /// The time step (us).
+        step_us: u32,
+    },
+    /// The state after a step, every `every_n_steps` steps.
+    Telemetry {
+        /// Step number (0 = the initial state).
+        step: u32,
+        /// Simulated time (s).
+        time: f32,
+        /// The rod's state: `x`, `y` (m), `theta` (rad), `vx`, `vy` (m/s), `omega` (rad/s).
+        state: [f32; 6],
+        /// Finger tip `x` positions (m).
+        fingers: [f32; 2],
+        /// The two contacts (finger 1, finger 2).
+        contacts: [ContactTelemetry; 2],
+    },
+    /// A contact changed mode on this step (sent whatever the telemetry rate).
+    Switch {
+        /// Step number.
+        step: u32,
+        /// Simulated time (s).
+        time: f32,
+        /// The contact (0 = finger 1, 1 = finger 2).
+        contact: u8,
+        /// Its new mode.
+        mode: Mode,
+        /// Each finger's position along the rod, relative to the centre of mass (m).
+        along: [f32; 2],
+    },
+    /// The run ended.
+    Outcome {
+        /// How.
+        outcome: OutcomeCode,
+        /// Simulated time at the end (s).
+        time: f32,
+        /// Steps taken.
+        steps: u32,
+        /// A checksum of the trajectory (firmware-defined), to compare runs across builds.
+        checksum: u32,
+    },
+    /// Real-time margin of the step loop since the run started (or the last `Margin`).
+    Margin {
+        /// The longest step (CPU cycles).
+        worst_cycles: u32,
+        /// The step period (CPU cycles).
+        period_cycles: u32,
+        /// Steps that missed their deadline.
+        overruns: u32,
+    },
+    /// The command was carried out.
+    Ack {
+        /// Which command.
+        command: CommandTag,
+    },
+    /// A [`Command::SetParam`] was refused.
+    Rejected {
+        /// The parameter.
+        id: ParamId,
+        /// Why.
+        reason: RejectReason,
+    },
+    /// A rig-side error.
+    Error(ErrorCode),
+    /// The rig's receive counters ([`FrameDecoder::stats`](crate::FrameDecoder::stats)).
+    Stats(LinkStats),
+    /// Reply to [`Command::Ping`].
+    Pong {
+        /// The ping's nonce.
+        nonce: u32,
+    },
+    /// The rig's run state (on change, and after [`Report::Hello`]).
+    State(RigState),
+}
