@@ -18,6 +18,17 @@
 //! Lights: per finger one pin for each of sticking / sliding / separated; exactly one is on
 //! while running. Pins are driven only when their state changes. Logging (mode switches,
 //! outcome, faults) goes to `defmt` with the `defmt` feature and compiles to nothing without it.
+//!
+//! Runs on demand (a host link, a second button): [`Rig::start`] and [`Rig::stop`] do what the
+//! button and the outcome do; [`Rig::reset`] loads a parameter set (validated by the core; a
+//! rejected set leaves the rig as it was), turns the lights off and returns to
+//! [`RigState::WaitingForStart`], where the next ticks first drive the carriage back to its
+//! origin (DIR low, at most `max_pulses_per_tick` pulses per tick) and only then accept a start;
+//! after a reset the start button must be released once before it starts a run again.
+//! [`Rig::tick_with`] hands each step's report to the caller (telemetry). [`Preset`] is the
+//! rig's small table of scenes (slow, fast, near the fall threshold); [`PressDetector`]
+//! debounces a button into presses; [`Rig::indicate`] shows a small number on finger 1's lights
+//! while waiting (the selected preset).
 
 use core::convert::Infallible;
 
@@ -25,7 +36,7 @@ use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 
 use crate::ParamError;
-use crate::planar::{ContactMode, StepError};
+use crate::planar::{ContactMode, StepError, StepReport};
 use crate::scene::{MeterStick, MeterStickParams, Outcome, Scene};
 
 /// Rig constants.
@@ -117,6 +128,8 @@ pub struct Rig<B, P, D, const N: usize, const E: usize = 8> {
     origin: f32,
     pulses: i64,
     lit: [Option<ContactMode>; 2],
+    /// The start button may start a run (it has read released since the last reset).
+    armed: bool,
 }
 
 /// What went wrong with a pin (the HAL's error type).
@@ -163,6 +176,7 @@ where
             origin: params.finger1_x,
             pulses: 0,
             lit: [None; 2],
+            armed: true,
         };
         let p = &mut rig.pins;
         p.step.set_low().map_err(RigError::Pin)?;
@@ -194,6 +208,27 @@ where
         self.pulses
     }
 
+    /// The parameters of the scene being shown (or about to be).
+    #[must_use]
+    pub const fn params(&self) -> &MeterStickParams<f32> {
+        self.scene.params()
+    }
+
+    /// Reads the start button now (`true`: pressed), e.g. for the board to restart a finished
+    /// run on a press; [`Self::tick`] reads it only while waiting.
+    ///
+    /// # Errors
+    /// A pin error.
+    pub fn start_pressed(&mut self) -> Result<bool, RigError<PinError>> {
+        Ok(self.pins.start.is_low().map_err(RigError::Pin)? == self.config.button_active_low)
+    }
+
+    /// `true` while the carriage is still being driven back to its origin after a reset.
+    #[must_use]
+    pub const fn homing(&self) -> bool {
+        self.pulses > 0
+    }
+
     /// Gives the pins and the delay back.
     pub fn release(self) -> (RigPins<B, P>, D) {
         (self.pins, self.delay)
@@ -204,26 +239,133 @@ where
     /// # Errors
     /// A pin error (the rig's state is unchanged by it).
     pub fn tick(&mut self) -> Result<RigState, RigError<PinError>> {
+        self.tick_with(|_| {})
+    }
+
+    /// [`Self::tick`], handing the step's report to `observe` when the tick stepped the scene
+    /// (for telemetry; not called on a tick that waits, homes, finishes or faults).
+    ///
+    /// # Errors
+    /// A pin error (the rig's state is unchanged by it).
+    pub fn tick_with(
+        &mut self,
+        observe: impl FnOnce(&StepReport<f32, 2>),
+    ) -> Result<RigState, RigError<PinError>> {
         match self.state {
+            RigState::WaitingForStart if self.pulses > 0 => self.home()?,
             RigState::WaitingForStart => {
-                let level_low = self.pins.start.is_low().map_err(RigError::Pin)?;
-                if level_low == self.config.button_active_low {
-                    self.pins.dir.set_high().map_err(RigError::Pin)?;
-                    self.show_modes(self.scene.modes())?;
-                    log_info!("rig: start");
-                    self.state = RigState::Running;
+                let pressed = self.start_pressed()?;
+                if pressed && self.armed {
+                    self.start()?;
+                } else if !pressed {
+                    self.armed = true;
                 }
             }
-            RigState::Running => self.advance()?,
+            RigState::Running => self.advance(observe)?,
             RigState::Finished(_) | RigState::Fault(_) => {}
         }
         Ok(self.state)
     }
 
-    fn advance(&mut self) -> Result<(), RigError<PinError>> {
+    /// Starts the run (as the start button does), if the rig is waiting with the carriage at
+    /// its origin; returns whether it started.
+    ///
+    /// # Errors
+    /// A pin error.
+    pub fn start(&mut self) -> Result<bool, RigError<PinError>> {
+        if self.state != RigState::WaitingForStart || self.pulses > 0 {
+            return Ok(false);
+        }
+        self.pins.dir.set_high().map_err(RigError::Pin)?;
+        self.show_modes(self.scene.modes())?;
+        log_info!("rig: start");
+        self.state = RigState::Running;
+        Ok(true)
+    }
+
+    /// Stops a run in progress: it ends [`Outcome::Unfinished`] (the lights keep the last
+    /// modes); returns whether a run was stopped.
+    ///
+    /// # Errors
+    /// A pin error.
+    pub fn stop(&mut self) -> Result<bool, RigError<PinError>> {
+        if self.state != RigState::Running {
+            return Ok(false);
+        }
+        self.finish(Outcome::Unfinished)?;
+        Ok(true)
+    }
+
+    /// Loads `params` (validated by the core first: on [`RigError::Params`] nothing changes),
+    /// turns the lights and the fault light off and goes back to
+    /// [`RigState::WaitingForStart`]; the next ticks drive the carriage back to its origin.
+    /// Allowed in any state (it also ends a run in progress, unfinished and unreported).
+    ///
+    /// # Errors
+    /// Invalid parameters, or a pin error.
+    pub fn reset(&mut self, params: MeterStickParams<f32>) -> Result<(), RigError<PinError>> {
+        let scene = MeterStick::new(params).map_err(RigError::Params)?;
+        self.lights_off()?;
+        self.pins.fault.set_low().map_err(RigError::Pin)?;
+        self.pins.dir.set_low().map_err(RigError::Pin)?;
+        self.scene = scene;
+        self.origin = params.finger1_x;
+        self.state = RigState::WaitingForStart;
+        self.armed = false;
+        log_info!("rig: reset, {=i64} pulses back to the origin", self.pulses);
+        Ok(())
+    }
+
+    /// While waiting: lights finger 1's light number `index` (0 sticking, 1 sliding,
+    /// 2 separated; e.g. the selected [`Preset`]'s index), or none. The run's first modes
+    /// replace it at the start. Ignored in other states.
+    ///
+    /// # Errors
+    /// A pin error.
+    pub fn indicate(&mut self, index: Option<u8>) -> Result<(), RigError<PinError>> {
+        if self.state != RigState::WaitingForStart {
+            return Ok(());
+        }
+        let mode = match index {
+            None => None,
+            Some(0) => Some(ContactMode::Sticking),
+            Some(1) => Some(ContactMode::Sliding(crate::planar::Direction::Plus)),
+            Some(_) => Some(ContactMode::Separated),
+        };
+        if let Some(old) = self.lit[0].take() {
+            light(&mut self.pins.lights[0], old).set_low().map_err(RigError::Pin)?;
+        }
+        if let Some(new) = mode {
+            light(&mut self.pins.lights[0], new).set_high().map_err(RigError::Pin)?;
+            self.lit[0] = Some(new);
+        }
+        Ok(())
+    }
+
+    /// One tick of the way back to the origin: DIR low, at most `max_pulses_per_tick` pulses.
+    fn home(&mut self) -> Result<(), RigError<PinError>> {
+        self.pins.dir.set_low().map_err(RigError::Pin)?;
+        let n = self.pulses.min(i64::from(self.config.max_pulses_per_tick));
+        for _ in 0..n {
+            self.pulse()?;
+            self.pulses -= 1;
+        }
+        Ok(())
+    }
+
+    fn pulse(&mut self) -> Result<(), RigError<PinError>> {
+        self.pins.step.set_high().map_err(RigError::Pin)?;
+        self.delay.delay_ns(self.config.pulse_ns);
+        self.pins.step.set_low().map_err(RigError::Pin)?;
+        self.delay.delay_ns(self.config.pulse_ns);
+        Ok(())
+    }
+
+    fn advance(&mut self, observe: impl FnOnce(&StepReport<f32, 2>)) -> Result<(), RigError<PinError>> {
         let Some(report) = self.scene.step() else {
             return self.finish(self.scene.outcome().unwrap_or(Outcome::Unfinished));
         };
+        observe(&report);
         let target = libm::roundf((self.scene.fingers()[0] - self.origin) * self.config.steps_per_meter);
         if !target.is_finite() {
             return self.fault(RigFault::NonFinite);
@@ -233,10 +375,7 @@ where
             return self.fault(RigFault::ActuatorOverrun);
         }
         for _ in 0..due.max(0) {
-            self.pins.step.set_high().map_err(RigError::Pin)?;
-            self.delay.delay_ns(self.config.pulse_ns);
-            self.pins.step.set_low().map_err(RigError::Pin)?;
-            self.delay.delay_ns(self.config.pulse_ns);
+            self.pulse()?;
             self.pulses += 1;
         }
         self.show_modes(report.modes())?;
@@ -260,12 +399,17 @@ where
     fn fault(&mut self, fault: RigFault) -> Result<(), RigError<PinError>> {
         log_error!("rig: fault {} at t={=f32}", fault, self.scene.time());
         self.state = RigState::Fault(fault);
-        for i in 0..2 {
-            if let Some(m) = self.lit[i].take() {
-                light(&mut self.pins.lights[i], m).set_low().map_err(RigError::Pin)?;
+        self.lights_off()?;
+        self.pins.fault.set_high().map_err(RigError::Pin)
+    }
+
+    fn lights_off(&mut self) -> Result<(), RigError<PinError>> {
+        for (lit, lights) in self.lit.iter_mut().zip(&mut self.pins.lights) {
+            if let Some(m) = lit.take() {
+                light(lights, m).set_low().map_err(RigError::Pin)?;
             }
         }
-        self.pins.fault.set_high().map_err(RigError::Pin)
+        Ok(())
     }
 
     /// Lights each finger's mode (turning the previous light off first); pins that keep
@@ -288,6 +432,89 @@ where
             self.lit[i] = Some(new);
         }
         Ok(())
+    }
+}
+
+/// The rig's preset scenes: the paper's rod with finger 1 starting at -0.35 m (as the QEMU runs
+/// and `host-sim run`'s slow scene), at three finger speeds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Preset {
+    /// 0.1 m/s, the paper's slow finger: the rod balances (7.9 s).
+    Slow,
+    /// 5 m/s: the rod falls.
+    Fast,
+    /// 0.3 m/s, next to the fall threshold: it balances, and falls from 0.31 m/s (and at
+    /// 0.2 m/s): the outcome is sensitive to the parameters.
+    NearThreshold,
+}
+
+impl Preset {
+    /// Every preset, in order (the index is what [`Rig::indicate`] shows).
+    pub const ALL: [Self; 3] = [Self::Slow, Self::Fast, Self::NearThreshold];
+
+    /// The preset's parameters, at time step `step` (s).
+    #[must_use]
+    pub fn params(self, step: f32) -> MeterStickParams<f32> {
+        let finger1_velocity = match self {
+            Self::Slow => 0.1,
+            Self::Fast => 5.0,
+            Self::NearThreshold => 0.3,
+        };
+        MeterStickParams { finger1_x: -0.35, finger1_velocity, step, ..MeterStickParams::paper() }
+    }
+
+    /// The next preset, cyclically (a button press).
+    #[must_use]
+    pub const fn next(self) -> Self {
+        match self {
+            Self::Slow => Self::Fast,
+            Self::Fast => Self::NearThreshold,
+            Self::NearThreshold => Self::Slow,
+        }
+    }
+
+    /// Its position in [`Self::ALL`].
+    #[must_use]
+    pub const fn index(self) -> u8 {
+        match self {
+            Self::Slow => 0,
+            Self::Fast => 1,
+            Self::NearThreshold => 2,
+        }
+    }
+}
+
+/// Debounces a button sampled once per tick into presses: a press counts once the button has
+/// read pressed for `ticks` consecutive samples after reading released for as long.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PressDetector {
+    ticks: u16,
+    count: u16,
+    pressed: bool,
+}
+
+impl PressDetector {
+    /// A detector that needs `ticks` equal samples (e.g. 20 at 1 kHz: 20 ms) to change state;
+    /// it starts released.
+    #[must_use]
+    pub const fn new(ticks: u16) -> Self {
+        Self { ticks, count: 0, pressed: false }
+    }
+
+    /// Feeds one sample; `true` on the tick a press is recognised.
+    pub fn sample(&mut self, pressed: bool) -> bool {
+        if pressed == self.pressed {
+            self.count = 0;
+            return false;
+        }
+        self.count = self.count.saturating_add(1);
+        if self.count < self.ticks {
+            return false;
+        }
+        self.count = 0;
+        self.pressed = pressed;
+        pressed
     }
 }
 

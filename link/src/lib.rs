@@ -6,7 +6,7 @@
 //! no panic path: every parser is total, and bad input is dropped and counted.
 //!
 //! - Host to rig: [`Command`] (set a parameter, choose a preset, start, stop, reset, set the
-//!   telemetry rate, ask for statistics, ping).
+//!   telemetry rate, ask for statistics or a parameter's value, ping).
 //! - Rig to host: [`Report`] (hello, telemetry, switch events, outcome, real-time margin,
 //!   acknowledgements and rejections, errors, statistics, state).
 //! - [`encode`] makes one frame; [`FrameDecoder`] ([`CommandDecoder`] on the rig,
@@ -68,7 +68,7 @@
 //!
 //! ## Versions
 //!
-//! [`PROTOCOL_VERSION`] (now 1) is sent by the rig in [`Report::Hello`]. It changes with any
+//! [`PROTOCOL_VERSION`] (now 2) is sent by the rig in [`Report::Hello`]. It changes with any
 //! change a peer could see: a field added, removed, reordered or retyped, a variant added,
 //! or a meaning changed. postcard is not self-describing, so the host must compare it and
 //! refuse (or warn about) a rig with another version rather than guess. Two things never
@@ -77,6 +77,10 @@
 //! only appended to it). The decoder ignores bytes after a complete message, so an older host
 //! still reads the beginning of a newer rig's `Hello`. Variants are only appended, never
 //! renumbered: an older peer counts a newer message as a decode error and carries on.
+//!
+//! Version 2 (after version 1, the first): `ParamId` gained `TiltLimit`, `DropLimit`,
+//! `HoldTime` and `MaxTime` (every meter-stick parameter can be set), `Command::GetParam` /
+//! `Report::Param` read the rig's parameter set back, and `Report::Margin` gained `worst_step`.
 //!
 //! ## Errors and counting
 //!
@@ -108,7 +112,7 @@
 //! | UART 115,200 baud, 8N1 | 11,520 B/s | 57 % |
 //! | USB full-speed CDC (bulk, 19 x 64 B per 1 ms frame) | 1,216,000 B/s | 0.54 % |
 //!
-//! Switch events (26 bytes), margins (at most 22) and replies add little. On the UART, keep
+//! Switch events (26 bytes), margins (at most 27) and replies add little. On the UART, keep
 //! `every_n_steps >= 8` at 1 kHz (8,250 B/s, 72 %); every step (66,000 B/s) needs USB. The
 //! rig should drop telemetry rather than block when its transmit path is full, and say so
 //! with [`ErrorCode::TxDropped`].
@@ -281,7 +285,7 @@ pub use wire::{
 
 /// The protocol version, sent in [`Report::Hello`]. Bumped on every change a peer could
 /// see (see the crate docs, "Versions").
-pub const PROTOCOL_VERSION: u16 = 1;
+pub const PROTOCOL_VERSION: u16 = 2;
 
 /// The largest postcard message of this protocol version, in bytes: a [`Report::Telemetry`]
 /// (tag 1, `step` up to a 5-byte varint, 13 `f32`, 2 modes).

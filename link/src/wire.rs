@@ -51,11 +51,21 @@ pub enum ParamId {
     Step,
     /// A contact whose slip speed is at most this sticks (m/s).
     StickSpeed,
+    /// The rod has fallen when it tilted more than this from its start angle (rad). Since
+    /// protocol version 2.
+    TiltLimit,
+    /// The rod has fallen when its centre of mass dropped this far (m). Since version 2.
+    DropLimit,
+    /// After the fingers meet, the rod must stay on them this long to balance (s). Since
+    /// version 2.
+    HoldTime,
+    /// A run ends unfinished at this simulated time (s). Since version 2.
+    MaxTime,
 }
 
 impl ParamId {
     /// Every parameter, in tag order.
-    pub const ALL: [Self; 15] = [
+    pub const ALL: [Self; 19] = [
         Self::Finger1X,
         Self::Finger2X,
         Self::Finger1Y,
@@ -71,6 +81,10 @@ impl ParamId {
         Self::Gravity,
         Self::Step,
         Self::StickSpeed,
+        Self::TiltLimit,
+        Self::DropLimit,
+        Self::HoldTime,
+        Self::MaxTime,
     ];
 
     /// The parameter's name in snake case, as the core's and `host-sim`'s parameters are
@@ -94,6 +108,10 @@ impl ParamId {
             Self::Gravity => "gravity",
             Self::Step => "step",
             Self::StickSpeed => "stick_speed",
+            Self::TiltLimit => "tilt_limit",
+            Self::DropLimit => "drop_limit",
+            Self::HoldTime => "hold_time",
+            Self::MaxTime => "max_time",
         }
     }
 
@@ -107,12 +125,14 @@ impl ParamId {
             | Self::Finger2Y
             | Self::FingerWidth
             | Self::RodLength
-            | Self::RodThickness => "m",
+            | Self::RodThickness
+            | Self::DropLimit => "m",
             Self::Finger1Velocity | Self::Finger2Velocity | Self::StickSpeed => "m/s",
             Self::MuStatic | Self::MuKinetic => "",
             Self::RodMass => "kg",
             Self::Gravity => "m/s^2",
-            Self::Step => "s",
+            Self::Step | Self::HoldTime | Self::MaxTime => "s",
+            Self::TiltLimit => "rad",
         }
     }
 }
@@ -244,6 +264,8 @@ pub enum CommandTag {
     GetStats,
     /// [`Command::Ping`].
     Ping,
+    /// [`Command::GetParam`] (since protocol version 2).
+    GetParam,
 }
 
 /// A rig-side error ([`Report::Error`]).
@@ -292,6 +314,7 @@ pub struct ContactTelemetry {
 /// | `Preset`, `Start`, `Stop`, `Reset`, `SetTelemetry` | [`Report::Ack`], or [`Report::Error`] with [`ErrorCode::NotAllowed`] |
 /// | `GetStats` | [`Report::Stats`] (the rig's receive counters) |
 /// | `Ping` | [`Report::Pong`] with the same nonce |
+/// | `GetParam` | [`Report::Param`] with the value the next (or current) run uses |
 ///
 /// A frame that fails to decode gets no reply (it is counted): the host times out and may
 /// retry, or ask [`Command::GetStats`].
@@ -328,6 +351,14 @@ pub enum Command {
         /// Echoed back.
         nonce: u32,
     },
+    /// Ask for [`Report::Param`]: the value of one parameter as the rig holds it (what the
+    /// next run uses, or the current run while one is in progress). With all of
+    /// [`ParamId::ALL`] the host knows the rig's whole parameter set, e.g. to run the same
+    /// scene itself (since protocol version 2).
+    GetParam {
+        /// Which parameter.
+        id: ParamId,
+    },
 }
 
 impl Command {
@@ -344,6 +375,7 @@ impl Command {
             Self::SetTelemetry { .. } => CommandTag::SetTelemetry,
             Self::GetStats => CommandTag::GetStats,
             Self::Ping { .. } => CommandTag::Ping,
+            Self::GetParam { .. } => CommandTag::GetParam,
         }
     }
 }
@@ -411,12 +443,14 @@ pub enum Report {
     },
     /// Real-time margin of the step loop since the run started (or the last `Margin`).
     Margin {
-        /// The longest step (CPU cycles).
+        /// The longest step (CPU cycles; under QEMU, SysTick ticks).
         worst_cycles: u32,
-        /// The step period (CPU cycles).
+        /// The step period (CPU cycles; 0 when the rig does not run in real time).
         period_cycles: u32,
         /// Steps that missed their deadline.
         overruns: u32,
+        /// The step number of the longest step (since protocol version 2).
+        worst_step: u32,
     },
     /// The command was carried out.
     Ack {
@@ -441,4 +475,11 @@ pub enum Report {
     },
     /// The rig's run state (on change, and after [`Report::Hello`]).
     State(RigState),
+    /// Reply to [`Command::GetParam`] (since protocol version 2).
+    Param {
+        /// The parameter.
+        id: ParamId,
+        /// Its value (SI units, see [`ParamId`]).
+        value: f32,
+    },
 }

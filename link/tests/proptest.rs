@@ -65,6 +65,7 @@ fn command() -> impl Strategy<Value = Command> {
         any::<u16>().prop_map(|every_n_steps| Command::SetTelemetry { every_n_steps }),
         Just(Command::GetStats),
         any::<u32>().prop_map(|nonce| Command::Ping { nonce }),
+        select(ParamId::ALL.to_vec()).prop_map(|id| Command::GetParam { id }),
     ]
 }
 
@@ -136,10 +137,11 @@ fn report() -> impl Strategy<Value = Report> {
         ),
         (select(common::OUTCOMES.to_vec()), any_f32(), any::<u32>(), any::<u32>())
             .prop_map(|(outcome, time, steps, checksum)| Report::Outcome { outcome, time, steps, checksum }),
-        any::<[u32; 3]>().prop_map(|[worst_cycles, period_cycles, overruns]| Report::Margin {
+        any::<[u32; 4]>().prop_map(|[worst_cycles, period_cycles, overruns, worst_step]| Report::Margin {
             worst_cycles,
             period_cycles,
-            overruns
+            overruns,
+            worst_step
         }),
         command_tag().prop_map(|command| Report::Ack { command }),
         (select(ParamId::ALL.to_vec()), select(common::REASONS.to_vec()))
@@ -148,6 +150,7 @@ fn report() -> impl Strategy<Value = Report> {
         stats().prop_map(Report::Stats),
         any::<u32>().prop_map(|nonce| Report::Pong { nonce }),
         rig_state().prop_map(Report::State),
+        (select(ParamId::ALL.to_vec()), any_f32()).prop_map(|(id, value)| Report::Param { id, value }),
     ]
 }
 

@@ -72,7 +72,7 @@ fn every_command_round_trips() {
     // Every tag 0..=8 is covered (a new variant must be added to `all_commands`).
     let mut tags: Vec<u8> = all.iter().map(first_byte).collect();
     tags.dedup();
-    assert_eq!(tags, (0..=8).collect::<Vec<u8>>());
+    assert_eq!(tags, (0..=9).collect::<Vec<u8>>());
 }
 
 #[test]
@@ -84,7 +84,7 @@ fn every_report_round_trips() {
     let mut tags: Vec<u8> = all.iter().map(first_byte).collect();
     tags.sort_unstable();
     tags.dedup();
-    assert_eq!(tags, (0..=10).collect::<Vec<u8>>());
+    assert_eq!(tags, (0..=11).collect::<Vec<u8>>());
 }
 
 /// The tags are the protocol: a reordering of variants must fail here (and bump the version).
@@ -100,6 +100,7 @@ fn tags_are_stable() {
         (Command::SetTelemetry { every_n_steps: 1 }, 6),
         (Command::GetStats, 7),
         (Command::Ping { nonce: 1 }, 8),
+        (Command::GetParam { id: ParamId::MaxTime }, 9),
     ];
     for (c, tag) in commands {
         assert_eq!(first_byte(&c), tag, "{c:?}");
@@ -117,6 +118,7 @@ fn tags_are_stable() {
         (8, |r| matches!(r, Report::Stats(_))),
         (9, |r| matches!(r, Report::Pong { .. })),
         (10, |r| matches!(r, Report::State(_))),
+        (11, |r| matches!(r, Report::Param { .. })),
     ];
     for r in all_reports() {
         let tag = first_byte(&r);
@@ -128,7 +130,7 @@ fn tags_are_stable() {
     for (i, id) in ParamId::ALL.into_iter().enumerate() {
         assert_eq!(first_byte(&id) as usize, i, "{id:?}");
     }
-    // Report::Hello: tag 0, then `protocol` as a varint (1 for version 1).
+    // Report::Hello: tag 0, then `protocol` as a varint (one byte below 128).
     let hello = all_reports().into_iter().find(|r| matches!(r, Report::Hello { .. })).unwrap();
     let mut buf = [0u8; 64];
     let bytes = postcard::to_slice(&hello, &mut buf).unwrap();
@@ -161,8 +163,13 @@ fn sizes_match_the_docs() {
         along: [0.0; 2],
     };
     assert_eq!(encode(&switch, &mut buf).unwrap().len(), 26);
-    let margin = Report::Margin { worst_cycles: u32::MAX, period_cycles: u32::MAX, overruns: u32::MAX };
-    assert_eq!(encode(&margin, &mut buf).unwrap().len(), 22);
+    let margin = Report::Margin {
+        worst_cycles: u32::MAX,
+        period_cycles: u32::MAX,
+        overruns: u32::MAX,
+        worst_step: u32::MAX,
+    };
+    assert_eq!(encode(&margin, &mut buf).unwrap().len(), 27);
 }
 
 #[test]

@@ -249,7 +249,9 @@ impl<T: Real, const N: usize> Tableau<T, N> {
                 }
             }
         }
-        ties.trailing_zeros() as usize
+        // `ties` always has a row below `N`; the `min` lets the compiler see that every use of
+        // the row is in bounds (no panic path in the firmware).
+        (ties.trailing_zeros() as usize).min(N - 1)
     }
 
     /// Row that leaves when the artificial variable enters first: the most negative
@@ -357,7 +359,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
                 match self.basis[k] {
                     Var::W(j) if j as usize == i => acc -= x[k],
                     Var::W(_) | Var::Artificial => {}
-                    Var::Z(j) => acc += lcp.m[(i, j as usize)] * x[k],
+                    Var::Z(j) => acc += lcp.m.get((i, j as usize)).copied().unwrap_or(T::zero()) * x[k],
                 }
             }
             residual[i] = acc;
@@ -372,8 +374,11 @@ impl<T: Real, const N: usize> Tableau<T, N> {
         let mut z = SVector::<T, N>::zeros();
         let mut basis = Basis::all_w();
         for r in 0..N {
-            if let Var::Z(i) = self.basis[r] {
-                z[i as usize] = max(x[r], T::zero());
+            // `i < N` always (a basic `Z(i)` of this tableau); `get_mut` says so without a panic path.
+            if let Var::Z(i) = self.basis[r]
+                && let Some(zi) = z.get_mut(i as usize)
+            {
+                *zi = max(x[r], T::zero());
                 basis.set_z_basic(i as usize, true);
             }
         }

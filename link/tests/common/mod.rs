@@ -33,6 +33,7 @@ pub fn all_commands() -> Vec<Command> {
         Command::Ping { nonce: 0 },
         Command::Ping { nonce: u32::MAX },
     ]);
+    v.extend(ParamId::ALL.map(|id| Command::GetParam { id }));
     v
 }
 
@@ -102,7 +103,7 @@ pub fn all_reports() -> Vec<Report> {
     for outcome in OUTCOMES {
         v.push(Report::Outcome { outcome, time: 4.2, steps: 4200, checksum: 0xDEAD_BEEF });
     }
-    v.push(Report::Margin { worst_cycles: 61_234, period_cycles: 100_000, overruns: 0 });
+    v.push(Report::Margin { worst_cycles: 61_234, period_cycles: 100_000, overruns: 0, worst_step: 1_234 });
     for tag in all_commands().iter().map(Command::tag) {
         v.push(Report::Ack { command: tag });
     }
@@ -129,6 +130,9 @@ pub fn all_reports() -> Vec<Report> {
         Report::Stats(LinkStats::default()),
         Report::Pong { nonce: 0x1234_5678 },
     ]);
+    for (i, id) in ParamId::ALL.into_iter().enumerate() {
+        v.push(Report::Param { id, value: 0.5 * i as f32 - 2.0 });
+    }
     v
 }
 
