@@ -19,6 +19,23 @@ fn main() {
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rerun-if-changed={}", layout.display());
     println!("cargo:rerun-if-changed=build.rs");
+    // The build id sent in the link's Hello: the first 8 characters of the git commit (or
+    // MS_BUILD_ID from the environment; "unknown" outside a git checkout).
+    let id = env::var("MS_BUILD_ID").ok().or_else(|| {
+        let out = std::process::Command::new("git")
+            .args(["rev-parse", "--short=8", "HEAD"])
+            .current_dir(&manifest)
+            .output()
+            .ok()?;
+        out.status.success().then(|| String::from_utf8_lossy(&out.stdout).trim().to_owned())
+    });
+    println!("cargo:rustc-env=MS_BUILD_ID={}", id.unwrap_or_else(|| "unknown".into()));
+    println!("cargo:rerun-if-env-changed=MS_BUILD_ID");
+    for git in ["../.git/HEAD", "../.git/refs/heads"] {
+        if manifest.join(git).exists() {
+            println!("cargo:rerun-if-changed={}", manifest.join(git).display());
+        }
+    }
     let target = env::var("TARGET").unwrap_or_default();
     if target.starts_with("thumb") {
         println!("cargo:rustc-link-arg-bins=-Tlink.x");

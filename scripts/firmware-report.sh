@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Firmware figures: flash/RAM of every build (with and without defmt, with and without the 8x8
-# fallback), and Cortex-M instructions per scene step on the emulated Cortex-M4F and Cortex-M0,
+# fallback, with and without the host link), and Cortex-M instructions per scene step on the emulated Cortex-M4F and Cortex-M0,
 # counted deterministically (QEMU -icount shift=0, SysTick, calibrated against a loop of known
 # length). Writes out/firmware/report.md and prints it. Installs what it needs first.
 set -euo pipefail
@@ -19,7 +19,8 @@ done
   echo
   echo "| build | features | flash (text+data, B) | static RAM (data+bss, B) |"
   echo "|---|---|---|---|"
-  for b in qemu-m4f qemu-m0 rig-m4f rig-m4f-nolog rig-m4f-6x6 rig-m4f-6x6-nolog; do
+  for spec in "${FIRMWARE_BUILDS[@]}"; do
+    b=${spec%% *}
     read -r text data bss _ < <(size "${ELF[$b]}" | tail -n 1)
     feats=$(printf '%s\n' "${FIRMWARE_BUILDS[@]}" | awk -v b="$b" '$1 == b { print $3 }')
     echo "| $b | $feats | $((text + data)) | $((data + bss)) |"

@@ -29,28 +29,45 @@ done
 
 step "firmware clippy"
 if [ "$MS_CROSS_MODE" = rustup ]; then
-  # The distinct code paths: QEMU binding; rig with logging and fallback; rig with neither.
-  for spec in "${FIRMWARE_BUILDS[0]}" "${FIRMWARE_BUILDS[2]}" "${FIRMWARE_BUILDS[5]}"; do
+  # The distinct code paths: QEMU binding; rig with logging and fallback; rig with neither; the
+  # QEMU binding with the host link; the rig with the link (USB).
+  for spec in "${FIRMWARE_BUILDS[0]}" "${FIRMWARE_BUILDS[2]}" "${FIRMWARE_BUILDS[5]}" \
+      "${FIRMWARE_BUILDS[6]}" "${FIRMWARE_BUILDS[8]}"; do
     set -- $spec
-    (cd firmware && cargo clippy --locked --release --target "$2" --features "$3" \
+    (cd firmware && cargo clippy --locked --release --no-default-features --target "$2" --features "$3" \
         --target-dir "$FIRMWARE_TARGET_DIR" -- -D warnings)
   done
 else
   echo "Debian fallback: no clippy for the cross toolchain; skipped"
 fi
 
-step "firmware builds (QEMU machines; the rig with and without defmt and the 8x8 fallback)"
+step "firmware builds (QEMU machines; the rig with and without defmt, the 8x8 fallback, the host link)"
 for spec in "${FIRMWARE_BUILDS[@]}"; do
   set -- $spec
   elf=$(build_firmware "$1" "$2" "$3")
-  printf '%-18s %s\n' "$1" "$(size "$elf" | tail -n 1)"
+  printf '%-24s %s\n' "$1" "$(size "$elf" | tail -n 1)"
 done
 M4="$FIRMWARE_TARGET_DIR/elf/qemu-m4f.elf"
 M0="$FIRMWARE_TARGET_DIR/elf/qemu-m0.elf"
 
-step "firmware under QEMU"
+step "no panic path (link-time check: these builds' panic handler references an undefined symbol)"
+# A build with a panic path left would have failed to link above; that they linked is the proof.
+# Here, a second look at the final ELFs: no panic function of core is in them at all.
+for name in qemu-m4f qemu-m0 qemu-m4f-link qemu-m0-link rig-m4f-nolog rig-m4f-6x6-nolog; do
+  elf="$FIRMWARE_TARGET_DIR/elf/$name.elf"
+  if nm "$elf" | grep -qiE 'panicking|rust_begin_unwind'; then
+    echo "$name: a panic handler is linked in: a panic path survived" >&2
+    exit 1
+  fi
+  echo "$name: no panic path"
+done
+
+step "firmware under QEMU (and the host link end to end)"
 MS_FIRMWARE_M4="$M4" MS_FIRMWARE_M0="$M0" \
   $HOST_CARGO test --locked -p meterstick-tests --test qemu -- --ignored
+MS_FIRMWARE_M4_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m4f-link.elf" \
+MS_FIRMWARE_M0_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m0-link.elf" \
+  $HOST_CARGO test --locked -p meterstick-tests --test qemu_link -- --ignored
 
 echo
 echo "all tests passed in $(( $(date +%s) - start )) s"

@@ -3,19 +3,29 @@
 //! | signal | pin | notes |
 //! |---|---|---|
 //! | start button | PA0 (on-board KEY) | to ground, internal pull-up: active low |
+//! | preset button | PA1 | to ground, internal pull-up: each press selects the next preset |
 //! | stepper STEP / DIR | PB0 / PB1 | e.g. an A4988/DRV8825 driver; DIR high = toward finger 2 |
 //! | finger 1 lights: sticking / sliding / separated | PB12 / PB13 / PB14 | active high |
 //! | finger 2 lights: sticking / sliding / separated | PB15 / PA8 / PA9 | active high |
 //! | fault light | PA10 | active high |
+//! | host link (`link`): USB D- / D+ | PA11 / PA12 | the board's USB-C port, USB CDC (a serial port on the host) |
 //!
-//! Clocks: the board's 25 MHz crystal, 100 MHz core. SysTick wraps every h = 1 ms (100,000
-//! core cycles); each wrap runs one [`Rig::tick`], i.e. one scene step in real time. The time a
-//! tick took is read from SysTick: the worst is logged (with `log`) every second as the
-//! real-time margin, and a tick that overran its period is counted.
+//! Clocks: the board's 25 MHz crystal; 100 MHz core, or 96 MHz with `link` (USB needs an exact
+//! 48 MHz from the same PLL, which 100 MHz excludes). SysTick wraps every `h` (the scene's
+//! step; 1 ms by default, reprogrammed when `h` changes); each wrap runs one [`Rig::tick`], i.e.
+//! one scene step in real time. The time a tick took is read from SysTick: the worst is logged
+//! (with `log`) every second as the real-time margin, and sent to the host (with `link`) in
+//! `Report::Margin`; a tick that overran its period is counted.
+//!
+//! Buttons: a press of the start button starts a run; once the run has ended, a press resets it
+//! (the carriage drives back to its origin) and the next press starts it again. While no run is
+//! in progress, the preset button cycles slow / fast / near the fall threshold, shown on finger
+//! 1's lights (sticking / sliding / separated). With `link`, the host may do all of this and
+//! more (`meterstick-link` commands; see [`crate::session`]); the USB device is serviced while
+//! the loop waits for the next tick.
 
 use embedded_hal::delay::DelayNs;
-use meterstick_core::rig::{ModeLights, Rig, RigConfig, RigError, RigPins, RigState};
-use meterstick_core::scene::MeterStickParams;
+use meterstick_core::rig::{ModeLights, Preset, PressDetector, Rig, RigConfig, RigError, RigPins, RigState};
 use stm32f4xx_hal::gpio::{AnyPin, Input, Output, PA0};
 use stm32f4xx_hal::pac;
 use stm32f4xx_hal::prelude::*;
@@ -27,9 +37,15 @@ use defmt_rtt as _;
 use crate::systick;
 
 /// Core clock (Hz).
+#[cfg(not(feature = "link"))]
 const SYSCLK_HZ: u32 = 100_000_000;
-/// Scene steps per second (h = 1 ms); one SysTick period per step.
+/// Core clock (Hz): 96 MHz, so that the PLL also gives USB its 48 MHz.
+#[cfg(feature = "link")]
+const SYSCLK_HZ: u32 = 96_000_000;
+/// Scene steps per second at boot (h = 1 ms); one SysTick period per step.
 const STEP_HZ: u32 = 1_000;
+/// Button samples (ticks) that must agree before a press counts.
+const DEBOUNCE_TICKS: u16 = 20;
 
 /// Busy-wait delay on the core clock (`asm::delay` waits at least the cycles asked).
 struct CycleDelay;
@@ -42,11 +58,24 @@ impl DelayNs for CycleDelay {
 
 type Out = AnyPin<Output>;
 
+/// SysTick reload for a step of `h` seconds (at least 1,000 cycles, at most the 24-bit range).
+fn period_of(h: f32) -> u32 {
+    let cycles = h * SYSCLK_HZ as f32;
+    // A valid `h` is positive; the cast saturates (and maps NaN to 0), the clamp bounds it.
+    #[allow(clippy::cast_sign_loss)]
+    let cycles = cycles as u32;
+    cycles.clamp(1_000, systick::MASK)
+}
+
 pub fn main() -> ! {
     let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else { halt() };
+    #[cfg(not(feature = "link"))]
     let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()));
+    #[cfg(feature = "link")]
+    let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()).require_pll48clk());
     let gpioa = dp.GPIOA.split(&mut rcc);
     let gpiob = dp.GPIOB.split(&mut rcc);
+    let preset_button = gpioa.pa1.into_pull_up_input();
     let pins: RigPins<PA0<Input>, Out> = RigPins {
         start: gpioa.pa0.into_pull_up_input(),
         step: gpiob.pb0.into_push_pull_output().erase(),
@@ -65,7 +94,7 @@ pub fn main() -> ! {
         ],
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
-    let params = MeterStickParams { finger1_x: -0.35, step: 1.0 / STEP_HZ as f32, ..MeterStickParams::<f32>::paper() };
+    let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
     let mut rig = match Rig::<_, _, _, 6>::new(params, RigConfig::default_rig(), pins, CycleDelay) {
         Ok(rig) => rig,
         #[cfg_attr(not(feature = "log"), allow(unused_variables))]
@@ -75,23 +104,158 @@ pub fn main() -> ! {
             halt()
         }
     };
-    let period = SYSCLK_HZ / STEP_HZ;
+    #[cfg(feature = "link")]
+    let (mut port, mut session) = {
+        let Some(port) = usb::UsbPort::new(
+            (dp.OTG_FS_GLOBAL, dp.OTG_FS_DEVICE, dp.OTG_FS_PWRCLK),
+            (gpioa.pa11, gpioa.pa12),
+            &rcc.clocks,
+        ) else {
+            halt()
+        };
+        let mut session = crate::session::Session::new(0, crate::session::build_id(env!("MS_BUILD_ID")));
+        session.boot(&rig);
+        (port, session)
+    };
+    let mut period = period_of(rig.params().step);
     systick::start(&mut cp.SYST, period - 1);
+    #[cfg(feature = "link")]
+    session.set_period(period);
     #[cfg(feature = "log")]
     let mut margin = Margin::default();
+    let mut buttons = Buttons {
+        preset: Preset::Slow,
+        preset_press: PressDetector::new(DEBOUNCE_TICKS),
+        start_press: PressDetector::new(DEBOUNCE_TICKS),
+    };
     loop {
-        while !cp.SYST.has_wrapped() {}
-        #[cfg(feature = "log")]
+        while !cp.SYST.has_wrapped() {
+            #[cfg(feature = "link")]
+            port.poll();
+        }
+        #[cfg(feature = "link")]
+        if let Err(RigError::Pin(never)) = session.poll(&mut port, &mut rig) {
+            match never {}
+        }
         let start = systick::now();
-        let state: Result<RigState, _> = rig.tick();
+        #[cfg(feature = "link")]
+        let state = rig.tick_with(|r| session.record(r));
+        #[cfg(not(feature = "link"))]
+        let state = rig.tick();
+        let used = systick::elapsed(start, systick::now());
         #[cfg(feature = "log")]
-        margin.record(systick::elapsed(start, systick::now()), cp.SYST.has_wrapped(), period);
-        match state {
-            Ok(RigState::WaitingForStart | RigState::Running) => {}
-            // Finished or fault (the rig shows it), or `Params`, which only `new` returns.
-            Ok(RigState::Finished(_) | RigState::Fault(_)) | Err(RigError::Params(_)) => idle(),
-            // Pins on this HAL cannot fail (`Infallible`).
+        margin.record(used, cp.SYST.has_wrapped(), period);
+        #[cfg(feature = "link")]
+        {
+            session.end_tick(&rig, used);
+            session.flush(&mut port);
+        }
+        #[cfg(not(feature = "link"))]
+        let _ = used;
+        let state = match state {
+            Ok(s) => s,
+            // `Params` only comes from `new` and `reset`; pins on this HAL cannot fail.
+            Err(RigError::Params(_)) => continue,
             Err(RigError::Pin(never)) => match never {},
+        };
+        buttons.between_runs(&mut rig, state, preset_button.is_low());
+        // A new `h` (from the host or a preset): a new tick period.
+        let want = period_of(rig.params().step);
+        if want != period && !matches!(state, RigState::Running) {
+            period = want;
+            systick::start(&mut cp.SYST, period - 1);
+            #[cfg(feature = "link")]
+            session.set_period(period);
+        }
+    }
+}
+
+/// The buttons between runs: the preset button cycles the presets (shown on finger 1's
+/// lights), the start button resets a finished run (the next press starts it).
+struct Buttons {
+    preset: Preset,
+    preset_press: PressDetector,
+    start_press: PressDetector,
+}
+
+impl Buttons {
+    fn between_runs<P: embedded_hal::digital::OutputPin<Error = core::convert::Infallible>, D: DelayNs>(
+        &mut self,
+        rig: &mut Rig<PA0<Input>, P, D, 6>,
+        state: RigState,
+        preset_pressed: bool,
+    ) {
+        // Pins on this HAL cannot fail (`Infallible`); parameters of a preset are valid.
+        if self.preset_press.sample(preset_pressed) && !matches!(state, RigState::Running) {
+            self.preset = self.preset.next();
+            let _ = rig.reset(self.preset.params(rig.params().step));
+            let _ = rig.indicate(Some(self.preset.index()));
+        }
+        let ended = matches!(state, RigState::Finished(_) | RigState::Fault(_));
+        if ended && self.start_press.sample(rig.start_pressed().unwrap_or(false)) {
+            let _ = rig.reset(*rig.params());
+        }
+    }
+}
+
+/// The host link over the Black Pill's USB-C port: a USB CDC ACM serial port
+/// (`usb-device` + `usbd-serial`), polled from the main loop.
+#[cfg(feature = "link")]
+mod usb {
+    use stm32f4xx_hal::otg_fs::{USB, UsbBus, UsbBusType};
+    use stm32f4xx_hal::pac;
+    use stm32f4xx_hal::rcc::Clocks;
+    use usb_device::bus::UsbBusAllocator;
+    use usb_device::prelude::{StringDescriptors, UsbDevice, UsbDeviceBuilder, UsbVidPid};
+    use usbd_serial::SerialPort;
+
+    use crate::session::Port;
+
+    /// The USB device and its CDC ACM class.
+    pub struct UsbPort {
+        dev: UsbDevice<'static, UsbBusType>,
+        serial: SerialPort<'static, UsbBusType>,
+    }
+
+    impl UsbPort {
+        /// The USB device on PA11/PA12 (`None` if called twice, or if the descriptors do not
+        /// fit).
+        pub fn new(
+            periphs: (pac::OTG_FS_GLOBAL, pac::OTG_FS_DEVICE, pac::OTG_FS_PWRCLK),
+            pins: (stm32f4xx_hal::gpio::PA11, stm32f4xx_hal::gpio::PA12),
+            clocks: &Clocks,
+        ) -> Option<Self> {
+            let ep_memory = cortex_m::singleton!(: [u32; 1024] = [0; 1024])?;
+            let usb = USB::new(periphs, pins, clocks);
+            let bus: &'static UsbBusAllocator<UsbBusType> =
+                cortex_m::singleton!(: UsbBusAllocator<UsbBusType> = UsbBus::new(usb, ep_memory))?;
+            let serial = SerialPort::new(bus);
+            // pid.codes' test PID for CDC ACM devices (0x1209/0x0001 is reserved for tests);
+            // a rig that ships would register its own.
+            let dev = UsbDeviceBuilder::new(bus, UsbVidPid(0x1209, 0x0001))
+                .device_class(usbd_serial::USB_CLASS_CDC)
+                .strings(&[StringDescriptors::default()
+                    .manufacturer("meterstick")
+                    .product("meter-stick rig")
+                    .serial_number("rig-1")])
+                .ok()?
+                .build();
+            Some(Self { dev, serial })
+        }
+
+        /// Services the USB device (enumeration, transfers); call often.
+        pub fn poll(&mut self) {
+            self.dev.poll(&mut [&mut self.serial]);
+        }
+    }
+
+    impl Port for UsbPort {
+        fn read(&mut self, buf: &mut [u8]) -> usize {
+            self.serial.read(buf).unwrap_or(0)
+        }
+
+        fn write(&mut self, bytes: &[u8]) -> usize {
+            self.serial.write(bytes).unwrap_or(0)
         }
     }
 }
@@ -119,16 +283,10 @@ impl Margin {
                 "real time: worst tick {=u32} of {=u32} cycles ({=u32}% used), {=u32} overruns",
                 self.worst,
                 period,
-                self.worst * 100 / period,
+                self.worst * 100 / period.max(1),
                 self.overruns
             );
         }
-    }
-}
-
-fn idle() -> ! {
-    loop {
-        cortex_m::asm::wfi();
     }
 }
 
@@ -136,11 +294,4 @@ fn halt() -> ! {
     loop {
         cortex_m::asm::nop();
     }
-}
-
-#[panic_handler]
-fn panic(_info: &core::panic::PanicInfo<'_>) -> ! {
-    #[cfg(feature = "log")]
-    defmt::error!("panic");
-    halt()
 }

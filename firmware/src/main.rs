@@ -8,6 +8,22 @@
 //! * `board-blackpill` ([`blackpill`]): the tabletop rig on an STM32F411CEU6 "Black Pill"
 //!   (stm32f4xx-hal): one scene step per SysTick period h = 1 ms, stepper STEP/DIR, mode and
 //!   fault lights, start button; defmt over RTT with the `log` feature.
+//!
+//! With `link`, the rig is driven from a host ([`session`], the `meterstick-link` protocol):
+//! under QEMU over the machine's UART ([`uart`], [`qemu_link`]), on the Black Pill over USB CDC
+//! (its USB-C port).
+//!
+//! **No panic path.** The panic handler of every QEMU build and of the Black Pill's without
+//! `log` and `link` calls a function that is declared but defined nowhere, so a panic path that
+//! survives optimisation fails the link with an undefined symbol
+//! `meterstick_firmware_has_a_panic_path`: those builds link, so none has one
+//! (`scripts/panic-paths.sh` lists the paths when one appears). Two dependencies keep panic
+//! paths that cannot be removed from here: `defmt-rtt` panics when its logger is taken
+//! reentrantly (a log from an interrupt during a log), by design; the USB stack (`usb-device`
+//! 0.3, `synopsys-usb-otg` 0.4, `usbd-serial` 0.2) has about 60 (descriptor-writer asserts,
+//! endpoint lookups, FIFO indexing). So the Black Pill's `log` or `link` builds keep a panic
+//! handler that halts (and logs, with `log`); the core, the rig loop, the protocol and the
+//! session, which they share with the checked builds, are proven panic-free by those.
 #![no_std]
 #![no_main]
 
@@ -18,16 +34,77 @@ compile_error!("choose a board binding: --features qemu-mps2-an386, qemu-microbi
 
 #[cfg(feature = "board-blackpill")]
 mod blackpill;
-#[cfg(feature = "qemu")]
+#[cfg(all(feature = "qemu", not(feature = "link")))]
 mod qemu;
+#[cfg(all(feature = "qemu", feature = "link"))]
+mod qemu_link;
+#[cfg(feature = "qemu")]
+mod semihosting_log;
+#[cfg(feature = "link")]
+mod session;
 mod systick;
+#[cfg(all(feature = "qemu", feature = "link"))]
+mod uart;
 
 use cortex_m as _; // the single-core critical section defmt needs
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
-    #[cfg(feature = "qemu")]
+    #[cfg(all(feature = "qemu", not(feature = "link")))]
     qemu::main();
+    #[cfg(all(feature = "qemu", feature = "link"))]
+    qemu_link::main();
     #[cfg(feature = "board-blackpill")]
     blackpill::main();
+}
+
+/// The panic handler: it references a symbol that exists nowhere, so the final link fails
+/// (`undefined symbol: meterstick_firmware_has_a_panic_path`) when any panic path is left
+/// after optimisation. A firmware that links cannot panic.
+#[cfg(not(any(
+    feature = "panic-locate",
+    all(feature = "board-blackpill", any(feature = "log", feature = "link"))
+)))]
+#[panic_handler]
+#[allow(unsafe_code)]
+fn panic(_info: &core::panic::PanicInfo<'_>) -> ! {
+    unsafe extern "Rust" {
+        fn meterstick_firmware_has_a_panic_path() -> !;
+    }
+    // SAFETY: never executed in a firmware that links: the symbol is not defined anywhere.
+    unsafe { meterstick_firmware_has_a_panic_path() }
+}
+
+/// The rig with `log` or `link` (defmt-rtt and the USB stack keep panic paths, see the crate
+/// docs): log (with `log`) and halt.
+#[cfg(all(
+    feature = "board-blackpill",
+    any(feature = "log", feature = "link"),
+    not(feature = "panic-locate")
+))]
+#[panic_handler]
+fn panic(_info: &core::panic::PanicInfo<'_>) -> ! {
+    #[cfg(feature = "log")]
+    defmt::error!("panic");
+    loop {
+        cortex_m::asm::nop();
+    }
+}
+
+/// With `panic-locate` (diagnosis only, `scripts/panic-paths.sh`): a panic handler that links,
+/// so that the panic paths can be listed from the ELF.
+#[cfg(feature = "panic-locate")]
+#[panic_handler]
+fn panic(_info: &core::panic::PanicInfo<'_>) -> ! {
+    loop {
+        cortex_m::asm::udf();
+    }
+}
+
+#[cfg(feature = "qemu")]
+#[allow(unsafe_code)] // cortex-m-rt requires the HardFault handler to be `unsafe fn`.
+#[cortex_m_rt::exception]
+unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+    defmt::println!("HARDFAULT");
+    semihosting::process::exit(102)
 }

@@ -6,11 +6,12 @@
 //! ticks the rig's steps took and a calibration of ticks against instructions. Exit status: 0 when
 //! the LCP was solved and every scene ended as physics says (balanced, fell, slid, fell).
 
-use defmt_semihosting as _;
 use meterstick_core::lcp::{Lcp, Lemke};
 use meterstick_core::planar::{Checksum, SwitchEvent};
 use meterstick_core::rig::{NoDelay, Rig, RigConfig, RigState};
-use meterstick_core::scene::{Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome, Scene};
+use meterstick_core::scene::{
+    Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome, Scene,
+};
 
 use crate::systick;
 
@@ -57,7 +58,8 @@ const CONFIG: RigConfig = RigConfig {
 /// Runs the paper's scene at `speed` (finger 1 starting at -0.35 m) through the rig and
 /// reports it; `None` on a rig fault.
 fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
-    let params = MeterStickParams { finger1_velocity: speed, finger1_x: -0.35, ..MeterStickParams::<f32>::paper() };
+    let params =
+        MeterStickParams { finger1_velocity: speed, finger1_x: -0.35, ..MeterStickParams::<f32>::paper() };
     let mut rig = match Rig::<_, _, _, 6, 32>::headless(params, CONFIG, NoDelay) {
         Ok(rig) => rig,
         Err(e) => {
@@ -181,17 +183,4 @@ pub fn main() -> ! {
     }
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)
-}
-
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
-    defmt::println!("PANIC at line {=u32}", info.location().map_or(0, core::panic::Location::line));
-    semihosting::process::exit(101)
-}
-
-#[allow(unsafe_code)] // cortex-m-rt requires the HardFault handler to be `unsafe fn`.
-#[cortex_m_rt::exception]
-unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
-    defmt::println!("HARDFAULT");
-    semihosting::process::exit(102)
 }

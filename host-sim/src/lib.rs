@@ -6,6 +6,7 @@
 //! runner ([`qemu`]).
 
 pub mod lcp_io;
+pub mod monitor;
 pub mod plot;
 pub mod qemu;
 pub mod reference;

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
-use meterstick_host_sim::{lcp_io, qemu, report, run_cmd, scene_cmd, stress};
+use meterstick_host_sim::{lcp_io, monitor, qemu, report, run_cmd, scene_cmd, stress};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -49,6 +49,10 @@ enum Cmd {
     /// Run one scene in the core and print its outcome, measured quantities, switch events (with
     /// the eq. 21 ratio), solver statistics and trajectory checksum. Units: m, s, kg, m/s, degrees.
     Scene(scene_cmd::SceneCmd),
+    /// Talk to the rig over its link (a serial port, or tcp:HOST:PORT for QEMU's UART): send
+    /// commands from flags, print a line per event and a progress line, record a run in
+    /// `host-sim run`'s files and compare it with the host's f32 build.
+    Monitor(monitor::MonitorArgs),
     /// Run a firmware ELF under QEMU, print its decoded defmt output, and exit with the
     /// firmware's status.
     Qemu {
@@ -107,6 +111,10 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Cmd::Scene(args) => {
             print!("{}", scene_cmd::run_scene(&args)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Monitor(args) => {
+            print!("{}", monitor::monitor(&args)?);
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Qemu { elf, machine, timeout_s, icount } => {

@@ -6,8 +6,10 @@
 //! ELF's own `.defmt` table.
 
 use std::io::Read as _;
+use std::net::{TcpListener, TcpStream};
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::{Child, Command, Stdio};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context as _, bail};
@@ -90,6 +92,87 @@ pub fn run(elf: &Path, machine: Machine, timeout: Duration, icount: bool) -> any
     let raw = reader.join().map_err(|_| anyhow::anyhow!("qemu stdout reader panicked"))?;
     let lines = decode_defmt(&elf_bytes, &raw)?;
     Ok(FirmwareRun { exit_code: if timed_out { None } else { status.code() }, timed_out, lines })
+}
+
+/// A firmware with the host link (`link` feature) running under QEMU, its UART connected to a
+/// TCP socket of this process (QEMU connects to it: `-serial tcp:127.0.0.1:PORT`). Killed on
+/// drop.
+#[derive(Debug)]
+pub struct LinkedFirmware {
+    child: Child,
+    stdout: Option<JoinHandle<Vec<u8>>>,
+    elf: Vec<u8>,
+    /// The UART's other end.
+    pub stream: TcpStream,
+}
+
+impl LinkedFirmware {
+    /// Starts `elf` on `machine` (with `icount`, deterministic instruction counting) and
+    /// accepts QEMU's connection to the UART socket.
+    ///
+    /// # Errors
+    /// QEMU missing or not startable, no connection within 20 s.
+    pub fn start(elf: &Path, machine: Machine, icount: bool) -> anyhow::Result<Self> {
+        let elf_bytes =
+            std::fs::read(elf).with_context(|| format!("reading firmware ELF {}", elf.display()))?;
+        let listener = TcpListener::bind("127.0.0.1:0").context("binding a local TCP port for the UART")?;
+        let port = listener.local_addr()?.port();
+        let mut cmd = Command::new("qemu-system-arm");
+        cmd.args(["-machine", machine.qemu_name()])
+            .args(machine.cpu_args())
+            .args(["-nographic", "-monitor", "none"])
+            .args(["-serial", &format!("tcp:127.0.0.1:{port}")])
+            .args(["-semihosting-config", "enable=on,target=native"]);
+        if icount {
+            cmd.args(["-icount", "shift=0"]);
+        }
+        cmd.arg("-kernel").arg(elf).stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::null());
+        let mut child =
+            cmd.spawn().context("starting qemu-system-arm (run scripts/setup.sh to install it)")?;
+        let mut stdout = child.stdout.take().context("qemu stdout")?;
+        let reader = std::thread::spawn(move || {
+            let mut buf = Vec::new();
+            let _ = stdout.read_to_end(&mut buf);
+            buf
+        });
+        listener.set_nonblocking(true)?;
+        let start = Instant::now();
+        let stream = loop {
+            match listener.accept() {
+                Ok((stream, _)) => break stream,
+                Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {}
+                Err(e) => return Err(e).context("accepting QEMU's UART connection"),
+            }
+            if let Some(status) = child.try_wait()? {
+                bail!("qemu-system-arm exited ({status}) before connecting its UART");
+            }
+            if start.elapsed() > Duration::from_secs(20) {
+                let _ = child.kill();
+                bail!("QEMU did not connect its UART within 20 s");
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        };
+        stream.set_nonblocking(false)?;
+        Ok(Self { child, stdout: Some(reader), elf: elf_bytes, stream })
+    }
+
+    /// Ends QEMU and returns the firmware's decoded defmt output.
+    ///
+    /// # Errors
+    /// Undecodable output.
+    pub fn stop(mut self) -> anyhow::Result<Vec<String>> {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        let raw = self.stdout.take().map(|h| h.join().unwrap_or_default()).unwrap_or_default();
+        decode_defmt(&self.elf, &raw)
+    }
+}
+
+impl Drop for LinkedFirmware {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
 }
 
 /// Decodes a defmt byte stream with the table of `elf`.

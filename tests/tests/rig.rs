@@ -182,3 +182,75 @@ fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
         pins.lights.iter().map(|l| l.sticking.rises() + l.sliding.rises() + l.separated.rises()).sum();
     assert!(rises >= 2 + 8 && rises <= 2 + switches, "{rises} light rises for {switches} switch events");
 }
+
+/// Runs on demand: a finished run is reset (the carriage driven back at most
+/// `max_pulses_per_tick` pulses per tick, DIR low, no start meanwhile), started by command,
+/// stopped by command; refused parameters leave the rig as it was.
+#[test]
+fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
+    use meterstick_core::rig::Preset;
+    let config =
+        RigConfig { steps_per_meter: 10_000.0, max_pulses_per_tick: 1_000, ..RigConfig::default_rig() };
+    let fast = Preset::Fast.params(1e-3);
+    let mut rig = Rig::<_, _, _, 6>::headless(fast, config, NoDelay).unwrap();
+    let mut steps = 0u64;
+    let state = loop {
+        let s = rig.tick_with(|_| steps += 1).unwrap();
+        if matches!(s, RigState::Finished(_) | RigState::Fault(_)) {
+            break s;
+        }
+    };
+    assert_eq!(state, RigState::Finished(Outcome::Fell));
+    assert_eq!(steps, rig.scene().stats().steps, "tick_with reports every step once");
+    let out = rig.pulses();
+    assert!(out > 2_000, "the carriage travelled {out} pulses");
+    // A refused parameter set changes nothing.
+    let bad = MeterStickParams { mu_kinetic: 0.9, ..fast };
+    assert!(matches!(rig.reset(bad), Err(meterstick_core::rig::RigError::Params(_))));
+    assert_eq!(rig.state(), state);
+    // Reset: back to waiting, the carriage homes at 1,000 pulses per tick; no start meanwhile
+    // (and the headless button, always pressed, must be released first).
+    rig.reset(Preset::Slow.params(1e-3)).unwrap();
+    assert_eq!(rig.state(), RigState::WaitingForStart);
+    assert!(rig.homing());
+    assert!(!rig.start().unwrap(), "no start while homing");
+    let mut ticks = 0;
+    while rig.homing() {
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart);
+        ticks += 1;
+    }
+    assert_eq!(ticks, (out + 999) / 1_000, "{out} pulses back at 1,000 a tick");
+    assert_eq!(rig.pulses(), 0);
+    for _ in 0..3 {
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart, "the held button does not restart");
+    }
+    assert_eq!(*rig.params(), Preset::Slow.params(1e-3));
+    // Start and stop on command.
+    assert!(rig.start().unwrap());
+    for _ in 0..10 {
+        assert_eq!(rig.tick().unwrap(), RigState::Running);
+    }
+    assert!(rig.stop().unwrap());
+    assert_eq!(rig.state(), RigState::Finished(Outcome::Unfinished));
+    assert!(!rig.stop().unwrap());
+    let run = rig.pulses();
+    assert_eq!(run, 10, "10 steps of 0.1 mm at 0.1 mm per pulse");
+    let (pins, _) = rig.release();
+    assert_eq!(i64::from(pins.step.rises()), 2 * out + run, "out and back, then the stopped run's pulses");
+}
+
+#[test]
+fn presets_and_the_press_detector() {
+    use meterstick_core::rig::{Preset, PressDetector};
+    let outcomes: Vec<Outcome> =
+        Preset::ALL.iter().map(|p| MeterStick6::<f32, 8>::new(p.params(1e-3)).unwrap().run(|_| {})).collect();
+    assert_eq!(outcomes, [Outcome::Balanced, Outcome::Fell, Outcome::Balanced]);
+    assert_eq!(Preset::Slow.next().next().next(), Preset::Slow);
+    assert_eq!(Preset::ALL.map(Preset::index), [0, 1, 2]);
+    // 3 equal samples to change state; bounces do not count; one press per press.
+    let mut d = PressDetector::new(3);
+    let samples = [true, false, true, true, true, true, true, false, false, false, true, true, true];
+    let presses: Vec<usize> =
+        samples.iter().enumerate().filter_map(|(i, &s)| d.sample(s).then_some(i)).collect();
+    assert_eq!(presses, [4, 12]);
+}

@@ -1,0 +1,552 @@
+//! The rig's end of the host link (feature `link`), independent of the board: commands from a
+//! [`Port`] (a UART under QEMU, USB CDC on the Black Pill) are decoded with
+//! `meterstick-link`'s [`CommandDecoder`] and carried out on the [`Rig`]; telemetry, switch
+//! events, outcomes, real-time margins and replies are encoded into a transmit queue that the
+//! board drains without blocking.
+//!
+//! The board's loop, once per tick:
+//!
+//! ```text
+//! session.poll(&mut port, &mut rig)         // commands (bounded work per call)
+//! t0 = now; rig.tick_with(|r| session.record(r)); t1 = now
+//! session.end_tick(&rig, cycles(t0, t1))    // checksum, events, telemetry, state changes
+//! session.flush(&mut port)                  // as much of the queue as the port takes now
+//! ```
+//!
+//! Rules (the link crate's docs, "reply rule"): every decoded command gets exactly one reply;
+//! a frame that does not decode gets none and is counted by the decoder ([`Command::GetStats`]
+//! reads the counters). Parameters are validated by the core ([`MeterStickParams::validate`],
+//! through [`Rig::reset`]): a refused value gets [`Report::Rejected`] naming it, and the rig
+//! keeps its previous, valid set. When the queue is full, telemetry is dropped first (it needs
+//! [`RESERVE`] bytes to spare); anything dropped is counted and announced with
+//! [`ErrorCode::TxDropped`] once there is room again. Nothing here can panic: no indexing, no
+//! slicing that can fail, no unchecked arithmetic that matters (counters wrap).
+
+use embedded_hal::delay::DelayNs;
+use embedded_hal::digital::{InputPin, OutputPin};
+use meterstick_core::ParamError;
+use meterstick_core::planar::{Checksum, ContactMode, Direction, StepError, StepReport};
+use meterstick_core::rig::{Preset as RigPreset, Rig, RigError, RigFault, RigState as CoreState};
+use meterstick_core::scene::{MeterStickParams, Outcome, Scene};
+use meterstick_link::{
+    Command, CommandDecoder, ContactTelemetry, DEFAULT_TELEMETRY_EVERY, DELIMITER, ErrorCode, MAX_FRAME,
+    Mode, OutcomeCode, PROTOCOL_VERSION, Preset, RejectReason, Report, RigState, SceneId, encode,
+};
+
+/// A byte link that never blocks.
+pub trait Port {
+    /// Moves the bytes received so far (at most `buf.len()`) into `buf`; returns how many.
+    fn read(&mut self, buf: &mut [u8]) -> usize;
+    /// Sends as many of `bytes` as the link takes now; returns how many (0: none).
+    fn write(&mut self, bytes: &[u8]) -> usize;
+}
+
+/// Transmit queue size (bytes): 15 telemetry frames.
+pub const TX_CAP: usize = 1024;
+/// Bytes a telemetry frame must leave free in the queue, for replies and events.
+pub const RESERVE: usize = 3 * MAX_FRAME;
+/// Received bytes handled per [`Session::poll`] at most (bounded work per tick; a flood waits
+/// in the port, whose own buffer or flow control holds it).
+pub const POLL_BYTES: usize = 256;
+/// A [`Report::Margin`] every this many steps while running (and one at the end of the run).
+pub const MARGIN_EVERY: u32 = 1000;
+
+/// A byte ring buffer.
+struct TxQueue {
+    buf: [u8; TX_CAP],
+    head: usize,
+    len: usize,
+}
+
+impl TxQueue {
+    const fn new() -> Self {
+        Self { buf: [0; TX_CAP], head: 0, len: 0 }
+    }
+
+    const fn free(&self) -> usize {
+        TX_CAP.saturating_sub(self.len)
+    }
+
+    /// Appends all of `bytes`, or nothing when they do not fit.
+    fn push(&mut self, bytes: &[u8]) -> bool {
+        if bytes.len() > self.free() {
+            return false;
+        }
+        for &b in bytes {
+            if let Some(slot) = self.buf.get_mut(self.head.wrapping_add(self.len) % TX_CAP) {
+                *slot = b;
+            }
+            self.len = self.len.wrapping_add(1);
+        }
+        true
+    }
+
+    /// Hands the queue to `port` until it takes no more.
+    fn drain(&mut self, port: &mut impl Port) {
+        while self.len > 0 {
+            let end = self.head.saturating_add(self.len).min(TX_CAP);
+            let Some(chunk) = self.buf.get(self.head..end) else { return };
+            let n = port.write(chunk).min(chunk.len());
+            if n == 0 {
+                return;
+            }
+            self.head = self.head.wrapping_add(n) % TX_CAP;
+            self.len = self.len.saturating_sub(n);
+        }
+    }
+}
+
+/// The link session: decoder, transmit queue, telemetry rate and the current run's figures.
+pub struct Session {
+    decoder: CommandDecoder,
+    tx: TxQueue,
+    every: u16,
+    checksum: Checksum,
+    steps: u32,
+    last: RigState,
+    pending: Option<StepReport<f32, 2>>,
+    worst: u32,
+    worst_step: u32,
+    overruns: u32,
+    period: u32,
+    dropped: u32,
+    build: [u8; 8],
+}
+
+impl Session {
+    /// A session for a rig whose step period is `period_cycles` CPU cycles (0 when it does not
+    /// run in real time, e.g. under QEMU), with build id `build` (sent in [`Report::Hello`]).
+    pub const fn new(period_cycles: u32, build: [u8; 8]) -> Self {
+        Self {
+            decoder: CommandDecoder::new(),
+            tx: TxQueue::new(),
+            every: DEFAULT_TELEMETRY_EVERY,
+            checksum: Checksum::new(),
+            steps: 0,
+            last: RigState::Waiting,
+            pending: None,
+            worst: 0,
+            worst_step: 0,
+            overruns: 0,
+            period: period_cycles,
+            dropped: 0,
+            build,
+        }
+    }
+
+    /// At boot: a lone delimiter (closes whatever the host had half-received), then
+    /// [`Report::Hello`] and [`Report::State`].
+    pub fn boot<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &Rig<B, P, D, N, EV>)
+    where
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+        D: DelayNs,
+    {
+        let _ = self.tx.push(&[DELIMITER]);
+        self.send(&hello::<N>(rig.params(), self.build));
+        self.last = state_of(rig.state());
+        self.send(&Report::State(self.last));
+    }
+
+    /// Sets the step period (CPU cycles) the margins are reported against.
+    #[cfg_attr(not(feature = "board-blackpill"), allow(dead_code))]
+    pub fn set_period(&mut self, period_cycles: u32) {
+        self.period = period_cycles;
+    }
+
+    /// Reads and carries out the commands received (at most [`POLL_BYTES`] bytes).
+    ///
+    /// # Errors
+    /// A pin error from the rig.
+    pub fn poll<Pt, B, P, D, E, const N: usize, const EV: usize>(
+        &mut self,
+        port: &mut Pt,
+        rig: &mut Rig<B, P, D, N, EV>,
+    ) -> Result<(), RigError<E>>
+    where
+        Pt: Port,
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+        D: DelayNs,
+    {
+        let mut chunk = [0u8; 32];
+        let mut budget = POLL_BYTES;
+        while budget > 0 {
+            let n = port.read(&mut chunk).min(chunk.len()).min(budget);
+            if n == 0 {
+                break;
+            }
+            budget = budget.saturating_sub(n);
+            for &byte in chunk.get(..n).unwrap_or(&[]) {
+                if let Some(Ok(command)) = self.decoder.push(byte) {
+                    self.handle(command, rig)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Keeps the report of the step the rig just made (call from [`Rig::tick_with`]).
+    pub fn record(&mut self, report: &StepReport<f32, 2>) {
+        self.pending = Some(*report);
+    }
+
+    /// After a tick that took `cycles`: the step's checksum, switch events, telemetry and
+    /// margin, then the reports of a state change (run started: state and the step-0
+    /// telemetry; run ended: outcome, margin and state).
+    pub fn end_tick<B, P, D, E, const N: usize, const EV: usize>(
+        &mut self,
+        rig: &Rig<B, P, D, N, EV>,
+        cycles: u32,
+    ) where
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+        D: DelayNs,
+    {
+        if let Some(report) = self.pending.take() {
+            self.steps = self.steps.wrapping_add(1);
+            self.checksum.add(&report.state);
+            if cycles > self.worst {
+                self.worst = cycles;
+                self.worst_step = self.steps;
+            }
+            if self.period > 0 && cycles > self.period {
+                self.overruns = self.overruns.wrapping_add(1);
+            }
+            let along = report.along();
+            for (contact, mode) in report.switches() {
+                self.send(&Report::Switch {
+                    step: self.steps,
+                    time: report.time,
+                    contact: u8::try_from(contact).unwrap_or(u8::MAX),
+                    mode: mode_of(mode),
+                    along,
+                });
+            }
+            if self.every > 0 && self.steps.is_multiple_of(u32::from(self.every)) {
+                let contacts = report.contacts.map(|c| ContactTelemetry {
+                    mode: mode_of(c.mode),
+                    normal_impulse: c.normal_impulse,
+                    friction_impulse: c.friction_impulse,
+                });
+                self.telemetry(rig, report.time, contacts);
+            }
+            if self.steps.is_multiple_of(MARGIN_EVERY) {
+                self.send(&self.margin());
+            }
+        }
+        self.sync(rig);
+    }
+
+    /// Sends as much of the transmit queue as `port` takes now; announces dropped reports once
+    /// there is room.
+    pub fn flush(&mut self, port: &mut impl Port) {
+        self.tx.drain(port);
+        if self.dropped > 0 {
+            let mut buf = [0u8; MAX_FRAME];
+            if let Ok(frame) = encode(&Report::Error(ErrorCode::TxDropped { count: self.dropped }), &mut buf)
+                && self.tx.push(frame)
+            {
+                self.dropped = 0;
+                self.tx.drain(port);
+            }
+        }
+    }
+
+    /// `true` while reports wait to be sent.
+    #[cfg_attr(not(feature = "qemu"), allow(dead_code))]
+    pub const fn busy(&self) -> bool {
+        self.tx.len > 0
+    }
+
+    fn margin(&self) -> Report {
+        Report::Margin {
+            worst_cycles: self.worst,
+            period_cycles: self.period,
+            overruns: self.overruns,
+            worst_step: self.worst_step,
+        }
+    }
+
+    /// Queues a report that must not be lost (a reply, an event, an outcome): dropped (and
+    /// counted) only when the queue is full.
+    fn send(&mut self, report: &Report) {
+        let mut buf = [0u8; MAX_FRAME];
+        let ok = match encode(report, &mut buf) {
+            Ok(frame) => self.tx.push(frame),
+            Err(_) => false,
+        };
+        if !ok {
+            self.dropped = self.dropped.wrapping_add(1);
+        }
+    }
+
+    fn telemetry<B, P, D, E, const N: usize, const EV: usize>(
+        &mut self,
+        rig: &Rig<B, P, D, N, EV>,
+        time: f32,
+        contacts: [ContactTelemetry; 2],
+    ) where
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+        D: DelayNs,
+    {
+        let s = rig.scene().state();
+        let [vx, vy, omega] = s.velocity();
+        let report = Report::Telemetry {
+            step: self.steps,
+            time,
+            state: [s.x, s.y, s.theta, vx, vy, omega],
+            fingers: rig.scene().fingers(),
+            contacts,
+        };
+        let mut buf = [0u8; MAX_FRAME];
+        let ok = match encode(&report, &mut buf) {
+            Ok(frame) => self.tx.free() >= frame.len().saturating_add(RESERVE) && self.tx.push(frame),
+            Err(_) => false,
+        };
+        if !ok {
+            self.dropped = self.dropped.wrapping_add(1);
+        }
+    }
+
+    /// Reports a change of the rig's state since the last call.
+    fn sync<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &Rig<B, P, D, N, EV>)
+    where
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+        D: DelayNs,
+    {
+        let core = rig.state();
+        let now = state_of(core);
+        if now == self.last {
+            return;
+        }
+        if now == RigState::Running {
+            self.checksum = Checksum::new();
+            self.steps = 0;
+            self.worst = 0;
+            self.worst_step = 0;
+            self.overruns = 0;
+            self.pending = None;
+            self.send(&Report::State(now));
+            if self.every > 0 {
+                let contacts = rig.scene().modes().map(|m| ContactTelemetry {
+                    mode: mode_of(m),
+                    normal_impulse: 0.0,
+                    friction_impulse: 0.0,
+                });
+                self.telemetry(rig, 0.0, contacts);
+            }
+        } else {
+            if self.last == RigState::Running {
+                let outcome = match core {
+                    CoreState::Finished(o) => outcome_code(o),
+                    CoreState::Fault(f) => {
+                        self.send(&Report::Error(ErrorCode::CoreFault));
+                        fault_code(f)
+                    }
+                    _ => OutcomeCode::Unfinished,
+                };
+                self.send(&Report::Outcome {
+                    outcome,
+                    time: rig.scene().time(),
+                    steps: self.steps,
+                    checksum: self.checksum.value(),
+                });
+                self.send(&self.margin());
+            }
+            self.send(&Report::State(now));
+        }
+        self.last = now;
+    }
+
+    fn handle<B, P, D, E, const N: usize, const EV: usize>(
+        &mut self,
+        command: Command,
+        rig: &mut Rig<B, P, D, N, EV>,
+    ) -> Result<(), RigError<E>>
+    where
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+        D: DelayNs,
+    {
+        let tag = command.tag();
+        let ack = Report::Ack { command: tag };
+        let state = state_of(rig.state());
+        let not_allowed = Report::Error(ErrorCode::NotAllowed { command: tag, state });
+        let reply = match command {
+            Command::Hello => hello::<N>(rig.params(), self.build),
+            Command::Ping { nonce } => Report::Pong { nonce },
+            Command::GetStats => Report::Stats(self.decoder.stats()),
+            Command::GetParam { id } => {
+                Report::Param { id, value: rig.params().get(id.name()).unwrap_or(f32::NAN) }
+            }
+            Command::SetTelemetry { every_n_steps } => {
+                self.every = every_n_steps;
+                ack
+            }
+            Command::SetParam { id, .. } if state == RigState::Running => {
+                Report::Rejected { id, reason: RejectReason::Busy }
+            }
+            Command::SetParam { id, value } => {
+                let mut params = *rig.params();
+                if params.set(id.name(), value) {
+                    match rig.reset(params) {
+                        Ok(()) => ack,
+                        Err(RigError::Params(e)) => Report::Rejected { id, reason: reason_of(e) },
+                        Err(e) => return Err(e),
+                    }
+                } else {
+                    Report::Rejected { id, reason: RejectReason::Other }
+                }
+            }
+            Command::Preset(_) if state == RigState::Running => not_allowed,
+            Command::Preset(p) => {
+                let step = rig.params().step;
+                match rig.reset(preset_of(p).params(step)) {
+                    Ok(()) => ack,
+                    Err(RigError::Params(_)) => not_allowed,
+                    Err(e) => return Err(e),
+                }
+            }
+            Command::Start => {
+                if rig.start()? {
+                    ack
+                } else {
+                    not_allowed
+                }
+            }
+            Command::Stop => {
+                if rig.stop()? {
+                    ack
+                } else {
+                    not_allowed
+                }
+            }
+            Command::Reset => {
+                rig.stop()?;
+                self.sync(rig);
+                rig.reset(*rig.params())?;
+                ack
+            }
+        };
+        self.send(&reply);
+        self.sync(rig);
+        Ok(())
+    }
+}
+
+/// The rig's identity.
+fn hello<const N: usize>(params: &MeterStickParams<f32>, build: [u8; 8]) -> Report {
+    Report::Hello {
+        protocol: PROTOCOL_VERSION,
+        firmware: FIRMWARE_VERSION,
+        core: CORE_VERSION,
+        build,
+        scene: SceneId::MeterStick,
+        lcp_size: u8::try_from(N).unwrap_or(u8::MAX),
+        // Saturating: a valid step is positive and finite.
+        #[allow(clippy::cast_sign_loss)]
+        step_us: (params.step * 1e6) as u32,
+    }
+}
+
+/// `major.minor.patch` of a version string (digits up to the first non-digit of each part),
+/// evaluated at compile time.
+const fn version(v: &str) -> (u8, u8, u8) {
+    let b = v.as_bytes();
+    let mut parts = [0u8; 3];
+    let (mut i, mut part) = (0, 0);
+    while i < b.len() && part < 3 {
+        let c = b[i];
+        if c == b'.' {
+            part += 1;
+        } else if c.is_ascii_digit() {
+            parts[part] = parts[part].wrapping_mul(10).wrapping_add(c - b'0');
+        } else {
+            break;
+        }
+        i += 1;
+    }
+    (parts[0], parts[1], parts[2])
+}
+
+const FIRMWARE_VERSION: (u8, u8, u8) = version(env!("CARGO_PKG_VERSION"));
+const CORE_VERSION: (u8, u8, u8) = version(meterstick_core::VERSION);
+
+/// The build id: the first 8 bytes of `id` (e.g. a git hash), space-padded.
+pub fn build_id(id: &str) -> [u8; 8] {
+    let mut out = [b' '; 8];
+    for (o, b) in out.iter_mut().zip(id.bytes()) {
+        *o = b;
+    }
+    out
+}
+
+const fn state_of(s: CoreState) -> RigState {
+    match s {
+        CoreState::WaitingForStart => RigState::Waiting,
+        CoreState::Running => RigState::Running,
+        CoreState::Finished(_) => RigState::Finished,
+        CoreState::Fault(_) => RigState::Fault,
+    }
+}
+
+const fn mode_of(m: ContactMode) -> Mode {
+    match m {
+        ContactMode::Separated => Mode::Separated,
+        ContactMode::Sticking => Mode::Sticking,
+        ContactMode::Sliding(Direction::Plus) => Mode::SlidingPositive,
+        ContactMode::Sliding(Direction::Minus) => Mode::SlidingNegative,
+    }
+}
+
+const fn step_error_code(e: StepError) -> OutcomeCode {
+    match e {
+        StepError::NonFinite => OutcomeCode::NonFinite,
+        StepError::ReducedModelLeftRange => OutcomeCode::ReducedModelLeftRange,
+        _ => OutcomeCode::SolverFailed,
+    }
+}
+
+const fn outcome_code(o: Outcome) -> OutcomeCode {
+    match o {
+        Outcome::Balanced => OutcomeCode::Balanced,
+        Outcome::Fell => OutcomeCode::Fell,
+        Outcome::Held => OutcomeCode::Held,
+        Outcome::Slid => OutcomeCode::Slid,
+        Outcome::Tipped => OutcomeCode::Tipped,
+        Outcome::Failed(e) => step_error_code(e),
+        _ => OutcomeCode::Unfinished,
+    }
+}
+
+const fn fault_code(f: RigFault) -> OutcomeCode {
+    match f {
+        RigFault::Step(e) => step_error_code(e),
+        RigFault::NonFinite => OutcomeCode::NonFinite,
+        RigFault::ActuatorOverrun => OutcomeCode::Unfinished,
+    }
+}
+
+const fn reason_of(e: ParamError) -> RejectReason {
+    match e {
+        ParamError::NonFinite(_) => RejectReason::NotFinite,
+        ParamError::NotPositive(_) => RejectReason::NotPositive,
+        ParamError::Negative(_) => RejectReason::Negative,
+        ParamError::KineticAboveStatic => RejectReason::KineticAboveStatic,
+        ParamError::FingerOutsideRod => RejectReason::FingerOutsideRod,
+        ParamError::FingersCrossed => RejectReason::FingersCrossed,
+        _ => RejectReason::Other,
+    }
+}
+
+/// The link's preset as the core's rig names it.
+pub const fn preset_of(p: Preset) -> RigPreset {
+    match p {
+        Preset::Slow => RigPreset::Slow,
+        Preset::Fast => RigPreset::Fast,
+        Preset::NearThreshold => RigPreset::NearThreshold,
+    }
+}
