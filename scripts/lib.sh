@@ -54,3 +54,21 @@ FIRMWARE_BUILDS=(
   "rig-m4f-link thumbv7em-none-eabihf board-blackpill,log,fallback,link"
   "rig-m4f-6x6-nolog-link thumbv7em-none-eabihf board-blackpill,link"
 )
+
+# The core for the browser: meterstick-web built for wasm32-unknown-unknown (release, without
+# debug info, in a target directory of its own so that the host builds are not invalidated),
+# copied to web/page/pkg/meterstick_web.wasm, where the page loads it (generated, git-ignored).
+# Prints that path.
+WEB_TARGET_DIR="$ROOT/target/web/$MS_CROSS_MODE"
+WEB_WASM="$ROOT/web/page/pkg/meterstick_web.wasm"
+build_web() {
+  local args=(build --locked --release -p meterstick-web --lib --target wasm32-unknown-unknown
+    --target-dir "$WEB_TARGET_DIR" --config profile.release.debug=0 --config profile.release.strip=true)
+  if [ "$MS_CROSS_MODE" = debian ] && command -v wasm-ld-22 >/dev/null 2>&1; then
+    args+=(--config 'target.wasm32-unknown-unknown.linker="wasm-ld-22"')
+  fi
+  (cd "$ROOT" && cross_cargo "${args[@]}" >&2)
+  mkdir -p "$(dirname "$WEB_WASM")"
+  cp "$WEB_TARGET_DIR/wasm32-unknown-unknown/release/meterstick_web.wasm" "$WEB_WASM"
+  echo "$WEB_WASM"
+}

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs what meterstick needs on this machine, idempotently:
 #   - qemu-system-arm (Debian package) for the firmware runs;
-#   - the Cortex-M targets thumbv7em-none-eabihf and thumbv6m-none-eabi:
+#   - chromium and chromium-driver (Debian packages) for the browser test of the page;
+#   - the Cortex-M targets thumbv7em-none-eabihf and thumbv6m-none-eabi, and wasm32-unknown-unknown
+#     for the page:
 #       1. the idiomatic way, `rustup target add` (the machine's rustup toolchain);
 #       2. when rustup is missing or cannot download, Debian's toolchain with the std
 #          sources (rustc-web, cargo-web, rust-web-src, rust-web-llvm, lld-22), which
@@ -12,7 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-TARGETS=(thumbv7em-none-eabihf thumbv6m-none-eabi)
+TARGETS=(thumbv7em-none-eabihf thumbv6m-none-eabi wasm32-unknown-unknown)
 DEBIAN_RUST=(rustc-web cargo-web rust-web-src rust-web-llvm lld-22)
 APT_UPDATED=0
 
@@ -38,13 +40,18 @@ if ! command -v qemu-system-arm >/dev/null 2>&1; then
   apt_install qemu-system-arm
 fi
 
+# --- headless Chromium and its WebDriver (the browser test) -------------------------------
+if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
+  apt_install chromium chromium-driver
+fi
+
 # --- host toolchain -----------------------------------------------------------------------
 if ! command -v cargo >/dev/null 2>&1 && [ ! -x /usr/bin/cargo ]; then
   say "no cargo on PATH and no rustup: installing Debian's Rust toolchain"
   apt_install "${DEBIAN_RUST[@]}"
 fi
 
-# --- Cortex-M targets ---------------------------------------------------------------------
+# --- Cortex-M and wasm targets ------------------------------------------------------------
 mode=""
 want=${MS_CROSS:-auto}
 if [ "$want" != debian ] && command -v rustup >/dev/null 2>&1; then

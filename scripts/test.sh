@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test: host tests, lints, cross builds for both Cortex-M targets, firmware under QEMU.
+# Every test: host tests, lints, the page in headless Chromium, cross builds for both Cortex-M
+# targets, firmware under QEMU.
 # Installs what it needs first (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +18,11 @@ $HOST_CARGO clippy --locked --workspace --all-targets -- -D warnings
 
 step "host tests"
 $HOST_CARGO test --locked --workspace
+
+step "the page: the core for the browser (wasm32), the page in headless Chromium"
+wasm=$(build_web)
+printf '%s: %s bytes\n' "${wasm#"$ROOT"/}" "$(stat -c %s "$wasm")"
+$HOST_CARGO test --locked -p meterstick-tests --test browser -- --ignored --nocapture
 
 step "core for Cortex-M (with and without defmt)"
 for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do

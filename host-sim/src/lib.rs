@@ -14,6 +14,7 @@ pub mod report;
 pub mod run_cmd;
 pub mod scene_cmd;
 pub mod scenes;
+pub mod serve;
 pub mod stress;
 pub mod trajectory;
 

@@ -6,6 +6,7 @@ use std::time::Duration;
 
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
+use meterstick_host_sim::serve;
 use meterstick_host_sim::{lcp_io, monitor, qemu, report, run_cmd, scene_cmd, stress};
 
 #[derive(Parser, Debug)]
@@ -68,6 +69,9 @@ enum Cmd {
         #[arg(long)]
         icount: bool,
     },
+    /// Serve the browser page (web/page/, the core compiled to WebAssembly) on 127.0.0.1, and
+    /// optionally runs of `host-sim run` to replay in it (--replay out/run).
+    Serve(serve::ServeArgs),
 }
 
 fn main() -> ExitCode {
@@ -129,6 +133,10 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             let code = run.exit_code.unwrap_or(125);
             eprintln!("host-sim: firmware exit status {code}");
             Ok(ExitCode::from(u8::try_from(code).unwrap_or(125)))
+        }
+        Cmd::Serve(args) => {
+            serve::run(&args)?;
+            Ok(ExitCode::SUCCESS)
         }
     }
 }

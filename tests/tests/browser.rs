@@ -1,0 +1,523 @@
+//! The page in a real browser: headless Chromium driven over WebDriver (chromedriver, a few
+//! requests over `std::net`: no async runtime), the page served by `host-sim serve`'s server
+//! in-process. Ignored in a plain `cargo test` (it needs Chromium, chromedriver and the built
+//! module `web/page/pkg/meterstick_web.wasm`); `scripts/test.sh` builds the module and runs it
+//! with `--ignored`.
+//!
+//! It checks the URL contract against `host-sim scene` (the same outcome and the same trajectory
+//! checksum, bit for bit, for the slow and a fast meter stick, an f64 8x8 run, the incline and the
+//! ladder; on a difference it prints the first step that differs), that the controls change the run
+//! (typing, Enter, the keyboard shortcut) and that a bad value shows `host-sim`'s sentence, that a
+//! click on the outcome map loads a run with the map's outcome, and the replay of a `host-sim run`
+//! folder; it prints the page's steps per second and the map's time, and saves screenshots in
+//! `out/browser/`.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::io::{Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use meterstick_host_sim::lcp_io::Precision;
+use meterstick_host_sim::run_cmd::{RunArgs, run_cmd};
+use meterstick_host_sim::scene_cmd::{SceneCmd, run_scene};
+use meterstick_host_sim::scenes::{FLAGS, LcpSize, SceneArgs, SceneKind};
+use meterstick_host_sim::serve::{Replay, ServeArgs, Server};
+use meterstick_host_sim::trajectory::{Record, run};
+use serde_json::{Value, json};
+
+const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+}
+
+fn free_port() -> u16 {
+    TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port()
+}
+
+/// One HTTP/1.1 request; the status and body of the answer (read by its `Content-Length`, or
+/// chunked: chromedriver may keep the connection open).
+fn http(port: u16, method: &str, path: &str, body: Option<&Value>) -> std::io::Result<(u16, String)> {
+    let mut s = TcpStream::connect(("127.0.0.1", port))?;
+    s.set_read_timeout(Some(Duration::from_secs(120)))?;
+    let payload = body.map(Value::to_string).unwrap_or_default();
+    write!(
+        s,
+        "{method} {path} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nContent-Type: application/json\r\n\
+         Content-Length: {}\r\nConnection: close\r\n\r\n{payload}",
+        payload.len()
+    )?;
+    let mut raw = Vec::new();
+    let mut buf = [0u8; 8192];
+    let complete = |raw: &[u8]| -> Option<(u16, Vec<u8>)> {
+        let end = raw.windows(4).position(|w| w == b"\r\n\r\n")?;
+        let head = String::from_utf8_lossy(&raw[..end]).to_ascii_lowercase();
+        let status = head.split(' ').nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
+        let body = &raw[end + 4..];
+        if let Some(len) = head.lines().find_map(|l| l.strip_prefix("content-length:")) {
+            let len: usize = len.trim().parse().ok()?;
+            return (body.len() >= len).then(|| (status, body[..len].to_vec()));
+        }
+        if head.contains("transfer-encoding: chunked") {
+            let mut out = Vec::new();
+            let mut rest = body;
+            loop {
+                let line_end = rest.windows(2).position(|w| w == b"\r\n")?;
+                let size =
+                    usize::from_str_radix(std::str::from_utf8(&rest[..line_end]).ok()?.trim(), 16).ok()?;
+                if size == 0 {
+                    return Some((status, out));
+                }
+                let chunk = rest.get(line_end + 2..line_end + 2 + size)?;
+                out.extend_from_slice(chunk);
+                rest = rest.get(line_end + 4 + size..)?;
+            }
+        }
+        None
+    };
+    loop {
+        if let Some((status, body)) = complete(&raw) {
+            return Ok((status, String::from_utf8_lossy(&body).into_owned()));
+        }
+        let n = s.read(&mut buf)?;
+        if n == 0 {
+            let text = String::from_utf8_lossy(&raw).into_owned();
+            let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
+            let status = head.split(' ').nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
+            return Ok((status, body.to_owned()));
+        }
+        raw.extend_from_slice(&buf[..n]);
+    }
+}
+
+/// A WebDriver session in headless Chromium.
+struct Browser {
+    driver: Child,
+    port: u16,
+    session: String,
+    _profile: TempDir,
+}
+
+struct TempDir(PathBuf);
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+impl Browser {
+    fn start() -> Self {
+        let port = free_port();
+        let driver = Command::new("chromedriver")
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("chromedriver (Debian package chromium-driver; scripts/setup.sh installs it)");
+        let start = Instant::now();
+        while !matches!(http(port, "GET", "/status", None), Ok((200, b)) if b.contains("\"ready\":true")) {
+            assert!(start.elapsed() < Duration::from_secs(20), "chromedriver did not start");
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        let profile =
+            TempDir(std::env::temp_dir().join(format!("meterstick-chromium-{}", std::process::id())));
+        let caps = json!({"capabilities": {"alwaysMatch": {"browserName": "chrome", "goog:chromeOptions": {
+            "binary": "/usr/bin/chromium",
+            "args": ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                     "--disable-quic", "--no-first-run", "--disable-background-networking",
+                     "--disable-component-update", "--disable-sync", "--window-size=1600,1100",
+                     format!("--user-data-dir={}", profile.0.display())]
+        }}}});
+        let (status, body) = http(port, "POST", "/session", Some(&caps)).unwrap();
+        let v: Value = serde_json::from_str(&body).unwrap();
+        assert_eq!(status, 200, "new session: {body}");
+        let session = v["value"]["sessionId"].as_str().unwrap().to_owned();
+        Self { driver, port, session, _profile: profile }
+    }
+
+    fn cmd(&self, method: &str, path: &str, body: Option<&Value>) -> Value {
+        let url = format!("/session/{}{path}", self.session);
+        let (status, text) = http(self.port, method, &url, body).unwrap();
+        let v: Value = serde_json::from_str(&text).unwrap_or(Value::Null);
+        assert_eq!(status, 200, "{method} {path}: {text}");
+        v["value"].clone()
+    }
+
+    fn goto(&self, url: &str) {
+        self.cmd("POST", "/url", Some(&json!({ "url": url })));
+    }
+
+    fn js(&self, script: &str) -> Value {
+        self.cmd("POST", "/execute/sync", Some(&json!({ "script": script, "args": [] })))
+    }
+
+    fn text(&self, id: &str) -> String {
+        self.js(&format!("return document.getElementById('{id}').textContent"))
+            .as_str()
+            .unwrap_or("")
+            .to_owned()
+    }
+
+    fn find(&self, css: &str) -> String {
+        let v = self.cmd("POST", "/element", Some(&json!({ "using": "css selector", "value": css })));
+        v[ELEMENT].as_str().unwrap().to_owned()
+    }
+
+    fn click(&self, css: &str) {
+        let e = self.find(css);
+        self.cmd("POST", &format!("/element/{e}/click"), Some(&json!({})));
+    }
+
+    /// Clears a text field and types `text` into it (`\u{E007}` is Enter).
+    fn type_into(&self, css: &str, text: &str) {
+        let e = self.find(css);
+        self.cmd("POST", &format!("/element/{e}/clear"), Some(&json!({})));
+        self.cmd("POST", &format!("/element/{e}/value"), Some(&json!({ "text": text })));
+    }
+
+    /// Presses one key on whatever has the focus.
+    fn key(&self, key: &str) {
+        self.cmd(
+            "POST",
+            "/actions",
+            Some(&json!({"actions": [{"type": "key", "id": "keyboard", "actions": [
+                {"type": "keyDown", "value": key}, {"type": "keyUp", "value": key}]}]})),
+        );
+    }
+
+    /// Clicks at `(x, y)` CSS pixels from the top left corner of the element.
+    fn click_at(&self, css: &str, x: f64, y: f64) {
+        let e = self.find(css);
+        let rect = self.js(&format!(
+            "const r = document.querySelector('{css}').getBoundingClientRect(); return [r.width, r.height]"
+        ));
+        let (w, h) = (rect[0].as_f64().unwrap(), rect[1].as_f64().unwrap());
+        self.cmd(
+            "POST",
+            "/actions",
+            Some(&json!({"actions": [{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"}, "actions": [
+                {"type": "pointerMove", "origin": {ELEMENT: e}, "x": (x - w / 2.0).round() as i64, "y": (y - h / 2.0).round() as i64},
+                {"type": "pointerDown", "button": 0}, {"type": "pointerUp", "button": 0}]}]})),
+        );
+    }
+
+    /// Waits until the script returns a truthy value; returns it.
+    fn wait(&self, what: &str, script: &str, timeout: Duration) -> Value {
+        let start = Instant::now();
+        loop {
+            let v = self.js(script);
+            if v.as_bool() != Some(false) && !v.is_null() && v.as_str() != Some("") {
+                return v;
+            }
+            if start.elapsed() > timeout {
+                let state = self.js("return document.body.dataset.state + ': ' + document.getElementById('error').textContent + ' / ' + document.getElementById('status').textContent");
+                panic!("timed out after {timeout:?} waiting for {what} (page: {state})");
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    fn screenshot(&self, name: &str, css: Option<&str>) -> PathBuf {
+        let b64 = if let Some(css) = css {
+            let e = self.find(css);
+            self.js(&format!("document.querySelector('{css}').scrollIntoView({{block: 'start'}})"));
+            self.cmd("GET", &format!("/element/{e}/screenshot"), None)
+        } else {
+            self.js("window.scrollTo(0, 0)");
+            self.cmd("GET", "/screenshot", None)
+        };
+        let dir = repo().join("out/browser");
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(format!("{name}.png"));
+        std::fs::write(&path, base64(b64.as_str().unwrap())).unwrap();
+        path
+    }
+}
+
+impl Drop for Browser {
+    fn drop(&mut self) {
+        let _ = http(self.port, "DELETE", &format!("/session/{}", self.session), None);
+        let _ = self.driver.kill();
+        let _ = self.driver.wait();
+    }
+}
+
+fn base64(s: &str) -> Vec<u8> {
+    let value = |c: u8| match c {
+        b'A'..=b'Z' => Some(c - b'A'),
+        b'a'..=b'z' => Some(c - b'a' + 26),
+        b'0'..=b'9' => Some(c - b'0' + 52),
+        b'+' => Some(62),
+        b'/' => Some(63),
+        _ => None,
+    };
+    let digits: Vec<u8> = s.bytes().filter_map(value).collect();
+    digits
+        .chunks(4)
+        .flat_map(|c| {
+            let n = c.iter().enumerate().fold(0u32, |acc, (i, &d)| acc | (u32::from(d) << (18 - 6 * i)));
+            let bytes = [(n >> 16) as u8, (n >> 8) as u8, n as u8];
+            bytes.into_iter().take(c.len() - 1)
+        })
+        .collect()
+}
+
+/// The `host-sim scene` options for a page query (scene, flags, precision, LCP size).
+fn scene_args(query: &str) -> SceneArgs {
+    let mut args = SceneArgs::default();
+    for pair in query.split('&') {
+        let (key, value) = pair.split_once('=').unwrap();
+        match key {
+            "scene" => args.scene = Some(*SceneKind::ALL.iter().find(|k| k.name() == value).unwrap()),
+            "precision" => args.precision = if value == "f64" { Precision::F64 } else { Precision::F32 },
+            "lcp-size" => args.lcp_size = if value == "8" { LcpSize::Full } else { LcpSize::Reduced },
+            "autorun" | "rate" => {}
+            flag => {
+                let f = FLAGS.iter().find(|f| f.long == flag).unwrap_or_else(|| panic!("no flag {flag}"));
+                args.given.push((f, vec![value.parse().unwrap()]));
+            }
+        }
+    }
+    args
+}
+
+/// What `host-sim scene` prints for the query: (outcome, checksum).
+fn host_scene(query: &str) -> (String, String) {
+    let text = run_scene(&SceneCmd { scene: scene_args(query) }).unwrap();
+    let outcome = text.split("outcome ").nth(1).and_then(|r| r.split(" at t = ").next()).unwrap().to_owned();
+    let checksum = text.lines().find_map(|l| l.strip_prefix("checksum ")).unwrap().to_owned();
+    (outcome, checksum)
+}
+
+/// The first step at which the page's trajectory differs from the host's (for the report).
+fn first_difference(b: &Browser, query: &str) -> String {
+    let args = scene_args(query);
+    let spec = args.specs(None).unwrap()[0].1;
+    let host = run(&spec, args.implementation(), Record::All).unwrap();
+    let page = b.js("return window.meterstick.trace()");
+    let f32_run = args.precision == Precision::F32;
+    let same = |a: f64, b: f64| {
+        if f32_run { (a as f32).to_bits() == (b as f32).to_bits() } else { a.to_bits() == b.to_bits() }
+    };
+    let names = ["x", "y", "theta", "vx", "vy", "omega"];
+    let steps = page["x"].as_array().map_or(0, Vec::len);
+    for (k, row) in host.rows.iter().enumerate().take(steps) {
+        let host_values = [row.q[0], row.q[1], row.q[2], row.v[0], row.v[1], row.v[2]];
+        for (name, hv) in names.iter().zip(host_values) {
+            let pv = page[name][k].as_f64().unwrap_or(f64::NAN);
+            if !same(pv, hv) {
+                return format!(
+                    "first difference at step {k} (t = {}): {name} page {pv:e}, host {hv:e}",
+                    row.t
+                );
+            }
+        }
+    }
+    format!("no state differs over {steps} page steps and {} host steps", host.rows.len())
+}
+
+/// Loads the page with `query`, waits for the outcome, and checks it and the checksum against
+/// `host-sim scene`'s. Returns the checksum.
+fn check_contract(b: &Browser, base: &str, name: &str, query: &str) -> String {
+    let started = Instant::now();
+    b.goto(&format!("{base}?{query}"));
+    let outcome = b.wait(
+        "the outcome",
+        "return document.getElementById('outcome').textContent",
+        Duration::from_secs(90),
+    );
+    let outcome = outcome.as_str().unwrap().to_owned();
+    let checksum = b.text("checksum");
+    let (host_outcome, host_checksum) = host_scene(query);
+    let shot = b.screenshot(name, None);
+    println!(
+        "{name}: ?{query}\n    page {outcome} {checksum}, host-sim scene {host_outcome} {host_checksum} ({:.1} s; {})",
+        started.elapsed().as_secs_f64(),
+        shot.display()
+    );
+    assert!(
+        (outcome.as_str(), checksum.as_str()) == (host_outcome.as_str(), host_checksum.as_str()),
+        "{name}: the page's f32/f64 build differs from host-sim scene: page {outcome} {checksum}, host {host_outcome} {host_checksum}; {}",
+        first_difference(b, query)
+    );
+    checksum
+}
+
+#[test]
+#[ignore = "needs Chromium, chromedriver and web/page/pkg/meterstick_web.wasm: run scripts/test.sh"]
+fn the_page_in_chromium() {
+    let root = repo().join("web/page");
+    assert!(
+        root.join("pkg/meterstick_web.wasm").is_file(),
+        "web/page/pkg/meterstick_web.wasm is missing: bash scripts/web.sh --build (scripts/test.sh builds it)"
+    );
+    // A run of host-sim run to replay: the meter stick at 1 m/s.
+    let replay = std::env::temp_dir().join(format!("meterstick-browser-replay-{}", std::process::id()));
+    let mut run_args = SceneArgs::default();
+    run_args.given.push((FLAGS.iter().find(|f| f.long == "speed").unwrap(), vec![1.0]));
+    run_cmd(&RunArgs { scene: run_args, out: replay.clone() }).unwrap();
+    let server = Server::bind(&ServeArgs { port: 0, root, replay: Some(replay.clone()) }).unwrap();
+    let base = format!("http://{}/", server.local_addr().unwrap());
+    std::thread::spawn(move || server.run());
+    let b = Browser::start();
+
+    // The URL contract, against host-sim scene: slow and fast meter stick (the fast one played in
+    // real time, as the contract's example asks), f64 8x8, incline, ladder.
+    let slow = check_contract(
+        &b,
+        &base,
+        "meter-stick-slow",
+        "scene=meter-stick&speed=0.1&mu-s=0.6&mu-k=0.4&x1=-0.35&autorun=1&rate=max",
+    );
+    check_contract(
+        &b,
+        &base,
+        "meter-stick-fast",
+        "scene=meter-stick&speed=1&mu-s=0.6&mu-k=0.4&x1=-0.35&autorun=1",
+    );
+    check_contract(
+        &b,
+        &base,
+        "meter-stick-f64-8x8",
+        "scene=meter-stick&speed=0.25&x1=-0.35&precision=f64&lcp-size=8&autorun=1&rate=max",
+    );
+    check_contract(&b, &base, "incline", "scene=incline&angle=30&mu-s=0.5&mu-k=0.3&autorun=1&rate=max");
+    check_contract(&b, &base, "ladder", "scene=ladder&angle=60&mu-floor=0.2&mu-wall=0.1&autorun=1&rate=max");
+
+    check_controls(&b, &base, &slow);
+    check_map(&b, &base);
+    check_replay(&b, &base, &replay);
+    // The benchmark (a number to report, not a timed test).
+    b.goto(&format!("{base}?bench=1"));
+    b.wait(
+        "the benchmark",
+        "return document.getElementById('bench').dataset.stepsPerSecond",
+        Duration::from_secs(60),
+    );
+    println!("page benchmark: {}", b.text("bench"));
+    b.goto(&format!("{base}?scene=meter-stick&speed=0.1&x1=-0.35&autorun=1&rate=2"));
+    std::thread::sleep(Duration::from_millis(2500));
+    let shot = b.screenshot("meter-stick-playing", None);
+    println!("mid-run screenshot: {}", shot.display());
+    let _ = std::fs::remove_dir_all(&replay);
+}
+
+/// The controls change the run; a bad value shows host-sim's sentence.
+fn check_controls(b: &Browser, base: &str, slow: &str) {
+    // The controls: type a speed and press Enter (a new run, paused), play with the Space key.
+    b.goto(&format!("{base}?scene=meter-stick&x1=-0.35&rate=max"));
+    b.wait("the page", "return document.body.dataset.state === 'ready'", Duration::from_secs(30));
+    assert_eq!(b.text("outcome"), "", "no outcome before the run");
+    b.type_into("#p-speed", "1\u{E007}");
+    b.wait("a new run", "return document.body.dataset.state === 'ready'", Duration::from_secs(10));
+    assert!(b.js("return location.search").as_str().unwrap().contains("speed=1"), "the URL follows the form");
+    b.js("document.activeElement.blur()");
+    b.key(" ");
+    let outcome = b.wait(
+        "the outcome",
+        "return document.getElementById('outcome').textContent",
+        Duration::from_secs(60),
+    );
+    let (host_outcome, host_checksum) = host_scene("scene=meter-stick&x1=-0.35&speed=1");
+    assert_eq!(
+        (outcome.as_str().unwrap(), b.text("checksum").as_str()),
+        (host_outcome.as_str(), host_checksum.as_str())
+    );
+    assert_ne!(host_checksum, slow, "the speed changed the run");
+    println!("controls: speed 1 typed, Space pressed: {host_outcome} {host_checksum} (slow run: {slow})");
+
+    // A bad value: the error in host-sim's words (without the `--`), no run.
+    for (typed, query) in
+        [("0.7", "scene=meter-stick&x1=-0.35&mu-k=0.7"), ("-0.6", "scene=meter-stick&x1=-0.6")]
+    {
+        let field = if query.ends_with("-0.6") { "#p-x1" } else { "#p-mu-k" };
+        b.type_into(field, &format!("{typed}\u{E007}"));
+        let shown = b.wait(
+            "the error",
+            "return document.getElementById('error').textContent",
+            Duration::from_secs(10),
+        );
+        let host = run_scene(&SceneCmd { scene: scene_args(query) }).unwrap_err().to_string();
+        assert_eq!(shown.as_str().unwrap(), host.replace("--", ""), "host-sim says: {host}");
+        assert_eq!(
+            b.js(&format!("return document.querySelector('{field}').getAttribute('aria-invalid')")),
+            "true"
+        );
+        assert_eq!((b.text("outcome"), b.text("checksum")), (String::new(), String::new()));
+        println!("bad value {field} {typed}: {}", shown.as_str().unwrap());
+        b.type_into(field, if field == "#p-x1" { "-0.35\u{E007}" } else { "\u{E007}" });
+    }
+    b.type_into("#p-mu-s", "abc\u{E007}");
+    assert_eq!(b.text("error"), "mu-s: \"abc\" is not a number");
+    let shot = b.screenshot("error", Some(".params-panel"));
+    println!("bad text: {} ({})", b.text("error"), shot.display());
+}
+
+/// The outcome map, and a click on one of its cells.
+fn check_map(b: &Browser, base: &str) {
+    // The outcome map: computed in workers; a click on a cell loads that run, with the map's outcome.
+    b.goto(&format!("{base}?scene=meter-stick&rate=max"));
+    b.wait("the page", "return document.body.dataset.state === 'ready'", Duration::from_secs(30));
+    b.click("#map-run");
+    let map_time =
+        b.wait("the map", "return document.getElementById('map-time').textContent", Duration::from_secs(180));
+    let map_status = b.text("map-status");
+    let shot = b.screenshot("map", Some(".map-panel"));
+    println!("map: {map_status} ({})", shot.display());
+    // The cell at 0.25 m/s, mu_k/mu_s = 0.65 (i = 15, j = 9): where the canvas draws it.
+    let at = b.js("return window.meterstick.mapCellCenter(15, 9)");
+    b.click_at("#map", at[0].as_f64().unwrap(), at[1].as_f64().unwrap());
+    b.wait(
+        "the cell's run",
+        "return document.getElementById('p-speed').value === '0.25'",
+        Duration::from_secs(10),
+    );
+    let mu_k = b.js("return document.getElementById('p-mu-k').value");
+    let outcome = b.wait(
+        "the outcome",
+        "return document.getElementById('outcome').textContent",
+        Duration::from_secs(60),
+    );
+    let cell = b.js("return window.meterstick.mapOutcome(15, 9)").as_i64().unwrap();
+    let names = ["Balanced", "Fell"];
+    assert_eq!(
+        outcome.as_str(),
+        names.get(cell as usize).copied(),
+        "the map's cell and the run it loads agree"
+    );
+    let (host_outcome, _) =
+        host_scene(&format!("scene=meter-stick&speed=0.25&mu-k={}", mu_k.as_str().unwrap()));
+    assert_eq!(outcome.as_str().unwrap(), host_outcome);
+    println!(
+        "map click: speed 0.25, mu-k {} -> {host_outcome}, as the map's cell; the map took {} s",
+        mu_k.as_str().unwrap(),
+        map_time.as_str().unwrap()
+    );
+}
+
+/// The replay of a host-sim run folder.
+fn check_replay(b: &Browser, base: &str, replay: &Path) {
+    // The replay of host-sim run's folder.
+    let name = Replay::find(replay).unwrap().runs[0].name.clone();
+    b.goto(&format!("{base}?replay={name}&rate=max"));
+    b.wait(
+        "the replay",
+        "return document.getElementById('run-info').textContent.startsWith('replay')",
+        Duration::from_secs(30),
+    );
+    b.click("#play");
+    let outcome = b.wait(
+        "the end of the replay",
+        "return document.getElementById('outcome').textContent",
+        Duration::from_secs(60),
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(replay.join(&name).join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(outcome, summary["core"]["outcome"], "the replay ends as host-sim run's core run");
+    let shot = b.screenshot("replay", None);
+    println!("replay of host-sim run {name}: {} ({})", outcome.as_str().unwrap(), shot.display());
+}

@@ -1,0 +1,634 @@
+// The page: builds the controls from the core's description, reads and writes the URL contract
+// (?scene=meter-stick&speed=0.1&mu-s=0.6&mu-k=0.4&x1=-0.35&autorun=1: the scene and host-sim's flag
+// names), runs the core live (or replays a run of host-sim run), animates and plots it, and writes
+// the outcome and the trajectory checksum into #outcome and #checksum when the run ends.
+
+import { compileCore, instantiateCore, parseNumber } from './core.js';
+import { SceneView, drawPlot, COLORS } from './draw.js';
+import { OutcomeMap } from './map.js';
+import { listRuns, loadRun } from './replay.js';
+import { COL, MODE_NAMES, ROW, Trace } from './trace.js';
+
+const $ = (id) => document.getElementById(id);
+
+/// The flags shown first for each scene (the rest are under "More parameters").
+const MAIN_FLAGS = {
+  'meter-stick': ['speed', 'speed2', 'x1', 'x2', 'mu-s', 'mu-k', 'h'],
+  incline: ['angle', 'mu-s', 'mu-k', 'width', 'height', 'h'],
+  ladder: ['angle', 'mu-floor', 'mu-wall', 'length', 'h'],
+};
+/// Query keys that are not scene flags.
+const PAGE_KEYS = ['scene', 'precision', 'lcp-size', 'autorun', 'rate', 'replay', 'map', 'bench'];
+const SCENE_TITLES = { 'meter-stick': 'meter stick', incline: 'block on an incline', ladder: 'ladder' };
+
+const S = {
+  core: null,
+  module: null,
+  scene: 'meter-stick',
+  inputs: new Map(),
+  source: null,
+  playing: false,
+  rate: '1',
+  simTarget: 0,
+  lastFrame: 0,
+  lastPlot: 0,
+  shownEvents: -1,
+  speedWindow: { t: 0, steps: 0, rate: 0 },
+};
+
+const view = new SceneView($('scene'));
+const map = new OutcomeMap({
+  canvas: $('map'), status: $('map-status'), time: $('map-time'), cell: $('map-cell'),
+  onLoad: ({ speed, muK }) => {
+    if (S.scene !== 'meter-stick' || (S.source && S.source.kind === 'replay')) return;
+    S.inputs.get('speed').value = String(speed);
+    S.inputs.get('mu-k').value = String(muK);
+    if (makeRun()) {
+      play();
+      $('scene').scrollIntoView({ block: 'nearest', behavior: 'smooth' });
+    }
+  },
+});
+
+function setState(state) {
+  document.body.dataset.state = state;
+}
+
+/// A number for display: at most 12 significant digits, as typed (35, not 35.00000000000001).
+function plain(v) {
+  return String(Number(v.toPrecision(12)));
+}
+
+function toFlagUnit(flag, v) {
+  return flag.unit === 'deg' ? (v * 180) / Math.PI : v;
+}
+
+// --- the form ---------------------------------------------------------------------------------
+
+function buildForm(scene) {
+  S.scene = scene;
+  $('scene-select').value = scene;
+  const main = $('main-fields'); const more = $('more-fields');
+  main.replaceChildren(); more.replaceChildren();
+  S.inputs.clear();
+  const sceneDesc = S.core.scene(scene);
+  for (const flag of S.core.flagsOf(scene)) {
+    const field = flag.fields[scene];
+    const def = sceneDesc.defaults[sceneDesc.fields.indexOf(field)];
+    const box = document.createElement('div');
+    box.className = 'field';
+    const id = `p-${flag.long}`;
+    const label = document.createElement('label');
+    label.htmlFor = id;
+    label.textContent = flag.long;
+    if (flag.unit) {
+      const unit = document.createElement('span');
+      unit.className = 'unit';
+      unit.textContent = ` (${flag.unit})`;
+      label.append(unit);
+    }
+    const input = document.createElement('input');
+    input.id = id; input.name = flag.long; input.type = 'text'; input.inputMode = 'decimal';
+    input.autocomplete = 'off'; input.spellcheck = false;
+    input.placeholder = plain(toFlagUnit(flag, def));
+    input.title = flag.help;
+    input.setAttribute('aria-description', flag.help);
+    input.addEventListener('change', () => makeRun());
+    box.append(label, input);
+    (MAIN_FLAGS[scene].includes(flag.long) ? main : more).append(box);
+    S.inputs.set(flag.long, input);
+  }
+  $('map-run').disabled = scene !== 'meter-stick';
+  $('map-section').dataset.scene = scene;
+}
+
+/// The flags the user set: [[flag, number]], or {message, flag} for text that is not a number.
+function givenFlags() {
+  const given = [];
+  for (const [long, input] of S.inputs) {
+    input.removeAttribute('aria-invalid');
+    const text = input.value.trim();
+    if (text === '') continue;
+    const parsed = parseNumber(text);
+    if (parsed.message !== undefined) return { message: `${long}: ${parsed.message}`, flag: long };
+    given.push([long, parsed.value]);
+  }
+  return { given };
+}
+
+function showError(message, flag) {
+  $('error').textContent = message;
+  const input = flag && S.inputs.get(flag);
+  if (input) {
+    input.setAttribute('aria-invalid', 'true');
+    if (input.closest('details')) input.closest('details').open = true;
+  }
+}
+
+function writeUrl() {
+  const q = new URLSearchParams();
+  q.set('scene', S.scene);
+  for (const [long, input] of S.inputs) if (input.value.trim() !== '') q.set(long, input.value.trim());
+  if ($('precision').value !== 'f32') q.set('precision', $('precision').value);
+  if ($('lcp-size').value !== '6') q.set('lcp-size', $('lcp-size').value);
+  if (S.rate !== '1') q.set('rate', S.rate);
+  history.replaceState(null, '', `?${q.toString()}`);
+}
+
+// --- runs -----------------------------------------------------------------------------------------
+
+/// A live run of the core.
+function liveSource(params) {
+  const core = S.core;
+  const trace = new Trace();
+  trace.push(core.startRow());
+  return {
+    kind: 'live', scene: S.scene, params, trace, ended: false, outcome: null,
+    precision: $('precision').value, lcpSize: $('lcp-size').value,
+    advance(n) {
+      if (this.ended) return 0;
+      const rows = core.step(n);
+      const taken = rows.length / ROW;
+      for (let k = 0; k < taken; k += 1) trace.push(rows, k * ROW);
+      const outcome = core.outcome();
+      if (outcome) {
+        this.ended = true;
+        this.outcome = outcome;
+        this.checksum = core.checksum();
+        this.stats = core.stats();
+        this.measured = core.measured();
+      }
+      return taken;
+    },
+  };
+}
+
+/// A run of host-sim run, replayed row by row.
+function replaySource(run) {
+  const trace = new Trace(); const reference = new Trace();
+  const src = {
+    kind: 'replay', scene: run.summary.scene, params: run.summary.parameters, trace, reference,
+    ended: false, outcome: null, run, cursor: 0,
+    advance(n) {
+      let taken = 0;
+      while (taken < n && this.cursor < run.core.n) {
+        trace.push(run.core.rows, this.cursor * ROW);
+        if (this.cursor < run.reference.n) reference.push(run.reference.rows, this.cursor * ROW);
+        this.cursor += 1; taken += 1;
+      }
+      if (this.cursor >= run.core.n) {
+        this.ended = true;
+        const c = run.summary.core;
+        this.outcome = { name: c.outcome, text: c.outcome_detail ? `${c.outcome} (${c.outcome_detail})` : c.outcome };
+      }
+      return taken;
+    },
+    referenceRow() {
+      return reference.n > 0 ? reference.last : null;
+    },
+  };
+  src.advance(1);
+  return src;
+}
+
+function clearResult(status) {
+  $('outcome').textContent = '';
+  $('outcome').removeAttribute('data-outcome');
+  $('checksum').textContent = '';
+  $('status').textContent = status;
+  $('measured').textContent = '-';
+  $('eq21').replaceChildren();
+  S.shownEvents = -1;
+}
+
+/// Makes a new live run from the form (paused at t = 0); false when the parameters are refused.
+function makeRun() {
+  pause();
+  $('error').textContent = '';
+  clearResult('ready: press Play');
+  writeUrl();
+  const parsed = givenFlags();
+  if (parsed.message) {
+    showError(parsed.message, parsed.flag);
+    S.source = null;
+    clearResult('not run: invalid parameters');
+    drawEmpty();
+    setState('error');
+    return false;
+  }
+  const made = S.core.create(S.scene, parsed.given, $('precision').value, $('lcp-size').value);
+  if (!made.ok) {
+    showError(made.message, made.flag);
+    S.source = null;
+    clearResult('not run: invalid parameters');
+    drawEmpty();
+    setState('error');
+    return false;
+  }
+  // Placeholders show what an empty field means for this run (the meter stick's time limit grows
+  // with the fingers' travel).
+  for (const flag of S.core.flagsOf(S.scene)) {
+    const v = made.params[flag.fields[S.scene]];
+    S.inputs.get(flag.long).placeholder = plain(toFlagUnit(flag, v));
+  }
+  S.source = liveSource(made.params);
+  S.simTarget = 0;
+  view.setScene(S.scene, made.params, S.source.trace.last);
+  if (S.scene === 'meter-stick') {
+    map.setCurrent({ speed: made.params.finger1_velocity, ratio: made.params.mu_kinetic / made.params.mu_static });
+  }
+  $('eq21-target').textContent = S.scene === 'meter-stick'
+    ? `mu_k/mu_s = ${(made.params.mu_kinetic / made.params.mu_static).toFixed(4)}` : 'mu_k/mu_s (meter stick)';
+  $('run-info').textContent = `${S.source.precision} ${S.source.lcpSize}x${S.source.lcpSize}, h = ${plain(made.params.step)} s, until t = ${plain(made.params.max_time)} s`;
+  setState('ready');
+  render(true);
+  return true;
+}
+
+function finish() {
+  const src = S.source;
+  pause();
+  const out = $('outcome');
+  out.textContent = src.outcome.text;
+  out.dataset.outcome = src.outcome.name;
+  if (src.kind === 'live') {
+    $('checksum').textContent = src.checksum;
+    const s = src.stats;
+    $('run-info').textContent = `${src.precision} ${src.lcpSize}x${src.lcpSize}, h = ${plain(src.params.step)} s: `
+      + `${s.steps.toLocaleString('en')} steps, ${s.pivots.toLocaleString('en')} pivots, `
+      + `${s.fullLayout.toLocaleString('en')} steps needed the 8x8 form`;
+    const m = src.measured; const parts = [];
+    if (m.meetingTime !== null) parts.push(`the fingers met at t = ${m.meetingTime.toFixed(3)} s, the centre of mass ${(1e3 * m.meetingOffset).toFixed(2)} mm from their midpoint`);
+    if (m.acceleration !== null) parts.push(`acceleration down the slope ${m.acceleration.toFixed(5)} m/s²`);
+    if (m.wallReleaseHeight !== null) parts.push(`the top left the wall at ${m.wallReleaseHeight.toFixed(4)} m, ${m.wallReleaseRatio.toFixed(4)} of its start height`);
+    $('measured').textContent = parts.length ? parts.join('; ') : '-';
+  } else {
+    $('checksum').textContent = 'replay: see host-sim scene';
+    const c = src.run.summary.core; const r = src.run.summary.reference;
+    $('run-info').textContent = `replay of ${src.run.name}: ${c.implementation} ${c.steps.toLocaleString('en')} steps; ${r.implementation}: ${r.outcome}`;
+    const m = c.measured; const parts = [];
+    if (m.meeting) parts.push(`the fingers met at t = ${m.meeting.time_s.toFixed(3)} s, the centre of mass ${(1e3 * m.meeting.com_offset_m).toFixed(2)} mm from their midpoint`);
+    if (m.acceleration_m_s2 !== null && m.acceleration_m_s2 !== undefined) parts.push(`acceleration ${m.acceleration_m_s2.toFixed(5)} m/s²`);
+    if (m.wall_release_height_m !== null && m.wall_release_height_m !== undefined) parts.push(`the top left the wall at ${m.wall_release_height_m.toFixed(4)} m`);
+    $('measured').textContent = parts.length ? parts.join('; ') : '-';
+  }
+  setState('ended');
+  render(true);
+}
+
+// --- playback ---------------------------------------------------------------------------------------
+
+function play() {
+  const src = S.source;
+  if (!src) return;
+  if (src.ended) {
+    if (src.kind === 'live') { if (!makeRun()) return; } else { startReplay(src.run); }
+  }
+  S.playing = true;
+  S.simTarget = S.source.trace.time;
+  S.lastFrame = performance.now();
+  S.speedWindow = { t: performance.now(), steps: S.source.trace.n, rate: 0 };
+  $('play').textContent = 'Pause';
+  $('status').textContent = 'running';
+  setState('running');
+  requestAnimationFrame(tick);
+}
+
+function pause() {
+  S.playing = false;
+  $('play').textContent = 'Play';
+  if (S.source && !S.source.ended) $('status').textContent = 'paused';
+}
+
+function stepOnce() {
+  const src = S.source;
+  if (!src || src.ended) return;
+  pause();
+  src.advance(1);
+  if (src.ended) finish(); else render(true);
+}
+
+function tick(now) {
+  if (!S.playing) return;
+  const src = S.source;
+  const dt = Math.min(0.1, Math.max(0, (now - S.lastFrame) / 1000));
+  S.lastFrame = now;
+  const t0 = performance.now();
+  if (S.rate === 'max') {
+    do { src.advance(2048); } while (!src.ended && performance.now() - t0 < 14);
+  } else {
+    S.simTarget += dt * Number(S.rate);
+    let want = Math.floor((S.simTarget - src.trace.time) / src.params.step + 1e-6);
+    while (want > 0 && !src.ended && performance.now() - t0 < 30) {
+      const k = src.advance(Math.min(want, 2048));
+      if (k === 0) break;
+      want -= k;
+    }
+    if (want > 0) S.simTarget = src.trace.time; // the machine cannot keep up: do not fall behind
+  }
+  const w = S.speedWindow;
+  if (now - w.t > 500) {
+    w.rate = ((src.trace.n - w.steps) / (now - w.t)) * 1000;
+    w.t = now; w.steps = src.trace.n;
+  }
+  if (src.ended) finish(); else { render(false); requestAnimationFrame(tick); }
+}
+
+// --- drawing ------------------------------------------------------------------------------------------
+
+function niceCeil(t) {
+  if (!(t > 0)) return 1;
+  const p = 10 ** Math.floor(Math.log10(t));
+  for (const f of [1, 1.5, 2, 3, 5, 7.5, 10]) if (f * p >= t) return f * p;
+  return 10 * p;
+}
+
+function drawEmpty() {
+  const g = $('scene').getContext('2d');
+  g.fillStyle = '#fff'; g.fillRect(0, 0, $('scene').width, $('scene').height);
+  for (const id of ['plot-positions', 'plot-angle', 'plot-height']) {
+    const c = $(id); c.getContext('2d').clearRect(0, 0, c.width, c.height);
+  }
+  $('clock').textContent = '';
+}
+
+function render(full) {
+  const src = S.source;
+  if (!src) return;
+  const tr = src.trace;
+  const rateText = S.playing
+    ? (S.rate === 'max' ? `${(S.speedWindow.rate / 1e3).toFixed(0)}k steps/s` : `${S.rate}x`) : '';
+  const title = src.kind === 'replay'
+    ? `replay ${src.run.name}: ${src.run.summary.core.implementation} (reference dashed)`
+    : `${SCENE_TITLES[src.scene]}, ${src.precision} ${src.lcpSize}x${src.lcpSize}`;
+  view.draw(tr.last, {
+    title, time: tr.time, steps: tr.n - 1, outcome: src.ended ? src.outcome : null,
+    reference: src.referenceRow ? src.referenceRow() : null, rate: rateText,
+  });
+  $('clock').textContent = `t = ${tr.time.toFixed(3)} s`;
+  const now = performance.now();
+  if (!full && now - S.lastPlot < (S.rate === 'max' ? 150 : 50)) return;
+  S.lastPlot = now;
+  drawPlots(src);
+  if (tr.events.length !== S.shownEvents) showSwitches(src);
+}
+
+function drawPlots(src) {
+  const tr = src.trace; const ref = src.reference;
+  const tMax = src.kind === 'replay'
+    ? src.run.core.rows[(src.run.core.n - 1) * ROW] : niceCeil(Math.max(tr.time, 10 * src.params.step));
+  const c = tr.cols;
+  const series = (key, color, width, scale = 1) => [
+    ...(ref ? [{ t: ref.cols.t, y: scaled(ref.cols[key], ref.n, scale), n: ref.n, color, width: 1.5, dash: [6, 4], markers: true }] : []),
+    { t: c.t, y: scaled(c[key], tr.n, scale), n: tr.n, color, width },
+  ];
+  const ticks = tr.events.map((e) => ({ t: e.t, color: [COLORS.separated, COLORS.stick, COLORS.slide, COLORS.slide][e.mode] }));
+  const marks = tr.events.filter((e) => e.ratio !== null).map((e) => ({
+    t: e.t, y: e.x, color: e.contact === 0 ? COLORS.finger1 : COLORS.finger2, label: e.ratio.toFixed(3),
+  }));
+  drawPlot($('plot-positions'), {
+    series: [...series('s1x', COLORS.finger1, 2.5), ...series('s2x', COLORS.finger2, 2.5), ...series('x', COLORS.com, 3.5)],
+    marks, ticks, tMax, yLabel: 'x (m)', aspect: 0.39,
+  });
+  drawPlot($('plot-angle'), { series: series('theta', COLORS.ink, 2.5, 180 / Math.PI), ticks, tMax, yLabel: 'angle (deg)', aspect: 0.24, minSpan: 2 });
+  drawPlot($('plot-height'), { series: series('y', COLORS.ink, 2.5, 100), ticks, tMax, yLabel: 'height (cm)', aspect: 0.24, minSpan: 1 });
+}
+
+function scaled(a, n, k) {
+  if (k === 1) return a;
+  const out = new Float64Array(n);
+  for (let i = 0; i < n; i += 1) out[i] = a[i] * k;
+  return out;
+}
+
+function showSwitches(src) {
+  const list = $('eq21');
+  const eq21 = src.trace.events.filter((e) => e.ratio !== null);
+  list.replaceChildren(...eq21.map((e) => {
+    const li = document.createElement('li');
+    li.textContent = `t = ${e.t.toFixed(3)} s: finger ${e.contact + 1} starts to slide, ratio ${e.ratio.toFixed(4)}`;
+    return li;
+  }));
+  if (eq21.length === 0) {
+    const li = document.createElement('li');
+    li.textContent = src.trace.events.length
+      ? `none yet (${src.trace.events.length} switch${src.trace.events.length === 1 ? '' : 'es'}: ${MODE_NAMES[src.trace.events.at(-1).mode]} last)`
+      : 'none yet';
+    list.append(li);
+  }
+  S.shownEvents = src.trace.events.length;
+}
+
+// --- replay, map, benchmark ---------------------------------------------------------------------------
+
+let replayRuns = null;
+
+function startReplay(run) {
+  pause();
+  S.source = replaySource(run);
+  S.simTarget = 0;
+  clearResult('replay: press Play');
+  $('error').textContent = '';
+  view.setScene(S.source.scene, S.source.params, S.source.trace.last);
+  $('replay-info').textContent = `${run.name}: ${run.summary.scene}, core ${run.summary.core.implementation} ${run.summary.core.outcome}, `
+    + `reference ${run.summary.reference.outcome}; max |COM| deviation ${run.summary.comparison.max_com_deviation_m.toExponential(2)} m`;
+  $('run-info').textContent = `replay of ${run.name} (host-sim run)`;
+  $('replay-leave').hidden = false;
+  for (const el of document.querySelectorAll('#params input, #params select, #params button')) el.disabled = true;
+  setState('ready');
+  render(true);
+}
+
+async function loadReplay(name) {
+  const run = replayRuns.runs.find((r) => r.name === name);
+  if (!run) { showError(`replay ${JSON.stringify(name)}: no such run (${replayRuns.runs.map((r) => r.name).join(', ')})`); return; }
+  try {
+    startReplay(await loadRun(run));
+  } catch (e) {
+    showError(`replay ${name}: ${e.message}`);
+  }
+}
+
+function leaveReplay() {
+  for (const el of document.querySelectorAll('#params input, #params select, #params button')) el.disabled = false;
+  $('replay-leave').hidden = true;
+  $('replay-info').textContent = '';
+  if (S.scene !== 'meter-stick') $('map-run').disabled = true;
+  makeRun();
+}
+
+async function computeMap() {
+  const src = S.source;
+  if (S.scene !== 'meter-stick' || !src || src.kind !== 'live') {
+    $('map-status').textContent = 'the map needs valid meter-stick parameters';
+    return;
+  }
+  const parsed = givenFlags();
+  if (parsed.message) { showError(parsed.message, parsed.flag); return; }
+  $('map-run').disabled = true;
+  try {
+    await map.compute(S.module, {
+      given: parsed.given.filter(([long]) => long !== 'speed' && long !== 'mu-k'),
+      muS: src.params.mu_static, precision: src.precision, lcpSize: src.lcpSize,
+    });
+  } finally {
+    $('map-run').disabled = S.scene !== 'meter-stick';
+  }
+}
+
+function bench() {
+  $('bench-run').disabled = true;
+  $('bench').textContent = 'running (2 s)...';
+  const worker = new Worker(new URL('./map-worker.js', import.meta.url), { type: 'module' });
+  worker.onmessage = (event) => {
+    const m = event.data;
+    worker.terminate();
+    $('bench-run').disabled = false;
+    if (m.kind !== 'bench') { $('bench').textContent = `benchmark failed: ${m.message}`; return; }
+    const browser = (navigator.userAgent.match(/(?:Chrome|Chromium|Firefox|Version)\/[\d.]+/) || ['this browser'])[0];
+    $('bench').textContent = `${(m.steps / m.seconds / 1e6).toFixed(2)} M steps/s (f32 6x6, ${m.runs} runs of ${Math.round(m.steps / m.runs)} steps in ${m.seconds.toFixed(2)} s, ${m.outcome}, checksum ${m.checksum}; ${browser})`;
+    $('bench').dataset.stepsPerSecond = String(m.steps / m.seconds);
+  };
+  worker.postMessage({ kind: 'bench', module: S.module, seconds: 2 });
+}
+
+// --- start ----------------------------------------------------------------------------------------------
+
+function isTyping(target) {
+  return target instanceof HTMLInputElement || target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement
+    || target instanceof HTMLButtonElement || target === $('map') || target.isContentEditable;
+}
+
+function wire() {
+  $('play').addEventListener('click', () => (S.playing ? pause() : play()));
+  $('step').addEventListener('click', stepOnce);
+  $('reset').addEventListener('click', () => {
+    if (S.source && S.source.kind === 'replay') startReplay(S.source.run); else makeRun();
+  });
+  $('rate').addEventListener('change', () => {
+    S.rate = $('rate').value;
+    S.simTarget = S.source ? S.source.trace.time : 0;
+    writeUrl();
+  });
+  $('scene-select').addEventListener('change', () => { buildForm($('scene-select').value); makeRun(); });
+  $('precision').addEventListener('change', () => makeRun());
+  $('lcp-size').addEventListener('change', () => makeRun());
+  $('params').addEventListener('submit', (e) => { e.preventDefault(); makeRun(); });
+  $('map-run').addEventListener('click', computeMap);
+  $('bench-run').addEventListener('click', bench);
+  $('replay-load').addEventListener('click', () => loadReplay($('replay-select').value));
+  $('replay-leave').addEventListener('click', leaveReplay);
+  document.addEventListener('keydown', (e) => {
+    if (e.ctrlKey || e.metaKey || e.altKey || isTyping(e.target)) return;
+    if (e.key === ' ') { e.preventDefault(); if (S.playing) pause(); else play(); } else if (e.key === '.') stepOnce();
+    else if (e.key === 'r') $('reset').click();
+  });
+  let resizeTimer = 0;
+  window.addEventListener('resize', () => {
+    clearTimeout(resizeTimer);
+    resizeTimer = setTimeout(() => { view.camera = null; render(true); map.draw(); }, 100);
+  });
+}
+
+/// Reads the URL: the scene, the flags (host-sim's names), precision, LCP size, speed of play.
+function readUrl(q) {
+  const scene = q.get('scene') || 'meter-stick';
+  const problems = [];
+  if (!S.core.scene(scene)) {
+    problems.push(`scene ${JSON.stringify(scene)}: not a scene (meter-stick, incline, ladder)`);
+    buildForm('meter-stick');
+  } else {
+    buildForm(scene);
+  }
+  for (const [key, value] of q) {
+    if (PAGE_KEYS.includes(key)) continue;
+    const input = S.inputs.get(key);
+    if (input) { input.value = value; continue; }
+    const flag = S.core.desc.flags.find((f) => f.long === key);
+    if (flag) {
+      const applies = Object.keys(flag.fields).join(', ');
+      problems.push(`${key} does not apply to scene ${S.scene} (it is a parameter of ${applies})`);
+    } else {
+      problems.push(`${key}: not a parameter of the page (the scene flags of host-sim, and ${PAGE_KEYS.join(', ')})`);
+    }
+  }
+  const precision = q.get('precision');
+  if (precision !== null) {
+    if (['f32', 'f64'].includes(precision)) $('precision').value = precision;
+    else problems.push(`precision ${JSON.stringify(precision)}: f32 or f64`);
+  }
+  const size = q.get('lcp-size');
+  if (size !== null) {
+    if (['6', '8'].includes(size)) $('lcp-size').value = size;
+    else problems.push(`lcp-size ${JSON.stringify(size)}: 6 or 8`);
+  }
+  const rate = q.get('rate');
+  if (rate !== null) {
+    if ([...$('rate').options].some((o) => o.value === rate)) { S.rate = rate; $('rate').value = rate; } else {
+      problems.push(`rate ${JSON.stringify(rate)}: one of ${[...$('rate').options].map((o) => o.value).join(', ')}`);
+    }
+  }
+  return problems;
+}
+
+async function main() {
+  setState('loading');
+  wire();
+  try {
+    S.module = await compileCore();
+    S.core = await instantiateCore(S.module);
+  } catch (e) {
+    showError(`could not load the core: ${e.message}`);
+    setState('error');
+    return;
+  }
+  $('version').textContent = `meterstick-web ${S.core.desc.version}.`;
+  const q = new URLSearchParams(location.search);
+  const problems = readUrl(q);
+  const ok = makeRun();
+  if (problems.length) {
+    // An unusable query is refused as a whole, like a command line with a bad flag.
+    pause();
+    S.source = null;
+    drawEmpty();
+    clearResult('not run: invalid parameters');
+    showError(problems.join('; '));
+    setState('error');
+  }
+  map.draw();
+  replayRuns = await listRuns();
+  if (replayRuns) {
+    $('replay-box').hidden = false;
+    $('no-replay').hidden = true;
+    $('replay-select').replaceChildren(...replayRuns.runs.map((r) => new Option(r.name, r.name)));
+  }
+  if (q.get('replay') !== null) {
+    if (!replayRuns) showError('replay: this server has no runs to replay (host-sim serve --replay DIR)');
+    else {
+      $('replay-select').value = q.get('replay');
+      await loadReplay(q.get('replay'));
+    }
+  }
+  if (q.get('bench') === '1') bench();
+  if (q.get('map') === '1' && ok && !problems.length) computeMap();
+  if (q.get('autorun') === '1' && S.source && !problems.length) play();
+}
+
+// For the browser test and the console: the live run's trajectory (every step; the test shows
+// the first step that differs from the host's), and the map's outcome code at a cell.
+window.meterstick = {
+  trace() {
+    const tr = S.source && S.source.trace;
+    if (!tr) return null;
+    const pick = (k) => Array.from(tr.cols[k].subarray(0, tr.n));
+    return { t: pick('t'), x: pick('x'), y: pick('y'), theta: pick('theta'), vx: pick('vx'), vy: pick('vy'), omega: pick('omega') };
+  },
+  mapOutcome(i, j) {
+    return map.grid[j] ? map.grid[j][i] : null;
+  },
+  mapCellCenter(i, j) {
+    return map.cellCenter(i, j);
+  },
+};
+
+main();

@@ -1,0 +1,130 @@
+// The wasm module (meterstick-web, built into pkg/) and its exports, wrapped for the page and the
+// map workers. The module has no imports; its API is plain numbers and two buffers in linear
+// memory (see web/src/exports.rs and README.md, "The page").
+
+export const WASM_URL = new URL('./pkg/meterstick_web.wasm', import.meta.url);
+
+/// Compiles the module (once; the map workers get the compiled module).
+export async function compileCore() {
+  const response = await fetch(WASM_URL);
+  if (!response.ok) {
+    throw new Error(`${WASM_URL.pathname}: ${response.status} ${response.statusText} (build it: bash scripts/web.sh)`);
+  }
+  return WebAssembly.compile(await response.arrayBuffer());
+}
+
+/// A new instance of the compiled module: one session (one run at a time).
+export async function instantiateCore(module) {
+  const instance = await WebAssembly.instantiate(module, {});
+  return new Core(instance.exports);
+}
+
+const decoder = new TextDecoder();
+
+export class Core {
+  constructor(exports) {
+    this.x = exports;
+    /// The description: scenes (fields, defaults), flags (unit, help, field per scene), columns, modes, outcomes.
+    this.desc = JSON.parse(this.text(exports.ms_describe()));
+    this.flagIndex = new Map(this.desc.flags.map((f, i) => [f.long, i]));
+  }
+
+  text(len) {
+    return decoder.decode(new Uint8Array(this.x.memory.buffer, this.x.ms_text_ptr(), len));
+  }
+
+  scene(name) {
+    return this.desc.scenes.find((s) => s.name === name);
+  }
+
+  /// The flags of a scene, in table order.
+  flagsOf(sceneName) {
+    return this.desc.flags.filter((f) => sceneName in f.fields);
+  }
+
+  /// Makes a run: `given` maps flag names to numbers (in the flag's unit). Returns
+  /// {ok: true, params} (core field -> value, SI and radians) or {ok: false, message, flag}.
+  create(sceneName, given, precision, lcpSize) {
+    const sceneIndex = this.desc.scenes.findIndex((s) => s.name === sceneName);
+    if (sceneIndex < 0 || this.x.ms_configure(sceneIndex) !== 0) {
+      return { ok: false, message: `unknown scene ${JSON.stringify(sceneName)} (meter-stick, incline or ladder)`, flag: null };
+    }
+    for (const [long, value] of given) {
+      const i = this.flagIndex.get(long);
+      if (i === undefined || this.x.ms_give(i, value) !== 0) {
+        return { ok: false, message: `unknown parameter ${JSON.stringify(long)}`, flag: null };
+      }
+    }
+    const bits = precision === 'f64' ? 64 : 32;
+    const n = Number(lcpSize) === 8 ? 8 : 6;
+    const code = this.x.ms_create(bits, n);
+    if (code !== 0) {
+      const message = code === 1 ? this.text(this.x.ms_text_len()) : `bad precision or LCP size`;
+      const f = this.x.ms_error_flag();
+      return { ok: false, message, flag: f >= 0 ? this.desc.flags[f].long : null };
+    }
+    const fields = this.scene(sceneName).fields;
+    const params = Object.fromEntries(fields.map((name, i) => [name, this.x.ms_param(i)]));
+    return { ok: true, params };
+  }
+
+  /// The state at t = 0 as a row (a copy).
+  startRow() {
+    this.x.ms_start_row();
+    return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), this.desc.row).slice();
+  }
+
+  /// Steps up to n times; returns the rows written (a view, valid until the next call).
+  step(n) {
+    const taken = this.x.ms_step(n);
+    return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), taken * this.desc.row);
+  }
+
+  /// Steps up to max times without rows; returns the steps taken.
+  run(max) {
+    return this.x.ms_run(max);
+  }
+
+  /// null while the run goes on, else {code, name, text}.
+  outcome() {
+    const code = this.x.ms_outcome();
+    if (code < 0) return null;
+    return { code, name: this.desc.outcomes[code], text: this.text(this.x.ms_outcome_text()) };
+  }
+
+  /// The trajectory checksum as host-sim scene prints it: 8 hex digits.
+  checksum() {
+    return (this.x.ms_checksum() >>> 0).toString(16).padStart(8, '0');
+  }
+
+  time() { return this.x.ms_time(); }
+
+  stats() {
+    const s = (i) => this.x.ms_stat(i);
+    return { steps: s(0), pivots: s(1), maxPivots: s(2), warmStarts: s(3), fullLayout: s(4), regularized: s(5) };
+  }
+
+  measured() {
+    const m = (i) => this.x.ms_measured(i);
+    const opt = (v) => (Number.isNaN(v) ? null : v);
+    return {
+      meetingTime: opt(m(0)), meetingOffset: opt(m(1)), acceleration: opt(m(2)),
+      wallReleaseHeight: opt(m(3)), wallReleaseRatio: opt(m(4)),
+    };
+  }
+}
+
+/// Parses a number as host-sim does (Rust's f64 syntax after trimming: "0.1", "-5e-3", ".5",
+/// "inf", "NaN"); returns {value} or {message} in host-sim's words.
+export function parseNumber(text) {
+  const t = text.trim();
+  const rust = /^[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|infinity|nan)$/i;
+  if (!rust.test(t)) {
+    const why = t.startsWith('--') ? ': every flag needs a value' : '';
+    return { message: `${JSON.stringify(t)} is not a number${why}` };
+  }
+  const lower = t.toLowerCase().replace(/^\+/, '');
+  if (/^-?inf(inity)?$/.test(lower)) return { value: lower.startsWith('-') ? -Infinity : Infinity };
+  if (/^-?nan$/.test(lower)) return { value: NaN };
+  return { value: Number(t) };
+}

@@ -1,0 +1,396 @@
+//! The page's API: plain `extern "C"` functions over one [`Session`] per wasm instance, with
+//! numbers for arguments and results and two buffers in linear memory that the page reads (the
+//! text buffer: JSON descriptions, refusals, outcomes; the trace buffer: rows of [`ROW`] f64 per
+//! step). `README.md` ("The page") lists them; `web/page/core.js` is their one caller.
+//!
+//! Return conventions: counts as `u32` (or `f64` where they may exceed 2^32), codes as `i32`
+//! (`-1`: none or a bad argument), a text's length in bytes as `u32` (read from [`ms_text_ptr`]).
+//!
+//! **Why this module allows `unsafe_code`** (denied in the workspace): an export keeps its name
+//! only with `#[unsafe(no_mangle)]`, and on wasm32 the session lives in a `static`, whose interior
+//! mutability needs `unsafe impl Sync` (sound there: `wasm32-unknown-unknown` without the atomics
+//! feature runs one thread). Nothing else here is unsafe; on the host the session is thread-local.
+#![allow(unsafe_code)]
+
+use core::fmt::Write as _;
+
+use crate::config::{LcpSize, Precision};
+use crate::flags::SceneKind;
+use crate::session::{CreateError, Session, TEXT_BYTES, TRACE_ROWS, describe, outcome_text};
+use crate::sim::{ROW, outcome_code};
+use crate::text::Text;
+
+/// The session and what the last call said.
+#[derive(Debug)]
+struct State {
+    session: Session,
+    /// Bytes in the text buffer.
+    text_len: usize,
+    /// The flag to blame for the last refusal (index in `flags::FLAGS`), or -1.
+    error_flag: i32,
+}
+
+impl State {
+    const fn new() -> Self {
+        Self { session: Session::new(), text_len: 0, error_flag: -1 }
+    }
+}
+
+#[cfg(target_arch = "wasm32")]
+mod store {
+    use core::cell::RefCell;
+
+    use super::{ROW, State, TEXT_BYTES, TRACE_ROWS};
+
+    /// A cell in a `static`.
+    pub struct Global<T>(RefCell<T>);
+
+    // SAFETY: wasm32-unknown-unknown (built without the `atomics` target feature) has exactly one
+    // thread, so a `Global` is never accessed from two threads.
+    unsafe impl<T> Sync for Global<T> {}
+
+    static STATE: Global<State> = Global(RefCell::new(State::new()));
+    // Zero-initialised, so they take no room in the .wasm file.
+    static TEXT: Global<[u8; TEXT_BYTES]> = Global(RefCell::new([0; TEXT_BYTES]));
+    static TRACE: Global<[f64; TRACE_ROWS * ROW]> = Global(RefCell::new([0.0; TRACE_ROWS * ROW]));
+
+    pub fn with<R>(f: impl FnOnce(&mut State, &mut [u8], &mut [f64]) -> R) -> R {
+        f(&mut STATE.0.borrow_mut(), &mut TEXT.0.borrow_mut()[..], &mut TRACE.0.borrow_mut()[..])
+    }
+
+    pub fn text_ptr() -> *const u8 {
+        TEXT.0.as_ptr().cast()
+    }
+
+    pub fn trace_ptr() -> *const f64 {
+        TRACE.0.as_ptr().cast()
+    }
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+mod store {
+    use std::cell::RefCell;
+
+    use super::{ROW, State, TEXT_BYTES, TRACE_ROWS};
+
+    struct Store {
+        state: State,
+        text: Box<[u8]>,
+        trace: Box<[f64]>,
+    }
+
+    std::thread_local! {
+        static STORE: RefCell<Store> = RefCell::new(Store {
+            state: State::new(),
+            text: vec![0; TEXT_BYTES].into_boxed_slice(),
+            trace: vec![0.0; TRACE_ROWS * ROW].into_boxed_slice(),
+        });
+    }
+
+    pub fn with<R>(f: impl FnOnce(&mut State, &mut [u8], &mut [f64]) -> R) -> R {
+        STORE.with(|s| {
+            let s = &mut *s.borrow_mut();
+            f(&mut s.state, &mut s.text, &mut s.trace)
+        })
+    }
+
+    pub fn text_ptr() -> *const u8 {
+        STORE.with(|s| s.borrow().text.as_ptr())
+    }
+
+    pub fn trace_ptr() -> *const f64 {
+        STORE.with(|s| s.borrow().trace.as_ptr())
+    }
+}
+
+/// Replaces the text buffer's content with what `write` writes; returns its length.
+fn set_text(
+    state: &mut State,
+    buf: &mut [u8],
+    write: impl FnOnce(&mut Text<'_>) -> core::fmt::Result,
+) -> u32 {
+    let mut text = Text::new(buf);
+    let _ = write(&mut text);
+    state.text_len = text.len();
+    text.len() as u32
+}
+
+/// The text buffer (its length: the last text call's result, or [`ms_text_len`]).
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_text_ptr() -> *const u8 {
+    store::text_ptr()
+}
+
+/// Bytes in the text buffer.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_text_len() -> u32 {
+    store::with(|s, _, _| s.text_len as u32)
+}
+
+/// Writes the description (JSON: scenes with their fields and defaults, flags with unit, help and
+/// field per scene, row columns, modes, outcomes, limits) into the text buffer; returns its length.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_describe() -> u32 {
+    store::with(|s, text, _| set_text(s, text, describe))
+}
+
+/// Starts a configuration of scene `scene` (0 meter stick, 1 incline, 2 ladder) with the core's
+/// defaults and no run; 0, or -1 for an unknown scene.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_configure(scene: u32) -> i32 {
+    let Some(kind) = SceneKind::from_index(scene) else { return -1 };
+    store::with(|s, _, _| s.session.configure(kind));
+    0
+}
+
+/// Gives flag `flag` (its index in the description's `flags`) `value`, in the flag's unit
+/// (degrees for angles); 0, or -1 for an unknown flag. A flag that does not apply to the scene is
+/// refused by [`ms_create`], as on the command line.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_give(flag: u32, value: f64) -> i32 {
+    if store::with(|s, _, _| s.session.give(flag as usize, value)) { 0 } else { -1 }
+}
+
+/// Resolves the configuration (as `host-sim scene` would) and makes the run at `t = 0` in
+/// precision `bits` (32 or 64) with an `n x n` LCP (6 or 8). 0: the run is ready; 1: refused, the
+/// text buffer holds why in the user's words and [`ms_error_flag`] the flag to blame; -1: bad
+/// `bits` or `n`.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_create(bits: u32, n: u32) -> i32 {
+    let (Some(precision), Some(size)) = (Precision::from_bits(bits), LcpSize::from_n(n)) else {
+        return -1;
+    };
+    store::with(|s, text, _| match s.session.create(precision, size) {
+        Ok(()) => {
+            s.error_flag = -1;
+            s.text_len = 0;
+            0
+        }
+        Err(e) => {
+            s.error_flag = match e {
+                CreateError::Config(c) => c.flag().and_then(|i| i32::try_from(i).ok()).unwrap_or(-1),
+                CreateError::Core(_) => -1,
+            };
+            set_text(s, text, |t| write!(t, "{e}"));
+            1
+        }
+    })
+}
+
+/// The flag (index) the last refusal blames, or -1.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_error_flag() -> i32 {
+    store::with(|s, _, _| s.error_flag)
+}
+
+/// The run's parameter `i` (core units: SI, radians) in the order of the scene's `fields`; NaN
+/// without a run or past the end.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_param(i: u32) -> f64 {
+    store::with(|s, _, _| s.session.spec().and_then(|p| p.field(i as usize)).unwrap_or(f64::NAN))
+}
+
+/// Writes the state at `t = 0` as the first row of the trace buffer; 1, or 0 without a run.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_start_row() -> u32 {
+    store::with(|s, _, trace| {
+        s.session.sim().map_or(0, |sim| {
+            trace[..ROW].copy_from_slice(sim.start_row());
+            1
+        })
+    })
+}
+
+/// Steps the run up to `n` times (at most the trace buffer's rows), writing one row per step into
+/// the trace buffer; returns the steps taken (0 once the run has ended, or without a run).
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_step(n: u32) -> u32 {
+    store::with(|s, _, trace| {
+        let rows = (n as usize).min(TRACE_ROWS);
+        s.session.sim_mut().map_or(0, |sim| sim.step_rows(&mut trace[..rows * ROW]) as u32)
+    })
+}
+
+/// Steps the run up to `max` times without rows (the outcome map, the benchmark); returns the
+/// steps taken.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_run(max: f64) -> f64 {
+    let max = if max.is_nan() || max < 0.0 { 0 } else { max as u64 };
+    store::with(|s, _, _| s.session.sim_mut().map_or(0, |sim| sim.run(max)) as f64)
+}
+
+/// The trace buffer: rows of `ROW` f64 (the description's `columns`).
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_trace_ptr() -> *const f64 {
+    store::trace_ptr()
+}
+
+/// The outcome's code (the index in the description's `outcomes`), or -1 while the run goes on
+/// (or without a run).
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_outcome() -> i32 {
+    store::with(|s, _, _| {
+        s.session.sim().and_then(crate::sim::Sim::outcome).map_or(-1, |o| i32::from(outcome_code(o)))
+    })
+}
+
+/// Writes the outcome as the core displays it (a failure with its cause) into the text buffer;
+/// returns its length (0 while the run goes on).
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_outcome_text() -> u32 {
+    store::with(|s, text, _| match s.session.sim().and_then(crate::sim::Sim::outcome) {
+        Some(o) => set_text(s, text, |t| outcome_text(t, o)),
+        None => set_text(s, text, |_| Ok(())),
+    })
+}
+
+/// The trajectory checksum so far (FNV-1a over the state's bits after every step; as
+/// `host-sim scene` prints it for the same run). 0 without a run.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_checksum() -> u32 {
+    store::with(|s, _, _| s.session.sim().map_or(0, crate::sim::Sim::checksum))
+}
+
+/// Simulated time (s); NaN without a run.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_time() -> f64 {
+    store::with(|s, _, _| s.session.sim().map_or(f64::NAN, crate::sim::Sim::time))
+}
+
+/// A counter of the run: 0 steps, 1 pivots, 2 most pivots in a step, 3 warm starts, 4 steps that
+/// needed the 8x8 form, 5 regularised solves; NaN otherwise.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_stat(i: u32) -> f64 {
+    store::with(|s, _, _| {
+        let Some(st) = s.session.sim().map(crate::sim::Sim::stats) else { return f64::NAN };
+        match i {
+            0 => st.steps as f64,
+            1 => st.pivots as f64,
+            2 => f64::from(st.max_pivots),
+            3 => st.warm_starts as f64,
+            4 => st.reduced_check_fired as f64,
+            5 => st.regularized_solves as f64,
+            _ => f64::NAN,
+        }
+    })
+}
+
+/// A measured quantity: 0 meeting time (s), 1 the centre of mass from the fingers' midpoint then
+/// (m), 2 the incline's acceleration (m/s^2), 3 the ladder's wall-release height (m), 4 its ratio
+/// to the start height; NaN where there is none.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_measured(i: u32) -> f64 {
+    store::with(|s, _, _| {
+        s.session
+            .sim()
+            .map_or(f64::NAN, |sim| sim.measured().to_array().get(i as usize).copied().unwrap_or(f64::NAN))
+    })
+}
+
+/// The text buffer's content (host only: tests).
+#[cfg(not(target_arch = "wasm32"))]
+#[must_use]
+pub fn text() -> String {
+    store::with(|s, text, _| String::from_utf8_lossy(&text[..s.text_len]).into_owned())
+}
+
+/// Row `i` of the trace buffer (host only: tests).
+#[cfg(not(target_arch = "wasm32"))]
+#[must_use]
+pub fn trace_row(i: usize) -> [f64; ROW] {
+    store::with(|_, _, trace| {
+        let mut row = [0.0; ROW];
+        row.copy_from_slice(&trace[i * ROW..(i + 1) * ROW]);
+        row
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::float_cmp)] // exact: values copied or rounded once, not computed
+    use super::*;
+    use crate::flags::{FLAGS, flag_index};
+
+    fn flag(long: &str) -> u32 {
+        flag_index(long).unwrap() as u32
+    }
+
+    #[test]
+    fn the_description_is_json_the_page_can_read() {
+        let n = ms_describe();
+        let json = text();
+        assert_eq!(json.len(), n as usize);
+        assert!(json.len() < TEXT_BYTES / 2, "room to grow: {} bytes", json.len());
+        assert!(json.starts_with("{\"version\":") && json.ends_with('}'), "{json}");
+        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic"}}"#), "{json}");
+        assert!(json.contains(r#""columns":["t","x","y","theta","vx""#), "{json}");
+        assert!(json.contains(r#""defaults":[1,0.005,0.2,9.81,-0.4,0.4,0,0,0.1,0,0.01,0.6,0.4,0.001,0.00001,0.35,0.02,0.5,30]"#), "{json}");
+    }
+
+    #[test]
+    fn a_run_through_the_exports() {
+        assert_eq!(ms_configure(0), 0);
+        assert_eq!(ms_give(flag("x1"), -0.35), 0);
+        assert_eq!(ms_give(flag("speed"), 1.0), 0);
+        assert_eq!(ms_create(32, 6), 0);
+        assert_eq!(ms_outcome(), -1);
+        assert_eq!(ms_param(4), -0.35, "finger1_x");
+        assert_eq!(ms_start_row(), 1);
+        assert_eq!(trace_row(0)[7], f64::from(-0.35_f32), "finger 1 in f32");
+        let mut steps = 0;
+        loop {
+            let n = ms_step(100);
+            if n == 0 {
+                break;
+            }
+            assert!(n <= 100);
+            steps += n;
+            assert_eq!(trace_row(n as usize - 1)[0], ms_time(), "the last row is the current time");
+        }
+        assert_eq!(f64::from(steps), ms_stat(0));
+        assert_eq!(ms_outcome(), 1, "Fell");
+        assert_eq!(ms_outcome_text(), 4);
+        assert_eq!(text(), "Fell");
+        let checksum = ms_checksum();
+        // The same run without rows: the same checksum.
+        assert_eq!(ms_create(32, 6), 0);
+        assert_eq!(ms_run(1e9), f64::from(steps));
+        assert_eq!(ms_checksum(), checksum);
+        // The fingers met (0.74 m at 1 m/s) before the rod fell; no incline or ladder quantity.
+        assert!((ms_measured(0) - 0.74).abs() <= 1.5e-3, "{}", ms_measured(0));
+        assert!(ms_measured(2).is_nan() && ms_measured(3).is_nan() && ms_measured(9).is_nan());
+    }
+
+    #[test]
+    fn refusals_reach_the_text_buffer_with_the_flag_to_blame() {
+        assert_eq!(ms_configure(1), 0);
+        assert_eq!(ms_give(flag("angle"), 95.0), 0);
+        assert_eq!(ms_create(64, 8), 1);
+        assert_eq!(text(), "angle 95 deg: out of range (0 <= angle < 90 deg)");
+        assert_eq!(i64::from(ms_error_flag()), i64::from(flag("angle")));
+        assert_eq!(ms_step(10), 0, "no run");
+        assert!(ms_param(0).is_nan());
+        assert_eq!(ms_create(16, 6), -1);
+        assert_eq!(ms_create(32, 7), -1);
+        assert_eq!(ms_configure(3), -1);
+        assert_eq!(ms_give(FLAGS.len() as u32, 1.0), -1);
+    }
+}

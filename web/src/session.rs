@@ -1,0 +1,171 @@
+//! [`Session`]: what the page's exports operate on (one per wasm instance: the page's live run,
+//! or a map worker's runs), in safe Rust; `exports` is the thin C-style layer over it.
+
+use core::fmt::Write as _;
+
+use meterstick_core::scene::Outcome;
+
+use crate::config::{Config, ConfigError, LcpSize, MAX_STEPS, Precision, Spec};
+use crate::flags::{FLAGS, SceneKind};
+use crate::sim::{COLUMNS, MODES, OUTCOMES, ROW, Sim};
+use crate::text::{Text, json_num, json_str};
+
+/// Rows one `ms_step` call may write (the trace buffer holds this many).
+pub const TRACE_ROWS: usize = 2048;
+/// Bytes of text one call may return (the description, an error, an outcome).
+pub const TEXT_BYTES: usize = 16 * 1024;
+
+/// Why [`Session::create`] made no run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CreateError {
+    /// The configuration was refused (its message names the flag).
+    Config(ConfigError),
+    /// The parameters passed validation but the core still refused them.
+    Core(meterstick_core::ParamError),
+}
+
+/// A configuration being edited, the parameters it resolved to and the run made from them.
+#[derive(Debug, Clone)]
+pub struct Session {
+    config: Config,
+    spec: Option<Spec>,
+    sim: Option<Sim>,
+}
+
+impl Default for Session {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Session {
+    /// The meter stick with nothing given, no run.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { config: Config::new(SceneKind::MeterStick), spec: None, sim: None }
+    }
+
+    /// Starts a new configuration of `kind` (the core's defaults); drops the run.
+    pub fn configure(&mut self, kind: SceneKind) {
+        self.config = Config::new(kind);
+        self.spec = None;
+        self.sim = None;
+    }
+
+    /// Gives a flag (index in [`FLAGS`]) a value in its unit; `false` for an unknown flag.
+    pub fn give(&mut self, flag: usize, value: f64) -> bool {
+        self.config.give(flag, value)
+    }
+
+    /// The configuration so far.
+    #[must_use]
+    pub const fn config(&self) -> &Config {
+        &self.config
+    }
+
+    /// Resolves the configuration and makes the run (at `t = 0`).
+    ///
+    /// # Errors
+    /// The refusal, to be shown in the user's words (`Display`).
+    #[allow(clippy::result_large_err)] // the refusal carries the parameters it words; no heap on wasm
+    pub fn create(&mut self, precision: Precision, size: LcpSize) -> Result<(), CreateError> {
+        self.sim = None;
+        self.spec = None;
+        let spec = self.config.resolve(precision).map_err(CreateError::Config)?;
+        self.spec = Some(spec);
+        self.sim = Some(Sim::new(&spec, precision, size).map_err(CreateError::Core)?);
+        Ok(())
+    }
+
+    /// The parameters of the run (after [`Self::create`] succeeded).
+    #[must_use]
+    pub const fn spec(&self) -> Option<&Spec> {
+        self.spec.as_ref()
+    }
+
+    /// The run.
+    #[must_use]
+    pub const fn sim(&self) -> Option<&Sim> {
+        self.sim.as_ref()
+    }
+
+    /// The run, to step.
+    pub const fn sim_mut(&mut self) -> Option<&mut Sim> {
+        self.sim.as_mut()
+    }
+}
+
+impl core::fmt::Display for CreateError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Config(e) => write!(f, "{e}"),
+            Self::Core(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// Writes the description the page builds its controls from, as JSON: each scene's name, core
+/// fields and defaults; each flag's name, unit, help and field per scene; the row columns, mode
+/// and outcome names; the limits.
+///
+/// # Errors
+/// Never in practice (a [`Text`] drops what does not fit and says so).
+pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
+    out.write_str("{\"version\":")?;
+    json_str(out, crate::VERSION)?;
+    out.write_str(",\"scenes\":[")?;
+    for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
+        out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
+        json_str(out, kind.name())?;
+        out.write_str(",\"fields\":[")?;
+        let spec = Spec::defaults(kind);
+        for (j, name) in kind.field_names().iter().enumerate() {
+            out.write_str(if j > 0 { "," } else { "" })?;
+            json_str(out, name)?;
+        }
+        out.write_str("],\"defaults\":[")?;
+        for j in 0..kind.field_names().len() {
+            out.write_str(if j > 0 { "," } else { "" })?;
+            json_num(out, spec.field(j).unwrap_or(f64::NAN))?;
+        }
+        out.write_str("]}")?;
+    }
+    out.write_str("],\"flags\":[")?;
+    for (i, flag) in FLAGS.iter().enumerate() {
+        out.write_str(if i > 0 { ",{\"long\":" } else { "{\"long\":" })?;
+        json_str(out, flag.long)?;
+        out.write_str(",\"unit\":")?;
+        json_str(out, flag.unit)?;
+        out.write_str(",\"help\":")?;
+        json_str(out, flag.help)?;
+        out.write_str(",\"fields\":{")?;
+        for (j, (kind, field)) in flag.fields.iter().enumerate() {
+            out.write_str(if j > 0 { "," } else { "" })?;
+            json_str(out, kind.name())?;
+            out.write_char(':')?;
+            json_str(out, field)?;
+        }
+        out.write_str("}}")?;
+    }
+    let list = |out: &mut Text<'_>, key: &str, names: &[&str]| -> core::fmt::Result {
+        write!(out, ",\"{key}\":[")?;
+        for (i, name) in names.iter().enumerate() {
+            out.write_str(if i > 0 { "," } else { "" })?;
+            json_str(out, name)?;
+        }
+        out.write_char(']')
+    };
+    out.write_char(']')?;
+    list(out, "columns", &COLUMNS)?;
+    list(out, "modes", &MODES)?;
+    list(out, "outcomes", &OUTCOMES)?;
+    write!(out, ",\"row\":{ROW},\"trace_rows\":{TRACE_ROWS},\"max_steps\":{MAX_STEPS}}}")
+}
+
+/// Writes an outcome as the core displays it (`Failed (solver: ...)` with its cause).
+///
+/// # Errors
+/// Never in practice.
+pub fn outcome_text(out: &mut Text<'_>, outcome: Outcome) -> core::fmt::Result {
+    write!(out, "{outcome}")
+}

@@ -1,0 +1,132 @@
+//! The page's layer against the command line it mirrors: the same flag table as `host-sim`, the
+//! same refusals (without the `--`), the same resolved parameters and the same trajectory
+//! checksum and outcome as `host-sim scene` (on the host; the browser test checks the wasm build).
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use meterstick_host_sim::lcp_io::Precision as HostPrecision;
+use meterstick_host_sim::scene_cmd::{SceneCmd, run_scene};
+use meterstick_host_sim::scenes::{self as host, LcpSize as HostSize, SceneArgs};
+use meterstick_web::config::{Config, LcpSize, Precision};
+use meterstick_web::flags::{FLAGS, SceneKind, flag_index};
+use meterstick_web::session::Session;
+
+/// Flags and their values, in their units.
+type Given = &'static [(&'static str, f64)];
+
+fn host_kind(kind: SceneKind) -> host::SceneKind {
+    *host::SceneKind::ALL.iter().find(|k| k.name() == kind.name()).unwrap()
+}
+
+/// The same configuration for both: `host-sim scene` options and the page's.
+fn both(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpSize) -> (SceneArgs, Session) {
+    let mut args = SceneArgs {
+        scene: Some(host_kind(kind)),
+        precision: if precision == Precision::F64 { HostPrecision::F64 } else { HostPrecision::F32 },
+        lcp_size: if size == LcpSize::Full { HostSize::Full } else { HostSize::Reduced },
+        ..SceneArgs::default()
+    };
+    let mut session = Session::new();
+    session.configure(kind);
+    for (long, v) in given {
+        args.given.push((host::FLAGS.iter().find(|f| f.long == *long).unwrap(), vec![*v]));
+        assert!(session.give(flag_index(long).unwrap(), *v));
+    }
+    (args, session)
+}
+
+#[test]
+fn the_flag_tables_are_the_same() {
+    assert_eq!(FLAGS.len(), host::FLAGS.len());
+    for (ours, theirs) in FLAGS.iter().zip(host::FLAGS) {
+        assert_eq!((ours.long, ours.unit, ours.help), (theirs.long, theirs.unit, theirs.help));
+        let fields: Vec<(&str, &str)> = ours.fields.iter().map(|(k, f)| (k.name(), *f)).collect();
+        let host_fields: Vec<(&str, &str)> = theirs.fields.iter().map(|(k, f)| (k.name(), *f)).collect();
+        assert_eq!(fields, host_fields, "--{}", ours.long);
+    }
+    for kind in SceneKind::ALL {
+        assert_eq!(kind.field_names(), host_kind(kind).field_names());
+    }
+}
+
+#[test]
+fn refusals_are_worded_as_host_sim_words_them() {
+    let cases: &[(SceneKind, Given, Precision)] = &[
+        (SceneKind::MeterStick, &[("mu-k", 0.7)], Precision::F32),
+        (SceneKind::MeterStick, &[("x1", -0.6)], Precision::F32),
+        (SceneKind::MeterStick, &[("x1", 0.3), ("x2", 0.305)], Precision::F32),
+        (SceneKind::MeterStick, &[("mass", 0.0)], Precision::F32),
+        (SceneKind::MeterStick, &[("finger-width", -1e-3)], Precision::F32),
+        (SceneKind::MeterStick, &[("gravity", f64::NAN)], Precision::F64),
+        (SceneKind::MeterStick, &[("mass", 1e39)], Precision::F32),
+        (SceneKind::MeterStick, &[("h", 1e-12)], Precision::F64),
+        (SceneKind::MeterStick, &[("speed", 1.0), ("width", 0.1)], Precision::F32),
+        (SceneKind::MeterStick, &[("x1", 1.0 / 3.0), ("x2", 0.1)], Precision::F32),
+        (SceneKind::Incline, &[("angle", 95.0)], Precision::F32),
+        (SceneKind::Incline, &[("angle", -1.0)], Precision::F64),
+        (SceneKind::Incline, &[("speed", 1.0)], Precision::F32),
+        (SceneKind::Ladder, &[("angle", 0.0)], Precision::F32),
+        (SceneKind::Ladder, &[("mu-wall", -0.1)], Precision::F32),
+        (SceneKind::Ladder, &[("mu-s", 0.5)], Precision::F64),
+    ];
+    for (kind, given, precision) in cases {
+        let (args, mut session) = both(*kind, given, *precision, LcpSize::Reduced);
+        let theirs = run_scene(&SceneCmd { scene: args }).unwrap_err().to_string();
+        let ours = session.create(*precision, LcpSize::Reduced).unwrap_err().to_string();
+        assert_eq!(ours, theirs.replace("--", ""), "{kind:?} {given:?}");
+    }
+}
+
+#[test]
+fn parameters_outcome_and_checksum_match_host_sim_scene() {
+    let cases: &[(SceneKind, Given, Precision, LcpSize)] = &[
+        (SceneKind::MeterStick, &[("x1", -0.35)], Precision::F32, LcpSize::Reduced),
+        (SceneKind::MeterStick, &[("x1", -0.35), ("speed", 0.5)], Precision::F32, LcpSize::Full),
+        (SceneKind::MeterStick, &[("speed", 0.05), ("speed2", -0.05)], Precision::F64, LcpSize::Reduced),
+        (SceneKind::MeterStick, &[("speed", 0.02), ("duration", 3.0)], Precision::F32, LcpSize::Reduced),
+        (
+            SceneKind::Incline,
+            &[("angle", 20.0), ("width", 0.05), ("height", 0.2)],
+            Precision::F32,
+            LcpSize::Reduced,
+        ),
+        (SceneKind::Incline, &[], Precision::F64, LcpSize::Full),
+        (
+            SceneKind::Ladder,
+            &[("angle", 60.0), ("mu-floor", 0.0), ("mu-wall", 0.0)],
+            Precision::F32,
+            LcpSize::Reduced,
+        ),
+    ];
+    for (kind, given, precision, size) in cases {
+        let (args, mut session) = both(*kind, given, *precision, *size);
+        let (_, spec) = args.specs(None).unwrap().remove(0);
+        session.create(*precision, *size).unwrap();
+        let ours = session.spec().unwrap();
+        for (i, (name, value)) in spec.fields().into_iter().enumerate() {
+            assert_eq!(ours.field(i).map(f64::to_bits), Some(value.to_bits()), "{kind:?} {name}");
+        }
+        let text = run_scene(&SceneCmd { scene: args }).unwrap();
+        let sim = session.sim_mut().unwrap();
+        sim.run(u64::MAX);
+        let outcome = sim.outcome().unwrap().to_string();
+        assert!(
+            text.contains(&format!(": outcome {outcome} at t = ")),
+            "{kind:?} {given:?}: {outcome}\n{text}"
+        );
+        assert!(text.contains(&format!("checksum {:08x}", sim.checksum())), "{kind:?} {given:?}\n{text}");
+    }
+}
+
+#[test]
+fn a_config_gives_each_flag_once() {
+    let mut c = Config::new(SceneKind::MeterStick);
+    assert!(c.give(flag_index("speed").unwrap(), 0.2));
+    assert!(c.give(flag_index("speed").unwrap(), 0.3));
+    assert!(!c.give(FLAGS.len(), 1.0));
+    let spec = c.resolve(Precision::F32).unwrap();
+    assert_eq!(
+        spec.get("finger1_velocity"),
+        Some(0.3),
+        "the last value given counts, as on the command line"
+    );
+}
