@@ -40,8 +40,9 @@ build_firmware() {
 # tests); rig-*: the demo rig on the STM32F411 Black Pill, with and without defmt logging (`log`)
 # and the 8x8 fallback (the 6x6-only builds link no 8x8 code); *-link: with the host link
 # (`meterstick-link`: QEMU's UART, the Black Pill's USB CDC), the QEMU ones run by the end-to-end
-# test. Every QEMU build and rig-m4f-nolog / rig-m4f-6x6-nolog link with the panic handler that
-# references an undefined symbol (no panic path; firmware/src/main.rs).
+# test; *-uart: the Black Pill's link on USART2. Every QEMU build, rig-m4f-nolog,
+# rig-m4f-6x6-nolog and rig-m4f-6x6-nolog-uart link with the panic handler that references an
+# undefined symbol (no panic path; firmware/src/main.rs).
 FIRMWARE_BUILDS=(
   "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback"
   "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback"
@@ -52,7 +53,7 @@ FIRMWARE_BUILDS=(
   "qemu-m4f-link thumbv7em-none-eabihf qemu-mps2-an386,fallback,link"
   "qemu-m0-link thumbv6m-none-eabi qemu-microbit,fallback,link"
   "rig-m4f-link thumbv7em-none-eabihf board-blackpill,log,fallback,link"
-  "rig-m4f-6x6-nolog-link thumbv7em-none-eabihf board-blackpill,link"
+  "rig-m4f-6x6-nolog-uart thumbv7em-none-eabihf board-blackpill,uart-link"
 )
 
 # The core for the browser: meterstick-web built for wasm32-unknown-unknown (release, without

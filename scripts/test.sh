@@ -36,9 +36,9 @@ done
 step "firmware clippy"
 if [ "$MS_CROSS_MODE" = rustup ]; then
   # The distinct code paths: QEMU binding; rig with logging and fallback; rig with neither; the
-  # QEMU binding with the host link; the rig with the link (USB).
+  # QEMU binding with the host link; the rig with the link (USB; UART).
   for spec in "${FIRMWARE_BUILDS[0]}" "${FIRMWARE_BUILDS[2]}" "${FIRMWARE_BUILDS[5]}" \
-      "${FIRMWARE_BUILDS[6]}" "${FIRMWARE_BUILDS[8]}"; do
+      "${FIRMWARE_BUILDS[6]}" "${FIRMWARE_BUILDS[8]}" "${FIRMWARE_BUILDS[9]}"; do
     set -- $spec
     (cd firmware && cargo clippy --locked --release --no-default-features --target "$2" --features "$3" \
         --target-dir "$FIRMWARE_TARGET_DIR" -- -D warnings)
@@ -59,7 +59,7 @@ M0="$FIRMWARE_TARGET_DIR/elf/qemu-m0.elf"
 step "no panic path (link-time check: these builds' panic handler references an undefined symbol)"
 # A build with a panic path left would have failed to link above; that they linked is the proof.
 # Here, a second look at the final ELFs: no panic function of core is in them at all.
-for name in qemu-m4f qemu-m0 qemu-m4f-link qemu-m0-link rig-m4f-nolog rig-m4f-6x6-nolog; do
+for name in qemu-m4f qemu-m0 qemu-m4f-link qemu-m0-link rig-m4f-nolog rig-m4f-6x6-nolog rig-m4f-6x6-nolog-uart; do
   elf="$FIRMWARE_TARGET_DIR/elf/$name.elf"
   if nm "$elf" | grep -qiE 'panicking|rust_begin_unwind'; then
     echo "$name: a panic handler is linked in: a panic path survived" >&2

@@ -9,9 +9,10 @@
 //! | finger 2 lights: sticking / sliding / separated | PB15 / PA8 / PA9 | active high |
 //! | fault light | PA10 | active high |
 //! | host link (`link`): USB D- / D+ | PA11 / PA12 | the board's USB-C port, USB CDC (a serial port on the host) |
+//! | host link (`uart-link`): USART2 TX / RX | PA2 / PA3 | 921,600 baud 8N1, 3.3 V, to a USB-serial adapter |
 //!
-//! Clocks: the board's 25 MHz crystal; 100 MHz core, or 96 MHz with `link` (USB needs an exact
-//! 48 MHz from the same PLL, which 100 MHz excludes). SysTick wraps every `h` (the scene's
+//! Clocks: the board's 25 MHz crystal; 100 MHz core, or 96 MHz with the USB link (USB needs an
+//! exact 48 MHz from the same PLL, which 100 MHz excludes). SysTick wraps every `h` (the scene's
 //! step; 1 ms by default, reprogrammed when `h` changes); each wrap runs one [`Rig::tick`], i.e.
 //! one scene step in real time. The time a tick took is read from SysTick: the worst is logged
 //! (with `log`) every second as the real-time margin, and sent to the host (with `link`) in
@@ -37,10 +38,10 @@ use defmt_rtt as _;
 use crate::systick;
 
 /// Core clock (Hz).
-#[cfg(not(feature = "link"))]
+#[cfg(not(all(feature = "link", not(feature = "uart-link"))))]
 const SYSCLK_HZ: u32 = 100_000_000;
 /// Core clock (Hz): 96 MHz, so that the PLL also gives USB its 48 MHz.
-#[cfg(feature = "link")]
+#[cfg(all(feature = "link", not(feature = "uart-link")))]
 const SYSCLK_HZ: u32 = 96_000_000;
 /// Scene steps per second at boot (h = 1 ms); one SysTick period per step.
 const STEP_HZ: u32 = 1_000;
@@ -69,9 +70,9 @@ fn period_of(h: f32) -> u32 {
 
 pub fn main() -> ! {
     let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else { halt() };
-    #[cfg(not(feature = "link"))]
+    #[cfg(not(all(feature = "link", not(feature = "uart-link"))))]
     let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()));
-    #[cfg(feature = "link")]
+    #[cfg(all(feature = "link", not(feature = "uart-link")))]
     let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()).require_pll48clk());
     let gpioa = dp.GPIOA.split(&mut rcc);
     let gpiob = dp.GPIOB.split(&mut rcc);
@@ -94,18 +95,10 @@ pub fn main() -> ! {
         ],
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
-    let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
-    let mut rig = match Rig::<_, _, _, 6>::new(params, RigConfig::default_rig(), pins, CycleDelay) {
-        Ok(rig) => rig,
-        #[cfg_attr(not(feature = "log"), allow(unused_variables))]
-        Err(e) => {
-            #[cfg(feature = "log")]
-            defmt::error!("rig not started: {}", e);
-            halt()
-        }
-    };
+    let mut rig = new_rig(pins);
     #[cfg(feature = "link")]
     let (mut port, mut session) = {
+        #[cfg(not(feature = "uart-link"))]
         let Some(port) = usb::UsbPort::new(
             (dp.OTG_FS_GLOBAL, dp.OTG_FS_DEVICE, dp.OTG_FS_PWRCLK),
             (gpioa.pa11, gpioa.pa12),
@@ -113,6 +106,8 @@ pub fn main() -> ! {
         ) else {
             halt()
         };
+        #[cfg(feature = "uart-link")]
+        let Some(port) = uart::UartPort::new(dp.USART2, (gpioa.pa2, gpioa.pa3), &mut rcc) else { halt() };
         let mut session = crate::session::Session::new(0, crate::session::build_id(env!("MS_BUILD_ID")));
         session.boot(&rig);
         (port, session)
@@ -198,9 +193,78 @@ impl Buttons {
     }
 }
 
+/// The host link on USART2 (`uart-link`): PA2 TX, PA3 RX, 921,600 baud 8N1, polled.
+#[cfg(feature = "uart-link")]
+mod uart {
+    use embedded_hal_nb::serial::{Read as _, Write as _};
+    use stm32f4xx_hal::pac::USART2;
+    use stm32f4xx_hal::prelude::*;
+    use stm32f4xx_hal::rcc::Rcc;
+    use stm32f4xx_hal::serial::{Serial, config::Config};
+
+    use crate::session::Port;
+
+    /// Baud rate: 100 MHz / (16 x 6.8125) = 917,431 baud (-0.45 %), within the +-2 % a UART
+    /// tolerates; common USB-serial adapters (CP2102, FT232R, CH340) run at 921,600.
+    const BAUD: u32 = 921_600;
+
+    /// USART2 as the link's port.
+    pub struct UartPort {
+        serial: Serial<USART2>,
+        /// Receive errors (overrun, framing, noise) seen.
+        errors: u32,
+    }
+
+    impl UartPort {
+        /// USART2 on PA2/PA3 (`None` if the HAL refuses the configuration).
+        pub fn new(
+            usart: USART2,
+            pins: (stm32f4xx_hal::gpio::PA2, stm32f4xx_hal::gpio::PA3),
+            rcc: &mut Rcc,
+        ) -> Option<Self> {
+            let serial = Serial::new(usart, pins, Config::default().baudrate(BAUD.bps()), rcc).ok()?;
+            Some(Self { serial, errors: 0 })
+        }
+
+        /// Nothing to service (the USB port's counterpart).
+        pub fn poll(&mut self) {
+            let _ = self.errors;
+        }
+    }
+
+    impl Port for UartPort {
+        fn read(&mut self, buf: &mut [u8]) -> usize {
+            let mut n = 0;
+            for slot in buf {
+                match self.serial.read() {
+                    Ok(b) => {
+                        *slot = b;
+                        n += 1;
+                    }
+                    Err(nb::Error::WouldBlock) => break,
+                    // A lost or damaged byte: the frame decoder drops its frame.
+                    Err(nb::Error::Other(_)) => self.errors = self.errors.wrapping_add(1),
+                }
+            }
+            n
+        }
+
+        fn write(&mut self, bytes: &[u8]) -> usize {
+            let mut n = 0;
+            for &b in bytes {
+                if self.serial.write(b).is_err() {
+                    break;
+                }
+                n += 1;
+            }
+            n
+        }
+    }
+}
+
 /// The host link over the Black Pill's USB-C port: a USB CDC ACM serial port
 /// (`usb-device` + `usbd-serial`), polled from the main loop.
-#[cfg(feature = "link")]
+#[cfg(all(feature = "link", not(feature = "uart-link")))]
 mod usb {
     use stm32f4xx_hal::otg_fs::{USB, UsbBus, UsbBusType};
     use stm32f4xx_hal::pac;
@@ -286,6 +350,20 @@ impl Margin {
                 self.worst * 100 / period.max(1),
                 self.overruns
             );
+        }
+    }
+}
+
+/// The rig on `pins` with the slow preset at h = 1 ms (halts if it cannot start).
+fn new_rig(pins: RigPins<PA0<Input>, Out>) -> Rig<PA0<Input>, Out, CycleDelay, 6> {
+    let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
+    match Rig::<_, _, _, 6>::new(params, RigConfig::default_rig(), pins, CycleDelay) {
+        Ok(rig) => rig,
+        #[cfg_attr(not(feature = "log"), allow(unused_variables))]
+        Err(e) => {
+            #[cfg(feature = "log")]
+            defmt::error!("rig not started: {}", e);
+            halt()
         }
     }
 }

@@ -11,19 +11,20 @@
 //!
 //! With `link`, the rig is driven from a host ([`session`], the `meterstick-link` protocol):
 //! under QEMU over the machine's UART ([`uart`], [`qemu_link`]), on the Black Pill over USB CDC
-//! (its USB-C port).
+//! (its USB-C port), or with `uart-link` over USART2.
 //!
 //! **No panic path.** The panic handler of every QEMU build and of the Black Pill's without
-//! `log` and `link` calls a function that is declared but defined nowhere, so a panic path that
+//! `log` and without the USB link (`link` over USB; `uart-link` is fine) calls a function that is declared but defined nowhere, so a panic path that
 //! survives optimisation fails the link with an undefined symbol
 //! `meterstick_firmware_has_a_panic_path`: those builds link, so none has one
 //! (`scripts/panic-paths.sh` lists the paths when one appears). Two dependencies keep panic
 //! paths that cannot be removed from here: `defmt-rtt` panics when its logger is taken
 //! reentrantly (a log from an interrupt during a log), by design; the USB stack (`usb-device`
 //! 0.3, `synopsys-usb-otg` 0.4, `usbd-serial` 0.2) has about 60 (descriptor-writer asserts,
-//! endpoint lookups, FIFO indexing). So the Black Pill's `log` or `link` builds keep a panic
+//! endpoint lookups, FIFO indexing). So the Black Pill's `log` or USB `link` builds keep a panic
 //! handler that halts (and logs, with `log`); the core, the rig loop, the protocol and the
-//! session, which they share with the checked builds, are proven panic-free by those.
+//! session, which they share with the checked builds, are proven panic-free by those, and the
+//! rig with the link on a UART (`uart-link`, no `log`) is checked whole.
 #![no_std]
 #![no_main]
 
@@ -63,7 +64,10 @@ fn main() -> ! {
 /// after optimisation. A firmware that links cannot panic.
 #[cfg(not(any(
     feature = "panic-locate",
-    all(feature = "board-blackpill", any(feature = "log", feature = "link"))
+    all(
+        feature = "board-blackpill",
+        any(feature = "log", all(feature = "link", not(feature = "uart-link")))
+    )
 )))]
 #[panic_handler]
 #[allow(unsafe_code)]
@@ -75,11 +79,11 @@ fn panic(_info: &core::panic::PanicInfo<'_>) -> ! {
     unsafe { meterstick_firmware_has_a_panic_path() }
 }
 
-/// The rig with `log` or `link` (defmt-rtt and the USB stack keep panic paths, see the crate
-/// docs): log (with `log`) and halt.
+/// The rig with `log` or the USB link (defmt-rtt and the USB stack keep panic paths, see the
+/// crate docs): log (with `log`) and halt.
 #[cfg(all(
     feature = "board-blackpill",
-    any(feature = "log", feature = "link"),
+    any(feature = "log", all(feature = "link", not(feature = "uart-link"))),
     not(feature = "panic-locate")
 ))]
 #[panic_handler]

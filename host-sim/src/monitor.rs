@@ -798,7 +798,13 @@ pub fn monitor(args: &MonitorArgs) -> anyhow::Result<String> {
             );
         }
         let h = link.host_stats();
-        let _ = writeln!(summary, "host link: {} frames ok, {} dropped", h.frames_ok, h.dropped());
+        let _ = writeln!(
+            summary,
+            "host link: {} frames ok, {} dropped, {} bytes",
+            h.frames_ok,
+            h.dropped(),
+            h.bytes
+        );
     }
     Ok(summary)
 }
