@@ -1003,3 +1003,55 @@ fn stress_grid(link: &mut Link, args: &MonitorArgs) -> anyhow::Result<String> {
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::panic)]
+    use super::*;
+
+    #[test]
+    fn set_flags_parse_and_name_themselves_in_errors() {
+        assert_eq!(parse_set("mu_kinetic=0.35").unwrap(), (ParamId::MuKinetic, 0.35));
+        assert_eq!(parse_set("finger1-velocity = 0.2").unwrap(), (ParamId::Finger1Velocity, 0.2));
+        let e = parse_set("mu=0.3").unwrap_err().to_string();
+        assert!(e.starts_with("--set mu=0.3: no parameter \"mu\"") && e.contains("mu_static"), "{e}");
+        let e = parse_set("gravity=fast").unwrap_err().to_string();
+        assert!(e.contains("--set gravity=fast") && e.contains("not a number"), "{e}");
+        assert!(parse_set("gravity").unwrap_err().to_string().contains("expected NAME=VALUE"));
+    }
+
+    #[test]
+    fn a_port_that_cannot_be_opened_is_named() {
+        let e = Link::open("/dev/meterstick-no-such-port", 115_200).unwrap_err().to_string();
+        assert!(e.starts_with("--port /dev/meterstick-no-such-port: cannot open"), "{e}");
+        // A closed local port: connection refused, named as given.
+        let free = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+        let e = Link::open(&format!("tcp:127.0.0.1:{free}"), 0).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("--port tcp:127.0.0.1:{free}: cannot connect")), "{e}");
+    }
+
+    #[test]
+    fn replies_match_their_commands() {
+        let set = Command::SetParam { id: ParamId::Gravity, value: 1.0 };
+        assert!(is_reply_to(&set, &Report::Ack { command: set.tag() }));
+        assert!(is_reply_to(&set, &Report::Rejected { id: ParamId::Gravity, reason: RejectReason::Busy }));
+        assert!(!is_reply_to(&set, &Report::Rejected { id: ParamId::Step, reason: RejectReason::Busy }));
+        assert!(is_reply_to(&Command::Ping { nonce: 3 }, &Report::Pong { nonce: 3 }));
+        assert!(!is_reply_to(&Command::Ping { nonce: 3 }, &Report::Pong { nonce: 4 }));
+        assert!(!is_reply_to(&Command::Start, &Report::Ack { command: Command::Stop.tag() }));
+        assert!(is_reply_to(
+            &Command::Start,
+            &Report::Error(ErrorCode::NotAllowed { command: Command::Start.tag(), state: RigState::Running })
+        ));
+        assert!(!is_reply_to(&Command::Start, &Report::State(RigState::Running)));
+    }
+
+    #[test]
+    fn telemetry_rows_carry_supports_and_along() {
+        let c = ContactTelemetry { mode: Mode::Sticking, normal_impulse: 1e-3, friction_impulse: 0.0 };
+        let row = row_of(0.5, [0.1, 0.0025, 0.0, 0.0, 0.0, 0.0], [-0.3, 0.4], [c, c], [0.0, 0.0]);
+        assert_eq!(row.supports, [[f64::from(-0.3f32), 0.0], [f64::from(0.4f32), 0.0]]);
+        assert!((row.contacts[0].along - (f64::from(-0.3f32) - f64::from(0.1f32))).abs() < 1e-12);
+        assert_eq!(row.contacts[1].mode, ContactMode::Sticking);
+    }
+}
