@@ -47,7 +47,7 @@ impl ThreeFingers {
         let model = Model {
             body: Body::rod(0.2, 1.0, 0.005),
             contacts: [finger; 3],
-            settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, speed_scale: SPEED },
+            settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
         };
         let start = BodyState::at_rest(0.0, 0.0025, 0.0);
         let stepper = Stepper::new(model, REDUCED, FULL, start, fingers(START[0], SPEED))?;

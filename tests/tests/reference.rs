@@ -165,3 +165,24 @@ fn the_reference_rejects_invalid_parameters() {
     let e = run(&spec, Implementation::Reference, Record::Nothing).unwrap_err().to_string();
     assert!(e.contains("step"), "{e}");
 }
+
+/// The f32 envelope's cause, fixed: a gap within round-off of the positions is not a gap
+/// (`docs/formulation.md`, "Gaps at round-off"). At 0.001 m/s with fingers starting at -/+0.1 m
+/// (190,500 steps), the f32 core left the reference by 1.9e-4 m, and one eq. 21 ratio was 0.6876
+/// where the reference has 0.6664, while the gap's rounding over h (one ulp of 0.5 m over 1 ms,
+/// 6e-5 m/s) was 6% of the finger's speed. Asserted: the target of `docs/scenes.md`'s envelope,
+/// 1e-5 m, and the same switches with ratios within 1e-3.
+#[test]
+fn f32_core_holds_1e_5_m_at_a_slow_finger() {
+    let spec = SceneSpec::MeterStick(MeterStickParams { finger2_x: 0.1, ..stick(0.001, -0.1, 200.0) });
+    let r = reference(&spec);
+    let core = run(&spec, Implementation::CORE_F32_6, Record::All).unwrap();
+    assert_eq!(core.outcome, r.outcome);
+    let (com, _) = max_deviation(&core, &r);
+    assert!(com < 1e-5, "COM deviation {com:e} m");
+    let (sa, sb) = (switches(&core), switches(&r));
+    assert_eq!(sa.len(), sb.len(), "{sa:?} vs {sb:?}");
+    for (x, y) in sa.iter().zip(&sb) {
+        assert!((x.ratio - y.ratio).abs() < 1e-3, "{x:?} vs {y:?}");
+    }
+}

@@ -259,14 +259,12 @@ impl<T: Real, const N: usize> Tableau<T, N> {
     /// (the artificial column is `-e`, so this is the lexicographic minimum ratio).
     fn first_leaving_row(&self) -> usize {
         let mut lo = self.rhs[0];
-        let mut mag = T::zero();
         for i in 0..N {
-            mag = max(mag, self.rhs[i].abs_exact());
             if self.rhs[i] < lo {
                 lo = self.rhs[i];
             }
         }
-        let tol = T::of(N as f64) * T::EPS * mag;
+        let tol = T::of(N as f64) * T::EPS * lo.abs_exact();
         let mut ties = 0u32;
         for i in 0..N {
             if self.rhs[i] <= lo + tol {
@@ -299,10 +297,11 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             }
         }
         let theta = theta?;
-        let tie_tol = n_eps * max(theta, rhs_max / col_max);
         let mut ties = 0u32;
         for i in 0..N {
-            if col[i] > piv_tol && max(self.rhs[i], T::zero()) / col[i] <= theta + tie_tol {
+            if col[i] > piv_tol
+                && max(self.rhs[i], T::zero()) / col[i] <= theta + n_eps * max(theta, rhs_max / col_max)
+            {
                 if self.basis[i] == Var::Artificial {
                     return Some(i);
                 }
@@ -315,9 +314,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
     /// Runs Lemke's pivoting from this tableau. Returns the pivots on success (the
     /// artificial variable left the basis, or was never needed).
     fn run(&mut self, max_pivots: u32) -> Result<u32, LcpError> {
-        let n_eps = T::of(N as f64) * T::EPS;
-        let rhs_max = self.rhs.iter().fold(T::zero(), |acc, x| max(acc, x.abs_exact()));
-        if self.rhs.iter().all(|&x| x >= -n_eps * rhs_max) {
+        if self.rhs.iter().all(|&x| x >= T::zero()) {
             return Ok(0);
         }
         let r = self.first_leaving_row();

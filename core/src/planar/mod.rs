@@ -23,7 +23,7 @@
 //!
 //! let body = Body::block(1.0_f64, 0.2, 0.1);
 //! let corner = |x: f64| Contact { feature: Feature::Point([x, -0.05]), mu_static: 0.5, mu_kinetic: 0.5 };
-//! let settings = Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, speed_scale: 0.0 };
+//! let settings = Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 };
 //! let model = Model { body, contacts: [corner(-0.1), corner(0.1)], settings };
 //! const FULL: Layout<2, 8> = Layout::full();
 //! let floor = Support::fixed_line([0.0, 0.0], [0.0, 1.0]);

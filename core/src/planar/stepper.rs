@@ -24,7 +24,7 @@ use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
 use super::layout::{Direction, Layout, Variable};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
-use crate::real::Real;
+use crate::real::{Real, max};
 
 /// The stepper's numbers, besides the body and its contacts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,10 +36,6 @@ pub struct Settings<T> {
     pub gravity: T,
     /// A touching contact whose slip speed is at most this sticks (m/s, >= 0).
     pub stick_speed: T,
-    /// The scene's characteristic support speed `V` (m/s, >= 0): the scale of velocity round-off
-    /// in the "separated" impulse floor and the reduced-layout check. The fastest prescribed support
-    /// speed (0 for supports at rest).
-    pub speed_scale: T,
 }
 
 /// What the stepper moves: the body, its contacts and the numbers.
@@ -176,8 +172,11 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     m_inv: [T; 3],
     half: [T; 2],
     size: T,
-    /// A contact with at most this normal impulse per unit mass is separated:
-    /// `64 eps (g h + V)` (constant, so computed once).
+    /// A contact with at most this normal impulse per unit mass is separated: `64 eps g h`, the
+    /// round-off of a step's gravity impulse (constant, so computed once). Not `eps V`: the
+    /// impulses are solved to round-off of their own scale even when the support speed `V` is in
+    /// the same LCP, and a floor of `eps V` called a contact carrying 1/40 of a 1 m/s scene's
+    /// weight at h = 1e-5 s separated (and its next step used `mu_s`).
     impulse_floor: T,
     layout: Layout<K, N>,
     #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
@@ -248,7 +247,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
         let body = model.body;
         let s = &model.settings;
-        let impulse_floor = T::of(64.0) * T::EPS * (s.gravity * s.step + s.speed_scale) + T::TINY;
+        let impulse_floor = T::of(64.0) * T::EPS * s.gravity * s.step + T::TINY;
         let mut stepper = Self {
             contacts: model.contacts,
             settings: model.settings,
@@ -517,7 +516,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
 
     /// The reduced layout's check (`docs/formulation.md`, "Reduced friction layouts"): for each
     /// active contact that keeps one direction `s` of two, the row of the dropped direction,
-    /// `-s (W_d^T v+ - d . u) + sigma`, must not be negative beyond round-off.
+    /// `-s (W_d^T v+ - d . u) + sigma`, must not be negative beyond round-off: `64 N eps` of this
+    /// step's velocities (the fastest support's and the body's). Not of a scene-wide speed: after
+    /// a 10 m/s finger stopped, a tolerance of `eps x 10 m/s` let an f32 rod slide the wrong way
+    /// on the kept direction for 500 steps (2 mm from the full layout; `host-sim envelope`).
     ///
     /// Except where `sigma` is free: when the kept direction carries no impulse and the cone row
     /// `mu p_n - p_f` is zero too (`mu = 0`, or no normal impulse), `sigma` can be raised to
@@ -526,7 +528,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// meter stick fell back to the full layout in 441 of 3,998 steps; `host-sim stress`.)
     fn dropped_direction_needed(&self, inputs: &StepInputs<'_, T, K>, v_plus: &[T; 3], z: &[T; NF]) -> bool {
         let s = &self.settings;
-        let speed_scale = s.speed_scale
+        let mut support_speed = T::zero();
+        for u in &inputs.support_velocity {
+            support_speed = max(support_speed, u[0].abs_exact() + u[1].abs_exact());
+        }
+        let speed_scale = support_speed
             + s.gravity * s.step
             + v_plus[0].abs_exact()
             + v_plus[1].abs_exact()
@@ -608,7 +614,6 @@ fn validate<T: Real, const K: usize>(
         ("step", s.step, Check::Positive),
         ("gravity", s.gravity, Check::NonNegative),
         ("stick_speed", s.stick_speed, Check::NonNegative),
-        ("speed_scale", s.speed_scale, Check::NonNegative),
     ])?;
     for (i, c) in model.contacts.iter().enumerate() {
         check_fields(&[

@@ -123,8 +123,7 @@ impl<T: Real, const N: usize, const E: usize> Incline<T, N, E> {
             mu_static: p.mu_static,
             mu_kinetic: p.mu_kinetic,
         };
-        let settings =
-            Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed, speed_scale: T::zero() };
+        let settings = Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed };
         let model = Model { body, contacts: [corner(c0), corner(c1)], settings };
         let layout =
             const { Layout::<2, N>::new(if N == 8 { [Tangents::Both; 2] } else { [Tangents::Plus; 2] }) };

@@ -122,8 +122,7 @@ impl<T: Real, const N: usize, const E: usize> Ladder<T, N, E> {
         let half = p.length / T::of(2.0);
         let end =
             |x: T, mu: T| Contact { feature: Feature::Point([x, T::zero()]), mu_static: mu, mu_kinetic: mu };
-        let settings =
-            Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed, speed_scale: T::zero() };
+        let settings = Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed };
         let model = Model {
             body: Body::rod(p.mass, p.length, p.thickness),
             contacts: [end(-half, p.mu_floor), end(half, p.mu_wall)],

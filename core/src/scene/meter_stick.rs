@@ -222,17 +222,10 @@ impl<T: Real, const N: usize, const E: usize> MeterStick<T, N, E> {
         });
         let finger =
             Contact { feature: Feature::LowerFace, mu_static: p.mu_static, mu_kinetic: p.mu_kinetic };
-        let v1 = p.finger1_velocity.abs_exact();
-        let v2 = p.finger2_velocity.abs_exact();
         let model = Model {
             body: Body::rod(p.rod_mass, p.rod_length, p.rod_thickness),
             contacts: [finger; 2],
-            settings: Settings {
-                step: p.step,
-                gravity: p.gravity,
-                stick_speed: p.stick_speed,
-                speed_scale: if v1 > v2 { v1 } else { v2 },
-            },
+            settings: Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed },
         };
         let layout = if p.fingers_approach() || p.finger1_velocity == p.finger2_velocity {
             const { Self::layout([Tangents::Plus, Tangents::Minus]) }
