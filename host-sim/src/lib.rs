@@ -5,7 +5,9 @@
 //! reference of the scenes ([`mod@reference`]), the main job ([`run_cmd`]), the error-vs-run-time report ([`report`]), the stress grid ([`stress`]) and the QEMU firmware
 //! runner ([`qemu`]).
 
+pub mod envelope;
 pub mod lcp_io;
+pub mod map;
 pub mod monitor;
 pub mod plot;
 pub mod qemu;

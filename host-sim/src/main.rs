@@ -7,7 +7,7 @@ use std::time::Duration;
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use meterstick_host_sim::serve;
-use meterstick_host_sim::{lcp_io, monitor, qemu, report, run_cmd, scene_cmd, stress};
+use meterstick_host_sim::{envelope, lcp_io, map, monitor, qemu, report, run_cmd, scene_cmd, stress};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -41,6 +41,13 @@ enum Cmd {
     /// Error against run time over a sweep of h (core f32 6x6, f32 8x8, f64 8x8, reference),
     /// and a success map over finger speed and mu_k/mu_s; writes report.md with pictures.
     Report(report::ReportArgs),
+    /// The outcome over two parameters (default: the meter stick over finger speed x mu_k/mu_s,
+    /// 200 x 50 cells), in parallel, with the boundaries between outcomes bisected; writes
+    /// map.csv, boundaries.csv, summary.json and map.svg.
+    Map(map::MapArgs),
+    /// Where f32 holds: the f32 core against the f64 core over finger speed (1e-4 .. 10 m/s) x h
+    /// (1e-5 .. 1e-2 s), with f64's own error (against h/2); writes envelope.md, .csv and .json.
+    Envelope(envelope::EnvelopeArgs),
     /// Numerical stability on stiff and extreme cases: a grid of scenes (speed, h, friction,
     /// mass, rod shape, gravity, edge geometry, drops and penetrations, 10^6-step runs) in
     /// core f32 6x6, f32 8x8 and f64 8x8, judged by residual, penetration, energy and
@@ -106,6 +113,14 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Cmd::Report(args) => {
             print!("{}", report::run(&args)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Envelope(args) => {
+            print!("{}", envelope::run_envelope(&args)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Map(args) => {
+            print!("{}", map::run_map(&args)?);
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Stress(args) => {

@@ -222,30 +222,89 @@ pub fn relative(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Resul
     )
 }
 
-/// A heat map of outcomes: one cell per `(column, row)`, coloured by class, with axis labels.
+/// The colour of an outcome class in every picture.
+#[must_use]
+pub const fn outcome_color(class: crate::trajectory::OutcomeClass) -> RGBColor {
+    use crate::trajectory::OutcomeClass as O;
+    match class {
+        O::Balanced | O::Held => RGBColor(44, 160, 44),
+        O::Fell | O::Tipped => RGBColor(214, 39, 40),
+        O::Slid => RGBColor(255, 127, 14),
+        O::Unfinished => RGBColor(200, 200, 200),
+        O::Failed => RGBColor(0, 0, 0),
+    }
+}
+
+/// A map of outcomes over two continuous axes: one rectangle per cell (`cells[row][column]` at
+/// the centres `xs`, `ys`), coloured by class, with the bisected boundaries as black dots, numeric
+/// axes, and a legend of the classes present.
 ///
 /// # Errors
 /// I/O.
-pub fn outcome_map(
+pub fn outcome_raster(
     path: &Path,
     title: &str,
-    x: (&str, &[String]),
-    y: (&str, &[String]),
-    cells: &[Vec<&str>],
+    (x_desc, xs): (&str, &[f64]),
+    (y_desc, ys): (&str, &[f64]),
+    cells: &[Vec<crate::trajectory::OutcomeClass>],
+    boundaries: &[crate::map::Boundary],
 ) -> anyhow::Result<()> {
-    let color = |c: &str| match c {
-        "Balanced" | "Held" => RGBColor(44, 160, 44),
-        "Fell" | "Tipped" => RGBColor(214, 39, 40),
-        "Slid" => RGBColor(255, 127, 14),
-        "Unfinished" => RGBColor(200, 200, 200),
-        _ => RGBColor(0, 0, 0),
+    use crate::trajectory::OutcomeClass as O;
+    let color = outcome_color;
+    let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
+    let (hx, hy) = (half(xs), half(ys));
+    let bounds = |v: &[f64], h: f64| {
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min) - h;
+        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max) + h;
+        (lo, hi)
     };
-    let colors: Vec<Vec<RGBColor>> = cells.iter().map(|row| row.iter().map(|c| color(c)).collect()).collect();
-    let mut present: Vec<&str> = cells.iter().flatten().copied().collect();
-    present.sort_unstable();
+    let ((x0, x1), (y0, y1)) = (bounds(xs, hx), bounds(ys, hy));
+    let root = SVGBackend::new(path, (1100, 620)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(12)
+        .margin_right(24)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    chart.configure_mesh().disable_mesh().x_desc(x_desc).y_desc(y_desc).draw().map_err(err)?;
+    for (j, row) in cells.iter().enumerate() {
+        for (i, &c) in row.iter().enumerate() {
+            let (x, y) = (xs[i], ys[j]);
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x - hx, y - hy), (x + hx, y + hy)],
+                    color(c).filled(),
+                )))
+                .map_err(err)?;
+        }
+    }
+    chart
+        .draw_series(boundaries.iter().map(|b| Circle::new((b.x, b.y), 2, BLACK.filled())))
+        .map_err(err)?
+        .label("boundary (bisected)")
+        .legend(|(x, y)| Circle::new((x + 6, y), 3, BLACK.filled()));
+    let mut present: Vec<O> = cells.iter().flatten().copied().collect();
+    present.sort_by_key(|c| c.name());
     present.dedup();
-    let legend: Vec<(String, RGBColor)> = present.iter().map(|n| ((*n).to_string(), color(n))).collect();
-    heat_map(path, title, x, y, &colors, &legend, (900, 560))
+    for c in present {
+        let col = color(c);
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label(if c == O::Unfinished { "Unfinished (undecided at max-time)" } else { c.name() })
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], col.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(err)?;
+    root.present().map_err(err)
 }
 
 /// A heat map of ratios to a bound: one cell per `(column, row)`, coloured by

@@ -54,6 +54,19 @@ pub fn progress(len: u64, what: &str) -> ProgressBar {
     bar
 }
 
+/// `x` in short scientific notation for tables and text (`1.23e-5`; `0` for zero, `n/a` for a
+/// quantity that does not exist, NaN or infinite).
+#[must_use]
+pub fn sci(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if x.is_finite() {
+        format!("{x:.2e}")
+    } else {
+        "n/a".into()
+    }
+}
+
 /// One implementation's part of a [`RunSummary`]'s scene.
 #[derive(Debug, Clone, Serialize)]
 pub struct ImplementationSummary {

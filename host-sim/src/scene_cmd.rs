@@ -71,8 +71,22 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
         let _ = writeln!(out, "checksum {sum:08x}");
     }
     let eq21 = switches(&traj);
-    let _ = writeln!(out, "switch events ({}):", traj.events.len());
+    let _ = writeln!(
+        out,
+        "switch events ({}; eq. 21 switches {}, before the fingers stopped):",
+        traj.events.len(),
+        eq21.len()
+    );
+    let stop = traj.measured.meeting.map(|m| m.time_s);
+    let mut stop_shown = false;
     for e in &traj.events {
+        if let Some(s) = stop
+            && !stop_shown
+            && e.t > s
+        {
+            let _ = writeln!(out, "  t = {s:7.3} s  the fingers stop");
+            stop_shown = true;
+        }
         let ratio = eq21
             .iter()
             .find(|s| s.t.to_bits() == e.t.to_bits() && s.finger == e.contact + 1)
@@ -87,6 +101,11 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
             e.along[0],
             e.along[1]
         );
+    }
+    if let Some(s) = stop
+        && !stop_shown
+    {
+        let _ = writeln!(out, "  t = {s:7.3} s  the fingers stop");
     }
     Ok(out)
 }

@@ -264,7 +264,11 @@ impl Recorder {
             Record::Nothing => {}
             Record::Grid(dt) => {
                 let prev = self.last.unwrap_or(row);
-                while (self.next as f64) * dt <= row.t + 1e-9 * dt {
+                // A grid time within a quarter step of this row is this row: an f32 run's times
+                // `k h` carry f32 rounding (5e-9 s at 0.08 s), and missing a row by that much
+                // took the next step's (a whole step's motion, 1 mm at 10 m/s and h = 1e-4 s).
+                let slack = (1e-9 * dt).max(0.25 * (row.t - prev.t));
+                while (self.next as f64) * dt <= row.t + slack {
                     let tk = self.next as f64 * dt;
                     let a =
                         if row.t > prev.t { ((tk - prev.t) / (row.t - prev.t)).clamp(0.0, 1.0) } else { 1.0 };
@@ -543,9 +547,14 @@ pub struct Switch {
 }
 
 /// The eq. 21 switches of a run: a contact that was sticking starts to slide while the other was
-/// sliding before that step (modes before a step: the run's initial modes, then its events).
+/// sliding before that step (modes before a step: the run's initial modes, then its events), and
+/// strictly before the fingers stopped: a change at or after the stop is caused by the stop (the
+/// moving finger halts under a rod that slides on), not by eq. 21's force balance (at 0.01 m/s
+/// such a change had "ratio" 1.30 and dominated the summary's worst error). The stop is an event of
+/// its own kind in the events CSV.
 #[must_use]
 pub fn switches(run: &Trajectory) -> Vec<Switch> {
+    let stop = run.measured.meeting.map(|m| m.time_s);
     let mut mode = run.initial_modes;
     let mut before = mode;
     let mut step_time = None;
@@ -556,7 +565,11 @@ pub fn switches(run: &Trajectory) -> Vec<Switch> {
             before = mode;
         }
         let i = e.contact;
-        if i < CONTACTS
+        if i >= CONTACTS {
+            continue;
+        }
+        let before_stop = stop.is_none_or(|s| e.t < s);
+        if before_stop
             && before[i] == ContactMode::Sticking
             && e.mode.is_sliding()
             && before[1 - i].is_sliding()
@@ -569,9 +582,7 @@ pub fn switches(run: &Trajectory) -> Vec<Switch> {
                 ratio: (e.along[1 - i] / e.along[i]).abs(),
             });
         }
-        if i < CONTACTS {
-            mode[i] = e.mode;
-        }
+        mode[i] = e.mode;
     }
     out
 }
@@ -648,14 +659,24 @@ pub fn write_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
     write_lines(path, CSV_HEADER, lines)
 }
 
-/// Writes the events CSV: `t,contact,mode,along1,along2` (contact 1 or 2).
+/// Writes the events CSV: `t,kind,contact,mode,along1,along2`, one row per mode switch
+/// (`kind` `switch`, contact 1 or 2) and, for the meter stick, one for the fingers' stop (`kind`
+/// `stop`, contact and mode empty), in time order.
 ///
 /// # Errors
 /// I/O, naming the file.
 pub fn write_events_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
-    let lines = traj
+    let mut lines: Vec<(f64, String)> = traj
         .events
         .iter()
-        .map(|e| format!("{},{},{},{},{}", e.t, e.contact + 1, e.mode.name(), e.along[0], e.along[1]));
-    write_lines(path, "t,contact,mode,along1,along2", lines)
+        .map(|e| {
+            (e.t, format!("{},switch,{},{},{},{}", e.t, e.contact + 1, e.mode.name(), e.along[0], e.along[1]))
+        })
+        .collect();
+    if let Some(m) = traj.measured.meeting {
+        // After the switches of the stopping step: they were found on it.
+        let at = lines.partition_point(|(t, _)| *t <= m.time_s);
+        lines.insert(at, (m.time_s, format!("{},stop,,,,", m.time_s)));
+    }
+    write_lines(path, "t,kind,contact,mode,along1,along2", lines.into_iter().map(|(_, l)| l))
 }

@@ -134,10 +134,14 @@ fn run_writes_every_output_file() {
         }
         for name in ["core-events.csv", "reference-events.csv"] {
             let (header, rows) = read_csv(&dir.join(name));
-            assert_eq!(header.join(","), "t,contact,mode,along1,along2");
+            assert_eq!(header.join(","), "t,kind,contact,mode,along1,along2");
             assert!(!rows.is_empty(), "{name}");
             for r in &rows {
-                assert!(num(&r[0]) > 0.0 && ["1", "2"].contains(&r[1].as_str()), "{r:?}");
+                match r[1].as_str() {
+                    "switch" => assert!(num(&r[0]) > 0.0 && ["1", "2"].contains(&r[2].as_str()), "{r:?}"),
+                    "stop" => assert!(r[2].is_empty() && r[3].is_empty(), "{r:?}"),
+                    other => panic!("{name}: kind {other:?} in {r:?}"),
+                }
             }
         }
         for name in ["positions.svg", "motion.svg", "relative.svg"] {
@@ -222,13 +226,90 @@ fn report_quick_writes_its_tables_and_pictures() {
     );
     assert!(md.contains("### Against rapier2d") && md.contains("12.3x (test figure)"));
     assert!(md.contains("run `scripts/firmware-report.sh` before this report"));
-    for pic in ["error_vs_runtime.svg", "error_vs_h.svg", "success_map.svg"] {
+    for pic in ["error_vs_runtime.svg", "error_vs_h.svg", "map/map.svg"] {
         assert!(md.contains(pic), "report.md does not link {pic}");
         assert!(std::fs::read_to_string(out.join(pic)).unwrap().starts_with("<svg"));
     }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(json["sweep"].as_array().unwrap().len(), 12);
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `host-sim envelope --quick`: 2 speeds x 2 steps, where the f32 core holds within 1e-5 m of
+/// the f64 core and the f64 core equals the independent reference to round-off.
+#[test]
+fn envelope_quick_holds_and_checks_the_reference() {
+    let out = temp_dir("envelope");
+    let (code, stdout, err) = host_sim(&["envelope", "--quick", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("| finger speed (m/s) |"), "{stdout}");
+    let (header, rows) = read_csv(&out.join("envelope.csv"));
+    assert_eq!(header[7], "f32_deviation_m");
+    assert_eq!(rows.len(), 4);
+    for r in &rows {
+        assert_eq!(r.last().unwrap(), "holds", "{r:?}");
+        assert!(num(&r[7]) < 1e-5, "{r:?}");
+        assert_eq!(r[8], "true", "the same switch events: {r:?}");
+        assert!(num(&r[13]) < 1e-9, "f64 core vs reference: {r:?}");
+    }
+    let (code, _, err) = host_sim(&["envelope", "--max-steps", "0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--max-steps 0"), "{err}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `host-sim map` on a small grid: the slow, high-friction corner balances and the fast corner
+/// falls (eq. 21 and the paper's fig. 5); every bisected boundary is confirmed by `host-sim scene`
+/// run on each side of it, a separate command.
+#[test]
+fn map_locates_boundaries_that_scene_confirms() {
+    let out = temp_dir("map");
+    let (code, stdout, err) = host_sim(&[
+        "map",
+        "--x-range",
+        "0.05,1.2",
+        "--x-cells",
+        "6",
+        "--y-range",
+        "0.6,0.7",
+        "--y-cells",
+        "1",
+        "--tolerance",
+        "0.01",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("6 x 1 cells"), "{stdout}");
+    let (header, cells) = read_csv(&out.join("map.csv"));
+    assert_eq!(header, ["x", "y", "outcome"]);
+    assert_eq!(cells.len(), 6);
+    assert_eq!(cells[0][2], "Balanced", "0.146 m/s, mu_k/mu_s = 0.65: {cells:?}");
+    assert_eq!(cells[5][2], "Fell", "1.104 m/s: {cells:?}");
+    let (_, bounds) = read_csv(&out.join("boundaries.csv"));
+    assert!(!bounds.is_empty(), "Balanced and Fell cells in one row have a boundary between them");
+    let mu_k = format!("{}", 0.6 * num(&cells[0][1]));
+    for b in &bounds {
+        let (x, width) = (num(&b[1]), num(&b[2]));
+        assert!(width <= 0.01, "{b:?}");
+        for (speed, want) in [(x - width / 2.0, &b[3]), (x + width / 2.0, &b[4])] {
+            let (code, stdout, err) = host_sim(&["scene", "--speed", &format!("{speed}"), "--mu-k", &mu_k]);
+            assert_eq!(code, 0, "{err}");
+            assert!(stdout.contains(&format!("outcome {want} ")), "speed {speed}: want {want}: {stdout}");
+        }
+    }
+    assert!(std::fs::read_to_string(out.join("map.svg")).unwrap().starts_with("<svg"));
+    for (args, says) in [
+        (&["map", "--x-axis", "wind"][..], "no axis \"wind\""),
+        (&["map", "--x-range", "1,1"][..], "--x-range \"1,1\""),
+        (&["map", "--x-cells", "0"][..], "--x-cells 0"),
+        (&["map", "--y-range", "0.2,1.5"][..], "--mu-k"),
+    ] {
+        let (code, _, err) = host_sim(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
     std::fs::remove_dir_all(&out).unwrap();
 }
 

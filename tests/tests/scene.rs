@@ -342,3 +342,51 @@ fn f32_time_and_finger_do_not_drift() {
     let x = f64::from(p.finger1_x) + 1e-4 * t;
     assert!((f64::from(s.fingers()[0]) - x).abs() < 1e-7, "{} vs {x}", s.fingers()[0]);
 }
+
+/// Eq. 21 bookkeeping: only stick/slip exchanges before the fingers stop count as eq. 21
+/// switches. At 0.01 m/s the stop itself makes a sticking finger slide while the other slides
+/// (ratio 1.30, not eq. 21's 2/3); it must be left out, and every switch kept must obey eq. 21.
+#[test]
+fn eq21_switches_stop_where_the_fingers_stop() {
+    use meterstick_host_sim::trajectory::run;
+    let p = MeterStickParams::<f64> {
+        finger1_x: -0.35,
+        finger1_velocity: 0.01,
+        max_time: 100.0,
+        ..MeterStickParams::paper()
+    };
+    let t = run(
+        &SceneSpec::MeterStick(p),
+        meterstick_host_sim::scenes::Implementation::CORE_F32_6,
+        Record::Nothing,
+    )
+    .unwrap();
+    let stop = t.measured.meeting.expect("the fingers met").time_s;
+    let eq21 = switches(&t);
+    assert!(eq21.len() >= 8, "{eq21:?}");
+    for s in &eq21 {
+        assert!(s.t < stop, "{s:?} after the stop at {stop}");
+        let tol = if s.x_start > 0.05 { 0.01 } else { 0.03 };
+        assert!((s.ratio / (0.4 / 0.6) - 1.0).abs() < tol, "{s:?}");
+    }
+    // Not vacuous: after the stop a sticking finger does start to slide while the other slides.
+    let mut modes = t.initial_modes;
+    let mut after_stop = 0;
+    let mut step = None;
+    let mut before = modes;
+    for e in &t.events {
+        if step != Some(e.t.to_bits()) {
+            step = Some(e.t.to_bits());
+            before = modes;
+        }
+        if e.t >= stop
+            && before[e.contact] == ContactMode::Sticking
+            && e.mode.is_sliding()
+            && before[1 - e.contact].is_sliding()
+        {
+            after_stop += 1;
+        }
+        modes[e.contact] = e.mode;
+    }
+    assert!(after_stop >= 1, "expected a stop-caused change to leave out: {:?}", t.events);
+}

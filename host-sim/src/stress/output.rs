@@ -9,15 +9,9 @@ use serde::Serialize;
 
 use super::{CONFIGS, CaseResult};
 use crate::plot;
-use crate::run_cmd::{parameters_json, write_json};
+use crate::run_cmd::{parameters_json, sci, write_json};
 use crate::scenes::Implementation;
 use crate::trajectory::{OutcomeClass, write_lines};
-
-/// `x` in short scientific notation (`0` for zero).
-#[must_use]
-pub fn sci(x: f64) -> String {
-    if x == 0.0 { "0".into() } else { format!("{x:.1e}") }
-}
 
 fn outcome_text(m: &super::Metrics) -> String {
     m.outcome.as_ref().map_or_else(|| "Panicked".to_string(), ToString::to_string)

@@ -1,0 +1,382 @@
+//! `host-sim envelope`: where the f32 core holds to the f64 solution, over finger speed x `h`.
+//!
+//! For each finger speed (1e-4 .. 10 m/s) and step `h` (1e-5 .. 1e-2 s) the meter stick (the
+//! paper's rod, fingers starting at -/+0.4 m, `mu_s = 0.6`, `mu_k = 0.4`) runs in:
+//! * the core f32 6x6 (the firmware's configuration) and the core f64 8x8, both with `h`. The
+//!   **f32 deviation** is `max |COM_f32 - COM_f64|` over the run, and the **event times** are
+//!   compared switch by switch in order (`max |t_f32 - t_f64|` over the switches both have
+//!   alike, and whether the two sequences of (contact, mode) agree);
+//! * the core f64 8x8 with `h / 2`: **f64's own error** is `max |COM_f64(h) - COM_f64(h/2)|`
+//!   (for a first-order method about half its error against the exact motion). The f64 run is
+//!   **converged** where its outcome is the same at `h / 2` and its own error is at most 1 mm.
+//!
+//! The target: an f32 deviation of at most 1e-5 m wherever the f64 run is converged. Positions
+//! are compared on a grid of at most 20,000 times per run (every step when there are fewer), the
+//! same times in all three runs.
+//!
+//! A run takes at most `--max-steps` steps (default 2e6): a slow finger at a small `h` is cut at
+//! `max_steps h` of simulated time, and the table says so. The f64 core stands in for the
+//! independent reference (they agree within 1.8e-14 m on every scene, `tests/tests/reference.rs`);
+//! the envelope checks that again on every cell of at most 50,000 steps.
+#![allow(clippy::format_push_string)]
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::bail;
+use meterstick_core::scene::MeterStickParams;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::run_cmd::{progress, sci, write_json};
+use crate::scenes::{Implementation, MAX_STEPS, SceneSpec};
+use crate::trajectory::{OutcomeClass, Record, Trajectory, max_deviation, run, write_lines};
+
+/// `host-sim envelope` options.
+#[derive(Debug, Clone, clap::Args)]
+pub struct EnvelopeArgs {
+    /// Output directory (created; files in it are overwritten).
+    #[arg(long, default_value = "out/envelope")]
+    pub out: PathBuf,
+    /// Two speeds (0.1, 1 m/s) x two steps (1e-3, 1e-2 s), for tests.
+    #[arg(long)]
+    pub quick: bool,
+    /// The most steps of one run (slower fingers are cut short, and the table says so).
+    #[arg(long, default_value_t = 2_000_000)]
+    pub max_steps: u64,
+}
+
+/// The finger speeds of the table (m/s).
+pub const SPEEDS: [f64; 6] = [1e-4, 1e-3, 1e-2, 0.1, 1.0, 10.0];
+/// The steps of the table (s).
+pub const STEPS: [f64; 4] = [1e-5, 1e-4, 1e-3, 1e-2];
+/// The target: f32 deviation (m) wherever f64 is converged.
+pub const TARGET_M: f64 = 1e-5;
+/// f64 is converged where its own error is at most this (m) and its outcome holds at `h / 2`.
+pub const CONVERGED_M: f64 = 1e-3;
+/// The independent reference is run beside the f64 core on cells of at most this many steps.
+pub const REFERENCE_STEPS: u64 = 50_000;
+/// Positions are compared at most this many times per run.
+const SAMPLES: f64 = 20_000.0;
+
+/// How a cell of the table fares.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Verdict {
+    /// f32 within the target of f64.
+    Holds,
+    /// f32 beyond the target, but f64 itself is not converged there.
+    F64NotConverged,
+    /// f32 beyond the target where f64 is converged.
+    Exceeds,
+}
+
+impl Verdict {
+    /// The verdict's name in `envelope.csv`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Holds => "holds",
+            Self::F64NotConverged => "f64_not_converged",
+            Self::Exceeds => "exceeds",
+        }
+    }
+}
+
+/// One cell: a finger speed and a step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Cell {
+    /// Finger 1's speed (m/s).
+    pub speed_m_s: f64,
+    /// The step (s).
+    pub h_s: f64,
+    /// Simulated time of the runs (s): to the outcome, or to the step cap.
+    pub horizon_s: f64,
+    /// The runs were cut at the step cap before the fingers met.
+    pub capped: bool,
+    /// Steps of the f32 run.
+    pub steps: u64,
+    /// Outcome of the f32 run.
+    pub outcome_f32: OutcomeClass,
+    /// Outcome of the f64 run.
+    pub outcome_f64: OutcomeClass,
+    /// `max |COM_f32 - COM_f64|` (m).
+    pub f32_deviation_m: f64,
+    /// Switch events of the f32 and f64 runs.
+    pub events: [usize; 2],
+    /// The two sequences of (contact, mode) are the same.
+    pub events_agree: bool,
+    /// `max |t_f32 - t_f64|` over the switches both runs have alike, in order (s; NaN: none).
+    pub event_time_deviation_s: f64,
+    /// `max |COM_f64(h) - COM_f64(h/2)|` (m).
+    pub f64_own_error_m: f64,
+    /// Outcome of the f64 run with `h / 2`.
+    pub outcome_f64_half: OutcomeClass,
+    /// f64 converged (same outcome at `h / 2`, own error at most [`CONVERGED_M`]).
+    pub converged: bool,
+    /// `max |COM_f64 - COM_reference|` (m), on cells of at most [`REFERENCE_STEPS`] steps.
+    pub reference_deviation_m: Option<f64>,
+    /// The verdict.
+    pub verdict: Verdict,
+}
+
+/// The whole table and what it took.
+#[derive(Debug, Clone, Serialize)]
+pub struct Envelope {
+    /// The finger speeds (rows, m/s).
+    pub speeds: Vec<f64>,
+    /// The steps (columns, s).
+    pub steps: Vec<f64>,
+    /// Cells, speed-major: `cells[row * steps.len() + column]`.
+    pub cells: Vec<Cell>,
+    /// The step cap.
+    pub max_steps: u64,
+    /// Wall-clock time (s).
+    pub wall_s: f64,
+}
+
+/// The scene of a cell, with its horizon and whether the cap cut it.
+fn scene(speed: f64, h: f64, max_steps: u64) -> (MeterStickParams<f64>, bool) {
+    let p = MeterStickParams { finger1_velocity: speed, step: h, ..MeterStickParams::paper() };
+    let travel = (p.finger2_x - p.finger1_x - p.finger_width) / speed;
+    let natural = travel + p.hold_time + 1.0;
+    let cap = max_steps as f64 * h;
+    (MeterStickParams { max_time: natural.min(cap), ..p }, natural > cap)
+}
+
+/// Who runs, and with which step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Job {
+    F32,
+    F64,
+    F64Half,
+    Reference,
+}
+
+fn run_job(speed: f64, h: f64, max_steps: u64, job: Job) -> anyhow::Result<Trajectory> {
+    let (p, _) = scene(speed, h, max_steps);
+    let steps = (p.max_time / h).ceil();
+    let every = (steps / SAMPLES).ceil().max(1.0);
+    let record = Record::Grid(every * h);
+    let (implementation, p) = match job {
+        Job::F32 => (Implementation::CORE_F32_6, p),
+        Job::F64 => (Implementation::CORE_F64_8, p),
+        Job::F64Half => (Implementation::CORE_F64_8, MeterStickParams { step: h / 2.0, ..p }),
+        Job::Reference => (Implementation::Reference, p),
+    };
+    run(&SceneSpec::MeterStick(p), implementation, record)
+}
+
+/// The switch events of `a` and `b` compared in order: whether they agree, and the largest time
+/// difference over the common prefix of alike events (NaN when there is none).
+fn compare_events(a: &Trajectory, b: &Trajectory) -> (bool, f64) {
+    let mut dt = f64::NAN;
+    for (x, y) in a.events.iter().zip(&b.events) {
+        if (x.contact, x.mode) != (y.contact, y.mode) {
+            return (false, dt);
+        }
+        dt = dt.max((x.t - y.t).abs());
+    }
+    (a.events.len() == b.events.len(), dt)
+}
+
+/// Runs the table.
+///
+/// # Errors
+/// A `--max-steps` of 0 or beyond [`MAX_STEPS`] (before anything runs), or a run that cannot
+/// run.
+pub fn compute(args: &EnvelopeArgs) -> anyhow::Result<Envelope> {
+    if args.max_steps == 0 || args.max_steps as f64 > MAX_STEPS / 2.0 {
+        bail!(
+            "--max-steps {}: between 1 and {:e} (the h/2 run takes twice as many)",
+            args.max_steps,
+            MAX_STEPS / 2.0
+        );
+    }
+    let (speeds, hs): (&[f64], &[f64]) =
+        if args.quick { (&[0.1, 1.0], &[1e-3, 1e-2]) } else { (&SPEEDS, &STEPS) };
+    // Jobs by (row, column, who).
+    let mut jobs = Vec::new();
+    for (i, &v) in speeds.iter().enumerate() {
+        for (k, &h) in hs.iter().enumerate() {
+            let (p, _) = scene(v, h, args.max_steps);
+            let small = (p.max_time / h) as u64 <= REFERENCE_STEPS;
+            let mine = [Job::F64Half, Job::F64, Job::F32].into_iter().chain(small.then_some(Job::Reference));
+            jobs.extend(mine.map(|j| (i, k, j)));
+        }
+    }
+    // The longest first: the h/2 runs, then by steps.
+    let cost = |&(i, k, j): &(usize, usize, Job)| {
+        let (v, h) = (speeds[i], hs[k]);
+        scene(v, h, args.max_steps).0.max_time / h * if j == Job::F64Half { 2.0 } else { 1.0 }
+    };
+    jobs.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
+    let started = Instant::now();
+    let bar = progress(jobs.len() as u64, "envelope runs");
+    let done: Vec<anyhow::Result<Trajectory>> = jobs
+        .par_iter()
+        .map(|&(i, k, j)| {
+            let r = run_job(speeds[i], hs[k], args.max_steps, j);
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+    let done = done.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
+    let find = |i: usize, k: usize, j: Job| {
+        jobs.iter().zip(&done).find(|(job, _)| **job == (i, k, j)).map(|(_, t)| t)
+    };
+    let mut cells = Vec::new();
+    for (i, &v) in speeds.iter().enumerate() {
+        for (k, &h) in hs.iter().enumerate() {
+            let (p, capped) = scene(v, h, args.max_steps);
+            let (Some(f32), Some(f64), Some(half)) =
+                (find(i, k, Job::F32), find(i, k, Job::F64), find(i, k, Job::F64Half))
+            else {
+                bail!("internal: a run of the cell v = {v}, h = {h} is missing");
+            };
+            let (events_agree, event_dt) = compare_events(f32, f64);
+            let f32_deviation_m = max_deviation(f32, f64).0;
+            let f64_own_error_m = max_deviation(f64, half).0;
+            let converged = half.outcome.class == f64.outcome.class && f64_own_error_m <= CONVERGED_M;
+            let verdict = if f32_deviation_m <= TARGET_M {
+                Verdict::Holds
+            } else if converged {
+                Verdict::Exceeds
+            } else {
+                Verdict::F64NotConverged
+            };
+            cells.push(Cell {
+                speed_m_s: v,
+                h_s: h,
+                horizon_s: f32.end_time.max(f64.end_time).min(p.max_time),
+                capped,
+                steps: f32.steps,
+                outcome_f32: f32.outcome.class,
+                outcome_f64: f64.outcome.class,
+                f32_deviation_m,
+                events: [f32.events.len(), f64.events.len()],
+                events_agree,
+                event_time_deviation_s: event_dt,
+                f64_own_error_m,
+                outcome_f64_half: half.outcome.class,
+                converged,
+                reference_deviation_m: find(i, k, Job::Reference).map(|r| max_deviation(f64, r).0),
+                verdict,
+            });
+        }
+    }
+    Ok(Envelope {
+        speeds: speeds.to_vec(),
+        steps: hs.to_vec(),
+        cells,
+        max_steps: args.max_steps,
+        wall_s: started.elapsed().as_secs_f64(),
+    })
+}
+
+impl Envelope {
+    /// The table in Markdown, rows by speed and columns by step, with its legend.
+    #[must_use]
+    pub fn markdown(&self) -> String {
+        let (speeds, hs) = (&self.speeds, &self.steps);
+        let mut md = String::from("| finger speed (m/s) |");
+        for h in hs {
+            md += &format!(" h = {h:e} s |");
+        }
+        md += "\n|---|";
+        md += &"---|".repeat(hs.len());
+        md += "\n";
+        for (i, v) in speeds.iter().enumerate() {
+            md += &format!("| {v} |");
+            for k in 0..hs.len() {
+                let Some(c) = self.cells.get(i * hs.len() + k) else {
+                    md += " |";
+                    continue;
+                };
+                let mark = match c.verdict {
+                    Verdict::Holds => "ok",
+                    Verdict::F64NotConverged => "f64 not converged",
+                    Verdict::Exceeds => "**exceeds**",
+                };
+                let events = if c.events_agree {
+                    format!("{} events, dt {}", c.events[0], sci(c.event_time_deviation_s))
+                } else {
+                    format!("events differ ({} / {})", c.events[0], c.events[1])
+                };
+                let cut = if c.capped { format!("; first {} s", c.horizon_s) } else { String::new() };
+                md += &format!(
+                    " {} m; {events}; f64 own {} m; {mark}{cut} |",
+                    sci(c.f32_deviation_m),
+                    sci(c.f64_own_error_m)
+                );
+            }
+            md += "\n";
+        }
+        let holds = self.cells.iter().filter(|c| c.verdict == Verdict::Holds).count();
+        let exceeds = self.cells.iter().filter(|c| c.verdict == Verdict::Exceeds).count();
+        let reference = self
+            .cells
+            .iter()
+            .filter_map(|c| c.reference_deviation_m)
+            .fold(None, |m: Option<f64>, d| Some(m.map_or(d, |m| m.max(d))));
+        md += &format!(
+            "\nEach cell: the f32 6x6 core's largest COM deviation from the f64 8x8 core at the same h; the \
+             switch events (f32) and the largest difference of their times (s), or \"events differ\" when the \
+             two sequences of (contact, mode) do; f64's own error (against f64 at h/2); the verdict against \
+             the target of {} m (\"f64 not converged\": f32 is beyond the target but f64 itself moves more \
+             than {} m, or changes outcome, when h halves); \"first T s\": runs cut at {} steps. {holds} of {} \
+             cells hold, {exceeds} exceed the target where f64 is converged. The f64 core against the \
+             independent reference on the cells of at most {REFERENCE_STEPS} steps: largest deviation {} m. \
+             {:.0} s wall on this machine.\n",
+            sci(TARGET_M),
+            sci(CONVERGED_M),
+            self.max_steps,
+            self.cells.len(),
+            reference.map_or_else(|| "n/a".into(), sci),
+            self.wall_s
+        );
+        md
+    }
+}
+
+/// `host-sim envelope`: runs the table, writes `envelope.csv`, `envelope.json` and
+/// `envelope.md`, and returns the Markdown.
+///
+/// # Errors
+/// As [`compute`], and I/O naming the file.
+pub fn run_envelope(args: &EnvelopeArgs) -> anyhow::Result<String> {
+    let envelope = compute(args)?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", args.out.display()))?;
+    let lines = envelope.cells.iter().map(|c| {
+        format!(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            c.speed_m_s,
+            c.h_s,
+            c.horizon_s,
+            c.capped,
+            c.steps,
+            c.outcome_f32,
+            c.outcome_f64,
+            c.f32_deviation_m,
+            c.events_agree,
+            c.event_time_deviation_s,
+            c.f64_own_error_m,
+            c.outcome_f64_half,
+            c.converged,
+            c.reference_deviation_m.map_or_else(|| "NaN".into(), |d| d.to_string()),
+            c.verdict.name()
+        )
+    });
+    write_lines(
+        &args.out.join("envelope.csv"),
+        "speed_m_s,h_s,horizon_s,capped,steps,outcome_f32,outcome_f64,f32_deviation_m,events_agree,\
+         event_time_deviation_s,f64_own_error_m,outcome_f64_half,converged,reference_deviation_m,verdict",
+        lines,
+    )?;
+    write_json(&args.out.join("envelope.json"), &envelope)?;
+    let md = envelope.markdown();
+    std::fs::write(args.out.join("envelope.md"), &md)
+        .map_err(|e| anyhow::anyhow!("writing {}: {e}", args.out.join("envelope.md").display()))?;
+    Ok(md)
+}

@@ -1,0 +1,402 @@
+//! `host-sim map`: the outcome of a scene over two of its parameters, on a grid a person chooses,
+//! with the boundaries between outcomes located by bisection.
+//!
+//! The default is the meter stick's outcome over finger speed (0.05 .. 1 m/s, 200 columns) and
+//! `mu_k / mu_s` (0.2 .. 1, 50 rows, `mu_s` fixed): the bands where the trick works and fails are
+//! not monotone in speed (the moving finger stops abruptly when the fingers meet; a rod riding on
+//! it slides on by `v^2 / (2 mu_k g)`, past the other finger or not, depending on the phase of the
+//! stick-slip cycle at the stop). Any scene flag can be an axis (`--x-axis x1`, `--y-axis angle`),
+//! and `mu-ratio` scales `mu_k` to `ratio * mu_s`.
+//!
+//! Each row's boundaries (adjacent cells with different outcomes along the x axis) are bisected
+//! to `--tolerance` (default 1e-3, in the x axis's unit), every run in the precision and LCP size
+//! given (default the firmware's, core f32 6x6). Runs go in parallel on all cores.
+#![allow(clippy::format_push_string)]
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context as _, bail};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::plot;
+use crate::run_cmd::{progress, write_json};
+use crate::scenes::{FLAGS, Flag, Implementation, SceneArgs, SceneSpec, flag_error};
+use crate::trajectory::{OutcomeClass, Record, run, write_lines};
+
+/// `host-sim map` options.
+#[derive(Debug, Clone, clap::Args)]
+pub struct MapArgs {
+    /// The scene and its fixed parameters (the axes' flags are set per cell).
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The x axis: a scene flag (e.g. speed, x1, angle) or mu-ratio.
+    #[arg(long, default_value = "speed")]
+    pub x_axis: String,
+    /// The x range, `from,to`, in the flag's unit.
+    #[arg(long, default_value = "0.05,1", allow_hyphen_values = true)]
+    pub x_range: String,
+    /// Columns.
+    #[arg(long, default_value_t = 200)]
+    pub x_cells: usize,
+    /// The y axis: a scene flag or mu-ratio (mu_k / mu_s, mu_s fixed).
+    #[arg(long, default_value = "mu-ratio")]
+    pub y_axis: String,
+    /// The y range, `from,to`.
+    #[arg(long, default_value = "0.2,1", allow_hyphen_values = true)]
+    pub y_range: String,
+    /// Rows.
+    #[arg(long, default_value_t = 50)]
+    pub y_cells: usize,
+    /// Bisect each boundary along x to this width (in the x axis's unit; 0: no bisection).
+    #[arg(long, default_value_t = 1e-3)]
+    pub tolerance: f64,
+    /// Output directory (created; files in it are overwritten).
+    #[arg(long, default_value = "out/map")]
+    pub out: PathBuf,
+}
+
+/// The most cells a map may have (each is a run of up to `MAX_STEPS`).
+pub const MAX_CELLS: usize = 1_000_000;
+
+/// An axis: a scene flag or the friction ratio.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Axis {
+    /// A scene flag, in its unit.
+    Flag(&'static Flag),
+    /// `mu_k / mu_s` with `mu_s` as given.
+    MuRatio,
+}
+
+impl Axis {
+    /// The axis `--x-axis`/`--y-axis` name: `mu-ratio` or a scene flag's long name.
+    ///
+    /// # Errors
+    /// An unknown name, listing the known ones.
+    pub fn parse(name: &str) -> anyhow::Result<Self> {
+        if name == "mu-ratio" {
+            return Ok(Self::MuRatio);
+        }
+        let name = name.trim_start_matches("--");
+        FLAGS.iter().find(|f| f.long == name).map(Self::Flag).with_context(|| {
+            let names: Vec<&str> = FLAGS.iter().map(|f| f.long).collect();
+            format!("no axis {name:?}: use mu-ratio or a scene flag ({})", names.join(", "))
+        })
+    }
+
+    /// The axis's name and unit, for labels.
+    #[must_use]
+    pub fn label(&self) -> String {
+        match self {
+            Self::MuRatio => "mu_k / mu_s".into(),
+            Self::Flag(f) if f.unit.is_empty() => f.long.to_string(),
+            Self::Flag(f) => format!("{} ({})", f.long, f.unit),
+        }
+    }
+
+    /// `spec` with this axis at `value`.
+    fn apply(self, spec: &mut SceneSpec, value: f64) -> anyhow::Result<()> {
+        let kind = spec.kind();
+        match self {
+            Self::MuRatio => {
+                let mu_s =
+                    spec.get("mu_static").with_context(|| format!("mu-ratio: --scene {kind} has no mu_s"))?;
+                spec.set("mu_kinetic", value * mu_s);
+            }
+            Self::Flag(f) => {
+                let field = f
+                    .field(kind)
+                    .with_context(|| format!("--{} does not apply to --scene {kind}", f.long))?;
+                spec.set(field, f.to_core(value));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn parse_range(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [a, b] = parts.as_slice() else { bail!("{flag} {s:?}: give two numbers, from,to") };
+    let parse = |t: &str| t.parse::<f64>().with_context(|| format!("{flag} {s:?}: {t:?} is not a number"));
+    let (a, b) = (parse(a)?, parse(b)?);
+    if !(a.is_finite() && b.is_finite() && (b - a).abs() > 0.0) {
+        bail!("{flag} {s:?}: two different finite numbers");
+    }
+    Ok((a, b))
+}
+
+/// Cell centres of `cells` cells over `[a, b]`.
+fn centres((a, b): (f64, f64), cells: usize) -> Vec<f64> {
+    (0..cells).map(|k| a + (b - a) * (k as f64 + 0.5) / cells as f64).collect()
+}
+
+/// A boundary between two outcomes along the x axis, in one row.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Boundary {
+    /// The row's y value.
+    pub y: f64,
+    /// The x where the outcome changes (the bisection interval's midpoint).
+    pub x: f64,
+    /// The bisection interval's width.
+    pub width: f64,
+    /// The outcome below `x`.
+    pub below: OutcomeClass,
+    /// The outcome above `x`.
+    pub above: OutcomeClass,
+}
+
+/// `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct MapSummary {
+    /// The scene.
+    pub scene: crate::scenes::SceneKind,
+    /// Who computed it.
+    pub implementation: Implementation,
+    /// Axes.
+    pub x_axis: String,
+    /// Axes.
+    pub y_axis: String,
+    /// Cells (columns x rows).
+    pub cells: [usize; 2],
+    /// Runs in all (cells and bisection).
+    pub runs: usize,
+    /// Wall-clock time (s).
+    pub wall_s: f64,
+    /// Cells of each outcome.
+    pub counts: Vec<(OutcomeClass, usize)>,
+    /// Every boundary found.
+    pub boundaries: Vec<Boundary>,
+}
+
+/// A computed map.
+#[derive(Debug, Clone)]
+pub struct Map {
+    /// Column centres.
+    pub xs: Vec<f64>,
+    /// Row centres.
+    pub ys: Vec<f64>,
+    /// `outcomes[row][column]`.
+    pub outcomes: Vec<Vec<OutcomeClass>>,
+    /// The summary.
+    pub summary: MapSummary,
+}
+
+fn outcome_at(
+    base: &SceneSpec,
+    axes: (Axis, Axis),
+    (x, y): (f64, f64),
+    implementation: Implementation,
+) -> anyhow::Result<OutcomeClass> {
+    let mut spec = *base;
+    axes.0.apply(&mut spec, x)?;
+    axes.1.apply(&mut spec, y)?;
+    spec.validate(implementation.precision())
+        .map_err(|e| anyhow::anyhow!("at ({x}, {y}): {}", flag_error(&spec, e)))?;
+    Ok(run(&spec, implementation, Record::Nothing)?.outcome.class)
+}
+
+/// A grid over two axes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    /// The x and y axes.
+    pub axes: (Axis, Axis),
+    /// The x range (`from`, `to`), in the x axis's unit.
+    pub x: (f64, f64),
+    /// The y range.
+    pub y: (f64, f64),
+    /// Columns and rows.
+    pub cells: [usize; 2],
+    /// Bisect each boundary along x to this width (0: no bisection).
+    pub tolerance: f64,
+}
+
+impl Grid {
+    /// The meter stick's outcome over finger speed (`from..to` m/s) and `mu_k / mu_s` (0.2 .. 1).
+    ///
+    /// # Errors
+    /// None in practice: the `speed` flag is in [`FLAGS`].
+    pub fn speed_by_mu_ratio(
+        (from, to): (f64, f64),
+        cells: [usize; 2],
+        tolerance: f64,
+    ) -> anyhow::Result<Self> {
+        let speed = Axis::parse("speed")?;
+        Ok(Self { axes: (speed, Axis::MuRatio), x: (from, to), y: (0.2, 1.0), cells, tolerance })
+    }
+
+    /// The grid `args` describe.
+    ///
+    /// # Errors
+    /// Bad axes, ranges, cell counts or tolerance, naming the flag.
+    pub fn from_args(args: &MapArgs) -> anyhow::Result<Self> {
+        let grid = Self {
+            axes: (Axis::parse(&args.x_axis)?, Axis::parse(&args.y_axis)?),
+            x: parse_range("--x-range", &args.x_range)?,
+            y: parse_range("--y-range", &args.y_range)?,
+            cells: [args.x_cells, args.y_cells],
+            tolerance: args.tolerance,
+        };
+        let cells = args.x_cells.saturating_mul(args.y_cells);
+        if args.x_cells == 0 || args.y_cells == 0 || cells > MAX_CELLS {
+            bail!("--x-cells {} x --y-cells {}: between 1 and {MAX_CELLS} cells", args.x_cells, args.y_cells);
+        }
+        if !(args.tolerance >= 0.0 && args.tolerance.is_finite()) {
+            bail!("--tolerance {}: a finite number >= 0", args.tolerance);
+        }
+        Ok(grid)
+    }
+
+    /// Checks every corner of the grid on `base` (ranges are linear and the parameter checks are
+    /// bounds, so the corners stand for the whole grid).
+    ///
+    /// # Errors
+    /// The first corner whose parameters do not validate, in the flags' words.
+    pub fn validate(&self, base: &SceneSpec, implementation: Implementation) -> anyhow::Result<()> {
+        for &x in &[self.x.0, self.x.1] {
+            for &y in &[self.y.0, self.y.1] {
+                let mut spec = *base;
+                self.axes.0.apply(&mut spec, x)?;
+                self.axes.1.apply(&mut spec, y)?;
+                spec.validate(implementation.precision())
+                    .map_err(|e| anyhow::anyhow!("at the corner ({x}, {y}): {}", flag_error(&spec, e)))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Computes the map `args` describe.
+///
+/// # Errors
+/// Bad axes, ranges, cell counts or parameters (before anything runs), or a cell that cannot run.
+pub fn compute_args(args: &MapArgs) -> anyhow::Result<Map> {
+    let grid = Grid::from_args(args)?;
+    let specs = args.scene.specs(None)?;
+    let [(_, base)] = specs.as_slice() else {
+        bail!("host-sim map varies two axes: give the other flags one value each")
+    };
+    compute(base, &grid, args.scene.implementation())
+}
+
+/// Computes the outcome of `base` over `grid`, in `implementation`, with progress bars.
+///
+/// # Errors
+/// Parameters that do not validate at a corner (before anything runs), or a cell that cannot run.
+pub fn compute(base: &SceneSpec, grid: &Grid, implementation: Implementation) -> anyhow::Result<Map> {
+    grid.validate(base, implementation)?;
+    let axes = grid.axes;
+    let (xs, ys) = (centres(grid.x, grid.cells[0]), centres(grid.y, grid.cells[1]));
+    let cells = xs.len() * ys.len();
+    let started = Instant::now();
+    let bar = progress(cells as u64, "map cells");
+    let flat: Vec<anyhow::Result<OutcomeClass>> = (0..cells)
+        .into_par_iter()
+        .map(|k| {
+            let r = outcome_at(base, axes, (xs[k % xs.len()], ys[k / xs.len()]), implementation);
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+    let flat = flat.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
+    let outcomes: Vec<Vec<OutcomeClass>> = flat.chunks(xs.len()).map(<[OutcomeClass]>::to_vec).collect();
+    // Boundaries along x, bisected.
+    let pairs: Vec<(usize, usize)> = (0..ys.len())
+        .flat_map(|j| (1..xs.len()).map(move |i| (j, i)))
+        .filter(|&(j, i)| outcomes[j][i] != outcomes[j][i - 1])
+        .collect();
+    let bar = progress(pairs.len() as u64, "bisecting boundaries");
+    let bisected: Vec<anyhow::Result<(Boundary, usize)>> = pairs
+        .par_iter()
+        .map(|&(j, i)| {
+            let (mut lo, mut hi) = (xs[i - 1], xs[i]);
+            let (below, above) = (outcomes[j][i - 1], outcomes[j][i]);
+            let mut runs = 0;
+            while grid.tolerance > 0.0 && (hi - lo).abs() > grid.tolerance && runs < 64 {
+                let mid = 0.5 * (lo + hi);
+                runs += 1;
+                if outcome_at(base, axes, (mid, ys[j]), implementation)? == below {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            bar.inc(1);
+            Ok((Boundary { y: ys[j], x: 0.5 * (lo + hi), width: (hi - lo).abs(), below, above }, runs))
+        })
+        .collect();
+    bar.finish_and_clear();
+    let bisected = bisected.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
+    let runs = cells + bisected.iter().map(|b| b.1).sum::<usize>();
+    let mut counts: Vec<(OutcomeClass, usize)> = Vec::new();
+    for o in &flat {
+        match counts.iter_mut().find(|(c, _)| c == o) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((*o, 1)),
+        }
+    }
+    let summary = MapSummary {
+        scene: base.kind(),
+        implementation,
+        x_axis: axes.0.label(),
+        y_axis: axes.1.label(),
+        cells: [xs.len(), ys.len()],
+        runs,
+        wall_s: started.elapsed().as_secs_f64(),
+        counts,
+        boundaries: bisected.into_iter().map(|b| b.0).collect(),
+    };
+    Ok(Map { xs, ys, outcomes, summary })
+}
+
+/// Writes `map.csv`, `boundaries.csv`, `summary.json` and `map.svg` into `out`.
+///
+/// # Errors
+/// I/O or plotting, naming the file.
+pub fn write(map: &Map, out: &Path) -> anyhow::Result<()> {
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let s = &map.summary;
+    let cells = map.ys.iter().enumerate().flat_map(|(j, y)| {
+        map.xs.iter().enumerate().map(move |(i, x)| format!("{x},{y},{}", map.outcomes[j][i]))
+    });
+    write_lines(&out.join("map.csv"), "x,y,outcome", cells)?;
+    let bounds = s.boundaries.iter().map(|b| format!("{},{},{},{},{}", b.y, b.x, b.width, b.below, b.above));
+    write_lines(&out.join("boundaries.csv"), "y,x,width,below,above", bounds)?;
+    write_json(&out.join("summary.json"), s)?;
+    let title = format!("{} outcome, {} ({} x {} cells)", s.scene, s.implementation, s.cells[0], s.cells[1]);
+    plot::outcome_raster(
+        &out.join("map.svg"),
+        &title,
+        (&s.x_axis, &map.xs),
+        (&s.y_axis, &map.ys),
+        &map.outcomes,
+        &s.boundaries,
+    )
+}
+
+/// `host-sim map`: computes, writes, and returns the terminal summary.
+///
+/// # Errors
+/// As [`compute`] and [`write`].
+pub fn run_map(args: &MapArgs) -> anyhow::Result<String> {
+    let map = compute_args(args)?;
+    write(&map, &args.out)?;
+    let s = &map.summary;
+    let mut text = format!(
+        "map: {} x {} cells of {} over {} x {}, {} runs in {:.1} s ({})\n",
+        s.cells[0], s.cells[1], s.scene, s.x_axis, s.y_axis, s.runs, s.wall_s, s.implementation
+    );
+    for (class, n) in &s.counts {
+        let _ = writeln!(text, "  {class}: {n} cells");
+    }
+    let _ = writeln!(
+        text,
+        "{} boundaries located to {} (boundaries.csv); files in {}",
+        s.boundaries.len(),
+        args.tolerance,
+        args.out.display()
+    );
+    Ok(text)
+}
