@@ -338,6 +338,9 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
             c.max_angle_deviation_rad,
             if c.same_outcome { "" } else { "  OUTCOMES DIFFER" }
         );
+        if let Some(warning) = r.core.counters.round_off_warning(r.core.steps) {
+            let _ = writeln!(s, "{:<9} {warning}", "");
+        }
     }
     if runs.iter().any(|r| r.scene == SceneKind::MeterStick) {
         s += "eq21 ratios: x_stop/x_start at each stick-to-slip switch; eq. 21 says mu_k/mu_s.\n";

@@ -67,6 +67,9 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
         c.reduced_check_fired,
         c.reduced_check_fired_before_meeting
     );
+    if let Some(warning) = c.round_off_warning(traj.steps) {
+        let _ = writeln!(out, "{warning}");
+    }
     if let Some(sum) = traj.checksum {
         let _ = writeln!(out, "checksum {sum:08x}");
     }

@@ -186,6 +186,25 @@ pub struct SolverCounters {
     pub regularized_solves: u64,
     /// Steps whose LCP had solutions with different motions (reference).
     pub ambiguous_steps: u64,
+    /// Steps resolved only to more than `ROUND_OFF_LIMIT` of their impulses (core; see
+    /// [`meterstick_core::planar::StepReport::round_off_limited`]).
+    pub round_off_limited: u64,
+}
+
+impl SolverCounters {
+    /// The warning a run with [`Self::round_off_limited`] steps gets, in the user's flags.
+    #[must_use]
+    pub fn round_off_warning(&self, steps: u64) -> Option<String> {
+        (self.round_off_limited > 0).then(|| {
+            format!(
+                "warning: {} of {steps} steps resolved their impulses only to more than {:e} of their size \
+                 (speed / (g h) too large for this precision: beyond the measured f32 envelope, \
+                 `host-sim envelope`); use a larger --h or --precision f64",
+                self.round_off_limited,
+                meterstick_core::planar::ROUND_OFF_LIMIT
+            )
+        })
+    }
 }
 
 impl From<&RunStats> for SolverCounters {
@@ -196,6 +215,7 @@ impl From<&RunStats> for SolverCounters {
             warm_starts: s.warm_starts,
             reduced_check_fired: s.reduced_check_fired,
             regularized_solves: s.regularized_solves,
+            round_off_limited: s.round_off_limited,
             ..Self::default()
         }
     }

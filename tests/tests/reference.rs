@@ -167,10 +167,10 @@ fn the_reference_rejects_invalid_parameters() {
 }
 
 /// The f32 envelope's cause, fixed: a gap within round-off of the positions is not a gap
-/// (`docs/formulation.md`, "Gaps at round-off"). At 0.001 m/s with fingers starting at -/+0.1 m
+/// (`docs/formulation.md`, "One time step" and "Precision"). At 0.001 m/s with fingers starting at -/+0.1 m
 /// (190,500 steps), the f32 core left the reference by 1.9e-4 m, and one eq. 21 ratio was 0.6876
 /// where the reference has 0.6664, while the gap's rounding over h (one ulp of 0.5 m over 1 ms,
-/// 6e-5 m/s) was 6% of the finger's speed. Asserted: the target of `docs/scenes.md`'s envelope,
+/// 6e-5 m/s) was 6% of the finger's speed. Asserted: the envelope's target (`host-sim envelope`),
 /// 1e-5 m, and the same switches with ratios within 1e-3.
 #[test]
 fn f32_core_holds_1e_5_m_at_a_slow_finger() {

@@ -112,7 +112,20 @@ pub struct StepReport<T, const K: usize> {
     pub full_layout_used: bool,
     /// The normalised verification residual of the solution used ([`crate::lcp::verify`]).
     pub residual: T,
+    /// The step's impulses are resolved only to `eps V / (g h)` of their size, more than
+    /// [`ROUND_OFF_LIMIT`], where `V` is the step's velocity scale (the fastest support's speed and
+    /// the body's): the LCP holds both slips of order `V` and impulses of order `g h`, and its
+    /// solve is exact only to round-off of the larger. In f32 that is 1 m/s at h = 1e-5 s, or
+    /// 10 m/s at 1e-4 s: there the f32 core drifted 3e-5 .. 2e-3 m from f64 (`host-sim
+    /// envelope`, `docs/formulation.md` "Precision"). Take a larger `h` or f64.
+    pub round_off_limited: bool,
 }
+
+/// The largest `eps V / (g h)` a step may have before [`StepReport::round_off_limited`] says
+/// so: 5e-4 (in f32, `V / (g h)` of 4,200). Measured (`host-sim envelope`): at 1.2e-4 (0.1 m/s
+/// at h = 1e-5 s, 1 m/s at 1e-4 s) f32 held within 6e-6 m of f64; at 1.2e-3 one of two cells
+/// drifted 3e-5 m, and at 1.2e-2 2e-3 m.
+pub const ROUND_OFF_LIMIT: f64 = 5e-4;
 
 impl<T: Real, const K: usize> StepReport<T, K> {
     /// Each contact's mode after the step.
@@ -158,6 +171,9 @@ pub struct RunStats {
     /// Solves answered by the solver's regularised retry after a round-off ray
     /// ([`crate::lcp::LcpSolution::regularized`]).
     pub regularized_solves: u64,
+    /// Steps whose impulses were resolved only to more than [`ROUND_OFF_LIMIT`] of their size
+    /// ([`StepReport::round_off_limited`]).
+    pub round_off_limited: u64,
 }
 
 /// One rigid body against `K` supports; each step solves the `N`-variable LCP of a [`Layout`],
@@ -470,8 +486,13 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         if !state.is_finite() {
             return Err(StepError::NonFinite);
         }
+        // eps V > ROUND_OFF_LIMIT g h, without a division (g h = 0: no impulse scale, no flag).
+        let round_off_limited = T::EPS * velocity_scale(&support_velocity, &v_plus, self.size)
+            > T::of(ROUND_OFF_LIMIT) * s.gravity * h
+            && s.gravity > T::zero();
         let time = self.next_time();
         self.stats.steps += 1;
+        self.stats.round_off_limited += u64::from(round_off_limited);
         self.stats.pivots += u64::from(pivots);
         self.stats.max_pivots = self.stats.max_pivots.max(pivots);
         self.stats.warm_starts += u64::from(warm_start_used);
@@ -511,7 +532,16 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         self.time = time;
         self.update_frames(supports);
         self.supports = *supports;
-        Ok(StepReport { time, state, contacts, pivots, warm_start_used, full_layout_used, residual })
+        Ok(StepReport {
+            time,
+            state,
+            contacts,
+            pivots,
+            warm_start_used,
+            full_layout_used,
+            residual,
+            round_off_limited,
+        })
     }
 
     /// The reduced layout's check (`docs/formulation.md`, "Reduced friction layouts"): for each
@@ -528,15 +558,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// meter stick fell back to the full layout in 441 of 3,998 steps; `host-sim stress`.)
     fn dropped_direction_needed(&self, inputs: &StepInputs<'_, T, K>, v_plus: &[T; 3], z: &[T; NF]) -> bool {
         let s = &self.settings;
-        let mut support_speed = T::zero();
-        for u in &inputs.support_velocity {
-            support_speed = max(support_speed, u[0].abs_exact() + u[1].abs_exact());
-        }
-        let speed_scale = support_speed
-            + s.gravity * s.step
-            + v_plus[0].abs_exact()
-            + v_plus[1].abs_exact()
-            + (v_plus[2] * self.size).abs_exact();
+        let speed_scale = velocity_scale(&inputs.support_velocity, v_plus, self.size) + s.gravity * s.step;
         let tol = T::of(64.0 * N as f64) * T::EPS * speed_scale + T::TINY;
         for i in 0..K {
             let Some((j, kept)) = self.kept_alone[i] else { continue };
@@ -557,6 +579,17 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
         false
     }
+}
+
+/// A step's velocity scale `V`: the fastest support's speed plus the body's (`|vx| + |vy| +
+/// |omega| size`), the size of the slips in its LCP.
+#[inline]
+fn velocity_scale<T: Real, const K: usize>(support_velocity: &[[T; 2]; K], v: &[T; 3], size: T) -> T {
+    let mut support_speed = T::zero();
+    for u in support_velocity {
+        support_speed = max(support_speed, u[0].abs_exact() + u[1].abs_exact());
+    }
+    support_speed + v[0].abs_exact() + v[1].abs_exact() + (v[2] * size).abs_exact()
 }
 
 /// Each contact's normal and net friction impulse (physical, N s) from `z` (per unit mass) in
