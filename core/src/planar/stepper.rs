@@ -194,6 +194,9 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     /// the same LCP, and a floor of `eps V` called a contact carrying 1/40 of a 1 m/s scene's
     /// weight at h = 1e-5 s separated (and its next step used `mu_s`).
     impulse_floor: T,
+    /// A step whose velocity scale exceeds this is [`StepReport::round_off_limited`]:
+    /// `ROUND_OFF_LIMIT g h / eps` (infinite without gravity: no impulse scale).
+    round_off_speed: T,
     layout: Layout<K, N>,
     #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
     full: Layout<K, NF>,
@@ -272,6 +275,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             half: body.half_extents(),
             size: body.size(),
             impulse_floor,
+            round_off_speed: if s.gravity * s.step > T::zero() {
+                T::of(ROUND_OFF_LIMIT) * s.gravity * s.step / T::EPS
+            } else {
+                T::of(f64::INFINITY)
+            },
             layout,
             full,
             to_full,
@@ -442,7 +450,9 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 }
                 Err(e) => return Err(StepError::Solver(e)),
             };
-        let full_layout_used = reduced && (!solved || self.dropped_direction_needed(&inputs, &v_plus, &z));
+        // The step's velocity scale, for the reduced check's round-off and the precision flag.
+        let speed = velocity_scale(&support_velocity, &v_plus, self.size);
+        let full_layout_used = reduced && (!solved || self.dropped_direction_needed(&inputs, &v_plus, &z, speed));
         if full_layout_used {
             self.stats.reduced_check_fired += 1;
             #[cfg(feature = "fallback")]
@@ -486,10 +496,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         if !state.is_finite() {
             return Err(StepError::NonFinite);
         }
-        // eps V > ROUND_OFF_LIMIT g h, without a division (g h = 0: no impulse scale, no flag).
-        let round_off_limited = T::EPS * velocity_scale(&support_velocity, &v_plus, self.size)
-            > T::of(ROUND_OFF_LIMIT) * s.gravity * h
-            && s.gravity > T::zero();
+        let round_off_limited = speed > self.round_off_speed;
         let time = self.next_time();
         self.stats.steps += 1;
         self.stats.round_off_limited += u64::from(round_off_limited);
@@ -556,9 +563,15 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// `|W_d^T v+ - d . u|` without breaking any complementarity, and the reduced answer (same
     /// impulses) extends to a solution of the full LCP. (Without this exception the frictionless
     /// meter stick fell back to the full layout in 441 of 3,998 steps; `host-sim stress`.)
-    fn dropped_direction_needed(&self, inputs: &StepInputs<'_, T, K>, v_plus: &[T; 3], z: &[T; NF]) -> bool {
+    fn dropped_direction_needed(
+        &self,
+        inputs: &StepInputs<'_, T, K>,
+        v_plus: &[T; 3],
+        z: &[T; NF],
+        speed: T,
+    ) -> bool {
         let s = &self.settings;
-        let speed_scale = velocity_scale(&inputs.support_velocity, v_plus, self.size) + s.gravity * s.step;
+        let speed_scale = speed + s.gravity * s.step;
         let tol = T::of(64.0 * N as f64) * T::EPS * speed_scale + T::TINY;
         for i in 0..K {
             let Some((j, kept)) = self.kept_alone[i] else { continue };
