@@ -16,7 +16,11 @@
 //! rounding floor or the reference's own error dominates).
 //!
 //! **Success map.** The outcome over a grid of finger speed and `mu_k/mu_s` (`mu_s = 0.6`), for
-//! the core f32 6x6 (the firmware's configuration), the core f64 8x8 and the reference.
+//! the core f32 6x6 (the firmware's configuration), the core f64 8x8 and the reference
+//! ([`crate::map`], one grid for the three).
+//!
+//! **Where f32 holds.** [`crate::envelope`]'s table: f32 6x6 against f64 8x8 over finger speed x
+//! `h`, with f64's own error.
 #![allow(clippy::format_push_string)]
 
 use std::fmt::Write as _;
@@ -31,7 +35,7 @@ use serde_json::json;
 use crate::run_cmd::{progress, sci, write_json};
 use crate::scenes::{Implementation, SceneSpec};
 use crate::trajectory::{OutcomeClass, Record, Trajectory, run as run_scene, switches};
-use crate::{map, plot};
+use crate::{envelope, map, plot};
 
 /// `host-sim report` options.
 #[derive(Debug, Clone, clap::Args)]
@@ -304,7 +308,14 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     let [f32_map, f64_map, ref_map] = maps;
     let maps = [f32_map?, f64_map?, ref_map?];
 
-    // 4. Write tables, pictures and report.md.
+    // 4. Where f32 holds (its own runs, in parallel).
+    let envelope = envelope::compute(&envelope::EnvelopeArgs {
+        out: out.join("envelope"),
+        quick: args.quick,
+        max_steps: 2_000_000,
+    })?;
+
+    // 5. Write tables, pictures and report.md.
     let mut csv = String::from(
         "config,h_s,steps,outcome,com_error_m,meeting_error_m,ratio_error,ns_per_step,ms_per_sim_second,pivots_per_step,repeats\n",
     );
@@ -438,6 +449,12 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     md += "\nThe scheme is a first-order time-stepping method (semi-implicit Euler with contact and friction \
            resolved as one LCP per step; switches happen at step boundaries), so about one decade of error per \
            decade of h is expected; the pictures show where each configuration stops paying off.\n\n";
+    md += "## Where f32 holds\n\n";
+    md += "The f32 6x6 core (the firmware's) against the f64 8x8 core with the same h, over finger speed x h \
+           (`host-sim envelope`; `docs/formulation.md`, \"Precision\"). Steps beyond `eps V / (g h)` = 5e-4 are \
+           flagged in the step report (`round_off_limited`) and by `host-sim scene`/`run`.\n\n";
+    md += &envelope.markdown();
+    md += "\n";
     md += &performance_section(&rows, args);
     md += "## Success map\n\n![success map](map/map.svg)\n\n";
     let cells = xs.len() * ys.len();

@@ -225,6 +225,10 @@ fn report_quick_writes_its_tables_and_pictures() {
         md.contains("## Performance\n") && md.contains("| config | host ns/step | steps/s | pivots/step |")
     );
     assert!(md.contains("### Against rapier2d") && md.contains("12.3x (test figure)"));
+    assert!(
+        md.contains("## Where f32 holds\n")
+            && md.contains("| finger speed (m/s) | h = 1e-3 s | h = 1e-2 s |")
+    );
     assert!(md.contains("run `scripts/firmware-report.sh` before this report"));
     for pic in ["error_vs_runtime.svg", "error_vs_h.svg", "map/map.svg"] {
         assert!(md.contains(pic), "report.md does not link {pic}");
