@@ -49,4 +49,6 @@ pub use checksum::Checksum;
 pub use contact::{Contact, ContactFrame, ContactMode, Feature, Pose, Support};
 pub use events::{EventLog, SwitchEvent};
 pub use layout::{Direction, Layout, Tangents, Variable};
-pub use stepper::{ContactReport, Model, ROUND_OFF_LIMIT, RunStats, Settings, StepError, StepReport, Stepper};
+pub use stepper::{
+    ContactReport, Model, ROUND_OFF_LIMIT, RunStats, Settings, StepError, StepReport, Stepper,
+};

@@ -452,7 +452,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             };
         // The step's velocity scale, for the reduced check's round-off and the precision flag.
         let speed = velocity_scale(&support_velocity, &v_plus, self.size);
-        let full_layout_used = reduced && (!solved || self.dropped_direction_needed(&inputs, &v_plus, &z, speed));
+        let full_layout_used =
+            reduced && (!solved || self.dropped_direction_needed(&inputs, &v_plus, &z, speed));
         if full_layout_used {
             self.stats.reduced_check_fired += 1;
             #[cfg(feature = "fallback")]
