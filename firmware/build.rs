@@ -1,5 +1,5 @@
-//! Picks the memory layout: a QEMU machine's (`firmware/memory/*.x`, by feature) or the
-//! demo rig's (`memory.x` at the workspace root), and passes the linker scripts.
+//! Picks the memory layout: a QEMU machine's or a Pico's (`firmware/memory/*.x`, by feature) or
+//! the Black Pill rig's (`memory.x` at the workspace root), and passes the linker scripts.
 //!
 //! cortex-m-rt's `link.x` says `INCLUDE memory.x`. The selected layout is written as
 //! `memory.x` into `OUT_DIR`, which goes first on the linker's search path.
@@ -12,6 +12,12 @@ fn main() {
         manifest.join("memory/mps2-an386.x")
     } else if env::var_os("CARGO_FEATURE_QEMU_MICROBIT").is_some() {
         manifest.join("memory/microbit.x")
+    } else if env::var_os("CARGO_FEATURE_QEMU_MPS2_AN505").is_some() {
+        manifest.join("memory/mps2-an505.x")
+    } else if env::var_os("CARGO_FEATURE_BOARD_PICO2").is_some() {
+        manifest.join("memory/rp2350.x")
+    } else if env::var_os("CARGO_FEATURE_BOARD_PICO").is_some() {
+        manifest.join("memory/rp2040.x")
     } else {
         manifest.join("../memory.x")
     };

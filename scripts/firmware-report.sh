@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Firmware figures: flash/RAM of every build (with and without defmt, with and without the 8x8
-# fallback, with and without the host link), and Cortex-M instructions per scene step on the emulated Cortex-M4F and Cortex-M0,
+# fallback, with and without the host link; the Picos' .uf2 sizes), and Cortex-M instructions per
+# scene step on the emulated Cortex-M4F, Cortex-M0 and Cortex-M33F,
 # counted deterministically (QEMU -icount shift=0, SysTick, calibrated against a loop of known
 # length). Writes out/firmware/report.md and prints it. Installs what it needs first.
 set -euo pipefail
@@ -17,13 +18,15 @@ done
 {
   echo "# Firmware figures"
   echo
-  echo "| build | features | flash (text+data, B) | static RAM (data+bss, B) |"
-  echo "|---|---|---|---|"
+  echo "| build | features | flash (text+data, B) | static RAM (data+bss, B) | .uf2 (B) |"
+  echo "|---|---|---|---|---|"
   for spec in "${FIRMWARE_BUILDS[@]}"; do
     b=${spec%% *}
     read -r text data bss _ < <(size "${ELF[$b]}" | tail -n 1)
     feats=$(printf '%s\n' "${FIRMWARE_BUILDS[@]}" | awk -v b="$b" '$1 == b { print $3 }')
-    echo "| $b | $feats | $((text + data)) | $((data + bss)) |"
+    uf2="$FIRMWARE_TARGET_DIR/uf2/$b.uf2"
+    if [ -f "$uf2" ]; then uf2=$(stat -c %s "$uf2"); else uf2=""; fi
+    echo "| $b | $feats | $((text + data)) | $((data + bss)) | $uf2 |"
   done
   echo
   echo "Instructions per step (slow scene v = 0.1 m/s and fast v = 5 m/s, x1 = -0.35 m, f32 6x6 with the 8x8"
@@ -31,7 +34,7 @@ done
   echo
   echo "| core (QEMU machine) | scene | steps | instructions/step (mean) | worst step (instructions) |"
   echo "|---|---|---|---|---|"
-  for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0"; do
+  for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0" "qemu-m33 mps2-an505 Cortex-M33F"; do
     set -- $m
     out=$(target/release/host-sim qemu --icount --machine "$2" "${ELF[$1]}" 2>/dev/null)
     echo "$out" > "out/firmware/$1-icount.log"

@@ -23,16 +23,29 @@ cross_cargo() {
 CROSS_TARGET_DIR="$ROOT/target/cross-$MS_CROSS_MODE"
 FIRMWARE_TARGET_DIR="$ROOT/firmware/target/$MS_CROSS_MODE"
 
+# The Picos' .uf2 converter (tools/uf2: elf2flash-core, with the boot ROMs' checks), built by
+# scripts/setup.sh.
+UF2_TOOL="$ROOT/target/tools/release/meterstick-uf2"
+
 # Builds one firmware variant and copies the ELF to firmware/target/<mode>/elf/<name>.elf
-# (variants of one target share cargo's output path); prints that path.
+# (variants of one target share cargo's output path); prints that path. A Pico build (features
+# board-pico2 or board-pico) also gets its .uf2, firmware/target/<mode>/uf2/<name>.uf2.
 # Usage: build_firmware <name> <target> <features-or-empty>
 build_firmware() {
-  local name=$1 target=$2 features=$3 args=()
+  local name=$1 target=$2 features=$3 args=() chip=""
   [ -n "$features" ] && args+=(--features "$features")
   (cd "$ROOT/firmware" && cross_cargo build --release --locked --no-default-features --target "$target" \
       --target-dir "$FIRMWARE_TARGET_DIR" "${args[@]}" >&2)
   mkdir -p "$FIRMWARE_TARGET_DIR/elf"
   cp "$FIRMWARE_TARGET_DIR/$target/release/meterstick-firmware" "$FIRMWARE_TARGET_DIR/elf/$name.elf"
+  case ",$features," in
+    *,board-pico2,*) chip=rp2350 ;;
+    *,board-pico,*) chip=rp2040 ;;
+  esac
+  if [ -n "$chip" ]; then
+    mkdir -p "$FIRMWARE_TARGET_DIR/uf2"
+    "$UF2_TOOL" "$chip" "$FIRMWARE_TARGET_DIR/elf/$name.elf" "$FIRMWARE_TARGET_DIR/uf2/$name.uf2" >&2
+  fi
   echo "$FIRMWARE_TARGET_DIR/elf/$name.elf"
 }
 
@@ -42,7 +55,12 @@ build_firmware() {
 # (`meterstick-link`: QEMU's UART, the Black Pill's USB CDC), the QEMU ones run by the end-to-end
 # test; *-uart: the Black Pill's link on USART2. Every QEMU build, rig-m4f-nolog,
 # rig-m4f-6x6-nolog and rig-m4f-6x6-nolog-uart link with the panic handler that references an
-# undefined symbol (no panic path; firmware/src/main.rs).
+# undefined symbol (no panic path; firmware/src/main.rs). qemu-m33: the Cortex-M33F (the Pico
+# 2's core) on QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on
+# a Pico (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`,
+# and with the host link on UART0; pico-nolog-builtins: the Pico's arithmetic from
+# compiler_builtins instead of its boot ROM (README "The Picos"). pico2-nolog, pico2-6x6-nolog
+# and pico2-link link with the undefined-symbol panic handler too.
 FIRMWARE_BUILDS=(
   "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback"
   "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback"
@@ -54,6 +72,16 @@ FIRMWARE_BUILDS=(
   "qemu-m0-link thumbv6m-none-eabi qemu-microbit,fallback,link"
   "rig-m4f-link thumbv7em-none-eabihf board-blackpill,log,fallback,link"
   "rig-m4f-6x6-nolog-uart thumbv7em-none-eabihf board-blackpill,uart-link"
+  "qemu-m33 thumbv8m.main-none-eabihf qemu-mps2-an505,fallback"
+  "pico2 thumbv8m.main-none-eabihf board-pico2,log,fallback"
+  "pico2-nolog thumbv8m.main-none-eabihf board-pico2,fallback"
+  "pico2-6x6-nolog thumbv8m.main-none-eabihf board-pico2"
+  "pico2-link thumbv8m.main-none-eabihf board-pico2,fallback,link"
+  "pico thumbv6m-none-eabi board-pico,log,fallback"
+  "pico-nolog thumbv6m-none-eabi board-pico,fallback"
+  "pico-6x6-nolog thumbv6m-none-eabi board-pico"
+  "pico-link thumbv6m-none-eabi board-pico,fallback,link"
+  "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float"
 )
 
 # The core for the browser: meterstick-web built for wasm32-unknown-unknown (release, without

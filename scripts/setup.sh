@@ -2,19 +2,21 @@
 # Installs what meterstick needs on this machine, idempotently:
 #   - qemu-system-arm (Debian package) for the firmware runs;
 #   - chromium and chromium-driver (Debian packages) for the browser test of the page;
-#   - the Cortex-M targets thumbv7em-none-eabihf and thumbv6m-none-eabi, and wasm32-unknown-unknown
-#     for the page:
+#   - the Cortex-M targets thumbv7em-none-eabihf (M4F), thumbv6m-none-eabi (M0/M0+) and
+#     thumbv8m.main-none-eabihf (M33F), and wasm32-unknown-unknown for the page:
 #       1. the idiomatic way, `rustup target add` (the machine's rustup toolchain);
 #       2. when rustup is missing or cannot download, Debian's toolchain with the std
 #          sources (rustc-web, cargo-web, rust-web-src, rust-web-llvm, lld-22), which
 #          builds `core` itself (`-Z build-std=core`).
+#   - the Picos' .uf2 converter, tools/uf2 (elf2flash-core from crates.io), built with the host
+#     cargo into target/tools/.
 # Writes the chosen mode to target/meterstick-toolchain.env for scripts/lib.sh.
 # Set MS_CROSS=debian to force the fallback, MS_CROSS=rustup to forbid it.
 # As root it installs what is missing; otherwise it stops with the exact command to run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-TARGETS=(thumbv7em-none-eabihf thumbv6m-none-eabi wasm32-unknown-unknown)
+TARGETS=(thumbv7em-none-eabihf thumbv6m-none-eabi thumbv8m.main-none-eabihf wasm32-unknown-unknown)
 DEBIAN_RUST=(rustc-web cargo-web rust-web-src rust-web-llvm lld-22)
 APT_UPDATED=0
 
@@ -80,6 +82,11 @@ if [ -z "$mode" ]; then
   if [ ${#need[@]} -gt 0 ]; then apt_install "${need[@]}"; fi
   mode=debian
 fi
+
+# --- the Picos' .uf2 converter -------------------------------------------------------------
+# A host tool of its own workspace (tools/uf2); cargo skips it when it is up to date.
+if command -v cargo >/dev/null 2>&1; then host_cargo=cargo; else host_cargo=/usr/bin/cargo; fi
+"$host_cargo" build --quiet --locked --release --manifest-path tools/uf2/Cargo.toml --target-dir target/tools >&2
 
 mkdir -p target
 {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Every test: host tests, lints, the page in headless Chromium, cross builds for both Cortex-M
-# targets, firmware under QEMU.
+# Every test: host tests, lints, the page in headless Chromium, cross builds for the three Cortex-M
+# targets (M4F, M0/M0+, M33F) and the boards (Black Pill, Pico 2 and Pico with their .uf2),
+# firmware under QEMU.
 # Installs what it needs first (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,8 +25,14 @@ wasm=$(build_web)
 printf '%s: %s bytes\n' "${wasm#"$ROOT"/}" "$(stat -c %s "$wasm")"
 $HOST_CARGO test --locked -p meterstick-tests --test browser -- --ignored --nocapture
 
+step "the Picos' .uf2 converter (tools/uf2)"
+(cd tools/uf2 && $HOST_CARGO test --locked --target-dir "$ROOT/target/tools" --quiet)
+if $HOST_CARGO clippy --version >/dev/null 2>&1; then
+  (cd tools/uf2 && $HOST_CARGO clippy --locked --all-targets --target-dir "$ROOT/target/tools" -- -D warnings)
+fi
+
 step "core for Cortex-M (with and without defmt)"
-for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
+for t in thumbv7em-none-eabihf thumbv6m-none-eabi thumbv8m.main-none-eabihf; do
   for f in "" defmt; do
     echo "core: $t ${f:-no features}"
     cross_cargo build --locked -p meterstick-core --target "$t" --release \
@@ -36,9 +43,12 @@ done
 step "firmware clippy"
 if [ "$MS_CROSS_MODE" = rustup ]; then
   # The distinct code paths: QEMU binding; rig with logging and fallback; rig with neither; the
-  # QEMU binding with the host link; the rig with the link (USB; UART).
+  # QEMU binding with the host link; the rig with the link (USB; UART); the M33 QEMU build; the
+  # Pico 2 and the Pico with logging, with the link, and the Pico with compiler_builtins' floats.
   for spec in "${FIRMWARE_BUILDS[0]}" "${FIRMWARE_BUILDS[2]}" "${FIRMWARE_BUILDS[5]}" \
-      "${FIRMWARE_BUILDS[6]}" "${FIRMWARE_BUILDS[8]}" "${FIRMWARE_BUILDS[9]}"; do
+      "${FIRMWARE_BUILDS[6]}" "${FIRMWARE_BUILDS[8]}" "${FIRMWARE_BUILDS[9]}" \
+      "${FIRMWARE_BUILDS[10]}" "${FIRMWARE_BUILDS[11]}" "${FIRMWARE_BUILDS[14]}" \
+      "${FIRMWARE_BUILDS[15]}" "${FIRMWARE_BUILDS[18]}" "${FIRMWARE_BUILDS[19]}"; do
     set -- $spec
     (cd firmware && cargo clippy --locked --release --no-default-features --target "$2" --features "$3" \
         --target-dir "$FIRMWARE_TARGET_DIR" -- -D warnings)
@@ -47,19 +57,26 @@ else
   echo "Debian fallback: no clippy for the cross toolchain; skipped"
 fi
 
-step "firmware builds (QEMU machines; the rig with and without defmt, the 8x8 fallback, the host link)"
+step "firmware builds (QEMU machines; the rigs with and without defmt, the 8x8 fallback, the host link; the Picos' .uf2)"
 for spec in "${FIRMWARE_BUILDS[@]}"; do
   set -- $spec
   elf=$(build_firmware "$1" "$2" "$3")
   printf '%-24s %s\n' "$1" "$(size "$elf" | tail -n 1)"
 done
+for name in pico2 pico2-nolog pico2-6x6-nolog pico2-link pico pico-nolog pico-6x6-nolog pico-link pico-nolog-builtins; do
+  uf2="$FIRMWARE_TARGET_DIR/uf2/$name.uf2"
+  [ -s "$uf2" ] || { echo "$name: no .uf2" >&2; exit 1; }
+  printf '%-24s %s bytes\n' "$name.uf2" "$(stat -c %s "$uf2")"
+done
 M4="$FIRMWARE_TARGET_DIR/elf/qemu-m4f.elf"
 M0="$FIRMWARE_TARGET_DIR/elf/qemu-m0.elf"
+M33="$FIRMWARE_TARGET_DIR/elf/qemu-m33.elf"
 
 step "no panic path (link-time check: these builds' panic handler references an undefined symbol)"
 # A build with a panic path left would have failed to link above; that they linked is the proof.
 # Here, a second look at the final ELFs: no panic function of core is in them at all.
-for name in qemu-m4f qemu-m0 qemu-m4f-link qemu-m0-link rig-m4f-nolog rig-m4f-6x6-nolog rig-m4f-6x6-nolog-uart; do
+for name in qemu-m4f qemu-m0 qemu-m4f-link qemu-m0-link rig-m4f-nolog rig-m4f-6x6-nolog rig-m4f-6x6-nolog-uart \
+    qemu-m33 pico2-nolog pico2-6x6-nolog pico2-link; do
   elf="$FIRMWARE_TARGET_DIR/elf/$name.elf"
   if nm "$elf" | grep -qiE 'panicking|rust_begin_unwind'; then
     echo "$name: a panic handler is linked in: a panic path survived" >&2
@@ -69,7 +86,7 @@ for name in qemu-m4f qemu-m0 qemu-m4f-link qemu-m0-link rig-m4f-nolog rig-m4f-6x
 done
 
 step "firmware under QEMU (and the host link end to end)"
-MS_FIRMWARE_M4="$M4" MS_FIRMWARE_M0="$M0" \
+MS_FIRMWARE_M4="$M4" MS_FIRMWARE_M0="$M0" MS_FIRMWARE_M33="$M33" \
   $HOST_CARGO test --locked -p meterstick-tests --test qemu -- --ignored
 MS_FIRMWARE_M4_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m4f-link.elf" \
 MS_FIRMWARE_M0_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m0-link.elf" \

@@ -21,6 +21,9 @@ pub enum Machine {
     Mps2An386,
     /// BBC micro:bit, nRF51822, Cortex-M0 (`thumbv6m-none-eabi`).
     Microbit,
+    /// ARM MPS2+ AN505 (SSE-200), Cortex-M33 with FPU (`thumbv8m.main-none-eabihf`), run in Secure
+    /// state; `SysTick` at 20 MHz.
+    Mps2An505,
 }
 
 impl Machine {
@@ -30,6 +33,7 @@ impl Machine {
         match self {
             Self::Mps2An386 => "mps2-an386",
             Self::Microbit => "microbit",
+            Self::Mps2An505 => "mps2-an505",
         }
     }
 
@@ -37,6 +41,7 @@ impl Machine {
         match self {
             Self::Mps2An386 => &["-cpu", "cortex-m4"],
             Self::Microbit => &[],
+            Self::Mps2An505 => &["-cpu", "cortex-m33"],
         }
     }
 }

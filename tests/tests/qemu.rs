@@ -1,7 +1,7 @@
 //! The firmware, cross-built by `scripts/test.sh`, run under QEMU: its decoded defmt output
 //! and its exit status are checked. Ignored in a plain `cargo test` (they need the ELFs);
 //! `scripts/test.sh` builds them and runs these with `--ignored`, passing the paths in
-//! `MS_FIRMWARE_M4` and `MS_FIRMWARE_M0`.
+//! `MS_FIRMWARE_M4`, `MS_FIRMWARE_M0` and `MS_FIRMWARE_M33`.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::path::PathBuf;
@@ -127,6 +127,16 @@ fn cortex_m4f_on_mps2_an386() {
     check_other_scenes(&run);
 }
 
+/// The Cortex-M33 with FPU (the Raspberry Pi Pico 2's core, `thumbv8m.main-none-eabihf`) on
+/// QEMU's mps2-an505, in Secure state: the same checksums and events as the host.
+#[test]
+#[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
+fn cortex_m33_on_mps2_an505() {
+    let run = run("MS_FIRMWARE_M33", Machine::Mps2An505);
+    check_common(&run);
+    check_other_scenes(&run);
+}
+
 #[test]
 #[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
 fn cortex_m0_on_microbit() {
@@ -137,13 +147,16 @@ fn cortex_m0_on_microbit() {
 
 /// The instruction-count method: under `-icount shift=0` the firmware's SysTick calibration
 /// (a loop of 2,000,002 instructions) reads 1e9 / f_SysTick instructions per tick:
-/// 40 on mps2-an386 (25 MHz), 62.5 on the micro:bit (16 MHz). Deterministic: two runs agree.
+/// 40 on mps2-an386 (25 MHz), 62.5 on the micro:bit (16 MHz), 50 on mps2-an505 (20 MHz).
+/// Deterministic: two runs agree.
 #[test]
 #[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
 fn icount_calibration_is_exact_and_deterministic() {
-    for (var, machine, per_tick) in
-        [("MS_FIRMWARE_M4", Machine::Mps2An386, 40.0), ("MS_FIRMWARE_M0", Machine::Microbit, 62.5)]
-    {
+    for (var, machine, per_tick) in [
+        ("MS_FIRMWARE_M4", Machine::Mps2An386, 40.0),
+        ("MS_FIRMWARE_M0", Machine::Microbit, 62.5),
+        ("MS_FIRMWARE_M33", Machine::Mps2An505, 50.0),
+    ] {
         let elf = PathBuf::from(
             std::env::var(var).unwrap_or_else(|_| panic!("{var} is not set: run scripts/test.sh")),
         );

@@ -1,0 +1,212 @@
+//! The real-time loop every board binding runs (the Black Pill, the Pico 2, the Pico): one
+//! [`Rig::tick`] per SysTick period `h` on the core clock, the buttons between runs, the real-time
+//! margin and, with `link`, the host link.
+//!
+//! SysTick wraps every `h` (the scene's step; reprogrammed when `h` changes between runs); each
+//! wrap runs one tick, i.e. one scene step in real time. The time a tick took is read from
+//! SysTick: the worst is logged (with `log`) once a second as the real-time margin, and sent to
+//! the host (with `link`) in `Report::Margin`; a tick that overran its period is counted. The
+//! link's port is serviced while the loop waits for the next tick.
+//!
+//! Buttons: a press of the start button starts a run; once the run has ended, a press resets it
+//! (the carriage drives back to its origin) and the next press starts it again. While no run is
+//! in progress, the preset button cycles slow / fast / near the fall threshold, shown on finger
+//! 1's lights (sticking / sliding / separated).
+
+use core::convert::Infallible;
+
+use cortex_m::peripheral::SYST;
+use embedded_hal::delay::DelayNs;
+use embedded_hal::digital::{InputPin, OutputPin};
+use meterstick_core::rig::{Preset, PressDetector, Rig, RigConfig, RigError, RigPins, RigState};
+
+use crate::systick;
+
+/// Scene steps per second at boot (h = 1 ms); one SysTick period per step.
+pub const STEP_HZ: u32 = 1_000;
+/// Button samples (ticks) that must agree before a press counts.
+const DEBOUNCE_TICKS: u16 = 20;
+
+/// Busy-wait delay on the core clock (`asm::delay` waits at least the cycles asked).
+#[derive(Debug, Clone, Copy)]
+pub struct CycleDelay {
+    /// Core clock (MHz).
+    pub mhz: u32,
+}
+
+impl DelayNs for CycleDelay {
+    fn delay_ns(&mut self, ns: u32) {
+        cortex_m::asm::delay(ns.saturating_mul(self.mhz) / 1_000);
+    }
+}
+
+/// SysTick reload for a step of `h` seconds on a `sysclk_hz` core clock (at least 1,000 cycles,
+/// at most the 24-bit range).
+fn period_of(h: f32, sysclk_hz: u32) -> u32 {
+    let cycles = h * sysclk_hz as f32;
+    // A valid `h` is positive; the cast saturates (and maps NaN to 0), the clamp bounds it.
+    #[allow(clippy::cast_sign_loss)]
+    let cycles = cycles as u32;
+    cycles.clamp(1_000, systick::MASK)
+}
+
+/// The host link's port, serviced while the loop waits for the next tick (USB needs polling;
+/// a UART has nothing to do).
+#[cfg(feature = "link")]
+pub trait LinkPort: crate::session::Port {
+    /// Services the port.
+    fn poll(&mut self) {}
+}
+
+/// The rig with `pins` and the slow preset at h = 1 ms; `None` if it cannot start (logged).
+pub fn new_rig<B, P>(pins: RigPins<B, P>, sysclk_hz: u32) -> Option<Rig<B, P, CycleDelay, 6>>
+where
+    B: InputPin<Error = Infallible>,
+    P: OutputPin<Error = Infallible>,
+{
+    let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
+    let delay = CycleDelay { mhz: sysclk_hz / 1_000_000 };
+    let rig = Rig::<_, _, _, 6>::new(params, RigConfig::default_rig(), pins, delay);
+    #[cfg(feature = "log")]
+    if let Err(e) = &rig {
+        defmt::error!("rig not started: {}", e);
+    }
+    rig.ok()
+}
+
+/// Runs the rig in real time on SysTick at `sysclk_hz` (the core clock), forever.
+/// `preset_pressed` reads the preset button (`true`: pressed).
+pub fn run<B, P>(
+    mut rig: Rig<B, P, CycleDelay, 6>,
+    mut preset_pressed: impl FnMut() -> bool,
+    mut syst: SYST,
+    sysclk_hz: u32,
+    #[cfg(feature = "link")] mut port: impl LinkPort,
+) -> !
+where
+    B: InputPin<Error = Infallible>,
+    P: OutputPin<Error = Infallible>,
+{
+    #[cfg(feature = "link")]
+    let mut session = {
+        let mut session = crate::session::Session::new(0, crate::session::build_id(env!("MS_BUILD_ID")));
+        session.boot(&rig);
+        session
+    };
+    let mut period = period_of(rig.params().step, sysclk_hz);
+    systick::start(&mut syst, period - 1);
+    #[cfg(feature = "link")]
+    session.set_period(period);
+    #[cfg(feature = "log")]
+    let mut margin = Margin::default();
+    let mut buttons = Buttons {
+        preset: Preset::Slow,
+        preset_press: PressDetector::new(DEBOUNCE_TICKS),
+        start_press: PressDetector::new(DEBOUNCE_TICKS),
+    };
+    loop {
+        while !syst.has_wrapped() {
+            #[cfg(feature = "link")]
+            port.poll();
+        }
+        #[cfg(feature = "link")]
+        if let Err(RigError::Pin(never)) = session.poll(&mut port, &mut rig) {
+            match never {}
+        }
+        let start = systick::now();
+        #[cfg(feature = "link")]
+        let state = rig.tick_with(|r| session.record(r));
+        #[cfg(not(feature = "link"))]
+        let state = rig.tick();
+        let used = systick::elapsed(start, systick::now());
+        #[cfg(feature = "log")]
+        margin.record(used, syst.has_wrapped(), period);
+        #[cfg(feature = "link")]
+        {
+            session.end_tick(&rig, used);
+            session.flush(&mut port);
+        }
+        #[cfg(not(feature = "link"))]
+        let _ = used;
+        let state = match state {
+            Ok(s) => s,
+            // `Params` only comes from `new` and `reset`; pins on these HALs cannot fail.
+            Err(RigError::Params(_)) => continue,
+            Err(RigError::Pin(never)) => match never {},
+        };
+        buttons.between_runs(&mut rig, state, preset_pressed());
+        // A new `h` (from the host or a preset): a new tick period.
+        let want = period_of(rig.params().step, sysclk_hz);
+        if want != period && !matches!(state, RigState::Running) {
+            period = want;
+            systick::start(&mut syst, period - 1);
+            #[cfg(feature = "link")]
+            session.set_period(period);
+        }
+    }
+}
+
+/// The buttons between runs: the preset button cycles the presets (shown on finger 1's
+/// lights), the start button resets a finished run (the next press starts it).
+struct Buttons {
+    preset: Preset,
+    preset_press: PressDetector,
+    start_press: PressDetector,
+}
+
+impl Buttons {
+    fn between_runs<B, P, D>(&mut self, rig: &mut Rig<B, P, D, 6>, state: RigState, preset_pressed: bool)
+    where
+        B: InputPin<Error = Infallible>,
+        P: OutputPin<Error = Infallible>,
+        D: DelayNs,
+    {
+        // Pins on these HALs cannot fail (`Infallible`); parameters of a preset are valid.
+        if self.preset_press.sample(preset_pressed) && !matches!(state, RigState::Running) {
+            self.preset = self.preset.next();
+            let _ = rig.reset(self.preset.params(rig.params().step));
+            let _ = rig.indicate(Some(self.preset.index()));
+        }
+        let ended = matches!(state, RigState::Finished(_) | RigState::Fault(_));
+        if ended && self.start_press.sample(rig.start_pressed().unwrap_or(false)) {
+            let _ = rig.reset(*rig.params());
+        }
+    }
+}
+
+/// The real-time margin: the worst tick and the ticks that overran their period.
+#[cfg(feature = "log")]
+#[derive(Default)]
+struct Margin {
+    worst: u32,
+    overruns: u32,
+    ticks: u32,
+}
+
+#[cfg(feature = "log")]
+impl Margin {
+    /// Records a tick that took `used` cycles (`overran`: SysTick wrapped during it), and logs
+    /// the margin once a second (at h = 1 ms).
+    fn record(&mut self, used: u32, overran: bool, period: u32) {
+        self.worst = self.worst.max(used);
+        self.overruns += u32::from(overran);
+        self.ticks += 1;
+        if self.ticks == STEP_HZ {
+            self.ticks = 0;
+            defmt::info!(
+                "real time: worst tick {=u32} of {=u32} cycles ({=u32}% used), {=u32} overruns",
+                self.worst,
+                period,
+                self.worst * 100 / period.max(1),
+                self.overruns
+            );
+        }
+    }
+}
+
+/// Stops here for good (a board that cannot start).
+pub fn halt() -> ! {
+    loop {
+        cortex_m::asm::nop();
+    }
+}
