@@ -463,7 +463,7 @@ pub fn record_run(
     let mut initial_modes = None;
     let mut outcome = None;
     let mut margin = None;
-    let mut dropped = 0;
+    let mut dropped = 0_u32;
     let mut telemetry_frames = 0;
     let mut running = !start;
     loop {
@@ -498,7 +498,7 @@ pub fn record_run(
             Report::Margin { worst_cycles, period_cycles, overruns, worst_step } => {
                 margin = Some(Margin { worst_cycles, period_cycles, overruns, worst_step });
             }
-            Report::Error(ErrorCode::TxDropped { count }) => dropped += count,
+            Report::Error(ErrorCode::TxDropped { count }) => dropped = dropped.saturating_add(count),
             _ => {}
         }
         // After the outcome the rig sends the run's margin, then its new state.
@@ -598,6 +598,10 @@ impl RigComparison {
 /// The parameters are invalid on the host.
 pub fn compare(rec: &Recording) -> anyhow::Result<(Trajectory, RigComparison)> {
     let spec = SceneSpec::MeterStick(rec.params.cast::<f64>());
+    // The rig's parameters, not the user's: bounded like `host-sim run`'s before anything runs.
+    crate::run_cmd::check_recorded_steps(&spec).map_err(|e| {
+        anyhow::anyhow!("the rig's step and max_time: {e}; --no-compare records the rig's run alone")
+    })?;
     let host = run_core::<f32, 6>(&spec, Record::All)?;
     let rig = &rec.trajectory;
     let same_events = rig.events.len() == host.events.len()
@@ -662,7 +666,10 @@ pub struct MonitorSummary {
 }
 
 /// Parses `NAME=VALUE` of `--set`.
-fn parse_set(s: &str) -> anyhow::Result<(ParamId, f32)> {
+///
+/// # Errors
+/// Not `NAME=VALUE`, an unknown name, or a value that is not a number (naming `--set`).
+pub fn parse_set(s: &str) -> anyhow::Result<(ParamId, f32)> {
     let Some((name, value)) = s.split_once('=') else {
         bail!("--set {s}: expected NAME=VALUE, e.g. --set finger1_velocity=0.2");
     };
@@ -871,10 +878,12 @@ fn record_and_write(
         args.out.display()
     );
     if s.comparison.as_ref().is_some_and(|c| !c.identical()) {
-        bail!(
+        // Exit status 1: a check failed (not bad input).
+        return Err(crate::cli::CheckFailed(format!(
             "{summary}the rig's run differs from the host's f32 build (see {})",
             args.out.join("summary.json").display()
-        );
+        ))
+        .into());
     }
     Ok(summary)
 }

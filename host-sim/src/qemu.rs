@@ -64,7 +64,8 @@ pub struct FirmwareRun {
 /// # Errors
 /// QEMU missing or not startable, an unreadable ELF, or undecodable output.
 pub fn run(elf: &Path, machine: Machine, timeout: Duration, icount: bool) -> anyhow::Result<FirmwareRun> {
-    let elf_bytes = std::fs::read(elf).with_context(|| format!("reading firmware ELF {}", elf.display()))?;
+    let elf_bytes =
+        crate::input::read(elf, crate::input::ELF_FILE_CAP).context("reading the firmware ELF")?;
     let mut cmd = Command::new("qemu-system-arm");
     cmd.args(["-machine", machine.qemu_name()])
         .args(machine.cpu_args())
@@ -119,7 +120,7 @@ impl LinkedFirmware {
     /// QEMU missing or not startable, no connection within 20 s.
     pub fn start(elf: &Path, machine: Machine, icount: bool) -> anyhow::Result<Self> {
         let elf_bytes =
-            std::fs::read(elf).with_context(|| format!("reading firmware ELF {}", elf.display()))?;
+            crate::input::read(elf, crate::input::ELF_FILE_CAP).context("reading the firmware ELF")?;
         let listener = TcpListener::bind("127.0.0.1:0").context("binding a local TCP port for the UART")?;
         let port = listener.local_addr()?.port();
         let mut cmd = Command::new("qemu-system-arm");

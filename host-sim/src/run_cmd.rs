@@ -15,11 +15,11 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context as _;
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::plot;
+use crate::progress::{Interrupted, interrupted, is_interrupted};
 use crate::scenes::{Implementation, SceneArgs, SceneKind, SceneSpec};
 use crate::trajectory::{
     Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, max_deviation, run, switches,
@@ -41,18 +41,7 @@ pub struct RunArgs {
     pub out: PathBuf,
 }
 
-/// A progress bar over `len` jobs on stderr (hidden when stderr is not a terminal).
-#[must_use]
-pub fn progress(len: u64, what: &str) -> ProgressBar {
-    let bar = ProgressBar::new(len);
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} ({elapsed})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar.set_message(what.to_owned());
-    bar.enable_steady_tick(std::time::Duration::from_millis(200));
-    bar
-}
+pub use crate::progress::bar as progress;
 
 /// `x` in short scientific notation for tables and text (`1.23e-5`; `0` for zero, `n/a` for a
 /// quantity that does not exist, NaN or infinite).
@@ -168,6 +157,30 @@ pub fn write_json<T: Serialize + ?Sized>(path: &Path, v: &T) -> anyhow::Result<(
     std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
 }
 
+/// The most steps `host-sim run` records: 2 x 10^6. It keeps every step of the core and of the
+/// reference in memory (about 700 bytes a step in all) and writes them as CSV, so a run at the
+/// general cap ([`crate::scenes::MAX_STEPS`], 10^8) would need about 70 GB; `host-sim scene`
+/// runs up to that cap without recording.
+pub const MAX_RECORDED_STEPS: f64 = 2e6;
+
+/// Refuses a run that would record more than [`MAX_RECORDED_STEPS`] steps, in the user's words.
+///
+/// # Errors
+/// The step count `--h` and `--duration` imply is above the cap.
+pub fn check_recorded_steps(spec: &SceneSpec) -> anyhow::Result<()> {
+    let steps = (spec.max_time() / spec.step()).ceil();
+    anyhow::ensure!(
+        steps <= MAX_RECORDED_STEPS,
+        "--h {} s and --duration {} s imply {steps:.3e} steps; host-sim run records every step (about \
+         700 bytes each) and takes at most {MAX_RECORDED_STEPS:e} (raise --h or lower --duration; \
+         host-sim scene runs up to {:e} steps without recording)",
+        crate::scenes::short_number(spec.step()),
+        crate::scenes::short_number(spec.max_time()),
+        crate::scenes::MAX_STEPS
+    );
+    Ok(())
+}
+
 /// A run and who computes it.
 type Job = (usize, Implementation);
 /// A recorded run and its wall time (s).
@@ -180,6 +193,16 @@ type Timed = (Trajectory, f64);
 /// Invalid parameters (before anything runs), or I/O.
 pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
     let specs = args.scene.specs(Some(("speed", &PAPER_SPEEDS)))?;
+    let duration_given = args.scene.given.iter().any(|(f, _)| f.long == "duration");
+    for (_, spec) in &specs {
+        check_recorded_steps(spec).map_err(|e| {
+            if duration_given {
+                e
+            } else {
+                e.context("the default --duration follows the fingers' travel time")
+            }
+        })?;
+    }
     let core = args.scene.implementation();
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     let bar = progress(2 * specs.len() as u64, "running scenes");
@@ -195,6 +218,9 @@ pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
     let done: Vec<(Job, anyhow::Result<Timed>)> = jobs
         .par_iter()
         .map(|&(k, implementation)| {
+            if interrupted() {
+                return ((k, implementation), Err(Interrupted.into()));
+            }
             let start = Instant::now();
             let t = run(&specs[k].1, implementation, Record::All);
             bar.inc(1);
@@ -203,12 +229,22 @@ pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
         .collect();
     bar.finish_and_clear();
     let mut slots: Vec<[Option<(Trajectory, f64)>; 2]> = (0..specs.len()).map(|_| [None, None]).collect();
+    // After Ctrl-C: the runs whose core and reference both finished are written, the others
+    // dropped.
+    let mut stopped = false;
     for ((k, implementation), r) in done {
-        slots[k][usize::from(implementation == Implementation::Reference)] = Some(r?);
+        match r {
+            Ok(t) => slots[k][usize::from(implementation == Implementation::Reference)] = Some(t),
+            Err(e) if is_interrupted(&e) => stopped = true,
+            Err(e) => return Err(e),
+        }
     }
     let mut summaries = Vec::new();
     for (k, [core, reference]) in slots.into_iter().enumerate() {
         let (Some((core, core_s)), Some((reference, ref_s))) = (core, reference) else {
+            if stopped {
+                continue;
+            }
             anyhow::bail!("run {k} did not complete");
         };
         let (name, spec) = &specs[k];
@@ -243,6 +279,9 @@ pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
         summaries.push(summary);
     }
     write_json(&args.out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;
+    if stopped {
+        return Err(Interrupted.into());
+    }
     Ok(terminal_summary(&summaries, &args.out))
 }
 

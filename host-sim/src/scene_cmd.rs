@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use crate::scenes::{SceneArgs, SceneSpec};
-use crate::trajectory::{Record, run, switches};
+use crate::trajectory::{Record, run_watched, switches};
 
 /// `host-sim scene` options.
 #[derive(Debug, Clone, clap::Args)]
@@ -26,7 +26,10 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
         anyhow::bail!("host-sim scene runs one scene: give each flag one value (host-sim run takes lists)");
     };
     let implementation = cmd.scene.implementation();
-    let traj = run(spec, implementation, Record::Nothing)?;
+    let planned = (spec.max_time() / spec.step()).ceil() as u64;
+    let bar = crate::progress::bar(planned, "steps");
+    let traj = run_watched(spec, implementation, Record::Nothing, &bar)?;
+    bar.finish_and_clear();
     let mut out = String::new();
     let params: Vec<String> = spec.fields().iter().map(|(k, v)| format!("{k} = {v}")).collect();
     let _ = writeln!(out, "scene {}: {}", spec.kind(), params.join(", "));

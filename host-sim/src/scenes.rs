@@ -442,9 +442,19 @@ pub fn flag_of(kind: SceneKind, field: &str) -> Option<&'static Flag> {
 }
 
 /// A [`ParamError`] in the user's words: the flag, the value given (in the flag's unit) and the
-/// allowed range.
+/// allowed range; when the parameters pass in f64 the error came from f32, and the message says so
+/// (`--mass 1e39 kg: not a finite number as f32 (--precision f32; f64 accepts it)`).
 #[must_use]
 pub fn flag_error(spec: &SceneSpec, e: ParamError) -> String {
+    let text = flag_error_text(spec, e);
+    if spec.validate(Precision::F64).is_ok() {
+        format!("{text} as f32 (--precision f32; f64 accepts it)")
+    } else {
+        text
+    }
+}
+
+fn flag_error_text(spec: &SceneSpec, e: ParamError) -> String {
     let kind = spec.kind();
     let show = |field: &str| match (flag_of(kind, field), spec.get(field)) {
         (Some(flag), Some(v)) => {
@@ -484,8 +494,10 @@ pub fn flag_error(spec: &SceneSpec, e: ParamError) -> String {
     }
 }
 
-/// A number as a person typed it: `{}` when that is short, else 9 decimals with the trailing zeros
-/// dropped (so a round trip through radians shows `95`, not `95.00000000000001`).
+/// A number as a person typed it: `{}` when that is short; else 9 decimals with the trailing zeros
+/// dropped when that is the same number to 12 digits (so a round trip through radians shows `95`,
+/// not `95.00000000000001`); else the shorter of `{}` and `{:e}` (`1e-30`, `1e39`, never a rounded
+/// `0`).
 #[must_use]
 pub fn short_number(v: f64) -> String {
     let plain = format!("{v}");
@@ -494,11 +506,11 @@ pub fn short_number(v: f64) -> String {
     }
     let fixed = format!("{v:.9}");
     let trimmed = fixed.trim_end_matches('0').trim_end_matches('.');
-    if trimmed.is_empty() || trimmed == "-" || trimmed == "-0" {
-        format!("{v:e}")
-    } else {
-        trimmed.to_string()
+    if trimmed.len() <= 12 && trimmed.parse::<f64>().is_ok_and(|t| (t - v).abs() <= 1e-12 * v.abs()) {
+        return trimmed.to_string();
     }
+    let exp = format!("{v:e}");
+    if exp.len() < plain.len() { exp } else { plain }
 }
 
 /// The scene options of a command: `--scene` and every scene flag, each taking a number or a
@@ -704,8 +716,8 @@ impl SceneArgs {
                 bail!(
                     "--h {} s and --duration {} s imply {steps:.3e} steps; a run may take at most {MAX_STEPS:e} \
                      (raise --h or lower --duration)",
-                    spec.step(),
-                    spec.max_time()
+                    short_number(spec.step()),
+                    short_number(spec.max_time())
                 );
             }
             out.push((name, spec));
@@ -742,5 +754,49 @@ fn follow_travel_time(spec: &mut SceneSpec) {
                 p.max_time = wanted;
             }
         }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    /// Numbers in messages as the user typed them. Before #17 was finished, `1e-30` and `1e-50`
+    /// were shown as `0` (9 decimals, trailing zeros dropped) and `1e39` as
+    /// `999999999999999939709166371603178586112`.
+    #[test]
+    fn numbers_read_as_typed() {
+        for (v, shown) in [
+            (1e-30, "1e-30"),
+            (1e-50, "1e-50"),
+            (-1e-20, "-1e-20"),
+            (1e39, "1e39"),
+            (0.1, "0.1"),
+            (1e-9, "0.000000001"),
+            (95f64.to_radians().to_degrees(), "95"),
+            (0.1 + 0.2, "0.3"),
+            (-0.400_000_000_1, "-0.4000000001"),
+            (123_456_789.123, "123456789.123"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-inf"),
+        ] {
+            assert_eq!(short_number(v), shown, "{v:e}");
+        }
+    }
+
+    /// A value only f32 refuses says so.
+    #[test]
+    fn an_f32_only_refusal_says_so() {
+        let mut spec = SceneSpec::defaults(SceneKind::MeterStick);
+        spec.set("rod_mass", 1e39);
+        let e = spec.validate(Precision::F32).unwrap_err();
+        assert_eq!(
+            flag_error(&spec, e),
+            "--mass 1e39 kg: not a finite number as f32 (--precision f32; f64 accepts it)"
+        );
+        spec.set("rod_mass", -1.0);
+        let e = spec.validate(Precision::F32).unwrap_err();
+        assert_eq!(flag_error(&spec, e), "--mass -1 kg: must be greater than 0");
     }
 }

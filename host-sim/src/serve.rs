@@ -89,15 +89,16 @@ impl Replay {
                 .collect();
             names.sort();
             // host-sim run's summary.json lists its runs in the order they were asked for.
-            let order: Vec<String> = std::fs::read_to_string(resolved.join("summary.json"))
-                .ok()
-                .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-                .and_then(|v| {
-                    v["runs"].as_array().map(|runs| {
-                        runs.iter().filter_map(|r| r["name"].as_str().map(str::to_owned)).collect()
+            let order: Vec<String> =
+                crate::input::read_text(&resolved.join("summary.json"), crate::input::SUMMARY_FILE_CAP)
+                    .ok()
+                    .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+                    .and_then(|v| {
+                        v["runs"].as_array().map(|runs| {
+                            runs.iter().filter_map(|r| r["name"].as_str().map(str::to_owned)).collect()
+                        })
                     })
-                })
-                .unwrap_or_default();
+                    .unwrap_or_default();
             names.sort_by_key(|n| order.iter().position(|o| o == n).unwrap_or(usize::MAX));
             runs = names.into_iter().map(|name| ReplayRun { path: format!("{name}/"), name }).collect();
         }
@@ -429,9 +430,9 @@ pub fn resolve(base: &Path, rel: &str) -> Result<PathBuf, (u16, String)> {
 
 fn file(base: &Path, rel: &str) -> Response {
     match resolve(base, rel) {
-        Ok(path) => match std::fs::read(&path) {
+        Ok(path) => match crate::input::read(&path, crate::input::SERVED_FILE_CAP) {
             Ok(body) => Response { status: 200, content_type: content_type(&path), body, allow: false },
-            Err(e) => Response::text(500, &format!("/{rel}: {e}")),
+            Err(e) => Response::text(500, &format!("/{rel}: {e:#}")),
         },
         Err((status, why)) => Response::text(status, &why),
     }

@@ -9,12 +9,14 @@ use std::io::Write;
 use std::path::Path;
 
 use anyhow::Context as _;
+use indicatif::ProgressBar;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
 use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, Scene};
 use serde::Serialize;
 
 use crate::lcp_io::Precision;
+use crate::progress;
 use crate::reference;
 use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec};
 
@@ -316,13 +318,40 @@ impl Recorder {
 /// # Errors
 /// Invalid parameters.
 pub fn run(spec: &SceneSpec, implementation: Implementation, record: Record) -> anyhow::Result<Trajectory> {
-    match implementation {
+    run_inner(spec, implementation, record, None)
+}
+
+/// As [`run`], counting the core's steps on `bar` (the reference's are not counted).
+///
+/// # Errors
+/// As [`run`].
+pub fn run_watched(
+    spec: &SceneSpec,
+    implementation: Implementation,
+    record: Record,
+    bar: &ProgressBar,
+) -> anyhow::Result<Trajectory> {
+    run_inner(spec, implementation, record, Some(bar))
+}
+
+/// Every run checks for Ctrl-C ([`crate::progress`]) before it starts and every
+/// [`progress::CHECK_EVERY_STEPS`] steps; an interrupted run is dropped.
+fn run_inner(
+    spec: &SceneSpec,
+    implementation: Implementation,
+    record: Record,
+    bar: Option<&ProgressBar>,
+) -> anyhow::Result<Trajectory> {
+    progress::check()?;
+    let t = match implementation {
         Implementation::Reference => run_reference(spec, record),
-        Implementation::Core(Precision::F32, LcpSize::Reduced) => run_core::<f32, 6>(spec, record),
-        Implementation::Core(Precision::F32, LcpSize::Full) => run_core::<f32, 8>(spec, record),
-        Implementation::Core(Precision::F64, LcpSize::Reduced) => run_core::<f64, 6>(spec, record),
-        Implementation::Core(Precision::F64, LcpSize::Full) => run_core::<f64, 8>(spec, record),
-    }
+        Implementation::Core(Precision::F32, LcpSize::Reduced) => core_run::<f32, 6>(spec, record, bar),
+        Implementation::Core(Precision::F32, LcpSize::Full) => core_run::<f32, 8>(spec, record, bar),
+        Implementation::Core(Precision::F64, LcpSize::Reduced) => core_run::<f64, 6>(spec, record, bar),
+        Implementation::Core(Precision::F64, LcpSize::Full) => core_run::<f64, 8>(spec, record, bar),
+    }?;
+    progress::check()?;
+    Ok(t)
 }
 
 fn invalid(e: meterstick_core::ParamError) -> anyhow::Error {
@@ -334,12 +363,22 @@ fn invalid(e: meterstick_core::ParamError) -> anyhow::Error {
 /// # Errors
 /// Invalid parameters.
 pub fn run_core<T: Real, const N: usize>(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory> {
+    let t = core_run::<T, N>(spec, record, None)?;
+    progress::check()?;
+    Ok(t)
+}
+
+fn core_run<T: Real, const N: usize>(
+    spec: &SceneSpec,
+    record: Record,
+    bar: Option<&ProgressBar>,
+) -> anyhow::Result<Trajectory> {
     let implementation =
         Implementation::Core(if T::NAME == "f32" { Precision::F32 } else { Precision::F64 }, size_of(N));
     Ok(match *spec {
         SceneSpec::MeterStick(p) => {
             let mut s = MeterStick::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive(&mut s, implementation, SceneKind::MeterStick, record);
+            let mut t = drive(&mut s, implementation, SceneKind::MeterStick, record, bar);
             t.measured.meeting =
                 s.meeting().map(|m| Meeting { time_s: m.time.as_f64(), com_offset_m: m.com_offset.as_f64() });
             t.counters.reduced_check_fired_before_meeting = s.reduced_check_fired_before_meeting();
@@ -347,13 +386,13 @@ pub fn run_core<T: Real, const N: usize>(spec: &SceneSpec, record: Record) -> an
         }
         SceneSpec::Incline(p) => {
             let mut s = Incline::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive(&mut s, implementation, SceneKind::Incline, record);
+            let mut t = drive(&mut s, implementation, SceneKind::Incline, record, bar);
             t.measured.acceleration_m_s2 = s.acceleration().map(Real::as_f64);
             t
         }
         SceneSpec::Ladder(p) => {
             let mut s = Ladder::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive(&mut s, implementation, SceneKind::Ladder, record);
+            let mut t = drive(&mut s, implementation, SceneKind::Ladder, record, bar);
             let height = s.wall_release_height().map(Real::as_f64);
             t.measured.wall_release_height_m = height;
             t.measured.wall_release_ratio = height.map(|h| h / s.start_top_height().as_f64());
@@ -384,6 +423,7 @@ fn drive<T: Real, S: Scene<T, CONTACTS>>(
     implementation: Implementation,
     kind: SceneKind,
     record: Record,
+    bar: Option<&ProgressBar>,
 ) -> Trajectory {
     let initial_modes = scene.modes();
     let mut rows = Recorder::new(record);
@@ -403,7 +443,17 @@ fn drive<T: Real, S: Scene<T, CONTACTS>>(
     rows.push(first);
     let mut events = Vec::new();
     let mut checksum = Checksum::new();
+    let mut steps = 0_u64;
     while let Some(r) = scene.step() {
+        steps += 1;
+        if steps.is_multiple_of(progress::CHECK_EVERY_STEPS) {
+            if let Some(bar) = bar {
+                bar.inc(progress::CHECK_EVERY_STEPS);
+            }
+            if progress::interrupted() {
+                break;
+            }
+        }
         checksum.add(&r.state);
         let supports = touch_points(scene);
         let row = row_of(&r, supports);
@@ -479,6 +529,7 @@ pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Traject
     };
     let run =
         reference::run(&spec.to_reference(), sample).map_err(|e| anyhow::anyhow!("invalid scene: {e}"))?;
+    progress::check()?;
     let mut rows = Recorder::new(record);
     for r in &run.rows {
         let contact = |c: &reference::Contact| ContactRow {

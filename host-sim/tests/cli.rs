@@ -393,3 +393,349 @@ fn stress_quick_passes_and_writes_its_report() {
     assert!(std::fs::read_to_string(out.join("criteria.svg")).unwrap().starts_with("<svg"));
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+/// Runs `host-sim args` with `env`, and fails if it has not ended within `secs` (killing it).
+fn host_sim_within(args: &[&str], env: &[(&str, &str)], secs: u64) -> (i32, String, String) {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(args)
+        .envs(env.iter().copied())
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(secs);
+    while child.try_wait().unwrap().is_none() {
+        if std::time::Instant::now() > deadline {
+            child.kill().unwrap();
+            let _ = child.wait();
+            panic!("host-sim {args:?} still running after {secs} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code().unwrap(),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+/// Bad LCP files, each refused with status 2, the file, the format expected and what is wrong,
+/// within a bound of time and memory. Before #17 was finished: `/dev/zero` was read without end
+/// (killed by the timeout); `huge.dat`, 38 bytes declaring n = 10^9, allocated 10^18 entries and
+/// aborted ("memory allocation failed", status 134); `usize::MAX` as n panicked ("capacity
+/// overflow", status 101); a sparse block size beyond n panicked ("index out of bounds", 101); an
+/// empty `.json` file got "Siconos .dat: file ends before n".
+#[test]
+fn lcp_refuses_bad_files_within_bounds() {
+    let huge = temp_file("huge.dat", "1000000000 0 1000000000 1000000000 1000000000 1000000000 1");
+    let max = temp_file("max.dat", "18446744073709551615 1 18446744073709551615 18446744073709551615 1");
+    let blocks =
+        temp_file("blocks.dat", "3 1 3 3\n1\n2 1\n5 3\n3\n3 1\n0 1 1\n0\n0\n1 2 3 4 5 6 7 8 9\n1 2 3\n");
+    let empty_json = temp_file("empty.json", "");
+    let json_in_dat = temp_file("json.dat", r#"{"M": [[1]], "q": [-1]}"#);
+    let bad_json = temp_file("bad.json", "3 0 3 3 3 3 1 2 3 4 5 6 7 8 9 1 2 3");
+    let cases: Vec<(String, &str)> = vec![
+        ("/dev/zero".into(), "reading /dev/zero: larger than the 1 MiB this input may have"),
+        (
+            huge.display().to_string(),
+            "LCP size 1000000000 is not supported: the core solver is built for 1..=16",
+        ),
+        (max.display().to_string(), "LCP size 18446744073709551615 is not supported"),
+        (blocks.display().to_string(), "blocksize0 is 5, more than 3"),
+        (
+            empty_json.display().to_string(),
+            r#"expected an LCP in JSON ({"M": [[row], ...], "q": [...]}) (as its name ends in .json): the file is empty"#,
+        ),
+        (json_in_dat.display().to_string(), "(as its name ends in .dat; the content looks like JSON)"),
+        (
+            bad_json.display().to_string(),
+            "(as its name ends in .json; the content is not JSON): parsing the LCP JSON",
+        ),
+    ];
+    for (file, says) in &cases {
+        if file.starts_with("/dev/") && !std::path::Path::new(file).exists() {
+            continue;
+        }
+        let (code, out, err) = host_sim_within(&["lcp", file], &[], 20);
+        assert_eq!(code, 2, "{file}: {out}{err}");
+        assert!(
+            err.starts_with(&format!(
+                "host-sim: error: {}",
+                if file.starts_with("/dev/") { "reading " } else { "" }
+            )),
+            "{err}"
+        );
+        assert!(err.contains(says), "{file}: expected {says:?} in {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+/// The exit statuses `host-sim --help` documents: 0 done, 2 bad input (before anything runs),
+/// 1 a check failed (`monitor_exits_1_when_the_rigs_run_differs`; for `stress`, whose cases all
+/// pass today, the unit test `cli::tests::exit_statuses_follow_the_error`), 130 Ctrl-C (`ctrl_c_*`).
+/// Before #17 was finished no `--help` stated them.
+#[test]
+fn exit_statuses_are_as_documented() {
+    let (code, help, _) = host_sim(&["--help"]);
+    assert_eq!(code, 0);
+    assert!(help.contains("Exit status:") && help.contains("130  stopped by Ctrl-C"), "{help}");
+    for cmd in
+        ["lcp", "run", "report", "map", "envelope", "stress", "scene", "monitor", "qemu", "serve", "version"]
+    {
+        let (code, help, err) = host_sim(&[cmd, "--help"]);
+        assert_eq!(code, 0, "{cmd}: {err}");
+        assert!(help.contains("Exit status: "), "host-sim {cmd} --help:\n{help}");
+    }
+    let (code, _, _) = host_sim(&["lcp", &corpus("lcp_CPS_2.dat")]);
+    assert_eq!(code, 0);
+    let out = temp_dir("status");
+    let o = out.to_str().unwrap();
+    for args in [
+        &["run", "--h", "0", "--out", o][..],
+        &["map", "--x-cells", "0", "--out", o],
+        &["envelope", "--max-steps", "0", "--out", o],
+        &["stress", "--only", "no such case", "--out", o],
+        &["scene", "--speed", "fast"],
+        &["lcp", "/nonexistent/meterstick.json"],
+        &["monitor", "--port", "/nonexistent/tty", "--set", "mu=1"],
+        &["no-such-command"],
+    ] {
+        let (code, _, err) = host_sim(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+    }
+    assert!(!out.exists(), "a refusal writes nothing");
+}
+
+/// A missing value is named. Before #17 was finished, `run --h --duration 2` said "unexpected
+/// argument '2' found" (clap took `--duration` as the value of `--h`).
+#[test]
+fn a_missing_value_is_named() {
+    let (code, _, err) = host_sim(&["run", "--h", "--duration", "2"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains(
+            "a value is required for '--h' but none was supplied (the next argument, '--duration', is a flag)"
+        ),
+        "{err}"
+    );
+}
+
+/// A value f64 holds but f32 does not, in the user's words, before anything runs. Before #17 was
+/// finished, `--mass 1e39` was shown as `--mass 999999999999999939709166371603178586112 kg: not a
+/// finite number` and `--mass 1e-50` as `--mass 0 kg: must be greater than 0` (a rounded 0).
+#[test]
+fn values_that_only_f32_refuses_say_so() {
+    for (args, says) in [
+        (
+            &["--mass", "1e39"][..],
+            "--mass 1e39 kg: not a finite number as f32 (--precision f32; f64 accepts it)",
+        ),
+        (
+            &["--mass", "1e-50"],
+            "--mass 1e-50 kg: must be greater than 0 as f32 (--precision f32; f64 accepts it)",
+        ),
+        (&["--h", "1e-30"], "--h 1e-30 s and --duration 30 s imply 3.000e31 steps"),
+        (&["--gravity", "-1e-20"], "--gravity -1e-20 m/s^2: must not be negative"),
+    ] {
+        let mut all = vec!["scene"];
+        all.extend_from_slice(args);
+        let (code, _, err) = host_sim(&all);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(err.contains(says), "{args:?}: expected {says:?} in {err}");
+    }
+    let (code, out, err) = host_sim(&["scene", "--mass", "1e39", "--precision", "f64"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("outcome Balanced"), "{out}");
+}
+
+/// Off a terminal, a command that runs longer than the period (`MS_PROGRESS_SECS`, default 5 s)
+/// prints plain progress lines to stderr. Before #17 was finished it printed nothing (the
+/// indicatif bar is hidden off a terminal).
+#[test]
+fn progress_lines_off_a_terminal() {
+    let out = temp_dir("progress");
+    let (code, _, err) = host_sim_within(
+        &["run", "--speed", "0.1", "--h", "1e-4", "--out", out.to_str().unwrap()],
+        &[("MS_PROGRESS_SECS", "0.1")],
+        300,
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.lines().any(|l| l.starts_with("host-sim: running scenes: ") && l.contains("/2 (")), "{err}");
+    let (code, _, err) =
+        host_sim_within(&["scene", "--speed", "0.1", "--h", "1e-5"], &[("MS_PROGRESS_SECS", "0.05")], 300);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.lines().any(|l| l.starts_with("host-sim: steps: ") && l.contains("/3000000 (")), "{err}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// Sends SIGINT to a `host-sim` once its stderr shows `ready`, and returns its status and stderr.
+#[cfg(unix)]
+fn interrupt_when(args: &[&str], ready: &str) -> (i32, String) {
+    use std::io::{BufRead as _, BufReader};
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(args)
+        .env("MS_PROGRESS_SECS", "0.1")
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    let mut err = String::new();
+    for line in lines.by_ref() {
+        let line = line.unwrap();
+        err += &line;
+        err.push('\n');
+        if line.contains(ready) {
+            break;
+        }
+    }
+    assert!(err.contains(ready), "host-sim {args:?} ended before {ready:?}: {err}");
+    let sent = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(sent.success());
+    let started = std::time::Instant::now();
+    for line in lines {
+        err += &line.unwrap();
+        err.push('\n');
+    }
+    let status = child.wait().unwrap();
+    assert!(started.elapsed().as_secs() < 20, "{:?} after Ctrl-C: {err}", started.elapsed());
+    (status.code().unwrap(), err)
+}
+
+/// Ctrl-C during `host-sim run`: no new run starts, the one under way (the slow reference) is
+/// dropped, the finished run is written, and the files are listed; status 130. Before #17 was
+/// finished, SIGINT killed the process with nothing written and nothing said.
+#[test]
+#[cfg(unix)]
+fn ctrl_c_ends_run_cleanly_listing_what_was_written() {
+    let out = temp_dir("ctrl-c");
+    let o = out.to_str().unwrap();
+    // v5 falls within 0.1 s; v0.1 runs 8.4 s at h = 2e-5 s (the reference: tens of seconds).
+    let (code, err) = interrupt_when(&["run", "--speed", "5,0.1", "--h", "2e-5", "--out", o], "3/4 (");
+    assert_eq!(code, 130, "{err}");
+    assert!(err.contains("host-sim: Ctrl-C: no new run starts"), "{err}");
+    assert!(err.contains(&format!("written so far in {o} (")), "{err}");
+    assert!(err.contains(&format!("{o}/v5/core.csv")) && err.contains(&format!("{o}/summary.json")), "{err}");
+    assert!(!out.join("v0.1").exists(), "the interrupted run is dropped: {err}");
+    let all: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(all["runs"].as_array().unwrap().len(), 1);
+    assert_eq!(all["runs"][0]["name"], "v5");
+    std::fs::remove_dir_all(&out).unwrap();
+
+    let (code, err) = interrupt_when(&["scene", "--speed", "0.1", "--h", "1e-5"], "host-sim: steps: ");
+    assert_eq!(code, 130, "{err}");
+    assert!(
+        err.contains(
+            "stopped by Ctrl-C: no new run started, the runs under way were dropped; nothing written"
+        ),
+        "{err}"
+    );
+}
+
+/// `host-sim run` records every step of the core and the reference: more than 2 x 10^6 is refused
+/// before anything runs. Before #17 was finished, `run --h 1e-6 --duration 100` started five runs
+/// of 10^8 recorded steps each (about 70 GB each at 700 bytes a step; it was still at 9 of 10
+/// jobs after 10 minutes when it was stopped).
+#[test]
+fn run_refuses_more_steps_than_it_can_record() {
+    let out = temp_dir("record-cap");
+    let (code, _, err) =
+        host_sim(&["run", "--h", "1e-6", "--duration", "100", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains(
+            "--h 0.000001 s and --duration 100 s imply 1.000e8 steps; host-sim run records every step"
+        ),
+        "{err}"
+    );
+    let (code, _, err) = host_sim(&["run", "--speed", "1e-4", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains(
+            "the default --duration follows the fingers' travel time: --h 0.001 s and --duration 15801.5 s"
+        ),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
+
+/// A fake rig on a TCP socket: answers every command as the firmware does (the defaults read back
+/// with `GetParam`), and on `Start` sends a run whose checksum is not the host's.
+fn fake_rig_with_a_wrong_checksum() -> (std::net::SocketAddr, std::thread::JoinHandle<()>) {
+    use meterstick_link::{
+        Command, CommandDecoder, MAX_FRAME, OutcomeCode, PROTOCOL_VERSION, Report, RigState, SceneId, encode,
+    };
+    use std::io::{Read as _, Write as _};
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    let rig = std::thread::spawn(move || {
+        let (mut s, _) = listener.accept().unwrap();
+        let params = meterstick_core::scene::MeterStickParams::<f32>::default();
+        let mut dec = CommandDecoder::new();
+        let mut buf = [0u8; 256];
+        loop {
+            let Ok(n) = s.read(&mut buf) else { return };
+            if n == 0 {
+                return;
+            }
+            let mut commands = Vec::new();
+            dec.feed(&buf[..n], |c| commands.extend(c.ok()));
+            for c in commands {
+                let replies: Vec<Report> = match c {
+                    Command::Hello => vec![Report::Hello {
+                        protocol: PROTOCOL_VERSION,
+                        firmware: (0, 1, 0),
+                        core: (0, 1, 0),
+                        build: *b"fakerig ",
+                        scene: SceneId::MeterStick,
+                        lcp_size: 6,
+                        step_us: 1000,
+                    }],
+                    Command::GetParam { id } => {
+                        vec![Report::Param { id, value: params.get(id.name()).unwrap() }]
+                    }
+                    Command::Start => vec![
+                        Report::Ack { command: c.tag() },
+                        Report::State(RigState::Running),
+                        Report::Outcome {
+                            outcome: OutcomeCode::Balanced,
+                            time: 8.4,
+                            steps: 8400,
+                            checksum: 0xdead_beef,
+                        },
+                        Report::State(RigState::Finished),
+                    ],
+                    other => vec![Report::Ack { command: other.tag() }],
+                };
+                for r in replies {
+                    let mut frame = [0u8; MAX_FRAME];
+                    let _ = s.write_all(encode(&r, &mut frame).unwrap());
+                }
+            }
+        }
+    });
+    (addr, rig)
+}
+
+/// Exit status 1: a check failed. `host-sim monitor` against a rig whose run is not the host's
+/// (its checksum differs) writes its files and exits 1. Before #17 was finished it exited 2, the
+/// status of bad input.
+#[test]
+fn monitor_exits_1_when_the_rigs_run_differs() {
+    let (addr, rig) = fake_rig_with_a_wrong_checksum();
+    let out = temp_dir("monitor-differs");
+    let port = format!("tcp:{addr}");
+    let (code, _, err) =
+        host_sim_within(&["monitor", "--port", &port, "--start", "--out", out.to_str().unwrap()], &[], 120);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("the rig's run differs from the host's f32 build"), "{err}");
+    assert!(out.join("summary.json").exists() && out.join("core.csv").exists(), "{err}");
+    rig.join().unwrap();
+    std::fs::remove_dir_all(&out).unwrap();
+}

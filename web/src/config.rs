@@ -208,8 +208,9 @@ impl ConfigError {
     }
 }
 
-/// A number as a person typed it: `{}` when that is short, else 9 decimals with the trailing zeros
-/// dropped (`host-sim`'s `short_number`).
+/// A number as a person typed it, as `host-sim`'s `short_number` writes it: `{}` when that is
+/// short; else 9 decimals with the trailing zeros dropped when that is the same number to 12
+/// digits; else the shorter of `{}` and `{:e}`.
 fn short_number(out: &mut impl fmt::Write, v: f64) -> fmt::Result {
     let plain = StackStr::<400>::of(format_args!("{v}"));
     if plain.as_str().len() <= 12 || !v.is_finite() {
@@ -217,10 +218,20 @@ fn short_number(out: &mut impl fmt::Write, v: f64) -> fmt::Result {
     }
     let fixed = StackStr::<400>::of(format_args!("{v:.9}"));
     let trimmed = fixed.as_str().trim_end_matches('0').trim_end_matches('.');
-    if trimmed.is_empty() || trimmed == "-" || trimmed == "-0" {
-        write!(out, "{v:e}")
-    } else {
-        out.write_str(trimmed)
+    if trimmed.len() <= 12 && trimmed.parse::<f64>().is_ok_and(|t| libm::fabs(t - v) <= 1e-12 * libm::fabs(v))
+    {
+        return out.write_str(trimmed);
+    }
+    let exp = StackStr::<400>::of(format_args!("{v:e}"));
+    out.write_str(if exp.as_str().len() < plain.as_str().len() { exp.as_str() } else { plain.as_str() })
+}
+
+/// A number written by [`short_number`].
+struct Short(f64);
+
+impl fmt::Display for Short {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        short_number(f, self.0)
     }
 }
 
@@ -287,14 +298,19 @@ impl fmt::Display for ConfigError {
                         show("finger_width")
                     ),
                     other => write!(f, "{other}"),
+                }?;
+                // Parameters that pass in f64 failed in f32 (as `host-sim`'s `flag_error` says).
+                if spec.validate(Precision::F64).is_ok() {
+                    f.write_str(" as f32 (precision f32; f64 accepts it)")?;
                 }
+                Ok(())
             }
             Self::TooManySteps { spec, steps } => write!(
                 f,
                 "h {} s and duration {} s imply {steps:.3e} steps; a run may take at most {MAX_STEPS:e} \
                  (raise h or lower duration)",
-                spec.step(),
-                spec.max_time()
+                Short(spec.step()),
+                Short(spec.max_time())
             ),
         }
     }
@@ -421,10 +437,11 @@ mod tests {
         // 1e39 is finite in f64 and infinite in f32.
         let c = config(SceneKind::MeterStick, &[("mass", 1e39)]);
         assert!(c.resolve(Precision::F64).is_ok());
-        // (`{}` prints a large f64 exactly, as host-sim does.)
+        // Before #17 the value was shown as `mass 999999999999999939709166371603178586112 kg: not
+        // a finite number`: 39 digits, and no word that only f32 refuses it.
         assert_eq!(
             message(&c).as_str(),
-            "mass 999999999999999939709166371603178586112 kg: not a finite number"
+            "mass 1e39 kg: not a finite number as f32 (precision f32; f64 accepts it)"
         );
     }
 }

@@ -119,6 +119,10 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
     let mut modes = initial;
     let mut steps = 0_u64;
     let outcome = loop {
+        // Ctrl-C (`crate::progress`): the run stops here and the caller drops it.
+        if steps.is_multiple_of(crate::progress::CHECK_EVERY_STEPS) && crate::progress::interrupted() {
+            break Outcome::Failed(format!("interrupted at t = {}", steps as f64 * h));
+        }
         let u = scene.support_velocity(steps);
         let mu: Vec<f64> = modes
             .iter()

@@ -78,30 +78,43 @@ fn deviation(a: &Metrics, b: &Metrics) -> f64 {
     a.trace.iter().zip(&b.trace).fold(0.0, |acc, (x, y)| acc.max((x[0] - y[0]).hypot(x[1] - y[1])))
 }
 
-/// Runs every case in every configuration (in parallel).
+/// Runs every case in every configuration (in parallel). After Ctrl-C ([`crate::progress`]) no
+/// new run starts, the runs under way finish, and only the cases whose runs all finished are
+/// returned.
 #[must_use]
 pub fn run_all(cases: Vec<Case>) -> Vec<CaseResult> {
     let jobs: Vec<(usize, Implementation)> =
         (0..cases.len()).flat_map(|i| CONFIGS.iter().map(move |&c| (i, c))).collect();
     let bar = progress(jobs.len() as u64, "stress runs");
-    let mut done: Vec<(usize, usize, Metrics)> = jobs
+    let done: Vec<(usize, usize, Metrics)> = jobs
         .par_iter()
-        .map(|&(i, config)| {
+        .filter_map(|&(i, config)| {
+            if crate::progress::interrupted() {
+                return None;
+            }
             let m = run_case(&cases[i], config);
             bar.inc(1);
-            (i, CONFIGS.iter().position(|c| *c == config).unwrap_or(0), m)
+            Some((i, CONFIGS.iter().position(|c| *c == config).unwrap_or(0), m))
         })
         .collect();
     bar.finish_and_clear();
-    done.sort_by_key(|(i, c, _)| (*i, *c));
+    let mut per_case: Vec<Vec<(usize, Metrics)>> = (0..cases.len()).map(|_| Vec::new()).collect();
+    for (i, c, m) in done {
+        per_case[i].push((c, m));
+    }
     let mut results: Vec<CaseResult> = Vec::new();
-    let mut runs = done.into_iter().peekable();
-    for case in cases {
-        let mut mine = Vec::new();
-        while let Some((_, _, m)) = runs.next_if(|(i, _, _)| *i == results.len()) {
-            let v = judge(&case, &m);
-            mine.push((m, v));
+    for (case, mut runs) in cases.into_iter().zip(per_case) {
+        if runs.len() < CONFIGS.len() {
+            continue;
         }
+        runs.sort_by_key(|(c, _)| *c);
+        let mut mine: Vec<(Metrics, Verdict)> = runs
+            .into_iter()
+            .map(|(_, m)| {
+                let v = judge(&case, &m);
+                (m, v)
+            })
+            .collect();
         let dev = |a: usize| match (mine.get(a), mine.get(2)) {
             (Some(x), Some(y)) => deviation(&x.0, &y.0),
             _ => f64::NAN,
@@ -135,7 +148,12 @@ pub fn run(args: &StressArgs) -> anyhow::Result<(String, bool)> {
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     let started = Instant::now();
     let results = run_all(cases);
+    if results.is_empty() {
+        // Only after Ctrl-C before any case finished: nothing to report.
+        crate::progress::check()?;
+    }
     let wall = started.elapsed().as_secs_f64();
     output::write(&args.out, &results, wall)?;
+    crate::progress::check()?;
     Ok((output::terminal(&results, wall, &args.out), results.iter().all(CaseResult::passed)))
 }
