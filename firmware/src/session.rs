@@ -172,7 +172,10 @@ impl Session {
         let mut chunk = [0u8; 32];
         let mut budget = POLL_BYTES;
         while budget > 0 {
-            let n = port.read(&mut chunk).min(chunk.len()).min(budget);
+            // Never take from the port more than this call handles: a byte read is a byte
+            // consumed (reading a full chunk and keeping `budget` of it lost the rest).
+            let want = budget.min(chunk.len());
+            let n = port.read(chunk.get_mut(..want).unwrap_or(&mut [])).min(want);
             if n == 0 {
                 break;
             }
