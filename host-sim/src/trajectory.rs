@@ -286,11 +286,9 @@ impl Recorder {
             Record::Nothing => {}
             Record::Grid(dt) => {
                 let prev = self.last.unwrap_or(row);
-                // A grid time within a quarter step of this row is this row: an f32 run's times
-                // `k h` carry f32 rounding (5e-9 s at 0.08 s), and missing a row by that much
-                // took the next step's (a whole step's motion, 1 mm at 10 m/s and h = 1e-4 s).
-                let slack = (1e-9 * dt).max(0.25 * (row.t - prev.t));
-                while (self.next as f64) * dt <= row.t + slack {
+                // A grid time between two rows is interpolated between them (an f32 run's
+                // times `k h` carry rounding; a grid time just past this row waits for the next).
+                while (self.next as f64) * dt <= row.t + 1e-9 * dt {
                     let tk = self.next as f64 * dt;
                     let a =
                         if row.t > prev.t { ((tk - prev.t) / (row.t - prev.t)).clamp(0.0, 1.0) } else { 1.0 };
