@@ -249,13 +249,16 @@ fn envelope_quick_holds_and_checks_the_reference() {
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("| finger speed (m/s) |"), "{stdout}");
     let (header, rows) = read_csv(&out.join("envelope.csv"));
-    assert_eq!(header[7], "f32_deviation_m");
+    let col =
+        |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("{name}: {header:?}"));
     assert_eq!(rows.len(), 4);
     for r in &rows {
-        assert_eq!(r.last().unwrap(), "holds", "{r:?}");
-        assert!(num(&r[7]) < 1e-5, "{r:?}");
-        assert_eq!(r[8], "true", "the same switch events: {r:?}");
-        assert!(num(&r[13]) < 1e-9, "f64 core vs reference: {r:?}");
+        assert_eq!(r[col("verdict")], "holds", "{r:?}");
+        assert!(num(&r[col("f32_deviation_m")]) < 1e-5, "{r:?}");
+        assert_eq!(r[col("events_agree")], "true", "the same switch events: {r:?}");
+        assert_eq!(r[col("outcome_f32")], r[col("outcome_f64")], "{r:?}");
+        assert_eq!(r[col("flagged_steps")], "0", "no step beyond f32's resolution here: {r:?}");
+        assert!(num(&r[col("reference_deviation_m")]) < 1e-9, "f64 core vs reference: {r:?}");
     }
     let (code, _, err) = host_sim(&["envelope", "--max-steps", "0"]);
     assert_eq!(code, 2);
@@ -263,57 +266,95 @@ fn envelope_quick_holds_and_checks_the_reference() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
-/// `host-sim map` on a small grid: the slow, high-friction corner balances and the fast corner
+/// `host-sim map` on small grids: the slow, high-friction corner balances and the fast corner
 /// falls (eq. 21 and the paper's fig. 5); every bisected boundary is confirmed by `host-sim scene`
-/// run on each side of it, a separate command.
+/// (a separate command) on each side of it, also in a row where a third class (Unfinished: the
+/// rod still rocking at max-time) sits between Balanced and Fell: the bisection labelled such a
+/// boundary with its two cells' classes, and 33 of the default map's 318 boundaries had an end
+/// whose outcome was not its label.
 #[test]
 fn map_locates_boundaries_that_scene_confirms() {
     let out = temp_dir("map");
-    let (code, stdout, err) = host_sim(&[
-        "map",
-        "--x-range",
-        "0.05,1.2",
-        "--x-cells",
-        "6",
-        "--y-range",
-        "0.6,0.7",
-        "--y-cells",
-        "1",
-        "--tolerance",
-        "0.01",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    assert!(stdout.contains("6 x 1 cells"), "{stdout}");
-    let (header, cells) = read_csv(&out.join("map.csv"));
-    assert_eq!(header, ["x", "y", "outcome"]);
-    assert_eq!(cells.len(), 6);
-    assert_eq!(cells[0][2], "Balanced", "0.146 m/s, mu_k/mu_s = 0.65: {cells:?}");
-    assert_eq!(cells[5][2], "Fell", "1.104 m/s: {cells:?}");
-    let (_, bounds) = read_csv(&out.join("boundaries.csv"));
-    assert!(!bounds.is_empty(), "Balanced and Fell cells in one row have a boundary between them");
-    let mu_k = format!("{}", 0.6 * num(&cells[0][1]));
-    for b in &bounds {
-        let (x, width) = (num(&b[1]), num(&b[2]));
-        assert!(width <= 0.01, "{b:?}");
-        for (speed, want) in [(x - width / 2.0, &b[3]), (x + width / 2.0, &b[4])] {
-            let (code, stdout, err) = host_sim(&["scene", "--speed", &format!("{speed}"), "--mu-k", &mu_k]);
-            assert_eq!(code, 0, "{err}");
-            assert!(stdout.contains(&format!("outcome {want} ")), "speed {speed}: want {want}: {stdout}");
+    for (x_range, y_range, cells_x) in [("0.05,1.2", "0.6,0.7", "6"), ("0.30,0.33", "0.463,0.465", "6")] {
+        let (code, stdout, err) = host_sim(&[
+            "map",
+            "--x-range",
+            x_range,
+            "--x-cells",
+            cells_x,
+            "--y-range",
+            y_range,
+            "--y-cells",
+            "1",
+            "--tolerance",
+            "0.002",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(stdout.contains("6 x 1 cells"), "{stdout}");
+        let (header, cells) = read_csv(&out.join("map.csv"));
+        assert_eq!(header, ["x", "y", "outcome"]);
+        assert_eq!(cells.len(), 6);
+        if x_range == "0.05,1.2" {
+            assert_eq!(cells[0][2], "Balanced", "0.146 m/s, mu_k/mu_s = 0.65: {cells:?}");
+            assert_eq!(cells[5][2], "Fell", "1.104 m/s: {cells:?}");
         }
+        let (_, bounds) = read_csv(&out.join("boundaries.csv"));
+        assert!(
+            !bounds.is_empty(),
+            "{x_range}: cells of different outcomes in one row have a boundary: {cells:?}"
+        );
+        let mu_k = format!("{}", 0.6 * num(&cells[0][1]));
+        for b in &bounds {
+            let (x, width) = (num(&b[1]), num(&b[2]));
+            assert!(width <= 0.002, "{b:?}");
+            for (speed, want) in [(x - width / 2.0, &b[3]), (x + width / 2.0, &b[4])] {
+                let (code, stdout, err) =
+                    host_sim(&["scene", "--speed", &format!("{speed}"), "--mu-k", &mu_k]);
+                assert_eq!(code, 0, "{err}");
+                assert!(stdout.contains(&format!("outcome {want} ")), "speed {speed}: want {want}: {stdout}");
+            }
+        }
+        assert!(std::fs::read_to_string(out.join("map.svg")).unwrap().starts_with("<svg"));
     }
-    assert!(std::fs::read_to_string(out.join("map.svg")).unwrap().starts_with("<svg"));
     for (args, says) in [
         (&["map", "--x-axis", "wind"][..], "no axis \"wind\""),
         (&["map", "--x-range", "1,1"][..], "--x-range \"1,1\""),
+        (&["map", "--x-range", "1,0.05"][..], "from < to"),
         (&["map", "--x-cells", "0"][..], "--x-cells 0"),
         (&["map", "--y-range", "0.2,1.5"][..], "--mu-k"),
+        (&["map", "--y-axis", "speed"][..], "both speed"),
+        (&["map", "--x-axis", "mu-k", "--x-range", "0.1,0.3"][..], "mu-ratio sets mu-k"),
     ] {
         let (code, _, err) = host_sim(args);
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
     }
+    // mu-ratio scales each cell's mu_s, whichever axis sets it (it was applied to the base mu_s
+    // when it came first: refused as "--mu-k 0.54 must not exceed --mu-s 0.5").
+    let (code, _, err) = host_sim(&[
+        "map",
+        "--x-axis",
+        "mu-ratio",
+        "--x-range",
+        "0.5,0.9",
+        "--x-cells",
+        "2",
+        "--y-axis",
+        "mu-s",
+        "--y-range",
+        "0.5,0.7",
+        "--y-cells",
+        "1",
+        "--speed",
+        "1",
+        "--tolerance",
+        "0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
     std::fs::remove_dir_all(&out).unwrap();
 }
 
