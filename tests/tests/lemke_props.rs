@@ -9,32 +9,54 @@
 //! * PSD matrices (copositive-plus): Lemke finds a solution exactly when enumeration finds
 //!   one, and reports a ray otherwise.
 //! * Degenerate right-hand sides: q drawn from {-2, -1, 0, 1} makes zeros and ties.
+//! * Warm starts (`Lemke::solve_warm`, the stepper's every step): from any complementary basis,
+//!   feasible or not, and from the basis of a nearby problem's solution, the answer is the same
+//!   as above.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use meterstick_core::lcp::{Lcp, LcpError, Lemke};
+use meterstick_core::lcp::{Basis, Lcp, LcpError, Lemke};
 use meterstick_core::nalgebra::{SMatrix, SVector};
 use meterstick_tests::enumeration::{Mat, all_solutions, is_lcp_solution, max_principal_inverse_norm};
 use meterstick_tests::generate::{positive_definite, psd};
 use proptest::prelude::*;
 
-/// Solves with the core solver of size `N` (dispatched from the runtime size).
+/// Solves with the core solver of size `N` (dispatched from the runtime size), cold.
 fn core_solve<T: meterstick_core::Real>(m: &Mat, q: &[f64]) -> Result<Vec<f64>, LcpError> {
-    fn sized<T: meterstick_core::Real, const N: usize>(m: &Mat, q: &[f64]) -> Result<Vec<f64>, LcpError> {
+    core_solve_warm::<T>(m, q, None).map(|(z, _)| z)
+}
+
+/// Solves cold (`warm` `None`) or warm from the basis whose basic `z` are `warm`'s bits; returns
+/// `z` and the solution's basis (as a `z` mask).
+fn core_solve_warm<T: meterstick_core::Real>(
+    m: &Mat,
+    q: &[f64],
+    warm: Option<u32>,
+) -> Result<(Vec<f64>, u32), LcpError> {
+    fn sized<T: meterstick_core::Real, const N: usize>(
+        m: &Mat,
+        q: &[f64],
+        warm: Option<u32>,
+    ) -> Result<(Vec<f64>, u32), LcpError> {
         let lcp = Lcp::new(
             SMatrix::<T, N, N>::from_fn(|i, j| T::of(m[i][j])),
             SVector::from_fn(|i, _| T::of(q[i])),
         );
-        Lemke::<T, N>::new().solve(&lcp).map(|s| s.z.iter().map(|x| x.as_f64()).collect())
+        let lemke = Lemke::<T, N>::new();
+        let solution = match warm {
+            None => lemke.solve(&lcp),
+            Some(mask) => lemke.solve_warm(&lcp, Basis::from_z_mask(mask & ((1u32 << N) - 1))),
+        };
+        solution.map(|s| (s.z.iter().map(|x| x.as_f64()).collect(), s.basis.z_mask()))
     }
     match q.len() {
-        1 => sized::<T, 1>(m, q),
-        2 => sized::<T, 2>(m, q),
-        3 => sized::<T, 3>(m, q),
-        4 => sized::<T, 4>(m, q),
-        5 => sized::<T, 5>(m, q),
-        6 => sized::<T, 6>(m, q),
-        7 => sized::<T, 7>(m, q),
-        8 => sized::<T, 8>(m, q),
+        1 => sized::<T, 1>(m, q, warm),
+        2 => sized::<T, 2>(m, q, warm),
+        3 => sized::<T, 3>(m, q, warm),
+        4 => sized::<T, 4>(m, q, warm),
+        5 => sized::<T, 5>(m, q, warm),
+        6 => sized::<T, 6>(m, q, warm),
+        7 => sized::<T, 7>(m, q, warm),
+        8 => sized::<T, 8>(m, q, warm),
         n => panic!("size {n}"),
     }
 }
@@ -97,6 +119,47 @@ proptest! {
         let z32 = core_solve::<f32>(&m, &q).unwrap();
         for (a, b) in z32.iter().zip(exact) {
             prop_assert!((a - b).abs() <= tol, "f32 z {:?} vs {:?} (tol {})", z32, exact, tol);
+        }
+    }
+
+    /// Warm from an arbitrary basis (mostly infeasible, sometimes singular for PSD data) and from
+    /// the basis of the solution of a nearby `q` (the stepper's case: the previous step's).
+    #[test]
+    fn warm_starts_match_enumeration(
+        (m, q) in p_matrix_case(),
+        mask in any::<u32>(),
+        nudge in prop::collection::vec(-0.5..0.5f64, 8),
+    ) {
+        let exact = all_solutions(&m, &q);
+        prop_assert_eq!(exact.len(), 1);
+        let exact = &exact[0];
+        let scale = norm_inf(&m) * vmax(exact) + vmax(&q);
+        let near: Vec<f64> = q.iter().zip(&nudge).map(|(a, b)| a + b).collect();
+        let (_, near_basis) = core_solve_warm::<f64>(&m, &near, None).unwrap();
+        for warm in [mask, near_basis] {
+            let (z, _) = core_solve_warm::<f64>(&m, &q, Some(warm)).unwrap();
+            for (a, b) in z.iter().zip(exact) {
+                prop_assert!((a - b).abs() <= 1e-9 * (1.0 + scale), "warm {:b}: z {:?} vs {:?}", warm, z, exact);
+            }
+            let lipschitz = max_principal_inverse_norm(&m);
+            let tol = 64.0 * m.len() as f64 * f64::from(f32::EPSILON) * lipschitz * (1.0 + scale);
+            let (z32, _) = core_solve_warm::<f32>(&m, &q, Some(warm)).unwrap();
+            for (a, b) in z32.iter().zip(exact) {
+                prop_assert!((a - b).abs() <= tol, "warm {:b}: f32 z {:?} vs {:?} (tol {})", warm, z32, exact, tol);
+            }
+        }
+    }
+
+    #[test]
+    fn psd_warm_start_finds_a_solution_exactly_when_enumeration_does((m, q) in psd_case(), mask in any::<u32>()) {
+        let exact = all_solutions(&m, &q);
+        match core_solve_warm::<f64>(&m, &q, Some(mask)) {
+            Ok((z, _)) => {
+                prop_assert!(!exact.is_empty(), "warm {:b}: found {:?} where enumeration found none", mask, z);
+                prop_assert!(is_lcp_solution(&m, &q, &z, 1e-9), "warm {:b}: {:?}", mask, z);
+            }
+            Err(LcpError::Ray { .. }) => prop_assert!(exact.is_empty(), "warm {:b}: ray, but {:?} solve it", mask, exact),
+            Err(e) => prop_assert!(false, "warm {:b}: unexpected error {:?}", mask, e),
         }
     }
 
