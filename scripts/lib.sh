@@ -34,17 +34,20 @@ UF2_TOOL="$ROOT/target/tools/release/meterstick-uf2"
 build_firmware() {
   local name=$1 target=$2 features=$3 args=() chip=""
   [ -n "$features" ] && args+=(--features "$features")
+  # Called as `elf=$(build_firmware ...)`, where `set -e` does not apply inside: every step
+  # returns on failure (a failed link must not leave the previous build's ELF under this name).
+  rm -f "$FIRMWARE_TARGET_DIR/elf/$name.elf" "$FIRMWARE_TARGET_DIR/uf2/$name.uf2"
   (cd "$ROOT/firmware" && cross_cargo build --release --locked --no-default-features --target "$target" \
-      --target-dir "$FIRMWARE_TARGET_DIR" "${args[@]}" >&2)
-  mkdir -p "$FIRMWARE_TARGET_DIR/elf"
-  cp "$FIRMWARE_TARGET_DIR/$target/release/meterstick-firmware" "$FIRMWARE_TARGET_DIR/elf/$name.elf"
+      --target-dir "$FIRMWARE_TARGET_DIR" "${args[@]}" >&2) || { echo "build_firmware $name: the build failed" >&2; return 1; }
+  mkdir -p "$FIRMWARE_TARGET_DIR/elf" || return 1
+  cp "$FIRMWARE_TARGET_DIR/$target/release/meterstick-firmware" "$FIRMWARE_TARGET_DIR/elf/$name.elf" || return 1
   case ",$features," in
     *,board-pico2,*) chip=rp2350 ;;
     *,board-pico,*) chip=rp2040 ;;
   esac
   if [ -n "$chip" ]; then
-    mkdir -p "$FIRMWARE_TARGET_DIR/uf2"
-    "$UF2_TOOL" "$chip" "$FIRMWARE_TARGET_DIR/elf/$name.elf" "$FIRMWARE_TARGET_DIR/uf2/$name.uf2" >&2
+    mkdir -p "$FIRMWARE_TARGET_DIR/uf2" || return 1
+    "$UF2_TOOL" "$chip" "$FIRMWARE_TARGET_DIR/elf/$name.elf" "$FIRMWARE_TARGET_DIR/uf2/$name.uf2" >&2 || return 1
   fi
   echo "$FIRMWARE_TARGET_DIR/elf/$name.elf"
 }

@@ -48,6 +48,9 @@ pub const RESERVE: usize = 3 * MAX_FRAME;
 /// Received bytes handled per [`Session::poll`] at most (bounded work per tick; a flood waits
 /// in the port, whose own buffer or flow control holds it).
 pub const POLL_BYTES: usize = 256;
+/// Bytes asked of the port per read ([`POLL_BYTES`] is a multiple of it).
+const POLL_CHUNK: usize = 32;
+const _: () = assert!(POLL_BYTES.is_multiple_of(POLL_CHUNK));
 /// A [`Report::Margin`] every this many steps while running (and one at the end of the run).
 pub const MARGIN_EVERY: u32 = 1000;
 
@@ -169,21 +172,19 @@ impl Session {
         P: OutputPin<Error = E>,
         D: DelayNs,
     {
-        let mut chunk = [0u8; 32];
-        let mut budget = POLL_BYTES;
-        while budget > 0 {
-            // Never take from the port more than this call handles: a byte read is a byte
-            // consumed (reading a full chunk and keeping `budget` of it lost the rest).
-            let want = budget.min(chunk.len());
-            let n = port.read(chunk.get_mut(..want).unwrap_or(&mut [])).min(want);
-            if n == 0 {
-                break;
-            }
-            budget = budget.saturating_sub(n);
+        // Whole chunks only: every byte taken from the port is handled, at most POLL_BYTES of
+        // them, and the ports' reads get a fixed-size buffer (a slice of run-time length keeps
+        // a bounds check, a panic path, in rp235x-hal's UART read).
+        let mut chunk = [0u8; POLL_CHUNK];
+        for _ in 0..POLL_BYTES / POLL_CHUNK {
+            let n = port.read(&mut chunk).min(POLL_CHUNK);
             for &byte in chunk.get(..n).unwrap_or(&[]) {
                 if let Some(Ok(command)) = self.decoder.push(byte) {
                     self.handle(command, rig)?;
                 }
+            }
+            if n < POLL_CHUNK {
+                break; // the port has nothing more now
             }
         }
         Ok(())
