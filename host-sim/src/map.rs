@@ -192,7 +192,7 @@ fn outcome_at(
 ) -> anyhow::Result<OutcomeClass> {
     let spec = apply_axes(base, axes, (x, y))?;
     spec.validate(implementation.precision())
-        .map_err(|e| anyhow::anyhow!("at ({x}, {y}): {}", flag_error(&spec, e)))?;
+        .map_err(|e| anyhow::anyhow!("at ({x:?}, {y:?}): {}", flag_error(&spec, e)))?;
     Ok(run(&spec, implementation, Record::Nothing)?.outcome.class)
 }
 
@@ -267,7 +267,7 @@ impl Grid {
             bail!("--x-cells {} x --y-cells {}: between 1 and {MAX_CELLS} cells", args.x_cells, args.y_cells);
         }
         if !(args.tolerance >= 0.0 && args.tolerance.is_finite()) {
-            bail!("--tolerance {}: a finite number >= 0", args.tolerance);
+            bail!("--tolerance {:?}: a finite number >= 0", args.tolerance);
         }
         Ok(grid)
     }
@@ -283,7 +283,8 @@ impl Grid {
                 let spec = apply_axes(base, self.axes, (x, y))?;
                 spec.validate(implementation.precision()).map_err(|e| {
                     anyhow::anyhow!(
-                        "--x-range {},{} x --y-range {},{}: at the corner ({x}, {y}): {}",
+                        // `{:?}`: 1e300 stays 1e300 (Display writes all 301 digits).
+                        "--x-range {:?},{:?} x --y-range {:?},{:?}: at the corner ({x:?}, {y:?}): {}",
                         self.x.0,
                         self.x.1,
                         self.y.0,
@@ -432,7 +433,7 @@ pub fn run_map(args: &MapArgs) -> anyhow::Result<String> {
     }
     let _ = writeln!(
         text,
-        "{} boundaries located to {} (boundaries.csv); files in {}",
+        "{} boundaries located to {:?} (boundaries.csv); files in {}",
         s.boundaries.len(),
         args.tolerance,
         args.out.display()

@@ -326,10 +326,13 @@ fn map_locates_boundaries_that_scene_confirms() {
         (&["map", "--y-range", "0.2,1.5"][..], "--mu-k"),
         (&["map", "--y-axis", "speed"][..], "both speed"),
         (&["map", "--x-axis", "mu-k", "--x-range", "0.1,0.3"][..], "mu-ratio sets mu-k"),
+        // Numbers as typed: 1e300 was written out in 301 digits, twice.
+        (&["map", "--x-range", "0.05,1e300"][..], "--x-range 0.05,1e300 x --y-range 0.2,1.0"),
     ] {
         let (code, _, err) = host_sim(args);
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
+        assert!(err.len() < 300, "{args:?}: a short message: {err}");
     }
     // mu-ratio scales each cell's mu_s, whichever axis sets it (it was applied to the base mu_s
     // when it came first: refused as "--mu-k 0.54 must not exceed --mu-s 0.5").
