@@ -454,7 +454,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
            decade of h is expected; the pictures show where each configuration stops paying off.\n\n";
     md += "## Where f32 holds\n\n";
     md += "The f32 6x6 core (the firmware's) against the f64 8x8 core with the same h, over finger speed x h \
-           (`host-sim envelope`; `docs/formulation.md`, \"Precision\"). Steps beyond `eps V / (g h)` = 2.5e-4 are \
+           (`host-sim envelope`; `docs/formulation.md`, \"Precision\"). Steps beyond `eps V / (g h)` = 1e-4 are \
            flagged in the step report (`round_off_limited`) and by `host-sim scene`/`run`.\n\n";
     md += &envelope.markdown();
     md += "\n";

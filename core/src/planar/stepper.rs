@@ -115,20 +115,20 @@ pub struct StepReport<T, const K: usize> {
     /// The step's impulses are resolved only to `eps V / (g h)` of their size, more than
     /// [`ROUND_OFF_LIMIT`], where `V` is the step's velocity scale (the fastest support's speed
     /// plus the body's): the LCP holds both slips of order `V` and impulses of order `g h`, and
-    /// its solve is exact only to round-off of the larger. In f32 that is `V > 0.21 m/s x (h /
-    /// 1e-5 s)`: a rod carried by a finger has `V` twice the finger's speed, so fingers faster
-    /// than about 0.1 m/s at h = 1e-5 s, or 1 m/s at 1e-4 s (`docs/formulation.md`,
-    /// "Precision", has the measured deviations). Take a larger `h` or f64.
+    /// its solve is exact only to round-off of the larger. In f32 that is `V > 0.082 m/s x (h /
+    /// 1e-5 s)`: fingers from about 0.1 m/s at h = 1e-5 s, 1 m/s at 1e-4 s, 10 m/s at 1e-3 s
+    /// (`docs/formulation.md`, "Precision", has the measured deviations). Take a larger `h` or
+    /// f64.
     pub round_off_limited: bool,
 }
 
 /// The largest `eps V / (g h)` a step may have before [`StepReport::round_off_limited`] says
-/// so: 2.5e-4 (in f32, `V / (g h)` of 2,100). Measured against f64 (`host-sim envelope`): at
-/// 2.4e-4 (0.1 m/s at h = 1e-5 s) f32 held within 6e-6 m; at 4.8e-4 (0.2 m/s at 1e-5 s) it
-/// drifted 1.3e-5 m before the fingers met, and at 2.4e-3 (1 m/s at 1e-5 s) 3e-5 m. Beyond the
-/// limit f32 may still hold (10 m/s at 1e-4 s held within 1.6e-6 m); the flag says it is no
-/// longer assured.
-pub const ROUND_OFF_LIMIT: f64 = 2.5e-4;
+/// so: 1e-4 (in f32, `V / (g h)` of 840). Chosen so that every cell of `host-sim envelope`'s
+/// table where f32 misses its target is flagged: the least of them, 0.1 m/s at h = 1e-5 s
+/// (1.2e-4 .. 2.4e-4), held its COM within 6e-6 m of f64 but switched 11 steps late; 0.2 m/s
+/// at 1e-5 s drifted 2.9e-4 m, 1 m/s 3e-5 m. Beyond the limit f32 may still hold (1 and
+/// 10 m/s at 1e-4 s held within 1.6e-6 m): the flag says it is no longer assured.
+pub const ROUND_OFF_LIMIT: f64 = 1e-4;
 
 impl<T: Real, const K: usize> StepReport<T, K> {
     /// Each contact's mode after the step.
