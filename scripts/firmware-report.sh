@@ -53,4 +53,24 @@ print(f"| {sys.argv[5]} | {sys.argv[6]} | {steps} | {ticks * per_tick / steps:,.
 PY
     done
   done
+  echo
+  echo "Steps by the path that answered their LCP (docs/formulation.md, \"Solving a step\"; a step is counted"
+  echo "under the last path it needed), with each path's mean and worst step (instructions, slow scene):"
+  echo
+  echo "| core | free | warm | candidate | lemke |"
+  echo "|---|---|---|---|---|"
+  for m in "qemu-m4f Cortex-M4F" "qemu-m0 Cortex-M0" "qemu-m33 Cortex-M33F"; do
+    set -- $m
+    python3 - "out/firmware/$1-icount.log" "$2" <<'PY'
+import re, sys
+log = open(sys.argv[1]).read()
+insn, ticks = map(int, re.search(r"^calibration instructions=(\d+) systicks=(\d+)$", log, re.M).groups())
+cells = []
+for path in ("free", "warm", "candidate", "lemke"):
+    m = re.search(rf"^slow path={path} steps=(\d+) systicks=(\d+) worst_step_systicks=(\d+)$", log, re.M)
+    n, t, w = map(int, m.groups())
+    cells.append(f"{n:,} steps, {t * insn / ticks / n:,.0f} / {w * insn / ticks:,.0f}" if n else "0")
+print(f"| {sys.argv[2]} | " + " | ".join(cells) + " |")
+PY
+  done
 } | tee out/firmware/report.md

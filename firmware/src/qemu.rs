@@ -7,7 +7,7 @@
 //! the LCP was solved and every scene ended as physics says (balanced, fell, slid, fell).
 
 use meterstick_core::lcp::{Lcp, Lemke};
-use meterstick_core::planar::{Checksum, SwitchEvent};
+use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::rig::{NoDelay, Rig, RigConfig, RigState};
 use meterstick_core::scene::{
     Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome, Scene,
@@ -69,7 +69,11 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     };
     let mut checksum = Checksum::new();
     let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
+    // Per solve path (`SolvePath::ALL`'s order): steps, ticks, worst step. A step is counted under
+    // the last path it needed (a step that fell back to the full layout may use two).
+    let mut by_path = [(0u64, 0u64, 0u32); 4];
     let state = loop {
+        let before = rig.scene().stats().paths;
         let t0 = systick::now();
         let result = rig.tick();
         let t1 = systick::now();
@@ -86,6 +90,13 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
             ticks += u64::from(used);
             worst = worst.max(used);
             checksum.add(rig.scene().state());
+            let after = rig.scene().stats().paths;
+            let path = SolvePath::ALL.iter().rposition(|&p| after.of(p) > before.of(p)).unwrap_or(0);
+            if let Some(slot) = by_path.get_mut(path) {
+                slot.0 += 1;
+                slot.1 += u64::from(used);
+                slot.2 = slot.2.max(used);
+            }
         }
         if !matches!(state, RigState::WaitingForStart | RigState::Running) {
             break state;
@@ -111,6 +122,16 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
         st.reduced_check_fired,
         checksum.value()
     );
+    for (path, (n, t, w)) in SolvePath::ALL.iter().zip(by_path) {
+        defmt::println!(
+            "{=str} path={=str} steps={=u64} systicks={=u64} worst_step_systicks={=u32}",
+            name,
+            path.name(),
+            n,
+            t,
+            w
+        );
+    }
     let (pins, _) = rig.release();
     defmt::println!(
         "{=str} rig pulses={=u32} systicks={=u64} worst_step_systicks={=u32} steps={=u64}",

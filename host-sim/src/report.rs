@@ -136,6 +136,8 @@ pub struct SweepRow {
     /// Lemke pivots per step, averaged over the run (the core's warm-started solver; `None`
     /// for the reference, which enumerates).
     pub pivots_per_step: Option<f64>,
+    /// Solves per path (the core's; `None` for the reference).
+    pub paths: Option<crate::trajectory::Paths>,
     /// Timing repeats.
     pub repeats: usize,
 }
@@ -194,16 +196,24 @@ pub fn order_fit(rows: &[&SweepRow]) -> (Option<f64>, (f64, f64), f64, f64) {
 fn performance_section(rows: &[SweepRow], args: &ReportArgs) -> String {
     let mut md = String::from("## Performance\n\n");
     md += "The sweep's scene at h = 1 ms, timed above (median of the repeats, one run at a time):\n\n";
-    md += "| config | host ns/step | steps/s | pivots/step |\n|---|---|---|---|\n";
+    md += "| config | host ns/step | steps/s | pivots/step | solves by path: free / warm / candidate / lemke |\n\
+           |---|---|---|---|---|\n";
     for r in rows.iter().filter(|r| (r.h - 1e-3).abs() < 1e-12) {
         md += &format!(
-            "| {} | {:.0} | {:.2e} | {} |\n",
+            "| {} | {:.0} | {:.2e} | {} | {} |\n",
             r.config,
             r.ns_per_step,
             1e9 / r.ns_per_step,
-            r.pivots_per_step.map_or_else(|| "- (enumeration)".into(), |p| format!("{p:.4}"))
+            r.pivots_per_step.map_or_else(|| "- (enumeration)".into(), |p| format!("{p:.4}")),
+            r.paths.map_or_else(
+                || "-".into(),
+                |p| format!("{} / {} / {} / {}", p.free, p.warm, p.candidate, p.lemke)
+            )
         );
     }
+    md += "\nThe solve paths (`docs/formulation.md`, \"Solving a step\"): `q >= 0` (free), the previous basis in the \
+           body's coordinates (warm), a neighbouring basis (candidate), Lemke's method. Per-path instruction \
+           counts on the emulated Cortex-M cores: `scripts/firmware-report.sh`.\n\n";
     md += "\nCriterion benchmarks of each piece (one Lemke solve, cold and warm, 6x6 and 8x8, f32 and f64; one \
            step; a whole run): `cargo bench -p meterstick-tests --bench core`.\n\n";
     md += &included_figures(
@@ -291,6 +301,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
             ms_per_sim_second: ns / h * 1e-6,
             pivots_per_step: (config != Implementation::Reference)
                 .then(|| run.counters.pivots as f64 / run.steps.max(1) as f64),
+            paths: (config != Implementation::Reference).then_some(run.counters.paths),
             repeats,
         });
     }

@@ -70,6 +70,7 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
         c.reduced_check_fired,
         c.reduced_check_fired_before_meeting
     );
+    let _ = writeln!(out, "solves by path: {}", c.paths);
     if let Some(warning) = c.round_off_warning(traj.steps) {
         let _ = writeln!(out, "{warning}");
     }

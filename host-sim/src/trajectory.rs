@@ -191,6 +191,45 @@ pub struct SolverCounters {
     /// Steps resolved only to more than `ROUND_OFF_LIMIT` of their impulses (core; see
     /// [`meterstick_core::planar::StepReport::round_off_limited`]).
     pub round_off_limited: u64,
+    /// Solves per path (core; `docs/formulation.md`, "Solving a step").
+    pub paths: Paths,
+}
+
+/// Solves per [`meterstick_core::planar::SolvePath`] over a run, and the candidate bases tried.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Paths {
+    /// `z = 0` (nothing pushes).
+    pub free: u64,
+    /// The previous step's basis.
+    pub warm: u64,
+    /// A neighbouring basis.
+    pub candidate: u64,
+    /// Lemke's method.
+    pub lemke: u64,
+    /// Candidate bases solved, answered or not.
+    pub candidates_tried: u64,
+}
+
+impl From<&meterstick_core::planar::PathCounts> for Paths {
+    fn from(p: &meterstick_core::planar::PathCounts) -> Self {
+        Self {
+            free: p.free,
+            warm: p.warm,
+            candidate: p.candidate,
+            lemke: p.lemke,
+            candidates_tried: p.candidates_tried,
+        }
+    }
+}
+
+impl fmt::Display for Paths {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "free {}, warm {}, candidate {}, lemke {} ({} candidate bases tried)",
+            self.free, self.warm, self.candidate, self.lemke, self.candidates_tried
+        )
+    }
 }
 
 impl SolverCounters {
@@ -218,6 +257,7 @@ impl From<&RunStats> for SolverCounters {
             reduced_check_fired: s.reduced_check_fired,
             regularized_solves: s.regularized_solves,
             round_off_limited: s.round_off_limited,
+            paths: Paths::from(&s.paths),
             ..Self::default()
         }
     }

@@ -521,6 +521,26 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     /// # Errors
     /// As [`Lemke::solve`].
     pub fn solve_warm(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Result<LcpSolution<T, N>, LcpError> {
+        self.solve_warm_inner(lcp, warm, true)
+    }
+
+    /// [`Self::solve_warm`] without its first step, the direct solve of `warm`'s own complementary
+    /// solution: for a caller that has just tried that basis itself (the planar stepper solves it
+    /// in the body's coordinates, `crate::planar::FactoredLcp`). Lemke's method runs from `warm`'s
+    /// tableau, then from the cold start, as in [`Self::solve_warm`]; the guarantees are the same.
+    ///
+    /// # Errors
+    /// As [`Lemke::solve`].
+    pub fn solve_from_basis(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Result<LcpSolution<T, N>, LcpError> {
+        self.solve_warm_inner(lcp, warm, false)
+    }
+
+    fn solve_warm_inner(
+        &self,
+        lcp: &Lcp<T, N>,
+        warm: Basis<N>,
+        direct: bool,
+    ) -> Result<LcpSolution<T, N>, LcpError> {
         let () = Self::SIZE_CHECK;
         let Some(scales) = lcp.scales() else {
             return Err(LcpError::NonFiniteInput);
@@ -543,7 +563,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
             let scale = max(scales.m_norm, T::TINY);
             // Fast path: the warm basis solved directly, kept only when strictly feasible
             // (`z_a >= 0` there, `w >= 0` outside `a` here) and verified.
-            if let Some(z) = basis_solution(lcp, warm, scale) {
+            if let Some(z) = direct.then(|| basis_solution(lcp, warm, scale)).flatten() {
                 let w = lcp.w_of(&z);
                 let mut feasible = true;
                 for i in 0..N {

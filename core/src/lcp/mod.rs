@@ -46,11 +46,13 @@
 //! **Warm start.** [`Lemke::solve_warm`] takes a complementary [`Basis`] (the previous
 //! time step's) and first solves it directly: `M_aa z_a = -q_a` by Gaussian elimination with
 //! partial pivoting over the basis' rows and columns, `z = 0` elsewhere; when `z_a >= 0`,
-//! `w >= 0` outside `a` and the answer verifies, that is the solution, with zero pivots (on
-//! the slow scene: 39 pivots in all over 7,900 steps). Otherwise the basis is factorised by Gauss-Jordan
-//! elimination in the tableau and Lemke's method runs from it with covering vector `d = B e`
-//! (the artificial column is `-e` in the new coordinates), and if that does not end in a
-//! verified solution, from the cold start.
+//! `w >= 0` outside `a` and the answer verifies, that is the solution, with zero pivots.
+//! Otherwise the basis is factorised by Gauss-Jordan elimination in the tableau and Lemke's
+//! method runs from it with covering vector `d = B e` (the artificial column is `-e` in the new
+//! coordinates), and if that does not end in a verified solution, from the cold start.
+//! [`Lemke::solve_from_basis`] skips the direct solve, for a caller that has just tried the
+//! basis itself (the planar stepper, in the body's coordinates: `docs/formulation.md`, "Solving
+//! a step").
 //!
 //! **Verification.** Every solution returned has passed [`verify`] against the original
 //! `M` and `q`; anything else is an [`LcpError`]. Nothing in this module panics.

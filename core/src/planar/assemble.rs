@@ -19,6 +19,7 @@
 //! its rows decoupled: identity rows and columns and `b = 1`, so its variables are zero.
 
 use super::contact::ContactFrame;
+use super::factored::FactoredLcp;
 use super::layout::{Direction, Layout};
 use crate::lcp::Lcp;
 use crate::nalgebra::{SMatrix, SVector};
@@ -86,12 +87,12 @@ pub fn normal_bias<T: Real>(gap: T, h: T, gravity: T, round_off: T) -> T {
 }
 
 #[inline]
-fn dot3<T: Real>(a: &[T; 3], b: &[T; 3]) -> T {
+pub(crate) fn dot3<T: Real>(a: &[T; 3], b: &[T; 3]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline]
-fn dot2<T: Real>(a: &[T; 2], b: &[T; 2]) -> T {
+pub(crate) fn dot2<T: Real>(a: &[T; 2], b: &[T; 2]) -> T {
     a[0] * b[0] + a[1] * b[1]
 }
 
@@ -137,58 +138,47 @@ pub fn assemble_into<T: Real, const K: usize, const N: usize>(
     input: &StepInputs<'_, T, K>,
     out: &mut StepLcp<T, N>,
 ) {
+    fill_from_factored(&FactoredLcp::new(layout, input), out);
+}
+
+/// Writes `A` and `q` of the step whose factored rows are `f` into `out` (zeroed): the impulse
+/// block `C^T M^-1 C` (its upper triangle computed and mirrored, so it is exactly symmetric), the
+/// friction cone's `E`, `-E^T` and `U`, and an inactive contact's identity rows.
+pub(crate) fn fill_from_factored<T: Real, const K: usize, const N: usize>(
+    f: &FactoredLcp<T, K, N>,
+    out: &mut StepLcp<T, N>,
+) {
     let sigma_start = Layout::<K, N>::SIGMA_START;
     let StepLcp { lcp: Lcp { m: a, q: b }, columns } = out;
-    for i in 0..K {
-        let f = &input.frames[i];
-        columns[i] = f.wn;
-        b[i] = dot3(&f.wn, &input.v_free) - dot2(&f.normal(), &input.support_velocity[i])
-            + normal_bias(f.gap, input.h, input.gravity, input.gap_round_off);
-    }
-    // Friction rows in the layout's order: contact by contact, `+d` before `-d` (the running index
-    // is guarded, so every index is provably in range).
-    let mut j = K;
-    for i in 0..K {
-        let f = &input.frames[i];
-        for direction in [Direction::Plus, Direction::Minus] {
-            if !layout.tangents()[i].keeps(direction) || j >= sigma_start {
-                continue;
-            }
-            let s = sign::<T>(direction);
-            columns[j] = [s * f.wt[0], s * f.wt[1], s * f.wt[2]];
-            b[j] = s * (dot3(&f.wt, &input.v_free) - dot2(&f.tangent(), &input.support_velocity[i]));
-            a[(j, sigma_start + i)] = T::one();
-            a[(sigma_start + i, j)] = -T::one();
-            j += 1;
-        }
+    *columns = f.col;
+    for j in 0..N {
+        b[j] = f.q[j];
     }
     for j in 0..sigma_start {
-        let mc =
-            [columns[j][0] * input.m_inv[0], columns[j][1] * input.m_inv[1], columns[j][2] * input.m_inv[2]];
         for k in j..sigma_start {
-            let entry = dot3(&mc, &columns[k]);
+            let entry = dot3(&f.mcol[j], &f.col[k]);
             a[(j, k)] = entry;
             a[(k, j)] = entry;
         }
     }
+    let mut j = K;
     for i in 0..K {
-        a[(sigma_start + i, i)] = input.mu[i];
-    }
-    for i in 0..K {
-        if input.frames[i].active {
-            continue;
+        let end = (j + f.tangents()[i].count()).min(sigma_start);
+        let active = (f.inactive >> i) & 1 == 0;
+        for row in j..end {
+            if active {
+                a[(row, sigma_start + i)] = T::one();
+                a[(sigma_start + i, row)] = -T::one();
+            }
         }
-        for j in 0..N {
-            if layout.variables()[j].contact() != i {
-                continue;
-            }
-            for k in 0..N {
-                a[(j, k)] = T::zero();
-                a[(k, j)] = T::zero();
-            }
-            a[(j, j)] = T::one();
-            b[j] = T::one();
-            columns[j] = [T::zero(); 3];
+        j = end;
+        if active {
+            a[(sigma_start + i, i)] = f.mu[i];
+        }
+    }
+    for v in 0..N {
+        if (f.inactive >> v) & 1 == 1 {
+            a[(v, v)] = T::one();
         }
     }
 }

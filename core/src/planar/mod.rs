@@ -41,6 +41,7 @@ mod body;
 mod checksum;
 mod contact;
 mod events;
+mod factored;
 mod layout;
 mod stepper;
 
@@ -48,7 +49,9 @@ pub use body::{Body, BodyState};
 pub use checksum::Checksum;
 pub use contact::{Contact, ContactFrame, ContactMode, Feature, Pose, Support};
 pub use events::{EventLog, SwitchEvent};
+pub use factored::{BasisAnswer, Declined, FactoredLcp};
 pub use layout::{Direction, Layout, Tangents, Variable};
 pub use stepper::{
-    ContactReport, Model, ROUND_OFF_LIMIT, RunStats, Settings, StepError, StepReport, Stepper,
+    ContactReport, Model, PathCounts, ROUND_OFF_LIMIT, RunStats, Settings, SolvePath, StepError, StepReport,
+    Stepper,
 };

@@ -18,9 +18,10 @@
 //!
 //! A failed step leaves the state as it was and returns a [`StepError`]; nothing here panics.
 
-use super::assemble::{StepInputs, StepLcp, assemble_into, sign};
+use super::assemble::{StepInputs, StepLcp, fill_from_factored, sign};
 use super::body::{Body, BodyState};
 use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
+use super::factored::{FactoredLcp, basis_of_modes};
 use super::layout::{Direction, Layout, Variable};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
@@ -107,6 +108,8 @@ pub struct StepReport<T, const K: usize> {
     pub pivots: u32,
     /// `true` when the warm-start basis gave the answer.
     pub warm_start_used: bool,
+    /// Which path answered the step's LCP (the full layout's, when it was used).
+    pub path: SolvePath,
     /// Reduced layout only: a dropped direction was needed (or the reduced LCP had no solution),
     /// so the step was solved in the full layout (the reported values are the full layout's).
     pub full_layout_used: bool,
@@ -157,6 +160,77 @@ impl<T: Real, const K: usize> StepReport<T, K> {
     }
 }
 
+/// Which path answered a step's LCP (`docs/formulation.md`, "Solving a step"). Every path's
+/// answer is verified; a path that cannot answer hands the step to the next.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum SolvePath {
+    /// `q >= 0`: no impulse is needed, `z = 0` (as Lemke's method answers it, before any pivot).
+    Free,
+    /// The previous step's basis, solved in the body's coordinates ([`FactoredLcp`]).
+    Warm,
+    /// One of the bases next to the previous one (one contact's mode changed), solved the same way.
+    Candidate,
+    /// Lemke's method on the assembled LCP, warm-started from the previous basis: the solver of
+    /// record, for whatever the other paths do not answer.
+    Lemke,
+}
+
+impl SolvePath {
+    /// Every path, in the order they are tried.
+    pub const ALL: [Self; 4] = [Self::Free, Self::Warm, Self::Candidate, Self::Lemke];
+
+    /// A short stable name: `free`, `warm`, `candidate`, `lemke`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Free => "free",
+            Self::Warm => "warm",
+            Self::Candidate => "candidate",
+            Self::Lemke => "lemke",
+        }
+    }
+}
+
+/// How many solves each [`SolvePath`] answered over a run (a step that fell back to the full
+/// layout counts two solves), and how many candidate bases were tried.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PathCounts {
+    /// Answered with `z = 0`.
+    pub free: u64,
+    /// Answered by the previous basis.
+    pub warm: u64,
+    /// Answered by a candidate basis.
+    pub candidate: u64,
+    /// Answered by Lemke's method (or failed there).
+    pub lemke: u64,
+    /// Candidate bases solved, answered or not.
+    pub candidates_tried: u64,
+}
+
+impl PathCounts {
+    /// The solves `path` answered.
+    #[must_use]
+    pub const fn of(&self, path: SolvePath) -> u64 {
+        match path {
+            SolvePath::Free => self.free,
+            SolvePath::Warm => self.warm,
+            SolvePath::Candidate => self.candidate,
+            SolvePath::Lemke => self.lemke,
+        }
+    }
+
+    fn count(&mut self, path: SolvePath) {
+        match path {
+            SolvePath::Free => self.free += 1,
+            SolvePath::Warm => self.warm += 1,
+            SolvePath::Candidate => self.candidate += 1,
+            SolvePath::Lemke => self.lemke += 1,
+        }
+    }
+}
+
 /// Counters over a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -177,6 +251,8 @@ pub struct RunStats {
     /// Steps whose impulses were resolved only to more than [`ROUND_OFF_LIMIT`] of their size
     /// ([`StepReport::round_off_limited`]).
     pub round_off_limited: u64,
+    /// Solves per path.
+    pub paths: PathCounts,
 }
 
 /// One rigid body against `K` supports; each step solves the `N`-variable LCP of a [`Layout`],
@@ -306,6 +382,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         };
         stepper.update_frames(&supports);
         stepper.modes = stepper.initial_modes();
+        stepper.basis = basis_of_modes(stepper.layout.tangents(), &stepper.modes);
         Ok(stepper)
     }
 
@@ -428,28 +505,24 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             gravity: s.gravity,
             gap_round_off,
         };
-        let mut step_lcp = StepLcp::zeros();
-        assemble_into(&self.layout, &inputs, &mut step_lcp);
+        let factored = FactoredLcp::new(&self.layout, &inputs);
         let mut z = [T::zero(); NF];
-        let mut columns = [[T::zero(); 3]; NF];
         let mut v_plus = v_free;
         let reduced = N != NF;
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
-        let (mut pivots, warm_start_used, mut residual, solved) =
-            match self.solver.solve_warm(&step_lcp.lcp, self.basis) {
+        let (mut pivots, mut warm_start_used, mut residual, mut path, solved) =
+            match solve(&factored, self.basis, &self.solver, &mut self.stats) {
                 Ok(sol) => {
                     self.basis = sol.basis;
-                    self.stats.regularized_solves += u64::from(sol.regularized);
-                    z[..N].copy_from_slice(sol.z.as_slice());
-                    columns[..N].copy_from_slice(&step_lcp.columns);
-                    v_plus = velocity_after(&v_free, &self.m_inv, &columns[..N - K], &z[..N - K]);
-                    (sol.pivots, sol.warm_start_used, sol.residual, true)
+                    z[..N].copy_from_slice(&sol.z);
+                    v_plus = sol.v_plus;
+                    (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
                 }
                 // A reduced LCP may have no solution when a dropped direction is needed: that too
                 // is the reduced model leaving its range.
                 Err(e) if reduced => {
                     self.basis = Basis::all_w();
-                    (e.pivots(), false, T::zero(), false)
+                    (e.pivots(), false, T::zero(), SolvePath::Lemke, false)
                 }
                 Err(e) => return Err(StepError::Solver(e)),
             };
@@ -461,19 +534,19 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             self.stats.reduced_check_fired += 1;
             #[cfg(feature = "fallback")]
             {
-                let mut full = StepLcp::zeros();
-                assemble_into(&self.full, &inputs, &mut full);
+                let full = FactoredLcp::new(&self.full, &inputs);
                 let mut wide = Basis::<NF>::all_w();
                 for (j, &k) in self.to_full.iter().enumerate() {
                     wide.set_z_basic(k, self.basis.is_z_basic(j));
                 }
-                let sol = Lemke::<T, NF>::new().solve_warm(&full.lcp, wide).map_err(StepError::Solver)?;
+                let sol =
+                    solve(&full, wide, &Lemke::<T, NF>::new(), &mut self.stats).map_err(StepError::Solver)?;
                 pivots += sol.pivots;
                 residual = sol.residual;
-                self.stats.regularized_solves += u64::from(sol.regularized);
-                z.copy_from_slice(sol.z.as_slice());
-                columns = full.columns;
-                v_plus = velocity_after(&v_free, &self.m_inv, &columns[..NF - K], &z[..NF - K]);
+                warm_start_used = sol.warm_start_used;
+                path = sol.path;
+                z = sol.z;
+                v_plus = sol.v_plus;
             }
             #[cfg(not(feature = "fallback"))]
             {
@@ -549,6 +622,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             contacts,
             pivots,
             warm_start_used,
+            path,
             full_layout_used,
             residual,
             round_off_limited,
@@ -631,15 +705,77 @@ fn impulses<T: Real, const K: usize, const M: usize, const NF: usize>(
     (normal, friction)
 }
 
-/// `v+ = v~ + M^-1 sum_j c_j z_j` (eq. 16).
-fn velocity_after<T: Real>(v_free: &[T; 3], m_inv: &[T; 3], columns: &[[T; 3]], z: &[T]) -> [T; 3] {
-    let mut v = *v_free;
-    for (c, &zj) in columns.iter().zip(z) {
-        for k in 0..3 {
-            v[k] += m_inv[k] * c[k] * zj;
+/// One layout's verified answer ([`solve`]).
+struct Solved<T: Real, const M: usize> {
+    z: [T; M],
+    v_plus: [T; 3],
+    basis: Basis<M>,
+    pivots: u32,
+    warm_start_used: bool,
+    residual: T,
+    path: SolvePath,
+}
+
+/// Solves the step's LCP `factored` (`docs/formulation.md`, "Solving a step"): `z = 0` when
+/// `q >= 0`; else the previous basis `warm` in the body's coordinates; else its neighbours the same
+/// way; else Lemke's method on the assembled LCP, warm-started from `warm`. Every answer is
+/// verified. Counts the path (and each candidate tried) in `stats`.
+fn solve<T: Real, const K: usize, const M: usize>(
+    factored: &FactoredLcp<T, K, M>,
+    warm: Basis<M>,
+    solver: &Lemke<T, M>,
+    stats: &mut RunStats,
+) -> Result<Solved<T, M>, LcpError> {
+    let fast = |basis: Basis<M>, path: SolvePath| {
+        factored.solve_basis(basis, solver.tolerance()).map(|a| Solved {
+            z: a.z,
+            v_plus: a.v_plus,
+            basis,
+            pivots: 0,
+            warm_start_used: path == SolvePath::Warm,
+            residual: a.residual,
+            path,
+        })
+    };
+    let answer = if factored.is_free() {
+        Some(Solved {
+            z: [T::zero(); M],
+            v_plus: *factored.v_free(),
+            basis: Basis::all_w(),
+            pivots: 0,
+            warm_start_used: false,
+            residual: T::zero(),
+            path: SolvePath::Free,
+        })
+    } else {
+        match fast(warm, SolvePath::Warm) {
+            Ok(answer) => Some(answer),
+            Err(why) => factored.neighbours(warm, why).find_map(|basis| {
+                stats.paths.candidates_tried += 1;
+                fast(basis, SolvePath::Candidate).ok()
+            }),
         }
+    };
+    if let Some(answer) = answer {
+        stats.paths.count(answer.path);
+        return Ok(answer);
     }
-    v
+    stats.paths.count(SolvePath::Lemke);
+    let mut lcp = StepLcp::zeros();
+    fill_from_factored(factored, &mut lcp);
+    let sol = solver.solve_from_basis(&lcp.lcp, warm)?;
+    stats.regularized_solves += u64::from(sol.regularized);
+    let mut z = [T::zero(); M];
+    z.copy_from_slice(sol.z.as_slice());
+    Ok(Solved {
+        v_plus: factored.velocity_after(&z),
+        z,
+        basis: sol.basis,
+        pivots: sol.pivots,
+        warm_start_used: sol.warm_start_used,
+        residual: sol.residual,
+        path: SolvePath::Lemke,
+    })
 }
 
 /// A step count for [`Real::of_count`], saturating at `u32::MAX` (4.3e9 steps: 50 days at

@@ -1,0 +1,637 @@
+//! One step's LCP in factored form, and its solution for a given complementary basis in the
+//! body's three degrees of freedom: the stepper's fast path (`docs/formulation.md`, "Solving a
+//! step").
+//!
+//! # The factored form
+//! With `c_j` the wrench column of impulse variable `j` (`W_n`, or `+-W_d` for a friction row),
+//! `M^-1` per unit mass and `q_j = c_j^T v~ + c0_j` (eq. 18's right-hand side), the LCP matrix is
+//!
+//! ```text
+//! A = [ C^T M^-1 C   E ]      C = [c_1 .. c_(N-K)]  (3 x (N - K)),  rank C^T M^-1 C <= 3
+//!     [ U         -E^T 0 ]
+//! ```
+//!
+//! so `w = A z + q` is, with `dv = M^-1 C p` the velocity change the impulses `p` make (eq. 16),
+//!
+//! ```text
+//! w_j     = q_j + c_j^T dv + sigma_i      a friction row j of contact i (no sigma in a normal row)
+//! w_sigma = mu_i p_n,i - sum_(f of i) p_f
+//! ```
+//!
+//! Nothing here forms `A`: a row costs a 3-vector dot product.
+//!
+//! # The solution of a basis
+//! A complementary basis says which `z_j` may be non-zero; its rows then have `w_j = 0`. Per
+//! contact, the basic variables eliminate as follows:
+//!
+//! * `sigma_i` basic with one friction row `f` basic (sliding, or a contact at its cone's edge):
+//!   the cone row `w_sigma = 0` gives `p_f = mu p_n`, so the contact has one unknown, `p_n`, acting
+//!   through `W_n + mu c_f` and held by its normal row; `sigma_i = -(q_f + c_f^T dv)` follows from
+//!   row `f` once `dv` is known. Without a basic `p_n`, `p_f = 0` (a separated contact whose
+//!   support slips past it) and only `sigma_i` is left.
+//! * `sigma_i` not basic: each basic `p_n`, `p_f` is an unknown held by its own row
+//!   (`c_j^T v+ + c0_j = 0`: touching, not slipping).
+//! * any other pattern (`sigma_i` basic with no or two basic friction rows) is declined: its
+//!   system is singular or needs both directions at once, and Lemke's method takes it.
+//!
+//! The unknowns `y` (at most 3: a body in the plane has three degrees of freedom, so more rows
+//! than 3 make the system singular) solve `H^T M^-1 G y = -q_H`, with `G` their columns and `H`
+//! the rows holding them: an `m x m` system, `m <= 3`, by elimination with partial pivoting.
+//! Then `z` is assembled, `dv = M^-1 C p` recomputed from `z`, and every `w` from the factored
+//! rows above: the answer is kept only when `z >= 0` and, outside the basis, `w >= 0` as computed
+//! (no tolerance, as [`crate::lcp::Lemke::solve_warm`]'s own warm basis: a basis infeasible by
+//! round-off is left to Lemke's lexicographic pivoting), and when it passes the verification
+//! residual ([`crate::lcp::verify`]) held to a scale no larger than Lemke's own: `||M||_inf` is
+//! replaced by the lower bound `max_j (|A_jj| + row's unit entries)` (every row sum is at least
+//! its diagonal), which makes the check at least as strict.
+//!
+//! This is the complementary solution of the same basis that Lemke's warm start computes from
+//! the assembled `A` (the same `z` to round-off); the property tests compare the two.
+
+use super::assemble::{StepInputs, dot2, dot3, normal_bias, sign};
+use super::contact::ContactMode;
+use super::layout::{Direction, Layout, Tangents};
+use crate::lcp::Basis;
+use crate::real::{Real, max, min};
+
+/// The factored rows of one step's LCP ([module docs](self)).
+#[derive(Debug, Clone, Copy)]
+pub struct FactoredLcp<T, const K: usize, const N: usize> {
+    /// `c_j`, the wrench column of impulse variable `j` (zero for the `sigma`s and for an inactive
+    /// contact's variables).
+    pub(crate) col: [[T; 3]; N],
+    /// `M^-1 c_j` per unit mass.
+    pub(crate) mcol: [[T; 3]; N],
+    /// `q_j`: eq. 18's right-hand side (0 for a `sigma`; 1 for an inactive contact's variables,
+    /// whose rows are decoupled).
+    pub(crate) q: [T; N],
+    /// Each contact's friction coefficient for this step.
+    pub(crate) mu: [T; K],
+    /// The kept tangent directions.
+    tangents: [Tangents; K],
+    /// Bit `j` set: variable `j` belongs to an inactive contact.
+    pub(crate) inactive: u32,
+    /// `v~`.
+    v_free: [T; 3],
+    /// A lower bound of `||A||_inf` from the structure ([`Self::new`]).
+    m_low: T,
+    /// `||q||_inf`.
+    q_norm: T,
+    /// `min_j q_j`.
+    q_min: T,
+}
+
+/// A basis' complementary solution, verified ([`FactoredLcp::solve_basis`]).
+#[derive(Debug, Clone, Copy)]
+pub struct BasisAnswer<T, const N: usize> {
+    /// `z` (per unit mass).
+    pub z: [T; N],
+    /// `v+ = v~ + dv`.
+    pub v_plus: [T; 3],
+    /// The normalised verification residual.
+    pub residual: T,
+}
+
+/// Why [`FactoredLcp::solve_basis`] gave no answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Declined {
+    /// A pattern this path does not take: an inactive contact's variable basic, `sigma` basic
+    /// with no or two friction rows, more unknowns than the body's three degrees of freedom.
+    Pattern,
+    /// The basis' system is numerically singular.
+    Singular,
+    /// The basis' solution is infeasible: variable `j`'s `z_j < 0`, or its `w_j < 0` outside the
+    /// basis (the first such variable found).
+    Infeasible(u8),
+    /// The solution failed verification.
+    Unverified,
+}
+
+/// What a contact's variables do in a basis: which are basic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Pattern {
+    /// Nothing basic: separated (or touching with no impulse).
+    Off,
+    /// Only `p_n` basic: touching with no friction impulse (frictionless, or a slip the kept
+    /// directions do not oppose).
+    Touch,
+    /// `p_n` and `p_f` along the direction basic: sticking.
+    Stick(Direction),
+    /// `p_n`, `p_f` and `sigma` basic: sliding, friction on the cone's edge.
+    Slide(Direction),
+    /// `p_f` (at zero) and `sigma` basic: separated while the support slips past.
+    Skid(Direction),
+}
+
+/// At most this many unknowns: the body's degrees of freedom.
+const DOF: usize = 3;
+
+impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
+    /// The factored rows of `layout`'s LCP for the step `input` (the same numbers
+    /// [`super::assemble::assemble_into`] writes into `A` and `q`).
+    #[must_use]
+    pub fn new(layout: &Layout<K, N>, input: &StepInputs<'_, T, K>) -> Self {
+        let sigma_start = Layout::<K, N>::SIGMA_START;
+        let zero3 = [T::zero(); 3];
+        let mut out = Self {
+            col: [zero3; N],
+            mcol: [zero3; N],
+            q: [T::zero(); N],
+            mu: input.mu,
+            tangents: *layout.tangents(),
+            inactive: 0,
+            v_free: input.v_free,
+            m_low: T::zero(),
+            q_norm: T::zero(),
+            q_min: T::zero(),
+        };
+        for i in 0..K {
+            let f = &input.frames[i];
+            out.col[i] = f.wn;
+            out.q[i] = dot3(&f.wn, &input.v_free) - dot2(&f.normal(), &input.support_velocity[i])
+                + normal_bias(f.gap, input.h, input.gravity, input.gap_round_off);
+        }
+        // Friction rows contact by contact, `+d` before `-d` (the running index is guarded).
+        let mut j = K;
+        for i in 0..K {
+            let f = &input.frames[i];
+            for direction in [Direction::Plus, Direction::Minus] {
+                if !out.tangents[i].keeps(direction) || j >= sigma_start {
+                    continue;
+                }
+                let s = sign::<T>(direction);
+                out.col[j] = [s * f.wt[0], s * f.wt[1], s * f.wt[2]];
+                out.q[j] = s * (dot3(&f.wt, &input.v_free) - dot2(&f.tangent(), &input.support_velocity[i]));
+                j += 1;
+            }
+        }
+        for j in 0..sigma_start {
+            let c = &out.col[j];
+            out.mcol[j] = [c[0] * input.m_inv[0], c[1] * input.m_inv[1], c[2] * input.m_inv[2]];
+        }
+        for (v, variable) in layout.variables().iter().enumerate() {
+            if !input.frames.get(variable.contact()).is_some_and(|f| f.active) {
+                out.inactive |= 1 << v;
+                out.col[v] = zero3;
+                out.mcol[v] = zero3;
+                out.q[v] = T::one();
+            }
+        }
+        // ||A||_inf from below, from the structure alone: an active contact's impulse rows have a
+        // diagonal `c_j^T M^-1 c_j >= 1` (per unit mass the linear part of `c_j` is a unit
+        // vector), a friction row its sigma's 1 besides, a sigma row sums to `mu + kept
+        // directions` exactly; an inactive contact's rows are the identity's.
+        let mut m_low = T::one();
+        for i in 0..K {
+            if (out.inactive >> i) & 1 == 0 {
+                m_low = max(m_low, max(T::of(2.0), out.mu[i] + T::of_count(out.tangents[i].count() as u32)));
+            }
+        }
+        let (mut q_norm, mut q_min) = (T::zero(), out.q[0]);
+        for v in 0..N {
+            q_norm = max(q_norm, out.q[v].abs_exact());
+            q_min = min(q_min, out.q[v]);
+        }
+        out.m_low = m_low;
+        out.q_norm = q_norm;
+        out.q_min = q_min;
+        out
+    }
+
+    /// `true` when `q >= 0`, so that `z = 0` solves the LCP (nothing pushes: the answer Lemke's
+    /// method gives such a problem before any pivot).
+    #[must_use]
+    pub fn is_free(&self) -> bool {
+        self.q_min >= T::zero()
+    }
+
+    /// The kept tangent directions of each contact.
+    #[must_use]
+    pub const fn tangents(&self) -> &[Tangents; K] {
+        &self.tangents
+    }
+
+    /// `v~`.
+    #[must_use]
+    pub const fn v_free(&self) -> &[T; 3] {
+        &self.v_free
+    }
+
+    /// `v+ = v~ + M^-1 C p` for the impulses in `z` (eq. 16).
+    #[must_use]
+    pub fn velocity_after(&self, z: &[T; N]) -> [T; 3] {
+        let mut v = self.v_free;
+        for j in 0..Layout::<K, N>::SIGMA_START {
+            let (c, zj) = (&self.mcol[j], z[j]);
+            for k in 0..3 {
+                v[k] += c[k] * zj;
+            }
+        }
+        v
+    }
+
+    /// The complementary solution of `basis`, computed in the body's coordinates and verified
+    /// within `tolerance` ([module docs](self)), or why there is none ([`Declined`]). Never a
+    /// solution that failed.
+    ///
+    /// # Errors
+    /// [`Declined`]: a pattern this path does not take, a singular system, an infeasible basis
+    /// (`z < 0`, or `w < 0` outside it), an answer that fails verification.
+    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
+    pub fn solve_basis(&self, basis: Basis<N>, tolerance: T) -> Result<BasisAnswer<T, N>, Declined> {
+        let mask = basis.z_mask();
+        if mask & self.inactive != 0 {
+            return Err(Declined::Pattern); // an inactive contact's decoupled rows have z = 0
+        }
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        let sigma_start = Layout::<K, N>::SIGMA_START;
+        // The unknowns: the variable each sets, the friction row that follows it at `mu` (a
+        // sliding contact's), the row holding it, its column `M^-1 G`.
+        let mut var = [0usize; DOF];
+        let mut follower: [Option<(usize, T)>; DOF] = [None; DOF];
+        let mut row = [0usize; DOF];
+        let mut gm = [[T::zero(); 3]; DOF];
+        let mut m = 0usize;
+        // The friction row that gives each contact's basic sigma.
+        let mut sigma_row: [Option<usize>; K] = [None; K];
+        let mut j = K;
+        for i in 0..K {
+            let kept = self.tangents[i].count();
+            let (first, last) = (j, (j + kept).min(sigma_start));
+            j = last;
+            let mut frictions = 0;
+            let mut friction = first;
+            for f in first..last {
+                if basic(f) {
+                    frictions += 1;
+                    friction = f;
+                }
+            }
+            if basic(sigma_start + i) {
+                if frictions != 1 {
+                    return Err(Declined::Pattern);
+                }
+                sigma_row[i] = Some(friction);
+                if basic(i) {
+                    if m >= DOF {
+                        return Err(Declined::Pattern);
+                    }
+                    let (mn, mf, mu) = (&self.mcol[i], &self.mcol[friction.min(N - 1)], self.mu[i]);
+                    var[m] = i;
+                    follower[m] = Some((friction, mu));
+                    row[m] = i;
+                    gm[m] = [mn[0] + mu * mf[0], mn[1] + mu * mf[1], mn[2] + mu * mf[2]];
+                    m += 1;
+                }
+                continue;
+            }
+            for v in core::iter::once(i).chain(first..last) {
+                if basic(v) {
+                    if m >= DOF {
+                        return Err(Declined::Pattern);
+                    }
+                    var[m] = v;
+                    row[m] = v;
+                    gm[m] = self.mcol[v.min(N - 1)];
+                    m += 1;
+                }
+            }
+        }
+        // H^T M^-1 G y = -q_H.
+        let mut a = [[T::zero(); DOF]; DOF];
+        let mut y = [T::zero(); DOF];
+        for k in 0..m {
+            for l in 0..m {
+                a[k][l] = dot3(&self.col[row[k].min(N - 1)], &gm[l]);
+            }
+            y[k] = -self.q[row[k].min(N - 1)];
+        }
+        if !solve_small(&mut a, &mut y, m, T::of(N as f64) * T::EPS * self.m_low) {
+            return Err(Declined::Singular);
+        }
+        let mut z = [T::zero(); N];
+        for k in 0..m {
+            if y[k] < T::zero() {
+                return Err(Declined::Infeasible(var[k] as u8));
+            }
+            z[var[k].min(N - 1)] = y[k];
+            if let Some((f, mu)) = follower[k] {
+                z[f.min(N - 1)] = mu * y[k];
+            }
+        }
+        // dv recomputed from z, then each basic sigma from its friction row.
+        let v_plus = self.velocity_after(&z);
+        let dv = [v_plus[0] - self.v_free[0], v_plus[1] - self.v_free[1], v_plus[2] - self.v_free[2]];
+        // A velocity (a normal or friction row's w, a sigma) within the round-off of the rows it
+        // comes from, `N eps (||A|| ||p|| + ||q||)`, is zero: a sticking contact has both friction
+        // rows at zero slip (one basic, one not), and a contact held at its cone's edge without
+        // slipping (the rod resting on two sticking fingers) has a zero sigma; computed, either is
+        // of either sign by chance. The impulses and the cone rows (on the impulses' own scale,
+        // far below the velocities' when `V >> g h`) are held to `>= 0` exactly.
+        let mut p_norm = T::zero();
+        for v in 0..sigma_start {
+            p_norm = max(p_norm, z[v]);
+        }
+        let speed_round_off = T::of(N as f64) * T::EPS * (self.m_low * p_norm + self.q_norm);
+        for i in 0..K {
+            if let Some(f) = sigma_row[i] {
+                let f = f.min(N - 1);
+                let sigma = -(self.q[f] + dot3(&self.col[f], &dv));
+                if sigma < -speed_round_off {
+                    return Err(Declined::Infeasible((sigma_start + i) as u8));
+                }
+                z[(sigma_start + i).min(N - 1)] = max(sigma, T::zero());
+            }
+        }
+        let w = self.w_of(&z, &dv);
+        // Feasibility outside the basis, and the verification residual of `crate::lcp::verify`
+        // bounded without a division per row: with `z >= 0` (held above), a row's residual is at
+        // most `|w_j| / s_w` in the basis and `max(-w_j, 0) / s_w` outside it (`z_j = 0`), with
+        // `s_w = ||A|| ||z|| + ||q||` (here `||A||`'s lower bound: a smaller scale, a stricter
+        // test).
+        let mut violation = T::zero();
+        let mut z_norm = T::zero();
+        let mut finite = true;
+        for v in 0..N {
+            let (zv, wv) = (z[v], w[v]);
+            finite &= zv.finite() & wv.finite();
+            z_norm = max(z_norm, zv);
+            if basic(v) {
+                violation = max(violation, wv.abs_exact());
+            } else {
+                let floor = if v < sigma_start { -speed_round_off } else { T::zero() };
+                if wv < floor {
+                    return Err(Declined::Infeasible(v as u8));
+                }
+                violation = max(violation, -wv);
+            }
+        }
+        let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
+        if !finite || violation > tolerance * s_w {
+            return Err(Declined::Unverified);
+        }
+        Ok(BasisAnswer { z, v_plus, residual: violation / s_w })
+    }
+
+    /// `w = A z + q` in factored form, with `dv = M^-1 C p` of the same `z`.
+    fn w_of(&self, z: &[T; N], dv: &[T; 3]) -> [T; N] {
+        let sigma_start = Layout::<K, N>::SIGMA_START;
+        let mut w = [T::zero(); N];
+        for v in 0..sigma_start {
+            w[v] = self.q[v] + dot3(&self.col[v], dv);
+        }
+        let mut j = K;
+        for i in 0..K {
+            let s = sigma_start + i;
+            let inactive = (self.inactive >> i) & 1 == 1;
+            let sigma = z[s];
+            let mut cone = self.mu[i] * z[i];
+            let end = (j + self.tangents[i].count()).min(sigma_start);
+            for f in j..end {
+                w[f] += sigma;
+                cone -= z[f];
+            }
+            j = end;
+            // An inactive contact's rows are the identity's: w = z + 1.
+            w[s] = if inactive { self.q[s] + sigma } else { cone };
+            if inactive {
+                w[i] += z[i];
+            }
+        }
+        w
+    }
+
+    /// The bases near `basis` worth trying when it failed with `why` ([`neighbours`]): those of
+    /// the contact whose variable was infeasible first.
+    pub(crate) fn neighbours(
+        &self,
+        basis: Basis<N>,
+        why: Declined,
+    ) -> impl Iterator<Item = Basis<N>> + use<'_, T, K, N> {
+        let (first, direction) = match why {
+            Declined::Infeasible(v) => variable_of::<K, N>(&self.tangents, usize::from(v)),
+            Declined::Pattern | Declined::Singular | Declined::Unverified => (0, None),
+        };
+        neighbours(&self.tangents, basis, first, direction)
+    }
+}
+
+/// The bases near `basis` worth trying when it fails, at most `K x 7` (`K x 4` with one kept
+/// direction per contact), in a fixed order: for each contact from `first` on, every other
+/// pattern of its variables (sliding, sticking, separated, touching without friction, separated
+/// with its support slipping past; for each kept direction, `direction` first for contact
+/// `first`) with the other contacts as they are. A mode change of one contact per step
+/// is what a step usually brings; a step that changes two goes to Lemke's method.
+pub(crate) fn neighbours<const K: usize, const N: usize>(
+    tangents: &[Tangents; K],
+    basis: Basis<N>,
+    first: usize,
+    direction: Option<Direction>,
+) -> impl Iterator<Item = Basis<N>> + use<'_, K, N> {
+    (0..K).map(move |k| (first + k) % K).flat_map(move |i| {
+        let current = pattern(tangents, basis, i);
+        patterns(tangents, i, if i == first { direction } else { None })
+            .filter(move |&p| Some(p) != current)
+            .map(move |p| with_pattern(tangents, basis, i, p))
+    })
+}
+
+/// A basis for contacts in `modes` (before the first step: the modes of the prescribed
+/// motion): sticking and sliding contacts touch, the others are off; a sliding contact's
+/// friction opposes its slip; a sticking contact's takes its first kept direction.
+pub(crate) fn basis_of_modes<const K: usize, const N: usize>(
+    tangents: &[Tangents; K],
+    modes: &[ContactMode; K],
+) -> Basis<N> {
+    let mut basis = Basis::all_w();
+    for i in 0..K {
+        let t = tangents[i];
+        let first = if t.keeps(Direction::Plus) { Direction::Plus } else { Direction::Minus };
+        let p = match modes[i] {
+            ContactMode::Separated => Pattern::Off,
+            ContactMode::Sticking => Pattern::Stick(first),
+            ContactMode::Sliding(d) if t.keeps(d) => Pattern::Slide(d),
+            ContactMode::Sliding(_) => Pattern::Touch,
+        };
+        basis = with_pattern(tangents, basis, i, p);
+    }
+    basis
+}
+
+/// The contact variable `v` belongs to, and its direction when it is a friction row.
+fn variable_of<const K: usize, const N: usize>(
+    tangents: &[Tangents; K],
+    v: usize,
+) -> (usize, Option<Direction>) {
+    let sigma_start = Layout::<K, N>::SIGMA_START;
+    if v < K {
+        return (v, None);
+    }
+    if v >= sigma_start {
+        return ((v - sigma_start).min(K - 1), None);
+    }
+    let mut j = K;
+    for (i, t) in tangents.iter().enumerate() {
+        for d in [Direction::Plus, Direction::Minus] {
+            if t.keeps(d) {
+                if j == v {
+                    return (i, Some(d));
+                }
+                j += 1;
+            }
+        }
+    }
+    (0, None)
+}
+
+/// Contact `i`'s variables: its normal, its friction rows `[+d, -d]` (as kept) and its sigma.
+fn rows_of<const K: usize, const N: usize>(
+    tangents: &[Tangents; K],
+    i: usize,
+) -> (usize, [Option<usize>; 2], usize) {
+    let mut j = K;
+    for k in 0..i.min(K) {
+        j += tangents[k].count();
+    }
+    let t = tangents.get(i).copied().unwrap_or(Tangents::Both);
+    let plus = t.keeps(Direction::Plus).then_some(j);
+    let minus = t.keeps(Direction::Minus).then_some(j + usize::from(plus.is_some()));
+    (i, [plus, minus], Layout::<K, N>::SIGMA_START + i)
+}
+
+/// The pattern of contact `i` in `basis`, `None` when it is none of [`Pattern`]'s.
+fn pattern<const K: usize, const N: usize>(
+    tangents: &[Tangents; K],
+    basis: Basis<N>,
+    i: usize,
+) -> Option<Pattern> {
+    let (n, f, s) = rows_of::<K, N>(tangents, i);
+    let (bn, bs) = (basis.is_z_basic(n), basis.is_z_basic(s));
+    let fp = f[0].is_some_and(|f| basis.is_z_basic(f));
+    let fm = f[1].is_some_and(|f| basis.is_z_basic(f));
+    let d = match (fp, fm) {
+        (false, false) => {
+            return match (bn, bs) {
+                (false, false) => Some(Pattern::Off),
+                (true, false) => Some(Pattern::Touch),
+                _ => None,
+            };
+        }
+        (true, true) => return None,
+        (true, false) => Direction::Plus,
+        (false, true) => Direction::Minus,
+    };
+    match (bn, bs) {
+        (true, false) => Some(Pattern::Stick(d)),
+        (true, true) => Some(Pattern::Slide(d)),
+        (false, true) => Some(Pattern::Skid(d)),
+        (false, false) => None,
+    }
+}
+
+/// Contact `i`'s patterns, in the order they are tried: sliding and sticking (along `first`,
+/// when given, before the other direction), separated, touching without friction, skidding.
+fn patterns<const K: usize>(
+    tangents: &[Tangents; K],
+    i: usize,
+    first: Option<Direction>,
+) -> impl Iterator<Item = Pattern> + use<K> {
+    let t = tangents.get(i).copied().unwrap_or(Tangents::Both);
+    let dirs = match first {
+        Some(Direction::Minus) => [Direction::Minus, Direction::Plus],
+        Some(Direction::Plus) | None => [Direction::Plus, Direction::Minus],
+    };
+    let each = move |make: fn(Direction) -> Pattern| dirs.into_iter().filter(move |&d| t.keeps(d)).map(make);
+    dirs.into_iter()
+        .filter(move |&d| t.keeps(d))
+        .flat_map(|d| [Pattern::Slide(d), Pattern::Stick(d)])
+        .chain([Pattern::Off, Pattern::Touch])
+        .chain(each(Pattern::Skid))
+}
+
+/// `basis` with contact `i`'s variables set to `pattern`.
+fn with_pattern<const K: usize, const N: usize>(
+    tangents: &[Tangents; K],
+    mut basis: Basis<N>,
+    i: usize,
+    pattern: Pattern,
+) -> Basis<N> {
+    let (n, f, s) = rows_of::<K, N>(tangents, i);
+    for v in [Some(n), f[0], f[1], Some(s)].into_iter().flatten() {
+        basis.set_z_basic(v, false);
+    }
+    let row = |d: Direction| match d {
+        Direction::Plus => f[0],
+        Direction::Minus => f[1],
+    };
+    let set: [Option<usize>; 3] = match pattern {
+        Pattern::Off => [None; 3],
+        Pattern::Touch => [Some(n), None, None],
+        Pattern::Stick(d) => [Some(n), row(d), None],
+        Pattern::Slide(d) => [Some(n), row(d), Some(s)],
+        Pattern::Skid(d) => [None, row(d), Some(s)],
+    };
+    for v in set.into_iter().flatten() {
+        basis.set_z_basic(v, true);
+    }
+    basis
+}
+
+/// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
+/// elimination with partial pivoting; `false` when a pivot is at most `tiny` (numerically
+/// singular).
+fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
+    // Constant loop bounds (rows and columns at or beyond `m` skipped): every index is provably
+    // in range, so no panic path is linked.
+    for col in 0..DOF {
+        if col >= m {
+            break;
+        }
+        let mut piv = col;
+        for r in col + 1..DOF {
+            if r < m && a[r][col].abs_exact() > a[piv][col].abs_exact() {
+                piv = r;
+            }
+        }
+        if a[piv][col].abs_exact() <= tiny {
+            return false;
+        }
+        if piv != col {
+            let (row, value) = (a[col], rhs[col]);
+            a[col] = a[piv];
+            rhs[col] = rhs[piv];
+            a[piv] = row;
+            rhs[piv] = value;
+        }
+        let inv = T::one() / a[col][col];
+        for r in col + 1..DOF {
+            if r >= m {
+                break;
+            }
+            let f = a[r][col] * inv;
+            for c in col + 1..DOF {
+                if c < m {
+                    let u = f * a[col][c];
+                    a[r][c] -= u;
+                }
+            }
+            let u = f * rhs[col];
+            rhs[r] -= u;
+        }
+        a[col][col] = inv;
+    }
+    for col in (0..DOF).rev() {
+        if col >= m {
+            continue;
+        }
+        let mut acc = rhs[col];
+        for c in col + 1..DOF {
+            if c < m {
+                acc -= a[col][c] * rhs[c];
+            }
+        }
+        rhs[col] = acc * a[col][col];
+    }
+    true
+}
