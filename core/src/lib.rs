@@ -11,6 +11,8 @@
 //!   fixes the LCP size at compile time, supports a scene moves.
 //! * [`scene`]: the meter stick (6x6 or 8x8), a block on an incline, a ladder.
 //! * [`Real`]: the scalar trait (`f32` on a microcontroller, `f64` on a host).
+//! * [`soft_float`]: `f32` multiplication on the bits for cores without an FPU (the firmware's
+//!   Cortex-M0 builds install it as `__aeabi_fmul`).
 //! * [`rig`] (feature `rig`): the demo rig's control loop over `embedded-hal` 1.0 pins.
 //!
 //! Features: `defmt` (public types derive `defmt::Format`; logging goes to defmt, and compiles to
@@ -30,6 +32,7 @@ mod real;
 #[cfg(feature = "rig")]
 pub mod rig;
 pub mod scene;
+pub mod soft_float;
 
 pub use params::{Check, ParamError, check_fields};
 pub use real::Real;

@@ -74,6 +74,8 @@ mod realtime;
 mod semihosting_log;
 #[cfg(feature = "link")]
 mod session;
+#[cfg(soft_fmul)]
+mod soft_float;
 mod systick;
 #[cfg(all(feature = "qemu", feature = "link"))]
 mod uart;

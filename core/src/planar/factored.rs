@@ -88,6 +88,8 @@ pub struct BasisAnswer<T, const N: usize> {
     pub z: [T; N],
     /// `v+ = v~ + dv`.
     pub v_plus: [T; 3],
+    /// `w = A z + q`, computed in factored form.
+    pub w: [T; N],
     /// The normalised verification residual.
     pub residual: T,
 }
@@ -156,13 +158,14 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         let mut j = K;
         for i in 0..K {
             let f = &input.frames[i];
+            let g = dot3(&f.wt, &input.v_free) - dot2(&f.tangent(), &input.support_velocity[i]);
             for direction in [Direction::Plus, Direction::Minus] {
                 if !out.tangents[i].keeps(direction) || j >= sigma_start {
                     continue;
                 }
                 let s = sign::<T>(direction);
                 out.col[j] = [s * f.wt[0], s * f.wt[1], s * f.wt[2]];
-                out.q[j] = s * (dot3(&f.wt, &input.v_free) - dot2(&f.tangent(), &input.support_velocity[i]));
+                out.q[j] = s * g;
                 j += 1;
             }
         }
@@ -210,6 +213,12 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     #[must_use]
     pub const fn tangents(&self) -> &[Tangents; K] {
         &self.tangents
+    }
+
+    /// `q`.
+    #[must_use]
+    pub const fn q(&self) -> &[T; N] {
+        &self.q
     }
 
     /// `v~`.
@@ -371,7 +380,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         if !finite || violation > tolerance * s_w {
             return Err(Declined::Unverified);
         }
-        Ok(BasisAnswer { z, v_plus, residual: violation / s_w })
+        Ok(BasisAnswer { z, v_plus, w, residual: violation / s_w })
     }
 
     /// `w = A z + q` in factored form, with `dv = M^-1 C p` of the same `z`.
@@ -400,6 +409,27 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             }
         }
         w
+    }
+
+    /// Each contact's slip after the step whose answer is `z`, `w`: the support's velocity along
+    /// `d` relative to the body's contact point, `d . (u - v_P) = -(W_d^T v+ - d . u)`, read from
+    /// the contact's first kept friction row (`w_f = s (W_d^T v+ - d . u) + sigma`) instead of
+    /// being computed again. Meaningless for an inactive contact (its rows are decoupled).
+    #[must_use]
+    pub fn slips(&self, z: &[T], w: &[T]) -> [T; K] {
+        let mut slips = [T::zero(); K];
+        for i in 0..K {
+            let (_, rows, s) = rows_of::<K, N>(&self.tangents, i);
+            let (row, sign) = match rows {
+                [Some(f), _] => (f, T::one()),
+                [None, Some(f)] => (f, -T::one()),
+                [None, None] => continue,
+            };
+            if let (Some(&wf), Some(&sigma)) = (w.get(row), z.get(s)) {
+                slips[i] = -(sign * (wf - sigma));
+            }
+        }
+        slips
     }
 
     /// The bases near `basis` worth trying when it failed with `why` ([`neighbours`]): those of

@@ -507,6 +507,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         };
         let factored = FactoredLcp::new(&self.layout, &inputs);
         let mut z = [T::zero(); NF];
+        let mut w = [T::zero(); NF];
         let mut v_plus = v_free;
         let reduced = N != NF;
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
@@ -515,6 +516,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 Ok(sol) => {
                     self.basis = sol.basis;
                     z[..N].copy_from_slice(&sol.z);
+                    w[..N].copy_from_slice(&sol.w);
                     v_plus = sol.v_plus;
                     (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
                 }
@@ -528,8 +530,9 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             };
         // The step's velocity scale, for the reduced check's round-off and the precision flag.
         let speed = velocity_scale(&support_velocity, &v_plus, self.size);
-        let full_layout_used =
-            reduced && (!solved || self.dropped_direction_needed(&inputs, &v_plus, &z, speed));
+        let full_layout_used = reduced && (!solved || self.dropped_direction_needed(&inputs, &z, &w, speed));
+        #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
+        let mut slips = factored.slips(&z[..N], &w[..N]);
         if full_layout_used {
             self.stats.reduced_check_fired += 1;
             #[cfg(feature = "fallback")]
@@ -546,6 +549,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 warm_start_used = sol.warm_start_used;
                 path = sol.path;
                 z = sol.z;
+                slips = full.slips(&sol.z, &sol.w);
                 v_plus = sol.v_plus;
             }
             #[cfg(not(feature = "fallback"))]
@@ -598,7 +602,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         for i in 0..K {
             let f = &self.frames[i];
             let mode = if f.active && z[i] > impulse_floor {
-                ContactMode::from_slip(f.slip(v_plus, support_velocity[i]), s.stick_speed)
+                ContactMode::from_slip(slips[i], s.stick_speed)
             } else {
                 ContactMode::Separated
             };
@@ -644,15 +648,15 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     fn dropped_direction_needed(
         &self,
         inputs: &StepInputs<'_, T, K>,
-        v_plus: &[T; 3],
         z: &[T; NF],
+        w: &[T; NF],
         speed: T,
     ) -> bool {
         let s = &self.settings;
         let speed_scale = speed + s.gravity * s.step;
         let tol = T::of(64.0 * N as f64) * T::EPS * speed_scale + T::TINY;
         for i in 0..K {
-            let Some((j, kept)) = self.kept_alone[i] else { continue };
+            let Some((j, _)) = self.kept_alone[i] else { continue };
             let f = &inputs.frames[i];
             if !f.active || j >= NF {
                 continue;
@@ -660,11 +664,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             if z[j] <= tol && inputs.mu[i] * z[i] <= tol {
                 continue; // sigma is free
             }
-            let u = &inputs.support_velocity[i];
-            let g = f.wt[0] * v_plus[0] + f.wt[1] * v_plus[1] + f.wt[2] * v_plus[2]
-                - (f.wt[0] * u[0] + f.wt[1] * u[1]);
+            // The kept row is `w_j = s g + sigma` (`g = W_d^T v+ - d . u`); the dropped one is
+            // `-s g + sigma = 2 sigma - w_j`.
             let sigma = Layout::<K, N>::SIGMA_START + i;
-            if sigma < NF && -sign::<T>(kept) * g + z[sigma] < -tol {
+            if sigma < NF && z[sigma] + z[sigma] - w[j] < -tol {
                 return true;
             }
         }
@@ -708,6 +711,7 @@ fn impulses<T: Real, const K: usize, const M: usize, const NF: usize>(
 /// One layout's verified answer ([`solve`]).
 struct Solved<T: Real, const M: usize> {
     z: [T; M],
+    w: [T; M],
     v_plus: [T; 3],
     basis: Basis<M>,
     pivots: u32,
@@ -729,6 +733,7 @@ fn solve<T: Real, const K: usize, const M: usize>(
     let fast = |basis: Basis<M>, path: SolvePath| {
         factored.solve_basis(basis, solver.tolerance()).map(|a| Solved {
             z: a.z,
+            w: a.w,
             v_plus: a.v_plus,
             basis,
             pivots: 0,
@@ -740,6 +745,7 @@ fn solve<T: Real, const K: usize, const M: usize>(
     let answer = if factored.is_free() {
         Some(Solved {
             z: [T::zero(); M],
+            w: *factored.q(),
             v_plus: *factored.v_free(),
             basis: Basis::all_w(),
             pivots: 0,
@@ -767,7 +773,10 @@ fn solve<T: Real, const K: usize, const M: usize>(
     stats.regularized_solves += u64::from(sol.regularized);
     let mut z = [T::zero(); M];
     z.copy_from_slice(sol.z.as_slice());
+    let mut w = [T::zero(); M];
+    w.copy_from_slice(sol.w.as_slice());
     Ok(Solved {
+        w,
         v_plus: factored.velocity_after(&z),
         z,
         basis: sol.basis,
