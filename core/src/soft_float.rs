@@ -24,7 +24,7 @@ pub fn mul_normal(a: u32, b: u32) -> Option<u32> {
     // An exponent field of 0 (zero, subnormal) or 255 (infinity, NaN): a zero times a finite
     // number is a zero of the product's sign; the rest is not taken here.
     if ea.wrapping_sub(1) >= 0xfe || eb.wrapping_sub(1) >= 0xfe {
-        let zero = |x: u32| x & 0x7fff_ffff == 0;
+        let zero = |x: u32| x << 1 == 0;
         let finite = |e: u32| e != 0xff;
         return ((zero(a) && finite(eb)) || (zero(b) && finite(ea))).then_some((a ^ b) & 0x8000_0000);
     }
@@ -40,13 +40,13 @@ pub fn mul_normal(a: u32, b: u32) -> Option<u32> {
     let lo = lo_sum & 0xff_ffff;
     // Keep the top 24 bits of the product, round on the rest.
     let top = hi >> 23; // 1 when the product is in [2^47, 2^48)
-    let e = ea as i32 + eb as i32 - 127 + top as i32;
-    if e <= 0 {
+    let biased = ea + eb + top; // the product's exponent field plus 127
+    if biased <= 127 {
         return None; // a subnormal (or zero) product rounds at a coarser place
     }
     let (mut m, rem, half) =
         if top == 1 { (hi, lo, 1 << 23) } else { ((hi << 1) | (lo >> 23), lo & 0x7f_ffff, 1 << 22) };
-    let mut e = e as u32;
+    let mut e = biased - 127;
     if rem > half || (rem == half && m & 1 == 1) {
         m += 1;
         if m == 1 << 24 {
