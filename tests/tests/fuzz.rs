@@ -202,8 +202,11 @@ fn fuzz<S: Strategy>(strategy: S, check: impl Fn(&S::Value) -> [&'static str; 2]
         .unwrap();
     let tally = tally.into_inner();
     println!("{cases} cases x 2 configurations: {tally:?}");
+    // Random seeds: of 512 runs about 16 % get past validation (66..106 in 12 draws), so the guard
+    // asks for an eighth of the cases, far enough below to hold on every seed and still fail a
+    // strategy that stopped producing valid inputs.
     let ran: u32 = tally.iter().filter(|(k, _)| **k != "rejected").map(|(_, n)| n).sum();
-    assert!(ran >= cases / 4, "too few inputs ran: {tally:?}");
+    assert!(ran >= cases / 8, "too few inputs ran: {tally:?}");
     assert!(tally.get("rejected").copied().unwrap_or(0) >= cases / 20, "too few were rejected: {tally:?}");
 }
 

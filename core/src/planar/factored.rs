@@ -229,6 +229,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// `v+ = v~ + M^-1 C p` for the impulses in `z` (eq. 16).
     #[must_use]
+    #[cfg_attr(target_os = "none", inline(never))] // called from the fast path and Lemke's: one copy of flash
     pub fn velocity_after(&self, z: &[T; N]) -> [T; 3] {
         let mut v = self.v_free;
         for j in 0..Layout::<K, N>::SIGMA_START {
@@ -247,8 +248,22 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     /// # Errors
     /// [`Declined`]: a pattern this path does not take, a singular system, an infeasible basis
     /// (`z < 0`, or `w < 0` outside it), an answer that fails verification.
-    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
     pub fn solve_basis(&self, basis: Basis<N>, tolerance: T) -> Result<BasisAnswer<T, N>, Declined> {
+        let (mut z, mut w) = ([T::zero(); N], [T::zero(); N]);
+        let (v_plus, residual) = self.solve_basis_into(basis, tolerance, &mut z, &mut w)?;
+        Ok(BasisAnswer { z, v_plus, w, residual })
+    }
+
+    /// [`Self::solve_basis`] writing `z` and `w` into the caller's arrays (their contents are
+    /// unspecified when it fails); returns `v+` and the residual.
+    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
+    pub(crate) fn solve_basis_into(
+        &self,
+        basis: Basis<N>,
+        tolerance: T,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Result<([T; 3], T), Declined> {
         let mask = basis.z_mask();
         if mask & self.inactive != 0 {
             return Err(Declined::Pattern); // an inactive contact's decoupled rows have z = 0
@@ -319,7 +334,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         if !solve_small(&mut a, &mut y, m, T::of(N as f64) * T::EPS * self.m_low) {
             return Err(Declined::Singular);
         }
-        let mut z = [T::zero(); N];
+        *z = [T::zero(); N];
         for k in 0..m {
             if y[k] < T::zero() {
                 return Err(Declined::Infeasible(var[k] as u8));
@@ -330,7 +345,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             }
         }
         // dv recomputed from z, then each basic sigma from its friction row.
-        let v_plus = self.velocity_after(&z);
+        let v_plus = self.velocity_after(z);
         let dv = [v_plus[0] - self.v_free[0], v_plus[1] - self.v_free[1], v_plus[2] - self.v_free[2]];
         // A velocity (a normal or friction row's w, a sigma) within the round-off of the rows it
         // comes from, `N eps (||A|| ||p|| + ||q||)`, is zero: a sticking contact has both friction
@@ -353,7 +368,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 z[(sigma_start + i).min(N - 1)] = max(sigma, T::zero());
             }
         }
-        let w = self.w_of(&z, &dv);
+        self.w_of(z, &dv, w);
         // Feasibility outside the basis, and the verification residual of `crate::lcp::verify`
         // bounded without a division per row: with `z >= 0` (held above), a row's residual is at
         // most `|w_j| / s_w` in the basis and `max(-w_j, 0) / s_w` outside it (`z_j = 0`), with
@@ -380,13 +395,13 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         if !finite || violation > tolerance * s_w {
             return Err(Declined::Unverified);
         }
-        Ok(BasisAnswer { z, v_plus, w, residual: violation / s_w })
+        Ok((v_plus, violation / s_w))
     }
 
     /// `w = A z + q` in factored form, with `dv = M^-1 C p` of the same `z`.
-    fn w_of(&self, z: &[T; N], dv: &[T; 3]) -> [T; N] {
+    #[cfg_attr(target_os = "none", inline(never))]
+    fn w_of(&self, z: &[T; N], dv: &[T; 3], w: &mut [T; N]) {
         let sigma_start = Layout::<K, N>::SIGMA_START;
-        let mut w = [T::zero(); N];
         for v in 0..sigma_start {
             w[v] = self.q[v] + dot3(&self.col[v], dv);
         }
@@ -408,7 +423,6 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 w[i] += z[i];
             }
         }
-        w
     }
 
     /// Each contact's slip after the step whose answer is `z`, `w`: the support's velocity along
@@ -432,39 +446,72 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         slips
     }
 
-    /// The bases near `basis` worth trying when it failed with `why` ([`neighbours`]): those of
-    /// the contact whose variable was infeasible first.
-    pub(crate) fn neighbours(
-        &self,
-        basis: Basis<N>,
-        why: Declined,
-    ) -> impl Iterator<Item = Basis<N>> + use<'_, T, K, N> {
+    /// `basis` with contact `i`'s friction turned to `direction` (sliding, sticking or skidding
+    /// as before): the full layout's first try when a reduced layout's dropped direction was
+    /// needed.
+    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    pub(crate) fn with_direction(&self, basis: Basis<N>, i: usize, direction: Direction) -> Basis<N> {
+        let turned = match pattern(&self.tangents, basis, i) {
+            Some(Pattern::Slide(_)) => Pattern::Slide(direction),
+            Some(Pattern::Stick(_)) => Pattern::Stick(direction),
+            Some(Pattern::Skid(_)) => Pattern::Skid(direction),
+            Some(Pattern::Off | Pattern::Touch) | None => return basis,
+        };
+        with_pattern(&self.tangents, basis, i, turned)
+    }
+
+    /// Candidate `k` (`k < CANDIDATES * K`) of the bases near `basis`, which failed with `why`
+    /// ([`candidate`]); `None` for a slot that has no basis (a direction not kept, or the
+    /// contact's current pattern).
+    pub(crate) fn candidate(&self, basis: Basis<N>, why: Declined, k: usize) -> Option<Basis<N>> {
         let (first, direction) = match why {
             Declined::Infeasible(v) => variable_of::<K, N>(&self.tangents, usize::from(v)),
             Declined::Pattern | Declined::Singular | Declined::Unverified => (0, None),
         };
-        neighbours(&self.tangents, basis, first, direction)
+        candidate(&self.tangents, basis, first, direction, k)
     }
 }
 
+/// Slots per contact in the list of candidate bases ([`candidate`]).
+pub(crate) const CANDIDATES: usize = 8;
+
 /// The bases near `basis` worth trying when it fails, at most `K x 7` (`K x 4` with one kept
 /// direction per contact), in a fixed order: for each contact from `first` on, every other
-/// pattern of its variables (sliding, sticking, separated, touching without friction, separated
-/// with its support slipping past; for each kept direction, `direction` first for contact
-/// `first`) with the other contacts as they are. A mode change of one contact per step
-/// is what a step usually brings; a step that changes two goes to Lemke's method.
-pub(crate) fn neighbours<const K: usize, const N: usize>(
+/// pattern of its variables with the other contacts as they are: sliding and sticking along each
+/// kept direction (`direction` first for contact `first`), separated, touching without friction,
+/// separated with the support slipping past. A mode change of one contact is what a step usually
+/// brings; a step that changes two goes to Lemke's method. Candidate `k` is slot `k % 8` of
+/// contact `(first + k / 8) % K`; `None` for a slot with no basis (a direction not kept, or the
+/// contact's current pattern).
+pub(crate) fn candidate<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
     basis: Basis<N>,
     first: usize,
     direction: Option<Direction>,
-) -> impl Iterator<Item = Basis<N>> + use<'_, K, N> {
-    (0..K).map(move |k| (first + k) % K).flat_map(move |i| {
-        let current = pattern(tangents, basis, i);
-        patterns(tangents, i, if i == first { direction } else { None })
-            .filter(move |&p| Some(p) != current)
-            .map(move |p| with_pattern(tangents, basis, i, p))
-    })
+    k: usize,
+) -> Option<Basis<N>> {
+    let i = (first + k / CANDIDATES) % K;
+    let (d0, d1) = match direction {
+        Some(Direction::Minus) if i == first => (Direction::Minus, Direction::Plus),
+        _ => (Direction::Plus, Direction::Minus),
+    };
+    let p = match k % CANDIDATES {
+        0 => Pattern::Slide(d0),
+        1 => Pattern::Stick(d0),
+        2 => Pattern::Slide(d1),
+        3 => Pattern::Stick(d1),
+        4 => Pattern::Off,
+        5 => Pattern::Touch,
+        6 => Pattern::Skid(d0),
+        _ => Pattern::Skid(d1),
+    };
+    let kept = match p {
+        Pattern::Slide(d) | Pattern::Stick(d) | Pattern::Skid(d) => {
+            tangents.get(i).is_some_and(|t| t.keeps(d))
+        }
+        Pattern::Off | Pattern::Touch => true,
+    };
+    (kept && pattern(tangents, basis, i) != Some(p)).then(|| with_pattern(tangents, basis, i, p))
 }
 
 /// A basis for contacts in `modes` (before the first step: the modes of the prescribed
@@ -560,26 +607,6 @@ fn pattern<const K: usize, const N: usize>(
     }
 }
 
-/// Contact `i`'s patterns, in the order they are tried: sliding and sticking (along `first`,
-/// when given, before the other direction), separated, touching without friction, skidding.
-fn patterns<const K: usize>(
-    tangents: &[Tangents; K],
-    i: usize,
-    first: Option<Direction>,
-) -> impl Iterator<Item = Pattern> + use<K> {
-    let t = tangents.get(i).copied().unwrap_or(Tangents::Both);
-    let dirs = match first {
-        Some(Direction::Minus) => [Direction::Minus, Direction::Plus],
-        Some(Direction::Plus) | None => [Direction::Plus, Direction::Minus],
-    };
-    let each = move |make: fn(Direction) -> Pattern| dirs.into_iter().filter(move |&d| t.keeps(d)).map(make);
-    dirs.into_iter()
-        .filter(move |&d| t.keeps(d))
-        .flat_map(|d| [Pattern::Slide(d), Pattern::Stick(d)])
-        .chain([Pattern::Off, Pattern::Touch])
-        .chain(each(Pattern::Skid))
-}
-
 /// `basis` with contact `i`'s variables set to `pattern`.
 fn with_pattern<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
@@ -611,6 +638,7 @@ fn with_pattern<const K: usize, const N: usize>(
 /// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
 /// elimination with partial pivoting; `false` when a pivot is at most `tiny` (numerically
 /// singular).
+#[cfg_attr(target_os = "none", inline(never))]
 fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
     // Constant loop bounds (rows and columns at or beyond `m` skipped): every index is provably
     // in range, so no panic path is linked.

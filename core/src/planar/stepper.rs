@@ -21,7 +21,7 @@
 use super::assemble::{StepInputs, StepLcp, fill_from_factored, sign};
 use super::body::{Body, BodyState};
 use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
-use super::factored::{FactoredLcp, basis_of_modes};
+use super::factored::{CANDIDATES, FactoredLcp, basis_of_modes};
 use super::layout::{Direction, Layout, Variable};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
@@ -506,17 +506,17 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             gap_round_off,
         };
         let factored = FactoredLcp::new(&self.layout, &inputs);
-        let mut z = [T::zero(); NF];
-        let mut w = [T::zero(); NF];
+        // The reduced layout's answer, and the full layout's when it is used.
+        let (mut z, mut w) = ([T::zero(); N], [T::zero(); N]);
+        #[cfg_attr(not(feature = "fallback"), allow(unused_mut, unused_variables))]
+        let (mut z_full, mut w_full) = ([T::zero(); NF], [T::zero(); NF]);
         let mut v_plus = v_free;
         let reduced = N != NF;
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
         let (mut pivots, mut warm_start_used, mut residual, mut path, solved) =
-            match solve(&factored, self.basis, &self.solver, &mut self.stats) {
+            match solve(&factored, self.basis, &self.solver, &mut self.stats, &mut z, &mut w) {
                 Ok(sol) => {
                     self.basis = sol.basis;
-                    z[..N].copy_from_slice(&sol.z);
-                    w[..N].copy_from_slice(&sol.w);
                     v_plus = sol.v_plus;
                     (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
                 }
@@ -530,9 +530,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             };
         // The step's velocity scale, for the reduced check's round-off and the precision flag.
         let speed = velocity_scale(&support_velocity, &v_plus, self.size);
-        let full_layout_used = reduced && (!solved || self.dropped_direction_needed(&inputs, &z, &w, speed));
+        let needed = if solved { self.dropped_direction_needed(&inputs, &z, &w, speed) } else { None };
+        let full_layout_used = reduced && (!solved || needed.is_some());
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
-        let mut slips = factored.slips(&z[..N], &w[..N]);
+        let mut slips = factored.slips(&z, &w);
         if full_layout_used {
             self.stats.reduced_check_fired += 1;
             #[cfg(feature = "fallback")]
@@ -542,14 +543,18 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 for (j, &k) in self.to_full.iter().enumerate() {
                     wide.set_z_basic(k, self.basis.is_z_basic(j));
                 }
+                // The contact that needed its dropped direction tries it first.
+                if let Some((i, dropped)) = needed {
+                    wide = full.with_direction(wide, i, dropped);
+                }
                 let sol =
-                    solve(&full, wide, &Lemke::<T, NF>::new(), &mut self.stats).map_err(StepError::Solver)?;
+                    solve(&full, wide, &Lemke::<T, NF>::new(), &mut self.stats, &mut z_full, &mut w_full)
+                        .map_err(StepError::Solver)?;
                 pivots += sol.pivots;
                 residual = sol.residual;
                 warm_start_used = sol.warm_start_used;
                 path = sol.path;
-                z = sol.z;
-                slips = full.slips(&sol.z, &sol.w);
+                slips = full.slips(&z_full, &w_full);
                 v_plus = sol.v_plus;
             }
             #[cfg(not(feature = "fallback"))]
@@ -561,7 +566,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 return Err(StepError::ReducedModelLeftRange);
             }
         }
-
         // Integrate (eq. 14): q+ = q + h v+, compensated sums; refused when not finite.
         let mut state = self.state;
         let mut carry = self.carry;
@@ -586,8 +590,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         self.stats.warm_starts += u64::from(warm_start_used);
 
         // Impulses (z is per unit mass) and modes after the step.
-        let (normal, friction) = if full_layout_used {
-            impulses(&self.full, &z, self.mass)
+        let (normal, friction, pn) = if full_layout_used {
+            impulses(&self.full, &z_full, self.mass)
         } else {
             impulses(&self.layout, &z, self.mass)
         };
@@ -601,7 +605,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }; K];
         for i in 0..K {
             let f = &self.frames[i];
-            let mode = if f.active && z[i] > impulse_floor {
+            let mode = if f.active && pn[i] > impulse_floor {
                 ContactMode::from_slip(slips[i], s.stick_speed)
             } else {
                 ContactMode::Separated
@@ -645,20 +649,22 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// `|W_d^T v+ - d . u|` without breaking any complementarity, and the reduced answer (same
     /// impulses) extends to a solution of the full LCP. (Without this exception the frictionless
     /// meter stick fell back to the full layout in 441 of 3,998 steps; `host-sim stress`.)
+    ///
+    /// Returns the first contact that needs its dropped direction, and that direction.
     fn dropped_direction_needed(
         &self,
         inputs: &StepInputs<'_, T, K>,
-        z: &[T; NF],
-        w: &[T; NF],
+        z: &[T; N],
+        w: &[T; N],
         speed: T,
-    ) -> bool {
+    ) -> Option<(usize, Direction)> {
         let s = &self.settings;
         let speed_scale = speed + s.gravity * s.step;
         let tol = T::of(64.0 * N as f64) * T::EPS * speed_scale + T::TINY;
         for i in 0..K {
-            let Some((j, _)) = self.kept_alone[i] else { continue };
+            let Some((j, kept)) = self.kept_alone[i] else { continue };
             let f = &inputs.frames[i];
-            if !f.active || j >= NF {
+            if !f.active || j >= N {
                 continue;
             }
             if z[j] <= tol && inputs.mu[i] * z[i] <= tol {
@@ -667,11 +673,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             // The kept row is `w_j = s g + sigma` (`g = W_d^T v+ - d . u`); the dropped one is
             // `-s g + sigma = 2 sigma - w_j`.
             let sigma = Layout::<K, N>::SIGMA_START + i;
-            if sigma < NF && z[sigma] + z[sigma] - w[j] < -tol {
-                return true;
+            if sigma < N && z[sigma] + z[sigma] - w[j] < -tol {
+                return Some((i, kept.opposite()));
             }
         }
-        false
+        None
     }
 }
 
@@ -686,32 +692,33 @@ fn velocity_scale<T: Real, const K: usize>(support_velocity: &[[T; 2]; K], v: &[
     support_speed + v[0].abs_exact() + v[1].abs_exact() + (v[2] * size).abs_exact()
 }
 
-/// Each contact's normal and net friction impulse (physical, N s) from `z` (per unit mass) in
-/// `layout`'s order (friction rows contact by contact, `+d` before `-d`).
-fn impulses<T: Real, const K: usize, const M: usize, const NF: usize>(
+/// Each contact's normal and net friction impulse (physical, N s) and normal impulse per unit
+/// mass, from `z` (per unit mass) in `layout`'s order (friction rows contact by contact, `+d`
+/// before `-d`).
+fn impulses<T: Real, const K: usize, const M: usize>(
     layout: &Layout<K, M>,
-    z: &[T; NF],
+    z: &[T; M],
     mass: T,
-) -> ([T; K], [T; K]) {
+) -> ([T; K], [T; K], [T; K]) {
     let mut normal = [T::zero(); K];
     let mut friction = [T::zero(); K];
+    let mut per_unit_mass = [T::zero(); K];
     let mut j = K;
     for i in 0..K {
+        per_unit_mass[i] = z[i];
         normal[i] = z[i] * mass;
         for direction in [Direction::Plus, Direction::Minus] {
-            if layout.tangents()[i].keeps(direction) && j < NF {
+            if layout.tangents()[i].keeps(direction) && j < M {
                 friction[i] += sign::<T>(direction) * z[j] * mass;
                 j += 1;
             }
         }
     }
-    (normal, friction)
+    (normal, friction, per_unit_mass)
 }
 
-/// One layout's verified answer ([`solve`]).
+/// One layout's verified answer ([`solve`]); `z` and `w` are written into the caller's arrays.
 struct Solved<T: Real, const M: usize> {
-    z: [T; M],
-    w: [T; M],
     v_plus: [T; 3],
     basis: Basis<M>,
     pivots: u32,
@@ -723,29 +730,30 @@ struct Solved<T: Real, const M: usize> {
 /// Solves the step's LCP `factored` (`docs/formulation.md`, "Solving a step"): `z = 0` when
 /// `q >= 0`; else the previous basis `warm` in the body's coordinates; else its neighbours the same
 /// way; else Lemke's method on the assembled LCP, warm-started from `warm`. Every answer is
-/// verified. Counts the path (and each candidate tried) in `stats`.
+/// verified; `z` and `w` receive it. Counts the path (and each candidate tried) in `stats`.
 fn solve<T: Real, const K: usize, const M: usize>(
     factored: &FactoredLcp<T, K, M>,
     warm: Basis<M>,
     solver: &Lemke<T, M>,
     stats: &mut RunStats,
+    z: &mut [T; M],
+    w: &mut [T; M],
 ) -> Result<Solved<T, M>, LcpError> {
-    let fast = |basis: Basis<M>, path: SolvePath| {
-        factored.solve_basis(basis, solver.tolerance()).map(|a| Solved {
-            z: a.z,
-            w: a.w,
-            v_plus: a.v_plus,
+    let tolerance = solver.tolerance();
+    let fast = |basis: Basis<M>, path: SolvePath, z: &mut [T; M], w: &mut [T; M]| {
+        factored.solve_basis_into(basis, tolerance, z, w).map(|(v_plus, residual)| Solved {
+            v_plus,
             basis,
             pivots: 0,
             warm_start_used: path == SolvePath::Warm,
-            residual: a.residual,
+            residual,
             path,
         })
     };
     let answer = if factored.is_free() {
+        *z = [T::zero(); M];
+        *w = *factored.q();
         Some(Solved {
-            z: [T::zero(); M],
-            w: *factored.q(),
             v_plus: *factored.v_free(),
             basis: Basis::all_w(),
             pivots: 0,
@@ -754,11 +762,12 @@ fn solve<T: Real, const K: usize, const M: usize>(
             path: SolvePath::Free,
         })
     } else {
-        match fast(warm, SolvePath::Warm) {
+        match fast(warm, SolvePath::Warm, z, w) {
             Ok(answer) => Some(answer),
-            Err(why) => factored.neighbours(warm, why).find_map(|basis| {
+            Err(why) => (0..CANDIDATES * K).find_map(|k| {
+                let basis = factored.candidate(warm, why, k)?;
                 stats.paths.candidates_tried += 1;
-                fast(basis, SolvePath::Candidate).ok()
+                fast(basis, SolvePath::Candidate, z, w).ok()
             }),
         }
     };
@@ -771,14 +780,12 @@ fn solve<T: Real, const K: usize, const M: usize>(
     fill_from_factored(factored, &mut lcp);
     let sol = solver.solve_from_basis(&lcp.lcp, warm)?;
     stats.regularized_solves += u64::from(sol.regularized);
-    let mut z = [T::zero(); M];
-    z.copy_from_slice(sol.z.as_slice());
-    let mut w = [T::zero(); M];
-    w.copy_from_slice(sol.w.as_slice());
+    for j in 0..M {
+        z[j] = sol.z[j];
+        w[j] = sol.w[j];
+    }
     Ok(Solved {
-        w,
-        v_plus: factored.velocity_after(&z),
-        z,
+        v_plus: factored.velocity_after(z),
         basis: sol.basis,
         pivots: sol.pivots,
         warm_start_used: sol.warm_start_used,
