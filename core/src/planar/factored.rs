@@ -610,29 +610,27 @@ fn pattern<const K: usize, const N: usize>(
 /// `basis` with contact `i`'s variables set to `pattern`.
 fn with_pattern<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
-    mut basis: Basis<N>,
+    basis: Basis<N>,
     i: usize,
     pattern: Pattern,
 ) -> Basis<N> {
     let (n, f, s) = rows_of::<K, N>(tangents, i);
-    for v in [Some(n), f[0], f[1], Some(s)].into_iter().flatten() {
-        basis.set_z_basic(v, false);
-    }
-    let row = |d: Direction| match d {
-        Direction::Plus => f[0],
-        Direction::Minus => f[1],
+    // Bit masks of the contact's variables (an index beyond 31 gives no bit).
+    let bit = |v: Option<usize>| v.map_or(0, |v| 1u32.checked_shl(v as u32).unwrap_or(0));
+    let (bn, bs) = (bit(Some(n)), bit(Some(s)));
+    let bf = |d: Direction| match d {
+        Direction::Plus => bit(f[0]),
+        Direction::Minus => bit(f[1]),
     };
-    let set: [Option<usize>; 3] = match pattern {
-        Pattern::Off => [None; 3],
-        Pattern::Touch => [Some(n), None, None],
-        Pattern::Stick(d) => [Some(n), row(d), None],
-        Pattern::Slide(d) => [Some(n), row(d), Some(s)],
-        Pattern::Skid(d) => [None, row(d), Some(s)],
+    let set = match pattern {
+        Pattern::Off => 0,
+        Pattern::Touch => bn,
+        Pattern::Stick(d) => bn | bf(d),
+        Pattern::Slide(d) => bn | bf(d) | bs,
+        Pattern::Skid(d) => bf(d) | bs,
     };
-    for v in set.into_iter().flatten() {
-        basis.set_z_basic(v, true);
-    }
-    basis
+    let all = bn | bit(f[0]) | bit(f[1]) | bs;
+    Basis::from_z_mask((basis.z_mask() & !all) | set)
 }
 
 /// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
