@@ -153,12 +153,15 @@ impl<T: Real> ContactFrame<T> {
         let ly = c * dy - s * dx;
         let r = [c * lx + s * half[1], s * lx - c * half[1]];
         let (n, d) = ([-s, c], [c, s]);
+        // The torque arms in the body frame, where the contact point is `(lx, -hgt/2)`, the normal
+        // `(0, 1)` and the tangent `(1, 0)`: a cross product does not change under rotation, so
+        // `r x n = lx` and `r x d = hgt/2` exactly, with no rounding from `r`.
         Self {
             along: lx,
             gap: -ly - half[1],
             active: lx.abs_exact() <= half[0] && ly <= T::zero(),
-            wn: [n[0], n[1], cross(r, n)],
-            wt: [d[0], d[1], cross(r, d)],
+            wn: [n[0], n[1], lx],
+            wt: [d[0], d[1], half[1]],
             r,
         }
     }

@@ -169,9 +169,16 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 j += 1;
             }
         }
+        // Per unit mass the linear entries of `M^-1` are exactly 1 (`Body::inverse_mass_per_unit_mass`):
+        // multiplying by them changes no bit, and on a core without an FPU each is a library call.
+        let unit = input.m_inv[0] == T::one() && input.m_inv[1] == T::one();
         for j in 0..sigma_start {
             let c = &out.col[j];
-            out.mcol[j] = [c[0] * input.m_inv[0], c[1] * input.m_inv[1], c[2] * input.m_inv[2]];
+            out.mcol[j] = if unit {
+                [c[0], c[1], c[2] * input.m_inv[2]]
+            } else {
+                [c[0] * input.m_inv[0], c[1] * input.m_inv[1], c[2] * input.m_inv[2]]
+            };
         }
         for (v, variable) in layout.variables().iter().enumerate() {
             if !input.frames.get(variable.contact()).is_some_and(|f| f.active) {
@@ -474,12 +481,25 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     /// ([`candidate`]); `None` for a slot that has no basis (a direction not kept, or the
     /// contact's current pattern).
     pub(crate) fn candidate(&self, basis: Basis<N>, why: Declined, k: usize) -> Option<Basis<N>> {
-        let (first, direction) = match why {
+        let (first, hint) = match why {
             Declined::Infeasible(v) => variable_of::<K, N>(&self.tangents, usize::from(v)),
-            Declined::Pattern | Declined::Singular | Declined::Unverified => (0, None),
+            Declined::Pattern | Declined::Singular | Declined::Unverified => (0, Hint::None),
         };
-        candidate(&self.tangents, basis, first, direction, k)
+        candidate(&self.tangents, basis, first, hint, k)
     }
+}
+
+/// What kind of variable made a basis infeasible: it orders the first contact's candidates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Hint {
+    /// Nothing known.
+    None,
+    /// The normal impulse or row: the contact wants to separate (or to touch).
+    Normal,
+    /// `sigma`: the slip reversed, the contact wants to stick.
+    Sigma,
+    /// A friction impulse or row along this direction.
+    Friction(Direction),
 }
 
 /// Slots per contact in the list of candidate bases ([`candidate`]).
@@ -492,20 +512,37 @@ pub(crate) const CANDIDATES: usize = 8;
 /// separated with the support slipping past. A mode change of one contact is what a step usually
 /// brings; a step that changes two goes to Lemke's method. Candidate `k` is slot `k % 8` of
 /// contact `(first + k / 8) % K`; `None` for a slot with no basis (a direction not kept, or the
-/// contact's current pattern).
+/// contact's current pattern). The first contact's slots are ordered by `hint`, the kind of
+/// variable that failed: a normal tries separating first, a sigma (the slip reversed) sticking.
 pub(crate) fn candidate<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
     basis: Basis<N>,
     first: usize,
-    direction: Option<Direction>,
+    hint: Hint,
     k: usize,
 ) -> Option<Basis<N>> {
+    // Slots: 0 slide along d0, 1 stick along d0, 2 slide along d1, 3 stick along d1, 4 off,
+    // 5 touch, 6 skid along d0, 7 skid along d1; the order of the first contact's follows the
+    // variable that failed (a normal: separate first; a sigma: stick first), the others' is 0..8.
+    const ORDER: [[usize; CANDIDATES]; 3] =
+        [[0, 1, 2, 3, 4, 5, 6, 7], [4, 5, 1, 0, 3, 2, 6, 7], [1, 5, 3, 2, 0, 4, 6, 7]];
     let i = (first + k / CANDIDATES) % K;
-    let (d0, d1) = match direction {
-        Some(Direction::Minus) if i == first => (Direction::Minus, Direction::Plus),
-        _ => (Direction::Plus, Direction::Minus),
+    let current = pattern(tangents, basis, i);
+    let (order, d0) = match (i == first, hint) {
+        (true, Hint::Normal) => (1, None),
+        (true, Hint::Sigma) => (2, None),
+        (true, Hint::Friction(d)) => (0, Some(d)),
+        (true, Hint::None) | (false, _) => (0, None),
     };
-    let p = match k % CANDIDATES {
+    // d0: the failing friction row's direction, else the contact's current one, else +d.
+    let d0 = d0
+        .or(match current {
+            Some(Pattern::Slide(d) | Pattern::Stick(d) | Pattern::Skid(d)) => Some(d),
+            _ => None,
+        })
+        .unwrap_or(Direction::Plus);
+    let d1 = d0.opposite();
+    let p = match ORDER[order][k % CANDIDATES] {
         0 => Pattern::Slide(d0),
         1 => Pattern::Stick(d0),
         2 => Pattern::Slide(d1),
@@ -521,7 +558,7 @@ pub(crate) fn candidate<const K: usize, const N: usize>(
         }
         Pattern::Off | Pattern::Touch => true,
     };
-    (kept && pattern(tangents, basis, i) != Some(p)).then(|| with_pattern(tangents, basis, i, p))
+    (kept && current != Some(p)).then(|| with_pattern(tangents, basis, i, p))
 }
 
 /// A basis for contacts in `modes` (before the first step: the modes of the prescribed
@@ -546,30 +583,27 @@ pub(crate) fn basis_of_modes<const K: usize, const N: usize>(
     basis
 }
 
-/// The contact variable `v` belongs to, and its direction when it is a friction row.
-fn variable_of<const K: usize, const N: usize>(
-    tangents: &[Tangents; K],
-    v: usize,
-) -> (usize, Option<Direction>) {
+/// The contact variable `v` belongs to, and what kind of variable it is.
+fn variable_of<const K: usize, const N: usize>(tangents: &[Tangents; K], v: usize) -> (usize, Hint) {
     let sigma_start = Layout::<K, N>::SIGMA_START;
     if v < K {
-        return (v, None);
+        return (v, Hint::Normal);
     }
     if v >= sigma_start {
-        return ((v - sigma_start).min(K - 1), None);
+        return ((v - sigma_start).min(K - 1), Hint::Sigma);
     }
     let mut j = K;
     for (i, t) in tangents.iter().enumerate() {
         for d in [Direction::Plus, Direction::Minus] {
             if t.keeps(d) {
                 if j == v {
-                    return (i, Some(d));
+                    return (i, Hint::Friction(d));
                 }
                 j += 1;
             }
         }
     }
-    (0, None)
+    (0, Hint::None)
 }
 
 /// Contact `i`'s variables: its normal, its friction rows `[+d, -d]` (as kept) and its sigma.

@@ -21,7 +21,7 @@
 use super::assemble::{StepInputs, StepLcp, fill_from_factored, sign};
 use super::body::{Body, BodyState};
 use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
-use super::factored::{CANDIDATES, FactoredLcp, basis_of_modes};
+use super::factored::{CANDIDATES, Declined, FactoredLcp, basis_of_modes};
 use super::layout::{Direction, Layout, Variable};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
@@ -739,9 +739,8 @@ fn solve<T: Real, const K: usize, const M: usize>(
     z: &mut [T; M],
     w: &mut [T; M],
 ) -> Result<Solved<T, M>, LcpError> {
-    let tolerance = solver.tolerance();
     let fast = |basis: Basis<M>, path: SolvePath, z: &mut [T; M], w: &mut [T; M]| {
-        factored.solve_basis_into(basis, tolerance, z, w).map(|(v_plus, residual)| Solved {
+        factored.solve_basis_into(basis, solver.tolerance(), z, w).map(|(v_plus, residual)| Solved {
             v_plus,
             basis,
             pivots: 0,
@@ -750,29 +749,56 @@ fn solve<T: Real, const K: usize, const M: usize>(
             path,
         })
     };
-    let answer = if factored.is_free() {
+    if factored.is_free() {
         *z = [T::zero(); M];
         *w = *factored.q();
-        Some(Solved {
+        stats.paths.count(SolvePath::Free);
+        return Ok(Solved {
             v_plus: *factored.v_free(),
             basis: Basis::all_w(),
             pivots: 0,
             warm_start_used: false,
             residual: T::zero(),
             path: SolvePath::Free,
-        })
-    } else {
-        match fast(warm, SolvePath::Warm, z, w) {
-            Ok(answer) => Some(answer),
-            Err(why) => (0..CANDIDATES * K).find_map(|k| {
-                let basis = factored.candidate(warm, why, k)?;
-                stats.paths.candidates_tried += 1;
-                fast(basis, SolvePath::Candidate, z, w).ok()
-            }),
+        });
+    }
+    match fast(warm, SolvePath::Warm, z, w) {
+        Ok(answer) => {
+            stats.paths.count(SolvePath::Warm);
+            Ok(answer)
         }
-    };
+        Err(why) => solve_cold(factored, warm, why, solver, stats, z, w),
+    }
+}
+
+/// [`solve`] after the previous basis failed with `why`: its neighbours, then Lemke's method. Out
+/// of line, so that the warm path the most steps take stays small.
+#[cold]
+#[inline(never)]
+fn solve_cold<T: Real, const K: usize, const M: usize>(
+    factored: &FactoredLcp<T, K, M>,
+    warm: Basis<M>,
+    why: Declined,
+    solver: &Lemke<T, M>,
+    stats: &mut RunStats,
+    z: &mut [T; M],
+    w: &mut [T; M],
+) -> Result<Solved<T, M>, LcpError> {
+    let tolerance = solver.tolerance();
+    let answer = (0..CANDIDATES * K).find_map(|k| {
+        let basis = factored.candidate(warm, why, k)?;
+        stats.paths.candidates_tried += 1;
+        factored.solve_basis_into(basis, tolerance, z, w).ok().map(|(v_plus, residual)| Solved {
+            v_plus,
+            basis,
+            pivots: 0,
+            warm_start_used: false,
+            residual,
+            path: SolvePath::Candidate,
+        })
+    });
     if let Some(answer) = answer {
-        stats.paths.count(answer.path);
+        stats.paths.count(SolvePath::Candidate);
         return Ok(answer);
     }
     stats.paths.count(SolvePath::Lemke);
