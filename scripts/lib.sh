@@ -1,6 +1,9 @@
 # Shared helpers, sourced by the other scripts (after scripts/setup.sh has run).
 # shellcheck shell=bash
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# `set -e` reaches into command substitutions (`x=$(helper)`), where bash otherwise turns it off:
+# a helper whose middle step fails then fails the caller instead of printing a stale path.
+shopt -s inherit_errexit
 # shellcheck disable=SC1091
 . "$ROOT/target/meterstick-toolchain.env"
 
@@ -99,8 +102,11 @@ build_web() {
   if [ "$MS_CROSS_MODE" = debian ] && command -v wasm-ld-22 >/dev/null 2>&1; then
     args+=(--config 'target.wasm32-unknown-unknown.linker="wasm-ld-22"')
   fi
-  (cd "$ROOT" && cross_cargo "${args[@]}" >&2)
-  mkdir -p "$(dirname "$WEB_WASM")"
-  cp "$WEB_TARGET_DIR/wasm32-unknown-unknown/release/meterstick_web.wasm" "$WEB_WASM"
+  # Called as `wasm=$(build_web)`: every step returns on failure (a failed build must not leave
+  # the previous module in place for the page's test).
+  rm -f "$WEB_WASM"
+  (cd "$ROOT" && cross_cargo "${args[@]}" >&2) || { echo "build_web: the build failed" >&2; return 1; }
+  mkdir -p "$(dirname "$WEB_WASM")" || return 1
+  cp "$WEB_TARGET_DIR/wasm32-unknown-unknown/release/meterstick_web.wasm" "$WEB_WASM" || return 1
   echo "$WEB_WASM"
 }
