@@ -55,40 +55,53 @@ build_firmware() {
   echo "$FIRMWARE_TARGET_DIR/elf/$name.elf"
 }
 
-# Every firmware build: "<name> <target> <features>". qemu-*: the QEMU board binding (run in the
-# tests); rig-*: the demo rig on the STM32F411 Black Pill, with and without defmt logging (`log`)
-# and the 8x8 fallback (the 6x6-only builds link no 8x8 code); *-link: with the host link
+# Every firmware build: "<name> <target> <features> <tags>". qemu-*: the QEMU board binding (run in
+# the tests); rig-*: the demo rig on the STM32F411 Black Pill, with and without defmt logging
+# (`log`) and the 8x8 fallback (the 6x6-only builds link no 8x8 code); *-link: with the host link
 # (`meterstick-link`: QEMU's UART, the Black Pill's USB CDC), the QEMU ones run by the end-to-end
-# test; *-uart: the Black Pill's link on USART2. Every QEMU build, rig-m4f-nolog,
-# rig-m4f-6x6-nolog and rig-m4f-6x6-nolog-uart link with the panic handler that references an
-# undefined symbol (no panic path; firmware/src/main.rs). qemu-m33: the Cortex-M33F (the Pico
-# 2's core) on QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on
-# a Pico (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`,
-# and with the host link on UART0; pico-nolog-builtins: the Pico's arithmetic from
-# compiler_builtins instead of its boot ROM (README "The Picos"). pico2-nolog, pico2-6x6-nolog
-# and pico2-link link with the undefined-symbol panic handler too.
+# test; *-uart: the Black Pill's link on USART2. qemu-m33: the Cortex-M33F (the Pico 2's core) on
+# QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on a Pico
+# (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`, and with
+# the host link on UART0; pico-nolog-builtins: the Pico's arithmetic from compiler_builtins
+# instead of its boot ROM (README "The Picos").
+# Tags (comma-separated; scripts select builds by tag, never by position, `builds_tagged`):
+#   clippy  - linted in scripts/test.sh (the distinct code paths);
+#   nopanic - linked with the panic handler that references an undefined symbol (firmware/src/
+#             main.rs): that it links proves no panic path; test.sh also checks the ELF;
+#   uf2     - a Pico build: build_firmware writes its .uf2, test.sh checks it is there.
 FIRMWARE_BUILDS=(
-  "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback"
-  "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback"
-  "rig-m4f thumbv7em-none-eabihf board-blackpill,log,fallback"
-  "rig-m4f-nolog thumbv7em-none-eabihf board-blackpill,fallback"
-  "rig-m4f-6x6 thumbv7em-none-eabihf board-blackpill,log"
-  "rig-m4f-6x6-nolog thumbv7em-none-eabihf board-blackpill"
-  "qemu-m4f-link thumbv7em-none-eabihf qemu-mps2-an386,fallback,link"
-  "qemu-m0-link thumbv6m-none-eabi qemu-microbit,fallback,link"
-  "rig-m4f-link thumbv7em-none-eabihf board-blackpill,log,fallback,link"
-  "rig-m4f-6x6-nolog-uart thumbv7em-none-eabihf board-blackpill,uart-link"
-  "qemu-m33 thumbv8m.main-none-eabihf qemu-mps2-an505,fallback"
-  "pico2 thumbv8m.main-none-eabihf board-pico2,log,fallback"
-  "pico2-nolog thumbv8m.main-none-eabihf board-pico2,fallback"
-  "pico2-6x6-nolog thumbv8m.main-none-eabihf board-pico2"
-  "pico2-link thumbv8m.main-none-eabihf board-pico2,fallback,link"
-  "pico thumbv6m-none-eabi board-pico,log,fallback"
-  "pico-nolog thumbv6m-none-eabi board-pico,fallback"
-  "pico-6x6-nolog thumbv6m-none-eabi board-pico"
-  "pico-link thumbv6m-none-eabi board-pico,fallback,link"
-  "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float"
+  "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback clippy,nopanic"
+  "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback nopanic"
+  "rig-m4f thumbv7em-none-eabihf board-blackpill,log,fallback clippy"
+  "rig-m4f-nolog thumbv7em-none-eabihf board-blackpill,fallback nopanic"
+  "rig-m4f-6x6 thumbv7em-none-eabihf board-blackpill,log -"
+  "rig-m4f-6x6-nolog thumbv7em-none-eabihf board-blackpill clippy,nopanic"
+  "qemu-m4f-link thumbv7em-none-eabihf qemu-mps2-an386,fallback,link clippy,nopanic"
+  "qemu-m0-link thumbv6m-none-eabi qemu-microbit,fallback,link nopanic"
+  "rig-m4f-link thumbv7em-none-eabihf board-blackpill,log,fallback,link clippy"
+  "rig-m4f-6x6-nolog-uart thumbv7em-none-eabihf board-blackpill,uart-link clippy,nopanic"
+  "qemu-m33 thumbv8m.main-none-eabihf qemu-mps2-an505,fallback clippy,nopanic"
+  "pico2 thumbv8m.main-none-eabihf board-pico2,log,fallback clippy,uf2"
+  "pico2-nolog thumbv8m.main-none-eabihf board-pico2,fallback nopanic,uf2"
+  "pico2-6x6-nolog thumbv8m.main-none-eabihf board-pico2 nopanic,uf2"
+  "pico2-link thumbv8m.main-none-eabihf board-pico2,fallback,link clippy,nopanic,uf2"
+  "pico thumbv6m-none-eabi board-pico,log,fallback clippy,uf2"
+  "pico-nolog thumbv6m-none-eabi board-pico,fallback uf2"
+  "pico-6x6-nolog thumbv6m-none-eabi board-pico uf2"
+  "pico-link thumbv6m-none-eabi board-pico,fallback,link clippy,uf2"
+  "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float clippy,uf2"
 )
+
+# Sets TAGGED to the specs ("<name> <target> <features> <tags>") of the builds tagged $1 (no
+# subshell, so that nothing here can fail unseen); a tag no build has is an error (a typo).
+builds_tagged() {
+  local spec
+  TAGGED=()
+  for spec in "${FIRMWARE_BUILDS[@]}"; do
+    case ",${spec##* }," in *",$1,"*) TAGGED+=("$spec") ;; esac
+  done
+  [ ${#TAGGED[@]} -gt 0 ] || { echo "builds_tagged: no firmware build is tagged '$1'" >&2; return 1; }
+}
 
 # The core for the browser: meterstick-web built for wasm32-unknown-unknown (release, without
 # debug info, in a target directory of its own so that the host builds are not invalidated),

@@ -42,13 +42,9 @@ done
 
 step "firmware clippy"
 if [ "$MS_CROSS_MODE" = rustup ]; then
-  # The distinct code paths: QEMU binding; rig with logging and fallback; rig with neither; the
-  # QEMU binding with the host link; the rig with the link (USB; UART); the M33 QEMU build; the
-  # Pico 2 and the Pico with logging, with the link, and the Pico with compiler_builtins' floats.
-  for spec in "${FIRMWARE_BUILDS[0]}" "${FIRMWARE_BUILDS[2]}" "${FIRMWARE_BUILDS[5]}" \
-      "${FIRMWARE_BUILDS[6]}" "${FIRMWARE_BUILDS[8]}" "${FIRMWARE_BUILDS[9]}" \
-      "${FIRMWARE_BUILDS[10]}" "${FIRMWARE_BUILDS[11]}" "${FIRMWARE_BUILDS[14]}" \
-      "${FIRMWARE_BUILDS[15]}" "${FIRMWARE_BUILDS[18]}" "${FIRMWARE_BUILDS[19]}"; do
+  # The distinct code paths (the builds tagged `clippy` in scripts/lib.sh).
+  builds_tagged clippy
+  for spec in "${TAGGED[@]}"; do
     set -- $spec
     (cd firmware && cargo clippy --locked --release --no-default-features --target "$2" --features "$3" \
         --target-dir "$FIRMWARE_TARGET_DIR" -- -D warnings)
@@ -63,7 +59,9 @@ for spec in "${FIRMWARE_BUILDS[@]}"; do
   elf=$(build_firmware "$1" "$2" "$3")
   printf '%-24s %s\n' "$1" "$(size "$elf" | tail -n 1)"
 done
-for name in pico2 pico2-nolog pico2-6x6-nolog pico2-link pico pico-nolog pico-6x6-nolog pico-link pico-nolog-builtins; do
+builds_tagged uf2
+for spec in "${TAGGED[@]}"; do
+  name=${spec%% *}
   uf2="$FIRMWARE_TARGET_DIR/uf2/$name.uf2"
   [ -s "$uf2" ] || { echo "$name: no .uf2" >&2; exit 1; }
   printf '%-24s %s bytes\n' "$name.uf2" "$(stat -c %s "$uf2")"
@@ -75,8 +73,9 @@ M33="$FIRMWARE_TARGET_DIR/elf/qemu-m33.elf"
 step "no panic path (link-time check: these builds' panic handler references an undefined symbol)"
 # A build with a panic path left would have failed to link above; that they linked is the proof.
 # Here, a second look at the final ELFs: no panic function of core is in them at all.
-for name in qemu-m4f qemu-m0 qemu-m4f-link qemu-m0-link rig-m4f-nolog rig-m4f-6x6-nolog rig-m4f-6x6-nolog-uart \
-    qemu-m33 pico2-nolog pico2-6x6-nolog pico2-link; do
+builds_tagged nopanic
+for spec in "${TAGGED[@]}"; do
+  name=${spec%% *}
   elf="$FIRMWARE_TARGET_DIR/elf/$name.elf"
   if nm "$elf" | grep -qiE 'panicking|rust_begin_unwind'; then
     echo "$name: a panic handler is linked in: a panic path survived" >&2
