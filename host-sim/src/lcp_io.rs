@@ -339,10 +339,8 @@ mod tests {
         format!("{:#}", parse_siconos(text).unwrap_err())
     }
 
-    /// Every declared size is checked before anything is allocated. Before #17 was finished:
-    /// `n = 10^9` allocated `10^18` entries (the process aborted: "memory allocation failed"),
-    /// `n = usize::MAX` panicked ("capacity overflow"), and a cumulative block size beyond `n`
-    /// panicked ("index out of bounds: the len is 3 but the index is 3").
+    /// Every declared size is checked before anything is allocated: `n = 10^9` (which would
+    /// allocate `10^18` entries), `n = usize::MAX`, a cumulative block size beyond `n`.
     #[test]
     fn declared_sizes_are_checked_before_allocating() {
         assert_eq!(
@@ -364,8 +362,8 @@ mod tests {
         assert_eq!(err("0 0 0 0"), "LCP size 0 is not supported: the core solver is built for 1..=16");
     }
 
-    /// The format is the one the name says, then the content; the message says which and why.
-    /// Before #17 was finished, an empty `.json` file got "Siconos .dat: file ends before n".
+    /// The format is the one the name says, then the content; the message says which and why
+    /// (an empty `.json` file is an empty JSON file, not a truncated Siconos one).
     #[test]
     fn the_format_follows_the_name_then_the_content() {
         let e = |name: &str, text: &str| format!("{:#}", parse_file(Path::new(name), text).unwrap_err());

@@ -109,8 +109,8 @@ pub(crate) fn sign<T: Real>(direction: Direction) -> T {
 ///
 /// The impulse block `W^T M^-1 W` is symmetric: its upper triangle is computed and mirrored (10 of
 /// the 16 dot products for two contacts with one direction each), which also makes it exactly
-/// symmetric. The result is built in place in the returned value (zeroed once, then filled):
-/// building `A` and `b` as locals and moving them out cost a 240-byte copy every step.
+/// symmetric. The stepper forms `A` only for Lemke's method, when its fast path declines
+/// (`docs/formulation.md`, "Solving a step").
 #[must_use]
 pub fn assemble<T: Real, const K: usize, const N: usize>(
     layout: &Layout<K, N>,

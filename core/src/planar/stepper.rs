@@ -441,9 +441,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// Recomputes the contact frames for the current state against `supports`, in place (a
     /// support that does not fit gives an inactive frame; `new` and `step` refuse those first).
     /// The supports are passed in, not read back from `self.supports` just after they were
-    /// copied there: an 8-byte load of a position stored as two 4-byte halves cannot be forwarded
-    /// from the store buffer, and that stall alone was 4 % of a host step. Out of line on a
-    /// microcontroller: called from `new` and `step`, inlined it was two copies of flash.
+    /// copied there (an 8-byte load of a position stored as two 4-byte halves cannot be forwarded
+    /// from the store buffer). Out of line on a microcontroller: one copy for `new` and `step`.
     #[cfg_attr(target_os = "none", inline(never))]
     fn update_frames(&mut self, supports: &[Support<T>; K]) {
         let pose = Pose { com: [self.state.x, self.state.y], sin_cos: self.state.theta.sin_cos_portable() };
