@@ -11,6 +11,21 @@ bash scripts/setup.sh
 
 step() { printf '\n== %s\n' "$*"; }
 
+step "build glue: a failing build stops its caller"
+# scripts/lib.sh's helpers are called as `x=$(helper)`; a failed build must stop the caller, not
+# hand it a stale artefact. Here the build command itself is made to fail.
+for helper in "build_web" "build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback"; do
+  status=0
+  bash -c 'set -euo pipefail; . scripts/lib.sh; cross_cargo() { return 3; }; out=$('"$helper"'); echo "reached: $out"' \
+    >target/glue.out 2>target/glue.err || status=$?
+  if [ "$status" = 0 ] || grep -q reached target/glue.out || ! grep -q "the build failed" target/glue.err; then
+    echo "${helper%% *}: a failed build did not stop its caller (status $status):" >&2
+    cat target/glue.out target/glue.err >&2
+    exit 1
+  fi
+  echo "${helper%% *}: a failed build stops its caller (status $status)"
+done
+
 step "format"
 if $HOST_CARGO fmt --version >/dev/null 2>&1; then $HOST_CARGO fmt --all -- --check; else echo "rustfmt not installed: skipped"; fi
 
