@@ -36,22 +36,14 @@ done
   echo "|---|---|---|---|---|"
   for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0" "qemu-m33 mps2-an505 Cortex-M33F"; do
     set -- $m
-    out=$(target/release/host-sim qemu --icount --machine "$2" "${ELF[$1]}" 2>/dev/null)
-    echo "$out" > "out/firmware/$1-icount.log"
-    cal=$(echo "$out" | sed -n 's/^calibration instructions=\([0-9]*\) systicks=\([0-9]*\)$/\1 \2/p')
-    for scene in slow fast; do
-      line=$(echo "$out" | grep "^$scene rig ")
-      ticks=$(echo "$line" | sed 's/.* systicks=\([0-9]*\) .*/\1/')
-      worst=$(echo "$line" | sed 's/.*worst_step_systicks=\([0-9]*\).*/\1/')
-      steps=$(echo "$line" | sed 's/.* steps=\([0-9]*\)$/\1/')
-      python3 - "$cal" "$ticks" "$worst" "$steps" "$3 ($2)" "$scene" <<'PY'
-import sys
-insn, cal_ticks = map(int, sys.argv[1].split())
-ticks, worst, steps = int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
-per_tick = insn / cal_ticks
-print(f"| {sys.argv[5]} | {sys.argv[6]} | {steps} | {ticks * per_tick / steps:,.0f} | {worst * per_tick:,.0f} |")
+    # host-sim reads the firmware's timing lines and converts them (JSON, `host-sim qemu --json`).
+    target/release/host-sim qemu --icount --json --machine "$2" "${ELF[$1]}" > "out/firmware/$1-icount.json"
+    python3 - "out/firmware/$1-icount.json" "$3 ($2)" <<'PY'
+import json, sys
+timing = json.load(open(sys.argv[1]))["timing"]
+for s in timing["scenes"]:
+    print(f"| {sys.argv[2]} | {s['scene']} | {s['steps']} | {s['mean_instructions']:,.0f} | {s['worst_instructions']:,.0f} |")
 PY
-    done
   done
   echo
   echo "Steps by the path that answered their LCP (docs/formulation.md, \"Solving a step\"; a step is counted"
@@ -61,15 +53,15 @@ PY
   echo "|---|---|---|---|---|"
   for m in "qemu-m4f Cortex-M4F" "qemu-m0 Cortex-M0" "qemu-m33 Cortex-M33F"; do
     set -- $m
-    python3 - "out/firmware/$1-icount.log" "$2" <<'PY'
-import re, sys
-log = open(sys.argv[1]).read()
-insn, ticks = map(int, re.search(r"^calibration instructions=(\d+) systicks=(\d+)$", log, re.M).groups())
+    python3 - "out/firmware/$1-icount.json" "$2" <<'PY'
+import json, sys
+timing = json.load(open(sys.argv[1]))["timing"]
+slow = next(s for s in timing["scenes"] if s["scene"] == "slow")
+paths = {p["path"]: p for p in slow["paths"]}
 cells = []
-for path in ("free", "warm", "candidate", "lemke"):
-    m = re.search(rf"^slow path={path} steps=(\d+) systicks=(\d+) worst_step_systicks=(\d+)$", log, re.M)
-    n, t, w = map(int, m.groups())
-    cells.append(f"{n:,} steps, {t * insn / ticks / n:,.0f} / {w * insn / ticks:,.0f}" if n else "0")
+for name in ("free", "warm", "candidate", "lemke"):
+    p = paths[name]
+    cells.append(f"{p['steps']:,} steps, {p['mean_instructions']:,.0f} / {p['worst_instructions']:,.0f}" if p["steps"] else "0")
 print(f"| {sys.argv[2]} | " + " | ".join(cells) + " |")
 PY
   done

@@ -120,6 +120,10 @@ pub enum Cmd {
         /// Deterministic instruction counting (`-icount shift=0`).
         #[arg(long)]
         icount: bool,
+        /// Print one JSON object instead of the lines: the exit, the lines and the step timing
+        /// in instructions (`scripts/firmware-report.sh` reads it).
+        #[arg(long)]
+        json: bool,
     },
     /// Serve the browser page (web/page/, the core compiled to WebAssembly) on 127.0.0.1, and
     /// optionally runs of `host-sim run` to replay in it (--replay out/run).
@@ -262,10 +266,20 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Cmd::Scene(args) => print!("{}", scene_cmd::run_scene(&args)?),
         Cmd::Monitor(args) => print!("{}", monitor::monitor(&args)?),
-        Cmd::Qemu { elf, machine, timeout_s, icount } => {
+        Cmd::Qemu { elf, machine, timeout_s, icount, json } => {
             let run = qemu::run(&elf, machine, Duration::from_secs(timeout_s), icount)?;
-            for line in &run.lines {
-                println!("{line}");
+            if json {
+                let summary = qemu::RunSummary {
+                    exit_code: run.exit_code,
+                    timed_out: run.timed_out,
+                    timing: qemu::timing(&run.lines)?,
+                    lines: run.lines.clone(),
+                };
+                println!("{}", serde_json::to_string_pretty(&summary)?);
+            } else {
+                for line in &run.lines {
+                    println!("{line}");
+                }
             }
             if run.timed_out {
                 eprintln!("host-sim: firmware timed out after {timeout_s} s");

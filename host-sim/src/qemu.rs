@@ -203,3 +203,148 @@ pub fn decode_defmt(elf: &[u8], raw: &[u8]) -> anyhow::Result<Vec<String>> {
     }
     Ok(lines)
 }
+
+/// What a firmware run printed and how it ended, with its timing read into numbers
+/// (`host-sim qemu --json`; `scripts/firmware-report.sh` reads it).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RunSummary {
+    /// Semihosting exit status (`None` when QEMU was killed or ended by a signal).
+    pub exit_code: Option<i32>,
+    /// `true` when the run hit the timeout and was killed.
+    pub timed_out: bool,
+    /// The decoded defmt messages.
+    pub lines: Vec<String>,
+    /// The timing lines, converted to instructions (`None` without a calibration line).
+    pub timing: Option<Timing>,
+}
+
+/// The firmware's step timing in instructions (`-icount shift=0`: the `SysTick` ticks converted
+/// with the firmware's calibration loop of known length).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Timing {
+    /// Instructions per `SysTick` tick.
+    pub instructions_per_tick: f64,
+    /// Each scene run through the rig loop.
+    pub scenes: Vec<SceneTiming>,
+}
+
+/// One scene's steps through the rig loop.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct SceneTiming {
+    /// The firmware's name for the run (`slow`, `fast`).
+    pub scene: String,
+    /// Steps taken.
+    pub steps: u64,
+    /// Mean instructions per step.
+    pub mean_instructions: f64,
+    /// The worst step's instructions.
+    pub worst_instructions: f64,
+    /// The same per solve path (`SolvePath`'s names), for the steps each answered.
+    pub paths: Vec<PathTiming>,
+}
+
+/// The steps one solve path answered in a scene.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct PathTiming {
+    /// `free`, `warm`, `candidate` or `lemke` (`meterstick_core::planar::SolvePath::name`).
+    pub path: &'static str,
+    /// Steps.
+    pub steps: u64,
+    /// Mean instructions per step (`None` without steps).
+    pub mean_instructions: Option<f64>,
+    /// The worst step's instructions.
+    pub worst_instructions: f64,
+}
+
+/// The `key=value` fields of a line after its first `skip` words.
+fn fields(line: &str, skip: usize) -> std::collections::HashMap<&str, &str> {
+    line.split_whitespace().skip(skip).filter_map(|w| w.split_once('=')).collect()
+}
+
+/// Reads the firmware's timing lines (`calibration instructions=.. systicks=..`, `<scene> rig
+/// .. systicks=.. worst_step_systicks=.. steps=..`, `<scene> path=<name> steps=.. systicks=..
+/// worst_step_systicks=..`; `firmware/src/qemu.rs` prints them) into instructions. `None` without
+/// a calibration line; a malformed number is an error naming the line.
+///
+/// # Errors
+/// A timing line whose number does not parse, or a path name the core does not have.
+pub fn timing(lines: &[String]) -> anyhow::Result<Option<Timing>> {
+    use meterstick_core::planar::SolvePath;
+    let number = |line: &str, f: &std::collections::HashMap<&str, &str>, key: &str| -> anyhow::Result<u64> {
+        let v = f.get(key).with_context(|| format!("firmware line without {key}=: {line}"))?;
+        v.parse().with_context(|| format!("firmware line with {key}={v}, not a count: {line}"))
+    };
+    let Some(cal) = lines.iter().find(|l| l.starts_with("calibration ")) else { return Ok(None) };
+    let f = fields(cal, 1);
+    let ticks = number(cal, &f, "systicks")?;
+    if ticks == 0 {
+        bail!("firmware calibration with 0 ticks: {cal}");
+    }
+    let per_tick = number(cal, &f, "instructions")? as f64 / ticks as f64;
+    let mut scenes = Vec::new();
+    for line in lines {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.get(1) != Some(&"rig") || !line.contains("worst_step_systicks=") {
+            continue;
+        }
+        let f = fields(line, 2);
+        let steps = number(line, &f, "steps")?;
+        let mut paths = Vec::new();
+        for path in SolvePath::ALL {
+            let prefix = format!("{} path={} ", words[0], path.name());
+            let Some(p) = lines.iter().find(|l| l.starts_with(&prefix)) else { continue };
+            let g = fields(p, 2);
+            let n = number(p, &g, "steps")?;
+            paths.push(PathTiming {
+                path: path.name(),
+                steps: n,
+                mean_instructions: (n > 0)
+                    .then(|| number(p, &g, "systicks").map(|t| t as f64 * per_tick / n as f64))
+                    .transpose()?,
+                worst_instructions: number(p, &g, "worst_step_systicks")? as f64 * per_tick,
+            });
+        }
+        scenes.push(SceneTiming {
+            scene: words[0].to_owned(),
+            steps,
+            mean_instructions: number(line, &f, "systicks")? as f64 * per_tick / steps.max(1) as f64,
+            worst_instructions: number(line, &f, "worst_step_systicks")? as f64 * per_tick,
+            paths,
+        });
+    }
+    Ok(Some(Timing { instructions_per_tick: per_tick, scenes }))
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod timing_tests {
+    use super::timing;
+
+    #[test]
+    fn timing_lines_become_instructions() {
+        let lines: Vec<String> = [
+            "calibration instructions=2000002 systicks=50000",
+            "slow rig pulses=7000 systicks=400000 worst_step_systicks=150 steps=7900",
+            "slow path=free steps=0 systicks=0 worst_step_systicks=0",
+            "slow path=warm steps=7871 systicks=398000 worst_step_systicks=58",
+            "slow path=candidate steps=29 systicks=2000 worst_step_systicks=150",
+        ]
+        .map(String::from)
+        .to_vec();
+        let t = timing(&lines).unwrap().unwrap();
+        let per = 2_000_002.0 / 50_000.0;
+        assert!((t.instructions_per_tick - per).abs() < 1e-12);
+        let s = &t.scenes[0];
+        assert_eq!((s.scene.as_str(), s.steps), ("slow", 7900));
+        assert!((s.mean_instructions - 400_000.0 * per / 7900.0).abs() < 1e-9);
+        assert!((s.worst_instructions - 150.0 * per).abs() < 1e-9);
+        assert_eq!(s.paths.iter().map(|p| p.path).collect::<Vec<_>>(), ["free", "warm", "candidate"]);
+        assert_eq!(s.paths[0].mean_instructions, None);
+        assert_eq!(s.paths[2].steps, 29);
+        let bad = vec!["calibration instructions=2000002 systicks=0".to_owned()];
+        assert!(timing(&bad).is_err());
+        let garbled = vec!["calibration instructions=x systicks=5".to_owned()];
+        assert!(format!("{:#}", timing(&garbled).unwrap_err()).contains("instructions=x"));
+        assert!(timing(&[]).unwrap().is_none());
+    }
+}
