@@ -220,3 +220,29 @@ fn degenerate_steps_are_answered() {
         assert!(answered6 > 0 && answered8 > 0, "{name}: no basis answered ({answered6}, {answered8})");
     }
 }
+
+/// A support velocity that is not finite makes the step an error (`NonFiniteInput`), never an
+/// answer: the fast path's `q >= 0` test must not be fooled by a NaN or an infinity in `q`.
+#[test]
+fn a_non_finite_support_velocity_is_an_error() {
+    use meterstick_core::lcp::LcpError;
+    use meterstick_core::planar::{
+        Body, BodyState, Contact, Feature, Model, Settings, StepError, Stepper, Support,
+    };
+    const FULL: Layout<2, 8> = Layout::full();
+    let body = Body::block(1.0_f64, 0.2, 0.1);
+    let corner = |x: f64| Contact { feature: Feature::Point([x, -0.05]), mu_static: 0.5, mu_kinetic: 0.5 };
+    let settings = Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 };
+    let model = Model { body, contacts: [corner(-0.1), corner(0.1)], settings };
+    let floor = Support::fixed_line([0.0, 0.0], [0.0, 1.0]);
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let mut stepper =
+            Stepper::new(model, FULL, FULL, BodyState::at_rest(0.0, 0.05, 0.0), [floor; 2]).unwrap();
+        stepper.step(&[floor; 2]).unwrap();
+        let moving = Support::Line { position: [0.0, 0.0], normal: [0.0, 1.0], velocity: [bad, 0.0] };
+        let before = *stepper.state();
+        let result = stepper.step(&[moving, floor]);
+        assert_eq!(result.err(), Some(StepError::Solver(LcpError::NonFiniteInput)), "velocity {bad}");
+        assert_eq!(*stepper.state(), before, "a failed step leaves the state as it was");
+    }
+}

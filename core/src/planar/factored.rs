@@ -38,9 +38,10 @@
 //! than 3 make the system singular) solve `H^T M^-1 G y = -q_H`, with `G` their columns and `H`
 //! the rows holding them: an `m x m` system, `m <= 3`, by elimination with partial pivoting.
 //! Then `z` is assembled, `dv = M^-1 C p` recomputed from `z`, and every `w` from the factored
-//! rows above: the answer is kept only when `z >= 0` and, outside the basis, `w >= 0` as computed
-//! (no tolerance, as [`crate::lcp::Lemke::solve_warm`]'s own warm basis: a basis infeasible by
-//! round-off is left to Lemke's lexicographic pivoting), and when it passes the verification
+//! rows above: the answer is kept only when the impulses and the cone rows are `>= 0` exactly,
+//! the velocity rows and the `sigma`s `>= 0` within their round-off, no impulse is positive but
+//! within round-off of zero (`docs/formulation.md`, "Solving a step", has the rules and why), the
+//! data are finite, and when it passes the verification
 //! residual ([`crate::lcp::verify`]) held to a scale no larger than Lemke's own: `||M||_inf` is
 //! replaced by the lower bound `max_j (|A_jj| + row's unit entries)` (every row sum is at least
 //! its diagonal), which makes the check at least as strict.
@@ -79,6 +80,8 @@ pub struct FactoredLcp<T, const K: usize, const N: usize> {
     q_norm: T,
     /// `min_j q_j`.
     q_min: T,
+    /// Every entry of `q` and of `M^-1 C` is finite.
+    finite: bool,
 }
 
 /// A basis' complementary solution, verified ([`FactoredLcp::solve_basis`]).
@@ -147,6 +150,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             m_low: T::zero(),
             q_norm: T::zero(),
             q_min: T::zero(),
+            finite: true,
         };
         for i in 0..K {
             let f = &input.frames[i];
@@ -199,21 +203,36 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             }
         }
         let (mut q_norm, mut q_min) = (T::zero(), out.q[0]);
+        let mut finite = true;
         for v in 0..N {
+            finite &= out.q[v].finite();
             q_norm = max(q_norm, out.q[v].abs_exact());
             q_min = min(q_min, out.q[v]);
+        }
+        for j in 0..sigma_start {
+            for k in 0..3 {
+                finite &= out.mcol[j][k].finite();
+            }
         }
         out.m_low = m_low;
         out.q_norm = q_norm;
         out.q_min = q_min;
+        out.finite = finite;
         out
     }
 
-    /// `true` when `q >= 0`, so that `z = 0` solves the LCP (nothing pushes: the answer Lemke's
-    /// method gives such a problem before any pivot).
+    /// `true` when every entry of `q` and of the columns is finite; otherwise no path may answer
+    /// (the stepper reports [`crate::lcp::LcpError::NonFiniteInput`], as Lemke's method does).
+    #[must_use]
+    pub const fn is_finite(&self) -> bool {
+        self.finite
+    }
+
+    /// `true` when the data are finite and `q >= 0`, so that `z = 0` solves the LCP exactly
+    /// (`w = q >= 0`, `z . w = 0`: the answer Lemke's method gives such a problem before any pivot).
     #[must_use]
     pub fn is_free(&self) -> bool {
-        self.q_min >= T::zero()
+        self.finite && self.q_min >= T::zero()
     }
 
     /// The kept tangent directions of each contact.
@@ -238,14 +257,22 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     #[must_use]
     #[cfg_attr(target_os = "none", inline(never))] // called from the fast path and Lemke's: one copy of flash
     pub fn velocity_after(&self, z: &[T; N]) -> [T; 3] {
-        let mut v = self.v_free;
+        let dv = self.velocity_change(z);
+        [self.v_free[0] + dv[0], self.v_free[1] + dv[1], self.v_free[2] + dv[2]]
+    }
+
+    /// `dv = M^-1 C p` for the impulses in `z`, summed on its own (not `v+ - v~`, which would
+    /// lose `eps |v~|` when the body moves fast and the impulses change it little).
+    #[cfg_attr(target_os = "none", inline(never))]
+    fn velocity_change(&self, z: &[T; N]) -> [T; 3] {
+        let mut dv = [T::zero(); 3];
         for j in 0..Layout::<K, N>::SIGMA_START {
             let (c, zj) = (&self.mcol[j], z[j]);
             for k in 0..3 {
-                v[k] += c[k] * zj;
+                dv[k] += c[k] * zj;
             }
         }
-        v
+        dv
     }
 
     /// The complementary solution of `basis`, computed in the body's coordinates and verified
@@ -362,8 +389,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             }
         }
         // dv recomputed from z, then each basic sigma from its friction row.
-        let v_plus = self.velocity_after(z);
-        let dv = [v_plus[0] - self.v_free[0], v_plus[1] - self.v_free[1], v_plus[2] - self.v_free[2]];
+        let dv = self.velocity_change(z);
+        let v_plus = [self.v_free[0] + dv[0], self.v_free[1] + dv[1], self.v_free[2] + dv[2]];
         // A velocity (a normal or friction row's w, a sigma) within the round-off of the rows it
         // comes from, `N eps (||A|| ||p|| + ||q||)`, is zero: a sticking contact has both friction
         // rows at zero slip (one basic, one not), and a contact held at its cone's edge without

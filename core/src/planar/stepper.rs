@@ -748,6 +748,9 @@ fn solve<T: Real, const K: usize, const M: usize>(
             path,
         })
     };
+    if !factored.is_finite() {
+        return Err(LcpError::NonFiniteInput);
+    }
     if factored.is_free() {
         *z = [T::zero(); M];
         *w = *factored.q();
