@@ -43,13 +43,13 @@ fn main() {
         }
     }
     let target = env::var("TARGET").unwrap_or_default();
-    // The Cortex-M0's f32 multiplication (src/soft_float.rs), where compiler_builtins' is used:
+    // The Cortex-M0's f32 multiplication and addition (src/soft_float.rs), where compiler_builtins' is used:
     // not on the Pico's default build, whose floats come from the boot ROM.
-    println!("cargo::rustc-check-cfg=cfg(soft_fmul)");
+    println!("cargo::rustc-check-cfg=cfg(soft_float)");
     let rom_floats = env::var_os("CARGO_FEATURE_BOARD_PICO").is_some()
         && env::var_os("CARGO_FEATURE_BUILTINS_FLOAT").is_none();
     if target.starts_with("thumbv6m") && !rom_floats {
-        println!("cargo:rustc-cfg=soft_fmul");
+        println!("cargo:rustc-cfg=soft_float");
     }
     if target.starts_with("thumb") {
         println!("cargo:rustc-link-arg-bins=-Tlink.x");

@@ -74,7 +74,7 @@ mod realtime;
 mod semihosting_log;
 #[cfg(feature = "link")]
 mod session;
-#[cfg(soft_fmul)]
+#[cfg(soft_float)]
 mod soft_float;
 mod systick;
 #[cfg(all(feature = "qemu", feature = "link"))]
