@@ -370,7 +370,9 @@ where
         if !target.is_finite() {
             return self.fault(RigFault::NonFinite);
         }
-        let due = target as i64 - self.pulses;
+        // `as i32` saturates (one instruction on an FPU; `as i64` is a library call): a target
+        // beyond 2^31 pulses, 27 km at 80 steps/mm, is still more than one tick's worth.
+        let due = i64::from(target as i32) - self.pulses;
         if due > i64::from(self.config.max_pulses_per_tick) {
             return self.fault(RigFault::ActuatorOverrun);
         }

@@ -72,6 +72,8 @@ pub struct FactoredLcp<T, const K: usize, const N: usize> {
     tangents: [Tangents; K],
     /// Bit `j` set: variable `j` belongs to an inactive contact.
     pub(crate) inactive: u32,
+    /// Bit `j` of entry `i` set: variable `j` belongs to contact `i`.
+    variables_of: [u32; K],
     /// `v~`.
     v_free: [T; 3],
     /// A lower bound of `||A||_inf` from the structure ([`Self::new`]).
@@ -137,21 +139,51 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     /// [`super::assemble::assemble_into`] writes into `A` and `q`).
     #[must_use]
     pub fn new(layout: &Layout<K, N>, input: &StepInputs<'_, T, K>) -> Self {
-        let sigma_start = Layout::<K, N>::SIGMA_START;
+        let mut out = Self::empty(layout);
+        out.refill(input);
+        out
+    }
+
+    /// The rows of `layout` with every column and `q` zero, ready for [`Self::refill`].
+    #[must_use]
+    pub(crate) fn empty(layout: &Layout<K, N>) -> Self {
         let zero3 = [T::zero(); 3];
-        let mut out = Self {
+        let mut variables_of = [0; K];
+        for (v, variable) in layout.variables().iter().enumerate() {
+            if let Some(bits) = variables_of.get_mut(variable.contact()) {
+                *bits |= 1 << v;
+            }
+        }
+        Self {
+            variables_of,
             col: [zero3; N],
             mcol: [zero3; N],
             q: [T::zero(); N],
-            mu: input.mu,
+            mu: [T::zero(); K],
             tangents: *layout.tangents(),
             inactive: 0,
-            v_free: input.v_free,
+            v_free: [T::zero(); 3],
             m_low: T::zero(),
             q_norm: T::zero(),
             q_min: T::zero(),
             finite: true,
-        };
+        }
+    }
+
+    /// Replaces the rows with those of the step `input`, in place (the stepper keeps one
+    /// `FactoredLcp` and refills it each step: no copy of the rows, no clearing). Every impulse
+    /// row's column and `q` is written; the `sigma` rows' columns stay zero, as [`Self::empty`]
+    /// made them.
+    pub(crate) fn refill(&mut self, input: &StepInputs<'_, T, K>) {
+        let sigma_start = Layout::<K, N>::SIGMA_START;
+        let zero3 = [T::zero(); 3];
+        let out = self;
+        out.mu = input.mu;
+        out.v_free = input.v_free;
+        out.inactive = 0;
+        for v in sigma_start..N {
+            out.q[v] = T::zero();
+        }
         for i in 0..K {
             let f = &input.frames[i];
             out.col[i] = f.wn;
@@ -184,24 +216,38 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 [c[0] * input.m_inv[0], c[1] * input.m_inv[1], c[2] * input.m_inv[2]]
             };
         }
-        for (v, variable) in layout.variables().iter().enumerate() {
-            if !input.frames.get(variable.contact()).is_some_and(|f| f.active) {
-                out.inactive |= 1 << v;
-                out.col[v] = zero3;
-                out.mcol[v] = zero3;
-                out.q[v] = T::one();
+        for i in 0..K {
+            if !input.frames[i].active {
+                out.inactive |= out.variables_of[i];
+            }
+        }
+        if out.inactive != 0 {
+            for v in 0..N {
+                if (out.inactive >> v) & 1 == 1 {
+                    out.col[v] = zero3;
+                    out.mcol[v] = zero3;
+                    out.q[v] = T::one();
+                }
             }
         }
         // ||A||_inf from below, from the structure alone: an active contact's impulse rows have a
-        // diagonal `c_j^T M^-1 c_j >= 1` (per unit mass the linear part of `c_j` is a unit
+        // diagonal `c_j^T M^-1 c_j >= min(M^-1_xx, M^-1_yy)` (the linear part of `c_j` is a unit
         // vector), a friction row its sigma's 1 besides, a sigma row sums to `mu + kept
         // directions` exactly; an inactive contact's rows are the identity's.
+        let linear = min(input.m_inv[0], input.m_inv[1]);
         let mut m_low = T::one();
         for i in 0..K {
             if (out.inactive >> i) & 1 == 0 {
-                m_low = max(m_low, max(T::of(2.0), out.mu[i] + T::of_count(out.tangents[i].count() as u32)));
+                m_low = max(
+                    m_low,
+                    max(linear + T::one(), out.mu[i] + T::of_count(out.tangents[i].count() as u32)),
+                );
             }
         }
+        // Finite data: `q` finite implies `c_j` finite (`q_j = c_j^T v~ + c0_j`, and an infinite
+        // or NaN entry of `c_j` makes the dot product infinite or NaN, `0 inf` included), so of
+        // `M^-1 c_j` only the products with `M^-1` remain to be checked: the angular one, and with
+        // a non-unit linear `M^-1` the linear ones too.
         let (mut q_norm, mut q_min) = (T::zero(), out.q[0]);
         let mut finite = true;
         for v in 0..N {
@@ -210,15 +256,13 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             q_min = min(q_min, out.q[v]);
         }
         for j in 0..sigma_start {
-            for k in 0..3 {
-                finite &= out.mcol[j][k].finite();
-            }
+            let c = &out.mcol[j];
+            finite &= c[2].finite() & (unit || (c[0].finite() & c[1].finite()));
         }
         out.m_low = m_low;
         out.q_norm = q_norm;
         out.q_min = q_min;
         out.finite = finite;
-        out
     }
 
     /// `true` when every entry of `q` and of the columns is finite; otherwise no path may answer
@@ -304,12 +348,10 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         }
         let basic = |v: usize| (mask >> v) & 1 == 1;
         let sigma_start = Layout::<K, N>::SIGMA_START;
-        // The unknowns: the variable each sets, the friction row that follows it at `mu` (a
-        // sliding contact's), the row holding it, its column `M^-1 G`.
+        // The unknowns: the variable each sets (whose own row holds it) and the friction row that
+        // follows it at `mu` (a sliding contact's normal impulse; `N`: none).
         let mut var = [0usize; DOF];
-        let mut follower: [Option<(usize, T)>; DOF] = [None; DOF];
-        let mut row = [0usize; DOF];
-        let mut gm = [[T::zero(); 3]; DOF];
+        let mut follower = [N; DOF];
         let mut m = 0usize;
         // The friction row that gives each contact's basic sigma.
         let mut sigma_row: [Option<usize>; K] = [None; K];
@@ -335,11 +377,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                     if m >= DOF {
                         return Err(Declined::Pattern);
                     }
-                    let (mn, mf, mu) = (&self.mcol[i], &self.mcol[friction.min(N - 1)], self.mu[i]);
                     var[m] = i;
-                    follower[m] = Some((friction, mu));
-                    row[m] = i;
-                    gm[m] = [mn[0] + mu * mf[0], mn[1] + mu * mf[1], mn[2] + mu * mf[2]];
+                    follower[m] = friction;
                     m += 1;
                 }
                 continue;
@@ -350,20 +389,31 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                         return Err(Declined::Pattern);
                     }
                     var[m] = v;
-                    row[m] = v;
-                    gm[m] = self.mcol[v.min(N - 1)];
                     m += 1;
                 }
             }
         }
         // H^T M^-1 G y = -q_H.
+        // Unknown `l`'s column `M^-1 G` (formed where it is used: nothing to clear or store).
+        let gm = |l: usize| {
+            let mn = &self.mcol[var[l].min(N - 1)];
+            if follower[l] < N {
+                let (mf, mu) = (&self.mcol[follower[l]], self.mu[var[l].min(K - 1)]);
+                [mn[0] + mu * mf[0], mn[1] + mu * mf[1], mn[2] + mu * mf[2]]
+            } else {
+                *mn
+            }
+        };
         let mut a = [[T::zero(); DOF]; DOF];
         let mut y = [T::zero(); DOF];
-        for k in 0..m {
-            for l in 0..m {
-                a[k][l] = dot3(&self.col[row[k].min(N - 1)], &gm[l]);
+        for l in 0..m {
+            let g = gm(l);
+            for k in 0..m {
+                a[k][l] = dot3(&self.col[var[k].min(N - 1)], &g);
             }
-            y[k] = -self.q[row[k].min(N - 1)];
+        }
+        for k in 0..m {
+            y[k] = -self.q[var[k].min(N - 1)];
         }
         if !solve_small(&mut a, &mut y, m, T::of(N as f64) * T::EPS * self.m_low) {
             return Err(Declined::Singular);
@@ -384,8 +434,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 return Err(Declined::Infeasible(var[k] as u8));
             }
             z[var[k].min(N - 1)] = y[k];
-            if let Some((f, mu)) = follower[k] {
-                z[f.min(N - 1)] = mu * y[k];
+            if follower[k] < N {
+                z[follower[k]] = self.mu[var[k].min(K - 1)] * y[k];
             }
         }
         // dv recomputed from z, then each basic sigma from its friction row.
@@ -418,13 +468,21 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // most `|w_j| / s_w` in the basis and `max(-w_j, 0) / s_w` outside it (`z_j = 0`), with
         // `s_w = ||A|| ||z|| + ||q||` (here `||A||`'s lower bound: a smaller scale, a stricter
         // test).
+        // The impulse rows' `w_j = q_j + c_j^T dv (+ sigma)` are finite only if `dv` is, and `dv`
+        // only if every basic impulse is (each acts through a non-zero column: an infinity or a
+        // NaN in it reaches every row, `0 inf` too); the sigmas and the cone rows follow from
+        // those. So their finiteness is the answer's.
         let mut violation = T::zero();
-        let mut z_norm = T::zero();
+        let mut z_norm = p_norm;
+        for v in sigma_start..N {
+            z_norm = max(z_norm, z[v]);
+        }
         let mut finite = true;
         for v in 0..N {
-            let (zv, wv) = (z[v], w[v]);
-            finite &= zv.finite() & wv.finite();
-            z_norm = max(z_norm, zv);
+            let wv = w[v];
+            if v < sigma_start {
+                finite &= wv.finite();
+            }
             if basic(v) {
                 violation = max(violation, wv.abs_exact());
             } else {

@@ -294,6 +294,8 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     frames: [ContactFrame<T>; K],
     modes: [ContactMode; K],
     basis: Basis<N>,
+    /// The step's LCP in factored form, refilled in place each step.
+    factored: FactoredLcp<T, K, N>,
     solver: Lemke<T, N>,
     stats: RunStats,
 }
@@ -377,6 +379,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             }; K],
             modes: [ContactMode::Separated; K],
             basis: Basis::all_w(),
+            factored: FactoredLcp::empty(&layout),
             solver: Lemke::new(),
             stats: RunStats::default(),
         };
@@ -504,7 +507,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             gravity: s.gravity,
             gap_round_off,
         };
-        let factored = FactoredLcp::new(&self.layout, &inputs);
+        self.factored.refill(&inputs);
+        let factored = &self.factored;
         // The reduced layout's answer, and the full layout's when it is used.
         let (mut z, mut w) = ([T::zero(); N], [T::zero(); N]);
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut, unused_variables))]
@@ -513,7 +517,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let reduced = N != NF;
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
         let (mut pivots, mut warm_start_used, mut residual, mut path, solved) =
-            match solve(&factored, self.basis, &self.solver, &mut self.stats, &mut z, &mut w) {
+            match solve(factored, self.basis, &self.solver, &mut self.stats, &mut z, &mut w) {
                 Ok(sol) => {
                     self.basis = sol.basis;
                     v_plus = sol.v_plus;
