@@ -99,9 +99,13 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             rhs: [T::zero(); N],
             basis: [Var::Artificial; N],
         };
-        for i in 0..N {
+        // The bound goes through `black_box` so that the compiler keeps this a loop: unrolled,
+        // the N^2 copies were a kilobyte of a microcontroller's flash for a path (Lemke's method,
+        // after the fast paths) that few steps take. `n = N` all the same.
+        let n = N.min(core::hint::black_box(N));
+        for i in 0..n {
             t.binv[i][i] = T::one();
-            for j in 0..N {
+            for j in 0..n {
                 t.zc[i][j] = -lcp.m[(i, j)];
             }
             t.rhs[i] = lcp.q[i];

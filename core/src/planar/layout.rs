@@ -209,21 +209,35 @@ impl<const K: usize, const N: usize> Layout<K, N> {
     /// them (it is then not a full layout of this one).
     #[must_use]
     pub const fn index_in<const NF: usize>(&self, full: &Layout<K, NF>) -> Option<[usize; N]> {
+        // Where the variable would sit in `full`'s order (normals, friction rows contact by
+        // contact with `+d` before `-d`, sigmas), then one comparison: O(N K), not a search.
         let mut map = [0usize; N];
         let mut j = 0;
         while j < N {
-            let mut found = None;
-            let mut k = 0;
-            while k < NF {
-                if variables_equal(self.variables[j], full.variables[k]) {
-                    found = Some(k);
+            let v = self.variables[j];
+            let k = match v {
+                Variable::Normal(i) => i as usize,
+                Variable::Sigma(i) => NF - K + i as usize,
+                Variable::Friction(i, direction) => {
+                    let mut k = K;
+                    let mut c = 0;
+                    while c < i as usize && c < K {
+                        k += full.tangents[c].count();
+                        c += 1;
+                    }
+                    if matches!(direction, Direction::Minus)
+                        && (i as usize) < K
+                        && full.tangents[i as usize].keeps(Direction::Plus)
+                    {
+                        k += 1;
+                    }
+                    k
                 }
-                k += 1;
+            };
+            if k >= NF || !variables_equal(v, full.variables[k]) {
+                return None;
             }
-            match found {
-                Some(k) => map[j] = k,
-                None => return None,
-            }
+            map[j] = k;
             j += 1;
         }
         Some(map)
@@ -288,6 +302,52 @@ mod tests {
         assert_eq!(FULL.kept_alone(&FULL, 0), None);
         assert!(FULL.is_full() && !REDUCED.is_full());
         assert_eq!((Layout::<2, 6>::FRICTION_START, Layout::<2, 6>::SIGMA_START), (2, 4));
+    }
+
+    /// [`Layout::index_in`]'s formula against a search of the other layout's variables, for every
+    /// pair of three-contact layouts (each contact keeping `+d`, `-d` or both).
+    #[test]
+    fn index_in_agrees_with_a_search() {
+        fn search<const N: usize, const NF: usize>(
+            a: &Layout<3, N>,
+            b: &Layout<3, NF>,
+        ) -> Option<[usize; N]> {
+            let mut map = [0; N];
+            for (j, v) in a.variables().iter().enumerate() {
+                map[j] = b.variables().iter().position(|w| w == v)?;
+            }
+            Some(map)
+        }
+        fn against<const N: usize, const NF: usize>(all: &[[Tangents; 3]]) -> usize {
+            let mut pairs = 0;
+            for &ta in all {
+                for &tb in all {
+                    if let (Some(a), Some(b)) = (Layout::<3, N>::try_new(ta), Layout::<3, NF>::try_new(tb)) {
+                        assert_eq!(a.index_in(&b), search(&a, &b), "{ta:?} in {tb:?}");
+                        pairs += 1;
+                    }
+                }
+            }
+            pairs
+        }
+        let kinds = [Tangents::Plus, Tangents::Minus, Tangents::Both];
+        let mut all = Vec::new();
+        for a in kinds {
+            for b in kinds {
+                for c in kinds {
+                    all.push([a, b, c]);
+                }
+            }
+        }
+        let pairs = against::<9, 9>(&all)
+            + against::<9, 10>(&all)
+            + against::<10, 11>(&all)
+            + against::<10, 12>(&all)
+            + against::<11, 12>(&all)
+            + against::<12, 12>(&all)
+            + against::<11, 10>(&all);
+        // 8x8 + 8x12 + 12x6 + 12x1 + 6x1 + 1x1 + 6x12 pairs of layouts.
+        assert_eq!(pairs, 64 + 96 + 72 + 12 + 6 + 1 + 72);
     }
 
     #[test]
