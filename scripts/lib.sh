@@ -68,7 +68,9 @@ build_firmware() {
 #   clippy  - linted in scripts/test.sh (the distinct code paths);
 #   nopanic - linked with the panic handler that references an undefined symbol (firmware/src/
 #             main.rs): that it links proves no panic path; test.sh also checks the ELF;
-#   uf2     - a Pico build: build_firmware writes its .uf2, test.sh checks it is there.
+#   uf2     - a Pico build: build_firmware writes its .uf2, test.sh checks it is there;
+#   emu     - the one Pico build run on the emulated RP2040 by scripts/pico-emu.sh (rp2040js has
+#             no boot ROM: the build's float arithmetic must not call it, `builtins-float`).
 FIRMWARE_BUILDS=(
   "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback clippy,nopanic"
   "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback nopanic"
@@ -89,7 +91,7 @@ FIRMWARE_BUILDS=(
   "pico-nolog thumbv6m-none-eabi board-pico,fallback uf2"
   "pico-6x6-nolog thumbv6m-none-eabi board-pico uf2"
   "pico-link thumbv6m-none-eabi board-pico,fallback,link clippy,uf2"
-  "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float clippy,uf2"
+  "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float clippy,uf2,emu"
 )
 
 # Sets TAGGED to the specs ("<name> <target> <features> <tags>") of the builds tagged $1 (no

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The Pico without a board (#23): the Pico firmware's .uf2, as a teacher flashes it, on an
+# emulated RP2040 (rp2040js, tests/pico/), checked against the host core running the same rig
+# (tests/tests/pico_emu.rs): STEP pulses tick by tick, DIR, the lights at the scene's switch
+# events, the fault light, the tick period; it prints the cycles each step takes on the
+# 125 MHz Cortex-M0+ against the 1 ms period.
+#
+# Usage: bash scripts/pico-emu.sh [--no-setup] [TEST-NAME-FILTER...]
+#   --no-setup   skip scripts/setup.sh (scripts/test.sh has run it)
+#   MS_PICO_UF2  a .uf2 to run instead of building the build tagged `emu` (scripts/lib.sh)
+# Only builds whose arithmetic does not call the RP2040's boot ROM run on the emulator
+# (rp2040js has none): `builtins-float`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+setup=1
+if [ "${1:-}" = --no-setup ]; then setup=0; shift; fi
+[ "$setup" = 0 ] || bash scripts/setup.sh
+. scripts/lib.sh
+
+if ! command -v node >/dev/null 2>&1 || [ ! -f tests/pico/node_modules/rp2040js/package.json ]; then
+  echo "pico-emu: node or tests/pico/node_modules is missing: run scripts/setup.sh" >&2
+  exit 1
+fi
+if [ -z "${MS_PICO_UF2:-}" ]; then
+  builds_tagged emu
+  [ ${#TAGGED[@]} = 1 ] || { echo "pico-emu: ${#TAGGED[@]} builds are tagged emu, expected one" >&2; exit 1; }
+  set -- ${TAGGED[0]} "$@"
+  build_firmware "$1" "$2" "$3" >/dev/null
+  MS_PICO_UF2="$FIRMWARE_TARGET_DIR/uf2/$1.uf2"
+  shift 4
+fi
+[ -s "$MS_PICO_UF2" ] || { echo "pico-emu: no .uf2 at $MS_PICO_UF2" >&2; exit 1; }
+version=$(node -p 'require("./tests/pico/node_modules/rp2040js/package.json").version')
+echo "pico-emu: ${MS_PICO_UF2#"$ROOT"/} on rp2040js $version"
+MS_PICO_UF2="$MS_PICO_UF2" $HOST_CARGO test --locked -p meterstick-tests --test pico_emu -- \
+  --ignored --test-threads=1 --nocapture "$@"
+echo "pico-emu: the harness's JSON per run is in target/pico-emu/"
