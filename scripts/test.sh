@@ -106,8 +106,13 @@ MS_FIRMWARE_M4_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m4f-link.elf" \
 MS_FIRMWARE_M0_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m0-link.elf" \
   $HOST_CARGO test --locked -p meterstick-tests --test qemu_link -- --ignored
 
-step "the Pico on an emulated RP2040 (rp2040js): its .uf2 against the host core (scripts/pico-emu.sh)"
-bash scripts/pico-emu.sh --no-setup
+step "the Pico on an emulated RP2040 (rp2040js): its .uf2 against the host core, the link over UART0 (scripts/pico-emu.sh)"
+# The .uf2 files built above (the builds tagged emu and emu-link in scripts/lib.sh).
+builds_tagged emu
+emu_uf2="$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2"
+builds_tagged emu-link
+emu_link_uf2="$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2"
+MS_PICO_UF2="$emu_uf2" MS_PICO_LINK_UF2="$emu_link_uf2" bash scripts/pico-emu.sh --no-setup
 
 echo
 echo "all tests passed in $(( $(date +%s) - start )) s"

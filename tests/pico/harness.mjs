@@ -14,9 +14,10 @@
 //   --wall-s S      cap on wall-clock seconds (default 120)
 //   --idle-ticks N  the run counts as ended after N ticks without a scene step, or N ticks
 //                   after the fault light came on (default 50)
-//   --uart-tcp PORT bridge UART0 (GP0/GP1) to a TCP server on 127.0.0.1:PORT (the harness
-//                   listens; the host link); the run then lasts until the cycle or wall cap or
-//                   until the client disconnects
+//   --uart-tcp PORT bridge UART0 (GP0/GP1) to a TCP server on 127.0.0.1:PORT (0: a free
+//                   port), for the host link (`host-sim monitor --port tcp:127.0.0.1:PORT`):
+//                   no button is pressed, the run lasts until the client disconnects (or a cap)
+//   --port-file F   with --uart-tcp, write {"port": N} to F once listening
 //
 // Boot: rp2040js ships no boot ROM, so the harness does what the ROM and the second-stage boot
 // loader end with: VTOR at the application's vector table (0x10000100, after the 256-byte boot2
@@ -33,7 +34,7 @@
 // `syst.has_wrapped()`); the tick's work is the cycles from that read to the next SYST_CSR read
 // (the loop back in its wait).
 
-import { readFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { createServer } from 'node:net';
 import { RP2040, GPIOPinState } from 'rp2040js';
 
@@ -62,7 +63,7 @@ function fail(msg) {
 }
 
 function parseArgs(argv) {
-  const o = { uf2: null, presets: 0, startHoldMs: 10, maxCycles: 2e9, wallS: 120, idleTicks: 50, uartTcp: null };
+  const o = { uf2: null, presets: 0, startHoldMs: 10, maxCycles: 2e9, wallS: 120, idleTicks: 50, uartTcp: null, portFile: null };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     const v = () => {
@@ -81,6 +82,7 @@ function parseArgs(argv) {
     else if (a === '--wall-s') o.wallS = num(v(), 1, 3600);
     else if (a === '--idle-ticks') o.idleTicks = num(v(), 1, 1e6);
     else if (a === '--uart-tcp') o.uartTcp = num(v(), 0, 65535);
+    else if (a === '--port-file') o.portFile = v();
     else fail(`unknown argument ${a}`);
   }
   if (!o.uf2) fail('--uf2 FILE is required');
@@ -206,7 +208,7 @@ const script = new Map();
 for (let i = 0; i < opts.presets; i++) script.set(20 + i * PRESET_EVERY, () => press(PIN.preset, 40e6));
 const startAtTick = 20 + opts.presets * PRESET_EVERY + 20;
 script.set(startAtTick, () => press(PIN.start, opts.startHoldMs * 1e6));
-onTick.push((k) => script.get(k)?.());
+if (opts.uartTcp === null) onTick.push((k) => script.get(k)?.());
 
 // --- UART0 <-> TCP (the host link) ------------------------------------------------------------
 let uart = null;
@@ -218,7 +220,9 @@ if (opts.uartTcp !== null) {
       return;
     }
     uart.socket = socket;
-    socket.on('data', (d) => uart.rx.push(...d));
+    socket.on('data', (d) => {
+      for (const b of d) uart.rx.push(b);
+    });
     socket.on('close', () => (uart.closed = true));
     socket.on('error', () => (uart.closed = true));
   });
@@ -226,10 +230,22 @@ if (opts.uartTcp !== null) {
   uart.server = server;
   uart.port = server.address().port;
   process.stderr.write(`pico harness: UART0 on tcp:127.0.0.1:${uart.port}\n`);
+  if (opts.portFile) writeFileSync(opts.portFile, JSON.stringify({ port: uart.port }) + '\n');
   mcu.uart[0].onByte = (b) => {
     uart.txBytes++;
     uart.socket?.write(Uint8Array.of(b));
   };
+  // Received bytes enter UART0's receive FIFO at the link's 921,600 baud (10 bits a byte), as
+  // the FIFO takes them (the bridge holds the rest: no overrun).
+  const BYTE_NS = 1e10 / 921_600;
+  const rxAlarm = clock.createAlarm(() => {
+    if (uart.rx.length && !mcu.uart[0].rxFIFO.full) {
+      mcu.uart[0].feedByte(uart.rx.shift());
+      uart.rxBytes++;
+    }
+    rxAlarm.schedule(BYTE_NS);
+  });
+  rxAlarm.schedule(BYTE_NS);
 }
 
 // --- run ---------------------------------------------------------------------------------------
@@ -279,11 +295,6 @@ for (;;) {
     }
   }
   if (uart) {
-    // Feed received bytes as the UART's FIFO takes them.
-    while (uart.rx.length && mcu.uart[0].rxFIFO && !mcu.uart[0].rxFIFO.full) {
-      mcu.uart[0].feedByte(uart.rx.shift());
-      uart.rxBytes++;
-    }
     await new Promise((r) => setImmediate(r)); // let the socket move bytes
     if (uart.closed) {
       stopped = 'link-closed';

@@ -14,20 +14,30 @@
 //! - the tick: SysTick's period `h` x 125 MHz, each tick's work measured in cycles (printed:
 //!   cycles per step, mean and worst, against the period).
 //!
+//! With the host link (`MS_PICO_LINK_UF2`, the build tagged `emu-link`): the harness bridges
+//! UART0 to a TCP port and the link's checks of the QEMU test (`link_checks/`, as for
+//! `qemu_link.rs`: handshake, refusals, a run bit for bit against the host, garbage and a flood,
+//! stop on command) run against the emulated Pico.
+//!
 //! `scripts/pico-emu.sh` runs them (`--test-threads=1`); ignored in a plain `cargo test`.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::cast_possible_truncation)]
+
+mod link_checks;
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 use std::convert::Infallible;
 use std::path::PathBuf;
-use std::process::Command;
+use std::process::{Child, Command, Stdio};
 use std::rc::Rc;
+use std::time::{Duration, Instant};
 
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 use meterstick_core::planar::ContactMode;
 use meterstick_core::rig::{ModeLights, NoDelay, Preset, Rig, RigConfig, RigFault, RigPins, RigState};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
+use meterstick_host_sim::monitor::Link;
+use meterstick_link::OutcomeCode;
 use serde_json::Value;
 
 /// The firmware's step at boot: `STEP_HZ` = 1 kHz (firmware/src/realtime.rs, `new_rig`).
@@ -483,4 +493,91 @@ fn fast_preset_is_a_fault_on_the_default_rig() {
     let still: Vec<String> = on.iter().filter(|&(_, &l)| l == 1).map(|(&p, _)| pin_name(p as u8)).collect();
     assert!(still.is_empty(), "mode lights on after the fault: {still:?}");
     assert_eq!(int(&emu["step"]["pulses_dir_high"], "pulses"), 0, "STEP pulsed before the fault");
+}
+
+/// The harness, killed if the test fails before it ends.
+struct Harness(Option<Child>);
+
+impl Drop for Harness {
+    fn drop(&mut self) {
+        if let Some(mut c) = self.0.take() {
+            c.kill().ok();
+            c.wait().ok();
+        }
+    }
+}
+
+/// The host link over the emulated UART0: the QEMU link test's checks (`link_checks/`).
+#[test]
+#[ignore = "needs node, tests/pico/node_modules and MS_PICO_LINK_UF2 (scripts/pico-emu.sh)"]
+fn link_end_to_end_on_the_emulated_pico() {
+    let uf2 = std::env::var("MS_PICO_LINK_UF2")
+        .unwrap_or_else(|_| panic!("MS_PICO_LINK_UF2 is not set: run scripts/pico-emu.sh"));
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+    let dir = root.join("target/pico-emu");
+    std::fs::create_dir_all(&dir).unwrap();
+    let port_file = dir.join("link-port.json");
+    std::fs::remove_file(&port_file).ok();
+    let started = Instant::now();
+    // At most 60 emulated seconds and 240 s of wall time: the checks take about 12 s emulated.
+    let mut harness = Harness(Some(
+        Command::new("node")
+            .arg(root.join("tests/pico/harness.mjs"))
+            .args(["--uf2", &uf2, "--uart-tcp", "0", "--max-cycles", "7.5e9", "--wall-s", "240"])
+            .arg("--port-file")
+            .arg(&port_file)
+            .stdout(Stdio::piped())
+            .spawn()
+            .expect("running node"),
+    ));
+    let deadline = Instant::now() + Duration::from_secs(30);
+    let port = loop {
+        if let Ok(text) = std::fs::read_to_string(&port_file)
+            && let Ok(v) = serde_json::from_str::<Value>(&text)
+        {
+            break u16::try_from(int(&v["port"], "port")).unwrap();
+        }
+        let exited = harness.0.as_mut().unwrap().try_wait().unwrap();
+        assert!(exited.is_none(), "the harness ended ({exited:?}) before it listened");
+        assert!(Instant::now() < deadline, "the harness did not listen within 30 s");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let stream = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+    let closer = stream.try_clone().unwrap();
+    let mut link = Link::tcp(stream, "emulated Pico").unwrap();
+    link_checks::all(&mut link, "emulated Pico");
+    // The near-threshold preset: the fast one is a fault on the Pico's rig (400 pulses due in a
+    // tick, at most 100: `fast_preset_is_a_fault_on_the_default_rig`).
+    link_checks::still_runs_and_stops(
+        &mut link,
+        meterstick_link::Preset::NearThreshold,
+        OutcomeCode::Balanced,
+    );
+    println!("emulated Pico: host side: {:?}", link.host_stats());
+    closer.shutdown(std::net::Shutdown::Both).ok();
+    drop(link);
+    let out = harness.0.take().unwrap().wait_with_output().unwrap();
+    assert!(out.status.success(), "the harness failed: {}", out.status);
+    std::fs::write(dir.join("link.json"), &out.stdout).unwrap();
+    let emu: Value = serde_json::from_slice(&out.stdout).expect("the harness printed one JSON object");
+    assert_eq!(emu["stopped"], "link-closed", "the harness stopped as {}", emu["stopped"]);
+    assert_eq!(emu["fault_level"], 0, "GP25 (fault) is on after the link's runs");
+    // At least the flood's pings came in through UART0.
+    let flood = link_checks::FLOOD as usize
+        * link_checks::frame(meterstick_link::Command::Ping { nonce: 1000 }).len();
+    let rx = int(&emu["uart"]["rx_bytes"], "rx");
+    assert!(rx >= i64::try_from(flood).unwrap(), "UART0 received {rx} bytes, the flood alone is {flood}");
+    let w = &emu["ticks"]["interval_cycles"];
+    println!(
+        "emulated Pico with the link: {:.1} s emulated in {:.1} s ({:.1} s in all), UART0 {} bytes in, {} out; \
+         loop body worst {} cycles (a step, the link's poll, telemetry, flush), tick interval {}..{}",
+        emu["emulated"]["seconds_at_125mhz"].as_f64().unwrap(),
+        emu["emulated"]["wall_s"].as_f64().unwrap(),
+        started.elapsed().as_secs_f64(),
+        emu["uart"]["rx_bytes"],
+        emu["uart"]["tx_bytes"],
+        emu["run"]["cycles_per_step"]["max"],
+        w["min"],
+        w["max"],
+    );
 }
