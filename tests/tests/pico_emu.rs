@@ -251,6 +251,16 @@ fn harness(presses: usize, max_ticks: u64) -> Value {
     v
 }
 
+/// The firmware touched nothing the emulator does not model (rp2040js's warnings and errors,
+/// counted by the harness).
+fn nothing_unmodelled(name: &str, emu: &Value) {
+    let logged = &emu["emulated"]["logged"];
+    assert!(
+        logged["warn"] == 0 && logged["error"] == 0,
+        "{name}: the firmware used what rp2040js does not model: {logged}"
+    );
+}
+
 fn int(v: &Value, what: &str) -> i64 {
     v.as_i64().unwrap_or_else(|| panic!("{what}: {v} is not an integer"))
 }
@@ -274,6 +284,7 @@ fn check(presses: usize) -> (Value, HostRun) {
     let mean = emu["ticks"]["interval_cycles"]["mean"].as_f64().unwrap();
     assert!((mean - period as f64).abs() <= 2.0, "{name}: mean tick interval {mean} cycles, not {period}");
 
+    nothing_unmodelled(&name, &emu);
     let start = int(&emu["run"]["start_tick"], "start tick (DIR high)");
     let expect_end = match host.state {
         RigState::Fault(_) => "fault",
@@ -561,6 +572,7 @@ fn link_end_to_end_on_the_emulated_pico() {
     std::fs::write(dir.join("link.json"), &out.stdout).unwrap();
     let emu: Value = serde_json::from_slice(&out.stdout).expect("the harness printed one JSON object");
     assert_eq!(emu["stopped"], "link-closed", "the harness stopped as {}", emu["stopped"]);
+    nothing_unmodelled("emulated Pico with the link", &emu);
     assert_eq!(emu["fault_level"], 0, "GP25 (fault) is on after the link's runs");
     // At least the flood's pings came in through UART0.
     let flood = link_checks::FLOOD as usize
