@@ -193,8 +193,8 @@ mcu.gpio[PIN.start].setInputValue(true);
 mcu.gpio[PIN.preset].setInputValue(true);
 
 // --- the button script, in ticks after the first tick -------------------------------------------
-// Each press bounces: low/high for a few hundred microseconds to a few milliseconds (longer than
-// a tick, so the firmware sees them), then held low, then released.
+// Each press bounces: low and high for 0.5 to 1.8 ms each (across ticks, so the firmware samples
+// them), then held low, then released.
 const BOUNCE_NS = [0, 1.3e6, 2.1e6, 3.9e6, 4.4e6]; // low, high, low, high, low (held)
 function press(pin, holdNs) {
   BOUNCE_NS.forEach((t, i) => {
@@ -230,7 +230,7 @@ for (const u of mcu.uart) {
 // --- UART0 <-> TCP (the host link) ------------------------------------------------------------
 let uart = null;
 if (opts.uartTcp !== null) {
-  uart = { socket: null, rx: [], txBytes: 0, rxBytes: 0, closed: false, port: null };
+  uart = { socket: null, rx: [], rxHead: 0, txBytes: 0, rxBytes: 0, closed: false, port: null };
   const server = createServer((socket) => {
     if (uart.socket) {
       socket.destroy();
@@ -256,8 +256,9 @@ if (opts.uartTcp !== null) {
   // the FIFO takes them (the bridge holds the rest: no overrun).
   const BYTE_NS = 1e10 / 921_600;
   const rxAlarm = clock.createAlarm(() => {
-    if (uart.rx.length && !mcu.uart[0].rxFIFO.full) {
-      mcu.uart[0].feedByte(uart.rx.shift());
+    if (uart.rxHead < uart.rx.length && !mcu.uart[0].rxFIFO.full) {
+      mcu.uart[0].feedByte(uart.rx[uart.rxHead++]);
+      if (uart.rxHead === uart.rx.length) uart.rx.length = uart.rxHead = 0;
       uart.rxBytes++;
     }
     rxAlarm.schedule(BYTE_NS);
