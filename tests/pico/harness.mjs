@@ -395,7 +395,7 @@ const pinName = (p) => {
 
 const result = {
   uf2: opts.uf2,
-  rp2040js: '1.4.1',
+  rp2040js: JSON.parse(readFileSync(new URL('./node_modules/rp2040js/package.json', import.meta.url))).version,
   boot,
   stopped,
   emulated: {
