@@ -62,13 +62,17 @@ build_firmware() {
 # test; *-uart: the Black Pill's link on USART2. qemu-m33: the Cortex-M33F (the Pico 2's core) on
 # QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on a Pico
 # (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`, and with
-# the host link on UART0; pico-nolog-builtins: the Pico's arithmetic from compiler_builtins
-# instead of its boot ROM (README "The Picos").
+# the host link on UART0; pico-nolog-builtins and pico-link-builtins: the Pico's arithmetic from
+# compiler_builtins instead of its boot ROM (README "The Picos"), which the emulated RP2040 runs
+# (scripts/pico-emu.sh).
 # Tags (comma-separated; scripts select builds by tag, never by position, `builds_tagged`):
 #   clippy  - linted in scripts/test.sh (the distinct code paths);
 #   nopanic - linked with the panic handler that references an undefined symbol (firmware/src/
 #             main.rs): that it links proves no panic path; test.sh also checks the ELF;
-#   uf2     - a Pico build: build_firmware writes its .uf2, test.sh checks it is there.
+#   uf2     - a Pico build: build_firmware writes its .uf2, test.sh checks it is there;
+#   emu     - the one Pico build run on the emulated RP2040 by scripts/pico-emu.sh (rp2040js has
+#             no boot ROM: the build's float arithmetic must not call it, `builtins-float`);
+#   emu-link - the one Pico build with the host link run there, its UART0 bridged to TCP.
 FIRMWARE_BUILDS=(
   "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback clippy,nopanic"
   "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback nopanic"
@@ -89,7 +93,8 @@ FIRMWARE_BUILDS=(
   "pico-nolog thumbv6m-none-eabi board-pico,fallback uf2"
   "pico-6x6-nolog thumbv6m-none-eabi board-pico uf2"
   "pico-link thumbv6m-none-eabi board-pico,fallback,link clippy,uf2"
-  "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float clippy,uf2"
+  "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float clippy,uf2,emu"
+  "pico-link-builtins thumbv6m-none-eabi board-pico,fallback,link,builtins-float uf2,emu-link"
 )
 
 # Sets TAGGED to the specs ("<name> <target> <features> <tags>") of the builds tagged $1 (no

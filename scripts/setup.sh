@@ -9,7 +9,9 @@
 #          sources (rustc-web, cargo-web, rust-web-src, rust-web-llvm, lld-22), which
 #          builds `core` itself (`-Z build-std=core`).
 #   - the Picos' .uf2 converter, tools/uf2 (elf2flash-core from crates.io), built with the host
-#     cargo into target/tools/.
+#     cargo into target/tools/;
+#   - Node.js and npm (Debian packages) and tests/pico's node_modules (`npm ci`: rp2040js, the
+#     emulated RP2040 of scripts/pico-emu.sh).
 # Writes the chosen mode to target/meterstick-toolchain.env for scripts/lib.sh.
 # Set MS_CROSS=debian to force the fallback, MS_CROSS=rustup to forbid it.
 # As root it installs what is missing; otherwise it stops with the exact command to run.
@@ -87,6 +89,18 @@ fi
 # A host tool of its own workspace (tools/uf2); cargo skips it when it is up to date.
 if command -v cargo >/dev/null 2>&1; then host_cargo=cargo; else host_cargo=/usr/bin/cargo; fi
 "$host_cargo" build --quiet --locked --release --manifest-path tools/uf2/Cargo.toml --target-dir target/tools >&2
+
+# --- the emulated Pico (tests/pico: rp2040js, pinned in its package-lock.json) ---------------
+# Node.js runs the harness (scripts/pico-emu.sh); `npm ci` installs exactly the locked packages,
+# again only when package-lock.json is newer than node_modules.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  apt_install nodejs npm
+fi
+if [ ! -d tests/pico/node_modules ] || [ tests/pico/package-lock.json -nt tests/pico/node_modules ]; then
+  say "npm ci (tests/pico)"
+  (cd tests/pico && npm ci --no-audit --no-fund --loglevel=error >&2)
+  touch tests/pico/node_modules
+fi
 
 mkdir -p target
 {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every test: host tests, lints, the page in headless Chromium, cross builds for the three Cortex-M
 # targets (M4F, M0/M0+, M33F) and the boards (Black Pill, Pico 2 and Pico with their .uf2),
-# firmware under QEMU.
+# firmware under QEMU, the Pico's .uf2 on an emulated RP2040.
 # Installs what it needs first (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -105,6 +105,14 @@ MS_FIRMWARE_M4="$M4" MS_FIRMWARE_M0="$M0" MS_FIRMWARE_M33="$M33" \
 MS_FIRMWARE_M4_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m4f-link.elf" \
 MS_FIRMWARE_M0_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m0-link.elf" \
   $HOST_CARGO test --locked -p meterstick-tests --test qemu_link -- --ignored
+
+step "the Pico on an emulated RP2040 (rp2040js): its .uf2 against the host core, the link over UART0 (scripts/pico-emu.sh)"
+# The .uf2 files built above (the builds tagged emu and emu-link in scripts/lib.sh).
+builds_tagged emu
+emu_uf2="$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2"
+builds_tagged emu-link
+emu_link_uf2="$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2"
+MS_PICO_UF2="$emu_uf2" MS_PICO_LINK_UF2="$emu_link_uf2" bash scripts/pico-emu.sh --no-setup
 
 echo
 echo "all tests passed in $(( $(date +%s) - start )) s"
