@@ -504,6 +504,13 @@ impl PressDetector {
         Self { ticks, count: 0, pressed: false }
     }
 
+    /// Takes the button as held by a press already acted on (the one that started a run): the
+    /// next press counts only after the button has read released for `ticks` samples.
+    pub fn spend_press(&mut self) {
+        self.pressed = true;
+        self.count = 0;
+    }
+
     /// Feeds one sample; `true` on the tick a press is recognised.
     pub fn sample(&mut self, pressed: bool) -> bool {
         if pressed == self.pressed {

@@ -104,8 +104,11 @@ where
         preset_press: PressDetector::new(DEBOUNCE_TICKS),
         start_press: PressDetector::new(DEBOUNCE_TICKS),
     };
+    // The previous tick overran its period: the wrap that starts this one has happened (and
+    // reading it cleared the flag), so this tick starts at once.
+    let mut late = false;
     loop {
-        while !syst.has_wrapped() {
+        while !late && !syst.has_wrapped() {
             #[cfg(feature = "link")]
             port.poll();
         }
@@ -118,9 +121,15 @@ where
         let state = rig.tick_with(|r| session.record(r));
         #[cfg(not(feature = "link"))]
         let state = rig.tick();
-        let used = systick::elapsed(start, systick::now());
+        let end = systick::now();
+        // SysTick wrapped during the tick: it overran, and the counter's difference is only its
+        // excess over one period (a tick of 1.2 periods read as 0.2). A wrap in the few cycles
+        // between the two reads counts the tick a period longer: an overrun reported, never one
+        // missed.
+        late = syst.has_wrapped();
+        let used = systick::elapsed(start, end).saturating_add(if late { period } else { 0 });
         #[cfg(feature = "log")]
-        margin.record(used, syst.has_wrapped(), period);
+        margin.record(used, late, period);
         #[cfg(feature = "link")]
         {
             session.end_tick(&rig, used);
@@ -167,8 +176,14 @@ impl Buttons {
             let _ = rig.reset(self.preset.params(rig.params().step));
             let _ = rig.indicate(Some(self.preset.index()));
         }
+        // Until the run has ended, the press that starts (or started) it is spent: one still held
+        // when the run ends is that press, not the next one (which must follow a release). Taken
+        // as a new press, it reset a run that had faulted in its first step while the button was
+        // still down (the emulated Pico found it).
         let ended = matches!(state, RigState::Finished(_) | RigState::Fault(_));
-        if ended && self.start_press.sample(rig.start_pressed().unwrap_or(false)) {
+        if !ended {
+            self.start_press.spend_press();
+        } else if self.start_press.sample(rig.start_pressed().unwrap_or(false)) {
             let _ = rig.reset(*rig.params());
         }
     }

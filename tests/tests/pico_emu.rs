@@ -227,6 +227,11 @@ fn light_changes_from_events(params: MeterStickParams<f32>) -> Vec<(i64, usize, 
 }
 
 fn harness(presses: usize, max_ticks: u64) -> Value {
+    harness_with(presses, max_ticks, &[])
+}
+
+/// [`harness`] with more of the harness's options (`tests/pico/harness.mjs`).
+fn harness_with(presses: usize, max_ticks: u64, options: &[&str]) -> Value {
     let uf2 = std::env::var("MS_PICO_UF2")
         .unwrap_or_else(|_| panic!("MS_PICO_UF2 is not set: run scripts/pico-emu.sh"));
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -236,6 +241,7 @@ fn harness(presses: usize, max_ticks: u64) -> Value {
         .arg(&script)
         .args(["--uf2", &uf2, "--presets", &presses.to_string(), "--max-cycles", &max_cycles.to_string()])
         .args(["--wall-s", "150"])
+        .args(options)
         .output()
         .expect("running node");
     assert!(
@@ -504,6 +510,21 @@ fn fast_preset_is_a_fault_on_the_default_rig() {
     let still: Vec<String> = on.iter().filter(|&(_, &l)| l == 1).map(|(&p, _)| pin_name(p as u8)).collect();
     assert!(still.is_empty(), "mode lights on after the fault: {still:?}");
     assert_eq!(int(&emu["step"]["pulses_dir_high"], "pulses"), 0, "STEP pulsed before the fault");
+}
+
+/// A start press held past the end of the run it started is that press, not the next one: the
+/// fast preset faults in its first step while start is still held (100 ms), and the fault light
+/// stays on for the 150 ticks after it (the firmware once took the held button for a new press
+/// and reset the rig 23 ms after the fault).
+#[test]
+#[ignore = "needs node, tests/pico/node_modules and MS_PICO_UF2 (scripts/pico-emu.sh)"]
+fn a_start_press_held_past_the_fault_is_one_press() {
+    let emu = harness_with(1, 1_000, &["--start-hold-ms", "100", "--idle-ticks", "150"]);
+    assert_eq!(emu["stopped"], "fault", "the fast preset did not fault");
+    assert_eq!(
+        emu["fault_level"], 1,
+        "GP25 (fault) went off while start was still held: the held press counted as a new one"
+    );
 }
 
 /// The harness, killed if the test fails before it ends.

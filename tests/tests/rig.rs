@@ -253,4 +253,11 @@ fn presets_and_the_press_detector() {
     let presses: Vec<usize> =
         samples.iter().enumerate().filter_map(|(i, &s)| d.sample(s).then_some(i)).collect();
     assert_eq!(presses, [4, 12]);
+    // A spent press (the one that started a run) held on is not a new one; after a release it is.
+    let mut d = PressDetector::new(3);
+    d.spend_press();
+    let held = [true, true, true, true, false, false, false, true, true, true];
+    let presses: Vec<usize> =
+        held.iter().enumerate().filter_map(|(i, &s)| d.sample(s).then_some(i)).collect();
+    assert_eq!(presses, [9]);
 }
