@@ -39,8 +39,10 @@
 //! the rows holding them: an `m x m` system, `m <= 3`, by elimination with partial pivoting.
 //! Then `z` is assembled, `dv = M^-1 C p` recomputed from `z`, and every `w` from the factored
 //! rows above: the answer is kept only when the impulses and the cone rows are `>= 0` exactly,
-//! the velocity rows and the `sigma`s `>= 0` within their round-off, no impulse is positive but
-//! within round-off of zero (`docs/formulation.md`, "Solving a step", has the rules and why), the
+//! the velocity rows and the `sigma`s `>= 0` within their round-off, no impulse (normal or
+//! friction) is positive but within round-off of zero (such a basis is declined even though it
+//! solves the LCP, as Lemke's method would accept it: the neighbour without that impulse, or Lemke's
+//! method, answers; `docs/formulation.md`, "Solving a step", has the rules and why), the
 //! data are finite, and when it passes the verification
 //! residual ([`crate::lcp::verify`]) held to a scale no larger than Lemke's own: `||M||_inf` is
 //! replaced by the lower bound `max_j (|A_jj| + row's unit entries)` (every row sum is at least
