@@ -46,12 +46,14 @@ if $HOST_CARGO clippy --version >/dev/null 2>&1; then
   (cd tools/uf2 && $HOST_CARGO clippy --locked --all-targets --target-dir "$ROOT/target/tools" -- -D warnings)
 fi
 
-step "core for Cortex-M (with and without defmt)"
+step "core and rig for Cortex-M (with and without defmt)"
 for t in thumbv7em-none-eabihf thumbv6m-none-eabi thumbv8m.main-none-eabihf; do
   for f in "" defmt; do
-    echo "core: $t ${f:-no features}"
-    cross_cargo build --locked -p meterstick-core --target "$t" --release \
-      --target-dir "$CROSS_TARGET_DIR" ${f:+--features "$f"}
+    for p in meterstick-core meterstick-rig; do
+      echo "$p: $t ${f:-no features}"
+      cross_cargo build --locked -p "$p" --target "$t" --release \
+        --target-dir "$CROSS_TARGET_DIR" ${f:+--features "$f"}
+    done
   done
 done
 

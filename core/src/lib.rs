@@ -13,12 +13,12 @@
 //! * [`Real`]: the scalar trait (`f32` on a microcontroller, `f64` on a host).
 //! * [`soft_float`]: `f32` multiplication on the bits for cores without an FPU (the firmware's
 //!   Cortex-M0 builds install it as `__aeabi_fmul`).
-//! * [`rig`] (feature `rig`): the demo rig's control loop over `embedded-hal` 1.0 pins.
 //!
 //! Features: `defmt` (public types derive `defmt::Format`; logging goes to defmt, and compiles to
 //! nothing without it), `fallback` (default: a step of a reduced friction layout whose dropped
 //! direction is needed is solved again in the full layout; without it no full-layout code is
-//! linked and such a step ends the run), `rig`.
+//! linked and such a step ends the run). The demo rig's control loop over `embedded-hal` pins and
+//! its end of the host link are the `meterstick-rig` crate (`rig/`).
 #![cfg_attr(not(test), no_std)]
 #![deny(missing_docs)]
 
@@ -29,8 +29,6 @@ pub mod lcp;
 mod params;
 pub mod planar;
 mod real;
-#[cfg(feature = "rig")]
-pub mod rig;
 pub mod scene;
 pub mod soft_float;
 

@@ -16,9 +16,9 @@
 //! shared with the Picos: one scene step per SysTick period `h` (1 ms by default), the real-time
 //! margin logged (with `log`) and sent to the host (with `link`), the buttons between runs. With
 //! `link`, the host may do all of this and more (`meterstick-link` commands; see
-//! [`crate::session`]); the USB device is serviced while the loop waits for the next tick.
+//! `meterstick_rig::session`); the USB device is serviced while the loop waits for the next tick.
 
-use meterstick_core::rig::{ModeLights, RigPins};
+use meterstick_rig::{ModeLights, RigPins};
 use stm32f4xx_hal::gpio::{AnyPin, Input, Output, PA0};
 use stm32f4xx_hal::pac;
 use stm32f4xx_hal::prelude::*;
@@ -95,7 +95,7 @@ mod uart {
     use stm32f4xx_hal::rcc::Rcc;
     use stm32f4xx_hal::serial::{Serial, config::Config};
 
-    use crate::session::Port;
+    use meterstick_rig::session::Port;
 
     /// Baud rate: 100 MHz / (16 x 6.8125) = 917,431 baud (-0.45 %), within the +-2 % a UART
     /// tolerates; common USB-serial adapters (CP2102, FT232R, CH340) run at 921,600.
@@ -164,7 +164,7 @@ mod usb {
     use usb_device::prelude::{StringDescriptors, UsbDevice, UsbDeviceBuilder, UsbVidPid};
     use usbd_serial::SerialPort;
 
-    use crate::session::Port;
+    use meterstick_rig::session::Port;
 
     /// The USB device and its CDC ACM class.
     pub struct UsbPort {

@@ -1,5 +1,5 @@
 //! meterstick firmware: the meter-stick scene on a Cortex-M, through the demo rig's loop
-//! (`meterstick_core::rig`, generic over `embedded-hal` 1.0), with one of these board bindings:
+//! (`meterstick_rig`, rig/: generic over `embedded-hal` 1.0), with one of these board bindings:
 //!
 //! * `qemu-mps2-an386` / `qemu-microbit` / `qemu-mps2-an505` ([`qemu`]): headless (no real-time
 //!   waiting) on QEMU's Cortex-M4F, Cortex-M0 and Cortex-M33 (with FPU, in Secure state)
@@ -13,7 +13,7 @@
 //!   rp235x-hal) or Pico (RP2040, rp2040-hal), flashed from a `.uf2` file without a probe.
 //!
 //! The boards share the real-time loop ([`realtime`]). With `link`, the rig is driven from a host
-//! ([`session`], the `meterstick-link` protocol): under QEMU over the machine's UART ([`uart`],
+//! (`meterstick_rig::session`, the `meterstick-link` protocol): under QEMU over the machine's UART ([`uart`],
 //! [`qemu_link`]), on the Black Pill over USB CDC (its USB-C port) or with `uart-link` over
 //! USART2, on the Picos over UART0.
 //!
@@ -72,8 +72,6 @@ mod qemu_link;
 mod realtime;
 #[cfg(feature = "qemu")]
 mod semihosting_log;
-#[cfg(feature = "link")]
-mod session;
 #[cfg(soft_float)]
 mod soft_float;
 mod systick;

@@ -28,7 +28,7 @@
 #[cfg(feature = "log")]
 use defmt_rtt as _;
 use embedded_hal::digital::InputPin;
-use meterstick_core::rig::{ModeLights, RigPins};
+use meterstick_rig::{ModeLights, RigPins};
 
 #[cfg(feature = "board-pico2")]
 use rp235x_hal as hal;
@@ -128,7 +128,7 @@ mod uart {
     use hal::gpio::{FunctionUart, Pin, PullDown};
     use hal::uart::{DataBits, Enabled, StopBits, UartConfig, UartPeripheral};
 
-    use crate::session::Port;
+    use meterstick_rig::session::Port;
 
     /// Baud rate: the PL011's fractional divider gets within 0.1 % of it from 125 or 150 MHz.
     const BAUD: u32 = 921_600;

@@ -8,10 +8,10 @@
 
 use meterstick_core::lcp::{Lcp, Lemke};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
-use meterstick_core::rig::{NoDelay, Rig, RigConfig, RigState};
 use meterstick_core::scene::{
     Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome, Scene,
 };
+use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 
 use crate::systick;
 

@@ -8,9 +8,9 @@
 //! which `-icount shift=0` makes an instruction count (the calibration line on semihosting
 //! gives instructions per tick). Never exits: the host ends QEMU.
 
-use meterstick_core::rig::{NoDelay, Preset, Rig, RigConfig, RigError};
+use meterstick_rig::session::{Session, build_id, version};
+use meterstick_rig::{NoDelay, Preset, Rig, RigConfig, RigError};
 
-use crate::session::{Session, build_id};
 use crate::systick;
 use crate::uart::Uart;
 
@@ -49,7 +49,7 @@ pub fn main() -> ! {
         }
     };
     let mut uart = Uart::new();
-    let mut session = Session::new(0, build_id(env!("MS_BUILD_ID")));
+    let mut session = Session::new(0, version(env!("CARGO_PKG_VERSION")), build_id(env!("MS_BUILD_ID")));
     session.boot(&rig);
     loop {
         // Headless pins cannot fail (`Infallible`).

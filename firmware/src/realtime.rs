@@ -18,7 +18,7 @@ use core::convert::Infallible;
 use cortex_m::peripheral::SYST;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
-use meterstick_core::rig::{Preset, PressDetector, Rig, RigConfig, RigError, RigPins, RigState};
+use meterstick_rig::{Preset, PressDetector, Rig, RigConfig, RigError, RigPins, RigState};
 
 use crate::systick;
 
@@ -53,7 +53,7 @@ fn period_of(h: f32, sysclk_hz: u32) -> u32 {
 /// The host link's port, serviced while the loop waits for the next tick (USB needs polling;
 /// a UART has nothing to do).
 #[cfg(feature = "link")]
-pub trait LinkPort: crate::session::Port {
+pub trait LinkPort: meterstick_rig::session::Port {
     /// Services the port.
     fn poll(&mut self) {}
 }
@@ -89,7 +89,8 @@ where
 {
     #[cfg(feature = "link")]
     let mut session = {
-        let mut session = crate::session::Session::new(0, crate::session::build_id(env!("MS_BUILD_ID")));
+        use meterstick_rig::session::{Session, build_id, version};
+        let mut session = Session::new(0, version(env!("CARGO_PKG_VERSION")), build_id(env!("MS_BUILD_ID")));
         session.boot(&rig);
         session
     };

@@ -5,7 +5,7 @@
 //! takes now. Register access is volatile MMIO at fixed addresses (the only `unsafe` here).
 #![allow(unsafe_code)]
 
-use crate::session::Port;
+use meterstick_rig::session::Port;
 
 /// A 32-bit register at `addr`.
 fn read_reg(addr: usize) -> u32 {

@@ -271,6 +271,8 @@
 #![deny(missing_docs)]
 
 mod frame;
+#[cfg(feature = "std")]
+pub mod host;
 mod io;
 mod wire;
 

@@ -668,7 +668,7 @@ fn fuzz_rig_reports_into_monitor() {
         });
         let stream = std::net::TcpStream::connect(addr).unwrap();
         let started = Instant::now();
-        let mut link = monitor::Link::tcp(stream, "fuzz rig").unwrap();
+        let mut link = meterstick_link::host::Link::tcp(stream, "fuzz rig").unwrap();
         let rec =
             monitor::record_run(&mut link, *params, false, Duration::from_secs(10), &mut |_: &Report| {});
         rig.join().unwrap();

@@ -2,7 +2,7 @@
 //! `builtins-float` build, `scripts/lib.sh`) runs on an emulated RP2040 (`tests/pico/harness.mjs`
 //! on rp2040js, `node_modules` installed by `scripts/setup.sh`), its buttons pressed as a teacher
 //! presses them; what its pins did is checked against the host core running the same rig
-//! (`meterstick_core::rig::Rig` on recording pins, the same preset, the same `RigConfig`):
+//! (`meterstick_rig::Rig` on recording pins, the same preset, the same `RigConfig`):
 //!
 //! - the run: the same number of scene steps, ended the same way (balanced / fault);
 //! - STEP: the same pulses in every tick (the first differing step is named), in all
@@ -34,10 +34,10 @@ use std::time::{Duration, Instant};
 
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 use meterstick_core::planar::ContactMode;
-use meterstick_core::rig::{ModeLights, NoDelay, Preset, Rig, RigConfig, RigFault, RigPins, RigState};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
-use meterstick_host_sim::monitor::Link;
 use meterstick_link::OutcomeCode;
+use meterstick_link::host::Link;
+use meterstick_rig::{ModeLights, NoDelay, Preset, Rig, RigConfig, RigFault, RigPins, RigState};
 use serde_json::Value;
 
 /// The firmware's step at boot: `STEP_HZ` = 1 kHz (firmware/src/realtime.rs, `new_rig`).

@@ -1,8 +1,8 @@
 //! The rig's host link end to end: the firmware with `link` (built by `scripts/test.sh`, paths
 //! in `MS_FIRMWARE_M4_LINK` and `MS_FIRMWARE_M0_LINK`) runs under QEMU with its UART connected
-//! to a TCP socket of this test, which talks to it with `host-sim monitor`'s library
-//! (`meterstick_host_sim::monitor`; the checks are in `link_checks/`, shared with the Pico on
-//! an emulated RP2040, `pico_emu.rs`):
+//! to a TCP socket of this test, which talks to it through `meterstick_link::host::Link` with
+//! `host-sim monitor`'s library (`meterstick_host_sim::monitor`; the checks are in
+//! `link_checks/`, shared with the Pico on an emulated RP2040, `pico_emu.rs`):
 //!
 //! 1. `Hello` (protocol version, 6x6); refused parameters get `Rejected` naming them (the
 //!    core's validation); a held parameter set is applied and read back exactly;
@@ -22,8 +22,8 @@ mod link_checks;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use meterstick_host_sim::monitor::Link;
 use meterstick_host_sim::qemu::{LinkedFirmware, Machine};
+use meterstick_link::host::Link;
 use meterstick_link::{OutcomeCode, Preset};
 
 fn elf(var: &str) -> PathBuf {

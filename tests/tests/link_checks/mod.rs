@@ -1,6 +1,6 @@
 //! The host link's checks, shared by the firmware under QEMU (`qemu_link.rs`) and the Pico's on
-//! an emulated RP2040 (`pico_emu.rs`): a rig on the other end of a [`Link`], driven with
-//! `host-sim monitor`'s library (`meterstick_host_sim::monitor`):
+//! an emulated RP2040 (`pico_emu.rs`): a rig on the other end of a [`Link`] (`meterstick-link`'s
+//! host end), driven with `host-sim monitor`'s library (`meterstick_host_sim::monitor`):
 //!
 //! 1. `Hello` (protocol version, 6x6); refused parameters get `Rejected` naming them (the
 //!    core's validation); a held parameter set is applied and read back exactly;
@@ -16,9 +16,8 @@
 use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
-use meterstick_host_sim::monitor::{
-    Link, REPLY_TIMEOUT, RigComparison, apply_params, compare, read_params, record_run,
-};
+use meterstick_host_sim::monitor::{RigComparison, apply_params, compare, read_params, record_run};
+use meterstick_link::host::{Link, REPLY_TIMEOUT};
 use meterstick_link::{
     Command, ErrorCode, LinkStats, OutcomeCode, PROTOCOL_VERSION, ParamId, Preset, RejectReason, Report,
     RigState, encode,

@@ -1,5 +1,5 @@
-//! The rig's end of the host link (feature `link`), independent of the board: commands from a
-//! [`Port`] (a UART under QEMU, USB CDC on the Black Pill) are decoded with
+//! The rig's end of the host link, independent of the board: commands from a [`Port`] (a UART
+//! under QEMU and on the Picos, USB CDC or USART2 on the Black Pill) are decoded with
 //! `meterstick-link`'s [`CommandDecoder`] and carried out on the [`Rig`]; telemetry, switch
 //! events, outcomes, real-time margins and replies are encoded into a transmit queue that the
 //! board drains without blocking.
@@ -26,12 +26,13 @@ use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::ParamError;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, StepError, StepReport};
-use meterstick_core::rig::{Preset as RigPreset, Rig, RigError, RigFault, RigState as CoreState};
 use meterstick_core::scene::{MeterStickParams, Outcome, Scene};
 use meterstick_link::{
     Command, CommandDecoder, ContactTelemetry, DEFAULT_TELEMETRY_EVERY, DELIMITER, ErrorCode, MAX_FRAME,
     Mode, OutcomeCode, PROTOCOL_VERSION, Preset, RejectReason, Report, RigState, SceneId, encode,
 };
+
+use crate::{Preset as RigPreset, Rig, RigError, RigFault, RigState as CoreState};
 
 /// A byte link that never blocks.
 pub trait Port {
@@ -62,15 +63,18 @@ struct TxQueue {
 }
 
 impl TxQueue {
+    #[inline]
     const fn new() -> Self {
         Self { buf: [0; TX_CAP], head: 0, len: 0 }
     }
 
+    #[inline]
     const fn free(&self) -> usize {
         TX_CAP.saturating_sub(self.len)
     }
 
     /// Appends all of `bytes`, or nothing when they do not fit.
+    #[inline]
     fn push(&mut self, bytes: &[u8]) -> bool {
         if bytes.len() > self.free() {
             return false;
@@ -113,13 +117,29 @@ pub struct Session {
     overruns: u32,
     period: u32,
     dropped: u32,
+    firmware: (u8, u8, u8),
     build: [u8; 8],
+}
+
+impl core::fmt::Debug for Session {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Session")
+            .field("steps", &self.steps)
+            .field("state", &self.last)
+            .field("queued", &self.tx.len)
+            .field("dropped", &self.dropped)
+            .finish_non_exhaustive()
+    }
 }
 
 impl Session {
     /// A session for a rig whose step period is `period_cycles` CPU cycles (0 when it does not
-    /// run in real time, e.g. under QEMU), with build id `build` (sent in [`Report::Hello`]).
-    pub const fn new(period_cycles: u32, build: [u8; 8]) -> Self {
+    /// run in real time, e.g. under QEMU), for firmware version `firmware` ([`version`] of the
+    /// firmware crate's `CARGO_PKG_VERSION`) and build id `build` (see [`build_id`]), both sent
+    /// in [`Report::Hello`].
+    #[must_use]
+    #[inline]
+    pub const fn new(period_cycles: u32, firmware: (u8, u8, u8), build: [u8; 8]) -> Self {
         Self {
             decoder: CommandDecoder::new(),
             tx: TxQueue::new(),
@@ -133,6 +153,7 @@ impl Session {
             overruns: 0,
             period: period_cycles,
             dropped: 0,
+            firmware,
             build,
         }
     }
@@ -146,13 +167,13 @@ impl Session {
         D: DelayNs,
     {
         let _ = self.tx.push(&[DELIMITER]);
-        self.send(&hello::<N>(rig.params(), self.build));
+        self.send(&hello::<N>(rig.params(), self.firmware, self.build));
         self.last = state_of(rig.state());
         self.send(&Report::State(self.last));
     }
 
     /// Sets the step period (CPU cycles) the margins are reported against.
-    #[cfg_attr(not(feature = "board-blackpill"), allow(dead_code))]
+    #[inline]
     pub fn set_period(&mut self, period_cycles: u32) {
         self.period = period_cycles;
     }
@@ -191,6 +212,7 @@ impl Session {
     }
 
     /// Keeps the report of the step the rig just made (call from [`Rig::tick_with`]).
+    #[inline]
     pub fn record(&mut self, report: &StepReport<f32, 2>) {
         self.pending = Some(*report);
     }
@@ -258,11 +280,13 @@ impl Session {
     }
 
     /// `true` while reports wait to be sent.
-    #[cfg_attr(not(feature = "qemu"), allow(dead_code))]
+    #[must_use]
+    #[inline]
     pub const fn busy(&self) -> bool {
         self.tx.len > 0
     }
 
+    #[inline]
     fn margin(&self) -> Report {
         Report::Margin {
             worst_cycles: self.worst,
@@ -274,6 +298,7 @@ impl Session {
 
     /// Queues a report that must not be lost (a reply, an event, an outcome): dropped (and
     /// counted) only when the queue is full.
+    #[inline]
     fn send(&mut self, report: &Report) {
         let mut buf = [0u8; MAX_FRAME];
         let ok = match encode(report, &mut buf) {
@@ -380,7 +405,7 @@ impl Session {
         let state = state_of(rig.state());
         let not_allowed = Report::Error(ErrorCode::NotAllowed { command: tag, state });
         let reply = match command {
-            Command::Hello => hello::<N>(rig.params(), self.build),
+            Command::Hello => hello::<N>(rig.params(), self.firmware, self.build),
             Command::Ping { nonce } => Report::Pong { nonce },
             Command::GetStats => Report::Stats(self.decoder.stats()),
             Command::GetParam { id } => {
@@ -442,10 +467,10 @@ impl Session {
 }
 
 /// The rig's identity.
-fn hello<const N: usize>(params: &MeterStickParams<f32>, build: [u8; 8]) -> Report {
+fn hello<const N: usize>(params: &MeterStickParams<f32>, firmware: (u8, u8, u8), build: [u8; 8]) -> Report {
     Report::Hello {
         protocol: PROTOCOL_VERSION,
-        firmware: FIRMWARE_VERSION,
+        firmware,
         core: CORE_VERSION,
         build,
         scene: SceneId::MeterStick,
@@ -458,7 +483,8 @@ fn hello<const N: usize>(params: &MeterStickParams<f32>, build: [u8; 8]) -> Repo
 
 /// `major.minor.patch` of a version string (digits up to the first non-digit of each part),
 /// evaluated at compile time.
-const fn version(v: &str) -> (u8, u8, u8) {
+#[must_use]
+pub const fn version(v: &str) -> (u8, u8, u8) {
     let b = v.as_bytes();
     let mut parts = [0u8; 3];
     let (mut i, mut part) = (0, 0);
@@ -476,10 +502,11 @@ const fn version(v: &str) -> (u8, u8, u8) {
     (parts[0], parts[1], parts[2])
 }
 
-const FIRMWARE_VERSION: (u8, u8, u8) = version(env!("CARGO_PKG_VERSION"));
 const CORE_VERSION: (u8, u8, u8) = version(meterstick_core::VERSION);
 
 /// The build id: the first 8 bytes of `id` (e.g. a git hash), space-padded.
+#[must_use]
+#[inline]
 pub fn build_id(id: &str) -> [u8; 8] {
     let mut out = [b' '; 8];
     for (o, b) in out.iter_mut().zip(id.bytes()) {
@@ -488,6 +515,7 @@ pub fn build_id(id: &str) -> [u8; 8] {
     out
 }
 
+#[inline]
 const fn state_of(s: CoreState) -> RigState {
     match s {
         CoreState::WaitingForStart => RigState::Waiting,
@@ -497,6 +525,7 @@ const fn state_of(s: CoreState) -> RigState {
     }
 }
 
+#[inline]
 const fn mode_of(m: ContactMode) -> Mode {
     match m {
         ContactMode::Separated => Mode::Separated,
@@ -506,6 +535,7 @@ const fn mode_of(m: ContactMode) -> Mode {
     }
 }
 
+#[inline]
 const fn step_error_code(e: StepError) -> OutcomeCode {
     match e {
         StepError::NonFinite => OutcomeCode::NonFinite,
@@ -514,6 +544,7 @@ const fn step_error_code(e: StepError) -> OutcomeCode {
     }
 }
 
+#[inline]
 const fn outcome_code(o: Outcome) -> OutcomeCode {
     match o {
         Outcome::Balanced => OutcomeCode::Balanced,
@@ -526,6 +557,7 @@ const fn outcome_code(o: Outcome) -> OutcomeCode {
     }
 }
 
+#[inline]
 const fn fault_code(f: RigFault) -> OutcomeCode {
     match f {
         RigFault::Step(e) => step_error_code(e),
@@ -534,6 +566,7 @@ const fn fault_code(f: RigFault) -> OutcomeCode {
     }
 }
 
+#[inline]
 const fn reason_of(e: ParamError) -> RejectReason {
     match e {
         ParamError::NonFinite(_) => RejectReason::NotFinite,
@@ -547,6 +580,8 @@ const fn reason_of(e: ParamError) -> RejectReason {
 }
 
 /// The link's preset as the core's rig names it.
+#[must_use]
+#[inline]
 pub const fn preset_of(p: Preset) -> RigPreset {
     match p {
         Preset::Slow => RigPreset::Slow,

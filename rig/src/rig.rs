@@ -1,5 +1,5 @@
 //! [`Rig`]: the demo rig's control loop, generic over `embedded-hal` 1.0 pins and delay,
-//! separate from any board (feature `rig`).
+//! separate from any board.
 //!
 //! The rig is a motor-driven finger carriage (finger 1) moving toward a fixed finger under a
 //! real meter stick, with lights that show what the model predicts each finger is doing.
@@ -25,19 +25,17 @@
 //! [`RigState::WaitingForStart`], where the next ticks first drive the carriage back to its
 //! origin (DIR low, at most `max_pulses_per_tick` pulses per tick) and only then accept a start;
 //! after a reset the start button must be released once before it starts a run again.
-//! [`Rig::tick_with`] hands each step's report to the caller (telemetry). [`Preset`] is the
-//! rig's small table of scenes (slow, fast, near the fall threshold); [`PressDetector`]
-//! debounces a button into presses; [`Rig::indicate`] shows a small number on finger 1's lights
-//! while waiting (the selected preset).
-
-use core::convert::Infallible;
+//! [`Rig::tick_with`] hands each step's report to the caller (telemetry). [`Rig::indicate`]
+//! shows a small number on finger 1's lights while waiting (the selected [`Preset`]).
 
 use embedded_hal::delay::DelayNs;
-use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
+use embedded_hal::digital::{InputPin, OutputPin};
+use meterstick_core::ParamError;
+use meterstick_core::planar::{ContactMode, Direction, StepError, StepReport};
+use meterstick_core::scene::{MeterStick, MeterStickParams, Outcome, Scene};
 
-use crate::ParamError;
-use crate::planar::{ContactMode, StepError, StepReport};
-use crate::scene::{MeterStick, MeterStickParams, Outcome, Scene};
+#[cfg(doc)]
+use crate::Preset;
 
 /// Rig constants.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -329,7 +327,7 @@ where
         let mode = match index {
             None => None,
             Some(0) => Some(ContactMode::Sticking),
-            Some(1) => Some(ContactMode::Sliding(crate::planar::Direction::Plus)),
+            Some(1) => Some(ContactMode::Sliding(Direction::Plus)),
             Some(_) => Some(ContactMode::Separated),
         };
         if let Some(old) = self.lit[0].take() {
@@ -437,175 +435,10 @@ where
     }
 }
 
-/// The rig's preset scenes: the paper's rod with finger 1 starting at -0.35 m (as the QEMU runs
-/// and `host-sim run`'s slow scene), at three finger speeds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Preset {
-    /// 0.1 m/s, the paper's slow finger: the rod balances (7.9 s).
-    Slow,
-    /// 5 m/s: the rod falls.
-    Fast,
-    /// 0.3 m/s, next to the fall threshold: it balances, and falls from 0.31 m/s (and at
-    /// 0.2 m/s): the outcome is sensitive to the parameters.
-    NearThreshold,
-}
-
-impl Preset {
-    /// Every preset, in order (the index is what [`Rig::indicate`] shows).
-    pub const ALL: [Self; 3] = [Self::Slow, Self::Fast, Self::NearThreshold];
-
-    /// The preset's parameters, at time step `step` (s).
-    #[must_use]
-    pub fn params(self, step: f32) -> MeterStickParams<f32> {
-        let finger1_velocity = match self {
-            Self::Slow => 0.1,
-            Self::Fast => 5.0,
-            Self::NearThreshold => 0.3,
-        };
-        MeterStickParams { finger1_x: -0.35, finger1_velocity, step, ..MeterStickParams::paper() }
-    }
-
-    /// The next preset, cyclically (a button press).
-    #[must_use]
-    pub const fn next(self) -> Self {
-        match self {
-            Self::Slow => Self::Fast,
-            Self::Fast => Self::NearThreshold,
-            Self::NearThreshold => Self::Slow,
-        }
-    }
-
-    /// Its position in [`Self::ALL`].
-    #[must_use]
-    pub const fn index(self) -> u8 {
-        match self {
-            Self::Slow => 0,
-            Self::Fast => 1,
-            Self::NearThreshold => 2,
-        }
-    }
-}
-
-/// Debounces a button sampled once per tick into presses: a press counts once the button has
-/// read pressed for `ticks` consecutive samples after reading released for as long.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PressDetector {
-    ticks: u16,
-    count: u16,
-    pressed: bool,
-}
-
-impl PressDetector {
-    /// A detector that needs `ticks` equal samples (e.g. 20 at 1 kHz: 20 ms) to change state;
-    /// it starts released.
-    #[must_use]
-    pub const fn new(ticks: u16) -> Self {
-        Self { ticks, count: 0, pressed: false }
-    }
-
-    /// Takes the button as held by a press already acted on (the one that started a run): the
-    /// next press counts only after the button has read released for `ticks` samples.
-    pub fn spend_press(&mut self) {
-        self.pressed = true;
-        self.count = 0;
-    }
-
-    /// Feeds one sample; `true` on the tick a press is recognised.
-    pub fn sample(&mut self, pressed: bool) -> bool {
-        if pressed == self.pressed {
-            self.count = 0;
-            return false;
-        }
-        self.count = self.count.saturating_add(1);
-        if self.count < self.ticks {
-            return false;
-        }
-        self.count = 0;
-        self.pressed = pressed;
-        pressed
-    }
-}
-
 const fn light_index(m: ContactMode) -> u8 {
     match m {
         ContactMode::Sticking => 0,
         ContactMode::Sliding(_) => 1,
         ContactMode::Separated => 2,
-    }
-}
-
-/// A headless pin, for running the rig without hardware (QEMU, host tests): as an output it
-/// counts its rising edges; as an input it reads low, i.e. a pressed active-low button.
-#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
-pub struct HeadlessPin {
-    high: bool,
-    rises: u32,
-}
-
-impl HeadlessPin {
-    /// Rising edges so far (for STEP: the pulses; for a light: the times it came on).
-    #[must_use]
-    pub const fn rises(&self) -> u32 {
-        self.rises
-    }
-}
-
-impl ErrorType for HeadlessPin {
-    type Error = Infallible;
-}
-
-impl OutputPin for HeadlessPin {
-    fn set_low(&mut self) -> Result<(), Infallible> {
-        self.high = false;
-        Ok(())
-    }
-    fn set_high(&mut self) -> Result<(), Infallible> {
-        self.rises += u32::from(!self.high);
-        self.high = true;
-        Ok(())
-    }
-}
-
-impl InputPin for HeadlessPin {
-    fn is_high(&mut self) -> Result<bool, Infallible> {
-        Ok(false)
-    }
-    fn is_low(&mut self) -> Result<bool, Infallible> {
-        Ok(true)
-    }
-}
-
-/// A delay that does not wait (headless runs).
-#[derive(Debug, Default, Clone, Copy)]
-pub struct NoDelay;
-
-impl DelayNs for NoDelay {
-    fn delay_ns(&mut self, _ns: u32) {}
-}
-
-impl<D: DelayNs, const N: usize, const E: usize> Rig<HeadlessPin, HeadlessPin, D, N, E> {
-    /// A rig on [`HeadlessPin`]s (the start button reads pressed).
-    ///
-    /// # Errors
-    /// Invalid parameters.
-    pub fn headless(
-        params: MeterStickParams<f32>,
-        config: RigConfig,
-        delay: D,
-    ) -> Result<Self, RigError<Infallible>> {
-        let lights = || ModeLights {
-            sticking: HeadlessPin::default(),
-            sliding: HeadlessPin::default(),
-            separated: HeadlessPin::default(),
-        };
-        let pins = RigPins {
-            start: HeadlessPin::default(),
-            step: HeadlessPin::default(),
-            dir: HeadlessPin::default(),
-            lights: [lights(), lights()],
-            fault: HeadlessPin::default(),
-        };
-        Self::new(params, config, pins, delay)
     }
 }

@@ -1,12 +1,12 @@
-//! The demo rig's loop (`meterstick_core::rig`) against `embedded-hal-mock` pins: the exact
+//! The demo rig's loop (`meterstick_rig::Rig`) against `embedded-hal-mock` pins: the exact
 //! pin transitions of a short scene, the fault path, and a whole run.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use embedded_hal_mock::eh1::delay::NoopDelay;
 use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
 use meterstick_core::planar::ContactMode;
-use meterstick_core::rig::{ModeLights, NoDelay, Rig, RigConfig, RigFault, RigPins, RigState};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
+use meterstick_rig::{ModeLights, NoDelay, Rig, RigConfig, RigFault, RigPins, RigState};
 
 /// Finger 1 close to the eq. 21 switch (x1/x2 = 0.675 > mu_k/mu_s), moving fast: finger 2
 /// starts to slide within a few steps, so a short run changes a light. 1 mm per step at
@@ -188,7 +188,7 @@ fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
 /// stopped by command; refused parameters leave the rig as it was.
 #[test]
 fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
-    use meterstick_core::rig::Preset;
+    use meterstick_rig::Preset;
     let config =
         RigConfig { steps_per_meter: 10_000.0, max_pulses_per_tick: 1_000, ..RigConfig::default_rig() };
     let fast = Preset::Fast.params(1e-3);
@@ -206,7 +206,7 @@ fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
     assert!(out > 2_000, "the carriage travelled {out} pulses");
     // A refused parameter set changes nothing.
     let bad = MeterStickParams { mu_kinetic: 0.9, ..fast };
-    assert!(matches!(rig.reset(bad), Err(meterstick_core::rig::RigError::Params(_))));
+    assert!(matches!(rig.reset(bad), Err(meterstick_rig::RigError::Params(_))));
     assert_eq!(rig.state(), state);
     // Reset: back to waiting, the carriage homes at 1,000 pulses per tick; no start meanwhile
     // (and the headless button, always pressed, must be released first).
@@ -241,7 +241,7 @@ fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
 
 #[test]
 fn presets_and_the_press_detector() {
-    use meterstick_core::rig::{Preset, PressDetector};
+    use meterstick_rig::{Preset, PressDetector};
     let outcomes: Vec<Outcome> =
         Preset::ALL.iter().map(|p| MeterStick6::<f32, 8>::new(p.params(1e-3)).unwrap().run(|_| {})).collect();
     assert_eq!(outcomes, [Outcome::Balanced, Outcome::Fell, Outcome::Balanced]);

@@ -1,0 +1,84 @@
+//! Pins and a delay for running the rig without hardware: QEMU, host tests.
+
+use core::convert::Infallible;
+
+use embedded_hal::delay::DelayNs;
+use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
+use meterstick_core::scene::MeterStickParams;
+
+use crate::{ModeLights, Rig, RigConfig, RigError, RigPins};
+
+/// A headless pin, for running the rig without hardware (QEMU, host tests): as an output it
+/// counts its rising edges; as an input it reads low, i.e. a pressed active-low button.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct HeadlessPin {
+    high: bool,
+    rises: u32,
+}
+
+impl HeadlessPin {
+    /// Rising edges so far (for STEP: the pulses; for a light: the times it came on).
+    #[must_use]
+    pub const fn rises(&self) -> u32 {
+        self.rises
+    }
+}
+
+impl ErrorType for HeadlessPin {
+    type Error = Infallible;
+}
+
+impl OutputPin for HeadlessPin {
+    fn set_low(&mut self) -> Result<(), Infallible> {
+        self.high = false;
+        Ok(())
+    }
+    fn set_high(&mut self) -> Result<(), Infallible> {
+        self.rises += u32::from(!self.high);
+        self.high = true;
+        Ok(())
+    }
+}
+
+impl InputPin for HeadlessPin {
+    fn is_high(&mut self) -> Result<bool, Infallible> {
+        Ok(false)
+    }
+    fn is_low(&mut self) -> Result<bool, Infallible> {
+        Ok(true)
+    }
+}
+
+/// A delay that does not wait (headless runs).
+#[derive(Debug, Default, Clone, Copy)]
+pub struct NoDelay;
+
+impl DelayNs for NoDelay {
+    fn delay_ns(&mut self, _ns: u32) {}
+}
+
+impl<D: DelayNs, const N: usize, const E: usize> Rig<HeadlessPin, HeadlessPin, D, N, E> {
+    /// A rig on [`HeadlessPin`]s (the start button reads pressed).
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn headless(
+        params: MeterStickParams<f32>,
+        config: RigConfig,
+        delay: D,
+    ) -> Result<Self, RigError<Infallible>> {
+        let lights = || ModeLights {
+            sticking: HeadlessPin::default(),
+            sliding: HeadlessPin::default(),
+            separated: HeadlessPin::default(),
+        };
+        let pins = RigPins {
+            start: HeadlessPin::default(),
+            step: HeadlessPin::default(),
+            dir: HeadlessPin::default(),
+            lights: [lights(), lights()],
+            fault: HeadlessPin::default(),
+        };
+        Self::new(params, config, pins, delay)
+    }
+}
