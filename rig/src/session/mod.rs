@@ -22,17 +22,23 @@
 //! [`ErrorCode::TxDropped`] once there is room again. Nothing here can panic: no indexing, no
 //! slicing that can fail, no unchecked arithmetic that matters (counters wrap).
 
+mod codes;
+mod queue;
+
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
-use meterstick_core::ParamError;
-use meterstick_core::planar::{Checksum, ContactMode, Direction, StepError, StepReport};
-use meterstick_core::scene::{MeterStickParams, Outcome, Scene};
+use meterstick_core::planar::{Checksum, StepReport};
+use meterstick_core::scene::{MeterStickParams, Scene};
 use meterstick_link::{
     Command, CommandDecoder, ContactTelemetry, DEFAULT_TELEMETRY_EVERY, DELIMITER, ErrorCode, MAX_FRAME,
-    Mode, OutcomeCode, PROTOCOL_VERSION, Preset, RejectReason, Report, RigState, SceneId, encode,
+    OutcomeCode, PROTOCOL_VERSION, RejectReason, Report, RigState, SceneId, encode,
 };
 
-use crate::{Preset as RigPreset, Rig, RigError, RigFault, RigState as CoreState};
+pub use codes::preset_of;
+use codes::{fault_code, mode_of, outcome_code, reason_of, state_of};
+use queue::TxQueue;
+
+use crate::{Rig, RigError, RigState as CoreState};
 
 /// A byte link that never blocks.
 pub trait Port {
@@ -54,54 +60,6 @@ const POLL_CHUNK: usize = 32;
 const _: () = assert!(POLL_BYTES.is_multiple_of(POLL_CHUNK));
 /// A [`Report::Margin`] every this many steps while running (and one at the end of the run).
 pub const MARGIN_EVERY: u32 = 1000;
-
-/// A byte ring buffer.
-struct TxQueue {
-    buf: [u8; TX_CAP],
-    head: usize,
-    len: usize,
-}
-
-impl TxQueue {
-    #[inline]
-    const fn new() -> Self {
-        Self { buf: [0; TX_CAP], head: 0, len: 0 }
-    }
-
-    #[inline]
-    const fn free(&self) -> usize {
-        TX_CAP.saturating_sub(self.len)
-    }
-
-    /// Appends all of `bytes`, or nothing when they do not fit.
-    #[inline]
-    fn push(&mut self, bytes: &[u8]) -> bool {
-        if bytes.len() > self.free() {
-            return false;
-        }
-        for &b in bytes {
-            if let Some(slot) = self.buf.get_mut(self.head.wrapping_add(self.len) % TX_CAP) {
-                *slot = b;
-            }
-            self.len = self.len.wrapping_add(1);
-        }
-        true
-    }
-
-    /// Hands the queue to `port` until it takes no more.
-    fn drain(&mut self, port: &mut impl Port) {
-        while self.len > 0 {
-            let end = self.head.saturating_add(self.len).min(TX_CAP);
-            let Some(chunk) = self.buf.get(self.head..end) else { return };
-            let n = port.write(chunk).min(chunk.len());
-            if n == 0 {
-                return;
-            }
-            self.head = self.head.wrapping_add(n) % TX_CAP;
-            self.len = self.len.saturating_sub(n);
-        }
-    }
-}
 
 /// The link session: decoder, transmit queue, telemetry rate and the current run's figures.
 pub struct Session {
@@ -513,79 +471,4 @@ pub fn build_id(id: &str) -> [u8; 8] {
         *o = b;
     }
     out
-}
-
-#[inline]
-const fn state_of(s: CoreState) -> RigState {
-    match s {
-        CoreState::WaitingForStart => RigState::Waiting,
-        CoreState::Running => RigState::Running,
-        CoreState::Finished(_) => RigState::Finished,
-        CoreState::Fault(_) => RigState::Fault,
-    }
-}
-
-#[inline]
-const fn mode_of(m: ContactMode) -> Mode {
-    match m {
-        ContactMode::Separated => Mode::Separated,
-        ContactMode::Sticking => Mode::Sticking,
-        ContactMode::Sliding(Direction::Plus) => Mode::SlidingPositive,
-        ContactMode::Sliding(Direction::Minus) => Mode::SlidingNegative,
-    }
-}
-
-#[inline]
-const fn step_error_code(e: StepError) -> OutcomeCode {
-    match e {
-        StepError::NonFinite => OutcomeCode::NonFinite,
-        StepError::ReducedModelLeftRange => OutcomeCode::ReducedModelLeftRange,
-        _ => OutcomeCode::SolverFailed,
-    }
-}
-
-#[inline]
-const fn outcome_code(o: Outcome) -> OutcomeCode {
-    match o {
-        Outcome::Balanced => OutcomeCode::Balanced,
-        Outcome::Fell => OutcomeCode::Fell,
-        Outcome::Held => OutcomeCode::Held,
-        Outcome::Slid => OutcomeCode::Slid,
-        Outcome::Tipped => OutcomeCode::Tipped,
-        Outcome::Failed(e) => step_error_code(e),
-        _ => OutcomeCode::Unfinished,
-    }
-}
-
-#[inline]
-const fn fault_code(f: RigFault) -> OutcomeCode {
-    match f {
-        RigFault::Step(e) => step_error_code(e),
-        RigFault::NonFinite => OutcomeCode::NonFinite,
-        RigFault::ActuatorOverrun => OutcomeCode::Unfinished,
-    }
-}
-
-#[inline]
-const fn reason_of(e: ParamError) -> RejectReason {
-    match e {
-        ParamError::NonFinite(_) => RejectReason::NotFinite,
-        ParamError::NotPositive(_) => RejectReason::NotPositive,
-        ParamError::Negative(_) => RejectReason::Negative,
-        ParamError::KineticAboveStatic => RejectReason::KineticAboveStatic,
-        ParamError::FingerOutsideRod => RejectReason::FingerOutsideRod,
-        ParamError::FingersCrossed => RejectReason::FingersCrossed,
-        _ => RejectReason::Other,
-    }
-}
-
-/// The link's preset as the core's rig names it.
-#[must_use]
-#[inline]
-pub const fn preset_of(p: Preset) -> RigPreset {
-    match p {
-        Preset::Slow => RigPreset::Slow,
-        Preset::Fast => RigPreset::Fast,
-        Preset::NearThreshold => RigPreset::NearThreshold,
-    }
 }

@@ -1,0 +1,83 @@
+//! The core's and the rig's values as the link names them, and back (the presets).
+
+use meterstick_core::ParamError;
+use meterstick_core::planar::{ContactMode, Direction, StepError};
+use meterstick_core::scene::Outcome;
+use meterstick_link::{Mode, OutcomeCode, Preset, RejectReason, RigState};
+
+use crate::{Preset as RigPreset, RigFault, RigState as CoreState};
+
+#[inline]
+pub(super) const fn state_of(s: CoreState) -> RigState {
+    match s {
+        CoreState::WaitingForStart => RigState::Waiting,
+        CoreState::Running => RigState::Running,
+        CoreState::Finished(_) => RigState::Finished,
+        CoreState::Fault(_) => RigState::Fault,
+    }
+}
+
+#[inline]
+pub(super) const fn mode_of(m: ContactMode) -> Mode {
+    match m {
+        ContactMode::Separated => Mode::Separated,
+        ContactMode::Sticking => Mode::Sticking,
+        ContactMode::Sliding(Direction::Plus) => Mode::SlidingPositive,
+        ContactMode::Sliding(Direction::Minus) => Mode::SlidingNegative,
+    }
+}
+
+#[inline]
+const fn step_error_code(e: StepError) -> OutcomeCode {
+    match e {
+        StepError::NonFinite => OutcomeCode::NonFinite,
+        StepError::ReducedModelLeftRange => OutcomeCode::ReducedModelLeftRange,
+        _ => OutcomeCode::SolverFailed,
+    }
+}
+
+#[inline]
+pub(super) const fn outcome_code(o: Outcome) -> OutcomeCode {
+    match o {
+        Outcome::Balanced => OutcomeCode::Balanced,
+        Outcome::Fell => OutcomeCode::Fell,
+        Outcome::Held => OutcomeCode::Held,
+        Outcome::Slid => OutcomeCode::Slid,
+        Outcome::Tipped => OutcomeCode::Tipped,
+        Outcome::Failed(e) => step_error_code(e),
+        _ => OutcomeCode::Unfinished,
+    }
+}
+
+#[inline]
+pub(super) const fn fault_code(f: RigFault) -> OutcomeCode {
+    match f {
+        RigFault::Step(e) => step_error_code(e),
+        RigFault::NonFinite => OutcomeCode::NonFinite,
+        RigFault::ActuatorOverrun => OutcomeCode::Unfinished,
+    }
+}
+
+#[inline]
+pub(super) const fn reason_of(e: ParamError) -> RejectReason {
+    match e {
+        ParamError::NonFinite(_) => RejectReason::NotFinite,
+        ParamError::NotPositive(_) => RejectReason::NotPositive,
+        ParamError::Negative(_) => RejectReason::Negative,
+        ParamError::KineticAboveStatic => RejectReason::KineticAboveStatic,
+        ParamError::FingerOutsideRod => RejectReason::FingerOutsideRod,
+        ParamError::FingersCrossed => RejectReason::FingersCrossed,
+        _ => RejectReason::Other,
+    }
+}
+
+/// The link's preset as the core's rig names it.
+#[must_use]
+#[inline]
+pub const fn preset_of(p: Preset) -> RigPreset {
+    match p {
+        Preset::Slow => RigPreset::Slow,
+        Preset::Fast => RigPreset::Fast,
+        Preset::NearThreshold => RigPreset::NearThreshold,
+    }
+}
