@@ -2,8 +2,9 @@
 //! an in-memory port, driven as the firmware's loop drives them (firmware/src/qemu_link.rs),
 //! against the host core: the boot reports, a run on demand whose outcome, step count, checksum
 //! and switch events are the host core's, the presets, refused parameters, damaged and cut
-//! frames (no reply, counted), a flood of pings (every one answered, in order), stop, and a
-//! port that takes nothing for a while (telemetry dropped and announced, replies kept).
+//! frames (no reply, counted), a flood of pings (every one answered, in order), stop, a port
+//! that takes nothing for a while (telemetry dropped first, every report received or counted),
+//! and on `embedded-hal-mock` pins, the pin operations the commands cause.
 // Exact float comparisons are the point: the rig's figures must be the host core's bits.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::float_cmp)]
 #![allow(clippy::trivially_copy_pass_by_ref)] // commands as the link's `encode` takes them
@@ -466,4 +467,107 @@ fn a_stalled_port_drops_telemetry_first_and_announces_it() {
     let mut host = MeterStick6::<f32, 8>::new(RigPreset::Fast.params(H)).unwrap();
     let switches: usize = (0..steps).map(|_| host.step().unwrap().switches().count()).sum();
     assert_eq!(received + counted as usize, 2 + 1 + steps as usize + switches + 1, "{reports:?}");
+}
+
+/// Commands over the port drive the rig's pins, on `embedded-hal-mock` pins: `Start` sets DIR
+/// toward finger 2 and lights each finger's mode (then each step's modes, as the host core
+/// finds them); `Stop` leaves the lights; `Reset` turns them off, the fault light and DIR low;
+/// a `Preset` does the same with nothing lit; every pin operation is accounted for.
+#[test]
+fn commands_over_the_port_drive_the_pins() {
+    use embedded_hal_mock::eh1::delay::NoopDelay;
+    use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
+    use meterstick_rig::{ModeLights, RigPins};
+
+    const TICKS: usize = 5;
+    let params = RigPreset::Slow.params(H);
+    let light = |m: ContactMode| match m {
+        ContactMode::Sticking => 0,
+        ContactMode::Sliding(_) => 1,
+        ContactMode::Separated => 2,
+    };
+    // The pins' expected operations: all outputs low at `Rig::new`; then the run's.
+    let low = || vec![T::set(State::Low)];
+    let mut dir = low();
+    let mut fault = low();
+    let mut lights: [[Vec<T>; 3]; 2] = [[low(), low(), low()], [low(), low(), low()]];
+    let mut host = MeterStick6::<f32, 8>::new(params).unwrap();
+    let mut lit = host.modes().map(light);
+    dir.push(T::set(State::High));
+    for i in 0..2 {
+        lights[i][lit[i]].push(T::set(State::High));
+    }
+    for _ in 0..TICKS {
+        let modes = host.step().unwrap().modes().map(light);
+        for i in 0..2 {
+            if modes[i] != lit[i] {
+                lights[i][lit[i]].push(T::set(State::Low));
+                lights[i][modes[i]].push(T::set(State::High));
+                lit[i] = modes[i];
+            }
+        }
+    }
+    // Reset: the lit lights off, the fault light and DIR low; a preset: the same, nothing lit.
+    for i in 0..2 {
+        lights[i][lit[i]].push(T::set(State::Low));
+    }
+    fault.extend([T::set(State::Low), T::set(State::Low)]);
+    dir.extend([T::set(State::Low), T::set(State::Low)]);
+    // Waiting (before the start, after the reset, after the preset): the start button read
+    // once a tick, released (high, active low).
+    let button = vec![T::get(State::High); 3];
+
+    let m = |t: &Vec<T>| PinMock::new(t);
+    let pins = RigPins {
+        start: m(&button),
+        step: m(&vec![T::set(State::Low)]),
+        dir: m(&dir),
+        lights: [0, 1].map(|i| ModeLights {
+            sticking: m(&lights[i][0]),
+            sliding: m(&lights[i][1]),
+            separated: m(&lights[i][2]),
+        }),
+        fault: m(&fault),
+    };
+    let config = RigConfig { steps_per_meter: 1000.0, max_pulses_per_tick: 10, ..RigConfig::default_rig() };
+    let mut rig = Rig::<_, _, _, 6>::new(params, config, pins, NoopDelay::new()).unwrap();
+    let mut session = Session::new(0, FIRMWARE, build_id("mock"));
+    session.boot(&rig);
+    let mut pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
+    let mut decoder = ReportDecoder::new();
+    let mut tick = |rig: &mut Rig<PinMock, PinMock, NoopDelay, 6>, pipe: &mut Pipe| -> Vec<Report> {
+        session.poll(pipe, rig).unwrap();
+        rig.tick_with(|r| session.record(r)).unwrap();
+        session.end_tick(rig, 1);
+        session.flush(pipe);
+        let mut out = Vec::new();
+        decoder.feed(&std::mem::take(&mut pipe.tx), |f| out.push(f.unwrap()));
+        out
+    };
+    tick(&mut rig, &mut pipe);
+    pipe.rx.extend(frame(&Command::Start));
+    assert!(tick(&mut rig, &mut pipe).contains(&ack(&Command::Start)));
+    for _ in 1..TICKS {
+        tick(&mut rig, &mut pipe);
+    }
+    pipe.rx.extend(frame(&Command::Stop));
+    assert!(tick(&mut rig, &mut pipe).contains(&ack(&Command::Stop)));
+    pipe.rx.extend(frame(&Command::Reset));
+    assert!(tick(&mut rig, &mut pipe).contains(&ack(&Command::Reset)));
+    pipe.rx.extend(frame(&Command::Preset(Preset::Fast)));
+    assert!(tick(&mut rig, &mut pipe).contains(&ack(&Command::Preset(Preset::Fast))));
+    assert_eq!(rig.state(), meterstick_rig::RigState::WaitingForStart);
+    assert_eq!(*rig.params(), RigPreset::Fast.params(H));
+
+    let (pins, _) = rig.release();
+    let RigPins { mut start, mut step, mut dir, lights, mut fault } = pins;
+    for p in [&mut start, &mut step, &mut dir, &mut fault] {
+        p.done();
+    }
+    for l in lights {
+        let ModeLights { mut sticking, mut sliding, mut separated } = l;
+        for p in [&mut sticking, &mut sliding, &mut separated] {
+            p.done();
+        }
+    }
 }
