@@ -15,7 +15,7 @@ pub mod monitor;
 pub mod plot;
 pub mod progress;
 pub mod qemu;
-pub mod reference;
+pub use meterstick_reference as reference;
 pub mod report;
 pub mod run_cmd;
 pub mod scene_cmd;

@@ -26,7 +26,7 @@ static INSTALLED: std::sync::OnceLock<Result<(), String>> = std::sync::OnceLock:
 pub const EXIT_INTERRUPTED: u8 = 130;
 
 /// How many steps a run takes between two checks for Ctrl-C.
-pub const CHECK_EVERY_STEPS: u64 = 4096;
+pub const CHECK_EVERY_STEPS: u64 = crate::reference::CHECK_EVERY_STEPS;
 
 /// The command was stopped by Ctrl-C (or by [`request_stop`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -73,6 +73,7 @@ pub fn install_ctrl_c() -> anyhow::Result<()> {
 /// Asks every run to stop (what the first Ctrl-C does).
 pub fn request_stop() {
     INTERRUPTED.store(true, Ordering::SeqCst);
+    crate::reference::request_stop();
 }
 
 /// `true` once a stop was requested.

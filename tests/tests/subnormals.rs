@@ -69,15 +69,15 @@ fn sse_under(mode: u32, add: bool, mut a: f32, b: f32) -> (f32, u32) {
         unsafe {
             asm!("ldmxcsr [{set}]", "addss {a}, {b}", "stmxcsr [{raised}]", "ldmxcsr [{saved}]",
                 set = in(reg) set.as_ptr(), raised = in(reg) &raw mut raised, saved = in(reg) &raw const saved,
-                a = inout(xmm_reg) a, b = in(xmm_reg) b, options(nostack))
-        };
+                a = inout(xmm_reg) a, b = in(xmm_reg) b, options(nostack));
+        }
     } else {
         // SAFETY: as above, with MULSS.
         unsafe {
             asm!("ldmxcsr [{set}]", "mulss {a}, {b}", "stmxcsr [{raised}]", "ldmxcsr [{saved}]",
                 set = in(reg) set.as_ptr(), raised = in(reg) &raw mut raised, saved = in(reg) &raw const saved,
-                a = inout(xmm_reg) a, b = in(xmm_reg) b, options(nostack))
-        };
+                a = inout(xmm_reg) a, b = in(xmm_reg) b, options(nostack));
+        }
     }
     (a, raised & FLAGS)
 }

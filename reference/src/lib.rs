@@ -1,7 +1,8 @@
 //! An independent f64 reference of the planar contact scenes: the model of docs/formulation.md
 //! and the scenes of docs/scenes.md (`meter-stick`, `incline`, `ladder`), written again from
-//! those two texts and sharing no code with `meterstick-core`, to catch formulation and precision
-//! errors in it.
+//! those two texts and sharing no code with `meterstick-core` (this crate has no dependencies:
+//! the crate graph shows it), to catch formulation and precision errors in it. Its exhaustive
+//! LCP enumerator ([`enumerate`]) is also the integration tests' check of the core's solver.
 //!
 //! # The model (docs/formulation.md)
 //!
@@ -48,7 +49,7 @@
 //! (`simulate.rs` the loop, `scenes.rs` the start states, support motions, outcome rules and
 //! measurements).
 
-mod enumerate;
+pub mod enumerate;
 mod geometry;
 mod scenes;
 mod simulate;
@@ -57,6 +58,25 @@ mod step;
 mod tests;
 
 pub use scenes::{Incline, Ladder, MeterStick};
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// How often (in steps) a run looks whether a stop was requested.
+pub const CHECK_EVERY_STEPS: u64 = 4096;
+
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// Asks every run under way (and every later one) to stop at its next check: it ends
+/// [`Outcome::Failed`] ("interrupted"). For a host's Ctrl-C (`host-sim`'s `progress.rs`).
+pub fn request_stop() {
+    STOP.store(true, Ordering::SeqCst);
+}
+
+/// `true` once a stop was requested.
+#[must_use]
+pub fn stop_requested() -> bool {
+    STOP.load(Ordering::Relaxed)
+}
 
 /// A scene and its parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -119,8 +119,9 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
     let mut modes = initial;
     let mut steps = 0_u64;
     let outcome = loop {
-        // Ctrl-C (`crate::progress`): the run stops here and the caller drops it.
-        if steps.is_multiple_of(crate::progress::CHECK_EVERY_STEPS) && crate::progress::interrupted() {
+        // A stop requested (`crate::request_stop`, a host's Ctrl-C): the run stops here and the
+        // caller drops it.
+        if steps.is_multiple_of(crate::CHECK_EVERY_STEPS) && crate::stop_requested() {
             break Outcome::Failed(format!("interrupted at t = {}", steps as f64 * h));
         }
         let u = scene.support_velocity(steps);
