@@ -467,6 +467,13 @@ fn a_stalled_port_drops_telemetry_first_and_announces_it() {
     let mut host = MeterStick6::<f32, 8>::new(RigPreset::Fast.params(H)).unwrap();
     let switches: usize = (0..steps).map(|_| host.step().unwrap().switches().count()).sum();
     assert_eq!(received + counted as usize, 2 + 1 + steps as usize + switches + 1, "{reports:?}");
+    // One reply per command: the pong came through the stall (the space kept for replies was not
+    // spent on announcing the drops).
+    assert_eq!(
+        reports.iter().filter(|r| matches!(r, Report::Pong { nonce: 9 })).count(),
+        1,
+        "the pong was lost: {reports:?}"
+    );
 }
 
 /// Commands over the port drive the rig's pins, on `embedded-hal-mock` pins: `Start` sets DIR

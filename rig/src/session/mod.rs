@@ -223,12 +223,15 @@ impl Session {
     }
 
     /// Sends as much of the transmit queue as `port` takes now; announces dropped reports once
-    /// there is room.
+    /// there is room, and not in the space kept for replies ([`RESERVE`]): while the port stalls,
+    /// the count grows instead (an announcement per flush filled that space, and a `Pong` was
+    /// lost).
     pub fn flush(&mut self, port: &mut impl Port) {
         self.tx.drain(port);
         if self.dropped > 0 {
             let mut buf = [0u8; MAX_FRAME];
             if let Ok(frame) = encode(&Report::Error(ErrorCode::TxDropped { count: self.dropped }), &mut buf)
+                && self.tx.free() >= frame.len().saturating_add(RESERVE)
                 && self.tx.push(frame)
             {
                 self.dropped = 0;
