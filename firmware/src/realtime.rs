@@ -27,16 +27,43 @@ pub const STEP_HZ: u32 = 1_000;
 /// Button samples (ticks) that must agree before a press counts.
 const DEBOUNCE_TICKS: u16 = 20;
 
-/// Busy-wait delay on the core clock (`asm::delay` waits at least the cycles asked).
+/// Busy-wait delay on the core clock, timed by SysTick, which runs on it for the ticks
+/// ([`run`] starts it before the rig's first tick): the cycles asked plus at most one poll, on
+/// any core. (`asm::delay` assumes two cycles a loop: the Cortex-M0+ takes three, and the
+/// emulated RP2040 counted about six, so the stepper's pulses were 1.5 to 3 times `pulse_ns`, a
+/// tenth of the Pico's worst tick.) Before SysTick runs (a counter that does not move), it falls
+/// back to `asm::delay`.
 #[derive(Debug, Clone, Copy)]
 pub struct CycleDelay {
     /// Core clock (MHz).
     pub mhz: u32,
 }
 
+/// Polls of a counter that does not move before [`CycleDelay`] takes SysTick as stopped.
+const STOPPED_POLLS: u32 = 16;
+
 impl DelayNs for CycleDelay {
     fn delay_ns(&mut self, ns: u32) {
-        cortex_m::asm::delay(ns.saturating_mul(self.mhz) / 1_000);
+        let mut left = ns.saturating_mul(self.mhz) / 1_000;
+        let period = (SYST::get_reload() & systick::MASK) + 1;
+        let mut last = SYST::get_current();
+        let mut still = 0;
+        while left > 0 {
+            let now = SYST::get_current();
+            if now == last {
+                still += 1;
+                if still > STOPPED_POLLS {
+                    cortex_m::asm::delay(left);
+                    return;
+                }
+                continue;
+            }
+            still = 0;
+            // It counts down from `period - 1` and wraps to it.
+            let passed = if now < last { last - now } else { last + period - now };
+            left = left.saturating_sub(passed);
+            last = now;
+        }
     }
 }
 
