@@ -467,7 +467,7 @@ fn host_sim_within(args: &[&str], env: &[(&str, &str)], secs: u64) -> (i32, Stri
 }
 
 /// Bad LCP files, each refused with status 2, the file, the format expected and what is wrong,
-/// within a bound of time and memory. Before #17 was finished: `/dev/zero` was read without end
+/// within a bound of time and memory. What it guards against: `/dev/zero` read without end
 /// (killed by the timeout); `huge.dat`, 38 bytes declaring n = 10^9, allocated 10^18 entries and
 /// aborted ("memory allocation failed", status 134); `usize::MAX` as n panicked ("capacity
 /// overflow", status 101); a sparse block size beyond n panicked ("index out of bounds", 101); an
@@ -520,7 +520,7 @@ fn lcp_refuses_bad_files_within_bounds() {
 /// The exit statuses `host-sim --help` documents: 0 done, 2 bad input (before anything runs),
 /// 1 a check failed (`monitor_exits_1_when_the_rigs_run_differs`; for `stress`, whose cases all
 /// pass today, the unit test `cli::tests::exit_statuses_follow_the_error`), 130 Ctrl-C (`ctrl_c_*`).
-/// Before #17 was finished no `--help` stated them.
+/// `--help` states them.
 #[test]
 fn exit_statuses_are_as_documented() {
     let (code, help, _) = host_sim(&["--help"]);
@@ -553,8 +553,8 @@ fn exit_statuses_are_as_documented() {
     assert!(!out.exists(), "a refusal writes nothing");
 }
 
-/// A missing value is named. Before #17 was finished, `run --h --duration 2` said "unexpected
-/// argument '2' found" (clap took `--duration` as the value of `--h`).
+/// A missing value is named: `run --h --duration 2` must not say "unexpected argument '2'
+/// found" (clap taking `--duration` as the value of `--h`).
 #[test]
 fn a_missing_value_is_named() {
     let (code, _, err) = host_sim(&["run", "--h", "--duration", "2"]);
@@ -567,8 +567,8 @@ fn a_missing_value_is_named() {
     );
 }
 
-/// A value f64 holds but f32 does not, in the user's words, before anything runs. Before #17 was
-/// finished, `--mass 1e39` was shown as `--mass 999999999999999939709166371603178586112 kg: not a
+/// A value f64 holds but f32 does not, in the user's words, before anything runs: not, as it
+/// could be, `--mass 1e39` shown as `--mass 999999999999999939709166371603178586112 kg: not a
 /// finite number` and `--mass 1e-50` as `--mass 0 kg: must be greater than 0` (a rounded 0).
 #[test]
 fn values_that_only_f32_refuses_say_so() {
@@ -596,8 +596,8 @@ fn values_that_only_f32_refuses_say_so() {
 }
 
 /// Off a terminal, a command that runs longer than the period (`MS_PROGRESS_SECS`, default 5 s)
-/// prints plain progress lines to stderr. Before #17 was finished it printed nothing (the
-/// indicatif bar is hidden off a terminal).
+/// prints plain progress lines to stderr (the indicatif bar is hidden off a terminal, so without
+/// them it would print nothing).
 #[test]
 fn progress_lines_off_a_terminal() {
     let out = temp_dir("progress");
@@ -652,8 +652,8 @@ fn interrupt_when(args: &[&str], ready: &str) -> (i32, String) {
 }
 
 /// Ctrl-C during `host-sim run`: no new run starts, the one under way (the slow reference) is
-/// dropped, the finished run is written, and the files are listed; status 130. Before #17 was
-/// finished, SIGINT killed the process with nothing written and nothing said.
+/// dropped, the finished run is written, and the files are listed; status 130 (not a process
+/// killed by SIGINT with nothing written and nothing said).
 #[test]
 #[cfg(unix)]
 fn ctrl_c_ends_run_cleanly_listing_what_was_written() {
@@ -683,9 +683,8 @@ fn ctrl_c_ends_run_cleanly_listing_what_was_written() {
 }
 
 /// `host-sim run` records every step of the core and the reference: more than 2 x 10^6 is refused
-/// before anything runs. Before #17 was finished, `run --h 1e-6 --duration 100` started five runs
-/// of 10^8 recorded steps each (about 70 GB each at 700 bytes a step; it was still at 9 of 10
-/// jobs after 10 minutes when it was stopped).
+/// before anything runs: without the cap, `run --h 1e-6 --duration 100` would start five runs
+/// of 10^8 recorded steps each (about 70 GB each at 700 bytes a step).
 #[test]
 fn run_refuses_more_steps_than_it_can_record() {
     let out = temp_dir("record-cap");
@@ -768,8 +767,7 @@ fn fake_rig_with_a_wrong_checksum() -> (std::net::SocketAddr, std::thread::JoinH
 }
 
 /// Exit status 1: a check failed. `host-sim monitor` against a rig whose run is not the host's
-/// (its checksum differs) writes its files and exits 1. Before #17 was finished it exited 2, the
-/// status of bad input.
+/// (its checksum differs) writes its files and exits 1, not 2 (the status of bad input).
 #[test]
 fn monitor_exits_1_when_the_rigs_run_differs() {
     let (addr, rig) = fake_rig_with_a_wrong_checksum();
