@@ -9,7 +9,7 @@
 //! gives instructions per tick). Never exits: the host ends QEMU.
 
 use meterstick_rig::session::{Session, build_id, version};
-use meterstick_rig::{NoDelay, Preset, Rig, RigConfig, RigError};
+use meterstick_rig::{NoDelay, Preset, PresetScene as _, Rig, RigConfig, RigError};
 
 use crate::systick;
 use crate::uart::Uart;

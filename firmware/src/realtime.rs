@@ -18,7 +18,7 @@ use core::convert::Infallible;
 use cortex_m::peripheral::SYST;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
-use meterstick_rig::{Preset, PressDetector, Rig, RigConfig, RigError, RigPins, RigState};
+use meterstick_rig::{Preset, PresetScene as _, PressDetector, Rig, RigConfig, RigError, RigPins, RigState};
 
 use crate::systick;
 
@@ -43,6 +43,7 @@ pub struct CycleDelay {
 const STOPPED_POLLS: u32 = 16;
 
 impl DelayNs for CycleDelay {
+    #[inline(never)] // one copy for every pulse edge and the homing (flash)
     fn delay_ns(&mut self, ns: u32) {
         let mut left = ns.saturating_mul(self.mhz) / 1_000;
         let period = (SYST::get_reload() & systick::MASK) + 1;

@@ -1,32 +1,33 @@
-//! The rig's controls between runs: [`Preset`], its small table of scenes (slow, fast, near the
-//! fall threshold), and [`PressDetector`], which debounces a button into presses.
+//! The rig's controls between runs: [`PresetScene`], what the link's [`Preset`]s are (slow, fast,
+//! near the fall threshold), and [`PressDetector`], which debounces a button into presses.
 
 use meterstick_core::scene::MeterStickParams;
+pub use meterstick_link::Preset;
 
 #[cfg(doc)]
 use crate::Rig;
 
-/// The rig's preset scenes: the paper's rod with finger 1 starting at -0.35 m (as the QEMU runs
-/// and `host-sim run`'s slow scene), at three finger speeds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Preset {
-    /// 0.1 m/s, the paper's slow finger: the rod balances (7.9 s).
-    Slow,
-    /// 5 m/s: the rod falls.
-    Fast,
-    /// 0.3 m/s, next to the fall threshold: it balances, and falls from 0.31 m/s (and at
-    /// 0.2 m/s): the outcome is sensitive to the parameters.
-    NearThreshold,
+/// The rig's preset scenes are the link's [`Preset`]s (`link/src/wire.rs`: one list for the wire
+/// and the rig); this is what the rig makes of them: the paper's rod with finger 1 starting at
+/// -0.35 m (as the QEMU runs and `host-sim run`'s slow scene), at three finger speeds.
+pub trait PresetScene: Sized {
+    /// The preset's parameters, at time step `step` (s): slow 0.1 m/s, the paper's slow finger
+    /// (the rod balances, 7.9 s); fast 5 m/s (the rod falls); near-threshold 0.3 m/s (it
+    /// balances, and falls from 0.31 m/s and at 0.2 m/s: the outcome is sensitive to the
+    /// parameters).
+    #[must_use]
+    fn params(self, step: f32) -> MeterStickParams<f32>;
+    /// The next preset, cyclically (a button press).
+    #[must_use]
+    fn next(self) -> Self;
+    /// Its position in [`Preset::ALL`] (what [`Rig::indicate`] shows).
+    #[must_use]
+    fn index(self) -> u8;
 }
 
-impl Preset {
-    /// Every preset, in order (the index is what [`Rig::indicate`] shows).
-    pub const ALL: [Self; 3] = [Self::Slow, Self::Fast, Self::NearThreshold];
-
-    /// The preset's parameters, at time step `step` (s).
-    #[must_use]
-    pub fn params(self, step: f32) -> MeterStickParams<f32> {
+impl PresetScene for Preset {
+    #[inline]
+    fn params(self, step: f32) -> MeterStickParams<f32> {
         let finger1_velocity = match self {
             Self::Slow => 0.1,
             Self::Fast => 5.0,
@@ -35,9 +36,8 @@ impl Preset {
         MeterStickParams { finger1_x: -0.35, finger1_velocity, step, ..MeterStickParams::paper() }
     }
 
-    /// The next preset, cyclically (a button press).
-    #[must_use]
-    pub const fn next(self) -> Self {
+    #[inline]
+    fn next(self) -> Self {
         match self {
             Self::Slow => Self::Fast,
             Self::Fast => Self::NearThreshold,
@@ -45,9 +45,8 @@ impl Preset {
         }
     }
 
-    /// Its position in [`Self::ALL`].
-    #[must_use]
-    pub const fn index(self) -> u8 {
+    #[inline]
+    fn index(self) -> u8 {
         match self {
             Self::Slow => 0,
             Self::Fast => 1,

@@ -8,7 +8,8 @@
 //!
 //! * [`Rig`] (`rig.rs`): the state machine over `embedded-hal` 1.0 pins and delay, one scene
 //!   step per [`Rig::tick`]; [`RigConfig`], [`RigPins`], [`RigState`], [`RigFault`].
-//! * [`Preset`] and [`PressDetector`] (`controls.rs`): the preset scenes and a button debouncer.
+//! * [`PresetScene`] and [`PressDetector`] (`controls.rs`): what the link's [`Preset`]s are, and a
+//!   button debouncer.
 //! * [`HeadlessPin`] and [`NoDelay`] (`headless.rs`): the rig without hardware.
 //! * [`session`]: the link session ([`session::Session`]) over a non-blocking byte
 //!   [`session::Port`]: commands in, telemetry, events and replies out.
@@ -27,6 +28,6 @@ mod headless;
 mod rig;
 pub mod session;
 
-pub use controls::{Preset, PressDetector};
+pub use controls::{Preset, PresetScene, PressDetector};
 pub use headless::{HeadlessPin, NoDelay};
 pub use rig::{ModeLights, Rig, RigConfig, RigError, RigFault, RigPins, RigState};

@@ -188,7 +188,7 @@ fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
 /// stopped by command; refused parameters leave the rig as it was.
 #[test]
 fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
-    use meterstick_rig::Preset;
+    use meterstick_rig::{Preset, PresetScene as _};
     let config =
         RigConfig { steps_per_meter: 10_000.0, max_pulses_per_tick: 1_000, ..RigConfig::default_rig() };
     let fast = Preset::Fast.params(1e-3);
@@ -241,7 +241,7 @@ fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
 
 #[test]
 fn presets_and_the_press_detector() {
-    use meterstick_rig::{Preset, PressDetector};
+    use meterstick_rig::{Preset, PresetScene as _, PressDetector};
     let outcomes: Vec<Outcome> =
         Preset::ALL.iter().map(|p| MeterStick6::<f32, 8>::new(p.params(1e-3)).unwrap().run(|_| {})).collect();
     assert_eq!(outcomes, [Outcome::Balanced, Outcome::Fell, Outcome::Balanced]);

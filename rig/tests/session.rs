@@ -18,8 +18,8 @@ use meterstick_link::{
     Command, DELIMITER, ErrorCode, MAX_FRAME, Mode, OutcomeCode, PROTOCOL_VERSION, ParamId, Preset,
     RejectReason, Report, ReportDecoder, RigState, SceneId, encode,
 };
-use meterstick_rig::session::{MARGIN_EVERY, POLL_BYTES, Port, Session, build_id, preset_of, version};
-use meterstick_rig::{HeadlessPin, NoDelay, Preset as RigPreset, Rig, RigConfig, RigError};
+use meterstick_rig::session::{MARGIN_EVERY, POLL_BYTES, Port, Session, build_id, version};
+use meterstick_rig::{HeadlessPin, NoDelay, PresetScene as _, Rig, RigConfig, RigError};
 
 /// The QEMU build's rig: 1 cm per pulse, no practical limit per tick, and a start button that
 /// reads released (a headless pin reads low; active high), so only `Start` starts a run.
@@ -195,7 +195,7 @@ fn mode_of(m: ContactMode) -> Mode {
 
 #[test]
 fn boot_says_hello_and_waits() {
-    let rig = Rig::<_, _, _, 6>::headless(RigPreset::Slow.params(H), CONFIG, NoDelay).unwrap();
+    let rig = Rig::<_, _, _, 6>::headless(Preset::Slow.params(H), CONFIG, NoDelay).unwrap();
     let mut session = Session::new(0, version("0.7.12-rc.1"), build_id("abc"));
     session.boot(&rig);
     let mut pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
@@ -228,7 +228,7 @@ fn boot_says_hello_and_waits() {
 /// state; a second start is refused until a reset.
 #[test]
 fn a_run_on_demand_reports_what_the_host_core_computes() {
-    let params = RigPreset::Slow.params(H);
+    let params = Preset::Slow.params(H);
     let (outcome, steps, checksum, switches) = host_run(params);
     assert_eq!(outcome, Outcome::Balanced);
 
@@ -287,17 +287,12 @@ fn a_run_on_demand_reports_what_the_host_core_computes() {
 /// step; refused while running. The fast preset falls, as on the host.
 #[test]
 fn presets_load_their_parameters_and_the_fast_one_falls_as_on_the_host() {
-    let mut b = Bench::new(RigPreset::Slow.params(H));
+    let mut b = Bench::new(Preset::Slow.params(H));
     b.reports.clear();
-    for (link, rig, speed) in [
-        (Preset::Fast, RigPreset::Fast, 5.0),
-        (Preset::NearThreshold, RigPreset::NearThreshold, 0.3),
-        (Preset::Slow, RigPreset::Slow, 0.1),
-    ] {
-        assert_eq!(preset_of(link), rig);
-        let c = Command::Preset(link);
+    for (preset, speed) in [(Preset::Fast, 5.0), (Preset::NearThreshold, 0.3), (Preset::Slow, 0.1)] {
+        let c = Command::Preset(preset);
         assert_eq!(b.reply(&c), ack(&c));
-        assert_eq!(*b.rig.params(), rig.params(H));
+        assert_eq!(*b.rig.params(), preset.params(H));
         let get = Command::GetParam { id: ParamId::Finger1Velocity };
         assert_eq!(b.reply(&get), Report::Param { id: ParamId::Finger1Velocity, value: speed });
         let get = Command::GetParam { id: ParamId::Finger1X };
@@ -308,9 +303,9 @@ fn presets_load_their_parameters_and_the_fast_one_falls_as_on_the_host() {
     assert_eq!(b.reply(&set), ack(&set));
     let fast = Command::Preset(Preset::Fast);
     assert_eq!(b.reply(&fast), ack(&fast));
-    assert_eq!(*b.rig.params(), RigPreset::Fast.params(5e-4));
+    assert_eq!(*b.rig.params(), Preset::Fast.params(5e-4));
 
-    let (outcome, steps, checksum, _) = host_run(RigPreset::Fast.params(5e-4));
+    let (outcome, steps, checksum, _) = host_run(Preset::Fast.params(5e-4));
     assert_eq!(outcome, Outcome::Fell);
     assert_eq!(b.reply(&Command::Start), ack(&Command::Start));
     // Running: no preset, no parameter.
@@ -329,7 +324,7 @@ fn presets_load_their_parameters_and_the_fast_one_falls_as_on_the_host() {
 /// Refused parameters: the core's validation names the reason, and the rig keeps its set.
 #[test]
 fn refused_parameters_leave_the_rig_as_it_was() {
-    let params = RigPreset::Slow.params(H);
+    let params = Preset::Slow.params(H);
     let mut b = Bench::new(params);
     b.reports.clear();
     for (id, value, reason) in [
@@ -351,7 +346,7 @@ fn refused_parameters_leave_the_rig_as_it_was() {
 /// a command after each is answered.
 #[test]
 fn damaged_and_truncated_frames_are_refused_and_counted() {
-    let mut b = Bench::new(RigPreset::Slow.params(H));
+    let mut b = Bench::new(Preset::Slow.params(H));
     b.reports.clear();
     let ping = |nonce| Command::Ping { nonce };
 
@@ -383,7 +378,7 @@ fn damaged_and_truncated_frames_are_refused_and_counted() {
 #[test]
 fn a_flood_of_pings_is_answered_in_order_then_a_run_stops_on_command() {
     const FLOOD: u32 = 2000;
-    let mut b = Bench::new(RigPreset::Fast.params(H));
+    let mut b = Bench::new(Preset::Fast.params(H));
     b.reports.clear();
     for nonce in 0..FLOOD {
         b.send(&Command::Ping { nonce });
@@ -403,7 +398,7 @@ fn a_flood_of_pings_is_answered_in_order_then_a_run_stops_on_command() {
     assert_eq!((s.frames_ok, s.dropped()), (FLOOD + 1, 0));
 
     // Start, a few steps, stop: the run ends unfinished, reported with its checksum.
-    let mut host = MeterStick6::<f32, 8>::new(RigPreset::Fast.params(H)).unwrap();
+    let mut host = MeterStick6::<f32, 8>::new(Preset::Fast.params(H)).unwrap();
     let mut checksum = Checksum::new();
     for _ in 0..25 {
         checksum.add(&host.step().unwrap().state);
@@ -432,7 +427,7 @@ fn a_flood_of_pings_is_answered_in_order_then_a_run_stops_on_command() {
 /// report due is either received or counted.
 #[test]
 fn a_stalled_port_drops_telemetry_first_and_announces_it() {
-    let mut b = Bench::new(RigPreset::Fast.params(H));
+    let mut b = Bench::new(Preset::Fast.params(H));
     b.reports.clear();
     let every = Command::SetTelemetry { every_n_steps: 1 };
     assert_eq!(b.reply(&every), ack(&every));
@@ -464,7 +459,7 @@ fn a_stalled_port_drops_telemetry_first_and_announces_it() {
     // Due: the start's ack and state, telemetry at step 0 and every step since, the switch
     // events of those steps (the host core's), the pong.
     let steps = b.rig.scene().stats().steps;
-    let mut host = MeterStick6::<f32, 8>::new(RigPreset::Fast.params(H)).unwrap();
+    let mut host = MeterStick6::<f32, 8>::new(Preset::Fast.params(H)).unwrap();
     let switches: usize = (0..steps).map(|_| host.step().unwrap().switches().count()).sum();
     assert_eq!(received + counted as usize, 2 + 1 + steps as usize + switches + 1, "{reports:?}");
     // One reply per command: the pong came through the stall (the space kept for replies was not
@@ -487,7 +482,7 @@ fn commands_over_the_port_drive_the_pins() {
     use meterstick_rig::{ModeLights, RigPins};
 
     const TICKS: usize = 5;
-    let params = RigPreset::Slow.params(H);
+    let params = Preset::Slow.params(H);
     let light = |m: ContactMode| match m {
         ContactMode::Sticking => 0,
         ContactMode::Sliding(_) => 1,
@@ -564,7 +559,7 @@ fn commands_over_the_port_drive_the_pins() {
     pipe.rx.extend(frame(&Command::Preset(Preset::Fast)));
     assert!(tick(&mut rig, &mut pipe).contains(&ack(&Command::Preset(Preset::Fast))));
     assert_eq!(rig.state(), meterstick_rig::RigState::WaitingForStart);
-    assert_eq!(*rig.params(), RigPreset::Fast.params(H));
+    assert_eq!(*rig.params(), Preset::Fast.params(H));
 
     let (pins, _) = rig.release();
     let RigPins { mut start, mut step, mut dir, lights, mut fault } = pins;

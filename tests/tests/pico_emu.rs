@@ -37,7 +37,9 @@ use meterstick_core::planar::ContactMode;
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use meterstick_link::OutcomeCode;
 use meterstick_link::host::Link;
-use meterstick_rig::{ModeLights, NoDelay, Preset, Rig, RigConfig, RigFault, RigPins, RigState};
+use meterstick_rig::{
+    ModeLights, NoDelay, Preset, PresetScene as _, Rig, RigConfig, RigFault, RigPins, RigState,
+};
 use serde_json::Value;
 
 /// The firmware's step at boot: `STEP_HZ` = 1 kHz (firmware/src/realtime.rs, `new_rig`).
@@ -580,11 +582,7 @@ fn link_end_to_end_on_the_emulated_pico() {
     link_checks::all(&mut link, "emulated Pico");
     // The near-threshold preset: the fast one is a fault on the Pico's rig (400 pulses due in a
     // tick, at most 100: `fast_preset_is_a_fault_on_the_default_rig`).
-    link_checks::still_runs_and_stops(
-        &mut link,
-        meterstick_link::Preset::NearThreshold,
-        OutcomeCode::Balanced,
-    );
+    link_checks::still_runs_and_stops(&mut link, Preset::NearThreshold, OutcomeCode::Balanced);
     println!("emulated Pico: host side: {:?}", link.host_stats());
     closer.shutdown(std::net::Shutdown::Both).ok();
     drop(link);

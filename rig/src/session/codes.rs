@@ -3,9 +3,9 @@
 use meterstick_core::ParamError;
 use meterstick_core::planar::{ContactMode, Direction, StepError};
 use meterstick_core::scene::Outcome;
-use meterstick_link::{Mode, OutcomeCode, Preset, RejectReason, RigState};
+use meterstick_link::{Mode, OutcomeCode, RejectReason, RigState};
 
-use crate::{Preset as RigPreset, RigFault, RigState as CoreState};
+use crate::{RigFault, RigState as CoreState};
 
 #[inline]
 pub(super) const fn state_of(s: CoreState) -> RigState {
@@ -68,16 +68,5 @@ pub(super) const fn reason_of(e: ParamError) -> RejectReason {
         ParamError::FingerOutsideRod => RejectReason::FingerOutsideRod,
         ParamError::FingersCrossed => RejectReason::FingersCrossed,
         _ => RejectReason::Other,
-    }
-}
-
-/// The link's preset as the core's rig names it.
-#[must_use]
-#[inline]
-pub const fn preset_of(p: Preset) -> RigPreset {
-    match p {
-        Preset::Slow => RigPreset::Slow,
-        Preset::Fast => RigPreset::Fast,
-        Preset::NearThreshold => RigPreset::NearThreshold,
     }
 }

@@ -34,11 +34,10 @@ use meterstick_link::{
     OutcomeCode, PROTOCOL_VERSION, RejectReason, Report, RigState, SceneId, encode,
 };
 
-pub use codes::preset_of;
 use codes::{fault_code, mode_of, outcome_code, reason_of, state_of};
 use queue::TxQueue;
 
-use crate::{Rig, RigError, RigState as CoreState};
+use crate::{PresetScene as _, Rig, RigError, RigState as CoreState};
 
 /// A byte link that never blocks.
 pub trait Port {
@@ -394,7 +393,7 @@ impl Session {
             Command::Preset(_) if state == RigState::Running => not_allowed,
             Command::Preset(p) => {
                 let step = rig.params().step;
-                match rig.reset(preset_of(p).params(step)) {
+                match rig.reset(p.params(step)) {
                     Ok(()) => ack,
                     Err(RigError::Params(_)) => not_allowed,
                     Err(e) => return Err(e),
