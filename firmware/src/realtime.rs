@@ -35,17 +35,27 @@ const DEBOUNCE_TICKS: u16 = 20;
 /// back to `asm::delay`.
 #[derive(Debug, Clone, Copy)]
 pub struct CycleDelay {
-    /// Core clock (MHz).
-    pub mhz: u32,
+    /// Core cycles per 1,024 ns, rounded up (a shift, not a division, per delay: the Cortex-M0
+    /// divides in software).
+    per_1024_ns: u32,
+}
+
+impl CycleDelay {
+    /// The delay on a core clock of `sysclk_hz`.
+    #[must_use]
+    pub const fn new(sysclk_hz: u32) -> Self {
+        // cycles per 1,024 ns = sysclk_hz * 1,024e-9, rounded up: at least the time asked.
+        Self { per_1024_ns: ((sysclk_hz as u64 * 1_024).div_ceil(1_000_000_000)) as u32 }
+    }
 }
 
 /// Polls of a counter that does not move before [`CycleDelay`] takes SysTick as stopped.
 const STOPPED_POLLS: u32 = 16;
 
 impl DelayNs for CycleDelay {
-    #[inline(never)] // one copy for every pulse edge and the homing (flash)
+    #[inline]
     fn delay_ns(&mut self, ns: u32) {
-        let mut left = ns.saturating_mul(self.mhz) / 1_000;
+        let mut left = ns.saturating_mul(self.per_1024_ns) >> 10;
         let period = (SYST::get_reload() & systick::MASK) + 1;
         let mut last = SYST::get_current();
         let mut still = 0;
@@ -93,7 +103,7 @@ where
     P: OutputPin<Error = Infallible>,
 {
     let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
-    let delay = CycleDelay { mhz: sysclk_hz / 1_000_000 };
+    let delay = CycleDelay::new(sysclk_hz);
     let rig = Rig::<_, _, _, 6>::new(params, RigConfig::default_rig(), pins, delay);
     #[cfg(feature = "log")]
     if let Err(e) = &rig {
