@@ -25,13 +25,18 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
     let [(_, spec)] = specs.as_slice() else {
         anyhow::bail!("host-sim scene runs one scene: give each flag one value (host-sim run takes lists)");
     };
+    crate::with_contacts!(spec.kind(), K => summarise::<K>(cmd, spec))
+}
+
+/// Runs a scene of `K` contacts and summarises it.
+fn summarise<const K: usize>(cmd: &SceneCmd, spec: &SceneSpec) -> anyhow::Result<String> {
     let implementation = cmd.scene.implementation();
     let planned = (spec.max_time() / spec.step()).ceil() as u64;
     let bar = crate::progress::bar(planned, "steps");
-    let traj = run_watched(spec, implementation, Record::Nothing, &bar)?;
+    let traj = run_watched::<K>(spec, implementation, Record::Nothing, &bar)?;
     bar.finish_and_clear();
     let mut out = String::new();
-    let params: Vec<String> = spec.fields().iter().map(|(k, v)| format!("{k} = {v}")).collect();
+    let params: Vec<String> = spec.fields().map(|(k, v)| format!("{k} = {v}")).collect();
     let _ = writeln!(out, "scene {}: {}", spec.kind(), params.join(", "));
     let _ = writeln!(out, "{implementation}: outcome {} at t = {:.3} s", traj.outcome, traj.end_time);
     let m = &traj.measured;
@@ -49,6 +54,10 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
                 " (g (sin a - mu_k cos a) = {:.6})",
                 p.gravity * (p.angle.sin() - p.mu_kinetic * p.angle.cos())
             )
+        } else if let SceneSpec::Cylinder(p) = spec {
+            let law =
+                if p.rolls() { "rolling: g sin a / (1 + k)" } else { "sliding: g (sin a - mu_k cos a)" };
+            format!(" ({law} = {:.6})", p.analytic_acceleration())
         } else {
             String::new()
         };
@@ -99,14 +108,14 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
             .find(|s| s.t.to_bits() == e.t.to_bits() && s.finger == e.contact + 1)
             .map(|s| format!("  x_stop/x_start = {:.4}", s.ratio))
             .unwrap_or_default();
+        let along: Vec<String> = e.along.iter().map(|a| format!("{a:+.4}")).collect();
         let _ = writeln!(
             out,
-            "  t = {:7.3} s  contact {} -> {:9}  along = {:+.4} / {:+.4} m{ratio}",
+            "  t = {:7.3} s  contact {} -> {:9}  along = {} m{ratio}",
             e.t,
             e.contact + 1,
             e.mode.name(),
-            e.along[0],
-            e.along[1]
+            along.join(" / ")
         );
     }
     if let Some(s) = stop
