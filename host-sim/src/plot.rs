@@ -235,7 +235,7 @@ pub const fn outcome_color(class: crate::trajectory::OutcomeClass) -> RGBColor {
     use crate::trajectory::OutcomeClass as O;
     match class {
         O::Balanced | O::Held | O::Rolled => RGBColor(44, 160, 44),
-        O::Fell | O::Tipped => RGBColor(214, 39, 40),
+        O::Fell | O::Tipped | O::Jammed => RGBColor(214, 39, 40),
         O::Slid => RGBColor(255, 127, 14),
         O::Unfinished => RGBColor(200, 200, 200),
         O::Failed => RGBColor(0, 0, 0),

@@ -63,6 +63,22 @@ fn summarise<const K: usize>(cmd: &SceneCmd, spec: &SceneSpec) -> anyhow::Result
         };
         let _ = writeln!(out, "acceleration down the slope {a:.6} m/s^2{exact}");
     }
+    if let Some(j) = m.jam {
+        let exact = if let SceneSpec::Painleve(p) = spec {
+            let (pf, pn) = p.jam_impulses();
+            format!(
+                " (tangential impact m V / 4 (1 + 3 c^2, 3 s c) = {pf:.6}, {pn:.6}; jams above mu = {:.4})",
+                p.critical_mu()
+            )
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            out,
+            "the end jammed at t = {:.6} s: friction impulse {:.6} N s, normal impulse {:.6} N s{exact}",
+            j.time_s, j.friction_impulse_ns, j.normal_impulse_ns
+        );
+    }
     if let (Some(h), Some(r)) = (m.wall_release_height_m, m.wall_release_ratio) {
         let _ =
             writeln!(out, "top left the wall at height {h:.5} m = {r:.5} of its start (frictionless: 2/3)");

@@ -12,7 +12,7 @@ use anyhow::Context as _;
 use indicatif::ProgressBar;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Scene, ThreeFingers};
+use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
 use serde::Serialize;
 
 use crate::lcp_io::Precision;
@@ -126,6 +126,20 @@ pub struct Measured {
     pub wall_release_height_m: Option<f64>,
     /// Ladder: that height over the top's initial height (2/3 when frictionless).
     pub wall_release_ratio: Option<f64>,
+    /// Painlevé: the jam step's impulses (absent from `summary.json` for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub jam: Option<JamImpulses>,
+}
+
+/// The Painlevé rod's jam: the step on which the sliding end stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct JamImpulses {
+    /// The end of that step (s).
+    pub time_s: f64,
+    /// Its normal impulse (N s).
+    pub normal_impulse_ns: f64,
+    /// Its friction impulse along `+x` (N s).
+    pub friction_impulse_ns: f64,
 }
 
 /// Solver counters of a run (zero where an implementation has no such thing).
@@ -463,6 +477,22 @@ fn core_run<T: Real, const N: usize, const K: usize>(
             t.measured.acceleration_m_s2 = a.map(Real::as_f64);
             t
         }
+        SceneSpec::Painleve(p) => {
+            let kind = SceneKind::Painleve;
+            let (mut t, jam) = if N == 6 {
+                let mut s = Painleve::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
+                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.jam())
+            } else {
+                let mut s = Painleve::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
+                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.jam())
+            };
+            t.measured.jam = jam.map(|j| JamImpulses {
+                time_s: j.time.as_f64(),
+                normal_impulse_ns: j.normal_impulse.as_f64(),
+                friction_impulse_ns: j.friction_impulse.as_f64(),
+            });
+            t
+        }
     })
 }
 
@@ -678,6 +708,7 @@ pub fn run_reference<const K: usize>(spec: &SceneSpec, record: Record) -> anyhow
             acceleration_m_s2: run.acceleration,
             wall_release_height_m: run.wall_release_height,
             wall_release_ratio: run.wall_release_height.map(|h| h / start_top),
+            jam: None,
         },
         counters: SolverCounters { ambiguous_steps: run.ambiguous_steps, ..SolverCounters::default() },
         checksum: None,

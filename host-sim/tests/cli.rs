@@ -275,6 +275,29 @@ fn the_cylinder_rolls_or_slides_as_the_law_says() {
     assert!(err.contains("--radius -1 m: must be greater than 0"), "{err}");
 }
 
+/// Painlevé's rod jams on its first step with the tangential impact's impulses (`docs/scenes.md`,
+/// "painleve"), and `summary.json` carries them.
+#[test]
+fn the_painleve_rod_jams() {
+    let (code, stdout, err) =
+        host_sim(&["scene", "--scene", "painleve", "--precision", "f64", "--h", "1e-5"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("outcome Jammed at t = 0.000"), "{stdout}");
+    assert!(stdout.contains("the end jammed at t = 0.000010 s"), "{stdout}");
+    let out = temp_dir("painleve");
+    let (code, _, err) =
+        host_sim(&["run", "--scene", "painleve", "--angle", "45", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("painleve").join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(s["core"]["outcome"], "Jammed", "{s}");
+    // 45 degrees, m = 1, V = 1: normal impulse 3 m V s c / 4 = 0.375 N s, within m g h.
+    let pn = s["core"]["measured"]["jam"]["normal_impulse_ns"].as_f64().unwrap();
+    assert!((pn - 0.375).abs() < 9.81e-3, "{s}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
 #[test]
 fn report_quick_writes_its_tables_and_pictures() {
     let out = temp_dir("report");

@@ -21,7 +21,9 @@
 use core::fmt::{self, Write as _};
 
 use super::outcome::OutcomeKind;
-use super::{CylinderParams, InclineParams, LadderParams, MeterStickParams, ThreeFingersParams};
+use super::{
+    CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
+};
 use crate::params::ParamError;
 use crate::real::Real;
 
@@ -39,6 +41,8 @@ pub enum SceneKind {
     ThreeFingers,
     /// A round body released on an incline: it rolls or slides.
     Cylinder,
+    /// Painlevé's paradox: a rod whose end slides on a rough floor jams.
+    Painleve,
 }
 
 /// What the catalogue says of one scene.
@@ -62,7 +66,7 @@ pub struct SceneInfo {
 }
 
 /// Every scene, in the order of [`SceneKind::ALL`] (their numbers on the page).
-pub const SCENES: [SceneInfo; 5] = [
+pub const SCENES: [SceneInfo; 6] = [
     SceneInfo {
         kind: SceneKind::MeterStick,
         name: "meter-stick",
@@ -108,12 +112,21 @@ pub const SCENES: [SceneInfo; 5] = [
         measures: &["acceleration_m_s2"],
         ranges: &[("angle", "0 <= angle < 90 deg")],
     },
+    SceneInfo {
+        kind: SceneKind::Painleve,
+        name: "painleve",
+        title: "Painleve's paradox: a rod sliding on a rough floor jams",
+        contacts: 1,
+        outcomes: &[OutcomeKind::Jammed, OutcomeKind::Slid, OutcomeKind::Fell, OutcomeKind::Unfinished],
+        measures: &["jam"],
+        ranges: &[("angle", "0 < angle < 90 deg")],
+    },
 ];
 
 impl SceneKind {
     /// Every scene, in the order of their numbers ([`Self::from_index`]).
-    pub const ALL: [Self; 5] =
-        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder];
+    pub const ALL: [Self; 6] =
+        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder, Self::Painleve];
 
     /// The catalogue's entry.
     #[must_use]
@@ -154,6 +167,7 @@ impl SceneKind {
             Self::Ladder => LadderParams::<f64>::NAMES,
             Self::ThreeFingers => ThreeFingersParams::<f64>::NAMES,
             Self::Cylinder => CylinderParams::<f64>::NAMES,
+            Self::Painleve => PainleveParams::<f64>::NAMES,
         }
     }
 
@@ -203,7 +217,9 @@ impl Flag {
     }
 }
 
-use SceneKind::{Cylinder as C, Incline as I, Ladder as L, MeterStick as M, ThreeFingers as F};
+use SceneKind::{
+    Cylinder as C, Incline as I, Ladder as L, MeterStick as M, Painleve as P, ThreeFingers as F,
+};
 
 /// Every scene flag, each once. Its order is the command line's and the page's, and decides which
 /// complaint comes first.
@@ -262,7 +278,7 @@ pub const FLAGS: &[Flag] = &[
         long: "mu-floor",
         unit: "",
         help: "Friction coefficient at the floor, static and kinetic (>= 0)",
-        fields: &[(L, "mu_floor")],
+        fields: &[(L, "mu_floor"), (P, "mu_floor")],
     },
     Flag {
         long: "mu-wall",
@@ -273,29 +289,35 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "angle",
         unit: "deg",
-        help: "Slope angle (incline, cylinder: 0 <= a < 90) or start angle from the floor (ladder, 0 < a < 90)",
-        fields: &[(I, "angle"), (L, "angle"), (C, "angle")],
+        help: "Slope angle (incline, cylinder: 0 <= a < 90) or start angle from the floor (ladder, painleve: 0 < a < 90)",
+        fields: &[(I, "angle"), (L, "angle"), (C, "angle"), (P, "angle")],
     },
     Flag {
         long: "mass",
         unit: "kg",
         help: "Mass of the body (> 0)",
-        fields: &[(M, "rod_mass"), (I, "mass"), (L, "mass"), (F, "rod_mass"), (C, "mass")],
+        fields: &[(M, "rod_mass"), (I, "mass"), (L, "mass"), (F, "rod_mass"), (C, "mass"), (P, "mass")],
     },
     Flag {
         long: "length",
         unit: "m",
         help: "Rod length (> 0)",
-        fields: &[(M, "rod_length"), (L, "length"), (F, "rod_length")],
+        fields: &[(M, "rod_length"), (L, "length"), (F, "rod_length"), (P, "length")],
     },
     Flag {
         long: "thickness",
         unit: "m",
         help: "Rod thickness (> 0)",
-        fields: &[(M, "rod_thickness"), (L, "thickness"), (F, "rod_thickness")],
+        fields: &[(M, "rod_thickness"), (L, "thickness"), (F, "rod_thickness"), (P, "thickness")],
     },
     Flag { long: "width", unit: "m", help: "Block width along the slope (> 0)", fields: &[(I, "width")] },
     Flag { long: "height", unit: "m", help: "Block height (> 0)", fields: &[(I, "height")] },
+    Flag {
+        long: "rod-speed",
+        unit: "m/s",
+        help: "The rod's speed at the start, its lower end sliding away from under it (painleve)",
+        fields: &[(P, "speed")],
+    },
     Flag { long: "radius", unit: "m", help: "Radius of the round body (> 0)", fields: &[(C, "radius")] },
     Flag {
         long: "inertia-factor",
@@ -307,19 +329,33 @@ pub const FLAGS: &[Flag] = &[
         long: "gravity",
         unit: "m/s^2",
         help: "Gravity (>= 0)",
-        fields: &[(M, "gravity"), (I, "gravity"), (L, "gravity"), (F, "gravity"), (C, "gravity")],
+        fields: &[
+            (M, "gravity"),
+            (I, "gravity"),
+            (L, "gravity"),
+            (F, "gravity"),
+            (C, "gravity"),
+            (P, "gravity"),
+        ],
     },
     Flag {
         long: "h",
         unit: "s",
         help: "Time step (> 0)",
-        fields: &[(M, "step"), (I, "step"), (L, "step"), (F, "step"), (C, "step")],
+        fields: &[(M, "step"), (I, "step"), (L, "step"), (F, "step"), (C, "step"), (P, "step")],
     },
     Flag {
         long: "duration",
         unit: "s",
         help: "Longest simulated time (> 0); a run still going then ends Unfinished (the meter stick's default grows with the fingers' travel time)",
-        fields: &[(M, "max_time"), (I, "max_time"), (L, "max_time"), (F, "max_time"), (C, "max_time")],
+        fields: &[
+            (M, "max_time"),
+            (I, "max_time"),
+            (L, "max_time"),
+            (F, "max_time"),
+            (C, "max_time"),
+            (P, "max_time"),
+        ],
     },
     Flag {
         long: "stick-speed",
@@ -331,6 +367,7 @@ pub const FLAGS: &[Flag] = &[
             (L, "stick_speed"),
             (F, "stick_speed"),
             (C, "stick_speed"),
+            (P, "stick_speed"),
         ],
     },
     Flag {
@@ -386,6 +423,8 @@ pub enum AnyParams {
     ThreeFingers(ThreeFingersParams<f64>),
     /// The round body on an incline.
     Cylinder(CylinderParams<f64>),
+    /// Painlevé's rod.
+    Painleve(PainleveParams<f64>),
 }
 
 impl AnyParams {
@@ -398,6 +437,7 @@ impl AnyParams {
             SceneKind::Ladder => Self::Ladder(LadderParams::default()),
             SceneKind::ThreeFingers => Self::ThreeFingers(ThreeFingersParams::default()),
             SceneKind::Cylinder => Self::Cylinder(CylinderParams::default()),
+            SceneKind::Painleve => Self::Painleve(PainleveParams::default()),
         }
     }
 
@@ -410,6 +450,7 @@ impl AnyParams {
             Self::Ladder(_) => SceneKind::Ladder,
             Self::ThreeFingers(_) => SceneKind::ThreeFingers,
             Self::Cylinder(_) => SceneKind::Cylinder,
+            Self::Painleve(_) => SceneKind::Painleve,
         }
     }
 
@@ -422,6 +463,7 @@ impl AnyParams {
             Self::Ladder(p) => p.get(field),
             Self::ThreeFingers(p) => p.get(field),
             Self::Cylinder(p) => p.get(field),
+            Self::Painleve(p) => p.get(field),
         }
     }
 
@@ -433,6 +475,7 @@ impl AnyParams {
             Self::Ladder(p) => p.set(field, value),
             Self::ThreeFingers(p) => p.set(field, value),
             Self::Cylinder(p) => p.set(field, value),
+            Self::Painleve(p) => p.set(field, value),
         }
     }
 
@@ -460,6 +503,10 @@ impl AnyParams {
                 p.cast::<T>().validate()
             }
             Self::Cylinder(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Painleve(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
@@ -752,7 +799,7 @@ mod tests {
         let r = Refusal::NotApplicable { kind: SceneKind::MeterStick, flag: flag_index("angle").unwrap() };
         assert_eq!(
             r.worded("--").to_string(),
-            "--angle does not apply to --scene meter-stick (it is a parameter of incline, ladder, cylinder)"
+            "--angle does not apply to --scene meter-stick (it is a parameter of incline, ladder, cylinder, painleve)"
         );
     }
 }

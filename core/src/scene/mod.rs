@@ -6,7 +6,8 @@
 //! * [`Incline`]: a block on an inclined plane, with its sliding acceleration;
 //! * [`Ladder`]: a rod against a wall, with the height at which its top leaves the wall;
 //! * [`ThreeFingers`]: a rod on three fingers (`core/examples/three_fingers.rs` with parameters);
-//! * [`Cylinder`]: a round body on an incline, rolling or sliding as the analytic law says.
+//! * [`Cylinder`]: a round body on an incline, rolling or sliding as the analytic law says;
+//! * [`Painleve`]: a rod whose sliding end jams on a rough floor (Painlevé's paradox).
 //!
 //! [`catalogue`] lists them for the drivers (names, flags, outcomes, measured quantities).
 //!
@@ -20,6 +21,7 @@ mod incline;
 mod ladder;
 mod meter_stick;
 mod outcome;
+mod painleve;
 mod scene_trait;
 mod three_fingers;
 
@@ -29,5 +31,6 @@ pub use incline::{Incline, InclineParams};
 pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
 pub use outcome::{Outcome, OutcomeKind};
+pub use painleve::{Jam, Painleve, PainleveParams};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};

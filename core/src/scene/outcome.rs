@@ -20,6 +20,9 @@ pub enum Outcome {
     Tipped,
     /// Cylinder: it rolled down the slope without slipping.
     Rolled,
+    /// Painlevé: the sliding end stopped within one step under an impulsive friction (a tangential
+    /// impact).
+    Jammed,
     /// The time limit passed with no other outcome.
     Unfinished,
     /// A step failed (the state is that before it).
@@ -44,6 +47,8 @@ pub enum OutcomeKind {
     Tipped,
     /// See [`Outcome::Rolled`].
     Rolled,
+    /// See [`Outcome::Jammed`].
+    Jammed,
     /// See [`Outcome::Unfinished`].
     Unfinished,
     /// See [`Outcome::Failed`].
@@ -52,13 +57,14 @@ pub enum OutcomeKind {
 
 impl OutcomeKind {
     /// Every outcome, in the order of their codes ([`Self::code`]).
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::Balanced,
         Self::Fell,
         Self::Held,
         Self::Slid,
         Self::Tipped,
         Self::Rolled,
+        Self::Jammed,
         Self::Unfinished,
         Self::Failed,
     ];
@@ -73,6 +79,7 @@ impl OutcomeKind {
             Self::Slid => "Slid",
             Self::Tipped => "Tipped",
             Self::Rolled => "Rolled",
+            Self::Jammed => "Jammed",
             Self::Unfinished => "Unfinished",
             Self::Failed => "Failed",
         }
@@ -114,6 +121,7 @@ impl Outcome {
             Self::Slid => OutcomeKind::Slid,
             Self::Tipped => OutcomeKind::Tipped,
             Self::Rolled => OutcomeKind::Rolled,
+            Self::Jammed => OutcomeKind::Jammed,
             Self::Unfinished => OutcomeKind::Unfinished,
             Self::Failed(_) => OutcomeKind::Failed,
         }

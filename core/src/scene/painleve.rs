@@ -134,8 +134,7 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
         };
         let settings = Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed };
         let model = Model { body: Body::rod(p.mass, p.length, p.thickness), contacts: [end], settings };
-        let layout =
-            const { Layout::<1, N>::new(if N == 4 { [Tangents::Both] } else { [Tangents::Plus] }) };
+        let layout = const { Layout::<1, N>::new(if N == 4 { [Tangents::Both] } else { [Tangents::Plus] }) };
         let floor = Support::fixed_line([T::zero(); 2], [T::zero(), T::one()]);
         let stepper = Stepper::new(model, layout, Layout::full(), p.start_state(), [floor])?;
         Ok(Self { params, stepper, floor, events: EventLog::new(), jam: None, outcome: None })
@@ -176,7 +175,11 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
         let c = report.contacts[0];
         let s = report.state;
         if before.is_sliding() && c.mode == ContactMode::Sticking {
-            self.jam = Some(Jam { time: report.time, normal_impulse: c.normal_impulse, friction_impulse: c.friction_impulse });
+            self.jam = Some(Jam {
+                time: report.time,
+                normal_impulse: c.normal_impulse,
+                friction_impulse: c.friction_impulse,
+            });
             self.outcome = Some(Outcome::Jammed);
         } else if s.theta <= T::zero() || s.y <= T::zero() {
             self.outcome = Some(Outcome::Fell);
@@ -220,8 +223,16 @@ mod tests {
                     let jam = jam.unwrap();
                     assert!(jam.time <= h * 1.5, "within one step: {}", jam.time);
                     let weight = p.mass * p.gravity * h;
-                    assert!((jam.normal_impulse - pn).abs() <= weight, "{deg} deg, h {h}: pn {} vs {pn}", jam.normal_impulse);
-                    assert!((jam.friction_impulse - pf).abs() <= weight, "{deg} deg, h {h}: pf {} vs {pf}", jam.friction_impulse);
+                    assert!(
+                        (jam.normal_impulse - pn).abs() <= weight,
+                        "{deg} deg, h {h}: pn {} vs {pn}",
+                        jam.normal_impulse
+                    );
+                    assert!(
+                        (jam.friction_impulse - pf).abs() <= weight,
+                        "{deg} deg, h {h}: pf {} vs {pf}",
+                        jam.friction_impulse
+                    );
                 }
             }
             let sliding = PainleveParams { mu_floor: 0.5 * mu_c, max_time: 0.05, ..base };
