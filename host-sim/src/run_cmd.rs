@@ -145,7 +145,7 @@ pub struct RunSummary {
 /// The parameters as a JSON map (core field names).
 #[must_use]
 pub fn parameters_json(spec: &SceneSpec) -> serde_json::Map<String, serde_json::Value> {
-    spec.fields().into_iter().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect()
+    spec.fields().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect()
 }
 
 /// Writes pretty JSON.

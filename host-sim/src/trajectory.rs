@@ -814,13 +814,14 @@ pub fn write_lines<I: IntoIterator<Item = String>>(
 /// contacts; two contacts: `...,support2_y,mode1,mode2,pn1,pn2,pf1,pf2,along1,along2`).
 #[must_use]
 pub fn csv_header(k: usize) -> String {
+    use std::fmt::Write as _;
     let mut h = String::from("t,x,y,theta,vx,vy,omega");
     for i in 1..=k {
-        h += &format!(",support{i}_x,support{i}_y");
+        let _ = write!(h, ",support{i}_x,support{i}_y");
     }
     for group in ["mode", "pn", "pf", "along"] {
         for i in 1..=k {
-            h += &format!(",{group}{i}");
+            let _ = write!(h, ",{group}{i}");
         }
     }
     h

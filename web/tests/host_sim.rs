@@ -84,7 +84,7 @@ fn parameters_outcome_and_checksum_match_host_sim_scene() {
         let (_, spec) = args.specs(None).unwrap().remove(0);
         session.create(*precision, *size).unwrap();
         let ours = session.spec().unwrap();
-        for (i, (name, value)) in spec.fields().into_iter().enumerate() {
+        for (i, (name, value)) in spec.fields().enumerate() {
             assert_eq!(ours.field(i).map(f64::to_bits), Some(value.to_bits()), "{kind:?} {name}");
         }
         let text = run_scene(&SceneCmd { scene: args }).unwrap();
