@@ -237,6 +237,7 @@ impl clap::Args for SceneArgs {
             .arg(
                 Arg::new("scene")
                     .long("scene")
+                    .value_name("SCENE")
                     .value_parser(scene_parser())
                     .help("The scene (docs/scenes.md) [default: meter-stick]"),
             )
@@ -252,7 +253,7 @@ impl clap::Args for SceneArgs {
                     .long("lcp-size")
                     .value_parser(clap::builder::EnumValueParser::<LcpSize>::new())
                     .default_value("6")
-                    .help("LCP size of the core: 6 (one friction direction per contact, checked; as the firmware) or 8 (the paper's form)"),
+                    .help("LCP size of the core: 6 (one friction direction per contact, checked; as the firmware) or 8 (the paper's form); a scene of one or three contacts runs its reduced (3, 9) or full (4, 12) layout"),
             );
         for flag in FLAGS {
             let value_name = if flag.unit.is_empty() { "X" } else { flag.unit };
