@@ -20,8 +20,8 @@ pub use meterstick_core::scene::catalogue::{FLAGS, Flag, MAX_STEPS, SceneKind, f
 use meterstick_core::scene::catalogue::{Refusal, Short};
 
 /// A scene with its parameters (SI units, angles in radians, f64 as given; cast to the
-/// implementation's precision when run): the catalogue's [`meterstick_core::scene::AnyParams`].
-pub type SceneSpec = meterstick_core::scene::AnyParams;
+/// implementation's precision when run): the catalogue's `AnyParams`, under the name `host-sim` gave it.
+pub use meterstick_core::scene::AnyParams as SceneSpec;
 
 /// What `host-sim` adds to a [`SceneSpec`]: validation in a [`Precision`] and the same scene for
 /// the independent reference.

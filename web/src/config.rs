@@ -60,8 +60,8 @@ impl LcpSize {
 }
 
 /// A scene with its parameters in the core's units (SI, radians), f64 as given: the catalogue's
-/// [`meterstick_core::scene::AnyParams`].
-pub type Spec = meterstick_core::scene::AnyParams;
+/// `AnyParams`, under the name the page's layer gave it.
+pub use meterstick_core::scene::AnyParams as Spec;
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.
 ///
