@@ -133,7 +133,12 @@ impl<T: Real> ContactFrame<T> {
     /// The frame of `feature` against `support` for a body in `pose` whose box has half extents
     /// `half` (`width/2`, `height/2`); `None` when the support does not fit the feature
     /// ([`Support::fits`]).
+    ///
+    /// Inlined into the stepper's frame update (every step, every contact): with a third arm the
+    /// compiler kept it out of line, 15 % of the host's step (`web/examples/bench.rs` under perf).
     #[must_use]
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // measured, as said above
     pub fn new(feature: &Feature<T>, support: &Support<T>, pose: &Pose<T>, half: [T; 2]) -> Option<Self> {
         match (feature, support) {
             (Feature::LowerFace, Support::Point { position, .. }) => {
@@ -194,7 +199,10 @@ impl<T: Real> ContactFrame<T> {
     /// A round body of `radius` about its centre of mass on the line through `o` with unit normal
     /// `n`: contact point `r = -radius n`, gap `(com - o) . n - radius`, `d = (n_y, -n_x)`, along
     /// `(com - o) . d`; always active. `r x n = 0` and `r x d = radius` exactly.
+    /// Out of line: the fingers' and corners' frames are on every step's path, and this arm must
+    /// not change how they are inlined.
     #[must_use]
+    #[inline(never)]
     pub fn round_on_line(radius: T, o: [T; 2], n: [T; 2], pose: &Pose<T>) -> Self {
         let rel = [pose.com[0] - o[0], pose.com[1] - o[1]];
         let d = [n[1], -n[0]];
