@@ -23,7 +23,7 @@ use serde::Serialize;
 
 use crate::plot;
 use crate::run_cmd::{progress, write_json};
-use crate::scenes::{FLAGS, Flag, Implementation, SceneArgs, SceneSpec, flag_error};
+use crate::scenes::{FLAGS, Flag, Implementation, SceneArgs, SceneSpec, SpecExt as _, flag_error};
 use crate::trajectory::{OutcomeClass, Record, run, write_lines};
 
 /// `host-sim map` options.

@@ -158,7 +158,11 @@ where
 }
 
 /// Series of one quantity of every run: solid for the first run, dashed for the others.
-fn per_run(runs: &[&Trajectory], name: &str, value: impl Fn(&Row) -> f64) -> Vec<Series> {
+fn per_run<const K: usize>(
+    runs: &[&Trajectory<K>],
+    name: &str,
+    value: impl Fn(&Row<K>) -> f64,
+) -> Vec<Series> {
     runs.iter()
         .enumerate()
         .map(|(k, run)| Series {
@@ -174,11 +178,12 @@ fn per_run(runs: &[&Trajectory], name: &str, value: impl Fn(&Row) -> f64) -> Vec
 ///
 /// # Errors
 /// I/O.
-pub fn positions(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
+pub fn positions<const K: usize>(path: &Path, title: &str, runs: &[&Trajectory<K>]) -> anyhow::Result<()> {
     let mut series = Vec::new();
-    if runs.first().is_some_and(|r| r.scene == SceneKind::MeterStick) {
-        series.extend(per_run(runs, "finger 1", |r| r.supports[0][0]));
-        series.extend(per_run(runs, "finger 2", |r| r.supports[1][0]));
+    if runs.first().is_some_and(|r| matches!(r.scene, SceneKind::MeterStick | SceneKind::ThreeFingers)) {
+        for i in 0..K {
+            series.extend(per_run(runs, &format!("finger {}", i + 1), |r| r.supports[i][0]));
+        }
         series.extend(per_run(runs, "centre of mass", |r| r.q[0]));
         return lines(path, title, ("t (s)", "x (m)"), &series, false, &SeriesLabelPosition::LowerRight);
     }
@@ -192,7 +197,7 @@ pub fn positions(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Resu
 ///
 /// # Errors
 /// I/O.
-pub fn motion(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
+pub fn motion<const K: usize>(path: &Path, title: &str, runs: &[&Trajectory<K>]) -> anyhow::Result<()> {
     let root = SVGBackend::new(path, (900, 760)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let (top, bottom) = root.split_vertically(380);
@@ -209,9 +214,11 @@ pub fn motion(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<
 ///
 /// # Errors
 /// I/O.
-pub fn relative(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Result<()> {
-    let mut series = per_run(runs, "finger 1 - COM", |r| r.contacts[0].along);
-    series.extend(per_run(runs, "finger 2 - COM", |r| r.contacts[1].along));
+pub fn relative<const K: usize>(path: &Path, title: &str, runs: &[&Trajectory<K>]) -> anyhow::Result<()> {
+    let mut series = Vec::new();
+    for i in 0..K {
+        series.extend(per_run(runs, &format!("finger {} - COM", i + 1), |r| r.contacts[i].along));
+    }
     lines(
         path,
         title,
@@ -227,8 +234,8 @@ pub fn relative(path: &Path, title: &str, runs: &[&Trajectory]) -> anyhow::Resul
 pub const fn outcome_color(class: crate::trajectory::OutcomeClass) -> RGBColor {
     use crate::trajectory::OutcomeClass as O;
     match class {
-        O::Balanced | O::Held => RGBColor(44, 160, 44),
-        O::Fell | O::Tipped => RGBColor(214, 39, 40),
+        O::Balanced | O::Held | O::Rolled => RGBColor(44, 160, 44),
+        O::Fell | O::Tipped | O::Jammed => RGBColor(214, 39, 40),
         O::Slid => RGBColor(255, 127, 14),
         O::Unfinished => RGBColor(200, 200, 200),
         O::Failed => RGBColor(0, 0, 0),

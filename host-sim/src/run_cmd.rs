@@ -20,9 +20,9 @@ use serde::Serialize;
 
 use crate::plot;
 use crate::progress::{Interrupted, interrupted, is_interrupted};
-use crate::scenes::{Implementation, SceneArgs, SceneKind, SceneSpec};
+use crate::scenes::{Implementation, SceneArgs, SceneKind, SceneSpec, SpecExt as _};
 use crate::trajectory::{
-    Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, max_deviation, run, switches,
+    Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, max_deviation, run_k, switches,
     write_csv, write_events_csv,
 };
 
@@ -88,7 +88,7 @@ pub struct ImplementationSummary {
 }
 
 impl ImplementationSummary {
-    fn of(t: &Trajectory, mu_ratio: Option<f64>, wall_s: f64) -> Self {
+    fn of<const K: usize>(t: &Trajectory<K>, mu_ratio: Option<f64>, wall_s: f64) -> Self {
         let sw = if t.scene == SceneKind::MeterStick { switches(t) } else { Vec::new() };
         let worst = mu_ratio.and_then(|m| sw.iter().map(|s| (s.ratio - m).abs()).reduce(f64::max));
         let steps = t.steps.max(1) as f64;
@@ -136,16 +136,16 @@ pub struct RunSummary {
     pub mu_k_over_mu_s: Option<f64>,
     /// The core's run.
     pub core: ImplementationSummary,
-    /// The reference's run.
-    pub reference: ImplementationSummary,
+    /// The reference's run (`None` for a scene the reference does not implement).
+    pub reference: Option<ImplementationSummary>,
     /// Core against reference.
-    pub comparison: Comparison,
+    pub comparison: Option<Comparison>,
 }
 
 /// The parameters as a JSON map (core field names).
 #[must_use]
 pub fn parameters_json(spec: &SceneSpec) -> serde_json::Map<String, serde_json::Value> {
-    spec.fields().into_iter().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect()
+    spec.fields().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect()
 }
 
 /// Writes pretty JSON.
@@ -184,7 +184,7 @@ pub fn check_recorded_steps(spec: &SceneSpec) -> anyhow::Result<()> {
 /// A run and who computes it.
 type Job = (usize, Implementation);
 /// A recorded run and its wall time (s).
-type Timed = (Trajectory, f64);
+type Timed<const K: usize> = (Trajectory<K>, f64);
 
 /// Runs every scene of `args` in the core and the reference, writes the files, and returns the
 /// terminal summary.
@@ -192,7 +192,9 @@ type Timed = (Trajectory, f64);
 /// # Errors
 /// Invalid parameters (before anything runs), or I/O.
 pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
-    let specs = args.scene.specs(Some(("speed", &PAPER_SPEEDS)))?;
+    // The paper's speeds are the meter stick's (three-fingers has a `--speed` too, and one run).
+    let paper = (args.scene.kind() == SceneKind::MeterStick).then_some(("speed", &PAPER_SPEEDS[..]));
+    let specs = args.scene.specs(paper)?;
     let duration_given = args.scene.given.iter().any(|(f, _)| f.long == "duration");
     for (_, spec) in &specs {
         check_recorded_steps(spec).map_err(|e| {
@@ -203,32 +205,42 @@ pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
             }
         })?;
     }
+    crate::with_contacts!(args.scene.kind(), K => run_all::<K>(args, &specs))
+}
+
+/// Runs the scenes (of `K` contacts each) and writes their files (the reference beside the core
+/// where the reference implements the scene).
+fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneSpec)]) -> anyhow::Result<String> {
     let core = args.scene.implementation();
+    let has_reference = specs.iter().all(|(_, s)| s.to_reference().is_some());
+    let per_run = if has_reference { 2 } else { 1 };
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
-    let bar = progress(2 * specs.len() as u64, "running scenes");
+    let bar = progress(per_run * specs.len() as u64, "running scenes");
     // Jobs: (run, implementation), the longest (the reference of the longest run) first.
-    let mut jobs: Vec<(usize, Implementation)> =
-        (0..specs.len()).flat_map(|k| [(k, Implementation::Reference), (k, core)]).collect();
+    let mut jobs: Vec<(usize, Implementation)> = (0..specs.len())
+        .flat_map(|k| [(k, Implementation::Reference), (k, core)])
+        .filter(|(_, i)| has_reference || *i != Implementation::Reference)
+        .collect();
     jobs.sort_by(|a, b| {
         let steps = |k: usize| specs[k].1.max_time() / specs[k].1.step();
         steps(b.0)
             .total_cmp(&steps(a.0))
             .then((b.1 == Implementation::Reference).cmp(&(a.1 == Implementation::Reference)))
     });
-    let done: Vec<(Job, anyhow::Result<Timed>)> = jobs
+    let done: Vec<(Job, anyhow::Result<Timed<K>>)> = jobs
         .par_iter()
         .map(|&(k, implementation)| {
             if interrupted() {
                 return ((k, implementation), Err(Interrupted.into()));
             }
             let start = Instant::now();
-            let t = run(&specs[k].1, implementation, Record::All);
+            let t = run_k::<K>(&specs[k].1, implementation, Record::All);
             bar.inc(1);
             ((k, implementation), t.map(|t| (t, start.elapsed().as_secs_f64())))
         })
         .collect();
     bar.finish_and_clear();
-    let mut slots: Vec<[Option<(Trajectory, f64)>; 2]> = (0..specs.len()).map(|_| [None, None]).collect();
+    let mut slots: Vec<[Option<Timed<K>>; 2]> = (0..specs.len()).map(|_| [None, None]).collect();
     // After Ctrl-C: the runs whose core and reference both finished are written, the others
     // dropped.
     let mut stopped = false;
@@ -241,7 +253,9 @@ pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
     }
     let mut summaries = Vec::new();
     for (k, [core, reference]) in slots.into_iter().enumerate() {
-        let (Some((core, core_s)), Some((reference, ref_s))) = (core, reference) else {
+        let (Some((core, core_s)), Some(reference)) =
+            (core, if has_reference { reference.map(Some) } else { Some(None) })
+        else {
             if stopped {
                 continue;
             }
@@ -250,32 +264,34 @@ pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
         let (name, spec) = &specs[k];
         let dir = args.out.join(name);
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
-        let mu_ratio = match spec {
-            SceneSpec::MeterStick(p) => Some(p.mu_kinetic / p.mu_static),
-            SceneSpec::Incline(p) => Some(p.mu_kinetic / p.mu_static),
-            SceneSpec::Ladder(_) => None,
-        };
-        let (dev_com, dev_angle) = max_deviation(&core, &reference);
+        // The scenes with a static and a kinetic coefficient (the ladder's are one each).
+        let mu_ratio = spec.get("mu_kinetic").zip(spec.get("mu_static")).map(|(k, s)| k / s);
+        let comparison = reference.as_ref().map(|(reference, _)| {
+            let (dev_com, dev_angle) = max_deviation(&core, reference);
+            Comparison {
+                same_outcome: core.outcome.class == reference.outcome.class,
+                max_com_deviation_m: dev_com,
+                max_angle_deviation_rad: dev_angle,
+                compared_steps: core.rows.len().min(reference.rows.len()).saturating_sub(1),
+            }
+        });
         let summary = RunSummary {
             name: name.clone(),
             scene: spec.kind(),
             parameters: parameters_json(spec),
             mu_k_over_mu_s: mu_ratio,
             core: ImplementationSummary::of(&core, mu_ratio, core_s),
-            reference: ImplementationSummary::of(&reference, mu_ratio, ref_s),
-            comparison: Comparison {
-                same_outcome: core.outcome.class == reference.outcome.class,
-                max_com_deviation_m: dev_com,
-                max_angle_deviation_rad: dev_angle,
-                compared_steps: core.rows.len().min(reference.rows.len()).saturating_sub(1),
-            },
+            reference: reference.as_ref().map(|(r, ref_s)| ImplementationSummary::of(r, mu_ratio, *ref_s)),
+            comparison,
         };
         write_csv(&core, &dir.join("core.csv"))?;
-        write_csv(&reference, &dir.join("reference.csv"))?;
         write_events_csv(&core, &dir.join("core-events.csv"))?;
-        write_events_csv(&reference, &dir.join("reference-events.csv"))?;
+        if let Some((reference, _)) = &reference {
+            write_csv(reference, &dir.join("reference.csv"))?;
+            write_events_csv(reference, &dir.join("reference-events.csv"))?;
+        }
         write_json(&dir.join("summary.json"), &summary)?;
-        plot_run(&dir, spec, &core, &reference)?;
+        plot_run(&dir, spec, &core, reference.as_ref().map(|(r, _)| r))?;
         summaries.push(summary);
     }
     write_json(&args.out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;
@@ -286,7 +302,12 @@ pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
 }
 
 /// The run's pictures, titled with the scene, the parameters that vary and both outcomes.
-fn plot_run(dir: &Path, spec: &SceneSpec, core: &Trajectory, reference: &Trajectory) -> anyhow::Result<()> {
+fn plot_run<const K: usize>(
+    dir: &Path,
+    spec: &SceneSpec,
+    core: &Trajectory<K>,
+    reference: Option<&Trajectory<K>>,
+) -> anyhow::Result<()> {
     let what = match spec {
         SceneSpec::MeterStick(p) => {
             format!("meter stick, v1 = {} m/s, v2 = {} m/s", p.finger1_velocity, p.finger2_velocity)
@@ -303,15 +324,21 @@ fn plot_run(dir: &Path, spec: &SceneSpec, core: &Trajectory, reference: &Traject
             p.mu_floor,
             p.mu_wall
         ),
+        other => other.kind().info().title.to_lowercase(),
     };
-    let title = format!(
-        "{what}: {} {} (solid), reference {} (dashed)",
-        core.implementation, core.outcome.class, reference.outcome.class
-    );
-    let runs = [core, reference];
+    let title = match reference {
+        Some(reference) => format!(
+            "{what}: {} {} (solid), reference {} (dashed)",
+            core.implementation, core.outcome.class, reference.outcome.class
+        ),
+        None => {
+            format!("{what}: {} {} (no reference for this scene)", core.implementation, core.outcome.class)
+        }
+    };
+    let runs: Vec<&Trajectory<K>> = std::iter::once(core).chain(reference).collect();
     plot::positions(&dir.join("positions.svg"), &title, &runs)?;
     plot::motion(&dir.join("motion.svg"), &title, &runs)?;
-    if spec.kind() == SceneKind::MeterStick {
+    if matches!(spec.kind(), SceneKind::MeterStick | SceneKind::ThreeFingers) {
         plot::relative(&dir.join("relative.svg"), &title, &runs)?;
     }
     Ok(())
@@ -339,7 +366,7 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
     let mut s = String::new();
     s += "run       impl                outcome     t_end(s)  measured                    eq21 ratios (min..max)  steps   piv/step  reduced check\n";
     for r in runs {
-        for t in [&r.core, &r.reference] {
+        for t in std::iter::once(&r.core).chain(&r.reference) {
             let ratios = if t.eq21_switches.is_empty() {
                 "-".to_string()
             } else {
@@ -368,15 +395,22 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
                 check
             );
         }
-        let c = &r.comparison;
-        let _ = writeln!(
-            s,
-            "{:<9} core vs reference: max |COM| deviation {:.3e} m, max |angle| deviation {:.3e} rad{}",
-            "",
-            c.max_com_deviation_m,
-            c.max_angle_deviation_rad,
-            if c.same_outcome { "" } else { "  OUTCOMES DIFFER" }
-        );
+        match &r.comparison {
+            Some(c) => {
+                let _ = writeln!(
+                    s,
+                    "{:<9} core vs reference: max |COM| deviation {:.3e} m, max |angle| deviation {:.3e} rad{}",
+                    "",
+                    c.max_com_deviation_m,
+                    c.max_angle_deviation_rad,
+                    if c.same_outcome { "" } else { "  OUTCOMES DIFFER" }
+                );
+            }
+            None => {
+                let _ =
+                    writeln!(s, "{:<9} no independent reference for scene {}: the core alone", "", r.scene);
+            }
+        }
         if let Some(warning) = r.core.counters.round_off_warning(r.core.steps) {
             let _ = writeln!(s, "{:<9} {warning}", "");
         }

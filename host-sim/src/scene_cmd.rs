@@ -25,39 +25,21 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
     let [(_, spec)] = specs.as_slice() else {
         anyhow::bail!("host-sim scene runs one scene: give each flag one value (host-sim run takes lists)");
     };
+    crate::with_contacts!(spec.kind(), K => summarise::<K>(cmd, spec))
+}
+
+/// Runs a scene of `K` contacts and summarises it.
+fn summarise<const K: usize>(cmd: &SceneCmd, spec: &SceneSpec) -> anyhow::Result<String> {
     let implementation = cmd.scene.implementation();
     let planned = (spec.max_time() / spec.step()).ceil() as u64;
     let bar = crate::progress::bar(planned, "steps");
-    let traj = run_watched(spec, implementation, Record::Nothing, &bar)?;
+    let traj = run_watched::<K>(spec, implementation, Record::Nothing, &bar)?;
     bar.finish_and_clear();
     let mut out = String::new();
-    let params: Vec<String> = spec.fields().iter().map(|(k, v)| format!("{k} = {v}")).collect();
+    let params: Vec<String> = spec.fields().map(|(k, v)| format!("{k} = {v}")).collect();
     let _ = writeln!(out, "scene {}: {}", spec.kind(), params.join(", "));
     let _ = writeln!(out, "{implementation}: outcome {} at t = {:.3} s", traj.outcome, traj.end_time);
-    let m = &traj.measured;
-    if let Some(meeting) = m.meeting {
-        let _ = writeln!(
-            out,
-            "fingers met at t = {:.3} s; centre of mass {:+.2} mm from their midpoint",
-            meeting.time_s,
-            1e3 * meeting.com_offset_m
-        );
-    }
-    if let Some(a) = m.acceleration_m_s2 {
-        let exact = if let SceneSpec::Incline(p) = spec {
-            format!(
-                " (g (sin a - mu_k cos a) = {:.6})",
-                p.gravity * (p.angle.sin() - p.mu_kinetic * p.angle.cos())
-            )
-        } else {
-            String::new()
-        };
-        let _ = writeln!(out, "acceleration down the slope {a:.6} m/s^2{exact}");
-    }
-    if let (Some(h), Some(r)) = (m.wall_release_height_m, m.wall_release_ratio) {
-        let _ =
-            writeln!(out, "top left the wall at height {h:.5} m = {r:.5} of its start (frictionless: 2/3)");
-    }
+    write_measured(&mut out, spec, &traj.measured);
     let c = &traj.counters;
     let _ = writeln!(
         out,
@@ -99,14 +81,14 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
             .find(|s| s.t.to_bits() == e.t.to_bits() && s.finger == e.contact + 1)
             .map(|s| format!("  x_stop/x_start = {:.4}", s.ratio))
             .unwrap_or_default();
+        let along: Vec<String> = e.along.iter().map(|a| format!("{a:+.4}")).collect();
         let _ = writeln!(
             out,
-            "  t = {:7.3} s  contact {} -> {:9}  along = {:+.4} / {:+.4} m{ratio}",
+            "  t = {:7.3} s  contact {} -> {:9}  along = {} m{ratio}",
             e.t,
             e.contact + 1,
             e.mode.name(),
-            e.along[0],
-            e.along[1]
+            along.join(" / ")
         );
     }
     if let Some(s) = stop
@@ -115,4 +97,51 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
         let _ = writeln!(out, "  t = {s:7.3} s  the fingers stop");
     }
     Ok(out)
+}
+
+/// The scene's measured quantities, each beside its analytic value where the scene has one.
+fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Measured) {
+    if let Some(meeting) = m.meeting {
+        let _ = writeln!(
+            out,
+            "fingers met at t = {:.3} s; centre of mass {:+.2} mm from their midpoint",
+            meeting.time_s,
+            1e3 * meeting.com_offset_m
+        );
+    }
+    if let Some(a) = m.acceleration_m_s2 {
+        let exact = if let SceneSpec::Incline(p) = spec {
+            format!(
+                " (g (sin a - mu_k cos a) = {:.6})",
+                p.gravity * (p.angle.sin() - p.mu_kinetic * p.angle.cos())
+            )
+        } else if let SceneSpec::Cylinder(p) = spec {
+            let law =
+                if p.rolls() { "rolling: g sin a / (1 + k)" } else { "sliding: g (sin a - mu_k cos a)" };
+            format!(" ({law} = {:.6})", p.analytic_acceleration())
+        } else {
+            String::new()
+        };
+        let _ = writeln!(out, "acceleration down the slope {a:.6} m/s^2{exact}");
+    }
+    if let Some(j) = m.jam {
+        let exact = if let SceneSpec::Painleve(p) = spec {
+            let (pf, pn) = p.jam_impulses();
+            format!(
+                " (tangential impact m V / 4 (1 + 3 c^2, 3 s c) = {pf:.6}, {pn:.6}; jams above mu = {:.4})",
+                p.critical_mu()
+            )
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            out,
+            "the end jammed at t = {:.6} s: friction impulse {:.6} N s, normal impulse {:.6} N s{exact}",
+            j.time_s, j.friction_impulse_ns, j.normal_impulse_ns
+        );
+    }
+    if let (Some(h), Some(r)) = (m.wall_release_height_m, m.wall_release_ratio) {
+        let _ =
+            writeln!(out, "top left the wall at height {h:.5} m = {r:.5} of its start (frictionless: 2/3)");
+    }
 }

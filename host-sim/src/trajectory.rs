@@ -12,15 +12,16 @@ use anyhow::Context as _;
 use indicatif::ProgressBar;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, Scene};
+use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
 use serde::Serialize;
 
 use crate::lcp_io::Precision;
 use crate::progress;
 use crate::reference;
-use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec};
+use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec, SpecExt as _};
 
-/// Every scene `host-sim` runs has two contacts.
+/// The meter stick's contacts as the rig reports them (`host-sim/src/monitor.rs`). A scene's rows
+/// are generic over its contacts `K` (the catalogue's `SceneInfo::contacts`); `K = 2` is the default.
 pub const CONTACTS: usize = 2;
 
 /// One contact after a step.
@@ -36,9 +37,9 @@ pub struct ContactRow {
     pub along: f64,
 }
 
-/// The state after one step.
+/// The state after one step, with `K` contacts.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Row {
+pub struct Row<const K: usize = 2> {
     /// Time at the end of the step (s).
     pub t: f64,
     /// Centre of mass `x`, `y` (m) and angle `theta` (rad).
@@ -47,14 +48,14 @@ pub struct Row {
     pub v: [f64; 3],
     /// Where each support touches: a finger tip, or the foot of the body's contact point on a
     /// support line (m).
-    pub supports: [[f64; 2]; CONTACTS],
+    pub supports: [[f64; 2]; K],
     /// Each contact.
-    pub contacts: [ContactRow; CONTACTS],
+    pub contacts: [ContactRow; K],
 }
 
-/// A change of one contact's mode.
+/// A change of one contact's mode (of `K`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Event {
+pub struct Event<const K: usize = 2> {
     /// Time at the end of the step after which the new mode was found (s).
     pub t: f64,
     /// The contact, 0-based.
@@ -62,51 +63,13 @@ pub struct Event {
     /// The new mode.
     pub mode: ContactMode,
     /// Every contact's coordinate along it at that step's start (m).
-    pub along: [f64; CONTACTS],
+    pub along: [f64; K],
     /// Where the supports touch at the end of that step (m).
-    pub supports: [[f64; 2]; CONTACTS],
+    pub supports: [[f64; 2]; K],
 }
 
-/// How a run ended, by class.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-pub enum OutcomeClass {
-    /// See [`Outcome::Balanced`].
-    Balanced,
-    /// See [`Outcome::Fell`].
-    Fell,
-    /// See [`Outcome::Held`].
-    Held,
-    /// See [`Outcome::Slid`].
-    Slid,
-    /// See [`Outcome::Tipped`].
-    Tipped,
-    /// The time limit passed.
-    Unfinished,
-    /// The implementation could not continue (a solver error, a non-finite state).
-    Failed,
-}
-
-impl OutcomeClass {
-    /// The class's name, as in CSV files.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Balanced => "Balanced",
-            Self::Fell => "Fell",
-            Self::Held => "Held",
-            Self::Slid => "Slid",
-            Self::Tipped => "Tipped",
-            Self::Unfinished => "Unfinished",
-            Self::Failed => "Failed",
-        }
-    }
-}
-
-impl fmt::Display for OutcomeClass {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
+/// How a run ended, by class: the core's one list of outcomes.
+pub use meterstick_core::scene::OutcomeKind as OutcomeClass;
 
 /// How a run ended: its class, and for a failure why.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -137,14 +100,8 @@ impl fmt::Display for RunOutcome {
 impl From<Outcome> for RunOutcome {
     fn from(o: Outcome) -> Self {
         match o {
-            Outcome::Balanced => Self::of(OutcomeClass::Balanced),
-            Outcome::Fell => Self::of(OutcomeClass::Fell),
-            Outcome::Held => Self::of(OutcomeClass::Held),
-            Outcome::Slid => Self::of(OutcomeClass::Slid),
-            Outcome::Tipped => Self::of(OutcomeClass::Tipped),
             Outcome::Failed(e) => Self { class: OutcomeClass::Failed, detail: Some(e.to_string()) },
-            // `Outcome` is non-exhaustive: anything new is reported as unfinished.
-            _ => Self::of(OutcomeClass::Unfinished),
+            other => Self::of(other.kind()),
         }
     }
 }
@@ -169,6 +126,20 @@ pub struct Measured {
     pub wall_release_height_m: Option<f64>,
     /// Ladder: that height over the top's initial height (2/3 when frictionless).
     pub wall_release_ratio: Option<f64>,
+    /// Painlevé: the jam step's impulses (absent from `summary.json` for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub jam: Option<JamImpulses>,
+}
+
+/// The Painlevé rod's jam: the step on which the sliding end stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct JamImpulses {
+    /// The end of that step (s).
+    pub time_s: f64,
+    /// Its normal impulse (N s).
+    pub normal_impulse_ns: f64,
+    /// Its friction impulse along `+x` (N s).
+    pub friction_impulse_ns: f64,
 }
 
 /// Solver counters of a run (zero where an implementation has no such thing).
@@ -263,9 +234,9 @@ impl From<&RunStats> for SolverCounters {
     }
 }
 
-/// One run, recorded.
+/// One run of a scene with `K` contacts, recorded.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Trajectory {
+pub struct Trajectory<const K: usize = 2> {
     /// Who computed it.
     pub implementation: Implementation,
     /// Which scene.
@@ -275,11 +246,11 @@ pub struct Trajectory {
     /// Simulated time at the end (s).
     pub end_time: f64,
     /// The recorded rows ([`Record`]).
-    pub rows: Vec<Row>,
+    pub rows: Vec<Row<K>>,
     /// The contacts' modes before the first step.
-    pub initial_modes: [ContactMode; CONTACTS],
+    pub initial_modes: [ContactMode; K],
     /// Switch events in order.
-    pub events: Vec<Event>,
+    pub events: Vec<Event<K>>,
     /// How it ended.
     pub outcome: RunOutcome,
     /// The scene's measured quantities.
@@ -305,14 +276,14 @@ pub enum Record {
 
 /// Keeps the rows a [`Record`] asks for.
 #[derive(Debug)]
-pub struct Recorder {
+pub struct Recorder<const K: usize = 2> {
     mode: Record,
-    rows: Vec<Row>,
-    last: Option<Row>,
+    rows: Vec<Row<K>>,
+    last: Option<Row<K>>,
     next: u64,
 }
 
-impl Recorder {
+impl<const K: usize> Recorder<K> {
     /// An empty recorder.
     #[must_use]
     pub fn new(mode: Record) -> Self {
@@ -320,7 +291,7 @@ impl Recorder {
     }
 
     /// Offers the row of the initial state or of the next step.
-    pub fn push(&mut self, row: Row) {
+    pub fn push(&mut self, row: Row<K>) {
         match self.mode {
             Record::All => self.rows.push(row),
             Record::Nothing => {}
@@ -346,16 +317,50 @@ impl Recorder {
 
     /// The rows kept.
     #[must_use]
-    pub fn finish(self) -> Vec<Row> {
+    pub fn finish(self) -> Vec<Row<K>> {
         self.rows
     }
 }
 
-/// Runs `spec` in `implementation` to its outcome and records it.
+/// Runs `spec` (a scene with two contacts) in `implementation` to its outcome and records it.
 ///
 /// # Errors
-/// Invalid parameters.
+/// Invalid parameters, or a scene without two contacts ([`run_k`]).
 pub fn run(spec: &SceneSpec, implementation: Implementation, record: Record) -> anyhow::Result<Trajectory> {
+    run_inner(spec, implementation, record, None)
+}
+
+/// Calls `$body` with the const `$k` set to the number of contacts of scene `$kind` (1, 2 or 3):
+/// the commands that record a scene are generic over its contacts.
+#[macro_export]
+macro_rules! with_contacts {
+    ($kind:expr, $k:ident => $body:expr) => {
+        match $kind.info().contacts {
+            1 => {
+                const $k: usize = 1;
+                $body
+            }
+            3 => {
+                const $k: usize = 3;
+                $body
+            }
+            _ => {
+                const $k: usize = 2;
+                $body
+            }
+        }
+    };
+}
+
+/// Runs `spec`, a scene with `K` contacts, in `implementation` to its outcome and records it.
+///
+/// # Errors
+/// Invalid parameters, or a scene with other than `K` contacts.
+pub fn run_k<const K: usize>(
+    spec: &SceneSpec,
+    implementation: Implementation,
+    record: Record,
+) -> anyhow::Result<Trajectory<K>> {
     run_inner(spec, implementation, record, None)
 }
 
@@ -363,30 +368,32 @@ pub fn run(spec: &SceneSpec, implementation: Implementation, record: Record) -> 
 ///
 /// # Errors
 /// As [`run`].
-pub fn run_watched(
+pub fn run_watched<const K: usize>(
     spec: &SceneSpec,
     implementation: Implementation,
     record: Record,
     bar: &ProgressBar,
-) -> anyhow::Result<Trajectory> {
+) -> anyhow::Result<Trajectory<K>> {
     run_inner(spec, implementation, record, Some(bar))
 }
 
 /// Every run checks for Ctrl-C ([`crate::progress`]) before it starts and every
 /// [`progress::CHECK_EVERY_STEPS`] steps; an interrupted run is dropped.
-fn run_inner(
+fn run_inner<const K: usize>(
     spec: &SceneSpec,
     implementation: Implementation,
     record: Record,
     bar: Option<&ProgressBar>,
-) -> anyhow::Result<Trajectory> {
+) -> anyhow::Result<Trajectory<K>> {
+    let contacts = spec.kind().info().contacts;
+    anyhow::ensure!(contacts == K, "scene {} has {contacts} contacts, not {K}", spec.kind());
     progress::check()?;
     let t = match implementation {
         Implementation::Reference => run_reference(spec, record),
-        Implementation::Core(Precision::F32, LcpSize::Reduced) => core_run::<f32, 6>(spec, record, bar),
-        Implementation::Core(Precision::F32, LcpSize::Full) => core_run::<f32, 8>(spec, record, bar),
-        Implementation::Core(Precision::F64, LcpSize::Reduced) => core_run::<f64, 6>(spec, record, bar),
-        Implementation::Core(Precision::F64, LcpSize::Full) => core_run::<f64, 8>(spec, record, bar),
+        Implementation::Core(Precision::F32, LcpSize::Reduced) => core_run::<f32, 6, K>(spec, record, bar),
+        Implementation::Core(Precision::F32, LcpSize::Full) => core_run::<f32, 8, K>(spec, record, bar),
+        Implementation::Core(Precision::F64, LcpSize::Reduced) => core_run::<f64, 6, K>(spec, record, bar),
+        Implementation::Core(Precision::F64, LcpSize::Full) => core_run::<f64, 8, K>(spec, record, bar),
     }?;
     progress::check()?;
     Ok(t)
@@ -401,22 +408,34 @@ fn invalid(e: meterstick_core::ParamError) -> anyhow::Error {
 /// # Errors
 /// Invalid parameters.
 pub fn run_core<T: Real, const N: usize>(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory> {
-    let t = core_run::<T, N>(spec, record, None)?;
+    let t = run_inner_core::<T, N, 2>(spec, record)?;
     progress::check()?;
     Ok(t)
 }
 
-fn core_run<T: Real, const N: usize>(
+fn run_inner_core<T: Real, const N: usize, const K: usize>(
+    spec: &SceneSpec,
+    record: Record,
+) -> anyhow::Result<Trajectory<K>> {
+    let contacts = spec.kind().info().contacts;
+    anyhow::ensure!(contacts == K, "scene {} has {contacts} contacts, not {K}", spec.kind());
+    core_run::<T, N, K>(spec, record, None)
+}
+
+/// The core's run of `spec` (its contacts are `K`: checked by the callers). `N` is the LCP size of
+/// a two-contact scene (6 reduced, 8 full); other scenes run their own reduced or full layout
+/// (three fingers 9 or 12, the cylinder 3 or 4).
+fn core_run<T: Real, const N: usize, const K: usize>(
     spec: &SceneSpec,
     record: Record,
     bar: Option<&ProgressBar>,
-) -> anyhow::Result<Trajectory> {
+) -> anyhow::Result<Trajectory<K>> {
     let implementation =
         Implementation::Core(if T::NAME == "f32" { Precision::F32 } else { Precision::F64 }, size_of(N));
     Ok(match *spec {
         SceneSpec::MeterStick(p) => {
             let mut s = MeterStick::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive(&mut s, implementation, SceneKind::MeterStick, record, bar);
+            let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::MeterStick, record, bar);
             t.measured.meeting =
                 s.meeting().map(|m| Meeting { time_s: m.time.as_f64(), com_offset_m: m.com_offset.as_f64() });
             t.counters.reduced_check_fired_before_meeting = s.reduced_check_fired_before_meeting();
@@ -424,16 +443,54 @@ fn core_run<T: Real, const N: usize>(
         }
         SceneSpec::Incline(p) => {
             let mut s = Incline::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive(&mut s, implementation, SceneKind::Incline, record, bar);
+            let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Incline, record, bar);
             t.measured.acceleration_m_s2 = s.acceleration().map(Real::as_f64);
             t
         }
         SceneSpec::Ladder(p) => {
             let mut s = Ladder::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive(&mut s, implementation, SceneKind::Ladder, record, bar);
+            let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Ladder, record, bar);
             let height = s.wall_release_height().map(Real::as_f64);
             t.measured.wall_release_height_m = height;
             t.measured.wall_release_ratio = height.map(|h| h / s.start_top_height().as_f64());
+            t
+        }
+        SceneSpec::ThreeFingers(p) => {
+            let kind = SceneKind::ThreeFingers;
+            if N == 6 {
+                let mut s = ThreeFingers::<T, 9, 0>::new(p.cast()).map_err(invalid)?;
+                drive::<T, _, 3, K>(&mut s, implementation, kind, record, bar)
+            } else {
+                let mut s = ThreeFingers::<T, 12, 0>::new(p.cast()).map_err(invalid)?;
+                drive::<T, _, 3, K>(&mut s, implementation, kind, record, bar)
+            }
+        }
+        SceneSpec::Cylinder(p) => {
+            let kind = SceneKind::Cylinder;
+            let (mut t, a) = if N == 6 {
+                let mut s = Cylinder::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
+                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.acceleration())
+            } else {
+                let mut s = Cylinder::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
+                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.acceleration())
+            };
+            t.measured.acceleration_m_s2 = a.map(Real::as_f64);
+            t
+        }
+        SceneSpec::Painleve(p) => {
+            let kind = SceneKind::Painleve;
+            let (mut t, jam) = if N == 6 {
+                let mut s = Painleve::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
+                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.jam())
+            } else {
+                let mut s = Painleve::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
+                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.jam())
+            };
+            t.measured.jam = jam.map(|j| JamImpulses {
+                time_s: j.time.as_f64(),
+                normal_impulse_ns: j.normal_impulse.as_f64(),
+                friction_impulse_ns: j.friction_impulse.as_f64(),
+            });
             t
         }
     })
@@ -445,9 +502,9 @@ fn size_of(n: usize) -> LcpSize {
 
 /// Where each support touches the body: the contact point `com + r` moved back by the gap along
 /// the normal (a finger's tip; the foot of a corner on a line).
-fn touch_points<T: Real, S: Scene<T, CONTACTS>>(scene: &S) -> [[f64; 2]; CONTACTS] {
+fn touch_points<T: Real, S: Scene<T, KS>, const KS: usize, const K: usize>(scene: &S) -> [[f64; 2]; K] {
     let s = scene.state();
-    let mut out = [[0.0; 2]; CONTACTS];
+    let mut out = [[0.0; 2]; K];
     for (o, f) in out.iter_mut().zip(scene.frames()) {
         let (r, n, gap) = (f.r.map(Real::as_f64), f.normal().map(Real::as_f64), f.gap.as_f64());
         *o = [s.x.as_f64() + r[0] - gap * n[0], s.y.as_f64() + r[1] - gap * n[1]];
@@ -455,15 +512,18 @@ fn touch_points<T: Real, S: Scene<T, CONTACTS>>(scene: &S) -> [[f64; 2]; CONTACT
     out
 }
 
-/// Steps `scene` to its outcome, recording rows and events.
-fn drive<T: Real, S: Scene<T, CONTACTS>>(
+/// Steps `scene` (`KS` contacts) to its outcome, recording rows and events with `K` contacts
+/// (`K = KS`, checked before the run starts; the rows are written once, in place).
+fn drive<T: Real, S: Scene<T, KS>, const KS: usize, const K: usize>(
     scene: &mut S,
     implementation: Implementation,
     kind: SceneKind,
     record: Record,
     bar: Option<&ProgressBar>,
-) -> Trajectory {
-    let initial_modes = scene.modes();
+) -> Trajectory<K> {
+    let modes = scene.modes();
+    let initial_modes: [ContactMode; K] =
+        core::array::from_fn(|i| modes.get(i).copied().unwrap_or(ContactMode::Separated));
     let mut rows = Recorder::new(record);
     let s = *scene.state();
     let contact0 =
@@ -473,7 +533,7 @@ fn drive<T: Real, S: Scene<T, CONTACTS>>(
         q: [s.x, s.y, s.theta].map(Real::as_f64),
         v: s.velocity().map(Real::as_f64),
         supports: touch_points(scene),
-        contacts: [contact0; CONTACTS],
+        contacts: [contact0; K],
     };
     for (c, m) in first.contacts.iter_mut().zip(initial_modes) {
         c.mode = m;
@@ -494,7 +554,7 @@ fn drive<T: Real, S: Scene<T, CONTACTS>>(
         }
         checksum.add(&r.state);
         let supports = touch_points(scene);
-        let row = row_of(&r, supports);
+        let row = row_of::<T, KS, K>(&r, supports);
         for (i, mode) in r.switches() {
             events.push(Event { t: row.t, contact: i, mode, along: row.contacts.map(|c| c.along), supports });
         }
@@ -517,18 +577,31 @@ fn drive<T: Real, S: Scene<T, CONTACTS>>(
     }
 }
 
-fn row_of<T: Real>(r: &StepReport<T, CONTACTS>, supports: [[f64; 2]; CONTACTS]) -> Row {
+fn row_of<T: Real, const KS: usize, const K: usize>(
+    r: &StepReport<T, KS>,
+    supports: [[f64; 2]; K],
+) -> Row<K> {
     let s = &r.state;
     Row {
         t: r.time.as_f64(),
         q: [s.x, s.y, s.theta].map(Real::as_f64),
         v: s.velocity().map(Real::as_f64),
         supports,
-        contacts: r.contacts.map(|c| ContactRow {
-            mode: c.mode,
-            normal_impulse: c.normal_impulse.as_f64(),
-            friction_impulse: c.friction_impulse.as_f64(),
-            along: c.along.as_f64(),
+        contacts: core::array::from_fn(|i| {
+            r.contacts.get(i).map_or(
+                ContactRow {
+                    mode: ContactMode::Separated,
+                    normal_impulse: 0.0,
+                    friction_impulse: 0.0,
+                    along: 0.0,
+                },
+                |c| ContactRow {
+                    mode: c.mode,
+                    normal_impulse: c.normal_impulse.as_f64(),
+                    friction_impulse: c.friction_impulse.as_f64(),
+                    along: c.along.as_f64(),
+                },
+            )
         }),
     }
 }
@@ -543,15 +616,18 @@ fn mode_of(m: reference::Mode) -> ContactMode {
     }
 }
 
-fn pair<T: Copy + Default>(v: &[T]) -> [T; CONTACTS] {
-    [v.first().copied().unwrap_or_default(), v.get(1).copied().unwrap_or_default()]
+fn pair<T: Copy + Default, const K: usize>(v: &[T]) -> [T; K] {
+    core::array::from_fn(|i| v.get(i).copied().unwrap_or_default())
 }
 
 /// Runs the independent reference and records it as a [`Trajectory`].
 ///
 /// # Errors
 /// Invalid parameters (the reference's own checks).
-pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory> {
+pub fn run_reference<const K: usize>(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory<K>> {
+    let Some(reference_spec) = spec.to_reference() else {
+        anyhow::bail!("scene {} has no independent reference", spec.kind());
+    };
     let sample = match record {
         Record::All => reference::Sample::All,
         Record::Nothing => reference::Sample::None,
@@ -565,8 +641,7 @@ pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Traject
             }
         }
     };
-    let run =
-        reference::run(&spec.to_reference(), sample).map_err(|e| anyhow::anyhow!("invalid scene: {e}"))?;
+    let run = reference::run(&reference_spec, sample).map_err(|e| anyhow::anyhow!("invalid scene: {e}"))?;
     progress::check()?;
     let mut rows = Recorder::new(record);
     for r in &run.rows {
@@ -588,7 +663,7 @@ pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Traject
             q: r.q,
             v: r.v,
             supports: pair(&r.supports),
-            contacts: [contacts.first().copied().unwrap_or(c0), contacts.get(1).copied().unwrap_or(c0)],
+            contacts: core::array::from_fn(|i| contacts.get(i).copied().unwrap_or(c0)),
         });
     }
     let events = run
@@ -599,7 +674,7 @@ pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Traject
             contact: e.contact,
             mode: mode_of(e.mode),
             along: pair(&e.along),
-            supports: [[f64::NAN; 2]; CONTACTS],
+            supports: [[f64::NAN; 2]; K],
         })
         .collect();
     let outcome = match &run.outcome {
@@ -623,10 +698,9 @@ pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Traject
         steps: run.steps,
         end_time: run.end_time,
         rows: rows.finish(),
-        initial_modes: [
-            run.initial_modes.first().map_or(ContactMode::Separated, |m| mode_of(*m)),
-            run.initial_modes.get(1).map_or(ContactMode::Separated, |m| mode_of(*m)),
-        ],
+        initial_modes: core::array::from_fn(|i| {
+            run.initial_modes.get(i).map_or(ContactMode::Separated, |m| mode_of(*m))
+        }),
         events,
         outcome,
         measured: Measured {
@@ -634,6 +708,7 @@ pub fn run_reference(spec: &SceneSpec, record: Record) -> anyhow::Result<Traject
             acceleration_m_s2: run.acceleration,
             wall_release_height_m: run.wall_release_height,
             wall_release_ratio: run.wall_release_height.map(|h| h / start_top),
+            jam: None,
         },
         counters: SolverCounters { ambiguous_steps: run.ambiguous_steps, ..SolverCounters::default() },
         checksum: None,
@@ -662,7 +737,10 @@ pub struct Switch {
 /// such a change had "ratio" 1.30 and dominated the summary's worst error). The stop is an event of
 /// its own kind in the events CSV.
 #[must_use]
-pub fn switches(run: &Trajectory) -> Vec<Switch> {
+pub fn switches<const K: usize>(run: &Trajectory<K>) -> Vec<Switch> {
+    if K != 2 {
+        return Vec::new(); // eq. 21 is a relation between two fingers
+    }
     let stop = run.measured.meeting.map(|m| m.time_s);
     let mut mode = run.initial_modes;
     let mut before = mode;
@@ -674,7 +752,7 @@ pub fn switches(run: &Trajectory) -> Vec<Switch> {
             before = mode;
         }
         let i = e.contact;
-        if i >= CONTACTS {
+        if i >= K {
             continue;
         }
         let before_stop = stop.is_none_or(|s| e.t < s);
@@ -699,7 +777,7 @@ pub fn switches(run: &Trajectory) -> Vec<Switch> {
 /// Largest `|a - b|` of the centre of mass (m) and of the angle (rad) over the steps both runs
 /// have (same `h`: row `k` is time `k h` in both).
 #[must_use]
-pub fn max_deviation(a: &Trajectory, b: &Trajectory) -> (f64, f64) {
+pub fn max_deviation<const K: usize>(a: &Trajectory<K>, b: &Trajectory<K>) -> (f64, f64) {
     let mut com: f64 = 0.0;
     let mut angle: f64 = 0.0;
     for (ra, rb) in a.rows.iter().zip(&b.rows) {
@@ -731,61 +809,90 @@ pub fn write_lines<I: IntoIterator<Item = String>>(
     write().with_context(|| format!("writing {}", path.display()))
 }
 
-/// The trajectory CSV's header.
-pub const CSV_HEADER: &str = "t,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,\
-                              mode1,mode2,pn1,pn2,pf1,pf2,along1,along2";
+/// The trajectory CSV's header for `k` contacts: `t,x,y,theta,vx,vy,omega`, then each contact's
+/// `support<i>_x,support<i>_y`, `mode<i>`, `pn<i>`, `pf<i>`, `along<i>` (each group over the
+/// contacts; two contacts: `...,support2_y,mode1,mode2,pn1,pn2,pf1,pf2,along1,along2`).
+#[must_use]
+pub fn csv_header(k: usize) -> String {
+    use std::fmt::Write as _;
+    let mut h = String::from("t,x,y,theta,vx,vy,omega");
+    for i in 1..=k {
+        let _ = write!(h, ",support{i}_x,support{i}_y");
+    }
+    for group in ["mode", "pn", "pf", "along"] {
+        for i in 1..=k {
+            let _ = write!(h, ",{group}{i}");
+        }
+    }
+    h
+}
 
-/// Writes the trajectory CSV ([`CSV_HEADER`]; SI units, impulses in N s).
+/// Writes the trajectory CSV ([`csv_header`]; SI units, impulses in N s).
 ///
 /// # Errors
 /// I/O, naming the file.
-pub fn write_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
+pub fn write_csv<const K: usize>(traj: &Trajectory<K>, path: &Path) -> anyhow::Result<()> {
+    use std::fmt::Write as _;
     let lines = traj.rows.iter().map(|r| {
-        let [c1, c2] = &r.contacts;
-        format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            r.t,
-            r.q[0],
-            r.q[1],
-            r.q[2],
-            r.v[0],
-            r.v[1],
-            r.v[2],
-            r.supports[0][0],
-            r.supports[0][1],
-            r.supports[1][0],
-            r.supports[1][1],
-            c1.mode.name(),
-            c2.mode.name(),
-            c1.normal_impulse,
-            c2.normal_impulse,
-            c1.friction_impulse,
-            c2.friction_impulse,
-            c1.along,
-            c2.along
-        )
+        let mut line = format!("{},{},{},{},{},{},{}", r.t, r.q[0], r.q[1], r.q[2], r.v[0], r.v[1], r.v[2]);
+        for s in &r.supports {
+            let _ = write!(line, ",{},{}", s[0], s[1]);
+        }
+        for c in &r.contacts {
+            let _ = write!(line, ",{}", c.mode.name());
+        }
+        for c in &r.contacts {
+            let _ = write!(line, ",{}", c.normal_impulse);
+        }
+        for c in &r.contacts {
+            let _ = write!(line, ",{}", c.friction_impulse);
+        }
+        for c in &r.contacts {
+            let _ = write!(line, ",{}", c.along);
+        }
+        line
     });
-    write_lines(path, CSV_HEADER, lines)
+    write_lines(path, &csv_header(K), lines)
 }
 
-/// Writes the events CSV: `t,kind,contact,mode,along1,along2`, one row per mode switch
-/// (`kind` `switch`, contact 1 or 2) and, for the meter stick, one for the fingers' stop (`kind`
+/// Writes the events CSV: `t,kind,contact,mode,along1,...,along<K>`, one row per mode switch
+/// (`kind` `switch`, contact 1 to K) and, for the meter stick, one for the fingers' stop (`kind`
 /// `stop`, contact and mode empty), in time order.
 ///
 /// # Errors
 /// I/O, naming the file.
-pub fn write_events_csv(traj: &Trajectory, path: &Path) -> anyhow::Result<()> {
+pub fn write_events_csv<const K: usize>(traj: &Trajectory<K>, path: &Path) -> anyhow::Result<()> {
     let mut lines: Vec<(f64, String)> = traj
         .events
         .iter()
         .map(|e| {
-            (e.t, format!("{},switch,{},{},{},{}", e.t, e.contact + 1, e.mode.name(), e.along[0], e.along[1]))
+            let along: Vec<String> = e.along.iter().map(f64::to_string).collect();
+            (e.t, format!("{},switch,{},{},{}", e.t, e.contact + 1, e.mode.name(), along.join(",")))
         })
         .collect();
     if let Some(m) = traj.measured.meeting {
         // After the switches of the stopping step: they were found on it.
         let at = lines.partition_point(|(t, _)| *t <= m.time_s);
-        lines.insert(at, (m.time_s, format!("{},stop,,,,", m.time_s)));
+        lines.insert(at, (m.time_s, format!("{},stop,,{}", m.time_s, ",".repeat(K))));
     }
-    write_lines(path, "t,kind,contact,mode,along1,along2", lines.into_iter().map(|(_, l)| l))
+    let header: Vec<String> = (1..=K).map(|i| format!("along{i}")).collect();
+    write_lines(path, &format!("t,kind,contact,mode,{}", header.join(",")), lines.into_iter().map(|(_, l)| l))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::csv_header;
+
+    /// Two contacts give the columns `core.csv` always had (README, "The main job").
+    #[test]
+    fn the_header_of_two_contacts_is_the_old_one() {
+        assert_eq!(
+            csv_header(2),
+            "t,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,\
+             mode1,mode2,pn1,pn2,pf1,pf2,along1,along2"
+        );
+        assert!(csv_header(3).ends_with(
+            "support3_x,support3_y,mode1,mode2,mode3,pn1,pn2,pn3,pf1,pf2,pf3,along1,along2,along3"
+        ));
+    }
 }

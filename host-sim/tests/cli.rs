@@ -120,7 +120,7 @@ fn run_writes_every_output_file() {
         assert_eq!(s["parameters"]["step"], serde_json::json!(1e-3));
         for (name, steps_key) in [("core.csv", "core"), ("reference.csv", "reference")] {
             let (header, rows) = read_csv(&dir.join(name));
-            assert_eq!(header.join(","), meterstick_host_sim::trajectory::CSV_HEADER);
+            assert_eq!(header.join(","), meterstick_host_sim::trajectory::csv_header(2));
             assert_eq!(rows.len() as u64, s[steps_key]["steps"].as_u64().unwrap() + 1, "{name}");
             for r in &rows {
                 for (k, cell) in r.iter().enumerate() {
@@ -184,6 +184,118 @@ fn run_takes_every_scene() {
         assert!(out.join(scene).join("motion.svg").exists());
         std::fs::remove_dir_all(&out).unwrap();
     }
+}
+
+/// A scene of three contacts (`core/examples/three_fingers.rs` in the catalogue) runs in `run` and
+/// `scene`: its CSV has a column group per finger, and without an independent reference for it
+/// the core runs alone (no `reference.csv`, `reference` null in summary.json).
+#[test]
+fn run_and_scene_take_a_three_contact_scene() {
+    let out = temp_dir("three-fingers");
+    let (code, stdout, err) = host_sim(&[
+        "run",
+        "--scene",
+        "three-fingers",
+        "--x3",
+        "0.3",
+        "--precision",
+        "f64",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("no independent reference for scene three-fingers"), "{stdout}");
+    let dir = out.join("three-fingers");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["scene"], "three-fingers");
+    assert_eq!(s["core"]["outcome"], "Held", "{s}");
+    assert!(s["reference"].is_null() && s["comparison"].is_null(), "{s}");
+    assert_eq!(s["parameters"]["finger3_x"], serde_json::json!(0.3));
+    let (header, rows) = read_csv(&dir.join("core.csv"));
+    assert_eq!(header.join(","), meterstick_host_sim::trajectory::csv_header(3));
+    assert!(header.contains(&"support3_x".to_string()) && header.contains(&"pn3".to_string()));
+    assert_eq!(rows.len() as u64, s["core"]["steps"].as_u64().unwrap() + 1);
+    // Finger 3 stays where it was put; finger 1 ends the finger width short of finger 2.
+    let last = rows.last().unwrap();
+    let col = |name: &str| num(&last[header.iter().position(|h| h == name).unwrap()]);
+    assert!((col("support3_x") - 0.3).abs() < 1e-9, "{last:?}");
+    assert!((col("support2_x") - col("support1_x") - 0.01).abs() < 1e-9, "{last:?}");
+    assert!(!dir.join("reference.csv").exists());
+    assert!(dir.join("core-events.csv").exists() && dir.join("positions.svg").exists());
+    std::fs::remove_dir_all(&out).unwrap();
+    let (code, stdout, err) =
+        host_sim(&["scene", "--scene", "three-fingers", "--precision", "f64", "--lcp-size", "8"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("outcome Held at t = ") && stdout.contains("checksum "), "{stdout}");
+    // A flag of a two-contact scene is refused by name.
+    let (code, _, err) = host_sim(&["scene", "--scene", "three-fingers", "--y1", "0.1"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--y1 does not apply to --scene three-fingers (it is a parameter of meter-stick)"),
+        "{err}"
+    );
+}
+
+/// The cylinder (one contact) through `scene` and `run`: the outcome and the acceleration the
+/// analytic law gives (`docs/scenes.md`, "cylinder"), either side of the critical angle.
+#[test]
+fn the_cylinder_rolls_or_slides_as_the_law_says() {
+    for (angle, outcome) in [("25", "Rolled"), ("40", "Slid")] {
+        let args = [
+            "scene",
+            "--scene",
+            "cylinder",
+            "--angle",
+            angle,
+            "--mu-s",
+            "0.2",
+            "--mu-k",
+            "0.15",
+            "--precision",
+            "f64",
+        ];
+        let (code, stdout, err) = host_sim(&args);
+        assert_eq!(code, 0, "{err}");
+        assert!(stdout.contains(&format!("outcome {outcome} at t = ")), "{stdout}");
+        let line = stdout.lines().find(|l| l.starts_with("acceleration down the slope")).unwrap();
+        let numbers: Vec<f64> = line.split([' ', '(', ')']).filter_map(|w| w.parse().ok()).collect();
+        // The measured value first, the law's last.
+        let (measured, law) = (numbers[0], numbers[numbers.len() - 1]);
+        assert!(numbers.len() >= 2 && (measured / law - 1.0).abs() < 1e-6, "{line}");
+    }
+    let out = temp_dir("cylinder");
+    let (code, _, err) = host_sim(&["run", "--scene", "cylinder", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let (header, _) = read_csv(&out.join("cylinder").join("core.csv"));
+    assert_eq!(header.join(","), meterstick_host_sim::trajectory::csv_header(1));
+    std::fs::remove_dir_all(&out).unwrap();
+    let (code, _, err) = host_sim(&["scene", "--scene", "cylinder", "--radius", "-1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--radius -1 m: must be greater than 0"), "{err}");
+}
+
+/// Painlevé's rod jams on its first step with the tangential impact's impulses (`docs/scenes.md`,
+/// "painleve"), and `summary.json` carries them.
+#[test]
+fn the_painleve_rod_jams() {
+    let (code, stdout, err) =
+        host_sim(&["scene", "--scene", "painleve", "--precision", "f64", "--h", "1e-5"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("outcome Jammed at t = 0.000"), "{stdout}");
+    assert!(stdout.contains("the end jammed at t = 0.000010 s"), "{stdout}");
+    let out = temp_dir("painleve");
+    let (code, _, err) =
+        host_sim(&["run", "--scene", "painleve", "--angle", "45", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("painleve").join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(s["core"]["outcome"], "Jammed", "{s}");
+    // 45 degrees, m = 1, V = 1: normal impulse 3 m V s c / 4 = 0.375 N s, within m g h.
+    let pn = s["core"]["measured"]["jam"]["normal_impulse_ns"].as_f64().unwrap();
+    assert!((pn - 0.375).abs() < 9.81e-3, "{s}");
+    std::fs::remove_dir_all(&out).unwrap();
 }
 
 #[test]

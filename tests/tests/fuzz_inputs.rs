@@ -24,7 +24,7 @@ use std::time::{Duration, Instant};
 
 use meterstick_host_sim::cli::{self, Cmd};
 use meterstick_host_sim::lcp_io::{self, LcpData, MAX_N, Precision};
-use meterstick_host_sim::scenes::{MAX_STEPS, SceneArgs};
+use meterstick_host_sim::scenes::{MAX_STEPS, SceneArgs, SpecExt as _};
 use meterstick_host_sim::{map, monitor, run_cmd};
 use meterstick_tests::corpus_dir;
 use proptest::prelude::*;

@@ -119,6 +119,7 @@ fn stress_run<const N: usize>(spec: &SceneSpec, dy: f64) -> Option<(Run, Run)> {
         }),
         SceneSpec::Incline(p) => both(&|| Incline::<f32, N, 0>::new(p.cast()).ok()),
         SceneSpec::Ladder(p) => both(&|| Ladder::<f32, N, 0>::new(p.cast()).ok()),
+        _ => None, // the stress grid's scenes are the three above (`host-sim/src/stress/cases.rs`)
     }
 }
 

@@ -15,7 +15,6 @@
 use core::fmt::Write as _;
 
 use crate::config::{LcpSize, Precision};
-use crate::flags::SceneKind;
 use crate::session::{CreateError, Session, TEXT_BYTES, TRACE_ROWS, describe, outcome_text};
 use crate::sim::{ROW, outcome_code};
 use crate::text::Text;
@@ -142,7 +141,7 @@ pub extern "C" fn ms_describe() -> u32 {
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_configure(scene: u32) -> i32 {
-    let Some(kind) = SceneKind::from_index(scene) else { return -1 };
+    let Some(kind) = crate::session::page_scene(scene) else { return -1 };
     store::with(|s, _, _| s.session.configure(kind));
     0
 }
@@ -175,7 +174,7 @@ pub extern "C" fn ms_create(bits: u32, n: u32) -> i32 {
         Err(e) => {
             s.error_flag = match e {
                 CreateError::Config(c) => c.flag().and_then(|i| i32::try_from(i).ok()).unwrap_or(-1),
-                CreateError::Core(_) => -1,
+                CreateError::Core(_) | CreateError::NotOnThePage(_) => -1,
             };
             set_text(s, text, |t| write!(t, "{e}"));
             1

@@ -22,6 +22,8 @@ pub enum CreateError {
     Config(ConfigError),
     /// The parameters passed validation but the core still refused them.
     Core(meterstick_core::ParamError),
+    /// The scene has other than two contacts: the page's rows and drawing have two.
+    NotOnThePage(SceneKind),
 }
 
 /// A configuration being edited, the parameters it resolved to and the run made from them.
@@ -71,6 +73,9 @@ impl Session {
     pub fn create(&mut self, precision: Precision, size: LcpSize) -> Result<(), CreateError> {
         self.sim = None;
         self.spec = None;
+        if !on_the_page(self.config.kind) {
+            return Err(CreateError::NotOnThePage(self.config.kind));
+        }
         let spec = self.config.resolve(precision).map_err(CreateError::Config)?;
         self.spec = Some(spec);
         self.sim = Some(Sim::new(&spec, precision, size).map_err(CreateError::Core)?);
@@ -100,7 +105,28 @@ impl core::fmt::Display for CreateError {
         match self {
             Self::Config(e) => write!(f, "{e}"),
             Self::Core(e) => write!(f, "{e}"),
+            Self::NotOnThePage(kind) => write!(
+                f,
+                "scene {kind} has {} contacts; the page runs two-contact scenes (host-sim scene --scene {kind} runs it)",
+                kind.info().contacts
+            ),
         }
+    }
+}
+
+/// `true` for a scene the page runs: two contacts (its rows, [`crate::sim::ROW`], and its drawing).
+#[must_use]
+pub const fn on_the_page(kind: SceneKind) -> bool {
+    kind.info().contacts == 2
+}
+
+/// The scene with number `i` among those the page runs ([`on_the_page`]; they come first in the
+/// catalogue, so the number is the catalogue's).
+#[must_use]
+pub const fn page_scene(i: u32) -> Option<SceneKind> {
+    match SceneKind::from_index(i) {
+        Some(kind) if on_the_page(kind) => Some(kind),
+        _ => None,
     }
 }
 
@@ -114,9 +140,11 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     out.write_str("{\"version\":")?;
     json_str(out, crate::VERSION)?;
     out.write_str(",\"scenes\":[")?;
-    for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
+    for (i, kind) in SceneKind::ALL.into_iter().filter(|k| on_the_page(*k)).enumerate() {
         out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
         json_str(out, kind.name())?;
+        out.write_str(",\"title\":")?;
+        json_str(out, kind.info().title)?;
         out.write_str(",\"fields\":[")?;
         let spec = Spec::defaults(kind);
         for (j, name) in kind.field_names().iter().enumerate() {
@@ -139,7 +167,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         out.write_str(",\"help\":")?;
         json_str(out, flag.help)?;
         out.write_str(",\"fields\":{")?;
-        for (j, (kind, field)) in flag.fields.iter().enumerate() {
+        for (j, (kind, field)) in flag.fields.iter().filter(|(k, _)| on_the_page(*k)).enumerate() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_str(out, kind.name())?;
             out.write_char(':')?;

@@ -7,7 +7,7 @@
 use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, Scene};
+use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, OutcomeKind, Scene};
 
 use crate::config::{LcpSize, Precision, Spec};
 
@@ -42,8 +42,8 @@ pub const ROW: usize = 19;
 /// The modes by code ([`mode_code`]), as `core.csv` spells them.
 pub const MODES: [&str; 4] = ["separated", "sticking", "sliding+", "sliding-"];
 
-/// The outcomes by code ([`outcome_code`]).
-pub const OUTCOMES: [&str; 7] = ["Balanced", "Fell", "Held", "Slid", "Tipped", "Unfinished", "Failed"];
+/// The outcomes by code ([`outcome_code`]): the core's one list ([`OutcomeKind`]).
+pub const OUTCOMES: [&str; OutcomeKind::ALL.len()] = OutcomeKind::names();
 
 /// A mode's code: 0 separated, 1 sticking, 2 sliding+, 3 sliding- ([`MODES`]).
 #[must_use]
@@ -56,19 +56,10 @@ pub const fn mode_code(m: ContactMode) -> u8 {
     }
 }
 
-/// An outcome's code, the index of its name in [`OUTCOMES`] (an outcome this crate does not know,
-/// `Outcome` being non-exhaustive, counts as unfinished, as in `host-sim`).
+/// An outcome's code, the index of its name in [`OUTCOMES`].
 #[must_use]
 pub const fn outcome_code(o: Outcome) -> u8 {
-    match o {
-        Outcome::Balanced => 0,
-        Outcome::Fell => 1,
-        Outcome::Held => 2,
-        Outcome::Slid => 3,
-        Outcome::Tipped => 4,
-        Outcome::Failed(_) => 6,
-        _ => 5,
-    }
+    o.kind().code()
 }
 
 /// The scene in its precision and LCP size (`E = 0`: the page finds switch events in the rows).
@@ -166,6 +157,9 @@ impl Sim {
             (Spec::Ladder(p), F32, Fu) => AnyScene::LadderF32F(Ladder::new(p.cast())?),
             (Spec::Ladder(p), F64, Re) => AnyScene::LadderF64R(Ladder::new(p)?),
             (Spec::Ladder(p), F64, Fu) => AnyScene::LadderF64F(Ladder::new(p)?),
+            // The page draws and traces two-contact scenes ([`crate::session::Session::create`]
+            // refuses the others before this).
+            _ => return Err(ParamError::SupportMismatch(2)),
         };
         let mut start = [0.0; ROW];
         each!(&scene, s => start_row(s, &mut start));

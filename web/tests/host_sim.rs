@@ -1,11 +1,11 @@
-//! The page's layer against the command line it mirrors: the same flag table as `host-sim`, the
-//! same refusals (without the `--`), the same resolved parameters and the same trajectory
+//! The page's layer against the command line it mirrors (both generated from the core's catalogue,
+//! `core/src/scene/catalogue.rs`): the same refusals (without the `--`), the same resolved parameters and the same trajectory
 //! checksum and outcome as `host-sim scene` (on the host; the browser test checks the wasm build).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use meterstick_host_sim::lcp_io::Precision as HostPrecision;
 use meterstick_host_sim::scene_cmd::{SceneCmd, run_scene};
-use meterstick_host_sim::scenes::{self as host, LcpSize as HostSize, SceneArgs};
+use meterstick_host_sim::scenes::{LcpSize as HostSize, SceneArgs};
 use meterstick_web::config::{Config, LcpSize, Precision};
 use meterstick_web::flags::{FLAGS, SceneKind, flag_index};
 use meterstick_web::session::Session;
@@ -13,14 +13,10 @@ use meterstick_web::session::Session;
 /// Flags and their values, in their units.
 type Given = &'static [(&'static str, f64)];
 
-fn host_kind(kind: SceneKind) -> host::SceneKind {
-    *host::SceneKind::ALL.iter().find(|k| k.name() == kind.name()).unwrap()
-}
-
 /// The same configuration for both: `host-sim scene` options and the page's.
 fn both(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpSize) -> (SceneArgs, Session) {
     let mut args = SceneArgs {
-        scene: Some(host_kind(kind)),
+        scene: Some(kind),
         precision: if precision == Precision::F64 { HostPrecision::F64 } else { HostPrecision::F32 },
         lcp_size: if size == LcpSize::Full { HostSize::Full } else { HostSize::Reduced },
         ..SceneArgs::default()
@@ -28,24 +24,10 @@ fn both(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpS
     let mut session = Session::new();
     session.configure(kind);
     for (long, v) in given {
-        args.given.push((host::FLAGS.iter().find(|f| f.long == *long).unwrap(), vec![*v]));
+        args.given.push((&FLAGS[flag_index(long).unwrap()], vec![*v]));
         assert!(session.give(flag_index(long).unwrap(), *v));
     }
     (args, session)
-}
-
-#[test]
-fn the_flag_tables_are_the_same() {
-    assert_eq!(FLAGS.len(), host::FLAGS.len());
-    for (ours, theirs) in FLAGS.iter().zip(host::FLAGS) {
-        assert_eq!((ours.long, ours.unit, ours.help), (theirs.long, theirs.unit, theirs.help));
-        let fields: Vec<(&str, &str)> = ours.fields.iter().map(|(k, f)| (k.name(), *f)).collect();
-        let host_fields: Vec<(&str, &str)> = theirs.fields.iter().map(|(k, f)| (k.name(), *f)).collect();
-        assert_eq!(fields, host_fields, "--{}", ours.long);
-    }
-    for kind in SceneKind::ALL {
-        assert_eq!(kind.field_names(), host_kind(kind).field_names());
-    }
 }
 
 #[test]
@@ -102,7 +84,7 @@ fn parameters_outcome_and_checksum_match_host_sim_scene() {
         let (_, spec) = args.specs(None).unwrap().remove(0);
         session.create(*precision, *size).unwrap();
         let ours = session.spec().unwrap();
-        for (i, (name, value)) in spec.fields().into_iter().enumerate() {
+        for (i, (name, value)) in spec.fields().enumerate() {
             assert_eq!(ours.field(i).map(f64::to_bits), Some(value.to_bits()), "{kind:?} {name}");
         }
         let text = run_scene(&SceneCmd { scene: args }).unwrap();

@@ -17,6 +17,9 @@ pub enum Feature<T> {
     /// A point fixed in the body (body frame, from the centre of mass) on a [`Support::Line`]: a
     /// corner of a block, an end of a ladder.
     Point([T; 2]),
+    /// A round body of this radius (m) about its centre of mass on a [`Support::Line`]: a
+    /// cylinder, a wheel. It touches the line at `com - radius n`, whatever its angle.
+    Round(T),
 }
 
 /// A support whose motion the scene prescribes: where it is at the end of a step and how fast it
@@ -78,7 +81,8 @@ impl<T: Real> Support<T> {
     pub const fn fits(&self, feature: &Feature<T>) -> bool {
         matches!(
             (feature, self),
-            (Feature::LowerFace, Self::Point { .. }) | (Feature::Point(_), Self::Line { .. })
+            (Feature::LowerFace, Self::Point { .. })
+                | (Feature::Point(_) | Feature::Round(_), Self::Line { .. })
         )
     }
 }
@@ -129,7 +133,12 @@ impl<T: Real> ContactFrame<T> {
     /// The frame of `feature` against `support` for a body in `pose` whose box has half extents
     /// `half` (`width/2`, `height/2`); `None` when the support does not fit the feature
     /// ([`Support::fits`]).
+    ///
+    /// Inlined into the stepper's frame update (every step, every contact): with a third arm the
+    /// compiler kept it out of line, 15 % of the host's step (`web/examples/bench.rs` under perf).
     #[must_use]
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // measured, as said above
     pub fn new(feature: &Feature<T>, support: &Support<T>, pose: &Pose<T>, half: [T; 2]) -> Option<Self> {
         match (feature, support) {
             (Feature::LowerFace, Support::Point { position, .. }) => {
@@ -137,6 +146,9 @@ impl<T: Real> ContactFrame<T> {
             }
             (Feature::Point(p), Support::Line { position, normal, .. }) => {
                 Some(Self::point_on_line(*p, *position, *normal, pose))
+            }
+            (Feature::Round(radius), Support::Line { position, normal, .. }) => {
+                Some(Self::round_on_line(*radius, *position, *normal, pose))
             }
             _ => None,
         }
@@ -181,6 +193,26 @@ impl<T: Real> ContactFrame<T> {
             wn: [n[0], n[1], cross(r, n)],
             wt: [d[0], d[1], cross(r, d)],
             r,
+        }
+    }
+
+    /// A round body of `radius` about its centre of mass on the line through `o` with unit normal
+    /// `n`: contact point `r = -radius n`, gap `(com - o) . n - radius`, `d = (n_y, -n_x)`, along
+    /// `(com - o) . d`; always active. `r x n = 0` and `r x d = radius` exactly.
+    /// Out of line: the fingers' and corners' frames are on every step's path, and this arm must
+    /// not change how they are inlined.
+    #[must_use]
+    #[inline(never)]
+    pub fn round_on_line(radius: T, o: [T; 2], n: [T; 2], pose: &Pose<T>) -> Self {
+        let rel = [pose.com[0] - o[0], pose.com[1] - o[1]];
+        let d = [n[1], -n[0]];
+        Self {
+            along: rel[0] * d[0] + rel[1] * d[1],
+            gap: rel[0] * n[0] + rel[1] * n[1] - radius,
+            active: true,
+            wn: [n[0], n[1], T::zero()],
+            wt: [d[0], d[1], radius],
+            r: [-radius * n[0], -radius * n[1]],
         }
     }
 

@@ -862,6 +862,9 @@ fn validate<T: Real, const K: usize>(
         {
             return Err(ParamError::NonFinite("feature"));
         }
+        if let super::Feature::Round(radius) = c.feature {
+            check_fields(&[("radius", radius, Check::Positive)])?;
+        }
         let sup = &supports[i];
         if !sup.fits(&c.feature) {
             return Err(ParamError::SupportMismatch(i as u8));

@@ -4,20 +4,33 @@
 //! * [`MeterStick`]: the paper's rod on two fingers (6x6 or 8x8), with the meeting point and the
 //!   eq. 21 switches;
 //! * [`Incline`]: a block on an inclined plane, with its sliding acceleration;
-//! * [`Ladder`]: a rod against a wall, with the height at which its top leaves the wall.
+//! * [`Ladder`]: a rod against a wall, with the height at which its top leaves the wall;
+//! * [`ThreeFingers`]: a rod on three fingers (`core/examples/three_fingers.rs` with parameters);
+//! * [`Cylinder`]: a round body on an incline, rolling or sliding as the analytic law says;
+//! * [`Painleve`]: a rod whose sliding end jams on a rough floor (Painlevé's paradox).
+//!
+//! [`catalogue`] lists them for the drivers (names, flags, outcomes, measured quantities).
 //!
 //! All implement [`Scene`] and run to an [`Outcome`]; parameters are validated first ([`crate::ParamError`]); a step that
 //! fails ends the run with [`Outcome::Failed`] and the state before it. A scene of your own is about
 //! a hundred lines on [`crate::planar::Stepper`]: see `core/examples/three_fingers.rs`.
 
+pub mod catalogue;
+mod cylinder;
 mod incline;
 mod ladder;
 mod meter_stick;
 mod outcome;
+mod painleve;
 mod scene_trait;
+mod three_fingers;
 
+pub use catalogue::{AnyParams, SceneKind};
+pub use cylinder::{Cylinder, CylinderParams};
 pub use incline::{Incline, InclineParams};
 pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
-pub use outcome::Outcome;
+pub use outcome::{Outcome, OutcomeKind};
+pub use painleve::{Jam, Painleve, PainleveParams};
 pub use scene_trait::Scene;
+pub use three_fingers::{ThreeFingers, ThreeFingersParams};

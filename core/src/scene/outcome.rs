@@ -18,25 +18,119 @@ pub enum Outcome {
     Slid,
     /// Incline: the block tipped over its lower edge.
     Tipped,
+    /// Cylinder: it rolled down the slope without slipping.
+    Rolled,
+    /// Painlevé: the sliding end stopped within one step under an impulsive friction (a tangential
+    /// impact).
+    Jammed,
     /// The time limit passed with no other outcome.
     Unfinished,
     /// A step failed (the state is that before it).
     Failed(StepError),
 }
 
-impl Outcome {
+/// An [`Outcome`] without its cause: the one list of outcomes every driver names and numbers
+/// (`host-sim`'s summaries and CSV files, the page's codes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub enum OutcomeKind {
+    /// See [`Outcome::Balanced`].
+    Balanced,
+    /// See [`Outcome::Fell`].
+    Fell,
+    /// See [`Outcome::Held`].
+    Held,
+    /// See [`Outcome::Slid`].
+    Slid,
+    /// See [`Outcome::Tipped`].
+    Tipped,
+    /// See [`Outcome::Rolled`].
+    Rolled,
+    /// See [`Outcome::Jammed`].
+    Jammed,
+    /// See [`Outcome::Unfinished`].
+    Unfinished,
+    /// See [`Outcome::Failed`].
+    Failed,
+}
+
+impl OutcomeKind {
+    /// Every outcome, in the order of their codes ([`Self::code`]).
+    pub const ALL: [Self; 9] = [
+        Self::Balanced,
+        Self::Fell,
+        Self::Held,
+        Self::Slid,
+        Self::Tipped,
+        Self::Rolled,
+        Self::Jammed,
+        Self::Unfinished,
+        Self::Failed,
+    ];
+
     /// A short stable name: `Balanced`, `Fell`, `Held`, `Slid`, `Tipped`, `Unfinished`, `Failed`.
     #[must_use]
-    pub const fn name(&self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Self::Balanced => "Balanced",
             Self::Fell => "Fell",
             Self::Held => "Held",
             Self::Slid => "Slid",
             Self::Tipped => "Tipped",
+            Self::Rolled => "Rolled",
+            Self::Jammed => "Jammed",
             Self::Unfinished => "Unfinished",
-            Self::Failed(_) => "Failed",
+            Self::Failed => "Failed",
         }
+    }
+
+    /// Its code, the index in [`Self::ALL`].
+    #[must_use]
+    pub const fn code(self) -> u8 {
+        self as u8
+    }
+
+    /// The names in the order of their codes.
+    #[must_use]
+    pub const fn names() -> [&'static str; Self::ALL.len()] {
+        let mut out = [""; Self::ALL.len()];
+        let mut i = 0;
+        while i < Self::ALL.len() {
+            out[i] = Self::ALL[i].name();
+            i += 1;
+        }
+        out
+    }
+}
+
+impl core::fmt::Display for OutcomeKind {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Outcome {
+    /// The outcome without its cause.
+    #[must_use]
+    pub const fn kind(&self) -> OutcomeKind {
+        match self {
+            Self::Balanced => OutcomeKind::Balanced,
+            Self::Fell => OutcomeKind::Fell,
+            Self::Held => OutcomeKind::Held,
+            Self::Slid => OutcomeKind::Slid,
+            Self::Tipped => OutcomeKind::Tipped,
+            Self::Rolled => OutcomeKind::Rolled,
+            Self::Jammed => OutcomeKind::Jammed,
+            Self::Unfinished => OutcomeKind::Unfinished,
+            Self::Failed(_) => OutcomeKind::Failed,
+        }
+    }
+
+    /// A short stable name: `Balanced`, `Fell`, `Held`, `Slid`, `Tipped`, `Unfinished`, `Failed`.
+    #[must_use]
+    pub const fn name(&self) -> &'static str {
+        self.kind().name()
     }
 
     /// `true` for an outcome of the physics (not a failed step).

@@ -88,6 +88,8 @@ fn body_of(spec: &SceneSpec) -> (f64, f64, f64, f64) {
             (p.mass, p.mass * (p.width * p.width + p.height * p.height) / 12.0, p.width.max(p.height), 0.0)
         }
         SceneSpec::Ladder(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, 0.0),
+        // Scenes outside the stress grid (`stress/cases.rs`).
+        _ => (f64::NAN, f64::NAN, f64::NAN, f64::NAN),
     }
 }
 
@@ -155,6 +157,8 @@ pub fn penetrations(spec: &SceneSpec, s: &[f64; 6], supports: [[f64; 2]; 2]) -> 
             let (bottom, top) = (world([-p.length / 2.0, 0.0]), world([p.length / 2.0, 0.0]));
             [(-bottom[1]).max(0.0), top[0].max(0.0)]
         }
+        // Scenes outside the stress grid (`stress/cases.rs`).
+        _ => [f64::NAN; 2],
     }
 }
 
@@ -192,6 +196,13 @@ pub fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
         SceneSpec::Ladder(p) => match Ladder::<T, N, 0>::new(p.cast()) {
             Ok(mut s) => measure_scene::<T, N, _>(&mut s, case, stride),
             Err(e) => failed(e),
+        },
+        _ => Metrics {
+            outcome: Some(RunOutcome {
+                class: OutcomeClass::Failed,
+                detail: Some("not a scene of the stress grid (stress/cases.rs)".into()),
+            }),
+            ..Metrics::default()
         },
     }
 }

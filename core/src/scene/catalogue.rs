@@ -1,0 +1,805 @@
+//! The scene catalogue: every scene the drivers offer, written once. `host-sim`'s command line
+//! (`host-sim/src/scenes.rs`: its clap arguments and `--help`) and the browser page (`web/src/`:
+//! its controls and URL contract, through `ms_describe`) are generated from it, and both word a
+//! refusal with [`Worded`], so a page URL `?scene=meter-stick&speed=0.1&x1=-0.35` and
+//! `host-sim scene --speed 0.1 --x1 -0.35` describe the same run and are refused alike.
+//!
+//! * [`SceneKind`] and [`SCENES`]: each scene's name, title, number of contacts, the outcomes it
+//!   can end in ([`OutcomeKind`], the one list of outcomes) and what its summary measures;
+//! * [`FLAGS`]: each parameter flag once (name, unit, help), with the core field it sets in each
+//!   scene it applies to; defaults are read from the core's `Default`, the checks are the core's
+//!   `validate` ([`SceneInfo::ranges`] words a range the core checks beyond a sign);
+//! * [`AnyParams`]: any scene's parameters (f64, core units), get/set by field name, validation in
+//!   a precision, and [`Refusal`]: why a configuration was refused, in the user's words.
+//!
+//! No heap, no feature: the catalogue is data and a few lookups, off the stepping path.
+//!
+//! **Adding a scene**: its module (the scene, its `params!`), a [`SceneKind`] variant with its
+//! [`SceneInfo`] in [`SCENES`], an [`AnyParams`] variant (four `match` arms below), and its field in
+//! each [`FLAGS`] entry it uses (or a new flag).
+
+use core::fmt::{self, Write as _};
+
+use super::outcome::OutcomeKind;
+use super::{
+    CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
+};
+use crate::params::ParamError;
+use crate::real::Real;
+
+/// A scene of the catalogue (`docs/scenes.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "kebab-case"))]
+pub enum SceneKind {
+    /// The paper's rod on two fingers.
+    MeterStick,
+    /// A block on an inclined plane.
+    Incline,
+    /// A rod leaning against a wall.
+    Ladder,
+    /// A rod on three fingers (`core/examples/three_fingers.rs`).
+    ThreeFingers,
+    /// A round body released on an incline: it rolls or slides.
+    Cylinder,
+    /// Painlevé's paradox: a rod whose end slides on a rough floor jams.
+    Painleve,
+}
+
+/// What the catalogue says of one scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SceneInfo {
+    /// The scene.
+    pub kind: SceneKind,
+    /// Its name on the command line and in the page's URL, e.g. `meter-stick`.
+    pub name: &'static str,
+    /// One line of what it is.
+    pub title: &'static str,
+    /// Its contacts (`K` of its [`super::Scene`]).
+    pub contacts: usize,
+    /// The outcomes it can end in (besides [`OutcomeKind::Failed`], which any run can).
+    pub outcomes: &'static [OutcomeKind],
+    /// What its summary measures: the keys of `host-sim`'s `summary.json` (`docs/scenes.md`,
+    /// "Measured").
+    pub measures: &'static [&'static str],
+    /// Ranges the core checks beyond a sign, worded for a refusal: `(field, range)`.
+    pub ranges: &'static [(&'static str, &'static str)],
+}
+
+/// Every scene, in the order of [`SceneKind::ALL`] (their numbers on the page).
+pub const SCENES: [SceneInfo; 6] = [
+    SceneInfo {
+        kind: SceneKind::MeterStick,
+        name: "meter-stick",
+        title: "The paper's rod on two fingers",
+        contacts: 2,
+        outcomes: &[OutcomeKind::Balanced, OutcomeKind::Fell, OutcomeKind::Unfinished],
+        measures: &["meeting"],
+        ranges: &[],
+    },
+    SceneInfo {
+        kind: SceneKind::Incline,
+        name: "incline",
+        title: "A block on an inclined plane",
+        contacts: 2,
+        outcomes: &[OutcomeKind::Tipped, OutcomeKind::Slid, OutcomeKind::Held],
+        measures: &["acceleration_m_s2"],
+        ranges: &[("angle", "0 <= angle < 90 deg")],
+    },
+    SceneInfo {
+        kind: SceneKind::Ladder,
+        name: "ladder",
+        title: "A rod leaning against a wall",
+        contacts: 2,
+        outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
+        measures: &["wall_release_height_m", "wall_release_ratio"],
+        ranges: &[("angle", "0 < angle < 90 deg")],
+    },
+    SceneInfo {
+        kind: SceneKind::ThreeFingers,
+        name: "three-fingers",
+        title: "A rod on three fingers, finger 1 moving to finger 2",
+        contacts: 3,
+        outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
+        measures: &[],
+        ranges: &[],
+    },
+    SceneInfo {
+        kind: SceneKind::Cylinder,
+        name: "cylinder",
+        title: "A round body released on an incline: it rolls or slides",
+        contacts: 1,
+        outcomes: &[OutcomeKind::Rolled, OutcomeKind::Slid],
+        measures: &["acceleration_m_s2"],
+        ranges: &[("angle", "0 <= angle < 90 deg")],
+    },
+    SceneInfo {
+        kind: SceneKind::Painleve,
+        name: "painleve",
+        title: "Painleve's paradox: a rod sliding on a rough floor jams",
+        contacts: 1,
+        outcomes: &[OutcomeKind::Jammed, OutcomeKind::Slid, OutcomeKind::Fell, OutcomeKind::Unfinished],
+        measures: &["jam"],
+        ranges: &[("angle", "0 < angle < 90 deg")],
+    },
+];
+
+impl SceneKind {
+    /// Every scene, in the order of their numbers ([`Self::from_index`]).
+    pub const ALL: [Self; 6] =
+        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder, Self::Painleve];
+
+    /// The catalogue's entry.
+    #[must_use]
+    pub const fn info(self) -> &'static SceneInfo {
+        &SCENES[self as usize]
+    }
+
+    /// The scene's name, e.g. `meter-stick`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        self.info().name
+    }
+
+    /// The scene's number (its index in [`Self::ALL`]).
+    #[must_use]
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The scene with number `i`.
+    #[must_use]
+    pub const fn from_index(i: u32) -> Option<Self> {
+        if (i as usize) < Self::ALL.len() { Some(Self::ALL[i as usize]) } else { None }
+    }
+
+    /// The scene called `name`.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// The core's field names of this scene's parameters, in declaration order.
+    #[must_use]
+    pub fn field_names(self) -> &'static [&'static str] {
+        match self {
+            Self::MeterStick => MeterStickParams::<f64>::NAMES,
+            Self::Incline => InclineParams::<f64>::NAMES,
+            Self::Ladder => LadderParams::<f64>::NAMES,
+            Self::ThreeFingers => ThreeFingersParams::<f64>::NAMES,
+            Self::Cylinder => CylinderParams::<f64>::NAMES,
+            Self::Painleve => PainleveParams::<f64>::NAMES,
+        }
+    }
+
+    /// How the range of `field` is worded in a refusal.
+    #[must_use]
+    pub fn range_of(self, field: &str) -> &'static str {
+        self.info().ranges.iter().find(|(f, _)| *f == field).map_or("its documented range", |(_, r)| r)
+    }
+}
+
+impl fmt::Display for SceneKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// One parameter flag: the command line's `--long`, the page's control and URL key `long`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Flag {
+    /// The flag's name, without `--`.
+    pub long: &'static str,
+    /// Its unit (`deg` is converted to the core's radians).
+    pub unit: &'static str,
+    /// What it is.
+    pub help: &'static str,
+    /// The core field it sets in each scene it applies to.
+    pub fields: &'static [(SceneKind, &'static str)],
+}
+
+impl Flag {
+    /// The core field this flag sets in `kind`, if it applies to it.
+    #[must_use]
+    pub fn field(&self, kind: SceneKind) -> Option<&'static str> {
+        self.fields.iter().find(|(k, _)| *k == kind).map(|(_, f)| *f)
+    }
+
+    /// From the flag's unit to the core's.
+    #[must_use]
+    pub fn to_core(&self, value: f64) -> f64 {
+        if self.unit == "deg" { value.to_radians() } else { value }
+    }
+
+    /// From the core's unit to the flag's.
+    #[must_use]
+    pub fn from_core(&self, value: f64) -> f64 {
+        if self.unit == "deg" { value.to_degrees() } else { value }
+    }
+}
+
+use SceneKind::{
+    Cylinder as C, Incline as I, Ladder as L, MeterStick as M, Painleve as P, ThreeFingers as F,
+};
+
+/// Every scene flag, each once. Its order is the command line's and the page's, and decides which
+/// complaint comes first.
+pub const FLAGS: &[Flag] = &[
+    Flag {
+        long: "speed",
+        unit: "m/s",
+        help: "Finger 1's velocity (+x: toward finger 2)",
+        fields: &[(M, "finger1_velocity"), (F, "finger1_velocity")],
+    },
+    Flag {
+        long: "speed2",
+        unit: "m/s",
+        help: "Finger 2's velocity (-x: toward finger 1)",
+        fields: &[(M, "finger2_velocity")],
+    },
+    Flag {
+        long: "x1",
+        unit: "m",
+        help: "Start x of finger 1 (from the rod's centre of mass; within +-L/2)",
+        fields: &[(M, "finger1_x"), (F, "finger1_x")],
+    },
+    Flag {
+        long: "x2",
+        unit: "m",
+        help: "Start x of finger 2 (> x1 + finger width)",
+        fields: &[(M, "finger2_x"), (F, "finger2_x")],
+    },
+    Flag {
+        long: "x3",
+        unit: "m",
+        help: "x of finger 3 (three-fingers; > x2, within +-L/2)",
+        fields: &[(F, "finger3_x")],
+    },
+    Flag { long: "y1", unit: "m", help: "Height of finger 1's tip", fields: &[(M, "finger1_y")] },
+    Flag { long: "y2", unit: "m", help: "Height of finger 2's tip", fields: &[(M, "finger2_y")] },
+    Flag {
+        long: "finger-width",
+        unit: "m",
+        help: "Approaching fingers stop when their tips are this far apart (>= 0)",
+        fields: &[(M, "finger_width"), (F, "finger_width")],
+    },
+    Flag {
+        long: "mu-s",
+        unit: "",
+        help: "Static friction coefficient (>= 0)",
+        fields: &[(M, "mu_static"), (I, "mu_static"), (F, "mu_static"), (C, "mu_static")],
+    },
+    Flag {
+        long: "mu-k",
+        unit: "",
+        help: "Kinetic friction coefficient (0 <= mu-k <= mu-s)",
+        fields: &[(M, "mu_kinetic"), (I, "mu_kinetic"), (F, "mu_kinetic"), (C, "mu_kinetic")],
+    },
+    Flag {
+        long: "mu-floor",
+        unit: "",
+        help: "Friction coefficient at the floor, static and kinetic (>= 0)",
+        fields: &[(L, "mu_floor"), (P, "mu_floor")],
+    },
+    Flag {
+        long: "mu-wall",
+        unit: "",
+        help: "Friction coefficient at the wall, static and kinetic (>= 0)",
+        fields: &[(L, "mu_wall")],
+    },
+    Flag {
+        long: "angle",
+        unit: "deg",
+        help: "Slope angle (incline, cylinder: 0 <= a < 90) or start angle from the floor (ladder, painleve: 0 < a < 90)",
+        fields: &[(I, "angle"), (L, "angle"), (C, "angle"), (P, "angle")],
+    },
+    Flag {
+        long: "mass",
+        unit: "kg",
+        help: "Mass of the body (> 0)",
+        fields: &[(M, "rod_mass"), (I, "mass"), (L, "mass"), (F, "rod_mass"), (C, "mass"), (P, "mass")],
+    },
+    Flag {
+        long: "length",
+        unit: "m",
+        help: "Rod length (> 0)",
+        fields: &[(M, "rod_length"), (L, "length"), (F, "rod_length"), (P, "length")],
+    },
+    Flag {
+        long: "thickness",
+        unit: "m",
+        help: "Rod thickness (> 0)",
+        fields: &[(M, "rod_thickness"), (L, "thickness"), (F, "rod_thickness"), (P, "thickness")],
+    },
+    Flag { long: "width", unit: "m", help: "Block width along the slope (> 0)", fields: &[(I, "width")] },
+    Flag { long: "height", unit: "m", help: "Block height (> 0)", fields: &[(I, "height")] },
+    Flag {
+        long: "rod-speed",
+        unit: "m/s",
+        help: "The rod's speed at the start, its lower end sliding away from under it (painleve)",
+        fields: &[(P, "speed")],
+    },
+    Flag { long: "radius", unit: "m", help: "Radius of the round body (> 0)", fields: &[(C, "radius")] },
+    Flag {
+        long: "inertia-factor",
+        unit: "",
+        help: "k in J = k m r^2 (> 0): 0.5 a solid cylinder, 1 a thin ring",
+        fields: &[(C, "inertia_factor")],
+    },
+    Flag {
+        long: "gravity",
+        unit: "m/s^2",
+        help: "Gravity (>= 0)",
+        fields: &[
+            (M, "gravity"),
+            (I, "gravity"),
+            (L, "gravity"),
+            (F, "gravity"),
+            (C, "gravity"),
+            (P, "gravity"),
+        ],
+    },
+    Flag {
+        long: "h",
+        unit: "s",
+        help: "Time step (> 0)",
+        fields: &[(M, "step"), (I, "step"), (L, "step"), (F, "step"), (C, "step"), (P, "step")],
+    },
+    Flag {
+        long: "duration",
+        unit: "s",
+        help: "Longest simulated time (> 0); a run still going then ends Unfinished (the meter stick's default grows with the fingers' travel time)",
+        fields: &[
+            (M, "max_time"),
+            (I, "max_time"),
+            (L, "max_time"),
+            (F, "max_time"),
+            (C, "max_time"),
+            (P, "max_time"),
+        ],
+    },
+    Flag {
+        long: "stick-speed",
+        unit: "m/s",
+        help: "A touching contact whose slip speed is at most this sticks (>= 0)",
+        fields: &[
+            (M, "stick_speed"),
+            (I, "stick_speed"),
+            (L, "stick_speed"),
+            (F, "stick_speed"),
+            (C, "stick_speed"),
+            (P, "stick_speed"),
+        ],
+    },
+    Flag {
+        long: "tilt-limit",
+        unit: "rad",
+        help: "The rod has fallen when it tilted more than this from its start angle (> 0)",
+        fields: &[(M, "tilt_limit"), (F, "tilt_limit")],
+    },
+    Flag {
+        long: "drop-limit",
+        unit: "m",
+        help: "The rod has fallen when its centre of mass dropped this far (> 0)",
+        fields: &[(M, "drop_limit")],
+    },
+    Flag {
+        long: "hold-time",
+        unit: "s",
+        help: "After the fingers meet, the rod must stay on them this long to balance (>= 0)",
+        fields: &[(M, "hold_time"), (F, "hold_time")],
+    },
+];
+
+/// The number of flags.
+pub const FLAG_COUNT: usize = FLAGS.len();
+
+/// The flag that sets `field` in `kind`.
+#[must_use]
+pub fn flag_of(kind: SceneKind, field: &str) -> Option<&'static Flag> {
+    FLAGS.iter().find(|f| f.field(kind) == Some(field))
+}
+
+/// The index in [`FLAGS`] of the flag called `long`.
+#[must_use]
+pub fn flag_index(long: &str) -> Option<usize> {
+    FLAGS.iter().position(|f| f.long == long)
+}
+
+/// The most steps one run may take: 10^8 (about 30 s of the core on a host); a step count beyond
+/// it is refused before anything runs.
+pub const MAX_STEPS: f64 = 1e8;
+
+/// Any scene's parameters in the core's units (SI, radians), f64 as given; cast to the run's
+/// precision when run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyParams {
+    /// The meter stick.
+    MeterStick(MeterStickParams<f64>),
+    /// The block on an incline.
+    Incline(InclineParams<f64>),
+    /// The ladder.
+    Ladder(LadderParams<f64>),
+    /// The rod on three fingers.
+    ThreeFingers(ThreeFingersParams<f64>),
+    /// The round body on an incline.
+    Cylinder(CylinderParams<f64>),
+    /// Painlevé's rod.
+    Painleve(PainleveParams<f64>),
+}
+
+impl AnyParams {
+    /// The scene with the core's defaults.
+    #[must_use]
+    pub fn defaults(kind: SceneKind) -> Self {
+        match kind {
+            SceneKind::MeterStick => Self::MeterStick(MeterStickParams::default()),
+            SceneKind::Incline => Self::Incline(InclineParams::default()),
+            SceneKind::Ladder => Self::Ladder(LadderParams::default()),
+            SceneKind::ThreeFingers => Self::ThreeFingers(ThreeFingersParams::default()),
+            SceneKind::Cylinder => Self::Cylinder(CylinderParams::default()),
+            SceneKind::Painleve => Self::Painleve(PainleveParams::default()),
+        }
+    }
+
+    /// Which scene.
+    #[must_use]
+    pub const fn kind(&self) -> SceneKind {
+        match self {
+            Self::MeterStick(_) => SceneKind::MeterStick,
+            Self::Incline(_) => SceneKind::Incline,
+            Self::Ladder(_) => SceneKind::Ladder,
+            Self::ThreeFingers(_) => SceneKind::ThreeFingers,
+            Self::Cylinder(_) => SceneKind::Cylinder,
+            Self::Painleve(_) => SceneKind::Painleve,
+        }
+    }
+
+    /// The value of a field (core name).
+    #[must_use]
+    pub fn get(&self, field: &str) -> Option<f64> {
+        match self {
+            Self::MeterStick(p) => p.get(field),
+            Self::Incline(p) => p.get(field),
+            Self::Ladder(p) => p.get(field),
+            Self::ThreeFingers(p) => p.get(field),
+            Self::Cylinder(p) => p.get(field),
+            Self::Painleve(p) => p.get(field),
+        }
+    }
+
+    /// Sets a field (core name); `false` when the scene has none of that name.
+    pub fn set(&mut self, field: &str, value: f64) -> bool {
+        match self {
+            Self::MeterStick(p) => p.set(field, value),
+            Self::Incline(p) => p.set(field, value),
+            Self::Ladder(p) => p.set(field, value),
+            Self::ThreeFingers(p) => p.set(field, value),
+            Self::Cylinder(p) => p.set(field, value),
+            Self::Painleve(p) => p.set(field, value),
+        }
+    }
+
+    /// Checks the parameters in f64 and again after rounding to `T` (a value may overflow f32,
+    /// or round to an invalid one).
+    ///
+    /// # Errors
+    /// The core's first complaint.
+    pub fn validate_as<T: Real>(&self) -> Result<(), ParamError> {
+        match self {
+            Self::MeterStick(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Incline(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Ladder(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::ThreeFingers(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Cylinder(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Painleve(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+        }
+    }
+
+    /// The `i`-th field's value, in the order of [`SceneKind::field_names`].
+    #[must_use]
+    pub fn field(&self, i: usize) -> Option<f64> {
+        self.kind().field_names().get(i).and_then(|name| self.get(name))
+    }
+
+    /// Every field, `(core name, value)`, in declaration order.
+    pub fn fields(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
+        self.kind().field_names().iter().map(|name| (*name, self.get(name).unwrap_or(f64::NAN)))
+    }
+
+    /// The step `h` (s).
+    #[must_use]
+    pub fn step(&self) -> f64 {
+        self.get("step").unwrap_or(f64::NAN)
+    }
+
+    /// The time limit (s).
+    #[must_use]
+    pub fn max_time(&self) -> f64 {
+        self.get("max_time").unwrap_or(f64::NAN)
+    }
+
+    /// The steps `h` and the time limit imply (`ceil(max_time / h)`; NaN when undefined).
+    #[must_use]
+    pub fn steps(&self) -> f64 {
+        libm::ceil(self.max_time() / self.step())
+    }
+
+    /// The meter stick's default time limit follows the fingers' travel: at least its default,
+    /// and long enough for the fingers to meet and the rod to hold (`2 x` travel time + hold time
+    /// + 1 s), so that a slow finger does not end "Unfinished" by default. Other scenes keep theirs.
+    pub fn follow_travel_time(&mut self) {
+        if let Self::MeterStick(p) = self {
+            let closing = p.finger1_velocity - p.finger2_velocity;
+            if closing > 0.0 {
+                let travel = (p.finger2_x - p.finger1_x - p.finger_width).max(0.0) / closing;
+                let wanted = 2.0 * travel + p.hold_time + 1.0;
+                if wanted.is_finite() && wanted > p.max_time {
+                    p.max_time = wanted;
+                }
+            }
+        }
+    }
+}
+
+/// Why a configuration was refused, before anything ran.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Refusal {
+    /// A flag was given that does not apply to the scene (its index in [`FLAGS`]).
+    NotApplicable {
+        /// The scene.
+        kind: SceneKind,
+        /// The flag's index.
+        flag: usize,
+    },
+    /// The core rejected a parameter (the message says so when only f32 refuses it).
+    Invalid {
+        /// The parameters as resolved.
+        params: AnyParams,
+        /// The core's complaint.
+        error: ParamError,
+    },
+    /// `h` and the time limit imply more than `limit` steps.
+    TooManySteps {
+        /// The parameters as resolved.
+        params: AnyParams,
+        /// The steps they imply.
+        steps: f64,
+        /// The most a run may take.
+        limit: f64,
+    },
+}
+
+impl Refusal {
+    /// The flag the user should change (its index in [`FLAGS`]), where one is to blame.
+    #[must_use]
+    pub fn flag(&self) -> Option<usize> {
+        let index = |kind: SceneKind, field: &str| {
+            flag_of(kind, field).and_then(|f| FLAGS.iter().position(|g| g.long == f.long))
+        };
+        match *self {
+            Self::NotApplicable { flag, .. } => Some(flag),
+            Self::Invalid { params, error } => {
+                let field = match error {
+                    ParamError::KineticAboveStatic => Some("mu_kinetic"),
+                    ParamError::FingerOutsideRod | ParamError::FingersCrossed => Some("finger1_x"),
+                    other => other.field(),
+                };
+                field.and_then(|f| index(params.kind(), f))
+            }
+            Self::TooManySteps { params, .. } => index(params.kind(), "step"),
+        }
+    }
+
+    /// The refusal in the user's words, flags written with `prefix` (`--` on the command line,
+    /// nothing on the page): `--mu-k 0.7 must not exceed --mu-s 0.6`.
+    #[must_use]
+    pub const fn worded(self, prefix: &'static str) -> Worded {
+        Worded { refusal: self, prefix }
+    }
+}
+
+/// A [`Refusal`] in the user's words ([`Refusal::worded`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Worded {
+    refusal: Refusal,
+    prefix: &'static str,
+}
+
+/// A field as the user set it: `--flag value unit` (e.g. `--mu-k 0.7`, `--angle 95 deg`).
+struct Shown<'a>(&'a AnyParams, &'a str, &'static str);
+
+impl fmt::Display for Shown<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Self(params, field, prefix) = *self;
+        match (flag_of(params.kind(), field), params.get(field)) {
+            (Some(flag), Some(v)) => {
+                write!(f, "{prefix}{} {}", flag.long, Short(flag.from_core(v)))?;
+                if !flag.unit.is_empty() {
+                    write!(f, " {}", flag.unit)?;
+                }
+                Ok(())
+            }
+            _ => f.write_str(field),
+        }
+    }
+}
+
+impl fmt::Display for Worded {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let p = self.prefix;
+        match self.refusal {
+            Refusal::NotApplicable { kind, flag } => {
+                let Some(flag) = FLAGS.get(flag) else { return f.write_str("unknown flag") };
+                write!(
+                    f,
+                    "{p}{} does not apply to {p}scene {} (it is a parameter of ",
+                    flag.long,
+                    kind.name()
+                )?;
+                for (i, (k, _)) in flag.fields.iter().enumerate() {
+                    write!(f, "{}{}", if i > 0 { ", " } else { "" }, k.name())?;
+                }
+                f.write_str(")")
+            }
+            Refusal::Invalid { params, error } => {
+                let show = |field| Shown(&params, field, p);
+                match error {
+                    ParamError::NonFinite(x) => write!(f, "{}: not a finite number", show(x)),
+                    ParamError::NotPositive(x) => write!(f, "{}: must be greater than 0", show(x)),
+                    ParamError::Negative(x) => write!(f, "{}: must not be negative", show(x)),
+                    ParamError::OutOfRange(x) => {
+                        write!(f, "{}: out of range ({})", show(x), params.kind().range_of(x))
+                    }
+                    ParamError::KineticAboveStatic => {
+                        write!(f, "{} must not exceed {}", show("mu_kinetic"), show("mu_static"))
+                    }
+                    ParamError::FingerOutsideRod => write!(
+                        f,
+                        "a finger starts beyond an end of the rod: {} and {} must be within {} / 2",
+                        show("finger1_x"),
+                        show("finger2_x"),
+                        show("rod_length")
+                    ),
+                    ParamError::FingersCrossed => write!(
+                        f,
+                        "finger 1 must start left of finger 2 by more than the finger width: {} < {} - {}",
+                        show("finger1_x"),
+                        show("finger2_x"),
+                        show("finger_width")
+                    ),
+                    other => write!(f, "{other}"),
+                }?;
+                // Parameters that pass in f64 failed in f32.
+                if params.validate_as::<f64>().is_ok() {
+                    write!(f, " as f32 ({p}precision f32; f64 accepts it)")?;
+                }
+                Ok(())
+            }
+            Refusal::TooManySteps { params, steps, limit } => write!(
+                f,
+                "{p}h {} s and {p}duration {} s imply {steps:.3e} steps; a run may take at most {limit:e} \
+                 (raise {p}h or lower {p}duration)",
+                Short(params.step()),
+                Short(params.max_time())
+            ),
+        }
+    }
+}
+
+/// A number as a person typed it: `{}` when that is short; else 9 decimals with the trailing zeros
+/// dropped when that is the same number to 12 digits (so a round trip through radians shows `95`,
+/// not `95.00000000000001`); else the shorter of `{}` and `{:e}` (`1e-30`, `1e39`, never a rounded
+/// `0`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Short(pub f64);
+
+impl fmt::Display for Short {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        let plain = Buf::of(format_args!("{v}"));
+        if plain.as_str().len() <= 12 || !v.is_finite() {
+            return f.write_str(plain.as_str());
+        }
+        let fixed = Buf::of(format_args!("{v:.9}"));
+        let trimmed = fixed.as_str().trim_end_matches('0').trim_end_matches('.');
+        if trimmed.len() <= 12
+            && trimmed.parse::<f64>().is_ok_and(|t| libm::fabs(t - v) <= 1e-12 * libm::fabs(v))
+        {
+            return f.write_str(trimmed);
+        }
+        let exp = Buf::of(format_args!("{v:e}"));
+        f.write_str(if exp.as_str().len() < plain.as_str().len() { exp.as_str() } else { plain.as_str() })
+    }
+}
+
+/// A number's text on the stack (an f64's `{}` is at most about 330 bytes).
+struct Buf {
+    bytes: [u8; 400],
+    len: usize,
+}
+
+impl Buf {
+    fn of(args: fmt::Arguments<'_>) -> Self {
+        let mut b = Self { bytes: [0; 400], len: 0 };
+        let _ = b.write_fmt(args);
+        b
+    }
+
+    fn as_str(&self) -> &str {
+        core::str::from_utf8(&self.bytes[..self.len]).unwrap_or("")
+    }
+}
+
+impl fmt::Write for Buf {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let take = s.len().min(self.bytes.len() - self.len);
+        self.bytes[self.len..self.len + take].copy_from_slice(&s.as_bytes()[..take]);
+        self.len += take;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use std::string::ToString;
+
+    use super::*;
+
+    #[test]
+    fn every_scene_is_in_its_place_and_every_flag_names_a_field() {
+        for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
+            assert_eq!(kind.info().kind, kind);
+            assert_eq!(SceneKind::from_index(i as u32), Some(kind));
+            assert_eq!(SceneKind::from_name(kind.name()), Some(kind));
+            assert_eq!(AnyParams::defaults(kind).kind(), kind);
+        }
+        assert_eq!(SceneKind::from_index(SceneKind::ALL.len() as u32), None);
+        for flag in FLAGS {
+            assert_eq!(flag_index(flag.long).map(|i| FLAGS[i].long), Some(flag.long));
+            for &(kind, field) in flag.fields {
+                assert!(kind.field_names().contains(&field), "--{} sets {field} in {kind}", flag.long);
+            }
+        }
+        // Every field of every scene has its flag.
+        for kind in SceneKind::ALL {
+            for field in kind.field_names() {
+                assert!(flag_of(kind, field).is_some(), "{kind} {field}");
+            }
+        }
+    }
+
+    #[test]
+    fn refusals_are_worded_with_the_prefix_asked_for() {
+        let mut p = AnyParams::defaults(SceneKind::MeterStick);
+        assert!(p.set("mu_kinetic", 0.7));
+        let e = p.validate_as::<f32>().unwrap_err();
+        let r = Refusal::Invalid { params: p, error: e };
+        assert_eq!(r.worded("--").to_string(), "--mu-k 0.7 must not exceed --mu-s 0.6");
+        assert_eq!(r.worded("").to_string(), "mu-k 0.7 must not exceed mu-s 0.6");
+        assert_eq!(r.flag(), flag_index("mu-k"));
+        let r = Refusal::NotApplicable { kind: SceneKind::MeterStick, flag: flag_index("angle").unwrap() };
+        assert_eq!(
+            r.worded("--").to_string(),
+            "--angle does not apply to --scene meter-stick (it is a parameter of incline, ladder, cylinder, painleve)"
+        );
+    }
+}
