@@ -33,9 +33,12 @@ use serde::Serialize;
 use crate::run_cmd::{parameters_json, write_json};
 use crate::scenes::{Implementation, SceneKind, SceneSpec};
 use crate::trajectory::{
-    CONTACTS, ContactRow, Event, Measured, OutcomeClass, Record, Row, RunOutcome, SolverCounters, Trajectory,
-    run_core, write_csv, write_events_csv,
+    ContactRow, Event, Measured, OutcomeClass, Record, Row, RunOutcome, SolverCounters, Trajectory, run_core,
+    write_csv, write_events_csv,
 };
+
+/// The rig's scene is the meter stick: two contacts (its telemetry's `contacts`).
+const RIG_CONTACTS: usize = 2;
 
 /// A preset, as the command line spells it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -297,7 +300,7 @@ pub fn record_run(
                 contact: usize::from(contact),
                 mode: mode_of(mode),
                 along: along.map(f64::from),
-                supports: [[f64::NAN; 2]; CONTACTS],
+                supports: [[f64::NAN; 2]; RIG_CONTACTS],
             }),
             Report::Outcome { outcome: code, time, steps, checksum } if running => {
                 outcome = Some((code, time, steps, checksum));
@@ -319,7 +322,7 @@ pub fn record_run(
         scene: SceneKind::MeterStick,
         steps: u64::from(steps),
         end_time: f64::from(time),
-        initial_modes: initial_modes.unwrap_or([ContactMode::Separated; CONTACTS]),
+        initial_modes: initial_modes.unwrap_or([ContactMode::Separated; RIG_CONTACTS]),
         rows,
         events,
         outcome: outcome_of(code),

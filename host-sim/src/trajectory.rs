@@ -20,10 +20,6 @@ use crate::progress;
 use crate::reference;
 use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec, SpecExt as _};
 
-/// The meter stick's contacts as the rig reports them (`host-sim/src/monitor.rs`). A scene's rows
-/// are generic over its contacts `K` (the catalogue's `SceneInfo::contacts`); `K = 2` is the default.
-pub const CONTACTS: usize = 2;
-
 /// One contact after a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactRow {
