@@ -410,9 +410,8 @@ pub fn run_name(flag: &Flag, value: f64) -> String {
 mod tests {
     use super::*;
 
-    /// Numbers in messages as the user typed them. Before #17 was finished, `1e-30` and `1e-50`
-    /// were shown as `0` (9 decimals, trailing zeros dropped) and `1e39` as
-    /// `999999999999999939709166371603178586112`.
+    /// Numbers in messages as the user typed them: not `1e-30` and `1e-50` shown as `0` (9
+    /// decimals, trailing zeros dropped), nor `1e39` as `999999999999999939709166371603178586112`.
     #[test]
     fn numbers_read_as_typed() {
         for (v, shown) in [

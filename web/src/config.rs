@@ -203,8 +203,8 @@ mod tests {
         // 1e39 is finite in f64 and infinite in f32.
         let c = config(SceneKind::MeterStick, &[("mass", 1e39)]);
         assert!(c.resolve(Precision::F64).is_ok());
-        // Before #17 the value was shown as `mass 999999999999999939709166371603178586112 kg: not
-        // a finite number`: 39 digits, and no word that only f32 refuses it.
+        // Not `mass 999999999999999939709166371603178586112 kg: not a finite number`: 39 digits,
+        // and no word that only f32 refuses it.
         assert_eq!(
             message(&c).as_str(),
             "mass 1e39 kg: not a finite number as f32 (precision f32; f64 accepts it)"
