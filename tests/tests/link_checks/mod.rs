@@ -211,8 +211,15 @@ pub fn still_runs_and_stops(link: &mut Link, preset: Preset, outcome: OutcomeCod
     assert_eq!(rec.outcome, outcome);
     check_identical(&format!("{preset:?} preset"), &compare(&rec).unwrap().1);
 
-    // Stop on command: the slow preset, stopped after some telemetry.
+    // Stop on command: the slow preset made a run that cannot end before the stop arrives, even on
+    // QEMU's rig, which steps as fast as its reports go out (the slow preset's 7,900 steps once
+    // ended between a reply and the stop): finger 1 at 1 mm/s and h = 1e-4 s, 300,000 steps to
+    // the time limit.
     link.request(&Command::Preset(Preset::Slow), REPLY_TIMEOUT).unwrap();
+    for (id, value) in [(ParamId::Finger1Velocity, 1e-3), (ParamId::Step, 1e-4)] {
+        let set = Command::SetParam { id, value };
+        assert_eq!(link.request(&set, REPLY_TIMEOUT).unwrap(), ack(set));
+    }
     start_when_homed(link);
     let mut seen = 0;
     while seen < 5 {
