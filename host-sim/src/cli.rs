@@ -168,17 +168,7 @@ pub fn command() -> clap::Command {
     Cli::command()
 }
 
-/// A check failed (exit status 1): the message says which.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CheckFailed(pub String);
-
-impl std::fmt::Display for CheckFailed {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for CheckFailed {}
+pub use crate::errors::CheckFailed;
 
 /// Reads the arguments (`args[0]` is the program name) as clap does, and first refuses a flag
 /// whose value is missing because the next argument is another flag (`--h --duration 2`:

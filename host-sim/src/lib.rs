@@ -8,6 +8,7 @@
 
 pub mod cli;
 pub mod envelope;
+pub mod errors;
 pub mod input;
 pub mod lcp_io;
 pub mod map;

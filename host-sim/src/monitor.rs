@@ -689,7 +689,7 @@ fn record_and_write(
     );
     if s.comparison.as_ref().is_some_and(|c| !c.identical()) {
         // Exit status 1: a check failed (not bad input).
-        return Err(crate::cli::CheckFailed(format!(
+        return Err(crate::errors::CheckFailed(format!(
             "{summary}the rig's run differs from the host's f32 build (see {})",
             args.out.join("summary.json").display()
         ))
