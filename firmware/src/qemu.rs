@@ -1,37 +1,39 @@
 //! The QEMU board binding: the rig loop headless, with pins that count their edges and a start
 //! button that reads pressed. Runs a small LCP, then the slow (0.1 m/s) and fast (5 m/s) meter-stick
-//! scenes (finger 1 from -0.35 m) through the rig, and the default incline and ladder scenes
-//! directly, all in f32 with the 6x6 LCP, and prints for each its switch events, its outcome,
-//! statistics and the trajectory checksum (`meterstick_core::planar::Checksum`), then the SysTick
-//! ticks the rig's steps took and a calibration of ticks against instructions. Exit status: 0 when
-//! the LCP was solved and every scene ended as physics says (balanced, fell, slid, fell).
+//! scenes (finger 1 from -0.35 m) through the rig, and every other catalogue scene at its defaults
+//! directly (incline and ladder with the 6x6 LCP, three fingers 9x9, cylinder and Painlevé's rod
+//! 3x3), all in f32, and prints for each its switch events, its outcome, statistics and the
+//! trajectory checksum (`meterstick_core::planar::Checksum`), then the SysTick ticks the rig's
+//! steps took and a calibration of ticks against instructions. Exit status: 0 when the LCP was
+//! solved and every scene ended as physics says (balanced, fell, slid, fell, held, rolled, jammed).
 
+use meterstick_core::ParamError;
 use meterstick_core::lcp::{Lcp, Lemke};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::scene::{
-    Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome, Scene,
+    Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome,
+    Painleve, PainleveParams, Scene, ThreeFingers, ThreeFingersParams,
 };
 use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 
 use crate::systick;
 
 /// Prints a run's switch events (1-based contacts).
-fn print_events(name: &str, events: &[SwitchEvent<f32, 2>]) {
+fn print_events<const K: usize>(name: &str, events: &[SwitchEvent<f32, K>]) {
     for e in events {
         defmt::println!(
-            "{=str} event t={=f32} contact={=u8} mode={=str} along1={=f32} along2={=f32}",
+            "{=str} event t={=f32} contact={=u8} mode={=str} along1={=f32}",
             name,
             e.time,
             e.contact + 1,
             e.mode.name(),
             e.along[0],
-            e.along[1]
         );
     }
 }
 
 /// Runs a scene to its outcome outside the rig and prints its checksum and outcome.
-fn run_plain<S: Scene<f32, 2>>(name: &str, scene: &mut S) -> Outcome {
+fn run_plain<S: Scene<f32, K>, const K: usize>(name: &str, scene: &mut S) -> Outcome {
     let mut checksum = Checksum::new();
     let outcome = scene.run(|r| checksum.add(&r.state));
     defmt::println!(
@@ -144,6 +146,29 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     Some(outcome)
 }
 
+/// Runs a scene built outside the rig (`run_plain`), prints its events with `events`, and counts
+/// 1 when it was refused or ended other than `expected`. Not inlined, so that each scene's stack
+/// frame is its own (the micro:bit has 16 KiB of RAM).
+#[inline(never)]
+fn check_plain<S: Scene<f32, K>, const K: usize>(
+    name: &str,
+    scene: Result<S, ParamError>,
+    expected: Outcome,
+    events: impl FnOnce(&S),
+) -> i32 {
+    match scene {
+        Ok(mut scene) => {
+            let outcome = run_plain(name, &mut scene);
+            events(&scene);
+            i32::from(outcome != expected)
+        }
+        Err(e) => {
+            defmt::println!("{=str}: {}", name, e);
+            1
+        }
+    }
+}
+
 pub fn main() -> ! {
     defmt::println!("meterstick-firmware {} core {}", env!("CARGO_PKG_VERSION"), meterstick_core::VERSION);
     let Some(mut cp) = cortex_m::Peripherals::take() else {
@@ -180,28 +205,36 @@ pub fn main() -> ! {
     if run_scene("fast", 5.0) != Some(Outcome::Fell) {
         failures += 1;
     }
-    match Incline::<f32, 6, 16>::new(InclineParams::default()) {
-        Ok(mut incline) => {
-            let outcome = run_plain("incline", &mut incline);
-            print_events("incline", incline.events());
-            failures += i32::from(outcome != Outcome::Slid);
-        }
-        Err(e) => {
-            defmt::println!("incline: {}", e);
-            failures += 1;
-        }
-    }
-    match Ladder::<f32, 6, 16>::new(LadderParams::default()) {
-        Ok(mut ladder) => {
-            let outcome = run_plain("ladder", &mut ladder);
-            print_events("ladder", ladder.events());
-            failures += i32::from(outcome != Outcome::Fell);
-        }
-        Err(e) => {
-            defmt::println!("ladder: {}", e);
-            failures += 1;
-        }
-    }
+    failures +=
+        check_plain("incline", Incline::<f32, 6, 16>::new(InclineParams::default()), Outcome::Slid, |s| {
+            print_events("incline", s.events());
+        });
+    failures +=
+        check_plain("ladder", Ladder::<f32, 6, 16>::new(LadderParams::default()), Outcome::Fell, |s| {
+            print_events("ladder", s.events());
+        });
+    failures += check_plain(
+        "three-fingers",
+        ThreeFingers::<f32, 9, 16>::new(ThreeFingersParams::default()),
+        Outcome::Held,
+        |s| print_events("three-fingers", s.events()),
+    );
+    failures += check_plain(
+        "cylinder",
+        Cylinder::<f32, 3, 16>::new(CylinderParams::default()),
+        Outcome::Rolled,
+        |s| {
+            print_events("cylinder", s.events());
+        },
+    );
+    failures += check_plain(
+        "painleve",
+        Painleve::<f32, 3, 16>::new(PainleveParams::default()),
+        Outcome::Jammed,
+        |s| {
+            print_events("painleve", s.events());
+        },
+    );
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)
 }

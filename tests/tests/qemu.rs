@@ -7,9 +7,10 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
-use meterstick_core::planar::Checksum;
+use meterstick_core::planar::{Checksum, SwitchEvent};
 use meterstick_core::scene::{
-    Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams, Scene,
+    Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams,
+    Painleve, PainleveParams, Scene, ThreeFingers, ThreeFingersParams,
 };
 use meterstick_host_sim::qemu::{self, FirmwareRun, Machine};
 
@@ -84,39 +85,72 @@ fn host_checksum(speed: f32) -> u32 {
     checksum_of(MeterStick6::<f32, 32>::new(params).unwrap())
 }
 
-fn checksum_of<S: Scene<f32, 2>>(mut scene: S) -> u32 {
+fn checksum_of<S: Scene<f32, K>, const K: usize>(mut scene: S) -> u32 {
     let mut sum = Checksum::new();
     scene.run(|r| sum.add(&r.state));
     sum.value()
 }
 
-/// The incline and the ladder, run outside the rig: outcome, steps, checksum and every switch
-/// event equal to the host's f32 6x6 run of the same scene.
-fn check_other_scenes(run: &FirmwareRun) {
-    let mut incline = Incline::<f32, 6, 32>::new(InclineParams::default()).unwrap();
-    let incline_sum = checksum_of(Incline::<f32, 6, 32>::new(InclineParams::default()).unwrap());
-    incline.run(|_| {});
-    let mut ladder = Ladder::<f32, 6, 32>::new(LadderParams::default()).unwrap();
-    let ladder_sum = checksum_of(Ladder::<f32, 6, 32>::new(LadderParams::default()).unwrap());
-    ladder.run(|_| {});
-    for (name, outcome, steps, sum, events) in [
-        ("incline", incline.outcome().unwrap(), incline.stats().steps, incline_sum, incline.events()),
-        ("ladder", ladder.outcome().unwrap(), ladder.stats().steps, ladder_sum, ladder.events()),
-    ] {
-        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
-        assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
-        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
-        assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
-        let lines: Vec<&String> =
-            run.lines.iter().filter(|l| l.starts_with(&format!("{name} event "))).collect();
-        assert_eq!(lines.len(), events.len(), "{name}: {lines:#?}");
-        for (line, e) in lines.iter().zip(events) {
-            let field = |key: &str| line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap().to_owned();
-            assert_eq!(field("t=").parse::<f32>().unwrap().to_bits(), e.time.to_bits(), "{line} vs {e:?}");
-            assert_eq!(field("contact="), (e.contact + 1).to_string(), "{line}");
-            assert_eq!(field("mode="), e.mode.name(), "{line}");
-        }
+/// A scene the firmware runs outside the rig: outcome, steps, checksum and every switch event
+/// equal to the host's f32 run of the same scene, built by `make` (the firmware's `N`).
+fn check_plain_scene<S: Scene<f32, K>, const K: usize>(
+    run: &FirmwareRun,
+    name: &str,
+    make: impl Fn() -> S,
+    events: impl Fn(&S) -> &[SwitchEvent<f32, K>],
+) {
+    let sum = checksum_of(make());
+    let mut scene = make();
+    scene.run(|_| {});
+    let (outcome, steps) = (scene.outcome().unwrap(), scene.stats().steps);
+    let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
+    assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
+    assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+    assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
+    let lines: Vec<&String> = run.lines.iter().filter(|l| l.starts_with(&format!("{name} event "))).collect();
+    let events = events(&scene);
+    assert_eq!(lines.len(), events.len(), "{name}: {lines:#?}");
+    for (line, e) in lines.iter().zip(events) {
+        let field = |key: &str| line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap().to_owned();
+        assert_eq!(field("t=").parse::<f32>().unwrap().to_bits(), e.time.to_bits(), "{line} vs {e:?}");
+        assert_eq!(field("contact="), (e.contact + 1).to_string(), "{line}");
+        assert_eq!(field("mode="), e.mode.name(), "{line}");
     }
+}
+
+/// Every scene but the meter stick, run outside the rig at its defaults, each with the
+/// firmware's LCP size (firmware/src/qemu.rs).
+fn check_other_scenes(run: &FirmwareRun) {
+    check_plain_scene(
+        run,
+        "incline",
+        || Incline::<f32, 6, 32>::new(InclineParams::default()).unwrap(),
+        |s| s.events(),
+    );
+    check_plain_scene(
+        run,
+        "ladder",
+        || Ladder::<f32, 6, 32>::new(LadderParams::default()).unwrap(),
+        |s| s.events(),
+    );
+    check_plain_scene(
+        run,
+        "three-fingers",
+        || ThreeFingers::<f32, 9, 32>::new(ThreeFingersParams::default()).unwrap(),
+        |s| s.events(),
+    );
+    check_plain_scene(
+        run,
+        "cylinder",
+        || Cylinder::<f32, 3, 32>::new(CylinderParams::default()).unwrap(),
+        |s| s.events(),
+    );
+    check_plain_scene(
+        run,
+        "painleve",
+        || Painleve::<f32, 3, 32>::new(PainleveParams::default()).unwrap(),
+        |s| s.events(),
+    );
 }
 
 #[test]

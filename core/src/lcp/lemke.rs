@@ -103,13 +103,22 @@ impl<T: Real, const N: usize> Tableau<T, N> {
         // the N^2 copies were a kilobyte of a microcontroller's flash for a path (Lemke's method,
         // after the fast paths) that few steps take. `n = N` all the same.
         let n = N.min(core::hint::black_box(N));
+        // Every access through `get`, whose `None` (never taken: `i, j < n <= N`) is no panic
+        // path: for some `N` (9) the compiler could not see that bound through the indexing.
         for i in 0..n {
-            t.binv[i][i] = T::one();
             for j in 0..n {
-                t.zc[i][j] = -lcp.m[(i, j)];
+                if let (Some(b), Some(z), Some(&m)) = (t.binv.get_mut(i), t.zc.get_mut(i), lcp.m.get((i, j)))
+                {
+                    if i == j {
+                        b[j] = T::one();
+                    }
+                    z[j] = -m;
+                }
             }
-            t.rhs[i] = lcp.q[i];
-            t.basis[i] = Var::W(i as u8);
+            if let (Some(rhs), Some(basis), Some(&q)) = (t.rhs.get_mut(i), t.basis.get_mut(i), lcp.q.get(i)) {
+                *rhs = q;
+                *basis = Var::W(i as u8);
+            }
         }
         t
     }
