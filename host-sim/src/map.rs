@@ -24,7 +24,7 @@ use serde::Serialize;
 use crate::plot;
 use crate::run_cmd::{progress, write_json};
 use crate::scenes::{FLAGS, Flag, Implementation, SceneArgs, SceneSpec, SpecExt as _, flag_error};
-use crate::trajectory::{OutcomeClass, Record, run, write_lines};
+use crate::trajectory::{OutcomeClass, Record, run_k, write_lines};
 
 /// `host-sim map` options.
 #[derive(Debug, Clone, clap::Args)]
@@ -193,7 +193,9 @@ fn outcome_at(
     let spec = apply_axes(base, axes, (x, y))?;
     spec.validate(implementation.precision())
         .map_err(|e| anyhow::anyhow!("at ({x:?}, {y:?}): {}", flag_error(&spec, e)))?;
-    Ok(run(&spec, implementation, Record::Nothing)?.outcome.class)
+    Ok(
+        crate::with_contacts!(spec.kind(), K => run_k::<K>(&spec, implementation, Record::Nothing)?.outcome.class),
+    )
 }
 
 /// `base` with the axes at `(x, y)`: a scene flag first, then `mu-ratio` (which scales the

@@ -323,3 +323,36 @@ fn a_raised_finger_tilts_the_resting_rod() {
         assert!(c.friction_impulse.abs() <= p.mu_static * c.normal_impulse * (1.0 + 1e-12), "{c:?}");
     }
 }
+
+/// `host-sim map` of the cylinder over slope angle x inertia ratio `k` (`--inertia-ratio`): on every
+/// row the bisected boundary between Rolled (below) and Slid (above) lies at the law's angle,
+/// `tan a = mu_s (1 + k) / k` (docs/scenes.md, "cylinder"), in f32 as the firmware runs and in f64.
+#[test]
+fn the_cylinders_map_boundary_is_the_rolling_law() {
+    use meterstick_core::scene::{CylinderParams, OutcomeKind};
+    use meterstick_host_sim::map::{Axis, Grid, compute};
+    use meterstick_host_sim::scenes::{Implementation, SceneSpec};
+    let params = CylinderParams::default();
+    let base = SceneSpec::Cylinder(params);
+    let axes = (Axis::parse("angle").unwrap(), Axis::parse("inertia-ratio").unwrap());
+    let grid = Grid { axes, x: (10.0, 80.0), y: (0.3, 1.0), cells: [15, 5], tolerance: 1e-3 };
+    for implementation in [Implementation::CORE_F32_6, Implementation::CORE_F64_8] {
+        let map = compute(&base, &grid, implementation).unwrap();
+        let boundaries = &map.summary.boundaries;
+        assert_eq!(boundaries.len(), grid.cells[1], "{implementation}: one boundary per row: {boundaries:?}");
+        for b in boundaries {
+            let law = (params.mu_static * (1.0 + b.y) / b.y).atan().to_degrees();
+            assert_eq!(
+                (b.below, b.above),
+                (OutcomeKind::Rolled, OutcomeKind::Slid),
+                "{implementation}: {b:?}"
+            );
+            assert!(
+                (b.x - law).abs() <= b.width + 2e-3,
+                "{implementation}, k = {}: {} deg, law {law} deg",
+                b.y,
+                b.x
+            );
+        }
+    }
+}

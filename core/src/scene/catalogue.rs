@@ -227,8 +227,8 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "speed",
         unit: "m/s",
-        help: "Finger 1's velocity (+x: toward finger 2)",
-        fields: &[(M, "finger1_velocity"), (F, "finger1_velocity")],
+        help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's speed toward -x at the start (its lower end sliding away from under it)",
+        fields: &[(M, "finger1_velocity"), (F, "finger1_velocity"), (P, "speed")],
     },
     Flag {
         long: "speed2",
@@ -312,15 +312,9 @@ pub const FLAGS: &[Flag] = &[
     },
     Flag { long: "width", unit: "m", help: "Block width along the slope (> 0)", fields: &[(I, "width")] },
     Flag { long: "height", unit: "m", help: "Block height (> 0)", fields: &[(I, "height")] },
-    Flag {
-        long: "rod-speed",
-        unit: "m/s",
-        help: "The rod's speed at the start, its lower end sliding away from under it (painleve)",
-        fields: &[(P, "speed")],
-    },
     Flag { long: "radius", unit: "m", help: "Radius of the round body (> 0)", fields: &[(C, "radius")] },
     Flag {
-        long: "inertia-factor",
+        long: "inertia-ratio",
         unit: "",
         help: "k in J = k m r^2 (> 0): 0.5 a solid cylinder, 1 a thin ring",
         fields: &[(C, "inertia_factor")],
