@@ -115,6 +115,8 @@ pub struct Painleve<T: Real, const N: usize = 3, const E: usize = 64> {
     floor: Support<T>,
     events: EventLog<T, 1, E>,
     jam: Option<Jam<T>>,
+    /// The last step's contact impulse, `p_n + |p_f|` (N s; 0 before the first step).
+    last_impulse: T,
     outcome: Option<Outcome>,
 }
 
@@ -137,7 +139,15 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
         let layout = const { Layout::<1, N>::new(if N == 4 { [Tangents::Both] } else { [Tangents::Plus] }) };
         let floor = Support::fixed_line([T::zero(); 2], [T::zero(), T::one()]);
         let stepper = Stepper::new(model, layout, Layout::full(), p.start_state(), [floor])?;
-        Ok(Self { params, stepper, floor, events: EventLog::new(), jam: None, outcome: None })
+        Ok(Self {
+            params,
+            stepper,
+            floor,
+            events: EventLog::new(),
+            jam: None,
+            last_impulse: T::zero(),
+            outcome: None,
+        })
     }
 
     /// The parameters.
@@ -174,7 +184,13 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
         self.events.record(&report);
         let c = report.contacts[0];
         let s = report.state;
-        if before.is_sliding() && c.mode == ContactMode::Sticking {
+        // An impact, not a stop by deceleration: more than twice what finite forces give over a
+        // step (the last step's impulse and the weight's), docs/scenes.md "painleve".
+        let impulse = c.normal_impulse + c.friction_impulse.abs();
+        let p = &self.params;
+        let finite = self.last_impulse + p.mass * p.gravity * p.step;
+        self.last_impulse = impulse;
+        if before.is_sliding() && c.mode == ContactMode::Sticking && impulse > finite + finite {
             self.jam = Some(Jam {
                 time: report.time,
                 normal_impulse: c.normal_impulse,
@@ -238,6 +254,37 @@ mod tests {
             let sliding = PainleveParams { mu_floor: 0.5 * mu_c, max_time: 0.05, ..base };
             let (outcome, jam) = run::<3>(sliding);
             assert_eq!((outcome, jam), (Outcome::Slid, None), "{deg} deg below the critical mu");
+        }
+    }
+
+    /// Below the critical coefficient the end slides under finite forces: the first step's
+    /// impulses are proportional to `h` (their ratio to `h` the same within 1 % for
+    /// `h = 1e-3 .. 1e-6`), and a slide slowed to a stop is no jam (its stopping impulse is of the
+    /// order of the step's forces): the rod goes on to its own outcome.
+    #[test]
+    fn below_the_critical_mu_the_impulses_vanish_with_h_and_a_stop_is_no_jam() {
+        for deg in [30.0_f64, 45.0, 60.0] {
+            let base = PainleveParams { angle: deg.to_radians(), ..PainleveParams::default() };
+            let sliding = PainleveParams { mu_floor: 0.8 * base.critical_mu(), ..base };
+            let mut per_h: Option<(f64, f64)> = None;
+            for h in [1e-3, 1e-4, 1e-5, 1e-6] {
+                let mut rod = Painleve::<f64, 3>::new(PainleveParams { step: h, ..sliding }).unwrap();
+                let c = rod.step().unwrap().contacts[0];
+                assert!(c.mode.is_sliding(), "{deg} deg, h {h}: {:?}", c.mode);
+                let force = (c.normal_impulse / h, c.friction_impulse / h);
+                assert!(force.0 > 0.0, "{deg} deg, h {h}: the end presses on the floor");
+                let first = *per_h.get_or_insert(force);
+                assert!((force.0 / first.0 - 1.0).abs() < 1e-2, "{deg} deg, h {h}: {force:?} vs {first:?}");
+                assert!((force.1 / first.1 - 1.0).abs() < 1e-2, "{deg} deg, h {h}: {force:?} vs {first:?}");
+            }
+            // Slow enough to stop by friction within the run (deceleration of order mu g).
+            let slow = PainleveParams { speed: 0.1, max_time: 1.0, ..sliding };
+            let mut rod = Painleve::<f64, 3>::new(slow).unwrap();
+            let mut stopped = false;
+            let outcome = rod.run(|r| stopped |= r.contacts[0].mode == ContactMode::Sticking);
+            assert!(stopped, "{deg} deg: the slow end stops sliding within the run");
+            assert_eq!(rod.jam(), None, "{deg} deg: a stop by deceleration is no jam");
+            assert_ne!(outcome, Outcome::Jammed, "{deg} deg");
         }
     }
 }
