@@ -1,7 +1,7 @@
 //! The grid of `host-sim stress`: one [`Case`] per stiff or extreme scene, with what physics says
 //! about it where physics decides.
 
-use meterstick_core::scene::{InclineParams, LadderParams, MeterStickParams};
+use meterstick_core::scene::{CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams};
 
 use crate::scenes::SceneSpec;
 use crate::trajectory::OutcomeClass;
@@ -126,6 +126,57 @@ fn ladder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
         Some(OutcomeClass::Fell)
     } else {
         None
+    }
+}
+
+/// Painlevé's rod at `deg` degrees, `mu`, speed `v`, step `h`; `stick_speed` 1e-5 of `v` from
+/// 1 m/s up (as [`at_speed`]: a slip threshold below `v`'s round-off would read an f32 jam as a
+/// slide).
+fn painleve(deg: f64, mu: f64, v: f64, h: f64) -> SceneSpec {
+    SceneSpec::Painleve(PainleveParams {
+        angle: deg.to_radians(),
+        mu_floor: mu,
+        speed: v,
+        step: h,
+        stick_speed: 1e-5 * v.max(1.0),
+        ..PainleveParams::default()
+    })
+}
+
+/// Painlevé's rod's outcome by the law (docs/scenes.md): Jammed when `mu` exceeds
+/// `(1 + 3 c^2) / (3 s c)` by more than 5 % and the impact `m V / 4 (1 + 3 c^2)` exceeds the
+/// weight's impulse over four steps; `None` otherwise (below it, sliding or falling depends on the
+/// run's length).
+fn painleve_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
+    let SceneSpec::Painleve(p) = spec else { return None };
+    let (s, c) = p.angle.sin_cos();
+    let critical = (1.0 + 3.0 * c * c) / (3.0 * s * c);
+    let impact = p.mass * p.speed / 4.0 * (1.0 + 3.0 * c * c);
+    (p.mu_floor > 1.05 * critical && impact > 4.0 * p.mass * p.gravity * p.step)
+        .then_some(OutcomeClass::Jammed)
+}
+
+/// A cylinder at `deg` degrees, inertia ratio `k`, `mu_s` (and `mu_k = mu_s`).
+fn cylinder(deg: f64, k: f64, mu: f64) -> SceneSpec {
+    SceneSpec::Cylinder(CylinderParams {
+        angle: deg.to_radians(),
+        inertia_factor: k,
+        mu_static: mu,
+        mu_kinetic: mu,
+        ..CylinderParams::default()
+    })
+}
+
+/// The cylinder's outcome by the law: Rolled iff `tan a <= mu_s (1 + k) / k`; `None` within 2 %.
+fn cylinder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
+    let SceneSpec::Cylinder(p) = spec else { return None };
+    let (tan, limit) = (p.angle.tan(), p.mu_static * (1.0 + p.inertia_factor) / p.inertia_factor);
+    if (tan - limit).abs() <= 0.02 * limit {
+        None
+    } else if tan < limit {
+        Some(OutcomeClass::Rolled)
+    } else {
+        Some(OutcomeClass::Slid)
     }
 }
 
@@ -348,6 +399,51 @@ pub fn cases(quick: bool) -> Vec<Case> {
         add_ladder("ladder 10 deg mu_floor=0.4", ladder(10.0, 0.4, 0.0), Claim::None);
     }
 
+    // Painlevé's rod (docs/scenes.md, "painleve"): the classic stiff case of rigid contact with
+    // friction. Above the critical mu the sliding end jams in one step under an impact whose
+    // impulse does not shrink with h; the outcome by the law away from the critical mu (within
+    // 5 %, or an impact below the weight's impulse over a step, the outcome is left open).
+    let mut add_painleve = |name: &str, spec: SceneSpec| {
+        let outcome = painleve_claim(&spec);
+        out.push(Case {
+            group: "painleve",
+            name: name.into(),
+            spec,
+            start_dy: 0.0,
+            outcome,
+            claim: Claim::None,
+        });
+    };
+    add_painleve("painleve 30 deg mu=3 (jams)", painleve(30.0, 3.0, 1.0, 1e-3));
+    if !quick {
+        add_painleve("painleve 30 deg mu=3 h=1e-6", painleve(30.0, 3.0, 1.0, 1e-6));
+        add_painleve("painleve 63.4 deg mu=1.4 (near the least critical mu)", painleve(63.4, 1.4, 1.0, 1e-3));
+        add_painleve("painleve 45 deg mu=1 (slides, falls)", painleve(45.0, 1.0, 1.0, 1e-3));
+        add_painleve("painleve 45 deg mu=100", painleve(45.0, 100.0, 1.0, 1e-3));
+        add_painleve("painleve 45 deg mu=3 V=100 m/s", painleve(45.0, 3.0, 100.0, 1e-3));
+        add_painleve("painleve 85 deg mu=12", painleve(85.0, 12.0, 1.0, 1e-3));
+        add_painleve("painleve 30 deg mu=3 V=1e-3 m/s (impact below m g h)", painleve(30.0, 3.0, 1e-3, 1e-3));
+    }
+
+    // A cylinder on an incline (docs/scenes.md, "cylinder"): rolls iff tan a <= mu_s (1 + k) / k.
+    if !quick {
+        let mut add_cylinder = |name: &str, spec: SceneSpec| {
+            let outcome = cylinder_claim(&spec);
+            out.push(Case {
+                group: "cylinder",
+                name: name.into(),
+                spec,
+                start_dy: 0.0,
+                outcome,
+                claim: Claim::None,
+            });
+        };
+        add_cylinder("cylinder 30 deg k=0.5 (rolls)", cylinder(30.0, 0.5, 0.6));
+        add_cylinder("cylinder 75 deg k=1 (slips)", cylinder(75.0, 1.0, 0.6));
+        add_cylinder("cylinder 89 deg k=1e-3 mu=0.1 (near a point mass: rolls)", cylinder(89.0, 1e-3, 0.1));
+        add_cylinder("cylinder 30 deg frictionless (slips)", cylinder(30.0, 0.5, 0.0));
+    }
+
     if quick {
         // Short runs (at most 5 s simulated): the subset checks the criteria, not long physics; a
         // run cut short cannot balance.
@@ -391,5 +487,14 @@ mod tests {
         assert_eq!(ladder_claim(&ladder(40.0, 0.4, 0.3)), Some(OutcomeClass::Fell));
         assert_eq!(ladder_claim(&ladder(47.7, 0.4, 0.3)), None);
         assert_eq!(ladder_claim(&ladder(60.0, 0.0, 0.0)), Some(OutcomeClass::Fell));
+        // Painleve: critical mu 2.50 at 30 degrees, 1.67 at 45.
+        assert_eq!(painleve_claim(&painleve(30.0, 3.0, 1.0, 1e-3)), Some(OutcomeClass::Jammed));
+        assert_eq!(painleve_claim(&painleve(30.0, 2.55, 1.0, 1e-3)), None); // within 5 %
+        assert_eq!(painleve_claim(&painleve(45.0, 1.0, 1.0, 1e-3)), None); // below: no claim
+        assert_eq!(painleve_claim(&painleve(30.0, 3.0, 1e-3, 1e-3)), None); // impact below m g h
+        // Cylinder, k = 0.5, mu_s = 0.6: rolls up to tan a = 1.8 (60.9 degrees).
+        assert_eq!(cylinder_claim(&cylinder(60.0, 0.5, 0.6)), Some(OutcomeClass::Rolled));
+        assert_eq!(cylinder_claim(&cylinder(62.0, 0.5, 0.6)), Some(OutcomeClass::Slid));
+        assert_eq!(cylinder_claim(&cylinder(60.95, 0.5, 0.6)), None);
     }
 }

@@ -81,7 +81,7 @@ impl Verdict {
 
 /// The body's size, for the claims' tolerance.
 fn size_of(case: &Case) -> f64 {
-    ["rod_length", "length", "width", "height"].iter().filter_map(|f| case.spec.get(f)).fold(0.0, f64::max)
+    super::metrics::body_of(&case.spec).2
 }
 
 /// Applies the pass criteria to one run of `case`.

@@ -3,7 +3,8 @@
 //!
 //! * **Penetration** of each contact, from the state after the step, with this module's own
 //!   geometry (`docs/formulation.md`, "Contacts"): a finger tip under the rod,
-//!   `l = R(theta)^T (f - com)`, `psi = -l_y - t/2`; a corner or an end on a line, `psi = (P - o).n`.
+//!   `l = R(theta)^T (f - com)`, `psi = -l_y - t/2`; a corner or an end on a line, `psi = (P - o).n`;
+//!   a round rim on a line, `psi = (c - o).n - r`.
 //! * **Energy** `E = m (vx^2 + vy^2) / 2 + J omega^2 / 2 + m g y`, and the work the moving supports
 //!   do over a step, `sum_i u_i . P_i` with `u_i` a support's velocity over the step and
 //!   `P_i = n p_n + d p_f` its impulse on the body (`n`, `d` at the step's start angle). For the
@@ -19,7 +20,7 @@ use std::time::Instant;
 use meterstick_core::Real;
 use meterstick_core::lcp::default_tolerance;
 use meterstick_core::planar::{BodyState, StepReport};
-use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, Scene};
+use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
 
 use super::cases::{Case, Claim};
 use crate::scenes::SceneSpec;
@@ -75,8 +76,10 @@ impl Metrics {
 /// `eps` gives a normal impulse a horizontal part).
 pub const STILL_TOLERANCE: f64 = 64.0;
 
-/// The body's mass, inertia, size and the scene's characteristic support speed.
-fn body_of(spec: &SceneSpec) -> (f64, f64, f64, f64) {
+/// The body's mass, inertia, size and the scene's characteristic speed (a support's, or the
+/// body's at the start).
+#[must_use]
+pub fn body_of(spec: &SceneSpec) -> (f64, f64, f64, f64) {
     match spec {
         SceneSpec::MeterStick(p) => (
             p.rod_mass,
@@ -84,12 +87,20 @@ fn body_of(spec: &SceneSpec) -> (f64, f64, f64, f64) {
             p.rod_length,
             p.finger1_velocity.abs().max(p.finger2_velocity.abs()),
         ),
+        SceneSpec::ThreeFingers(p) => (
+            p.rod_mass,
+            p.rod_mass * p.rod_length * p.rod_length / 12.0,
+            p.rod_length,
+            p.finger1_velocity.abs(),
+        ),
         SceneSpec::Incline(p) => {
             (p.mass, p.mass * (p.width * p.width + p.height * p.height) / 12.0, p.width.max(p.height), 0.0)
         }
         SceneSpec::Ladder(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, 0.0),
-        // Scenes outside the stress grid (`stress/cases.rs`).
-        _ => (f64::NAN, f64::NAN, f64::NAN, f64::NAN),
+        SceneSpec::Cylinder(p) => {
+            (p.mass, p.inertia_factor * p.mass * p.radius * p.radius, 2.0 * p.radius, 0.0)
+        }
+        SceneSpec::Painleve(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, p.speed.abs()),
     }
 }
 
@@ -130,35 +141,43 @@ pub fn energy(spec: &SceneSpec, s: &[f64; 6]) -> f64 {
 }
 
 /// Each contact's penetration (0 when apart, or a finger not under the rod), with this module's
-/// own geometry; `supports` are the finger tips (meter stick).
+/// own geometry; `supports` are the finger tips (meter stick, three fingers).
 #[must_use]
-pub fn penetrations(spec: &SceneSpec, s: &[f64; 6], supports: [[f64; 2]; 2]) -> [f64; 2] {
+pub fn penetrations(spec: &SceneSpec, s: &[f64; 6], supports: &[[f64; 2]]) -> Vec<f64> {
     let (sn, cs) = s[2].sin_cos();
     let world = |p: [f64; 2]| [s[0] + cs * p[0] - sn * p[1], s[1] + sn * p[0] + cs * p[1]];
+    let under_rod = |length: f64, thickness: f64| {
+        supports
+            .iter()
+            .map(|f| {
+                let (dx, dy) = (f[0] - s[0], f[1] - s[1]);
+                let lx = cs * dx + sn * dy;
+                let ly = -sn * dx + cs * dy;
+                if lx.abs() <= length / 2.0 && ly <= 0.0 { (ly + thickness / 2.0).max(0.0) } else { 0.0 }
+            })
+            .collect()
+    };
     match spec {
-        SceneSpec::MeterStick(p) => supports.map(|f| {
-            let (dx, dy) = (f[0] - s[0], f[1] - s[1]);
-            let lx = cs * dx + sn * dy;
-            let ly = -sn * dx + cs * dy;
-            if lx.abs() <= p.rod_length / 2.0 && ly <= 0.0 {
-                (ly + p.rod_thickness / 2.0).max(0.0)
-            } else {
-                0.0
-            }
-        }),
+        SceneSpec::MeterStick(p) => under_rod(p.rod_length, p.rod_thickness),
+        SceneSpec::ThreeFingers(p) => under_rod(p.rod_length, p.rod_thickness),
         SceneSpec::Incline(p) => {
             let n = [-p.angle.sin(), p.angle.cos()];
-            [-1.0, 1.0].map(|side| {
-                let c = world([side * p.width / 2.0, -p.height / 2.0]);
-                (-(c[0] * n[0] + c[1] * n[1])).max(0.0)
-            })
+            [-1.0, 1.0]
+                .iter()
+                .map(|side| {
+                    let c = world([side * p.width / 2.0, -p.height / 2.0]);
+                    (-(c[0] * n[0] + c[1] * n[1])).max(0.0)
+                })
+                .collect()
         }
         SceneSpec::Ladder(p) => {
             let (bottom, top) = (world([-p.length / 2.0, 0.0]), world([p.length / 2.0, 0.0]));
-            [(-bottom[1]).max(0.0), top[0].max(0.0)]
+            vec![(-bottom[1]).max(0.0), top[0].max(0.0)]
         }
-        // Scenes outside the stress grid (`stress/cases.rs`).
-        _ => [f64::NAN; 2],
+        // The rim against the plane through the origin with normal (-sin a, cos a).
+        SceneSpec::Cylinder(p) => vec![(p.radius - (-p.angle.sin() * s[0] + p.angle.cos() * s[1])).max(0.0)],
+        // The lower end, body point (-L/2, 0), against the floor y = 0.
+        SceneSpec::Painleve(p) => vec![(-world([-p.length / 2.0, 0.0])[1]).max(0.0)],
     }
 }
 
@@ -167,42 +186,61 @@ fn state_of<T: Real>(s: &BodyState<T>) -> [f64; 6] {
 }
 
 /// Each support's position (finger tips; fixed lines give zero velocity anyway).
-fn support_points<T: Real, S: Scene<T, 2>>(scene: &S) -> [[f64; 2]; 2] {
-    scene.supports().map(|s| s.position().map(Real::as_f64))
+fn support_points<T: Real, S: Scene<T, K>, const K: usize>(scene: &S) -> Vec<[f64; 2]> {
+    scene.supports().iter().map(|s| s.position().map(Real::as_f64)).collect()
 }
 
-/// Runs `case` in scalar `T` with LCP size `N`, measuring as it goes; samples the state every
-/// `stride` steps.
+/// Runs `case` in scalar `T` with LCP size `N` (6 the reduced layout, 8 the full one of a
+/// two-contact scene; the other scenes run their own: three fingers 9 or 12, the cylinder and
+/// Painlevé's rod 3 or 4), measuring as it goes; samples the state every `stride` steps.
 #[must_use]
 pub fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
     let failed = |e: meterstick_core::ParamError| Metrics {
         outcome: Some(RunOutcome { class: OutcomeClass::Failed, detail: Some(format!("invalid: {e}")) }),
         ..Metrics::default()
     };
+    let reduced = N == 6;
     match case.spec {
         SceneSpec::MeterStick(p) => {
             let p = p.cast::<T>();
             let mut start = p.resting_state();
             start.y += T::of(case.start_dy);
             match MeterStick::<T, N, 0>::with_state(p, start) {
-                Ok(mut s) => measure_scene::<T, N, _>(&mut s, case, stride),
+                Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
                 Err(e) => failed(e),
             }
         }
         SceneSpec::Incline(p) => match Incline::<T, N, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, N, _>(&mut s, case, stride),
+            Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
             Err(e) => failed(e),
         },
         SceneSpec::Ladder(p) => match Ladder::<T, N, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, N, _>(&mut s, case, stride),
+            Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
             Err(e) => failed(e),
         },
-        _ => Metrics {
-            outcome: Some(RunOutcome {
-                class: OutcomeClass::Failed,
-                detail: Some("not a scene of the stress grid (stress/cases.rs)".into()),
-            }),
-            ..Metrics::default()
+        SceneSpec::ThreeFingers(p) if reduced => match ThreeFingers::<T, 9, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, 9, _, 3>(&mut s, case, stride, 12),
+            Err(e) => failed(e),
+        },
+        SceneSpec::ThreeFingers(p) => match ThreeFingers::<T, 12, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, 12, _, 3>(&mut s, case, stride, 12),
+            Err(e) => failed(e),
+        },
+        SceneSpec::Cylinder(p) if reduced => match Cylinder::<T, 3, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, 3, _, 1>(&mut s, case, stride, 4),
+            Err(e) => failed(e),
+        },
+        SceneSpec::Cylinder(p) => match Cylinder::<T, 4, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, 4, _, 1>(&mut s, case, stride, 4),
+            Err(e) => failed(e),
+        },
+        SceneSpec::Painleve(p) if reduced => match Painleve::<T, 3, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, 3, _, 1>(&mut s, case, stride, 4),
+            Err(e) => failed(e),
+        },
+        SceneSpec::Painleve(p) => match Painleve::<T, 4, 0>::new(p.cast()) {
+            Ok(mut s) => measure_scene::<T, 4, _, 1>(&mut s, case, stride, 4),
+            Err(e) => failed(e),
         },
     }
 }
@@ -210,31 +248,34 @@ pub fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
 /// The work of the supports on the body over a step: `sum_i u_i . (n p_n + d p_f)`, `u_i` from
 /// the supports' positions before and after, `n = R(theta) (0, 1)`, `d = R(theta) (1, 0)` for a
 /// finger under the rod at the step's start angle (supports on lines do not move).
-fn support_work<T: Real>(
+fn support_work<T: Real, const K: usize>(
     spec: &SceneSpec,
-    r: &StepReport<T, 2>,
-    before: [[f64; 2]; 2],
-    after: [[f64; 2]; 2],
+    r: &StepReport<T, K>,
+    before: &[[f64; 2]],
+    after: &[[f64; 2]],
     theta: f64,
 ) -> f64 {
-    if !matches!(spec, SceneSpec::MeterStick(_)) {
+    if !matches!(spec, SceneSpec::MeterStick(_) | SceneSpec::ThreeFingers(_)) {
         return 0.0;
     }
     let (sn, cs) = theta.sin_cos();
     let h = spec.step();
     let mut work = 0.0;
-    for i in 0..2 {
-        let u = [(after[i][0] - before[i][0]) / h, (after[i][1] - before[i][1]) / h];
-        let (pn, pf) = (r.contacts[i].normal_impulse.as_f64(), r.contacts[i].friction_impulse.as_f64());
+    for ((b, a), c) in before.iter().zip(after).zip(&r.contacts) {
+        let u = [(a[0] - b[0]) / h, (a[1] - b[1]) / h];
+        let (pn, pf) = (c.normal_impulse.as_f64(), c.friction_impulse.as_f64());
         work += u[0] * (-sn * pn + cs * pf) + u[1] * (cs * pn + sn * pf);
     }
     work
 }
 
-fn measure_scene<T: Real, const N: usize, S: Scene<T, 2>>(
+/// Steps `scene` (`K` contacts, an `N x N` LCP, `n_full` its full layout's size) to its outcome,
+/// measuring.
+fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
     scene: &mut S,
     case: &Case,
     stride: u64,
+    n_full: usize,
 ) -> Metrics {
     let started = Instant::now();
     let spec = &case.spec;
@@ -245,24 +286,23 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, 2>>(
     let mut s = state_of(scene.state());
     let s0 = s;
     let mut supports = support_points(scene);
-    let mut pen = penetrations(spec, &s, supports);
-    let pen0 = pen[0].max(pen[1]);
+    let mut pen = penetrations(spec, &s, &supports);
+    let pen0 = pen.iter().fold(0.0, |a: f64, &p| a.max(p));
     let e0 = energy(spec, &s);
     let mut e_before = e0;
     let mut work = 0.0;
     m.trace.push([s[0], s[1], s[2]]);
     while let Some(r) = scene.step() {
         // The full layout's tolerance when the reduced check sent the step to it.
-        let n_used = if r.full_layout_used { 8.0 } else { N as f64 };
-        let tolerance = default_tolerance::<T, 8>().as_f64() * n_used / 8.0;
+        let n_used = if r.full_layout_used { n_full } else { N };
+        let tolerance = default_tolerance::<T, 8>().as_f64() * n_used as f64 / 8.0;
         m.residual_ratio = m.residual_ratio.max(r.residual.as_f64() / tolerance);
         m.max_pivots = m.max_pivots.max(r.pivots);
         let after = state_of(&r.state);
         let supports_after = support_points(scene);
-        let step_work = support_work(spec, &r, supports, supports_after, s[2]);
-        let u =
-            (supports_after[0][0] - supports[0][0]).abs().max((supports_after[1][0] - supports[1][0]).abs())
-                / spec.step();
+        let step_work = support_work(spec, &r, &supports, &supports_after, s[2]);
+        let u = supports.iter().zip(&supports_after).fold(0.0, |a: f64, (b, c)| a.max((c[0] - b[0]).abs()))
+            / spec.step();
         let e_after = energy(spec, &after);
         if e_after.is_finite() {
             m.step_energy_gain = m.step_energy_gain.max(e_after - e_before - step_work);
@@ -272,11 +312,11 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, 2>>(
             let allowance = m_body * g * pen0 + energy_tolerance(spec, eps, N, &after);
             m.energy_ratio = m.energy_ratio.max(gain / allowance);
         }
-        let pen_after = penetrations(spec, &after, supports_after);
-        for i in 0..2 {
-            let bound = penetration_bound(spec, eps, pen[i], &s, u);
-            m.penetration = m.penetration.max(pen_after[i]);
-            m.penetration_ratio = m.penetration_ratio.max(pen_after[i] / bound);
+        let pen_after = penetrations(spec, &after, &supports_after);
+        for (&before, &after) in pen.iter().zip(&pen_after) {
+            let bound = penetration_bound(spec, eps, before, &s, u);
+            m.penetration = m.penetration.max(after);
+            m.penetration_ratio = m.penetration_ratio.max(after / bound);
         }
         match case.claim {
             Claim::NotDragged => {

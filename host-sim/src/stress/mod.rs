@@ -2,8 +2,9 @@
 //!
 //! A grid of scenes ([`cases`]: the meter stick at extreme speeds, steps, friction, masses, shapes,
 //! gravities and edge geometries; blocks on steep and shallow inclines, very tall and very flat;
-//! ladders frictionless, at and near the critical angle), each run in the core as f32 6x6 (the
-//! firmware's), f32 8x8 and f64 8x8, with metrics computed here in f64 from what the core reports
+//! ladders frictionless, at and near the critical angle; Painlevé's rod jamming, at tiny steps,
+//! huge speeds and friction; cylinders rolling and slipping), each run in the core as f32 6x6 (the
+//! firmware's), f32 8x8 and f64 8x8 (a one-contact scene: 3x3, 4x4 and 4x4), with metrics computed here in f64 from what the core reports
 //! after every step ([`metrics`]) and judged by the criteria of [`mod@judge`]; [`output`] writes the
 //! report.
 
