@@ -236,11 +236,13 @@ pub(super) fn modes_after(
 }
 
 /// The modes before the first step: a contact active and touching
-/// (`psi <= 64 eps (D + |y|)`, `y` the centre of mass's height) takes its mode from the slip of the
-/// support's initial velocity against the body at rest; any other is separated.
+/// (`psi <= 64 eps (D + |y|)`, `y` the centre of mass's height) takes its mode from the slip
+/// `d . (u - v_P)` of the support's initial velocity against the body's start velocity `v` at the
+/// contact point (at rest in every scene but painleve); any other is separated.
 pub(super) fn initial_modes(
     model: &Model,
     q: [f64; 3],
+    v: [f64; 3],
     frames: &[Frame],
     support_velocity: &[[f64; 2]],
 ) -> Vec<Mode> {
@@ -250,7 +252,8 @@ pub(super) fn initial_modes(
         .zip(support_velocity)
         .map(|(f, &u)| {
             if f.active && f.gap <= touching {
-                slip_mode(dot(f.tangent, u), model.stick_speed)
+                let point = [v[0] - v[2] * f.lever[1], v[1] + v[2] * f.lever[0]];
+                slip_mode(dot(f.tangent, [u[0] - point[0], u[1] - point[1]]), model.stick_speed)
             } else {
                 Mode::Separated
             }
