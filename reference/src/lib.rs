@@ -236,6 +236,8 @@ pub struct Run {
     pub jam: Option<Jam>,
     /// Steps whose LCP had solutions with different motions.
     pub ambiguous_steps: u64,
+    /// The end time of the first such step, s.
+    pub first_ambiguous: Option<f64>,
 }
 
 /// Painleve's jam (docs/scenes.md, "painleve", "Measured"): the step on which the sliding end

@@ -124,6 +124,7 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
         wall_release_height: None,
         jam: None,
         ambiguous_steps: 0,
+        first_ambiguous: None,
     };
     let zero = vec![0.0; start.len()];
     run.rows.push(row(0.0, q, v, &start, &start, &initial, [&zero, &zero]));
@@ -150,6 +151,7 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
         };
         if result.ambiguous {
             run.ambiguous_steps += 1;
+            run.first_ambiguous.get_or_insert((steps + 1) as f64 * h);
         }
         // Eq. 14: q+ = q + h v+.
         v = result.velocity;

@@ -349,6 +349,7 @@ fn three_fingers_hold_the_rod_level_with_its_weight_carried() {
     let p = ThreeFingers::default();
     let run = timed("three fingers", &Spec::ThreeFingers(p), Sample::Every(100));
     assert_eq!(run.outcome, Outcome::Held);
+    eprintln!("  first ambiguous step ends at {:?} s", run.first_ambiguous);
     // The normal forces of three supports are statically indeterminate, and steps whose splits
     // move the rod differently are counted (step.rs); the run stays level all the same.
     assert_eq!(run.initial_modes, vec![Mode::SlidingPositive, Mode::Sticking, Mode::Sticking]);
