@@ -40,7 +40,7 @@
 //! was sticking or separated after the previous step, `mu_k` for one that was sliding; a penetration
 //! is pushed out at most at the speed of a fall through it, `beta = max(psi / h, -sqrt(2 g
 //! |psi|))`; after a step a contact is separated when inactive or its normal impulse per unit mass
-//! is at most `64 eps (g h + V)`, else sticking when its slip `|d . (u - v_P)|` is at most
+//! is at most `64 eps g h` (the round-off of one step's gravity impulse; docs/formulation.md, "Precision": not `eps V`), else sticking when its slip `|d . (u - v_P)|` is at most
 //! `stick_speed`, else sliding in the direction of the slip; the modes before the first step come
 //! from the slip of the supports' initial velocities against the body's start velocity (at rest
 //! but in painleve).

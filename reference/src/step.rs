@@ -29,7 +29,7 @@
 //! component (`omega` times `D/2`).
 //!
 //! **Modes after the step.** A contact is separated when it was inactive or its normal impulse
-//! per unit mass is at most `64 eps (g h + V)`; otherwise its slip is `s = d . (u - v_P)` with
+//! per unit mass is at most `64 eps g h` (the round-off of one step's gravity impulse; docs/formulation.md, "Precision": not `eps V`); otherwise its slip is `s = d . (u - v_P)` with
 //! `v_P = (vx - omega r_y, vy + omega r_x)` after the step (`r`, `d` at the step's start): sticking
 //! when `|s| <= stick_speed`, else sliding in the direction of `s`.
 
@@ -62,7 +62,7 @@ impl Model {
 
     /// Normal impulse per unit mass at or below which a contact counts as separated.
     pub fn impulse_floor(&self) -> f64 {
-        64.0 * f64::EPSILON * (self.gravity * self.step + self.speed)
+        64.0 * f64::EPSILON * self.gravity * self.step
     }
 
     /// `beta(psi)`: the gap closed in one step, a penetration pushed out at most at the speed of a
