@@ -30,7 +30,8 @@
 //!   physical (N s).
 //! * **Solver.** Exhaustive enumeration of all `2^n` complementary bases (`enumerate.rs`) instead of
 //!   Lemke's method; among several solutions the least kinetic energy after the step, ties
-//!   (energies within round-off) by the smallest `||z||_1`, then by the lowest basis; a step whose
+//!   (energies within round-off) by the smallest `||z||_1` (within round-off), then by the lowest
+//!   basis; a step whose
 //!   solutions move the body differently (by more than `1e-9` of the speed scale) counts as
 //!   *ambiguous*.
 //! * **Integration.** Plain f64 sums for `q+ = q + h v+` (`core` compensates its f32 sums);

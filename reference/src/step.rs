@@ -22,8 +22,10 @@
 //! solution exists but need not be unique (how friction splits between two sticking contacts);
 //! the post-step velocity of each is `v+ = v~ + M~ W z` (eq. 16). **Choice:** the least kinetic
 //! energy `vx^2 + vy^2 + (J/m) omega^2` (maximum dissipation, the principle behind the friction
-//! model); energies within `1e-12 S^2` of the least are ties, broken by the smallest `||z||_1`,
-//! then by the lowest basis. `S` is the step's speed scale, `max(V, |v~_x|, |v~_y|, (D/2)
+//! model); energies within `1e-12 S^2` of the least are ties, broken by the smallest `||z||_1`
+//! (sums within `1e-12` of each other, relative, are ties too: a rod at rest on three tips carried
+//! by the middle one or by the outer two has the same sum to round-off, and round-off must not
+//! pick between them step by step), then by the lowest basis. `S` is the step's speed scale, `max(V, |v~_x|, |v~_y|, (D/2)
 //! |v~_omega|)` with `V` the scene's characteristic speed and `D` the body's size. A step is
 //! **ambiguous** when two solutions give velocities that differ by more than `1e-9 S` in a
 //! component (`omega` times `D/2`).
@@ -170,7 +172,9 @@ pub(super) fn solve(
     // Solutions come in increasing basis order, so the first of equal ||z||_1 has the lowest basis.
     let mut chosen: Option<usize> = None;
     for (s, solution) in solutions.iter().enumerate() {
-        if energies[s] <= least + tie && chosen.is_none_or(|c| l1(&solution.z) < l1(&solutions[c].z)) {
+        if energies[s] <= least + tie
+            && chosen.is_none_or(|c| l1(&solution.z) < l1(&solutions[c].z) * (1.0 - 1e-12))
+        {
             chosen = Some(s);
         }
     }

@@ -312,11 +312,10 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
 /// 0.233 m by the stop; the full 12x12 layout stays with the reference).
 ///
 /// Asserted for each layout: the same outcome and steps, level and at the same height throughout
-/// (1e-9); then either the same positions to 1e-9 m throughout, or the same positions until the
-/// core's rod starts to move, that start within two steps of finger travel of
-/// `x1 = -x3 mu_k / mu_s` (the first moment statics allows it), and the reference's ambiguity flag
-/// raised by then. Switch events are not compared: where the reference's candidates tie (at rest,
-/// frictionless, `N2 = W` or `N1 + N3 = W`) round-off picks one each step, and its events flicker.
+/// (1e-9); then either the same positions to 1e-9 m and the same switch events throughout, or the
+/// same positions until the core's rod starts to move, that start within two steps of finger
+/// travel of `x1 = -x3 mu_k / mu_s` (the first moment statics allows it), and the reference's
+/// ambiguity flag raised by then.
 #[test]
 fn three_fingers_part_only_where_the_contact_model_does_not_decide_the_motion() {
     let p = ThreeFingersParams::default();
@@ -345,6 +344,11 @@ fn three_fingers_part_only_where_the_contact_model_does_not_decide_the_motion() 
                 r.events.len()
             );
             assert!(com < 1e-9, "{what}: {com:e} m");
+            assert_eq!(core.events.len(), r.events.len(), "{what}");
+            for (a, b) in core.events.iter().zip(&r.events) {
+                assert_eq!((a.contact, a.mode), (b.contact, b.mode), "{what}: {a:?} vs {b:?}");
+                assert!((a.t - b.t).abs() < 1e-9, "{what}: {a:?} vs {b:?}");
+            }
             continue;
         };
         let prefix = |t: &Trajectory<3>| Trajectory { rows: t.rows[..start].to_vec(), ..t.clone() };
