@@ -139,7 +139,8 @@ pub enum Outcome {
     Slid,
     /// Cylinder: at `max_time` without ever sliding (it rolled).
     Rolled,
-    /// Painleve: the end, sliding before a step, sticks after it (a tangential impact).
+    /// Painleve: the end, sliding before a step, sticks after it under an impact (a contact
+    /// impulse more than twice the previous step's and the weight's).
     Jammed,
     /// Incline: the centre of mass passed over a lower corner.
     Tipped,

@@ -11,7 +11,9 @@
 //!   `omega_dot = mu_k g cos(alpha) / (k r)`.
 //! * **painleve**: a rod's end (a body point on the floor line) sliding away from under the rod.
 //!   Above `mu = (1 + 3 c^2) / (3 s c)` the end jams with the impulse
-//!   `(m V / 4) (1 + 3 c^2, 3 s c)` (friction, normal) as `h -> 0`; below it, it slides.
+//!   `(m V / 4) (1 + 3 c^2, 3 s c)` (friction, normal) as `h -> 0`; below it, it slides. A jam is
+//!   a slide-to-stick under an impact, `p_n + |p_f| > 2 (|P_prev| + m g h)`; a slide that friction
+//!   slows to a stop is none.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -482,11 +484,13 @@ impl Scene for CylinderScene {
 pub(super) struct PainleveScene {
     p: Painleve,
     jam: Option<Jam>,
+    /// The previous step's contact impulse `|P| = p_n + |p_f|`, N s (0 before the first).
+    previous: f64,
 }
 
 impl PainleveScene {
     pub(super) fn new(p: Painleve) -> Self {
-        Self { p, jam: None }
+        Self { p, jam: None, previous: 0.0 }
     }
 }
 
@@ -538,7 +542,12 @@ impl Scene for PainleveScene {
     }
 
     fn judge(&mut self, end: &StepEnd<'_>) -> Option<Outcome> {
-        if end.before[0].is_sliding() && end.after[0] == Mode::Sticking {
+        // An impact: more than twice what finite forces give over a step, the previous step's
+        // impulse and the weight's (a slide that friction slows to a stop is no jam).
+        let impulse = end.normal[0] + end.friction[0].abs();
+        let impact = impulse > 2.0 * (self.previous + self.p.mass * self.p.gravity * self.p.step);
+        self.previous = impulse;
+        if end.before[0].is_sliding() && end.after[0] == Mode::Sticking && impact {
             self.jam =
                 Some(Jam { t: end.t, normal_impulse: end.normal[0], friction_impulse: end.friction[0] });
             Some(Outcome::Jammed)

@@ -344,6 +344,41 @@ fn painleves_rod_jams_above_its_critical_coefficient_with_an_impulse_that_does_n
     }
 }
 
+/// Below the critical coefficient the end slides under finite forces: the first step's impulses
+/// scale with `h`; and a slow rod whose end friction stops is not Jammed (a stop, not an impact).
+#[test]
+fn below_painleves_critical_coefficient_the_impulses_scale_with_h_and_a_stop_is_no_jam() {
+    for deg in [30.0_f64, 45.0, 60.0] {
+        let base = Painleve { angle: deg.to_radians(), ..Painleve::default() };
+        let (mu_c, _) = painleve_law(&base);
+        let sliding = Painleve { mu_floor: 0.8 * mu_c, ..base };
+        let mut forces = Vec::new();
+        for step in [1e-3, 1e-4, 1e-5, 1e-6] {
+            let p = Painleve { step, max_time: step, ..sliding };
+            let run = run(&Spec::Painleve(p), Sample::All).unwrap();
+            let c = run.rows[1].contacts[0];
+            assert!(c.mode.is_sliding() && c.normal_impulse > 0.0, "{deg} deg, h = {step}: {c:?}");
+            forces.push([c.normal_impulse / step, c.friction_impulse / step]);
+        }
+        eprintln!("painleve {deg} deg, 0.8 mu_c: first-step forces (N) {forces:.4?}");
+        for f in &forces {
+            assert!(f.iter().zip(&forces[0]).all(|(a, b)| (a / b - 1.0).abs() < 1e-2), "{forces:?}");
+        }
+        let slow = Painleve { speed: 0.1, max_time: 1.0, ..sliding };
+        let run = run(&Spec::Painleve(slow), Sample::All).unwrap();
+        let stop = run.rows.iter().find(|r| r.contacts[0].mode == Mode::Sticking);
+        eprintln!(
+            "painleve {deg} deg, 0.8 mu_c, V = 0.1: {:?} at {} s, the end stopped at {:?} s",
+            run.outcome,
+            run.end_time,
+            stop.map(|r| r.t)
+        );
+        assert!(stop.is_some(), "{deg} deg: friction stops the slow end within the run");
+        assert_eq!(run.jam, None, "{deg} deg");
+        assert_ne!(run.outcome, Outcome::Jammed, "{deg} deg");
+    }
+}
+
 #[test]
 fn three_fingers_hold_the_rod_level_with_its_weight_carried() {
     let p = ThreeFingers::default();
