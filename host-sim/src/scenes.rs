@@ -34,7 +34,7 @@ pub trait SpecExt {
     fn validate(&self, precision: Precision) -> Result<(), ParamError>;
 
     /// The same scene for the independent reference (its own parameter types: data only);
-    /// `None` for a scene the reference does not implement (none now: every scene has one).
+    /// `None` for a scene the reference does not implement (every catalogue scene has one).
     fn to_reference(&self) -> Option<crate::reference::Spec>;
 }
 
