@@ -5,7 +5,7 @@
 //! Tolerances:
 //! * **f64 core vs reference**: both solve the same LCP each step to round-off (~1e-16 relative),
 //!   so with the same modes the trajectories differ by round-off only (measured: <= 1.8e-14 m over
-//!   whole runs of the two-contact scenes, 1.3e-14 m and 1.1e-13 rad on the cylinder, 3e-16 m on
+//!   whole runs of the two-contact scenes, 1.3e-14 m and 1.1e-13 rad on the cylinder, 1e-15 m on
 //!   painleve). Asserted: same steps, outcome and switch events, measured quantities (and for one
 //!   contact the impulses) within 1e-9, and 1e-9 m / 1e-9 rad, a margin for other platforms'
 //!   `sin`/`cos`. Three fingers are the exception, a finding rather than a tolerance: their motion
