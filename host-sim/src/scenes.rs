@@ -34,7 +34,7 @@ pub trait SpecExt {
     fn validate(&self, precision: Precision) -> Result<(), ParamError>;
 
     /// The same scene for the independent reference (its own parameter types: data only);
-    /// `None` for a scene the reference does not implement (three-fingers).
+    /// `None` for a scene the reference does not implement (every catalogue scene has one).
     fn to_reference(&self) -> Option<crate::reference::Spec>;
 }
 
@@ -94,8 +94,48 @@ impl SpecExt for SceneSpec {
                 stick_speed: p.stick_speed,
                 max_time: p.max_time,
             }),
-            // The reference implements the two-contact scenes.
-            _ => return None,
+            Self::ThreeFingers(p) => r::Spec::ThreeFingers(r::ThreeFingers {
+                rod_length: p.rod_length,
+                rod_thickness: p.rod_thickness,
+                rod_mass: p.rod_mass,
+                gravity: p.gravity,
+                finger1_x: p.finger1_x,
+                finger2_x: p.finger2_x,
+                finger3_x: p.finger3_x,
+                finger1_velocity: p.finger1_velocity,
+                finger_width: p.finger_width,
+                mu_static: p.mu_static,
+                mu_kinetic: p.mu_kinetic,
+                step: p.step,
+                stick_speed: p.stick_speed,
+                tilt_limit: p.tilt_limit,
+                hold_time: p.hold_time,
+                max_time: p.max_time,
+            }),
+            Self::Cylinder(p) => r::Spec::Cylinder(r::Cylinder {
+                radius: p.radius,
+                mass: p.mass,
+                inertia_factor: p.inertia_factor,
+                gravity: p.gravity,
+                angle: p.angle,
+                mu_static: p.mu_static,
+                mu_kinetic: p.mu_kinetic,
+                step: p.step,
+                stick_speed: p.stick_speed,
+                max_time: p.max_time,
+            }),
+            Self::Painleve(p) => r::Spec::Painleve(r::Painleve {
+                length: p.length,
+                thickness: p.thickness,
+                mass: p.mass,
+                gravity: p.gravity,
+                angle: p.angle,
+                speed: p.speed,
+                mu_floor: p.mu_floor,
+                step: p.step,
+                stick_speed: p.stick_speed,
+                max_time: p.max_time,
+            }),
         })
     }
 }

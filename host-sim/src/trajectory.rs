@@ -116,8 +116,13 @@ pub struct Meeting {
 pub struct Measured {
     /// Meter stick: the meeting.
     pub meeting: Option<Meeting>,
-    /// Incline: the acceleration down the slope while sliding (m/s^2).
+    /// Incline: the acceleration down the slope while sliding; cylinder: after the first step
+    /// (m/s^2).
     pub acceleration_m_s2: Option<f64>,
+    /// Cylinder: the angular acceleration after the first step, counter-clockwise (rad/s^2; the
+    /// reference's, absent from `summary.json` for a run without it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angular_acceleration_rad_s2: Option<f64>,
     /// Ladder: height of the top when it left the wall (m).
     pub wall_release_height_m: Option<f64>,
     /// Ladder: that height over the top's initial height (2/3 when frictionless).
@@ -679,6 +684,8 @@ pub fn run_reference<const K: usize>(spec: &SceneSpec, record: Record) -> anyhow
         reference::Outcome::Held => RunOutcome::of(OutcomeClass::Held),
         reference::Outcome::Slid => RunOutcome::of(OutcomeClass::Slid),
         reference::Outcome::Tipped => RunOutcome::of(OutcomeClass::Tipped),
+        reference::Outcome::Rolled => RunOutcome::of(OutcomeClass::Rolled),
+        reference::Outcome::Jammed => RunOutcome::of(OutcomeClass::Jammed),
         reference::Outcome::Unfinished => RunOutcome::of(OutcomeClass::Unfinished),
         reference::Outcome::Failed(why) => {
             RunOutcome { class: OutcomeClass::Failed, detail: Some(why.clone()) }
@@ -702,9 +709,14 @@ pub fn run_reference<const K: usize>(spec: &SceneSpec, record: Record) -> anyhow
         measured: Measured {
             meeting: run.meeting.map(|(time_s, com_offset_m)| Meeting { time_s, com_offset_m }),
             acceleration_m_s2: run.acceleration,
+            angular_acceleration_rad_s2: run.angular_acceleration,
             wall_release_height_m: run.wall_release_height,
             wall_release_ratio: run.wall_release_height.map(|h| h / start_top),
-            jam: None,
+            jam: run.jam.map(|j| JamImpulses {
+                time_s: j.t,
+                normal_impulse_ns: j.normal_impulse,
+                friction_impulse_ns: j.friction_impulse,
+            }),
         },
         counters: SolverCounters { ambiguous_steps: run.ambiguous_steps, ..SolverCounters::default() },
         checksum: None,

@@ -187,8 +187,8 @@ fn run_takes_every_scene() {
 }
 
 /// A scene of three contacts (`core/examples/three_fingers.rs` in the catalogue) runs in `run` and
-/// `scene`: its CSV has a column group per finger, and without an independent reference for it
-/// the core runs alone (no `reference.csv`, `reference` null in summary.json).
+/// `scene`: its CSV has a column group per finger, and the independent reference runs beside the
+/// core (`reference.csv`, `reference` and `comparison` in summary.json).
 #[test]
 fn run_and_scene_take_a_three_contact_scene() {
     let out = temp_dir("three-fingers");
@@ -204,13 +204,14 @@ fn run_and_scene_take_a_three_contact_scene() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
-    assert!(stdout.contains("no independent reference for scene three-fingers"), "{stdout}");
+    assert!(!stdout.contains("no independent reference"), "{stdout}");
     let dir = out.join("three-fingers");
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["scene"], "three-fingers");
     assert_eq!(s["core"]["outcome"], "Held", "{s}");
-    assert!(s["reference"].is_null() && s["comparison"].is_null(), "{s}");
+    assert_eq!(s["reference"]["outcome"], "Held", "{s}");
+    assert!(s["comparison"].is_object(), "{s}");
     assert_eq!(s["parameters"]["finger3_x"], serde_json::json!(0.3));
     let (header, rows) = read_csv(&dir.join("core.csv"));
     assert_eq!(header.join(","), meterstick_host_sim::trajectory::csv_header(3));
@@ -221,7 +222,8 @@ fn run_and_scene_take_a_three_contact_scene() {
     let col = |name: &str| num(&last[header.iter().position(|h| h == name).unwrap()]);
     assert!((col("support3_x") - 0.3).abs() < 1e-9, "{last:?}");
     assert!((col("support2_x") - col("support1_x") - 0.01).abs() < 1e-9, "{last:?}");
-    assert!(!dir.join("reference.csv").exists());
+    let (reference_header, _) = read_csv(&dir.join("reference.csv"));
+    assert_eq!(reference_header, header);
     assert!(dir.join("core-events.csv").exists() && dir.join("positions.svg").exists());
     std::fs::remove_dir_all(&out).unwrap();
     let (code, stdout, err) =
@@ -269,6 +271,15 @@ fn the_cylinder_rolls_or_slides_as_the_law_says() {
     assert_eq!(code, 0, "{err}");
     let (header, _) = read_csv(&out.join("cylinder").join("core.csv"));
     assert_eq!(header.join(","), meterstick_host_sim::trajectory::csv_header(1));
+    // The reference beside it: the same acceleration, and the angular one (30 degrees, mu_s 0.6:
+    // it rolls, omega_dot = a / r).
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("cylinder").join("summary.json")).unwrap())
+            .unwrap();
+    let measured = |who: &str, what: &str| s[who]["measured"][what].as_f64().unwrap();
+    let a = measured("reference", "acceleration_m_s2");
+    assert!((a - measured("core", "acceleration_m_s2")).abs() < 1e-4, "{s}");
+    assert!((measured("reference", "angular_acceleration_rad_s2") * 0.1 / a - 1.0).abs() < 1e-9, "{s}");
     std::fs::remove_dir_all(&out).unwrap();
     let (code, _, err) = host_sim(&["scene", "--scene", "cylinder", "--radius", "-1"]);
     assert_eq!(code, 2);
@@ -295,6 +306,9 @@ fn the_painleve_rod_jams() {
     // 45 degrees, m = 1, V = 1: normal impulse 3 m V s c / 4 = 0.375 N s, within m g h.
     let pn = s["core"]["measured"]["jam"]["normal_impulse_ns"].as_f64().unwrap();
     assert!((pn - 0.375).abs() < 9.81e-3, "{s}");
+    // The reference's jam beside it (the core here is f32: within its round-off).
+    let reference_pn = s["reference"]["measured"]["jam"]["normal_impulse_ns"].as_f64().unwrap();
+    assert!((reference_pn - pn).abs() < 1e-5, "{s}");
     std::fs::remove_dir_all(&out).unwrap();
 }
 

@@ -9,6 +9,13 @@
 //! * A **body point on a support line**: body point `p_b`, line through `o` with unit normal `n_s`
 //!   toward the body. `P = com + R p_b`, always active; `psi = (P - o) . n_s`; `n = n_s`;
 //!   `d = (n_y, -n_x)`; coordinate along the contact `(P - o) . d`.
+//! * A **round rim on a support line** (docs/scenes.md, "cylinder"): a circle of radius `rho`
+//!   about the centre of mass, line through `o` with unit normal `n_s` toward the body. The rim
+//!   touches the line at the point nearest to it whatever the body's angle, so the contact point
+//!   is `P = com - rho n_s` (`r = -rho n_s`), always active; `psi = (com - o) . n_s - rho` (the
+//!   centre's distance from the line less the radius); `n = n_s`; `d = (n_y, -n_x)`; coordinate
+//!   along the contact `(P - o) . d`. With `r` parallel to `n`, `r x n = 0` and
+//!   `r x d = -rho (n_x d_y - n_y d_x) = rho` (`n x d = -1` for `d` the normal turned clockwise).
 //!
 //! In both, `r = R p` is the contact point relative to the centre of mass (world), and a unit
 //! impulse along `a` applied there has the wrench `[a; r x a]` with `r x a = r_x a_y - r_y a_x`
@@ -66,6 +73,15 @@ pub(super) enum Support {
         /// The line's unit normal, pointing toward the body's side.
         normal: [f64; 2],
     },
+    /// A support line touched by the body's round rim.
+    Round {
+        /// The rim's radius `rho` (a circle about the centre of mass), m.
+        radius: f64,
+        /// A point of the line, world.
+        origin: [f64; 2],
+        /// The line's unit normal, pointing toward the body's side.
+        normal: [f64; 2],
+    },
 }
 
 /// One contact's geometry at one configuration.
@@ -118,6 +134,21 @@ pub(super) fn frame(body: &Body, q: [f64; 3], support: &Support) -> Frame {
                 support_point: [origin[0] + along * tangent[0], origin[1] + along * tangent[1]],
             }
         }
+        Support::Round { radius, origin, normal } => {
+            let lever = [-radius * normal[0], -radius * normal[1]];
+            let centre = [com[0] - origin[0], com[1] - origin[1]];
+            let tangent = [normal[1], -normal[0]];
+            let along = dot([centre[0] + lever[0], centre[1] + lever[1]], tangent);
+            Frame {
+                active: true,
+                gap: dot(centre, normal) - radius,
+                lever,
+                normal,
+                tangent,
+                along,
+                support_point: [origin[0] + along * tangent[0], origin[1] + along * tangent[1]],
+            }
+        }
     }
 }
 
@@ -139,6 +170,30 @@ mod tests {
         assert!(w.tangent[0] == 0.0 && w.tangent[1] - 1.0 == 0.0, "{w:?}");
         assert!((w.gap - 0.001).abs() < 1e-15 && (w.along - 0.2).abs() < 1e-15, "{w:?}");
         assert!((w.support_point[0]).abs() < 1e-15 && (w.support_point[1] - 0.2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_rim_touches_a_slope_below_its_centre_whatever_its_angle() {
+        // A disc of radius 0.1 with its centre 0.13 m from a 30 degree slope and 0.2 m up it.
+        let alpha = 30_f64.to_radians();
+        let (s, c) = alpha.sin_cos();
+        let body = Body { half_width: 0.1, half_height: 0.1, mass: 1.0, inertia: 0.005 };
+        let slope = Support::Round { radius: 0.1, origin: [0.0, 0.0], normal: [-s, c] };
+        let centre = [0.2 * c - 0.13 * s, 0.2 * s + 0.13 * c];
+        for theta in [0.0, 1.0, -2.5] {
+            let f = frame(&body, [centre[0], centre[1], theta], &slope);
+            assert!(f.active && (f.gap - 0.03).abs() < 1e-15, "{f:?}");
+            // The contact point 0.1 m below the centre along -n, 0.2 m up the slope.
+            assert!((f.lever[0] - 0.1 * s).abs() < 1e-15 && (f.lever[1] + 0.1 * c).abs() < 1e-15, "{f:?}");
+            assert!((f.tangent[0] - c).abs() < 1e-15 && (f.tangent[1] - s).abs() < 1e-15, "{f:?}");
+            assert!((f.along - 0.2).abs() < 1e-15, "{f:?}");
+            assert!(
+                (f.support_point[0] - 0.2 * c).abs() < 1e-15 && (f.support_point[1] - 0.2 * s).abs() < 1e-15
+            );
+            // Eq. 3: the normal passes through the centre, friction has the lever arm rho.
+            assert!(wrench(f.lever, f.normal)[2].abs() < 1e-16);
+            assert!((wrench(f.lever, f.tangent)[2] - 0.1).abs() < 1e-15);
+        }
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! An independent f64 reference of the planar contact scenes: the model of docs/formulation.md
-//! and the scenes of docs/scenes.md (`meter-stick`, `incline`, `ladder`), written again from
+//! and the scenes of docs/scenes.md (`meter-stick`, `incline`, `ladder`, `three-fingers`,
+//! `cylinder`, `painleve`), written again from
 //! those two texts and sharing no code with `meterstick-core` (this crate has no dependencies:
 //! the crate graph shows it), to catch formulation and precision errors in it. Its exhaustive
 //! LCP enumerator ([`enumerate`]) is also the integration tests' check of the core's solver.
@@ -8,7 +9,8 @@
 //!
 //! One planar rigid body, `q = (x, y, theta)`, `v = (vx, vy, omega)`, `M = diag(m, m, J)`
 //! (eq. 2), gravity `g` along `-y`, against `K` contacts whose supports the scene moves
-//! (`geometry.rs`: a support point under the body's lower face, or a body point on a support line).
+//! (`geometry.rs`: a support point under the body's lower face, a body point on a support line,
+//! or the body's round rim on a support line).
 //! Each step of length `h` solves the LCP of eqs. 13-18 in impulse-velocity form
 //! (`step.rs`):
 //!
@@ -28,7 +30,8 @@
 //!   physical (N s).
 //! * **Solver.** Exhaustive enumeration of all `2^n` complementary bases (`enumerate.rs`) instead of
 //!   Lemke's method; among several solutions the least kinetic energy after the step, ties
-//!   (energies within round-off) by the smallest `||z||_1`, then by the lowest basis; a step whose
+//!   (energies within round-off) by the smallest `||z||_1` (within round-off), then by the lowest
+//!   basis; a step whose
 //!   solutions move the body differently (by more than `1e-9` of the speed scale) counts as
 //!   *ambiguous*.
 //! * **Integration.** Plain f64 sums for `q+ = q + h v+` (`core` compensates its f32 sums);
@@ -38,25 +41,28 @@
 //! was sticking or separated after the previous step, `mu_k` for one that was sliding; a penetration
 //! is pushed out at most at the speed of a fall through it, `beta = max(psi / h, -sqrt(2 g
 //! |psi|))`; after a step a contact is separated when inactive or its normal impulse per unit mass
-//! is at most `64 eps (g h + V)`, else sticking when its slip `|d . (u - v_P)|` is at most
+//! is at most `64 eps g h` (the round-off of one step's gravity impulse; docs/formulation.md, "Precision": not `eps V`), else sticking when its slip `|d . (u - v_P)|` is at most
 //! `stick_speed`, else sliding in the direction of the slip; the modes before the first step come
-//! from the slip of the supports' initial velocities against the body at rest.
+//! from the slip of the supports' initial velocities against the body's start velocity (at rest
+//! but in painleve).
 //!
 //! # The scenes (docs/scenes.md)
 //!
-//! [`MeterStick`], [`Incline`] and [`Ladder`] hold each scene's parameters (defaults as
-//! docs/scenes.md, angles in radians); [`run`] validates them and steps the scene to its outcome
-//! (`simulate.rs` the loop, `scenes.rs` the start states, support motions, outcome rules and
-//! measurements).
+//! [`MeterStick`], [`Incline`], [`Ladder`], [`ThreeFingers`], [`Cylinder`] and [`Painleve`] hold
+//! each scene's parameters (defaults as docs/scenes.md, angles in radians); [`run`] validates them
+//! and steps the scene to its outcome (`simulate.rs` the loop; `scenes.rs` and `other_scenes.rs`
+//! the start states, support motions, outcome rules and measurements).
 
 pub mod enumerate;
 mod geometry;
+mod other_scenes;
 mod scenes;
 mod simulate;
 mod step;
 #[cfg(test)]
 mod tests;
 
+pub use other_scenes::{Cylinder, Painleve, ThreeFingers};
 pub use scenes::{Incline, Ladder, MeterStick};
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -87,6 +93,12 @@ pub enum Spec {
     Incline(Incline),
     /// docs/scenes.md, "ladder".
     Ladder(Ladder),
+    /// docs/scenes.md, "three-fingers".
+    ThreeFingers(ThreeFingers),
+    /// docs/scenes.md, "cylinder".
+    Cylinder(Cylinder),
+    /// docs/scenes.md, "painleve".
+    Painleve(Painleve),
 }
 
 /// A contact's mode after a step (docs/formulation.md, "Friction and contact modes").
@@ -115,12 +127,21 @@ impl Mode {
 pub enum Outcome {
     /// Meter stick: the fingers met and the rod rests on both, its centre of mass between them.
     Balanced,
-    /// Meter stick: tilted, dropped or off both fingers; ladder: the upper end reached the floor.
+    /// Meter stick: tilted, dropped or off both fingers; three-fingers: tilted or off every
+    /// finger; ladder: the upper end reached the floor; painleve: the rod lay down or its centre
+    /// of mass reached the floor.
     Fell,
-    /// Incline, ladder: at `max_time` without any contact ever sliding.
+    /// Incline, ladder: at `max_time` without any contact ever sliding; three-fingers: finger 1
+    /// stopped at least `hold_time` ago.
     Held,
-    /// Incline: at `max_time` after a contact slid.
+    /// Incline, cylinder: at `max_time` after a contact slid; painleve: at `max_time` with the
+    /// end sliding.
     Slid,
+    /// Cylinder: at `max_time` without ever sliding (it rolled).
+    Rolled,
+    /// Painleve: the end, sliding before a step, sticks after it under an impact (a contact
+    /// impulse more than twice the previous step's and the weight's).
+    Jammed,
     /// Incline: the centre of mass passed over a lower corner.
     Tipped,
     /// `max_time` reached and no other outcome applies.
@@ -202,13 +223,35 @@ pub struct Run {
     pub end_time: f64,
     /// Meter stick: `(time, com_offset)` of the first step that ended with the fingers stopped.
     pub meeting: Option<(f64, f64)>,
-    /// Incline: the acceleration down the slope, m/s^2, for a run that ended [`Outcome::Slid`].
+    /// Incline: the acceleration down the slope, m/s^2, for a run that ended [`Outcome::Slid`];
+    /// cylinder: the same after the first step, for a run that ended [`Outcome::Rolled`] or
+    /// [`Outcome::Slid`].
     pub acceleration: Option<f64>,
+    /// Cylinder: the angular acceleration (counter-clockwise) after the first step, rad/s^2, for
+    /// a run that ended [`Outcome::Rolled`] or [`Outcome::Slid`].
+    pub angular_acceleration: Option<f64>,
     /// Ladder: the upper end's height at the end of the first step after which the wall contact
     /// was separated having touched before it, m.
     pub wall_release_height: Option<f64>,
+    /// Painleve: the jam step's end time (s), normal impulse and friction impulse along `+x`
+    /// (N s).
+    pub jam: Option<Jam>,
     /// Steps whose LCP had solutions with different motions.
     pub ambiguous_steps: u64,
+    /// The end time of the first such step, s.
+    pub first_ambiguous: Option<f64>,
+}
+
+/// Painleve's jam (docs/scenes.md, "painleve", "Measured"): the step on which the sliding end
+/// stuck.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Jam {
+    /// The step's end, s.
+    pub t: f64,
+    /// Its normal impulse, N s.
+    pub normal_impulse: f64,
+    /// Its friction impulse along `+d = +x`, N s.
+    pub friction_impulse: f64,
 }
 
 /// A stick-to-slip switch of the meter stick's switch law (eq. 21, docs/scenes.md
@@ -246,6 +289,18 @@ pub fn run(spec: &Spec, sample: Sample) -> Result<Run, String> {
         Spec::Ladder(p) => {
             p.validate()?;
             simulate::simulate(&mut scenes::LadderScene::new(p), &sample)
+        }
+        Spec::ThreeFingers(p) => {
+            p.validate()?;
+            simulate::simulate(&mut other_scenes::ThreeFingersScene::new(p), &sample)
+        }
+        Spec::Cylinder(p) => {
+            p.validate()?;
+            simulate::simulate(&mut other_scenes::CylinderScene::new(p), &sample)
+        }
+        Spec::Painleve(p) => {
+            p.validate()?;
+            simulate::simulate(&mut other_scenes::PainleveScene::new(p), &sample)
         }
     })
 }

@@ -1,4 +1,4 @@
-//! The three scenes of docs/scenes.md: parameters with their defaults and validity rules, start
+//! The meter-stick, incline and ladder scenes of docs/scenes.md (`other_scenes.rs` the others): parameters with their defaults and validity rules, start
 //! states, support motions, outcome rules and measurements.
 
 use std::f64::consts::FRAC_PI_2;
@@ -166,7 +166,7 @@ impl Default for Ladder {
 }
 
 /// `Err` unless every value is finite.
-fn finite(values: &[(&str, f64)]) -> Result<(), String> {
+pub(super) fn finite(values: &[(&str, f64)]) -> Result<(), String> {
     match values.iter().find(|(_, x)| !x.is_finite()) {
         Some((name, x)) => Err(format!("{name} must be finite (got {x})")),
         None => Ok(()),
@@ -174,7 +174,7 @@ fn finite(values: &[(&str, f64)]) -> Result<(), String> {
 }
 
 /// `Err` unless every value is `> 0`.
-fn positive(values: &[(&str, f64)]) -> Result<(), String> {
+pub(super) fn positive(values: &[(&str, f64)]) -> Result<(), String> {
     match values.iter().find(|(_, x)| x.is_nan() || *x <= 0.0) {
         Some((name, x)) => Err(format!("{name} must be > 0 (got {x})")),
         None => Ok(()),
@@ -182,7 +182,7 @@ fn positive(values: &[(&str, f64)]) -> Result<(), String> {
 }
 
 /// `Err` unless every value is `>= 0`.
-fn non_negative(values: &[(&str, f64)]) -> Result<(), String> {
+pub(super) fn non_negative(values: &[(&str, f64)]) -> Result<(), String> {
     match values.iter().find(|(_, x)| x.is_nan() || *x < 0.0) {
         Some((name, x)) => Err(format!("{name} must be >= 0 (got {x})")),
         None => Ok(()),
@@ -190,7 +190,7 @@ fn non_negative(values: &[(&str, f64)]) -> Result<(), String> {
 }
 
 /// `Err` unless `mu_k <= mu_s`.
-fn kinetic_at_most_static(mu_static: f64, mu_kinetic: f64) -> Result<(), String> {
+pub(super) fn kinetic_at_most_static(mu_static: f64, mu_kinetic: f64) -> Result<(), String> {
     if mu_kinetic <= mu_static {
         Ok(())
     } else {

@@ -1,7 +1,8 @@
 //! The stepping loop every scene shares: docs/scenes.md, "Common rules", and docs/formulation.md,
 //! "Integration".
 //!
-//! From the start state at rest, with the initial modes from the prescribed motion at `t = 0`,
+//! From the start state (at rest but in painleve), with the initial modes from the prescribed
+//! motion at `t = 0` against the body's start velocity,
 //! each step `n -> n + 1`: the contacts' geometry at `t_n = n h` (supports at `t_n`), the
 //! supports' velocities over the step, `mu_s` for a contact sticking or separated before the step
 //! and `mu_k` for one sliding; the step's LCP (`step.rs`); `q+ = q + h v+`; `t = (n + 1) h`;
@@ -29,14 +30,22 @@ pub(super) struct StepEnd<'a> {
     pub after: &'a [Mode],
     /// Contact geometry at the step's end (supports at `t`).
     pub end: &'a [Frame],
+    /// Each contact's normal impulse over the step, N s.
+    pub normal: &'a [f64],
+    /// Each contact's net friction impulse over the step along `+d`, N s.
+    pub friction: &'a [f64],
 }
 
 /// One scene: its body, supports and outcome rules.
 pub(super) trait Scene {
     /// What every step shares.
     fn model(&self) -> Model;
-    /// The start configuration (the body starts at rest).
+    /// The start configuration.
     fn start(&self) -> [f64; 3];
+    /// The start velocity `(vx, vy, omega)`: at rest but in painleve (docs/scenes.md).
+    fn start_velocity(&self) -> [f64; 3] {
+        [0.0; 3]
+    }
     /// Each contact's `(mu_s, mu_k)`.
     fn friction(&self) -> Vec<(f64, f64)>;
     /// Each contact's support at `t = steps h`.
@@ -99,9 +108,9 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
     let h = model.step;
     let friction = scene.friction();
     let mut q = scene.start();
-    let mut v = [0.0; 3];
+    let mut v = scene.start_velocity();
     let mut start = frames(&model, q, &scene.supports(0));
-    let initial = initial_modes(&model, q, &start, &scene.initial_support_velocity());
+    let initial = initial_modes(&model, q, v, &start, &scene.initial_support_velocity());
     let mut run = Run {
         rows: Vec::new(),
         initial_modes: initial.clone(),
@@ -111,8 +120,11 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
         end_time: 0.0,
         meeting: None,
         acceleration: None,
+        angular_acceleration: None,
         wall_release_height: None,
+        jam: None,
         ambiguous_steps: 0,
+        first_ambiguous: None,
     };
     let zero = vec![0.0; start.len()];
     run.rows.push(row(0.0, q, v, &start, &start, &initial, [&zero, &zero]));
@@ -139,6 +151,7 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
         };
         if result.ambiguous {
             run.ambiguous_steps += 1;
+            run.first_ambiguous.get_or_insert((steps + 1) as f64 * h);
         }
         // Eq. 14: q+ = q + h v+.
         v = result.velocity;
@@ -155,16 +168,25 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
             }
         }
         let end = frames(&model, q, &scene.supports(steps));
+        let physical = |per_mass: &[f64]| per_mass.iter().map(|x| model.body.mass * x).collect::<Vec<f64>>();
+        let impulses = [physical(&result.normal), physical(&result.friction)];
         if keeps(sample, steps) {
-            let physical =
-                |per_mass: &[f64]| per_mass.iter().map(|x| model.body.mass * x).collect::<Vec<f64>>();
-            let impulses = [physical(&result.normal), physical(&result.friction)];
             run.rows.push(row(t, q, v, &start, &end, &after, [&impulses[0], &impulses[1]]));
         }
         if !q.iter().chain(&v).all(|x| x.is_finite()) {
             break Outcome::Failed(format!("non-finite state at t = {t}"));
         }
-        let judged = scene.judge(&StepEnd { steps, t, q, v, before: &modes, after: &after, end: &end });
+        let judged = scene.judge(&StepEnd {
+            steps,
+            t,
+            q,
+            v,
+            before: &modes,
+            after: &after,
+            end: &end,
+            normal: &impulses[0],
+            friction: &impulses[1],
+        });
         modes = after;
         start = end;
         if let Some(outcome) = judged {

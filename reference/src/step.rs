@@ -22,14 +22,16 @@
 //! solution exists but need not be unique (how friction splits between two sticking contacts);
 //! the post-step velocity of each is `v+ = v~ + M~ W z` (eq. 16). **Choice:** the least kinetic
 //! energy `vx^2 + vy^2 + (J/m) omega^2` (maximum dissipation, the principle behind the friction
-//! model); energies within `1e-12 S^2` of the least are ties, broken by the smallest `||z||_1`,
-//! then by the lowest basis. `S` is the step's speed scale, `max(V, |v~_x|, |v~_y|, (D/2)
+//! model); energies within `1e-12 S^2` of the least are ties, broken by the smallest `||z||_1`
+//! (sums within `1e-12` of each other, relative, are ties too: a rod at rest on three tips carried
+//! by the middle one or by the outer two has the same sum to round-off, and round-off must not
+//! pick between them step by step), then by the lowest basis. `S` is the step's speed scale, `max(V, |v~_x|, |v~_y|, (D/2)
 //! |v~_omega|)` with `V` the scene's characteristic speed and `D` the body's size. A step is
 //! **ambiguous** when two solutions give velocities that differ by more than `1e-9 S` in a
 //! component (`omega` times `D/2`).
 //!
 //! **Modes after the step.** A contact is separated when it was inactive or its normal impulse
-//! per unit mass is at most `64 eps (g h + V)`; otherwise its slip is `s = d . (u - v_P)` with
+//! per unit mass is at most `64 eps g h` (the round-off of one step's gravity impulse; docs/formulation.md, "Precision": not `eps V`); otherwise its slip is `s = d . (u - v_P)` with
 //! `v_P = (vx - omega r_y, vy + omega r_x)` after the step (`r`, `d` at the step's start): sticking
 //! when `|s| <= stick_speed`, else sliding in the direction of `s`.
 
@@ -62,7 +64,7 @@ impl Model {
 
     /// Normal impulse per unit mass at or below which a contact counts as separated.
     pub fn impulse_floor(&self) -> f64 {
-        64.0 * f64::EPSILON * (self.gravity * self.step + self.speed)
+        64.0 * f64::EPSILON * self.gravity * self.step
     }
 
     /// `beta(psi)`: the gap closed in one step, a penetration pushed out at most at the speed of a
@@ -170,7 +172,9 @@ pub(super) fn solve(
     // Solutions come in increasing basis order, so the first of equal ||z||_1 has the lowest basis.
     let mut chosen: Option<usize> = None;
     for (s, solution) in solutions.iter().enumerate() {
-        if energies[s] <= least + tie && chosen.is_none_or(|c| l1(&solution.z) < l1(&solutions[c].z)) {
+        if energies[s] <= least + tie
+            && chosen.is_none_or(|c| l1(&solution.z) < l1(&solutions[c].z) * (1.0 - 1e-12))
+        {
             chosen = Some(s);
         }
     }
@@ -236,11 +240,13 @@ pub(super) fn modes_after(
 }
 
 /// The modes before the first step: a contact active and touching
-/// (`psi <= 64 eps (D + |y|)`, `y` the centre of mass's height) takes its mode from the slip of the
-/// support's initial velocity against the body at rest; any other is separated.
+/// (`psi <= 64 eps (D + |y|)`, `y` the centre of mass's height) takes its mode from the slip
+/// `d . (u - v_P)` of the support's initial velocity against the body's start velocity `v` at the
+/// contact point (at rest in every scene but painleve); any other is separated.
 pub(super) fn initial_modes(
     model: &Model,
     q: [f64; 3],
+    v: [f64; 3],
     frames: &[Frame],
     support_velocity: &[[f64; 2]],
 ) -> Vec<Mode> {
@@ -250,7 +256,8 @@ pub(super) fn initial_modes(
         .zip(support_velocity)
         .map(|(f, &u)| {
             if f.active && f.gap <= touching {
-                slip_mode(dot(f.tangent, u), model.stick_speed)
+                let point = [v[0] - v[2] * f.lever[1], v[1] + v[2] * f.lever[0]];
+                slip_mode(dot(f.tangent, [u[0] - point[0], u[1] - point[1]]), model.stick_speed)
             } else {
                 Mode::Separated
             }
