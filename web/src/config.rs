@@ -68,11 +68,6 @@ pub use meterstick_core::scene::AnyParams as Spec;
 /// # Errors
 /// The core's first complaint.
 pub fn validate(spec: &Spec, precision: Precision) -> Result<(), ParamError> {
-    // The page's scenes (`crate::session::on_the_page`: the others are refused before this); naming
-    // them keeps the other scenes' checks out of the module (`README.md`: its size).
-    if !matches!(spec, Spec::MeterStick(_) | Spec::Incline(_) | Spec::Ladder(_)) {
-        return Err(ParamError::OutOfRange("scene"));
-    }
     match precision {
         Precision::F32 => spec.validate_as::<f32>(),
         Precision::F64 => spec.validate_as::<f64>(),
