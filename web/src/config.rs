@@ -68,6 +68,11 @@ pub use meterstick_core::scene::AnyParams as Spec;
 /// # Errors
 /// The core's first complaint.
 pub fn validate(spec: &Spec, precision: Precision) -> Result<(), ParamError> {
+    // Only the scenes this module holds (`crate::sim::holds`; the session refuses the others
+    // before this): naming them keeps the other scenes' checks out of the module.
+    if !crate::sim::holds(spec.kind()) {
+        return Err(ParamError::OutOfRange("scene"));
+    }
     match precision {
         Precision::F32 => spec.validate_as::<f32>(),
         Precision::F64 => spec.validate_as::<f64>(),

@@ -7,7 +7,7 @@ use meterstick_core::scene::Outcome;
 
 use crate::config::{Config, ConfigError, LcpSize, MAX_STEPS, Precision, Spec};
 use crate::flags::{FLAGS, SceneKind};
-use crate::sim::{MODES, OUTCOMES, Sim, row_len};
+use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, holds, row_len};
 use crate::text::{Text, json_num, json_str};
 
 /// Rows one `ms_step` call may write (the trace buffer holds this many).
@@ -22,6 +22,8 @@ pub enum CreateError {
     Config(ConfigError),
     /// The parameters passed validation but the core still refused them.
     Core(meterstick_core::ParamError),
+    /// The scene is in the module of another contact count ([`crate::sim::holds`]).
+    OtherModule(SceneKind),
 }
 
 /// A configuration being edited, the parameters it resolved to and the run made from them.
@@ -71,6 +73,9 @@ impl Session {
     pub fn create(&mut self, precision: Precision, size: LcpSize) -> Result<(), CreateError> {
         self.sim = None;
         self.spec = None;
+        if !holds(self.config.kind) {
+            return Err(CreateError::OtherModule(self.config.kind));
+        }
         let spec = self.config.resolve(precision).map_err(CreateError::Config)?;
         self.spec = Some(spec);
         self.sim = Some(Sim::new(&spec, precision, size).map_err(CreateError::Core)?);
@@ -100,6 +105,13 @@ impl core::fmt::Display for CreateError {
         match self {
             Self::Config(e) => write!(f, "{e}"),
             Self::Core(e) => write!(f, "{e}"),
+            Self::OtherModule(kind) => {
+                let k = kind.info().contacts;
+                write!(
+                    f,
+                    "scene {kind} is not in this module: its {k}-contact scenes are in meterstick_web_k{k}.wasm"
+                )
+            }
         }
     }
 }
@@ -163,7 +175,15 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     out.write_char(']')?;
     list(out, "modes", &mut MODES.iter().copied())?;
     list(out, "outcomes", &mut OUTCOMES.iter().copied())?;
-    write!(out, ",\"trace_rows\":{TRACE_ROWS},\"max_steps\":{MAX_STEPS}}}")
+    out.write_str(",\"holds\":[")?;
+    let mut first = true;
+    for k in 1..=MAX_CONTACTS {
+        if SceneKind::ALL.iter().any(|s| s.info().contacts == k && holds(*s)) {
+            write!(out, "{}{k}", if first { "" } else { "," })?;
+            first = false;
+        }
+    }
+    write!(out, "],\"trace_rows\":{TRACE_ROWS},\"max_steps\":{MAX_STEPS}}}")
 }
 
 /// Writes an outcome as the core displays it (`Failed (solver: ...)` with its cause).

@@ -5,6 +5,12 @@
 //! contacts, [`row_len`], so a live run and a replayed one are read alike), and keeps the
 //! trajectory checksum (`planar::Checksum`, as the firmware and `host-sim scene` print it).
 
+// A module built with some of the scene features leaves the others' helpers unused.
+#![cfg_attr(
+    not(all(feature = "k1", feature = "k2", feature = "k3")),
+    allow(dead_code, unused_imports, unused_mut, unused_variables)
+)]
+
 use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
@@ -24,6 +30,14 @@ pub const MAX_CONTACTS: usize = 3;
 #[must_use]
 pub const fn row_len(k: usize) -> usize {
     7 + 6 * k
+}
+
+/// `true` when this module holds the scenes of `kind`'s contact count (cargo features `k1`, `k2`,
+/// `k3`: the page's first module has the two-contact scenes and loads the others' on demand).
+#[must_use]
+pub const fn holds(kind: SceneKind) -> bool {
+    let k = kind.info().contacts;
+    (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
 }
 
 /// The longest row (a scene with [`MAX_CONTACTS`]).
@@ -61,29 +75,53 @@ pub const fn outcome_code(o: Outcome) -> u8 {
 #[derive(Debug, Clone)]
 #[allow(clippy::large_enum_variant)] // one scene per session, held in place: there is no heap on wasm
 enum AnyScene {
+    #[cfg(feature = "k2")]
     MeterStickF32R(MeterStick<f32, 6, 0>),
+    #[cfg(feature = "k2")]
     MeterStickF32F(MeterStick<f32, 8, 0>),
+    #[cfg(feature = "k2")]
     MeterStickF64R(MeterStick<f64, 6, 0>),
+    #[cfg(feature = "k2")]
     MeterStickF64F(MeterStick<f64, 8, 0>),
+    #[cfg(feature = "k2")]
     InclineF32R(Incline<f32, 6, 0>),
+    #[cfg(feature = "k2")]
     InclineF32F(Incline<f32, 8, 0>),
+    #[cfg(feature = "k2")]
     InclineF64R(Incline<f64, 6, 0>),
+    #[cfg(feature = "k2")]
     InclineF64F(Incline<f64, 8, 0>),
+    #[cfg(feature = "k2")]
     LadderF32R(Ladder<f32, 6, 0>),
+    #[cfg(feature = "k2")]
     LadderF32F(Ladder<f32, 8, 0>),
+    #[cfg(feature = "k2")]
     LadderF64R(Ladder<f64, 6, 0>),
+    #[cfg(feature = "k2")]
     LadderF64F(Ladder<f64, 8, 0>),
+    #[cfg(feature = "k3")]
     ThreeFingersF32R(ThreeFingers<f32, 9, 0>),
+    #[cfg(feature = "k3")]
     ThreeFingersF32F(ThreeFingers<f32, 12, 0>),
+    #[cfg(feature = "k3")]
     ThreeFingersF64R(ThreeFingers<f64, 9, 0>),
+    #[cfg(feature = "k3")]
     ThreeFingersF64F(ThreeFingers<f64, 12, 0>),
+    #[cfg(feature = "k1")]
     CylinderF32R(Cylinder<f32, 3, 0>),
+    #[cfg(feature = "k1")]
     CylinderF32F(Cylinder<f32, 4, 0>),
+    #[cfg(feature = "k1")]
     CylinderF64R(Cylinder<f64, 3, 0>),
+    #[cfg(feature = "k1")]
     CylinderF64F(Cylinder<f64, 4, 0>),
+    #[cfg(feature = "k1")]
     PainleveF32R(Painleve<f32, 3, 0>),
+    #[cfg(feature = "k1")]
     PainleveF32F(Painleve<f32, 4, 0>),
+    #[cfg(feature = "k1")]
     PainleveF64R(Painleve<f64, 3, 0>),
+    #[cfg(feature = "k1")]
     PainleveF64F(Painleve<f64, 4, 0>),
 }
 
@@ -91,29 +129,53 @@ enum AnyScene {
 macro_rules! each {
     ($any:expr, $s:ident => $body:expr) => {
         match $any {
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF32R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF32F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF64R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF64F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF32R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF32F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF64R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF64F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64F($s) => $body,
+            #[cfg(feature = "k3")]
             AnyScene::ThreeFingersF32R($s) => $body,
+            #[cfg(feature = "k3")]
             AnyScene::ThreeFingersF32F($s) => $body,
+            #[cfg(feature = "k3")]
             AnyScene::ThreeFingersF64R($s) => $body,
+            #[cfg(feature = "k3")]
             AnyScene::ThreeFingersF64F($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF32R($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF32F($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF64R($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF64F($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF32R($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF32F($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF64R($s) => $body,
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF64F($s) => $body,
         }
     };
@@ -136,30 +198,57 @@ impl Sim {
     pub fn new(spec: &Spec, precision: Precision, size: LcpSize) -> Result<Self, ParamError> {
         use {LcpSize::Full as Fu, LcpSize::Reduced as Re, Precision::F32, Precision::F64};
         let scene = match (*spec, precision, size) {
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F32, Re) => AnyScene::MeterStickF32R(MeterStick::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F32, Fu) => AnyScene::MeterStickF32F(MeterStick::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F64, Re) => AnyScene::MeterStickF64R(MeterStick::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F64, Fu) => AnyScene::MeterStickF64F(MeterStick::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F32, Re) => AnyScene::InclineF32R(Incline::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F32, Fu) => AnyScene::InclineF32F(Incline::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F64, Re) => AnyScene::InclineF64R(Incline::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F64, Fu) => AnyScene::InclineF64F(Incline::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F32, Re) => AnyScene::LadderF32R(Ladder::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F32, Fu) => AnyScene::LadderF32F(Ladder::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F64, Re) => AnyScene::LadderF64R(Ladder::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F64, Fu) => AnyScene::LadderF64F(Ladder::new(p)?),
+            #[cfg(feature = "k3")]
             (Spec::ThreeFingers(p), F32, Re) => AnyScene::ThreeFingersF32R(ThreeFingers::new(p.cast())?),
+            #[cfg(feature = "k3")]
             (Spec::ThreeFingers(p), F32, Fu) => AnyScene::ThreeFingersF32F(ThreeFingers::new(p.cast())?),
+            #[cfg(feature = "k3")]
             (Spec::ThreeFingers(p), F64, Re) => AnyScene::ThreeFingersF64R(ThreeFingers::new(p)?),
+            #[cfg(feature = "k3")]
             (Spec::ThreeFingers(p), F64, Fu) => AnyScene::ThreeFingersF64F(ThreeFingers::new(p)?),
+            #[cfg(feature = "k1")]
             (Spec::Cylinder(p), F32, Re) => AnyScene::CylinderF32R(Cylinder::new(p.cast())?),
+            #[cfg(feature = "k1")]
             (Spec::Cylinder(p), F32, Fu) => AnyScene::CylinderF32F(Cylinder::new(p.cast())?),
+            #[cfg(feature = "k1")]
             (Spec::Cylinder(p), F64, Re) => AnyScene::CylinderF64R(Cylinder::new(p)?),
+            #[cfg(feature = "k1")]
             (Spec::Cylinder(p), F64, Fu) => AnyScene::CylinderF64F(Cylinder::new(p)?),
+            #[cfg(feature = "k1")]
             (Spec::Painleve(p), F32, Re) => AnyScene::PainleveF32R(Painleve::new(p.cast())?),
+            #[cfg(feature = "k1")]
             (Spec::Painleve(p), F32, Fu) => AnyScene::PainleveF32F(Painleve::new(p.cast())?),
+            #[cfg(feature = "k1")]
             (Spec::Painleve(p), F64, Re) => AnyScene::PainleveF64R(Painleve::new(p)?),
+            #[cfg(feature = "k1")]
             (Spec::Painleve(p), F64, Fu) => AnyScene::PainleveF64F(Painleve::new(p)?),
+            // A scene of another module (the page loads the module of the scene's contacts).
+            #[allow(unreachable_patterns)]
+            _ => return Err(ParamError::OutOfRange("scene")),
         };
         let mut start = [0.0; MAX_ROW];
         each!(&scene, s => start_row(s, &mut start));
@@ -188,17 +277,7 @@ impl Sim {
     /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
         let checksum = &mut self.checksum;
-        let len = self.kind.info().contacts;
-        each!(&mut self.scene, s => {
-            let mut taken = 0;
-            for row in rows.chunks_exact_mut(row_len(len)) {
-                let Some(report) = s.step() else { break };
-                checksum.add(&report.state);
-                write_row(&*s, &report, row);
-                taken += 1;
-            }
-            taken
-        })
+        each!(&mut self.scene, s => step_rows(s, checksum, rows))
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
@@ -247,29 +326,50 @@ impl Sim {
         let mut m = [f64::NAN; MAX_MEASURES];
         let opt = |v: Option<f64>| v.unwrap_or(f64::NAN);
         match &self.scene {
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF32R(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF32F(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF64R(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF64F(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::InclineF32R(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k2")]
             AnyScene::InclineF32F(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k2")]
             AnyScene::InclineF64R(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k2")]
             AnyScene::InclineF64F(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32R(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32F(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64R(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64F(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k3")]
             AnyScene::ThreeFingersF32R(_)
             | AnyScene::ThreeFingersF32F(_)
             | AnyScene::ThreeFingersF64R(_)
             | AnyScene::ThreeFingersF64F(_) => {}
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF32R(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF32F(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF64R(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k1")]
             AnyScene::CylinderF64F(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF32R(s) => jam(s.jam(), &mut m),
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF32F(s) => jam(s.jam(), &mut m),
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF64R(s) => jam(s.jam(), &mut m),
+            #[cfg(feature = "k1")]
             AnyScene::PainleveF64F(s) => jam(s.jam(), &mut m),
         }
         m
@@ -320,6 +420,22 @@ fn start_row<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, row: &mut [f64]
     for (k, m) in scene.modes().into_iter().enumerate() {
         row[7 + 2 * K + k] = f64::from(mode_code(m));
     }
+}
+
+/// Steps `scene` into `rows` ([`row_len`] of `K` numbers each; the length known to the compiler).
+fn step_rows<T: Real, S: Scene<T, K>, const K: usize>(
+    scene: &mut S,
+    checksum: &mut Checksum,
+    rows: &mut [f64],
+) -> usize {
+    let mut taken = 0;
+    for row in rows.chunks_exact_mut(row_len(K)) {
+        let Some(report) = scene.step() else { break };
+        checksum.add(&report.state);
+        write_row(&*scene, &report, row);
+        taken += 1;
+    }
+    taken
 }
 
 fn write_row<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, report: &StepReport<T, K>, row: &mut [f64]) {
