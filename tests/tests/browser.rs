@@ -476,6 +476,12 @@ fn check_scene_selector(b: &Browser, base: &str) {
     let options = b.js("return [...document.getElementById('scene-select').options].map((o) => o.value)");
     let names: Vec<&str> = SceneKind::ALL.iter().map(|k| k.name()).collect();
     assert_eq!(options, json!(names), "the selector lists the catalogue");
+    let fetched = || b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
+    assert!(
+        !fetched().as_str().unwrap().contains("meterstick_web_k1.wasm"),
+        "a two-contact scene needs only the first module: {}",
+        fetched()
+    );
     b.js("const s = document.getElementById('scene-select'); s.value = 'cylinder'; s.dispatchEvent(new Event('change'))");
     b.wait(
         "the cylinder's form",
