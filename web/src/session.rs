@@ -107,10 +107,7 @@ impl core::fmt::Display for CreateError {
             Self::Core(e) => write!(f, "{e}"),
             Self::OtherModule(kind) => {
                 let k = kind.info().contacts;
-                write!(
-                    f,
-                    "scene {kind} is not in this module: its {k}-contact scenes are in meterstick_web_k{k}.wasm"
-                )
+                write!(f, "scene {kind} runs in meterstick_web_k{k}.wasm, not in this module")
             }
         }
     }
@@ -192,4 +189,27 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
 /// Never in practice.
 pub fn outcome_text(out: &mut Text<'_>, outcome: Outcome) -> core::fmt::Result {
     write!(out, "{outcome}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{LcpSize, Precision};
+    use crate::text::StackStr;
+
+    #[test]
+    fn the_host_build_runs_every_scene_and_a_module_words_what_it_does_not_hold() {
+        let mut s = Session::new();
+        for kind in SceneKind::ALL {
+            assert!(holds(kind), "{kind}");
+            s.configure(kind);
+            assert!(s.create(Precision::F32, LcpSize::Reduced).is_ok(), "{kind}");
+            assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.info().contacts)), "{kind}");
+        }
+        let e = CreateError::OtherModule(SceneKind::Cylinder);
+        assert_eq!(
+            StackStr::<128>::of(format_args!("{e}")).as_str(),
+            "scene cylinder runs in meterstick_web_k1.wasm, not in this module"
+        );
+    }
 }
