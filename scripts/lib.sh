@@ -109,22 +109,30 @@ builds_tagged() {
 }
 
 # The core for the browser: meterstick-web built for wasm32-unknown-unknown (release, without
-# debug info, in a target directory of its own so that the host builds are not invalidated),
-# copied to web/page/pkg/meterstick_web.wasm, where the page loads it (generated, git-ignored).
-# Prints that path.
+# debug info, in a target directory of its own so that the host builds are not invalidated), once
+# per number of contacts (cargo features k2, k1, k3), copied to web/page/pkg/: meterstick_web.wasm
+# (the two-contact scenes, which the page loads first), meterstick_web_k1.wasm and
+# meterstick_web_k3.wasm (generated, git-ignored). Prints the first module's path.
 WEB_TARGET_DIR="$ROOT/target/web/$MS_CROSS_MODE"
 WEB_WASM="$ROOT/web/page/pkg/meterstick_web.wasm"
+WEB_MODULES=("$WEB_WASM" "${WEB_WASM%.wasm}_k1.wasm" "${WEB_WASM%.wasm}_k3.wasm")
 build_web() {
   local args=(build --locked --release -p meterstick-web --lib --target wasm32-unknown-unknown
-    --target-dir "$WEB_TARGET_DIR" --config profile.release.debug=0 --config profile.release.strip=true)
+    --target-dir "$WEB_TARGET_DIR" --config profile.release.debug=0 --config profile.release.strip=true
+    --no-default-features)
   if [ "$MS_CROSS_MODE" = debian ] && command -v wasm-ld-22 >/dev/null 2>&1; then
     args+=(--config 'target.wasm32-unknown-unknown.linker="wasm-ld-22"')
   fi
   # Called as `wasm=$(build_web)`: every step returns on failure (a failed build must not leave
-  # the previous module in place for the page's test).
-  rm -f "$WEB_WASM"
-  (cd "$ROOT" && cross_cargo "${args[@]}" >&2) || { echo "build_web: the build failed" >&2; return 1; }
+  # a previous module in place for the page's test).
+  rm -f "${WEB_MODULES[@]}"
   mkdir -p "$(dirname "$WEB_WASM")" || return 1
-  cp "$WEB_TARGET_DIR/wasm32-unknown-unknown/release/meterstick_web.wasm" "$WEB_WASM" || return 1
+  local k out
+  for k in 2 1 3; do
+    out=$WEB_WASM
+    [ "$k" = 2 ] || out="${WEB_WASM%.wasm}_k$k.wasm"
+    (cd "$ROOT" && cross_cargo "${args[@]}" --features "k$k" >&2) || { echo "build_web: the build failed" >&2; return 1; }
+    cp "$WEB_TARGET_DIR/wasm32-unknown-unknown/release/meterstick_web.wasm" "$out" || return 1
+  done
   echo "$WEB_WASM"
 }

@@ -37,7 +37,7 @@ $HOST_CARGO test --locked --workspace
 
 step "the page: the core for the browser (wasm32), the page in headless Chromium"
 wasm=$(build_web)
-printf '%s: %s bytes\n' "${wasm#"$ROOT"/}" "$(stat -c %s "$wasm")"
+for module in "${WEB_MODULES[@]}"; do printf '%s: %s bytes\n' "${module#"$ROOT"/}" "$(stat -c %s "$module")"; done
 $HOST_CARGO test --locked -p meterstick-tests --test browser -- --ignored --nocapture
 
 step "the Picos' .uf2 converter (tools/uf2)"

@@ -5,8 +5,12 @@
 //! with `--ignored`.
 //!
 //! It checks the URL contract against `host-sim scene` (the same outcome and the same trajectory
-//! checksum, bit for bit, for the slow and a fast meter stick, an f64 8x8 run, the incline and the
-//! ladder; on a difference it prints the first step that differs), that the controls change the run
+//! checksum, bit for bit, for the slow and a fast meter stick, an f64 8x8 run, the incline, the
+//! ladder, three fingers, the cylinder rolling and sliding and Painleve's rod jamming and sliding;
+//! on a difference it prints the first step that differs; for the scenes of one and three contacts
+//! also the module they ran in, their contacts and the measured quantities shown, against
+//! `host-sim`'s `summary.json` values), that the scene selector loads a scene's module and runs
+//! it, that the controls change the run
 //! (typing, Enter, the keyboard shortcut) and that a bad value shows `host-sim`'s sentence, that a
 //! click on the outcome map loads a run with the map's outcome, and the replay of a `host-sim run`
 //! folder; it prints the page's steps per second and the map's time, and saves screenshots in
@@ -24,7 +28,8 @@ use meterstick_host_sim::run_cmd::{RunArgs, run_cmd};
 use meterstick_host_sim::scene_cmd::{SceneCmd, run_scene};
 use meterstick_host_sim::scenes::{FLAGS, LcpSize, SceneArgs, SceneKind};
 use meterstick_host_sim::serve::{Replay, ServeArgs, Server};
-use meterstick_host_sim::trajectory::{Record, run};
+use meterstick_host_sim::trajectory::{Record, run_k};
+use meterstick_host_sim::with_contacts;
 use serde_json::{Value, json};
 
 const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
@@ -296,7 +301,10 @@ fn host_scene(query: &str) -> (String, String) {
 fn first_difference(b: &Browser, query: &str) -> String {
     let args = scene_args(query);
     let spec = args.specs(None).unwrap()[0].1;
-    let host = run(&spec, args.implementation(), Record::All).unwrap();
+    let host: Vec<(f64, [f64; 6])> = with_contacts!(spec.kind(), K => {
+        let t = run_k::<K>(&spec, args.implementation(), Record::All).unwrap();
+        t.rows.iter().map(|r| (r.t, [r.q[0], r.q[1], r.q[2], r.v[0], r.v[1], r.v[2]])).collect()
+    });
     let page = b.js("return window.meterstick.trace()");
     let f32_run = args.precision == Precision::F32;
     let same = |a: f64, b: f64| {
@@ -304,19 +312,15 @@ fn first_difference(b: &Browser, query: &str) -> String {
     };
     let names = ["x", "y", "theta", "vx", "vy", "omega"];
     let steps = page["x"].as_array().map_or(0, Vec::len);
-    for (k, row) in host.rows.iter().enumerate().take(steps) {
-        let host_values = [row.q[0], row.q[1], row.q[2], row.v[0], row.v[1], row.v[2]];
-        for (name, hv) in names.iter().zip(host_values) {
+    for (k, (t, host_values)) in host.iter().enumerate().take(steps) {
+        for (name, hv) in names.iter().zip(*host_values) {
             let pv = page[name][k].as_f64().unwrap_or(f64::NAN);
             if !same(pv, hv) {
-                return format!(
-                    "first difference at step {k} (t = {}): {name} page {pv:e}, host {hv:e}",
-                    row.t
-                );
+                return format!("first difference at step {k} (t = {t}): {name} page {pv:e}, host {hv:e}");
             }
         }
     }
-    format!("no state differs over {steps} page steps and {} host steps", host.rows.len())
+    format!("no state differs over {steps} page steps and {} host steps", host.len())
 }
 
 /// Loads the page with `query`, waits for the outcome, and checks it and the checksum against
@@ -386,6 +390,26 @@ fn the_page_in_chromium() {
     );
     check_contract(&b, &base, "incline", "scene=incline&angle=30&mu-s=0.5&mu-k=0.3&autorun=1&rate=max");
     check_contract(&b, &base, "ladder", "scene=ladder&angle=60&mu-floor=0.2&mu-wall=0.1&autorun=1&rate=max");
+    // The scenes of one and three contacts, in the modules of their contacts (the cylinder and
+    // Painleve's jam played in real time: the animation, not only the result).
+    check_scene(&b, &base, "cylinder-rolling", "scene=cylinder&angle=30&autorun=1", "Rolled");
+    check_scene(
+        &b,
+        &base,
+        "cylinder-sliding",
+        "scene=cylinder&angle=70&precision=f64&lcp-size=8&autorun=1&rate=max",
+        "Slid",
+    );
+    check_scene(&b, &base, "painleve-jammed", "scene=painleve&angle=30&mu-floor=3&autorun=1", "Jammed");
+    check_scene(
+        &b,
+        &base,
+        "painleve-sliding",
+        "scene=painleve&mu-floor=1&duration=0.1&lcp-size=8&autorun=1&rate=max",
+        "Slid",
+    );
+    check_scene(&b, &base, "three-fingers", "scene=three-fingers&speed=0.2&autorun=1&rate=max", "Held");
+    check_scene_selector(&b, &base);
 
     check_controls(&b, &base, &slow);
     check_map(&b, &base);
@@ -403,6 +427,88 @@ fn the_page_in_chromium() {
     let shot = b.screenshot("meter-stick-playing", None);
     println!("mid-run screenshot: {}", shot.display());
     let _ = std::fs::remove_dir_all(&replay);
+}
+
+/// A scene of the catalogue on the page: the contract ([`check_contract`]), and the outcome
+/// `expected` (so that the run shows what the scene is about), the module of its contacts, its
+/// contacts and its measured quantities as `host-sim` measures them (`summary.json`'s keys, bit for
+/// bit; the text shown is printed).
+fn check_scene(b: &Browser, base: &str, name: &str, query: &str, expected: &str) {
+    check_contract(b, base, name, query);
+    assert_eq!(b.text("outcome"), expected, "{name}");
+    let args = scene_args(query);
+    let kind = args.scene.unwrap();
+    let info = kind.info();
+    let shown = b.js("return window.meterstick.contacts()");
+    assert_eq!(shown["names"], json!(info.contact_names), "{name}: the contacts");
+    assert_eq!(shown["row"].as_u64(), Some(7 + 6 * info.contacts as u64), "{name}: the row");
+    let module = format!("pkg/meterstick_web_k{}.wasm", info.contacts);
+    let fetched = b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
+    assert!(fetched.as_str().unwrap().contains(&module), "{name}: {module} not fetched: {fetched}");
+    let spec = args.specs(None).unwrap()[0].1;
+    let implementation = args.implementation();
+    let host = with_contacts!(kind, K => {
+        serde_json::to_value(run_k::<K>(&spec, implementation, Record::Nothing).unwrap().measured).unwrap()
+    });
+    let values = b.js("return document.getElementById('measured').dataset.values");
+    let page: Value = serde_json::from_str(values.as_str().unwrap()).unwrap();
+    for key in info.measures {
+        let theirs = key.split('.').fold(&host, |v, part| &v[part]);
+        assert_eq!(
+            page[key].as_f64().map(f64::to_bits),
+            theirs.as_f64().map(f64::to_bits),
+            "{name}: {key}: page {page}, host {host}"
+        );
+    }
+    println!(
+        "    {} contact(s) {:?}, from {module}; measured: {}",
+        info.contacts,
+        info.contact_names,
+        b.text("measured")
+    );
+}
+
+/// The scene selector: choosing the cylinder loads its module and its flags, and the run it makes
+/// is host-sim's.
+fn check_scene_selector(b: &Browser, base: &str) {
+    b.goto(&format!("{base}?scene=meter-stick&rate=max"));
+    b.wait("the page", "return document.body.dataset.state === 'ready'", Duration::from_secs(30));
+    let options = b.js("return [...document.getElementById('scene-select').options].map((o) => o.value)");
+    let names: Vec<&str> = SceneKind::ALL.iter().map(|k| k.name()).collect();
+    assert_eq!(options, json!(names), "the selector lists the catalogue");
+    let fetched = || b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
+    assert!(
+        !fetched().as_str().unwrap().contains("meterstick_web_k1.wasm"),
+        "a two-contact scene needs only the first module: {}",
+        fetched()
+    );
+    b.js("const s = document.getElementById('scene-select'); s.value = 'cylinder'; s.dispatchEvent(new Event('change'))");
+    b.wait(
+        "the cylinder's form",
+        "return document.getElementById('p-radius') !== null && document.body.dataset.state === 'ready'",
+        Duration::from_secs(30),
+    );
+    assert!(b.js("return location.search").as_str().unwrap().contains("scene=cylinder"), "the URL follows");
+    assert_eq!(b.js("return document.getElementById('p-speed')"), Value::Null, "no finger flags");
+    b.type_into("#p-angle", "65\u{E007}");
+    b.wait("a new run", "return document.body.dataset.state === 'ready'", Duration::from_secs(10));
+    b.js("document.activeElement.blur()");
+    b.key(" ");
+    let outcome = b.wait(
+        "the outcome",
+        "return document.getElementById('outcome').textContent",
+        Duration::from_secs(60),
+    );
+    let (host_outcome, host_checksum) = host_scene("scene=cylinder&angle=65");
+    assert_eq!(
+        (outcome.as_str().unwrap(), b.text("checksum").as_str()),
+        (host_outcome.as_str(), host_checksum.as_str())
+    );
+    let shot = b.screenshot("cylinder-selected", None);
+    println!(
+        "scene selector: cylinder, angle 65 typed, Space: {host_outcome} {host_checksum} ({})",
+        shot.display()
+    );
 }
 
 /// The controls change the run; a bad value shows host-sim's sentence.

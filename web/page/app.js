@@ -1,28 +1,62 @@
 // The page: builds the controls from the core's description, reads and writes the URL contract
 // (?scene=meter-stick&speed=0.1&mu-s=0.6&mu-k=0.4&x1=-0.35&autorun=1: the scene and host-sim's flag
 // names), runs the core live (or replays a run of host-sim run), animates and plots it, and writes
-// the outcome and the trajectory checksum into #outcome and #checksum when the run ends.
+// the outcome and the trajectory checksum into #outcome and #checksum when the run ends. The
+// scenes, their flags, contacts, measured quantities and outcomes come from the core's description
+// (the catalogue); a scene whose contacts the first module does not hold runs in the module that
+// does, fetched when it is chosen.
 
-import { compileCore, instantiateCore, parseNumber } from './core.js';
-import { SceneView, drawPlot, COLORS } from './draw.js';
+import { compileCore, instantiateCore, moduleUrl, parseNumber } from './core.js';
+import { SceneView, drawPlot, COLORS, CONTACT_COLORS } from './draw.js';
 import { OutcomeMap } from './map.js';
 import { listRuns, loadRun } from './replay.js';
-import { COL, MODE_NAMES, ROW, Trace } from './trace.js';
+import { COL, MODE_NAMES, Trace } from './trace.js';
 
 const $ = (id) => document.getElementById(id);
 
-/// The flags shown first for each scene (the rest are under "More parameters").
+/// The flags shown first for a scene (the rest are under "More parameters"); a scene not named
+/// here shows first the flags that not every scene has.
 const MAIN_FLAGS = {
   'meter-stick': ['speed', 'speed2', 'x1', 'x2', 'mu-s', 'mu-k', 'h'],
   incline: ['angle', 'mu-s', 'mu-k', 'width', 'height', 'h'],
   ladder: ['angle', 'mu-floor', 'mu-wall', 'length', 'h'],
+  'three-fingers': ['speed', 'x1', 'x2', 'x3', 'mu-s', 'mu-k', 'h'],
+  cylinder: ['angle', 'mu-s', 'mu-k', 'radius', 'inertia-factor', 'h'],
+  painleve: ['angle', 'rod-speed', 'mu-floor', 'length', 'h'],
 };
 /// Query keys that are not scene flags.
 const PAGE_KEYS = ['scene', 'precision', 'lcp-size', 'autorun', 'rate', 'replay', 'map', 'bench'];
-const SCENE_TITLES = { 'meter-stick': 'meter stick', incline: 'block on an incline', ladder: 'ladder' };
+
+/// A measured quantity (summary.json's key) in words.
+const MEASURE_WORDS = {
+  'meeting.time_s': (v) => `the fingers met at t = ${v.toFixed(3)} s`,
+  'meeting.com_offset_m': (v) => `the centre of mass ${(1e3 * v).toFixed(2)} mm from their midpoint`,
+  acceleration_m_s2: (v) => `acceleration down the slope ${v.toFixed(5)} m/s²`,
+  wall_release_height_m: (v) => `the top left the wall at ${v.toFixed(4)} m`,
+  wall_release_ratio: (v) => `${v.toFixed(4)} of its start height`,
+  'jam.time_s': (v) => `the end jammed at t = ${v.toFixed(4)} s`,
+  'jam.normal_impulse_ns': (v) => `normal impulse ${v.toFixed(5)} N s`,
+  'jam.friction_impulse_ns': (v) => `friction impulse ${v.toFixed(5)} N s`,
+};
+
+/// The measured quantities ({key: value | null}) in words; '-' when there are none.
+function measuredText(values) {
+  const parts = Object.entries(values).filter(([, v]) => v !== null && v !== undefined)
+    .map(([key, v]) => (MEASURE_WORDS[key] ? MEASURE_WORDS[key](v) : `${key} ${v}`));
+  return parts.length ? parts.join('; ') : '-';
+}
+
+/// The LCP of a scene of k contacts in the layout the form's lcp-size (6 reduced, 8 full) selects:
+/// 3k x 3k or 4k x 4k.
+function lcpText(k, size) {
+  const n = (size === '8' ? 4 : 3) * k;
+  return `${n}x${n}`;
+}
 
 const S = {
   core: null,
+  main: null,
+  cores: new Map(),
   module: null,
   scene: 'meter-stick',
   inputs: new Map(),
@@ -63,11 +97,35 @@ function toFlagUnit(flag, v) {
   return flag.unit === 'deg' ? (v * 180) / Math.PI : v;
 }
 
+/// The core that runs `scene`: the first module, or the module of the scene's contacts (fetched
+/// and compiled once).
+function coreFor(scene) {
+  const k = S.main.contacts(scene);
+  if (S.main.desc.holds.includes(k)) return Promise.resolve(S.main);
+  if (!S.cores.has(k)) {
+    const loading = compileCore(moduleUrl(k)).then(instantiateCore);
+    loading.catch(() => S.cores.delete(k));
+    S.cores.set(k, loading);
+  }
+  return S.cores.get(k);
+}
+
+/// Makes `scene` the form's scene, with the core that runs it.
+async function selectScene(scene) {
+  S.core = await coreFor(scene);
+  buildForm(scene);
+}
+
 // --- the form ---------------------------------------------------------------------------------
 
 function buildForm(scene) {
   S.scene = scene;
   $('scene-select').value = scene;
+  const k = S.core.contacts(scene);
+  $('lcp-size').options[0].textContent = `${lcpText(k, '6')} (firmware)`;
+  $('lcp-size').options[1].textContent = `${lcpText(k, '8')} (${k === 2 ? 'paper' : 'full'})`;
+  const everywhere = (flag) => Object.keys(flag.fields).length === S.core.desc.scenes.length;
+  const isMain = (flag) => (MAIN_FLAGS[scene] ? MAIN_FLAGS[scene].includes(flag.long) : !everywhere(flag));
   const main = $('main-fields'); const more = $('more-fields');
   main.replaceChildren(); more.replaceChildren();
   S.inputs.clear();
@@ -95,7 +153,7 @@ function buildForm(scene) {
     input.setAttribute('aria-description', flag.help);
     input.addEventListener('change', () => makeRun());
     box.append(label, input);
-    (MAIN_FLAGS[scene].includes(flag.long) ? main : more).append(box);
+    (isMain(flag) ? main : more).append(box);
     S.inputs.set(flag.long, input);
   }
   $('map-run').disabled = scene !== 'meter-stick';
@@ -140,7 +198,7 @@ function writeUrl() {
 /// A live run of the core.
 function liveSource(params) {
   const core = S.core;
-  const trace = new Trace();
+  const trace = new Trace(core.contacts(S.scene));
   trace.push(core.startRow());
   return {
     kind: 'live', scene: S.scene, params, trace, ended: false, outcome: null,
@@ -148,8 +206,8 @@ function liveSource(params) {
     advance(n) {
       if (this.ended) return 0;
       const rows = core.step(n);
-      const taken = rows.length / ROW;
-      for (let k = 0; k < taken; k += 1) trace.push(rows, k * ROW);
+      const taken = rows.length / trace.row;
+      for (let k = 0; k < taken; k += 1) trace.push(rows, k * trace.row);
       const outcome = core.outcome();
       if (outcome) {
         this.ended = true;
@@ -165,15 +223,15 @@ function liveSource(params) {
 
 /// A run of host-sim run, replayed row by row.
 function replaySource(run) {
-  const trace = new Trace(); const reference = new Trace();
+  const trace = new Trace(run.core.k); const reference = new Trace(run.core.k);
   const src = {
     kind: 'replay', scene: run.summary.scene, params: run.summary.parameters, trace, reference,
     ended: false, outcome: null, run, cursor: 0,
     advance(n) {
       let taken = 0;
       while (taken < n && this.cursor < run.core.n) {
-        trace.push(run.core.rows, this.cursor * ROW);
-        if (this.cursor < run.reference.n) reference.push(run.reference.rows, this.cursor * ROW);
+        trace.push(run.core.rows, this.cursor * trace.row);
+        if (run.reference && this.cursor < run.reference.n) reference.push(run.reference.rows, this.cursor * trace.row);
         this.cursor += 1; taken += 1;
       }
       if (this.cursor >= run.core.n) {
@@ -197,6 +255,7 @@ function clearResult(status) {
   $('checksum').textContent = '';
   $('status').textContent = status;
   $('measured').textContent = '-';
+  delete $('measured').dataset.values;
   $('eq21').replaceChildren();
   S.shownEvents = -1;
 }
@@ -233,13 +292,13 @@ function makeRun() {
   }
   S.source = liveSource(made.params);
   S.simTarget = 0;
-  view.setScene(S.scene, made.params, S.source.trace.last);
+  view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k);
   if (S.scene === 'meter-stick') {
     map.setCurrent({ speed: made.params.finger1_velocity, ratio: made.params.mu_kinetic / made.params.mu_static });
   }
   $('eq21-target').textContent = S.scene === 'meter-stick'
     ? `mu_k/mu_s = ${(made.params.mu_kinetic / made.params.mu_static).toFixed(4)}` : 'mu_k/mu_s (meter stick)';
-  $('run-info').textContent = `${S.source.precision} ${S.source.lcpSize}x${S.source.lcpSize}, h = ${plain(made.params.step)} s, until t = ${plain(made.params.max_time)} s`;
+  $('run-info').textContent = `${S.source.precision} ${lcpText(S.source.trace.k, S.source.lcpSize)}, h = ${plain(made.params.step)} s, until t = ${plain(made.params.max_time)} s`;
   setState('ready');
   render(true);
   return true;
@@ -254,23 +313,20 @@ function finish() {
   if (src.kind === 'live') {
     $('checksum').textContent = src.checksum;
     const s = src.stats;
-    $('run-info').textContent = `${src.precision} ${src.lcpSize}x${src.lcpSize}, h = ${plain(src.params.step)} s: `
+    const k = src.trace.k;
+    $('run-info').textContent = `${src.precision} ${lcpText(k, src.lcpSize)}, h = ${plain(src.params.step)} s: `
       + `${s.steps.toLocaleString('en')} steps, ${s.pivots.toLocaleString('en')} pivots, `
-      + `${s.fullLayout.toLocaleString('en')} steps needed the 8x8 form`;
-    const m = src.measured; const parts = [];
-    if (m.meetingTime !== null) parts.push(`the fingers met at t = ${m.meetingTime.toFixed(3)} s, the centre of mass ${(1e3 * m.meetingOffset).toFixed(2)} mm from their midpoint`);
-    if (m.acceleration !== null) parts.push(`acceleration down the slope ${m.acceleration.toFixed(5)} m/s²`);
-    if (m.wallReleaseHeight !== null) parts.push(`the top left the wall at ${m.wallReleaseHeight.toFixed(4)} m, ${m.wallReleaseRatio.toFixed(4)} of its start height`);
-    $('measured').textContent = parts.length ? parts.join('; ') : '-';
+      + `${s.fullLayout.toLocaleString('en')} steps needed the ${lcpText(k, '8')} form`;
+    $('measured').textContent = measuredText(src.measured);
+    $('measured').dataset.values = JSON.stringify(src.measured);
   } else {
     $('checksum').textContent = 'replay: see host-sim scene';
     const c = src.run.summary.core; const r = src.run.summary.reference;
-    $('run-info').textContent = `replay of ${src.run.name}: ${c.implementation} ${c.steps.toLocaleString('en')} steps; ${r.implementation}: ${r.outcome}`;
-    const m = c.measured; const parts = [];
-    if (m.meeting) parts.push(`the fingers met at t = ${m.meeting.time_s.toFixed(3)} s, the centre of mass ${(1e3 * m.meeting.com_offset_m).toFixed(2)} mm from their midpoint`);
-    if (m.acceleration_m_s2 !== null && m.acceleration_m_s2 !== undefined) parts.push(`acceleration ${m.acceleration_m_s2.toFixed(5)} m/s²`);
-    if (m.wall_release_height_m !== null && m.wall_release_height_m !== undefined) parts.push(`the top left the wall at ${m.wall_release_height_m.toFixed(4)} m`);
-    $('measured').textContent = parts.length ? parts.join('; ') : '-';
+    $('run-info').textContent = `replay of ${src.run.name}: ${c.implementation} ${c.steps.toLocaleString('en')} steps; `
+      + (r ? `${r.implementation}: ${r.outcome}` : 'no reference');
+    const keys = S.main.scene(src.scene).measures;
+    const values = Object.fromEntries(keys.map((key) => [key, key.split('.').reduce((v, part) => (v == null ? null : v[part]), c.measured)]));
+    $('measured').textContent = measuredText(values);
   }
   setState('ended');
   render(true);
@@ -360,7 +416,7 @@ function render(full) {
     ? (S.rate === 'max' ? `${(S.speedWindow.rate / 1e3).toFixed(0)}k steps/s` : `${S.rate}x`) : '';
   const title = src.kind === 'replay'
     ? `replay ${src.run.name}: ${src.run.summary.core.implementation} (reference dashed)`
-    : `${SCENE_TITLES[src.scene]}, ${src.precision} ${src.lcpSize}x${src.lcpSize}`;
+    : `${S.main.scene(src.scene).title}, ${src.precision} ${lcpText(src.trace.k, src.lcpSize)}`;
   view.draw(tr.last, {
     title, time: tr.time, steps: tr.n - 1, outcome: src.ended ? src.outcome : null,
     reference: src.referenceRow ? src.referenceRow() : null, rate: rateText,
@@ -376,7 +432,7 @@ function render(full) {
 function drawPlots(src) {
   const tr = src.trace; const ref = src.reference;
   const tMax = src.kind === 'replay'
-    ? src.run.core.rows[(src.run.core.n - 1) * ROW] : niceCeil(Math.max(tr.time, 10 * src.params.step));
+    ? src.run.core.rows[(src.run.core.n - 1) * tr.row] : niceCeil(Math.max(tr.time, 10 * src.params.step));
   const c = tr.cols;
   const series = (key, color, width, scale = 1) => [
     ...(ref ? [{ t: ref.cols.t, y: scaled(ref.cols[key], ref.n, scale), n: ref.n, color, width: 1.5, dash: [6, 4], markers: true }] : []),
@@ -384,10 +440,11 @@ function drawPlots(src) {
   ];
   const ticks = tr.events.map((e) => ({ t: e.t, color: [COLORS.separated, COLORS.stick, COLORS.slide, COLORS.slide][e.mode] }));
   const marks = tr.events.filter((e) => e.ratio !== null).map((e) => ({
-    t: e.t, y: e.x, color: e.contact === 0 ? COLORS.finger1 : COLORS.finger2, label: e.ratio.toFixed(3),
+    t: e.t, y: e.x, color: CONTACT_COLORS[e.contact], label: e.ratio.toFixed(3),
   }));
+  const supports = Array.from({ length: tr.k }, (_, i) => series(`s${i + 1}x`, CONTACT_COLORS[i], 2.5)).flat();
   drawPlot($('plot-positions'), {
-    series: [...series('s1x', COLORS.finger1, 2.5), ...series('s2x', COLORS.finger2, 2.5), ...series('x', COLORS.com, 3.5)],
+    series: [...supports, ...series('x', COLORS.com, 3.5)],
     marks, ticks, tMax, yLabel: 'x (m)', aspect: 0.39,
   });
   drawPlot($('plot-angle'), { series: series('theta', COLORS.ink, 2.5, 180 / Math.PI), ticks, tMax, yLabel: 'angle (deg)', aspect: 0.24, minSpan: 2 });
@@ -406,7 +463,7 @@ function showSwitches(src) {
   const eq21 = src.trace.events.filter((e) => e.ratio !== null);
   list.replaceChildren(...eq21.map((e) => {
     const li = document.createElement('li');
-    li.textContent = `t = ${e.t.toFixed(3)} s: finger ${e.contact + 1} starts to slide, ratio ${e.ratio.toFixed(4)}`;
+    li.textContent = `t = ${e.t.toFixed(3)} s: ${S.main.scene(src.scene).contacts[e.contact]} starts to slide, ratio ${e.ratio.toFixed(4)}`;
     return li;
   }));
   if (eq21.length === 0) {
@@ -429,9 +486,10 @@ function startReplay(run) {
   S.simTarget = 0;
   clearResult('replay: press Play');
   $('error').textContent = '';
-  view.setScene(S.source.scene, S.source.params, S.source.trace.last);
+  view.setScene(S.source.scene, S.source.params, S.source.trace.last, S.source.trace.k);
+  const { reference, comparison } = run.summary;
   $('replay-info').textContent = `${run.name}: ${run.summary.scene}, core ${run.summary.core.implementation} ${run.summary.core.outcome}, `
-    + `reference ${run.summary.reference.outcome}; max |COM| deviation ${run.summary.comparison.max_com_deviation_m.toExponential(2)} m`;
+    + (reference && comparison ? `reference ${reference.outcome}; max |COM| deviation ${comparison.max_com_deviation_m.toExponential(2)} m` : 'no reference');
   $('run-info').textContent = `replay of ${run.name} (host-sim run)`;
   $('replay-leave').hidden = false;
   for (const el of document.querySelectorAll('#params input, #params select, #params button')) el.disabled = true;
@@ -443,7 +501,7 @@ async function loadReplay(name) {
   const run = replayRuns.runs.find((r) => r.name === name);
   if (!run) { showError(`replay ${JSON.stringify(name)}: no such run (${replayRuns.runs.map((r) => r.name).join(', ')})`); return; }
   try {
-    startReplay(await loadRun(run));
+    startReplay(await loadRun(run, (scene) => S.main.contacts(scene)));
   } catch (e) {
     showError(`replay ${name}: ${e.message}`);
   }
@@ -510,7 +568,17 @@ function wire() {
     S.simTarget = S.source ? S.source.trace.time : 0;
     writeUrl();
   });
-  $('scene-select').addEventListener('change', () => { buildForm($('scene-select').value); makeRun(); });
+  $('scene-select').addEventListener('change', async () => {
+    const scene = $('scene-select').value;
+    try {
+      await selectScene(scene);
+    } catch (e) {
+      $('scene-select').value = S.scene;
+      showError(`could not load the core for scene ${scene}: ${e.message}`);
+      return;
+    }
+    makeRun();
+  });
   $('precision').addEventListener('change', () => makeRun());
   $('lcp-size').addEventListener('change', () => makeRun());
   $('params').addEventListener('submit', (e) => { e.preventDefault(); makeRun(); });
@@ -531,14 +599,15 @@ function wire() {
 }
 
 /// Reads the URL: the scene, the flags (host-sim's names), precision, LCP size, speed of play.
-function readUrl(q) {
+async function readUrl(q) {
   const scene = q.get('scene') || 'meter-stick';
   const problems = [];
-  if (!S.core.scene(scene)) {
-    problems.push(`scene ${JSON.stringify(scene)}: not a scene (meter-stick, incline, ladder)`);
-    buildForm('meter-stick');
+  if (!S.main.scene(scene)) {
+    const names = S.main.desc.scenes.map((s) => s.name).join(', ');
+    problems.push(`scene ${JSON.stringify(scene)}: not a scene (${names})`);
+    await selectScene('meter-stick');
   } else {
-    buildForm(scene);
+    await selectScene(scene);
   }
   for (const [key, value] of q) {
     if (PAGE_KEYS.includes(key)) continue;
@@ -577,6 +646,12 @@ async function main() {
   try {
     S.module = await compileCore();
     S.core = await instantiateCore(S.module);
+    S.main = S.core;
+    $('scene-select').replaceChildren(...S.main.desc.scenes.map((s) => {
+      const option = new Option(s.name, s.name);
+      option.title = s.title;
+      return option;
+    }));
   } catch (e) {
     showError(`could not load the core: ${e.message}`);
     setState('error');
@@ -584,7 +659,14 @@ async function main() {
   }
   $('version').textContent = `meterstick-web ${S.core.desc.version}.`;
   const q = new URLSearchParams(location.search);
-  const problems = readUrl(q);
+  let problems;
+  try {
+    problems = await readUrl(q);
+  } catch (e) {
+    showError(`could not load the core for scene ${q.get('scene')}: ${e.message}`);
+    setState('error');
+    return;
+  }
   const ok = makeRun();
   if (problems.length) {
     // An unusable query is refused as a whole, like a command line with a bad flag.
@@ -622,6 +704,11 @@ window.meterstick = {
     if (!tr) return null;
     const pick = (k) => Array.from(tr.cols[k].subarray(0, tr.n));
     return { t: pick('t'), x: pick('x'), y: pick('y'), theta: pick('theta'), vx: pick('vx'), vy: pick('vy'), omega: pick('omega') };
+  },
+  /// The shown scene's contacts, as the description names them, and the last row's length.
+  contacts() {
+    const src = S.source;
+    return src ? { names: S.main.scene(src.scene).contacts, row: src.trace.last.length } : null;
   },
   mapOutcome(i, j) {
     return map.grid[j] ? map.grid[j][i] : null;

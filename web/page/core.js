@@ -1,14 +1,21 @@
-// The wasm module (meterstick-web, built into pkg/) and its exports, wrapped for the page and the
-// map workers. The module has no imports; its API is plain numbers and two buffers in linear
-// memory (see web/src/exports.rs and README.md, "The page").
+// The wasm modules (meterstick-web, built into pkg/) and their exports, wrapped for the page and
+// the map workers. A module has no imports; its API is plain numbers and two buffers in linear
+// memory (see web/src/exports.rs and README.md, "The page"). Each module holds the scenes of some
+// numbers of contacts (its description's `holds`): meterstick_web.wasm the two-contact scenes,
+// meterstick_web_k1.wasm and meterstick_web_k3.wasm the others, fetched when such a scene is chosen.
 
 export const WASM_URL = new URL('./pkg/meterstick_web.wasm', import.meta.url);
 
-/// Compiles the module (once; the map workers get the compiled module).
-export async function compileCore() {
-  const response = await fetch(WASM_URL);
+/// The module that holds the scenes of k contacts.
+export function moduleUrl(k) {
+  return k === 2 ? WASM_URL : new URL(`./pkg/meterstick_web_k${k}.wasm`, import.meta.url);
+}
+
+/// Compiles a module (once; the map workers get the compiled module).
+export async function compileCore(url = WASM_URL) {
+  const response = await fetch(url);
   if (!response.ok) {
-    throw new Error(`${WASM_URL.pathname}: ${response.status} ${response.statusText} (build it: bash scripts/web.sh)`);
+    throw new Error(`${url.pathname}: ${response.status} ${response.statusText} (build it: bash scripts/web.sh)`);
   }
   return WebAssembly.compile(await response.arrayBuffer());
 }
@@ -24,7 +31,8 @@ const decoder = new TextDecoder();
 export class Core {
   constructor(exports) {
     this.x = exports;
-    /// The description: scenes (fields, defaults), flags (unit, help, field per scene), columns, modes, outcomes.
+    /// The description: scenes (fields, defaults, contacts, row length, measures, outcomes), flags
+    /// (unit, help, field per scene), modes, outcomes, the contact counts this module holds.
     this.desc = JSON.parse(this.text(exports.ms_describe()));
     this.flagIndex = new Map(this.desc.flags.map((f, i) => [f.long, i]));
   }
@@ -37,6 +45,12 @@ export class Core {
     return this.desc.scenes.find((s) => s.name === name);
   }
 
+  /// The number of contacts of a scene.
+  contacts(name) {
+    const scene = this.scene(name);
+    return scene ? scene.contacts.length : 0;
+  }
+
   /// The flags of a scene, in table order.
   flagsOf(sceneName) {
     return this.desc.flags.filter((f) => sceneName in f.fields);
@@ -47,7 +61,8 @@ export class Core {
   create(sceneName, given, precision, lcpSize) {
     const sceneIndex = this.desc.scenes.findIndex((s) => s.name === sceneName);
     if (sceneIndex < 0 || this.x.ms_configure(sceneIndex) !== 0) {
-      return { ok: false, message: `unknown scene ${JSON.stringify(sceneName)} (meter-stick, incline or ladder)`, flag: null };
+      const names = this.desc.scenes.map((s) => s.name).join(', ');
+      return { ok: false, message: `unknown scene ${JSON.stringify(sceneName)} (${names})`, flag: null };
     }
     for (const [long, value] of given) {
       const i = this.flagIndex.get(long);
@@ -63,7 +78,8 @@ export class Core {
       const f = this.x.ms_error_flag();
       return { ok: false, message, flag: f >= 0 ? this.desc.flags[f].long : null };
     }
-    const fields = this.scene(sceneName).fields;
+    this.current = this.scene(sceneName);
+    const fields = this.current.fields;
     const params = Object.fromEntries(fields.map((name, i) => [name, this.x.ms_param(i)]));
     return { ok: true, params };
   }
@@ -71,13 +87,13 @@ export class Core {
   /// The state at t = 0 as a row (a copy).
   startRow() {
     this.x.ms_start_row();
-    return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), this.desc.row).slice();
+    return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), this.current.row).slice();
   }
 
   /// Steps up to n times; returns the rows written (a view, valid until the next call).
   step(n) {
     const taken = this.x.ms_step(n);
-    return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), taken * this.desc.row);
+    return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), taken * this.current.row);
   }
 
   /// Steps up to max times without rows; returns the steps taken.
@@ -104,13 +120,12 @@ export class Core {
     return { steps: s(0), pivots: s(1), maxPivots: s(2), warmStarts: s(3), fullLayout: s(4), regularized: s(5) };
   }
 
+  /// The run's measured quantities: {key: value or null}, keyed as summary.json names them.
   measured() {
-    const m = (i) => this.x.ms_measured(i);
-    const opt = (v) => (Number.isNaN(v) ? null : v);
-    return {
-      meetingTime: opt(m(0)), meetingOffset: opt(m(1)), acceleration: opt(m(2)),
-      wallReleaseHeight: opt(m(3)), wallReleaseRatio: opt(m(4)),
-    };
+    return Object.fromEntries(this.current.measures.map((key, i) => {
+      const v = this.x.ms_measured(i);
+      return [key, Number.isNaN(v) ? null : v];
+    }));
   }
 }
 

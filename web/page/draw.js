@@ -1,17 +1,26 @@
 // Drawing: the scene to scale (the body, its supports, contact points coloured by mode, normal and
-// friction forces as arrows, the centre of mass, time) and line plots with switch marks.
+// friction forces as arrows, the centre of mass, time) and line plots with switch marks. Any scene
+// of the catalogue, with its number of contacts: a rod on fingers (meter stick, three fingers), a
+// block or a round body on a slope (incline, cylinder), a rod against a wall or on a floor (ladder,
+// Painleve's rod).
 
-import { COL } from './trace.js';
+import { COL, contactColumns } from './trace.js';
 
 export const COLORS = {
   ink: '#111', muted: '#555', grid: '#d8d8d8', paper: '#fff',
   stick: '#009e73', slide: '#e69f00', separated: '#777',
   normal: '#0072b2', friction: '#cc79a7', weight: '#555',
-  finger1: '#0072b2', finger2: '#d55e00', com: '#111',
+  finger1: '#0072b2', finger2: '#d55e00', finger3: '#56b4e9', com: '#111',
   balanced: '#009e73', fell: '#d55e00', unfinished: '#999', failed: '#000',
   wood: '#f0d9a0', ground: '#cfcac0',
 };
 const MODE_COLORS = [COLORS.separated, COLORS.stick, COLORS.slide, COLORS.slide];
+/// Each contact's colour in the plots and the fingers (contact 1 first).
+export const CONTACT_COLORS = [COLORS.finger1, COLORS.finger2, COLORS.finger3];
+
+/// Scenes whose body is a rod on fingers, on a slope, on the floor (ladder: and a wall).
+const ON_FINGERS = ['meter-stick', 'three-fingers'];
+const ON_SLOPE = ['incline', 'cylinder'];
 
 /// Sizes a canvas's backing store to its displayed size (sharp on any screen); returns the
 /// 2D context scaled to CSS pixels, with the CSS width and height.
@@ -61,24 +70,24 @@ function comSymbol(g, x, y, r) {
   }
 }
 
-/// The scene's contact frames (normal n and tangent d of each contact), as docs/scenes.md defines them.
-function frames(scene, params, theta) {
-  if (scene === 'meter-stick') {
-    const n = [-Math.sin(theta), Math.cos(theta)]; const d = [Math.cos(theta), Math.sin(theta)];
-    return [{ n, d }, { n, d }];
-  }
-  if (scene === 'incline') {
+/// The scene's contact frames (normal n and tangent d of each of its k contacts), as
+/// docs/scenes.md defines them.
+function frames(scene, params, theta, k) {
+  const same = (n, d) => Array.from({ length: k }, () => ({ n, d }));
+  if (ON_FINGERS.includes(scene)) return same([-Math.sin(theta), Math.cos(theta)], [Math.cos(theta), Math.sin(theta)]);
+  if (ON_SLOPE.includes(scene)) {
     const a = params.angle;
-    const n = [-Math.sin(a), Math.cos(a)]; const d = [Math.cos(a), Math.sin(a)];
-    return [{ n, d }, { n, d }];
+    return same([-Math.sin(a), Math.cos(a)], [Math.cos(a), Math.sin(a)]);
   }
-  return [{ n: [0, 1], d: [1, 0] }, { n: [-1, 0], d: [0, 1] }];
+  if (scene === 'ladder') return [{ n: [0, 1], d: [1, 0] }, { n: [-1, 0], d: [0, 1] }];
+  return same([0, 1], [1, 0]);
 }
 
-/// The body's size (width along its axis, height across it).
+/// The body's size (width along its axis, height across it; a round body's diameter).
 function bodySize(scene, p) {
-  if (scene === 'meter-stick') return [p.rod_length, p.rod_thickness];
+  if (ON_FINGERS.includes(scene)) return [p.rod_length, p.rod_thickness];
   if (scene === 'incline') return [p.width, p.height];
+  if (scene === 'cylinder') return [2 * p.radius, 2 * p.radius];
   return [p.length, p.thickness];
 }
 
@@ -88,9 +97,10 @@ export class SceneView {
     this.aspect = 0.52;
   }
 
-  /// A new scene: its name, parameters (core fields, SI), start row.
-  setScene(scene, params, start) {
+  /// A new scene: its name, parameters (core fields, SI), start row, number of contacts.
+  setScene(scene, params, start, k) {
     this.scene = scene;
+    this.k = k;
     this.params = params;
     this.start = start;
     this.camera = null;
@@ -112,9 +122,21 @@ export class SceneView {
       const k = w / (1.08 * (right - left));
       return { k, x0: (left + right) / 2, y0: this.start[COL.y], cx: w / 2, cy: h * 0.42, follow: false };
     }
+    if (this.scene === 'three-fingers') {
+      // Finger 1 may drag the rod as far as it travels (to finger 2's width from it).
+      const travel = Math.max(0, p.finger2_x - p.finger_width - p.finger1_x);
+      const left = Math.min(-bw / 2, p.finger1_x); const right = Math.max(bw / 2 + travel, p.finger3_x);
+      const k = w / (1.08 * (right - left));
+      return { k, x0: (left + right) / 2, y0: this.start[COL.y], cx: w / 2, cy: h * 0.42, follow: false };
+    }
     if (this.scene === 'ladder') {
       const k = Math.min(w / (1.45 * bw), h / (1.25 * bw));
       return { k, x0: 0, y0: 0, cx: w * 0.84, cy: h * 0.9, follow: false };
+    }
+    if (this.scene === 'painleve') {
+      // The floor low in the view, the rod's end in the middle: it slides to the left, or jams.
+      const k = Math.min(w / (2.2 * bw), (0.7 * h) / bw);
+      return { k, x0: 0, y0: 0, cx: w * 0.45, cy: h * 0.85, follow: false };
     }
     const span = Math.max(10 * Math.max(bw, bh), 0.8);
     return { k: w / span, x0: this.start[COL.x], y0: this.start[COL.y], cx: w / 2, cy: h * 0.5, follow: true };
@@ -141,10 +163,11 @@ export class SceneView {
     const weight = p.rod_mass !== undefined ? p.rod_mass * p.gravity : p.mass * p.gravity;
     const kf = (0.25 * h) / Math.max(weight, 1e-12);
     const cap = 0.45 * h;
-    const fr = frames(this.scene, p, row[COL.theta]);
-    for (let i = 0; i < 2; i += 1) {
-      const sx = X(row[COL.s1x + 2 * i]); const sy = Y(row[COL.s1y + 2 * i]);
-      const mode = row[COL.mode1 + i];
+    const fr = frames(this.scene, p, row[COL.theta], this.k);
+    const at = Array.from({ length: this.k }, (_, i) => contactColumns(this.k, i));
+    for (const c of at) {
+      const sx = X(row[c.sx]); const sy = Y(row[c.sy]);
+      const mode = row[c.mode];
       g.lineWidth = 3;
       g.beginPath(); g.arc(sx, sy, 7, 0, 2 * Math.PI);
       if (mode === 0) {
@@ -153,11 +176,11 @@ export class SceneView {
         g.fillStyle = MODE_COLORS[mode]; g.fill(); g.strokeStyle = COLORS.ink; g.stroke();
       }
     }
-    for (let i = 0; i < 2; i += 1) {
-      if (row[COL.mode1 + i] === 0) continue;
-      const sx = X(row[COL.s1x + 2 * i]); const sy = Y(row[COL.s1y + 2 * i]);
+    for (const [i, c] of at.entries()) {
+      if (row[c.mode] === 0) continue;
+      const sx = X(row[c.sx]); const sy = Y(row[c.sy]);
       const clamp = (v) => Math.max(-cap, Math.min(cap, v));
-      const fn = clamp((row[COL.pn1 + i] / p.step) * kf); const ff = clamp((row[COL.pf1 + i] / p.step) * kf);
+      const fn = clamp((row[c.pn] / p.step) * kf); const ff = clamp((row[c.pf] / p.step) * kf);
       arrow(g, sx, sy, fn * fr[i].n[0], -fn * fr[i].n[1], COLORS.normal, 4);
       arrow(g, sx, sy, ff * fr[i].d[0], -ff * fr[i].d[1], COLORS.friction, 4);
     }
@@ -172,10 +195,12 @@ export class SceneView {
 
   drawSupports(g, X, Y, w, h, row) {
     const p = this.params;
-    if (this.scene === 'meter-stick') {
+    if (ON_FINGERS.includes(this.scene)) {
       const half = Math.max(p.finger_width / 2, 2.5 / this.camera.k);
-      for (const [i, color] of [[0, COLORS.finger1], [1, COLORS.finger2]]) {
-        const tx = row[COL.s1x + 2 * i]; const ty = row[COL.s1y + 2 * i];
+      for (let i = 0; i < this.k; i += 1) {
+        const color = CONTACT_COLORS[i];
+        const c = contactColumns(this.k, i);
+        const tx = row[c.sx]; const ty = row[c.sy];
         const left = X(tx - half); const right = X(tx + half); const top = Y(ty);
         const r = Math.min((right - left) / 2, 10);
         g.fillStyle = color; g.globalAlpha = 0.35;
@@ -185,7 +210,7 @@ export class SceneView {
         g.closePath(); g.fill();
         g.globalAlpha = 1; g.strokeStyle = color; g.lineWidth = 2; g.stroke();
       }
-    } else if (this.scene === 'incline') {
+    } else if (ON_SLOPE.includes(this.scene)) {
       const a = p.angle; const far = 1e3;
       g.fillStyle = COLORS.ground;
       g.beginPath();
@@ -203,6 +228,16 @@ export class SceneView {
         const px = s * Math.cos(a); const py = s * Math.sin(a);
         g.beginPath(); g.moveTo(X(px), Y(py)); g.lineTo(X(px) + 10 * Math.sin(a), Y(py) + 10 * Math.cos(a)); g.stroke();
       }
+    } else if (this.scene === 'painleve') {
+      hatch(g, 0, Y(0), w, h - Y(0));
+      g.strokeStyle = COLORS.ink; g.lineWidth = 3;
+      g.beginPath(); g.moveTo(0, Y(0)); g.lineTo(w, Y(0)); g.stroke();
+      // A mark every 10 cm on the floor, so that the end's slide shows.
+      g.lineWidth = 2;
+      const span = w / this.camera.k;
+      for (let s = Math.floor((this.camera.x0 - span) / 0.1) * 0.1; s < this.camera.x0 + span; s += 0.1) {
+        g.beginPath(); g.moveTo(X(s), Y(0)); g.lineTo(X(s) - 8, Y(0) + 10); g.stroke();
+      }
     } else {
       hatch(g, 0, Y(0), w, h - Y(0));
       hatch(g, X(0), 0, w - X(0), Y(0));
@@ -218,13 +253,30 @@ export class SceneView {
     g.translate(X(row[COL.x]), Y(row[COL.y]));
     g.rotate(-row[COL.theta]);
     const pw = bw * k; const ph = Math.max(bh * k, 3);
+    if (this.scene === 'cylinder') {
+      // A disc with a spoke from the centre to the rim (and a lighter one across): rolling turns
+      // the spoke as the disc moves, slipping turns it less.
+      const r = pw / 2;
+      g.beginPath(); g.arc(0, 0, r, 0, 2 * Math.PI);
+      if (ghost) {
+        g.setLineDash([8, 6]); g.strokeStyle = COLORS.muted; g.lineWidth = 2; g.stroke();
+      } else {
+        g.fillStyle = COLORS.wood; g.fill(); g.strokeStyle = COLORS.ink; g.lineWidth = 2; g.stroke();
+        g.lineWidth = 1.5; g.strokeStyle = COLORS.muted;
+        g.beginPath(); g.moveTo(0, -r); g.lineTo(0, r); g.stroke();
+        g.lineWidth = 4; g.strokeStyle = COLORS.ink;
+        g.beginPath(); g.moveTo(0, 0); g.lineTo(r, 0); g.stroke();
+      }
+      g.restore();
+      return;
+    }
     if (ghost) {
       g.setLineDash([8, 6]); g.strokeStyle = COLORS.muted; g.lineWidth = 2;
       g.strokeRect(-pw / 2, -ph / 2, pw, ph);
     } else {
       g.fillStyle = COLORS.wood; g.fillRect(-pw / 2, -ph / 2, pw, ph);
       g.strokeStyle = COLORS.ink; g.lineWidth = 2; g.strokeRect(-pw / 2, -ph / 2, pw, ph);
-      if (this.scene === 'meter-stick' && bw >= 0.2) {
+      if (ON_FINGERS.includes(this.scene) && bw >= 0.2) {
         // Marks every 10 cm, as on a meter stick.
         g.lineWidth = 1.5;
         for (let i = 1; i < Math.round(bw / 0.1); i += 1) {
@@ -275,7 +327,10 @@ export class SceneView {
     if (info.outcome) {
       const text = info.outcome.name;
       g.font = '800 40px system-ui, "DejaVu Sans", sans-serif';
-      const color = { Balanced: COLORS.balanced, Held: COLORS.balanced, Fell: COLORS.fell, Tipped: COLORS.fell, Failed: COLORS.fell }[text] || '#8a6200';
+      const color = {
+        Balanced: COLORS.balanced, Held: COLORS.balanced, Rolled: COLORS.balanced,
+        Fell: COLORS.fell, Tipped: COLORS.fell, Jammed: COLORS.fell, Failed: COLORS.fell,
+      }[text] || '#8a6200';
       const tw = g.measureText(text).width;
       const by0 = 96; // below the title lines
       g.fillStyle = 'rgba(255,255,255,0.9)'; g.fillRect(w / 2 - tw / 2 - 16, by0, tw + 32, 56);

@@ -1,11 +1,11 @@
 // Replaying a run written by `host-sim run` (served by `host-sim serve --replay DIR` under
 // replay/): replay/runs.json lists the runs; each has core.csv, reference.csv (the trajectory
-// columns of trace.js, modes by name) and summary.json (scene, parameters, outcomes).
+// columns of trace.js for the scene's contacts, modes by name) and summary.json (scene,
+// parameters, outcomes).
 
-import { ROW } from './trace.js';
+import { columns } from './trace.js';
 
 const MODE_CODES = { separated: 0, sticking: 1, 'sliding+': 2, 'sliding-': 3 };
-const HEADER = 't,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,mode1,mode2,pn1,pn2,pf1,pf2,along1,along2';
 
 /// The runs on offer, or null when the server has none ([{name, path}]).
 export async function listRuns() {
@@ -19,37 +19,46 @@ export async function listRuns() {
   }
 }
 
-/// Parses a trajectory CSV into rows of ROW numbers.
-export function parseTrajectory(text, file) {
+/// Parses a trajectory CSV of k contacts into rows ({rows, n, k}).
+export function parseTrajectory(text, file, k) {
   const lines = text.split('\n').filter((l) => l.length > 0);
-  if (lines.length === 0 || lines[0].trim() !== HEADER) {
-    throw new Error(`${file}: not a trajectory of host-sim run (header ${JSON.stringify(lines[0] || '')})`);
+  const header = columns(k);
+  if (lines.length === 0 || lines[0].trim() !== header.join(',')) {
+    throw new Error(`${file}: not a trajectory of host-sim run with ${k} contacts (header ${JSON.stringify(lines[0] || '')})`);
   }
-  const rows = new Float64Array((lines.length - 1) * ROW);
-  for (let k = 1; k < lines.length; k += 1) {
-    const cells = lines[k].split(',');
-    if (cells.length !== ROW) throw new Error(`${file}, line ${k + 1}: ${cells.length} columns, expected ${ROW}`);
-    for (let c = 0; c < ROW; c += 1) {
-      const v = c === 11 || c === 12 ? MODE_CODES[cells[c]] : Number(cells[c]);
-      if (v === undefined) throw new Error(`${file}, line ${k + 1}: unknown mode ${JSON.stringify(cells[c])}`);
-      rows[(k - 1) * ROW + c] = v;
+  const row = header.length;
+  const isMode = (c) => c >= 7 + 2 * k && c < 7 + 3 * k;
+  const rows = new Float64Array((lines.length - 1) * row);
+  for (let j = 1; j < lines.length; j += 1) {
+    const cells = lines[j].split(',');
+    if (cells.length !== row) throw new Error(`${file}, line ${j + 1}: ${cells.length} columns, expected ${row}`);
+    for (let c = 0; c < row; c += 1) {
+      const v = isMode(c) ? MODE_CODES[cells[c]] : Number(cells[c]);
+      if (v === undefined) throw new Error(`${file}, line ${j + 1}: unknown mode ${JSON.stringify(cells[c])}`);
+      rows[(j - 1) * row + c] = v;
     }
   }
-  return { rows, n: lines.length - 1 };
+  return { rows, n: lines.length - 1, k };
 }
 
-/// Loads one run: {name, summary, core: {rows, n}, reference: {rows, n}}.
-export async function loadRun(run) {
-  const get = async (file) => {
+/// Loads one run: {name, summary, core: {rows, n, k}, reference: {rows, n, k} | null}; `contactsOf`
+/// gives a scene's number of contacts. A scene without an independent reference has no
+/// reference.csv.
+export async function loadRun(run, contactsOf) {
+  const get = async (file, optional = false) => {
     const r = await fetch(`replay/${run.path}${file}`, { cache: 'no-store' });
+    if (optional && r.status === 404) return null;
     if (!r.ok) throw new Error(`replay/${run.path}${file}: ${r.status} ${r.statusText}`);
     return r.text();
   };
-  const [core, reference, summary] = await Promise.all([get('core.csv'), get('reference.csv'), get('summary.json')]);
+  const summary = JSON.parse(await get('summary.json'));
+  const k = contactsOf(summary.scene);
+  if (!k) throw new Error(`replay/${run.path}summary.json: unknown scene ${JSON.stringify(summary.scene)}`);
+  const [core, reference] = await Promise.all([get('core.csv'), get('reference.csv', true)]);
   return {
     name: run.name,
-    summary: JSON.parse(summary),
-    core: parseTrajectory(core, `${run.path}core.csv`),
-    reference: parseTrajectory(reference, `${run.path}reference.csv`),
+    summary,
+    core: parseTrajectory(core, `${run.path}core.csv`, k),
+    reference: reference === null ? null : parseTrajectory(reference, `${run.path}reference.csv`, k),
   };
 }

@@ -1,62 +1,78 @@
 // A run's rows as they arrive (live from the core, or replayed from host-sim run's core.csv): the
 // columns the plots need, kept in growing typed arrays, the last full row for the animation, and
-// the switch events found in them, with the eq. 21 ratio where it applies. The rows have the
-// columns of core.csv: t,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,
-// mode1,mode2,pn1,pn2,pf1,pf2,along1,along2 (modes as codes: 0 separated, 1 sticking,
-// 2 sliding+, 3 sliding-).
+// the switch events found in them, with the eq. 21 ratio where it applies. A scene with K contacts
+// has rows of 7 + 6K numbers, the columns of core.csv: t,x,y,theta,vx,vy,omega, then each
+// contact's support<i>_x,support<i>_y, then mode<i>, pn<i>, pf<i>, along<i> each over the contacts
+// (modes as codes: 0 separated, 1 sticking, 2 sliding+, 3 sliding-).
 
-export const ROW = 19;
-export const COL = {
-  t: 0, x: 1, y: 2, theta: 3, vx: 4, vy: 5, omega: 6, s1x: 7, s1y: 8, s2x: 9, s2y: 10,
-  mode1: 11, mode2: 12, pn1: 13, pn2: 14, pf1: 15, pf2: 16, along1: 17, along2: 18,
-};
+export const COL = { t: 0, x: 1, y: 2, theta: 3, vx: 4, vy: 5, omega: 6 };
 export const MODE_NAMES = ['separated', 'sticking', 'sliding+', 'sliding-'];
-const KEPT = ['t', 'x', 'y', 'theta', 'vx', 'vy', 'omega', 's1x', 's2x'];
+const STATE = ['t', 'x', 'y', 'theta', 'vx', 'vy', 'omega'];
+
+/// Numbers per row for k contacts.
+export const rowLength = (k) => 7 + 6 * k;
+
+/// core.csv's column names for k contacts (host-sim's csv_header).
+export function columns(k) {
+  const names = [...STATE];
+  for (let i = 1; i <= k; i += 1) names.push(`support${i}_x`, `support${i}_y`);
+  for (const group of ['mode', 'pn', 'pf', 'along']) for (let i = 1; i <= k; i += 1) names.push(`${group}${i}`);
+  return names;
+}
+
+/// Where contact i's (0-based) numbers are in a row of k contacts.
+export function contactColumns(k, i) {
+  return { sx: 7 + 2 * i, sy: 8 + 2 * i, mode: 7 + 2 * k + i, pn: 7 + 3 * k + i, pf: 7 + 4 * k + i, along: 7 + 5 * k + i };
+}
 
 const isSliding = (m) => m === 2 || m === 3;
 
 export class Trace {
-  constructor() {
+  /// An empty trace of a scene with k contacts.
+  constructor(k) {
+    this.k = k;
+    this.row = rowLength(k);
+    this.at = Array.from({ length: k }, (_, i) => contactColumns(k, i));
+    this.kept = [...STATE.map((name, c) => [name, c]), ...this.at.map((c, i) => [`s${i + 1}x`, c.sx])];
     this.n = 0;
     this.cap = 1024;
-    this.cols = Object.fromEntries(KEPT.map((k) => [k, new Float64Array(this.cap)]));
-    this.last = new Float64Array(ROW);
+    this.cols = Object.fromEntries(this.kept.map(([name]) => [name, new Float64Array(this.cap)]));
+    this.last = new Float64Array(this.row);
     this.events = [];
   }
 
-  /// Appends the row at rows[offset .. offset + ROW].
+  /// Appends the row at rows[offset .. offset + this.row].
   push(rows, offset = 0) {
     if (this.n === this.cap) {
       this.cap *= 2;
-      for (const k of KEPT) {
+      for (const [name] of this.kept) {
         const grown = new Float64Array(this.cap);
-        grown.set(this.cols[k]);
-        this.cols[k] = grown;
+        grown.set(this.cols[name]);
+        this.cols[name] = grown;
       }
     }
-    for (const k of KEPT) this.cols[k][this.n] = rows[offset + COL[k]];
+    for (const [name, c] of this.kept) this.cols[name][this.n] = rows[offset + c];
     if (this.n > 0) this.findSwitches(rows, offset);
-    this.last.set(rows.subarray ? rows.subarray(offset, offset + ROW) : rows.slice(offset, offset + ROW));
+    this.last.set(rows.subarray ? rows.subarray(offset, offset + this.row) : rows.slice(offset, offset + this.row));
     this.n += 1;
   }
 
-  /// A contact whose mode differs from the previous row's switched; a sticking contact that
-  /// starts to slide while the other was sliding is an eq. 21 switch, ratio |along_other / along_this|
-  /// at the step's start (as host-sim's `switches`).
+  /// A contact whose mode differs from the previous row's switched. With two contacts, a sticking
+  /// contact that starts to slide while the other was sliding is an eq. 21 switch, ratio
+  /// |along_other / along_this| at the step's start (as host-sim's `switches`).
   findSwitches(rows, offset) {
-    const before = [this.last[COL.mode1], this.last[COL.mode2]];
-    const after = [rows[offset + COL.mode1], rows[offset + COL.mode2]];
-    const along = [rows[offset + COL.along1], rows[offset + COL.along2]];
-    for (let i = 0; i < 2; i += 1) {
-      if (after[i] === before[i]) continue;
+    for (let i = 0; i < this.k; i += 1) {
+      const c = this.at[i];
+      const before = this.last[c.mode]; const after = rows[offset + c.mode];
+      if (after === before) continue;
       let ratio = null;
-      if (before[i] === 1 && isSliding(after[i]) && isSliding(before[1 - i])) {
-        ratio = Math.abs(along[1 - i] / along[i]);
+      if (this.k === 2) {
+        const other = this.at[1 - i];
+        if (before === 1 && isSliding(after) && isSliding(this.last[other.mode])) {
+          ratio = Math.abs(rows[offset + other.along] / rows[offset + c.along]);
+        }
       }
-      this.events.push({
-        t: rows[offset + COL.t], contact: i, mode: after[i], ratio, index: this.n,
-        x: rows[offset + (i === 0 ? COL.s1x : COL.s2x)],
-      });
+      this.events.push({ t: rows[offset + COL.t], contact: i, mode: after, ratio, index: this.n, x: rows[offset + c.sx] });
     }
   }
 

@@ -68,9 +68,9 @@ pub use meterstick_core::scene::AnyParams as Spec;
 /// # Errors
 /// The core's first complaint.
 pub fn validate(spec: &Spec, precision: Precision) -> Result<(), ParamError> {
-    // The page's scenes (`crate::session::on_the_page`: the others are refused before this); naming
-    // them keeps the other scenes' checks out of the module (`README.md`: its size).
-    if !matches!(spec, Spec::MeterStick(_) | Spec::Incline(_) | Spec::Ladder(_)) {
+    // Only the scenes this module holds (`crate::sim::holds`; the session refuses the others
+    // before this): naming them keeps the other scenes' checks out of the module.
+    if !crate::sim::holds(spec.kind()) {
         return Err(ParamError::OutOfRange("scene"));
     }
     match precision {

@@ -1,7 +1,7 @@
 //! The page's API: plain `extern "C"` functions over one [`Session`] per wasm instance, with
 //! numbers for arguments and results and two buffers in linear memory that the page reads (the
-//! text buffer: JSON descriptions, refusals, outcomes; the trace buffer: rows of [`ROW`] f64 per
-//! step). `README.md` ("The page") lists them; `web/page/core.js` is their one caller.
+//! text buffer: JSON descriptions, refusals, outcomes; the trace buffer: one row of f64 per step,
+//! as many as the scene's row has, [`crate::sim::row_len`]). `README.md` ("The page") lists them; `web/page/core.js` is their one caller.
 //!
 //! Return conventions: counts as `u32` (or `f64` where they may exceed 2^32), codes as `i32`
 //! (`-1`: none or a bad argument), a text's length in bytes as `u32` (read from [`ms_text_ptr`]).
@@ -16,7 +16,7 @@ use core::fmt::Write as _;
 
 use crate::config::{LcpSize, Precision};
 use crate::session::{CreateError, Session, TEXT_BYTES, TRACE_ROWS, describe, outcome_text};
-use crate::sim::{ROW, outcome_code};
+use crate::sim::{MAX_ROW, outcome_code};
 use crate::text::Text;
 
 /// The session and what the last call said.
@@ -39,7 +39,7 @@ impl State {
 mod store {
     use core::cell::RefCell;
 
-    use super::{ROW, State, TEXT_BYTES, TRACE_ROWS};
+    use super::{MAX_ROW, State, TEXT_BYTES, TRACE_ROWS};
 
     /// A cell in a `static`.
     pub struct Global<T>(RefCell<T>);
@@ -51,7 +51,7 @@ mod store {
     static STATE: Global<State> = Global(RefCell::new(State::new()));
     // Zero-initialised, so they take no room in the .wasm file.
     static TEXT: Global<[u8; TEXT_BYTES]> = Global(RefCell::new([0; TEXT_BYTES]));
-    static TRACE: Global<[f64; TRACE_ROWS * ROW]> = Global(RefCell::new([0.0; TRACE_ROWS * ROW]));
+    static TRACE: Global<[f64; TRACE_ROWS * MAX_ROW]> = Global(RefCell::new([0.0; TRACE_ROWS * MAX_ROW]));
 
     pub fn with<R>(f: impl FnOnce(&mut State, &mut [u8], &mut [f64]) -> R) -> R {
         f(&mut STATE.0.borrow_mut(), &mut TEXT.0.borrow_mut()[..], &mut TRACE.0.borrow_mut()[..])
@@ -70,7 +70,7 @@ mod store {
 mod store {
     use std::cell::RefCell;
 
-    use super::{ROW, State, TEXT_BYTES, TRACE_ROWS};
+    use super::{MAX_ROW, State, TEXT_BYTES, TRACE_ROWS};
 
     struct Store {
         state: State,
@@ -82,7 +82,7 @@ mod store {
         static STORE: RefCell<Store> = RefCell::new(Store {
             state: State::new(),
             text: vec![0; TEXT_BYTES].into_boxed_slice(),
-            trace: vec![0.0; TRACE_ROWS * ROW].into_boxed_slice(),
+            trace: vec![0.0; TRACE_ROWS * MAX_ROW].into_boxed_slice(),
         });
     }
 
@@ -128,20 +128,21 @@ pub extern "C" fn ms_text_len() -> u32 {
     store::with(|s, _, _| s.text_len as u32)
 }
 
-/// Writes the description (JSON: scenes with their fields and defaults, flags with unit, help and
-/// field per scene, row columns, modes, outcomes, limits) into the text buffer; returns its length.
+/// Writes the description (JSON: scenes with their fields and defaults, contacts, row length,
+/// measured quantities and outcomes; flags with unit, help and field per scene; modes, outcomes,
+/// limits) into the text buffer; returns its length.
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_describe() -> u32 {
     store::with(|s, text, _| set_text(s, text, describe))
 }
 
-/// Starts a configuration of scene `scene` (0 meter stick, 1 incline, 2 ladder) with the core's
-/// defaults and no run; 0, or -1 for an unknown scene.
+/// Starts a configuration of scene `scene` (its index in the description's `scenes`: the
+/// catalogue's order) with the core's defaults and no run; 0, or -1 for an unknown scene.
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_configure(scene: u32) -> i32 {
-    let Some(kind) = crate::session::page_scene(scene) else { return -1 };
+    let Some(kind) = crate::flags::SceneKind::from_index(scene) else { return -1 };
     store::with(|s, _, _| s.session.configure(kind));
     0
 }
@@ -174,7 +175,7 @@ pub extern "C" fn ms_create(bits: u32, n: u32) -> i32 {
         Err(e) => {
             s.error_flag = match e {
                 CreateError::Config(c) => c.flag().and_then(|i| i32::try_from(i).ok()).unwrap_or(-1),
-                CreateError::Core(_) | CreateError::NotOnThePage(_) => -1,
+                CreateError::Core(_) | CreateError::OtherModule(_) => -1,
             };
             set_text(s, text, |t| write!(t, "{e}"));
             1
@@ -203,7 +204,8 @@ pub extern "C" fn ms_param(i: u32) -> f64 {
 pub extern "C" fn ms_start_row() -> u32 {
     store::with(|s, _, trace| {
         s.session.sim().map_or(0, |sim| {
-            trace[..ROW].copy_from_slice(sim.start_row());
+            let row = sim.start_row();
+            trace[..row.len()].copy_from_slice(row);
             1
         })
     })
@@ -216,7 +218,10 @@ pub extern "C" fn ms_start_row() -> u32 {
 pub extern "C" fn ms_step(n: u32) -> u32 {
     store::with(|s, _, trace| {
         let rows = (n as usize).min(TRACE_ROWS);
-        s.session.sim_mut().map_or(0, |sim| sim.step_rows(&mut trace[..rows * ROW]) as u32)
+        s.session.sim_mut().map_or(0, |sim| {
+            let len = sim.row_len();
+            sim.step_rows(&mut trace[..rows * len]) as u32
+        })
     })
 }
 
@@ -229,7 +234,7 @@ pub extern "C" fn ms_run(max: f64) -> f64 {
     store::with(|s, _, _| s.session.sim_mut().map_or(0, |sim| sim.run(max)) as f64)
 }
 
-/// The trace buffer: rows of `ROW` f64 (the description's `columns`).
+/// The trace buffer: rows of the scene's `row` f64 (`core.csv`'s columns for its contacts).
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_trace_ptr() -> *const f64 {
@@ -291,16 +296,13 @@ pub extern "C" fn ms_stat(i: u32) -> f64 {
     })
 }
 
-/// A measured quantity: 0 meeting time (s), 1 the centre of mass from the fingers' midpoint then
-/// (m), 2 the incline's acceleration (m/s^2), 3 the ladder's wall-release height (m), 4 its ratio
-/// to the start height; NaN where there is none.
+/// The run's measured quantity `i`, named by the scene's `measures` in the description
+/// (`summary.json`'s keys, in their units); NaN where there is none (yet) or past the end.
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_measured(i: u32) -> f64 {
     store::with(|s, _, _| {
-        s.session
-            .sim()
-            .map_or(f64::NAN, |sim| sim.measured().to_array().get(i as usize).copied().unwrap_or(f64::NAN))
+        s.session.sim().map_or(f64::NAN, |sim| sim.measured().get(i as usize).copied().unwrap_or(f64::NAN))
     })
 }
 
@@ -311,15 +313,11 @@ pub fn text() -> String {
     store::with(|s, text, _| String::from_utf8_lossy(&text[..s.text_len]).into_owned())
 }
 
-/// Row `i` of the trace buffer (host only: tests).
+/// Row `i` of the trace buffer, rows of `len` numbers (host only: tests).
 #[cfg(not(target_arch = "wasm32"))]
 #[must_use]
-pub fn trace_row(i: usize) -> [f64; ROW] {
-    store::with(|_, _, trace| {
-        let mut row = [0.0; ROW];
-        row.copy_from_slice(&trace[i * ROW..(i + 1) * ROW]);
-        row
-    })
+pub fn trace_row(i: usize, len: usize) -> Vec<f64> {
+    store::with(|_, _, trace| trace[i * len..(i + 1) * len].to_vec())
 }
 
 #[cfg(test)]
@@ -327,6 +325,7 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::float_cmp)] // exact: values copied or rounded once, not computed
     use super::*;
     use crate::flags::{FLAGS, flag_index};
+    use crate::sim::OUTCOMES;
 
     fn flag(long: &str) -> u32 {
         flag_index(long).unwrap() as u32
@@ -339,8 +338,15 @@ mod tests {
         assert_eq!(json.len(), n as usize);
         assert!(json.len() < TEXT_BYTES / 2, "room to grow: {} bytes", json.len());
         assert!(json.starts_with("{\"version\":") && json.ends_with('}'), "{json}");
-        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic"}}"#), "{json}");
-        assert!(json.contains(r#""columns":["t","x","y","theta","vx""#), "{json}");
+        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic"}}"#), "{json}");
+        assert!(json.contains(r#""contacts":["finger 1","finger 2"],"row":19,"measures":["meeting.time_s","meeting.com_offset_m"]"#), "{json}");
+        assert!(
+            json.contains(r#""name":"cylinder","#) && json.contains(r#""contacts":["rim"],"row":13,"#),
+            "{json}"
+        );
+        assert!(json.contains(r#""contacts":["finger 1","finger 2","finger 3"],"row":25,"#), "{json}");
+        assert!(json.contains(r#""holds":[1,2,3],"#), "the host build holds every scene: {json}");
+        assert!(json.contains(r#""measures":["jam.time_s","jam.normal_impulse_ns","jam.friction_impulse_ns"],"ends":["Jammed","Slid","Fell","Unfinished"]"#), "{json}");
         assert!(json.contains(r#""defaults":[1,0.005,0.2,9.81,-0.4,0.4,0,0,0.1,0,0.01,0.6,0.4,0.001,0.00001,0.35,0.02,0.5,30]"#), "{json}");
     }
 
@@ -353,7 +359,7 @@ mod tests {
         assert_eq!(ms_outcome(), -1);
         assert_eq!(ms_param(4), -0.35, "finger1_x");
         assert_eq!(ms_start_row(), 1);
-        assert_eq!(trace_row(0)[7], f64::from(-0.35_f32), "finger 1 in f32");
+        assert_eq!(trace_row(0, 19)[7], f64::from(-0.35_f32), "finger 1 in f32");
         let mut steps = 0;
         loop {
             let n = ms_step(100);
@@ -362,7 +368,7 @@ mod tests {
             }
             assert!(n <= 100);
             steps += n;
-            assert_eq!(trace_row(n as usize - 1)[0], ms_time(), "the last row is the current time");
+            assert_eq!(trace_row(n as usize - 1, 19)[0], ms_time(), "the last row is the current time");
         }
         assert_eq!(f64::from(steps), ms_stat(0));
         assert_eq!(ms_outcome(), 1, "Fell");
@@ -373,9 +379,29 @@ mod tests {
         assert_eq!(ms_create(32, 6), 0);
         assert_eq!(ms_run(1e9), f64::from(steps));
         assert_eq!(ms_checksum(), checksum);
-        // The fingers met (0.74 m at 1 m/s) before the rod fell; no incline or ladder quantity.
+        // The fingers met (0.74 m at 1 m/s) before the rod fell; the meter stick measures two things.
         assert!((ms_measured(0) - 0.74).abs() <= 1.5e-3, "{}", ms_measured(0));
-        assert!(ms_measured(2).is_nan() && ms_measured(3).is_nan() && ms_measured(9).is_nan());
+        assert!(ms_measured(1).is_finite() && ms_measured(2).is_nan() && ms_measured(9).is_nan());
+    }
+
+    #[test]
+    fn a_one_contact_run_through_the_exports() {
+        // The cylinder (scene 4) on a steep slope: rows of 13, it slides.
+        assert_eq!(ms_configure(4), 0);
+        assert_eq!(ms_give(flag("angle"), 70.0), 0);
+        assert_eq!(ms_create(64, 8), 0);
+        assert_eq!(ms_start_row(), 1);
+        assert_eq!(trace_row(0, 13)[9], 1.0, "the rim sticks at rest");
+        assert_eq!(ms_step(5), 5);
+        let row = trace_row(4, 13);
+        assert_eq!((row[0], row[9]), (ms_time(), 2.0), "sliding+");
+        assert_eq!(trace_row(5, 13)[0], 0.0, "five rows written");
+        while ms_step(2048) > 0 {}
+        assert_eq!(OUTCOMES[ms_outcome() as usize], "Slid");
+        // g (sin a - mu_k cos a) at 70 degrees.
+        let a = 70_f64.to_radians();
+        assert!((ms_measured(0) - 9.81 * (a.sin() - 0.4 * a.cos())).abs() < 1e-6, "{}", ms_measured(0));
+        assert!(ms_measured(1).is_nan());
     }
 
     #[test]
@@ -389,7 +415,7 @@ mod tests {
         assert!(ms_param(0).is_nan());
         assert_eq!(ms_create(16, 6), -1);
         assert_eq!(ms_create(32, 7), -1);
-        assert_eq!(ms_configure(3), -1);
+        assert_eq!(ms_configure(6), -1);
         assert_eq!(ms_give(FLAGS.len() as u32, 1.0), -1);
     }
 }

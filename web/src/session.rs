@@ -7,7 +7,7 @@ use meterstick_core::scene::Outcome;
 
 use crate::config::{Config, ConfigError, LcpSize, MAX_STEPS, Precision, Spec};
 use crate::flags::{FLAGS, SceneKind};
-use crate::sim::{COLUMNS, MODES, OUTCOMES, ROW, Sim};
+use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, holds, row_len};
 use crate::text::{Text, json_num, json_str};
 
 /// Rows one `ms_step` call may write (the trace buffer holds this many).
@@ -22,8 +22,8 @@ pub enum CreateError {
     Config(ConfigError),
     /// The parameters passed validation but the core still refused them.
     Core(meterstick_core::ParamError),
-    /// The scene has other than two contacts: the page's rows and drawing have two.
-    NotOnThePage(SceneKind),
+    /// The scene is in the module of another contact count ([`crate::sim::holds`]).
+    OtherModule(SceneKind),
 }
 
 /// A configuration being edited, the parameters it resolved to and the run made from them.
@@ -73,8 +73,8 @@ impl Session {
     pub fn create(&mut self, precision: Precision, size: LcpSize) -> Result<(), CreateError> {
         self.sim = None;
         self.spec = None;
-        if !on_the_page(self.config.kind) {
-            return Err(CreateError::NotOnThePage(self.config.kind));
+        if !holds(self.config.kind) {
+            return Err(CreateError::OtherModule(self.config.kind));
         }
         let spec = self.config.resolve(precision).map_err(CreateError::Config)?;
         self.spec = Some(spec);
@@ -105,58 +105,52 @@ impl core::fmt::Display for CreateError {
         match self {
             Self::Config(e) => write!(f, "{e}"),
             Self::Core(e) => write!(f, "{e}"),
-            Self::NotOnThePage(kind) => write!(
-                f,
-                "scene {kind} has {} contacts; the page runs two-contact scenes (host-sim scene --scene {kind} runs it)",
-                kind.info().contacts
-            ),
+            Self::OtherModule(kind) => {
+                let k = kind.info().contacts;
+                write!(f, "scene {kind} runs in meterstick_web_k{k}.wasm, not in this module")
+            }
         }
     }
 }
 
-/// `true` for a scene the page runs: two contacts (its rows, [`crate::sim::ROW`], and its drawing).
-#[must_use]
-pub const fn on_the_page(kind: SceneKind) -> bool {
-    kind.info().contacts == 2
-}
-
-/// The scene with number `i` among those the page runs ([`on_the_page`]; they come first in the
-/// catalogue, so the number is the catalogue's).
-#[must_use]
-pub const fn page_scene(i: u32) -> Option<SceneKind> {
-    match SceneKind::from_index(i) {
-        Some(kind) if on_the_page(kind) => Some(kind),
-        _ => None,
-    }
-}
-
-/// Writes the description the page builds its controls from, as JSON: each scene's name, core
-/// fields and defaults; each flag's name, unit, help and field per scene; the row columns, mode
-/// and outcome names; the limits.
+/// Writes the description the page builds its controls from, as JSON: each scene's name, title,
+/// core fields and defaults, contacts (named; a row has [`row_len`] numbers for them), measured
+/// quantities (`summary.json`'s keys) and the outcomes it can end in; each flag's name, unit, help
+/// and field per scene; the mode and outcome names; the limits.
 ///
 /// # Errors
 /// Never in practice (a [`Text`] drops what does not fit and says so).
 pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
+    let list = |out: &mut Text<'_>, key: &str, names: &mut dyn Iterator<Item = &str>| -> core::fmt::Result {
+        write!(out, ",\"{key}\":[")?;
+        for (i, name) in names.enumerate() {
+            out.write_str(if i > 0 { "," } else { "" })?;
+            json_str(out, name)?;
+        }
+        out.write_char(']')
+    };
     out.write_str("{\"version\":")?;
     json_str(out, crate::VERSION)?;
     out.write_str(",\"scenes\":[")?;
-    for (i, kind) in SceneKind::ALL.into_iter().filter(|k| on_the_page(*k)).enumerate() {
+    for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
+        let info = kind.info();
         out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
-        json_str(out, kind.name())?;
+        json_str(out, info.name)?;
         out.write_str(",\"title\":")?;
-        json_str(out, kind.info().title)?;
-        out.write_str(",\"fields\":[")?;
+        json_str(out, info.title)?;
+        list(out, "fields", &mut kind.field_names().iter().copied())?;
+        out.write_str(",\"defaults\":[")?;
         let spec = Spec::defaults(kind);
-        for (j, name) in kind.field_names().iter().enumerate() {
-            out.write_str(if j > 0 { "," } else { "" })?;
-            json_str(out, name)?;
-        }
-        out.write_str("],\"defaults\":[")?;
         for j in 0..kind.field_names().len() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_num(out, spec.field(j).unwrap_or(f64::NAN))?;
         }
-        out.write_str("]}")?;
+        out.write_char(']')?;
+        list(out, "contacts", &mut info.contact_names.iter().copied())?;
+        write!(out, ",\"row\":{}", row_len(info.contacts))?;
+        list(out, "measures", &mut info.measures.iter().copied())?;
+        list(out, "ends", &mut info.outcomes.iter().map(|o| o.name()))?;
+        out.write_char('}')?;
     }
     out.write_str("],\"flags\":[")?;
     for (i, flag) in FLAGS.iter().enumerate() {
@@ -167,7 +161,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         out.write_str(",\"help\":")?;
         json_str(out, flag.help)?;
         out.write_str(",\"fields\":{")?;
-        for (j, (kind, field)) in flag.fields.iter().filter(|(k, _)| on_the_page(*k)).enumerate() {
+        for (j, (kind, field)) in flag.fields.iter().enumerate() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_str(out, kind.name())?;
             out.write_char(':')?;
@@ -175,19 +169,18 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         }
         out.write_str("}}")?;
     }
-    let list = |out: &mut Text<'_>, key: &str, names: &[&str]| -> core::fmt::Result {
-        write!(out, ",\"{key}\":[")?;
-        for (i, name) in names.iter().enumerate() {
-            out.write_str(if i > 0 { "," } else { "" })?;
-            json_str(out, name)?;
-        }
-        out.write_char(']')
-    };
     out.write_char(']')?;
-    list(out, "columns", &COLUMNS)?;
-    list(out, "modes", &MODES)?;
-    list(out, "outcomes", &OUTCOMES)?;
-    write!(out, ",\"row\":{ROW},\"trace_rows\":{TRACE_ROWS},\"max_steps\":{MAX_STEPS}}}")
+    list(out, "modes", &mut MODES.iter().copied())?;
+    list(out, "outcomes", &mut OUTCOMES.iter().copied())?;
+    out.write_str(",\"holds\":[")?;
+    let mut first = true;
+    for k in 1..=MAX_CONTACTS {
+        if SceneKind::ALL.iter().any(|s| s.info().contacts == k && holds(*s)) {
+            write!(out, "{}{k}", if first { "" } else { "," })?;
+            first = false;
+        }
+    }
+    write!(out, "],\"trace_rows\":{TRACE_ROWS},\"max_steps\":{MAX_STEPS}}}")
 }
 
 /// Writes an outcome as the core displays it (`Failed (solver: ...)` with its cause).
@@ -196,4 +189,27 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
 /// Never in practice.
 pub fn outcome_text(out: &mut Text<'_>, outcome: Outcome) -> core::fmt::Result {
     write!(out, "{outcome}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{LcpSize, Precision};
+    use crate::text::StackStr;
+
+    #[test]
+    fn the_host_build_runs_every_scene_and_a_module_words_what_it_does_not_hold() {
+        let mut s = Session::new();
+        for kind in SceneKind::ALL {
+            assert!(holds(kind), "{kind}");
+            s.configure(kind);
+            assert!(s.create(Precision::F32, LcpSize::Reduced).is_ok(), "{kind}");
+            assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.info().contacts)), "{kind}");
+        }
+        let e = CreateError::OtherModule(SceneKind::Cylinder);
+        assert_eq!(
+            StackStr::<128>::of(format_args!("{e}")).as_str(),
+            "scene cylinder runs in meterstick_web_k1.wasm, not in this module"
+        );
+    }
 }

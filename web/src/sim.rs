@@ -1,49 +1,56 @@
-//! One run of a scene in the core, as the page drives it: [`Sim`] holds the scene in the
-//! precision and LCP size asked for (f32/f64 x 6x6/8x8, any of the three scenes), steps it,
-//! writes one row of numbers per step for the animation and the plots ([`COLUMNS`]: the columns of
-//! `host-sim run`'s `core.csv`, so a live run and a replayed one are read alike), and keeps the
+//! One run of a scene in the core, as the page drives it: [`Sim`] holds any scene of the catalogue
+//! in the precision and layout asked for (f32/f64 x reduced/full: 6x6/8x8 for two contacts, the
+//! scene's own sizes for the others), steps it, writes one row of numbers per step for the
+//! animation and the plots (the columns of `host-sim run`'s `core.csv` for the scene's `K`
+//! contacts, [`row_len`], so a live run and a replayed one are read alike), and keeps the
 //! trajectory checksum (`planar::Checksum`, as the firmware and `host-sim scene` print it).
+
+// A module built with some of the scene features leaves the others' helpers unused.
+#![cfg_attr(
+    not(all(feature = "k1", feature = "k2", feature = "k3")),
+    allow(dead_code, unused_imports, unused_mut, unused_variables)
+)]
 
 use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-use meterstick_core::scene::{Incline, Ladder, MeterStick, Outcome, OutcomeKind, Scene};
+use meterstick_core::scene::{
+    Cylinder, Incline, Jam, Ladder, Meeting, MeterStick, Outcome, OutcomeKind, Painleve, Scene, SceneKind,
+    ThreeFingers,
+};
 
 use crate::config::{LcpSize, Precision, Spec};
 
-/// The columns of a row, as `core.csv` names them: time (s), the body's `x, y, theta, vx, vy,
-/// omega` (m, rad, m/s, rad/s), where each support touches (m), each contact's mode ([`mode_code`]),
-/// normal and friction impulse (N s) and coordinate along it at the step's start (m).
-pub const COLUMNS: [&str; ROW] = [
-    "t",
-    "x",
-    "y",
-    "theta",
-    "vx",
-    "vy",
-    "omega",
-    "support1_x",
-    "support1_y",
-    "support2_x",
-    "support2_y",
-    "mode1",
-    "mode2",
-    "pn1",
-    "pn2",
-    "pf1",
-    "pf2",
-    "along1",
-    "along2",
-];
+/// The most contacts a scene of the catalogue has (three fingers).
+pub const MAX_CONTACTS: usize = 3;
 
-/// Numbers per row.
-pub const ROW: usize = 19;
+/// Numbers per row for `k` contacts: time, the body's `x, y, theta, vx, vy, omega`, then each
+/// contact's support point (x, y), and each contact's mode, normal impulse, friction impulse and
+/// coordinate along it, in groups (`host-sim`'s `csv_header(k)`).
+#[must_use]
+pub const fn row_len(k: usize) -> usize {
+    7 + 6 * k
+}
+
+/// `true` when this module holds the scenes of `kind`'s contact count (cargo features `k1`, `k2`,
+/// `k3`: the page's first module has the two-contact scenes and loads the others' on demand).
+#[must_use]
+pub const fn holds(kind: SceneKind) -> bool {
+    let k = kind.info().contacts;
+    (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
+}
+
+/// The longest row (a scene with [`MAX_CONTACTS`]).
+pub const MAX_ROW: usize = row_len(MAX_CONTACTS);
 
 /// The modes by code ([`mode_code`]), as `core.csv` spells them.
 pub const MODES: [&str; 4] = ["separated", "sticking", "sliding+", "sliding-"];
 
 /// The outcomes by code ([`outcome_code`]): the core's one list ([`OutcomeKind`]).
 pub const OUTCOMES: [&str; OutcomeKind::ALL.len()] = OutcomeKind::names();
+
+/// The most measured quantities a scene has ([`SceneKind`]'s `measures` in the catalogue).
+pub const MAX_MEASURES: usize = 3;
 
 /// A mode's code: 0 separated, 1 sticking, 2 sliding+, 3 sliding- ([`MODES`]).
 #[must_use]
@@ -62,130 +69,215 @@ pub const fn outcome_code(o: Outcome) -> u8 {
     o.kind().code()
 }
 
-/// The scene in its precision and LCP size (`E = 0`: the page finds switch events in the rows).
+/// The scene in its precision and layout (`E = 0`: the page finds switch events in the rows).
+/// Two-contact scenes: 6 reduced, 8 full; three fingers 9 or 12; one contact 3 or 4, as
+/// `host-sim --lcp-size 6|8` selects them.
 #[derive(Debug, Clone)]
 #[allow(clippy::large_enum_variant)] // one scene per session, held in place: there is no heap on wasm
 enum AnyScene {
+    #[cfg(feature = "k2")]
     MeterStickF32R(MeterStick<f32, 6, 0>),
+    #[cfg(feature = "k2")]
     MeterStickF32F(MeterStick<f32, 8, 0>),
+    #[cfg(feature = "k2")]
     MeterStickF64R(MeterStick<f64, 6, 0>),
+    #[cfg(feature = "k2")]
     MeterStickF64F(MeterStick<f64, 8, 0>),
+    #[cfg(feature = "k2")]
     InclineF32R(Incline<f32, 6, 0>),
+    #[cfg(feature = "k2")]
     InclineF32F(Incline<f32, 8, 0>),
+    #[cfg(feature = "k2")]
     InclineF64R(Incline<f64, 6, 0>),
+    #[cfg(feature = "k2")]
     InclineF64F(Incline<f64, 8, 0>),
+    #[cfg(feature = "k2")]
     LadderF32R(Ladder<f32, 6, 0>),
+    #[cfg(feature = "k2")]
     LadderF32F(Ladder<f32, 8, 0>),
+    #[cfg(feature = "k2")]
     LadderF64R(Ladder<f64, 6, 0>),
+    #[cfg(feature = "k2")]
     LadderF64F(Ladder<f64, 8, 0>),
+    #[cfg(feature = "k3")]
+    ThreeFingersF32R(ThreeFingers<f32, 9, 0>),
+    #[cfg(feature = "k3")]
+    ThreeFingersF32F(ThreeFingers<f32, 12, 0>),
+    #[cfg(feature = "k3")]
+    ThreeFingersF64R(ThreeFingers<f64, 9, 0>),
+    #[cfg(feature = "k3")]
+    ThreeFingersF64F(ThreeFingers<f64, 12, 0>),
+    #[cfg(feature = "k1")]
+    CylinderF32R(Cylinder<f32, 3, 0>),
+    #[cfg(feature = "k1")]
+    CylinderF32F(Cylinder<f32, 4, 0>),
+    #[cfg(feature = "k1")]
+    CylinderF64R(Cylinder<f64, 3, 0>),
+    #[cfg(feature = "k1")]
+    CylinderF64F(Cylinder<f64, 4, 0>),
+    #[cfg(feature = "k1")]
+    PainleveF32R(Painleve<f32, 3, 0>),
+    #[cfg(feature = "k1")]
+    PainleveF32F(Painleve<f32, 4, 0>),
+    #[cfg(feature = "k1")]
+    PainleveF64R(Painleve<f64, 3, 0>),
+    #[cfg(feature = "k1")]
+    PainleveF64F(Painleve<f64, 4, 0>),
 }
 
 /// Runs `$body` with `$s` bound to the scene, whatever its type.
 macro_rules! each {
     ($any:expr, $s:ident => $body:expr) => {
         match $any {
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF32R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF32F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF64R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::MeterStickF64F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF32R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF32F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF64R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::InclineF64F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32F($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64R($s) => $body,
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64F($s) => $body,
+            #[cfg(feature = "k3")]
+            AnyScene::ThreeFingersF32R($s) => $body,
+            #[cfg(feature = "k3")]
+            AnyScene::ThreeFingersF32F($s) => $body,
+            #[cfg(feature = "k3")]
+            AnyScene::ThreeFingersF64R($s) => $body,
+            #[cfg(feature = "k3")]
+            AnyScene::ThreeFingersF64F($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF32R($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF32F($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF64R($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF64F($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF32R($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF32F($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF64R($s) => $body,
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF64F($s) => $body,
         }
     };
-}
-
-/// The scene's measured quantities (`docs/scenes.md`, "Measured"); NaN where there is none.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Measured {
-    /// Meter stick: when the fingers met (s).
-    pub meeting_time: f64,
-    /// Meter stick: the centre of mass from the fingers' midpoint then, along the rod (m).
-    pub meeting_offset: f64,
-    /// Incline: the acceleration down the slope while sliding (m/s^2).
-    pub acceleration: f64,
-    /// Ladder: the height of the top when it left the wall (m).
-    pub wall_release_height: f64,
-    /// Ladder: that height over the top's start height.
-    pub wall_release_ratio: f64,
-}
-
-impl Measured {
-    /// The five values in field order.
-    #[must_use]
-    pub const fn to_array(&self) -> [f64; 5] {
-        [
-            self.meeting_time,
-            self.meeting_offset,
-            self.acceleration,
-            self.wall_release_height,
-            self.wall_release_ratio,
-        ]
-    }
 }
 
 /// One run.
 #[derive(Debug, Clone)]
 pub struct Sim {
     scene: AnyScene,
+    kind: SceneKind,
     checksum: Checksum,
-    start: [f64; ROW],
+    start: [f64; MAX_ROW],
 }
 
 impl Sim {
-    /// The scene of `spec` in `precision` and `size`, at rest at `t = 0`.
+    /// The scene of `spec` in `precision` and `size`, at its start at `t = 0`.
     ///
     /// # Errors
     /// The core's complaint about the parameters (in its precision).
     pub fn new(spec: &Spec, precision: Precision, size: LcpSize) -> Result<Self, ParamError> {
         use {LcpSize::Full as Fu, LcpSize::Reduced as Re, Precision::F32, Precision::F64};
         let scene = match (*spec, precision, size) {
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F32, Re) => AnyScene::MeterStickF32R(MeterStick::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F32, Fu) => AnyScene::MeterStickF32F(MeterStick::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F64, Re) => AnyScene::MeterStickF64R(MeterStick::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::MeterStick(p), F64, Fu) => AnyScene::MeterStickF64F(MeterStick::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F32, Re) => AnyScene::InclineF32R(Incline::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F32, Fu) => AnyScene::InclineF32F(Incline::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F64, Re) => AnyScene::InclineF64R(Incline::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Incline(p), F64, Fu) => AnyScene::InclineF64F(Incline::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F32, Re) => AnyScene::LadderF32R(Ladder::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F32, Fu) => AnyScene::LadderF32F(Ladder::new(p.cast())?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F64, Re) => AnyScene::LadderF64R(Ladder::new(p)?),
+            #[cfg(feature = "k2")]
             (Spec::Ladder(p), F64, Fu) => AnyScene::LadderF64F(Ladder::new(p)?),
-            // The page draws and traces two-contact scenes ([`crate::session::Session::create`]
-            // refuses the others before this).
-            _ => return Err(ParamError::SupportMismatch(2)),
+            #[cfg(feature = "k3")]
+            (Spec::ThreeFingers(p), F32, Re) => AnyScene::ThreeFingersF32R(ThreeFingers::new(p.cast())?),
+            #[cfg(feature = "k3")]
+            (Spec::ThreeFingers(p), F32, Fu) => AnyScene::ThreeFingersF32F(ThreeFingers::new(p.cast())?),
+            #[cfg(feature = "k3")]
+            (Spec::ThreeFingers(p), F64, Re) => AnyScene::ThreeFingersF64R(ThreeFingers::new(p)?),
+            #[cfg(feature = "k3")]
+            (Spec::ThreeFingers(p), F64, Fu) => AnyScene::ThreeFingersF64F(ThreeFingers::new(p)?),
+            #[cfg(feature = "k1")]
+            (Spec::Cylinder(p), F32, Re) => AnyScene::CylinderF32R(Cylinder::new(p.cast())?),
+            #[cfg(feature = "k1")]
+            (Spec::Cylinder(p), F32, Fu) => AnyScene::CylinderF32F(Cylinder::new(p.cast())?),
+            #[cfg(feature = "k1")]
+            (Spec::Cylinder(p), F64, Re) => AnyScene::CylinderF64R(Cylinder::new(p)?),
+            #[cfg(feature = "k1")]
+            (Spec::Cylinder(p), F64, Fu) => AnyScene::CylinderF64F(Cylinder::new(p)?),
+            #[cfg(feature = "k1")]
+            (Spec::Painleve(p), F32, Re) => AnyScene::PainleveF32R(Painleve::new(p.cast())?),
+            #[cfg(feature = "k1")]
+            (Spec::Painleve(p), F32, Fu) => AnyScene::PainleveF32F(Painleve::new(p.cast())?),
+            #[cfg(feature = "k1")]
+            (Spec::Painleve(p), F64, Re) => AnyScene::PainleveF64R(Painleve::new(p)?),
+            #[cfg(feature = "k1")]
+            (Spec::Painleve(p), F64, Fu) => AnyScene::PainleveF64F(Painleve::new(p)?),
+            // A scene of another module (the page loads the module of the scene's contacts).
+            #[allow(unreachable_patterns)]
+            _ => return Err(ParamError::OutOfRange("scene")),
         };
-        let mut start = [0.0; ROW];
+        let mut start = [0.0; MAX_ROW];
         each!(&scene, s => start_row(s, &mut start));
-        Ok(Self { scene, checksum: Checksum::new(), start })
+        Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start })
+    }
+
+    /// The scene.
+    #[must_use]
+    pub const fn kind(&self) -> SceneKind {
+        self.kind
+    }
+
+    /// Numbers per row of this run ([`row_len`] of its contacts).
+    #[must_use]
+    pub const fn row_len(&self) -> usize {
+        row_len(self.kind.info().contacts)
     }
 
     /// The row of the state at `t = 0` (the contacts' initial modes; no impulses).
     #[must_use]
-    pub const fn start_row(&self) -> &[f64; ROW] {
-        &self.start
+    pub fn start_row(&self) -> &[f64] {
+        &self.start[..self.row_len()]
     }
 
     /// Steps until the run ends or `rows` is full, writing one row per step into `rows`
-    /// ([`ROW`] numbers each); returns the steps taken (0 once the run has ended).
+    /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
         let checksum = &mut self.checksum;
-        each!(&mut self.scene, s => {
-            let mut taken = 0;
-            for row in rows.chunks_exact_mut(ROW) {
-                let Some(report) = s.step() else { break };
-                checksum.add(&report.state);
-                write_row(&*s, &report, row);
-                taken += 1;
-            }
-            taken
-        })
+        each!(&mut self.scene, s => step_rows(s, checksum, rows))
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
@@ -221,64 +313,101 @@ impl Sim {
         each!(&self.scene, s => s.time().as_f64())
     }
 
-    /// The stepper's counters (steps, pivots, warm starts, 8x8 fallbacks, ...).
+    /// The stepper's counters (steps, pivots, warm starts, full-layout fallbacks, ...).
     #[must_use]
     pub fn stats(&self) -> RunStats {
         each!(&self.scene, s => *s.stats())
     }
 
-    /// The scene's measured quantities so far.
+    /// The scene's measured quantities so far, in the order of the catalogue's `measures` for
+    /// the scene (`summary.json`'s keys); NaN where there is none (yet).
     #[must_use]
-    pub fn measured(&self) -> Measured {
-        let mut m = Measured {
-            meeting_time: f64::NAN,
-            meeting_offset: f64::NAN,
-            acceleration: f64::NAN,
-            wall_release_height: f64::NAN,
-            wall_release_ratio: f64::NAN,
-        };
-        let meeting = |t: f64, offset: f64, m: &mut Measured| {
-            m.meeting_time = t;
-            m.meeting_offset = offset;
-        };
+    pub fn measured(&self) -> [f64; MAX_MEASURES] {
+        let mut m = [f64::NAN; MAX_MEASURES];
+        let opt = |v: Option<f64>| v.unwrap_or(f64::NAN);
         match &self.scene {
-            AnyScene::MeterStickF32R(s) => {
-                s.meeting().inspect(|x| meeting(x.time.as_f64(), x.com_offset.as_f64(), &mut m));
-            }
-            AnyScene::MeterStickF32F(s) => {
-                s.meeting().inspect(|x| meeting(x.time.as_f64(), x.com_offset.as_f64(), &mut m));
-            }
-            AnyScene::MeterStickF64R(s) => {
-                s.meeting().inspect(|x| meeting(x.time, x.com_offset, &mut m));
-            }
-            AnyScene::MeterStickF64F(s) => {
-                s.meeting().inspect(|x| meeting(x.time, x.com_offset, &mut m));
-            }
-            AnyScene::InclineF32R(s) => m.acceleration = s.acceleration().map_or(f64::NAN, Real::as_f64),
-            AnyScene::InclineF32F(s) => m.acceleration = s.acceleration().map_or(f64::NAN, Real::as_f64),
-            AnyScene::InclineF64R(s) => m.acceleration = s.acceleration().unwrap_or(f64::NAN),
-            AnyScene::InclineF64F(s) => m.acceleration = s.acceleration().unwrap_or(f64::NAN),
+            #[cfg(feature = "k2")]
+            AnyScene::MeterStickF32R(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
+            AnyScene::MeterStickF32F(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
+            AnyScene::MeterStickF64R(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
+            AnyScene::MeterStickF64F(s) => meeting(s.meeting(), &mut m),
+            #[cfg(feature = "k2")]
+            AnyScene::InclineF32R(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k2")]
+            AnyScene::InclineF32F(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k2")]
+            AnyScene::InclineF64R(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k2")]
+            AnyScene::InclineF64F(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32R(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF32F(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64R(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k2")]
             AnyScene::LadderF64F(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
+            #[cfg(feature = "k3")]
+            AnyScene::ThreeFingersF32R(_)
+            | AnyScene::ThreeFingersF32F(_)
+            | AnyScene::ThreeFingersF64R(_)
+            | AnyScene::ThreeFingersF64F(_) => {}
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF32R(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF32F(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF64R(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k1")]
+            AnyScene::CylinderF64F(s) => m[0] = opt(s.acceleration()),
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF32R(s) => jam(s.jam(), &mut m),
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF32F(s) => jam(s.jam(), &mut m),
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF64R(s) => jam(s.jam(), &mut m),
+            #[cfg(feature = "k1")]
+            AnyScene::PainleveF64F(s) => jam(s.jam(), &mut m),
         }
         m
     }
 }
 
-/// The ladder's wall release: its height and its ratio to the top's start height.
-fn wall<T: Real>(height: Option<T>, start: T, m: &mut Measured) {
-    if let Some(h) = height {
-        m.wall_release_height = h.as_f64();
-        m.wall_release_ratio = h.as_f64() / start.as_f64();
+/// The meter stick's meeting: its time and the centre of mass's offset.
+fn meeting<T: Real>(at: Option<Meeting<T>>, m: &mut [f64; MAX_MEASURES]) {
+    if let Some(x) = at {
+        m[0] = x.time.as_f64();
+        m[1] = x.com_offset.as_f64();
     }
 }
 
-/// Where each support touches the body: the contact point moved back by the gap along the normal
-/// (a finger's tip; the foot of a corner on a line), as `host-sim` writes it.
-fn touch_points<T: Real, S: Scene<T, 2>>(scene: &S, row: &mut [f64]) {
+/// The ladder's wall release: its height and its ratio to the top's start height.
+fn wall<T: Real>(height: Option<T>, start: T, m: &mut [f64; MAX_MEASURES]) {
+    if let Some(h) = height {
+        m[0] = h.as_f64();
+        m[1] = h.as_f64() / start.as_f64();
+    }
+}
+
+/// Painlevé's jam: its time, normal and friction impulses.
+fn jam<T: Real>(at: Option<Jam<T>>, m: &mut [f64; MAX_MEASURES]) {
+    if let Some(j) = at {
+        *m = [j.time.as_f64(), j.normal_impulse.as_f64(), j.friction_impulse.as_f64()];
+    }
+}
+
+/// The state's columns and where each support touches the body: the contact point moved back by
+/// the gap along the normal (a finger's tip; the foot of a corner on a line; the rim's point on
+/// the slope), as `host-sim` writes it.
+fn state_columns<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, row: &mut [f64]) {
     let s = scene.state();
+    row[0] = scene.time().as_f64();
+    for (slot, v) in row[1..7].iter_mut().zip(s.to_array()) {
+        *slot = v.as_f64();
+    }
     for (k, f) in scene.frames().iter().enumerate() {
         let (r, n, gap) = (f.r.map(Real::as_f64), f.normal().map(Real::as_f64), f.gap.as_f64());
         row[7 + 2 * k] = s.x.as_f64() + r[0] - gap * n[0];
@@ -286,30 +415,38 @@ fn touch_points<T: Real, S: Scene<T, 2>>(scene: &S, row: &mut [f64]) {
     }
 }
 
-fn state_columns<T: Real, S: Scene<T, 2>>(scene: &S, row: &mut [f64]) {
-    let s = scene.state();
-    row[0] = scene.time().as_f64();
-    for (slot, v) in row[1..7].iter_mut().zip(s.to_array()) {
-        *slot = v.as_f64();
-    }
-    touch_points(scene, row);
-}
-
-fn start_row<T: Real, S: Scene<T, 2>>(scene: &S, row: &mut [f64; ROW]) {
+fn start_row<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, row: &mut [f64]) {
     state_columns(scene, row);
     for (k, m) in scene.modes().into_iter().enumerate() {
-        row[11 + k] = f64::from(mode_code(m));
+        row[7 + 2 * K + k] = f64::from(mode_code(m));
     }
 }
 
-fn write_row<T: Real, S: Scene<T, 2>>(scene: &S, report: &StepReport<T, 2>, row: &mut [f64]) {
+/// Steps `scene` into `rows` ([`row_len`] of `K` numbers each; the length known to the compiler).
+fn step_rows<T: Real, S: Scene<T, K>, const K: usize>(
+    scene: &mut S,
+    checksum: &mut Checksum,
+    rows: &mut [f64],
+) -> usize {
+    let mut taken = 0;
+    for row in rows.chunks_exact_mut(row_len(K)) {
+        let Some(report) = scene.step() else { break };
+        checksum.add(&report.state);
+        write_row(&*scene, &report, row);
+        taken += 1;
+    }
+    taken
+}
+
+fn write_row<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, report: &StepReport<T, K>, row: &mut [f64]) {
     state_columns(scene, row);
     row[0] = report.time.as_f64();
+    let group = |g: usize, k: usize| 7 + 2 * K + g * K + k;
     for (k, c) in report.contacts.iter().enumerate() {
-        row[11 + k] = f64::from(mode_code(c.mode));
-        row[13 + k] = c.normal_impulse.as_f64();
-        row[15 + k] = c.friction_impulse.as_f64();
-        row[17 + k] = c.along.as_f64();
+        row[group(0, k)] = f64::from(mode_code(c.mode));
+        row[group(1, k)] = c.normal_impulse.as_f64();
+        row[group(2, k)] = c.friction_impulse.as_f64();
+        row[group(3, k)] = c.along.as_f64();
     }
 }
 
@@ -318,7 +455,9 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::float_cmp)] // exact: values copied or rounded once, not computed
     use super::*;
     use crate::config::Config;
-    use crate::flags::{SceneKind, flag_index};
+    use crate::flags::flag_index;
+
+    const ROW: usize = row_len(2);
 
     fn sim(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpSize) -> Sim {
         let mut c = Config::new(kind);
@@ -352,13 +491,14 @@ mod tests {
         assert!(last[11] != 0.0 && last[12] != 0.0, "{last:?}");
         assert!(last[7] < last[1] && last[1] < last[9], "{last:?}");
         assert!((last[9] - last[7] - 0.01).abs() < 1e-6, "{last:?}");
-        assert!(a.measured().meeting_offset.abs() < 3e-3);
+        assert!(a.measured()[1].abs() < 3e-3, "meeting.com_offset_m");
     }
 
     #[test]
     fn the_start_row_is_the_rest_state_with_the_initial_modes() {
         let s = sim(SceneKind::MeterStick, &[], Precision::F64, LcpSize::Full);
         let row = s.start_row();
+        assert_eq!(row.len(), 19, "core.csv's columns");
         assert_eq!(row[..4], [0.0, 0.0, 0.0025, 0.0]);
         assert_eq!(row[7..11], [-0.4, 0.0, 0.4, 0.0]);
         // Finger 1 starts sliding under the resting rod (sliding+), finger 2 sticks.
@@ -376,6 +516,9 @@ mod tests {
             (SceneKind::MeterStick, Outcome::Fell),
             (SceneKind::Incline, Outcome::Slid),
             (SceneKind::Ladder, Outcome::Fell),
+            (SceneKind::ThreeFingers, Outcome::Held),
+            (SceneKind::Cylinder, Outcome::Rolled),
+            (SceneKind::Painleve, Outcome::Jammed),
         ] {
             for precision in [Precision::F32, Precision::F64] {
                 for size in [LcpSize::Reduced, LcpSize::Full] {
@@ -389,5 +532,53 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn rows_follow_the_scenes_contacts() {
+        // The cylinder: one contact, rows of 13 (core.csv's columns for one contact).
+        let mut c = sim(SceneKind::Cylinder, &[("angle", 30.0)], Precision::F64, LcpSize::Reduced);
+        assert_eq!((c.row_len(), c.start_row().len()), (13, 13));
+        let mut rows = [0.0; 3 * 13 + 5];
+        assert_eq!(c.step_rows(&mut rows), 3, "whole rows only");
+        assert_eq!(rows[3 * 13..], [0.0; 5], "nothing past the last whole row");
+        let r = &rows[2 * 13..3 * 13];
+        assert_eq!(r[0], c.time());
+        // The rim touches the slope below the centre (r = 0.1 along the normal), rolling: sticking,
+        // a normal impulse of about m g cos(30 deg) h.
+        let (n, a) = ([-0.5, 0.75_f64.sqrt()], 30_f64.to_radians());
+        assert!(
+            (r[7] - (r[1] - 0.1 * n[0])).abs() < 1e-9 && (r[8] - (r[2] - 0.1 * n[1])).abs() < 1e-9,
+            "{r:?}"
+        );
+        assert_eq!(r[9], 1.0, "sticking");
+        assert!((r[10] - 9.81 * a.cos() * 1e-3).abs() < 1e-5, "{r:?}");
+        // Three fingers: rows of 25, the third finger's support and mode in their places.
+        let t = sim(SceneKind::ThreeFingers, &[], Precision::F32, LcpSize::Full);
+        let r = t.start_row();
+        assert_eq!(r.len(), 25);
+        assert_eq!((r[7], r[9], r[11]), (f64::from(-0.4_f32), 0.0, f64::from(0.4_f32)));
+        assert!(r[13..16].iter().all(|m| *m != 0.0), "every finger touches at the start: {r:?}");
+    }
+
+    #[test]
+    fn measured_quantities_follow_the_catalogues_names() {
+        for kind in SceneKind::ALL {
+            assert!(kind.info().measures.len() <= MAX_MEASURES, "{kind}");
+        }
+        let mut p = sim(SceneKind::Painleve, &[], Precision::F64, LcpSize::Reduced);
+        p.run(u64::MAX);
+        assert_eq!(p.outcome(), Some(Outcome::Jammed));
+        let [t, pn, pf] = p.measured();
+        // The defaults jam on the first step with about the tangential impact's impulses,
+        // m V / 4 (1 + 3 c^2, 3 s c) at 30 degrees: (0.8125, 0.3248).
+        assert_eq!(t, 1e-3);
+        assert!((pf - 0.8125).abs() < 0.02 && (pn - 0.3248).abs() < 0.02, "{pn} {pf}");
+        let l =
+            sim(SceneKind::Ladder, &[("mu-floor", 0.0), ("mu-wall", 0.0)], Precision::F64, LcpSize::Reduced);
+        let mut l = l;
+        l.run(u64::MAX);
+        let [h, ratio, none] = l.measured();
+        assert!((ratio - 2.0 / 3.0).abs() < 0.01 && h > 0.0 && none.is_nan(), "{h} {ratio}");
     }
 }

@@ -6,6 +6,7 @@
 use meterstick_host_sim::lcp_io::Precision as HostPrecision;
 use meterstick_host_sim::scene_cmd::{SceneCmd, run_scene};
 use meterstick_host_sim::scenes::{LcpSize as HostSize, SceneArgs};
+use meterstick_host_sim::trajectory::{Record, run_k};
 use meterstick_web::config::{Config, LcpSize, Precision};
 use meterstick_web::flags::{FLAGS, SceneKind, flag_index};
 use meterstick_web::session::Session;
@@ -49,6 +50,12 @@ fn refusals_are_worded_as_host_sim_words_them() {
         (SceneKind::Ladder, &[("angle", 0.0)], Precision::F32),
         (SceneKind::Ladder, &[("mu-wall", -0.1)], Precision::F32),
         (SceneKind::Ladder, &[("mu-s", 0.5)], Precision::F64),
+        (SceneKind::ThreeFingers, &[("x3", 0.6)], Precision::F32),
+        (SceneKind::ThreeFingers, &[("speed2", 0.1)], Precision::F32),
+        (SceneKind::Cylinder, &[("radius", 0.0)], Precision::F64),
+        (SceneKind::Cylinder, &[("angle", 90.0)], Precision::F32),
+        (SceneKind::Painleve, &[("angle", 0.0)], Precision::F32),
+        (SceneKind::Painleve, &[("mu-floor", -3.0)], Precision::F64),
     ];
     for (kind, given, precision) in cases {
         let (args, mut session) = both(*kind, given, *precision, LcpSize::Reduced);
@@ -78,10 +85,18 @@ fn parameters_outcome_and_checksum_match_host_sim_scene() {
             Precision::F32,
             LcpSize::Reduced,
         ),
+        (SceneKind::ThreeFingers, &[], Precision::F32, LcpSize::Reduced),
+        (SceneKind::ThreeFingers, &[("speed", 0.5), ("duration", 3.0)], Precision::F64, LcpSize::Full),
+        (SceneKind::Cylinder, &[], Precision::F32, LcpSize::Reduced),
+        (SceneKind::Cylinder, &[("angle", 70.0)], Precision::F64, LcpSize::Full),
+        (SceneKind::Painleve, &[], Precision::F32, LcpSize::Reduced),
+        (SceneKind::Painleve, &[("mu-floor", 1.0)], Precision::F64, LcpSize::Full),
+        (SceneKind::Painleve, &[("angle", 60.0), ("mu-floor", 2.0)], Precision::F32, LcpSize::Full),
     ];
     for (kind, given, precision, size) in cases {
         let (args, mut session) = both(*kind, given, *precision, *size);
         let (_, spec) = args.specs(None).unwrap().remove(0);
+        let implementation = args.implementation();
         session.create(*precision, *size).unwrap();
         let ours = session.spec().unwrap();
         for (i, (name, value)) in spec.fields().enumerate() {
@@ -96,6 +111,19 @@ fn parameters_outcome_and_checksum_match_host_sim_scene() {
             "{kind:?} {given:?}: {outcome}\n{text}"
         );
         assert!(text.contains(&format!("checksum {:08x}", sim.checksum())), "{kind:?} {given:?}\n{text}");
+        // The measured quantities, named by the catalogue as `summary.json` names them.
+        let summary = meterstick_host_sim::with_contacts!(kind, K => {
+            let host = run_k::<K>(&spec, implementation, Record::Nothing).unwrap();
+            serde_json::to_value(host.measured).unwrap()
+        });
+        let measured = sim.measured();
+        let names = kind.info().measures;
+        for (name, ours) in names.iter().zip(measured) {
+            let theirs = name.split('.').fold(&summary, |v, key| &v[key]);
+            let theirs = theirs.as_f64().unwrap_or(f64::NAN);
+            assert_eq!(ours.to_bits(), theirs.to_bits(), "{kind:?} {given:?} {name}: {ours} vs {summary}");
+        }
+        assert!(measured[names.len()..].iter().all(|m| m.is_nan()), "{kind:?}: {measured:?}");
     }
 }
 

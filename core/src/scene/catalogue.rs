@@ -56,10 +56,12 @@ pub struct SceneInfo {
     pub title: &'static str,
     /// Its contacts (`K` of its [`super::Scene`]).
     pub contacts: usize,
+    /// Each contact's name, in the scene's order (contact 1 first).
+    pub contact_names: &'static [&'static str],
     /// The outcomes it can end in (besides [`OutcomeKind::Failed`], which any run can).
     pub outcomes: &'static [OutcomeKind],
     /// What its summary measures: the keys of `host-sim`'s `summary.json` (`docs/scenes.md`,
-    /// "Measured").
+    /// "Measured"), a quantity with parts by each part (`meeting.time_s`).
     pub measures: &'static [&'static str],
     /// Ranges the core checks beyond a sign, worded for a refusal: `(field, range)`.
     pub ranges: &'static [(&'static str, &'static str)],
@@ -72,8 +74,9 @@ pub const SCENES: [SceneInfo; 6] = [
         name: "meter-stick",
         title: "The paper's rod on two fingers",
         contacts: 2,
+        contact_names: &["finger 1", "finger 2"],
         outcomes: &[OutcomeKind::Balanced, OutcomeKind::Fell, OutcomeKind::Unfinished],
-        measures: &["meeting"],
+        measures: &["meeting.time_s", "meeting.com_offset_m"],
         ranges: &[],
     },
     SceneInfo {
@@ -81,6 +84,7 @@ pub const SCENES: [SceneInfo; 6] = [
         name: "incline",
         title: "A block on an inclined plane",
         contacts: 2,
+        contact_names: &["lower left corner", "lower right corner"],
         outcomes: &[OutcomeKind::Tipped, OutcomeKind::Slid, OutcomeKind::Held],
         measures: &["acceleration_m_s2"],
         ranges: &[("angle", "0 <= angle < 90 deg")],
@@ -90,6 +94,7 @@ pub const SCENES: [SceneInfo; 6] = [
         name: "ladder",
         title: "A rod leaning against a wall",
         contacts: 2,
+        contact_names: &["foot (floor)", "top (wall)"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
         measures: &["wall_release_height_m", "wall_release_ratio"],
         ranges: &[("angle", "0 < angle < 90 deg")],
@@ -99,6 +104,7 @@ pub const SCENES: [SceneInfo; 6] = [
         name: "three-fingers",
         title: "A rod on three fingers, finger 1 moving to finger 2",
         contacts: 3,
+        contact_names: &["finger 1", "finger 2", "finger 3"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
         measures: &[],
         ranges: &[],
@@ -108,6 +114,7 @@ pub const SCENES: [SceneInfo; 6] = [
         name: "cylinder",
         title: "A round body released on an incline: it rolls or slides",
         contacts: 1,
+        contact_names: &["rim"],
         outcomes: &[OutcomeKind::Rolled, OutcomeKind::Slid],
         measures: &["acceleration_m_s2"],
         ranges: &[("angle", "0 <= angle < 90 deg")],
@@ -117,8 +124,9 @@ pub const SCENES: [SceneInfo; 6] = [
         name: "painleve",
         title: "Painleve's paradox: a rod sliding on a rough floor jams",
         contacts: 1,
+        contact_names: &["lower end"],
         outcomes: &[OutcomeKind::Jammed, OutcomeKind::Slid, OutcomeKind::Fell, OutcomeKind::Unfinished],
-        measures: &["jam"],
+        measures: &["jam.time_s", "jam.normal_impulse_ns", "jam.friction_impulse_ns"],
         ranges: &[("angle", "0 < angle < 90 deg")],
     },
 ];
@@ -765,6 +773,7 @@ mod tests {
             assert_eq!(SceneKind::from_index(i as u32), Some(kind));
             assert_eq!(SceneKind::from_name(kind.name()), Some(kind));
             assert_eq!(AnyParams::defaults(kind).kind(), kind);
+            assert_eq!(kind.info().contact_names.len(), kind.info().contacts, "{kind}");
         }
         assert_eq!(SceneKind::from_index(SceneKind::ALL.len() as u32), None);
         for flag in FLAGS {
