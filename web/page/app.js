@@ -14,16 +14,6 @@ import { COL, MODE_NAMES, Trace } from './trace.js';
 
 const $ = (id) => document.getElementById(id);
 
-/// The flags shown first for a scene (the rest are under "More parameters"); a scene not named
-/// here shows first the flags that not every scene has.
-const MAIN_FLAGS = {
-  'meter-stick': ['speed', 'speed2', 'x1', 'x2', 'mu-s', 'mu-k', 'h'],
-  incline: ['angle', 'mu-s', 'mu-k', 'width', 'height', 'h'],
-  ladder: ['angle', 'mu-floor', 'mu-wall', 'length', 'h'],
-  'three-fingers': ['speed', 'x1', 'x2', 'x3', 'mu-s', 'mu-k', 'h'],
-  cylinder: ['angle', 'mu-s', 'mu-k', 'radius', 'inertia-factor', 'h'],
-  painleve: ['angle', 'rod-speed', 'mu-floor', 'length', 'h'],
-};
 /// Query keys that are not scene flags.
 const PAGE_KEYS = ['scene', 'precision', 'lcp-size', 'autorun', 'rate', 'replay', 'map', 'bench'];
 
@@ -124,8 +114,8 @@ function buildForm(scene) {
   const k = S.core.contacts(scene);
   $('lcp-size').options[0].textContent = `${lcpText(k, '6')} (firmware)`;
   $('lcp-size').options[1].textContent = `${lcpText(k, '8')} (${k === 2 ? 'paper' : 'full'})`;
-  const everywhere = (flag) => Object.keys(flag.fields).length === S.core.desc.scenes.length;
-  const isMain = (flag) => (MAIN_FLAGS[scene] ? MAIN_FLAGS[scene].includes(flag.long) : !everywhere(flag));
+  // The catalogue's main flags are shown first, the rest under "More parameters".
+  const isMain = (flag) => S.core.scene(scene).main_flags.includes(flag.long);
   const main = $('main-fields'); const more = $('more-fields');
   main.replaceChildren(); more.replaceChildren();
   S.inputs.clear();

@@ -150,6 +150,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         write!(out, ",\"row\":{}", row_len(info.contacts))?;
         list(out, "measures", &mut info.measures.iter().copied())?;
         list(out, "ends", &mut info.outcomes.iter().map(|o| o.name()))?;
+        list(out, "main_flags", &mut info.main_flags.iter().copied())?;
         out.write_char('}')?;
     }
     out.write_str("],\"flags\":[")?;

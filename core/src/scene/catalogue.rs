@@ -58,6 +58,9 @@ pub struct SceneInfo {
     pub contacts: usize,
     /// Each contact's name, in the scene's order (contact 1 first).
     pub contact_names: &'static [&'static str],
+    /// The flags a lesson turns first (the page shows them, the others under "More parameters"):
+    /// long names from [`FLAGS`], each one that applies to this scene.
+    pub main_flags: &'static [&'static str],
     /// The outcomes it can end in (besides [`OutcomeKind::Failed`], which any run can).
     pub outcomes: &'static [OutcomeKind],
     /// What its summary measures: the keys of `host-sim`'s `summary.json` (`docs/scenes.md`,
@@ -75,6 +78,7 @@ pub const SCENES: [SceneInfo; 6] = [
         title: "The paper's rod on two fingers",
         contacts: 2,
         contact_names: &["finger 1", "finger 2"],
+        main_flags: &["speed", "speed2", "x1", "x2", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Balanced, OutcomeKind::Fell, OutcomeKind::Unfinished],
         measures: &["meeting.time_s", "meeting.com_offset_m"],
         ranges: &[],
@@ -85,6 +89,7 @@ pub const SCENES: [SceneInfo; 6] = [
         title: "A block on an inclined plane",
         contacts: 2,
         contact_names: &["lower left corner", "lower right corner"],
+        main_flags: &["angle", "mu-s", "mu-k", "width", "height", "h"],
         outcomes: &[OutcomeKind::Tipped, OutcomeKind::Slid, OutcomeKind::Held],
         measures: &["acceleration_m_s2"],
         ranges: &[("angle", "0 <= angle < 90 deg")],
@@ -95,6 +100,7 @@ pub const SCENES: [SceneInfo; 6] = [
         title: "A rod leaning against a wall",
         contacts: 2,
         contact_names: &["foot (floor)", "top (wall)"],
+        main_flags: &["angle", "mu-floor", "mu-wall", "length", "h"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
         measures: &["wall_release_height_m", "wall_release_ratio"],
         ranges: &[("angle", "0 < angle < 90 deg")],
@@ -105,6 +111,7 @@ pub const SCENES: [SceneInfo; 6] = [
         title: "A rod on three fingers, finger 1 moving to finger 2",
         contacts: 3,
         contact_names: &["finger 1", "finger 2", "finger 3"],
+        main_flags: &["speed", "x1", "x2", "x3", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
         measures: &[],
         ranges: &[],
@@ -115,6 +122,7 @@ pub const SCENES: [SceneInfo; 6] = [
         title: "A round body released on an incline: it rolls or slides",
         contacts: 1,
         contact_names: &["rim"],
+        main_flags: &["angle", "mu-s", "mu-k", "radius", "inertia-ratio", "h"],
         outcomes: &[OutcomeKind::Rolled, OutcomeKind::Slid],
         measures: &["acceleration_m_s2"],
         ranges: &[("angle", "0 <= angle < 90 deg")],
@@ -125,6 +133,7 @@ pub const SCENES: [SceneInfo; 6] = [
         title: "Painleve's paradox: a rod sliding on a rough floor jams",
         contacts: 1,
         contact_names: &["lower end"],
+        main_flags: &["angle", "speed", "mu-floor", "length", "h"],
         outcomes: &[OutcomeKind::Jammed, OutcomeKind::Slid, OutcomeKind::Fell, OutcomeKind::Unfinished],
         measures: &["jam.time_s", "jam.normal_impulse_ns", "jam.friction_impulse_ns"],
         ranges: &[("angle", "0 < angle < 90 deg")],
@@ -774,6 +783,10 @@ mod tests {
             assert_eq!(SceneKind::from_name(kind.name()), Some(kind));
             assert_eq!(AnyParams::defaults(kind).kind(), kind);
             assert_eq!(kind.info().contact_names.len(), kind.info().contacts, "{kind}");
+            for long in kind.info().main_flags {
+                let flag = FLAGS.iter().find(|f| f.long == *long);
+                assert!(flag.is_some_and(|f| f.field(kind).is_some()), "{kind}: main flag --{long}");
+            }
         }
         assert_eq!(SceneKind::from_index(SceneKind::ALL.len() as u32), None);
         for flag in FLAGS {
