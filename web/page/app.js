@@ -22,6 +22,7 @@ const MEASURE_WORDS = {
   'meeting.time_s': (v) => `the fingers met at t = ${v.toFixed(3)} s`,
   'meeting.com_offset_m': (v) => `the centre of mass ${(1e3 * v).toFixed(2)} mm from their midpoint`,
   acceleration_m_s2: (v) => `acceleration down the slope ${v.toFixed(5)} m/s²`,
+  angular_acceleration_rad_s2: (v) => `angular acceleration ${v.toFixed(4)} rad/s² (counter-clockwise)`,
   wall_release_height_m: (v) => `the top left the wall at ${v.toFixed(4)} m`,
   wall_release_ratio: (v) => `${v.toFixed(4)} of its start height`,
   'jam.time_s': (v) => `the end jammed at t = ${v.toFixed(4)} s`,

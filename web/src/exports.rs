@@ -402,7 +402,10 @@ mod tests {
         // g (sin a - mu_k cos a) at 70 degrees.
         let a = 70_f64.to_radians();
         assert!((ms_measured(0) - 9.81 * (a.sin() - 0.4 * a.cos())).abs() < 1e-6, "{}", ms_measured(0));
-        assert!(ms_measured(1).is_nan());
+        // Friction's torque spins it up at mu_k g cos a / (k r), k = 0.5, r = 0.1.
+        let spin = 0.4 * 9.81 * a.cos() / (0.5 * 0.1);
+        assert!((ms_measured(1) - spin).abs() < 1e-6, "{}", ms_measured(1));
+        assert!(ms_measured(2).is_nan());
     }
 
     #[test]

@@ -15,8 +15,7 @@ use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
 use meterstick_core::scene::{
-    Cylinder, Incline, Jam, Ladder, Meeting, MeterStick, Outcome, OutcomeKind, Painleve, Scene, SceneKind,
-    ThreeFingers,
+    Cylinder, Incline, Ladder, MeterStick, Outcome, OutcomeKind, Painleve, Scene, SceneKind, ThreeFingers,
 };
 
 use crate::config::{LcpSize, Precision, Spec};
@@ -49,8 +48,8 @@ pub const MODES: [&str; 4] = ["separated", "sticking", "sliding+", "sliding-"];
 /// The outcomes by code ([`outcome_code`]): the core's one list ([`OutcomeKind`]).
 pub const OUTCOMES: [&str; OutcomeKind::ALL.len()] = OutcomeKind::names();
 
-/// The most measured quantities a scene has ([`SceneKind`]'s `measures` in the catalogue).
-pub const MAX_MEASURES: usize = 3;
+/// The most measured quantities a scene has (the catalogue's).
+pub use meterstick_core::scene::MAX_MEASURES;
 
 /// A mode's code: 0 separated, 1 sticking, 2 sliding+, 3 sliding- ([`MODES`]).
 #[must_use]
@@ -320,82 +319,10 @@ impl Sim {
     }
 
     /// The scene's measured quantities so far, in the order of the catalogue's `measures` for
-    /// the scene (`summary.json`'s keys); NaN where there is none (yet).
+    /// the scene (`summary.json`'s keys, [`Scene::measured`]); NaN where there is none (yet).
     #[must_use]
     pub fn measured(&self) -> [f64; MAX_MEASURES] {
-        let mut m = [f64::NAN; MAX_MEASURES];
-        let opt = |v: Option<f64>| v.unwrap_or(f64::NAN);
-        match &self.scene {
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF32R(s) => meeting(s.meeting(), &mut m),
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF32F(s) => meeting(s.meeting(), &mut m),
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF64R(s) => meeting(s.meeting(), &mut m),
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF64F(s) => meeting(s.meeting(), &mut m),
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF32R(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF32F(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF64R(s) => m[0] = opt(s.acceleration()),
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF64F(s) => m[0] = opt(s.acceleration()),
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF32R(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF32F(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF64R(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF64F(s) => wall(s.wall_release_height(), s.start_top_height(), &mut m),
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF32R(_)
-            | AnyScene::ThreeFingersF32F(_)
-            | AnyScene::ThreeFingersF64R(_)
-            | AnyScene::ThreeFingersF64F(_) => {}
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF32R(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF32F(s) => m[0] = opt(s.acceleration().map(Real::as_f64)),
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF64R(s) => m[0] = opt(s.acceleration()),
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF64F(s) => m[0] = opt(s.acceleration()),
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF32R(s) => jam(s.jam(), &mut m),
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF32F(s) => jam(s.jam(), &mut m),
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF64R(s) => jam(s.jam(), &mut m),
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF64F(s) => jam(s.jam(), &mut m),
-        }
-        m
-    }
-}
-
-/// The meter stick's meeting: its time and the centre of mass's offset.
-fn meeting<T: Real>(at: Option<Meeting<T>>, m: &mut [f64; MAX_MEASURES]) {
-    if let Some(x) = at {
-        m[0] = x.time.as_f64();
-        m[1] = x.com_offset.as_f64();
-    }
-}
-
-/// The ladder's wall release: its height and its ratio to the top's start height.
-fn wall<T: Real>(height: Option<T>, start: T, m: &mut [f64; MAX_MEASURES]) {
-    if let Some(h) = height {
-        m[0] = h.as_f64();
-        m[1] = h.as_f64() / start.as_f64();
-    }
-}
-
-/// Painlevé's jam: its time, normal and friction impulses.
-fn jam<T: Real>(at: Option<Jam<T>>, m: &mut [f64; MAX_MEASURES]) {
-    if let Some(j) = at {
-        *m = [j.time.as_f64(), j.normal_impulse.as_f64(), j.friction_impulse.as_f64()];
+        each!(&self.scene, s => s.measured().map(|v| v.map_or(f64::NAN, Real::as_f64)))
     }
 }
 

@@ -70,6 +70,17 @@ pub struct SceneInfo {
     pub ranges: &'static [(&'static str, &'static str)],
 }
 
+/// The most quantities a scene measures ([`SceneInfo::measures`], [`super::Scene::measured`]).
+pub const MAX_MEASURES: usize = 3;
+
+const _: () = {
+    let mut i = 0;
+    while i < SCENES.len() {
+        assert!(SCENES[i].measures.len() <= MAX_MEASURES, "a scene measures more than MAX_MEASURES");
+        i += 1;
+    }
+};
+
 /// Every scene, in the order of [`SceneKind::ALL`] (their numbers on the page).
 pub const SCENES: [SceneInfo; 6] = [
     SceneInfo {
@@ -124,7 +135,7 @@ pub const SCENES: [SceneInfo; 6] = [
         contact_names: &["rim"],
         main_flags: &["angle", "mu-s", "mu-k", "radius", "inertia-ratio", "h"],
         outcomes: &[OutcomeKind::Rolled, OutcomeKind::Slid],
-        measures: &["acceleration_m_s2"],
+        measures: &["acceleration_m_s2", "angular_acceleration_rad_s2"],
         ranges: &[("angle", "0 <= angle < 90 deg")],
     },
     SceneInfo {

@@ -105,8 +105,8 @@ pub struct Cylinder<T: Real, const N: usize = 3, const E: usize = 64> {
     stepper: Stepper<T, 1, N, 4>,
     plane: Support<T>,
     events: EventLog<T, 1, E>,
-    /// `(t_1, u(t_1))` at the end of the first step.
-    first: Option<(T, T)>,
+    /// `(t_1, u(t_1), omega(t_1))` at the end of the first step.
+    first: Option<(T, T, T)>,
     slid: bool,
     outcome: Option<Outcome>,
 }
@@ -161,10 +161,27 @@ impl<T: Real, const N: usize, const E: usize> Cylinder<T, N, E> {
     /// `None` before the run ended.
     #[must_use]
     pub fn acceleration(&self) -> Option<T> {
-        let (t1, u1) = self.first?;
+        let (t1, u1, _) = self.first?;
         let dt = self.stepper.time() - t1;
         (self.outcome.is_some_and(|o| o.is_physical()) && dt > T::zero())
             .then(|| (self.speed_down_slope() - u1) / dt)
+    }
+
+    /// The angular acceleration after the first step, counter-clockwise (rad/s^2):
+    /// `(omega(t_end) - omega(t_1)) / (t_end - t_1)`, as [`Self::acceleration`]; rolling down the
+    /// slope (toward `-x`) it is `a / r`; `None` before the run ended.
+    #[must_use]
+    pub fn angular_acceleration(&self) -> Option<T> {
+        let (t1, _, w1) = self.first?;
+        let dt = self.stepper.time() - t1;
+        (self.outcome.is_some_and(|o| o.is_physical()) && dt > T::zero())
+            .then(|| (self.stepper.state().omega - w1) / dt)
+    }
+
+    /// [`Scene::measured`](crate::scene::Scene::measured): the acceleration and the angular
+    /// acceleration.
+    fn measured_values(&self) -> [Option<T>; crate::scene::MAX_MEASURES] {
+        [self.acceleration(), self.angular_acceleration(), None]
     }
 
     /// Advances one step; `None` once the run has an outcome.
@@ -181,7 +198,7 @@ impl<T: Real, const N: usize, const E: usize> Cylinder<T, N, E> {
         };
         self.events.record(&report);
         if self.first.is_none() {
-            self.first = Some((report.time, self.speed_down_slope()));
+            self.first = Some((report.time, self.speed_down_slope(), report.state.omega));
         }
         self.slid |= report.contacts[0].mode.is_sliding();
         if report.time >= self.params.max_time {
@@ -198,6 +215,19 @@ impl_scene!(Cylinder, 1);
 mod tests {
     use super::*;
     use crate::scene::Scene;
+
+    /// The scene's measured quantities after a run in the full (4) or reduced (3) layout.
+    fn measured(p: CylinderParams<f64>, full: bool) -> [Option<f64>; crate::scene::MAX_MEASURES] {
+        if full {
+            let mut c = Cylinder::<f64, 4>::new(p).unwrap();
+            c.run(|_| {});
+            c.measured()
+        } else {
+            let mut c = Cylinder::<f64, 3>::new(p).unwrap();
+            c.run(|_| {});
+            c.measured()
+        }
+    }
 
     fn run<const N: usize>(p: CylinderParams<f64>) -> (Outcome, f64, BodyState<f64>) {
         let mut c = Cylinder::<f64, N>::new(p).unwrap();
@@ -226,6 +256,16 @@ mod tests {
                     assert_eq!(outcome, want, "k {k}, {deg} deg, full {full}");
                     let exact = p.analytic_acceleration();
                     assert!((a / exact - 1.0).abs() < 1e-9, "k {k}, {deg} deg: {a} vs {exact}");
+                    // Rolling: a / r; sliding: friction's torque mu_k N r / J = mu_k g cos / (k r).
+                    let spin = if want == Outcome::Rolled {
+                        exact / p.radius
+                    } else {
+                        p.mu_kinetic * p.gravity * deg.to_radians().cos() / (k * p.radius)
+                    };
+                    let c = measured(p, full);
+                    assert_eq!(c[0], Some(a), "measured: the acceleration first");
+                    let w = c[1].unwrap();
+                    assert!((w / spin - 1.0).abs() < 1e-9, "k {k}, {deg} deg: omega' {w} vs {spin}");
                     let u = -(s.vx * deg.to_radians().cos() + s.vy * deg.to_radians().sin());
                     if want == Outcome::Rolled {
                         assert!((s.omega * p.radius - u).abs() < 1e-9, "rolling: omega r = u");

@@ -201,4 +201,11 @@ impl<T: Real, const N: usize, const E: usize> Incline<T, N, E> {
     }
 }
 
+impl<T: Real, const N: usize, const E: usize> Incline<T, N, E> {
+    /// [`Scene::measured`](crate::scene::Scene::measured): the acceleration.
+    fn measured_values(&self) -> [Option<T>; crate::scene::MAX_MEASURES] {
+        [self.acceleration(), None, None]
+    }
+}
+
 impl_scene!(Incline, 2);

@@ -207,4 +207,13 @@ impl<T: Real, const N: usize, const E: usize> Ladder<T, N, E> {
     }
 }
 
+impl<T: Real, const N: usize, const E: usize> Ladder<T, N, E> {
+    /// [`Scene::measured`](crate::scene::Scene::measured): the wall release's height and its
+    /// ratio to the top's start height.
+    fn measured_values(&self) -> [Option<T>; crate::scene::MAX_MEASURES] {
+        let h = self.wall_release_height();
+        [h, h.map(|h| h / self.start_top_height()), None]
+    }
+}
+
 impl_scene!(Ladder, 2);

@@ -367,4 +367,12 @@ impl<T: Real, const N: usize, const E: usize> MeterStick<T, N, E> {
     }
 }
 
+impl<T: Real, const N: usize, const E: usize> MeterStick<T, N, E> {
+    /// [`Scene::measured`](crate::scene::Scene::measured): the meeting's time and offset.
+    fn measured_values(&self) -> [Option<T>; crate::scene::MAX_MEASURES] {
+        let m = self.meeting();
+        [m.map(|m| m.time), m.map(|m| m.com_offset), None]
+    }
+}
+
 impl_scene!(MeterStick, 2);

@@ -206,6 +206,14 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
     }
 }
 
+impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
+    /// [`Scene::measured`](crate::scene::Scene::measured): the jam's time and impulses.
+    fn measured_values(&self) -> [Option<T>; crate::scene::MAX_MEASURES] {
+        let j = self.jam;
+        [j.map(|j| j.time), j.map(|j| j.normal_impulse), j.map(|j| j.friction_impulse)]
+    }
+}
+
 impl_scene!(Painleve, 1);
 
 #[cfg(test)]

@@ -1,13 +1,14 @@
 //! [`Scene`]: what every scene offers its drivers (host tools, firmware, the browser page).
 
+use super::catalogue::MAX_MEASURES;
 use super::outcome::Outcome;
 use crate::planar::{BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support};
 use crate::real::Real;
 
 /// A scene: one body on `K` supports the scene moves, stepped to an [`Outcome`].
 ///
-/// Implemented by [`super::MeterStick`], [`super::Incline`] and [`super::Ladder`]; a scene of your
-/// own implements it the same way (`core/examples/three_fingers.rs`).
+/// Implemented by every scene of the catalogue (`super::catalogue`); a scene of your own
+/// implements it the same way (`core/examples/three_fingers.rs`).
 pub trait Scene<T: Real, const K: usize> {
     /// Advances one step; `None` once the run has an outcome (a failed step ends the run with
     /// [`Outcome::Failed`]).
@@ -26,6 +27,12 @@ pub trait Scene<T: Real, const K: usize> {
     fn modes(&self) -> [ContactMode; K];
     /// The stepper's counters.
     fn stats(&self) -> &RunStats;
+    /// What the scene measures, in the order of its catalogue entry's `measures`
+    /// (`super::catalogue::SceneInfo`, the keys of `host-sim`'s `summary.json`); `None` where a
+    /// quantity has no value (yet). A scene outside the catalogue measures nothing.
+    fn measured(&self) -> [Option<T>; MAX_MEASURES] {
+        [None; MAX_MEASURES]
+    }
 
     /// Runs until an outcome, calling `observe` after every step; returns the outcome.
     fn run(&mut self, mut observe: impl FnMut(&StepReport<T, K>)) -> Outcome
@@ -67,6 +74,9 @@ macro_rules! impl_scene {
             }
             fn stats(&self) -> &$crate::planar::RunStats {
                 self.stepper.stats()
+            }
+            fn measured(&self) -> [Option<T>; $crate::scene::MAX_MEASURES] {
+                self.measured_values()
             }
         }
     };

@@ -187,6 +187,14 @@ impl<T: Real, const N: usize, const E: usize> ThreeFingers<T, N, E> {
     }
 }
 
+impl<T: Real, const N: usize, const E: usize> ThreeFingers<T, N, E> {
+    /// [`Scene::measured`](crate::scene::Scene::measured): nothing.
+    #[allow(clippy::unused_self)] // the scene measures nothing; `impl_scene!` calls it
+    fn measured_values(&self) -> [Option<T>; crate::scene::MAX_MEASURES] {
+        [None; crate::scene::MAX_MEASURES]
+    }
+}
+
 impl_scene!(ThreeFingers, 3);
 
 #[cfg(test)]
