@@ -12,11 +12,12 @@ use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::{Duration, SystemTime};
+use std::time::SystemTime;
 
 use clap::{CommandFactory as _, Parser, Subcommand};
 
-use crate::{envelope, lcp_io, map, monitor, progress, qemu, report, run_cmd, scene_cmd, serve, stress};
+use crate::commands::{envelope, lcp, map, qemu, report, run as run_command, scene, serve, stress, version};
+use crate::progress;
 
 /// The exit statuses, as `host-sim --help` shows them.
 pub const EXIT_STATUS_HELP: &str = "\
@@ -59,19 +60,13 @@ pub enum Cmd {
     #[command(after_help = "Exit status: 0 solved or not (the printed \"status\" says which: solution, \
                             ray, max_pivots, non_finite, unverified), 2 an unreadable, oversized or \
                             malformed file, or n outside 1..=16.")]
-    Lcp {
-        /// The LCP file.
-        file: PathBuf,
-        /// Scalar precision of the core solver.
-        #[arg(long, value_enum, default_value = "f64")]
-        precision: lcp_io::Precision,
-    },
+    Lcp(lcp::LcpArgs),
     /// The main job: a scene (default: the meter stick at the paper's slow 0.1 m/s and the fast
     /// speeds of fig. 5) in the core (f32 6x6 by default, as the firmware) beside the independent
     /// f64 reference; writes trajectory and event CSVs, summary.json and SVG plots per run, and
     /// prints a summary. Units: m, s, kg, m/s, degrees for angles.
     #[command(after_help = LONG)]
-    Run(run_cmd::RunArgs),
+    Run(run_command::RunArgs),
     /// Error against run time over a sweep of h (core f32 6x6, f32 8x8, f64 8x8, reference),
     /// and a success map over finger speed and mu_k/mu_s; writes report.md with pictures.
     #[command(after_help = LONG)]
@@ -92,43 +87,27 @@ pub enum Cmd {
     #[command(after_help = "Exit status: 0 every case passed, 1 a case failed, 2 bad input or another \
                             error (I/O), 130 stopped by Ctrl-C (the report covers the cases finished; \
                             the files written are listed).")]
-    Stress(stress::StressArgs),
+    Stress(crate::stress::StressArgs),
     /// Run one scene in the core and print its outcome, measured quantities, switch events (with
     /// the eq. 21 ratio), solver statistics and trajectory checksum. Units: m, s, kg, m/s, degrees.
     #[command(after_help = "Exit status: 0 done (whatever the outcome), 2 bad input, 130 stopped by Ctrl-C.")]
-    Scene(scene_cmd::SceneCmd),
+    Scene(scene::SceneCmdArgs),
     /// Talk to the rig over its link (a serial port, or tcp:HOST:PORT for QEMU's UART): send
     /// commands from flags, print a line per event and a progress line, record a run in
     /// `host-sim run`'s files and compare it with the host's f32 build.
     #[command(after_help = "Exit status: 0 done (a recorded run identical to the host's), 1 the rig's \
                             run differs from the host's, 2 bad input, a refused parameter, or a link \
                             error (the port, a timeout).")]
-    Monitor(monitor::MonitorArgs),
+    Monitor(crate::monitor::MonitorArgs),
     /// Run a firmware ELF under QEMU, print its decoded defmt output, and exit with the
     /// firmware's status.
     #[command(after_help = "Exit status: the firmware's (semihosting exit), 124 timed out, 125 ended \
                             without a status, 2 bad input or QEMU not startable.")]
-    Qemu {
-        /// The firmware ELF (at most 64 MiB is read).
-        elf: PathBuf,
-        /// The QEMU machine.
-        #[arg(long, value_enum)]
-        machine: qemu::Machine,
-        /// Kill the run after this many seconds.
-        #[arg(long, default_value_t = 60)]
-        timeout_s: u64,
-        /// Deterministic instruction counting (`-icount shift=0`).
-        #[arg(long)]
-        icount: bool,
-        /// Print one JSON object instead of the lines: the exit, the lines and the step timing
-        /// in instructions (`scripts/firmware-report.sh` reads it).
-        #[arg(long)]
-        json: bool,
-    },
+    Qemu(qemu::QemuArgs),
     /// Serve the browser page (web/page/, the core compiled to WebAssembly) on 127.0.0.1, and
     /// optionally runs of `host-sim run` to replay in it (--replay out/run).
     #[command(after_help = DONE_OR_BAD)]
-    Serve(serve::ServeArgs),
+    Serve(crate::serve::ServeArgs),
 }
 
 impl Cmd {
@@ -233,54 +212,23 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     if cli.command.stops_on_ctrl_c() {
         progress::install_ctrl_c()?;
     }
-    match cli.command {
-        Cmd::Version => {
-            println!("host-sim {}", crate::VERSION);
-            println!("meterstick-core {}", meterstick_core::VERSION);
+    let text = match cli.command {
+        Cmd::Version => version::run()?,
+        Cmd::Lcp(args) => lcp::run(&args)?,
+        Cmd::Run(args) => run_command::run(&args)?,
+        Cmd::Report(args) => report::run(&args)?,
+        Cmd::Envelope(args) => envelope::run(&args)?,
+        Cmd::Map(args) => map::run(&args)?,
+        Cmd::Stress(args) => stress::run(&args)?,
+        Cmd::Scene(args) => scene::run(&args)?,
+        Cmd::Monitor(args) => crate::monitor::monitor(&args)?,
+        Cmd::Qemu(args) => return qemu::run(&args),
+        Cmd::Serve(args) => {
+            serve::run(&args)?;
+            String::new()
         }
-        Cmd::Lcp { file, precision } => {
-            let data = lcp_io::read_file(&file)?;
-            let report = lcp_io::solve(&data, precision)?;
-            println!("{}", serde_json::to_string(&report)?);
-        }
-        Cmd::Run(args) => print!("{}", run_cmd::run_cmd(&args)?),
-        Cmd::Report(args) => print!("{}", report::run(&args)?),
-        Cmd::Envelope(args) => print!("{}", envelope::run_envelope(&args)?),
-        Cmd::Map(args) => print!("{}", map::run_map(&args)?),
-        Cmd::Stress(args) => {
-            let (text, all_passed) = stress::run(&args)?;
-            print!("{text}");
-            if !all_passed {
-                return Err(CheckFailed("stress: a case failed (see the table above)".into()).into());
-            }
-        }
-        Cmd::Scene(args) => print!("{}", scene_cmd::run_scene(&args)?),
-        Cmd::Monitor(args) => print!("{}", monitor::monitor(&args)?),
-        Cmd::Qemu { elf, machine, timeout_s, icount, json } => {
-            let run = qemu::run(&elf, machine, Duration::from_secs(timeout_s), icount)?;
-            if json {
-                let summary = qemu::RunSummary {
-                    exit_code: run.exit_code,
-                    timed_out: run.timed_out,
-                    timing: qemu::timing(&run.lines)?,
-                    lines: run.lines.clone(),
-                };
-                println!("{}", serde_json::to_string_pretty(&summary)?);
-            } else {
-                for line in &run.lines {
-                    println!("{line}");
-                }
-            }
-            if run.timed_out {
-                eprintln!("host-sim: firmware timed out after {timeout_s} s");
-                return Ok(ExitCode::from(124));
-            }
-            let code = run.exit_code.unwrap_or(125);
-            eprintln!("host-sim: firmware exit status {code}");
-            return Ok(ExitCode::from(u8::try_from(code).unwrap_or(125)));
-        }
-        Cmd::Serve(args) => serve::run(&args)?,
-    }
+    };
+    print!("{text}");
     Ok(ExitCode::SUCCESS)
 }
 

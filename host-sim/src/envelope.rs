@@ -1,4 +1,5 @@
-//! `host-sim envelope`: where the f32 core holds to the f64 solution, over finger speed x `h`.
+//! Where the f32 core holds to the f64 solution, over finger speed x `h`: the table of
+//! `host-sim envelope` ([`crate::commands::envelope`]) and of `host-sim report`'s section.
 //!
 //! For each finger speed (1e-4 .. 10 m/s) and step `h` (1e-5 .. 1e-2 s) the meter stick (the
 //! paper's rod, fingers starting at -/+0.4 m, `mu_s = 0.6`, `mu_k = 0.4`) runs in:
@@ -16,15 +17,14 @@
 //! finger moves at most 1e-5 m in the difference). Positions are compared on a grid of at most
 //! 20,000 times per run (every step when there are fewer), the same times in all three runs.
 //!
-//! A run takes at most `--max-steps` steps (default 2e6): a slow finger at a small `h` is cut at
-//! `max_steps h` of simulated time: such a cell's verdict holds for that time only
+//! A run takes at most `--max-steps` steps (default 2e6): a slow finger at a small `h` is cut
+//! at `max_steps h` of simulated time: such a cell's verdict holds for that time only
 //! ([`Verdict::HoldsCut`]). The f64 core stands in for the independent reference (they agree to
 //! round-off on every scene, `tests/tests/reference.rs`); the envelope checks that again on every
 //! cell of at most 50,000 steps. Each cell also counts the f32 steps the core flagged
 //! `round_off_limited` (`docs/formulation.md`, "Precision").
 #![allow(clippy::format_push_string)]
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::bail;
@@ -32,23 +32,10 @@ use meterstick_core::scene::MeterStickParams;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::run_cmd::{progress, sci, write_json};
+use crate::output::sci;
+use crate::progress::bar as progress;
 use crate::scenes::{Implementation, MAX_STEPS, SceneSpec};
-use crate::trajectory::{OutcomeClass, Record, Trajectory, max_deviation, run, write_lines};
-
-/// `host-sim envelope` options.
-#[derive(Debug, Clone, clap::Args)]
-pub struct EnvelopeArgs {
-    /// Output directory (created; files in it are overwritten).
-    #[arg(long, default_value = "out/envelope")]
-    pub out: PathBuf,
-    /// Two speeds (0.1, 1 m/s) x two steps (1e-3, 1e-2 s), for tests.
-    #[arg(long)]
-    pub quick: bool,
-    /// The most steps of one run (slower fingers are cut short, and the table says so).
-    #[arg(long, default_value_t = 2_000_000)]
-    pub max_steps: u64,
-}
+use crate::trajectory::{OutcomeClass, Record, Trajectory, max_deviation, run};
 
 /// The finger speeds of the table (m/s).
 pub const SPEEDS: [f64; 9] = [1e-4, 1e-3, 1e-2, 0.1, 0.2, 0.3, 0.5, 1.0, 10.0];
@@ -375,48 +362,4 @@ impl Envelope {
         );
         md
     }
-}
-
-/// `host-sim envelope`: runs the table, writes `envelope.csv`, `envelope.json` and
-/// `envelope.md`, and returns the Markdown.
-///
-/// # Errors
-/// As [`compute`], and I/O naming the file.
-pub fn run_envelope(args: &EnvelopeArgs) -> anyhow::Result<String> {
-    let envelope = compute(args.quick, args.max_steps)?;
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| anyhow::anyhow!("creating {}: {e}", args.out.display()))?;
-    let lines = envelope.cells.iter().map(|c| {
-        format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            c.speed_m_s,
-            c.h_s,
-            c.horizon_s,
-            c.capped,
-            c.steps,
-            c.outcome_f32,
-            c.outcome_f64,
-            c.f32_deviation_m,
-            c.events_agree,
-            c.event_time_deviation_s,
-            c.flagged_steps,
-            c.f64_own_error_m,
-            c.outcome_f64_half,
-            c.f64_events_converged,
-            c.converged,
-            c.reference_deviation_m.map_or_else(|| "NaN".into(), |d| d.to_string()),
-            c.verdict.name()
-        )
-    });
-    write_lines(
-        &args.out.join("envelope.csv"),
-        "speed_m_s,h_s,horizon_s,capped,steps,outcome_f32,outcome_f64,f32_deviation_m,events_agree,\
-         event_time_deviation_s,flagged_steps,f64_own_error_m,outcome_f64_half,f64_events_converged,converged,reference_deviation_m,verdict",
-        lines,
-    )?;
-    write_json(&args.out.join("envelope.json"), &envelope)?;
-    let md = envelope.markdown();
-    std::fs::write(args.out.join("envelope.md"), &md)
-        .map_err(|e| anyhow::anyhow!("writing {}: {e}", args.out.join("envelope.md").display()))?;
-    Ok(md)
 }

@@ -1,62 +1,29 @@
-//! `host-sim map`: the outcome of a scene over two of its parameters, on a grid a person chooses,
-//! with the boundaries between outcomes located by bisection.
+//! The outcome of a scene over two of its parameters (a [`Grid`] over two [`Axis`]), one run per
+//! cell in parallel, with the boundaries between outcomes located by bisection; and the files
+//! of a map (`map.csv`, `boundaries.csv`, `summary.json`, `map.svg`). `host-sim map`
+//! ([`crate::commands::map`]) and `host-sim report` ([`crate::commands::report`]) draw theirs
+//! with it.
 //!
-//! The default is the meter stick's outcome over finger speed (0.05 .. 1 m/s, 200 columns) and
-//! `mu_k / mu_s` (0.2 .. 1, 50 rows, `mu_s` fixed): the bands where the trick works and fails are
-//! not monotone in speed (the moving finger stops abruptly when the fingers meet; a rod riding on
-//! it slides on by `v^2 / (2 mu_k g)`, past the other finger or not, depending on the phase of the
-//! stick-slip cycle at the stop). Any scene flag can be an axis (`--x-axis x1`, `--y-axis angle`),
-//! and `mu-ratio` scales `mu_k` to `ratio * mu_s`.
+//! The bands where the meter-stick trick works and fails are not monotone in speed (the moving
+//! finger stops abruptly when the fingers meet; a rod riding on it slides on by
+//! `v^2 / (2 mu_k g)`, past the other finger or not, depending on the phase of the stick-slip
+//! cycle at the stop). Any scene flag can be an axis, and `mu-ratio` scales `mu_k` to
+//! `ratio * mu_s`.
 //!
 //! Each row's boundaries (adjacent cells with different outcomes along the x axis) are bisected
-//! to `--tolerance` (default 1e-3, in the x axis's unit), every run in the precision and LCP size
-//! given (default the firmware's, core f32 6x6). Runs go in parallel on all cores.
-#![allow(clippy::format_push_string)]
-
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+//! to the grid's tolerance (in the x axis's unit), every run in the implementation given.
+use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Context as _, bail};
+use anyhow::Context as _;
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::output::{create_dir, write_json, write_lines};
 use crate::plot;
-use crate::run_cmd::{progress, write_json};
-use crate::scenes::{FLAGS, Flag, Implementation, SceneArgs, SceneSpec, SpecExt as _, flag_error};
-use crate::trajectory::{OutcomeClass, Record, run_k, write_lines};
-
-/// `host-sim map` options.
-#[derive(Debug, Clone, clap::Args)]
-pub struct MapArgs {
-    /// The scene and its fixed parameters (the axes' flags are set per cell).
-    #[command(flatten)]
-    pub scene: SceneArgs,
-    /// The x axis: a scene flag (e.g. speed, x1, angle) or mu-ratio.
-    #[arg(long, default_value = "speed")]
-    pub x_axis: String,
-    /// The x range, `from,to`, in the flag's unit.
-    #[arg(long, default_value = "0.05,1", allow_hyphen_values = true)]
-    pub x_range: String,
-    /// Columns.
-    #[arg(long, default_value_t = 200)]
-    pub x_cells: usize,
-    /// The y axis: a scene flag or mu-ratio (mu_k / mu_s, mu_s fixed).
-    #[arg(long, default_value = "mu-ratio")]
-    pub y_axis: String,
-    /// The y range, `from,to`.
-    #[arg(long, default_value = "0.2,1", allow_hyphen_values = true)]
-    pub y_range: String,
-    /// Rows.
-    #[arg(long, default_value_t = 50)]
-    pub y_cells: usize,
-    /// Bisect each boundary along x to this width (in the x axis's unit; 0: no bisection).
-    #[arg(long, default_value_t = 1e-3)]
-    pub tolerance: f64,
-    /// Output directory (created; files in it are overwritten).
-    #[arg(long, default_value = "out/map")]
-    pub out: PathBuf,
-}
+use crate::progress::bar as progress;
+use crate::scenes::{FLAGS, Flag, Implementation, SceneSpec, SpecExt as _, flag_error};
+use crate::trajectory::{OutcomeClass, Record, run_k};
 
 /// The most cells a map may have (each is a run of up to `MAX_STEPS`).
 /// (At about 550 runs per second on 2 cores, 200,000 cells take about 6 minutes.)
@@ -115,17 +82,6 @@ impl Axis {
         }
         Ok(())
     }
-}
-
-fn parse_range(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    let [a, b] = parts.as_slice() else { bail!("{flag} {s:?}: give two numbers, from,to") };
-    let parse = |t: &str| t.parse::<f64>().with_context(|| format!("{flag} {s:?}: {t:?} is not a number"));
-    let (a, b) = (parse(a)?, parse(b)?);
-    if !(a.is_finite() && b.is_finite() && a < b) {
-        bail!("{flag} {s:?}: two finite numbers, from < to");
-    }
-    Ok((a, b))
 }
 
 /// Cell centres of `cells` cells over `[a, b]`.
@@ -238,42 +194,6 @@ impl Grid {
         Ok(Self { axes: (speed, Axis::MuRatio), x: (from, to), y: (0.2, 1.0), cells, tolerance })
     }
 
-    /// The grid `args` describe.
-    ///
-    /// # Errors
-    /// Bad axes, ranges, cell counts or tolerance, naming the flag.
-    pub fn from_args(args: &MapArgs) -> anyhow::Result<Self> {
-        let grid = Self {
-            axes: (Axis::parse(&args.x_axis)?, Axis::parse(&args.y_axis)?),
-            x: parse_range("--x-range", &args.x_range)?,
-            y: parse_range("--y-range", &args.y_range)?,
-            cells: [args.x_cells, args.y_cells],
-            tolerance: args.tolerance,
-        };
-        let names = (args.x_axis.trim_start_matches("--"), args.y_axis.trim_start_matches("--"));
-        if grid.axes.0 == grid.axes.1 {
-            bail!("--x-axis and --y-axis are both {}: choose two different axes", names.0);
-        }
-        let is_mu_k = |a: Axis| matches!(a, Axis::Flag(f) if f.long == "mu-k");
-        if (grid.axes.0 == Axis::MuRatio || grid.axes.1 == Axis::MuRatio)
-            && (is_mu_k(grid.axes.0) || is_mu_k(grid.axes.1))
-        {
-            bail!(
-                "--x-axis {} with --y-axis {}: mu-ratio sets mu-k, so the two cannot both be axes",
-                names.0,
-                names.1
-            );
-        }
-        let cells = args.x_cells.saturating_mul(args.y_cells);
-        if args.x_cells == 0 || args.y_cells == 0 || cells > MAX_CELLS {
-            bail!("--x-cells {} x --y-cells {}: between 1 and {MAX_CELLS} cells", args.x_cells, args.y_cells);
-        }
-        if !(args.tolerance >= 0.0 && args.tolerance.is_finite()) {
-            bail!("--tolerance {:?}: a finite number >= 0", args.tolerance);
-        }
-        Ok(grid)
-    }
-
     /// Checks every corner of the grid on `base` (ranges are linear and the parameter checks are
     /// bounds, so the corners stand for the whole grid).
     ///
@@ -298,19 +218,6 @@ impl Grid {
         }
         Ok(())
     }
-}
-
-/// Computes the map `args` describe.
-///
-/// # Errors
-/// Bad axes, ranges, cell counts or parameters (before anything runs), or a cell that cannot run.
-pub fn compute_args(args: &MapArgs) -> anyhow::Result<Map> {
-    let grid = Grid::from_args(args)?;
-    let specs = args.scene.specs(None)?;
-    let [(_, base)] = specs.as_slice() else {
-        bail!("host-sim map varies two axes: give the other flags one value each")
-    };
-    compute(base, &grid, args.scene.implementation())
 }
 
 /// Computes the outcome of `base` over `grid`, in `implementation`, with progress bars.
@@ -398,7 +305,7 @@ pub fn compute(base: &SceneSpec, grid: &Grid, implementation: Implementation) ->
 /// # Errors
 /// I/O or plotting, naming the file.
 pub fn write(map: &Map, out: &Path) -> anyhow::Result<()> {
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    create_dir(out)?;
     let s = &map.summary;
     let cells = map.ys.iter().enumerate().flat_map(|(j, y)| {
         map.xs.iter().enumerate().map(move |(i, x)| format!("{x},{y},{}", map.outcomes[j][i]))
@@ -414,31 +321,6 @@ pub fn write(map: &Map, out: &Path) -> anyhow::Result<()> {
         (&s.x_axis, &map.xs),
         (&s.y_axis, &map.ys),
         &map.outcomes,
-        &s.boundaries,
+        &s.boundaries.iter().map(|b| (b.x, b.y)).collect::<Vec<_>>(),
     )
-}
-
-/// `host-sim map`: computes, writes, and returns the terminal summary.
-///
-/// # Errors
-/// As [`compute`] and [`write`].
-pub fn run_map(args: &MapArgs) -> anyhow::Result<String> {
-    let map = compute_args(args)?;
-    write(&map, &args.out)?;
-    let s = &map.summary;
-    let mut text = format!(
-        "map: {} x {} cells of {} over {} x {}, {} runs in {:.1} s ({})\n",
-        s.cells[0], s.cells[1], s.scene, s.x_axis, s.y_axis, s.runs, s.wall_s, s.implementation
-    );
-    for (class, n) in &s.counts {
-        let _ = writeln!(text, "  {class}: {n} cells");
-    }
-    let _ = writeln!(
-        text,
-        "{} boundaries located to {:?} (boundaries.csv); files in {}",
-        s.boundaries.len(),
-        args.tolerance,
-        args.out.display()
-    );
-    Ok(text)
 }

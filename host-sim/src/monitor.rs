@@ -30,7 +30,7 @@ use meterstick_link::{
 };
 use serde::Serialize;
 
-use crate::run_cmd::{parameters_json, write_json};
+use crate::output::{parameters_json, write_json};
 use crate::scenes::{Implementation, SceneKind, SceneSpec};
 use crate::trajectory::{
     ContactRow, Event, Measured, OutcomeClass, Record, Row, RunOutcome, SolverCounters, Trajectory, run_core,
@@ -409,7 +409,7 @@ impl RigComparison {
 pub fn compare(rec: &Recording) -> anyhow::Result<(Trajectory, RigComparison)> {
     let spec = SceneSpec::MeterStick(rec.params.cast::<f64>());
     // The rig's parameters, not the user's: bounded like `host-sim run`'s before anything runs.
-    crate::run_cmd::check_recorded_steps(&spec).map_err(|e| {
+    crate::trajectory::check_recorded_steps(&spec).map_err(|e| {
         anyhow::anyhow!("the rig's step and max_time: {e}; --no-compare records the rig's run alone")
     })?;
     let host = run_core::<f32, 6>(&spec, Record::All)?;

@@ -244,7 +244,7 @@ pub const fn outcome_color(class: crate::trajectory::OutcomeClass) -> RGBColor {
 
 /// A map of outcomes over two continuous axes: one rectangle per cell (`cells[row][column]` at
 /// the centres `xs`, `ys`), coloured by class, with the bisected boundaries as black dots, numeric
-/// axes, and a legend of the classes present.
+/// axes, and a legend of the classes present. `boundaries` are `(x, y)` points.
 ///
 /// # Errors
 /// I/O.
@@ -254,7 +254,7 @@ pub fn outcome_raster(
     (x_desc, xs): (&str, &[f64]),
     (y_desc, ys): (&str, &[f64]),
     cells: &[Vec<crate::trajectory::OutcomeClass>],
-    boundaries: &[crate::map::Boundary],
+    boundaries: &[(f64, f64)],
 ) -> anyhow::Result<()> {
     use crate::trajectory::OutcomeClass as O;
     let color = outcome_color;
@@ -289,7 +289,7 @@ pub fn outcome_raster(
         }
     }
     chart
-        .draw_series(boundaries.iter().map(|b| Circle::new((b.x, b.y), 2, BLACK.filled())))
+        .draw_series(boundaries.iter().map(|&b| Circle::new(b, 2, BLACK.filled())))
         .map_err(err)?
         .label("boundary (bisected)")
         .legend(|(x, y)| Circle::new((x + 6, y), 3, BLACK.filled()));

@@ -1,6 +1,7 @@
-//! `host-sim serve`: the browser page (`web/page/`, with the core compiled to WebAssembly in
-//! `web/page/pkg/`) over HTTP on `127.0.0.1`, and optionally runs written by `host-sim run` to
-//! replay in it (`--replay DIR`, under `/replay/`, listed in `/replay/runs.json`).
+//! The server of `host-sim serve` ([`crate::commands::serve`]): the browser page (`web/page/`,
+//! with the core compiled to WebAssembly in `web/page/pkg/`) over HTTP on `127.0.0.1`, and
+//! optionally runs written by `host-sim run` to replay in it (`--replay DIR`, under `/replay/`,
+//! listed in `/replay/runs.json`).
 //!
 //! A small HTTP/1.1 file server on `std::net` (one thread per connection, `Connection: close`):
 //! `GET` and `HEAD` only; a path is percent-decoded and refused when it has a `..` or `.` segment,
@@ -211,18 +212,6 @@ impl Server {
             });
         }
     }
-}
-
-/// `host-sim serve`: binds, prints where, serves until interrupted.
-///
-/// # Errors
-/// See [`Server::bind`].
-pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
-    let server = Server::bind(args)?;
-    println!("{}; Ctrl-C stops", server.banner()?);
-    std::io::stdout().flush()?;
-    server.run();
-    Ok(())
 }
 
 /// A response: status, content type, body.

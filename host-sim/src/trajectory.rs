@@ -323,6 +323,30 @@ impl<const K: usize> Recorder<K> {
     }
 }
 
+/// The most steps `host-sim run` records: 2 x 10^6. It keeps every step of the core and of the
+/// reference in memory (about 700 bytes a step in all) and writes them as CSV, so a run at the
+/// general cap ([`crate::scenes::MAX_STEPS`], 10^8) would need about 70 GB; `host-sim scene`
+/// runs up to that cap without recording.
+pub const MAX_RECORDED_STEPS: f64 = 2e6;
+
+/// Refuses a run that would record more than [`MAX_RECORDED_STEPS`] steps, in the user's words.
+///
+/// # Errors
+/// The step count `--h` and `--duration` imply is above the cap.
+pub fn check_recorded_steps(spec: &SceneSpec) -> anyhow::Result<()> {
+    let steps = (spec.max_time() / spec.step()).ceil();
+    anyhow::ensure!(
+        steps <= MAX_RECORDED_STEPS,
+        "--h {} s and --duration {} s imply {steps:.3e} steps; host-sim run records every step (about \
+         700 bytes each) and takes at most {MAX_RECORDED_STEPS:e} (raise --h or lower --duration; \
+         host-sim scene runs up to {:e} steps without recording)",
+        crate::scenes::short_number(spec.step()),
+        crate::scenes::short_number(spec.max_time()),
+        crate::scenes::MAX_STEPS
+    );
+    Ok(())
+}
+
 /// Runs `spec` (a scene with two contacts) in `implementation` to its outcome and records it.
 ///
 /// # Errors

@@ -23,9 +23,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+use meterstick_host_sim::commands::{run as run_command, scene};
 use meterstick_host_sim::lcp_io::Precision;
-use meterstick_host_sim::run_cmd::{RunArgs, run_cmd};
-use meterstick_host_sim::scene_cmd::{SceneCmd, run_scene};
 use meterstick_host_sim::scenes::{FLAGS, LcpSize, SceneArgs, SceneKind};
 use meterstick_host_sim::serve::{Replay, ServeArgs, Server};
 use meterstick_host_sim::trajectory::{Record, run_k};
@@ -291,7 +290,7 @@ fn scene_args(query: &str) -> SceneArgs {
 
 /// What `host-sim scene` prints for the query: (outcome, checksum).
 fn host_scene(query: &str) -> (String, String) {
-    let text = run_scene(&SceneCmd { scene: scene_args(query) }).unwrap();
+    let text = scene::run(&scene::SceneCmdArgs { scene: scene_args(query) }).unwrap();
     let outcome = text.split("outcome ").nth(1).and_then(|r| r.split(" at t = ").next()).unwrap().to_owned();
     let checksum = text.lines().find_map(|l| l.strip_prefix("checksum ")).unwrap().to_owned();
     (outcome, checksum)
@@ -362,7 +361,7 @@ fn the_page_in_chromium() {
     let replay = std::env::temp_dir().join(format!("meterstick-browser-replay-{}", std::process::id()));
     let mut run_args = SceneArgs::default();
     run_args.given.push((FLAGS.iter().find(|f| f.long == "speed").unwrap(), vec![1.0]));
-    run_cmd(&RunArgs { scene: run_args, out: replay.clone() }).unwrap();
+    run_command::run(&run_command::RunArgs { scene: run_args, out: replay.clone() }).unwrap();
     let server = Server::bind(&ServeArgs { port: 0, root, replay: Some(replay.clone()) }).unwrap();
     let base = format!("http://{}/", server.local_addr().unwrap());
     std::thread::spawn(move || server.run());
@@ -546,7 +545,7 @@ fn check_controls(b: &Browser, base: &str, slow: &str) {
             "return document.getElementById('error').textContent",
             Duration::from_secs(10),
         );
-        let host = run_scene(&SceneCmd { scene: scene_args(query) }).unwrap_err().to_string();
+        let host = scene::run(&scene::SceneCmdArgs { scene: scene_args(query) }).unwrap_err().to_string();
         assert_eq!(shown.as_str().unwrap(), host.replace("--", ""), "host-sim says: {host}");
         assert_eq!(
             b.js(&format!("return document.querySelector('{field}').getAttribute('aria-invalid')")),

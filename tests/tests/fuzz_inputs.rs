@@ -23,9 +23,10 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use meterstick_host_sim::cli::{self, Cmd};
+use meterstick_host_sim::commands::{map, run as run_command};
 use meterstick_host_sim::lcp_io::{self, LcpData, MAX_N, Precision};
+use meterstick_host_sim::monitor;
 use meterstick_host_sim::scenes::{MAX_STEPS, SceneArgs, SpecExt as _};
-use meterstick_host_sim::{map, monitor, run_cmd};
 use meterstick_tests::corpus_dir;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
@@ -526,15 +527,16 @@ fn fuzz_command_line() {
         };
         let (what, _, took) = measured(|| -> Result<&'static str, TestCaseError> {
             match &cli.command {
-                Cmd::Run(a) => resolve(&a.scene, Some(("speed", &run_cmd::PAPER_SPEEDS))),
+                Cmd::Run(a) => resolve(&a.scene, Some(("speed", &run_command::PAPER_SPEEDS))),
                 Cmd::Scene(a) => resolve(&a.scene, None),
                 Cmd::Map(a) => {
-                    let grid = map::Grid::from_args(a);
+                    let grid = map::grid(a);
                     let scene = resolve(&a.scene, None)?;
                     Ok(if grid.is_ok() { scene } else { "parsed, map grid refused" })
                 }
                 Cmd::Monitor(a) => {
-                    let ok = a.set.iter().all(|s| monitor::parse_set(s).is_ok());
+                    let ok =
+                        a.set.iter().all(|s| monitor::parse_set(s).is_ok());
                     Ok(if ok { "parsed, other" } else { "parsed, --set refused" })
                 }
                 _ => Ok("parsed, other"),
@@ -617,7 +619,7 @@ fn rig_params() -> impl Strategy<Value = meterstick_core::scene::MeterStickParam
 /// bound. It found, on its first run, `dropped += count` overflowing on two `TxDropped` reports
 /// (a panic in a debug build, a wrong count in release; now saturating), and that a rig set to a
 /// tiny step made `compare` record up to 10^8 host steps (now refused above
-/// `run_cmd::MAX_RECORDED_STEPS`).
+/// `trajectory::MAX_RECORDED_STEPS`).
 #[test]
 fn fuzz_rig_reports_into_monitor() {
     use meterstick_link::{MAX_FRAME, Report, RigState, encode};

@@ -14,16 +14,16 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::Context as _;
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::output::{create_dir, parameters_json, write_json};
 use crate::plot;
 use crate::progress::{Interrupted, interrupted, is_interrupted};
 use crate::scenes::{Implementation, SceneArgs, SceneKind, SceneSpec, SpecExt as _};
 use crate::trajectory::{
-    Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, max_deviation, run_k, switches,
-    write_csv, write_events_csv,
+    Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, check_recorded_steps, max_deviation,
+    run_k, switches, write_csv, write_events_csv,
 };
 
 /// The paper's finger speeds (m/s): the slow case (figs. 2-3) and the fast cases of fig. 5.
@@ -39,21 +39,6 @@ pub struct RunArgs {
     /// Output directory (created; existing files in it are overwritten).
     #[arg(long, default_value = "out/run")]
     pub out: PathBuf,
-}
-
-pub use crate::progress::bar as progress;
-
-/// `x` in short scientific notation for tables and text (`1.23e-5`; `0` for zero, `n/a` for a
-/// quantity that does not exist, NaN or infinite).
-#[must_use]
-pub fn sci(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
-    } else if x.is_finite() {
-        format!("{x:.2e}")
-    } else {
-        "n/a".into()
-    }
 }
 
 /// One implementation's part of a [`RunSummary`]'s scene.
@@ -142,45 +127,6 @@ pub struct RunSummary {
     pub comparison: Option<Comparison>,
 }
 
-/// The parameters as a JSON map (core field names).
-#[must_use]
-pub fn parameters_json(spec: &SceneSpec) -> serde_json::Map<String, serde_json::Value> {
-    spec.fields().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect()
-}
-
-/// Writes pretty JSON.
-///
-/// # Errors
-/// I/O, naming the file.
-pub fn write_json<T: Serialize + ?Sized>(path: &Path, v: &T) -> anyhow::Result<()> {
-    let text = serde_json::to_string_pretty(v).context("serialising JSON")? + "\n";
-    std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
-}
-
-/// The most steps `host-sim run` records: 2 x 10^6. It keeps every step of the core and of the
-/// reference in memory (about 700 bytes a step in all) and writes them as CSV, so a run at the
-/// general cap ([`crate::scenes::MAX_STEPS`], 10^8) would need about 70 GB; `host-sim scene`
-/// runs up to that cap without recording.
-pub const MAX_RECORDED_STEPS: f64 = 2e6;
-
-/// Refuses a run that would record more than [`MAX_RECORDED_STEPS`] steps, in the user's words.
-///
-/// # Errors
-/// The step count `--h` and `--duration` imply is above the cap.
-pub fn check_recorded_steps(spec: &SceneSpec) -> anyhow::Result<()> {
-    let steps = (spec.max_time() / spec.step()).ceil();
-    anyhow::ensure!(
-        steps <= MAX_RECORDED_STEPS,
-        "--h {} s and --duration {} s imply {steps:.3e} steps; host-sim run records every step (about \
-         700 bytes each) and takes at most {MAX_RECORDED_STEPS:e} (raise --h or lower --duration; \
-         host-sim scene runs up to {:e} steps without recording)",
-        crate::scenes::short_number(spec.step()),
-        crate::scenes::short_number(spec.max_time()),
-        crate::scenes::MAX_STEPS
-    );
-    Ok(())
-}
-
 /// A run and who computes it.
 type Job = (usize, Implementation);
 /// A recorded run and its wall time (s).
@@ -191,7 +137,7 @@ type Timed<const K: usize> = (Trajectory<K>, f64);
 ///
 /// # Errors
 /// Invalid parameters (before anything runs), or I/O.
-pub fn run_cmd(args: &RunArgs) -> anyhow::Result<String> {
+pub fn run(args: &RunArgs) -> anyhow::Result<String> {
     // The paper's speeds are the meter stick's (three-fingers has a `--speed` too, and one run).
     let paper = (args.scene.kind() == SceneKind::MeterStick).then_some(("speed", &PAPER_SPEEDS[..]));
     let specs = args.scene.specs(paper)?;
@@ -214,8 +160,8 @@ fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneSpec)]) -> any
     let core = args.scene.implementation();
     let has_reference = specs.iter().all(|(_, s)| s.to_reference().is_some());
     let per_run = if has_reference { 2 } else { 1 };
-    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
-    let bar = progress(per_run * specs.len() as u64, "running scenes");
+    create_dir(&args.out)?;
+    let bar = crate::progress::bar(per_run * specs.len() as u64, "running scenes");
     // Jobs: (run, implementation), the longest (the reference of the longest run) first.
     let mut jobs: Vec<(usize, Implementation)> = (0..specs.len())
         .flat_map(|k| [(k, Implementation::Reference), (k, core)])
@@ -263,7 +209,7 @@ fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneSpec)]) -> any
         };
         let (name, spec) = &specs[k];
         let dir = args.out.join(name);
-        std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+        create_dir(&dir)?;
         // The scenes with a static and a kinetic coefficient (the ladder's are one each).
         let mu_ratio = spec.get("mu_kinetic").zip(spec.get("mu_static")).map(|(k, s)| k / s);
         let comparison = reference.as_ref().map(|(reference, _)| {

@@ -32,7 +32,8 @@ use meterstick_core::scene::MeterStickParams;
 use rayon::prelude::*;
 use serde_json::json;
 
-use crate::run_cmd::{progress, sci, write_json};
+use crate::output::{sci, write_json};
+use crate::progress::bar as progress;
 use crate::scenes::{Implementation, SceneSpec};
 use crate::trajectory::{OutcomeClass, Record, Trajectory, run as run_scene, switches};
 use crate::{envelope, map, plot};

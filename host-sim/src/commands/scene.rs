@@ -10,7 +10,7 @@ use crate::trajectory::{Record, run_watched, switches};
 
 /// `host-sim scene` options.
 #[derive(Debug, Clone, clap::Args)]
-pub struct SceneCmd {
+pub struct SceneCmdArgs {
     /// The scene and its parameters (one run: no flag may list several values).
     #[command(flatten)]
     pub scene: SceneArgs,
@@ -20,7 +20,7 @@ pub struct SceneCmd {
 ///
 /// # Errors
 /// Invalid scene parameters (in the user's words), or a flag listing several values.
-pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
+pub fn run(cmd: &SceneCmdArgs) -> anyhow::Result<String> {
     let specs = cmd.scene.specs(None)?;
     let [(_, spec)] = specs.as_slice() else {
         anyhow::bail!("host-sim scene runs one scene: give each flag one value (host-sim run takes lists)");
@@ -29,7 +29,7 @@ pub fn run_scene(cmd: &SceneCmd) -> anyhow::Result<String> {
 }
 
 /// Runs a scene of `K` contacts and summarises it.
-fn summarise<const K: usize>(cmd: &SceneCmd, spec: &SceneSpec) -> anyhow::Result<String> {
+fn summarise<const K: usize>(cmd: &SceneCmdArgs, spec: &SceneSpec) -> anyhow::Result<String> {
     let implementation = cmd.scene.implementation();
     let planned = (spec.max_time() / spec.step()).ceil() as u64;
     let bar = crate::progress::bar(planned, "steps");
