@@ -6,7 +6,8 @@
 //! input files read with a size cap ([`input`]), progress and Ctrl-C ([`progress`]), the LCP
 //! file reader ([`lcp_io`]), the scenes and their flags ([`scenes`]), the independent f64
 //! reference of the scenes ([`mod@reference`]), recorded runs ([`trajectory`]), what the commands
-//! write ([`output`]) and draw ([`plot`]), the outcome map ([`map`]), where f32 holds
+//! write ([`output`]) and draw ([`plot`]), the outcome map ([`map`]), the error against run time
+//! over `h` ([`sweep`]), where f32 holds
 //! ([`envelope`]), the stress grid ([`stress`]), the page's server ([`serve`]) and the QEMU
 //! firmware runner ([`qemu`]).
 
@@ -26,6 +27,7 @@ pub use meterstick_reference as reference;
 pub mod scenes;
 pub mod serve;
 pub mod stress;
+pub mod sweep;
 pub mod trajectory;
 
 /// This crate's version.
