@@ -16,7 +16,9 @@ use std::time::SystemTime;
 
 use clap::{CommandFactory as _, Parser, Subcommand};
 
-use crate::commands::{envelope, lcp, map, qemu, report, run as run_command, scene, serve, stress, version};
+use crate::commands::{
+    envelope, lcp, map, monitor, qemu, report, run as run_command, scene, serve, stress, version,
+};
 use crate::progress;
 
 /// The exit statuses, as `host-sim --help` shows them.
@@ -98,7 +100,7 @@ pub enum Cmd {
     #[command(after_help = "Exit status: 0 done (a recorded run identical to the host's), 1 the rig's \
                             run differs from the host's, 2 bad input, a refused parameter, or a link \
                             error (the port, a timeout).")]
-    Monitor(crate::monitor::MonitorArgs),
+    Monitor(monitor::MonitorArgs),
     /// Run a firmware ELF under QEMU, print its decoded defmt output, and exit with the
     /// firmware's status.
     #[command(after_help = "Exit status: the firmware's (semihosting exit), 124 timed out, 125 ended \
@@ -221,7 +223,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Cmd::Map(args) => map::run(&args)?,
         Cmd::Stress(args) => stress::run(&args)?,
         Cmd::Scene(args) => scene::run(&args)?,
-        Cmd::Monitor(args) => crate::monitor::monitor(&args)?,
+        Cmd::Monitor(args) => monitor::run(&args)?,
         Cmd::Qemu(args) => return qemu::run(&args),
         Cmd::Serve(args) => {
             serve::run(&args)?;

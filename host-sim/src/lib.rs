@@ -1,15 +1,20 @@
 //! # meterstick-host-sim
 //!
 //! The std host harness around `meterstick-core` and the `host-sim` command line ([`cli`]:
-//! its arguments, dispatch and exit status). The commands are in [`commands`] (one module each,
-//! `run(&args)`), except `monitor` ([`monitor`], still one module); the libraries they share:
-//! input files read with a size cap ([`input`]), progress and Ctrl-C ([`progress`]), the LCP
-//! file reader ([`lcp_io`]), the scenes and their flags ([`scenes`]), the independent f64
-//! reference of the scenes ([`mod@reference`]), recorded runs ([`trajectory`]), what the commands
-//! write ([`output`]) and draw ([`plot`]), the outcome map ([`map`]), the error against run time
-//! over `h` ([`sweep`]), where f32 holds
-//! ([`envelope`]), the stress grid ([`stress`]), the page's server ([`serve`]) and the QEMU
-//! firmware runner ([`qemu`]).
+//! its arguments, dispatch and exit status), in two layers.
+//!
+//! **The commands** ([`commands`]), one module each, thin: `run`, `report`, `map`, `envelope`,
+//! `stress`, `scene`, `lcp`, `qemu`, `monitor`, `serve`, `version`; each has its options and
+//! `run(&args)`, and none imports another.
+//!
+//! **The libraries** they are written over, each named for what it is: the scenes and their flags
+//! ([`scenes`]); one recorded run of a scene in the core or the independent f64 reference
+//! ([`mod@reference`]), its CSVs and comparisons ([`trajectory`]); what the commands write
+//! ([`output`]) and draw ([`plot`]); the outcome over two parameters ([`map`]); the error against
+//! run time over `h` ([`sweep`]); where f32 holds ([`envelope`]); the stress grid ([`stress`]);
+//! the rig over its link ([`monitor`]); firmware under QEMU ([`qemu`]); the page's file server
+//! ([`serve`]); the LCP file reader ([`lcp_io`]); input files read with a size cap ([`input`]);
+//! progress and Ctrl-C ([`progress`]); the failed-check error ([`errors`]).
 
 pub mod cli;
 pub mod commands;

@@ -1,7 +1,7 @@
 //! The host's end of the link (feature `std`): [`Link`], a rig on a serial port (the Black
 //! Pill's USB CDC port, a USB-serial adapter on a UART) or a TCP socket (QEMU's UART), commands
 //! out and reports in, decoded on a reader thread; [`is_reply_to`], the reply table. `host-sim
-//! monitor` (host-sim/src/monitor.rs) and the end-to-end tests (tests/tests/link_checks/) drive
+//! monitor` (host-sim/src/monitor/) and the end-to-end tests (tests/tests/link_checks/) drive
 //! rigs with it.
 
 extern crate std;

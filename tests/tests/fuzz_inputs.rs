@@ -536,7 +536,7 @@ fn fuzz_command_line() {
                 }
                 Cmd::Monitor(a) => {
                     let ok =
-                        a.set.iter().all(|s| monitor::parse_set(s).is_ok());
+                        a.set.iter().all(|s| meterstick_host_sim::commands::monitor::parse_set(s).is_ok());
                     Ok(if ok { "parsed, other" } else { "parsed, --set refused" })
                 }
                 _ => Ok("parsed, other"),

@@ -11,6 +11,7 @@
 pub mod envelope;
 pub mod lcp;
 pub mod map;
+pub mod monitor;
 pub mod qemu;
 pub mod report;
 pub mod run;
