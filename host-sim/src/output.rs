@@ -2,14 +2,13 @@
 //! ([`write_lines`]), a scene's parameters as JSON ([`parameters_json`]) and numbers in tables and
 //! text ([`sci`]).
 
+use std::io::Write as _;
 use std::path::Path;
 
 use anyhow::Context as _;
 use serde::Serialize;
 
 use crate::scenes::SceneSpec;
-
-pub use crate::trajectory::write_lines;
 
 /// `x` in short scientific notation for tables and text (`1.23e-5`; `0` for zero, `n/a` for a
 /// quantity that does not exist, NaN or infinite).
@@ -45,4 +44,26 @@ pub fn write_json<T: Serialize + ?Sized>(path: &Path, v: &T) -> anyhow::Result<(
 /// I/O, naming the folder.
 pub fn create_dir(dir: &Path) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))
+}
+
+/// Writes a CSV file: the header line, then one line per item.
+///
+/// # Errors
+/// I/O, naming the file.
+pub fn write_lines<I: IntoIterator<Item = String>>(
+    path: &Path,
+    header: &str,
+    lines: I,
+) -> anyhow::Result<()> {
+    let mut w = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
+    );
+    let write = || -> std::io::Result<()> {
+        writeln!(w, "{header}")?;
+        for line in lines {
+            writeln!(w, "{line}")?;
+        }
+        w.flush()
+    };
+    write().with_context(|| format!("writing {}", path.display()))
 }

@@ -1,0 +1,278 @@
+//! One run of a scene as the host records it, whichever implementation produced it: the
+//! trajectory (one [`Row`] per step), the switch events, the outcome, the scene's measured
+//! quantities and counters. The core ([`run()`] with [`Implementation::Core`]) and the independent
+//! reference ([`Implementation::Reference`]) both fill a [`Trajectory`], so everything downstream
+//! (CSV, plots, comparison, eq. 21 ratios) has one implementation.
+//!
+//! This module holds the types; the rest, by concern: which rows a run keeps and how many it may
+//! record (`record.rs`), running a scene in the chosen implementation (`run.rs`), the core's run
+//! (`core_run.rs`), the reference's run converted (`reference_run.rs`), the eq. 21 switches and
+//! the deviation between two runs (`compare.rs`), the trajectory and event CSVs (`csv.rs`).
+
+mod compare;
+mod core_run;
+mod csv;
+mod record;
+mod reference_run;
+mod run;
+
+use std::fmt;
+
+use meterstick_core::planar::{ContactMode, RunStats};
+use meterstick_core::scene::Outcome;
+use serde::Serialize;
+
+use crate::scenes::{Implementation, SceneKind};
+
+pub use compare::{Switch, max_deviation, switches};
+pub use core_run::run_core;
+pub use csv::{csv_header, write_csv, write_events_csv};
+pub use record::{MAX_RECORDED_STEPS, Record, Recorder, check_recorded_steps};
+pub use reference_run::run_reference;
+pub use run::{run, run_k, run_watched};
+
+/// Writes a CSV file (re-exported from [`crate::output`] for `stress/`, which imports it here).
+pub use crate::output::write_lines;
+
+/// One contact after a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRow {
+    /// Mode after the step.
+    pub mode: ContactMode,
+    /// Normal impulse (N s).
+    pub normal_impulse: f64,
+    /// Net friction impulse along the contact's `+d` (N s).
+    pub friction_impulse: f64,
+    /// The contact's coordinate along its tangent at the step's start (m).
+    pub along: f64,
+}
+
+/// The state after one step, with `K` contacts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Row<const K: usize = 2> {
+    /// Time at the end of the step (s).
+    pub t: f64,
+    /// Centre of mass `x`, `y` (m) and angle `theta` (rad).
+    pub q: [f64; 3],
+    /// `vx`, `vy` (m/s), `omega` (rad/s).
+    pub v: [f64; 3],
+    /// Where each support touches: a finger tip, or the foot of the body's contact point on a
+    /// support line (m).
+    pub supports: [[f64; 2]; K],
+    /// Each contact.
+    pub contacts: [ContactRow; K],
+}
+
+/// A change of one contact's mode (of `K`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Event<const K: usize = 2> {
+    /// Time at the end of the step after which the new mode was found (s).
+    pub t: f64,
+    /// The contact, 0-based.
+    pub contact: usize,
+    /// The new mode.
+    pub mode: ContactMode,
+    /// Every contact's coordinate along it at that step's start (m).
+    pub along: [f64; K],
+    /// Where the supports touch at the end of that step (m).
+    pub supports: [[f64; 2]; K],
+}
+
+/// How a run ended, by class: the core's one list of outcomes.
+pub use meterstick_core::scene::OutcomeKind as OutcomeClass;
+
+/// How a run ended: its class, and for a failure why.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct RunOutcome {
+    /// The class.
+    pub class: OutcomeClass,
+    /// Why it failed (`None` unless [`OutcomeClass::Failed`]).
+    pub detail: Option<String>,
+}
+
+impl RunOutcome {
+    /// A physical outcome.
+    #[must_use]
+    pub const fn of(class: OutcomeClass) -> Self {
+        Self { class, detail: None }
+    }
+}
+
+impl fmt::Display for RunOutcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.detail {
+            Some(why) => write!(f, "{} ({why})", self.class),
+            None => write!(f, "{}", self.class),
+        }
+    }
+}
+
+impl From<Outcome> for RunOutcome {
+    fn from(o: Outcome) -> Self {
+        match o {
+            Outcome::Failed(e) => Self { class: OutcomeClass::Failed, detail: Some(e.to_string()) },
+            other => Self::of(other.kind()),
+        }
+    }
+}
+
+/// The meter stick's meeting.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Meeting {
+    /// When the fingers stopped (s).
+    pub time_s: f64,
+    /// Centre of mass from the fingers' midpoint, along the rod (m).
+    pub com_offset_m: f64,
+}
+
+/// The scene's measured quantities (`docs/scenes.md`, "Measured").
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Measured {
+    /// Meter stick: the meeting.
+    pub meeting: Option<Meeting>,
+    /// Incline: the acceleration down the slope while sliding; cylinder: after the first step
+    /// (m/s^2).
+    pub acceleration_m_s2: Option<f64>,
+    /// Cylinder: the angular acceleration after the first step, counter-clockwise (rad/s^2; the
+    /// reference's, absent from `summary.json` for a run without it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angular_acceleration_rad_s2: Option<f64>,
+    /// Ladder: height of the top when it left the wall (m).
+    pub wall_release_height_m: Option<f64>,
+    /// Ladder: that height over the top's initial height (2/3 when frictionless).
+    pub wall_release_ratio: Option<f64>,
+    /// Painlevé: the jam step's impulses (absent from `summary.json` for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub jam: Option<JamImpulses>,
+}
+
+/// The Painlevé rod's jam: the step on which the sliding end stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct JamImpulses {
+    /// The end of that step (s).
+    pub time_s: f64,
+    /// Its normal impulse (N s).
+    pub normal_impulse_ns: f64,
+    /// Its friction impulse along `+x` (N s).
+    pub friction_impulse_ns: f64,
+}
+
+/// Solver counters of a run (zero where an implementation has no such thing).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct SolverCounters {
+    /// Lemke pivots in all (core).
+    pub pivots: u64,
+    /// Most pivots in one step (core).
+    pub max_pivots: u32,
+    /// Steps answered by the warm-start basis (core).
+    pub warm_starts: u64,
+    /// Steps of a reduced layout that needed the full one (core, 6x6).
+    pub reduced_check_fired: u64,
+    /// Of those, steps before the fingers met (meter stick).
+    pub reduced_check_fired_before_meeting: u64,
+    /// Solves answered by the solver's regularised retry (core).
+    pub regularized_solves: u64,
+    /// Steps whose LCP had solutions with different motions (reference).
+    pub ambiguous_steps: u64,
+    /// Steps resolved only to more than `ROUND_OFF_LIMIT` of their impulses (core; see
+    /// [`meterstick_core::planar::StepReport::round_off_limited`]).
+    pub round_off_limited: u64,
+    /// Solves per path (core; `docs/formulation.md`, "Solving a step").
+    pub paths: Paths,
+}
+
+/// Solves per [`meterstick_core::planar::SolvePath`] over a run, and the candidate bases tried.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Paths {
+    /// `z = 0` (nothing pushes).
+    pub free: u64,
+    /// The previous step's basis.
+    pub warm: u64,
+    /// A neighbouring basis.
+    pub candidate: u64,
+    /// Lemke's method.
+    pub lemke: u64,
+    /// Candidate bases solved, answered or not.
+    pub candidates_tried: u64,
+}
+
+impl From<&meterstick_core::planar::PathCounts> for Paths {
+    fn from(p: &meterstick_core::planar::PathCounts) -> Self {
+        Self {
+            free: p.free,
+            warm: p.warm,
+            candidate: p.candidate,
+            lemke: p.lemke,
+            candidates_tried: p.candidates_tried,
+        }
+    }
+}
+
+impl fmt::Display for Paths {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "free {}, warm {}, candidate {}, lemke {} ({} candidate bases tried)",
+            self.free, self.warm, self.candidate, self.lemke, self.candidates_tried
+        )
+    }
+}
+
+impl SolverCounters {
+    /// The warning a run with [`Self::round_off_limited`] steps gets, in the user's flags.
+    #[must_use]
+    pub fn round_off_warning(&self, steps: u64) -> Option<String> {
+        (self.round_off_limited > 0).then(|| {
+            format!(
+                "warning: {} of {steps} steps resolved their impulses only to more than {:e} of their size \
+                 (speed / (g h) too large for this precision: beyond the measured f32 envelope, \
+                 `host-sim envelope`); use a larger --h or --precision f64",
+                self.round_off_limited,
+                meterstick_core::planar::ROUND_OFF_LIMIT
+            )
+        })
+    }
+}
+
+impl From<&RunStats> for SolverCounters {
+    fn from(s: &RunStats) -> Self {
+        Self {
+            pivots: s.pivots,
+            max_pivots: s.max_pivots,
+            warm_starts: s.warm_starts,
+            reduced_check_fired: s.reduced_check_fired,
+            regularized_solves: s.regularized_solves,
+            round_off_limited: s.round_off_limited,
+            paths: Paths::from(&s.paths),
+            ..Self::default()
+        }
+    }
+}
+
+/// One run of a scene with `K` contacts, recorded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trajectory<const K: usize = 2> {
+    /// Who computed it.
+    pub implementation: Implementation,
+    /// Which scene.
+    pub scene: SceneKind,
+    /// Steps taken.
+    pub steps: u64,
+    /// Simulated time at the end (s).
+    pub end_time: f64,
+    /// The recorded rows ([`Record`]).
+    pub rows: Vec<Row<K>>,
+    /// The contacts' modes before the first step.
+    pub initial_modes: [ContactMode; K],
+    /// Switch events in order.
+    pub events: Vec<Event<K>>,
+    /// How it ended.
+    pub outcome: RunOutcome,
+    /// The scene's measured quantities.
+    pub measured: Measured,
+    /// Solver counters.
+    pub counters: SolverCounters,
+    /// The core's trajectory checksum ([`meterstick_core::planar::Checksum`]: FNV-1a over the
+    /// state's bits after every step, as the firmware and the browser page compute it).
+    pub checksum: Option<u32>,
+}
