@@ -9,12 +9,16 @@
 //!
 //! **The libraries** they are written over, each named for what it is: the scenes and their flags
 //! ([`scenes`]); one recorded run of a scene in the core or the independent f64 reference
-//! ([`mod@reference`]), its CSVs and comparisons ([`trajectory`]); what the commands write
-//! ([`output`]) and draw ([`plot`]); the outcome over two parameters ([`map`]); the error against
-//! run time over `h` ([`sweep`]); where f32 holds ([`envelope`]); the stress grid ([`stress`]);
-//! the rig over its link ([`monitor`]); firmware under QEMU ([`qemu`]); the page's file server
-//! ([`serve`]); the LCP file reader ([`lcp_io`]); input files read with a size cap ([`input`]);
-//! progress and Ctrl-C ([`progress`]); the failed-check error ([`errors`]).
+//! ([`mod@reference`]) ([`trajectory`]: its types, the rows kept, the core's run, the reference's
+//! run, the eq. 21 switches and deviations, the CSVs); what the commands write ([`output`]) and
+//! draw ([`plot`]); the outcome over two parameters ([`map`]); the error against run time over
+//! `h` ([`sweep`]); where f32 holds ([`envelope`]); the stress grid ([`stress`]); the rig over
+//! its link ([`monitor`]: parameters, recording, comparison); firmware under QEMU ([`qemu`]); the
+//! page's file server ([`serve`]); the LCP file reader ([`lcp_io`]); input files read with a size
+//! cap ([`input`]); progress and Ctrl-C ([`progress`]); the failed-check error ([`errors`]).
+//!
+//! `run_cmd` and `scene_cmd` are re-exports only (hidden), for `stress/` and
+//! `web/tests/host_sim.rs`, which still import the old paths.
 
 pub mod cli;
 pub mod commands;
