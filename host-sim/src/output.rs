@@ -1,6 +1,6 @@
-//! What the commands write: pretty JSON ([`write_json`]), CSV files line by line
-//! ([`write_lines`]), a scene's parameters as JSON ([`parameters_json`]) and numbers in tables and
-//! text ([`sci`]).
+//! What the commands write: their folders ([`create_dir`]), pretty JSON ([`write_json`]), CSV
+//! files line by line ([`write_lines`]), a scene's parameters as JSON ([`parameters_json`]) and
+//! numbers in tables and text ([`sci`]).
 
 use std::io::Write as _;
 use std::path::Path;
