@@ -16,9 +16,6 @@
 //! its link ([`monitor`]: parameters, recording, comparison); firmware under QEMU ([`qemu`]); the
 //! page's file server ([`serve`]); the LCP file reader ([`lcp_io`]); input files read with a size
 //! cap ([`input`]); progress and Ctrl-C ([`progress`]); the failed-check error ([`errors`]).
-//!
-//! `run_cmd` and `scene_cmd` are re-exports only (hidden), for `stress/` and
-//! `web/tests/host_sim.rs`, which still import the old paths.
 
 pub mod cli;
 pub mod commands;
@@ -41,18 +38,3 @@ pub mod trajectory;
 
 /// This crate's version.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
-
-/// The paths `stress/` still imports (`crate::run_cmd::...`, before the commands moved to
-/// [`commands`]); it goes when `stress/` imports [`output`] and [`progress`] itself.
-#[doc(hidden)]
-pub mod run_cmd {
-    pub use crate::output::{parameters_json, sci, write_json};
-    pub use crate::progress::bar as progress;
-}
-
-/// The path `web/tests/host_sim.rs` still imports (`scene_cmd::{SceneCmd, run_scene}`); it goes
-/// when that test imports [`commands::scene`].
-#[doc(hidden)]
-pub mod scene_cmd {
-    pub use crate::commands::scene::{SceneCmdArgs as SceneCmd, run as run_scene};
-}

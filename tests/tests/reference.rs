@@ -231,13 +231,7 @@ fn one_contact_matches(name: &str, spec: &SceneSpec) -> (f64, f64) {
         close(mc.jam.map(|j| j.normal_impulse_ns), mr.jam.map(|j| j.normal_impulse_ns), &what);
         close(mc.jam.map(|j| j.friction_impulse_ns), mr.jam.map(|j| j.friction_impulse_ns), &what);
         close(mc.jam.map(|j| j.time_s), mr.jam.map(|j| j.time_s), &what);
-        // The reference's angular acceleration against the core's trajectory (the core does not
-        // measure it): (omega(t_end) - omega(t_1)) / (t_end - t_1).
-        if let Some(w) = mr.angular_acceleration_rad_s2 {
-            let (first, last) = (&core.rows[1], core.rows.last().unwrap());
-            let of_core = (last.v[2] - first.v[2]) / (last.t - first.t);
-            assert!((w - of_core).abs() < 1e-9, "{what}: omega_dot {w} vs the core's {of_core}");
-        }
+        close(mc.angular_acceleration_rad_s2, mr.angular_acceleration_rad_s2, &what);
         println!(
             "{what}: {:?}, {} steps, COM {com:.1e} m, angle {angle:.1e} rad, impulses {impulse:.1e} N s, \
              measured {:?}",

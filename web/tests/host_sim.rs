@@ -3,8 +3,8 @@
 //! checksum and outcome as `host-sim scene` (on the host; the browser test checks the wasm build).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use meterstick_host_sim::commands::scene::{SceneCmdArgs as SceneCmd, run as run_scene};
 use meterstick_host_sim::lcp_io::Precision as HostPrecision;
-use meterstick_host_sim::scene_cmd::{SceneCmd, run_scene};
 use meterstick_host_sim::scenes::{LcpSize as HostSize, SceneArgs};
 use meterstick_host_sim::trajectory::{Record, run_k};
 use meterstick_web::config::{Config, LcpSize, Precision};

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use self::cases::Case;
 use self::judge::{Verdict, judge};
 use self::metrics::{Metrics, measure};
-use crate::run_cmd::progress;
+use crate::progress::bar as progress;
 use crate::scenes::Implementation;
 
 /// `host-sim stress` options.

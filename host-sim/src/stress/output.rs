@@ -8,10 +8,10 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::{CONFIGS, CaseResult};
+use crate::output::{parameters_json, sci, write_json, write_lines};
 use crate::plot;
-use crate::run_cmd::{parameters_json, sci, write_json};
 use crate::scenes::Implementation;
-use crate::trajectory::{OutcomeClass, write_lines};
+use crate::trajectory::OutcomeClass;
 
 fn outcome_text(m: &super::Metrics) -> String {
     m.outcome.as_ref().map_or_else(|| "Panicked".to_string(), ToString::to_string)

@@ -5,9 +5,7 @@ use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, StepReport};
 use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
 
-use super::{
-    ContactRow, Event, JamImpulses, Measured, Meeting, Record, Recorder, Row, SolverCounters, Trajectory,
-};
+use super::{ContactRow, Event, Measured, Record, Recorder, Row, SolverCounters, Trajectory};
 use crate::lcp_io::Precision;
 use crate::progress;
 use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec};
@@ -49,62 +47,41 @@ pub(super) fn core_run<T: Real, const N: usize, const K: usize>(
         SceneSpec::MeterStick(p) => {
             let mut s = MeterStick::<T, N, 0>::new(p.cast()).map_err(invalid)?;
             let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::MeterStick, record, bar);
-            t.measured.meeting =
-                s.meeting().map(|m| Meeting { time_s: m.time.as_f64(), com_offset_m: m.com_offset.as_f64() });
             t.counters.reduced_check_fired_before_meeting = s.reduced_check_fired_before_meeting();
             t
         }
         SceneSpec::Incline(p) => {
             let mut s = Incline::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Incline, record, bar);
-            t.measured.acceleration_m_s2 = s.acceleration().map(Real::as_f64);
-            t
+            drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Incline, record, bar)
         }
         SceneSpec::Ladder(p) => {
             let mut s = Ladder::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Ladder, record, bar);
-            let height = s.wall_release_height().map(Real::as_f64);
-            t.measured.wall_release_height_m = height;
-            t.measured.wall_release_ratio = height.map(|h| h / s.start_top_height().as_f64());
-            t
+            drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Ladder, record, bar)
+        }
+        // The one- and three-contact scenes in their own reduced or full layout.
+        SceneSpec::ThreeFingers(p) if N == 6 => {
+            let mut s = ThreeFingers::<T, 9, 0>::new(p.cast()).map_err(invalid)?;
+            drive::<T, _, 3, K>(&mut s, implementation, SceneKind::ThreeFingers, record, bar)
         }
         SceneSpec::ThreeFingers(p) => {
-            let kind = SceneKind::ThreeFingers;
-            if N == 6 {
-                let mut s = ThreeFingers::<T, 9, 0>::new(p.cast()).map_err(invalid)?;
-                drive::<T, _, 3, K>(&mut s, implementation, kind, record, bar)
-            } else {
-                let mut s = ThreeFingers::<T, 12, 0>::new(p.cast()).map_err(invalid)?;
-                drive::<T, _, 3, K>(&mut s, implementation, kind, record, bar)
-            }
+            let mut s = ThreeFingers::<T, 12, 0>::new(p.cast()).map_err(invalid)?;
+            drive::<T, _, 3, K>(&mut s, implementation, SceneKind::ThreeFingers, record, bar)
+        }
+        SceneSpec::Cylinder(p) if N == 6 => {
+            let mut s = Cylinder::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
+            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Cylinder, record, bar)
         }
         SceneSpec::Cylinder(p) => {
-            let kind = SceneKind::Cylinder;
-            let (mut t, a) = if N == 6 {
-                let mut s = Cylinder::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
-                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.acceleration())
-            } else {
-                let mut s = Cylinder::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
-                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.acceleration())
-            };
-            t.measured.acceleration_m_s2 = a.map(Real::as_f64);
-            t
+            let mut s = Cylinder::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
+            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Cylinder, record, bar)
+        }
+        SceneSpec::Painleve(p) if N == 6 => {
+            let mut s = Painleve::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
+            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Painleve, record, bar)
         }
         SceneSpec::Painleve(p) => {
-            let kind = SceneKind::Painleve;
-            let (mut t, jam) = if N == 6 {
-                let mut s = Painleve::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
-                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.jam())
-            } else {
-                let mut s = Painleve::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
-                (drive::<T, _, 1, K>(&mut s, implementation, kind, record, bar), s.jam())
-            };
-            t.measured.jam = jam.map(|j| JamImpulses {
-                time_s: j.time.as_f64(),
-                normal_impulse_ns: j.normal_impulse.as_f64(),
-                friction_impulse_ns: j.friction_impulse.as_f64(),
-            });
-            t
+            let mut s = Painleve::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
+            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Painleve, record, bar)
         }
     })
 }
@@ -184,7 +161,7 @@ fn drive<T: Real, S: Scene<T, KS>, const KS: usize, const K: usize>(
         initial_modes,
         events,
         outcome: scene.outcome().unwrap_or(Outcome::Unfinished).into(),
-        measured: Measured::default(),
+        measured: Measured::of(kind, scene.measured().map(|v| v.map(Real::as_f64))),
         counters,
         checksum: Some(checksum.value()),
     }

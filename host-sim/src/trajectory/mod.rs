@@ -19,7 +19,7 @@ mod run;
 use std::fmt;
 
 use meterstick_core::planar::{ContactMode, RunStats};
-use meterstick_core::scene::Outcome;
+use meterstick_core::scene::{MAX_MEASURES, Outcome};
 use serde::Serialize;
 
 use crate::scenes::{Implementation, SceneKind};
@@ -30,9 +30,6 @@ pub use csv::{csv_header, write_csv, write_events_csv};
 pub use record::{MAX_RECORDED_STEPS, Record, Recorder, check_recorded_steps};
 pub use reference_run::run_reference;
 pub use run::{run, run_k, run_watched};
-
-/// Writes a CSV file (re-exported from [`crate::output`] for `stress/`, which imports it here).
-pub use crate::output::write_lines;
 
 /// One contact after a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,8 +130,8 @@ pub struct Measured {
     /// Incline: the acceleration down the slope while sliding; cylinder: after the first step
     /// (m/s^2).
     pub acceleration_m_s2: Option<f64>,
-    /// Cylinder: the angular acceleration after the first step, counter-clockwise (rad/s^2; the
-    /// reference's, absent from `summary.json` for a run without it).
+    /// Cylinder: the angular acceleration after the first step, counter-clockwise (rad/s^2;
+    /// absent from `summary.json` for other scenes).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub angular_acceleration_rad_s2: Option<f64>,
     /// Ladder: height of the top when it left the wall (m).
@@ -144,6 +141,31 @@ pub struct Measured {
     /// Painlevé: the jam step's impulses (absent from `summary.json` for other scenes).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub jam: Option<JamImpulses>,
+}
+
+impl Measured {
+    /// The typed summary of what a scene of `kind` measured: `values` in the order of its
+    /// catalogue entry's `measures` ([`meterstick_core::scene::Scene::measured`]).
+    #[must_use]
+    pub fn of(kind: SceneKind, values: [Option<f64>; MAX_MEASURES]) -> Self {
+        let [a, b, c] = values;
+        let mut m = Self::default();
+        match kind {
+            SceneKind::MeterStick => {
+                m.meeting = a.zip(b).map(|(time_s, com_offset_m)| Meeting { time_s, com_offset_m });
+            }
+            SceneKind::Incline => m.acceleration_m_s2 = a,
+            SceneKind::Ladder => (m.wall_release_height_m, m.wall_release_ratio) = (a, b),
+            SceneKind::ThreeFingers => {}
+            SceneKind::Cylinder => (m.acceleration_m_s2, m.angular_acceleration_rad_s2) = (a, b),
+            SceneKind::Painleve => {
+                m.jam = a.zip(b).zip(c).map(|((time_s, normal_impulse_ns), friction_impulse_ns)| {
+                    JamImpulses { time_s, normal_impulse_ns, friction_impulse_ns }
+                });
+            }
+        }
+        m
+    }
 }
 
 /// The Painlevé rod's jam: the step on which the sliding end stopped.
