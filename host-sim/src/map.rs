@@ -22,7 +22,7 @@ use serde::Serialize;
 use crate::output::{create_dir, write_json, write_lines};
 use crate::plot;
 use crate::progress::bar as progress;
-use crate::scenes::{FLAGS, Flag, Implementation, SceneSpec, SpecExt as _, flag_error};
+use crate::scenes::{FLAGS, Flag, Implementation, ImplementationOf, SceneSpec, SpecExt as _, flag_error};
 use crate::trajectory::{OutcomeClass, Record, run_k};
 
 /// The most cells a map may have (each is a run of up to `MAX_STEPS`).
@@ -110,7 +110,7 @@ pub struct MapSummary {
     /// The scene.
     pub scene: crate::scenes::SceneKind,
     /// Who computed it.
-    pub implementation: Implementation,
+    pub implementation: ImplementationOf,
     /// Axes.
     pub x_axis: String,
     /// Axes.
@@ -288,7 +288,7 @@ pub fn compute(base: &SceneSpec, grid: &Grid, implementation: Implementation) ->
     }
     let summary = MapSummary {
         scene: base.kind(),
-        implementation,
+        implementation: implementation.of_scene(base.kind()),
         x_axis: axes.0.label(),
         y_axis: axes.1.label(),
         cells: [xs.len(), ys.len()],

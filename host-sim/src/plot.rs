@@ -166,7 +166,7 @@ fn per_run<const K: usize>(
     runs.iter()
         .enumerate()
         .map(|(k, run)| Series {
-            label: format!("{name} ({})", run.implementation),
+            label: format!("{name} ({})", run.implementation.of_scene(run.scene)),
             points: run.rows.iter().map(|r| (r.t, value(r))).collect(),
             dashed: k > 0,
         })

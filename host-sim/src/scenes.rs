@@ -153,13 +153,21 @@ pub enum LcpSize {
 }
 
 impl LcpSize {
-    /// 6 or 8.
+    /// 6 or 8: the size for a two-contact scene.
     #[must_use]
     pub const fn n(self) -> usize {
-        match self {
-            Self::Reduced => 6,
-            Self::Full => 8,
-        }
+        self.n_for(2)
+    }
+
+    /// The LCP's size for a scene of `contacts` contacts (docs/formulation.md): per contact its
+    /// normal, its slack and one friction direction (reduced) or two (full).
+    #[must_use]
+    pub const fn n_for(self, contacts: usize) -> usize {
+        contacts
+            * match self {
+                Self::Reduced => 3,
+                Self::Full => 4,
+            }
     }
 }
 
@@ -190,16 +198,53 @@ impl Implementation {
     }
 }
 
+/// The label for a two-contact scene (the report's, the stress grid's columns); a run of any scene
+/// is labelled by [`Implementation::of_scene`].
 impl fmt::Display for Implementation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Core(p, n) => write!(f, "core {} {n}x{n}", p.name(), n = n.n()),
-            Self::Reference => f.write_str("reference f64 8x8"),
-        }
+        fmt::Display::fmt(&ImplementationOf { implementation: *self, contacts: 2 }, f)
     }
 }
 
 impl Serialize for Implementation {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+impl Implementation {
+    /// This implementation as it runs a scene of `kind`, whose contacts set its LCP's size.
+    #[must_use]
+    pub const fn of_scene(self, kind: SceneKind) -> ImplementationOf {
+        ImplementationOf { implementation: self, contacts: kind.info().contacts }
+    }
+}
+
+/// An [`Implementation`] running a scene of `contacts` contacts: its label names the LCP's size,
+/// `core f32 6x6` for a two-contact scene in the reduced layout, `core f32 3x3` for one contact,
+/// `reference f64 8x8` (the reference solves the full form).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ImplementationOf {
+    /// Who computed the run.
+    pub implementation: Implementation,
+    /// The scene's contacts.
+    pub contacts: usize,
+}
+
+impl fmt::Display for ImplementationOf {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.implementation {
+            Implementation::Core(p, size) => {
+                write!(f, "core {} {n}x{n}", p.name(), n = size.n_for(self.contacts))
+            }
+            Implementation::Reference => {
+                write!(f, "reference f64 {n}x{n}", n = LcpSize::Full.n_for(self.contacts))
+            }
+        }
+    }
+}
+
+impl Serialize for ImplementationOf {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.collect_str(self)
     }
@@ -485,5 +530,20 @@ mod tests {
         spec.set("rod_mass", -1.0);
         let e = spec.validate(Precision::F32).unwrap_err();
         assert_eq!(flag_error(&spec, e), "--mass -1 kg: must be greater than 0");
+    }
+
+    /// A run's label names the LCP its scene's contacts give: 3 per contact reduced, 4 full.
+    #[test]
+    fn labels_name_the_scenes_lcp_size() {
+        let label = |i: Implementation, kind| i.of_scene(kind).to_string();
+        assert_eq!(label(Implementation::CORE_F32_6, SceneKind::MeterStick), "core f32 6x6");
+        assert_eq!(label(Implementation::CORE_F32_6, SceneKind::Cylinder), "core f32 3x3");
+        assert_eq!(label(Implementation::CORE_F64_8, SceneKind::Painleve), "core f64 4x4");
+        assert_eq!(label(Implementation::CORE_F32_8, SceneKind::ThreeFingers), "core f32 12x12");
+        assert_eq!(label(Implementation::Reference, SceneKind::ThreeFingers), "reference f64 12x12");
+        assert_eq!(
+            label(Implementation::Reference, SceneKind::Ladder),
+            Implementation::Reference.to_string()
+        );
     }
 }

@@ -20,7 +20,7 @@ use serde::Serialize;
 use crate::output::{create_dir, parameters_json, write_json};
 use crate::plot;
 use crate::progress::{Interrupted, interrupted, is_interrupted};
-use crate::scenes::{Implementation, SceneArgs, SceneKind, SceneSpec, SpecExt as _};
+use crate::scenes::{Implementation, ImplementationOf, SceneArgs, SceneKind, SceneSpec, SpecExt as _};
 use crate::trajectory::{
     Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, check_recorded_steps, max_deviation,
     run_k, switches, write_csv, write_events_csv,
@@ -45,7 +45,7 @@ pub struct RunArgs {
 #[derive(Debug, Clone, Serialize)]
 pub struct ImplementationSummary {
     /// Who computed it.
-    pub implementation: Implementation,
+    pub implementation: ImplementationOf,
     /// How it ended.
     pub outcome: OutcomeClass,
     /// Why it failed, if it did.
@@ -78,7 +78,7 @@ impl ImplementationSummary {
         let worst = mu_ratio.and_then(|m| sw.iter().map(|s| (s.ratio - m).abs()).reduce(f64::max));
         let steps = t.steps.max(1) as f64;
         Self {
-            implementation: t.implementation,
+            implementation: t.implementation.of_scene(t.scene),
             outcome: t.outcome.class,
             outcome_detail: t.outcome.detail.clone(),
             end_time_s: t.end_time,
@@ -275,10 +275,16 @@ fn plot_run<const K: usize>(
     let title = match reference {
         Some(reference) => format!(
             "{what}: {} {} (solid), reference {} (dashed)",
-            core.implementation, core.outcome.class, reference.outcome.class
+            core.implementation.of_scene(core.scene),
+            core.outcome.class,
+            reference.outcome.class
         ),
         None => {
-            format!("{what}: {} {} (no reference for this scene)", core.implementation, core.outcome.class)
+            format!(
+                "{what}: {} {} (no reference for this scene)",
+                core.implementation.of_scene(core.scene),
+                core.outcome.class
+            )
         }
     };
     let runs: Vec<&Trajectory<K>> = std::iter::once(core).chain(reference).collect();
@@ -298,6 +304,12 @@ fn mm(v: Option<f64>) -> String {
 fn measured_text(m: &Measured) -> String {
     if let Some(meeting) = m.meeting {
         return format!("meet {} mm", mm(Some(meeting.com_offset_m)));
+    }
+    if let Some(j) = m.jam {
+        return format!("jam {:.4}, {:.4} N s", j.normal_impulse_ns, j.friction_impulse_ns);
+    }
+    if let (Some(a), Some(w)) = (m.acceleration_m_s2, m.angular_acceleration_rad_s2) {
+        return format!("a = {a:.4}, {w:.3} rad/s^2");
     }
     if let Some(a) = m.acceleration_m_s2 {
         return format!("a = {a:.5} m/s^2");
@@ -320,7 +332,7 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
                 let hi = t.eq21_switches.iter().map(|x| x.ratio).fold(f64::NEG_INFINITY, f64::max);
                 format!("{lo:.4}..{hi:.4} ({})", t.eq21_switches.len())
             };
-            let check = match t.implementation {
+            let check = match t.implementation.implementation {
                 Implementation::Core(_, crate::scenes::LcpSize::Reduced) => format!(
                     "{} ({} before meeting)",
                     t.counters.reduced_check_fired, t.counters.reduced_check_fired_before_meeting

@@ -38,7 +38,13 @@ fn summarise<const K: usize>(cmd: &SceneCmdArgs, spec: &SceneSpec) -> anyhow::Re
     let mut out = String::new();
     let params: Vec<String> = spec.fields().map(|(k, v)| format!("{k} = {v}")).collect();
     let _ = writeln!(out, "scene {}: {}", spec.kind(), params.join(", "));
-    let _ = writeln!(out, "{implementation}: outcome {} at t = {:.3} s", traj.outcome, traj.end_time);
+    let _ = writeln!(
+        out,
+        "{}: outcome {} at t = {:.3} s",
+        implementation.of_scene(spec.kind()),
+        traj.outcome,
+        traj.end_time
+    );
     write_measured(&mut out, spec, &traj.measured);
     let c = &traj.counters;
     let _ = writeln!(
@@ -123,6 +129,23 @@ fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Mea
             String::new()
         };
         let _ = writeln!(out, "acceleration down the slope {a:.6} m/s^2{exact}");
+    }
+    if let Some(w) = m.angular_acceleration_rad_s2 {
+        let exact = if let SceneSpec::Cylinder(p) = spec {
+            let law = if p.rolls() {
+                format!("rolling: a / r = {:.6}", p.analytic_acceleration() / p.radius)
+            } else {
+                let c = p.angle.cos();
+                format!(
+                    "sliding: mu_k g cos a / (k r) = {:.6}",
+                    p.mu_kinetic * p.gravity * c / (p.inertia_factor * p.radius)
+                )
+            };
+            format!(" ({law})")
+        } else {
+            String::new()
+        };
+        let _ = writeln!(out, "angular acceleration {w:.6} rad/s^2, counter-clockwise{exact}");
     }
     if let Some(j) = m.jam {
         let exact = if let SceneSpec::Painleve(p) = spec {
