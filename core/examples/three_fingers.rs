@@ -14,7 +14,7 @@
 use meterstick_core::ParamError;
 use meterstick_core::planar::{
     Body, BodyState, Contact, ContactFrame, ContactMode, EventLog, Feature, Layout, Model, RunStats,
-    Settings, StepReport, Stepper, Support, Tangents,
+    Settings, StepReport, Stepper, Support, SwitchEvent, Tangents,
 };
 use meterstick_core::scene::{Outcome, Scene};
 
@@ -103,6 +103,9 @@ impl Scene<f64, 3> for ThreeFingers {
     fn stats(&self) -> &RunStats {
         self.stepper.stats()
     }
+    fn events(&self) -> &[SwitchEvent<f64, 3>] {
+        self.events.events()
+    }
 }
 
 fn main() -> Result<(), ParamError> {
@@ -114,7 +117,7 @@ fn main() -> Result<(), ParamError> {
         scene.time(),
         scene.state().x
     );
-    for e in scene.events.events() {
+    for e in scene.events() {
         println!("  t = {:6.3} s  finger {} -> {}", e.time, e.contact + 1, e.mode.name());
     }
     if let Some(r) = last {

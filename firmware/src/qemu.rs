@@ -146,20 +146,19 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     Some(outcome)
 }
 
-/// Runs a scene built outside the rig (`run_plain`), prints its events with `events`, and counts
-/// 1 when it was refused or ended other than `expected`. Not inlined, so that each scene's stack
+/// Runs a scene built outside the rig (`run_plain`), prints its events, and counts 1 when it was
+/// refused or ended other than `expected`. Not inlined, so that each scene's stack
 /// frame is its own (the micro:bit has 16 KiB of RAM).
 #[inline(never)]
 fn check_plain<S: Scene<f32, K>, const K: usize>(
     name: &str,
     scene: Result<S, ParamError>,
     expected: Outcome,
-    events: impl FnOnce(&S),
 ) -> i32 {
     match scene {
         Ok(mut scene) => {
             let outcome = run_plain(name, &mut scene);
-            events(&scene);
+            print_events(name, scene.events());
             i32::from(outcome != expected)
         }
         Err(e) => {
@@ -205,36 +204,17 @@ pub fn main() -> ! {
     if run_scene("fast", 5.0) != Some(Outcome::Fell) {
         failures += 1;
     }
-    failures +=
-        check_plain("incline", Incline::<f32, 6, 16>::new(InclineParams::default()), Outcome::Slid, |s| {
-            print_events("incline", s.events());
-        });
-    failures +=
-        check_plain("ladder", Ladder::<f32, 6, 16>::new(LadderParams::default()), Outcome::Fell, |s| {
-            print_events("ladder", s.events());
-        });
+    failures += check_plain("incline", Incline::<f32, 6, 16>::new(InclineParams::default()), Outcome::Slid);
+    failures += check_plain("ladder", Ladder::<f32, 6, 16>::new(LadderParams::default()), Outcome::Fell);
     failures += check_plain(
         "three-fingers",
         ThreeFingers::<f32, 9, 16>::new(ThreeFingersParams::default()),
         Outcome::Held,
-        |s| print_events("three-fingers", s.events()),
     );
-    failures += check_plain(
-        "cylinder",
-        Cylinder::<f32, 3, 16>::new(CylinderParams::default()),
-        Outcome::Rolled,
-        |s| {
-            print_events("cylinder", s.events());
-        },
-    );
-    failures += check_plain(
-        "painleve",
-        Painleve::<f32, 3, 16>::new(PainleveParams::default()),
-        Outcome::Jammed,
-        |s| {
-            print_events("painleve", s.events());
-        },
-    );
+    failures +=
+        check_plain("cylinder", Cylinder::<f32, 3, 16>::new(CylinderParams::default()), Outcome::Rolled);
+    failures +=
+        check_plain("painleve", Painleve::<f32, 3, 16>::new(PainleveParams::default()), Outcome::Jammed);
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)
 }

@@ -16,7 +16,7 @@ use super::scene_trait::impl_scene;
 use crate::params::{ParamError, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
-    SwitchEvent, Tangents,
+    Tangents,
 };
 use crate::real::Real;
 
@@ -140,12 +140,6 @@ impl<T: Real, const N: usize, const E: usize> Cylinder<T, N, E> {
     #[must_use]
     pub const fn params(&self) -> &CylinderParams<T> {
         &self.params
-    }
-
-    /// The switch events so far.
-    #[must_use]
-    pub fn events(&self) -> &[SwitchEvent<T, 1>] {
-        self.events.events()
     }
 
     /// The velocity down the slope, `-(vx cos alpha + vy sin alpha)` (m/s).

@@ -30,7 +30,7 @@ use super::scene_trait::impl_scene;
 use crate::params::{ParamError, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
-    SwitchEvent, Tangents,
+    Tangents,
 };
 use crate::real::Real;
 
@@ -145,11 +145,6 @@ impl<T: Real, const N: usize, const E: usize> Incline<T, N, E> {
     #[must_use]
     pub const fn params(&self) -> &InclineParams<T> {
         &self.params
-    }
-    /// The switch events so far.
-    #[must_use]
-    pub fn events(&self) -> &[SwitchEvent<T, 2>] {
-        self.events.events()
     }
     /// The underlying stepper.
     #[must_use]

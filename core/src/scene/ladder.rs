@@ -28,7 +28,7 @@ use super::scene_trait::impl_scene;
 use crate::params::{ParamError, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
-    SwitchEvent, Tangents,
+    Tangents,
 };
 use crate::real::Real;
 
@@ -147,11 +147,6 @@ impl<T: Real, const N: usize, const E: usize> Ladder<T, N, E> {
     #[must_use]
     pub const fn params(&self) -> &LadderParams<T> {
         &self.params
-    }
-    /// The switch events so far.
-    #[must_use]
-    pub fn events(&self) -> &[SwitchEvent<T, 2>] {
-        self.events.events()
     }
     /// The underlying stepper.
     #[must_use]

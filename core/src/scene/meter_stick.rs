@@ -32,7 +32,7 @@ use super::scene_trait::impl_scene;
 use crate::params::{ParamError, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
-    SwitchEvent, Tangents,
+    Tangents,
 };
 use crate::real::Real;
 
@@ -267,11 +267,6 @@ impl<T: Real, const N: usize, const E: usize> MeterStick<T, N, E> {
     #[must_use]
     pub const fn fingers(&self) -> [T; 2] {
         self.fingers
-    }
-    /// The switch events so far (at most `E`; [`Self::events_dropped`] counts the rest).
-    #[must_use]
-    pub fn events(&self) -> &[SwitchEvent<T, 2>] {
-        self.events.events()
     }
     /// Switch events that did not fit the buffer.
     #[must_use]

@@ -21,7 +21,7 @@ use super::scene_trait::impl_scene;
 use crate::params::{ParamError, params};
 use crate::planar::{
     Body, BodyState, Contact, ContactMode, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper,
-    Support, SwitchEvent, Tangents,
+    Support, Tangents,
 };
 use crate::real::Real;
 
@@ -154,12 +154,6 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
     #[must_use]
     pub const fn params(&self) -> &PainleveParams<T> {
         &self.params
-    }
-
-    /// The switch events so far.
-    #[must_use]
-    pub fn events(&self) -> &[SwitchEvent<T, 1>] {
-        self.events.events()
     }
 
     /// The jam, once it happened.

@@ -2,7 +2,7 @@
 
 use super::catalogue::MAX_MEASURES;
 use super::outcome::Outcome;
-use crate::planar::{BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support};
+use crate::planar::{BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support, SwitchEvent};
 use crate::real::Real;
 
 /// A scene: one body on `K` supports the scene moves, stepped to an [`Outcome`].
@@ -27,6 +27,11 @@ pub trait Scene<T: Real, const K: usize> {
     fn modes(&self) -> [ContactMode; K];
     /// The stepper's counters.
     fn stats(&self) -> &RunStats;
+    /// The switch events so far (a contact's mode changed after a step), as many as the scene
+    /// keeps (a catalogue scene its `E`, counting the rest); a scene that keeps none has none.
+    fn events(&self) -> &[SwitchEvent<T, K>] {
+        &[]
+    }
     /// What the scene measures, in the order of its catalogue entry's `measures`
     /// (`super::catalogue::SceneInfo`, the keys of `host-sim`'s `summary.json`); `None` where a
     /// quantity has no value (yet). A scene outside the catalogue measures nothing.
@@ -74,6 +79,9 @@ macro_rules! impl_scene {
             }
             fn stats(&self) -> &$crate::planar::RunStats {
                 self.stepper.stats()
+            }
+            fn events(&self) -> &[$crate::planar::SwitchEvent<T, $k>] {
+                self.events.events()
             }
             fn measured(&self) -> [Option<T>; $crate::scene::MAX_MEASURES] {
                 self.measured_values()

@@ -19,7 +19,7 @@ use super::scene_trait::impl_scene;
 use crate::params::{ParamError, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
-    SwitchEvent, Tangents,
+    Tangents,
 };
 use crate::real::Real;
 
@@ -141,12 +141,6 @@ impl<T: Real, const N: usize, const E: usize> ThreeFingers<T, N, E> {
     #[must_use]
     pub const fn params(&self) -> &ThreeFingersParams<T> {
         &self.params
-    }
-
-    /// The switch events so far.
-    #[must_use]
-    pub fn events(&self) -> &[SwitchEvent<T, 3>] {
-        self.events.events()
     }
 
     /// When finger 1 stopped (s), once it has.
