@@ -143,8 +143,10 @@ pub struct Painleve {
     pub angle: f64,
     /// The rod's start speed `V` toward `-x`, m/s.
     pub speed: f64,
-    /// The floor's `mu` (static and kinetic).
-    pub mu_floor: f64,
+    /// The floor's static `mu_s`.
+    pub mu_static: f64,
+    /// The floor's kinetic `mu_k` (at most `mu_s`).
+    pub mu_kinetic: f64,
     /// `h`, s.
     pub step: f64,
     /// Slip speed at or below which a touching contact sticks, m/s.
@@ -162,7 +164,8 @@ impl Default for Painleve {
             gravity: 9.81,
             angle: 30_f64.to_radians(),
             speed: 1.0,
-            mu_floor: 3.0,
+            mu_static: 3.0,
+            mu_kinetic: 3.0,
             step: 0.001,
             stick_speed: 1e-5,
             max_time: 0.5,
@@ -283,7 +286,8 @@ impl Painleve {
             ("gravity", self.gravity),
             ("angle", self.angle),
             ("speed", self.speed),
-            ("mu_floor", self.mu_floor),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
             ("step", self.step),
             ("stick_speed", self.stick_speed),
             ("max_time", self.max_time),
@@ -297,9 +301,11 @@ impl Painleve {
         ])?;
         non_negative(&[
             ("gravity", self.gravity),
-            ("mu_floor", self.mu_floor),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
             ("stick_speed", self.stick_speed),
         ])?;
+        kinetic_at_most_static(self.mu_static, self.mu_kinetic)?;
         if !(self.angle > 0.0 && self.angle < FRAC_PI_2) {
             return Err(format!("angle ({}) must be in (0, pi/2)", self.angle));
         }
@@ -522,7 +528,7 @@ impl Scene for PainleveScene {
     }
 
     fn friction(&self) -> Vec<(f64, f64)> {
-        vec![(self.p.mu_floor, self.p.mu_floor)]
+        vec![(self.p.mu_static, self.p.mu_kinetic)]
     }
 
     fn supports(&self, _steps: u64) -> Vec<Support> {

@@ -302,7 +302,7 @@ fn painleves_rod_jams_above_its_critical_coefficient_with_an_impulse_that_does_n
         let (mu_c, [pf, pn]) = painleve_law(&base);
         let mut errors = Vec::new();
         for step in [1e-3, 1e-4, 1e-5, 1e-6] {
-            let p = Painleve { mu_floor: 1.2 * mu_c, step, ..base };
+            let p = Painleve { mu_static: 1.2 * mu_c, mu_kinetic: 1.2 * mu_c, step, ..base };
             let run = run(&Spec::Painleve(p), Sample::None).unwrap();
             assert_eq!(run.outcome, Outcome::Jammed, "{deg} deg, h = {step}");
             assert_eq!(run.initial_modes, vec![Mode::SlidingPositive]);
@@ -329,7 +329,7 @@ fn painleves_rod_jams_above_its_critical_coefficient_with_an_impulse_that_does_n
         for (fraction, max_time, jams) in
             [(1.05, base.step, true), (0.95, base.step, false), (0.5, 0.05, false)]
         {
-            let p = Painleve { mu_floor: fraction * mu_c, max_time, ..base };
+            let p = Painleve { mu_static: fraction * mu_c, mu_kinetic: fraction * mu_c, max_time, ..base };
             let run = run(&Spec::Painleve(p), Sample::None).unwrap();
             eprintln!(
                 "painleve {deg} deg, mu = {fraction} mu_c: {:?} after {} steps",
@@ -351,7 +351,7 @@ fn below_painleves_critical_coefficient_the_impulses_scale_with_h_and_a_stop_is_
     for deg in [30.0_f64, 45.0, 60.0] {
         let base = Painleve { angle: deg.to_radians(), ..Painleve::default() };
         let (mu_c, _) = painleve_law(&base);
-        let sliding = Painleve { mu_floor: 0.8 * mu_c, ..base };
+        let sliding = Painleve { mu_static: 0.8 * mu_c, mu_kinetic: 0.8 * mu_c, ..base };
         let mut forces = Vec::new();
         for step in [1e-3, 1e-4, 1e-5, 1e-6] {
             let p = Painleve { step, max_time: step, ..sliding };

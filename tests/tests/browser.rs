@@ -399,12 +399,12 @@ fn the_page_in_chromium() {
         "scene=cylinder&angle=70&precision=f64&lcp-size=8&autorun=1&rate=max",
         "Slid",
     );
-    check_scene(&b, &base, "painleve-jammed", "scene=painleve&angle=30&mu-floor=3&autorun=1", "Jammed");
+    check_scene(&b, &base, "painleve-jammed", "scene=painleve&angle=30&mu-k=3&autorun=1", "Jammed");
     check_scene(
         &b,
         &base,
         "painleve-sliding",
-        "scene=painleve&mu-floor=1&duration=0.1&lcp-size=8&autorun=1&rate=max",
+        "scene=painleve&mu-s=1&mu-k=1&duration=0.1&lcp-size=8&autorun=1&rate=max",
         "Slid",
     );
     check_scene(&b, &base, "three-fingers", "scene=three-fingers&speed=0.2&autorun=1&rate=max", "Held");

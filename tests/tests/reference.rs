@@ -265,7 +265,8 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
             "painleve 45 deg, h = 1e-4",
             SceneSpec::Painleve(PainleveParams {
                 angle: deg(45.0),
-                mu_floor: 2.0,
+                mu_static: 2.0,
+                mu_kinetic: 2.0,
                 step: 1e-4,
                 ..PainleveParams::default()
             }),
@@ -277,7 +278,11 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
             // after 5 steps under an impulse of the order of the last step's, a stop and no impact,
             // and the rod falls.
             "painleve stops late, falls",
-            SceneSpec::Painleve(PainleveParams { mu_floor: 2.4, ..PainleveParams::default() }),
+            SceneSpec::Painleve(PainleveParams {
+                mu_static: 2.4,
+                mu_kinetic: 2.4,
+                ..PainleveParams::default()
+            }),
             OutcomeClass::Fell,
         ),
         (
@@ -286,7 +291,8 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
             "painleve stops, falls",
             SceneSpec::Painleve(PainleveParams {
                 speed: 0.1,
-                mu_floor: 2.0,
+                mu_static: 2.0,
+                mu_kinetic: 2.0,
                 max_time: 1.0,
                 ..PainleveParams::default()
             }),
@@ -294,7 +300,12 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
         ),
         (
             "painleve slides",
-            SceneSpec::Painleve(PainleveParams { mu_floor: 1.0, max_time: 0.2, ..PainleveParams::default() }),
+            SceneSpec::Painleve(PainleveParams {
+                mu_static: 1.0,
+                mu_kinetic: 1.0,
+                max_time: 0.2,
+                ..PainleveParams::default()
+            }),
             OutcomeClass::Slid,
         ),
     ];

@@ -55,7 +55,7 @@ fn refusals_are_worded_as_host_sim_words_them() {
         (SceneKind::Cylinder, &[("radius", 0.0)], Precision::F64),
         (SceneKind::Cylinder, &[("angle", 90.0)], Precision::F32),
         (SceneKind::Painleve, &[("angle", 0.0)], Precision::F32),
-        (SceneKind::Painleve, &[("mu-floor", -3.0)], Precision::F64),
+        (SceneKind::Painleve, &[("mu-k", -3.0)], Precision::F64),
     ];
     for (kind, given, precision) in cases {
         let (args, mut session) = both(*kind, given, *precision, LcpSize::Reduced);
@@ -90,8 +90,8 @@ fn parameters_outcome_and_checksum_match_host_sim_scene() {
         (SceneKind::Cylinder, &[], Precision::F32, LcpSize::Reduced),
         (SceneKind::Cylinder, &[("angle", 70.0)], Precision::F64, LcpSize::Full),
         (SceneKind::Painleve, &[], Precision::F32, LcpSize::Reduced),
-        (SceneKind::Painleve, &[("mu-floor", 1.0)], Precision::F64, LcpSize::Full),
-        (SceneKind::Painleve, &[("angle", 60.0), ("mu-floor", 2.0)], Precision::F32, LcpSize::Full),
+        (SceneKind::Painleve, &[("mu-s", 1.0), ("mu-k", 1.0)], Precision::F64, LcpSize::Full),
+        (SceneKind::Painleve, &[("angle", 60.0), ("mu-k", 2.0)], Precision::F32, LcpSize::Full),
     ];
     for (kind, given, precision, size) in cases {
         let (args, mut session) = both(*kind, given, *precision, *size);

@@ -40,9 +40,11 @@ params! {
         angle: 0.523_598_775_598_298_8, Finite;
         /// The rod's speed toward `-x` at the start (m/s; the end slides away from under it). 1.
         speed: 1.0, Finite;
-        /// Friction coefficient of the floor, static and kinetic (>= 0). 3 (the jam needs
-        /// `mu > (1 + 3 c^2) / (3 s c)`: 2.50 at 30 degrees, 1.67 at 45, 1.35 at 60).
-        mu_floor: 3.0, NonNegative;
+        /// Static friction coefficient of the floor (>= 0). 3.
+        mu_static: 3.0, NonNegative;
+        /// Kinetic friction coefficient of the floor (0 <= mu_k <= mu_s). 3 (the jam needs
+        /// `mu_k > (1 + 3 c^2) / (3 s c)`: 2.50 at 30 degrees, 1.67 at 45, 1.35 at 60).
+        mu_kinetic: 3.0, NonNegative;
         /// Time step `h` (s, > 0). 1e-3.
         step: 1e-3, Positive;
         /// A touching contact whose slip speed is at most this sticks (m/s, >= 0). 1e-5.
@@ -59,13 +61,16 @@ impl<T: Real> PainleveParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
+        if self.mu_kinetic > self.mu_static {
+            return Err(ParamError::KineticAboveStatic);
+        }
         if !(self.angle > T::zero() && self.angle < T::frac_pi_2()) {
             return Err(ParamError::OutOfRange("angle"));
         }
         Ok(())
     }
 
-    /// `(1 + 3 c^2) / (3 s c)`: the friction coefficient above which the sliding end jams.
+    /// `(1 + 3 c^2) / (3 s c)`: the kinetic friction coefficient above which the sliding end jams.
     #[must_use]
     pub fn critical_mu(&self) -> T {
         let (s, c) = self.angle.sin_cos_portable();
@@ -131,8 +136,8 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
         let p = &params;
         let end = Contact {
             feature: Feature::Point([-p.length / T::of(2.0), T::zero()]),
-            mu_static: p.mu_floor,
-            mu_kinetic: p.mu_floor,
+            mu_static: p.mu_static,
+            mu_kinetic: p.mu_kinetic,
         };
         let settings = Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed };
         let model = Model { body: Body::rod(p.mass, p.length, p.thickness), contacts: [end], settings };
@@ -230,9 +235,9 @@ mod tests {
         for deg in [30.0_f64, 45.0, 60.0] {
             let base = PainleveParams { angle: deg.to_radians(), ..PainleveParams::default() };
             let mu_c = base.critical_mu();
-            let jamming = PainleveParams { mu_floor: 1.2 * mu_c, ..base };
+            let jamming = PainleveParams { mu_static: 1.2 * mu_c, mu_kinetic: 1.2 * mu_c, ..base };
             let (pf, pn) = jamming.jam_impulses();
-            assert!(pf / pn <= jamming.mu_floor, "the impact is in the friction cone");
+            assert!(pf / pn <= jamming.mu_kinetic, "the impact is in the friction cone");
             for h in [1e-3, 1e-4, 1e-5, 1e-6] {
                 let p = PainleveParams { step: h, ..jamming };
                 for full in [false, true] {
@@ -253,7 +258,8 @@ mod tests {
                     );
                 }
             }
-            let sliding = PainleveParams { mu_floor: 0.5 * mu_c, max_time: 0.05, ..base };
+            let sliding =
+                PainleveParams { mu_static: 0.5 * mu_c, mu_kinetic: 0.5 * mu_c, max_time: 0.05, ..base };
             let (outcome, jam) = run::<3>(sliding);
             assert_eq!((outcome, jam), (Outcome::Slid, None), "{deg} deg below the critical mu");
         }
@@ -267,7 +273,8 @@ mod tests {
     fn below_the_critical_mu_the_impulses_vanish_with_h_and_a_stop_is_no_jam() {
         for deg in [30.0_f64, 45.0, 60.0] {
             let base = PainleveParams { angle: deg.to_radians(), ..PainleveParams::default() };
-            let sliding = PainleveParams { mu_floor: 0.8 * base.critical_mu(), ..base };
+            let mu = 0.8 * base.critical_mu();
+            let sliding = PainleveParams { mu_static: mu, mu_kinetic: mu, ..base };
             let mut per_h: Option<(f64, f64)> = None;
             for h in [1e-3, 1e-4, 1e-5, 1e-6] {
                 let mut rod = Painleve::<f64, 3>::new(PainleveParams { step: h, ..sliding }).unwrap();

@@ -151,7 +151,7 @@ fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Mea
         let exact = if let SceneSpec::Painleve(p) = spec {
             let (pf, pn) = p.jam_impulses();
             format!(
-                " (tangential impact m V / 4 (1 + 3 c^2, 3 s c) = {pf:.6}, {pn:.6}; jams above mu = {:.4})",
+                " (tangential impact m V / 4 (1 + 3 c^2, 3 s c) = {pf:.6}, {pn:.6}; jams above mu_k = {:.4})",
                 p.critical_mu()
             )
         } else {

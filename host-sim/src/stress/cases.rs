@@ -129,13 +129,14 @@ fn ladder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
     }
 }
 
-/// Painlevé's rod at `deg` degrees, `mu`, speed `v`, step `h`; `stick_speed` 1e-5 of `v` from
+/// Painlevé's rod at `deg` degrees, `mu_s = mu_k = mu`, speed `v`, step `h`; `stick_speed` 1e-5 of `v` from
 /// 1 m/s up (as [`at_speed`]: a slip threshold below `v`'s round-off would read an f32 jam as a
 /// slide).
 fn painleve(deg: f64, mu: f64, v: f64, h: f64) -> SceneSpec {
     SceneSpec::Painleve(PainleveParams {
         angle: deg.to_radians(),
-        mu_floor: mu,
+        mu_static: mu,
+        mu_kinetic: mu,
         speed: v,
         step: h,
         stick_speed: 1e-5 * v.max(1.0),
@@ -143,7 +144,7 @@ fn painleve(deg: f64, mu: f64, v: f64, h: f64) -> SceneSpec {
     })
 }
 
-/// Painlevé's rod's outcome by the law (docs/scenes.md): Jammed when `mu` exceeds
+/// Painlevé's rod's outcome by the law (docs/scenes.md): Jammed when `mu_k` exceeds
 /// `(1 + 3 c^2) / (3 s c)` by more than 5 % and the impact `m V / 4 (1 + 3 c^2)` exceeds the
 /// weight's impulse over four steps; `None` otherwise (below it, sliding or falling depends on the
 /// run's length).
@@ -152,7 +153,7 @@ fn painleve_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
     let (s, c) = p.angle.sin_cos();
     let critical = (1.0 + 3.0 * c * c) / (3.0 * s * c);
     let impact = p.mass * p.speed / 4.0 * (1.0 + 3.0 * c * c);
-    (p.mu_floor > 1.05 * critical && impact > 4.0 * p.mass * p.gravity * p.step)
+    (p.mu_kinetic > 1.05 * critical && impact > 4.0 * p.mass * p.gravity * p.step)
         .then_some(OutcomeClass::Jammed)
 }
 

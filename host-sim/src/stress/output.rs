@@ -270,7 +270,7 @@ const CRITERIA_MD: &str = "\
    scaling, quasi-static slow fingers, fast fingers; for the incline and the ladder, statics:
    held when tan a <= mu_s and tan a < w/h, tipped when w/h < tan a < mu_s, slid when
    tan a > mu_s and mu_k < w/h; a ladder stands iff tan theta >= (1 - mu_f mu_w) / (2 mu_f), no
-   claim within 2 degrees of it; Painleve's rod jams when mu > 1.05 (1 + 3 c^2) / (3 s c) and the
+   claim within 2 degrees of it; Painleve's rod jams when mu_k > 1.05 (1 + 3 c^2) / (3 s c) and the
    impact m V (1 + 3 c^2) / 4 exceeds 4 m g h; a cylinder rolls iff tan a <= mu_s (1 + k) / k, no
    claim within 2 %), 'not dragged' (frictionless or mu_k = 0: while finger 1 is left
    of the COM the rod does not move along x by more than 64 eps L), 'still' (zero speed or gravity,
