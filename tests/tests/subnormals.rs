@@ -170,7 +170,7 @@ fn flush_to_zero_changes_no_trajectory_paper_scenes_and_quick_grid() {
     check(&all_runs(true));
 }
 
-/// The whole stress grid (65 cases, one of 10^6 steps): `cargo test --release -p meterstick-tests
+/// The whole stress grid (77 cases, one of 10^6 steps): `cargo test --release -p meterstick-tests
 /// --test subnormals -- --ignored`.
 #[test]
 #[ignore = "the whole stress grid, twice in two layouts: run with --release"]
