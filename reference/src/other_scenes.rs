@@ -141,7 +141,8 @@ pub struct Painleve {
     pub gravity: f64,
     /// Start angle `theta0` from the floor, rad.
     pub angle: f64,
-    /// The rod's start speed `V` toward `-x`, m/s.
+    /// The rod's start velocity along `x`, m/s: `-V` (negative: the end slides away from under
+    /// the rod).
     pub speed: f64,
     /// The floor's static `mu_s`.
     pub mu_static: f64,
@@ -163,7 +164,7 @@ impl Default for Painleve {
             mass: 1.0,
             gravity: 9.81,
             angle: 30_f64.to_radians(),
-            speed: 1.0,
+            speed: -1.0,
             mu_static: 3.0,
             mu_kinetic: 3.0,
             step: 0.001,
@@ -524,7 +525,7 @@ impl Scene for PainleveScene {
     }
 
     fn start_velocity(&self) -> [f64; 3] {
-        [-self.p.speed, 0.0, 0.0]
+        [self.p.speed, 0.0, 0.0]
     }
 
     fn friction(&self) -> Vec<(f64, f64)> {

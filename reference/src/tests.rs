@@ -291,7 +291,7 @@ fn a_cylinder_rolls_iff_below_its_critical_angle_at_the_rolling_or_sliding_rate(
 /// `(m V / 4) (1 + 3 c^2, 3 s c)` (friction, normal) of docs/scenes.md, "painleve".
 fn painleve_law(p: &Painleve) -> (f64, [f64; 2]) {
     let (s, c) = p.angle.sin_cos();
-    let quarter = p.mass * p.speed / 4.0;
+    let quarter = -p.mass * p.speed / 4.0;
     ((1.0 + 3.0 * c * c) / (3.0 * s * c), [quarter * (1.0 + 3.0 * c * c), quarter * 3.0 * s * c])
 }
 
@@ -364,7 +364,7 @@ fn below_painleves_critical_coefficient_the_impulses_scale_with_h_and_a_stop_is_
         for f in &forces {
             assert!(f.iter().zip(&forces[0]).all(|(a, b)| (a / b - 1.0).abs() < 1e-2), "{forces:?}");
         }
-        let slow = Painleve { speed: 0.1, max_time: 1.0, ..sliding };
+        let slow = Painleve { speed: -0.1, max_time: 1.0, ..sliding };
         let run = run(&Spec::Painleve(slow), Sample::All).unwrap();
         let stop = run.rows.iter().find(|r| r.contacts[0].mode == Mode::Sticking);
         eprintln!(

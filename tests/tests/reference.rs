@@ -290,7 +290,7 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
             // pivots on its end and falls.
             "painleve stops, falls",
             SceneSpec::Painleve(PainleveParams {
-                speed: 0.1,
+                speed: -0.1,
                 mu_static: 2.0,
                 mu_kinetic: 2.0,
                 max_time: 1.0,

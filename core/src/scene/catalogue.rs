@@ -255,7 +255,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "speed",
         unit: "m/s",
-        help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's speed toward -x at the start (its lower end sliding away from under it)",
+        help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's velocity along x at the start (negative: its lower end slides away from under it)",
         fields: &[(M, "finger1_velocity"), (F, "finger1_velocity"), (P, "speed")],
     },
     Flag {

@@ -2,8 +2,8 @@
 //!
 //! A uniform rod of length `L` (`J = m L^2 / 12`) leans at `theta0` from a rough floor, its lower end
 //! on the floor (contact 0: [`Feature::Point`] `(-L/2, 0)` on the line `y = 0`), its centre of mass to
-//! the right of the end, and the whole rod moves at `speed` toward `-x`: the end slides away from
-//! under the rod. Friction on the end points `+x` (`+d`) and turns the rod into the floor. With
+//! the right of the end, and the whole rod moves along `x` at `speed = -V < 0`: the end slides away
+//! from under the rod. Friction on the end points `+x` (`+d`) and turns the rod into the floor. With
 //! `c = cos(theta0)`, `s = sin(theta0)`, the end's response to an impulse `P` on it is
 //! `K = (1/m) [[1 + 3 s^2, -3 s c], [-3 s c, 1 + 3 c^2]]`, and while it slides the normal impulse
 //! pushes the end *into* the floor when `1 + 3 c^2 - 3 mu s c < 0`, i.e. when
@@ -38,8 +38,9 @@ params! {
         gravity: 9.81, NonNegative;
         /// The rod's angle from the floor (rad, `0 < theta0 < pi/2`). 30 degrees.
         angle: 0.523_598_775_598_298_8, Finite;
-        /// The rod's speed toward `-x` at the start (m/s; the end slides away from under it). 1.
-        speed: 1.0, Finite;
+        /// The rod's velocity along `x` at the start (m/s; negative: its lower end slides away from
+        /// under it, the paradox's case). -1.
+        speed: -1.0, Finite;
         /// Static friction coefficient of the floor (>= 0). 3.
         mu_static: 3.0, NonNegative;
         /// Kinetic friction coefficient of the floor (0 <= mu_k <= mu_s). 3 (the jam needs
@@ -78,23 +79,24 @@ impl<T: Real> PainleveParams<T> {
         (T::one() + three * c * c) / (three * s * c)
     }
 
-    /// The analytic jam impulses `(friction, normal)` (N s): `(m V / 4) (1 + 3 c^2, 3 s c)`.
+    /// The analytic jam impulses `(friction, normal)` (N s): `(m V / 4) (1 + 3 c^2, 3 s c)`,
+    /// `V = -speed` (for `speed < 0`).
     #[must_use]
     pub fn jam_impulses(&self) -> (T, T) {
         let (s, c) = self.angle.sin_cos_portable();
         let three = T::of(3.0);
-        let q = self.mass * self.speed / T::of(4.0);
+        let q = -self.mass * self.speed / T::of(4.0);
         (q * (T::one() + three * c * c), q * three * s * c)
     }
 
     /// The start: the lower end at the origin, the centre of mass at `(L/2) (cos, sin)`, moving at
-    /// `-speed` along `x`, not turning.
+    /// `speed` along `x`, not turning.
     #[must_use]
     pub fn start_state(&self) -> BodyState<T> {
         let (s, c) = self.angle.sin_cos_portable();
         let half = self.length / T::of(2.0);
         let mut state = BodyState::at_rest(half * c, half * s, self.angle);
-        state.vx = -self.speed;
+        state.vx = self.speed;
         state
     }
 }
@@ -287,7 +289,7 @@ mod tests {
                 assert!((force.1 / first.1 - 1.0).abs() < 1e-2, "{deg} deg, h {h}: {force:?} vs {first:?}");
             }
             // Slow enough to stop by friction within the run (deceleration of order mu g).
-            let slow = PainleveParams { speed: 0.1, max_time: 1.0, ..sliding };
+            let slow = PainleveParams { speed: -0.1, max_time: 1.0, ..sliding };
             let mut rod = Painleve::<f64, 3>::new(slow).unwrap();
             let mut stopped = false;
             let outcome = rod.run(|r| stopped |= r.contacts[0].mode == ContactMode::Sticking);

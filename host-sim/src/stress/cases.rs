@@ -137,7 +137,7 @@ fn painleve(deg: f64, mu: f64, v: f64, h: f64) -> SceneSpec {
         angle: deg.to_radians(),
         mu_static: mu,
         mu_kinetic: mu,
-        speed: v,
+        speed: -v,
         step: h,
         stick_speed: 1e-5 * v.max(1.0),
         ..PainleveParams::default()
@@ -152,7 +152,7 @@ fn painleve_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
     let SceneSpec::Painleve(p) = spec else { return None };
     let (s, c) = p.angle.sin_cos();
     let critical = (1.0 + 3.0 * c * c) / (3.0 * s * c);
-    let impact = p.mass * p.speed / 4.0 * (1.0 + 3.0 * c * c);
+    let impact = -p.mass * p.speed / 4.0 * (1.0 + 3.0 * c * c);
     (p.mu_kinetic > 1.05 * critical && impact > 4.0 * p.mass * p.gravity * p.step)
         .then_some(OutcomeClass::Jammed)
 }
