@@ -489,7 +489,19 @@ fn check_scene_selector(b: &Browser, base: &str) {
     );
     assert!(b.js("return location.search").as_str().unwrap().contains("scene=cylinder"), "the URL follows");
     assert_eq!(b.js("return document.getElementById('p-speed')"), Value::Null, "no finger flags");
-    b.type_into("#p-angle", "65\u{E007}");
+    let (host_outcome, host_checksum) = type_and_run(b, "#p-angle", "65", "scene=cylinder&angle=65");
+    let shot = b.screenshot("cylinder-selected", None);
+    println!(
+        "scene selector: cylinder, angle 65 typed, Space: {host_outcome} {host_checksum} ({})",
+        shot.display()
+    );
+}
+
+/// Types `value` and Enter into the field `selector` (a new run, paused), plays it with the Space
+/// key and checks its outcome and checksum against `host-sim scene` with `query`'s flags; returns
+/// them.
+fn type_and_run(b: &Browser, selector: &str, value: &str, query: &str) -> (String, String) {
+    b.type_into(selector, &format!("{value}\u{E007}"));
     b.wait("a new run", "return document.body.dataset.state === 'ready'", Duration::from_secs(10));
     b.js("document.activeElement.blur()");
     b.key(" ");
@@ -498,16 +510,13 @@ fn check_scene_selector(b: &Browser, base: &str) {
         "return document.getElementById('outcome').textContent",
         Duration::from_secs(60),
     );
-    let (host_outcome, host_checksum) = host_scene("scene=cylinder&angle=65");
+    let (host_outcome, host_checksum) = host_scene(query);
     assert_eq!(
         (outcome.as_str().unwrap(), b.text("checksum").as_str()),
-        (host_outcome.as_str(), host_checksum.as_str())
+        (host_outcome.as_str(), host_checksum.as_str()),
+        "{query}"
     );
-    let shot = b.screenshot("cylinder-selected", None);
-    println!(
-        "scene selector: cylinder, angle 65 typed, Space: {host_outcome} {host_checksum} ({})",
-        shot.display()
-    );
+    (host_outcome, host_checksum)
 }
 
 /// The controls change the run; a bad value shows host-sim's sentence.
@@ -516,21 +525,9 @@ fn check_controls(b: &Browser, base: &str, slow: &str) {
     b.goto(&format!("{base}?scene=meter-stick&x1=-0.35&rate=max"));
     b.wait("the page", "return document.body.dataset.state === 'ready'", Duration::from_secs(30));
     assert_eq!(b.text("outcome"), "", "no outcome before the run");
-    b.type_into("#p-speed", "1\u{E007}");
-    b.wait("a new run", "return document.body.dataset.state === 'ready'", Duration::from_secs(10));
+    let (host_outcome, host_checksum) =
+        type_and_run(b, "#p-speed", "1", "scene=meter-stick&x1=-0.35&speed=1");
     assert!(b.js("return location.search").as_str().unwrap().contains("speed=1"), "the URL follows the form");
-    b.js("document.activeElement.blur()");
-    b.key(" ");
-    let outcome = b.wait(
-        "the outcome",
-        "return document.getElementById('outcome').textContent",
-        Duration::from_secs(60),
-    );
-    let (host_outcome, host_checksum) = host_scene("scene=meter-stick&x1=-0.35&speed=1");
-    assert_eq!(
-        (outcome.as_str().unwrap(), b.text("checksum").as_str()),
-        (host_outcome.as_str(), host_checksum.as_str())
-    );
     assert_ne!(host_checksum, slow, "the speed changed the run");
     println!("controls: speed 1 typed, Space pressed: {host_outcome} {host_checksum} (slow run: {slow})");
 
