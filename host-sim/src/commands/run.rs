@@ -322,7 +322,13 @@ fn measured_text(m: &Measured) -> String {
 
 fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
     let mut s = String::new();
-    s += "run       impl                outcome     t_end(s)  measured                    eq21 ratios (min..max)  steps   piv/step  reduced check\n";
+    // The runs' names set the first column's width (`three-fingers` is longer than `slow`).
+    let w = runs.iter().map(|r| r.name.len()).max().unwrap_or(0).max(9);
+    let _ = writeln!(
+        s,
+        "{:<w$} impl                outcome     t_end(s)  measured                    eq21 ratios (min..max)  steps   piv/step  reduced check",
+        "run"
+    );
     for r in runs {
         for t in std::iter::once(&r.core).chain(&r.reference) {
             let ratios = if t.eq21_switches.is_empty() {
@@ -341,7 +347,7 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
             };
             let _ = writeln!(
                 s,
-                "{:<9} {:<19} {:<11} {:>8.3}  {:<26}  {:<22}  {:>6}  {:>8.4}  {}",
+                "{:<w$} {:<19} {:<11} {:>8.3}  {:<26}  {:<22}  {:>6}  {:>8.4}  {}",
                 r.name,
                 t.implementation.to_string(),
                 t.outcome.name(),
@@ -357,20 +363,29 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
             Some(c) => {
                 let _ = writeln!(
                     s,
-                    "{:<9} core vs reference: max |COM| deviation {:.3e} m, max |angle| deviation {:.3e} rad{}",
+                    "{:<w$} core vs reference: max |COM| deviation {:.3e} m, max |angle| deviation {:.3e} rad{}",
                     "",
                     c.max_com_deviation_m,
                     c.max_angle_deviation_rad,
                     if c.same_outcome { "" } else { "  OUTCOMES DIFFER" }
                 );
+                let ambiguous = r.reference.as_ref().map_or(0, |t| t.counters.ambiguous_steps);
+                if ambiguous > 0 {
+                    let _ = writeln!(
+                        s,
+                        "{:<w$} the reference found {ambiguous} steps whose LCP has solutions that move the body \
+                         differently (statically indeterminate contacts): core and reference may both be right and differ",
+                        ""
+                    );
+                }
             }
             None => {
                 let _ =
-                    writeln!(s, "{:<9} no independent reference for scene {}: the core alone", "", r.scene);
+                    writeln!(s, "{:<w$} no independent reference for scene {}: the core alone", "", r.scene);
             }
         }
         if let Some(warning) = r.core.counters.round_off_warning(r.core.steps) {
-            let _ = writeln!(s, "{:<9} {warning}", "");
+            let _ = writeln!(s, "{:<w$} {warning}", "");
         }
     }
     if runs.iter().any(|r| r.scene == SceneKind::MeterStick) {
