@@ -769,6 +769,22 @@ fn with_pattern<const K: usize, const N: usize>(
 /// singular).
 #[cfg_attr(target_os = "none", inline(never))]
 fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
+    // On the host each size the fast path meets (2 and 3 unknowns) gets its own copy, with `m` a
+    // constant: no per-row size tests (the same operations in the same order, so the same bits).
+    // A microcontroller keeps one copy (flash).
+    #[cfg(not(target_os = "none"))]
+    match m {
+        2 => return solve_small_sized(a, rhs, 2, tiny),
+        3 => return solve_small_sized(a, rhs, 3, tiny),
+        _ => {}
+    }
+    solve_small_sized(a, rhs, m, tiny)
+}
+
+/// [`solve_small`]'s elimination, inlined where it is called so that a constant `m` specialises it.
+#[inline(always)]
+#[allow(clippy::inline_always)] // the point of it: `m` known at the call
+fn solve_small_sized<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
     // Constant loop bounds (rows and columns at or beyond `m` skipped): every index is provably
     // in range, so no panic path is linked.
     for col in 0..DOF {
