@@ -117,6 +117,20 @@ pub enum Declined {
     Unverified,
 }
 
+/// A basis' unknowns ([`FactoredLcp::plan`]): what the elimination needs of the basis alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Plan<const K: usize> {
+    /// The variable each unknown sets (whose own row holds it).
+    var: [usize; DOF],
+    /// The friction row that follows each unknown at `mu` (a sliding contact's normal impulse;
+    /// `N`: none).
+    follower: [usize; DOF],
+    /// How many unknowns.
+    m: usize,
+    /// The friction row that gives each contact's basic sigma.
+    sigma_row: [Option<usize>; K],
+}
+
 /// What a contact's variables do in a basis: which are basic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Pattern {
@@ -336,7 +350,6 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// [`Self::solve_basis`] writing `z` and `w` into the caller's arrays (their contents are
     /// unspecified when it fails); returns `v+` and the residual.
-    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
     pub(crate) fn solve_basis_into(
         &self,
         basis: Basis<N>,
@@ -348,6 +361,39 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         if mask & self.inactive != 0 {
             return Err(Declined::Pattern); // an inactive contact's decoupled rows have z = 0
         }
+        let plan = self.plan(mask)?;
+        self.solve_plan_into(mask, &plan, tolerance, z, w)
+    }
+
+    /// [`Self::solve_basis_into`] with the basis' [`Plan`] kept in `cache` from the last call with
+    /// the same basis (the stepper's warm basis is usually the previous step's: its unknowns need
+    /// not be found again). Same answer, same bits.
+    pub(crate) fn solve_basis_cached_into(
+        &self,
+        basis: Basis<N>,
+        cache: &mut Option<(u32, Plan<K>)>,
+        tolerance: T,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Result<([T; 3], T), Declined> {
+        let mask = basis.z_mask();
+        if mask & self.inactive != 0 {
+            return Err(Declined::Pattern); // an inactive contact's decoupled rows have z = 0
+        }
+        let plan = match cache {
+            Some((cached, plan)) if *cached == mask => *plan,
+            _ => {
+                let plan = self.plan(mask)?;
+                *cache = Some((mask, plan));
+                plan
+            }
+        };
+        self.solve_plan_into(mask, &plan, tolerance, z, w)
+    }
+
+    /// The unknowns of the basis whose basic variables are the bits of `mask` ([module
+    /// docs](self)), or [`Declined::Pattern`]. Depends on `mask` and the layout alone.
+    fn plan(&self, mask: u32) -> Result<Plan<K>, Declined> {
         let basic = |v: usize| (mask >> v) & 1 == 1;
         let sigma_start = Layout::<K, N>::SIGMA_START;
         // The unknowns: the variable each sets (whose own row holds it) and the friction row that
@@ -395,6 +441,23 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 }
             }
         }
+        Ok(Plan { var, follower, m, sigma_row })
+    }
+
+    /// The rest of [`Self::solve_basis_into`]: the system of `plan`'s unknowns (those of `mask`),
+    /// solved, checked and verified.
+    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
+    fn solve_plan_into(
+        &self,
+        mask: u32,
+        plan: &Plan<K>,
+        tolerance: T,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Result<([T; 3], T), Declined> {
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        let sigma_start = Layout::<K, N>::SIGMA_START;
+        let Plan { var, follower, m, sigma_row } = *plan;
         // H^T M^-1 G y = -q_H.
         // Unknown `l`'s column `M^-1 G` (formed where it is used: nothing to clear or store).
         let gm = |l: usize| {

@@ -21,7 +21,7 @@
 use super::assemble::{StepInputs, StepLcp, fill_from_factored, sign};
 use super::body::{Body, BodyState};
 use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
-use super::factored::{CANDIDATES, Declined, FactoredLcp, basis_of_modes};
+use super::factored::{CANDIDATES, Declined, FactoredLcp, Plan, basis_of_modes};
 use super::layout::{Direction, Layout, Variable};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
@@ -296,6 +296,9 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     basis: Basis<N>,
     /// The step's LCP in factored form, refilled in place each step.
     factored: FactoredLcp<T, K, N>,
+    /// The unknowns of the last basis the warm path solved, with its mask: the next step's warm
+    /// basis is usually the same.
+    plan: Option<(u32, Plan<K>)>,
     solver: Lemke<T, N>,
     stats: RunStats,
 }
@@ -380,6 +383,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             modes: [ContactMode::Separated; K],
             basis: Basis::all_w(),
             factored: FactoredLcp::empty(&layout),
+            plan: None,
             solver: Lemke::new(),
             stats: RunStats::default(),
         };
@@ -517,7 +521,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let reduced = N != NF;
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
         let (mut pivots, mut warm_start_used, mut residual, mut path, solved) =
-            match solve(factored, self.basis, &self.solver, &mut self.stats, &mut z, &mut w) {
+            match solve(factored, self.basis, &mut self.plan, &self.solver, &mut self.stats, &mut z, &mut w) {
                 Ok(sol) => {
                     self.basis = sol.basis;
                     v_plus = sol.v_plus;
@@ -551,7 +555,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                     wide = full.with_direction(wide, i, dropped);
                 }
                 let sol =
-                    solve(&full, wide, &Lemke::<T, NF>::new(), &mut self.stats, &mut z_full, &mut w_full)
+                    solve(&full, wide, &mut None, &Lemke::<T, NF>::new(), &mut self.stats, &mut z_full, &mut w_full)
                         .map_err(StepError::Solver)?;
                 pivots += sol.pivots;
                 residual = sol.residual;
@@ -734,24 +738,17 @@ struct Solved<T: Real, const M: usize> {
 /// `q >= 0`; else the previous basis `warm` in the body's coordinates; else its neighbours the same
 /// way; else Lemke's method on the assembled LCP, warm-started from `warm`. Every answer is
 /// verified; `z` and `w` receive it. Counts the path (and each candidate tried) in `stats`.
+/// `plan` keeps the warm basis' unknowns from one call to the next ([`FactoredLcp`]'s layout must
+/// be the same each call; `&mut None` for a one-off).
 fn solve<T: Real, const K: usize, const M: usize>(
     factored: &FactoredLcp<T, K, M>,
     warm: Basis<M>,
+    plan: &mut Option<(u32, Plan<K>)>,
     solver: &Lemke<T, M>,
     stats: &mut RunStats,
     z: &mut [T; M],
     w: &mut [T; M],
 ) -> Result<Solved<T, M>, LcpError> {
-    let fast = |basis: Basis<M>, path: SolvePath, z: &mut [T; M], w: &mut [T; M]| {
-        factored.solve_basis_into(basis, solver.tolerance(), z, w).map(|(v_plus, residual)| Solved {
-            v_plus,
-            basis,
-            pivots: 0,
-            warm_start_used: path == SolvePath::Warm,
-            residual,
-            path,
-        })
-    };
     if !factored.is_finite() {
         return Err(LcpError::NonFiniteInput);
     }
@@ -768,10 +765,10 @@ fn solve<T: Real, const K: usize, const M: usize>(
             path: SolvePath::Free,
         });
     }
-    match fast(warm, SolvePath::Warm, z, w) {
-        Ok(answer) => {
+    match factored.solve_basis_cached_into(warm, plan, solver.tolerance(), z, w) {
+        Ok((v_plus, residual)) => {
             stats.paths.count(SolvePath::Warm);
-            Ok(answer)
+            Ok(Solved { v_plus, basis: warm, pivots: 0, warm_start_used: true, residual, path: SolvePath::Warm })
         }
         Err(why) => solve_cold(factored, warm, why, solver, stats, z, w),
     }
