@@ -21,7 +21,7 @@
 use super::assemble::{StepInputs, StepLcp, fill_from_factored, sign};
 use super::body::{Body, BodyState};
 use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
-use super::factored::{CANDIDATES, Declined, FactoredLcp, basis_of_modes};
+use super::factored::{CANDIDATES, Declined, FactoredLcp, PlanCache, basis_of_modes};
 use super::layout::{Direction, Layout, Variable};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
@@ -296,6 +296,9 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     basis: Basis<N>,
     /// The step's LCP in factored form, refilled in place each step.
     factored: FactoredLcp<T, K, N>,
+    /// The unknowns of the last basis the warm path solved, with its mask: the next step's warm
+    /// basis is usually the same.
+    plan: PlanCache<K>,
     solver: Lemke<T, N>,
     stats: RunStats,
 }
@@ -380,6 +383,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             modes: [ContactMode::Separated; K],
             basis: Basis::all_w(),
             factored: FactoredLcp::empty(&layout),
+            plan: PlanCache::<K>::default(),
             solver: Lemke::new(),
             stats: RunStats::default(),
         };
@@ -516,21 +520,28 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let mut v_plus = v_free;
         let reduced = N != NF;
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
-        let (mut pivots, mut warm_start_used, mut residual, mut path, solved) =
-            match solve(factored, self.basis, &self.solver, &mut self.stats, &mut z, &mut w) {
-                Ok(sol) => {
-                    self.basis = sol.basis;
-                    v_plus = sol.v_plus;
-                    (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
-                }
-                // A reduced LCP may have no solution when a dropped direction is needed: that too
-                // is the reduced model leaving its range.
-                Err(e) if reduced => {
-                    self.basis = Basis::all_w();
-                    (e.pivots(), false, T::zero(), SolvePath::Lemke, false)
-                }
-                Err(e) => return Err(StepError::Solver(e)),
-            };
+        let (mut pivots, mut warm_start_used, mut residual, mut path, solved) = match solve(
+            factored,
+            self.basis,
+            &mut self.plan,
+            &self.solver,
+            &mut self.stats,
+            &mut z,
+            &mut w,
+        ) {
+            Ok(sol) => {
+                self.basis = sol.basis;
+                v_plus = sol.v_plus;
+                (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
+            }
+            // A reduced LCP may have no solution when a dropped direction is needed: that too
+            // is the reduced model leaving its range.
+            Err(e) if reduced => {
+                self.basis = Basis::all_w();
+                (e.pivots(), false, T::zero(), SolvePath::Lemke, false)
+            }
+            Err(e) => return Err(StepError::Solver(e)),
+        };
         // The step's velocity scale, for the reduced check's round-off and the precision flag.
         let speed = velocity_scale(&support_velocity, &v_plus, self.size);
         let needed = if solved { self.dropped_direction_needed(&inputs, &z, &w, speed) } else { None };
@@ -550,9 +561,16 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 if let Some((i, dropped)) = needed {
                     wide = full.with_direction(wide, i, dropped);
                 }
-                let sol =
-                    solve(&full, wide, &Lemke::<T, NF>::new(), &mut self.stats, &mut z_full, &mut w_full)
-                        .map_err(StepError::Solver)?;
+                let sol = solve(
+                    &full,
+                    wide,
+                    &mut PlanCache::<K>::default(),
+                    &Lemke::<T, NF>::new(),
+                    &mut self.stats,
+                    &mut z_full,
+                    &mut w_full,
+                )
+                .map_err(StepError::Solver)?;
                 pivots += sol.pivots;
                 residual = sol.residual;
                 warm_start_used = sol.warm_start_used;
@@ -734,24 +752,17 @@ struct Solved<T: Real, const M: usize> {
 /// `q >= 0`; else the previous basis `warm` in the body's coordinates; else its neighbours the same
 /// way; else Lemke's method on the assembled LCP, warm-started from `warm`. Every answer is
 /// verified; `z` and `w` receive it. Counts the path (and each candidate tried) in `stats`.
+/// `plan` keeps the warm basis' unknowns from one call to the next ([`FactoredLcp`]'s layout must
+/// be the same each call; a default one for a one-off).
 fn solve<T: Real, const K: usize, const M: usize>(
     factored: &FactoredLcp<T, K, M>,
     warm: Basis<M>,
+    plan: &mut PlanCache<K>,
     solver: &Lemke<T, M>,
     stats: &mut RunStats,
     z: &mut [T; M],
     w: &mut [T; M],
 ) -> Result<Solved<T, M>, LcpError> {
-    let fast = |basis: Basis<M>, path: SolvePath, z: &mut [T; M], w: &mut [T; M]| {
-        factored.solve_basis_into(basis, solver.tolerance(), z, w).map(|(v_plus, residual)| Solved {
-            v_plus,
-            basis,
-            pivots: 0,
-            warm_start_used: path == SolvePath::Warm,
-            residual,
-            path,
-        })
-    };
     if !factored.is_finite() {
         return Err(LcpError::NonFiniteInput);
     }
@@ -768,10 +779,17 @@ fn solve<T: Real, const K: usize, const M: usize>(
             path: SolvePath::Free,
         });
     }
-    match fast(warm, SolvePath::Warm, z, w) {
-        Ok(answer) => {
+    match factored.solve_basis_cached_into(warm, plan, solver.tolerance(), z, w) {
+        Ok((v_plus, residual)) => {
             stats.paths.count(SolvePath::Warm);
-            Ok(answer)
+            Ok(Solved {
+                v_plus,
+                basis: warm,
+                pivots: 0,
+                warm_start_used: true,
+                residual,
+                path: SolvePath::Warm,
+            })
         }
         Err(why) => solve_cold(factored, warm, why, solver, stats, z, w),
     }
