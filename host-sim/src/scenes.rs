@@ -154,12 +154,6 @@ pub enum LcpSize {
 }
 
 impl LcpSize {
-    /// 6 or 8: the size for a two-contact scene.
-    #[must_use]
-    pub const fn n(self) -> usize {
-        self.n_for(2)
-    }
-
     /// The LCP's size for a scene of `contacts` contacts (docs/formulation.md): per contact its
     /// normal, its slack and one friction direction (reduced) or two (full).
     #[must_use]
