@@ -22,8 +22,11 @@ use serde::Serialize;
 use crate::output::{create_dir, write_json, write_lines};
 use crate::plot;
 use crate::progress::bar as progress;
-use crate::scenes::{FLAGS, Flag, Implementation, ImplementationOf, SceneSpec, SpecExt as _, flag_error};
+use crate::scenes::{
+    FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, SceneSpec, SpecExt as _, flag_error,
+};
 use crate::trajectory::{OutcomeClass, Record, run_k};
+use meterstick_core::scene::catalogue::Refusal;
 
 /// The most cells a map may have (each is a run of up to `MAX_STEPS`).
 /// (At about 550 runs per second on 2 cores, 200,000 cells take about 6 minutes.)
@@ -203,17 +206,23 @@ impl Grid {
         for &x in &[self.x.0, self.x.1] {
             for &y in &[self.y.0, self.y.1] {
                 let spec = apply_axes(base, self.axes, (x, y))?;
-                spec.validate(implementation.precision()).map_err(|e| {
+                // `{:?}`: 1e300 stays 1e300 (Display writes all 301 digits).
+                let at_corner = |why: String| {
                     anyhow::anyhow!(
-                        // `{:?}`: 1e300 stays 1e300 (Display writes all 301 digits).
-                        "--x-range {:?},{:?} x --y-range {:?},{:?}: at the corner ({x:?}, {y:?}): {}",
+                        "--x-range {:?},{:?} x --y-range {:?},{:?}: at the corner ({x:?}, {y:?}): {why}",
                         self.x.0,
                         self.x.1,
                         self.y.0,
                         self.y.1,
-                        flag_error(&spec, e)
                     )
-                })?;
+                };
+                spec.validate(implementation.precision()).map_err(|e| at_corner(flag_error(&spec, e)))?;
+                // A cell's steps grow toward a corner (smaller h, longer duration, slower fingers).
+                let steps = spec.steps();
+                if steps.is_nan() || steps > MAX_STEPS {
+                    let refusal = Refusal::TooManySteps { params: spec, steps, limit: MAX_STEPS };
+                    return Err(at_corner(refusal.worded("--").to_string()));
+                }
             }
         }
         Ok(())

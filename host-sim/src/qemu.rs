@@ -57,6 +57,22 @@ pub struct FirmwareRun {
     pub lines: Vec<String>,
 }
 
+/// Reads the firmware ELF `elf` and checks that its defmt table can be read, before QEMU starts
+/// (its output is decoded with that table).
+///
+/// # Errors
+/// The file cannot be read, is not an ELF, or has no `.defmt` table (each naming the file).
+fn read_firmware(elf: &Path) -> anyhow::Result<Vec<u8>> {
+    let bytes = crate::input::read(elf, crate::input::ELF_FILE_CAP).context("reading the firmware ELF")?;
+    match defmt_decoder::Table::parse(&bytes) {
+        Ok(Some(_)) => Ok(bytes),
+        Ok(None) => {
+            bail!("{}: the firmware ELF has no .defmt table (not a meterstick firmware?)", elf.display())
+        }
+        Err(e) => bail!("{}: not a firmware ELF ({e})", elf.display()),
+    }
+}
+
 /// Runs `elf` on `machine` under QEMU with semihosting, for at most `timeout`.
 /// With `icount`, QEMU counts one instruction per virtual nanosecond (`-icount shift=0`),
 /// which makes `SysTick` a deterministic instruction counter.
@@ -64,8 +80,7 @@ pub struct FirmwareRun {
 /// # Errors
 /// QEMU missing or not startable, an unreadable ELF, or undecodable output.
 pub fn run(elf: &Path, machine: Machine, timeout: Duration, icount: bool) -> anyhow::Result<FirmwareRun> {
-    let elf_bytes =
-        crate::input::read(elf, crate::input::ELF_FILE_CAP).context("reading the firmware ELF")?;
+    let elf_bytes = read_firmware(elf)?;
     let mut cmd = Command::new("qemu-system-arm");
     cmd.args(["-machine", machine.qemu_name()])
         .args(machine.cpu_args())
@@ -119,8 +134,7 @@ impl LinkedFirmware {
     /// # Errors
     /// QEMU missing or not startable, no connection within 20 s.
     pub fn start(elf: &Path, machine: Machine, icount: bool) -> anyhow::Result<Self> {
-        let elf_bytes =
-            crate::input::read(elf, crate::input::ELF_FILE_CAP).context("reading the firmware ELF")?;
+        let elf_bytes = read_firmware(elf)?;
         let listener = TcpListener::bind("127.0.0.1:0").context("binding a local TCP port for the UART")?;
         let port = listener.local_addr()?.port();
         let mut cmd = Command::new("qemu-system-arm");

@@ -297,7 +297,7 @@ fn help_of(flag: &Flag) -> String {
         .fields
         .iter()
         .filter_map(|&(kind, field)| {
-            SceneSpec::defaults(kind).get(field).map(|v| format!("{kind} {}", flag.from_core(v)))
+            SceneSpec::defaults(kind).get(field).map(|v| format!("{kind} {}", Short(flag.from_core(v))))
         })
         .collect();
     let unit = if flag.unit.is_empty() { String::new() } else { format!(", {}", flag.unit) };
@@ -459,14 +459,20 @@ impl SceneArgs {
                 .collect(),
         };
         for (name, mut spec) in runs {
+            let given_duration = spec.max_time();
             if !duration_given {
                 spec.follow_travel_time();
             }
+            // The duration was raised to the fingers' travel time: not the number the user gave.
+            let followed = spec.max_time() > given_duration; // it is only ever raised
             spec.validate(self.precision).map_err(|e| anyhow::anyhow!("{}", flag_error(&spec, e)))?;
             let steps = spec.steps();
             if steps.is_nan() || steps > MAX_STEPS {
                 let refusal = Refusal::TooManySteps { params: spec, steps, limit: MAX_STEPS };
-                bail!("{}", refusal.worded("--"));
+                if !followed {
+                    bail!("{}", refusal.worded("--"));
+                }
+                bail!("{}; the default --duration follows the fingers' travel time", refusal.worded("--"));
             }
             out.push((name, spec));
         }

@@ -37,6 +37,16 @@ pub fn sweep_scene(h: f64) -> SceneSpec {
     SceneSpec::MeterStick(MeterStickParams { finger1_x: -0.35, step: h, ..MeterStickParams::paper() })
 }
 
+/// The longest COM-error horizon the sweep can measure (s): its scene's converged run ends,
+/// balanced, when the fingers have met (their travel at constant speed) and held for the hold
+/// time.
+#[must_use]
+pub fn max_horizon() -> f64 {
+    let p = MeterStickParams { finger1_x: -0.35, ..MeterStickParams::paper() };
+    let travel = (p.finger2_x - p.finger1_x - p.finger_width) / (p.finger1_velocity - p.finger2_velocity);
+    travel + p.hold_time
+}
+
 const GRID_DT: f64 = 0.01;
 const RATIOS_COMPARED: usize = 4;
 

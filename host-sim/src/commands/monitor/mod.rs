@@ -27,6 +27,7 @@ use crate::monitor::{Margin, RigComparison, apply_params, compare, read_params, 
 use crate::output::{create_dir, parameters_json, write_json};
 use crate::scenes::{SceneKind, SceneSpec};
 use crate::trajectory::{OutcomeClass, write_csv, write_events_csv};
+use meterstick_core::scene::catalogue::Short;
 
 use print::Printer;
 
@@ -96,10 +97,10 @@ pub struct MonitorArgs {
     /// SysTick ticks (40 instructions each on mps2-an386, 62.5 on the micro:bit).
     #[arg(long, conflicts_with_all = ["start", "follow"])]
     pub stress_grid: bool,
-    /// With `--stress-grid`: the most steps of one case.
+    /// With `--stress-grid`: the most steps of one case (at least 1).
     #[arg(long, default_value_t = 20_000)]
     pub max_steps: u32,
-    /// Give up waiting for a reply or an outcome after this many seconds.
+    /// Give up waiting for a reply or an outcome after this many seconds (at most a year).
     #[arg(long, default_value_t = 120.0)]
     pub timeout_s: f64,
     /// Where the recording goes (created; files in it are overwritten).
@@ -158,14 +159,23 @@ pub fn parse_set(s: &str) -> anyhow::Result<(ParamId, f32)> {
     Ok((id, value))
 }
 
+/// The longest `--timeout-s`: a year (a deadline must stay within what `Instant` can hold).
+const MAX_TIMEOUT_S: f64 = 365.0 * 86_400.0;
+
 /// `host-sim monitor`: returns the closing summary (the live lines are printed as they come).
 ///
 /// # Errors
 /// Bad flags, the port, a refused command, a missing reply, or I/O.
 pub fn run(args: &MonitorArgs) -> anyhow::Result<String> {
     let sets: Vec<(ParamId, f32)> = args.set.iter().map(|s| parse_set(s)).collect::<anyhow::Result<_>>()?;
-    if !(args.timeout_s.is_finite() && args.timeout_s > 0.0) {
-        bail!("--timeout-s {}: must be a positive number of seconds", args.timeout_s);
+    if !(args.timeout_s.is_finite() && args.timeout_s > 0.0 && args.timeout_s <= MAX_TIMEOUT_S) {
+        bail!(
+            "--timeout-s {}: must be a positive number of seconds, at most {MAX_TIMEOUT_S} (a year)",
+            Short(args.timeout_s)
+        );
+    }
+    if args.stress_grid && args.max_steps == 0 {
+        bail!("--max-steps 0: each case needs at least one step");
     }
     let timeout = Duration::from_secs_f64(args.timeout_s);
     let mut link = Link::open(&args.port, args.baud)?;

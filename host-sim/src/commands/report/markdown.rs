@@ -2,6 +2,8 @@
 
 use std::path::Path;
 
+use anyhow::Context as _;
+
 use super::maps::{Comparison, MAP_CONFIGS, SuccessMaps};
 use super::{Fit, ReportArgs};
 use crate::envelope::Envelope;
@@ -142,16 +144,41 @@ fn performance_section(rows: &[SweepRow], args: &ReportArgs) -> String {
     md
 }
 
+/// The largest figures file the report includes: 1 MiB (those of `scripts/firmware-report.sh`
+/// and the rapier bench are a few kilobytes).
+const FIGURES_FILE_CAP: u64 = 1 << 20;
+
+/// The figures file `path`, or `None` when it does not exist.
+///
+/// # Errors
+/// The file exists but cannot be read, is not UTF-8 text or is larger than [`FIGURES_FILE_CAP`].
+fn figures(path: &Path) -> anyhow::Result<Option<String>> {
+    match std::fs::metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        _ => crate::input::read_text(path, FIGURES_FILE_CAP).map(Some),
+    }
+}
+
+/// Refuses a figures file given by `flag` that exists but cannot be included, before the report
+/// runs.
+///
+/// # Errors
+/// As [`figures`], with the flag named.
+pub fn check_figures(flag: &str, path: &Path) -> anyhow::Result<()> {
+    figures(path).map(drop).with_context(|| format!("{flag} {}", path.display()))
+}
+
 /// A subsection holding the figures file `path` written by `command`, or a line saying how
-/// to include them when the file does not exist.
+/// to include them when the file does not exist (one that cannot be read was refused before the
+/// report ran: [`check_figures`]).
 fn included_figures(path: &Path, heading: &str, command: &str, what: &str) -> String {
-    match std::fs::read_to_string(path) {
-        Ok(figures) => format!(
+    match figures(path) {
+        Ok(Some(figures)) => format!(
             "{heading}\n\nFrom `{}` ({command}): {what}.\n\n{}\n",
             path.display(),
             figures.replacen("# Firmware figures", "", 1)
         ),
-        Err(_) => format!(
+        Ok(None) | Err(_) => format!(
             "({heading}: run {command} before this report to include {what}.)\n\n",
             heading = heading.trim_start_matches("### ")
         ),

@@ -20,6 +20,7 @@ use crate::output::{create_dir, sci, write_json};
 use crate::plot;
 use crate::scenes::Implementation;
 use crate::sweep::{self, CONFIGS, Sweep, SweepRow, order_fit};
+use meterstick_core::scene::catalogue::Short;
 
 use maps::SuccessMaps;
 
@@ -32,7 +33,7 @@ pub struct ReportArgs {
     /// A small sweep and map (seconds, for tests): h in {1e-3, 1e-2, 1e-1}, a 2x2 map.
     #[arg(long)]
     pub quick: bool,
-    /// Horizon of the COM error (s).
+    /// Horizon of the COM error (s; at most when the sweep's scene ends, 7.9 s).
     #[arg(long, default_value_t = 2.0)]
     pub horizon: f64,
     /// The firmware figures (flash/RAM, Cortex-M instructions per step) written by
@@ -55,6 +56,19 @@ type Fit = (Implementation, (Option<f64>, (f64, f64), f64, f64), f64);
 /// # Errors
 /// I/O or plotting.
 pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
+    let most = sweep::max_horizon();
+    if !(args.horizon > 0.0 && args.horizon <= most) {
+        anyhow::bail!(
+            "--horizon {:?}: must be a positive number of seconds, at most {most:.3} (when the sweep's \
+             scene ends: its fingers meet and hold)",
+            Short(args.horizon)
+        );
+    }
+    for (flag, path) in
+        [("--firmware-figures", &args.firmware_figures), ("--bench-figures", &args.bench_figures)]
+    {
+        markdown::check_figures(flag, path)?;
+    }
     let out = &args.out;
     create_dir(out)?;
     let sweep = sweep::run(&sweep::steps(args.quick), args.horizon)?;
