@@ -2,7 +2,9 @@
 //! [`read_text`], so no input (a device such as `/dev/zero`, a file that grows while it is read,
 //! a mistaken multi-gigabyte file) can exhaust the machine's memory or keep `host-sim` reading
 //! for ever. The cap is enforced on the bytes actually read (`take(cap + 1)`), not on
-//! `metadata().len()`, which is 0 for a device or a pipe.
+//! `metadata().len()`, which is 0 for a device or a pipe. A file `host-sim serve` sends is not
+//! read whole: [`open`] takes regular files only, with their length from the metadata, and the
+//! server sends exactly that many bytes, a chunk at a time.
 
 use std::io::Read as _;
 use std::path::Path;
@@ -21,7 +23,7 @@ pub const ELF_FILE_CAP: u64 = 64 << 20;
 pub const SUMMARY_FILE_CAP: u64 = 64 << 20;
 
 /// The largest file `host-sim serve` sends: 1 GiB (a `core.csv` of a 10^6-step run is about
-/// 200 MB).
+/// 200 MB). It is sent in chunks ([`open`]), never held whole.
 pub const SERVED_FILE_CAP: u64 = 1 << 30;
 
 /// `n` bytes in words (`1 MiB`, `64 MiB`, `512 bytes`).
@@ -56,6 +58,26 @@ pub fn read(path: &Path, cap: u64) -> anyhow::Result<Vec<u8>> {
         bytes_text(cap)
     );
     Ok(bytes)
+}
+
+/// Opens `path`, a regular file of at most `cap` bytes, to be read a chunk at a time: the file
+/// and its length (read no further than that, so a file that grows while it is read ends there).
+///
+/// # Errors
+/// The file cannot be opened (naming it), is not a regular file, or holds more than `cap` bytes
+/// (naming the file and the cap).
+pub fn open(path: &Path, cap: u64) -> anyhow::Result<(std::fs::File, u64)> {
+    let file = std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
+    let meta = file.metadata().with_context(|| format!("reading {}", path.display()))?;
+    anyhow::ensure!(meta.is_file(), "reading {}: not a regular file", path.display());
+    anyhow::ensure!(
+        meta.len() <= cap,
+        "reading {}: larger than the {} this input may have ({} bytes)",
+        path.display(),
+        bytes_text(cap),
+        meta.len()
+    );
+    Ok((file, meta.len()))
 }
 
 /// Reads at most `cap` bytes of `path` as UTF-8 text.
@@ -101,6 +123,24 @@ mod tests {
         std::fs::remove_file(&path).unwrap();
         let e = read(&path, 100).unwrap_err();
         assert_eq!(e.to_string(), format!("reading {}", path.display()));
+    }
+
+    #[test]
+    fn open_gives_the_length_and_refuses_above_the_cap() {
+        let path = std::env::temp_dir().join(format!("ms17-open-{}", std::process::id()));
+        std::fs::write(&path, [b'x'; 100]).unwrap();
+        assert_eq!(open(&path, 100).unwrap().1, 100);
+        let e = open(&path, 99).unwrap_err().to_string();
+        assert!(e.ends_with("larger than the 99 bytes this input may have (100 bytes)"), "{e}");
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!(open(&path, 100).unwrap_err().to_string(), format!("reading {}", path.display()));
+    }
+
+    #[test]
+    #[cfg(unix)]
+    fn open_refuses_a_device() {
+        let e = open(Path::new("/dev/zero"), 4096).unwrap_err().to_string();
+        assert_eq!(e, "reading /dev/zero: not a regular file");
     }
 
     #[test]

@@ -26,6 +26,9 @@ pub const WASM: &str = "pkg/meterstick_web.wasm";
 const MAX_HEAD: usize = 16 * 1024;
 /// Connections served at once; more are answered `503`.
 const MAX_CONNECTIONS: usize = 32;
+/// A file is sent in chunks of this size: a connection holds one chunk, not the file (32
+/// connections sending a 790 MB `reference.csv` each would otherwise hold 25 GB).
+const CHUNK: usize = 64 * 1024;
 
 /// `host-sim serve` options.
 #[derive(Debug, Clone, clap::Args)]
@@ -201,7 +204,7 @@ impl Server {
             let Ok(stream) = stream else { continue };
             if active.fetch_add(1, Ordering::SeqCst) >= MAX_CONNECTIONS {
                 active.fetch_sub(1, Ordering::SeqCst);
-                let _ = respond(&stream, &Response::text(503, "too many connections"), false);
+                let _ = respond(&stream, Response::text(503, "too many connections"), false);
                 continue;
             }
             let site = Arc::clone(&self.site);
@@ -219,8 +222,47 @@ impl Server {
 struct Response {
     status: u16,
     content_type: &'static str,
-    body: Vec<u8>,
+    body: Body,
     allow: bool,
+}
+
+/// A response's body: bytes, or a file of a known length, sent in chunks of [`CHUNK`] bytes.
+#[derive(Debug)]
+enum Body {
+    Bytes(Vec<u8>),
+    File(std::fs::File, u64),
+}
+
+impl Body {
+    /// Its length in bytes (`Content-Length`).
+    fn len(&self) -> u64 {
+        match self {
+            Self::Bytes(b) => b.len() as u64,
+            Self::File(_, len) => *len,
+        }
+    }
+
+    /// Writes it to `w`; a file is read and written one chunk at a time, exactly its length (a
+    /// file that shrank while it was sent ends the connection short of `Content-Length`).
+    fn write_to(&mut self, w: &mut impl Write) -> std::io::Result<()> {
+        match self {
+            Self::Bytes(b) => w.write_all(b),
+            Self::File(file, len) => {
+                let mut chunk = vec![0u8; CHUNK];
+                let mut left = *len;
+                while left > 0 {
+                    let want = usize::try_from(left).map_or(CHUNK, |l| l.min(CHUNK));
+                    let n = file.read(&mut chunk[..want])?;
+                    if n == 0 {
+                        return Err(std::io::ErrorKind::UnexpectedEof.into());
+                    }
+                    w.write_all(&chunk[..n])?;
+                    left -= n as u64;
+                }
+                Ok(())
+            }
+        }
+    }
 }
 
 impl Response {
@@ -228,7 +270,7 @@ impl Response {
         Self {
             status,
             content_type: "text/plain; charset=utf-8",
-            body: format!("{status} {}: {message}\n", reason(status)).into_bytes(),
+            body: Body::Bytes(format!("{status} {}: {message}\n", reason(status)).into_bytes()),
             allow: status == 405,
         }
     }
@@ -290,17 +332,19 @@ fn serve_connection(stream: &TcpStream, site: &Site) -> std::io::Result<()> {
         Ok(head) => answer(&head, site),
         Err(status) => (Response::text(status, "unreadable request"), false),
     };
-    if response.status >= 400 {
+    if response.status >= 400
+        && let Body::Bytes(body) = &response.body
+    {
         eprintln!(
             "host-sim serve: {} {}",
             response.status,
-            String::from_utf8_lossy(&response.body).trim_end().trim_start_matches(char::is_numeric).trim()
+            String::from_utf8_lossy(body).trim_end().trim_start_matches(char::is_numeric).trim()
         );
     }
-    respond(stream, &response, head_only)
+    respond(stream, response, head_only)
 }
 
-fn respond(stream: &TcpStream, r: &Response, head_only: bool) -> std::io::Result<()> {
+fn respond(stream: &TcpStream, mut r: Response, head_only: bool) -> std::io::Result<()> {
     let mut w = BufWriter::new(stream);
     write!(
         w,
@@ -316,7 +360,7 @@ fn respond(stream: &TcpStream, r: &Response, head_only: bool) -> std::io::Result
     }
     w.write_all(b"\r\n")?;
     if !head_only {
-        w.write_all(&r.body)?;
+        r.body.write_to(&mut w)?;
     }
     w.flush()
 }
@@ -359,7 +403,7 @@ fn route(target: &str, site: &Site) -> Response {
             return Response {
                 status: 200,
                 content_type: "application/json",
-                body: replay.runs_json().into_bytes(),
+                body: Body::Bytes(replay.runs_json().into_bytes()),
                 allow: false,
             };
         }
@@ -417,10 +461,16 @@ pub fn resolve(base: &Path, rel: &str) -> Result<PathBuf, (u16, String)> {
     Ok(real)
 }
 
+/// The file at `rel` under `base` (opened, sent in chunks by [`respond`]), or why not.
 fn file(base: &Path, rel: &str) -> Response {
     match resolve(base, rel) {
-        Ok(path) => match crate::input::read(&path, crate::input::SERVED_FILE_CAP) {
-            Ok(body) => Response { status: 200, content_type: content_type(&path), body, allow: false },
+        Ok(path) => match crate::input::open(&path, crate::input::SERVED_FILE_CAP) {
+            Ok((file, len)) => Response {
+                status: 200,
+                content_type: content_type(&path),
+                body: Body::File(file, len),
+                allow: false,
+            },
             Err(e) => Response::text(500, &format!("/{rel}: {e:#}")),
         },
         Err((status, why)) => Response::text(status, &why),
@@ -439,6 +489,12 @@ mod tests {
         std::fs::write(dir.join("pkg/meterstick_web.wasm"), b"\0asm").unwrap();
         let root = dir.canonicalize().unwrap();
         (dir, Site { root, replay: None })
+    }
+
+    fn body(mut r: Response) -> Vec<u8> {
+        let mut out = Vec::new();
+        r.body.write_to(&mut out).unwrap();
+        out
     }
 
     #[test]
@@ -466,7 +522,8 @@ mod tests {
         let (_dir, site) = site();
         let ok = route("/", &site);
         assert_eq!((ok.status, ok.content_type), (200, "text/html; charset=utf-8"));
-        assert_eq!(ok.body, b"<!doctype html>");
+        assert_eq!(ok.body.len(), 15);
+        assert_eq!(body(ok), b"<!doctype html>");
         let wasm = route("/pkg/meterstick_web.wasm?v=1", &site);
         assert_eq!((wasm.status, wasm.content_type), (200, "application/wasm"));
         for bad in ["/../Cargo.toml", "/pkg/..%2f..%2fetc/passwd", "/%2e%2e/x", "/a\\b", "/./index.html"] {
@@ -480,6 +537,24 @@ mod tests {
         assert!(answer("HEAD / HTTP/1.1", &site).1);
         assert_eq!(answer("GET / SPDY/3", &site).0.status, 400);
         assert_eq!(answer("GET /", &site).0.status, 400);
+    }
+
+    /// A file of several chunks (and a part) is sent whole, its length from the metadata; a file
+    /// that shrinks while it is sent ends short of its length with an error (the connection closes
+    /// and the client sees fewer bytes than `Content-Length`).
+    #[test]
+    fn a_file_is_sent_in_chunks_exactly() {
+        let (dir, site) = site();
+        let bytes: Vec<u8> = (0..3 * CHUNK + 17).map(|i| (i % 251) as u8).collect();
+        std::fs::write(dir.join("big.bin"), &bytes).unwrap();
+        let r = route("/big.bin", &site);
+        assert_eq!((r.status, r.body.len()), (200, bytes.len() as u64));
+        assert_eq!(body(r), bytes);
+        let mut r = route("/big.bin", &site);
+        std::fs::write(dir.join("big.bin"), &bytes[..CHUNK]).unwrap();
+        let mut out = Vec::new();
+        assert_eq!(r.body.write_to(&mut out).unwrap_err().kind(), std::io::ErrorKind::UnexpectedEof);
+        assert_eq!(out.len(), CHUNK);
     }
 
     #[cfg(unix)]

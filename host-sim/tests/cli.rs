@@ -785,8 +785,10 @@ fn interrupt_when(args: &[&str], ready: &str) -> (i32, String) {
 fn ctrl_c_ends_run_cleanly_listing_what_was_written() {
     let out = temp_dir("ctrl-c");
     let o = out.to_str().unwrap();
-    // v5 falls within 0.1 s; v0.1 runs 8.4 s at h = 2e-5 s (the reference: tens of seconds).
-    let (code, err) = interrupt_when(&["run", "--speed", "5,0.1", "--h", "2e-5", "--out", o], "3/4 (");
+    // v5 falls within 0.1 s; v0.1 runs 8.4 s at h = 2e-5 s (the reference: tens of seconds);
+    // --duration 10 keeps the two runs' 2 x 5 x 10^5 steps within what host-sim run records.
+    let (code, err) =
+        interrupt_when(&["run", "--speed", "5,0.1", "--h", "2e-5", "--duration", "10", "--out", o], "3/4 (");
     assert_eq!(code, 130, "{err}");
     assert!(err.contains("host-sim: Ctrl-C: no new run starts"), "{err}");
     assert!(err.contains(&format!("written so far in {o} (")), "{err}");
@@ -832,6 +834,59 @@ fn run_refuses_more_steps_than_it_can_record() {
         "{err}"
     );
     assert!(!out.exists());
+}
+
+/// The cap on recorded steps holds for a list's runs together, since every run is kept until the
+/// last has finished: four runs of 2 x 10^6 steps each (each within the cap) are refused at once,
+/// naming the list, `--h` and `--duration` and what to change. Before, this ran and peaked at
+/// 3.2 GB resident (memory grew with the number of values).
+#[test]
+fn run_refuses_a_list_whose_runs_together_record_too_many_steps() {
+    let out = temp_dir("record-cap-list");
+    let o = out.to_str().unwrap();
+    let start = std::time::Instant::now();
+    let (code, _, err) = host_sim(&[
+        "run",
+        "--scene",
+        "incline",
+        "--angle",
+        "10,11,12,13",
+        "--h",
+        "1e-5",
+        "--duration",
+        "20",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(
+            "--angle 10,11,12,13 deg: 4 runs of --h 0.00001 s and --duration 20 s imply 8.000e6 steps in all; \
+             host-sim run keeps every step of every run until the last has finished"
+        ),
+        "{err}"
+    );
+    assert!(
+        err.contains("takes at most 2e6 in all (give fewer values of --angle, raise --h or lower --duration"),
+        "{err}"
+    );
+    // The paper's speeds when --speed is not given; the durations follow the travel time.
+    let (code, _, err) = host_sim(&["run", "--h", "2e-5", "--out", o]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(
+            "the default --duration follows the fingers' travel time: --speed (not given: the paper's \
+             0.1,0.5,1,5,10 m/s): 5 runs of --h 0.00002 s and --duration 30 s imply 7.500e6 steps in all"
+        ),
+        "{err}"
+    );
+    assert!(err.contains("give fewer values of --speed"), "{err}");
+    assert!(
+        start.elapsed() < std::time::Duration::from_secs(20),
+        "refused before any run: {:?}",
+        start.elapsed()
+    );
+    assert!(!out.exists(), "a refusal writes nothing");
 }
 
 /// A fake rig on a TCP socket: answers every command as the firmware does (the defaults read back

@@ -30,6 +30,16 @@ fn get(port: u16, path: &str) -> (String, String) {
     (status, text)
 }
 
+/// A raw request: (headers as text, body bytes).
+fn request(port: u16, method: &str, path: &str) -> (String, Vec<u8>) {
+    let mut s = TcpStream::connect(("127.0.0.1", port)).unwrap();
+    write!(s, "{method} {path} HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n").unwrap();
+    let mut bytes = Vec::new();
+    s.read_to_end(&mut bytes).unwrap();
+    let end = bytes.windows(4).position(|w| w == b"\r\n\r\n").expect("a blank line after the headers");
+    (String::from_utf8(bytes[..end].to_vec()).unwrap(), bytes[end + 4..].to_vec())
+}
+
 fn serve(args: &[&str]) -> (std::process::Child, u16) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
         .arg("serve")
@@ -80,6 +90,33 @@ fn serves_the_page_and_refuses_escapes() {
     assert!(get(port, "/replay/v0.5/core.csv").1.contains("Content-Type: text/csv; charset=utf-8"));
     child.kill().unwrap();
     child.wait().unwrap();
+}
+
+/// A file larger than the server's 64 KiB chunk arrives intact, byte for byte, with its length;
+/// `HEAD` gives the length and no body. The server sends files a chunk at a time (before, it read
+/// each whole into memory: six parallel requests for a 790 MB reference.csv ran out of memory).
+#[test]
+fn serves_a_file_of_several_chunks_intact() {
+    let root = page("big", true);
+    let bytes: Vec<u8> = (0..1_000_003u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8).collect();
+    std::fs::write(root.join("big.csv"), &bytes).unwrap();
+    let (mut child, port) = serve(&["--port", "0", "--root", root.to_str().unwrap()]);
+    let fetches: Vec<_> =
+        (0..4).map(|_| std::thread::spawn(move || request(port, "GET", "/big.csv"))).collect();
+    for f in fetches {
+        let (head, body) = f.join().unwrap();
+        assert!(head.starts_with("HTTP/1.1 200 OK\r\n"), "{head}");
+        assert!(
+            head.contains("Content-Type: text/csv; charset=utf-8\r\nContent-Length: 1000003\r\n"),
+            "{head}"
+        );
+        assert!(body == bytes, "{} bytes arrived, not the file's 1000003 (or other bytes)", body.len());
+    }
+    let (head, body) = request(port, "HEAD", "/big.csv");
+    assert!(head.contains("Content-Length: 1000003\r\n") && body.is_empty(), "{head}");
+    child.kill().unwrap();
+    child.wait().unwrap();
+    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]

@@ -22,8 +22,8 @@ use crate::plot;
 use crate::progress::{Interrupted, interrupted, is_interrupted};
 use crate::scenes::{Implementation, ImplementationOf, SceneArgs, SceneKind, SceneSpec, SpecExt as _};
 use crate::trajectory::{
-    Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, check_recorded_steps, max_deviation,
-    run_k, switches, write_csv, write_events_csv,
+    Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, check_recorded_steps,
+    check_total_recorded_steps, max_deviation, run_k, switches, write_csv, write_events_csv,
 };
 
 /// The paper's finger speeds (m/s): the slow case (figs. 2-3) and the fast cases of fig. 5.
@@ -142,16 +142,34 @@ pub fn run(args: &RunArgs) -> anyhow::Result<String> {
     let paper = (args.scene.kind() == SceneKind::MeterStick).then_some(("speed", &PAPER_SPEEDS[..]));
     let specs = args.scene.specs(paper)?;
     let duration_given = args.scene.given.iter().any(|(f, _)| f.long == "duration");
+    let travel_time = |e: anyhow::Error| {
+        if duration_given { e } else { e.context("the default --duration follows the fingers' travel time") }
+    };
     for (_, spec) in &specs {
-        check_recorded_steps(spec).map_err(|e| {
-            if duration_given {
-                e
-            } else {
-                e.context("the default --duration follows the fingers' travel time")
+        check_recorded_steps(spec).map_err(travel_time)?;
+    }
+    if specs.len() > 1 {
+        // Every run's steps stay in memory until the last has finished: the list is bounded too.
+        let (listed, flag) = match args.scene.given.iter().find(|(_, v)| v.len() > 1) {
+            Some((flag, values)) => (list_text(flag, values), flag.long),
+            None => {
+                (format!("--speed (not given: the paper's {} m/s)", list_text_values(&PAPER_SPEEDS)), "speed")
             }
-        })?;
+        };
+        check_total_recorded_steps(&specs, &listed, flag).map_err(travel_time)?;
     }
     crate::with_contacts!(args.scene.kind(), K => run_all::<K>(args, &specs))
+}
+
+/// A list as given: `--angle 10,11,12,13 deg`.
+fn list_text(flag: &crate::scenes::Flag, values: &[f64]) -> String {
+    let unit = if flag.unit.is_empty() { String::new() } else { format!(" {}", flag.unit) };
+    format!("--{} {}{unit}", flag.long, list_text_values(values))
+}
+
+/// Values as typed: `0.1,0.5,1`.
+fn list_text_values(values: &[f64]) -> String {
+    values.iter().map(|&v| crate::scenes::short_number(v)).collect::<Vec<_>>().join(",")
 }
 
 /// Runs the scenes (of `K` contacts each) and writes their files (the reference beside the core

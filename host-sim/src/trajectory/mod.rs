@@ -27,7 +27,7 @@ use crate::scenes::{Implementation, SceneKind};
 pub use compare::{Switch, max_deviation, switches};
 pub use core_run::run_core;
 pub use csv::{csv_header, write_csv, write_events_csv};
-pub use record::{MAX_RECORDED_STEPS, Record, Recorder, check_recorded_steps};
+pub use record::{MAX_RECORDED_STEPS, Record, Recorder, check_recorded_steps, check_total_recorded_steps};
 pub use reference_run::run_reference;
 pub use run::{run, run_k, run_watched};
 

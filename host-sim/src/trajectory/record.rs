@@ -63,10 +63,11 @@ impl<const K: usize> Recorder<K> {
     }
 }
 
-/// The most steps `host-sim run` records: 2 x 10^6. It keeps every step of the core and of the
-/// reference in memory (about 700 bytes a step in all) and writes them as CSV, so a run at the
-/// general cap ([`crate::scenes::MAX_STEPS`], 10^8) would need about 70 GB; `host-sim scene`
-/// runs up to that cap without recording.
+/// The most steps `host-sim run` records: 2 x 10^6, for one run and for all the runs of a list
+/// together ([`check_total_recorded_steps`]). It keeps every step of the core and of the
+/// reference of every run in memory until the last run has finished (about 700 bytes a step in
+/// all) and writes them as CSV, so a run at the general cap ([`crate::scenes::MAX_STEPS`], 10^8)
+/// would need about 70 GB; `host-sim scene` runs up to that cap without recording.
 pub const MAX_RECORDED_STEPS: f64 = 2e6;
 
 /// Refuses a run that would record more than [`MAX_RECORDED_STEPS`] steps, in the user's words.
@@ -85,4 +86,39 @@ pub fn check_recorded_steps(spec: &SceneSpec) -> anyhow::Result<()> {
         crate::scenes::MAX_STEPS
     );
     Ok(())
+}
+
+/// Refuses a list of runs that would record more than [`MAX_RECORDED_STEPS`] steps in all (each
+/// run within the cap, [`check_recorded_steps`], but every run's steps are kept until the last
+/// has finished, so memory grows with the number of values), in the user's words: `listed` is
+/// the list as given (`--angle 10,11,12,13 deg`), `flag` its flag (`angle`).
+///
+/// # Errors
+/// The steps of all the runs together are above the cap.
+pub fn check_total_recorded_steps(
+    specs: &[(String, SceneSpec)],
+    listed: &str,
+    flag: &str,
+) -> anyhow::Result<()> {
+    let total: f64 = specs.iter().map(|(_, s)| (s.max_time() / s.step()).ceil()).sum();
+    if total <= MAX_RECORDED_STEPS {
+        return Ok(());
+    }
+    let same =
+        |f: fn(&SceneSpec) -> f64| specs.iter().all(|(_, s)| f(s).to_bits() == f(&specs[0].1).to_bits());
+    let runs = match specs.first() {
+        Some((_, first)) if same(SceneSpec::step) && same(SceneSpec::max_time) => format!(
+            "runs of --h {} s and --duration {} s",
+            crate::scenes::short_number(first.step()),
+            crate::scenes::short_number(first.max_time())
+        ),
+        _ => "runs whose --h and --duration".to_string(),
+    };
+    anyhow::bail!(
+        "{listed}: {} {runs} imply {total:.3e} steps in all; host-sim run keeps every step of every run \
+         until the last has finished (about 700 bytes each) and takes at most {MAX_RECORDED_STEPS:e} in all \
+         (give fewer values of --{flag}, raise --h or lower --duration, or run the values in separate \
+         invocations)",
+        specs.len()
+    )
 }
