@@ -31,6 +31,15 @@ pub enum ParamError {
     SupportMismatch(u8),
     /// The full layout lacks a variable of the layout each step solves.
     LayoutNotInFull,
+    /// The body's moment of inertia, from the fields `mass` and `size`, is not a positive
+    /// finite number in the scalar type (or `m / J` is not finite): a mass or size whose
+    /// product underflows to 0 or overflows (f32 holds `1e-45 .. 3.4e38`).
+    InertiaOutOfRange {
+        /// The mass field.
+        mass: &'static str,
+        /// The size field the inertia grows with.
+        size: &'static str,
+    },
 }
 
 impl ParamError {
@@ -39,6 +48,7 @@ impl ParamError {
     pub const fn field(&self) -> Option<&'static str> {
         match *self {
             Self::NonFinite(f) | Self::NotPositive(f) | Self::Negative(f) | Self::OutOfRange(f) => Some(f),
+            Self::InertiaOutOfRange { mass, .. } => Some(mass),
             _ => None,
         }
     }
@@ -61,6 +71,10 @@ impl core::fmt::Display for ParamError {
             Self::NonFiniteState => f.write_str("the initial state is not finite"),
             Self::SupportMismatch(i) => write!(f, "the support of contact {i} cannot carry its feature"),
             Self::LayoutNotInFull => f.write_str("the full layout lacks a variable of the solved layout"),
+            Self::InertiaOutOfRange { mass, size } => write!(
+                f,
+                "the moment of inertia from parameters {mass} and {size} is not a positive finite number"
+            ),
         }
     }
 }

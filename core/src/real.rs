@@ -206,6 +206,14 @@ pub(crate) fn sin_cos_f32(x: f32) -> (f32, f32) {
     (sin, cos)
 }
 
+/// `x - x`: exactly `+0` when `x` is finite, NaN when it is not. Added to a value, it carries the
+/// finiteness of `x` into it at the cost of two operations and no branch.
+#[inline]
+#[allow(clippy::eq_op)] // `x - x` is the point
+pub(crate) fn zero_if_finite<T: Real>(x: T) -> T {
+    x - x
+}
+
 /// `max(a, b)` for partially ordered scalars (NaN-free inputs).
 #[inline]
 pub(crate) fn max<T: Real>(a: T, b: T) -> T {

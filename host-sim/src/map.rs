@@ -220,7 +220,8 @@ impl Grid {
                 // A cell's steps grow toward a corner (smaller h, longer duration, slower fingers).
                 let steps = spec.steps();
                 if steps.is_nan() || steps > MAX_STEPS {
-                    let refusal = Refusal::TooManySteps { params: spec, steps, limit: MAX_STEPS };
+                    let refusal =
+                        Refusal::TooManySteps { params: spec, steps, limit: MAX_STEPS, followed: false };
                     return Err(at_corner(refusal.worded("--").to_string()));
                 }
             }

@@ -459,20 +459,12 @@ impl SceneArgs {
                 .collect(),
         };
         for (name, mut spec) in runs {
-            let given_duration = spec.max_time();
-            if !duration_given {
-                spec.follow_travel_time();
-            }
-            // The duration was raised to the fingers' travel time: not the number the user gave.
-            let followed = spec.max_time() > given_duration; // it is only ever raised
+            let followed = !duration_given && spec.follow_travel_time();
             spec.validate(self.precision).map_err(|e| anyhow::anyhow!("{}", flag_error(&spec, e)))?;
             let steps = spec.steps();
             if steps.is_nan() || steps > MAX_STEPS {
-                let refusal = Refusal::TooManySteps { params: spec, steps, limit: MAX_STEPS };
-                if !followed {
-                    bail!("{}", refusal.worded("--"));
-                }
-                bail!("{}; the default --duration follows the fingers' travel time", refusal.worded("--"));
+                let refusal = Refusal::TooManySteps { params: spec, steps, limit: MAX_STEPS, followed };
+                bail!("{}", refusal.worded("--"));
             }
             out.push((name, spec));
         }

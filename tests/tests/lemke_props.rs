@@ -245,3 +245,35 @@ fn long_random_run() {
          worst f32 error / (n eps32 L scale) {worst_f32_ratio:.2}); PSD {psd_solved} solved, {psd_ray} rays, all agreeing with enumeration"
     );
 }
+
+/// An answer whose scale `||M|| ||z||` is beyond f32 was accepted with `w < 0`: divided by an
+/// infinite scale, every `w_i` read as 0, the violation included (found by a review: 1,133 of
+/// 38,358 overflowing random solves were returned with a negative `w`). Such an answer cannot be
+/// verified in the precision, so it is refused.
+#[test]
+fn an_answer_whose_scale_overflows_is_not_verified() {
+    use meterstick_core::lcp::is_solution;
+    // w = M z + q = [-1, 0]: w_0 < 0, but ||M|| ||z|| = 1e40 overflows.
+    let lcp = Lcp::<f32, 2>::from_rows(&[[1e30, 0.0], [0.0, 1.0]], &[-1.0, -1e10]);
+    assert!(!is_solution(&lcp, &SVector::<f32, 2>::new(0.0, 1e10)));
+    // The review's Lemke case: returned Ok with w = [0, -3.4e15, -2.0e25] and residual 0.
+    let lcp = Lcp::<f32, 3>::from_rows(
+        &[
+            [5.919_948e-31, 6.316_978_7e-31, 0.0],
+            [-7.862_937_6e23, 0.0, -8.245_55e24],
+            [-4.649_029_7e33, 0.0, -4.976_679_6e33],
+        ],
+        &[-0.680_346_13, 3.024_337_5e16, 42_281_763_000.0],
+    );
+    match Lemke::<f32, 3>::new().solve(&lcp) {
+        Ok(sol) => {
+            let w = lcp.w_of(&sol.z);
+            assert!(
+                sol.z.iter().chain(w.iter()).all(|v| v.is_finite() && *v >= 0.0),
+                "z {:?}, w {w:?}",
+                sol.z
+            );
+        }
+        Err(e) => assert!(matches!(e, LcpError::Unverified { .. } | LcpError::Ray { .. }), "{e:?}"),
+    }
+}

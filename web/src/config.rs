@@ -134,13 +134,16 @@ impl Config {
             spec.set(field, flag.to_core(value));
         }
         let duration = FLAGS.iter().position(|f| f.long == "duration");
-        if duration.and_then(|i| self.given[i]).is_none() {
-            spec.follow_travel_time();
-        }
+        let followed = duration.and_then(|i| self.given[i]).is_none() && spec.follow_travel_time();
         validate(&spec, precision).map_err(|error| ConfigError(Refusal::Invalid { params: spec, error }))?;
         let steps = spec.steps();
         if steps.is_nan() || steps > MAX_STEPS {
-            return Err(ConfigError(Refusal::TooManySteps { params: spec, steps, limit: MAX_STEPS }));
+            return Err(ConfigError(Refusal::TooManySteps {
+                params: spec,
+                steps,
+                limit: MAX_STEPS,
+                followed,
+            }));
         }
         Ok(spec)
     }
@@ -183,6 +186,22 @@ mod tests {
             message(&c).as_str(),
             "h 0.000000001 s and duration 3 s imply 3.000e9 steps; a run may take at most 1e8 \
              (raise h or lower duration)"
+        );
+        // A duration the user did not give, raised to the fingers' travel time, is said to be so.
+        let c = config(SceneKind::MeterStick, &[("speed", 1e-5)]);
+        assert!(
+            message(&c).as_str().ends_with(
+                "(raise h or lower duration); the default duration follows the fingers' travel time"
+            ),
+            "{}",
+            message(&c).as_str()
+        );
+        // An inertia out of f32's range, from values each in range.
+        let c = config(SceneKind::MeterStick, &[("mass", 1e-45)]);
+        assert!(
+            message(&c).as_str().contains("the moment of inertia they give is not a positive finite number"),
+            "{}",
+            message(&c).as_str()
         );
     }
 

@@ -15,8 +15,9 @@
 //! i.e. the worst violation of `z >= 0`, `w >= 0` and of "one of `z_i`, `w_i` is zero",
 //! each relative to the magnitude it is computed from. This is a backward-error measure:
 //! a solution computed stably in precision `eps` has `r = O(N eps)` whatever the condition
-//! of `M`. The default tolerance is `r <= 256 N eps` of the scalar type ([`default_tolerance`]):
-//! for `N = 6` that is `1.8e-4` in f32 and `3.4e-13` in f64.
+//! of `M`. A scale `s_w` beyond the scalar's range fails (the residual is then infinite: divided
+//! by it, every `w_i` would read as 0). The default tolerance is `r <= 256 N eps` of the scalar
+//! type ([`default_tolerance`]): for `N = 6` that is `1.8e-4` in f32 and `3.4e-13` in f64.
 
 use nalgebra::SVector;
 
@@ -55,7 +56,9 @@ pub fn verify<T: Real, const N: usize>(lcp: &Lcp<T, N>, z: &SVector<T, N>, toler
 
 /// The normalised residual of `z` with `w = M z + q` already computed and the data's scales
 /// `||M||_inf`, `||q||_inf` given (the solver's hot path has all three). Infinite when `z` or
-/// `w` has a non-finite entry. The scales are inverted once: two divisions, not `3 N`.
+/// `w` has a non-finite entry, or when the scale `s_w` is not finite (`||M|| ||z||` beyond the
+/// scalar's range: every `w_i` divided by it would read as 0, a violation included, so nothing
+/// can be verified in this precision). The scales are inverted once: two divisions, not `3 N`.
 #[inline]
 pub(crate) fn residual<T: Real, const N: usize>(
     z: &SVector<T, N>,
@@ -67,10 +70,11 @@ pub(crate) fn residual<T: Real, const N: usize>(
     for i in 0..N {
         z_norm = max(z_norm, z[i].abs_exact());
     }
+    let s_w = m_norm * z_norm + q_norm;
     let inv_s_z = T::one() / max(z_norm, T::TINY);
-    let inv_s_w = T::one() / max(m_norm * z_norm + q_norm, T::TINY);
+    let inv_s_w = T::one() / max(s_w, T::TINY);
     let mut residual = T::zero();
-    let mut finite = true;
+    let mut finite = s_w.finite();
     for i in 0..N {
         let (zi, wi) = (z[i], w[i]);
         finite &= zi.finite() & wi.finite();

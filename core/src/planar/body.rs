@@ -1,5 +1,6 @@
 //! [`Body`]: the one rigid body a [`super::Stepper`] moves, and its [`BodyState`].
 
+use crate::params::ParamError;
 use crate::real::Real;
 
 /// A planar rigid body shaped as a box centred on its centre of mass (a rod is a long thin box).
@@ -27,6 +28,21 @@ impl<T: Real> Body<T> {
     #[must_use]
     pub fn block(mass: T, width: T, height: T) -> Self {
         Self { width, height, mass, inertia: mass * (width * width + height * height) / T::of(12.0) }
+    }
+
+    /// Checks that the inertia `J` and `m / J` are positive finite numbers in `T`: a mass or size
+    /// can be finite while their product underflows to 0 or overflows (in f32, a mass of 1e-45
+    /// kg, a rod of 1e20 m). `mass` and `size` name the fields they came from.
+    ///
+    /// # Errors
+    /// [`ParamError::InertiaOutOfRange`].
+    pub fn check_inertia(&self, mass: &'static str, size: &'static str) -> Result<(), ParamError> {
+        let ratio = self.mass / self.inertia;
+        if self.inertia.finite() && self.inertia > T::zero() && ratio.finite() {
+            Ok(())
+        } else {
+            Err(ParamError::InertiaOutOfRange { mass, size })
+        }
     }
 
     /// `diag(M^-1)` times the mass: `(1, 1, m / J)`. The LCP is solved for impulses per unit mass,

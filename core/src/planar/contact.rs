@@ -4,7 +4,7 @@
 //! "Contacts".
 
 use super::layout::Direction;
-use crate::real::Real;
+use crate::real::{Real, zero_if_finite};
 
 /// The part of the body a contact acts on.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,6 +58,22 @@ impl<T: Real> Support<T> {
     #[must_use]
     pub fn fixed_line(position: [T; 2], normal: [T; 2]) -> Self {
         Self::Line { position, normal, velocity: [T::zero(); 2] }
+    }
+
+    /// `true` when the support can carry a contact: its position is finite and, for a line, its
+    /// normal is a unit vector (`|n . n - 1| <= 64 eps`). (A NaN position left its contact
+    /// silently inactive; a zero normal let the body fall through the line.)
+    #[must_use]
+    #[inline]
+    pub fn is_well_formed(&self) -> bool {
+        match *self {
+            Self::Point { position, .. } => both_finite(position),
+            Self::Line { position, normal, .. } => {
+                let unit = (normal[0] * normal[0] + normal[1] * normal[1] - T::one()).abs_exact()
+                    <= T::of(64.0) * T::EPS;
+                both_finite(position) & unit
+            }
+        }
     }
 
     /// Its velocity.
@@ -241,6 +257,13 @@ impl<T: Real> ContactFrame<T> {
         let p = self.point_velocity(v);
         self.wt[0] * (support_velocity[0] - p[0]) + self.wt[1] * (support_velocity[1] - p[1])
     }
+}
+
+/// `true` when both entries are finite: `(a - a) + (b - b)` is exactly `+0` for finite entries
+/// and NaN otherwise.
+#[inline]
+fn both_finite<T: Real>([a, b]: [T; 2]) -> bool {
+    zero_if_finite(a) + zero_if_finite(b) == T::zero()
 }
 
 /// `r x a = r_x a_y - r_y a_x`.

@@ -580,8 +580,9 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 violation = max(violation, -wv);
             }
         }
+        // A scale beyond the scalar's range would make every violation read as 0: unverifiable.
         let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
-        if !finite || violation > tolerance * s_w {
+        if !(finite && s_w.finite()) || violation > tolerance * s_w {
             return Err(Declined::Unverified);
         }
         Ok((v_plus, violation / s_w))

@@ -25,7 +25,7 @@ use super::factored::{CANDIDATES, Declined, FactoredLcp, PlanCache, basis_of_mod
 use super::layout::{Direction, Layout, Variable};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
-use crate::real::{Real, max};
+use crate::real::{Real, max, zero_if_finite};
 
 /// The stepper's numbers, besides the body and its contacts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,6 +63,10 @@ pub enum StepError {
     ReducedModelLeftRange,
     /// A support cannot carry its contact's feature (the contact's index).
     SupportMismatch(u8),
+    /// A line's normal is not a unit vector ([`Support::is_well_formed`]; the contact's index).
+    /// (A support whose position or velocity is not finite fails the step with
+    /// [`LcpError::NonFiniteInput`].)
+    MalformedSupport(u8),
 }
 
 impl core::fmt::Display for StepError {
@@ -74,6 +78,9 @@ impl core::fmt::Display for StepError {
                 f.write_str("the reduced friction model left its range (no fallback compiled in)")
             }
             Self::SupportMismatch(i) => write!(f, "the support of contact {i} cannot carry its feature"),
+            Self::MalformedSupport(i) => {
+                write!(f, "the line supporting contact {i} has a normal that is not a unit vector")
+            }
         }
     }
 }
@@ -494,7 +501,17 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             if !supports[i].fits(&c.feature) {
                 return Err(StepError::SupportMismatch(i as u8));
             }
-            support_velocity[i] = supports[i].velocity();
+            if let Support::Line { .. } = supports[i]
+                && !supports[i].is_well_formed()
+            {
+                return Err(StepError::MalformedSupport(i as u8));
+            }
+            // The position enters as `p - p`, exactly 0 when it is finite and NaN when not: a
+            // non-finite position (which only the next step's frames would read, and then as an
+            // inactive contact) makes this step's data non-finite, refused as a non-finite
+            // velocity is ([`LcpError::NonFiniteInput`]), with no branch of its own.
+            let (p, u) = (supports[i].position(), supports[i].velocity());
+            support_velocity[i] = [u[0] + zero_if_finite(p[0]), u[1] + zero_if_finite(p[1])];
             mu[i] = if self.modes[i].is_sliding() { c.mu_kinetic } else { c.mu_static };
         }
         let v_free = [self.state.vx, self.state.vy - h * s.gravity, self.state.omega];
@@ -605,10 +622,16 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let round_off_limited = speed > self.round_off_speed;
         let time = self.next_time();
         self.stats.steps += 1;
-        self.stats.round_off_limited += u64::from(round_off_limited);
-        self.stats.pivots += u64::from(pivots);
-        self.stats.max_pivots = self.stats.max_pivots.max(pivots);
         self.stats.warm_starts += u64::from(warm_start_used);
+        // Rare: branches, not three 64-bit additions of 0 (each a load, two adds and a store on a
+        // 32-bit core).
+        if round_off_limited {
+            self.stats.round_off_limited += 1;
+        }
+        if pivots > 0 {
+            self.stats.pivots += u64::from(pivots);
+            self.stats.max_pivots = self.stats.max_pivots.max(pivots);
+        }
 
         // Impulses (z is per unit mass) and modes after the step.
         let (normal, friction, pn) = if full_layout_used {
@@ -901,6 +924,9 @@ fn validate<T: Real, const K: usize>(
         }
         if !values.iter().all(|v| v.finite()) {
             return Err(ParamError::NonFinite("support"));
+        }
+        if !sup.is_well_formed() {
+            return Err(ParamError::OutOfRange("support")); // a line's normal not a unit vector
         }
     }
     if !start.is_finite() {

@@ -573,7 +573,10 @@ impl AnyParams {
     /// The meter stick's default time limit follows the fingers' travel: at least its default,
     /// and long enough for the fingers to meet and the rod to hold (`2 x` travel time + hold time
     /// + 1 s), so that a slow finger does not end "Unfinished" by default. Other scenes keep theirs.
-    pub fn follow_travel_time(&mut self) {
+    ///
+    /// Returns `true` when it raised the time limit (a refusal then says so:
+    /// [`Refusal::TooManySteps`]).
+    pub fn follow_travel_time(&mut self) -> bool {
         if let Self::MeterStick(p) = self {
             let closing = p.finger1_velocity - p.finger2_velocity;
             if closing > 0.0 {
@@ -581,9 +584,11 @@ impl AnyParams {
                 let wanted = 2.0 * travel + p.hold_time + 1.0;
                 if wanted.is_finite() && wanted > p.max_time {
                     p.max_time = wanted;
+                    return true;
                 }
             }
         }
+        false
     }
 }
 
@@ -612,6 +617,9 @@ pub enum Refusal {
         steps: f64,
         /// The most a run may take.
         limit: f64,
+        /// The time limit is the meter stick's default raised to the fingers' travel time
+        /// ([`AnyParams::follow_travel_time`]), not a duration the user gave.
+        followed: bool,
     },
 }
 
@@ -713,6 +721,12 @@ impl fmt::Display for Worded {
                         show("finger2_x"),
                         show("finger_width")
                     ),
+                    ParamError::InertiaOutOfRange { mass, size } => write!(
+                        f,
+                        "{} and {}: the moment of inertia they give is not a positive finite number",
+                        show(mass),
+                        show(size)
+                    ),
                     other => write!(f, "{other}"),
                 }?;
                 // Parameters that pass in f64 failed in f32.
@@ -721,13 +735,19 @@ impl fmt::Display for Worded {
                 }
                 Ok(())
             }
-            Refusal::TooManySteps { params, steps, limit } => write!(
-                f,
-                "{p}h {} s and {p}duration {} s imply {steps:.3e} steps; a run may take at most {limit:e} \
-                 (raise {p}h or lower {p}duration)",
-                Short(params.step()),
-                Short(params.max_time())
-            ),
+            Refusal::TooManySteps { params, steps, limit, followed } => {
+                write!(
+                    f,
+                    "{p}h {} s and {p}duration {} s imply {steps:.3e} steps; a run may take at most {limit:e} \
+                     (raise {p}h or lower {p}duration)",
+                    Short(params.step()),
+                    Short(params.max_time())
+                )?;
+                if followed {
+                    write!(f, "; the default {p}duration follows the fingers' travel time")?;
+                }
+                Ok(())
+            }
         }
     }
 }

@@ -47,6 +47,17 @@ params! {
 }
 
 impl<T: Real> CylinderParams<T> {
+    /// The body: a disc of the radius, `J = k m r^2`.
+    #[must_use]
+    pub fn body(&self) -> Body<T> {
+        Body {
+            width: self.radius + self.radius,
+            height: self.radius + self.radius,
+            mass: self.mass,
+            inertia: self.inertia_factor * self.mass * self.radius * self.radius,
+        }
+    }
+
     /// Checks every parameter.
     ///
     /// # Errors
@@ -59,6 +70,7 @@ impl<T: Real> CylinderParams<T> {
         if !(self.angle >= T::zero() && self.angle < T::frac_pi_2()) {
             return Err(ParamError::OutOfRange("angle"));
         }
+        self.body().check_inertia("mass", "radius")?;
         Ok(())
     }
 
@@ -120,12 +132,7 @@ impl<T: Real, const N: usize, const E: usize> Cylinder<T, N, E> {
         const { assert!(N == 3 || N == 4, "the cylinder scene has N = 3 or N = 4") };
         params.validate()?;
         let p = &params;
-        let body = Body {
-            width: p.radius + p.radius,
-            height: p.radius + p.radius,
-            mass: p.mass,
-            inertia: p.inertia_factor * p.mass * p.radius * p.radius,
-        };
+        let body = p.body();
         let contact =
             Contact { feature: Feature::Round(p.radius), mu_static: p.mu_static, mu_kinetic: p.mu_kinetic };
         let settings = Settings { step: p.step, gravity: p.gravity, stick_speed: p.stick_speed };

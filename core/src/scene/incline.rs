@@ -73,6 +73,7 @@ impl<T: Real> InclineParams<T> {
         if !(self.angle >= T::zero() && self.angle < T::frac_pi_2()) {
             return Err(ParamError::OutOfRange("angle"));
         }
+        Body::block(self.mass, self.width, self.height).check_inertia("mass", "width")?;
         Ok(())
     }
 

@@ -68,6 +68,7 @@ impl<T: Real> LadderParams<T> {
         if !(self.angle > T::zero() && self.angle < T::frac_pi_2()) {
             return Err(ParamError::OutOfRange("angle"));
         }
+        Body::rod(self.mass, self.length, self.thickness).check_inertia("mass", "length")?;
         Ok(())
     }
 
@@ -207,7 +208,8 @@ impl<T: Real, const N: usize, const E: usize> Ladder<T, N, E> {
     /// ratio to the top's start height.
     fn measured_values(&self) -> [Option<T>; crate::scene::MAX_MEASURES] {
         let h = self.wall_release_height();
-        [h, h.map(|h| h / self.start_top_height()), None]
+        // The ratio of a ladder started (almost) flat is not a number: no measure rather than an infinity.
+        [h, h.map(|h| h / self.start_top_height()).filter(|r| r.finite()), None]
     }
 }
 

@@ -142,6 +142,8 @@ impl<T: Real> MeterStickParams<T> {
         if !gap.finite() || gap <= self.finger_width {
             return Err(ParamError::FingersCrossed);
         }
+        Body::rod(self.rod_mass, self.rod_length, self.rod_thickness)
+            .check_inertia("rod_mass", "rod_length")?;
         Ok(())
     }
 }

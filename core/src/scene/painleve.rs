@@ -68,6 +68,7 @@ impl<T: Real> PainleveParams<T> {
         if !(self.angle > T::zero() && self.angle < T::frac_pi_2()) {
             return Err(ParamError::OutOfRange("angle"));
         }
+        Body::rod(self.mass, self.length, self.thickness).check_inertia("mass", "length")?;
         Ok(())
     }
 

@@ -78,6 +78,8 @@ impl<T: Real> ThreeFingersParams<T> {
         if !(self.finger2_x - self.finger1_x > self.finger_width && self.finger3_x > self.finger2_x) {
             return Err(ParamError::FingersCrossed);
         }
+        Body::rod(self.rod_mass, self.rod_length, self.rod_thickness)
+            .check_inertia("rod_mass", "rod_length")?;
         Ok(())
     }
 
