@@ -141,9 +141,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<String> {
     // The paper's speeds are the meter stick's (three-fingers has a `--speed` too, and one run).
     let paper = (args.scene.kind() == SceneKind::MeterStick).then_some(("speed", &PAPER_SPEEDS[..]));
     let specs = args.scene.specs(paper)?;
-    let duration_given = args.scene.given.iter().any(|(f, _)| f.long == "duration");
+    // Only the meter stick's default duration follows its fingers ([`SceneSpec::follow_travel_time`]).
+    let followed = args.scene.kind() == SceneKind::MeterStick
+        && !args.scene.given.iter().any(|(f, _)| f.long == "duration");
     let travel_time = |e: anyhow::Error| {
-        if duration_given { e } else { e.context("the default --duration follows the fingers' travel time") }
+        if followed { e.context("the default --duration follows the fingers' travel time") } else { e }
     };
     for (_, spec) in &specs {
         check_recorded_steps(spec).map_err(travel_time)?;
