@@ -272,6 +272,11 @@ fn invalid_parameters_are_rejected() {
         (MeterStickParams { finger2_x: 0.51, ..ok }, ParamError::FingerOutsideRod),
         (MeterStickParams { finger1_x: 0.3, finger2_x: 0.2, ..ok }, ParamError::FingersCrossed),
         (MeterStickParams { finger1_x: 0.0, finger2_x: 0.005, ..ok }, ParamError::FingersCrossed),
+        // Accepted before, then failed at the first step (a ray, or a non-finite state).
+        (MeterStickParams { rod_thickness: 1e7, ..ok }, ParamError::OutOfRange("rod_thickness")),
+        (MeterStickParams { rod_thickness: 1.0, ..ok }, ParamError::OutOfRange("rod_thickness")),
+        (MeterStickParams { step: 1e23, ..ok }, ParamError::OutOfRange("step")),
+        (MeterStickParams { step: 31.0, max_time: 30.0, ..ok }, ParamError::OutOfRange("step")),
     ];
     for (params, expected) in cases {
         assert_eq!(MeterStick::<f64, 8>::new(params).err(), Some(expected));
@@ -302,7 +307,7 @@ fn an_inertia_out_of_range_is_refused_before_any_step() {
         inertia("mass", "width")
     );
     assert_eq!(
-        Ladder::<f32>::new(LadderParams { length: 1e-30, ..LadderParams::default() }).err(),
+        Ladder::<f32>::new(LadderParams { mass: 1e-45, ..LadderParams::default() }).err(),
         inertia("mass", "length")
     );
     assert_eq!(

@@ -92,7 +92,7 @@ pub const SCENES: [SceneInfo; 6] = [
         main_flags: &["speed", "speed2", "x1", "x2", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Balanced, OutcomeKind::Fell, OutcomeKind::Unfinished],
         measures: &["meeting.time_s", "meeting.com_offset_m"],
-        ranges: &[],
+        ranges: &[("step", "0 < h <= duration"), ("rod_thickness", "0 < thickness < length")],
     },
     SceneInfo {
         kind: SceneKind::Incline,
@@ -103,7 +103,7 @@ pub const SCENES: [SceneInfo; 6] = [
         main_flags: &["angle", "mu-s", "mu-k", "width", "height", "h"],
         outcomes: &[OutcomeKind::Tipped, OutcomeKind::Slid, OutcomeKind::Held],
         measures: &["acceleration_m_s2"],
-        ranges: &[("angle", "0 <= angle < 90 deg")],
+        ranges: &[("angle", "0 <= angle < 90 deg"), ("step", "0 < h <= duration")],
     },
     SceneInfo {
         kind: SceneKind::Ladder,
@@ -114,7 +114,11 @@ pub const SCENES: [SceneInfo; 6] = [
         main_flags: &["angle", "mu-floor", "mu-wall", "length", "h"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
         measures: &["wall_release_height_m", "wall_release_ratio"],
-        ranges: &[("angle", "0 < angle < 90 deg")],
+        ranges: &[
+            ("angle", "0 < angle < 90 deg"),
+            ("step", "0 < h <= duration"),
+            ("thickness", "0 < thickness < length"),
+        ],
     },
     SceneInfo {
         kind: SceneKind::ThreeFingers,
@@ -125,7 +129,7 @@ pub const SCENES: [SceneInfo; 6] = [
         main_flags: &["speed", "x1", "x2", "x3", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
         measures: &[],
-        ranges: &[],
+        ranges: &[("step", "0 < h <= duration"), ("rod_thickness", "0 < thickness < length")],
     },
     SceneInfo {
         kind: SceneKind::Cylinder,
@@ -136,7 +140,7 @@ pub const SCENES: [SceneInfo; 6] = [
         main_flags: &["angle", "mu-s", "mu-k", "radius", "inertia-ratio", "h"],
         outcomes: &[OutcomeKind::Rolled, OutcomeKind::Slid],
         measures: &["acceleration_m_s2", "angular_acceleration_rad_s2"],
-        ranges: &[("angle", "0 <= angle < 90 deg")],
+        ranges: &[("angle", "0 <= angle < 90 deg"), ("step", "0 < h <= duration")],
     },
     SceneInfo {
         kind: SceneKind::Painleve,
@@ -147,7 +151,11 @@ pub const SCENES: [SceneInfo; 6] = [
         main_flags: &["angle", "speed", "mu-s", "mu-k", "length", "h"],
         outcomes: &[OutcomeKind::Jammed, OutcomeKind::Slid, OutcomeKind::Fell, OutcomeKind::Unfinished],
         measures: &["jam.time_s", "jam.normal_impulse_ns", "jam.friction_impulse_ns"],
-        ranges: &[("angle", "0 < angle < 90 deg")],
+        ranges: &[
+            ("angle", "0 < angle < 90 deg"),
+            ("step", "0 < h <= duration"),
+            ("thickness", "0 < thickness < length"),
+        ],
     },
 ];
 
@@ -341,7 +349,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "thickness",
         unit: "m",
-        help: "Rod thickness (> 0)",
+        help: "Rod thickness (> 0, less than its length)",
         fields: &[(M, "rod_thickness"), (L, "thickness"), (F, "rod_thickness"), (P, "thickness")],
     },
     Flag { long: "width", unit: "m", help: "Block width along the slope (> 0)", fields: &[(I, "width")] },
@@ -369,7 +377,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "h",
         unit: "s",
-        help: "Time step (> 0)",
+        help: "Time step (> 0, at most the duration)",
         fields: &[(M, "step"), (I, "step"), (L, "step"), (F, "step"), (C, "step"), (P, "step")],
     },
     Flag {

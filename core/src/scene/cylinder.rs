@@ -64,6 +64,9 @@ impl<T: Real> CylinderParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
+        if self.step > self.max_time {
+            return Err(ParamError::OutOfRange("step")); // not one step within the duration
+        }
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }

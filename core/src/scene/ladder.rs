@@ -65,6 +65,12 @@ impl<T: Real> LadderParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
+        if self.step > self.max_time {
+            return Err(ParamError::OutOfRange("step")); // not one step within the duration
+        }
+        if self.thickness >= self.length {
+            return Err(ParamError::OutOfRange("thickness")); // a rod is longer than it is thick
+        }
         if !(self.angle > T::zero() && self.angle < T::frac_pi_2()) {
             return Err(ParamError::OutOfRange("angle"));
         }

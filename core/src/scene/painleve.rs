@@ -62,6 +62,12 @@ impl<T: Real> PainleveParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
+        if self.step > self.max_time {
+            return Err(ParamError::OutOfRange("step")); // not one step within the duration
+        }
+        if self.thickness >= self.length {
+            return Err(ParamError::OutOfRange("thickness")); // a rod is longer than it is thick
+        }
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }

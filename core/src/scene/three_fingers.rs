@@ -68,6 +68,12 @@ impl<T: Real> ThreeFingersParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
+        if self.step > self.max_time {
+            return Err(ParamError::OutOfRange("step")); // not one step within the duration
+        }
+        if self.rod_thickness >= self.rod_length {
+            return Err(ParamError::OutOfRange("rod_thickness")); // a rod is longer than it is thick
+        }
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
