@@ -55,6 +55,11 @@ const CONFIG: RigConfig = RigConfig {
     pulse_ns: 2_000,
     max_pulses_per_tick: 1_000,
     button_active_low: true,
+    // One sample: the headless button is constant (no bounce to filter), so the run starts on
+    // the first tick; not real time, so any step.
+    debounce_ticks: 1,
+    min_step: 0.0,
+    max_step: f32::INFINITY,
 };
 
 /// Runs the paper's scene at `speed` (finger 1 starting at -0.35 m) through the rig and

@@ -23,6 +23,11 @@ const CONFIG: RigConfig = RigConfig {
     pulse_ns: 2_000,
     max_pulses_per_tick: 1_000_000,
     button_active_low: false,
+    // One sample: the headless button is constant (no bounce to filter), so the run starts on
+    // the first tick; not real time, so any step.
+    debounce_ticks: 1,
+    min_step: 0.0,
+    max_step: f32::INFINITY,
 };
 
 pub fn main() -> ! {

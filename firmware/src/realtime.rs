@@ -8,10 +8,12 @@
 //! the host (with `link`) in `Report::Margin`; a tick that overran its period is counted. The
 //! link's port is serviced while the loop waits for the next tick.
 //!
-//! Buttons: a press of the start button starts a run; once the run has ended, a press resets it
-//! (the carriage drives back to its origin) and the next press starts it again. While no run is
-//! in progress, the preset button cycles slow / fast / near the fall threshold, shown on finger
-//! 1's lights (sticking / sliding / separated).
+//! Buttons (debounced, [`DEBOUNCE_TICKS`] ticks): a press of the start button starts a run (the
+//! rig debounces it while waiting); once the run has ended, a press resets it (the carriage
+//! drives back to its origin) and the next press starts it again. While no run is in progress,
+//! the preset button cycles slow / fast / near the fall threshold, shown on finger 1's lights
+//! (sticking / sliding / separated), skipping a preset the rig cannot perform (the fast one,
+//! 5 m/s, on the Black Pill's carriage: about 1.24 m/s at h = 1 ms).
 
 use core::convert::Infallible;
 
@@ -24,8 +26,13 @@ use crate::systick;
 
 /// Scene steps per second at boot (h = 1 ms); one SysTick period per step.
 pub const STEP_HZ: u32 = 1_000;
-/// Button samples (ticks) that must agree before a press counts.
+/// Button samples (ticks) that must agree before a press counts (the rig's start button while
+/// waiting, and both buttons here).
 const DEBOUNCE_TICKS: u16 = 20;
+/// The shortest SysTick period (cycles) a step may take: below it the loop could not even
+/// wait for the wrap. The longest is SysTick's 24-bit range ([`systick::MASK`]). The rig
+/// refuses steps outside them ([`RigConfig::ticked_by`]), so a tick is always one step.
+const MIN_PERIOD: u32 = 1_000;
 
 /// Busy-wait delay on the core clock, timed by SysTick, which runs on it for the ticks
 /// ([`run`] starts it before the rig's first tick): the cycles asked plus at most one poll, on
@@ -78,14 +85,15 @@ impl DelayNs for CycleDelay {
     }
 }
 
-/// SysTick reload for a step of `h` seconds on a `sysclk_hz` core clock (at least 1,000 cycles,
-/// at most the 24-bit range).
+/// SysTick period (cycles) for a step of `h` seconds on a `sysclk_hz` core clock. The rig accepts
+/// only steps of [`MIN_PERIOD`] ..= [`systick::MASK`] cycles (its [`RigConfig`]); the clamp only
+/// absorbs the last cycle of rounding at the ends of that range.
 fn period_of(h: f32, sysclk_hz: u32) -> u32 {
     let cycles = h * sysclk_hz as f32;
     // A valid `h` is positive; the cast saturates (and maps NaN to 0), the clamp bounds it.
     #[allow(clippy::cast_sign_loss)]
     let cycles = cycles as u32;
-    cycles.clamp(1_000, systick::MASK)
+    cycles.clamp(MIN_PERIOD, systick::MASK)
 }
 
 /// The host link's port, serviced while the loop waits for the next tick (USB needs polling;
@@ -96,7 +104,9 @@ pub trait LinkPort: meterstick_rig::session::Port {
     fn poll(&mut self) {}
 }
 
-/// The rig with `pins` and the slow preset at h = 1 ms; `None` if it cannot start (logged).
+/// The rig with `pins` and the slow preset at h = 1 ms, its start button debounced over
+/// [`DEBOUNCE_TICKS`], and the steps SysTick can tick at `sysclk_hz`; `None` if it cannot start
+/// (logged).
 pub fn new_rig<B, P>(pins: RigPins<B, P>, sysclk_hz: u32) -> Option<Rig<B, P, CycleDelay, 6>>
 where
     B: InputPin<Error = Infallible>,
@@ -104,7 +114,12 @@ where
 {
     let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
     let delay = CycleDelay::new(sysclk_hz);
-    let rig = Rig::<_, _, _, 6>::new(params, RigConfig::default_rig(), pins, delay);
+    let config = RigConfig { debounce_ticks: DEBOUNCE_TICKS, ..RigConfig::default_rig() }.ticked_by(
+        sysclk_hz,
+        MIN_PERIOD,
+        systick::MASK,
+    );
+    let rig = Rig::<_, _, _, 6>::new(params, config, pins, delay);
     #[cfg(feature = "log")]
     if let Err(e) = &rig {
         defmt::error!("rig not started: {}", e);
@@ -178,8 +193,9 @@ where
         let _ = used;
         let state = match state {
             Ok(s) => s,
-            // `Params` only comes from `new` and `reset`; pins on these HALs cannot fail.
-            Err(RigError::Params(_)) => continue,
+            // `Params` and `Unperformable` only come from `new` and `reset`; pins on these HALs
+            // cannot fail.
+            Err(RigError::Params(_) | RigError::Unperformable(_)) => continue,
             Err(RigError::Pin(never)) => match never {},
         };
         buttons.between_runs(&mut rig, state, preset_pressed());
@@ -209,11 +225,19 @@ impl Buttons {
         P: OutputPin<Error = Infallible>,
         D: DelayNs,
     {
-        // Pins on these HALs cannot fail (`Infallible`); parameters of a preset are valid.
+        // Pins on these HALs cannot fail (`Infallible`). A preset the rig cannot perform at the
+        // current step (the fast one on the Black Pill's carriage) is refused by the rig and
+        // skipped: the lights show the preset that is loaded, or none changes.
         if self.preset_press.sample(preset_pressed) && !matches!(state, RigState::Running) {
-            self.preset = self.preset.next();
-            let _ = rig.reset(self.preset.params(rig.params().step));
-            let _ = rig.indicate(Some(self.preset.index()));
+            let mut next = self.preset;
+            for _ in 0..Preset::ALL.len() {
+                next = next.next();
+                if rig.reset(next.params(rig.params().step)).is_ok() {
+                    self.preset = next;
+                    let _ = rig.indicate(Some(next.index()));
+                    break;
+                }
+            }
         }
         // Until the run has ended, the press that starts (or started) it is spent: one still held
         // when the run ends is that press, not the next one (which must follow a release). Taken

@@ -202,7 +202,9 @@ impl Write for SerialWriter {
 pub fn is_reply_to(command: &Command, report: &Report) -> bool {
     let tag = command.tag();
     match (command, report) {
-        (Command::Hello, Report::Hello { .. }) | (Command::GetStats, Report::Stats(_)) => true,
+        (Command::Hello, Report::Hello { .. })
+        | (Command::GetStats, Report::Stats(_))
+        | (Command::Preset(_), Report::Rejected { .. }) => true,
         (Command::Ping { nonce }, Report::Pong { nonce: n }) => nonce == n,
         (Command::GetParam { id }, Report::Param { id: i, .. })
         | (Command::SetParam { id, .. }, Report::Rejected { id: i, .. }) => id == i,
@@ -238,6 +240,9 @@ mod tests {
         assert!(is_reply_to(&set, &Report::Ack { command: set.tag() }));
         assert!(is_reply_to(&set, &Report::Rejected { id: ParamId::Gravity, reason: RejectReason::Busy }));
         assert!(!is_reply_to(&set, &Report::Rejected { id: ParamId::Step, reason: RejectReason::Busy }));
+        let fast = Command::Preset(crate::Preset::Fast);
+        let beyond = Report::Rejected { id: ParamId::Finger1Velocity, reason: RejectReason::BeyondRig };
+        assert!(is_reply_to(&fast, &beyond));
         assert!(is_reply_to(&Command::Ping { nonce: 3 }, &Report::Pong { nonce: 3 }));
         assert!(!is_reply_to(&Command::Ping { nonce: 3 }, &Report::Pong { nonce: 4 }));
         assert!(!is_reply_to(&Command::Start, &Report::Ack { command: Command::Stop.tag() }));

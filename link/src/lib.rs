@@ -68,7 +68,7 @@
 //!
 //! ## Versions
 //!
-//! [`PROTOCOL_VERSION`] (now 2) is sent by the rig in [`Report::Hello`]. It changes with any
+//! [`PROTOCOL_VERSION`] (now 3) is sent by the rig in [`Report::Hello`]. It changes with any
 //! change a peer could see: a field added, removed, reordered or retyped, a variant added,
 //! or a meaning changed. postcard is not self-describing, so the host must compare it and
 //! refuse (or warn about) a rig with another version rather than guess. Two things never
@@ -81,6 +81,11 @@
 //! Version 2 (after version 1, the first): `ParamId` gained `TiltLimit`, `DropLimit`,
 //! `HoldTime` and `MaxTime` (every meter-stick parameter can be set), `Command::GetParam` /
 //! `Report::Param` read the rig's parameter set back, and `Report::Margin` gained `worst_step`.
+//!
+//! Version 3: `OutcomeCode::ActuatorOverrun` and `ErrorCode::ActuatorOverrun` (the carriage
+//! could not follow: no longer reported as a core fault and an unfinished run),
+//! `RejectReason::BeyondRig` (a value the model accepts but the rig cannot perform), and a
+//! refused `Command::Preset` may be answered with `Report::Rejected` naming the parameter.
 //!
 //! ## Errors and counting
 //!
@@ -287,7 +292,7 @@ pub use wire::{
 
 /// The protocol version, sent in [`Report::Hello`]. Bumped on every change a peer could
 /// see (see the crate docs, "Versions").
-pub const PROTOCOL_VERSION: u16 = 2;
+pub const PROTOCOL_VERSION: u16 = 3;
 
 /// The largest postcard message of this protocol version, in bytes: a [`Report::Telemetry`]
 /// (tag 1, `step` up to a 5-byte varint, 13 `f32`, 2 modes).

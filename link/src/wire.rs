@@ -203,6 +203,9 @@ pub enum OutcomeCode {
     NonFinite,
     /// The reduced (6x6) model left its range of validity and no fallback was linked.
     ReducedModelLeftRange,
+    /// The rig's actuator could not follow the scene (more stepper pulses due in one tick than
+    /// it can emit); the rig stopped in [`RigState::Fault`].
+    ActuatorOverrun,
 }
 
 /// The rig's run state ([`Report::State`]).
@@ -240,6 +243,10 @@ pub enum RejectReason {
     Busy,
     /// Any other reason.
     Other,
+    /// Valid for the model, but beyond what the rig can perform: a finger speed its carriage
+    /// cannot follow, a finger motion its hardware lacks (finger 2 is fixed, finger 1 only
+    /// approaches it), or a step its timer cannot tick in real time.
+    BeyondRig,
 }
 
 /// The data-free tag of a [`Command`], acknowledged by [`Report::Ack`].
@@ -291,6 +298,9 @@ pub enum ErrorCode {
     CoreFault,
     /// A firmware-specific error number.
     Other(u16),
+    /// The rig's actuator could not follow the scene (see [`OutcomeCode::ActuatorOverrun`]); the
+    /// rig is now in [`RigState::Fault`].
+    ActuatorOverrun,
 }
 
 /// One contact's part of a [`Report::Telemetry`].
@@ -311,7 +321,8 @@ pub struct ContactTelemetry {
 /// |---|---|
 /// | `Hello` | [`Report::Hello`] |
 /// | `SetParam` | [`Report::Ack`], or [`Report::Rejected`] naming the parameter |
-/// | `Preset`, `Start`, `Stop`, `Reset`, `SetTelemetry` | [`Report::Ack`], or [`Report::Error`] with [`ErrorCode::NotAllowed`] |
+/// | `Preset` | [`Report::Ack`], [`Report::Error`] with [`ErrorCode::NotAllowed`], or [`Report::Rejected`] naming a parameter of the preset the rig cannot perform |
+/// | `Start`, `Stop`, `Reset`, `SetTelemetry` | [`Report::Ack`], or [`Report::Error`] with [`ErrorCode::NotAllowed`] |
 /// | `GetStats` | [`Report::Stats`] (the rig's receive counters) |
 /// | `Ping` | [`Report::Pong`] with the same nonce |
 /// | `GetParam` | [`Report::Param`] with the value the next (or current) run uses |

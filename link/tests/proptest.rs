@@ -94,6 +94,7 @@ fn error_code() -> impl Strategy<Value = ErrorCode> {
         any::<u32>().prop_map(|count| ErrorCode::TxDropped { count }),
         Just(ErrorCode::RxOverrun),
         Just(ErrorCode::CoreFault),
+        Just(ErrorCode::ActuatorOverrun),
         any::<u16>().prop_map(ErrorCode::Other),
     ]
 }

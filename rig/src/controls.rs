@@ -15,6 +15,13 @@ pub trait PresetScene: Sized {
     /// (the rod balances, 7.9 s); fast 5 m/s (the rod falls); near-threshold 0.3 m/s (it
     /// balances, and falls from 0.31 m/s and at 0.2 m/s: the outcome is sensitive to the
     /// parameters).
+    ///
+    /// The presets are the scenes as the link names them, not clamped to a rig: a rig whose
+    /// carriage cannot follow one refuses it ([`Rig::reset`] checks [`crate::RigConfig::check`];
+    /// the session answers `Rejected` naming `Finger1Velocity`), e.g. the fast preset on
+    /// [`crate::RigConfig::default_rig`] (5 m/s needs 400 pulses per 1 ms tick, it emits 100).
+    /// Slowed down to what such a carriage follows, it would no longer be the scene whose rod
+    /// falls that the host and the other builds run under the same name.
     #[must_use]
     fn params(self, step: f32) -> MeterStickParams<f32>;
     /// The next preset, cyclically (a button press).

@@ -7,7 +7,8 @@
 //! tested on the host (`rig/tests/`: `embedded-hal-mock` pins, an in-memory port).
 //!
 //! * [`Rig`] (`rig.rs`): the state machine over `embedded-hal` 1.0 pins and delay, one scene
-//!   step per [`Rig::tick`]; [`RigConfig`], [`RigPins`], [`RigState`], [`RigFault`].
+//!   step per [`Rig::tick`]; [`RigConfig`], [`RigPins`], [`RigState`], [`RigFault`],
+//!   [`Unperformable`].
 //! * [`PresetScene`] and [`PressDetector`] (`controls.rs`): what the link's [`Preset`]s are, and a
 //!   button debouncer.
 //! * [`HeadlessPin`] and [`NoDelay`] (`headless.rs`): the rig without hardware.
@@ -30,4 +31,4 @@ pub mod session;
 
 pub use controls::{Preset, PresetScene, PressDetector};
 pub use headless::{HeadlessPin, NoDelay};
-pub use rig::{ModeLights, Rig, RigConfig, RigError, RigFault, RigPins, RigState};
+pub use rig::{ModeLights, Rig, RigConfig, RigError, RigFault, RigPins, RigState, Unperformable};

@@ -6,25 +6,35 @@
 //! The board calls [`Rig::tick`] once per timer period `h` (real time: one scene step per
 //! tick); each tick:
 //!
-//! 1. before the start: reads the start button; when pressed, sets the stepper's direction
+//! 1. before the start: reads the start button, debounced ([`PressDetector`],
+//!    [`RigConfig::debounce_ticks`] equal samples); on a press, sets the stepper's direction
 //!    pin (toward finger 2) and lights each finger's initial mode;
 //! 2. running: advances the scene one step, emits the stepper pulses that bring the carriage
 //!    to the scene's finger 1 position (`round((x1(t) - x1(0)) * steps_per_meter)` pulses in
 //!    all), switches a finger's light when its mode changes, and stops at the outcome;
 //! 3. a solver error (or a non-finite state, or more pulses due in one tick than
-//!    [`RigConfig::max_pulses_per_tick`]) never panics: the rig turns the mode lights off,
+//!    [`RigConfig::max_pulses_per_tick`]: with checked parameters only when the carriage's
+//!    resolution is finer than the f32 finger position's, e.g. 1 nm per pulse) never panics: the rig turns the mode lights off,
 //!    turns the fault light on, logs it, and stays in [`RigState::Fault`].
 //!
 //! Lights: per finger one pin for each of sticking / sliding / separated; exactly one is on
 //! while running. Pins are driven only when their state changes. Logging (mode switches,
 //! outcome, faults) goes to `defmt` with the `defmt` feature and compiles to nothing without it.
 //!
+//! Parameters: [`Rig::new`] and [`Rig::reset`] accept only a set the core validates *and* the rig
+//! can perform ([`RigConfig::check`]): a step its timer ticks in real time
+//! ([`RigConfig::min_step`] ..= [`RigConfig::max_step`]), finger 2 fixed (the hardware has no
+//! actuator for it), finger 1 approaching it or still (DIR is set toward finger 2 for the whole
+//! run; the carriage only moves back while homing) and never faster than
+//! [`RigConfig::max_pulses_per_tick`] pulses per tick. Anything else is
+//! [`RigError::Unperformable`], and [`RigFault::ActuatorOverrun`] stays a fault of last resort.
+//!
 //! Runs on demand (a host link, a second button): [`Rig::start`] and [`Rig::stop`] do what the
-//! button and the outcome do; [`Rig::reset`] loads a parameter set (validated by the core; a
+//! button and the outcome do; [`Rig::reset`] loads a parameter set (validated as above; a
 //! rejected set leaves the rig as it was), turns the lights off and returns to
 //! [`RigState::WaitingForStart`], where the next ticks first drive the carriage back to its
 //! origin (DIR low, at most `max_pulses_per_tick` pulses per tick) and only then accept a start;
-//! after a reset the start button must be released once before it starts a run again.
+//! after a reset the start button must be released (debounced) before a press starts a run again.
 //! [`Rig::tick_with`] hands each step's report to the caller (telemetry). [`Rig::indicate`]
 //! shows a small number on finger 1's lights while waiting (the selected [`Preset`]).
 
@@ -36,6 +46,7 @@ use meterstick_core::scene::{MeterStick, MeterStickParams, Outcome, Scene};
 
 #[cfg(doc)]
 use crate::Preset;
+use crate::PressDetector;
 
 /// Rig constants.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,13 +62,86 @@ pub struct RigConfig {
     pub max_pulses_per_tick: u32,
     /// The start button reads low when pressed (a button to ground with a pull-up).
     pub button_active_low: bool,
+    /// Equal samples of the start button (one per tick) before a press or a release counts
+    /// ([`PressDetector`]); 0 and 1 both take a single sample.
+    pub debounce_ticks: u16,
+    /// The shortest step `h` (s) the board can tick in real time (one tick per step).
+    pub min_step: f32,
+    /// The longest step `h` (s) the board can tick in real time.
+    pub max_step: f32,
+}
+
+/// What the rig cannot perform ([`RigError::Unperformable`]), though the core accepts it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Unperformable {
+    /// The step is outside [`RigConfig::min_step`] ..= [`RigConfig::max_step`].
+    Step,
+    /// Finger 1 would need more than [`RigConfig::max_pulses_per_tick`] pulses per tick (less
+    /// half a pulse for rounding).
+    Finger1TooFast,
+    /// Finger 1 would move away from finger 2 (the run drives the carriage toward it only).
+    Finger1Backward,
+    /// Finger 2 would move (it is fixed on the rig).
+    Finger2Moves,
 }
 
 impl RigConfig {
-    /// 80 steps/mm, 2 us pulses, at most 100 pulses per tick, active-low button.
+    /// 80 steps/mm, 2 us pulses, at most 100 pulses per tick (finger 1 up to 1.24 m/s at
+    /// h = 1 ms: [`Self::check`] keeps half a pulse to spare), active-low
+    /// button debounced over 20 ticks, any step (the board narrows the range to what its timer
+    /// ticks: [`Self::ticked_by`]).
     #[must_use]
     pub const fn default_rig() -> Self {
-        Self { steps_per_meter: 80_000.0, pulse_ns: 2_000, max_pulses_per_tick: 100, button_active_low: true }
+        Self {
+            steps_per_meter: 80_000.0,
+            pulse_ns: 2_000,
+            max_pulses_per_tick: 100,
+            button_active_low: true,
+            debounce_ticks: 20,
+            min_step: 0.0,
+            max_step: f32::INFINITY,
+        }
+    }
+
+    /// The config with the step range of a timer on a `clock_hz` clock whose period can be
+    /// `min_cycles` ..= `max_cycles` cycles.
+    #[must_use]
+    #[inline]
+    #[allow(clippy::cast_precision_loss)] // clocks and periods below 2^24 are exact; above, within 1e-7
+    pub fn ticked_by(self, clock_hz: u32, min_cycles: u32, max_cycles: u32) -> Self {
+        let hz = clock_hz as f32;
+        Self { min_step: min_cycles as f32 / hz, max_step: max_cycles as f32 / hz, ..self }
+    }
+
+    /// Whether the rig can perform `params` (already valid for the core): see
+    /// [`Unperformable`].
+    ///
+    /// # Errors
+    /// What it cannot perform.
+    #[inline]
+    #[allow(clippy::cast_precision_loss)]
+    pub fn check(&self, params: &MeterStickParams<f32>) -> Result<(), Unperformable> {
+        // Negated: a NaN is refused too.
+        let ticks = params.step >= self.min_step && params.step <= self.max_step;
+        if !ticks {
+            return Err(Unperformable::Step);
+        }
+        if params.finger2_velocity != 0.0 {
+            return Err(Unperformable::Finger2Moves);
+        }
+        if params.finger1_velocity < 0.0 {
+            return Err(Unperformable::Finger1Backward);
+        }
+        // The pulses due in a tick are the increments of the rounded travel: the ceiling of
+        // this rate at most, give or take the rounding of the finger's position in f32 (a few
+        // thousandths of a pulse at 80 steps/mm); half a pulse to spare covers it.
+        let per_tick = params.finger1_velocity * params.step * self.steps_per_meter;
+        let follows = per_tick + 0.5 <= self.max_pulses_per_tick as f32;
+        if !follows {
+            return Err(Unperformable::Finger1TooFast);
+        }
+        Ok(())
     }
 }
 
@@ -126,8 +210,8 @@ pub struct Rig<B, P, D, const N: usize, const E: usize = 8> {
     origin: f32,
     pulses: i64,
     lit: [Option<ContactMode>; 2],
-    /// The start button may start a run (it has read released since the last reset).
-    armed: bool,
+    /// The start button, debounced.
+    start_press: PressDetector,
 }
 
 /// What went wrong with a pin (the HAL's error type).
@@ -136,6 +220,8 @@ pub struct Rig<B, P, D, const N: usize, const E: usize = 8> {
 pub enum RigError<E> {
     /// The parameters are invalid.
     Params(ParamError),
+    /// The parameters are valid, but the rig cannot perform them.
+    Unperformable(Unperformable),
     /// A pin operation failed.
     Pin(E),
 }
@@ -157,7 +243,8 @@ where
     /// A rig for `params`, with every output driven low.
     ///
     /// # Errors
-    /// Invalid parameters, or a pin error.
+    /// Invalid parameters, parameters the rig cannot perform ([`RigConfig::check`]), or a pin
+    /// error.
     pub fn new(
         params: MeterStickParams<f32>,
         config: RigConfig,
@@ -165,6 +252,7 @@ where
         delay: D,
     ) -> Result<Self, RigError<PinError>> {
         let scene = MeterStick::new(params).map_err(RigError::Params)?;
+        config.check(&params).map_err(RigError::Unperformable)?;
         let mut rig = Self {
             scene,
             pins,
@@ -174,7 +262,7 @@ where
             origin: params.finger1_x,
             pulses: 0,
             lit: [None; 2],
-            armed: true,
+            start_press: PressDetector::new(config.debounce_ticks),
         };
         let p = &mut rig.pins;
         p.step.set_low().map_err(RigError::Pin)?;
@@ -212,8 +300,9 @@ where
         self.scene.params()
     }
 
-    /// Reads the start button now (`true`: pressed), e.g. for the board to restart a finished
-    /// run on a press; [`Self::tick`] reads it only while waiting.
+    /// Reads the start button now, raw (`true`: pressed), e.g. for the board to restart a
+    /// finished run on a (debounced) press; [`Self::tick`] reads it only while waiting, through
+    /// its own debouncer.
     ///
     /// # Errors
     /// A pin error.
@@ -253,10 +342,8 @@ where
             RigState::WaitingForStart if self.pulses > 0 => self.home()?,
             RigState::WaitingForStart => {
                 let pressed = self.start_pressed()?;
-                if pressed && self.armed {
+                if self.start_press.sample(pressed) {
                     self.start()?;
-                } else if !pressed {
-                    self.armed = true;
                 }
             }
             RigState::Running => self.advance(observe)?,
@@ -294,22 +381,26 @@ where
         Ok(true)
     }
 
-    /// Loads `params` (validated by the core first: on [`RigError::Params`] nothing changes),
+    /// Loads `params` (validated by the core and checked against the rig first: on
+    /// [`RigError::Params`] or [`RigError::Unperformable`] nothing changes),
     /// turns the lights and the fault light off and goes back to
     /// [`RigState::WaitingForStart`]; the next ticks drive the carriage back to its origin.
     /// Allowed in any state (it also ends a run in progress, unfinished and unreported).
     ///
     /// # Errors
-    /// Invalid parameters, or a pin error.
+    /// Invalid parameters, parameters the rig cannot perform, or a pin error.
     pub fn reset(&mut self, params: MeterStickParams<f32>) -> Result<(), RigError<PinError>> {
         let scene = MeterStick::new(params).map_err(RigError::Params)?;
+        self.config.check(&params).map_err(RigError::Unperformable)?;
         self.lights_off()?;
         self.pins.fault.set_low().map_err(RigError::Pin)?;
         self.pins.dir.set_low().map_err(RigError::Pin)?;
         self.scene = scene;
         self.origin = params.finger1_x;
         self.state = RigState::WaitingForStart;
-        self.armed = false;
+        // A press held through the reset (the one that asked for it) is spent: a start needs a
+        // debounced release, then a debounced press.
+        self.start_press.spend_press();
         log_info!("rig: reset, {=i64} pulses back to the origin", self.pulses);
         Ok(())
     }

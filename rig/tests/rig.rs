@@ -1,12 +1,21 @@
 //! The demo rig's loop (`meterstick_rig::Rig`) against `embedded-hal-mock` pins: the exact
-//! pin transitions of a short scene, the fault path, and a whole run.
-#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+//! pin transitions of a short scene, the fault path, a whole run, the debounced start button and
+//! the parameters the rig refuses.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::float_cmp)]
 
+use std::cell::Cell;
+use std::convert::Infallible;
+use std::rc::Rc;
+
+use embedded_hal::digital::{ErrorType, InputPin};
 use embedded_hal_mock::eh1::delay::NoopDelay;
 use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
 use meterstick_core::planar::ContactMode;
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
-use meterstick_rig::{ModeLights, NoDelay, Rig, RigConfig, RigFault, RigPins, RigState};
+use meterstick_rig::{
+    HeadlessPin, ModeLights, NoDelay, Preset, PresetScene as _, Rig, RigConfig, RigError, RigFault, RigPins,
+    RigState, Unperformable,
+};
 
 /// Finger 1 close to the eq. 21 switch (x1/x2 = 0.675 > mu_k/mu_s), moving fast: finger 2
 /// starts to slide within a few steps, so a short run changes a light. 1 mm per step at
@@ -15,8 +24,15 @@ fn short_scene() -> MeterStickParams<f32> {
     MeterStickParams { finger1_x: -0.27, finger1_velocity: 1.0, ..MeterStickParams::paper() }
 }
 
-const CONFIG: RigConfig =
-    RigConfig { steps_per_meter: 1000.0, pulse_ns: 2_000, max_pulses_per_tick: 10, button_active_low: true };
+/// One button sample starts a run here (the mocks list every read); any step.
+const CONFIG: RigConfig = RigConfig {
+    steps_per_meter: 1000.0,
+    pulse_ns: 2_000,
+    max_pulses_per_tick: 10,
+    button_active_low: true,
+    debounce_ticks: 1,
+    ..RigConfig::default_rig()
+};
 
 fn light_of(m: ContactMode) -> usize {
     match m {
@@ -128,11 +144,23 @@ fn a_short_scene_drives_the_expected_pin_transitions() {
     done(pins);
 }
 
+/// 1 nm per pulse, at most 10 pulses per tick: finger 1 at 5 um/s needs 5 pulses per tick, so the
+/// rig accepts it, but its position is an f32 near -0.35 m, which moves by whole ulps (30 nm):
+/// 30 pulses due in one tick, more than the carriage can emit.
+fn nanometre_rig() -> (MeterStickParams<f32>, RigConfig) {
+    let config = RigConfig { steps_per_meter: 1e9, max_pulses_per_tick: 10, ..CONFIG };
+    let params = MeterStickParams { finger1_x: -0.35, finger1_velocity: 5e-6, ..MeterStickParams::paper() };
+    (params, config)
+}
+
 #[test]
 fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
-    // 1 mm per tick but at most 0 pulses per tick: the carriage cannot follow.
-    let config = RigConfig { max_pulses_per_tick: 0, ..CONFIG };
-    let params = short_scene();
+    // The limit is checked up front: a carriage that cannot follow at all is refused.
+    let slow = RigConfig { max_pulses_per_tick: 0, ..CONFIG };
+    let refused = Rig::<_, _, _, 6>::headless(short_scene(), slow, NoDelay);
+    assert!(matches!(refused, Err(RigError::Unperformable(Unperformable::Finger1TooFast))));
+    // An overrun that gets past the check (a position quantised coarser than a pulse) is a fault.
+    let (params, config) = nanometre_rig();
     let initial = MeterStick6::<f32, 8>::new(params).unwrap().modes();
     let mut e = Expect::new();
     e.button = vec![T::get(State::Low)];
@@ -145,7 +173,12 @@ fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
     let mut rig = Rig::<_, _, _, 6>::new(params, config, e.pins(), NoopDelay::new()).unwrap();
     assert_eq!(rig.tick().unwrap(), RigState::Running);
     let fault = RigState::Fault(RigFault::ActuatorOverrun);
-    assert_eq!(rig.tick().unwrap(), fault);
+    let mut ticks = 0;
+    while rig.tick().unwrap() == RigState::Running {
+        ticks += 1;
+        assert!(ticks < 10, "no overrun within 10 steps");
+    }
+    assert_eq!(rig.state(), fault);
     // It stays there and touches no pin (the mocks would fail on an unexpected call).
     for _ in 0..5 {
         assert_eq!(rig.tick().unwrap(), fault);
@@ -188,7 +221,6 @@ fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
 /// stopped by command; refused parameters leave the rig as it was.
 #[test]
 fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
-    use meterstick_rig::{Preset, PresetScene as _};
     let config =
         RigConfig { steps_per_meter: 10_000.0, max_pulses_per_tick: 1_000, ..RigConfig::default_rig() };
     let fast = Preset::Fast.params(1e-3);
@@ -206,7 +238,7 @@ fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
     assert!(out > 2_000, "the carriage travelled {out} pulses");
     // A refused parameter set changes nothing.
     let bad = MeterStickParams { mu_kinetic: 0.9, ..fast };
-    assert!(matches!(rig.reset(bad), Err(meterstick_rig::RigError::Params(_))));
+    assert!(matches!(rig.reset(bad), Err(RigError::Params(_))));
     assert_eq!(rig.state(), state);
     // Reset: back to waiting, the carriage homes at 1,000 pulses per tick; no start meanwhile
     // (and the headless button, always pressed, must be released first).
@@ -241,7 +273,7 @@ fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
 
 #[test]
 fn presets_and_the_press_detector() {
-    use meterstick_rig::{Preset, PresetScene as _, PressDetector};
+    use meterstick_rig::PressDetector;
     let outcomes: Vec<Outcome> =
         Preset::ALL.iter().map(|p| MeterStick6::<f32, 8>::new(p.params(1e-3)).unwrap().run(|_| {})).collect();
     assert_eq!(outcomes, [Outcome::Balanced, Outcome::Fell, Outcome::Balanced]);
@@ -260,4 +292,148 @@ fn presets_and_the_press_detector() {
     let presses: Vec<usize> =
         held.iter().enumerate().filter_map(|(i, &s)| d.sample(s).then_some(i)).collect();
     assert_eq!(presses, [9]);
+}
+
+/// A start button the test presses and releases (`true`: pressed; active low: reads low).
+#[derive(Clone, Default)]
+struct Button(Rc<Cell<bool>>);
+
+impl ErrorType for Button {
+    type Error = Infallible;
+}
+
+impl InputPin for Button {
+    fn is_high(&mut self) -> Result<bool, Infallible> {
+        Ok(!self.0.get())
+    }
+    fn is_low(&mut self) -> Result<bool, Infallible> {
+        Ok(self.0.get())
+    }
+}
+
+fn rig_with_button(config: RigConfig) -> (Rig<Button, HeadlessPin, NoDelay, 6>, Rc<Cell<bool>>) {
+    let button = Button::default();
+    let pressed = Rc::clone(&button.0);
+    let lights = || ModeLights {
+        sticking: HeadlessPin::default(),
+        sliding: HeadlessPin::default(),
+        separated: HeadlessPin::default(),
+    };
+    let pins = RigPins {
+        start: button,
+        step: HeadlessPin::default(),
+        dir: HeadlessPin::default(),
+        lights: [lights(), lights()],
+        fault: HeadlessPin::default(),
+    };
+    (Rig::new(Preset::Slow.params(1e-3), config, pins, NoDelay).unwrap(), pressed)
+}
+
+/// The start button is debounced while waiting (`debounce_ticks` equal samples): a glitch at
+/// boot does not start a run, nor does the release bounce of the press that reset one; a
+/// steady press does, on its `debounce_ticks`-th sample. (The rig read it raw: a single
+/// "pressed" sample started a run.)
+#[test]
+fn a_start_needs_a_debounced_press() {
+    let config = RigConfig::default_rig();
+    assert_eq!(config.debounce_ticks, 20);
+    let (mut rig, pressed) = rig_with_button(config);
+    // Boot: a one-tick glitch, then a two-tick one.
+    for glitch in [&[true][..], &[true, true]] {
+        for &p in glitch {
+            pressed.set(p);
+            assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart, "a glitch started a run");
+        }
+        pressed.set(false);
+        for _ in 0..3 {
+            assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart);
+        }
+    }
+    // A steady press starts the run on its 20th sample.
+    pressed.set(true);
+    for _ in 1..20 {
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart);
+    }
+    assert_eq!(rig.tick().unwrap(), RigState::Running);
+    for _ in 0..10 {
+        rig.tick().unwrap();
+    }
+    rig.stop().unwrap();
+    // A press held through the reset, then released with a bounce: no start.
+    rig.reset(*rig.params()).unwrap();
+    while rig.homing() {
+        rig.tick().unwrap();
+    }
+    for p in [true, true, false, true, true, false, false, true, false, false, false] {
+        pressed.set(p);
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart, "a bounce started a run");
+    }
+    // Released for 20 samples, then pressed for 20: a start.
+    pressed.set(false);
+    for _ in 0..20 {
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart);
+    }
+    pressed.set(true);
+    for _ in 1..20 {
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart);
+    }
+    assert_eq!(rig.tick().unwrap(), RigState::Running);
+}
+
+/// Parameters the core accepts but the rig cannot perform are refused by `Rig::new` and
+/// `Rig::reset` (which then change nothing): finger 1 faster than the carriage, finger 1
+/// moving away from finger 2, finger 2 moving, a step outside the board's tick range. (The rig
+/// took them: the fast preset faulted at step 1, a backward or a moving finger 2 ran with no
+/// pulses at all.)
+#[test]
+fn parameters_the_rig_cannot_perform_are_refused() {
+    // The Black Pill's rig at 100 MHz: SysTick periods of 1,000 ..= 2^24 - 1 cycles.
+    let config = RigConfig::default_rig().ticked_by(100_000_000, 1_000, 0x00FF_FFFF);
+    assert_eq!(config.min_step, 1e-5);
+    assert!((config.max_step - 0.167_772_15).abs() < 1e-8, "{}", config.max_step);
+    let slow = Preset::Slow.params(1e-3);
+    let unperformable = |p: MeterStickParams<f32>| -> Option<Unperformable> {
+        match Rig::<_, _, _, 6>::headless(p, config, NoDelay) {
+            Ok(_) => None,
+            Err(RigError::Unperformable(u)) => Some(u),
+            Err(e) => panic!("{e:?}"),
+        }
+    };
+    let with = |f: fn(&mut MeterStickParams<f32>)| {
+        let mut p = slow;
+        f(&mut p);
+        p
+    };
+    assert_eq!(unperformable(slow), None);
+    assert_eq!(unperformable(Preset::Fast.params(1e-3)), Some(Unperformable::Finger1TooFast));
+    assert_eq!(unperformable(with(|p| p.finger1_velocity = 2.0)), Some(Unperformable::Finger1TooFast));
+    // 1.24 m/s is 99.2 pulses a tick, within 100 and half a pulse; 1.25 m/s is not.
+    assert_eq!(unperformable(with(|p| p.finger1_velocity = 1.24)), None);
+    assert_eq!(unperformable(with(|p| p.finger1_velocity = 1.25)), Some(Unperformable::Finger1TooFast));
+    assert_eq!(unperformable(with(|p| p.finger1_velocity = -0.1)), Some(Unperformable::Finger1Backward));
+    assert_eq!(unperformable(with(|p| p.finger1_velocity = 0.0)), None);
+    assert_eq!(unperformable(with(|p| p.finger2_velocity = -0.1)), Some(Unperformable::Finger2Moves));
+    assert_eq!(unperformable(with(|p| p.step = 0.5)), Some(Unperformable::Step));
+    assert_eq!(unperformable(with(|p| p.step = 1e-6)), Some(Unperformable::Step));
+    assert_eq!(unperformable(with(|p| p.step = 1e-5)), None);
+    assert_eq!(
+        unperformable(with(|p| p.step = 0.1)),
+        Some(Unperformable::Finger1TooFast),
+        "1,000 pulses a tick"
+    );
+    assert_eq!(unperformable(with(|p| (p.step, p.finger1_velocity) = (0.16, 0.005))), None);
+    // A refused reset leaves the rig as it was.
+    let mut rig = Rig::<_, _, _, 6>::headless(slow, config, NoDelay).unwrap();
+    for _ in 0..30 {
+        rig.tick().unwrap();
+    }
+    let state = rig.state();
+    assert_eq!(state, RigState::Running, "the headless button (held) starts the run");
+    rig.stop().unwrap();
+    let state = rig.state();
+    for bad in [Preset::Fast.params(1e-3), with(|p| p.finger2_velocity = 0.1), with(|p| p.step = 0.2)] {
+        assert!(matches!(rig.reset(bad), Err(RigError::Unperformable(_))));
+        assert_eq!(rig.state(), state);
+        assert_eq!(*rig.params(), slow);
+    }
 }

@@ -28,6 +28,7 @@ const CONFIG: RigConfig = RigConfig {
     pulse_ns: 2_000,
     max_pulses_per_tick: 1_000_000,
     button_active_low: false,
+    ..RigConfig::default_rig()
 };
 
 const H: f32 = 1e-3;
@@ -72,7 +73,11 @@ struct Bench {
 
 impl Bench {
     fn new(params: MeterStickParams<f32>) -> Self {
-        let rig = Rig::headless(params, CONFIG, NoDelay).unwrap();
+        Self::with(params, CONFIG)
+    }
+
+    fn with(params: MeterStickParams<f32>, config: RigConfig) -> Self {
+        let rig = Rig::headless(params, config, NoDelay).unwrap();
         let mut session = Session::new(0, FIRMWARE, build_id("abc1234-dirty"));
         session.boot(&rig);
         let pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
@@ -570,6 +575,108 @@ fn commands_over_the_port_drive_the_pins() {
         let ModeLights { mut sticking, mut sliding, mut separated } = l;
         for p in [&mut sticking, &mut sliding, &mut separated] {
             p.done();
+        }
+    }
+}
+
+/// The Black Pill's rig (80 steps/mm, at most 100 pulses a tick, SysTick at 100 MHz: steps of
+/// 10 us ..= 0.168 s), with a start button that reads released.
+fn black_pill() -> RigConfig {
+    RigConfig { button_active_low: false, ..RigConfig::default_rig() }.ticked_by(
+        100_000_000,
+        1_000,
+        0x00FF_FFFF,
+    )
+}
+
+/// What the core accepts but the rig cannot perform is refused, naming the parameter, with
+/// `BeyondRig`: a preset faster than the carriage, finger 1 too fast or backward, finger 2
+/// moving, a step the board cannot tick in real time; the rig keeps its set. (The rig acked
+/// them: the fast preset and 2 m/s then faulted at step 1, -0.1 m/s and a moving finger 2 ran
+/// with no pulses, h = 0.5 s ran 3 times too fast.)
+#[test]
+fn values_the_rig_cannot_perform_are_refused_with_beyond_rig() {
+    let params = Preset::Slow.params(H);
+    let mut b = Bench::with(params, black_pill());
+    b.reports.clear();
+    let fast = Command::Preset(Preset::Fast);
+    let refused = Report::Rejected { id: ParamId::Finger1Velocity, reason: RejectReason::BeyondRig };
+    assert_eq!(b.reply(&fast), refused);
+    assert_eq!(*b.rig.params(), params);
+    for (id, value) in [
+        (ParamId::Finger1Velocity, 2.0),
+        (ParamId::Finger1Velocity, 1.25),
+        (ParamId::Finger1Velocity, -0.1),
+        (ParamId::Finger2Velocity, -0.1),
+        (ParamId::Finger2Velocity, 0.1),
+        (ParamId::Step, 0.5),
+        (ParamId::Step, 0.17),
+        (ParamId::Step, 1e-6),
+        (ParamId::Step, 9e-6),
+    ] {
+        let c = Command::SetParam { id, value };
+        assert_eq!(b.reply(&c), Report::Rejected { id, reason: RejectReason::BeyondRig }, "{id:?} = {value}");
+        assert_eq!(*b.rig.params(), params);
+    }
+    for (id, value) in
+        [(ParamId::Finger1Velocity, 1.2), (ParamId::Finger1Velocity, 0.0), (ParamId::Step, 1e-5)]
+    {
+        let c = Command::SetParam { id, value };
+        assert_eq!(b.reply(&c), ack(&c), "{id:?} = {value}");
+    }
+    // The other presets load; a run starts and runs.
+    let near = Command::Preset(Preset::NearThreshold);
+    assert_eq!(b.reply(&near), ack(&near));
+    assert_eq!(b.reply(&Command::Start), ack(&Command::Start));
+    for _ in 0..50 {
+        b.tick();
+    }
+    assert_eq!(b.rig.state(), meterstick_rig::RigState::Running);
+}
+
+/// An actuator overrun is reported as one: `Error(ActuatorOverrun)`, then the outcome
+/// `ActuatorOverrun`, then the fault state. (It was `Error(CoreFault)` and `Unfinished`.) The
+/// carriage: 1 nm per pulse, 10 a tick; finger 1 at 5 um/s needs 5 a tick, but its f32 position
+/// near -0.35 m moves by whole ulps (30 nm).
+#[test]
+fn an_actuator_overrun_is_reported_as_one() {
+    let config = RigConfig { steps_per_meter: 1e9, max_pulses_per_tick: 10, ..CONFIG };
+    let params = MeterStickParams { finger1_x: -0.35, finger1_velocity: 5e-6, ..MeterStickParams::paper() };
+    let mut b = Bench::with(params, config);
+    b.reports.clear();
+    assert_eq!(b.reply(&Command::Start), ack(&Command::Start));
+    let all = b.run_to_end(100);
+    assert_eq!(b.rig.state(), meterstick_rig::RigState::Fault(meterstick_rig::RigFault::ActuatorOverrun));
+    let ends: Vec<&Report> = all
+        .iter()
+        .filter(|r| matches!(r, Report::Error(_) | Report::Outcome { .. } | Report::State(_)))
+        .collect();
+    assert!(
+        matches!(
+            ends[..],
+            [
+                Report::Error(ErrorCode::ActuatorOverrun),
+                Report::Outcome { outcome: OutcomeCode::ActuatorOverrun, .. },
+                Report::State(RigState::Fault)
+            ]
+        ),
+        "{ends:?}"
+    );
+}
+
+/// `Hello` reports the step rounded to whole microseconds (5.01e-4 s is 501 us; truncated, it
+/// was 500, and so were 2,886 of the 199,999 whole-microsecond steps up to 0.2 s).
+#[test]
+fn hello_rounds_the_step_to_microseconds() {
+    let mut b = Bench::new(Preset::Slow.params(H));
+    b.reports.clear();
+    for us in (1..200_000u32).step_by(97).chain([501, 700, 1_700, 300]) {
+        let step: f32 = format!("{us}e-6").parse().unwrap();
+        let set = Command::SetParam { id: ParamId::Step, value: step };
+        assert_eq!(b.reply(&set), ack(&set));
+        match b.reply(&Command::Hello) {
+            Report::Hello { step_us, .. } => assert_eq!(step_us, us, "step {step:e} s"),
+            r => panic!("{r:?}"),
         }
     }
 }

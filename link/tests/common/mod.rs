@@ -38,7 +38,7 @@ pub fn all_commands() -> Vec<Command> {
 }
 
 pub const MODES: [Mode; 4] = [Mode::Separated, Mode::Sticking, Mode::SlidingPositive, Mode::SlidingNegative];
-pub const OUTCOMES: [OutcomeCode; 9] = [
+pub const OUTCOMES: [OutcomeCode; 10] = [
     OutcomeCode::Balanced,
     OutcomeCode::Fell,
     OutcomeCode::Held,
@@ -48,9 +48,10 @@ pub const OUTCOMES: [OutcomeCode; 9] = [
     OutcomeCode::SolverFailed,
     OutcomeCode::NonFinite,
     OutcomeCode::ReducedModelLeftRange,
+    OutcomeCode::ActuatorOverrun,
 ];
 pub const STATES: [RigState; 4] = [RigState::Waiting, RigState::Running, RigState::Finished, RigState::Fault];
-pub const REASONS: [RejectReason; 8] = [
+pub const REASONS: [RejectReason; 9] = [
     RejectReason::NotFinite,
     RejectReason::NotPositive,
     RejectReason::Negative,
@@ -59,6 +60,7 @@ pub const REASONS: [RejectReason; 8] = [
     RejectReason::FingersCrossed,
     RejectReason::Busy,
     RejectReason::Other,
+    RejectReason::BeyondRig,
 ];
 pub const SCENES: [SceneId; 3] = [SceneId::MeterStick, SceneId::Incline, SceneId::Ladder];
 
@@ -119,6 +121,7 @@ pub fn all_reports() -> Vec<Report> {
         Report::Error(ErrorCode::RxOverrun),
         Report::Error(ErrorCode::CoreFault),
         Report::Error(ErrorCode::Other(0xBEEF)),
+        Report::Error(ErrorCode::ActuatorOverrun),
         Report::Stats(LinkStats {
             frames_ok: u32::MAX,
             crc_errors: u32::MAX,

@@ -3,9 +3,9 @@
 use meterstick_core::ParamError;
 use meterstick_core::planar::{ContactMode, Direction, StepError};
 use meterstick_core::scene::Outcome;
-use meterstick_link::{Mode, OutcomeCode, RejectReason, RigState};
+use meterstick_link::{ErrorCode, Mode, OutcomeCode, ParamId, RejectReason, RigState};
 
-use crate::{RigFault, RigState as CoreState};
+use crate::{RigFault, RigState as CoreState, Unperformable};
 
 #[inline]
 pub(super) const fn state_of(s: CoreState) -> RigState {
@@ -54,7 +54,7 @@ pub(super) const fn fault_code(f: RigFault) -> OutcomeCode {
     match f {
         RigFault::Step(e) => step_error_code(e),
         RigFault::NonFinite => OutcomeCode::NonFinite,
-        RigFault::ActuatorOverrun => OutcomeCode::Unfinished,
+        RigFault::ActuatorOverrun => OutcomeCode::ActuatorOverrun,
     }
 }
 
@@ -68,5 +68,24 @@ pub(super) const fn reason_of(e: ParamError) -> RejectReason {
         ParamError::FingerOutsideRod => RejectReason::FingerOutsideRod,
         ParamError::FingersCrossed => RejectReason::FingersCrossed,
         _ => RejectReason::Other,
+    }
+}
+
+/// The error reported when a run ends in the fault `f` (before its outcome).
+#[inline]
+pub(super) const fn fault_error(f: RigFault) -> ErrorCode {
+    match f {
+        RigFault::ActuatorOverrun => ErrorCode::ActuatorOverrun,
+        RigFault::Step(_) | RigFault::NonFinite => ErrorCode::CoreFault,
+    }
+}
+
+/// The parameter a preset the rig cannot perform is refused for.
+#[inline]
+pub(super) const fn param_of(u: Unperformable) -> ParamId {
+    match u {
+        Unperformable::Step => ParamId::Step,
+        Unperformable::Finger1TooFast | Unperformable::Finger1Backward => ParamId::Finger1Velocity,
+        Unperformable::Finger2Moves => ParamId::Finger2Velocity,
     }
 }

@@ -16,11 +16,16 @@
 //! Rules (the link crate's docs, "reply rule"): every decoded command gets exactly one reply;
 //! a frame that does not decode gets none and is counted by the decoder ([`Command::GetStats`]
 //! reads the counters). Parameters are validated by the core ([`MeterStickParams::validate`],
-//! through [`Rig::reset`]): a refused value gets [`Report::Rejected`] naming it, and the rig
-//! keeps its previous, valid set. When the queue is full, telemetry is dropped first (it needs
-//! [`RESERVE`] bytes to spare); anything dropped is counted and announced with
-//! [`ErrorCode::TxDropped`] once there is room again. Nothing here can panic: no indexing, no
-//! slicing that can fail, no unchecked arithmetic that matters (counters wrap).
+//! through [`Rig::reset`]) and checked against the rig ([`crate::RigConfig::check`]): a refused
+//! value gets [`Report::Rejected`] naming it ([`RejectReason::BeyondRig`] for a value the rig
+//! cannot perform; a preset the rig cannot perform, e.g. the fast one on a carriage slower than
+//! 5 m/s, is refused the same way, naming the parameter), and the rig keeps its previous, valid
+//! set. A run that ends in a fault is reported as an error naming it
+//! ([`ErrorCode::ActuatorOverrun`] when the carriage could not follow, else
+//! [`ErrorCode::CoreFault`]), then the outcome with the same cause. When the queue is full,
+//! telemetry is dropped first (it needs [`RESERVE`] bytes to spare); anything dropped is counted
+//! and announced with [`ErrorCode::TxDropped`] once there is room again. Nothing here can panic:
+//! no indexing, no slicing that can fail, no unchecked arithmetic that matters (counters wrap).
 
 mod codes;
 mod queue;
@@ -34,7 +39,7 @@ use meterstick_link::{
     OutcomeCode, PROTOCOL_VERSION, RejectReason, Report, RigState, SceneId, encode,
 };
 
-use codes::{fault_code, mode_of, outcome_code, reason_of, state_of};
+use codes::{fault_code, fault_error, mode_of, outcome_code, param_of, reason_of, state_of};
 use queue::TxQueue;
 
 use crate::{PresetScene as _, Rig, RigError, RigState as CoreState};
@@ -332,7 +337,7 @@ impl Session {
                 let outcome = match core {
                     CoreState::Finished(o) => outcome_code(o),
                     CoreState::Fault(f) => {
-                        self.send(&Report::Error(ErrorCode::CoreFault));
+                        self.send(&Report::Error(fault_error(f)));
                         fault_code(f)
                     }
                     _ => OutcomeCode::Unfinished,
@@ -384,6 +389,9 @@ impl Session {
                     match rig.reset(params) {
                         Ok(()) => ack,
                         Err(RigError::Params(e)) => Report::Rejected { id, reason: reason_of(e) },
+                        Err(RigError::Unperformable(_)) => {
+                            Report::Rejected { id, reason: RejectReason::BeyondRig }
+                        }
                         Err(e) => return Err(e),
                     }
                 } else {
@@ -396,6 +404,9 @@ impl Session {
                 match rig.reset(p.params(step)) {
                     Ok(()) => ack,
                     Err(RigError::Params(_)) => not_allowed,
+                    Err(RigError::Unperformable(u)) => {
+                        Report::Rejected { id: param_of(u), reason: RejectReason::BeyondRig }
+                    }
                     Err(e) => return Err(e),
                 }
             }
@@ -435,9 +446,9 @@ fn hello<const N: usize>(params: &MeterStickParams<f32>, firmware: (u8, u8, u8),
         build,
         scene: SceneId::MeterStick,
         lcp_size: u8::try_from(N).unwrap_or(u8::MAX),
-        // Saturating: a valid step is positive and finite.
+        // Rounded (5.01e-4 s is 501 us, not 500); saturating: a valid step is positive and finite.
         #[allow(clippy::cast_sign_loss)]
-        step_us: (params.step * 1e6) as u32,
+        step_us: libm::roundf(params.step * 1e6) as u32,
     }
 }
 
