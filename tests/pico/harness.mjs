@@ -7,9 +7,9 @@
 // Usage: node tests/pico/harness.mjs --uf2 FILE [--presets N] [--max-cycles N] [--wall-s S]
 //                                     [--idle-ticks N] [--uart-tcp PORT]
 //   --presets N     preset button presses (GP15) before the start (0: the boot preset, slow)
-//   --start-hold-ms MS  how long the start button stays low after its bounces (default 10;
-//                   from 20 ms on, a run that has already ended by then takes the same press
-//                   for the next one and resets: firmware/src/realtime.rs, `Buttons`)
+//   --start-hold-ms MS  how long the start button stays low after its bounces (default 40: the
+//                   rig starts on a press held steady for 20 ticks, as the preset button's;
+//                   firmware/src/realtime.rs, `Buttons`, and rig/src/rig.rs)
 //   --max-cycles N  cap on emulated cycles (default 2e9: 16 s at 125 MHz)
 //   --wall-s S      cap on wall-clock seconds (default 120)
 //   --idle-ticks N  the run counts as ended after N ticks without a scene step, or N ticks
@@ -63,7 +63,7 @@ function fail(msg) {
 }
 
 function parseArgs(argv) {
-  const o = { uf2: null, presets: 0, startHoldMs: 10, maxCycles: 2e9, wallS: 120, idleTicks: 50, uartTcp: null, portFile: null };
+  const o = { uf2: null, presets: 0, startHoldMs: 40, maxCycles: 2e9, wallS: 120, idleTicks: 50, uartTcp: null, portFile: null };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     const v = () => {
