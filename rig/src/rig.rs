@@ -340,16 +340,22 @@ where
     ) -> Result<RigState, RigError<PinError>> {
         match self.state {
             RigState::WaitingForStart if self.pulses > 0 => self.home()?,
-            RigState::WaitingForStart => {
-                let pressed = self.start_pressed()?;
-                if self.start_press.sample(pressed) {
-                    self.start()?;
-                }
-            }
+            RigState::WaitingForStart => self.wait_for_start()?,
             RigState::Running => self.advance(observe)?,
             RigState::Finished(_) | RigState::Fault(_) => {}
         }
         Ok(self.state)
+    }
+
+    /// A tick while waiting at the origin: the start button sampled, debounced; a press starts
+    /// the run. Out of line: it must not weigh on the running tick's code.
+    #[inline(never)]
+    fn wait_for_start(&mut self) -> Result<(), RigError<PinError>> {
+        let pressed = self.start_pressed()?;
+        if self.start_press.sample(pressed) {
+            self.start()?;
+        }
+        Ok(())
     }
 
     /// Starts the run (as the start button does), if the rig is waiting with the carriage at
