@@ -81,6 +81,16 @@ impl core::fmt::Display for ParamError {
 
 impl core::error::Error for ParamError {}
 
+/// The rule every scene's run shares beyond its fields' own: at least one step within the
+/// duration (`h <= max_time`; an `h` of 1e23 s was accepted and failed at the first step).
+///
+/// # Errors
+/// [`ParamError::OutOfRange`]`("step")`.
+#[inline]
+pub(crate) fn check_step_within<T: Real>(step: T, max_time: T) -> Result<(), ParamError> {
+    if step > max_time { Err(ParamError::OutOfRange("step")) } else { Ok(()) }
+}
+
 /// The check a parameter must pass (besides being finite, which all must).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Check {

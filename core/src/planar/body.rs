@@ -30,6 +30,25 @@ impl<T: Real> Body<T> {
         Self { width, height, mass, inertia: mass * (width * width + height * height) / T::of(12.0) }
     }
 
+    /// A rod's own rules, its fields named `[mass, length, thickness]`: thinner than it is long (a
+    /// 1e7 m thick meter stick ended in a ray), and its inertia in `T`'s range
+    /// ([`Self::check_inertia`]).
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] naming the thickness, or [`ParamError::InertiaOutOfRange`].
+    #[inline]
+    pub fn check_rod(
+        mass: T,
+        length: T,
+        thickness: T,
+        [m, l, t]: [&'static str; 3],
+    ) -> Result<(), ParamError> {
+        if thickness >= length {
+            return Err(ParamError::OutOfRange(t));
+        }
+        Self::rod(mass, length, thickness).check_inertia(m, l)
+    }
+
     /// Checks that the inertia `J` and `m / J` are positive finite numbers in `T`: a mass or size
     /// can be finite while their product underflows to 0 or overflows (in f32, a mass of 1e-45
     /// kg, a rod of 1e20 m). `mass` and `size` name the fields they came from.

@@ -27,7 +27,7 @@
 
 use super::outcome::Outcome;
 use super::scene_trait::impl_scene;
-use crate::params::{ParamError, params};
+use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
     Tangents,
@@ -67,9 +67,7 @@ impl<T: Real> InclineParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
-        if self.step > self.max_time {
-            return Err(ParamError::OutOfRange("step")); // not one step within the duration
-        }
+        check_step_within(self.step, self.max_time)?;
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }

@@ -25,7 +25,7 @@
 
 use super::outcome::Outcome;
 use super::scene_trait::impl_scene;
-use crate::params::{ParamError, params};
+use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
     Tangents,
@@ -65,16 +65,11 @@ impl<T: Real> LadderParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
-        if self.step > self.max_time {
-            return Err(ParamError::OutOfRange("step")); // not one step within the duration
-        }
-        if self.thickness >= self.length {
-            return Err(ParamError::OutOfRange("thickness")); // a rod is longer than it is thick
-        }
+        check_step_within(self.step, self.max_time)?;
+        Body::check_rod(self.mass, self.length, self.thickness, ["mass", "length", "thickness"])?;
         if !(self.angle > T::zero() && self.angle < T::frac_pi_2()) {
             return Err(ParamError::OutOfRange("angle"));
         }
-        Body::rod(self.mass, self.length, self.thickness).check_inertia("mass", "length")?;
         Ok(())
     }
 

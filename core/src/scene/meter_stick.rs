@@ -29,7 +29,7 @@
 
 use super::outcome::Outcome;
 use super::scene_trait::impl_scene;
-use crate::params::{ParamError, params};
+use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
     Tangents,
@@ -123,12 +123,13 @@ impl<T: Real> MeterStickParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
-        if self.step > self.max_time {
-            return Err(ParamError::OutOfRange("step")); // not one step within the duration
-        }
-        if self.rod_thickness >= self.rod_length {
-            return Err(ParamError::OutOfRange("rod_thickness")); // a rod is longer than it is thick
-        }
+        check_step_within(self.step, self.max_time)?;
+        Body::check_rod(
+            self.rod_mass,
+            self.rod_length,
+            self.rod_thickness,
+            ["rod_mass", "rod_length", "rod_thickness"],
+        )?;
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
@@ -148,8 +149,6 @@ impl<T: Real> MeterStickParams<T> {
         if !gap.finite() || gap <= self.finger_width {
             return Err(ParamError::FingersCrossed);
         }
-        Body::rod(self.rod_mass, self.rod_length, self.rod_thickness)
-            .check_inertia("rod_mass", "rod_length")?;
         Ok(())
     }
 }

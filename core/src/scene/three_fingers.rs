@@ -16,7 +16,7 @@
 
 use super::outcome::Outcome;
 use super::scene_trait::impl_scene;
-use crate::params::{ParamError, params};
+use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{
     Body, BodyState, Contact, EventLog, Feature, Layout, Model, Settings, StepReport, Stepper, Support,
     Tangents,
@@ -68,12 +68,13 @@ impl<T: Real> ThreeFingersParams<T> {
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
-        if self.step > self.max_time {
-            return Err(ParamError::OutOfRange("step")); // not one step within the duration
-        }
-        if self.rod_thickness >= self.rod_length {
-            return Err(ParamError::OutOfRange("rod_thickness")); // a rod is longer than it is thick
-        }
+        check_step_within(self.step, self.max_time)?;
+        Body::check_rod(
+            self.rod_mass,
+            self.rod_length,
+            self.rod_thickness,
+            ["rod_mass", "rod_length", "rod_thickness"],
+        )?;
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
@@ -84,8 +85,6 @@ impl<T: Real> ThreeFingersParams<T> {
         if !(self.finger2_x - self.finger1_x > self.finger_width && self.finger3_x > self.finger2_x) {
             return Err(ParamError::FingersCrossed);
         }
-        Body::rod(self.rod_mass, self.rod_length, self.rod_thickness)
-            .check_inertia("rod_mass", "rod_length")?;
         Ok(())
     }
 
