@@ -3,6 +3,9 @@
 
 use std::process::Command;
 
+mod common;
+use common::host_sim_within;
+
 fn host_sim(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_host-sim")).args(args).output().unwrap();
     (
@@ -562,34 +565,6 @@ fn stress_quick_passes_and_writes_its_report() {
     assert!(std::fs::read_to_string(out.join("report.md")).unwrap().contains("| v=0 |"));
     assert!(std::fs::read_to_string(out.join("criteria.svg")).unwrap().starts_with("<svg"));
     std::fs::remove_dir_all(&out).unwrap();
-}
-
-/// Runs `host-sim args` with `env`, and fails if it has not ended within `secs` (killing it).
-fn host_sim_within(args: &[&str], env: &[(&str, &str)], secs: u64) -> (i32, String, String) {
-    use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
-        .args(args)
-        .envs(env.iter().copied())
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(secs);
-    while child.try_wait().unwrap().is_none() {
-        if std::time::Instant::now() > deadline {
-            child.kill().unwrap();
-            let _ = child.wait();
-            panic!("host-sim {args:?} still running after {secs} s");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    let out = child.wait_with_output().unwrap();
-    (
-        out.status.code().unwrap(),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
 }
 
 /// Bad LCP files, each refused with status 2, the file, the format expected and what is wrong,

@@ -2,29 +2,15 @@
 //! seconds: each case here once ran (or panicked) instead.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
 
-/// Runs `host-sim args`; fails if it has not ended within 20 s. Returns the status and stderr.
+mod common;
+use common::host_sim_within;
+
+/// Runs `host-sim args`, failing if it has not ended within 20 s; its status and stderr.
 fn refused(args: &[&str]) -> (i32, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let deadline = Instant::now() + Duration::from_secs(20);
-    while child.try_wait().unwrap().is_none() {
-        if Instant::now() > deadline {
-            child.kill().unwrap();
-            let _ = child.wait();
-            panic!("host-sim {args:?} still running after 20 s");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    let out = child.wait_with_output().unwrap();
-    (out.status.code().unwrap(), String::from_utf8(out.stderr).unwrap())
+    let (code, _, err) = host_sim_within(args, &[], 20);
+    (code, err)
 }
 
 fn temp(name: &str) -> std::path::PathBuf {
