@@ -1,7 +1,7 @@
 //! [`Body`]: the one rigid body a [`super::Stepper`] moves, and its [`BodyState`].
 
 use crate::params::ParamError;
-use crate::real::Real;
+use crate::real::{AllFinite, Real};
 
 /// A planar rigid body shaped as a box centred on its centre of mass (a rod is a long thin box).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -120,12 +120,11 @@ impl<T: Real> BodyState<T> {
     /// `true` when every component is finite.
     #[must_use]
     pub fn is_finite(&self) -> bool {
-        self.x.finite()
-            && self.y.finite()
-            && self.theta.finite()
-            && self.vx.finite()
-            && self.vy.finite()
-            && self.omega.finite()
+        let mut finite = AllFinite::new();
+        for v in [self.x, self.y, self.theta, self.vx, self.vy, self.omega] {
+            finite.add(v);
+        }
+        finite.holds()
     }
 
     /// The velocity `(vx, vy, omega)`.

@@ -42,8 +42,20 @@ impl<T: Real, const K: usize, const E: usize> EventLog<T, K, E> {
 
     /// Records the switches of one step.
     pub fn record(&mut self, report: &StepReport<T, K>) {
-        for (i, mode) in report.switches() {
-            let event = SwitchEvent { time: report.time, contact: i as u8, mode, along: report.along() };
+        // A loop over the contacts' indices, not `report.switches()`: unrolled, it leaves the
+        // caller's report in registers (the iterator kept it in memory, and the scene's return of
+        // the report then read back what had just been stored there: 5 % of the host's step).
+        for i in 0..K {
+            let contact = &report.contacts[i];
+            if contact.mode == contact.previous_mode {
+                continue;
+            }
+            let event = SwitchEvent {
+                time: report.time,
+                contact: i as u8,
+                mode: contact.mode,
+                along: report.along(),
+            };
             if self.events.push(event).is_err() {
                 self.dropped = self.dropped.saturating_add(1);
             }

@@ -55,7 +55,7 @@ use super::assemble::{StepInputs, dot2, dot3, normal_bias, sign};
 use super::contact::ContactMode;
 use super::layout::{Direction, Layout, Tangents};
 use crate::lcp::Basis;
-use crate::real::{Real, max, min};
+use crate::real::{AllFinite, Real, max, min};
 
 /// The factored rows of one step's LCP ([module docs](self)).
 #[derive(Debug, Clone, Copy)]
@@ -205,7 +205,6 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         let zero3 = [T::zero(); 3];
         let out = self;
         out.mu = input.mu;
-        out.v_free = input.v_free;
         out.inactive = 0;
         for v in sigma_start..N {
             out.q[v] = T::zero();
@@ -275,20 +274,28 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // `M^-1 c_j` only the products with `M^-1` remain to be checked: the angular one, and with
         // a non-unit linear `M^-1` the linear ones too.
         let (mut q_norm, mut q_min) = (T::zero(), out.q[0]);
-        let mut finite = true;
+        let mut finite = AllFinite::new();
         for v in 0..N {
-            finite &= out.q[v].finite();
+            finite.add(out.q[v]);
             q_norm = max(q_norm, out.q[v].abs_exact());
             q_min = min(q_min, out.q[v]);
         }
         for j in 0..sigma_start {
             let c = &out.mcol[j];
-            finite &= c[2].finite() & (unit || (c[0].finite() & c[1].finite()));
+            finite.add(c[2]);
+            if !unit {
+                finite.add(c[0]);
+                finite.add(c[1]);
+            }
         }
         out.m_low = m_low;
         out.q_norm = q_norm;
         out.q_min = q_min;
-        out.finite = finite;
+        out.finite = finite.holds();
+        // Last: `input` was written just before this call, `v~` as three 4-byte stores, and this
+        // copy reads it as an 8-byte and a 4-byte load, which cannot be forwarded from stores
+        // still in flight (a stall of 7 % of the host's step when it came first).
+        out.v_free = input.v_free;
     }
 
     /// `true` when every entry of `q` and of the columns is finite; otherwise no path may answer
@@ -333,7 +340,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// `dv = M^-1 C p` for the impulses in `z`, summed on its own (not `v+ - v~`, which would
     /// lose `eps |v~|` when the body moves fast and the impulses change it little).
+    /// Inlined on the host: called, it reads `z` as 8-byte pairs just written as 4-byte values,
+    /// which the processor cannot forward from its store buffer (9 % of the step, stalled).
     #[cfg_attr(target_os = "none", inline(never))]
+    #[cfg_attr(not(target_os = "none"), inline(always))]
+    #[allow(clippy::inline_always)] // measured, as said above
     fn velocity_change(&self, z: &[T; N]) -> [T; 3] {
         let mut dv = [T::zero(); 3];
         for j in 0..Layout::<K, N>::SIGMA_START {
@@ -480,6 +491,35 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                 *cache = Some((mask, Plan { var, follower, m, sigma_row }));
             }
         }
+        // On the host each number of unknowns the warm path meets gets its own copy of the rest,
+        // with `m` a constant: its loops unrolled, the same operations in the same order (the same
+        // bits). A microcontroller keeps one copy (flash).
+        #[cfg(not(target_os = "none"))]
+        match m {
+            3 => return self.solve_unknowns(mask, &var, &follower, 3, &sigma_row, tolerance, z, w),
+            2 => return self.solve_unknowns(mask, &var, &follower, 2, &sigma_row, tolerance, z, w),
+            _ => {}
+        }
+        self.solve_unknowns(mask, &var, &follower, m, &sigma_row, tolerance, z, w)
+    }
+
+    /// [`Self::solve_basis_with`] once the basis' unknowns are known: the elimination, `z`, `w`
+    /// and the checks. Inlined where it is called, so that a constant `m` specialises it.
+    #[inline(always)]
+    #[allow(clippy::inline_always, clippy::too_many_arguments)] // the point of it: `m` known at the call
+    fn solve_unknowns(
+        &self,
+        mask: u32,
+        var: &[usize; DOF],
+        follower: &[usize; DOF],
+        m: usize,
+        sigma_row: &[Option<usize>; K],
+        tolerance: T,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Result<([T; 3], T), Declined> {
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        let sigma_start = Layout::<K, N>::SIGMA_START;
         // H^T M^-1 G y = -q_H.
         // Unknown `l`'s column `M^-1 G` (formed where it is used: nothing to clear or store).
         let gm = |l: usize| {
@@ -502,7 +542,12 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         for k in 0..m {
             y[k] = -self.q[var[k].min(N - 1)];
         }
-        if !solve_small(&mut a, &mut y, m, T::of(N as f64) * T::EPS * self.m_low) {
+        let tiny = T::of(N as f64) * T::EPS * self.m_low;
+        #[cfg(not(target_os = "none"))]
+        let solved = solve_small_sized(&mut a, &mut y, m, tiny);
+        #[cfg(target_os = "none")]
+        let solved = solve_small(&mut a, &mut y, m, tiny);
+        if !solved {
             return Err(Declined::Singular);
         }
         // An impulse is held to `>= 0` exactly; one that is positive but within the round-off of
@@ -564,11 +609,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         for v in sigma_start..N {
             z_norm = max(z_norm, z[v]);
         }
-        let mut finite = true;
+        let mut finite = AllFinite::new();
         for v in 0..N {
             let wv = w[v];
             if v < sigma_start {
-                finite &= wv.finite();
+                finite.add(wv);
             }
             if basic(v) {
                 violation = max(violation, wv.abs_exact());
@@ -582,7 +627,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         }
         // A scale beyond the scalar's range would make every violation read as 0: unverifiable.
         let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
-        if !(finite && s_w.finite()) || violation > tolerance * s_w {
+        finite.add(s_w);
+        if !finite.holds() || violation > tolerance * s_w {
             return Err(Declined::Unverified);
         }
         Ok((v_plus, violation / s_w))
@@ -852,22 +898,15 @@ fn with_pattern<const K: usize, const N: usize>(
 
 /// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
 /// elimination with partial pivoting; `false` when a pivot is at most `tiny` (numerically
-/// singular).
-#[cfg_attr(target_os = "none", inline(never))]
+/// singular). A microcontroller's one out-of-line copy (flash); the host inlines
+/// [`solve_small_sized`] into each copy of [`FactoredLcp::solve_unknowns`], with `m` a constant.
+#[cfg(target_os = "none")]
+#[inline(never)]
 fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
-    // On the host each size the fast path meets (2 and 3 unknowns) gets its own copy, with `m` a
-    // constant: no per-row size tests (the same operations in the same order, so the same bits).
-    // A microcontroller keeps one copy (flash).
-    #[cfg(not(target_os = "none"))]
-    match m {
-        2 => return solve_small_sized(a, rhs, 2, tiny),
-        3 => return solve_small_sized(a, rhs, 3, tiny),
-        _ => {}
-    }
     solve_small_sized(a, rhs, m, tiny)
 }
 
-/// [`solve_small`]'s elimination, inlined where it is called so that a constant `m` specialises it.
+/// The elimination of `solve_small`, inlined where it is called so that a constant `m` specialises it.
 #[inline(always)]
 #[allow(clippy::inline_always)] // the point of it: `m` known at the call
 fn solve_small_sized<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {

@@ -323,12 +323,10 @@ impl<T: Real, const N: usize, const E: usize> MeterStick<T, N, E> {
             Support::point([ends[0], p.finger1_y], [velocity[0], T::zero()]),
             Support::point([ends[1], p.finger2_y], [velocity[1], T::zero()]),
         ];
-        // The report stays where the stepper wrote it (borrowed, returned by `ok`): no copy.
-        let result = self.stepper.step(&supports);
-        let report = match &result {
+        let report = match self.stepper.step(&supports) {
             Ok(report) => report,
             Err(e) => {
-                self.outcome = Some(Outcome::Failed(*e));
+                self.outcome = Some(Outcome::Failed(e));
                 return None;
             }
         };
@@ -336,9 +334,9 @@ impl<T: Real, const N: usize, const E: usize> MeterStick<T, N, E> {
             self.fired_before_meeting += 1;
         }
         self.fingers = ends;
-        self.events.record(report);
-        self.judge(stopped, report);
-        result.ok()
+        self.events.record(&report);
+        self.judge(stopped, &report);
+        Some(report)
     }
 
     /// The outcome rules of `docs/scenes.md`, on the state after a step.
