@@ -214,67 +214,63 @@ pub(crate) fn zero_if_finite<T: Real>(x: T) -> T {
     x - x
 }
 
-pub(crate) use all_finite::AllFinite;
-
-/// Whether every value added is finite, accumulated the cheapest way for the target. With a
-/// floating-point unit (the host, the page, a Cortex-M4F or M33F), as `sum (x - x)`: exactly `+0`
-/// while every `x` is finite and NaN from the first one that is not, two operations and no branch
-/// per value (on a Cortex-M4F the step's finiteness checks cost 97 instructions less this way
-/// than as a test each). Without one (a Cortex-M0, where a subtraction is a library call), as a
-/// conjunction of [`Real::finite`]'s bit tests. The answer is the same.
+/// Whether every value added is finite, accumulated the cheapest way for the target: with a
+/// floating-point unit (the host, the page, a Cortex-M4F or M33F, whose single-precision unit
+/// serves the f32 the firmware computes in), [`FiniteSum`]; without one (a Cortex-M0, where a
+/// subtraction is a library call), [`FiniteBits`]. The answer is the same.
 #[cfg(not(all(target_os = "none", not(target_abi = "eabihf"))))]
-mod all_finite {
-    use super::{Real, zero_if_finite};
+pub(crate) type AllFinite<T> = FiniteSum<T>;
+/// Whether every value added is finite: [`FiniteBits`] on a core without a floating-point unit.
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+pub(crate) type AllFinite<T> = FiniteBits<T>;
 
-    /// Whether every value [`added`](Self::add) is finite ([module docs](self)).
-    #[derive(Debug, Clone, Copy)]
-    pub(crate) struct AllFinite<T>(T);
+/// Whether every value added is finite, as `sum (x - x)`: exactly `+0` while every `x` is finite
+/// (`x - x` cannot overflow), NaN from the first one that is not (infinity minus infinity, or a
+/// NaN), and NaN stays NaN. Two operations and no branch per value.
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(all(target_os = "none", not(target_abi = "eabihf")), allow(dead_code))]
+pub(crate) struct FiniteSum<T>(T);
 
-    impl<T: Real> AllFinite<T> {
-        /// Nothing added yet: holds.
-        #[inline]
-        pub(crate) fn new() -> Self {
-            Self(T::zero())
-        }
-        /// Adds `x`.
-        #[inline]
-        pub(crate) fn add(&mut self, x: T) {
-            self.0 += zero_if_finite(x);
-        }
-        /// `true` when every value added is finite.
-        #[inline]
-        pub(crate) fn holds(self) -> bool {
-            self.0.finite()
-        }
+#[cfg_attr(all(target_os = "none", not(target_abi = "eabihf")), allow(dead_code))]
+impl<T: Real> FiniteSum<T> {
+    /// Nothing added yet: holds.
+    #[inline]
+    pub(crate) fn new() -> Self {
+        Self(T::zero())
+    }
+    /// Adds `x`.
+    #[inline]
+    pub(crate) fn add(&mut self, x: T) {
+        self.0 += zero_if_finite(x);
+    }
+    /// `true` when every value added is finite.
+    #[inline]
+    pub(crate) fn holds(self) -> bool {
+        self.0.finite()
     }
 }
 
-/// [`AllFinite`] without a floating-point unit: bit tests ([module docs](self)).
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
-mod all_finite {
-    use super::Real;
-    use core::marker::PhantomData;
+/// Whether every value added is finite, as a conjunction of [`Real::finite`]'s bit tests.
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(not(all(target_os = "none", not(target_abi = "eabihf"))), allow(dead_code))]
+pub(crate) struct FiniteBits<T>(bool, core::marker::PhantomData<T>);
 
-    /// Whether every value [`added`](Self::add) is finite ([module docs](self)).
-    #[derive(Debug, Clone, Copy)]
-    pub(crate) struct AllFinite<T>(bool, PhantomData<T>);
-
-    impl<T: Real> AllFinite<T> {
-        /// Nothing added yet: holds.
-        #[inline]
-        pub(crate) fn new() -> Self {
-            Self(true, PhantomData)
-        }
-        /// Adds `x`.
-        #[inline]
-        pub(crate) fn add(&mut self, x: T) {
-            self.0 &= x.finite();
-        }
-        /// `true` when every value added is finite.
-        #[inline]
-        pub(crate) fn holds(self) -> bool {
-            self.0
-        }
+#[cfg_attr(not(all(target_os = "none", not(target_abi = "eabihf"))), allow(dead_code))]
+impl<T: Real> FiniteBits<T> {
+    /// Nothing added yet: holds.
+    #[inline]
+    pub(crate) fn new() -> Self {
+        Self(true, core::marker::PhantomData)
+    }
+    /// Adds `x`.
+    #[inline]
+    pub(crate) fn add(&mut self, x: T) {
+        self.0 &= x.finite();
+    }
+    /// `true` when every value added is finite.
+    #[inline]
+    pub(crate) fn holds(self) -> bool {
+        self.0
     }
 }
 
@@ -292,7 +288,7 @@ pub(crate) fn min<T: Real>(a: T, b: T) -> T {
 
 #[cfg(test)]
 mod tests {
-    use super::{AllFinite, Real, sin_cos_f32};
+    use super::{FiniteBits, FiniteSum, Real, sin_cos_f32};
 
     /// `|got - exact|` in units of the f32 ulp of `exact`'s binade, `2^(floor(log2 |exact|) - 23)`.
     fn ulps(got: f32, exact: f64) -> f64 {
@@ -343,26 +339,36 @@ mod tests {
         assert!(s.is_nan() && c.is_nan());
     }
 
-    /// [`AllFinite`] against a test of each value: the extremes of the range hold (`x - x` does not
-    /// overflow), and one infinity or NaN anywhere in a list of finite values is caught.
+    /// Both ways of [`AllFinite`] against a test of each value ([`Real::finite`]): the extremes
+    /// of the range, subnormals and signed zeros hold (`x - x` does not overflow); one infinity
+    /// or NaN (quiet or signalling, either sign) anywhere among finite values is caught.
     #[test]
     fn all_finite_agrees_with_a_test_of_each_value() {
-        fn all<T: Real>(values: &[T]) -> bool {
-            let mut finite = AllFinite::new();
+        fn check<T: Real>(values: &[T]) {
+            let expected = values.iter().all(|v| v.finite());
+            let (mut sum, mut bits) = (FiniteSum::new(), FiniteBits::new());
             for &v in values {
-                finite.add(v);
+                sum.add(v);
+                bits.add(v);
             }
-            finite.holds()
+            assert_eq!(sum.holds(), expected, "sum of {values:?}");
+            assert_eq!(bits.holds(), expected, "bits of {values:?}");
         }
-        let finite = [0.0f32, -0.0, 1.0, -3.5, f32::MAX, f32::MIN, f32::MIN_POSITIVE, 1e-45];
-        assert!(all(&finite) && all::<f32>(&[]));
-        for bad in [f32::INFINITY, f32::NEG_INFINITY, f32::NAN, -f32::NAN] {
+        let finite = [0.0f32, -0.0, 1.0, -3.5, f32::MAX, f32::MIN, f32::MIN_POSITIVE, 1e-45, -1e-45];
+        let bad = [f32::INFINITY, f32::NEG_INFINITY, f32::NAN, -f32::NAN, f32::from_bits(0x7f80_0001)];
+        check(&finite);
+        check::<f32>(&[]);
+        for b in bad {
             for at in 0..=finite.len() {
                 let mut values = finite.to_vec();
-                values.insert(at, bad);
-                assert!(!all(&values), "{bad} at {at}");
+                values.insert(at, b);
+                check(&values);
             }
         }
-        assert!(all(&[f64::MAX, f64::MIN, 5e-324]) && !all(&[1.0, f64::INFINITY, f64::NAN]));
+        let finite64 = [0.0f64, -0.0, f64::MAX, f64::MIN, 5e-324];
+        check(&finite64);
+        for b in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN, f64::from_bits(0x7ff0_0000_0000_0001)] {
+            check(&[finite64[0], b, finite64[2]]);
+        }
     }
 }

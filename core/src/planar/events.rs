@@ -43,8 +43,8 @@ impl<T: Real, const K: usize, const E: usize> EventLog<T, K, E> {
     /// Records the switches of one step.
     pub fn record(&mut self, report: &StepReport<T, K>) {
         // A loop over the contacts' indices, not `report.switches()`: unrolled, it leaves the
-        // caller's report in registers (the iterator kept it in memory, and the scene's return of
-        // the report then read back what had just been stored there: 5 % of the host's step).
+        // caller's report in registers; the iterator kept it in memory, and the scene's return of
+        // the report then read back at once what had just been stored there (an x86 stall).
         for i in 0..K {
             let contact = &report.contacts[i];
             if contact.mode == contact.previous_mode {

@@ -292,9 +292,9 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         out.q_norm = q_norm;
         out.q_min = q_min;
         out.finite = finite.holds();
-        // Last: `input` was written just before this call, `v~` as three 4-byte stores, and this
-        // copy reads it as an 8-byte and a 4-byte load, which cannot be forwarded from stores
-        // still in flight (a stall of 7 % of the host's step when it came first).
+        // Last: the step writes `input` just before this call, `v~` (in f32) as three 4-byte
+        // stores, and this copy reads it as an 8-byte and a 4-byte load, which an x86 core cannot
+        // forward from stores still in its store buffer: it waits for them to reach the cache.
         out.v_free = input.v_free;
     }
 
@@ -340,10 +340,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// `dv = M^-1 C p` for the impulses in `z`, summed on its own (not `v+ - v~`, which would
     /// lose `eps |v~|` when the body moves fast and the impulses change it little).
-    /// Inlined on the host: called, it reads `z` as 8-byte pairs just written as 4-byte values,
-    /// which the processor cannot forward from its store buffer (9 % of the step, stalled).
+    // Inlined on the host (not on a microcontroller, nor in the page's smaller modules): called,
+    // it reads `z` (in f32) as 8-byte pairs of values just written one by one, which an x86 core
+    // cannot forward from its store buffer.
     #[cfg_attr(target_os = "none", inline(never))]
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     #[allow(clippy::inline_always)] // measured, as said above
     fn velocity_change(&self, z: &[T; N]) -> [T; 3] {
         let mut dv = [T::zero(); 3];
@@ -493,8 +494,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         }
         // On the host each number of unknowns the warm path meets gets its own copy of the rest,
         // with `m` a constant: its loops unrolled, the same operations in the same order (the same
-        // bits). A microcontroller keeps one copy (flash).
-        #[cfg(not(target_os = "none"))]
+        // bits). A microcontroller (flash) and the page (module size) keep one copy.
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         match m {
             3 => return self.solve_unknowns(mask, &var, &follower, 3, &sigma_row, tolerance, z, w),
             2 => return self.solve_unknowns(mask, &var, &follower, 2, &sigma_row, tolerance, z, w),
@@ -543,9 +544,9 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             y[k] = -self.q[var[k].min(N - 1)];
         }
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        #[cfg(not(target_os = "none"))]
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         let solved = solve_small_sized(&mut a, &mut y, m, tiny);
-        #[cfg(target_os = "none")]
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         let solved = solve_small(&mut a, &mut y, m, tiny);
         if !solved {
             return Err(Declined::Singular);
@@ -898,11 +899,20 @@ fn with_pattern<const K: usize, const N: usize>(
 
 /// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
 /// elimination with partial pivoting; `false` when a pivot is at most `tiny` (numerically
-/// singular). A microcontroller's one out-of-line copy (flash); the host inlines
-/// [`solve_small_sized`] into each copy of [`FactoredLcp::solve_unknowns`], with `m` a constant.
-#[cfg(target_os = "none")]
-#[inline(never)]
+/// singular). On a microcontroller and in the page; on the host [`solve_small_sized`] is inlined
+/// into each copy of [`FactoredLcp::solve_unknowns`], with `m` a constant.
+#[cfg(any(target_os = "none", target_family = "wasm"))]
+#[cfg_attr(target_os = "none", inline(never))]
 fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
+    // In the page each size the fast path meets (2 and 3 unknowns) gets its own copy, with `m` a
+    // constant: no per-row size tests (the same operations in the same order, so the same bits).
+    // A microcontroller keeps one copy (flash).
+    #[cfg(not(target_os = "none"))]
+    match m {
+        2 => return solve_small_sized(a, rhs, 2, tiny),
+        3 => return solve_small_sized(a, rhs, 3, tiny),
+        _ => {}
+    }
     solve_small_sized(a, rhs, m, tiny)
 }
 

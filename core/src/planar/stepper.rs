@@ -458,8 +458,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// copied there (an 8-byte load of a position stored as two 4-byte halves cannot be forwarded
     /// from the store buffer). Out of line on a microcontroller: one copy for `new` and `step`.
     #[cfg_attr(target_os = "none", inline(never))]
-    #[cfg_attr(not(target_os = "none"), inline(always))]
-    #[allow(clippy::inline_always)] // the host's step 2.5 % faster inlined (left to itself, it was not)
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[allow(clippy::inline_always)] // measured: the host's step is faster so (left to itself, it was not inlined)
     fn update_frames(&mut self, supports: &[Support<T>; K]) {
         let pose = Pose { com: [self.state.x, self.state.y], sin_cos: self.state.theta.sin_cos_portable() };
         for i in 0..K {
@@ -492,10 +492,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    // Inlined into its caller on the host (3 % faster): the supports, just built there, and the
-    // report are then not read back from memory at once.
+    // Inlined into its caller on the host (not on a microcontroller, nor in the page's smaller
+    // modules): the supports, just built there, and the report are then not read back from memory
+    // at once, which stalls an x86 core.
     #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     #[allow(clippy::inline_always)] // measured, as said above
     pub fn step(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
         let s = self.settings;
