@@ -865,10 +865,12 @@ fn run_refuses_a_list_whose_runs_together_record_too_many_steps() {
 }
 
 /// A fake rig on a TCP socket: answers every command as the firmware does (the defaults read back
-/// with `GetParam`), and on `Start` sends a run whose checksum is not the host's.
+/// with `GetParam`; a step over 50 s refused as out of range, as the core refuses a step longer
+/// than the run), and on `Start` sends a run whose checksum is not the host's.
 fn fake_rig_with_a_wrong_checksum() -> (std::net::SocketAddr, std::thread::JoinHandle<()>) {
     use meterstick_link::{
-        Command, CommandDecoder, MAX_FRAME, OutcomeCode, PROTOCOL_VERSION, Report, RigState, SceneId, encode,
+        Command, CommandDecoder, MAX_FRAME, OutcomeCode, PROTOCOL_VERSION, ParamId, RejectReason, Report,
+        RigState, SceneId, encode,
     };
     use std::io::{Read as _, Write as _};
     let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
@@ -899,6 +901,9 @@ fn fake_rig_with_a_wrong_checksum() -> (std::net::SocketAddr, std::thread::JoinH
                     Command::GetParam { id } => {
                         vec![Report::Param { id, value: params.get(id.name()).unwrap() }]
                     }
+                    Command::SetParam { id: ParamId::Step, value } if value > 50.0 => {
+                        vec![Report::Rejected { id: ParamId::Step, reason: RejectReason::OutOfRange }]
+                    }
                     Command::Start => vec![
                         Report::Ack { command: c.tag() },
                         Report::State(RigState::Running),
@@ -920,6 +925,17 @@ fn fake_rig_with_a_wrong_checksum() -> (std::net::SocketAddr, std::thread::JoinH
         }
     });
     (addr, rig)
+}
+
+/// A value the rig refuses is named with the rig's reason in words (not a debug name, not `Other`).
+#[test]
+fn monitor_words_the_rigs_refusal() {
+    let (addr, rig) = fake_rig_with_a_wrong_checksum();
+    let port = format!("tcp:{addr}");
+    let (code, _, err) = host_sim_within(&["monitor", "--port", &port, "--set", "step=100"], &[], 120);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("--set step: the rig refused it: it is outside its range"), "{err}");
+    rig.join().unwrap();
 }
 
 /// Exit status 1: a check failed. `host-sim monitor` against a rig whose run is not the host's

@@ -247,6 +247,37 @@ pub enum RejectReason {
     /// cannot follow, a finger motion its hardware lacks (finger 2 is fixed, finger 1 only
     /// approaches it), or a step its timer cannot tick in real time.
     BeyondRig,
+    /// The value is outside its range: a step longer than the run, a rod at least as thick as
+    /// it is long, a limit beyond the model's.
+    OutOfRange,
+    /// The rod's mass and size give a moment of inertia the rig's `f32` cannot hold (their
+    /// product underflows to 0 or overflows).
+    InertiaOutOfRange,
+}
+
+impl RejectReason {
+    /// What the reason says, in words, for a message about the parameter refused ("the rig
+    /// refused --set step=100: it is outside its range").
+    #[must_use]
+    pub const fn words(self) -> &'static str {
+        match self {
+            Self::NotFinite => "it is not a finite number",
+            Self::NotPositive => "it must be positive",
+            Self::Negative => "it must not be negative",
+            Self::KineticAboveStatic => "the kinetic friction coefficient would exceed the static one",
+            Self::FingerOutsideRod => "a finger would start beyond an end of the rod",
+            Self::FingersCrossed => "finger 1 would not start left of finger 2 by more than the finger width",
+            Self::Busy => "a run is in progress",
+            Self::Other => "the rig gave no reason",
+            Self::BeyondRig => "the model accepts it, but the rig cannot perform it",
+            Self::OutOfRange => {
+                "it is outside its range (a step longer than the run, a rod as thick as long)"
+            }
+            Self::InertiaOutOfRange => {
+                "with the rod's mass and length it gives a moment of inertia f32 cannot hold"
+            }
+        }
+    }
 }
 
 /// The data-free tag of a [`Command`], acknowledged by [`Report::Ack`].

@@ -337,6 +337,11 @@ fn refused_parameters_leave_the_rig_as_it_was() {
         (ParamId::Step, 0.0, RejectReason::NotPositive),
         (ParamId::RodMass, f32::NAN, RejectReason::NotFinite),
         (ParamId::Finger1X, -0.6, RejectReason::FingerOutsideRod),
+        // A step longer than the run, a rod as thick as it is long, a mass whose inertia
+        // underflows f32: named, not `Other`.
+        (ParamId::Step, 100.0, RejectReason::OutOfRange),
+        (ParamId::RodThickness, 1e3, RejectReason::OutOfRange),
+        (ParamId::RodMass, 1e-45, RejectReason::InertiaOutOfRange),
     ] {
         let c = Command::SetParam { id, value };
         assert_eq!(b.reply(&c), Report::Rejected { id, reason }, "{id:?} = {value}");

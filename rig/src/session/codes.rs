@@ -67,6 +67,8 @@ pub(super) const fn reason_of(e: ParamError) -> RejectReason {
         ParamError::KineticAboveStatic => RejectReason::KineticAboveStatic,
         ParamError::FingerOutsideRod => RejectReason::FingerOutsideRod,
         ParamError::FingersCrossed => RejectReason::FingersCrossed,
+        ParamError::OutOfRange(_) => RejectReason::OutOfRange,
+        ParamError::InertiaOutOfRange { .. } => RejectReason::InertiaOutOfRange,
         _ => RejectReason::Other,
     }
 }

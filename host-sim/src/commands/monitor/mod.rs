@@ -210,7 +210,7 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<String> {
     }
     let refused = apply_params(&mut link, &sets)?;
     if let Some(r) = refused.first() {
-        bail!("--set {}: the rig refused it ({:?})", r.id.name(), r.reason);
+        bail!("--set {}: the rig refused it: {}", r.id.name(), r.reason.words());
     }
     if let Some(n) = args.telemetry {
         simple(&mut link, Command::SetTelemetry { every_n_steps: n }, "--telemetry")?;

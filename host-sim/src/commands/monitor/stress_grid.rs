@@ -65,7 +65,7 @@ pub fn run(link: &mut Link, args: &MonitorArgs) -> anyhow::Result<String> {
         let values: Vec<(ParamId, f32)> =
             ParamId::ALL.iter().filter_map(|&id| params.get(id.name()).map(|v| (id, v))).collect();
         if let Some(r) = apply_params(link, &values)?.first() {
-            bail!("--stress-grid {}: the rig refused {} ({:?})", case.name, r.id.name(), r.reason);
+            bail!("--stress-grid {}: the rig refused {}: {}", case.name, r.id.name(), r.reason.words());
         }
         let params = read_params(link)?;
         let rec = record_run(link, params, true, timeout, &mut |_: &Report| {})?;
