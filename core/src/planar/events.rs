@@ -47,7 +47,7 @@ impl<T: Real, const K: usize, const E: usize> EventLog<T, K, E> {
         // the report then read back at once what had just been stored there (an x86 stall).
         for i in 0..K {
             let contact = &report.contacts[i];
-            if contact.mode == contact.previous_mode {
+            if !contact.switched() {
                 continue;
             }
             let event = SwitchEvent {

@@ -102,6 +102,14 @@ pub struct ContactReport<T> {
     pub along: T,
 }
 
+impl<T> ContactReport<T> {
+    /// `true` when the contact's mode changed in this step: a switch event.
+    #[must_use]
+    pub fn switched(&self) -> bool {
+        self.mode != self.previous_mode
+    }
+}
+
 /// What one step did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepReport<T, const K: usize> {
@@ -163,7 +171,7 @@ impl<T: Real, const K: usize> StepReport<T, K> {
 
     /// The contacts whose mode changed in this step, with their new mode.
     pub fn switches(&self) -> impl Iterator<Item = (usize, ContactMode)> + '_ {
-        self.contacts.iter().enumerate().filter(|(_, c)| c.mode != c.previous_mode).map(|(i, c)| (i, c.mode))
+        self.contacts.iter().enumerate().filter(|(_, c)| c.switched()).map(|(i, c)| (i, c.mode))
     }
 }
 
