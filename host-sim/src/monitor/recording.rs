@@ -62,13 +62,18 @@ pub const fn mode_of(m: Mode) -> ContactMode {
     }
 }
 
-fn outcome_of(o: OutcomeCode) -> RunOutcome {
+/// The run outcome a rig reported: each outcome of the core as itself
+/// (`meterstick_rig::session::outcome_code` is the other direction), a fault with its code.
+#[must_use]
+pub fn outcome_of(o: OutcomeCode) -> RunOutcome {
     match o {
         OutcomeCode::Balanced => RunOutcome::of(OutcomeClass::Balanced),
         OutcomeCode::Fell => RunOutcome::of(OutcomeClass::Fell),
         OutcomeCode::Held => RunOutcome::of(OutcomeClass::Held),
         OutcomeCode::Slid => RunOutcome::of(OutcomeClass::Slid),
         OutcomeCode::Tipped => RunOutcome::of(OutcomeClass::Tipped),
+        OutcomeCode::Rolled => RunOutcome::of(OutcomeClass::Rolled),
+        OutcomeCode::Jammed => RunOutcome::of(OutcomeClass::Jammed),
         OutcomeCode::Unfinished => RunOutcome::of(OutcomeClass::Unfinished),
         other => RunOutcome { class: OutcomeClass::Failed, detail: Some(format!("{other:?}")) },
     }
