@@ -3,6 +3,7 @@
 //! runs fails here, naming the run; a change meant to move them updates the table in the same
 //! commit, and its message says why. The firmware under QEMU, the page and `host-sim scene` print
 //! the same checksums (`tests/tests/qemu.rs`, `tests/tests/browser.rs`).
+#![allow(clippy::expect_used)]
 
 use meterstick_core::Real;
 use meterstick_core::planar::Checksum;
