@@ -18,8 +18,10 @@
 //! **Solutions considered** (docs/formulation.md, "Solving a multibody step"): the previous
 //! step's basis (each candidate contact keeps its own pattern of basic variables, a contact
 //! that was not active starts with none), Lemke's method from the start `w` basis (covering
-//! vector all ones), then a descent over neighbouring bases: from the least-energy solution so
-//! far, each active contact's pattern replaced in turn by each of the eight patterns
+//! vector all ones), the **held** bases (every contact `{p_n, p_+d}`, every contact
+//! `{p_n, p_-d}`, every contact with all four variables basic) and, when the last does not
+//! solve the LCP, each of its neighbours (one contact's pattern replaced by each of the eight
+//! below), then a descent over neighbouring bases: from the least-energy solution so far, each active contact's pattern replaced in turn by each of the eight patterns
 //! `{}`, `{sigma, p_+d}`, `{sigma, p_-d}`, `{p_n}`, `{p_n, p_+d}`, `{p_n, p_-d}`,
 //! `{p_n, p_+d, sigma}`, `{p_n, p_-d, sigma}` (separated; separated while slipping; touching
 //! without friction; sticking; sliding), repeated while a neighbour lowers the energy (at most
@@ -41,6 +43,9 @@ const DESCENT_ROUNDS: usize = 8;
 
 /// How far the cone rows are opened (relative to `||b||_inf`) when Lemke's method ends on a ray.
 const CONE_OPENING: f64 = 1e-9;
+
+/// A contact held with every variable basic (`p_n`, both friction impulses and `sigma`): sticking.
+const STUCK: u8 = 1 | 2 | 4 | 8;
 
 /// The eight per-contact patterns of basic variables: bits `p_n` 1, `p_+d` 2, `p_-d` 4, `sigma` 8.
 const PATTERNS: [u8; 8] = [0, 2 | 8, 4 | 8, 1, 1 | 2, 1 | 4, 1 | 2 | 8, 1 | 4 | 8];
@@ -69,6 +74,8 @@ pub(super) struct StepResult {
 pub(super) struct StepLcp {
     /// The active candidates' indices, in slot order.
     pub active: Vec<usize>,
+    /// Each slot's pair.
+    pub pairs: Vec<usize>,
     /// `A`, row-major `n x n`.
     pub matrix: Vec<f64>,
     /// `b`.
@@ -139,7 +146,8 @@ pub(super) fn assemble(
         }
         matrix[sigma * n + slot] = mu[i];
     }
-    StepLcp { active, matrix, offset, rows, free, weights }
+    let pairs = active.iter().map(|&i| frames[i].pair).collect();
+    StepLcp { active, pairs, matrix, offset, rows, free, weights }
 }
 
 /// `a . b`.
@@ -236,6 +244,26 @@ fn gather(lcp: &StepLcp, previous: &[u8], starts: Starts, tie: f64) -> Vec<Found
             }
             if let Ok((_, basis)) = lemke(&lcp.matrix, &opened, &vec![1.0; n], 50 * (n + 1)) {
                 try_basis(basis, &mut pool);
+            }
+        }
+    }
+    if starts.descend {
+        // Every contact touching and holding (the solution of most dissipation when there is one),
+        // and, whether or not it solves the LCP, each of its neighbours (one contact let go:
+        // separated, slipping or sliding).
+        for pattern in [1 | 2, 1 | 4] {
+            try_basis(basis_of(&vec![pattern; k]), &mut pool);
+        }
+        let held = vec![STUCK; k];
+        let before = pool.len();
+        try_basis(basis_of(&held), &mut pool);
+        // A held basis that solves is a start of the descent below, which visits its neighbours.
+        let seeds = if pool.len() == before { k } else { 0 };
+        for slot in 0..seeds {
+            for &p in &PATTERNS {
+                let mut patterns = held.clone();
+                patterns[slot] = p;
+                try_basis(basis_of(&patterns), &mut pool);
             }
         }
     }

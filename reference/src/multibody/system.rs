@@ -71,9 +71,8 @@ impl System {
         4.0 * f64::EPSILON * s
     }
 
-    /// The normal impulse per unit reference mass at or below which a contact is separated:
-    /// `64 eps g h m_min / m_ref` (the round-off of one step's gravity impulse on the lightest
-    /// body).
+    /// The normal impulse (N s) at or below which a contact is separated: `64 eps g h m_min`
+    /// (the round-off of one step's gravity impulse on the lightest body).
     pub fn impulse_floor(&self) -> f64 {
         let m_min = self.bodies.iter().map(|b| b.mass).fold(f64::INFINITY, f64::min);
         64.0 * f64::EPSILON * self.gravity * self.step * m_min

@@ -537,3 +537,59 @@ fn a_stack_of_four_solves_32_rows_and_an_aligned_stack_holds() {
         }
     }
 }
+
+/// A violent two-box step: the top box tilted up to 0.6 rad, moving at up to 3 m/s and turning at
+/// up to 5 rad/s, every coefficient up to 4 (Painlevé's territory: several motions solve the LCP).
+fn violent_step(rng: &mut Random) -> RandomStep {
+    let (mut system, mut q, mut v, _) = random_step(rng);
+    let mu = rng.uniform(0.5, 4.0);
+    for p in &mut system.pairs {
+        p.mu_static = mu;
+        p.mu_kinetic = mu * rng.uniform(0.3, 1.0);
+    }
+    let top = system.bodies[1];
+    q[1][2] = rng.uniform(-0.6, 0.6);
+    q[1][1] = q[0][1]
+        + system.bodies[0].half_height
+        + top.half_width * q[1][2].sin().abs()
+        + top.half_height * q[1][2].cos()
+        + rng.uniform(-1e-4, 1e-4);
+    v[1] = [rng.uniform(-3.0, 3.0), rng.uniform(-1.0, 0.2), rng.uniform(-5.0, 5.0)];
+    let frames = system.frames(&q, &v);
+    let mu = frames
+        .iter()
+        .map(|f| {
+            let pair = system.pairs[f.pair];
+            if rng.uniform(0.0, 1.0) < 0.5 { pair.mu_static } else { pair.mu_kinetic }
+        })
+        .collect();
+    (system, q, v, mu)
+}
+
+#[test]
+fn the_solver_takes_the_least_energy_motion_of_violent_steps_as_enumeration_does() {
+    let mut rng = Random(0x1234_5678_9abc_def1);
+    let (mut cases, mut ambiguous, mut flagged) = (0, 0, 0);
+    while cases < 300 {
+        let (system, q, v, mu) = violent_step(&mut rng);
+        let frames = system.frames(&q, &v);
+        let lcp = assemble(&system, &q, &v, &frames, &mu);
+        if lcp.active.len() < 2 {
+            continue;
+        }
+        cases += 1;
+        let (expected, enumerated_ambiguous) = enumerated_choice(&system, &lcp).unwrap();
+        let result = solve(&system, &lcp, &vec![0; frames.len()], frames.len(), Starts::ALL).unwrap();
+        let got: Vec<f64> = result.velocity.iter().flatten().copied().collect();
+        let scale = lcp.free.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-3);
+        let err = got.iter().zip(&expected).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / scale;
+        assert!(err < 1e-9, "case {cases}: v+ {got:?}, the enumeration's least-energy {expected:?}");
+        ambiguous += usize::from(enumerated_ambiguous);
+        flagged += usize::from(enumerated_ambiguous && result.ambiguous);
+    }
+    eprintln!(
+        "violent two-box steps: {cases}, {ambiguous} with several motions (enumeration), {flagged} of them flagged ambiguous"
+    );
+    assert!(ambiguous >= 5, "the rule was exercised on {ambiguous} steps only");
+    assert_eq!(flagged, ambiguous, "an ambiguous step was not flagged");
+}
