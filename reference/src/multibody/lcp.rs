@@ -1,8 +1,9 @@
 //! The multibody reference's LCP solver (docs/formulation.md, "Several bodies", "Solving a
 //! multibody step"): Lemke's complementary pivoting with the lexicographic minimum-ratio rule
-//! (Cottle, Pang & Stone, *The Linear Complementarity Problem*, 1992, sections 4.4 and 4.9: the
-//! tableau `w - A z - d z0 = b` started from the basis `w`, `z0` entering first, each later
-//! entering variable the complement of the one that left, until `z0` leaves), a solve of one
+//! (Cottle, Pang & Stone, *The Linear Complementarity Problem*, 1992, section 4.4, with the
+//! lexicographic degeneracy resolution: the tableau `w - A z - d z0 = b` started from the basis
+//! `w`, `z0` entering first, each later entering variable the complement of the one that left,
+//! until `z0` leaves), a solve of one
 //! given complementary basis ([`solve_basis`]), and the check every answer passes before it is
 //! used ([`verify`]).
 //!

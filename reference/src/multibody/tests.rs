@@ -36,7 +36,8 @@ fn run_spec(spec: Spec) -> Run {
 
 #[test]
 fn lemke_solves_textbook_lcps() {
-    // Murty (1988), ex. 2.8's P-matrix: the unique solution z = (1/3, 1/3, 1/3), w = 0.
+    // A cyclic P-matrix (each row 1 on the diagonal, 2 on the next): the unique solution
+    // z = (1/3, 1/3, 1/3), w = 0.
     let a = [1.0, 2.0, 0.0, 0.0, 1.0, 2.0, 2.0, 0.0, 1.0];
     let b = [-1.0, -1.0, -1.0];
     let (z, basis) = lemke(&a, &b, &[1.0; 3], 100).unwrap();
@@ -54,10 +55,12 @@ fn lemke_solves_textbook_lcps() {
     let (z, _) = lemke(&a, &b, &[1.0; 2], 100).unwrap();
     assert!(verify(&a, &b, &z) && (z[0] + z[1] - 1.0).abs() < 1e-15, "{z:?}");
     // Infeasible with a copositive-plus (skew) matrix: w1 = -z2 - 1 < 0 always, so the method
-    // must end on a ray (Cottle, Pang & Stone, thm. 4.4.13).
+    // must end on a ray (for a copositive-plus matrix Lemke's method ends on a ray only when
+    // the LCP has no solution: Cottle, Pang & Stone, section 4.4).
     let (a, b) = ([0.0, -1.0, 1.0, 0.0], [-1.0, -1.0]);
     assert_eq!(lemke(&a, &b, &[1.0; 2], 100), Err(LemkeFailure::Ray));
-    // Murty's upper-triangular P-matrix (1 on the diagonal, 2 above), n = 8, b = -1: the unique
+    // An upper-triangular P-matrix (1 on the diagonal, 2 above, as in Murty's examples of long
+    // pivot paths), n = 8, b = -1: the unique
     // solution is found by the enumeration too.
     let n = 8;
     let a: Vec<f64> = (0..n * n)
