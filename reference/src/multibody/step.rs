@@ -25,7 +25,9 @@
 //! `{}`, `{sigma, p_+d}`, `{sigma, p_-d}`, `{p_n}`, `{p_n, p_+d}`, `{p_n, p_-d}`,
 //! `{p_n, p_+d, sigma}`, `{p_n, p_-d, sigma}` (separated; separated while slipping; touching
 //! without friction; sticking; sliding), repeated while a neighbour lowers the energy (at most
-//! `DESCENT_ROUNDS` rounds). Every candidate is verified (`lcp::verify`); among the verified,
+//! `DESCENT_ROUNDS` rounds); when no neighbour lowers it but the solutions found move the bodies
+//! differently, the neighbourhood is widened to two contacts of one pair at a time. An answer of
+//! Lemke's method that misses the tolerance has its basis solved afresh. Every candidate is verified (`lcp::verify`); among the verified,
 //! the least kinetic energy `sum_i (m_i |v_i|^2 + J_i omega_i^2) / m_ref` wins, energies within
 //! `1e-12 S^2 sum_i m_i / m_ref` tie and go to the smallest `||z||_1` (within `1e-12`,
 //! relative), then to the first found. `S` is the step's speed scale,
@@ -207,19 +209,21 @@ impl Starts {
 }
 
 /// Every verified solution the starts reach (module documentation), in the order found.
-fn gather(lcp: &StepLcp, previous: &[u8], starts: Starts, tie: f64) -> Vec<Found> {
+fn gather(lcp: &StepLcp, previous: &[u8], starts: Starts, tie: f64, scale: &Scale) -> Vec<Found> {
     let k = lcp.active.len();
     let n = 4 * k;
     let weights = &lcp.weights;
     let energy = |v: &[f64]| (0..v.len()).map(|c| v[c] * v[c] / weights[c]).sum::<f64>();
     let mut pool: Vec<Found> = Vec::new();
     let consider = |z: Vec<f64>, basis: Basis, pool: &mut Vec<Found>| {
-        if verify(&lcp.matrix, &lcp.offset, &z) {
+        let verified = verify(&lcp.matrix, &lcp.offset, &z);
+        if verified {
             let z: Vec<f64> = z.into_iter().map(|x| x.max(0.0)).collect();
             let velocity = lcp.velocity(&z);
             let energy = energy(&velocity);
             pool.push(Found { z, basis, velocity, energy });
         }
+        verified
     };
     let try_basis = |basis: Basis, pool: &mut Vec<Found>| {
         if let Some(z) = solve_basis(&lcp.matrix, &lcp.offset, &basis) {
@@ -232,7 +236,11 @@ fn gather(lcp: &StepLcp, previous: &[u8], starts: Starts, tie: f64) -> Vec<Found
     }
     if starts.lemke {
         if let Ok((z, basis)) = lemke(&lcp.matrix, &lcp.offset, &vec![1.0; n], 50 * (n + 1)) {
-            consider(z, basis, &mut pool);
+            // The tableau's round-off grows with the pivots: when its answer misses the
+            // tolerance, its basis is solved afresh.
+            if !consider(z, basis.clone(), &mut pool) {
+                try_basis(basis, &mut pool);
+            }
         } else {
             // The sigma of a contact without normal impulse is unbounded above (a ray of the
             // LCP's solution set, along which Lemke's method can end): cut it off by opening each
@@ -269,6 +277,8 @@ fn gather(lcp: &StepLcp, previous: &[u8], starts: Starts, tie: f64) -> Vec<Found
     }
     let least = |pool: &[Found]| (0..pool.len()).min_by(|&a, &b| pool[a].energy.total_cmp(&pool[b].energy));
     if starts.descend {
+        // Widened once the solutions found move differently: two contacts of one pair at a time.
+        let mut widened = false;
         for _ in 0..DESCENT_ROUNDS {
             let Some(best) = least(&pool) else { break };
             let (best_energy, best_patterns) = (pool[best].energy, patterns_of(&pool[best].basis));
@@ -279,12 +289,46 @@ fn gather(lcp: &StepLcp, previous: &[u8], starts: Starts, tie: f64) -> Vec<Found
                     try_basis(basis_of(&patterns), &mut pool);
                 }
             }
+            if widened {
+                for (first, second) in (0..k).flat_map(|a| (a + 1..k).map(move |b| (a, b))) {
+                    if lcp.pairs[first] != lcp.pairs[second] {
+                        continue;
+                    }
+                    for &p in PATTERNS.iter().filter(|&&p| p != best_patterns[first]) {
+                        for &r in PATTERNS.iter().filter(|&&r| r != best_patterns[second]) {
+                            let mut patterns = best_patterns.clone();
+                            patterns[first] = p;
+                            patterns[second] = r;
+                            try_basis(basis_of(&patterns), &mut pool);
+                        }
+                    }
+                }
+            }
             if least(&pool).is_none_or(|b| pool[b].energy >= best_energy - tie) {
-                break;
+                let several = pool.iter().any(|f| scale.differ(&f.velocity, &pool[best].velocity));
+                if widened || !several {
+                    break;
+                }
+                widened = true;
             }
         }
     }
     pool
+}
+
+/// How far apart two motions must be to differ: `1e-9 S` in a component, `omega` times its
+/// body's reach.
+struct Scale {
+    /// `S`, m/s.
+    speed: f64,
+    /// Per coordinate: 1 for `vx`, `vy`, the body's reach for `omega`.
+    factors: Vec<f64>,
+}
+
+impl Scale {
+    fn differ(&self, a: &[f64], b: &[f64]) -> bool {
+        a.iter().zip(b).zip(&self.factors).any(|((x, y), f)| f * (x - y).abs() > 1e-9 * self.speed)
+    }
 }
 
 /// Solves the assembled `lcp` by the rule of the module's documentation. `previous` holds each
@@ -309,10 +353,14 @@ pub(super) fn solve(
             lcp.free[3 * i].abs().max(lcp.free[3 * i + 1].abs()).max(reach * lcp.free[3 * i + 2].abs())
         })
         .fold(0.0, f64::max);
+    let scale = Scale {
+        speed: speed_scale,
+        factors: system.bodies.iter().flat_map(|b| [1.0, 1.0, b.reach()]).collect(),
+    };
     let m_ref = system.reference_mass();
     let mass_sum: f64 = system.bodies.iter().map(|b| b.mass / m_ref).sum();
     let tie = 1e-12 * speed_scale * speed_scale * mass_sum;
-    let pool = gather(lcp, previous, starts, tie);
+    let pool = gather(lcp, previous, starts, tie, &scale);
     let Some(least) = (0..pool.len()).min_by(|&a, &b| pool[a].energy.total_cmp(&pool[b].energy)) else {
         return Err(format!("no verified solution of the {n}x{n} LCP ({k} active contacts)"));
     };
@@ -323,16 +371,7 @@ pub(super) fn solve(
             chosen = s;
         }
     }
-    let v_plus = &pool[chosen].velocity;
-    let differs = |w: &[f64]| {
-        (0..bodies).any(|i| {
-            let reach = system.bodies[i].reach();
-            (w[3 * i] - v_plus[3 * i]).abs() > 1e-9 * speed_scale
-                || (w[3 * i + 1] - v_plus[3 * i + 1]).abs() > 1e-9 * speed_scale
-                || reach * (w[3 * i + 2] - v_plus[3 * i + 2]).abs() > 1e-9 * speed_scale
-        })
-    };
-    let ambiguous = pool.iter().any(|f| differs(&f.velocity));
+    let ambiguous = pool.iter().any(|f| scale.differ(&f.velocity, &pool[chosen].velocity));
     let z = &pool[chosen].z;
     let slot_patterns = patterns_of(&pool[chosen].basis);
     let mut normal = vec![0.0; candidates];
@@ -343,6 +382,7 @@ pub(super) fn solve(
         friction[i] = m_ref * (z[k + 2 * slot] - z[k + 2 * slot + 1]);
         patterns[i] = slot_patterns[slot];
     }
+    let v_plus = &pool[chosen].velocity;
     let velocity = (0..bodies).map(|i| [v_plus[3 * i], v_plus[3 * i + 1], v_plus[3 * i + 2]]).collect();
     Ok(StepResult { velocity, normal, friction, patterns, ambiguous, solutions: pool.len(), rows: n })
 }
