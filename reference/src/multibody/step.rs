@@ -15,22 +15,27 @@
 //!                              [ 0                    (sigma rows)    ]
 //! ```
 //!
-//! **Solutions considered** (docs/formulation.md, "Solving a multibody step"): the previous
-//! step's basis (each candidate contact keeps its own pattern of basic variables, a contact
-//! that was not active starts with none), Lemke's method from the start `w` basis (covering
-//! vector all ones), the **held** bases (every contact `{p_n, p_+d}`, every contact
-//! `{p_n, p_-d}`, every contact with all four variables basic) and, when the last does not
-//! solve the LCP, each of its neighbours (one contact's pattern replaced by each of the eight
-//! below), then a descent over neighbouring bases: from the least-energy solution so far, each active contact's pattern replaced in turn by each of the eight patterns
-//! `{}`, `{sigma, p_+d}`, `{sigma, p_-d}`, `{p_n}`, `{p_n, p_+d}`, `{p_n, p_-d}`,
-//! `{p_n, p_+d, sigma}`, `{p_n, p_-d, sigma}` (separated; separated while slipping; touching
-//! without friction; sticking; sliding), repeated while a neighbour lowers the energy (at most
-//! `DESCENT_ROUNDS` rounds); when no neighbour lowers it but the solutions found move the bodies
-//! differently, the neighbourhood is widened to two contacts of one pair at a time. An answer of
-//! Lemke's method that misses the tolerance has its basis solved afresh. Every candidate is verified (`lcp::verify`); among the verified,
-//! the least kinetic energy `sum_i (m_i |v_i|^2 + J_i omega_i^2) / m_ref` wins, energies within
-//! `1e-12 S^2 sum_i m_i / m_ref` tie and go to the smallest `||z||_1` (within `1e-12`,
-//! relative), then to the first found. `S` is the step's speed scale,
+//! **Solutions considered** (docs/formulation.md, "Solving a multibody step"):
+//!
+//! 1. the previous step's basis (each candidate contact keeps its own pattern of basic
+//!    variables; a contact that was not active starts with none);
+//! 2. Lemke's method from the `w` basis (covering vector all ones); an answer that misses the
+//!    tolerance has its basis solved afresh; on a ray, again with the cone rows opened;
+//! 3. the **held** bases: every contact `{p_n, p_+d}`, every contact `{p_n, p_-d}`, every
+//!    contact with all four variables basic and, when the last does not solve the LCP, each of
+//!    its neighbours (one contact's pattern replaced by each of the eight below);
+//! 4. a descent over neighbouring bases: from the least-energy solution so far, each active
+//!    contact's pattern replaced in turn by each of the eight patterns `{}`, `{sigma, p_+d}`,
+//!    `{sigma, p_-d}`, `{p_n}`, `{p_n, p_+d}`, `{p_n, p_-d}`, `{p_n, p_+d, sigma}`,
+//!    `{p_n, p_-d, sigma}` (separated; separated while slipping; touching without friction;
+//!    sticking; sliding), repeated while a neighbour lowers the energy (at most
+//!    `DESCENT_ROUNDS` rounds); when no neighbour lowers it but the solutions found move the
+//!    bodies differently, widened to two contacts of one pair at a time.
+//!
+//! Every candidate is verified (`lcp::verify`); among the verified, the least kinetic energy
+//! `sum_i (m_i |v_i|^2 + J_i omega_i^2) / m_ref` wins, energies within
+//! `1e-12 S^2 sum_i m_i / m_ref` tie and go to the smallest `||z||_1` (within `1e-12`, relative),
+//! then to the first found. `S` is the step's speed scale,
 //! `max_i max(|v~_x|, |v~_y|, reach_i |v~_omega|)` (`reach_i` half body `i`'s diagonal). The
 //! step is **ambiguous** when two verified solutions' velocities differ by more than `1e-9 S`
 //! in a component (`omega` times `reach_i`).
