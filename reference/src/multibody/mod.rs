@@ -24,6 +24,8 @@ mod tests;
 
 pub use scenes::{BlockOnBlock, Stack, Tablecloth};
 
+use crate::Sample;
+
 /// A multibody scene and its parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Spec {
@@ -57,9 +59,26 @@ pub enum Outcome {
     Failed(String),
 }
 
+/// The state after one step (or the start, row 0).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// `t = n h`, s.
+    pub t: f64,
+    /// Each body's `(x, y, theta)`.
+    pub q: Vec<[f64; 3]>,
+    /// Each body's `(vx, vy, omega)` (the step's `v+`).
+    pub v: Vec<[f64; 3]>,
+    /// Each pair's summed contact force on its upper body over the step, world, N (row 0: zero).
+    pub interface_forces: Vec<[f64; 2]>,
+    /// Whether the step's verified solutions moved the bodies differently.
+    pub ambiguous: bool,
+}
+
 /// A finished multibody run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Run {
+    /// The kept rows ([`crate::Sample`]; row 0, the start, always).
+    pub rows: Vec<Row>,
     /// How it ended.
     pub outcome: Outcome,
     /// Steps taken.
@@ -90,23 +109,23 @@ pub struct Run {
     pub seconds_per_step: f64,
 }
 
-/// Validates `spec` and runs it to its outcome.
+/// Validates `spec` and runs it to its outcome, keeping the rows `sample` asks for.
 ///
 /// # Errors
 /// A broken validity rule, naming its parameter.
-pub fn run(spec: &Spec) -> Result<Run, String> {
+pub fn run(spec: &Spec, sample: Sample) -> Result<Run, String> {
     match *spec {
         Spec::BlockOnBlock(p) => {
             p.validate()?;
-            Ok(scenes::run_block_on_block(&p))
+            Ok(scenes::run_block_on_block(&p, sample))
         }
         Spec::Tablecloth(p) => {
             p.validate()?;
-            Ok(scenes::run_tablecloth(&p))
+            Ok(scenes::run_tablecloth(&p, sample))
         }
         Spec::Stack(p) => {
             p.validate()?;
-            Ok(scenes::run_stack(&p))
+            Ok(scenes::run_stack(&p, sample))
         }
     }
 }

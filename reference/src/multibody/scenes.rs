@@ -7,9 +7,9 @@ use std::time::Instant;
 use super::geometry::{BoxBody, Lower, Pair, Table};
 use super::step::Starts;
 use super::system::{State, Stepped, System};
-use super::{Outcome, Run};
-use crate::Mode;
+use super::{Outcome, Row, Run};
 use crate::scenes::{finite, kinetic_at_most_static, non_negative, positive};
+use crate::{Mode, Sample};
 
 /// A block on a block on a floor, the bottom one pulled (docs/scenes.md, "block-on-block").
 /// Body 0 the bottom block, body 1 the top one; pair 0 (bottom, floor), pair 1 (top, bottom).
@@ -499,13 +499,15 @@ impl Stack {
 /// What the loop tracks beside the scene's own rules.
 struct Loop {
     run: Run,
+    sample: Sample,
     started: Instant,
 }
 
 impl Loop {
-    fn new() -> Self {
+    fn new(sample: Sample) -> Self {
         Self {
             run: Run {
+                rows: Vec::new(),
                 outcome: Outcome::Unfinished,
                 steps: 0,
                 end_time: 0.0,
@@ -520,6 +522,7 @@ impl Loop {
                 max_rows: 0,
                 seconds_per_step: 0.0,
             },
+            sample,
             started: Instant::now(),
         }
     }
@@ -534,6 +537,13 @@ impl Loop {
         at_end: impl FnOnce(&State) -> Outcome,
     ) -> Run {
         let max_steps = (max_time / system.step - 1e-9).ceil().max(1.0) as u64;
+        self.run.rows.push(Row {
+            t: 0.0,
+            q: state.q.clone(),
+            v: state.v.clone(),
+            interface_forces: vec![[0.0; 2]; system.pairs.len()],
+            ambiguous: false,
+        });
         let outcome = loop {
             let stepped = match state.advance(system, Starts::ALL) {
                 Ok(s) => s,
@@ -573,6 +583,20 @@ impl Loop {
             for c in 0..2 {
                 forces[f.pair][c] += sign * on_corner[c] / system.step;
             }
+        }
+        let keep = match self.sample {
+            Sample::All => true,
+            Sample::Every(every) => every > 0 && state.steps.is_multiple_of(every),
+            Sample::None => false,
+        };
+        if keep {
+            self.run.rows.push(Row {
+                t: state.time(system),
+                q: state.q.clone(),
+                v: state.v.clone(),
+                interface_forces: forces.clone(),
+                ambiguous: r.ambiguous,
+            });
         }
         self.run.interface_forces = forces;
     }
@@ -626,14 +650,14 @@ impl Window {
 }
 
 /// Runs a valid block-on-block scene (docs/scenes.md, "block-on-block").
-pub(super) fn run_block_on_block(p: &BlockOnBlock) -> Run {
+pub(super) fn run_block_on_block(p: &BlockOnBlock, sample: Sample) -> Run {
     let system = p.system();
     let mut state = State::at_rest(&system, p.start());
     let (mut slid_top, mut slid_floor) = (false, false);
     let mut window = Window::default();
     let half = p.bottom_width / 2.0;
     let tilt = p.tilt_limit;
-    let mut run = Loop::new().drive(
+    let mut run = Loop::new(sample).drive(
         &system,
         &mut state,
         p.max_time,
@@ -672,7 +696,7 @@ pub(super) fn run_block_on_block(p: &BlockOnBlock) -> Run {
 }
 
 /// Runs a valid tablecloth scene (docs/scenes.md, "tablecloth").
-pub(super) fn run_tablecloth(p: &Tablecloth) -> Run {
+pub(super) fn run_tablecloth(p: &Tablecloth, sample: Sample) -> Run {
     let system = p.system();
     let q0 = p.start();
     let block_x0 = q0[1][0];
@@ -680,7 +704,7 @@ pub(super) fn run_tablecloth(p: &Tablecloth) -> Run {
     let (mut slid_any, mut slid_block) = (false, false);
     let mut window = Window::default();
     let (half, reach, rest) = (p.board_length / 2.0, system.bodies[1].reach(), p.stick_speed);
-    let mut run = Loop::new().drive(
+    let mut run = Loop::new(sample).drive(
         &system,
         &mut state,
         p.max_time,
@@ -715,12 +739,12 @@ pub(super) fn run_tablecloth(p: &Tablecloth) -> Run {
 }
 
 /// Runs a valid stack scene (docs/scenes.md, "stack").
-pub(super) fn run_stack(p: &Stack) -> Run {
+pub(super) fn run_stack(p: &Stack, sample: Sample) -> Run {
     let system = p.system();
     let q0 = p.start();
     let y0: Vec<f64> = q0.iter().map(|q| q[1]).collect();
     let mut state = State::at_rest(&system, q0);
-    Loop::new().drive(
+    Loop::new(sample).drive(
         &system,
         &mut state,
         p.max_time,

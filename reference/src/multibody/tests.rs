@@ -10,6 +10,7 @@ use super::lcp::{LemkeFailure, lemke, solve_basis, verify};
 use super::step::{Starts, StepLcp, assemble, solve};
 use super::system::{State, System};
 use super::*;
+use crate::Sample;
 use crate::enumerate::{Lcp, enumerate, is_lcp_solution};
 
 const G: f64 = 9.81;
@@ -28,7 +29,7 @@ impl Random {
 }
 
 fn run_spec(spec: Spec) -> Run {
-    run(&spec).unwrap()
+    run(&spec, Sample::None).unwrap()
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -496,16 +497,19 @@ fn a_held_stack_of_three_does_not_creep_in_ten_seconds() {
 #[test]
 fn bad_parameters_are_refused_by_name() {
     let err =
-        run(&Spec::BlockOnBlock(BlockOnBlock { top_width: 0.5, ..BlockOnBlock::default() })).unwrap_err();
+        run(&Spec::BlockOnBlock(BlockOnBlock { top_width: 0.5, ..BlockOnBlock::default() }), Sample::None)
+            .unwrap_err();
     assert!(err.contains("top_width"), "{err}");
-    let err = run(&Spec::Tablecloth(Tablecloth { mu_kinetic: 0.9, ..Tablecloth::default() })).unwrap_err();
+    let err = run(&Spec::Tablecloth(Tablecloth { mu_kinetic: 0.9, ..Tablecloth::default() }), Sample::None)
+        .unwrap_err();
     assert!(err.contains("mu_kinetic"), "{err}");
     let err =
-        run(&Spec::Tablecloth(Tablecloth { contact_margin: 0.01, ..Tablecloth::default() })).unwrap_err();
+        run(&Spec::Tablecloth(Tablecloth { contact_margin: 0.01, ..Tablecloth::default() }), Sample::None)
+            .unwrap_err();
     assert!(err.contains("contact_margin"), "{err}");
-    let err = run(&Spec::Stack(Stack { blocks: 5, ..Stack::default() })).unwrap_err();
+    let err = run(&Spec::Stack(Stack { blocks: 5, ..Stack::default() }), Sample::None).unwrap_err();
     assert!(err.contains("blocks"), "{err}");
-    let err = run(&Spec::Stack(Stack { overhang: f64::NAN, ..Stack::default() })).unwrap_err();
+    let err = run(&Spec::Stack(Stack { overhang: f64::NAN, ..Stack::default() }), Sample::None).unwrap_err();
     assert!(err.contains("overhang"), "{err}");
 }
 
@@ -595,4 +599,22 @@ fn the_solver_takes_the_least_energy_motion_of_violent_steps_as_enumeration_does
     );
     assert!(ambiguous >= 5, "the rule was exercised on {ambiguous} steps only");
     assert_eq!(flagged, ambiguous, "an ambiguous step was not flagged");
+}
+
+#[test]
+fn rows_are_kept_as_asked() {
+    let spec = Spec::BlockOnBlock(BlockOnBlock { force: 15.0, ..BlockOnBlock::default() });
+    let all = run(&spec, Sample::All).unwrap();
+    assert_eq!((all.outcome.clone(), all.steps), (Outcome::Rode, 300));
+    assert_eq!(all.rows.len(), 301);
+    assert_eq!(all.rows[0].t.to_bits(), 0.0_f64.to_bits());
+    assert_eq!(all.rows[0].v, vec![[0.0; 3]; 2]);
+    let last = all.rows.last().unwrap();
+    assert_eq!((last.q.clone(), last.v.clone()), (all.q.clone(), all.v.clone()));
+    assert_eq!(last.interface_forces, all.interface_forces);
+    let every = run(&spec, Sample::Every(100)).unwrap();
+    let times: Vec<f64> = every.rows.iter().map(|r| r.t).collect();
+    assert_eq!(times, vec![0.0, all.rows[100].t, all.rows[200].t, all.rows[300].t]);
+    assert_eq!(every.rows[2], all.rows[200]);
+    assert_eq!(run(&spec, Sample::None).unwrap().rows.len(), 1);
 }
