@@ -345,6 +345,18 @@ fn block_on_block_follows_its_laws() {
         );
         assert_eq!(r.outcome, expected, "F = {force}");
         assert!(err < tol, "F = {force}: accelerations off the law by {err:e}");
+        // Held or riding to the end: the summed force of the bottom block on the top one (the
+        // model decides the sum, not the corners' shares) is m a along x and m g up; the
+        // floor's on the pair (M + m) a - F along x and (M + m) g up.
+        if expected != Outcome::Slid {
+            let [top, floor] = [r.interface_forces[1], r.interface_forces[0]];
+            let floor_x = (big_m + m) * expected_upper - force;
+            assert!((top[0] - m * expected_upper).abs() < 1e-9 && (top[1] - m * G).abs() < 1e-9, "{top:?}");
+            assert!(
+                (floor[0] - floor_x).abs() < 1e-9 && (floor[1] - (big_m + m) * G).abs() < 1e-9,
+                "{floor:?}"
+            );
+        }
         if expected == Outcome::Held {
             assert!(r.max_speed < 1e-12, "held, yet moved at {:e} m/s", r.max_speed);
         }
