@@ -137,7 +137,7 @@ impl Default for Tablecloth {
 /// "stack"). Body 0 the bottom block; pair 0 (block 0, table), pair `i` (block `i`, block `i-1`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stack {
-    /// Number of blocks, 1 to 4.
+    /// Number of blocks, 1 to 5.
     pub blocks: usize,
     /// Each block's length `L`, m.
     pub length: f64,
@@ -436,8 +436,8 @@ impl Stack {
             ("stick_speed", self.stick_speed),
             ("contact_margin", self.contact_margin),
         ])?;
-        if !(1..=4).contains(&self.blocks) {
-            return Err(format!("blocks {} is outside 1..=4", self.blocks));
+        if !(1..=5).contains(&self.blocks) {
+            return Err(format!("blocks {} is outside 1..=5", self.blocks));
         }
         // The bottom block must reach back over the table: its left end left of the edge.
         if self.overhang / (2.0 * self.blocks as f64) >= 1.0 {

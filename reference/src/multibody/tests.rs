@@ -525,19 +525,23 @@ fn bad_parameters_are_refused_by_name() {
         run(&Spec::Tablecloth(Tablecloth { contact_margin: 0.01, ..Tablecloth::default() }), Sample::None)
             .unwrap_err();
     assert!(err.contains("contact_margin"), "{err}");
-    let err = run(&Spec::Stack(Stack { blocks: 5, ..Stack::default() }), Sample::None).unwrap_err();
+    let err = run(&Spec::Stack(Stack { blocks: 6, ..Stack::default() }), Sample::None).unwrap_err();
     assert!(err.contains("blocks"), "{err}");
     let err = run(&Spec::Stack(Stack { overhang: f64::NAN, ..Stack::default() }), Sample::None).unwrap_err();
     assert!(err.contains("overhang"), "{err}");
 }
 
 #[test]
-fn a_stack_of_four_solves_32_rows_and_an_aligned_stack_holds() {
-    // Four blocks: 4 interfaces x 2 contacts = 8 contacts, a 32-row LCP each step.
-    for (blocks, overhang, expected) in
-        [(4, 0.98, Outcome::Held), (4, 1.02, Outcome::Fell), (3, 0.0, Outcome::Held)]
-    {
-        let p = Stack { blocks, overhang, max_time: 1.0, ..Stack::default() };
+fn stacks_of_four_and_five_solve_32_and_40_rows_and_an_aligned_stack_holds() {
+    // Four blocks: 4 interfaces x 2 contacts = 8 contacts, a 32-row LCP each step; five: 40.
+    for (blocks, overhang, expected, max_time) in [
+        (4, 0.98, Outcome::Held, 1.0),
+        (4, 1.02, Outcome::Fell, 1.0),
+        (5, 0.98, Outcome::Held, 0.3),
+        (5, 1.02, Outcome::Fell, 1.0),
+        (3, 0.0, Outcome::Held, 1.0),
+    ] {
+        let p = Stack { blocks, overhang, max_time, ..Stack::default() };
         let r = run_spec(Spec::Stack(p));
         eprintln!(
             "stack of {blocks} at overhang {overhang}: {:?} at {:.3} s, max speed {:e} m/s, {} rows, {:.1} us/step",
@@ -548,7 +552,7 @@ fn a_stack_of_four_solves_32_rows_and_an_aligned_stack_holds() {
             r.seconds_per_step * 1e6
         );
         assert_eq!(r.outcome, expected);
-        assert_eq!(r.max_rows, if blocks == 4 { 32 } else { 24 });
+        assert_eq!(r.max_rows, 8 * blocks);
         if expected == Outcome::Held {
             assert!(r.max_speed < 1e-12, "held, yet moved at {:e} m/s", r.max_speed);
             // Aligned blocks (overhang 0) rest on both corners: indeterminate, the sums decided.
