@@ -32,6 +32,18 @@ if $HOST_CARGO fmt --version >/dev/null 2>&1; then $HOST_CARGO fmt --all -- --ch
 step "clippy (host workspace, all targets)"
 $HOST_CARGO clippy --locked --workspace --all-targets -- -D warnings
 
+step "docs: rustdoc of every host crate and of tools/uf2, warnings denied (broken or private links, bad HTML)"
+RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --workspace --no-deps --quiet
+(cd tools/uf2 && RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --no-deps --quiet --target-dir "$ROOT/target/tools")
+
+step "the declared MSRV: the library crates, every feature, with the toolchain of rust-version"
+if [ -n "${MS_MSRV_TOOLCHAIN:-}" ]; then
+  cargo "+$MS_MSRV_TOOLCHAIN" check --locked --all-features --target-dir "$ROOT/target/msrv" \
+    -p meterstick-core -p meterstick-link -p meterstick-rig -p meterstick-reference
+else
+  echo "no MSRV toolchain (the Debian fallback, or rustup could not install it): skipped"
+fi
+
 step "host tests"
 $HOST_CARGO test --locked --workspace
 
