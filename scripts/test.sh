@@ -35,6 +35,14 @@ $HOST_CARGO clippy --locked --workspace --all-targets -- -D warnings
 step "docs: rustdoc of every host crate and of tools/uf2, warnings denied (broken or private links, bad HTML)"
 RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --workspace --no-deps --quiet
 (cd tools/uf2 && RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --no-deps --quiet --target-dir "$ROOT/target/tools")
+# The README's first scene is core/examples/first_scene.rs between its README markers, line for
+# line; the example runs (its asserts are the README's claims).
+if ! diff -u <(awk '/^```rust$/ { on = 1; next } on && /^```$/ { exit } on' README.md) \
+  <(awk '/^\/\/ README end$/ { exit } on; /^\/\/ README begin$/ { on = 1 }' core/examples/first_scene.rs); then
+  echo "README.md's first rust block differs from core/examples/first_scene.rs (between its README markers)" >&2
+  exit 1
+fi
+$HOST_CARGO run --locked --quiet -p meterstick-core --example first_scene
 
 step "the declared MSRV: the library crates, every feature, with the toolchain of rust-version"
 if [ -n "${MS_MSRV_TOOLCHAIN:-}" ]; then
