@@ -37,6 +37,10 @@ RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --workspace --no-deps --quie
 (cd tools/uf2 && RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --no-deps --quiet --target-dir "$ROOT/target/tools")
 # The README's first scene is core/examples/first_scene.rs between its README markers, line for
 # line; the example runs (its asserts are the README's claims).
+if ! grep -q '^```rust$' README.md || ! grep -q '^// README begin$' core/examples/first_scene.rs; then
+  echo "README.md has no rust block, or core/examples/first_scene.rs no '// README begin' line" >&2
+  exit 1
+fi
 if ! diff -u <(awk '/^```rust$/ { on = 1; next } on && /^```$/ { exit } on' README.md) \
   <(awk '/^\/\/ README end$/ { exit } on; /^\/\/ README begin$/ { on = 1 }' core/examples/first_scene.rs); then
   echo "README.md's first rust block differs from core/examples/first_scene.rs (between its README markers)" >&2
