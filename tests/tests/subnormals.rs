@@ -2,7 +2,7 @@
 //! Pico (RP2040) can use its boot ROM's floating-point routines and still reproduce the host's f32
 //! trajectory bit for bit: rp2040-hal maps `+ - * /` of f32 to them, and they round as IEEE 754
 //! does (round to nearest even) except that they flush subnormal operands and results to zero
-//! (README "The Picos"). So the Pico computes what the host computes exactly when no addition,
+//! (docs/hardware.md). So the Pico computes what the host computes exactly when no addition,
 //! subtraction, multiplication or division on the way meets or makes a subnormal.
 //!
 //! x86-64 records both in MXCSR's sticky flags: DE (a subnormal operand) and UE (underflow: a

@@ -1,7 +1,7 @@
 //! The page's API: plain `extern "C"` functions over one [`Session`] per wasm instance, with
 //! numbers for arguments and results and two buffers in linear memory that the page reads (the
 //! text buffer: JSON descriptions, refusals, outcomes; the trace buffer: one row of f64 per step,
-//! as many as the scene's row has, [`crate::sim::row_len`]). `README.md` ("The page") lists them; `web/page/core.js` is their one caller.
+//! as many as the scene's row has, [`crate::sim::row_len`]). `docs/page.md` lists them; `web/page/core.js` is their one caller.
 //!
 //! Return conventions: counts as `u32` (or `f64` where they may exceed 2^32), codes as `i32`
 //! (`-1`: none or a bad argument), a text's length in bytes as `u32` (read from [`ms_text_ptr`]).
