@@ -1,9 +1,9 @@
-//! The scenes `host-sim` runs: which ([`SceneKind`]), with which parameters ([`SceneSpec`]), in
+//! The scenes `host-sim` runs: which ([`SceneKind`]), with which parameters ([`SceneParams`]), in
 //! which implementation ([`Implementation`]); and their command-line flags ([`SceneArgs`]).
 //!
 //! **Written once.** The scenes, their flags and their refusals are the core's catalogue
 //! (`core/src/scene/catalogue.rs`): [`SceneKind`], [`FLAGS`] (a flag and the field it sets in each
-//! scene it applies to), [`SceneSpec`] (any scene's parameters). The clap arguments are generated
+//! scene it applies to), [`SceneParams`] (any scene's parameters). The clap arguments are generated
 //! from it; `--help` shows each scene's default, read from the core's `Default`; an invalid value
 //! is reported with the flag the user typed ([`flag_error`]), in the words the page uses too.
 
@@ -20,12 +20,12 @@ pub use meterstick_core::scene::catalogue::{FLAGS, Flag, MAX_STEPS, SceneKind, f
 use meterstick_core::scene::catalogue::{Refusal, Short};
 
 /// A scene with its parameters (SI units, angles in radians, f64 as given; cast to the
-/// implementation's precision when run): the catalogue's `AnyParams`, under the name `host-sim` gave it.
-pub use meterstick_core::scene::AnyParams as SceneSpec;
+/// implementation's precision when run): the catalogue's.
+pub use meterstick_core::scene::SceneParams;
 
-/// What `host-sim` adds to a [`SceneSpec`]: validation in a [`Precision`] and the same scene for
+/// What `host-sim` adds to a [`SceneParams`]: validation in a [`Precision`] and the same scene for
 /// the independent reference.
-pub trait SpecExt {
+pub trait ParamsExt {
     /// Checks the parameters in f64 and in `precision` (a value may overflow f32, or round to
     /// an invalid one), before anything runs.
     ///
@@ -38,7 +38,7 @@ pub trait SpecExt {
     fn to_reference(&self) -> Option<crate::reference::Spec>;
 }
 
-impl SpecExt for SceneSpec {
+impl ParamsExt for SceneParams {
     fn validate(&self, precision: Precision) -> Result<(), ParamError> {
         match precision {
             Precision::F32 => self.validate_as::<f32>(),
@@ -249,7 +249,7 @@ impl Serialize for ImplementationOf {
 /// allowed range; when the parameters pass in f64 the error came from f32, and the message says so
 /// (`--mass 1e39 kg: not a finite number as f32 (--precision f32; f64 accepts it)`).
 #[must_use]
-pub fn flag_error(spec: &SceneSpec, e: ParamError) -> String {
+pub fn flag_error(spec: &SceneParams, e: ParamError) -> String {
     Refusal::Invalid { params: *spec, error: e }.worded("--").to_string()
 }
 
@@ -297,7 +297,7 @@ fn help_of(flag: &Flag) -> String {
         .fields
         .iter()
         .filter_map(|&(kind, field)| {
-            SceneSpec::defaults(kind).get(field).map(|v| format!("{kind} {}", Short(flag.from_core(v))))
+            SceneParams::defaults(kind).get(field).map(|v| format!("{kind} {}", Short(flag.from_core(v))))
         })
         .collect();
     let unit = if flag.unit.is_empty() { String::new() } else { format!(", {}", flag.unit) };
@@ -403,9 +403,9 @@ impl SceneArgs {
     /// # Errors
     /// A flag that does not apply to the scene, several listing flags, or an invalid value (in
     /// the user's words).
-    pub fn specs(&self, default_list: Option<(&str, &[f64])>) -> anyhow::Result<Vec<(String, SceneSpec)>> {
+    pub fn specs(&self, default_list: Option<(&str, &[f64])>) -> anyhow::Result<Vec<(String, SceneParams)>> {
         let kind = self.kind();
-        let mut base = SceneSpec::defaults(kind);
+        let mut base = SceneParams::defaults(kind);
         let mut list: Option<(&Flag, Vec<f64>)> = None;
         for (flag, values) in &self.given {
             let Some(field) = flag.field(kind) else {
@@ -445,7 +445,7 @@ impl SceneArgs {
         }
         let duration_given = self.given.iter().any(|(f, _)| f.long == "duration");
         let mut out = Vec::new();
-        let runs: Vec<(String, SceneSpec)> = match list {
+        let runs: Vec<(String, SceneParams)> = match list {
             None => vec![(kind.name().to_string(), base)],
             Some((flag, values)) => values
                 .iter()
@@ -513,7 +513,7 @@ mod tests {
     /// A value only f32 refuses says so.
     #[test]
     fn an_f32_only_refusal_says_so() {
-        let mut spec = SceneSpec::defaults(SceneKind::MeterStick);
+        let mut spec = SceneParams::defaults(SceneKind::MeterStick);
         spec.set("rod_mass", 1e39);
         let e = spec.validate(Precision::F32).unwrap_err();
         assert_eq!(

@@ -59,15 +59,14 @@ impl LcpSize {
     }
 }
 
-/// A scene with its parameters in the core's units (SI, radians), f64 as given: the catalogue's
-/// `AnyParams`, under the name the page's layer gave it.
-pub use meterstick_core::scene::AnyParams as Spec;
+/// A scene with its parameters in the core's units (SI, radians), f64 as given: the catalogue's.
+pub use meterstick_core::scene::SceneParams;
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.
 ///
 /// # Errors
 /// The core's first complaint.
-pub fn validate(spec: &Spec, precision: Precision) -> Result<(), ParamError> {
+pub fn validate(spec: &SceneParams, precision: Precision) -> Result<(), ParamError> {
     // Only the scenes this module holds (`crate::sim::holds`; the session refuses the others
     // before this): naming them keeps the other scenes' checks out of the module.
     if !crate::sim::holds(spec.kind()) {
@@ -124,8 +123,8 @@ impl Config {
     /// # Errors
     /// A flag that does not apply to the scene, an invalid value, or too many steps.
     #[allow(clippy::result_large_err)] // the refusal carries the parameters it words; no heap on wasm
-    pub fn resolve(&self, precision: Precision) -> Result<Spec, ConfigError> {
-        let mut spec = Spec::defaults(self.kind);
+    pub fn resolve(&self, precision: Precision) -> Result<SceneParams, ConfigError> {
+        let mut spec = SceneParams::defaults(self.kind);
         for (i, (flag, value)) in FLAGS.iter().zip(self.given).enumerate() {
             let Some(value) = value else { continue };
             let Some(field) = flag.field(self.kind) else {

@@ -347,7 +347,7 @@ mod tests {
         assert!(json.contains(r#""contacts":["finger 1","finger 2","finger 3"],"row":25,"#), "{json}");
         assert!(json.contains(r#""holds":[1,2,3],"#), "the host build holds every scene: {json}");
         assert!(json.contains(r#""ends":["Rolled","Slid"],"main_flags":["angle","mu-s","mu-k","radius","inertia-ratio","h"]}"#), "{json}");
-        assert!(json.contains(r#""measures":["jam.time_s","jam.normal_impulse_ns","jam.friction_impulse_ns"],"ends":["Jammed","Slid","Fell","Unfinished"]"#), "{json}");
+        assert!(json.contains(r#""measures":["jam.time_s","jam.normal_impulse_n_s","jam.friction_impulse_n_s"],"ends":["Jammed","Slid","Fell","Unfinished"]"#), "{json}");
         assert!(json.contains(r#""defaults":[1,0.005,0.2,9.81,-0.4,0.4,0,0,0.1,0,0.01,0.6,0.4,0.001,0.00001,0.35,0.02,0.5,30]"#), "{json}");
     }
 

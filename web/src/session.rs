@@ -5,7 +5,7 @@ use core::fmt::Write as _;
 
 use meterstick_core::scene::Outcome;
 
-use crate::config::{Config, ConfigError, LcpSize, MAX_STEPS, Precision, Spec};
+use crate::config::{Config, ConfigError, LcpSize, MAX_STEPS, Precision, SceneParams};
 use crate::flags::{FLAGS, SceneKind};
 use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, holds, row_len};
 use crate::text::{Text, json_num, json_str};
@@ -30,7 +30,7 @@ pub enum CreateError {
 #[derive(Debug, Clone)]
 pub struct Session {
     config: Config,
-    spec: Option<Spec>,
+    spec: Option<SceneParams>,
     sim: Option<Sim>,
 }
 
@@ -84,7 +84,7 @@ impl Session {
 
     /// The parameters of the run (after [`Self::create`] succeeded).
     #[must_use]
-    pub const fn spec(&self) -> Option<&Spec> {
+    pub const fn spec(&self) -> Option<&SceneParams> {
         self.spec.as_ref()
     }
 
@@ -140,7 +140,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         json_str(out, info.title)?;
         list(out, "fields", &mut kind.field_names().iter().copied())?;
         out.write_str(",\"defaults\":[")?;
-        let spec = Spec::defaults(kind);
+        let spec = SceneParams::defaults(kind);
         for j in 0..kind.field_names().len() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_num(out, spec.field(j).unwrap_or(f64::NAN))?;

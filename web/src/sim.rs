@@ -18,7 +18,7 @@ use meterstick_core::scene::{
     Cylinder, Incline, Ladder, MeterStick, Outcome, OutcomeKind, Painleve, Scene, SceneKind, ThreeFingers,
 };
 
-use crate::config::{LcpSize, Precision, Spec};
+use crate::config::{LcpSize, Precision, SceneParams};
 
 /// The most contacts a scene of the catalogue has (three fingers).
 pub const MAX_CONTACTS: usize = 3;
@@ -194,57 +194,61 @@ impl Sim {
     ///
     /// # Errors
     /// The core's complaint about the parameters (in its precision).
-    pub fn new(spec: &Spec, precision: Precision, size: LcpSize) -> Result<Self, ParamError> {
+    pub fn new(spec: &SceneParams, precision: Precision, size: LcpSize) -> Result<Self, ParamError> {
         use {LcpSize::Full as Fu, LcpSize::Reduced as Re, Precision::F32, Precision::F64};
         let scene = match (*spec, precision, size) {
             #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F32, Re) => AnyScene::MeterStickF32R(MeterStick::new(p.cast())?),
+            (SceneParams::MeterStick(p), F32, Re) => AnyScene::MeterStickF32R(MeterStick::new(p.cast())?),
             #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F32, Fu) => AnyScene::MeterStickF32F(MeterStick::new(p.cast())?),
+            (SceneParams::MeterStick(p), F32, Fu) => AnyScene::MeterStickF32F(MeterStick::new(p.cast())?),
             #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F64, Re) => AnyScene::MeterStickF64R(MeterStick::new(p)?),
+            (SceneParams::MeterStick(p), F64, Re) => AnyScene::MeterStickF64R(MeterStick::new(p)?),
             #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F64, Fu) => AnyScene::MeterStickF64F(MeterStick::new(p)?),
+            (SceneParams::MeterStick(p), F64, Fu) => AnyScene::MeterStickF64F(MeterStick::new(p)?),
             #[cfg(feature = "k2")]
-            (Spec::Incline(p), F32, Re) => AnyScene::InclineF32R(Incline::new(p.cast())?),
+            (SceneParams::Incline(p), F32, Re) => AnyScene::InclineF32R(Incline::new(p.cast())?),
             #[cfg(feature = "k2")]
-            (Spec::Incline(p), F32, Fu) => AnyScene::InclineF32F(Incline::new(p.cast())?),
+            (SceneParams::Incline(p), F32, Fu) => AnyScene::InclineF32F(Incline::new(p.cast())?),
             #[cfg(feature = "k2")]
-            (Spec::Incline(p), F64, Re) => AnyScene::InclineF64R(Incline::new(p)?),
+            (SceneParams::Incline(p), F64, Re) => AnyScene::InclineF64R(Incline::new(p)?),
             #[cfg(feature = "k2")]
-            (Spec::Incline(p), F64, Fu) => AnyScene::InclineF64F(Incline::new(p)?),
+            (SceneParams::Incline(p), F64, Fu) => AnyScene::InclineF64F(Incline::new(p)?),
             #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F32, Re) => AnyScene::LadderF32R(Ladder::new(p.cast())?),
+            (SceneParams::Ladder(p), F32, Re) => AnyScene::LadderF32R(Ladder::new(p.cast())?),
             #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F32, Fu) => AnyScene::LadderF32F(Ladder::new(p.cast())?),
+            (SceneParams::Ladder(p), F32, Fu) => AnyScene::LadderF32F(Ladder::new(p.cast())?),
             #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F64, Re) => AnyScene::LadderF64R(Ladder::new(p)?),
+            (SceneParams::Ladder(p), F64, Re) => AnyScene::LadderF64R(Ladder::new(p)?),
             #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F64, Fu) => AnyScene::LadderF64F(Ladder::new(p)?),
+            (SceneParams::Ladder(p), F64, Fu) => AnyScene::LadderF64F(Ladder::new(p)?),
             #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F32, Re) => AnyScene::ThreeFingersF32R(ThreeFingers::new(p.cast())?),
+            (SceneParams::ThreeFingers(p), F32, Re) => {
+                AnyScene::ThreeFingersF32R(ThreeFingers::new(p.cast())?)
+            }
             #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F32, Fu) => AnyScene::ThreeFingersF32F(ThreeFingers::new(p.cast())?),
+            (SceneParams::ThreeFingers(p), F32, Fu) => {
+                AnyScene::ThreeFingersF32F(ThreeFingers::new(p.cast())?)
+            }
             #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F64, Re) => AnyScene::ThreeFingersF64R(ThreeFingers::new(p)?),
+            (SceneParams::ThreeFingers(p), F64, Re) => AnyScene::ThreeFingersF64R(ThreeFingers::new(p)?),
             #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F64, Fu) => AnyScene::ThreeFingersF64F(ThreeFingers::new(p)?),
+            (SceneParams::ThreeFingers(p), F64, Fu) => AnyScene::ThreeFingersF64F(ThreeFingers::new(p)?),
             #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F32, Re) => AnyScene::CylinderF32R(Cylinder::new(p.cast())?),
+            (SceneParams::Cylinder(p), F32, Re) => AnyScene::CylinderF32R(Cylinder::new(p.cast())?),
             #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F32, Fu) => AnyScene::CylinderF32F(Cylinder::new(p.cast())?),
+            (SceneParams::Cylinder(p), F32, Fu) => AnyScene::CylinderF32F(Cylinder::new(p.cast())?),
             #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F64, Re) => AnyScene::CylinderF64R(Cylinder::new(p)?),
+            (SceneParams::Cylinder(p), F64, Re) => AnyScene::CylinderF64R(Cylinder::new(p)?),
             #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F64, Fu) => AnyScene::CylinderF64F(Cylinder::new(p)?),
+            (SceneParams::Cylinder(p), F64, Fu) => AnyScene::CylinderF64F(Cylinder::new(p)?),
             #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F32, Re) => AnyScene::PainleveF32R(Painleve::new(p.cast())?),
+            (SceneParams::Painleve(p), F32, Re) => AnyScene::PainleveF32R(Painleve::new(p.cast())?),
             #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F32, Fu) => AnyScene::PainleveF32F(Painleve::new(p.cast())?),
+            (SceneParams::Painleve(p), F32, Fu) => AnyScene::PainleveF32F(Painleve::new(p.cast())?),
             #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F64, Re) => AnyScene::PainleveF64R(Painleve::new(p)?),
+            (SceneParams::Painleve(p), F64, Re) => AnyScene::PainleveF64R(Painleve::new(p)?),
             #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F64, Fu) => AnyScene::PainleveF64F(Painleve::new(p)?),
+            (SceneParams::Painleve(p), F64, Fu) => AnyScene::PainleveF64F(Painleve::new(p)?),
             // A scene of another module (the page loads the module of the scene's contacts).
             #[allow(unreachable_patterns)]
             _ => return Err(ParamError::OutOfRange("scene")),

@@ -9,13 +9,13 @@
 //! * [`FLAGS`]: each parameter flag once (name, unit, help), with the core field it sets in each
 //!   scene it applies to; defaults are read from the core's `Default`, the checks are the core's
 //!   `validate` ([`SceneInfo::ranges`] words a range the core checks beyond a sign);
-//! * [`AnyParams`]: any scene's parameters (f64, core units), get/set by field name, validation in
+//! * [`SceneParams`]: any scene's parameters (f64, core units), get/set by field name, validation in
 //!   a precision, and [`Refusal`]: why a configuration was refused, in the user's words.
 //!
 //! No heap, no feature: the catalogue is data and a few lookups, off the stepping path.
 //!
 //! **Adding a scene**: its module (the scene, its `params!`), a [`SceneKind`] variant with its
-//! [`SceneInfo`] in [`SCENES`], an [`AnyParams`] variant (four `match` arms below), and its field in
+//! [`SceneInfo`] in [`SCENES`], an [`SceneParams`] variant (four `match` arms below), and its field in
 //! each [`FLAGS`] entry it uses (or a new flag).
 
 use core::fmt::{self, Write as _};
@@ -150,7 +150,7 @@ pub const SCENES: [SceneInfo; 6] = [
         contact_names: &["lower end"],
         main_flags: &["angle", "speed", "mu-s", "mu-k", "length", "h"],
         outcomes: &[OutcomeKind::Jammed, OutcomeKind::Slid, OutcomeKind::Fell, OutcomeKind::Unfinished],
-        measures: &["jam.time_s", "jam.normal_impulse_ns", "jam.friction_impulse_ns"],
+        measures: &["jam.time_s", "jam.normal_impulse_n_s", "jam.friction_impulse_n_s"],
         ranges: &[
             ("angle", "0 < angle < 90 deg"),
             ("step", "0 < h <= duration"),
@@ -448,7 +448,7 @@ pub const MAX_STEPS: f64 = 1e8;
 /// Any scene's parameters in the core's units (SI, radians), f64 as given; cast to the run's
 /// precision when run.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum AnyParams {
+pub enum SceneParams {
     /// The meter stick.
     MeterStick(MeterStickParams<f64>),
     /// The block on an incline.
@@ -463,7 +463,7 @@ pub enum AnyParams {
     Painleve(PainleveParams<f64>),
 }
 
-impl AnyParams {
+impl SceneParams {
     /// The scene with the core's defaults.
     #[must_use]
     pub fn defaults(kind: SceneKind) -> Self {
@@ -578,6 +578,24 @@ impl AnyParams {
         libm::ceil(self.max_time() / self.step())
     }
 
+    /// The field to blame for `error` (what the user should change): the error's own field, the
+    /// kinetic coefficient above the static one, or the finger out of place (the first beyond an
+    /// end of the rod, the one out of order; finger 1 when the scene does not say).
+    #[must_use]
+    pub fn field_at_fault(&self, error: ParamError) -> Option<&'static str> {
+        let finger = match (error, self) {
+            (ParamError::FingerOutsideRod, Self::MeterStick(p)) => p.finger_outside_rod(),
+            (ParamError::FingerOutsideRod, Self::ThreeFingers(p)) => p.finger_outside_rod(),
+            (ParamError::FingersCrossed, Self::ThreeFingers(p)) => p.finger_out_of_order(),
+            _ => None,
+        };
+        match error {
+            ParamError::KineticAboveStatic => Some("mu_kinetic"),
+            ParamError::FingerOutsideRod | ParamError::FingersCrossed => Some(finger.unwrap_or("finger1_x")),
+            other => other.field(),
+        }
+    }
+
     /// The meter stick's default time limit follows the fingers' travel: at least its default,
     /// and long enough for the fingers to meet and the rod to hold (`2 x` travel time + hold time
     /// + 1 s), so that a slow finger does not end "Unfinished" by default. Other scenes keep theirs.
@@ -613,20 +631,20 @@ pub enum Refusal {
     /// The core rejected a parameter (the message says so when only f32 refuses it).
     Invalid {
         /// The parameters as resolved.
-        params: AnyParams,
+        params: SceneParams,
         /// The core's complaint.
         error: ParamError,
     },
     /// `h` and the time limit imply more than `limit` steps.
     TooManySteps {
         /// The parameters as resolved.
-        params: AnyParams,
+        params: SceneParams,
         /// The steps they imply.
         steps: f64,
         /// The most a run may take.
         limit: f64,
         /// The time limit is the meter stick's default raised to the fingers' travel time
-        /// ([`AnyParams::follow_travel_time`]), not a duration the user gave.
+        /// ([`SceneParams::follow_travel_time`]), not a duration the user gave.
         followed: bool,
     },
 }
@@ -641,12 +659,7 @@ impl Refusal {
         match *self {
             Self::NotApplicable { flag, .. } => Some(flag),
             Self::Invalid { params, error } => {
-                let field = match error {
-                    ParamError::KineticAboveStatic => Some("mu_kinetic"),
-                    ParamError::FingerOutsideRod | ParamError::FingersCrossed => Some("finger1_x"),
-                    other => other.field(),
-                };
-                field.and_then(|f| index(params.kind(), f))
+                params.field_at_fault(error).and_then(|f| index(params.kind(), f))
             }
             Self::TooManySteps { params, .. } => index(params.kind(), "step"),
         }
@@ -668,7 +681,7 @@ pub struct Worded {
 }
 
 /// A field as the user set it: `--flag value unit` (e.g. `--mu-k 0.7`, `--angle 95 deg`).
-struct Shown<'a>(&'a AnyParams, &'a str, &'static str);
+struct Shown<'a>(&'a SceneParams, &'a str, &'static str);
 
 impl fmt::Display for Shown<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -717,11 +730,18 @@ impl fmt::Display for Worded {
                     }
                     ParamError::FingerOutsideRod => write!(
                         f,
-                        "a finger starts beyond an end of the rod: {} and {} must be within {} / 2",
-                        show("finger1_x"),
-                        show("finger2_x"),
+                        "a finger starts beyond an end of the rod: {} must be within {} / 2",
+                        show(params.field_at_fault(error).unwrap_or("finger1_x")),
                         show("rod_length")
                     ),
+                    ParamError::FingersCrossed if params.field_at_fault(error) == Some("finger3_x") => {
+                        write!(
+                            f,
+                            "finger 3 must start right of finger 2: {} > {}",
+                            show("finger3_x"),
+                            show("finger2_x")
+                        )
+                    }
                     ParamError::FingersCrossed => write!(
                         f,
                         "finger 1 must start left of finger 2 by more than the finger width: {} < {} - {}",
@@ -826,7 +846,7 @@ mod tests {
             assert_eq!(kind.info().kind, kind);
             assert_eq!(SceneKind::from_index(i as u32), Some(kind));
             assert_eq!(SceneKind::from_name(kind.name()), Some(kind));
-            assert_eq!(AnyParams::defaults(kind).kind(), kind);
+            assert_eq!(SceneParams::defaults(kind).kind(), kind);
             assert_eq!(kind.info().contact_names.len(), kind.info().contacts, "{kind}");
             for long in kind.info().main_flags {
                 let flag = FLAGS.iter().find(|f| f.long == *long);
@@ -850,13 +870,29 @@ mod tests {
 
     #[test]
     fn refusals_are_worded_with_the_prefix_asked_for() {
-        let mut p = AnyParams::defaults(SceneKind::MeterStick);
+        let mut p = SceneParams::defaults(SceneKind::MeterStick);
         assert!(p.set("mu_kinetic", 0.7));
         let e = p.validate_as::<f32>().unwrap_err();
         let r = Refusal::Invalid { params: p, error: e };
         assert_eq!(r.worded("--").to_string(), "--mu-k 0.7 must not exceed --mu-s 0.6");
         assert_eq!(r.worded("").to_string(), "mu-k 0.7 must not exceed mu-s 0.6");
         assert_eq!(r.flag(), flag_index("mu-k"));
+        // The finger the user moved is the one named (it was --x1 and --x2 for any finger).
+        let mut p = SceneParams::defaults(SceneKind::ThreeFingers);
+        assert!(p.set("finger3_x", 0.6));
+        let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
+        assert_eq!(
+            r.worded("--").to_string(),
+            "a finger starts beyond an end of the rod: --x3 0.6 m must be within --length 1 m / 2"
+        );
+        assert_eq!(r.flag(), flag_index("x3"));
+        assert!(p.set("finger3_x", -0.1));
+        let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
+        assert_eq!(
+            r.worded("--").to_string(),
+            "finger 3 must start right of finger 2: --x3 -0.1 m > --x2 0 m"
+        );
+        assert_eq!(r.flag(), flag_index("x3"));
         let r = Refusal::NotApplicable { kind: SceneKind::MeterStick, flag: flag_index("angle").unwrap() };
         assert_eq!(
             r.worded("--").to_string(),

@@ -25,7 +25,7 @@ mod painleve;
 mod scene_trait;
 mod three_fingers;
 
-pub use catalogue::{AnyParams, MAX_MEASURES, SceneKind};
+pub use catalogue::{MAX_MEASURES, SceneKind, SceneParams};
 pub use cylinder::{Cylinder, CylinderParams};
 pub use incline::{Incline, InclineParams};
 pub use ladder::{Ladder, LadderParams};

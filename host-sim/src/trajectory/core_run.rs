@@ -8,7 +8,7 @@ use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Pai
 use super::{ContactRow, Event, Measured, Record, Recorder, Row, SolverCounters, Trajectory};
 use crate::lcp_io::Precision;
 use crate::progress;
-use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec};
+use crate::scenes::{Implementation, LcpSize, SceneKind, SceneParams};
 
 fn invalid(e: meterstick_core::ParamError) -> anyhow::Error {
     anyhow::anyhow!("invalid scene: {e}")
@@ -18,14 +18,14 @@ fn invalid(e: meterstick_core::ParamError) -> anyhow::Error {
 ///
 /// # Errors
 /// Invalid parameters.
-pub fn run_core<T: Real, const N: usize>(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory> {
+pub fn run_core<T: Real, const N: usize>(spec: &SceneParams, record: Record) -> anyhow::Result<Trajectory> {
     let t = run_inner_core::<T, N, 2>(spec, record)?;
     progress::check()?;
     Ok(t)
 }
 
 fn run_inner_core<T: Real, const N: usize, const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     record: Record,
 ) -> anyhow::Result<Trajectory<K>> {
     let contacts = spec.kind().info().contacts;
@@ -37,49 +37,49 @@ fn run_inner_core<T: Real, const N: usize, const K: usize>(
 /// a two-contact scene (6 reduced, 8 full); other scenes run their own reduced or full layout
 /// (three fingers 9 or 12, the cylinder 3 or 4).
 pub(super) fn core_run<T: Real, const N: usize, const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     record: Record,
     bar: Option<&ProgressBar>,
 ) -> anyhow::Result<Trajectory<K>> {
     let implementation =
         Implementation::Core(if T::NAME == "f32" { Precision::F32 } else { Precision::F64 }, size_of(N));
     Ok(match *spec {
-        SceneSpec::MeterStick(p) => {
+        SceneParams::MeterStick(p) => {
             let mut s = MeterStick::<T, N, 0>::new(p.cast()).map_err(invalid)?;
             let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::MeterStick, record, bar);
             t.counters.reduced_check_fired_before_meeting = s.reduced_check_fired_before_meeting();
             t
         }
-        SceneSpec::Incline(p) => {
+        SceneParams::Incline(p) => {
             let mut s = Incline::<T, N, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Incline, record, bar)
         }
-        SceneSpec::Ladder(p) => {
+        SceneParams::Ladder(p) => {
             let mut s = Ladder::<T, N, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Ladder, record, bar)
         }
         // The one- and three-contact scenes in their own reduced or full layout.
-        SceneSpec::ThreeFingers(p) if N == 6 => {
+        SceneParams::ThreeFingers(p) if N == 6 => {
             let mut s = ThreeFingers::<T, 9, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 3, K>(&mut s, implementation, SceneKind::ThreeFingers, record, bar)
         }
-        SceneSpec::ThreeFingers(p) => {
+        SceneParams::ThreeFingers(p) => {
             let mut s = ThreeFingers::<T, 12, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 3, K>(&mut s, implementation, SceneKind::ThreeFingers, record, bar)
         }
-        SceneSpec::Cylinder(p) if N == 6 => {
+        SceneParams::Cylinder(p) if N == 6 => {
             let mut s = Cylinder::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Cylinder, record, bar)
         }
-        SceneSpec::Cylinder(p) => {
+        SceneParams::Cylinder(p) => {
             let mut s = Cylinder::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Cylinder, record, bar)
         }
-        SceneSpec::Painleve(p) if N == 6 => {
+        SceneParams::Painleve(p) if N == 6 => {
             let mut s = Painleve::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Painleve, record, bar)
         }
-        SceneSpec::Painleve(p) => {
+        SceneParams::Painleve(p) => {
             let mut s = Painleve::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
             drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Painleve, record, bar)
         }

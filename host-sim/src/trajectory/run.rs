@@ -8,13 +8,13 @@ use super::reference_run::run_reference;
 use super::{Record, Trajectory};
 use crate::lcp_io::Precision;
 use crate::progress;
-use crate::scenes::{Implementation, LcpSize, SceneSpec};
+use crate::scenes::{Implementation, LcpSize, SceneParams};
 
 /// Runs `spec` (a scene with two contacts) in `implementation` to its outcome and records it.
 ///
 /// # Errors
 /// Invalid parameters, or a scene without two contacts ([`run_k`]).
-pub fn run(spec: &SceneSpec, implementation: Implementation, record: Record) -> anyhow::Result<Trajectory> {
+pub fn run(spec: &SceneParams, implementation: Implementation, record: Record) -> anyhow::Result<Trajectory> {
     run_inner(spec, implementation, record, None)
 }
 
@@ -45,7 +45,7 @@ macro_rules! with_contacts {
 /// # Errors
 /// Invalid parameters, or a scene with other than `K` contacts.
 pub fn run_k<const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     implementation: Implementation,
     record: Record,
 ) -> anyhow::Result<Trajectory<K>> {
@@ -57,7 +57,7 @@ pub fn run_k<const K: usize>(
 /// # Errors
 /// As [`run`].
 pub fn run_watched<const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     implementation: Implementation,
     record: Record,
     bar: &ProgressBar,
@@ -68,7 +68,7 @@ pub fn run_watched<const K: usize>(
 /// Every run checks for Ctrl-C ([`crate::progress`]) before it starts and every
 /// [`progress::CHECK_EVERY_STEPS`] steps; an interrupted run is dropped.
 fn run_inner<const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     implementation: Implementation,
     record: Record,
     bar: Option<&ProgressBar>,
