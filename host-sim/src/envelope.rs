@@ -159,9 +159,9 @@ fn run_job(speed: f64, h: f64, max_steps: u64, job: Job) -> anyhow::Result<Traje
     let every = (steps / SAMPLES).ceil().max(1.0);
     let record = Record::Grid(every * h);
     let (implementation, p) = match job {
-        Job::F32 => (Implementation::CORE_F32_6, p),
-        Job::F64 => (Implementation::CORE_F64_8, p),
-        Job::F64Half => (Implementation::CORE_F64_8, MeterStickParams { step: h / 2.0, ..p }),
+        Job::F32 => (Implementation::CORE_F32_REDUCED, p),
+        Job::F64 => (Implementation::CORE_F64_FULL, p),
+        Job::F64Half => (Implementation::CORE_F64_FULL, MeterStickParams { step: h / 2.0, ..p }),
         Job::Reference => (Implementation::Reference, p),
     };
     run(&SceneParams::MeterStick(p), implementation, record)

@@ -14,10 +14,9 @@ use clap::{Arg, ArgAction, ArgMatches, Command};
 use meterstick_core::ParamError;
 use serde::Serialize;
 
-use crate::lcp_io::Precision;
-
 pub use meterstick_core::scene::catalogue::{FLAGS, Flag, MAX_STEPS, SceneKind, flag_of};
 use meterstick_core::scene::catalogue::{Refusal, Short};
+pub use meterstick_core::scene::{LcpLayout, Precision};
 
 /// A scene with its parameters (SI units, angles in radians, f64 as given; cast to the
 /// implementation's precision when run): the catalogue's.
@@ -141,47 +140,43 @@ impl ParamsExt for SceneParams {
     }
 }
 
-/// The LCP size of the core: the reduced layout (6x6, as the firmware) or the full one (8x8).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum, Serialize)]
-pub enum LcpSize {
-    /// 6x6: one friction direction per contact, checked, with the 8x8 fallback.
-    #[default]
-    #[value(name = "6")]
-    Reduced,
-    /// 8x8: the paper's form.
-    #[value(name = "8")]
-    Full,
+/// `--precision`'s values: the core's [`Precision`]s by name (`f32`, `f64`).
+#[must_use]
+pub fn precision_parser() -> impl clap::builder::TypedValueParser<Value = Precision> {
+    use clap::builder::{PossibleValuesParser, TypedValueParser as _};
+    PossibleValuesParser::new(Precision::ALL.map(Precision::name))
+        .map(|name| Precision::from_name(&name).unwrap_or_default())
 }
 
-impl LcpSize {
-    /// The LCP's size for a scene of `contacts` contacts (docs/formulation.md): per contact its
-    /// normal, its slack and one friction direction (reduced) or two (full).
-    #[must_use]
-    pub const fn n_for(self, contacts: usize) -> usize {
-        contacts
-            * match self {
-                Self::Reduced => 3,
-                Self::Full => 4,
-            }
-    }
+/// `--layout`'s values: the core's [`LcpLayout`]s by name (`reduced`, `full`), each with the LCP
+/// sizes it gives.
+#[must_use]
+pub fn layout_parser() -> impl clap::builder::TypedValueParser<Value = LcpLayout> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser as _};
+    PossibleValuesParser::new([
+        PossibleValue::new(LcpLayout::Reduced.name())
+            .help("one friction direction per contact, checked, as the firmware: 6x6 for two contacts, 3x3 for one, 9x9 for three"),
+        PossibleValue::new(LcpLayout::Full.name()).help("the paper's form: 8x8 for two contacts, 4x4 for one, 12x12 for three"),
+    ])
+    .map(|name| LcpLayout::from_name(&name).unwrap_or_default())
 }
 
 /// Who computed a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Implementation {
-    /// `meterstick-core` in a precision and an LCP size.
-    Core(Precision, LcpSize),
+    /// `meterstick-core` in a precision and an LCP layout.
+    Core(Precision, LcpLayout),
     /// The independent f64 reference (`crate::reference`, enumeration of the full form).
     Reference,
 }
 
 impl Implementation {
-    /// The firmware's configuration.
-    pub const CORE_F32_6: Self = Self::Core(Precision::F32, LcpSize::Reduced);
-    /// Core, f32, 8x8.
-    pub const CORE_F32_8: Self = Self::Core(Precision::F32, LcpSize::Full);
-    /// Core, f64, 8x8.
-    pub const CORE_F64_8: Self = Self::Core(Precision::F64, LcpSize::Full);
+    /// The firmware's configuration: f32, reduced layout.
+    pub const CORE_F32_REDUCED: Self = Self::Core(Precision::F32, LcpLayout::Reduced);
+    /// Core, f32, full layout.
+    pub const CORE_F32_FULL: Self = Self::Core(Precision::F32, LcpLayout::Full);
+    /// Core, f64, full layout.
+    pub const CORE_F64_FULL: Self = Self::Core(Precision::F64, LcpLayout::Full);
 
     /// The precision it computes in.
     #[must_use]
@@ -229,11 +224,11 @@ pub struct ImplementationOf {
 impl fmt::Display for ImplementationOf {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.implementation {
-            Implementation::Core(p, size) => {
-                write!(f, "core {} {n}x{n}", p.name(), n = size.n_for(self.contacts))
+            Implementation::Core(p, layout) => {
+                write!(f, "core {} {n}x{n}", p.name(), n = layout.size(self.contacts))
             }
             Implementation::Reference => {
-                write!(f, "reference f64 {n}x{n}", n = LcpSize::Full.n_for(self.contacts))
+                write!(f, "reference f64 {n}x{n}", n = LcpLayout::Full.size(self.contacts))
             }
         }
     }
@@ -271,8 +266,8 @@ pub struct SceneArgs {
     pub given: Vec<(&'static Flag, Vec<f64>)>,
     /// `--precision`.
     pub precision: Precision,
-    /// `--lcp-size`.
-    pub lcp_size: LcpSize,
+    /// `--layout`.
+    pub layout: LcpLayout,
 }
 
 /// Parses `"0.1"` or `"0.1,0.5"`.
@@ -324,16 +319,16 @@ impl clap::Args for SceneArgs {
             .arg(
                 Arg::new("precision")
                     .long("precision")
-                    .value_parser(clap::builder::EnumValueParser::<Precision>::new())
-                    .default_value("f32")
+                    .value_parser(precision_parser())
+                    .default_value(Precision::F32.name())
                     .help("Scalar precision of the core"),
             )
             .arg(
-                Arg::new("lcp-size")
-                    .long("lcp-size")
-                    .value_parser(clap::builder::EnumValueParser::<LcpSize>::new())
-                    .default_value("6")
-                    .help("LCP size of the core: 6 (one friction direction per contact, checked; as the firmware) or 8 (the paper's form); a scene of one or three contacts runs its reduced (3, 9) or full (4, 12) layout"),
+                Arg::new("layout")
+                    .long("layout")
+                    .value_parser(layout_parser())
+                    .default_value(LcpLayout::Reduced.name())
+                    .help("LCP layout of the core: reduced (one friction direction per contact, checked; as the firmware) or full (the paper's form)"),
             );
         for flag in FLAGS {
             let value_name = if flag.unit.is_empty() { "X" } else { flag.unit };
@@ -369,8 +364,8 @@ impl clap::FromArgMatches for SceneArgs {
         if let Some(p) = m.get_one::<Precision>("precision") {
             self.precision = *p;
         }
-        if let Some(n) = m.get_one::<LcpSize>("lcp-size") {
-            self.lcp_size = *n;
+        if let Some(l) = m.get_one::<LcpLayout>("layout") {
+            self.layout = *l;
         }
         for flag in FLAGS {
             if let Some(v) = m.get_one::<Vec<f64>>(flag.long) {
@@ -392,7 +387,7 @@ impl SceneArgs {
     /// The core implementation these options ask for.
     #[must_use]
     pub const fn implementation(&self) -> Implementation {
-        Implementation::Core(self.precision, self.lcp_size)
+        Implementation::Core(self.precision, self.layout)
     }
 
     /// The scenes to run, `(name, spec)`: the defaults with the flags applied, one per value of
@@ -529,10 +524,10 @@ mod tests {
     #[test]
     fn labels_name_the_scenes_lcp_size() {
         let label = |i: Implementation, kind| i.of_scene(kind).to_string();
-        assert_eq!(label(Implementation::CORE_F32_6, SceneKind::MeterStick), "core f32 6x6");
-        assert_eq!(label(Implementation::CORE_F32_6, SceneKind::Cylinder), "core f32 3x3");
-        assert_eq!(label(Implementation::CORE_F64_8, SceneKind::Painleve), "core f64 4x4");
-        assert_eq!(label(Implementation::CORE_F32_8, SceneKind::ThreeFingers), "core f32 12x12");
+        assert_eq!(label(Implementation::CORE_F32_REDUCED, SceneKind::MeterStick), "core f32 6x6");
+        assert_eq!(label(Implementation::CORE_F32_REDUCED, SceneKind::Cylinder), "core f32 3x3");
+        assert_eq!(label(Implementation::CORE_F64_FULL, SceneKind::Painleve), "core f64 4x4");
+        assert_eq!(label(Implementation::CORE_F32_FULL, SceneKind::ThreeFingers), "core f32 12x12");
         assert_eq!(label(Implementation::Reference, SceneKind::ThreeFingers), "reference f64 12x12");
         assert_eq!(
             label(Implementation::Reference, SceneKind::Ladder),

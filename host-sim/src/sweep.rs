@@ -25,9 +25,9 @@ use crate::trajectory::{OutcomeKind, Paths, Record, Trajectory, run as run_scene
 
 /// The implementations the report compares.
 pub const CONFIGS: [Implementation; 4] = [
-    Implementation::CORE_F32_6,
-    Implementation::CORE_F32_8,
-    Implementation::CORE_F64_8,
+    Implementation::CORE_F32_REDUCED,
+    Implementation::CORE_F32_FULL,
+    Implementation::CORE_F64_FULL,
     Implementation::Reference,
 ];
 

@@ -230,7 +230,7 @@ fn run_and_scene_take_a_three_contact_scene() {
     assert!(dir.join("core-events.csv").exists() && dir.join("positions.svg").exists());
     std::fs::remove_dir_all(&out).unwrap();
     let (code, stdout, err) =
-        host_sim(&["scene", "--scene", "three-fingers", "--precision", "f64", "--lcp-size", "8"]);
+        host_sim(&["scene", "--scene", "three-fingers", "--precision", "f64", "--layout", "full"]);
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("outcome Held at t = ") && stdout.contains("checksum "), "{stdout}");
     // A flag of a two-contact scene is refused by name.
@@ -525,7 +525,8 @@ fn run_and_scene_reject_each_invalid_parameter() {
         (&["--scene", "ladder", "--mu-s", "0.3"], "--mu-s does not apply to --scene ladder"),
         (&["--width", "0.2"], "--width does not apply to --scene meter-stick (it is a parameter of incline)"),
         (&["--speed", "0.1,0.2", "--h", "1e-3,1e-4"], "only one flag may"),
-        (&["--lcp-size", "7"], "invalid value '7' for '--lcp-size"),
+        (&["--layout", "8"], "invalid value '8' for '--layout"),
+        (&["--lcp-size", "8"], "unexpected argument '--lcp-size'"),
         (&["--precision", "f16"], "invalid value 'f16'"),
         (&["--speed", "fast"], "\"fast\" is not a number"),
         (&["--scene", "pendulum"], "invalid value 'pendulum' for '--scene"),

@@ -23,7 +23,7 @@ use meterstick_core::scene::{
     CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
 };
 use meterstick_host_sim::lcp_io::Precision;
-use meterstick_host_sim::scenes::{Implementation, LcpSize, ParamsExt as _, SceneParams};
+use meterstick_host_sim::scenes::{Implementation, LcpLayout, ParamsExt as _, SceneParams};
 use meterstick_host_sim::trajectory::{OutcomeKind, Record, Trajectory, max_deviation, run, run_k, switches};
 
 fn stick(v: f64, x1: f64, duration: f64) -> MeterStickParams<f64> {
@@ -98,7 +98,7 @@ fn f64_core_matches_the_reference_to_round_off_on_every_scene() {
     for (name, spec) in scenes() {
         let r = reference(&spec);
         for implementation in
-            [Implementation::CORE_F64_8, Implementation::Core(Precision::F64, LcpSize::Reduced)]
+            [Implementation::CORE_F64_FULL, Implementation::Core(Precision::F64, LcpLayout::Reduced)]
         {
             let core = run(&spec, implementation, Record::All).unwrap();
             let what = format!("{name}: {implementation}");
@@ -125,7 +125,7 @@ fn f32_core_matches_the_reference_within_one_step_of_travel() {
         let p = stick(v, x1, 30.0);
         let spec = SceneParams::MeterStick(p);
         let r = reference(&spec);
-        for implementation in [Implementation::CORE_F32_6, Implementation::CORE_F32_8] {
+        for implementation in [Implementation::CORE_F32_REDUCED, Implementation::CORE_F32_FULL] {
             let core = run(&spec, implementation, Record::All).unwrap();
             let what = format!("{implementation} at v = {v}, x1 = {x1}");
             assert_eq!(core.outcome, r.outcome, "{what}");
@@ -179,7 +179,7 @@ fn the_reference_rejects_invalid_parameters() {
 fn f32_core_holds_1e_5_m_at_a_slow_finger() {
     let spec = SceneParams::MeterStick(MeterStickParams { finger2_x: 0.1, ..stick(0.001, -0.1, 200.0) });
     let r = reference(&spec);
-    let core = run(&spec, Implementation::CORE_F32_6, Record::All).unwrap();
+    let core = run(&spec, Implementation::CORE_F32_REDUCED, Record::All).unwrap();
     assert_eq!(core.outcome, r.outcome);
     let (com, _) = max_deviation(&core, &r);
     assert!(com < 1e-5, "COM deviation {com:e} m");
@@ -197,7 +197,8 @@ fn one_contact_matches(name: &str, spec: &SceneParams) -> (f64, f64) {
     let r = run_k::<1>(spec, Implementation::Reference, Record::All).unwrap();
     assert_eq!(r.counters.ambiguous_steps, 0, "{name}");
     let mut worst: (f64, f64) = (0.0, 0.0);
-    for implementation in [Implementation::CORE_F64_8, Implementation::Core(Precision::F64, LcpSize::Reduced)]
+    for implementation in
+        [Implementation::CORE_F64_FULL, Implementation::Core(Precision::F64, LcpLayout::Reduced)]
     {
         let core = run_k::<1>(spec, implementation, Record::All).unwrap();
         let what = format!("{name}: {implementation}");
@@ -346,7 +347,8 @@ fn three_fingers_part_only_where_the_contact_model_does_not_decide_the_motion() 
     let rest = r.rows.iter().map(|row| row.q[0].abs().max(row.q[2].abs())).fold(0.0, f64::max);
     assert!(rest < 1e-12, "the reference's rod moved: {rest:e}");
     let departure_x = -p.finger3_x * p.mu_kinetic / p.mu_static;
-    for implementation in [Implementation::CORE_F64_8, Implementation::Core(Precision::F64, LcpSize::Reduced)]
+    for implementation in
+        [Implementation::CORE_F64_FULL, Implementation::Core(Precision::F64, LcpLayout::Reduced)]
     {
         let core = run_k::<3>(&spec, implementation, Record::All).unwrap();
         let what = format!("three fingers: {implementation}");

@@ -14,7 +14,7 @@
 
 use core::fmt::Write as _;
 
-use crate::config::{LcpSize, Precision};
+use crate::config::{Precision, layout_of_page_size};
 use crate::session::{CreateError, Session, TEXT_BYTES, TRACE_ROWS, describe, outcome_text};
 use crate::sim::{MAX_ROW, outcome_code};
 use crate::text::Text;
@@ -163,7 +163,7 @@ pub extern "C" fn ms_give(flag: u32, value: f64) -> i32 {
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_create(bits: u32, n: u32) -> i32 {
-    let (Some(precision), Some(size)) = (Precision::from_bits(bits), LcpSize::from_n(n)) else {
+    let (Some(precision), Some(size)) = (Precision::from_bits(bits), layout_of_page_size(n)) else {
         return -1;
     };
     store::with(|s, text, _| match s.session.create(precision, size) {

@@ -5,7 +5,7 @@ use core::fmt::Write as _;
 
 use meterstick_core::scene::Outcome;
 
-use crate::config::{Config, ConfigError, LcpSize, MAX_STEPS, Precision, SceneParams};
+use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneParams};
 use crate::flags::{FLAGS, SceneKind};
 use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, holds, row_len};
 use crate::text::{Text, json_num, json_str};
@@ -70,7 +70,7 @@ impl Session {
     /// # Errors
     /// The refusal, to be shown in the user's words (`Display`).
     #[allow(clippy::result_large_err)] // the refusal carries the parameters it words; no heap on wasm
-    pub fn create(&mut self, precision: Precision, size: LcpSize) -> Result<(), CreateError> {
+    pub fn create(&mut self, precision: Precision, size: LcpLayout) -> Result<(), CreateError> {
         self.sim = None;
         self.spec = None;
         if !holds(self.config.kind) {
@@ -195,7 +195,7 @@ pub fn outcome_text(out: &mut Text<'_>, outcome: Outcome) -> core::fmt::Result {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::{LcpSize, Precision};
+    use crate::config::{LcpLayout, Precision};
     use crate::text::StackStr;
 
     #[test]
@@ -204,7 +204,7 @@ mod tests {
         for kind in SceneKind::ALL {
             assert!(holds(kind), "{kind}");
             s.configure(kind);
-            assert!(s.create(Precision::F32, LcpSize::Reduced).is_ok(), "{kind}");
+            assert!(s.create(Precision::F32, LcpLayout::Reduced).is_ok(), "{kind}");
             assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.info().contacts)), "{kind}");
         }
         let e = CreateError::OtherModule(SceneKind::Cylinder);

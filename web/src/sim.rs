@@ -18,7 +18,7 @@ use meterstick_core::scene::{
     Cylinder, Incline, Ladder, MeterStick, Outcome, OutcomeKind, Painleve, Scene, SceneKind, ThreeFingers,
 };
 
-use crate::config::{LcpSize, Precision, SceneParams};
+use crate::config::{LcpLayout, Precision, SceneParams};
 
 /// The most contacts a scene of the catalogue has (three fingers).
 pub const MAX_CONTACTS: usize = 3;
@@ -194,8 +194,8 @@ impl Sim {
     ///
     /// # Errors
     /// The core's complaint about the parameters (in its precision).
-    pub fn new(spec: &SceneParams, precision: Precision, size: LcpSize) -> Result<Self, ParamError> {
-        use {LcpSize::Full as Fu, LcpSize::Reduced as Re, Precision::F32, Precision::F64};
+    pub fn new(spec: &SceneParams, precision: Precision, size: LcpLayout) -> Result<Self, ParamError> {
+        use {LcpLayout::Full as Fu, LcpLayout::Reduced as Re, Precision::F32, Precision::F64};
         let scene = match (*spec, precision, size) {
             #[cfg(feature = "k2")]
             (SceneParams::MeterStick(p), F32, Re) => AnyScene::MeterStickF32R(MeterStick::new(p.cast())?),
@@ -390,7 +390,7 @@ mod tests {
 
     const ROW: usize = row_len(2);
 
-    fn sim(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpSize) -> Sim {
+    fn sim(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpLayout) -> Sim {
         let mut c = Config::new(kind);
         for (long, v) in given {
             c.give(flag_index(long).unwrap(), *v);
@@ -401,7 +401,7 @@ mod tests {
     #[test]
     fn rows_and_quiet_runs_agree() {
         let slow = [("x1", -0.35)];
-        let mut a = sim(SceneKind::MeterStick, &slow, Precision::F32, LcpSize::Reduced);
+        let mut a = sim(SceneKind::MeterStick, &slow, Precision::F32, LcpLayout::Reduced);
         let mut b = a.clone();
         let mut rows = [0.0; 64 * ROW];
         let mut steps = 0;
@@ -427,14 +427,14 @@ mod tests {
 
     #[test]
     fn the_start_row_is_the_rest_state_with_the_initial_modes() {
-        let s = sim(SceneKind::MeterStick, &[], Precision::F64, LcpSize::Full);
+        let s = sim(SceneKind::MeterStick, &[], Precision::F64, LcpLayout::Full);
         let row = s.start_row();
         assert_eq!(row.len(), 19, "core.csv's columns");
         assert_eq!(row[..4], [0.0, 0.0, 0.0025, 0.0]);
         assert_eq!(row[7..11], [-0.4, 0.0, 0.4, 0.0]);
         // Finger 1 starts sliding under the resting rod (sliding+), finger 2 sticks.
         assert_eq!((row[11], row[12]), (2.0, 1.0));
-        let ladder = sim(SceneKind::Ladder, &[("angle", 60.0)], Precision::F32, LcpSize::Reduced);
+        let ladder = sim(SceneKind::Ladder, &[("angle", 60.0)], Precision::F32, LcpLayout::Reduced);
         let row = ladder.start_row();
         // The foot on the floor, the top against the wall (f32 round-off).
         assert!((row[7] + 0.5).abs() < 1e-6 && row[8].abs() < 1e-6, "{row:?}");
@@ -452,7 +452,7 @@ mod tests {
             (SceneKind::Painleve, Outcome::Jammed),
         ] {
             for precision in [Precision::F32, Precision::F64] {
-                for size in [LcpSize::Reduced, LcpSize::Full] {
+                for size in [LcpLayout::Reduced, LcpLayout::Full] {
                     let given: &[(&str, f64)] =
                         if kind == SceneKind::MeterStick { &[("speed", 1.0)] } else { &[] };
                     let mut s = sim(kind, given, precision, size);
@@ -468,7 +468,7 @@ mod tests {
     #[test]
     fn rows_follow_the_scenes_contacts() {
         // The cylinder: one contact, rows of 13 (core.csv's columns for one contact).
-        let mut c = sim(SceneKind::Cylinder, &[("angle", 30.0)], Precision::F64, LcpSize::Reduced);
+        let mut c = sim(SceneKind::Cylinder, &[("angle", 30.0)], Precision::F64, LcpLayout::Reduced);
         assert_eq!((c.row_len(), c.start_row().len()), (13, 13));
         let mut rows = [0.0; 3 * 13 + 5];
         assert_eq!(c.step_rows(&mut rows), 3, "whole rows only");
@@ -485,7 +485,7 @@ mod tests {
         assert_eq!(r[9], 1.0, "sticking");
         assert!((r[10] - 9.81 * a.cos() * 1e-3).abs() < 1e-5, "{r:?}");
         // Three fingers: rows of 25, the third finger's support and mode in their places.
-        let t = sim(SceneKind::ThreeFingers, &[], Precision::F32, LcpSize::Full);
+        let t = sim(SceneKind::ThreeFingers, &[], Precision::F32, LcpLayout::Full);
         let r = t.start_row();
         assert_eq!(r.len(), 25);
         assert_eq!((r[7], r[9], r[11]), (f64::from(-0.4_f32), 0.0, f64::from(0.4_f32)));
@@ -497,7 +497,7 @@ mod tests {
         for kind in SceneKind::ALL {
             assert!(kind.info().measures.len() <= MAX_MEASURES, "{kind}");
         }
-        let mut p = sim(SceneKind::Painleve, &[], Precision::F64, LcpSize::Reduced);
+        let mut p = sim(SceneKind::Painleve, &[], Precision::F64, LcpLayout::Reduced);
         p.run(u64::MAX);
         assert_eq!(p.outcome(), Some(Outcome::Jammed));
         let [t, pn, pf] = p.measured();
@@ -505,8 +505,12 @@ mod tests {
         // m V / 4 (1 + 3 c^2, 3 s c) at 30 degrees: (0.8125, 0.3248).
         assert_eq!(t, 1e-3);
         assert!((pf - 0.8125).abs() < 0.02 && (pn - 0.3248).abs() < 0.02, "{pn} {pf}");
-        let l =
-            sim(SceneKind::Ladder, &[("mu-floor", 0.0), ("mu-wall", 0.0)], Precision::F64, LcpSize::Reduced);
+        let l = sim(
+            SceneKind::Ladder,
+            &[("mu-floor", 0.0), ("mu-wall", 0.0)],
+            Precision::F64,
+            LcpLayout::Reduced,
+        );
         let mut l = l;
         l.run(u64::MAX);
         let [h, ratio, none] = l.measured();

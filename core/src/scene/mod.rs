@@ -9,7 +9,9 @@
 //! * [`Cylinder`]: a round body on an incline, rolling or sliding as the analytic law says;
 //! * [`Painleve`]: a rod whose sliding end jams on a rough floor (Painlevé's paradox).
 //!
-//! [`catalogue`] lists them for the drivers (names, flags, outcomes, measured quantities).
+//! [`catalogue`] lists them for the drivers (names, flags, outcomes, measured quantities);
+//! [`SceneParams::build`] makes any of them, in a [`Precision`] and an [`LcpLayout`], for a
+//! [`SceneVisitor`] (`registry.rs`).
 //!
 //! All implement [`Scene`] and run to an [`Outcome`]; parameters are validated first ([`crate::ParamError`]); a step that
 //! fails ends the run with [`Outcome::Failed`] and the state before it. A scene of your own is about
@@ -22,6 +24,7 @@ mod ladder;
 mod meter_stick;
 mod outcome;
 mod painleve;
+mod registry;
 mod scene_trait;
 mod three_fingers;
 
@@ -32,5 +35,6 @@ pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
 pub use outcome::{Outcome, OutcomeKind};
 pub use painleve::{Jam, Painleve, PainleveParams};
+pub use registry::{LcpLayout, Precision, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};

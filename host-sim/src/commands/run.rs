@@ -359,7 +359,7 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
                 format!("{lo:.4}..{hi:.4} ({})", t.eq21_switches.len())
             };
             let check = match t.implementation.implementation {
-                Implementation::Core(_, crate::scenes::LcpSize::Reduced) => format!(
+                Implementation::Core(_, crate::scenes::LcpLayout::Reduced) => format!(
                     "{} ({} before meeting)",
                     t.counters.reduced_check_fired, t.counters.reduced_check_fired_before_meeting
                 ),

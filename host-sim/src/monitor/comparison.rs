@@ -3,7 +3,7 @@
 use serde::Serialize;
 
 use super::Recording;
-use crate::scenes::SceneParams;
+use crate::scenes::{LcpLayout, Precision, SceneParams};
 use crate::trajectory::{Record, Trajectory, check_recorded_steps, run_core};
 
 /// The rig's run against the host's core f32 6x6 run of the same parameters.
@@ -48,7 +48,7 @@ pub fn compare(rec: &Recording) -> anyhow::Result<(Trajectory, RigComparison)> {
     check_recorded_steps(&spec).map_err(|e| {
         anyhow::anyhow!("the rig's step and max_time: {e}; --no-compare records the rig's run alone")
     })?;
-    let host = run_core::<f32, 6>(&spec, Record::All)?;
+    let host = run_core::<2>(&spec, Precision::F32, LcpLayout::Reduced, Record::All)?;
     let rig = &rec.trajectory;
     let same_events = rig.events.len() == host.events.len()
         && rig

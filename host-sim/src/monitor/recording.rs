@@ -157,7 +157,7 @@ pub fn record_run(
     }
     let Some((code, time, steps, checksum)) = outcome else { bail!("no outcome") };
     let trajectory = Trajectory {
-        implementation: Implementation::CORE_F32_6,
+        implementation: Implementation::CORE_F32_REDUCED,
         scene: SceneKind::MeterStick,
         steps: u64::from(steps),
         end_time: f64::from(time),

@@ -20,10 +20,10 @@ use std::time::Instant;
 use meterstick_core::Real;
 use meterstick_core::lcp::default_tolerance;
 use meterstick_core::planar::{BodyState, StepReport};
-use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
+use meterstick_core::scene::{MeterStick, Outcome, Scene, SceneVisitor};
 
 use super::cases::{Case, Claim};
-use crate::scenes::SceneParams;
+use crate::scenes::{LcpLayout, Precision, SceneParams};
 use crate::trajectory::{OutcomeKind, RunOutcome};
 
 /// What one run of one case measured.
@@ -192,58 +192,47 @@ fn support_points<T: Real, S: Scene<T, K>, const K: usize>(scene: &S) -> Vec<[f6
     scene.supports().iter().map(|s| s.position().map(Real::as_f64)).collect()
 }
 
-/// Runs `case` in scalar `T` with LCP size `N` (6 the reduced layout, 8 the full one of a
-/// two-contact scene; the other scenes run their own: three fingers 9 or 12, the cylinder and
-/// Painlevé's rod 3 or 4), measuring as it goes; samples the state every `stride` steps.
+/// Runs `case` in `precision` and `layout`, measuring as it goes; samples the state every
+/// `stride` steps.
 #[must_use]
-pub fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
-    let failed = |e: meterstick_core::ParamError| Metrics {
+pub fn measure(case: &Case, precision: Precision, layout: LcpLayout, stride: u64) -> Metrics {
+    case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(|e| Metrics {
         outcome: Some(RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("invalid: {e}")) }),
         ..Metrics::default()
-    };
-    let reduced = N == 6;
-    match case.spec {
-        SceneParams::MeterStick(p) => {
-            let p = p.cast::<T>();
-            let mut start = p.resting_state();
-            start.y += T::of(case.start_dy);
-            match MeterStick::<T, N, 0>::with_state(p, start) {
-                Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
-                Err(e) => failed(e),
-            }
+    })
+}
+
+/// [`measure_scene`] as a visitor of the core's registry.
+struct Measure<'a> {
+    case: &'a Case,
+    stride: u64,
+}
+
+impl SceneVisitor for Measure<'_> {
+    type Output = Metrics;
+
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> Metrics {
+        measure_scene::<T, N, _, K>(&mut scene, self.case, self.stride, LcpLayout::Full.size(K))
+    }
+
+    /// The meter stick starts `case.start_dy` above its rest on the fingers.
+    fn visit_meter_stick<T: Real, const N: usize, const E: usize>(
+        self,
+        scene: MeterStick<T, N, E>,
+    ) -> Metrics {
+        let p = *scene.params();
+        let mut start = p.resting_state();
+        start.y += T::of(self.case.start_dy);
+        match MeterStick::<T, N, E>::with_state(p, start) {
+            Ok(lifted) => self.visit::<T, 2, N, _>(lifted),
+            Err(e) => Metrics {
+                outcome: Some(RunOutcome {
+                    class: OutcomeKind::Failed,
+                    detail: Some(format!("invalid: {e}")),
+                }),
+                ..Metrics::default()
+            },
         }
-        SceneParams::Incline(p) => match Incline::<T, N, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
-            Err(e) => failed(e),
-        },
-        SceneParams::Ladder(p) => match Ladder::<T, N, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
-            Err(e) => failed(e),
-        },
-        SceneParams::ThreeFingers(p) if reduced => match ThreeFingers::<T, 9, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 9, _, 3>(&mut s, case, stride, 12),
-            Err(e) => failed(e),
-        },
-        SceneParams::ThreeFingers(p) => match ThreeFingers::<T, 12, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 12, _, 3>(&mut s, case, stride, 12),
-            Err(e) => failed(e),
-        },
-        SceneParams::Cylinder(p) if reduced => match Cylinder::<T, 3, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 3, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
-        SceneParams::Cylinder(p) => match Cylinder::<T, 4, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 4, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
-        SceneParams::Painleve(p) if reduced => match Painleve::<T, 3, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 3, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
-        SceneParams::Painleve(p) => match Painleve::<T, 4, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 4, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
     }
 }
 

@@ -6,9 +6,8 @@ use indicatif::ProgressBar;
 use super::core_run::core_run;
 use super::reference_run::run_reference;
 use super::{Record, Trajectory};
-use crate::lcp_io::Precision;
 use crate::progress;
-use crate::scenes::{Implementation, LcpSize, SceneParams};
+use crate::scenes::{Implementation, SceneParams};
 
 /// Runs `spec` (a scene with two contacts) in `implementation` to its outcome and records it.
 ///
@@ -78,10 +77,7 @@ fn run_inner<const K: usize>(
     progress::check()?;
     let t = match implementation {
         Implementation::Reference => run_reference(spec, record),
-        Implementation::Core(Precision::F32, LcpSize::Reduced) => core_run::<f32, 6, K>(spec, record, bar),
-        Implementation::Core(Precision::F32, LcpSize::Full) => core_run::<f32, 8, K>(spec, record, bar),
-        Implementation::Core(Precision::F64, LcpSize::Reduced) => core_run::<f64, 6, K>(spec, record, bar),
-        Implementation::Core(Precision::F64, LcpSize::Full) => core_run::<f64, 8, K>(spec, record, bar),
+        Implementation::Core(precision, layout) => core_run::<K>(spec, precision, layout, record, bar),
     }?;
     progress::check()?;
     Ok(t)

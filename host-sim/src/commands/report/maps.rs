@@ -12,7 +12,7 @@ use crate::scenes::{Implementation, SceneParams};
 /// The implementations of the success map: the core f32 6x6 (the firmware's, drawn), the core
 /// f64 8x8 and the reference.
 pub const MAP_CONFIGS: [Implementation; 3] =
-    [Implementation::CORE_F32_6, Implementation::CORE_F64_8, Implementation::Reference];
+    [Implementation::CORE_F32_REDUCED, Implementation::CORE_F64_FULL, Implementation::Reference];
 
 /// One grid, the map of each of [`MAP_CONFIGS`].
 #[derive(Debug, Clone)]
