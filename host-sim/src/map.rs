@@ -26,7 +26,7 @@ use crate::scenes::{
     FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, ParamsExt as _, SceneParams, flag_error,
 };
 use crate::trajectory::{OutcomeKind, Record, run_k};
-use meterstick_core::scene::catalogue::Refusal;
+use meterstick_catalogue::Refusal;
 
 /// The most cells a map may have (each is a run of up to `MAX_STEPS`).
 /// (At about 550 runs per second on 2 cores, 200,000 cells take about 6 minutes.)

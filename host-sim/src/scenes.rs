@@ -1,9 +1,9 @@
 //! The scenes `host-sim` runs: which ([`SceneKind`]), with which parameters ([`SceneParams`]), in
 //! which implementation ([`Implementation`]); and their command-line flags ([`SceneArgs`]).
 //!
-//! **Written once.** The scenes, their flags and their refusals are the core's catalogue
-//! (`core/src/scene/catalogue.rs`): [`SceneKind`], [`FLAGS`] (a flag and the field it sets in each
-//! scene it applies to), [`SceneParams`] (any scene's parameters). The clap arguments are generated
+//! **Written once.** The scenes and their parameters are the core's ([`SceneKind`],
+//! [`SceneParams`]), their flags and refusals the catalogue's (`catalogue/src/lib.rs`): [`FLAGS`]
+//! (a flag and the field it sets in each scene it applies to), `Refusal`. The clap arguments are generated
 //! from it; `--help` shows each scene's default, read from the core's `Default`; an invalid value
 //! is reported with the flag the user typed ([`flag_error`]), in the words the page uses too.
 
@@ -14,9 +14,9 @@ use clap::{Arg, ArgAction, ArgMatches, Command};
 use meterstick_core::ParamError;
 use serde::Serialize;
 
-pub use meterstick_core::scene::catalogue::{FLAGS, Flag, MAX_STEPS, SceneKind, flag_of};
-use meterstick_core::scene::catalogue::{Refusal, Short};
-pub use meterstick_core::scene::{LcpLayout, Precision};
+pub use meterstick_catalogue::{Catalogued, FLAGS, Flag, MAX_STEPS, flag_of};
+use meterstick_catalogue::{Refusal, Short};
+pub use meterstick_core::scene::{LcpLayout, Precision, SceneKind};
 
 /// A scene with its parameters (SI units, angles in radians, f64 as given; cast to the
 /// implementation's precision when run): the catalogue's.
@@ -206,7 +206,7 @@ impl Implementation {
     /// This implementation as it runs a scene of `kind`, whose contacts set its LCP's size.
     #[must_use]
     pub const fn of_scene(self, kind: SceneKind) -> ImplementationOf {
-        ImplementationOf { implementation: self, contacts: kind.info().contacts }
+        ImplementationOf { implementation: self, contacts: kind.contacts() }
     }
 }
 

@@ -8,9 +8,9 @@
 
 use core::fmt;
 
+pub use meterstick_catalogue::MAX_STEPS;
+use meterstick_catalogue::Refusal;
 use meterstick_core::ParamError;
-pub use meterstick_core::scene::catalogue::MAX_STEPS;
-use meterstick_core::scene::catalogue::Refusal;
 
 use crate::flags::{FLAGS, SceneKind};
 

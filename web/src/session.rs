@@ -6,7 +6,7 @@ use core::fmt::Write as _;
 use meterstick_core::scene::Outcome;
 
 use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneParams};
-use crate::flags::{FLAGS, SceneKind};
+use crate::flags::{Catalogued as _, FLAGS, SceneKind};
 use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, holds, row_len};
 use crate::text::{Text, json_num, json_str};
 
@@ -106,7 +106,7 @@ impl core::fmt::Display for CreateError {
             Self::Config(e) => write!(f, "{e}"),
             Self::Core(e) => write!(f, "{e}"),
             Self::OtherModule(kind) => {
-                let k = kind.info().contacts;
+                let k = kind.contacts();
                 write!(f, "scene {kind} runs in meterstick_web_k{k}.wasm, not in this module")
             }
         }
@@ -135,7 +135,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
         let info = kind.info();
         out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
-        json_str(out, info.name)?;
+        json_str(out, kind.name())?;
         out.write_str(",\"title\":")?;
         json_str(out, info.title)?;
         list(out, "fields", &mut kind.field_names().iter().copied())?;
@@ -147,7 +147,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         }
         out.write_char(']')?;
         list(out, "contacts", &mut info.contact_names.iter().copied())?;
-        write!(out, ",\"row\":{}", row_len(info.contacts))?;
+        write!(out, ",\"row\":{}", row_len(kind.contacts()))?;
         list(out, "measures", &mut info.measures.iter().copied())?;
         list(out, "ends", &mut info.outcomes.iter().map(|o| o.name()))?;
         list(out, "main_flags", &mut info.main_flags.iter().copied())?;
@@ -176,7 +176,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     out.write_str(",\"holds\":[")?;
     let mut first = true;
     for k in 1..=MAX_CONTACTS {
-        if SceneKind::ALL.iter().any(|s| s.info().contacts == k && holds(*s)) {
+        if SceneKind::ALL.iter().any(|s| s.contacts() == k && holds(*s)) {
             write!(out, "{}{k}", if first { "" } else { "," })?;
             first = false;
         }
@@ -205,7 +205,7 @@ mod tests {
             assert!(holds(kind), "{kind}");
             s.configure(kind);
             assert!(s.create(Precision::F32, LcpLayout::Reduced).is_ok(), "{kind}");
-            assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.info().contacts)), "{kind}");
+            assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.contacts())), "{kind}");
         }
         let e = CreateError::OtherModule(SceneKind::Cylinder);
         assert_eq!(

@@ -35,7 +35,7 @@ pub const fn row_len(k: usize) -> usize {
 /// `k3`: the page's first module has the two-contact scenes and loads the others' on demand).
 #[must_use]
 pub const fn holds(kind: SceneKind) -> bool {
-    let k = kind.info().contacts;
+    let k = kind.contacts();
     (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
 }
 
@@ -267,7 +267,7 @@ impl Sim {
     /// Numbers per row of this run ([`row_len`] of its contacts).
     #[must_use]
     pub const fn row_len(&self) -> usize {
-        row_len(self.kind.info().contacts)
+        row_len(self.kind.contacts())
     }
 
     /// The row of the state at `t = 0` (the contacts' initial modes; no impulses).
@@ -495,7 +495,7 @@ mod tests {
     #[test]
     fn measured_quantities_follow_the_catalogues_names() {
         for kind in SceneKind::ALL {
-            assert!(kind.info().measures.len() <= MAX_MEASURES, "{kind}");
+            assert!(meterstick_catalogue::Catalogued::info(kind).measures.len() <= MAX_MEASURES, "{kind}");
         }
         let mut p = sim(SceneKind::Painleve, &[], Precision::F64, LcpLayout::Reduced);
         p.run(u64::MAX);

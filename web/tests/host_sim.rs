@@ -1,5 +1,5 @@
 //! The page's layer against the command line it mirrors (both generated from the core's catalogue,
-//! `core/src/scene/catalogue.rs`): the same refusals (without the `--`), the same resolved parameters and the same trajectory
+//! `catalogue/src/lib.rs`): the same refusals (without the `--`), the same resolved parameters and the same trajectory
 //! checksum and outcome as `host-sim scene` (on the host; the browser test checks the wasm build).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -7,7 +7,7 @@ use meterstick_host_sim::commands::scene::{SceneCmdArgs as SceneCmd, run as run_
 use meterstick_host_sim::scenes::SceneArgs;
 use meterstick_host_sim::trajectory::{Record, run_k};
 use meterstick_web::config::{Config, LcpLayout, Precision};
-use meterstick_web::flags::{FLAGS, SceneKind, flag_index};
+use meterstick_web::flags::{Catalogued as _, FLAGS, SceneKind, flag_index};
 use meterstick_web::session::Session;
 
 /// Flags and their values, in their units.

@@ -4,10 +4,10 @@
 //! drives any of them. The one `match` over scene kinds x precisions x layouts is here; a driver
 //! (`host-sim`'s run, scene, stress and map commands) names no scene type and no LCP size.
 //!
-//! **Adding a scene**: its arm in [`SceneParams::build`] (besides its catalogue entry,
-//! `super::catalogue`).
+//! **Adding a scene**: its arm in [`SceneParams::build`] (besides its kind and parameters,
+//! `kind.rs`).
 
-use super::catalogue::SceneParams;
+use super::kind::SceneParams;
 use super::{Cylinder, Incline, Ladder, MeterStick, Painleve, Scene, ThreeFingers};
 use crate::params::ParamError;
 use crate::real::Real;
@@ -189,7 +189,7 @@ mod tests {
             for precision in Precision::ALL {
                 for layout in LcpLayout::ALL {
                     let built = SceneParams::defaults(kind).build::<0, _>(precision, layout, Sizes).unwrap();
-                    let k = kind.info().contacts;
+                    let k = kind.contacts();
                     assert_eq!(
                         built,
                         (precision.name(), k, layout.size(k)),

@@ -20,7 +20,9 @@ use serde::Serialize;
 use crate::output::{create_dir, parameters_json, write_json};
 use crate::plot;
 use crate::progress::{Interrupted, interrupted, is_interrupted};
-use crate::scenes::{Implementation, ImplementationOf, ParamsExt as _, SceneArgs, SceneKind, SceneParams};
+use crate::scenes::{
+    Catalogued as _, Implementation, ImplementationOf, ParamsExt as _, SceneArgs, SceneKind, SceneParams,
+};
 use crate::trajectory::{
     Measured, OutcomeKind, Record, SolverCounters, Switch, Trajectory, check_recorded_steps,
     check_total_recorded_steps, max_deviation, run_k, switches, write_csv, write_events_csv,

@@ -34,7 +34,7 @@ pub(super) fn core_run<const K: usize>(
     record: Record,
     bar: Option<&ProgressBar>,
 ) -> anyhow::Result<Trajectory<K>> {
-    let contacts = spec.kind().info().contacts;
+    let contacts = spec.kind().contacts();
     anyhow::ensure!(contacts == K, "scene {} has {contacts} contacts, not {K}", spec.kind());
     let drive = Drive::<K> {
         implementation: Implementation::Core(precision, layout),

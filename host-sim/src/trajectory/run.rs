@@ -22,7 +22,7 @@ pub fn run(spec: &SceneParams, implementation: Implementation, record: Record) -
 #[macro_export]
 macro_rules! with_contacts {
     ($kind:expr, $k:ident => $body:expr) => {
-        match $kind.info().contacts {
+        match $kind.contacts() {
             1 => {
                 const $k: usize = 1;
                 $body
@@ -72,7 +72,7 @@ fn run_inner<const K: usize>(
     record: Record,
     bar: Option<&ProgressBar>,
 ) -> anyhow::Result<Trajectory<K>> {
-    let contacts = spec.kind().info().contacts;
+    let contacts = spec.kind().contacts();
     anyhow::ensure!(contacts == K, "scene {} has {contacts} contacts, not {K}", spec.kind());
     progress::check()?;
     let t = match implementation {

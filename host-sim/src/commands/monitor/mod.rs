@@ -27,7 +27,7 @@ use crate::monitor::{Margin, RigComparison, apply_params, compare, read_params, 
 use crate::output::{create_dir, parameters_json, write_json};
 use crate::scenes::{SceneKind, SceneParams};
 use crate::trajectory::{OutcomeKind, write_csv, write_events_csv};
-use meterstick_core::scene::catalogue::Short;
+use meterstick_catalogue::Short;
 
 use print::Printer;
 
