@@ -1,6 +1,5 @@
 //! One run of a scene in the core, as the page drives it: [`Sim`] holds any scene of the catalogue
-//! in the precision and layout asked for (f32/f64 x reduced/full: 6x6/8x8 for two contacts, the
-//! scene's own sizes for the others), steps it, writes one row of numbers per step for the
+//! in the precision and layout asked for (the core's `AnyScene`), steps it, writes one row of numbers per step for the
 //! animation and the plots (the columns of `host-sim run`'s `core.csv` for the scene's `K`
 //! contacts, [`row_len`], so a live run and a replayed one are read alike), and keeps the
 //! trajectory checksum (`planar::Checksum`, as the firmware and `host-sim scene` print it).
@@ -14,9 +13,7 @@
 use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-use meterstick_core::scene::{
-    Cylinder, Incline, Ladder, MeterStick, Outcome, OutcomeKind, Painleve, Scene, SceneKind, ThreeFingers,
-};
+use meterstick_core::scene::{AnyScene, Outcome, OutcomeKind, Scene, SceneKind, SceneVisitor};
 
 use crate::config::{LcpLayout, Precision, SceneParams};
 
@@ -68,193 +65,29 @@ pub const fn outcome_code(o: Outcome) -> u8 {
     o.kind().code()
 }
 
-/// The scene in its precision and layout (`E = 0`: the page finds switch events in the rows).
-/// Two-contact scenes: 6 reduced, 8 full; three fingers 9 or 12; one contact 3 or 4, as
-/// `host-sim --lcp-size 6|8` selects them.
-#[derive(Debug, Clone)]
-#[allow(clippy::large_enum_variant)] // one scene per session, held in place: there is no heap on wasm
-enum AnyScene {
-    #[cfg(feature = "k2")]
-    MeterStickF32R(MeterStick<f32, 6, 0>),
-    #[cfg(feature = "k2")]
-    MeterStickF32F(MeterStick<f32, 8, 0>),
-    #[cfg(feature = "k2")]
-    MeterStickF64R(MeterStick<f64, 6, 0>),
-    #[cfg(feature = "k2")]
-    MeterStickF64F(MeterStick<f64, 8, 0>),
-    #[cfg(feature = "k2")]
-    InclineF32R(Incline<f32, 6, 0>),
-    #[cfg(feature = "k2")]
-    InclineF32F(Incline<f32, 8, 0>),
-    #[cfg(feature = "k2")]
-    InclineF64R(Incline<f64, 6, 0>),
-    #[cfg(feature = "k2")]
-    InclineF64F(Incline<f64, 8, 0>),
-    #[cfg(feature = "k2")]
-    LadderF32R(Ladder<f32, 6, 0>),
-    #[cfg(feature = "k2")]
-    LadderF32F(Ladder<f32, 8, 0>),
-    #[cfg(feature = "k2")]
-    LadderF64R(Ladder<f64, 6, 0>),
-    #[cfg(feature = "k2")]
-    LadderF64F(Ladder<f64, 8, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF32R(ThreeFingers<f32, 9, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF32F(ThreeFingers<f32, 12, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF64R(ThreeFingers<f64, 9, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF64F(ThreeFingers<f64, 12, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF32R(Cylinder<f32, 3, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF32F(Cylinder<f32, 4, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF64R(Cylinder<f64, 3, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF64F(Cylinder<f64, 4, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF32R(Painleve<f32, 3, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF32F(Painleve<f32, 4, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF64R(Painleve<f64, 3, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF64F(Painleve<f64, 4, 0>),
-}
-
-/// Runs `$body` with `$s` bound to the scene, whatever its type.
-macro_rules! each {
-    ($any:expr, $s:ident => $body:expr) => {
-        match $any {
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF32R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF32F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF64R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF64F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF32R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF32F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF64R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF64F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF32R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF32F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF64R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF64F($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF32R($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF32F($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF64R($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF64F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF32R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF32F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF64R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF64F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF32R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF32F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF64R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF64F($s) => $body,
-        }
-    };
-}
-
 /// One run.
 #[derive(Debug, Clone)]
 pub struct Sim {
-    scene: AnyScene,
+    /// The scene (`E = 0`: the page finds switch events in the rows), from the core's registry.
+    scene: AnyScene<0>,
     kind: SceneKind,
     checksum: Checksum,
     start: [f64; MAX_ROW],
 }
 
 impl Sim {
-    /// The scene of `spec` in `precision` and `size`, at its start at `t = 0`.
+    /// The scene of `spec` in `precision` and `layout`, at its start at `t = 0`.
     ///
     /// # Errors
     /// The core's complaint about the parameters (in its precision).
-    pub fn new(spec: &SceneParams, precision: Precision, size: LcpLayout) -> Result<Self, ParamError> {
-        use {LcpLayout::Full as Fu, LcpLayout::Reduced as Re, Precision::F32, Precision::F64};
-        let scene = match (*spec, precision, size) {
-            #[cfg(feature = "k2")]
-            (SceneParams::MeterStick(p), F32, Re) => AnyScene::MeterStickF32R(MeterStick::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (SceneParams::MeterStick(p), F32, Fu) => AnyScene::MeterStickF32F(MeterStick::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (SceneParams::MeterStick(p), F64, Re) => AnyScene::MeterStickF64R(MeterStick::new(p)?),
-            #[cfg(feature = "k2")]
-            (SceneParams::MeterStick(p), F64, Fu) => AnyScene::MeterStickF64F(MeterStick::new(p)?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Incline(p), F32, Re) => AnyScene::InclineF32R(Incline::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Incline(p), F32, Fu) => AnyScene::InclineF32F(Incline::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Incline(p), F64, Re) => AnyScene::InclineF64R(Incline::new(p)?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Incline(p), F64, Fu) => AnyScene::InclineF64F(Incline::new(p)?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Ladder(p), F32, Re) => AnyScene::LadderF32R(Ladder::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Ladder(p), F32, Fu) => AnyScene::LadderF32F(Ladder::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Ladder(p), F64, Re) => AnyScene::LadderF64R(Ladder::new(p)?),
-            #[cfg(feature = "k2")]
-            (SceneParams::Ladder(p), F64, Fu) => AnyScene::LadderF64F(Ladder::new(p)?),
-            #[cfg(feature = "k3")]
-            (SceneParams::ThreeFingers(p), F32, Re) => {
-                AnyScene::ThreeFingersF32R(ThreeFingers::new(p.cast())?)
-            }
-            #[cfg(feature = "k3")]
-            (SceneParams::ThreeFingers(p), F32, Fu) => {
-                AnyScene::ThreeFingersF32F(ThreeFingers::new(p.cast())?)
-            }
-            #[cfg(feature = "k3")]
-            (SceneParams::ThreeFingers(p), F64, Re) => AnyScene::ThreeFingersF64R(ThreeFingers::new(p)?),
-            #[cfg(feature = "k3")]
-            (SceneParams::ThreeFingers(p), F64, Fu) => AnyScene::ThreeFingersF64F(ThreeFingers::new(p)?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Cylinder(p), F32, Re) => AnyScene::CylinderF32R(Cylinder::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Cylinder(p), F32, Fu) => AnyScene::CylinderF32F(Cylinder::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Cylinder(p), F64, Re) => AnyScene::CylinderF64R(Cylinder::new(p)?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Cylinder(p), F64, Fu) => AnyScene::CylinderF64F(Cylinder::new(p)?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Painleve(p), F32, Re) => AnyScene::PainleveF32R(Painleve::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Painleve(p), F32, Fu) => AnyScene::PainleveF32F(Painleve::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Painleve(p), F64, Re) => AnyScene::PainleveF64R(Painleve::new(p)?),
-            #[cfg(feature = "k1")]
-            (SceneParams::Painleve(p), F64, Fu) => AnyScene::PainleveF64F(Painleve::new(p)?),
-            // A scene of another module (the page loads the module of the scene's contacts).
-            #[allow(unreachable_patterns)]
-            _ => return Err(ParamError::OutOfRange("scene")),
-        };
+    pub fn new(spec: &SceneParams, precision: Precision, layout: LcpLayout) -> Result<Self, ParamError> {
+        // A scene of another module (the page loads the module of the scene's contacts).
+        if !holds(spec.kind()) {
+            return Err(ParamError::OutOfRange("scene"));
+        }
+        let mut scene = AnyScene::new(spec, precision, layout)?;
         let mut start = [0.0; MAX_ROW];
-        each!(&scene, s => start_row(s, &mut start));
+        scene.visit_mut(StartRow(&mut start));
         Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start })
     }
 
@@ -279,29 +112,19 @@ impl Sim {
     /// Steps until the run ends or `rows` is full, writing one row per step into `rows`
     /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
-        let checksum = &mut self.checksum;
-        each!(&mut self.scene, s => step_rows(s, checksum, rows))
+        self.scene.visit_mut(StepRows { checksum: &mut self.checksum, rows })
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
     /// benchmark); returns the steps taken.
     pub fn run(&mut self, max: u64) -> u64 {
-        let checksum = &mut self.checksum;
-        each!(&mut self.scene, s => {
-            let mut taken = 0;
-            while taken < max {
-                let Some(report) = s.step() else { break };
-                checksum.add(&report.state);
-                taken += 1;
-            }
-            taken
-        })
+        self.scene.visit_mut(Run { checksum: &mut self.checksum, max })
     }
 
     /// The outcome, once the run has ended.
     #[must_use]
     pub fn outcome(&self) -> Option<Outcome> {
-        each!(&self.scene, s => s.outcome())
+        self.scene.outcome()
     }
 
     /// The trajectory checksum so far (FNV-1a over the state's bits after every step).
@@ -313,20 +136,62 @@ impl Sim {
     /// Simulated time (s).
     #[must_use]
     pub fn time(&self) -> f64 {
-        each!(&self.scene, s => s.time().as_f64())
+        self.scene.time()
     }
 
     /// The stepper's counters (steps, pivots, warm starts, full-layout fallbacks, ...).
     #[must_use]
     pub fn stats(&self) -> RunStats {
-        each!(&self.scene, s => *s.stats())
+        *self.scene.stats()
     }
 
     /// The scene's measured quantities so far, in the order of the catalogue's `measures` for
     /// the scene (`summary.json`'s keys, [`Scene::measured`]); NaN where there is none (yet).
     #[must_use]
     pub fn measured(&self) -> [f64; MAX_MEASURES] {
-        each!(&self.scene, s => s.measured().map(|v| v.map_or(f64::NAN, Real::as_f64)))
+        self.scene.measured().map(|v| v.unwrap_or(f64::NAN))
+    }
+}
+
+/// [`start_row`] as a visitor of the core's registry.
+struct StartRow<'a>(&'a mut [f64; MAX_ROW]);
+
+impl SceneVisitor for StartRow<'_> {
+    type Output = ();
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, scene: S) {
+        start_row(&scene, self.0);
+    }
+}
+
+/// [`step_rows`] as a visitor of the core's registry.
+struct StepRows<'a> {
+    checksum: &'a mut Checksum,
+    rows: &'a mut [f64],
+}
+
+impl SceneVisitor for StepRows<'_> {
+    type Output = usize;
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> usize {
+        step_rows(&mut scene, self.checksum, self.rows)
+    }
+}
+
+/// Steps until the run ends or `max` steps were taken, adding each state to the checksum.
+struct Run<'a> {
+    checksum: &'a mut Checksum,
+    max: u64,
+}
+
+impl SceneVisitor for Run<'_> {
+    type Output = u64;
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> u64 {
+        let mut taken = 0;
+        while taken < self.max {
+            let Some(report) = scene.step() else { break };
+            self.checksum.add(&report.state);
+            taken += 1;
+        }
+        taken
     }
 }
 

@@ -51,6 +51,40 @@ pub trait Scene<T: Real, const K: usize> {
     }
 }
 
+/// A scene borrowed mutably is a scene (a driver steps a scene it keeps: [`super::AnyScene`]).
+impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
+    fn step(&mut self) -> Option<StepReport<T, K>> {
+        (**self).step()
+    }
+    fn outcome(&self) -> Option<Outcome> {
+        (**self).outcome()
+    }
+    fn state(&self) -> &BodyState<T> {
+        (**self).state()
+    }
+    fn time(&self) -> T {
+        (**self).time()
+    }
+    fn supports(&self) -> &[Support<T>; K] {
+        (**self).supports()
+    }
+    fn frames(&self) -> &[ContactFrame<T>; K] {
+        (**self).frames()
+    }
+    fn modes(&self) -> [ContactMode; K] {
+        (**self).modes()
+    }
+    fn stats(&self) -> &RunStats {
+        (**self).stats()
+    }
+    fn events(&self) -> &[SwitchEvent<T, K>] {
+        (**self).events()
+    }
+    fn measured(&self) -> [Option<T>; MAX_MEASURES] {
+        (**self).measured()
+    }
+}
+
 /// Implements [`Scene`] for a scene struct with a `stepper` field, an `outcome` field and an
 /// inherent `advance` method (its step).
 macro_rules! impl_scene {
