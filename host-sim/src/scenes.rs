@@ -328,7 +328,8 @@ impl clap::Args for SceneArgs {
                     .long("layout")
                     .value_parser(layout_parser())
                     .default_value(LcpLayout::Reduced.name())
-                    .help("LCP layout of the core: reduced (one friction direction per contact, checked; as the firmware) or full (the paper's form)"),
+                    .value_name("LAYOUT")
+                    .help("LCP layout of the core (a scene of K contacts solves a 3K x 3K or 4K x 4K LCP)"),
             );
         for flag in FLAGS {
             let value_name = if flag.unit.is_empty() { "X" } else { flag.unit };
