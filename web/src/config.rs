@@ -32,14 +32,22 @@ pub const fn layout_of_page_size(n: u32) -> Option<LcpLayout> {
 /// A scene with its parameters in the core's units (SI, radians), f64 as given: the catalogue's.
 pub use meterstick_core::scene::SceneParams;
 
+/// `true` when this module holds the scenes of `kind`'s contact count (cargo features `k1`, `k2`,
+/// `k3`: the page's first module has the two-contact scenes and loads the others' on demand).
+#[must_use]
+pub const fn holds(kind: SceneKind) -> bool {
+    let k = kind.contacts();
+    (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
+}
+
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.
 ///
 /// # Errors
 /// The core's first complaint.
 pub fn validate(spec: &SceneParams, precision: Precision) -> Result<(), ParamError> {
-    // Only the scenes this module holds (`crate::sim::holds`; the session refuses the others
+    // Only the scenes this module holds (`holds`; the session refuses the others
     // before this): naming them keeps the other scenes' checks out of the module.
-    if !crate::sim::holds(spec.kind()) {
+    if !holds(spec.kind()) {
         return Err(ParamError::OutOfRange("scene"));
     }
     match precision {

@@ -5,9 +5,9 @@ use core::fmt::Write as _;
 
 use meterstick_core::scene::Outcome;
 
-use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneParams};
+use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneParams, holds};
 use crate::flags::{Catalogued as _, FLAGS, SceneKind};
-use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, holds, row_len};
+use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, row_len};
 use crate::text::{Text, json_num, json_str};
 
 /// Rows one `ms_step` call may write (the trace buffer holds this many).
@@ -22,7 +22,7 @@ pub enum CreateError {
     Config(ConfigError),
     /// The parameters passed validation but the core still refused them.
     Core(meterstick_core::ParamError),
-    /// The scene is in the module of another contact count ([`crate::sim::holds`]).
+    /// The scene is in the module of another contact count ([`crate::config::holds`]).
     OtherModule(SceneKind),
 }
 

@@ -15,7 +15,7 @@ use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
 use meterstick_core::scene::{AnyScene, Outcome, OutcomeKind, Scene, SceneKind, SceneVisitor};
 
-use crate::config::{LcpLayout, Precision, SceneParams};
+use crate::config::{LcpLayout, Precision, SceneParams, holds};
 
 /// The most contacts a scene of the catalogue has (three fingers).
 pub const MAX_CONTACTS: usize = 3;
@@ -26,14 +26,6 @@ pub const MAX_CONTACTS: usize = 3;
 #[must_use]
 pub const fn row_len(k: usize) -> usize {
     7 + 6 * k
-}
-
-/// `true` when this module holds the scenes of `kind`'s contact count (cargo features `k1`, `k2`,
-/// `k3`: the page's first module has the two-contact scenes and loads the others' on demand).
-#[must_use]
-pub const fn holds(kind: SceneKind) -> bool {
-    let k = kind.contacts();
-    (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
 }
 
 /// The longest row (a scene with [`MAX_CONTACTS`]).

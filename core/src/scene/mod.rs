@@ -36,6 +36,8 @@ pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
 pub use outcome::{Outcome, OutcomeKind};
 pub use painleve::{Jam, Painleve, PainleveParams};
-pub use registry::{AnyScene, LcpLayout, Precision, SceneIn, SceneVisitor};
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+pub use registry::{AnyScene, SceneIn};
+pub use registry::{LcpLayout, Precision, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};

@@ -9,11 +9,18 @@
 //! **Adding a scene**: its two rows in the `registry!` table (besides its kind and parameters,
 //! `kind.rs`).
 
-use super::kind::{MAX_MEASURES, SceneParams};
-use super::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
+#[cfg(feature = "scenes-k3")]
+use super::ThreeFingers;
+use super::kind::SceneParams;
+#[cfg(feature = "scenes-k1")]
+use super::{Cylinder, Painleve};
+#[cfg(feature = "scenes-k2")]
+use super::{Incline, Ladder};
+use super::{MeterStick, Scene};
 use crate::params::ParamError;
-use crate::planar::RunStats;
 use crate::real::Real;
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+use {super::Outcome, super::kind::MAX_MEASURES, crate::planar::RunStats};
 
 /// Scalar precision of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -133,13 +140,20 @@ impl SceneParams {
         layout: LcpLayout,
         visitor: V,
     ) -> Result<V::Output, ParamError> {
-        Ok(match precision {
+        #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+        return Ok(match precision {
             Precision::F32 => SceneIn::<f32, E>::new(self, layout)?.visit(visitor),
             Precision::F64 => SceneIn::<f64, E>::new(self, layout)?.visit(visitor),
-        })
+        });
+        #[cfg(not(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3")))]
+        {
+            let _ = (precision, layout, visitor);
+            Err(ParamError::OutOfRange("scene"))
+        }
     }
 }
 
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 /// Hands a scene to a visitor: the meter stick to [`SceneVisitor::visit_meter_stick`], any other
 /// to [`SceneVisitor::visit`].
 macro_rules! hand {
@@ -151,10 +165,12 @@ macro_rules! hand {
     };
 }
 
-/// The registry's table, one row per scene and layout: `variant: Scene<K contacts, N> =
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+/// The registry's table, one row per scene and layout: `#[cfg(the feature that builds it)]
+/// variant: Scene<K contacts, N> =
 /// SceneParams variant, layout, visitor method`.
 macro_rules! registry {
-    ($($variant:ident: $scene:ident<$k:literal, $n:literal> = $params:ident, $layout:ident, $hand:ident;)*) => {
+    ($(#[$built:meta] $variant:ident: $scene:ident<$k:literal, $n:literal> = $params:ident, $layout:ident, $hand:ident;)*) => {
         /// Any catalogue scene in scalar `T` and either layout, keeping `E` switch events, held in
         /// place (no heap: as large as the largest).
         #[derive(Debug, Clone)]
@@ -162,6 +178,7 @@ macro_rules! registry {
         pub enum SceneIn<T: Real, const E: usize> {
             $(
                 #[doc = concat!("`", stringify!($scene), "` with a ", stringify!($n), "x", stringify!($n), " LCP.")]
+                #[$built]
                 $variant($scene<T, $n, E>),
             )*
         }
@@ -173,21 +190,24 @@ macro_rules! registry {
             /// The core's first complaint about the parameters in `T` (the scene's `new`).
             pub fn new(params: &SceneParams, layout: LcpLayout) -> Result<Self, ParamError> {
                 Ok(match (*params, layout) {
-                    $((SceneParams::$params(p), LcpLayout::$layout) => Self::$variant($scene::new(p.cast())?),)*
+                    $(#[$built] (SceneParams::$params(p), LcpLayout::$layout) => Self::$variant($scene::new(p.cast())?),)*
+                    // A scene this build leaves out (features `scenes-k1`..`scenes-k3`).
+                    #[allow(unreachable_patterns)]
+                    _ => return Err(ParamError::OutOfRange("scene")),
                 })
             }
 
             /// Hands the scene to `visitor`.
             pub fn visit<V: SceneVisitor>(self, visitor: V) -> V::Output {
                 match self {
-                    $(Self::$variant(s) => hand!($hand, visitor, s, T, $k, $n),)*
+                    $(#[$built] Self::$variant(s) => hand!($hand, visitor, s, T, $k, $n),)*
                 }
             }
 
             /// Hands the scene, in place, to `visitor`.
             pub fn visit_mut<V: SceneVisitor>(&mut self, visitor: V) -> V::Output {
                 match self {
-                    $(Self::$variant(s) => visitor.visit::<T, $k, $n, _>(s),)*
+                    $(#[$built] Self::$variant(s) => visitor.visit::<T, $k, $n, _>(s),)*
                 }
             }
 
@@ -195,7 +215,7 @@ macro_rules! registry {
             #[must_use]
             pub fn outcome(&self) -> Option<Outcome> {
                 match self {
-                    $(Self::$variant(s) => s.outcome(),)*
+                    $(#[$built] Self::$variant(s) => s.outcome(),)*
                 }
             }
 
@@ -203,7 +223,7 @@ macro_rules! registry {
             #[must_use]
             pub fn time(&self) -> T {
                 match self {
-                    $(Self::$variant(s) => s.time(),)*
+                    $(#[$built] Self::$variant(s) => s.time(),)*
                 }
             }
 
@@ -211,7 +231,7 @@ macro_rules! registry {
             #[must_use]
             pub fn stats(&self) -> &RunStats {
                 match self {
-                    $(Self::$variant(s) => s.stats(),)*
+                    $(#[$built] Self::$variant(s) => s.stats(),)*
                 }
             }
 
@@ -219,28 +239,42 @@ macro_rules! registry {
             #[must_use]
             pub fn measured(&self) -> [Option<T>; MAX_MEASURES] {
                 match self {
-                    $(Self::$variant(s) => s.measured(),)*
+                    $(#[$built] Self::$variant(s) => s.measured(),)*
                 }
             }
         }
     };
 }
 
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 registry! {
+    #[cfg(feature = "scenes-k2")]
     MeterStickReduced: MeterStick<2, 6> = MeterStick, Reduced, visit_meter_stick;
+    #[cfg(feature = "scenes-k2")]
     MeterStickFull: MeterStick<2, 8> = MeterStick, Full, visit_meter_stick;
+    #[cfg(feature = "scenes-k2")]
     InclineReduced: Incline<2, 6> = Incline, Reduced, visit;
+    #[cfg(feature = "scenes-k2")]
     InclineFull: Incline<2, 8> = Incline, Full, visit;
+    #[cfg(feature = "scenes-k2")]
     LadderReduced: Ladder<2, 6> = Ladder, Reduced, visit;
+    #[cfg(feature = "scenes-k2")]
     LadderFull: Ladder<2, 8> = Ladder, Full, visit;
+    #[cfg(feature = "scenes-k3")]
     ThreeFingersReduced: ThreeFingers<3, 9> = ThreeFingers, Reduced, visit;
+    #[cfg(feature = "scenes-k3")]
     ThreeFingersFull: ThreeFingers<3, 12> = ThreeFingers, Full, visit;
+    #[cfg(feature = "scenes-k1")]
     CylinderReduced: Cylinder<1, 3> = Cylinder, Reduced, visit;
+    #[cfg(feature = "scenes-k1")]
     CylinderFull: Cylinder<1, 4> = Cylinder, Full, visit;
+    #[cfg(feature = "scenes-k1")]
     PainleveReduced: Painleve<1, 3> = Painleve, Reduced, visit;
+    #[cfg(feature = "scenes-k1")]
     PainleveFull: Painleve<1, 4> = Painleve, Full, visit;
 }
 
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 /// Any catalogue scene in any precision and layout ([`SceneIn`] in f32 or f64), held in place:
 /// for a driver that keeps a run between calls (the browser page steps a frame at a time).
 #[derive(Debug, Clone)]
@@ -252,6 +286,7 @@ pub enum AnyScene<const E: usize> {
     F64(SceneIn<f64, E>),
 }
 
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 impl<const E: usize> AnyScene<E> {
     /// The scene of `params` in `precision` and `layout`, at its start.
     ///
@@ -309,7 +344,7 @@ impl<const E: usize> AnyScene<E> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "scenes"))]
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
