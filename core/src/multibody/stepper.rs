@@ -267,9 +267,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         }
     }
 
-    /// The retries after a ray. The friction LCP is not copositive-plus, so Lemke's method may end
-    /// in a ray although a solution exists: the `sigma` of a contact without normal impulse is
-    /// unbounded above (its column touches only its friction rows), a ray of the solution set.
+    /// The retries after a failed solve (a ray, the pivot cap, an answer that failed
+    /// verification). The friction LCP is not copositive-plus, so Lemke's method may end in a ray
+    /// although a solution exists: the `sigma` of a contact without normal impulse is unbounded
+    /// above (its column touches only its friction rows), a ray of the solution set; and a long
+    /// pivot sequence in f32 can lose the precision its answer is verified to.
     ///
     /// 1. Each cone row's `q` is opened by `sqrt(eps) ||q||_inf`; the basis Lemke's method ends on
     ///    there is solved on the exact problem (its direct solve, verified), or the opened answer
@@ -280,16 +282,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     ///    friction; sticking either way; sliding either way), each solved directly and then by
     ///    Lemke's method from its tableau.
     ///
-    /// Every answer is verified against the exact problem; the first ray is the error when none
+    /// Every answer is verified against the exact problem; the first error is the step's when none
     /// answers.
-    fn solve_opened(
+    fn retry(
         &self,
         lcp: &Lcp<T, N>,
         k: usize,
         warm: Basis<N>,
-        pivots: u32,
+        error: LcpError,
     ) -> Result<LcpSolution<T, N>, StepError> {
-        let ray = StepError::Solver(LcpError::Ray { pivots });
         let mut opened = *lcp;
         let delta = T::EPS.sqrt_libm() * lcp.q_norm_inf();
         for j in 3 * k..4 * k {
@@ -315,7 +316,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 }
             }
         }
-        Err(ray)
+        Err(StepError::Solver(error))
     }
 
     /// Advances one step: the active candidates' LCP (per unit reference mass), solved by Lemke's
@@ -399,8 +400,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         }
         let lcp = Lcp::new(a, b);
         let solution = match self.solver.solve_warm(&lcp, warm) {
-            Err(LcpError::Ray { pivots }) => self.solve_opened(&lcp, k, warm, pivots)?,
-            other => other.map_err(StepError::Solver)?,
+            Err(LcpError::NonFiniteInput) => return Err(StepError::Solver(LcpError::NonFiniteInput)),
+            Err(error) => self.retry(&lcp, k, warm, error)?,
+            Ok(solution) => solution,
         };
         let z = solution.z;
         // V+ = v~ + M~ J^T z.
