@@ -22,12 +22,18 @@ struct Measured {
     max_vx: f64,
     /// Each body's `(x, y, theta)` at the end.
     q: Vec<[f64; 3]>,
+    /// The last step's summed interface force on the upper body of each pair (N).
+    forces: Vec<[f64; 2]>,
 }
 
 fn max_vx<T: Real, const B: usize, const P: usize>(report: &StepReport<T, B, P>, max: &mut f64) {
     for s in &report.states {
         *max = max.max(s.vx.as_f64().abs());
     }
+}
+
+fn forces<T: Real, const B: usize, const P: usize>(report: &StepReport<T, B, P>) -> Vec<[f64; 2]> {
+    report.interface_forces.iter().map(|f| [f[0].as_f64(), f[1].as_f64()]).collect()
 }
 
 fn positions<T: Real>(states: &[meterstick_core::planar::BodyState<T>]) -> Vec<[f64; 3]> {
@@ -37,26 +43,36 @@ fn positions<T: Real>(states: &[meterstick_core::planar::BodyState<T>]) -> Vec<[
 fn block_on_block<T: Real>(p: BlockOnBlockParams<f64>) -> Measured {
     let mut scene = BlockOnBlock::new(p.cast::<T>()).expect("valid parameters");
     let mut max = 0.0;
-    let outcome = scene.run(|r| max_vx(r, &mut max));
+    let mut last = Vec::new();
+    let outcome = scene.run(|r| {
+        max_vx(r, &mut max);
+        last = forces(r);
+    });
     Measured {
         outcome,
         steps: scene.stepper().stats().steps,
         accelerations: scene.accelerations().map(|a| a.map(Real::as_f64)),
         max_vx: max,
         q: positions(scene.stepper().states()),
+        forces: last,
     }
 }
 
 fn tablecloth<T: Real>(p: TableclothParams<f64>) -> (Measured, f64) {
     let mut scene = Tablecloth::new(p.cast::<T>()).expect("valid parameters");
     let mut max = 0.0;
-    let outcome = scene.run(|r| max_vx(r, &mut max));
+    let mut last = Vec::new();
+    let outcome = scene.run(|r| {
+        max_vx(r, &mut max);
+        last = forces(r);
+    });
     let measured = Measured {
         outcome,
         steps: scene.stepper().stats().steps,
         accelerations: scene.accelerations().map(|a| a.map(Real::as_f64)),
         max_vx: max,
         q: positions(scene.stepper().states()),
+        forces: last,
     };
     (measured, scene.block_displacement().as_f64())
 }
@@ -124,6 +140,19 @@ fn block_on_block_laws<T: Real>() {
             "{} F = {force}: a_bottom {a_bottom} (law {want_bottom}), a_top {a_top} (law {want_top})",
             T::NAME
         );
+        // Held or riding, the top block sticks on two corners (statically indeterminate); the
+        // summed force on it is decided: (m a, m g) at the end.
+        if expected != Outcome::Slid {
+            let [fx, fy] = run.forces[1];
+            let force_tol = if T::BYTES == 8 { 1e-9 } else { 1e-3 };
+            assert!(
+                (fx - m * want_top).abs() < force_tol && (fy - m * g).abs() < force_tol,
+                "{} F = {force}: interface force ({fx}, {fy}), law ({}, {})",
+                T::NAME,
+                m * want_top,
+                m * g
+            );
+        }
     }
     // A tall top block tips when g w / h < a <= mu_s g.
     let tall = BlockOnBlockParams { top_width: 0.05, top_height: 0.2, max_time: 1.0, ..d };
@@ -233,6 +262,27 @@ fn stack_laws<T: Real>() {
             }
         }
     }
+}
+
+/// Three aligned blocks (`s = 0`, each on both lower corners: every interface statically
+/// indeterminate): held at rest, each interface carrying the weight above it.
+fn aligned_stack_rests<T: Real>() {
+    let d = StackParams::<f64> { overhang: 0.0, max_time: 1.0, ..StackParams::default() };
+    let (outcome, max_speed, forces, _) = stack::<T, 3, 32>(d);
+    assert_eq!(outcome, Outcome::Held);
+    assert!(max_speed < rest_speed::<T>(), "{}: {max_speed} m/s", T::NAME);
+    let weight = d.mass * d.gravity;
+    let tol = if T::BYTES == 8 { 1e-9 } else { 1e-3 };
+    for (i, f) in forces.iter().enumerate() {
+        let carried = (3 - i) as f64 * weight;
+        assert!(f[0].abs() < tol && (f[1] - carried).abs() < tol * carried, "{} pair {i}: {f:?}", T::NAME);
+    }
+}
+
+#[test]
+fn aligned_stack_rests_on_indeterminate_interfaces() {
+    aligned_stack_rests::<f64>();
+    aligned_stack_rests::<f32>();
 }
 
 #[test]
