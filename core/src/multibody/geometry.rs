@@ -161,11 +161,6 @@ pub struct JacobianRow<T> {
 }
 
 impl<T: Real> JacobianRow<T> {
-    /// A row without entries.
-    pub(crate) const fn empty() -> Self {
-        Self { corner: None, face: None }
-    }
-
     /// `J V` for the stacked velocities `v` (one `[vx, vy, omega]` per body).
     #[must_use]
     pub fn dot<const B: usize>(&self, v: &[[T; 3]; B]) -> T {
@@ -178,42 +173,14 @@ impl<T: Real> JacobianRow<T> {
         part(self.corner) + part(self.face)
     }
 
-    /// The row scaled by `inverse_mass` (one `diag` per body): `M~ J^T` read as a row.
+    /// The row dense in `3B` coordinates (zero outside its bodies).
     #[must_use]
-    pub(crate) fn scaled<const B: usize>(&self, inverse_mass: &[[T; 3]; B]) -> Self {
-        let scale = |e: Option<(u8, [T; 3])>| {
-            e.map(|(b, c)| {
-                let m = inverse_mass[usize::from(b)];
-                (b, [c[0] * m[0], c[1] * m[1], c[2] * m[2]])
-            })
-        };
-        Self { corner: scale(self.corner), face: scale(self.face) }
-    }
-
-    /// `sum over the bodies the two rows share of (a_b . c_b)`: an entry of `J M~ J^T` when
-    /// `other` is a row already [`Self::scaled`].
-    #[must_use]
-    pub(crate) fn dot_row(&self, other: &Self) -> T {
-        let mut sum = T::zero();
-        for (b, a) in [self.corner, self.face].into_iter().flatten() {
-            for (c, x) in [other.corner, other.face].into_iter().flatten() {
-                if b == c {
-                    sum += a[0] * x[0] + a[1] * x[1] + a[2] * x[2];
-                }
-            }
-        }
-        sum
-    }
-
-    /// Adds `impulse` times this row to the stacked velocities: `V += M~ J^T z` when the row is
-    /// already [`Self::scaled`].
-    pub(crate) fn add_to<const B: usize>(&self, impulse: T, v: &mut [[T; 3]; B]) {
+    pub fn dense<const B: usize>(&self) -> [[T; 3]; B] {
+        let mut row = [[T::zero(); 3]; B];
         for (b, c) in [self.corner, self.face].into_iter().flatten() {
-            let u = &mut v[usize::from(b)];
-            u[0] += impulse * c[0];
-            u[1] += impulse * c[1];
-            u[2] += impulse * c[2];
+            row[usize::from(b)] = c;
         }
+        row
     }
 }
 

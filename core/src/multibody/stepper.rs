@@ -3,7 +3,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::geometry::{CornerFrame, JacobianRow, Pair, Table, pair_frames, slip};
+use super::geometry::{CornerFrame, Pair, Table, pair_frames, slip};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
@@ -355,27 +355,33 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             v_free[i] = [st.vx + h * f[0] / m, st.vy + h * (f[1] / m - s.gravity), st.omega];
         }
         // Rows of the 3k impulses: normal of slot j at j, +d at k + 2j, -d at k + 2j + 1.
-        let mut rows = [JacobianRow::empty(); N];
-        let mut scaled = [JacobianRow::empty(); N];
+        // Each row dense in 3B coordinates (zero outside its two bodies): an entry of `J M~ J^T`
+        // is then 3B multiply-adds without a branch.
+        let mut rows = [[[T::zero(); 3]; B]; N];
+        let mut scaled = [[[T::zero(); 3]; B]; N];
         for (j, &(p, c)) in slots.iter().take(k).enumerate() {
             let f = &self.frames[p][c];
             let d = f.tangent;
-            rows[j] = f.row(f.normal);
-            rows[k + 2 * j] = f.row(d);
-            rows[k + 2 * j + 1] = f.row([-d[0], -d[1]]);
+            rows[j] = f.row(f.normal).dense();
+            rows[k + 2 * j] = f.row(d).dense();
+            rows[k + 2 * j + 1] = f.row([-d[0], -d[1]]).dense();
         }
         for j in 0..3 * k {
-            scaled[j] = rows[j].scaled(&self.inverse_mass);
+            for body in 0..B {
+                for c in 0..3 {
+                    scaled[j][body][c] = rows[j][body][c] * self.inverse_mass[body][c];
+                }
+            }
         }
         let mut a = SMatrix::<T, N, N>::zeros();
         let mut b = SVector::<T, N>::zeros();
         for i in 0..3 * k {
             for j in i..3 * k {
-                let e = rows[i].dot_row(&scaled[j]);
+                let e = dense_dot(&rows[i], &scaled[j]);
                 a[(i, j)] = e;
                 a[(j, i)] = e;
             }
-            b[i] = rows[i].dot(&v_free);
+            b[i] = dense_dot(&rows[i], &v_free);
         }
         let mut warm = Basis::<N>::all_w();
         for (j, &(p, c)) in slots.iter().take(k).enumerate() {
@@ -409,7 +415,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut v_plus = v_free;
         for j in 0..3 * k {
             if z[j] != T::zero() {
-                scaled[j].add_to(z[j], &mut v_plus);
+                for body in 0..B {
+                    for c in 0..3 {
+                        v_plus[body][c] += z[j] * scaled[j][body][c];
+                    }
+                }
             }
         }
         // q+ = q + h V+, compensated sums.
@@ -470,4 +480,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         }
         Ok(StepReport { time: self.time(), states, interface_forces, modes, active, pivots: solution.pivots })
     }
+}
+
+/// `sum over bodies and coordinates of a * b` (two rows dense in `3B` coordinates).
+#[inline]
+fn dense_dot<T: Real, const B: usize>(a: &[[T; 3]; B], b: &[[T; 3]; B]) -> T {
+    let mut sum = T::zero();
+    for body in 0..B {
+        sum += a[body][0] * b[body][0] + a[body][1] * b[body][1] + a[body][2] * b[body][2];
+    }
+    sum
 }
