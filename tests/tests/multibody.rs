@@ -89,10 +89,11 @@ fn stack<T: Real, const B: usize, const N: usize>(
     (outcome, scene.max_speed().as_f64(), forces, positions(scene.stepper().states()))
 }
 
-/// The tolerance on an acceleration from the laws (m/s^2): f64 `1e-9`; f32 `2e-3` (velocities of
-/// ~3 m/s carry ~3e-7 m/s of round-off per step, differenced over 0.3 s and accumulated).
+/// The tolerance on an acceleration from the laws (m/s^2): f64 `1e-9` (measured 8.7e-14 at
+/// worst on block-on-block); f32 `2e-4` (measured 2.8e-5: velocities of ~3 m/s carry ~2e-7 m/s
+/// of round-off per step, differenced over 0.3 s).
 fn acceleration_tolerance<T: Real>() -> f64 {
-    if T::BYTES == 8 { 1e-9 } else { 2e-3 }
+    if T::BYTES == 8 { 1e-9 } else { 2e-4 }
 }
 
 /// The largest speed a held run may reach: f64 `1e-12` m/s, f32 `1e-5` m/s (round-off).
@@ -323,7 +324,8 @@ fn three_block_stack_rests_for_ten_seconds_in_f32() {
     stack_rests::<f32>();
 }
 
-/// Positions of the core in f64 within this of the reference's (m, rad) on the default runs.
+/// Positions of the core in f64 within this of the reference's (m, rad) on the default runs
+/// (measured: block-on-block 1.5e-13, tablecloth 7.1e-13, stack 5.3e-16).
 const REFERENCE_TOLERANCE: f64 = 1e-9;
 
 fn assert_positions_near(scene: &str, core: &[[f64; 3]], reference: &[[f64; 3]], tol: f64) {
@@ -351,10 +353,10 @@ fn block_on_block_matches_the_reference() {
     let (ra_bottom, ra_top) =
         (r.lower_acceleration.expect("measured"), r.upper_acceleration.expect("measured"));
     assert!((a_bottom - ra_bottom).abs() < 1e-9 && (a_top - ra_top).abs() < 1e-9);
-    // f32 against the reference: the same outcome, positions within 1e-4 m.
+    // f32 against the reference: the same outcome, positions within 1e-5 m (measured 1.1e-6).
     let f32_run = block_on_block::<f32>(BlockOnBlockParams::default());
     assert_eq!(f32_run.outcome, Outcome::Slid);
-    assert_positions_near("block-on-block f32", &f32_run.q, &r.q, 1e-4);
+    assert_positions_near("block-on-block f32", &f32_run.q, &r.q, 1e-5);
 }
 
 #[test]
@@ -368,8 +370,9 @@ fn tablecloth_matches_the_reference() {
     assert!((displacement - r.block_displacement.expect("measured")).abs() < REFERENCE_TOLERANCE);
     let (f32_run, f32_displacement) = tablecloth::<f32>(TableclothParams::default());
     assert_eq!(f32_run.outcome, Outcome::Stayed);
+    // Measured 3.3e-6 m apart.
     assert!(
-        (f32_displacement - displacement).abs() < 1e-4,
+        (f32_displacement - displacement).abs() < 3e-5,
         "f32 displacement {f32_displacement}, f64 {displacement}"
     );
 }
