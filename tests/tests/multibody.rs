@@ -4,11 +4,13 @@
 #![allow(clippy::expect_used)]
 
 use meterstick_core::Real;
-use meterstick_core::multibody::StepReport;
+use meterstick_core::lcp::LcpError;
 use meterstick_core::multibody::scenes::{
     BlockOnBlock, BlockOnBlockParams, Outcome, Stack, Stack2, Stack3, StackParams, Tablecloth,
     TableclothParams,
 };
+use meterstick_core::multibody::{Pair, Settings, StepError, StepReport, Stepper, Support, System, Table};
+use meterstick_core::planar::{Body, BodyState, ContactMode};
 use meterstick_reference::multibody as reference;
 
 /// What a run measured, in f64.
@@ -36,7 +38,7 @@ fn forces<T: Real, const B: usize, const P: usize>(report: &StepReport<T, B, P>)
     report.interface_forces.iter().map(|f| [f[0].as_f64(), f[1].as_f64()]).collect()
 }
 
-fn positions<T: Real>(states: &[meterstick_core::planar::BodyState<T>]) -> Vec<[f64; 3]> {
+fn positions<T: Real>(states: &[BodyState<T>]) -> Vec<[f64; 3]> {
     states.iter().map(|s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]).collect()
 }
 
@@ -428,4 +430,65 @@ fn invalid_parameters_are_refused_by_name() {
         Some(ParamError::OutOfRange("overhang"))
     );
     assert_eq!(Stack3::new(StackParams { step: 20.0, ..s }).err(), Some(ParamError::OutOfRange("step")));
+}
+
+/// Two equal boxes, one exactly on the other, on a floor; `force` pulls the lower one.
+fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
+    let block = Body::block(1.0, 0.2, 0.1);
+    let system = System {
+        bodies: [block; 2],
+        table: Table::floor(),
+        pairs: [
+            Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 },
+            Pair { upper: 1, lower: Support::Body(0), mu_static: 0.5, mu_kinetic: 0.5 },
+        ],
+        forces: [[force, 0.0], [0.0; 2]],
+        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+    };
+    Stepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
+        .expect("a valid system")
+}
+
+/// The activity rule (`docs/formulation.md`, "The corner-on-face contact"): the upper box's
+/// corners over the lower one's top face count with its ends included, the lower box's corners
+/// under the upper one's lower face only strictly inside it, so aligned edges make one contact
+/// each, the upper box's; a table end is a corner only where the table has one.
+#[test]
+fn aligned_edges_make_one_contact_each() {
+    let stepper = aligned_pair::<32>(0.0);
+    let active = |p: usize| stepper.frames()[p].map(|f| f.active);
+    assert_eq!(active(0), [true, true, false, false], "an endless floor has no corners");
+    assert_eq!(active(1), [true, true, false, false], "aligned edges: the upper box's corners only");
+    assert!(stepper.modes().iter().flatten().filter(|m| **m == ContactMode::Sticking).count() == 4);
+    // A table ending under the box's middle: its corner is under the lower face, the right corner
+    // is past the end.
+    let block = Body::block(1.0, 0.2, 0.1);
+    let system = System {
+        bodies: [block],
+        table: Table { lo: None, hi: Some(0.05) },
+        pairs: [Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 }],
+        forces: [[0.0; 2]],
+        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+    };
+    let edge = Stepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, 0.05, 0.0)]).expect("valid");
+    assert_eq!(edge.frames()[0].map(|f| f.active), [true, false, false, true]);
+}
+
+/// Failure is a typed error and leaves the state as it was: more active contacts than the LCP
+/// holds; a non-finite force.
+#[test]
+fn a_failed_step_is_a_typed_error() {
+    let mut small = aligned_pair::<12>(0.0);
+    let before = *small.states();
+    assert_eq!(small.step().err(), Some(StepError::TooManyContacts(4)));
+    assert_eq!(*small.states(), before);
+    let mut broken = aligned_pair::<16>(f64::NAN);
+    assert_eq!(broken.step().err(), Some(StepError::Solver(LcpError::NonFiniteInput)));
+    assert_eq!(*broken.states(), before);
+    // The same system with room for its four contacts steps, the pull held by the floor.
+    let mut ok = aligned_pair::<16>(5.0);
+    let report = ok.step().expect("a step");
+    assert_eq!(report.active, 4);
+    let [fx, fy] = report.interface_forces[0];
+    assert!((fx + 5.0).abs() < 1e-9 && (fy - 2.0 * 9.81).abs() < 1e-9, "floor force ({fx}, {fy})");
 }
