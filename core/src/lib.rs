@@ -26,6 +26,7 @@
 #[allow(unused_macros)]
 mod fmt;
 pub mod lcp;
+pub mod multibody;
 mod params;
 pub mod planar;
 mod real;

@@ -1,0 +1,19 @@
+//! Several rigid boxes resting on each other and on a fixed table (`docs/formulation.md`, "Several
+//! bodies"; issue #32): velocities in `3B` coordinates, corner-on-face contacts between a box and
+//! the table or between two boxes, one LCP per step in the paper's full friction form, solved by
+//! Lemke's method ([`crate::lcp::Lemke`]) and verified.
+//!
+//! * [`System`]: `B` boxes ([`crate::planar::Body`]), the [`Table`], `P` resting [`Pair`]s (each
+//!   with four candidate contacts, [`Candidate`]), external forces and [`Settings`].
+//! * [`Stepper`]: the step (activity rule, assembly per unit reference mass, warm-started verified
+//!   solve, compensated integration, contact modes), each pair's summed interface force.
+//! * [`scenes`]: block-on-block, the tablecloth and the stack, with their own [`scenes::Outcome`].
+//!
+//! A single-body scene compiles none of this: nothing outside this module refers to it.
+
+mod geometry;
+pub mod scenes;
+mod stepper;
+
+pub use geometry::{Candidate, CornerFrame, JacobianRow, Pair, Support, Table};
+pub use stepper::{Settings, Stats, StepError, StepReport, Stepper, System};

@@ -1,0 +1,196 @@
+//! [`Stack`]: `B` blocks stacked over a table's edge with harmonic overhangs (`docs/scenes.md`,
+//! "stack").
+
+use super::{Outcome, point_speed_bound};
+use crate::multibody::{Pair, Settings, StepReport, Stepper, Support, System, Table};
+use crate::params::{ParamError, check_step_within, params};
+use crate::planar::{Body, BodyState};
+use crate::real::Real;
+
+params! {
+    /// The stack's parameters (`docs/scenes.md`, "stack"); the number of blocks is the type's `B`.
+    pub struct StackParams {
+        /// `L` (m).
+        length: 0.2, Positive;
+        /// `hb` (m).
+        height: 0.05, Positive;
+        /// `m` (kg), each block.
+        mass: 1.0, Positive;
+        /// Every contact's friction coefficient (static = kinetic).
+        mu: 0.5, NonNegative;
+        /// `s`: the harmonic overhangs' scale (1 the critical stack).
+        overhang: 0.98, NonNegative;
+        /// `g` (m/s^2).
+        gravity: 9.81, NonNegative;
+        /// The time step (s).
+        step: 0.001, Positive;
+        /// Stick threshold (m/s).
+        stick_speed: 1e-5, NonNegative;
+        /// A block beyond this `|theta|` (rad) fell.
+        tilt_limit: 0.1, Positive;
+        /// A block whose centre dropped more than this below its start (m) fell.
+        drop_limit: 0.01, Positive;
+        /// The activity rule's margin (m).
+        contact_margin: 1e-3, NonNegative;
+        /// Duration (s).
+        max_time: 10.0, Positive;
+    }
+}
+
+impl<T: Real> StackParams<T> {
+    /// The validity rules of `docs/scenes.md`, "stack", for `blocks` blocks.
+    ///
+    /// # Errors
+    /// The first broken rule, naming its field.
+    pub fn validate(&self, blocks: usize) -> Result<(), ParamError> {
+        self.check_fields()?;
+        if !(1..=4).contains(&blocks) {
+            return Err(ParamError::OutOfRange("blocks"));
+        }
+        if self.overhang >= T::of(2.0) * T::of_count(blocks as u32) {
+            return Err(ParamError::OutOfRange("overhang"));
+        }
+        check_step_within(self.step, self.max_time)?;
+        Body::block(self.mass, self.length, self.height).check_inertia("mass", "length")
+    }
+
+    /// Each body's start (body 0 at the bottom): `R_k = s (L/2) (1/k + ... + 1/B)` for the `k`-th
+    /// from the top, centre `(R_k - L/2, (i + 1/2) hb)` for body `i = B - k`.
+    fn start<const B: usize>(&self) -> [BodyState<T>; B] {
+        let half = T::of(0.5);
+        let mut states = [BodyState::at_rest(T::zero(), T::zero(), T::zero()); B];
+        // Body i is the k-th from the top, k = B - i: upward from the bottom, R_k adds s L / (2k).
+        let mut right = T::zero();
+        for (i, state) in states.iter_mut().enumerate() {
+            right += self.overhang * half * self.length / T::of_count((B - i) as u32);
+            *state = BodyState::at_rest(
+                right - half * self.length,
+                (T::of_count(i as u32) + half) * self.height,
+                T::zero(),
+            );
+        }
+        states
+    }
+}
+
+/// `B` blocks over a table's edge (the table's top face `x <= 0`): body 0 the bottom block, body
+/// `i` on body `i - 1`; pair 0 (block 0, table: its corner `(0, 0)`), pair `i` (block `i`, block
+/// `i - 1`). `N` is the LCP's capacity ([`Stack2`], [`Stack3`]).
+#[derive(Debug, Clone)]
+pub struct Stack<T: Real, const B: usize, const N: usize> {
+    params: StackParams<T>,
+    stepper: Stepper<T, B, B, N>,
+    outcome: Option<Outcome>,
+    start_y: [T; B],
+    reach: T,
+    max_speed: T,
+}
+
+/// Two blocks: room for 6 active contacts (4 when held).
+pub type Stack2<T> = Stack<T, 2, 24>;
+/// Three blocks: room for 8 active contacts (6 when held).
+pub type Stack3<T> = Stack<T, 3, 32>;
+
+impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
+    /// Validates `params` and stacks the blocks at rest.
+    ///
+    /// # Errors
+    /// As [`StackParams::validate`].
+    pub fn new(params: StackParams<T>) -> Result<Self, ParamError> {
+        params.validate(B)?;
+        let p = params;
+        let block = Body::block(p.mass, p.length, p.height);
+        let mut pairs = [Pair { upper: 0, lower: Support::Table, mu_static: p.mu, mu_kinetic: p.mu }; B];
+        for (i, pair) in pairs.iter_mut().enumerate().skip(1) {
+            *pair =
+                Pair { upper: i as u8, lower: Support::Body(i as u8 - 1), mu_static: p.mu, mu_kinetic: p.mu };
+        }
+        let system = System {
+            bodies: [block; B],
+            table: Table { lo: None, hi: Some(T::zero()) },
+            pairs,
+            forces: [[T::zero(); 2]; B],
+            settings: Settings {
+                step: p.step,
+                gravity: p.gravity,
+                stick_speed: p.stick_speed,
+                margin: p.contact_margin,
+            },
+        };
+        let states = p.start::<B>();
+        let mut start_y = [T::zero(); B];
+        for i in 0..B {
+            start_y[i] = states[i].y;
+        }
+        Ok(Self {
+            params,
+            stepper: Stepper::new(system, states)?,
+            outcome: None,
+            start_y,
+            reach: T::of(0.5) * (p.length * p.length + p.height * p.height).sqrt_libm(),
+            max_speed: T::zero(),
+        })
+    }
+
+    /// Advances one step; `None` once the run has an outcome.
+    pub fn step(&mut self) -> Option<StepReport<T, B, B>> {
+        if self.outcome.is_some() {
+            return None;
+        }
+        let report = match self.stepper.step() {
+            Ok(report) => report,
+            Err(e) => {
+                self.outcome = Some(Outcome::Failed(e));
+                return None;
+            }
+        };
+        let p = &self.params;
+        let mut fell = false;
+        for (i, st) in report.states.iter().enumerate() {
+            let speed = point_speed_bound(st, self.reach);
+            if speed > self.max_speed {
+                self.max_speed = speed;
+            }
+            fell |= st.theta.abs_exact() > p.tilt_limit || self.start_y[i] - st.y > p.drop_limit;
+        }
+        if fell {
+            self.outcome = Some(Outcome::Fell);
+        } else if report.time >= p.max_time {
+            self.outcome = Some(Outcome::Held);
+        }
+        Some(report)
+    }
+
+    /// Runs until an outcome, calling `observe` after every step.
+    pub fn run(&mut self, mut observe: impl FnMut(&StepReport<T, B, B>)) -> Outcome {
+        while let Some(report) = self.step() {
+            observe(&report);
+        }
+        self.outcome.unwrap_or(Outcome::Unfinished)
+    }
+
+    /// The outcome, once the run has ended.
+    #[must_use]
+    pub const fn outcome(&self) -> Option<Outcome> {
+        self.outcome
+    }
+
+    /// `max_speed`: the largest `|(vx, vy)| + reach |omega|` over the steps so far and the blocks
+    /// (m/s).
+    #[must_use]
+    pub const fn max_speed(&self) -> T {
+        self.max_speed
+    }
+
+    /// The stepper (states, frames, modes, counters).
+    #[must_use]
+    pub const fn stepper(&self) -> &Stepper<T, B, B, N> {
+        &self.stepper
+    }
+
+    /// The parameters.
+    #[must_use]
+    pub const fn params(&self) -> &StackParams<T> {
+        &self.params
+    }
+}

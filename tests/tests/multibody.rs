@@ -1,0 +1,494 @@
+//! The multibody core (`meterstick_core::multibody`) against the laws of `docs/scenes.md`, "Scenes
+//! of several bodies", in f32 and f64, several points on each side of every threshold, and against
+//! the independent reference (`meterstick_reference::multibody`) on the three default runs.
+#![allow(clippy::expect_used)]
+
+use meterstick_core::Real;
+use meterstick_core::lcp::LcpError;
+use meterstick_core::multibody::scenes::{
+    BlockOnBlock, BlockOnBlockParams, Outcome, Stack, Stack2, Stack3, StackParams, Tablecloth,
+    TableclothParams,
+};
+use meterstick_core::multibody::{Pair, Settings, StepError, StepReport, Stepper, Support, System, Table};
+use meterstick_core::planar::{Body, BodyState, ContactMode};
+use meterstick_reference::multibody as reference;
+
+/// What a run measured, in f64.
+#[derive(Debug)]
+struct Measured {
+    outcome: Outcome,
+    steps: u32,
+    /// `[lower, upper]` accelerations in full contact (m/s^2).
+    accelerations: Option<[f64; 2]>,
+    /// The largest `|vx|` of any body over the run (m/s).
+    max_vx: f64,
+    /// Each body's `(x, y, theta)` at the end.
+    q: Vec<[f64; 3]>,
+    /// The last step's summed interface force on the upper body of each pair (N).
+    forces: Vec<[f64; 2]>,
+}
+
+fn max_vx<T: Real, const B: usize, const P: usize>(report: &StepReport<T, B, P>, max: &mut f64) {
+    for s in &report.states {
+        *max = max.max(s.vx.as_f64().abs());
+    }
+}
+
+fn forces<T: Real, const B: usize, const P: usize>(report: &StepReport<T, B, P>) -> Vec<[f64; 2]> {
+    report.interface_forces.iter().map(|f| [f[0].as_f64(), f[1].as_f64()]).collect()
+}
+
+fn positions<T: Real>(states: &[BodyState<T>]) -> Vec<[f64; 3]> {
+    states.iter().map(|s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]).collect()
+}
+
+fn block_on_block<T: Real>(p: BlockOnBlockParams<f64>) -> Measured {
+    let mut scene = BlockOnBlock::new(p.cast::<T>()).expect("valid parameters");
+    let mut max = 0.0;
+    let mut last = Vec::new();
+    let outcome = scene.run(|r| {
+        max_vx(r, &mut max);
+        last = forces(r);
+    });
+    Measured {
+        outcome,
+        steps: scene.stepper().stats().steps,
+        accelerations: scene.accelerations().map(|a| a.map(Real::as_f64)),
+        max_vx: max,
+        q: positions(scene.stepper().states()),
+        forces: last,
+    }
+}
+
+fn tablecloth<T: Real>(p: TableclothParams<f64>) -> (Measured, f64) {
+    let mut scene = Tablecloth::new(p.cast::<T>()).expect("valid parameters");
+    let mut max = 0.0;
+    let mut last = Vec::new();
+    let outcome = scene.run(|r| {
+        max_vx(r, &mut max);
+        last = forces(r);
+    });
+    let measured = Measured {
+        outcome,
+        steps: scene.stepper().stats().steps,
+        accelerations: scene.accelerations().map(|a| a.map(Real::as_f64)),
+        max_vx: max,
+        q: positions(scene.stepper().states()),
+        forces: last,
+    };
+    (measured, scene.block_displacement().as_f64())
+}
+
+/// A stack's run: outcome, `max_speed`, the last step's interface forces `(x, y)` per pair, the end
+/// positions.
+fn stack<T: Real, const B: usize, const N: usize>(
+    p: StackParams<f64>,
+) -> (Outcome, f64, Vec<[f64; 2]>, Vec<[f64; 3]>) {
+    let mut scene = Stack::<T, B, N>::new(p.cast::<T>()).expect("valid parameters");
+    let mut forces = Vec::new();
+    let outcome =
+        scene.run(|r| forces = r.interface_forces.iter().map(|f| [f[0].as_f64(), f[1].as_f64()]).collect());
+    (outcome, scene.max_speed().as_f64(), forces, positions(scene.stepper().states()))
+}
+
+/// The tolerance on an acceleration from the laws (m/s^2): f64 `1e-9` (measured 8.7e-14 at
+/// worst on block-on-block); f32 `2e-4` (measured 2.8e-5: velocities of ~3 m/s carry ~2e-7 m/s
+/// of round-off per step, differenced over 0.3 s).
+fn acceleration_tolerance<T: Real>() -> f64 {
+    if T::BYTES == 8 { 1e-9 } else { 2e-4 }
+}
+
+/// The largest speed a held run may reach: f64 `1e-12` m/s, f32 `1e-5` m/s (round-off).
+fn rest_speed<T: Real>() -> f64 {
+    if T::BYTES == 8 { 1e-12 } else { 1e-5 }
+}
+
+fn block_on_block_laws<T: Real>() {
+    let d = BlockOnBlockParams::<f64>::default();
+    let (g, m, big_m) = (d.gravity, d.top_mass, d.bottom_mass);
+    let held = d.mu_floor * (big_m + m) * g;
+    let sliding = (d.mu_static + d.mu_floor) * (big_m + m) * g;
+    let tol = acceleration_tolerance::<T>();
+    for (force, expected) in [
+        (0.5 * held, Outcome::Held),
+        (0.98 * held, Outcome::Held),
+        (1.02 * held, Outcome::Rode),
+        (0.5 * (held + sliding), Outcome::Rode),
+        (0.98 * sliding, Outcome::Rode),
+        (1.02 * sliding, Outcome::Slid),
+        (1.5 * sliding, Outcome::Slid),
+        (3.0 * sliding, Outcome::Slid),
+    ] {
+        let run = block_on_block::<T>(BlockOnBlockParams { force, ..d });
+        assert_eq!(run.outcome, expected, "{} F = {force}: {run:?}", T::NAME);
+        let [a_bottom, a_top] = run.accelerations.expect("both blocks in full contact");
+        let (want_bottom, want_top) = match expected {
+            Outcome::Held => {
+                assert!(
+                    run.max_vx < rest_speed::<T>(),
+                    "{} F = {force}: held at {} m/s",
+                    T::NAME,
+                    run.max_vx
+                );
+                (0.0, 0.0)
+            }
+            Outcome::Rode => {
+                let a = force / (big_m + m) - d.mu_floor * g;
+                (a, a)
+            }
+            _ => ((force - d.mu_kinetic * m * g - d.mu_floor * (big_m + m) * g) / big_m, d.mu_kinetic * g),
+        };
+        assert!(
+            (a_bottom - want_bottom).abs() < tol && (a_top - want_top).abs() < tol,
+            "{} F = {force}: a_bottom {a_bottom} (law {want_bottom}), a_top {a_top} (law {want_top})",
+            T::NAME
+        );
+        // Held or riding, the top block sticks on two corners (statically indeterminate); the
+        // summed force on it is decided: (m a, m g) at the end.
+        if expected != Outcome::Slid {
+            let [fx, fy] = run.forces[1];
+            let force_tol = if T::BYTES == 8 { 1e-9 } else { 1e-3 };
+            assert!(
+                (fx - m * want_top).abs() < force_tol && (fy - m * g).abs() < force_tol,
+                "{} F = {force}: interface force ({fx}, {fy}), law ({}, {})",
+                T::NAME,
+                m * want_top,
+                m * g
+            );
+        }
+    }
+    // A tall top block tips when g w / h < a <= mu_s g.
+    let tall = BlockOnBlockParams { top_width: 0.05, top_height: 0.2, max_time: 1.0, ..d };
+    let tipping = (big_m + m) * (g * tall.top_width / tall.top_height + d.mu_floor * g);
+    assert!(tipping < 1.2 * tipping && 1.2 * tipping < sliding, "tipping comes before sliding");
+    for (factor, expected) in
+        [(0.9, Outcome::Rode), (0.97, Outcome::Rode), (1.03, Outcome::Tipped), (1.2, Outcome::Tipped)]
+    {
+        let run = block_on_block::<T>(BlockOnBlockParams { force: factor * tipping, ..tall });
+        assert_eq!(run.outcome, expected, "{} {factor} of the tipping force: {run:?}", T::NAME);
+    }
+}
+
+#[test]
+fn block_on_block_follows_its_laws_in_f64() {
+    block_on_block_laws::<f64>();
+}
+
+#[test]
+fn block_on_block_follows_its_laws_in_f32() {
+    block_on_block_laws::<f32>();
+}
+
+fn tablecloth_laws<T: Real>() {
+    let d = TableclothParams::<f64>::default();
+    let (g, m, mb) = (d.gravity, d.block_mass, d.board_mass);
+    let held = d.mu_floor * (m + mb) * g;
+    let riding = (d.mu_static + d.mu_floor) * (m + mb) * g;
+    let tol = acceleration_tolerance::<T>();
+    for (force, expected) in [
+        (0.5 * held, Outcome::Held),
+        (0.98 * held, Outcome::Held),
+        (1.02 * held, Outcome::Rode),
+        (0.98 * riding, Outcome::Rode),
+    ] {
+        let (run, _) = tablecloth::<T>(TableclothParams { force, max_time: 0.3, ..d });
+        assert_eq!(run.outcome, expected, "{} F = {force}: {run:?}", T::NAME);
+        let [a_board, a_block] = run.accelerations.expect("full contact");
+        let a = if expected == Outcome::Held { 0.0 } else { force / (m + mb) - d.mu_floor * g };
+        assert!(
+            (a_board - a).abs() < tol && (a_block - a).abs() < tol,
+            "{} F = {force}: a_board {a_board}, a_block {a_block}, law {a}",
+            T::NAME
+        );
+        if expected == Outcome::Held {
+            assert!(run.max_vx < rest_speed::<T>(), "{} F = {force}: held at {} m/s", T::NAME, run.max_vx);
+        }
+    }
+    // Above the riding force the board comes out and the block stays: pulling harder moves it less.
+    let stop = |v: f64| v.max(0.0).powi(2) / (2.0 * d.mu_floor * g);
+    let mut previous = f64::INFINITY;
+    for factor in [1.03, 1.5, 3.0, 6.0, 12.0] {
+        let force = factor * riding;
+        let (run, displacement) = tablecloth::<T>(TableclothParams { force, ..d });
+        assert_eq!(run.outcome, Outcome::Stayed, "{} {factor} of the riding force: {run:?}", T::NAME);
+        let [a_board, a_block] = run.accelerations.expect("full contact");
+        let want_board = (force - d.mu_kinetic * m * g - d.mu_floor * (m + mb) * g) / mb;
+        let want_block = d.mu_kinetic * g;
+        let relative = if T::BYTES == 8 { 1e-9 } else { 1e-3 };
+        assert!(
+            (a_board - want_board).abs() < relative * want_board
+                && (a_block - want_block).abs() < relative * want_block,
+            "{} {factor}: a_board {a_board} (law {want_board}), a_block {a_block} (law {want_block})",
+            T::NAME
+        );
+        let a_rel = want_board - want_block;
+        let x = |s: f64| want_block * s / a_rel;
+        let v = |s: f64| want_block * (2.0 * s / a_rel).sqrt();
+        let (near, far) = (d.offset, d.offset + d.block_width);
+        let low = x(near) + stop(v(near) - d.mu_floor * (2.0 * g * d.board_thickness).sqrt());
+        let high = x(far) + v(far) * (2.0 * d.board_thickness / g).sqrt() + stop(v(far));
+        assert!(
+            low <= displacement && displacement <= high && displacement < previous,
+            "{} {factor}: displacement {displacement} outside [{low}, {high}] or not below {previous}",
+            T::NAME
+        );
+        previous = displacement;
+    }
+}
+
+#[test]
+fn tablecloth_follows_its_laws_in_f64() {
+    tablecloth_laws::<f64>();
+}
+
+#[test]
+fn tablecloth_follows_its_laws_in_f32() {
+    tablecloth_laws::<f32>();
+}
+
+fn stack_laws<T: Real>() {
+    let d = StackParams::<f64> { max_time: 1.0, ..StackParams::default() };
+    for (overhang, expected) in
+        [(0.9, Outcome::Held), (0.98, Outcome::Held), (1.02, Outcome::Fell), (1.1, Outcome::Fell)]
+    {
+        let p = StackParams { overhang, ..d };
+        let two = stack::<T, 2, 24>(p);
+        let three = stack::<T, 3, 32>(p);
+        for (blocks, (outcome, max_speed, _, _)) in [(2, two), (3, three)] {
+            assert_eq!(outcome, expected, "{} {blocks} blocks at overhang {overhang}", T::NAME);
+            if expected == Outcome::Held {
+                assert!(
+                    max_speed < rest_speed::<T>(),
+                    "{} {blocks} blocks at {overhang}: {max_speed} m/s",
+                    T::NAME
+                );
+            }
+        }
+    }
+}
+
+/// Three aligned blocks (`s = 0`, each on both lower corners: every interface statically
+/// indeterminate): held at rest, each interface carrying the weight above it.
+fn aligned_stack_rests<T: Real>() {
+    let d = StackParams::<f64> { overhang: 0.0, max_time: 1.0, ..StackParams::default() };
+    let (outcome, max_speed, forces, _) = stack::<T, 3, 32>(d);
+    assert_eq!(outcome, Outcome::Held);
+    assert!(max_speed < rest_speed::<T>(), "{}: {max_speed} m/s", T::NAME);
+    let weight = d.mass * d.gravity;
+    let tol = if T::BYTES == 8 { 1e-9 } else { 1e-3 };
+    for (i, f) in forces.iter().enumerate() {
+        let carried = (3 - i) as f64 * weight;
+        assert!(f[0].abs() < tol && (f[1] - carried).abs() < tol * carried, "{} pair {i}: {f:?}", T::NAME);
+    }
+}
+
+#[test]
+fn aligned_stack_rests_on_indeterminate_interfaces() {
+    aligned_stack_rests::<f64>();
+    aligned_stack_rests::<f32>();
+}
+
+#[test]
+fn stack_holds_below_the_harmonic_overhang_and_falls_above_it_in_f64() {
+    stack_laws::<f64>();
+}
+
+#[test]
+fn stack_holds_below_the_harmonic_overhang_and_falls_above_it_in_f32() {
+    stack_laws::<f32>();
+}
+
+/// The default 3-block stack over 10 s (10,000 steps): held, its largest speed at round-off, the
+/// table carrying `3 m g` and each interface `i` the `(3 - i) m g` above it (the last step's
+/// summed interface forces). Returns the run.
+fn stack_rests<T: Real>() -> (Outcome, f64, Vec<[f64; 2]>, Vec<[f64; 3]>) {
+    let d = StackParams::<f64>::default();
+    let run = stack::<T, 3, 32>(d);
+    let (outcome, max_speed, ref forces, _) = run;
+    assert_eq!(outcome, Outcome::Held);
+    assert!(max_speed < rest_speed::<T>(), "{}: max speed {max_speed} m/s", T::NAME);
+    let weight = d.mass * d.gravity;
+    let tol = if T::BYTES == 8 { 1e-9 } else { 1e-3 };
+    for (i, f) in forces.iter().enumerate() {
+        let carried = (3 - i) as f64 * weight;
+        assert!(
+            f[0].abs() < tol && (f[1] - carried).abs() < tol * carried,
+            "{} pair {i}: {f:?}, want {carried}",
+            T::NAME
+        );
+    }
+    println!("3-block stack at overhang 0.98, 10 s, {}: max speed {max_speed:e} m/s", T::NAME);
+    run
+}
+
+#[test]
+fn three_block_stack_rests_for_ten_seconds_in_f32() {
+    stack_rests::<f32>();
+}
+
+/// Positions of the core in f64 within this of the reference's (m, rad) on the default runs
+/// (measured: block-on-block 1.5e-13, tablecloth 7.1e-13, stack 5.3e-16).
+const REFERENCE_TOLERANCE: f64 = 1e-9;
+
+fn assert_positions_near(scene: &str, core: &[[f64; 3]], reference: &[[f64; 3]], tol: f64) {
+    assert_eq!(core.len(), reference.len());
+    for (c, r) in core.iter().zip(reference) {
+        for k in 0..3 {
+            assert!((c[k] - r[k]).abs() < tol, "{scene}: core {c:?}, reference {r:?} (tolerance {tol})");
+        }
+    }
+}
+
+fn reference_run(spec: reference::Spec) -> reference::Run {
+    reference::run(&spec).expect("the reference's defaults are valid")
+}
+
+#[test]
+fn block_on_block_matches_the_reference() {
+    let r = reference_run(reference::Spec::BlockOnBlock(reference::BlockOnBlock::default()));
+    let core = block_on_block::<f64>(BlockOnBlockParams::default());
+    assert_eq!(r.outcome, reference::Outcome::Slid);
+    assert_eq!(core.outcome, Outcome::Slid);
+    assert_eq!(u64::from(core.steps), r.steps);
+    assert_positions_near("block-on-block", &core.q, &r.q, REFERENCE_TOLERANCE);
+    let [a_bottom, a_top] = core.accelerations.expect("measured");
+    let (ra_bottom, ra_top) =
+        (r.lower_acceleration.expect("measured"), r.upper_acceleration.expect("measured"));
+    assert!((a_bottom - ra_bottom).abs() < 1e-9 && (a_top - ra_top).abs() < 1e-9);
+    // f32 against the reference: the same outcome, positions within 1e-5 m (measured 1.1e-6).
+    let f32_run = block_on_block::<f32>(BlockOnBlockParams::default());
+    assert_eq!(f32_run.outcome, Outcome::Slid);
+    assert_positions_near("block-on-block f32", &f32_run.q, &r.q, 1e-5);
+}
+
+#[test]
+fn tablecloth_matches_the_reference() {
+    let r = reference_run(reference::Spec::Tablecloth(reference::Tablecloth::default()));
+    let (core, displacement) = tablecloth::<f64>(TableclothParams::default());
+    assert_eq!(r.outcome, reference::Outcome::Stayed);
+    assert_eq!(core.outcome, Outcome::Stayed);
+    assert_eq!(u64::from(core.steps), r.steps);
+    assert_positions_near("tablecloth", &core.q, &r.q, REFERENCE_TOLERANCE);
+    assert!((displacement - r.block_displacement.expect("measured")).abs() < REFERENCE_TOLERANCE);
+    let (f32_run, f32_displacement) = tablecloth::<f32>(TableclothParams::default());
+    assert_eq!(f32_run.outcome, Outcome::Stayed);
+    // Measured 3.3e-6 m apart.
+    assert!(
+        (f32_displacement - displacement).abs() < 3e-5,
+        "f32 displacement {f32_displacement}, f64 {displacement}"
+    );
+}
+
+/// The default stack (10 s) in f64: the laws of [`stack_rests`], and the reference's positions,
+/// largest speed and interface forces.
+#[test]
+fn three_block_stack_rests_for_ten_seconds_in_f64_as_the_reference() {
+    let r = reference_run(reference::Spec::Stack(reference::Stack::default()));
+    let (_, max_speed, forces, q) = stack_rests::<f64>();
+    assert_eq!(r.outcome, reference::Outcome::Held);
+    assert_positions_near("stack", &q, &r.q, REFERENCE_TOLERANCE);
+    assert!(max_speed < 1e-12 && r.max_speed < 1e-12);
+    for (c, f) in forces.iter().zip(&r.interface_forces) {
+        assert!(
+            (c[0] - f[0]).abs() < 1e-9 && (c[1] - f[1]).abs() < 1e-9,
+            "interface force {c:?}, reference {f:?}"
+        );
+    }
+    // The aliases are the generic type at its capacities.
+    let _: fn(StackParams<f64>) -> Result<Stack2<f64>, _> = Stack::<f64, 2, 24>::new;
+    let _: fn(StackParams<f64>) -> Result<Stack3<f64>, _> = Stack::<f64, 3, 32>::new;
+}
+
+#[test]
+fn invalid_parameters_are_refused_by_name() {
+    use meterstick_core::ParamError;
+    let d = BlockOnBlockParams::<f64>::default();
+    assert_eq!(
+        BlockOnBlock::new(BlockOnBlockParams { top_width: 0.5, ..d }).err(),
+        Some(ParamError::OutOfRange("top_width"))
+    );
+    assert_eq!(
+        BlockOnBlock::new(BlockOnBlockParams { mu_kinetic: 0.6, ..d }).err(),
+        Some(ParamError::KineticAboveStatic)
+    );
+    assert_eq!(
+        BlockOnBlock::new(BlockOnBlockParams { force: f64::NAN, ..d }).err(),
+        Some(ParamError::NonFinite("force"))
+    );
+    let t = TableclothParams::<f64>::default();
+    assert_eq!(
+        Tablecloth::new(TableclothParams { offset: 0.99, ..t }).err(),
+        Some(ParamError::OutOfRange("offset"))
+    );
+    assert_eq!(
+        Tablecloth::new(TableclothParams { contact_margin: 0.005, ..t }).err(),
+        Some(ParamError::OutOfRange("contact_margin"))
+    );
+    let s = StackParams::<f64>::default();
+    assert_eq!(
+        Stack3::new(StackParams { overhang: 6.0, ..s }).err(),
+        Some(ParamError::OutOfRange("overhang"))
+    );
+    assert_eq!(Stack3::new(StackParams { step: 20.0, ..s }).err(), Some(ParamError::OutOfRange("step")));
+}
+
+/// Two equal boxes, one exactly on the other, on a floor; `force` pulls the lower one.
+fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
+    let block = Body::block(1.0, 0.2, 0.1);
+    let system = System {
+        bodies: [block; 2],
+        table: Table::floor(),
+        pairs: [
+            Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 },
+            Pair { upper: 1, lower: Support::Body(0), mu_static: 0.5, mu_kinetic: 0.5 },
+        ],
+        forces: [[force, 0.0], [0.0; 2]],
+        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+    };
+    Stepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
+        .expect("a valid system")
+}
+
+/// The activity rule (`docs/formulation.md`, "The corner-on-face contact"): the upper box's
+/// corners over the lower one's top face count with its ends included, the lower box's corners
+/// under the upper one's lower face only strictly inside it, so aligned edges make one contact
+/// each, the upper box's; a table end is a corner only where the table has one.
+#[test]
+fn aligned_edges_make_one_contact_each() {
+    let stepper = aligned_pair::<32>(0.0);
+    let active = |p: usize| stepper.frames()[p].map(|f| f.active);
+    assert_eq!(active(0), [true, true, false, false], "an endless floor has no corners");
+    assert_eq!(active(1), [true, true, false, false], "aligned edges: the upper box's corners only");
+    assert!(stepper.modes().iter().flatten().filter(|m| **m == ContactMode::Sticking).count() == 4);
+    // A table ending under the box's middle: its corner is under the lower face, the right corner
+    // is past the end.
+    let block = Body::block(1.0, 0.2, 0.1);
+    let system = System {
+        bodies: [block],
+        table: Table { lo: None, hi: Some(0.05) },
+        pairs: [Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 }],
+        forces: [[0.0; 2]],
+        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+    };
+    let edge = Stepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, 0.05, 0.0)]).expect("valid");
+    assert_eq!(edge.frames()[0].map(|f| f.active), [true, false, false, true]);
+}
+
+/// Failure is a typed error and leaves the state as it was: more active contacts than the LCP
+/// holds; a non-finite force.
+#[test]
+fn a_failed_step_is_a_typed_error() {
+    let mut small = aligned_pair::<12>(0.0);
+    let before = *small.states();
+    assert_eq!(small.step().err(), Some(StepError::TooManyContacts(4)));
+    assert_eq!(*small.states(), before);
+    let mut broken = aligned_pair::<16>(f64::NAN);
+    assert_eq!(broken.step().err(), Some(StepError::Solver(LcpError::NonFiniteInput)));
+    assert_eq!(*broken.states(), before);
+    // The same system with room for its four contacts steps, the pull held by the floor.
+    let mut ok = aligned_pair::<16>(5.0);
+    let report = ok.step().expect("a step");
+    assert_eq!(report.active, 4);
+    let [fx, fy] = report.interface_forces[0];
+    assert!((fx + 5.0).abs() < 1e-9 && (fy - 2.0 * 9.81).abs() < 1e-9, "floor force ({fx}, {fy})");
+}
