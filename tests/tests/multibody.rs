@@ -340,7 +340,7 @@ fn assert_positions_near(scene: &str, core: &[[f64; 3]], reference: &[[f64; 3]],
 }
 
 fn reference_run(spec: reference::Spec) -> reference::Run {
-    reference::run(&spec).expect("the reference's defaults are valid")
+    reference::run(&spec, meterstick_reference::Sample::None).expect("the reference's defaults are valid")
 }
 
 #[test]
