@@ -91,8 +91,10 @@
 //! its range, such as a step longer than the run or a rod as thick as it is long, and a mass and
 //! size whose moment of inertia the rig's precision cannot hold; both were `Other`).
 //!
-//! Version 5: `OutcomeCode::Rolled` and `OutcomeCode::Jammed`, so that every outcome of the
-//! core crosses the link as itself (a run ending in either was reported as `Unfinished`).
+//! Version 5: `OutcomeCode::Rolled`, `OutcomeCode::Jammed`, `OutcomeCode::Rode` and
+//! `OutcomeCode::Stayed`, so that every outcome of the core crosses the link as itself (a run
+//! ending in `Rolled` or `Jammed` was reported as `Unfinished`; `Rode` and `Stayed` are the
+//! scenes of several bodies').
 //!
 //! ## Errors and counting
 //!

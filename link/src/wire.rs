@@ -211,6 +211,12 @@ pub enum OutcomeCode {
     /// A sliding end stopped within one step under an impulsive friction (Painlevé's rod).
     /// Since version 5.
     Jammed,
+    /// The lower body slid on the floor with the upper one riding on it, never sliding
+    /// (block-on-block, the tablecloth). Since version 5.
+    Rode,
+    /// The board came out from under the block, which came to rest behind it (the tablecloth).
+    /// Since version 5.
+    Stayed,
 }
 
 /// The rig's run state ([`Report::State`]).

@@ -1,8 +1,10 @@
 //! Every outcome of the core crosses the rig's link as itself: the rig's code for it
 //! (`meterstick_rig::session::outcome_code`), read back by the host
 //! (`meterstick_host_sim::monitor::outcome_of`), is the outcome the core ended in. Until link
-//! protocol 5 a cylinder's `Rolled` and Painlevé's `Jammed` arrived as `Unfinished`.
+//! protocol 5 a cylinder's `Rolled` and Painlevé's `Jammed` arrived as `Unfinished`; the scenes of
+//! several bodies' `Rode` and `Stayed` are in version 5 too.
 
+use meterstick_core::multibody::StepError as MultibodyStepError;
 use meterstick_core::planar::StepError;
 use meterstick_core::scene::{Outcome, OutcomeKind};
 use meterstick_host_sim::monitor::outcome_of;
@@ -22,6 +24,8 @@ const fn outcome_of_kind(kind: OutcomeKind) -> Outcome {
         OutcomeKind::Jammed => Outcome::Jammed,
         OutcomeKind::Unfinished => Outcome::Unfinished,
         OutcomeKind::Failed => Outcome::Failed(StepError::NonFinite),
+        OutcomeKind::Rode => Outcome::Rode,
+        OutcomeKind::Stayed => Outcome::Stayed,
     }
 }
 
@@ -56,6 +60,11 @@ fn failed_steps_keep_their_cause() {
     assert_eq!(
         outcome_code(Outcome::Failed(StepError::ReducedModelLeftRange)),
         OutcomeCode::ReducedModelLeftRange
+    );
+    assert_eq!(outcome_code(Outcome::MultibodyFailed(MultibodyStepError::NonFinite)), OutcomeCode::NonFinite);
+    assert_eq!(
+        outcome_code(Outcome::MultibodyFailed(MultibodyStepError::TooManyContacts(7))),
+        OutcomeCode::SolverFailed
     );
     let failed = outcome_of(OutcomeCode::SolverFailed);
     assert_eq!(failed.class, OutcomeKind::Failed);

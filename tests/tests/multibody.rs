@@ -6,11 +6,11 @@
 use meterstick_core::Real;
 use meterstick_core::lcp::LcpError;
 use meterstick_core::multibody::scenes::{
-    BlockOnBlock, BlockOnBlockParams, Outcome, Stack, Stack2, Stack3, StackParams, Tablecloth,
-    TableclothParams,
+    BlockOnBlock, BlockOnBlockParams, Stack, Stack2, Stack3, StackParams, Tablecloth, TableclothParams,
 };
 use meterstick_core::multibody::{Pair, Settings, StepError, StepReport, Stepper, Support, System, Table};
 use meterstick_core::planar::{Body, BodyState, ContactMode};
+use meterstick_core::scene::Outcome;
 use meterstick_reference::multibody as reference;
 
 /// What a run measured, in f64.

@@ -329,6 +329,7 @@ export class SceneView {
       g.font = '800 40px system-ui, "DejaVu Sans", sans-serif';
       const color = {
         Balanced: COLORS.balanced, Held: COLORS.balanced, Rolled: COLORS.balanced,
+        Rode: COLORS.balanced, Stayed: COLORS.balanced,
         Fell: COLORS.fell, Tipped: COLORS.fell, Jammed: COLORS.fell, Failed: COLORS.fell,
       }[text] || '#8a6200';
       const tw = g.measureText(text).width;

@@ -7,7 +7,8 @@
 //!   with four candidate contacts, [`Candidate`]), external forces and [`Settings`].
 //! * [`Stepper`]: the step (activity rule, assembly per unit reference mass, warm-started verified
 //!   solve, compensated integration, contact modes), each pair's summed interface force.
-//! * [`scenes`]: block-on-block, the tablecloth and the stack, with their own [`scenes::Outcome`].
+//! * [`scenes`]: block-on-block, the tablecloth and the stack, returning the one
+//!   [`crate::scene::Outcome`].
 //!
 //! A single-body scene compiles none of this: nothing outside this module refers to it.
 

@@ -11,12 +11,14 @@ pub enum Outcome {
     /// them for the hold time.
     Balanced,
     /// Meter stick: the rod tipped, dropped or left both fingers. Ladder: its top reached the floor.
+    /// Stack: a block tilted or dropped.
     Fell,
-    /// Incline, ladder: the body never slid (it stands).
+    /// Incline, ladder: the body never slid (it stands). Block-on-block, tablecloth: nothing slid;
+    /// stack: nothing fell.
     Held,
-    /// Incline: the block slid down the slope.
+    /// Incline: the block slid down the slope. Block-on-block: the top block slid on the bottom one.
     Slid,
-    /// Incline: the block tipped over its lower edge.
+    /// Incline: the block tipped over its lower edge. Block-on-block: the top block tipped.
     Tipped,
     /// Cylinder: it rolled down the slope without slipping.
     Rolled,
@@ -27,6 +29,14 @@ pub enum Outcome {
     Unfinished,
     /// A step failed (the state is that before it).
     Failed(StepError),
+    /// Block-on-block, tablecloth: the lower body slid on the floor with the upper one riding on
+    /// it, never sliding.
+    Rode,
+    /// Tablecloth: the board came out from under the block, which came to rest behind it.
+    Stayed,
+    /// A step of a scene of several bodies failed ([`crate::multibody::StepError`]; the state is
+    /// that before it). Its kind is [`OutcomeKind::Failed`].
+    MultibodyFailed(crate::multibody::StepError),
 }
 
 /// An [`Outcome`] without its cause: the one list of outcomes every driver names and numbers
@@ -51,13 +61,17 @@ pub enum OutcomeKind {
     Jammed,
     /// See [`Outcome::Unfinished`].
     Unfinished,
-    /// See [`Outcome::Failed`].
+    /// See [`Outcome::Failed`] and [`Outcome::MultibodyFailed`].
     Failed,
+    /// See [`Outcome::Rode`].
+    Rode,
+    /// See [`Outcome::Stayed`].
+    Stayed,
 }
 
 impl OutcomeKind {
     /// Every outcome, in the order of their codes ([`Self::code`]).
-    pub const ALL: [Self; 9] = [
+    pub const ALL: [Self; 11] = [
         Self::Balanced,
         Self::Fell,
         Self::Held,
@@ -67,9 +81,12 @@ impl OutcomeKind {
         Self::Jammed,
         Self::Unfinished,
         Self::Failed,
+        Self::Rode,
+        Self::Stayed,
     ];
 
-    /// A short stable name: `Balanced`, `Fell`, `Held`, `Slid`, `Tipped`, `Unfinished`, `Failed`.
+    /// A short stable name: `Balanced`, `Fell`, `Held`, `Slid`, `Tipped`, `Rolled`, `Jammed`,
+    /// `Unfinished`, `Failed`, `Rode`, `Stayed`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -82,6 +99,8 @@ impl OutcomeKind {
             Self::Jammed => "Jammed",
             Self::Unfinished => "Unfinished",
             Self::Failed => "Failed",
+            Self::Rode => "Rode",
+            Self::Stayed => "Stayed",
         }
     }
 
@@ -123,11 +142,13 @@ impl Outcome {
             Self::Rolled => OutcomeKind::Rolled,
             Self::Jammed => OutcomeKind::Jammed,
             Self::Unfinished => OutcomeKind::Unfinished,
-            Self::Failed(_) => OutcomeKind::Failed,
+            Self::Failed(_) | Self::MultibodyFailed(_) => OutcomeKind::Failed,
+            Self::Rode => OutcomeKind::Rode,
+            Self::Stayed => OutcomeKind::Stayed,
         }
     }
 
-    /// A short stable name: `Balanced`, `Fell`, `Held`, `Slid`, `Tipped`, `Unfinished`, `Failed`.
+    /// A short stable name ([`OutcomeKind::name`]).
     #[must_use]
     pub const fn name(&self) -> &'static str {
         self.kind().name()
@@ -136,7 +157,7 @@ impl Outcome {
     /// `true` for an outcome of the physics (not a failed step).
     #[must_use]
     pub const fn is_physical(&self) -> bool {
-        !matches!(self, Self::Failed(_))
+        !matches!(self, Self::Failed(_) | Self::MultibodyFailed(_))
     }
 }
 
@@ -146,10 +167,17 @@ impl From<StepError> for Outcome {
     }
 }
 
+impl From<crate::multibody::StepError> for Outcome {
+    fn from(e: crate::multibody::StepError) -> Self {
+        Self::MultibodyFailed(e)
+    }
+}
+
 impl core::fmt::Display for Outcome {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Self::Failed(e) => write!(f, "Failed ({e})"),
+            Self::MultibodyFailed(e) => write!(f, "Failed ({e})"),
             other => f.write_str(other.name()),
         }
     }

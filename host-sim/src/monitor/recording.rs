@@ -74,6 +74,8 @@ pub fn outcome_of(o: OutcomeCode) -> RunOutcome {
         OutcomeCode::Tipped => RunOutcome::of(OutcomeKind::Tipped),
         OutcomeCode::Rolled => RunOutcome::of(OutcomeKind::Rolled),
         OutcomeCode::Jammed => RunOutcome::of(OutcomeKind::Jammed),
+        OutcomeCode::Rode => RunOutcome::of(OutcomeKind::Rode),
+        OutcomeCode::Stayed => RunOutcome::of(OutcomeKind::Stayed),
         OutcomeCode::Unfinished => RunOutcome::of(OutcomeKind::Unfinished),
         other => RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("{other:?}")) },
     }

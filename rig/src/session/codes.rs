@@ -1,6 +1,7 @@
 //! The core's and the rig's values as the link names them, and back (the presets).
 
 use meterstick_core::ParamError;
+use meterstick_core::multibody::StepError as MultibodyStepError;
 use meterstick_core::planar::{ContactMode, Direction, StepError};
 use meterstick_core::scene::{Outcome, OutcomeKind};
 use meterstick_link::{ErrorCode, Mode, OutcomeCode, ParamId, RejectReason, RigState};
@@ -42,8 +43,10 @@ const fn step_error_code(e: StepError) -> OutcomeCode {
 #[inline]
 #[must_use]
 pub const fn outcome_code(o: Outcome) -> OutcomeCode {
-    if let Outcome::Failed(e) = o {
-        return step_error_code(e);
+    match o {
+        Outcome::Failed(e) => return step_error_code(e),
+        Outcome::MultibodyFailed(MultibodyStepError::NonFinite) => return OutcomeCode::NonFinite,
+        _ => {}
     }
     match o.kind() {
         OutcomeKind::Balanced => OutcomeCode::Balanced,
@@ -54,7 +57,10 @@ pub const fn outcome_code(o: Outcome) -> OutcomeCode {
         OutcomeKind::Rolled => OutcomeCode::Rolled,
         OutcomeKind::Jammed => OutcomeCode::Jammed,
         OutcomeKind::Unfinished => OutcomeCode::Unfinished,
-        // `Outcome::Failed` returned above; its kind is the only one left.
+        OutcomeKind::Rode => OutcomeCode::Rode,
+        OutcomeKind::Stayed => OutcomeCode::Stayed,
+        // `Outcome::Failed` returned above; a failed step of several bodies other than a
+        // non-finite state is the solver's (its LCP or more contacts than it holds).
         OutcomeKind::Failed => OutcomeCode::SolverFailed,
     }
 }

@@ -133,7 +133,7 @@ impl<T: Real> BlockOnBlock<T> {
         let report = match self.stepper.step() {
             Ok(report) => report,
             Err(e) => {
-                self.outcome = Some(Outcome::Failed(e));
+                self.outcome = Some(Outcome::MultibodyFailed(e));
                 return None;
             }
         };

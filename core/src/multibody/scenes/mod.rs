@@ -1,8 +1,8 @@
 //! The scenes of several bodies (`docs/scenes.md`, "Scenes of several bodies"): [`BlockOnBlock`],
 //! [`Tablecloth`] and [`Stack`], each with its parameters, validity rules, outcome and measures.
 //!
-//! Their outcomes are [`Outcome`], this module's own list: `crate::scene::Outcome` has no `Rode`
-//! nor `Stayed`. They do not implement `crate::scene::Scene`, which is shaped for one body (its
+//! Their outcomes are the one list's, [`Outcome`] (`crate::scene::Outcome`; a failed step is
+//! [`Outcome::MultibodyFailed`]). They do not implement `crate::scene::Scene`, which is shaped for one body (its
 //! `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact); each has
 //! `step()` and `run()` of its own returning [`super::StepReport`] (every body's state, each
 //! pair's interface force).
@@ -15,47 +15,8 @@ pub use block_on_block::{BLOCK_ON_BLOCK_ROWS, BlockOnBlock, BlockOnBlockParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
-use super::stepper::StepError;
 use crate::real::Real;
-
-/// How a multibody run ended (`docs/scenes.md`, each scene's "Outcome").
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Outcome {
-    /// Nothing slid (block-on-block, tablecloth) or nothing fell (stack) by `max_time`.
-    Held,
-    /// The lower body slid on the floor with the upper one riding on it, never sliding.
-    Rode,
-    /// Block-on-block: the top block slid on the bottom one.
-    Slid,
-    /// Block-on-block: the top block tipped.
-    Tipped,
-    /// Tablecloth: the board came out from under the block, which came to rest behind it.
-    Stayed,
-    /// Stack: a block tilted or dropped.
-    Fell,
-    /// `max_time` passed and no other outcome applies.
-    Unfinished,
-    /// A step failed (the state is that before it).
-    Failed(StepError),
-}
-
-impl Outcome {
-    /// A short stable name.
-    #[must_use]
-    pub const fn name(&self) -> &'static str {
-        match self {
-            Self::Held => "held",
-            Self::Rode => "rode",
-            Self::Slid => "slid",
-            Self::Tipped => "tipped",
-            Self::Stayed => "stayed",
-            Self::Fell => "fell",
-            Self::Unfinished => "unfinished",
-            Self::Failed(_) => "failed",
-        }
-    }
-}
+use crate::scene::Outcome;
 
 /// The accelerations along `x` of a lower and an upper body while both are in full contact
 /// (`docs/scenes.md`, block-on-block, "Measured"): `(vx(t_2) - vx(t_1)) / (t_2 - t_1)` over the

@@ -140,7 +140,7 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
         let report = match self.stepper.step() {
             Ok(report) => report,
             Err(e) => {
-                self.outcome = Some(Outcome::Failed(e));
+                self.outcome = Some(Outcome::MultibodyFailed(e));
                 return None;
             }
         };
