@@ -25,6 +25,7 @@ pub mod input;
 pub mod lcp_io;
 pub mod map;
 pub mod monitor;
+pub mod multibody;
 pub mod output;
 pub mod plot;
 pub mod progress;

@@ -33,7 +33,8 @@ pub trait ParamsExt {
     fn validate(&self, precision: Precision) -> Result<(), ParamError>;
 
     /// The same scene for the independent reference (its own parameter types: data only);
-    /// `None` for a scene the reference does not implement (every catalogue scene has one).
+    /// `None` for a scene the single-body reference does not implement (a scene of several
+    /// bodies: `crate::multibody::to_reference`).
     fn to_reference(&self) -> Option<crate::reference::Spec>;
 }
 
@@ -136,6 +137,7 @@ impl ParamsExt for SceneParams {
                 stick_speed: p.stick_speed,
                 max_time: p.max_time,
             }),
+            Self::BlockOnBlock(_) | Self::Tablecloth(_) | Self::Stack(_) => return None,
         })
     }
 }

@@ -12,6 +12,7 @@ use core::fmt;
 use super::{
     CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
 };
+use crate::multibody::scenes::{BlockOnBlockParams, StackParams, TableclothParams};
 use crate::params::ParamError;
 use crate::real::Real;
 
@@ -31,6 +32,12 @@ pub enum SceneKind {
     Cylinder,
     /// Painlevé's paradox: a rod whose end slides on a rough floor jams.
     Painleve,
+    /// A block on a block pulled along a floor (several bodies, [`crate::multibody`]).
+    BlockOnBlock,
+    /// A board pulled from under a block (several bodies).
+    Tablecloth,
+    /// Two or three blocks stacked over a table's edge (several bodies).
+    Stack,
 }
 
 /// The most quantities a scene measures ([`super::Scene::measured`]; `meterstick-catalogue` names
@@ -39,8 +46,17 @@ pub const MAX_MEASURES: usize = 3;
 
 impl SceneKind {
     /// Every scene, in the order of their numbers ([`Self::from_index`]).
-    pub const ALL: [Self; 6] =
-        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder, Self::Painleve];
+    pub const ALL: [Self; 9] = [
+        Self::MeterStick,
+        Self::Incline,
+        Self::Ladder,
+        Self::ThreeFingers,
+        Self::Cylinder,
+        Self::Painleve,
+        Self::BlockOnBlock,
+        Self::Tablecloth,
+        Self::Stack,
+    ];
 
     /// The scene's name on the command line and in the page's URL, e.g. `meter-stick`.
     #[must_use]
@@ -52,17 +68,30 @@ impl SceneKind {
             Self::ThreeFingers => "three-fingers",
             Self::Cylinder => "cylinder",
             Self::Painleve => "painleve",
+            Self::BlockOnBlock => "block-on-block",
+            Self::Tablecloth => "tablecloth",
+            Self::Stack => "stack",
         }
     }
 
-    /// Its contacts (`K` of its [`super::Scene`]).
+    /// Its contacts (`K` of its [`super::Scene`]); 0 for a scene of several bodies, whose
+    /// candidate contacts come and go ([`Self::is_multibody`]).
     #[must_use]
     pub const fn contacts(self) -> usize {
         match self {
             Self::MeterStick | Self::Incline | Self::Ladder => 2,
             Self::ThreeFingers => 3,
             Self::Cylinder | Self::Painleve => 1,
+            Self::BlockOnBlock | Self::Tablecloth | Self::Stack => 0,
         }
+    }
+
+    /// `true` for a scene of several bodies ([`crate::multibody`]): it is built by
+    /// [`SceneParams::build_multibody`], not [`SceneParams::build`] (which refuses it), and has
+    /// no LCP layout to choose (its LCP is the full form, sized by its candidate contacts).
+    #[must_use]
+    pub const fn is_multibody(self) -> bool {
+        matches!(self, Self::BlockOnBlock | Self::Tablecloth | Self::Stack)
     }
 
     /// The scene's number (its index in [`Self::ALL`]).
@@ -93,6 +122,9 @@ impl SceneKind {
             Self::ThreeFingers => ThreeFingersParams::<f64>::NAMES,
             Self::Cylinder => CylinderParams::<f64>::NAMES,
             Self::Painleve => PainleveParams::<f64>::NAMES,
+            Self::BlockOnBlock => BlockOnBlockParams::<f64>::NAMES,
+            Self::Tablecloth => TableclothParams::<f64>::NAMES,
+            Self::Stack => &STACK_FIELDS,
         }
     }
 }
@@ -100,6 +132,74 @@ impl SceneKind {
 impl fmt::Display for SceneKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+/// The stack's fields: `blocks`, then [`StackParams`]'s.
+const STACK_FIELDS: [&str; 13] = [
+    "blocks",
+    "length",
+    "height",
+    "mass",
+    "mu",
+    "overhang",
+    "gravity",
+    "step",
+    "stick_speed",
+    "tilt_limit",
+    "drop_limit",
+    "contact_margin",
+    "max_time",
+];
+
+/// The stack's parameters and its number of blocks (the `B` of
+/// [`crate::multibody::scenes::Stack`]: 2 or 3 here), a number as every field is so that it is
+/// set and refused by name like them (`blocks` 2.5 is out of range).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StackSetup {
+    /// The blocks: 2 or 3 (default 3, `docs/scenes.md`).
+    pub blocks: f64,
+    /// The rest.
+    pub params: StackParams<f64>,
+}
+
+impl Default for StackSetup {
+    fn default() -> Self {
+        Self { blocks: 3.0, params: StackParams::default() }
+    }
+}
+
+impl StackSetup {
+    /// The blocks as a count, when it is 2 or 3.
+    #[must_use]
+    pub fn block_count(&self) -> Option<usize> {
+        [2_u8, 3].into_iter().find(|&n| self.blocks.to_bits() == f64::from(n).to_bits()).map(usize::from)
+    }
+
+    /// The stack's rules ([`StackParams::validate`]) in f64 and in `T`, and 2 or 3 blocks.
+    ///
+    /// # Errors
+    /// `OutOfRange("blocks")`, or the core's first complaint.
+    pub fn validate_as<T: Real>(&self) -> Result<(), ParamError> {
+        if !self.blocks.is_finite() {
+            return Err(ParamError::NonFinite("blocks"));
+        }
+        let blocks = self.block_count().ok_or(ParamError::OutOfRange("blocks"))?;
+        self.params.validate(blocks)?;
+        self.params.cast::<T>().validate(blocks)
+    }
+
+    fn get(&self, field: &str) -> Option<f64> {
+        if field == "blocks" { Some(self.blocks) } else { self.params.get(field) }
+    }
+
+    fn set(&mut self, field: &str, value: f64) -> bool {
+        if field == "blocks" {
+            self.blocks = value;
+            true
+        } else {
+            self.params.set(field, value)
+        }
     }
 }
 
@@ -119,6 +219,12 @@ pub enum SceneParams {
     Cylinder(CylinderParams<f64>),
     /// Painlevé's rod.
     Painleve(PainleveParams<f64>),
+    /// Block-on-block.
+    BlockOnBlock(BlockOnBlockParams<f64>),
+    /// The tablecloth.
+    Tablecloth(TableclothParams<f64>),
+    /// The stack.
+    Stack(StackSetup),
 }
 
 impl SceneParams {
@@ -132,6 +238,9 @@ impl SceneParams {
             SceneKind::ThreeFingers => Self::ThreeFingers(ThreeFingersParams::default()),
             SceneKind::Cylinder => Self::Cylinder(CylinderParams::default()),
             SceneKind::Painleve => Self::Painleve(PainleveParams::default()),
+            SceneKind::BlockOnBlock => Self::BlockOnBlock(BlockOnBlockParams::default()),
+            SceneKind::Tablecloth => Self::Tablecloth(TableclothParams::default()),
+            SceneKind::Stack => Self::Stack(StackSetup::default()),
         }
     }
 
@@ -145,6 +254,9 @@ impl SceneParams {
             Self::ThreeFingers(_) => SceneKind::ThreeFingers,
             Self::Cylinder(_) => SceneKind::Cylinder,
             Self::Painleve(_) => SceneKind::Painleve,
+            Self::BlockOnBlock(_) => SceneKind::BlockOnBlock,
+            Self::Tablecloth(_) => SceneKind::Tablecloth,
+            Self::Stack(_) => SceneKind::Stack,
         }
     }
 
@@ -158,6 +270,9 @@ impl SceneParams {
             Self::ThreeFingers(p) => p.get(field),
             Self::Cylinder(p) => p.get(field),
             Self::Painleve(p) => p.get(field),
+            Self::BlockOnBlock(p) => p.get(field),
+            Self::Tablecloth(p) => p.get(field),
+            Self::Stack(p) => p.get(field),
         }
     }
 
@@ -170,6 +285,9 @@ impl SceneParams {
             Self::ThreeFingers(p) => p.set(field, value),
             Self::Cylinder(p) => p.set(field, value),
             Self::Painleve(p) => p.set(field, value),
+            Self::BlockOnBlock(p) => p.set(field, value),
+            Self::Tablecloth(p) => p.set(field, value),
+            Self::Stack(p) => p.set(field, value),
         }
     }
 
@@ -204,6 +322,15 @@ impl SceneParams {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            Self::BlockOnBlock(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Tablecloth(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Stack(p) => p.validate_as::<T>(),
         }
     }
 
@@ -286,11 +413,27 @@ mod tests {
             assert_eq!(SceneKind::from_index(i as u32), Some(kind));
             assert_eq!(SceneKind::from_name(kind.name()), Some(kind));
             assert_eq!(SceneParams::defaults(kind).kind(), kind);
+            assert_eq!(SceneParams::defaults(kind).validate_as::<f32>(), Ok(()), "{kind}");
             for (j, name) in kind.field_names().iter().enumerate() {
                 assert!(SceneParams::defaults(kind).field(j).is_some(), "{kind} {name}");
             }
         }
         assert_eq!(SceneKind::from_index(SceneKind::ALL.len() as u32), None);
+    }
+
+    /// The stack's blocks are a field like any other: 2 or 3, anything else refused by name.
+    #[test]
+    fn the_stack_takes_two_or_three_blocks() {
+        let mut p = SceneParams::defaults(SceneKind::Stack);
+        assert_eq!(SceneKind::Stack.field_names()[1..], *StackParams::<f64>::NAMES);
+        for (blocks, ok) in [(2.0, true), (3.0, true), (1.0, false), (2.5, false), (4.0, false)] {
+            assert!(p.set("blocks", blocks));
+            assert_eq!(p.get("blocks"), Some(blocks));
+            let expected = if ok { Ok(()) } else { Err(ParamError::OutOfRange("blocks")) };
+            assert_eq!(p.validate_as::<f64>(), expected, "{blocks}");
+        }
+        assert!(p.set("blocks", f64::NAN));
+        assert_eq!(p.validate_as::<f64>(), Err(ParamError::NonFinite("blocks")));
     }
 
     /// The finger to blame is the one out of place (it was finger 1 for any finger).

@@ -12,7 +12,9 @@
 //! [`SceneKind`] names them and [`SceneParams`] holds any one's parameters (`kind.rs`; what the
 //! front ends say of them is `meterstick-catalogue`'s);
 //! [`SceneParams::build`] makes any of them, in a [`Precision`] and an [`LcpLayout`], for a
-//! [`SceneVisitor`] (`registry.rs`).
+//! [`SceneVisitor`] (`registry.rs`); the scenes of several bodies ([`crate::multibody::scenes`],
+//! [`SceneKind::is_multibody`]) are [`SceneParams::build_multibody`]'s, for a
+//! [`MultibodyVisitor`].
 //!
 //! All implement [`Scene`] and run to an [`Outcome`]; parameters are validated first ([`crate::ParamError`]); a step that
 //! fails ends the run with [`Outcome::Failed`] and the state before it. A scene of your own is about
@@ -31,13 +33,13 @@ mod three_fingers;
 
 pub use cylinder::{Cylinder, CylinderParams};
 pub use incline::{Incline, InclineParams};
-pub use kind::{MAX_MEASURES, SceneKind, SceneParams};
+pub use kind::{MAX_MEASURES, SceneKind, SceneParams, StackSetup};
 pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
 pub use outcome::{Outcome, OutcomeKind};
 pub use painleve::{Jam, Painleve, PainleveParams};
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use registry::{AnyScene, SceneIn};
-pub use registry::{LcpLayout, Precision, SceneVisitor};
+pub use registry::{LcpLayout, MultibodyVisitor, Precision, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};

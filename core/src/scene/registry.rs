@@ -17,6 +17,7 @@ use super::{Cylinder, Painleve};
 #[cfg(feature = "scenes-k2")]
 use super::{Incline, Ladder};
 use super::{MeterStick, Scene};
+use crate::multibody::scenes::{BlockOnBlock, MultibodyScene, Stack2, Stack3, Tablecloth};
 use crate::params::ParamError;
 use crate::real::Real;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
@@ -129,11 +130,62 @@ pub trait SceneVisitor {
     }
 }
 
+/// What a driver does with a scene of several bodies ([`SceneKind::is_multibody`]), whichever it
+/// is: [`Self::visit`] receives the concrete scene (scalar `T`, `B` bodies, `P` resting pairs)
+/// from [`SceneParams::build_multibody`]. A driver that has no such visitor refuses these scenes
+/// by their kind before anything runs.
+///
+/// [`SceneKind::is_multibody`]: super::SceneKind::is_multibody
+pub trait MultibodyVisitor {
+    /// What the visit gives.
+    type Output;
+
+    /// Drives `scene`.
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+        self,
+        scene: S,
+    ) -> Self::Output;
+}
+
 impl SceneParams {
+    /// A scene of several bodies in `precision`, handed to `visitor` (its LCP is the full form:
+    /// no layout to choose). Generic: a build that never calls it links none of the multibody
+    /// core.
+    ///
+    /// # Errors
+    /// The core's first complaint about the parameters in `precision` (the scene's `new`);
+    /// `OutOfRange("scene")` for a scene of one body ([`Self::build`] builds those), and
+    /// `OutOfRange("blocks")` for a stack of other than 2 or 3 blocks.
+    pub fn build_multibody<V: MultibodyVisitor>(
+        &self,
+        precision: Precision,
+        visitor: V,
+    ) -> Result<V::Output, ParamError> {
+        match precision {
+            Precision::F32 => self.build_multibody_in::<f32, V>(visitor),
+            Precision::F64 => self.build_multibody_in::<f64, V>(visitor),
+        }
+    }
+
+    fn build_multibody_in<T: Real, V: MultibodyVisitor>(&self, visitor: V) -> Result<V::Output, ParamError> {
+        Ok(match *self {
+            Self::BlockOnBlock(p) => visitor.visit(BlockOnBlock::<T>::new(p.cast())?),
+            Self::Tablecloth(p) => visitor.visit(Tablecloth::<T>::new(p.cast())?),
+            Self::Stack(s) => match s.block_count() {
+                Some(2) => visitor.visit(Stack2::<T>::new(s.params.cast())?),
+                Some(3) => visitor.visit(Stack3::<T>::new(s.params.cast())?),
+                _ => return Err(ParamError::OutOfRange("blocks")),
+            },
+            _ => return Err(ParamError::OutOfRange("scene")),
+        })
+    }
+
     /// The scene in `precision` and `layout`, keeping `E` switch events, handed to `visitor`.
     ///
     /// # Errors
-    /// The core's first complaint about the parameters in `precision` (the scene's `new`).
+    /// The core's first complaint about the parameters in `precision` (the scene's `new`);
+    /// `OutOfRange("scene")` for a scene of several bodies ([`Self::build_multibody`] builds
+    /// those) or one this build leaves out.
     pub fn build<const E: usize, V: SceneVisitor>(
         &self,
         precision: Precision,
@@ -377,11 +429,43 @@ mod tests {
         }
     }
 
+    /// Reports what it was given: the scalar's name, the bodies, the pairs and the LCP's rows.
+    struct Bodies;
+
+    impl MultibodyVisitor for Bodies {
+        type Output = (&'static str, usize, usize, usize);
+        fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+            self,
+            _: S,
+        ) -> Self::Output {
+            (T::NAME, B, P, S::ROWS)
+        }
+    }
+
+    /// The scenes of several bodies are built with their bodies, pairs and LCP capacity; the
+    /// stack with the blocks asked for; a scene of one body is not theirs.
+    #[test]
+    fn every_multibody_scene_is_built_as_asked() {
+        let build = |kind, blocks: Option<f64>, precision| {
+            let mut p = SceneParams::defaults(kind);
+            if let Some(b) = blocks {
+                assert!(p.set("blocks", b));
+            }
+            p.build_multibody(precision, Bodies)
+        };
+        assert_eq!(build(SceneKind::BlockOnBlock, None, Precision::F32), Ok(("f32", 2, 2, 24)));
+        assert_eq!(build(SceneKind::Tablecloth, None, Precision::F64), Ok(("f64", 2, 3, 24)));
+        assert_eq!(build(SceneKind::Stack, Some(2.0), Precision::F32), Ok(("f32", 2, 2, 24)));
+        assert_eq!(build(SceneKind::Stack, Some(3.0), Precision::F64), Ok(("f64", 3, 3, 32)));
+        assert_eq!(build(SceneKind::Stack, Some(4.0), Precision::F64), Err(ParamError::OutOfRange("blocks")));
+        assert_eq!(build(SceneKind::Incline, None, Precision::F64), Err(ParamError::OutOfRange("scene")));
+    }
+
     /// Every scene is built in the precision and layout asked for, with its catalogue's contacts
     /// and the LCP size the layout gives them.
     #[test]
     fn every_scene_is_built_as_asked() {
-        for kind in SceneKind::ALL {
+        for kind in SceneKind::ALL.into_iter().filter(|k| !k.is_multibody()) {
             for precision in Precision::ALL {
                 for layout in LcpLayout::ALL {
                     let built = SceneParams::defaults(kind).build::<0, _>(precision, layout, Sizes).unwrap();
@@ -395,7 +479,7 @@ mod tests {
             }
         }
         // Held in place and visited step by step, a scene runs as built and handed over whole.
-        for kind in SceneKind::ALL {
+        for kind in SceneKind::ALL.into_iter().filter(|k| !k.is_multibody()) {
             for precision in Precision::ALL {
                 for layout in LcpLayout::ALL {
                     let params = SceneParams::defaults(kind);
@@ -407,6 +491,13 @@ mod tests {
                     assert_eq!(held.stats().steps, whole.0, "{kind}");
                 }
             }
+        }
+        for kind in SceneKind::ALL.into_iter().filter(|k| k.is_multibody()) {
+            assert_eq!(
+                SceneParams::defaults(kind).build::<0, _>(Precision::F32, LcpLayout::Full, Sizes),
+                Err(ParamError::OutOfRange("scene")),
+                "{kind}"
+            );
         }
         let mut p = SceneParams::defaults(SceneKind::Incline);
         assert!(p.set("mass", -1.0));

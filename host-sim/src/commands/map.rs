@@ -100,6 +100,7 @@ pub fn grid(args: &MapArgs) -> anyhow::Result<Grid> {
 /// # Errors
 /// Bad axes, ranges, cell counts or parameters (before anything runs), or a cell that cannot run.
 pub fn compute(args: &MapArgs) -> anyhow::Result<Map> {
+    crate::multibody::refuse(args.scene.kind(), "host-sim map")?;
     let grid = grid(args)?;
     let specs = args.scene.specs(None)?;
     let [(_, base)] = specs.as_slice() else {

@@ -108,6 +108,7 @@ impl From<Outcome> for RunOutcome {
     fn from(o: Outcome) -> Self {
         match o {
             Outcome::Failed(e) => Self { class: OutcomeKind::Failed, detail: Some(e.to_string()) },
+            Outcome::MultibodyFailed(e) => Self { class: OutcomeKind::Failed, detail: Some(e.to_string()) },
             other => Self::of(other.kind()),
         }
     }
@@ -141,6 +142,17 @@ pub struct Measured {
     /// Painlevé: the jam step's impulses (absent from `summary.json` for other scenes).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub jam: Option<JamImpulses>,
+    /// Block-on-block: the top block's acceleration along `x` while both blocks are in full
+    /// contact (`acceleration_m_s2` is the bottom block's; m/s^2; absent for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub top_acceleration_m_s2: Option<f64>,
+    /// Tablecloth: the block's displacement along `x` at the end (m; absent for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub block_displacement_m: Option<f64>,
+    /// Stack: the largest `|(vx, vy)| + reach |omega|` over the run and the blocks (m/s; absent
+    /// for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_speed_m_s: Option<f64>,
 }
 
 impl Measured {
@@ -163,6 +175,9 @@ impl Measured {
                     JamImpulses { time_s, normal_impulse_n_s, friction_impulse_n_s }
                 });
             }
+            SceneKind::BlockOnBlock => (m.acceleration_m_s2, m.top_acceleration_m_s2) = (a, b),
+            SceneKind::Tablecloth => m.block_displacement_m = a,
+            SceneKind::Stack => m.max_speed_m_s = a,
         }
         m
     }

@@ -121,6 +121,7 @@ pub fn run_reference<const K: usize>(spec: &SceneParams, record: Record) -> anyh
                 normal_impulse_n_s: j.normal_impulse,
                 friction_impulse_n_s: j.friction_impulse,
             }),
+            ..Measured::default()
         },
         counters: SolverCounters { ambiguous_steps: run.ambiguous_steps, ..SolverCounters::default() },
         checksum: None,

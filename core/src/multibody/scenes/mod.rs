@@ -5,7 +5,7 @@
 //! [`Outcome::MultibodyFailed`]). They do not implement `crate::scene::Scene`, which is shaped for one body (its
 //! `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact); each has
 //! `step()` and `run()` of its own returning [`super::StepReport`] (every body's state, each
-//! pair's interface force).
+//! pair's interface force), and [`MultibodyScene`], what a driver asks of any of them.
 
 mod block_on_block;
 mod stack;
@@ -15,8 +15,72 @@ pub use block_on_block::{BLOCK_ON_BLOCK_ROWS, BlockOnBlock, BlockOnBlockParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
+use super::{Stats, StepReport};
+use crate::planar::BodyState;
 use crate::real::Real;
-use crate::scene::Outcome;
+use crate::scene::{MAX_MEASURES, Outcome};
+
+/// What a driver asks of any scene of several bodies, `B` bodies and `P` resting pairs (the
+/// counterpart of [`crate::scene::Scene`], which is shaped for one body): the registry
+/// ([`crate::scene::SceneParams::build_multibody`]) hands one to a
+/// [`crate::scene::MultibodyVisitor`].
+pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
+    /// The LCP's capacity in rows (4 per active candidate contact).
+    const ROWS: usize;
+    /// Advances one step; `None` once the run has an outcome.
+    fn step(&mut self) -> Option<StepReport<T, B, P>>;
+    /// The outcome, once the run has ended.
+    fn outcome(&self) -> Option<Outcome>;
+    /// Every body's state (body 0 the lowest).
+    fn states(&self) -> &[BodyState<T>; B];
+    /// Simulated time (s).
+    fn time(&self) -> T;
+    /// The stepper's counters.
+    fn stats(&self) -> &Stats;
+    /// What the scene measures so far, in the order the catalogue names them (`docs/scenes.md`,
+    /// each scene's "Measured"): block-on-block `[a_bottom, a_top]`, the tablecloth the block's
+    /// displacement, the stack its largest point speed.
+    fn measured(&self) -> [Option<T>; MAX_MEASURES];
+}
+
+/// [`MultibodyScene`] for a scene whose inherent `step`, `outcome` and `stepper` say it all.
+macro_rules! multibody_scene {
+    ($scene:ty, [$($generics:tt)*], $b:expr, $p:expr, $rows:expr, |$s:ident| $measured:expr) => {
+        impl<$($generics)*> MultibodyScene<T, $b, $p> for $scene {
+            const ROWS: usize = $rows;
+            fn step(&mut self) -> Option<StepReport<T, $b, $p>> {
+                <$scene>::step(self)
+            }
+            fn outcome(&self) -> Option<Outcome> {
+                <$scene>::outcome(self)
+            }
+            fn states(&self) -> &[BodyState<T>; $b] {
+                self.stepper().states()
+            }
+            fn time(&self) -> T {
+                self.stepper().time()
+            }
+            fn stats(&self) -> &Stats {
+                self.stepper().stats()
+            }
+            fn measured(&self) -> [Option<T>; MAX_MEASURES] {
+                let $s = self;
+                $measured
+            }
+        }
+    };
+}
+
+multibody_scene!(BlockOnBlock<T>, [T: Real], 2, 2, BLOCK_ON_BLOCK_ROWS, |s| {
+    let a = s.accelerations();
+    [a.map(|a| a[0]), a.map(|a| a[1]), None]
+});
+multibody_scene!(Tablecloth<T>, [T: Real], 2, 3, TABLECLOTH_ROWS, |s| [Some(s.block_displacement()), None, None]);
+multibody_scene!(Stack<T, B, N>, [T: Real, const B: usize, const N: usize], B, B, N, |s| [
+    Some(s.max_speed()),
+    None,
+    None
+]);
 
 /// The accelerations along `x` of a lower and an upper body while both are in full contact
 /// (`docs/scenes.md`, block-on-block, "Measured"): `(vx(t_2) - vx(t_1)) / (t_2 - t_1)` over the
@@ -59,6 +123,6 @@ impl<T: Real> FullContact<T> {
 
 /// `|(vx, vy)| + reach |omega|`: the speed bound of a box's fastest point (`reach` half its
 /// diagonal).
-fn point_speed_bound<T: Real>(state: &crate::planar::BodyState<T>, reach: T) -> T {
+fn point_speed_bound<T: Real>(state: &BodyState<T>, reach: T) -> T {
     (state.vx * state.vx + state.vy * state.vy).sqrt_libm() + reach * state.omega.abs_exact()
 }
