@@ -261,7 +261,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "mu-s",
         unit: "",
-        help: "Static friction coefficient (>= 0); block-on-block: between the blocks, tablecloth: between block and board, stack: every contact's, static and kinetic",
+        help: "Static friction coefficient (>= 0; between the bodies; stack: every contact's, kinetic too)",
         fields: &[
             (M, "mu_static"),
             (I, "mu_static"),
@@ -276,7 +276,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "mu-k",
         unit: "",
-        help: "Kinetic friction coefficient (0 <= mu-k <= mu-s); block-on-block: between the blocks, tablecloth: between block and board",
+        help: "Kinetic friction coefficient (0 <= mu-k <= mu-s)",
         fields: &[
             (M, "mu_kinetic"),
             (I, "mu_kinetic"),
@@ -290,7 +290,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "mu-floor",
         unit: "",
-        help: "Friction coefficient at the floor, static and kinetic (>= 0); tablecloth: on the table, under the board and the block",
+        help: "Friction coefficient at the floor, static and kinetic (>= 0)",
         fields: &[(L, "mu_floor"), (BB, "mu_floor"), (TC, "mu_floor")],
     },
     Flag {
@@ -308,7 +308,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "mass",
         unit: "kg",
-        help: "Mass of the body (> 0); block-on-block: the top block, tablecloth: the block, stack: each block",
+        help: "Mass of the body (> 0; the upper block; each block of a stack)",
         fields: &[
             (M, "rod_mass"),
             (I, "mass"),
@@ -322,22 +322,10 @@ pub const FLAGS: &[Flag] = &[
         ],
     },
     Flag {
-        long: "mass2",
-        unit: "kg",
-        help: "Mass of the lower body (> 0): block-on-block the bottom block, tablecloth the board",
-        fields: &[(BB, "bottom_mass"), (TC, "board_mass")],
-    },
-    Flag {
         long: "length",
         unit: "m",
-        help: "Rod length (> 0); stack: each block's length",
+        help: "Rod length (> 0; stack: each block's)",
         fields: &[(M, "rod_length"), (L, "length"), (F, "rod_length"), (P, "length"), (ST, "length")],
-    },
-    Flag {
-        long: "length2",
-        unit: "m",
-        help: "Length of the board (> 0, at least offset + width)",
-        fields: &[(TC, "board_length")],
     },
     Flag {
         long: "thickness",
@@ -348,57 +336,14 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "width",
         unit: "m",
-        help: "Block width (> 0): incline along the slope, block-on-block the top block's (at most width2), tablecloth the block's",
+        help: "Block width (> 0; incline: along the slope; the upper block)",
         fields: &[(I, "width"), (BB, "top_width"), (TC, "block_width")],
     },
     Flag {
         long: "height",
         unit: "m",
-        help: "Block height (> 0); block-on-block: the top block's, stack: each block's",
+        help: "Block height (> 0; the upper block; each block of a stack)",
         fields: &[(I, "height"), (BB, "top_height"), (TC, "block_height"), (ST, "height")],
-    },
-    Flag {
-        long: "width2",
-        unit: "m",
-        help: "Width of the bottom block (> 0)",
-        fields: &[(BB, "bottom_width")],
-    },
-    Flag {
-        long: "height2",
-        unit: "m",
-        help: "Height of the bottom block (> 0)",
-        fields: &[(BB, "bottom_height")],
-    },
-    Flag {
-        long: "thickness2",
-        unit: "m",
-        help: "Thickness of the board (> 0, more than the margin)",
-        fields: &[(TC, "board_thickness")],
-    },
-    Flag {
-        long: "force",
-        unit: "N",
-        help: "The pull along +x on the lower body at its centre of mass (>= 0): block-on-block the bottom block, tablecloth the board",
-        fields: &[(BB, "force"), (TC, "force")],
-    },
-    Flag {
-        long: "offset",
-        unit: "m",
-        help: "The block's rear (left) face from the board's trailing (left) end (>= 0)",
-        fields: &[(TC, "offset")],
-    },
-    Flag { long: "blocks", unit: "", help: "Blocks in the stack: 2 or 3", fields: &[(ST, "blocks")] },
-    Flag {
-        long: "overhang",
-        unit: "",
-        help: "The harmonic overhangs' scale s (0 <= s < 2 x blocks): each block reaches s L / (2k) past the one below; below 1 the stack holds, above it falls",
-        fields: &[(ST, "overhang")],
-    },
-    Flag {
-        long: "margin",
-        unit: "m",
-        help: "The activity rule's margin: a corner this near a face is a candidate contact (>= 0)",
-        fields: &[(BB, "contact_margin"), (TC, "contact_margin"), (ST, "contact_margin")],
     },
     Flag { long: "radius", unit: "m", help: "Radius of the round body (> 0)", fields: &[(C, "radius")] },
     Flag {
@@ -474,13 +419,13 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "tilt-limit",
         unit: "rad",
-        help: "The rod has fallen when it tilted more than this from its start angle (> 0); block-on-block: the top block tipped, stack: a block fell",
+        help: "The body has fallen (tipped) when it tilted this far from its start angle (> 0)",
         fields: &[(M, "tilt_limit"), (F, "tilt_limit"), (BB, "tilt_limit"), (ST, "tilt_limit")],
     },
     Flag {
         long: "drop-limit",
         unit: "m",
-        help: "The rod (stack: a block) has fallen when its centre of mass dropped this far (> 0)",
+        help: "The body has fallen when its centre of mass dropped this far (> 0)",
         fields: &[(M, "drop_limit"), (ST, "drop_limit")],
     },
     Flag {
@@ -488,6 +433,63 @@ pub const FLAGS: &[Flag] = &[
         unit: "s",
         help: "After the fingers meet, the rod must stay on them this long to balance (>= 0)",
         fields: &[(M, "hold_time"), (F, "hold_time")],
+    },
+    // The scenes of several bodies' own flags, last: the page, which does not run those scenes
+    // yet, lists the flags before them with their numbers unchanged.
+    Flag {
+        long: "mass2",
+        unit: "kg",
+        help: "Mass of the lower body (> 0): block-on-block the bottom block, tablecloth the board",
+        fields: &[(BB, "bottom_mass"), (TC, "board_mass")],
+    },
+    Flag {
+        long: "length2",
+        unit: "m",
+        help: "Length of the board (> 0, at least offset + width)",
+        fields: &[(TC, "board_length")],
+    },
+    Flag {
+        long: "width2",
+        unit: "m",
+        help: "Width of the bottom block (> 0)",
+        fields: &[(BB, "bottom_width")],
+    },
+    Flag {
+        long: "height2",
+        unit: "m",
+        help: "Height of the bottom block (> 0)",
+        fields: &[(BB, "bottom_height")],
+    },
+    Flag {
+        long: "thickness2",
+        unit: "m",
+        help: "Thickness of the board (> 0, more than the margin)",
+        fields: &[(TC, "board_thickness")],
+    },
+    Flag {
+        long: "force",
+        unit: "N",
+        help: "The pull along +x on the lower body at its centre of mass (>= 0): block-on-block the bottom block, tablecloth the board",
+        fields: &[(BB, "force"), (TC, "force")],
+    },
+    Flag {
+        long: "offset",
+        unit: "m",
+        help: "The block's rear (left) face from the board's trailing (left) end (>= 0)",
+        fields: &[(TC, "offset")],
+    },
+    Flag { long: "blocks", unit: "", help: "Blocks in the stack: 2 or 3", fields: &[(ST, "blocks")] },
+    Flag {
+        long: "overhang",
+        unit: "",
+        help: "The harmonic overhangs' scale s (0 <= s < 2 x blocks): each block reaches s L / (2k) past the one below; below 1 the stack holds, above it falls",
+        fields: &[(ST, "overhang")],
+    },
+    Flag {
+        long: "margin",
+        unit: "m",
+        help: "The activity rule's margin: a corner this near a face is a candidate contact (>= 0)",
+        fields: &[(BB, "contact_margin"), (TC, "contact_margin"), (ST, "contact_margin")],
     },
 ];
 
@@ -759,6 +761,14 @@ mod tests {
                 assert!(kind.field_names().contains(&field), "--{} sets {field} in {kind}", flag.long);
             }
         }
+        // The flags of the scenes of several bodies alone come last (the page lists those before).
+        let page_flag = |f: &Flag| f.fields.iter().any(|(k, _)| !k.is_multibody());
+        let first_other = FLAGS.iter().position(|f| !page_flag(f)).unwrap_or(FLAGS.len());
+        assert!(
+            FLAGS[first_other..].iter().all(|f| !page_flag(f)),
+            "a page flag after --{}",
+            FLAGS[first_other].long
+        );
         // Every field of every scene has its flag.
         for kind in SceneKind::ALL {
             for field in kind.field_names() {

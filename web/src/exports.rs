@@ -142,7 +142,10 @@ pub extern "C" fn ms_describe() -> u32 {
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_configure(scene: u32) -> i32 {
-    let Some(kind) = crate::flags::SceneKind::from_index(scene) else { return -1 };
+    // The scenes of several bodies are not in the description: the page does not run them yet.
+    let Some(kind) = crate::flags::SceneKind::from_index(scene).filter(|k| !k.is_multibody()) else {
+        return -1;
+    };
     store::with(|s, _, _| s.session.configure(kind));
     0
 }

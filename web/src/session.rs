@@ -9,6 +9,7 @@ use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneP
 use crate::flags::{Catalogued as _, FLAGS, SceneKind};
 use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, row_len};
 use crate::text::{Text, json_num, json_str};
+use meterstick_catalogue::Refusal;
 
 /// Rows one `ms_step` call may write (the trace buffer holds this many).
 pub const TRACE_ROWS: usize = 2048;
@@ -73,6 +74,10 @@ impl Session {
     pub fn create(&mut self, precision: Precision, size: LcpLayout) -> Result<(), CreateError> {
         self.sim = None;
         self.spec = None;
+        if self.config.kind.is_multibody() {
+            let refusal = Refusal::NotYet { kind: self.config.kind, driver: "the page" };
+            return Err(CreateError::Config(ConfigError(refusal)));
+        }
         if !holds(self.config.kind) {
             return Err(CreateError::OtherModule(self.config.kind));
         }
@@ -113,7 +118,9 @@ impl core::fmt::Display for CreateError {
     }
 }
 
-/// Writes the description the page builds its controls from, as JSON: each scene's name, title,
+/// Writes the description the page builds its controls from, as JSON: each scene of one body (the
+/// scenes of several bodies come last in the catalogue and the page does not run them yet, so
+/// the numbers of those it lists are unchanged) with its name, title,
 /// core fields and defaults, contacts (named; a row has [`row_len`] numbers for them), measured
 /// quantities (`summary.json`'s keys) and the outcomes it can end in; each flag's name, unit, help
 /// and field per scene; the mode and outcome names; the limits.
@@ -132,7 +139,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     out.write_str("{\"version\":")?;
     json_str(out, crate::VERSION)?;
     out.write_str(",\"scenes\":[")?;
-    for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
+    for (i, kind) in SceneKind::ALL.into_iter().filter(|k| !k.is_multibody()).enumerate() {
         let info = kind.info();
         out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
         json_str(out, kind.name())?;
@@ -154,7 +161,10 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         out.write_char('}')?;
     }
     out.write_str("],\"flags\":[")?;
-    for (i, flag) in FLAGS.iter().enumerate() {
+    // The flags of the scenes of several bodies alone come last in the catalogue (its tests check
+    // it): the page lists those before them, with their numbers.
+    for (i, flag) in FLAGS.iter().take_while(|f| f.fields.iter().any(|(k, _)| !k.is_multibody())).enumerate()
+    {
         out.write_str(if i > 0 { ",{\"long\":" } else { "{\"long\":" })?;
         json_str(out, flag.long)?;
         out.write_str(",\"unit\":")?;
@@ -162,7 +172,9 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         out.write_str(",\"help\":")?;
         json_str(out, flag.help)?;
         out.write_str(",\"fields\":{")?;
-        for (j, (kind, field)) in flag.fields.iter().enumerate() {
+        // The page's scenes only (a flag of the scenes of several bodies alone keeps its place,
+        // with no field: the flags' numbers are the command line's).
+        for (j, (kind, field)) in flag.fields.iter().filter(|(k, _)| !k.is_multibody()).enumerate() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_str(out, kind.name())?;
             out.write_char(':')?;
@@ -202,6 +214,20 @@ mod tests {
     fn the_host_build_runs_every_scene_and_a_module_words_what_it_does_not_hold() {
         let mut s = Session::new();
         for kind in SceneKind::ALL {
+            if kind.is_multibody() {
+                // Refused in the user's words before anything is built.
+                s.configure(kind);
+                let e = s.create(Precision::F32, LcpLayout::Reduced);
+                let e = e.err().map(|e| StackStr::<128>::of(format_args!("{e}")));
+                let want = match kind {
+                    SceneKind::Stack => "scene stack: not yet in the page",
+                    SceneKind::Tablecloth => "scene tablecloth: not yet in the page",
+                    _ => "scene block-on-block: not yet in the page",
+                };
+                assert_eq!(e.as_ref().map(StackStr::as_str), Some(want));
+                assert!(s.sim().is_none());
+                continue;
+            }
             assert!(holds(kind), "{kind}");
             s.configure(kind);
             assert!(s.create(Precision::F32, LcpLayout::Reduced).is_ok(), "{kind}");
