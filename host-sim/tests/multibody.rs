@@ -1,0 +1,169 @@
+//! The `host-sim` binary on the scenes of several bodies (`docs/scenes.md`, "Scenes of several
+//! bodies"): `run` and `scene` take them, their outcomes and measures agree with the laws written
+//! out here from `docs/scenes.md` on each side of every threshold, the core agrees with the
+//! independent reference, a refused flag names itself, and the drivers that do not run them yet
+//! refuse them before any work.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+mod common;
+use common::host_sim_within;
+
+const G: f64 = 9.81;
+
+fn host_sim(args: &[&str]) -> (i32, String, String) {
+    host_sim_within(args, &[], 300)
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("meterstick-multibody-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// `host-sim run --scene <scene> <args> --precision f64`: its `summary.json`, after checking the
+/// core and the reference ended alike and the trajectory files hold every step of every body.
+fn run(scene: &str, name: &str, args: &[&str]) -> serde_json::Value {
+    let out = temp_dir(name);
+    let mut all = vec!["run", "--scene", scene, "--precision", "f64", "--out", out.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let (code, stdout, err) = host_sim(&all);
+    assert_eq!(code, 0, "{all:?}: {err}");
+    let dir = out.join(scene);
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["scene"], scene);
+    assert_eq!(s["core"]["outcome"], s["reference"]["outcome"], "{all:?}: {stdout}");
+    let bodies = s["parameters"]["blocks"].as_f64().map_or(2, |b| b as usize);
+    for file in ["core.csv", "reference.csv"] {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next().unwrap().split(',').count(), 1 + 6 * bodies, "{file}");
+        let who = if file == "core.csv" { "core" } else { "reference" };
+        assert_eq!(lines.count() as u64, s[who]["steps"].as_u64().unwrap() + 1, "{file}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+    s
+}
+
+fn measured(s: &serde_json::Value, who: &str, key: &str) -> f64 {
+    s[who]["measured"][key].as_f64().unwrap_or_else(|| panic!("{who} {key}: {s}"))
+}
+
+/// Block-on-block at its defaults (`m = 1`, `M = 2`, `mu_s = 0.5`, `mu_k = 0.4`, `mu_floor =
+/// 0.2`): held up to `mu_floor (M + m) g`, riding at `F / (M + m) - mu_floor g` up to
+/// `(mu_s + mu_floor) (M + m) g`, the top block sliding at `mu_k g` above it while the bottom one
+/// accelerates at `(F - mu_k m g - mu_floor (M + m) g) / M`.
+#[test]
+fn block_on_block_holds_rides_and_slides_as_the_laws_say() {
+    let (m, big_m, mu_s, mu_k, mu_floor) = (1.0, 2.0, 0.5, 0.4, 0.2);
+    let held = mu_floor * (big_m + m) * G;
+    let sliding = (mu_s + mu_floor) * (big_m + m) * G;
+    for (force, outcome) in
+        [(0.98 * held, "Held"), (1.02 * held, "Rode"), (0.98 * sliding, "Rode"), (1.02 * sliding, "Slid")]
+    {
+        let s = run("block-on-block", "bob", &["--force", &force.to_string()]);
+        assert_eq!(s["core"]["outcome"], outcome, "F = {force}: {s}");
+        let (a_bottom, a_top) = match outcome {
+            "Held" => (0.0, 0.0),
+            "Rode" => (force / (big_m + m) - mu_floor * G, force / (big_m + m) - mu_floor * G),
+            _ => ((force - mu_k * m * G - mu_floor * (big_m + m) * G) / big_m, mu_k * G),
+        };
+        for who in ["core", "reference"] {
+            let (bottom, top) =
+                (measured(&s, who, "acceleration_m_s2"), measured(&s, who, "top_acceleration_m_s2"));
+            assert!((bottom - a_bottom).abs() < 1e-6 && (top - a_top).abs() < 1e-6, "{who} F = {force}: {s}");
+        }
+        assert!(s["comparison"]["max_position_deviation_m"].as_f64().unwrap() < 1e-6, "{s}");
+    }
+    // `host-sim scene` says the same, beside the law.
+    let (code, stdout, err) = host_sim(&["scene", "--scene", "block-on-block", "--force", "10"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("core f32: outcome Rode at t = 0.300 s") && stdout.contains("law: Rode"),
+        "{stdout}"
+    );
+}
+
+/// The tablecloth (`m_b = 0.2`, `m = 0.5`, `mu_floor = 0.3`, `mu_s = 0.5`): held up to
+/// `mu_floor (m + m_b) g`, riding up to `(mu_s + mu_floor) (m + m_b) g`; above it the board comes
+/// out and the block stays, displaced within `docs/scenes.md`'s bounds, less the harder the pull.
+#[test]
+fn the_tablecloth_holds_rides_and_stays_as_the_laws_say() {
+    let (m_b, t_b, m, w, offset, mu_s, mu_k, mu_floor) = (0.2, 0.005, 0.5, 0.05, 0.1, 0.5, 0.4, 0.3);
+    let held = mu_floor * (m + m_b) * G;
+    let riding = (mu_s + mu_floor) * (m + m_b) * G;
+    for (force, outcome) in [(0.98 * held, "Held"), (1.02 * held, "Rode"), (0.98 * riding, "Rode")] {
+        let s = run("tablecloth", "cloth", &["--force", &force.to_string(), "--duration", "0.3"]);
+        assert_eq!(s["core"]["outcome"], outcome, "F = {force}: {s}");
+        // Riding, the block moves with the board: (F / (m + m_b) - mu_floor g) t^2 / 2 over 0.3 s.
+        let a = if outcome == "Held" { 0.0 } else { force / (m + m_b) - mu_floor * G };
+        for who in ["core", "reference"] {
+            let x = measured(&s, who, "block_displacement_m");
+            let law = a * 0.3 * 0.3 / 2.0;
+            // Within the step's share (h / t = 1/300) of it: the steps sum to a h^2 n (n + 1) / 2.
+            assert!((x - law).abs() <= 5e-3 * law + 1e-9, "{who} F = {force}: {x}, law {law}: {s}");
+        }
+    }
+    let stop = |v: f64| v.max(0.0).powi(2) / (2.0 * mu_floor * G);
+    let mut last = f64::INFINITY;
+    for force in [1.5 * riding, 20.0, 40.0] {
+        let s = run("tablecloth", "cloth", &["--force", &force.to_string()]);
+        assert_eq!(s["core"]["outcome"], "Stayed", "F = {force}: {s}");
+        let a_rel = (force - mu_k * m * G - mu_floor * (m + m_b) * G) / m_b - mu_k * G;
+        let x = |s: f64| mu_k * G * s / a_rel;
+        let v = |s: f64| mu_k * G * (2.0 * s / a_rel).sqrt();
+        let low = x(offset) + stop(v(offset) - mu_floor * (2.0 * G * t_b).sqrt());
+        let high = x(offset + w) + v(offset + w) * (2.0 * t_b / G).sqrt() + stop(v(offset + w));
+        let moved = measured(&s, "core", "block_displacement_m");
+        assert!(low <= moved && moved <= high, "F = {force}: {low} <= {moved} <= {high}");
+        assert!(moved < last, "pulling harder moved the block more: F = {force}, {moved} after {last}");
+        last = moved;
+        assert!((measured(&s, "reference", "block_displacement_m") - moved).abs() < 1e-3, "{s}");
+    }
+}
+
+/// The stack (`docs/scenes.md`, "stack"): harmonic overhangs scaled below 1 hold (nothing moves
+/// beyond round-off), above 1 fall, with two blocks and with three.
+#[test]
+fn the_stack_holds_below_the_harmonic_overhangs_and_falls_above() {
+    for blocks in ["2", "3"] {
+        for (overhang, outcome) in [("0.98", "Held"), ("1.02", "Fell")] {
+            let s = run("stack", "stack", &["--blocks", blocks, "--overhang", overhang, "--duration", "1"]);
+            assert_eq!(s["core"]["outcome"], outcome, "{blocks} blocks at {overhang}: {s}");
+            if outcome == "Held" {
+                for who in ["core", "reference"] {
+                    assert!(measured(&s, who, "max_speed_m_s") < 1e-12, "{who}: {s}");
+                }
+            }
+        }
+    }
+}
+
+/// A refused value names its flag, in the user's words; a flag of another scene is refused by
+/// name; the drivers that do not run these scenes yet say so before any work.
+#[test]
+fn refusals_name_the_flag_and_the_driver() {
+    for (args, words) in [
+        (&["scene", "--scene", "stack", "--blocks", "4"][..], "--blocks 4: out of range (2 or 3)"),
+        (
+            &["scene", "--scene", "block-on-block", "--width", "0.5"][..],
+            "--width 0.5 m: out of range (the top block no wider than the bottom one: width <= width2)",
+        ),
+        (&["run", "--scene", "tablecloth", "--mass2", "-1"][..], "--mass2 -1 kg: must be greater than 0"),
+        (
+            &["scene", "--scene", "tablecloth", "--offset", "0.99"][..],
+            "--offset 0.99 m: out of range (the block starts on the board: offset + width <= length2)",
+        ),
+        (
+            &["scene", "--scene", "block-on-block", "--mu-k", "0.7"][..],
+            "--mu-k 0.7 must not exceed --mu-s 0.5",
+        ),
+        (&["scene", "--scene", "stack", "--x1", "0.1"][..], "--x1 does not apply to --scene stack"),
+        (&["map", "--scene", "stack"][..], "--scene stack: not yet in host-sim map"),
+    ] {
+        let (code, stdout, err) = host_sim(args);
+        assert_ne!(code, 0, "{args:?}: {stdout}");
+        assert!(err.contains(words), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
