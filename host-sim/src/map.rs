@@ -52,7 +52,12 @@ impl Axis {
         }
         let name = name.trim_start_matches("--");
         FLAGS.iter().find(|f| f.long == name).map(Self::Flag).with_context(|| {
-            let names: Vec<&str> = FLAGS.iter().map(|f| f.long).collect();
+            // The map runs the scenes of one body: their flags.
+            let names: Vec<&str> = FLAGS
+                .iter()
+                .filter(|f| f.fields.iter().any(|(k, _)| !k.is_multibody()))
+                .map(|f| f.long)
+                .collect();
             format!("no axis {name:?}: use mu-ratio or a scene flag ({})", names.join(", "))
         })
     }

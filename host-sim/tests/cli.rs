@@ -523,7 +523,10 @@ fn run_and_scene_reject_each_invalid_parameter() {
         (&["--scene", "incline", "--angle", "95"], "--angle 95 deg: out of range (0 <= angle < 90 deg)"),
         (&["--scene", "ladder", "--angle", "0"], "--angle 0 deg: out of range (0 < angle < 90 deg)"),
         (&["--scene", "ladder", "--mu-s", "0.3"], "--mu-s does not apply to --scene ladder"),
-        (&["--width", "0.2"], "--width does not apply to --scene meter-stick (it is a parameter of incline)"),
+        (
+            &["--width", "0.2"],
+            "--width does not apply to --scene meter-stick (it is a parameter of incline, block-on-block, tablecloth)",
+        ),
         (&["--speed", "0.1,0.2", "--h", "1e-3,1e-4"], "only one flag may"),
         (&["--layout", "8"], "invalid value '8' for '--layout"),
         (&["--lcp-size", "8"], "unexpected argument '--lcp-size'"),

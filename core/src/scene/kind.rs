@@ -5,7 +5,15 @@
 //!
 //! **Adding a scene**: its module (the scene, its `params!`), a [`SceneKind`] variant (its name and
 //! contacts below), a [`SceneParams`] variant (the `match` arms below), its arm in
-//! [`SceneParams::build`] (`registry.rs`) and its entry in `meterstick-catalogue`.
+//! [`SceneParams::build`] (`registry.rs`) and its entry in `meterstick-catalogue`. A scene of
+//! several bodies: its module in `crate::multibody::scenes` with its [`MultibodyScene`] (the
+//! `multibody_scene!` line there), its variants here ([`SceneKind::is_multibody`] true,
+//! `contacts` 0; appended last, after the page's scenes), its arm in
+//! [`SceneParams::build_multibody`], its catalogue entry (its own flags after the page's), and in
+//! `host-sim/src/multibody.rs` its reference and law (`Measured::of` in
+//! `host-sim/src/trajectory/mod.rs` for its measures).
+//!
+//! [`MultibodyScene`]: crate::multibody::scenes::MultibodyScene
 
 use core::fmt;
 
