@@ -270,6 +270,8 @@ pub struct SceneArgs {
     pub precision: Precision,
     /// `--layout`.
     pub layout: LcpLayout,
+    /// `--layout` was typed (not its default): refused for a scene of several bodies.
+    pub layout_given: bool,
 }
 
 /// Parses `"0.1"` or `"0.1,0.5"`.
@@ -370,6 +372,9 @@ impl clap::FromArgMatches for SceneArgs {
         if let Some(l) = m.get_one::<LcpLayout>("layout") {
             self.layout = *l;
         }
+        if m.value_source("layout") == Some(clap::parser::ValueSource::CommandLine) {
+            self.layout_given = true;
+        }
         for flag in FLAGS {
             if let Some(v) = m.get_one::<Vec<f64>>(flag.long) {
                 self.given.retain(|(f, _)| f.long != flag.long);
@@ -403,6 +408,12 @@ impl SceneArgs {
     /// the user's words).
     pub fn specs(&self, default_list: Option<(&str, &[f64])>) -> anyhow::Result<Vec<(String, SceneParams)>> {
         let kind = self.kind();
+        if kind.is_multibody() && self.layout_given {
+            bail!(
+                "--layout does not apply to --scene {kind}: a scene of several bodies solves the full form, \
+                 sized by its active contacts"
+            );
+        }
         let mut base = SceneParams::defaults(kind);
         let mut list: Option<(&Flag, Vec<f64>)> = None;
         for (flag, values) in &self.given {

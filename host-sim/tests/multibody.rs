@@ -160,6 +160,7 @@ fn refusals_name_the_flag_and_the_driver() {
         ),
         (&["scene", "--scene", "stack", "--x1", "0.1"][..], "--x1 does not apply to --scene stack"),
         (&["map", "--scene", "stack"][..], "--scene stack: not yet in host-sim map"),
+        (&["run", "--scene", "stack", "--layout", "reduced"][..], "--layout does not apply to --scene stack"),
     ] {
         let (code, stdout, err) = host_sim(args);
         assert_ne!(code, 0, "{args:?}: {stdout}");
