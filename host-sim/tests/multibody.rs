@@ -52,7 +52,8 @@ fn measured(s: &serde_json::Value, who: &str, key: &str) -> f64 {
 /// Block-on-block at its defaults (`m = 1`, `M = 2`, `mu_s = 0.5`, `mu_k = 0.4`, `mu_floor =
 /// 0.2`): held up to `mu_floor (M + m) g`, riding at `F / (M + m) - mu_floor g` up to
 /// `(mu_s + mu_floor) (M + m) g`, the top block sliding at `mu_k g` above it while the bottom one
-/// accelerates at `(F - mu_k m g - mu_floor (M + m) g) / M`.
+/// accelerates at `(F - mu_k m g - mu_floor (M + m) g) / M`; a tall top block tips when riding
+/// needs more than `g w / h`.
 #[test]
 fn block_on_block_holds_rides_and_slides_as_the_laws_say() {
     let (m, big_m, mu_s, mu_k, mu_floor) = (1.0, 2.0, 0.5, 0.4, 0.2);
@@ -74,6 +75,14 @@ fn block_on_block_holds_rides_and_slides_as_the_laws_say() {
             assert!((bottom - a_bottom).abs() < 1e-6 && (top - a_top).abs() < 1e-6, "{who} F = {force}: {s}");
         }
         assert!(s["comparison"]["max_position_deviation_m"].as_f64().unwrap() < 1e-6, "{s}");
+    }
+    // A tall top block (w = 0.05, h = 0.2: w / h < mu_s) tips before it slides, once riding
+    // needs more than g w / h: above (M + m) (g w / h + mu_floor g).
+    let tipping = (big_m + m) * (G * 0.05 / 0.2 + mu_floor * G);
+    for (force, outcome) in [(0.97 * tipping, "Rode"), (1.03 * tipping, "Tipped")] {
+        let tall = ["--width", "0.05", "--height", "0.2", "--duration", "1"];
+        let s = run("block-on-block", "bob", &[&tall[..], &["--force", &force.to_string()]].concat());
+        assert_eq!(s["core"]["outcome"], outcome, "F = {force}: {s}");
     }
     // `host-sim scene` says the same, beside the law.
     let (code, stdout, err) = host_sim(&["scene", "--scene", "block-on-block", "--force", "10"]);
