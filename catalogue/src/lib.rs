@@ -58,7 +58,7 @@ const _: () = {
 };
 
 /// Every scene, in the order of [`SceneKind::ALL`] (their numbers on the page).
-pub const SCENES: [SceneInfo; 9] = [
+pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
     SceneInfo {
         kind: SceneKind::MeterStick,
         title: "The paper's rod on two fingers",
@@ -121,6 +121,7 @@ pub const SCENES: [SceneInfo; 9] = [
             ("thickness", "0 < thickness < length"),
         ],
     },
+    #[cfg(feature = "multibody")]
     SceneInfo {
         kind: SceneKind::BlockOnBlock,
         title: "A block on a block pulled along a floor: held, riding, sliding or tipping",
@@ -133,6 +134,7 @@ pub const SCENES: [SceneInfo; 9] = [
             ("step", "0 < h <= duration"),
         ],
     },
+    #[cfg(feature = "multibody")]
     SceneInfo {
         kind: SceneKind::Tablecloth,
         title: "A board pulled from under a block: the harder the pull, the less the block moves",
@@ -146,6 +148,7 @@ pub const SCENES: [SceneInfo; 9] = [
             ("step", "0 < h <= duration"),
         ],
     },
+    #[cfg(feature = "multibody")]
     SceneInfo {
         kind: SceneKind::Stack,
         title: "Blocks stacked over a table's edge with harmonic overhangs",
@@ -212,9 +215,10 @@ impl Flag {
     }
 }
 
+#[cfg(feature = "multibody")]
+use SceneKind::{BlockOnBlock as BB, Stack as ST, Tablecloth as TC};
 use SceneKind::{
-    BlockOnBlock as BB, Cylinder as C, Incline as I, Ladder as L, MeterStick as M, Painleve as P,
-    Stack as ST, Tablecloth as TC, ThreeFingers as F,
+    Cylinder as C, Incline as I, Ladder as L, MeterStick as M, Painleve as P, ThreeFingers as F,
 };
 
 /// Every scene flag, each once. Its order is the command line's and the page's, and decides which
@@ -268,8 +272,11 @@ pub const FLAGS: &[Flag] = &[
             (F, "mu_static"),
             (C, "mu_static"),
             (P, "mu_static"),
+            #[cfg(feature = "multibody")]
             (BB, "mu_static"),
+            #[cfg(feature = "multibody")]
             (TC, "mu_static"),
+            #[cfg(feature = "multibody")]
             (ST, "mu"),
         ],
     },
@@ -283,7 +290,9 @@ pub const FLAGS: &[Flag] = &[
             (F, "mu_kinetic"),
             (C, "mu_kinetic"),
             (P, "mu_kinetic"),
+            #[cfg(feature = "multibody")]
             (BB, "mu_kinetic"),
+            #[cfg(feature = "multibody")]
             (TC, "mu_kinetic"),
         ],
     },
@@ -291,7 +300,13 @@ pub const FLAGS: &[Flag] = &[
         long: "mu-floor",
         unit: "",
         help: "Friction coefficient at the floor, static and kinetic (>= 0)",
-        fields: &[(L, "mu_floor"), (BB, "mu_floor"), (TC, "mu_floor")],
+        fields: &[
+            (L, "mu_floor"),
+            #[cfg(feature = "multibody")]
+            (BB, "mu_floor"),
+            #[cfg(feature = "multibody")]
+            (TC, "mu_floor"),
+        ],
     },
     Flag {
         long: "mu-wall",
@@ -316,8 +331,11 @@ pub const FLAGS: &[Flag] = &[
             (F, "rod_mass"),
             (C, "mass"),
             (P, "mass"),
+            #[cfg(feature = "multibody")]
             (BB, "top_mass"),
+            #[cfg(feature = "multibody")]
             (TC, "block_mass"),
+            #[cfg(feature = "multibody")]
             (ST, "mass"),
         ],
     },
@@ -325,7 +343,14 @@ pub const FLAGS: &[Flag] = &[
         long: "length",
         unit: "m",
         help: "Rod length (> 0; stack: each block's)",
-        fields: &[(M, "rod_length"), (L, "length"), (F, "rod_length"), (P, "length"), (ST, "length")],
+        fields: &[
+            (M, "rod_length"),
+            (L, "length"),
+            (F, "rod_length"),
+            (P, "length"),
+            #[cfg(feature = "multibody")]
+            (ST, "length"),
+        ],
     },
     Flag {
         long: "thickness",
@@ -337,13 +362,27 @@ pub const FLAGS: &[Flag] = &[
         long: "width",
         unit: "m",
         help: "Block width (> 0; incline: along the slope; the upper block)",
-        fields: &[(I, "width"), (BB, "top_width"), (TC, "block_width")],
+        fields: &[
+            (I, "width"),
+            #[cfg(feature = "multibody")]
+            (BB, "top_width"),
+            #[cfg(feature = "multibody")]
+            (TC, "block_width"),
+        ],
     },
     Flag {
         long: "height",
         unit: "m",
         help: "Block height (> 0; the upper block; each block of a stack)",
-        fields: &[(I, "height"), (BB, "top_height"), (TC, "block_height"), (ST, "height")],
+        fields: &[
+            (I, "height"),
+            #[cfg(feature = "multibody")]
+            (BB, "top_height"),
+            #[cfg(feature = "multibody")]
+            (TC, "block_height"),
+            #[cfg(feature = "multibody")]
+            (ST, "height"),
+        ],
     },
     Flag { long: "radius", unit: "m", help: "Radius of the round body (> 0)", fields: &[(C, "radius")] },
     Flag {
@@ -363,8 +402,11 @@ pub const FLAGS: &[Flag] = &[
             (F, "gravity"),
             (C, "gravity"),
             (P, "gravity"),
+            #[cfg(feature = "multibody")]
             (BB, "gravity"),
+            #[cfg(feature = "multibody")]
             (TC, "gravity"),
+            #[cfg(feature = "multibody")]
             (ST, "gravity"),
         ],
     },
@@ -379,8 +421,11 @@ pub const FLAGS: &[Flag] = &[
             (F, "step"),
             (C, "step"),
             (P, "step"),
+            #[cfg(feature = "multibody")]
             (BB, "step"),
+            #[cfg(feature = "multibody")]
             (TC, "step"),
+            #[cfg(feature = "multibody")]
             (ST, "step"),
         ],
     },
@@ -395,8 +440,11 @@ pub const FLAGS: &[Flag] = &[
             (F, "max_time"),
             (C, "max_time"),
             (P, "max_time"),
+            #[cfg(feature = "multibody")]
             (BB, "max_time"),
+            #[cfg(feature = "multibody")]
             (TC, "max_time"),
+            #[cfg(feature = "multibody")]
             (ST, "max_time"),
         ],
     },
@@ -411,8 +459,11 @@ pub const FLAGS: &[Flag] = &[
             (F, "stick_speed"),
             (C, "stick_speed"),
             (P, "stick_speed"),
+            #[cfg(feature = "multibody")]
             (BB, "stick_speed"),
+            #[cfg(feature = "multibody")]
             (TC, "stick_speed"),
+            #[cfg(feature = "multibody")]
             (ST, "stick_speed"),
         ],
     },
@@ -420,13 +471,24 @@ pub const FLAGS: &[Flag] = &[
         long: "tilt-limit",
         unit: "rad",
         help: "The body has fallen (tipped) when it tilted this far from its start angle (> 0)",
-        fields: &[(M, "tilt_limit"), (F, "tilt_limit"), (BB, "tilt_limit"), (ST, "tilt_limit")],
+        fields: &[
+            (M, "tilt_limit"),
+            (F, "tilt_limit"),
+            #[cfg(feature = "multibody")]
+            (BB, "tilt_limit"),
+            #[cfg(feature = "multibody")]
+            (ST, "tilt_limit"),
+        ],
     },
     Flag {
         long: "drop-limit",
         unit: "m",
         help: "The body has fallen when its centre of mass dropped this far (> 0)",
-        fields: &[(M, "drop_limit"), (ST, "drop_limit")],
+        fields: &[
+            (M, "drop_limit"),
+            #[cfg(feature = "multibody")]
+            (ST, "drop_limit"),
+        ],
     },
     Flag {
         long: "hold-time",
@@ -436,55 +498,65 @@ pub const FLAGS: &[Flag] = &[
     },
     // The scenes of several bodies' own flags, last: the page, which does not run those scenes
     // yet, lists the flags before them with their numbers unchanged.
+    #[cfg(feature = "multibody")]
     Flag {
         long: "mass2",
         unit: "kg",
         help: "Mass of the lower body (> 0): block-on-block the bottom block, tablecloth the board",
         fields: &[(BB, "bottom_mass"), (TC, "board_mass")],
     },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "length2",
         unit: "m",
         help: "Length of the board (> 0, at least offset + width)",
         fields: &[(TC, "board_length")],
     },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "width2",
         unit: "m",
         help: "Width of the bottom block (> 0)",
         fields: &[(BB, "bottom_width")],
     },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "height2",
         unit: "m",
         help: "Height of the bottom block (> 0)",
         fields: &[(BB, "bottom_height")],
     },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "thickness2",
         unit: "m",
         help: "Thickness of the board (> 0, more than the margin)",
         fields: &[(TC, "board_thickness")],
     },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "force",
         unit: "N",
         help: "The pull along +x on the lower body at its centre of mass (>= 0): block-on-block the bottom block, tablecloth the board",
         fields: &[(BB, "force"), (TC, "force")],
     },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "offset",
         unit: "m",
         help: "The block's rear (left) face from the board's trailing (left) end (>= 0)",
         fields: &[(TC, "offset")],
     },
+    #[cfg(feature = "multibody")]
     Flag { long: "blocks", unit: "", help: "Blocks in the stack: 2 or 3", fields: &[(ST, "blocks")] },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "overhang",
         unit: "",
         help: "The harmonic overhangs' scale s (0 <= s < 2 x blocks): each block reaches s L / (2k) past the one below; below 1 the stack holds, above it falls",
         fields: &[(ST, "overhang")],
     },
+    #[cfg(feature = "multibody")]
     Flag {
         long: "margin",
         unit: "m",
@@ -802,9 +874,21 @@ mod tests {
             "finger 3 must start right of finger 2: --x3 -0.1 m > --x2 0 m"
         );
         assert_eq!(r.flag(), flag_index("x3"));
+        #[cfg(feature = "multibody")]
+        multibody_refusals();
+        let r = Refusal::NotApplicable { kind: SceneKind::MeterStick, flag: flag_index("angle").unwrap() };
+        assert_eq!(
+            r.worded("--").to_string(),
+            "--angle does not apply to --scene meter-stick (it is a parameter of incline, ladder, cylinder, painleve)"
+        );
+    }
+
+    /// The scenes of several bodies are refused in the user's words: a driver that does not run
+    /// them yet, the top block's width above the bottom's, a stack of 4.
+    #[cfg(feature = "multibody")]
+    fn multibody_refusals() {
         let r = Refusal::NotYet { kind: SceneKind::Stack, driver: "host-sim stress" };
         assert_eq!(r.worded("--").to_string(), "--scene stack: not yet in host-sim stress");
-        // A scene of several bodies names its flags: the top block's width above the bottom's.
         let mut p = SceneParams::defaults(SceneKind::BlockOnBlock);
         assert!(p.set("top_width", 0.5));
         let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
@@ -816,10 +900,5 @@ mod tests {
         assert!(p.set("blocks", 4.0));
         let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
         assert_eq!(r.worded("--").to_string(), "--blocks 4: out of range (2 or 3)");
-        let r = Refusal::NotApplicable { kind: SceneKind::MeterStick, flag: flag_index("angle").unwrap() };
-        assert_eq!(
-            r.worded("--").to_string(),
-            "--angle does not apply to --scene meter-stick (it is a parameter of incline, ladder, cylinder, painleve)"
-        );
     }
 }

@@ -8,7 +8,8 @@
 //! [`SceneParams::build`] (`registry.rs`) and its entry in `meterstick-catalogue`. A scene of
 //! several bodies: its module in `crate::multibody::scenes` with its [`MultibodyScene`] (the
 //! `multibody_scene!` line there), its variants here ([`SceneKind::is_multibody`] true,
-//! `contacts` 0; appended last, after the page's scenes), its arm in
+//! `contacts` 0; appended last, after the page's scenes; each behind the feature
+//! `scenes-multibody`, as its catalogue entry is behind the catalogue's `multibody`), its arm in
 //! [`SceneParams::build_multibody`], its catalogue entry (its own flags after the page's), and in
 //! `host-sim/src/multibody.rs` its reference and law (`Measured::of` in
 //! `host-sim/src/trajectory/mod.rs` for its measures).
@@ -20,6 +21,7 @@ use core::fmt;
 use super::{
     CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
 };
+#[cfg(feature = "scenes-multibody")]
 use crate::multibody::scenes::{BlockOnBlockParams, StackParams, TableclothParams};
 use crate::params::ParamError;
 use crate::real::Real;
@@ -41,10 +43,13 @@ pub enum SceneKind {
     /// Painlevé's paradox: a rod whose end slides on a rough floor jams.
     Painleve,
     /// A block on a block pulled along a floor (several bodies, [`crate::multibody`]).
+    #[cfg(feature = "scenes-multibody")]
     BlockOnBlock,
     /// A board pulled from under a block (several bodies).
+    #[cfg(feature = "scenes-multibody")]
     Tablecloth,
     /// Two or three blocks stacked over a table's edge (several bodies).
+    #[cfg(feature = "scenes-multibody")]
     Stack,
 }
 
@@ -54,6 +59,8 @@ pub const MAX_MEASURES: usize = 3;
 
 impl SceneKind {
     /// Every scene, in the order of their numbers ([`Self::from_index`]).
+    /// The scenes of several bodies come last (feature `scenes-multibody`).
+    #[cfg(feature = "scenes-multibody")]
     pub const ALL: [Self; 9] = [
         Self::MeterStick,
         Self::Incline,
@@ -65,6 +72,10 @@ impl SceneKind {
         Self::Tablecloth,
         Self::Stack,
     ];
+    /// Every scene, in the order of their numbers ([`Self::from_index`]).
+    #[cfg(not(feature = "scenes-multibody"))]
+    pub const ALL: [Self; 6] =
+        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder, Self::Painleve];
 
     /// The scene's name on the command line and in the page's URL, e.g. `meter-stick`.
     #[must_use]
@@ -76,8 +87,11 @@ impl SceneKind {
             Self::ThreeFingers => "three-fingers",
             Self::Cylinder => "cylinder",
             Self::Painleve => "painleve",
+            #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock => "block-on-block",
+            #[cfg(feature = "scenes-multibody")]
             Self::Tablecloth => "tablecloth",
+            #[cfg(feature = "scenes-multibody")]
             Self::Stack => "stack",
         }
     }
@@ -90,6 +104,7 @@ impl SceneKind {
             Self::MeterStick | Self::Incline | Self::Ladder => 2,
             Self::ThreeFingers => 3,
             Self::Cylinder | Self::Painleve => 1,
+            #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock | Self::Tablecloth | Self::Stack => 0,
         }
     }
@@ -99,7 +114,13 @@ impl SceneKind {
     /// no LCP layout to choose (its LCP is the full form, sized by its candidate contacts).
     #[must_use]
     pub const fn is_multibody(self) -> bool {
-        matches!(self, Self::BlockOnBlock | Self::Tablecloth | Self::Stack)
+        #[cfg(feature = "scenes-multibody")]
+        return matches!(self, Self::BlockOnBlock | Self::Tablecloth | Self::Stack);
+        #[cfg(not(feature = "scenes-multibody"))]
+        {
+            let _ = self;
+            false
+        }
     }
 
     /// The scene's number (its index in [`Self::ALL`]).
@@ -130,8 +151,11 @@ impl SceneKind {
             Self::ThreeFingers => ThreeFingersParams::<f64>::NAMES,
             Self::Cylinder => CylinderParams::<f64>::NAMES,
             Self::Painleve => PainleveParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock => BlockOnBlockParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-multibody")]
             Self::Tablecloth => TableclothParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-multibody")]
             Self::Stack => &STACK_FIELDS,
         }
     }
@@ -143,6 +167,7 @@ impl fmt::Display for SceneKind {
     }
 }
 
+#[cfg(feature = "scenes-multibody")]
 /// The stack's fields: `blocks`, then [`StackParams`]'s.
 const STACK_FIELDS: [&str; 13] = [
     "blocks",
@@ -163,6 +188,7 @@ const STACK_FIELDS: [&str; 13] = [
 /// The stack's parameters and its number of blocks (the `B` of
 /// [`crate::multibody::scenes::Stack`]: 2 or 3 here), a number as every field is so that it is
 /// set and refused by name like them (`blocks` 2.5 is out of range).
+#[cfg(feature = "scenes-multibody")]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StackSetup {
     /// The blocks: 2 or 3 (default 3, `docs/scenes.md`).
@@ -171,12 +197,14 @@ pub struct StackSetup {
     pub params: StackParams<f64>,
 }
 
+#[cfg(feature = "scenes-multibody")]
 impl Default for StackSetup {
     fn default() -> Self {
         Self { blocks: 3.0, params: StackParams::default() }
     }
 }
 
+#[cfg(feature = "scenes-multibody")]
 impl StackSetup {
     /// The blocks as a count, when it is 2 or 3.
     #[must_use]
@@ -228,10 +256,13 @@ pub enum SceneParams {
     /// Painlevé's rod.
     Painleve(PainleveParams<f64>),
     /// Block-on-block.
+    #[cfg(feature = "scenes-multibody")]
     BlockOnBlock(BlockOnBlockParams<f64>),
     /// The tablecloth.
+    #[cfg(feature = "scenes-multibody")]
     Tablecloth(TableclothParams<f64>),
     /// The stack.
+    #[cfg(feature = "scenes-multibody")]
     Stack(StackSetup),
 }
 
@@ -246,8 +277,11 @@ impl SceneParams {
             SceneKind::ThreeFingers => Self::ThreeFingers(ThreeFingersParams::default()),
             SceneKind::Cylinder => Self::Cylinder(CylinderParams::default()),
             SceneKind::Painleve => Self::Painleve(PainleveParams::default()),
+            #[cfg(feature = "scenes-multibody")]
             SceneKind::BlockOnBlock => Self::BlockOnBlock(BlockOnBlockParams::default()),
+            #[cfg(feature = "scenes-multibody")]
             SceneKind::Tablecloth => Self::Tablecloth(TableclothParams::default()),
+            #[cfg(feature = "scenes-multibody")]
             SceneKind::Stack => Self::Stack(StackSetup::default()),
         }
     }
@@ -262,8 +296,11 @@ impl SceneParams {
             Self::ThreeFingers(_) => SceneKind::ThreeFingers,
             Self::Cylinder(_) => SceneKind::Cylinder,
             Self::Painleve(_) => SceneKind::Painleve,
+            #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock(_) => SceneKind::BlockOnBlock,
+            #[cfg(feature = "scenes-multibody")]
             Self::Tablecloth(_) => SceneKind::Tablecloth,
+            #[cfg(feature = "scenes-multibody")]
             Self::Stack(_) => SceneKind::Stack,
         }
     }
@@ -278,8 +315,11 @@ impl SceneParams {
             Self::ThreeFingers(p) => p.get(field),
             Self::Cylinder(p) => p.get(field),
             Self::Painleve(p) => p.get(field),
+            #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock(p) => p.get(field),
+            #[cfg(feature = "scenes-multibody")]
             Self::Tablecloth(p) => p.get(field),
+            #[cfg(feature = "scenes-multibody")]
             Self::Stack(p) => p.get(field),
         }
     }
@@ -293,8 +333,11 @@ impl SceneParams {
             Self::ThreeFingers(p) => p.set(field, value),
             Self::Cylinder(p) => p.set(field, value),
             Self::Painleve(p) => p.set(field, value),
+            #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock(p) => p.set(field, value),
+            #[cfg(feature = "scenes-multibody")]
             Self::Tablecloth(p) => p.set(field, value),
+            #[cfg(feature = "scenes-multibody")]
             Self::Stack(p) => p.set(field, value),
         }
     }
@@ -330,14 +373,17 @@ impl SceneParams {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-multibody")]
             Self::Tablecloth(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-multibody")]
             Self::Stack(p) => p.validate_as::<T>(),
         }
     }
@@ -430,6 +476,7 @@ mod tests {
     }
 
     /// The stack's blocks are a field like any other: 2 or 3, anything else refused by name.
+    #[cfg(feature = "scenes-multibody")]
     #[test]
     fn the_stack_takes_two_or_three_blocks() {
         let mut p = SceneParams::defaults(SceneKind::Stack);

@@ -33,13 +33,17 @@ mod three_fingers;
 
 pub use cylinder::{Cylinder, CylinderParams};
 pub use incline::{Incline, InclineParams};
-pub use kind::{MAX_MEASURES, SceneKind, SceneParams, StackSetup};
+#[cfg(feature = "scenes-multibody")]
+pub use kind::StackSetup;
+pub use kind::{MAX_MEASURES, SceneKind, SceneParams};
 pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
 pub use outcome::{Outcome, OutcomeKind};
 pub use painleve::{Jam, Painleve, PainleveParams};
+#[cfg(feature = "scenes-multibody")]
+pub use registry::MultibodyVisitor;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use registry::{AnyScene, SceneIn};
-pub use registry::{LcpLayout, MultibodyVisitor, Precision, SceneVisitor};
+pub use registry::{LcpLayout, Precision, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};

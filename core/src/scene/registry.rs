@@ -17,6 +17,7 @@ use super::{Cylinder, Painleve};
 #[cfg(feature = "scenes-k2")]
 use super::{Incline, Ladder};
 use super::{MeterStick, Scene};
+#[cfg(feature = "scenes-multibody")]
 use crate::multibody::scenes::{BlockOnBlock, MultibodyScene, Stack2, Stack3, Tablecloth};
 use crate::params::ParamError;
 use crate::real::Real;
@@ -136,6 +137,7 @@ pub trait SceneVisitor {
 /// by their kind before anything runs.
 ///
 /// [`SceneKind::is_multibody`]: super::SceneKind::is_multibody
+#[cfg(feature = "scenes-multibody")]
 pub trait MultibodyVisitor {
     /// What the visit gives.
     type Output;
@@ -147,6 +149,7 @@ pub trait MultibodyVisitor {
     ) -> Self::Output;
 }
 
+#[cfg(feature = "scenes-multibody")]
 impl SceneParams {
     /// A scene of several bodies in `precision`, handed to `visitor` (its LCP is the full form:
     /// no layout to choose). Generic: a build that never calls it links none of the multibody
@@ -179,12 +182,14 @@ impl SceneParams {
             _ => return Err(ParamError::OutOfRange("scene")),
         })
     }
+}
 
+impl SceneParams {
     /// The scene in `precision` and `layout`, keeping `E` switch events, handed to `visitor`.
     ///
     /// # Errors
     /// The core's first complaint about the parameters in `precision` (the scene's `new`);
-    /// `OutOfRange("scene")` for a scene of several bodies ([`Self::build_multibody`] builds
+    /// `OutOfRange("scene")` for a scene of several bodies (`Self::build_multibody` builds
     /// those) or one this build leaves out.
     pub fn build<const E: usize, V: SceneVisitor>(
         &self,
@@ -430,8 +435,10 @@ mod tests {
     }
 
     /// Reports what it was given: the scalar's name, the bodies, the pairs and the LCP's rows.
+    #[cfg(feature = "scenes-multibody")]
     struct Bodies;
 
+    #[cfg(feature = "scenes-multibody")]
     impl MultibodyVisitor for Bodies {
         type Output = (&'static str, usize, usize, usize);
         fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
@@ -444,6 +451,7 @@ mod tests {
 
     /// The scenes of several bodies are built with their bodies, pairs and LCP capacity; the
     /// stack with the blocks asked for; a scene of one body is not theirs.
+    #[cfg(feature = "scenes-multibody")]
     #[test]
     fn every_multibody_scene_is_built_as_asked() {
         let build = |kind, blocks: Option<f64>, precision| {
