@@ -54,6 +54,7 @@
 use super::inputs::{StepInputs, dot2, dot3, normal_bias, sign};
 use super::layout::{Direction, Layout, Tangents};
 use crate::lcp::Basis;
+use crate::lcp::elimination::solve_leading;
 use crate::real::{AllFinite, Real, max, min};
 
 /// The factored rows of one step's LCP ([module docs](self)).
@@ -529,7 +530,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         }
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        let solved = solve_small_sized(&mut a, &mut y, m, tiny);
+        let solved = solve_leading(&mut a, &mut y, m, tiny);
         #[cfg(any(target_os = "none", target_family = "wasm"))]
         let solved = solve_small(&mut a, &mut y, m, tiny);
         if !solved {
@@ -685,7 +686,7 @@ pub(crate) fn rows_of<const K: usize, const N: usize>(
 
 /// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
 /// elimination with partial pivoting; `false` when a pivot is at most `tiny` (numerically
-/// singular). On a microcontroller and in the page; on the host [`solve_small_sized`] is inlined
+/// singular). On a microcontroller and in the page; on the host [`solve_leading`] is inlined
 /// into each copy of [`FactoredLcp::solve_unknowns`], with `m` a constant.
 #[cfg(any(target_os = "none", target_family = "wasm"))]
 #[cfg_attr(target_os = "none", inline(never))]
@@ -695,67 +696,9 @@ fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, t
     // A microcontroller keeps one copy (flash).
     #[cfg(not(target_os = "none"))]
     match m {
-        2 => return solve_small_sized(a, rhs, 2, tiny),
-        3 => return solve_small_sized(a, rhs, 3, tiny),
+        2 => return solve_leading(a, rhs, 2, tiny),
+        3 => return solve_leading(a, rhs, 3, tiny),
         _ => {}
     }
-    solve_small_sized(a, rhs, m, tiny)
-}
-
-/// The elimination of `solve_small`, inlined where it is called so that a constant `m` specialises it.
-#[inline(always)]
-#[allow(clippy::inline_always)] // the point of it: `m` known at the call
-fn solve_small_sized<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
-    // Constant loop bounds (rows and columns at or beyond `m` skipped): every index is provably
-    // in range, so no panic path is linked.
-    for col in 0..DOF {
-        if col >= m {
-            break;
-        }
-        let mut piv = col;
-        for r in col + 1..DOF {
-            if r < m && a[r][col].abs_exact() > a[piv][col].abs_exact() {
-                piv = r;
-            }
-        }
-        if a[piv][col].abs_exact() <= tiny {
-            return false;
-        }
-        if piv != col {
-            let (row, value) = (a[col], rhs[col]);
-            a[col] = a[piv];
-            rhs[col] = rhs[piv];
-            a[piv] = row;
-            rhs[piv] = value;
-        }
-        let inv = T::one() / a[col][col];
-        for r in col + 1..DOF {
-            if r >= m {
-                break;
-            }
-            let f = a[r][col] * inv;
-            for c in col + 1..DOF {
-                if c < m {
-                    let u = f * a[col][c];
-                    a[r][c] -= u;
-                }
-            }
-            let u = f * rhs[col];
-            rhs[r] -= u;
-        }
-        a[col][col] = inv;
-    }
-    for col in (0..DOF).rev() {
-        if col >= m {
-            continue;
-        }
-        let mut acc = rhs[col];
-        for c in col + 1..DOF {
-            if c < m {
-                acc -= a[col][c] * rhs[c];
-            }
-        }
-        rhs[col] = acc * a[col][col];
-    }
-    true
+    solve_leading(a, rhs, m, tiny)
 }
