@@ -120,7 +120,7 @@ pub enum Declined {
 /// A basis' unknowns ([`FactoredLcp::solve_basis_cached_into`]): what the elimination needs of
 /// the basis alone.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(target_os = "none", allow(dead_code))] // the cache is the host's
+#[cfg_attr(not(feature = "host-tuned"), allow(dead_code))] // the cache is the host's
 pub(crate) struct Plan<const K: usize> {
     /// The variable each unknown sets (whose own row holds it).
     var: [usize; DOF],
@@ -133,13 +133,13 @@ pub(crate) struct Plan<const K: usize> {
     sigma_row: [Option<usize>; K],
 }
 
-/// The stepper's [`Plan`] of its last warm basis, with the basis' mask: on the host; nothing on a
-/// microcontroller ([`FactoredLcp::solve_basis_cached_into`]).
-#[cfg(not(target_os = "none"))]
+/// The stepper's [`Plan`] of its last warm basis, with the basis' mask: with `host-tuned`
+/// ([`FactoredLcp::solve_basis_cached_into`]).
+#[cfg(feature = "host-tuned")]
 pub(crate) type PlanCache<const K: usize> = Option<(u32, Plan<K>)>;
 
-/// The stepper's [`Plan`] of its last warm basis: nothing on a microcontroller.
-#[cfg(target_os = "none")]
+/// The stepper's [`Plan`] of its last warm basis: nothing without `host-tuned`.
+#[cfg(not(feature = "host-tuned"))]
 pub(crate) type PlanCache<const K: usize> = ();
 
 /// At most this many unknowns: the body's degrees of freedom.
@@ -317,7 +317,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// `v+ = v~ + M^-1 C p` for the impulses in `z` (eq. 16).
     #[must_use]
-    #[cfg_attr(target_os = "none", inline(never))] // called from the fast path and Lemke's: one copy of flash
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))] // called from the fast path and Lemke's: one copy of flash
     pub fn velocity_after(&self, z: &[T; N]) -> [T; 3] {
         let dv = self.velocity_change(z);
         [self.v_free[0] + dv[0], self.v_free[1] + dv[1], self.v_free[2] + dv[2]]
@@ -325,11 +325,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// `dv = M^-1 C p` for the impulses in `z`, summed on its own (not `v+ - v~`, which would
     /// lose `eps |v~|` when the body moves fast and the impulses change it little).
-    // Inlined on the host (not on a microcontroller, nor in the page's smaller modules): called,
-    // it reads `z` (in f32) as 8-byte pairs of values just written one by one, which an x86 core
-    // cannot forward from its store buffer.
-    #[cfg_attr(target_os = "none", inline(never))]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    // Inlined with `host-tuned`: called, it reads `z` (in f32) as 8-byte pairs of values just
+    // written one by one, which an x86 core cannot forward from its store buffer. Otherwise out
+    // of line: one copy (flash).
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))]
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always)] // measured, as said above
     fn velocity_change(&self, z: &[T; N]) -> [T; 3] {
         let mut dv = [T::zero(); 3];
@@ -366,7 +366,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     ) -> Result<([T; 3], T), Declined> {
         self.solve_basis_with(
             basis,
-            #[cfg(not(target_os = "none"))]
+            #[cfg(feature = "host-tuned")]
             None,
             tolerance,
             z,
@@ -376,8 +376,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// [`Self::solve_basis_into`] with the basis' [`Plan`] kept in `cache` from the last call with
     /// the same basis (the stepper's warm basis is usually the previous step's: its unknowns need
-    /// not be found again). Same answer, same bits. On the host only: on a Cortex-M4F it cost
-    /// more than it saved (mean step +0.6 %, worst step +11 %), so there `cache` is `()`.
+    /// not be found again). Same answer, same bits. With `host-tuned` only: on a Cortex-M4F it
+    /// cost more than it saved, so without it `cache` is `()`.
     pub(crate) fn solve_basis_cached_into(
         &self,
         basis: Basis<N>,
@@ -386,25 +386,24 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         z: &mut [T; N],
         w: &mut [T; N],
     ) -> Result<([T; 3], T), Declined> {
-        #[cfg(target_os = "none")]
-        let _ = cache;
-        #[cfg(target_os = "none")]
+        #[cfg(not(feature = "host-tuned"))]
+        let () = *cache;
+        #[cfg(not(feature = "host-tuned"))]
         return self.solve_basis_into(basis, tolerance, z, w);
-        #[cfg(not(target_os = "none"))]
+        #[cfg(feature = "host-tuned")]
         return self.solve_basis_with(basis, Some(cache), tolerance, z, w);
     }
 
     /// [`Self::solve_basis_into`], with the basis' unknowns taken from `cache` when it holds them
-    /// (and put there when it does not). On the host inlined into both callers (without a cache,
-    /// `None` is a constant there); on a microcontroller it has no cache and is the plain solve,
-    /// the same code as before the cache (the split into a search and a solve, or any other shape
-    /// tried, cost the Cortex-M4F 1-3 % or 2.5 kB of flash).
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    /// (and put there when it does not). With `host-tuned` inlined into both callers (without a
+    /// cache, `None` is a constant there); without it there is no cache and this is the plain
+    /// solve (a split into a search and a solve costs a Cortex-M4F time or flash).
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always, clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
     fn solve_basis_with(
         &self,
         basis: Basis<N>,
-        #[cfg(not(target_os = "none"))] cache: Option<&mut Option<(u32, Plan<K>)>>,
+        #[cfg(feature = "host-tuned")] cache: Option<&mut Option<(u32, Plan<K>)>>,
         tolerance: T,
         z: &mut [T; N],
         w: &mut [T; N],
@@ -423,7 +422,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // The friction row that gives each contact's basic sigma.
         let mut sigma_row: [Option<usize>; K] = [None; K];
         // From the cache when it holds this basis (`m` clamped as the search below clamps it).
-        #[cfg(not(target_os = "none"))]
+        #[cfg(feature = "host-tuned")]
         let found = match &cache {
             Some(Some((key, plan))) if *key == mask => {
                 (var, follower, m, sigma_row) = (plan.var, plan.follower, plan.m.min(DOF), plan.sigma_row);
@@ -431,7 +430,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             }
             _ => false,
         };
-        #[cfg(target_os = "none")]
+        #[cfg(not(feature = "host-tuned"))]
         let found = false;
         if !found {
             let mut j = K;
@@ -472,15 +471,15 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                     }
                 }
             }
-            #[cfg(not(target_os = "none"))]
+            #[cfg(feature = "host-tuned")]
             if let Some(cache) = cache {
                 *cache = Some((mask, Plan { var, follower, m, sigma_row }));
             }
         }
-        // On the host each number of unknowns the warm path meets gets its own copy of the rest,
-        // with `m` a constant: its loops unrolled, the same operations in the same order (the same
-        // bits). A microcontroller (flash) and the page (module size) keep one copy.
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        // With `host-tuned` each number of unknowns the warm path meets gets its own copy of the
+        // rest, with `m` a constant: its loops unrolled, the same operations in the same order (the
+        // same bits). Without it one copy (flash, module size).
+        #[cfg(feature = "host-tuned")]
         match m {
             3 => return self.solve_unknowns(mask, &var, &follower, 3, &sigma_row, tolerance, z, w),
             2 => return self.solve_unknowns(mask, &var, &follower, 2, &sigma_row, tolerance, z, w),
@@ -529,9 +528,9 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             y[k] = -self.q[var[k].min(N - 1)];
         }
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(feature = "host-tuned")]
         let solved = solve_leading(&mut a, &mut y, m, tiny);
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(feature = "host-tuned"))]
         let solved = solve_small(&mut a, &mut y, m, tiny);
         if !solved {
             return Err(Declined::Singular);
@@ -621,7 +620,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     }
 
     /// `w = A z + q` in factored form, with `dv = M^-1 C p` of the same `z`.
-    #[cfg_attr(target_os = "none", inline(never))]
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))]
     fn w_of(&self, z: &[T; N], dv: &[T; 3], w: &mut [T; N]) {
         let sigma_start = Layout::<K, N>::SIGMA_START;
         for v in 0..sigma_start {
@@ -684,21 +683,11 @@ pub(crate) fn rows_of<const K: usize, const N: usize>(
     (i, [plus, minus], Layout::<K, N>::SIGMA_START + i)
 }
 
-/// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
-/// elimination with partial pivoting; `false` when a pivot is at most `tiny` (numerically
-/// singular). On a microcontroller and in the page; on the host [`solve_leading`] is inlined
-/// into each copy of [`FactoredLcp::solve_unknowns`], with `m` a constant.
-#[cfg(any(target_os = "none", target_family = "wasm"))]
-#[cfg_attr(target_os = "none", inline(never))]
+/// The basis' `m x m` system by [`solve_leading`], in one copy out of line (flash): without
+/// `host-tuned`. With it, [`solve_leading`] is inlined into each copy of
+/// [`FactoredLcp::solve_unknowns`], with `m` a constant.
+#[cfg(not(feature = "host-tuned"))]
+#[inline(never)]
 fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
-    // In the page each size the fast path meets (2 and 3 unknowns) gets its own copy, with `m` a
-    // constant: no per-row size tests (the same operations in the same order, so the same bits).
-    // A microcontroller keeps one copy (flash).
-    #[cfg(not(target_os = "none"))]
-    match m {
-        2 => return solve_leading(a, rhs, 2, tiny),
-        3 => return solve_leading(a, rhs, 3, tiny),
-        _ => {}
-    }
     solve_leading(a, rhs, m, tiny)
 }

@@ -263,9 +263,9 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// support that does not fit gives an inactive frame; `new` and `step` refuse those first).
     /// The supports are passed in, not read back from `self.supports` just after they were
     /// copied there (an 8-byte load of a position stored as two 4-byte halves cannot be forwarded
-    /// from the store buffer). Out of line on a microcontroller: one copy for `new` and `step`.
-    #[cfg_attr(target_os = "none", inline(never))]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    /// from the store buffer). Without `host-tuned` out of line: one copy for `new` and `step`.
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))]
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always)] // measured: the host's step is faster so (left to itself, it was not inlined)
     fn update_frames(&mut self, supports: &[Support<T>; K]) {
         let pose = Pose { com: [self.state.x, self.state.y], sin_cos: self.state.theta.sin_cos_portable() };
@@ -299,11 +299,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    // Inlined into its caller on the host (not on a microcontroller, nor in the page's smaller
-    // modules): the supports, just built there, and the report are then not read back from memory
-    // at once, which stalls an x86 core.
+    // Inlined into its caller with `host-tuned`: the supports, just built there, and the report
+    // are then not read back from memory at once, which stalls an x86 core.
     #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always)] // measured, as said above
     pub fn step(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
         let s = self.settings;
