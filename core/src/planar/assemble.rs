@@ -11,7 +11,7 @@
 //! A[sigma_i][n_i] = mu_i                        (U)
 //! ```
 //!
-//! and `q` the right-hand side of [`super::inputs`] (`b` there). An inactive contact keeps its
+//! and `q` the right-hand side of eq. 18 ([`StepInputs`], [`normal_bias`]). An inactive contact keeps its
 //! rows decoupled: identity rows and columns and `q = 1`, so its variables are zero. The entries
 //! are those of the factored rows ([`FactoredLcp`]), which this module only writes out.
 

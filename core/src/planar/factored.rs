@@ -538,8 +538,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // An impulse is held to `>= 0` exactly; one that is positive but within the round-off of
         // the step's impulses (`N eps` of the largest) is the round-off of a zero: the basis is
         // degenerate, and the one without it (the contact off, an exact zero) is the answer that
-        // injects no noise. (A rod balanced on a finger under its centre of mass, the other finger
-        // touching without load, tipped over after 16 s from a 1e-13 N s impulse that way.)
+        // injects no noise (a rod balanced on a finger under its centre of mass, the other finger
+        // touching without load, is tipped over by such an impulse; `docs/formulation.md`).
         let mut y_max = T::zero();
         for k in 0..m {
             y_max = max(y_max, y[k]);

@@ -49,11 +49,9 @@ pub struct StepInputs<'a, T, const K: usize> {
 ///
 /// **Round-off is not a gap.** A gap is a difference of positions of order `|x| + |y| + size`,
 /// computed with a few roundings: its error is a few `eps` of that. Divided by `h` it becomes a
-/// velocity: in f32, one ulp of a 0.5 m coordinate over h = 1e-4 s is 6e-4 m/s, more than a ladder's
-/// fall in its first steps, and the contact flickered between touching and apart every step (the
-/// top of a frictionless ladder "left the wall" at once); at h = 1 ms it is 3e-5 m/s against a
-/// 1e-5 m/s stick threshold, and the slow meter stick drifted 2.2e-4 m from the f64 reference at
-/// 0.001 m/s. Within `round_off` (the stepper passes `4 eps (|x| + |y| + size)`: 0.8 um in f32 for a
+/// velocity: in f32, one ulp of a 0.5 m coordinate over h = 1e-4 s is 6e-4 m/s, more than a
+/// ladder's fall in its first steps (the contact would alternate between touching and apart), and
+/// at h = 1 ms 3e-5 m/s, three times a 1e-5 m/s stick threshold. Within `round_off` (the stepper passes `4 eps (|x| + |y| + size)`: 0.8 um in f32 for a
 /// 1 m rod, 1e-15 m in f64) the contact counts as exactly touching; beyond it the gap counts less
 /// that much, so the term is continuous (a cut-off would turn the drift that reaches its edge into a
 /// jump of `round_off / h`).

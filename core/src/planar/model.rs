@@ -30,7 +30,7 @@ pub struct Model<T, const K: usize> {
     pub settings: Settings<T>,
 }
 
-/// The set-up checks of [`Stepper::new`].
+/// The set-up checks of [`super::Stepper::new`].
 pub(crate) fn validate<T: Real, const K: usize>(
     model: &Model<T, K>,
     start: &BodyState<T>,

@@ -19,7 +19,7 @@ pub struct ContactReport<T> {
     pub normal_impulse: T,
     /// Net friction impulse on the body along the contact's `+d` (N s).
     pub friction_impulse: T,
-    /// The contact's coordinate along its tangent at the step's start ([`ContactFrame::along`]).
+    /// The contact's coordinate along its tangent at the step's start ([`super::ContactFrame::along`]).
     pub along: T,
 }
 

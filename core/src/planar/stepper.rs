@@ -6,8 +6,9 @@
 //!    supports' velocities over the step, given by the scene;
 //! 2. each contact's friction coefficient from its mode after the previous step (`mu_s` while
 //!    sticking or separated, `mu_k` while sliding);
-//! 3. the LCP of eq. 18 for the solved [`Layout`], solved by [`Lemke`] warm-started from the
-//!    previous step's basis;
+//! 3. the LCP of eq. 18 for the solved [`Layout`], in factored form ([`FactoredLcp`]), solved
+//!    along the paths of [`SolvePath`]: the previous step's basis, its neighbours, [`Lemke`]'s
+//!    method warm-started from it;
 //! 4. for a reduced layout, the dropped directions checked; when one is needed (or the reduced LCP
 //!    has no solution) the step is solved again in the full layout, warm-started from the reduced
 //!    basis mapped into it (feature `fallback`; without it the step fails with
@@ -84,8 +85,7 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     /// A contact with at most this normal impulse per unit mass is separated: `64 eps g h`, the
     /// round-off of a step's gravity impulse (constant, so computed once). Not `eps V`: the
     /// impulses are solved to round-off of their own scale even when the support speed `V` is in
-    /// the same LCP, and a floor of `eps V` called a contact carrying 1/40 of a 1 m/s scene's
-    /// weight at h = 1e-5 s separated (and its next step used `mu_s`).
+    /// the same LCP, and at h = 1e-5 s `eps V` of a 1 m/s scene is 1/40 of its weight's impulse.
     impulse_floor: T,
     /// A step whose velocity scale exceeds this is [`StepReport::round_off_limited`]:
     /// `ROUND_OFF_LIMIT g h / eps` (infinite without gravity: no impulse scale).
@@ -499,15 +499,14 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// The reduced layout's check (`docs/formulation.md`, "Reduced friction layouts"): for each
     /// active contact that keeps one direction `s` of two, the row of the dropped direction,
     /// `-s (W_d^T v+ - d . u) + sigma`, must not be negative beyond round-off: `64 N eps` of this
-    /// step's velocities (the fastest support's and the body's). Not of a scene-wide speed: after
-    /// a 10 m/s finger stopped, a tolerance of `eps x 10 m/s` let an f32 rod slide the wrong way
-    /// on the kept direction for 500 steps (2 mm from the full layout; `host-sim envelope`).
+    /// step's velocities (the fastest support's and the body's). Not of a scene-wide speed: once
+    /// a fast finger stops, `eps` of its former speed exceeds the slow slips the check must see.
     ///
     /// Except where `sigma` is free: when the kept direction carries no impulse and the cone row
     /// `mu p_n - p_f` is zero too (`mu = 0`, or no normal impulse), `sigma` can be raised to
     /// `|W_d^T v+ - d . u|` without breaking any complementarity, and the reduced answer (same
-    /// impulses) extends to a solution of the full LCP. (Without this exception the frictionless
-    /// meter stick fell back to the full layout in 441 of 3,998 steps; `host-sim stress`.)
+    /// impulses) extends to a solution of the full LCP (the frictionless meter stick's every
+    /// step is such a case).
     ///
     /// Returns the first contact that needs its dropped direction, and that direction.
     fn dropped_direction_needed(
