@@ -57,7 +57,8 @@ use crate::lcp::Basis;
 use crate::lcp::elimination::solve_leading;
 use crate::real::{AllFinite, Real, max, min};
 
-/// The factored rows of one step's LCP ([module docs](self)).
+/// The factored rows of one step's LCP (`docs/formulation.md`, "Solving a step"; the rows and
+/// the elimination are written out in the docs of `core/src/planar/factored.rs`).
 #[derive(Debug, Clone, Copy)]
 pub struct FactoredLcp<T, const K: usize, const N: usize> {
     /// `c_j`, the wrench column of impulse variable `j` (zero for the `sigma`s and for an inactive
@@ -343,8 +344,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     }
 
     /// The complementary solution of `basis`, computed in the body's coordinates and verified
-    /// within `tolerance` ([module docs](self)), or why there is none ([`Declined`]). Never a
-    /// solution that failed.
+    /// within `tolerance` (`docs/formulation.md`, "Solving a step"), or why there is none
+    /// ([`Declined`]). Never a solution that failed.
     ///
     /// # Errors
     /// [`Declined`]: a pattern this path does not take, a singular system, an infeasible basis
