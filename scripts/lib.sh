@@ -63,7 +63,7 @@ build_firmware() {
 # QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on a Pico
 # (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`, and with
 # the host link on UART0; pico-nolog-builtins and pico-link-builtins: the Pico's arithmetic from
-# compiler_builtins instead of its boot ROM (README "The Picos"), which the emulated RP2040 runs
+# compiler_builtins instead of its boot ROM (docs/hardware.md), which the emulated RP2040 runs
 # (scripts/pico-emu.sh).
 # Tags (comma-separated; scripts select builds by tag, never by position, `builds_tagged`):
 #   clippy  - linted in scripts/test.sh (the distinct code paths);

@@ -32,6 +32,30 @@ if $HOST_CARGO fmt --version >/dev/null 2>&1; then $HOST_CARGO fmt --all -- --ch
 step "clippy (host workspace, all targets)"
 $HOST_CARGO clippy --locked --workspace --all-targets -- -D warnings
 
+step "docs: rustdoc of every host crate and of tools/uf2, warnings denied (broken or private links, bad HTML)"
+RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --workspace --no-deps --quiet
+(cd tools/uf2 && RUSTDOCFLAGS="-D warnings" $HOST_CARGO doc --locked --no-deps --quiet --target-dir "$ROOT/target/tools")
+# The README's first scene is core/examples/first_scene.rs between its README markers, line for
+# line; the example runs (its asserts are the README's claims).
+if ! grep -q '^```rust$' README.md || ! grep -q '^// README begin$' core/examples/first_scene.rs; then
+  echo "README.md has no rust block, or core/examples/first_scene.rs no '// README begin' line" >&2
+  exit 1
+fi
+if ! diff -u <(awk '/^```rust$/ { on = 1; next } on && /^```$/ { exit } on' README.md) \
+  <(awk '/^\/\/ README end$/ { exit } on; /^\/\/ README begin$/ { on = 1 }' core/examples/first_scene.rs); then
+  echo "README.md's first rust block differs from core/examples/first_scene.rs (between its README markers)" >&2
+  exit 1
+fi
+$HOST_CARGO run --locked --quiet -p meterstick-core --example first_scene
+
+step "the declared MSRV: the library crates, every feature, with the toolchain of rust-version"
+if [ -n "${MS_MSRV_TOOLCHAIN:-}" ]; then
+  cargo "+$MS_MSRV_TOOLCHAIN" check --locked --all-features --target-dir "$ROOT/target/msrv" \
+    -p meterstick-core -p meterstick-link -p meterstick-rig -p meterstick-reference
+else
+  echo "no MSRV toolchain (the Debian fallback, or rustup could not install it): skipped"
+fi
+
 step "host tests"
 $HOST_CARGO test --locked --workspace
 # The core alone, without `host-tuned` (host-sim turns it on for the whole workspace run): the

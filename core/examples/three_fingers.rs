@@ -8,7 +8,7 @@
 //! family; here at first the middle finger carries the rod alone and finger 1 slides under it
 //! without dragging). Real fingers are compliant and split the load by their stiffness.
 //!
-//! `cargo run -p meterstick-core --example three_fingers` (README: "Writing a scene").
+//! `cargo run -p meterstick-core --example three_fingers` (CONTRIBUTING.md, "Adding a scene").
 #![allow(clippy::print_stdout)]
 
 use meterstick_core::ParamError;

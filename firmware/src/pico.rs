@@ -23,7 +23,7 @@
 //! 4 KiB of flash ([`IMAGE_DEF`], placed after the vector table by `firmware/memory/rp2350.x`);
 //! the RP2040's boot ROM runs the 256-byte second-stage boot loader at the start of flash
 //! (`BOOT2`, the one for the Pico's W25Q flash), which sets up execute-in-place. Both are flashed
-//! without a probe from a `.uf2` file (README "Flashing a Pico").
+//! without a probe from a `.uf2` file (docs/hardware.md, "Flashing a Pico without a probe").
 
 #[cfg(feature = "log")]
 use defmt_rtt as _;

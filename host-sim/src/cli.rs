@@ -2,7 +2,7 @@
 //! each command does ([`run`]) and the exit status ([`main_with`]), in the library so that tests
 //! (and the fuzz target `tests/tests/fuzz_inputs.rs`) reach them.
 //!
-//! Exit status (also in `host-sim --help`, each subcommand's `--help` and the README):
+//! Exit status (also in `host-sim --help`, each subcommand's `--help` and `docs/host-sim.md`):
 //! 0 done; 1 a check failed (`stress`: a case failed; `monitor`: the rig's run differs from the
 //! host's); 2 bad input (a refused flag or value, an unreadable, oversized or malformed file) or
 //! another error (I/O); 130 stopped by Ctrl-C (the files written so far are listed); `qemu`

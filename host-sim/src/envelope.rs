@@ -34,8 +34,8 @@ use serde::Serialize;
 
 use crate::output::sci;
 use crate::progress::bar as progress;
-use crate::scenes::{Implementation, MAX_STEPS, SceneSpec};
-use crate::trajectory::{OutcomeClass, Record, Trajectory, max_deviation, run};
+use crate::scenes::{Implementation, MAX_STEPS, SceneParams};
+use crate::trajectory::{OutcomeKind, Record, Trajectory, max_deviation, run};
 
 /// The finger speeds of the table (m/s).
 pub const SPEEDS: [f64; 9] = [1e-4, 1e-3, 1e-2, 0.1, 0.2, 0.3, 0.5, 1.0, 10.0];
@@ -92,9 +92,9 @@ pub struct Cell {
     /// Steps of the f32 run.
     pub steps: u64,
     /// Outcome of the f32 run.
-    pub outcome_f32: OutcomeClass,
+    pub outcome_f32: OutcomeKind,
     /// Outcome of the f64 run.
-    pub outcome_f64: OutcomeClass,
+    pub outcome_f64: OutcomeKind,
     /// `max |COM_f32 - COM_f64|` (m).
     pub f32_deviation_m: f64,
     /// Switch events of the f32 and f64 runs.
@@ -108,7 +108,7 @@ pub struct Cell {
     /// `max |COM_f64(h) - COM_f64(h/2)|` (m).
     pub f64_own_error_m: f64,
     /// Outcome of the f64 run with `h / 2`.
-    pub outcome_f64_half: OutcomeClass,
+    pub outcome_f64_half: OutcomeKind,
     /// f64 at `h / 2` has the same sequence of switch events (contact, mode) as at `h`.
     pub f64_events_converged: bool,
     /// f64 converged (same outcome and switch sequence at `h / 2`, own error at most
@@ -159,12 +159,12 @@ fn run_job(speed: f64, h: f64, max_steps: u64, job: Job) -> anyhow::Result<Traje
     let every = (steps / SAMPLES).ceil().max(1.0);
     let record = Record::Grid(every * h);
     let (implementation, p) = match job {
-        Job::F32 => (Implementation::CORE_F32_6, p),
-        Job::F64 => (Implementation::CORE_F64_8, p),
-        Job::F64Half => (Implementation::CORE_F64_8, MeterStickParams { step: h / 2.0, ..p }),
+        Job::F32 => (Implementation::CORE_F32_REDUCED, p),
+        Job::F64 => (Implementation::CORE_F64_FULL, p),
+        Job::F64Half => (Implementation::CORE_F64_FULL, MeterStickParams { step: h / 2.0, ..p }),
         Job::Reference => (Implementation::Reference, p),
     };
-    run(&SceneSpec::MeterStick(p), implementation, record)
+    run(&SceneParams::MeterStick(p), implementation, record)
 }
 
 /// The switch events of `a` and `b` compared in order: whether they agree, and the largest time

@@ -258,27 +258,8 @@ pub fn parse_siconos(text: &str) -> anyhow::Result<LcpData> {
     Ok(LcpData { m, q })
 }
 
-/// Scalar precision of a solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Precision {
-    /// `f32`, as on the microcontroller.
-    #[default]
-    F32,
-    /// `f64`.
-    F64,
-}
-
-impl Precision {
-    /// `f32` or `f64`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::F32 => "f32",
-            Self::F64 => "f64",
-        }
-    }
-}
+/// Scalar precision of a solve: the core's.
+pub use meterstick_core::scene::Precision;
 
 /// The JSON line the `lcp` command prints.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -23,10 +23,10 @@ use crate::output::{create_dir, write_json, write_lines};
 use crate::plot;
 use crate::progress::bar as progress;
 use crate::scenes::{
-    FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, SceneSpec, SpecExt as _, flag_error,
+    FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, ParamsExt as _, SceneParams, flag_error,
 };
-use crate::trajectory::{OutcomeClass, Record, run_k};
-use meterstick_core::scene::catalogue::Refusal;
+use crate::trajectory::{OutcomeKind, Record, run_k};
+use meterstick_catalogue::Refusal;
 
 /// The most cells a map may have (each is a run of up to `MAX_STEPS`).
 /// (At about 550 runs per second on 2 cores, 200,000 cells take about 6 minutes.)
@@ -68,7 +68,7 @@ impl Axis {
     }
 
     /// `spec` with this axis at `value`.
-    fn apply(self, spec: &mut SceneSpec, value: f64) -> anyhow::Result<()> {
+    fn apply(self, spec: &mut SceneParams, value: f64) -> anyhow::Result<()> {
         let kind = spec.kind();
         match self {
             Self::MuRatio => {
@@ -102,9 +102,9 @@ pub struct Boundary {
     /// The bisection interval's width.
     pub width: f64,
     /// The outcome below `x`.
-    pub below: OutcomeClass,
+    pub below: OutcomeKind,
     /// The outcome above `x`.
-    pub above: OutcomeClass,
+    pub above: OutcomeKind,
 }
 
 /// `summary.json`.
@@ -125,7 +125,7 @@ pub struct MapSummary {
     /// Wall-clock time (s).
     pub wall_s: f64,
     /// Cells of each outcome.
-    pub counts: Vec<(OutcomeClass, usize)>,
+    pub counts: Vec<(OutcomeKind, usize)>,
     /// Every boundary found.
     pub boundaries: Vec<Boundary>,
 }
@@ -138,17 +138,17 @@ pub struct Map {
     /// Row centres.
     pub ys: Vec<f64>,
     /// `outcomes[row][column]`.
-    pub outcomes: Vec<Vec<OutcomeClass>>,
+    pub outcomes: Vec<Vec<OutcomeKind>>,
     /// The summary.
     pub summary: MapSummary,
 }
 
 fn outcome_at(
-    base: &SceneSpec,
+    base: &SceneParams,
     axes: (Axis, Axis),
     (x, y): (f64, f64),
     implementation: Implementation,
-) -> anyhow::Result<OutcomeClass> {
+) -> anyhow::Result<OutcomeKind> {
     let spec = apply_axes(base, axes, (x, y))?;
     spec.validate(implementation.precision())
         .map_err(|e| anyhow::anyhow!("at ({x:?}, {y:?}): {}", flag_error(&spec, e)))?;
@@ -159,7 +159,7 @@ fn outcome_at(
 
 /// `base` with the axes at `(x, y)`: a scene flag first, then `mu-ratio` (which scales the
 /// cell's `mu_s`, whichever axis sets it).
-fn apply_axes(base: &SceneSpec, axes: (Axis, Axis), (x, y): (f64, f64)) -> anyhow::Result<SceneSpec> {
+fn apply_axes(base: &SceneParams, axes: (Axis, Axis), (x, y): (f64, f64)) -> anyhow::Result<SceneParams> {
     let mut spec = *base;
     let (first, second) =
         if axes.0 == Axis::MuRatio { ((axes.1, y), (axes.0, x)) } else { ((axes.0, x), (axes.1, y)) };
@@ -202,7 +202,7 @@ impl Grid {
     ///
     /// # Errors
     /// The first corner whose parameters do not validate, in the flags' words.
-    pub fn validate(&self, base: &SceneSpec, implementation: Implementation) -> anyhow::Result<()> {
+    pub fn validate(&self, base: &SceneParams, implementation: Implementation) -> anyhow::Result<()> {
         for &x in &[self.x.0, self.x.1] {
             for &y in &[self.y.0, self.y.1] {
                 let spec = apply_axes(base, self.axes, (x, y))?;
@@ -234,14 +234,14 @@ impl Grid {
 ///
 /// # Errors
 /// Parameters that do not validate at a corner (before anything runs), or a cell that cannot run.
-pub fn compute(base: &SceneSpec, grid: &Grid, implementation: Implementation) -> anyhow::Result<Map> {
+pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) -> anyhow::Result<Map> {
     grid.validate(base, implementation)?;
     let axes = grid.axes;
     let (xs, ys) = (centres(grid.x, grid.cells[0]), centres(grid.y, grid.cells[1]));
     let cells = xs.len() * ys.len();
     let started = Instant::now();
     let bar = progress(cells as u64, "map cells");
-    let flat: Vec<anyhow::Result<OutcomeClass>> = (0..cells)
+    let flat: Vec<anyhow::Result<OutcomeKind>> = (0..cells)
         .into_par_iter()
         .map(|k| {
             let r = outcome_at(base, axes, (xs[k % xs.len()], ys[k / xs.len()]), implementation);
@@ -251,7 +251,7 @@ pub fn compute(base: &SceneSpec, grid: &Grid, implementation: Implementation) ->
         .collect();
     bar.finish_and_clear();
     let flat = flat.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
-    let outcomes: Vec<Vec<OutcomeClass>> = flat.chunks(xs.len()).map(<[OutcomeClass]>::to_vec).collect();
+    let outcomes: Vec<Vec<OutcomeKind>> = flat.chunks(xs.len()).map(<[OutcomeKind]>::to_vec).collect();
     // Boundaries along x, bisected.
     let pairs: Vec<(usize, usize)> = (0..ys.len())
         .flat_map(|j| (1..xs.len()).map(move |i| (j, i)))
@@ -289,7 +289,7 @@ pub fn compute(base: &SceneSpec, grid: &Grid, implementation: Implementation) ->
     bar.finish_and_clear();
     let bisected = bisected.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
     let runs = cells + bisected.iter().map(|b| b.1).sum::<usize>();
-    let mut counts: Vec<(OutcomeClass, usize)> = Vec::new();
+    let mut counts: Vec<(OutcomeKind, usize)> = Vec::new();
     for o in &flat {
         match counts.iter_mut().find(|(c, _)| c == o) {
             Some((_, n)) => *n += 1,

@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::Context as _;
 use serde::Serialize;
 
-use crate::scenes::SceneSpec;
+use crate::scenes::SceneParams;
 
 /// `x` in short scientific notation for tables and text (`1.23e-5`; `0` for zero, `n/a` for a
 /// quantity that does not exist, NaN or infinite).
@@ -25,7 +25,7 @@ pub fn sci(x: f64) -> String {
 
 /// The parameters as a JSON map (core field names).
 #[must_use]
-pub fn parameters_json(spec: &SceneSpec) -> serde_json::Map<String, serde_json::Value> {
+pub fn parameters_json(spec: &SceneParams) -> serde_json::Map<String, serde_json::Value> {
     spec.fields().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect()
 }
 

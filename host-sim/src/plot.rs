@@ -231,8 +231,8 @@ pub fn relative<const K: usize>(path: &Path, title: &str, runs: &[&Trajectory<K>
 
 /// The colour of an outcome class in every picture.
 #[must_use]
-pub const fn outcome_color(class: crate::trajectory::OutcomeClass) -> RGBColor {
-    use crate::trajectory::OutcomeClass as O;
+pub const fn outcome_color(class: crate::trajectory::OutcomeKind) -> RGBColor {
+    use crate::trajectory::OutcomeKind as O;
     match class {
         O::Balanced | O::Held | O::Rolled => RGBColor(44, 160, 44),
         O::Fell | O::Tipped | O::Jammed => RGBColor(214, 39, 40),
@@ -253,10 +253,10 @@ pub fn outcome_raster(
     title: &str,
     (x_desc, xs): (&str, &[f64]),
     (y_desc, ys): (&str, &[f64]),
-    cells: &[Vec<crate::trajectory::OutcomeClass>],
+    cells: &[Vec<crate::trajectory::OutcomeKind>],
     boundaries: &[(f64, f64)],
 ) -> anyhow::Result<()> {
-    use crate::trajectory::OutcomeClass as O;
+    use crate::trajectory::OutcomeKind as O;
     let color = outcome_color;
     let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
     let (hx, hy) = (half(xs), half(ys));

@@ -1,9 +1,9 @@
-//! The scenes `host-sim` runs: which ([`SceneKind`]), with which parameters ([`SceneSpec`]), in
+//! The scenes `host-sim` runs: which ([`SceneKind`]), with which parameters ([`SceneParams`]), in
 //! which implementation ([`Implementation`]); and their command-line flags ([`SceneArgs`]).
 //!
-//! **Written once.** The scenes, their flags and their refusals are the core's catalogue
-//! (`core/src/scene/catalogue.rs`): [`SceneKind`], [`FLAGS`] (a flag and the field it sets in each
-//! scene it applies to), [`SceneSpec`] (any scene's parameters). The clap arguments are generated
+//! **Written once.** The scenes and their parameters are the core's ([`SceneKind`],
+//! [`SceneParams`]), their flags and refusals the catalogue's (`catalogue/src/lib.rs`): [`FLAGS`]
+//! (a flag and the field it sets in each scene it applies to), `Refusal`. The clap arguments are generated
 //! from it; `--help` shows each scene's default, read from the core's `Default`; an invalid value
 //! is reported with the flag the user typed ([`flag_error`]), in the words the page uses too.
 
@@ -14,18 +14,17 @@ use clap::{Arg, ArgAction, ArgMatches, Command};
 use meterstick_core::ParamError;
 use serde::Serialize;
 
-use crate::lcp_io::Precision;
-
-pub use meterstick_core::scene::catalogue::{FLAGS, Flag, MAX_STEPS, SceneKind, flag_of};
-use meterstick_core::scene::catalogue::{Refusal, Short};
+pub use meterstick_catalogue::{Catalogued, FLAGS, Flag, MAX_STEPS, flag_of};
+use meterstick_catalogue::{Refusal, Short};
+pub use meterstick_core::scene::{LcpLayout, Precision, SceneKind};
 
 /// A scene with its parameters (SI units, angles in radians, f64 as given; cast to the
-/// implementation's precision when run): the catalogue's `AnyParams`, under the name `host-sim` gave it.
-pub use meterstick_core::scene::AnyParams as SceneSpec;
+/// implementation's precision when run): the catalogue's.
+pub use meterstick_core::scene::SceneParams;
 
-/// What `host-sim` adds to a [`SceneSpec`]: validation in a [`Precision`] and the same scene for
+/// What `host-sim` adds to a [`SceneParams`]: validation in a [`Precision`] and the same scene for
 /// the independent reference.
-pub trait SpecExt {
+pub trait ParamsExt {
     /// Checks the parameters in f64 and in `precision` (a value may overflow f32, or round to
     /// an invalid one), before anything runs.
     ///
@@ -38,7 +37,7 @@ pub trait SpecExt {
     fn to_reference(&self) -> Option<crate::reference::Spec>;
 }
 
-impl SpecExt for SceneSpec {
+impl ParamsExt for SceneParams {
     fn validate(&self, precision: Precision) -> Result<(), ParamError> {
         match precision {
             Precision::F32 => self.validate_as::<f32>(),
@@ -141,47 +140,43 @@ impl SpecExt for SceneSpec {
     }
 }
 
-/// The LCP size of the core: the reduced layout (6x6, as the firmware) or the full one (8x8).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum, Serialize)]
-pub enum LcpSize {
-    /// 6x6: one friction direction per contact, checked, with the 8x8 fallback.
-    #[default]
-    #[value(name = "6")]
-    Reduced,
-    /// 8x8: the paper's form.
-    #[value(name = "8")]
-    Full,
+/// `--precision`'s values: the core's [`Precision`]s by name (`f32`, `f64`).
+#[must_use]
+pub fn precision_parser() -> impl clap::builder::TypedValueParser<Value = Precision> {
+    use clap::builder::{PossibleValuesParser, TypedValueParser as _};
+    PossibleValuesParser::new(Precision::ALL.map(Precision::name))
+        .map(|name| Precision::from_name(&name).unwrap_or_default())
 }
 
-impl LcpSize {
-    /// The LCP's size for a scene of `contacts` contacts (docs/formulation.md): per contact its
-    /// normal, its slack and one friction direction (reduced) or two (full).
-    #[must_use]
-    pub const fn n_for(self, contacts: usize) -> usize {
-        contacts
-            * match self {
-                Self::Reduced => 3,
-                Self::Full => 4,
-            }
-    }
+/// `--layout`'s values: the core's [`LcpLayout`]s by name (`reduced`, `full`), each with the LCP
+/// sizes it gives.
+#[must_use]
+pub fn layout_parser() -> impl clap::builder::TypedValueParser<Value = LcpLayout> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser as _};
+    PossibleValuesParser::new([
+        PossibleValue::new(LcpLayout::Reduced.name())
+            .help("one friction direction per contact, checked, as the firmware: 6x6 for two contacts, 3x3 for one, 9x9 for three"),
+        PossibleValue::new(LcpLayout::Full.name()).help("the paper's form: 8x8 for two contacts, 4x4 for one, 12x12 for three"),
+    ])
+    .map(|name| LcpLayout::from_name(&name).unwrap_or_default())
 }
 
 /// Who computed a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Implementation {
-    /// `meterstick-core` in a precision and an LCP size.
-    Core(Precision, LcpSize),
+    /// `meterstick-core` in a precision and an LCP layout.
+    Core(Precision, LcpLayout),
     /// The independent f64 reference (`crate::reference`, enumeration of the full form).
     Reference,
 }
 
 impl Implementation {
-    /// The firmware's configuration.
-    pub const CORE_F32_6: Self = Self::Core(Precision::F32, LcpSize::Reduced);
-    /// Core, f32, 8x8.
-    pub const CORE_F32_8: Self = Self::Core(Precision::F32, LcpSize::Full);
-    /// Core, f64, 8x8.
-    pub const CORE_F64_8: Self = Self::Core(Precision::F64, LcpSize::Full);
+    /// The firmware's configuration: f32, reduced layout.
+    pub const CORE_F32_REDUCED: Self = Self::Core(Precision::F32, LcpLayout::Reduced);
+    /// Core, f32, full layout.
+    pub const CORE_F32_FULL: Self = Self::Core(Precision::F32, LcpLayout::Full);
+    /// Core, f64, full layout.
+    pub const CORE_F64_FULL: Self = Self::Core(Precision::F64, LcpLayout::Full);
 
     /// The precision it computes in.
     #[must_use]
@@ -211,7 +206,7 @@ impl Implementation {
     /// This implementation as it runs a scene of `kind`, whose contacts set its LCP's size.
     #[must_use]
     pub const fn of_scene(self, kind: SceneKind) -> ImplementationOf {
-        ImplementationOf { implementation: self, contacts: kind.info().contacts }
+        ImplementationOf { implementation: self, contacts: kind.contacts() }
     }
 }
 
@@ -229,11 +224,11 @@ pub struct ImplementationOf {
 impl fmt::Display for ImplementationOf {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.implementation {
-            Implementation::Core(p, size) => {
-                write!(f, "core {} {n}x{n}", p.name(), n = size.n_for(self.contacts))
+            Implementation::Core(p, layout) => {
+                write!(f, "core {} {n}x{n}", p.name(), n = layout.size(self.contacts))
             }
             Implementation::Reference => {
-                write!(f, "reference f64 {n}x{n}", n = LcpSize::Full.n_for(self.contacts))
+                write!(f, "reference f64 {n}x{n}", n = LcpLayout::Full.size(self.contacts))
             }
         }
     }
@@ -249,7 +244,7 @@ impl Serialize for ImplementationOf {
 /// allowed range; when the parameters pass in f64 the error came from f32, and the message says so
 /// (`--mass 1e39 kg: not a finite number as f32 (--precision f32; f64 accepts it)`).
 #[must_use]
-pub fn flag_error(spec: &SceneSpec, e: ParamError) -> String {
+pub fn flag_error(spec: &SceneParams, e: ParamError) -> String {
     Refusal::Invalid { params: *spec, error: e }.worded("--").to_string()
 }
 
@@ -271,8 +266,8 @@ pub struct SceneArgs {
     pub given: Vec<(&'static Flag, Vec<f64>)>,
     /// `--precision`.
     pub precision: Precision,
-    /// `--lcp-size`.
-    pub lcp_size: LcpSize,
+    /// `--layout`.
+    pub layout: LcpLayout,
 }
 
 /// Parses `"0.1"` or `"0.1,0.5"`.
@@ -297,7 +292,7 @@ fn help_of(flag: &Flag) -> String {
         .fields
         .iter()
         .filter_map(|&(kind, field)| {
-            SceneSpec::defaults(kind).get(field).map(|v| format!("{kind} {}", Short(flag.from_core(v))))
+            SceneParams::defaults(kind).get(field).map(|v| format!("{kind} {}", Short(flag.from_core(v))))
         })
         .collect();
     let unit = if flag.unit.is_empty() { String::new() } else { format!(", {}", flag.unit) };
@@ -324,16 +319,17 @@ impl clap::Args for SceneArgs {
             .arg(
                 Arg::new("precision")
                     .long("precision")
-                    .value_parser(clap::builder::EnumValueParser::<Precision>::new())
-                    .default_value("f32")
+                    .value_parser(precision_parser())
+                    .default_value(Precision::F32.name())
                     .help("Scalar precision of the core"),
             )
             .arg(
-                Arg::new("lcp-size")
-                    .long("lcp-size")
-                    .value_parser(clap::builder::EnumValueParser::<LcpSize>::new())
-                    .default_value("6")
-                    .help("LCP size of the core: 6 (one friction direction per contact, checked; as the firmware) or 8 (the paper's form); a scene of one or three contacts runs its reduced (3, 9) or full (4, 12) layout"),
+                Arg::new("layout")
+                    .long("layout")
+                    .value_parser(layout_parser())
+                    .default_value(LcpLayout::Reduced.name())
+                    .value_name("LAYOUT")
+                    .help("LCP layout of the core (a scene of K contacts solves a 3K x 3K or 4K x 4K LCP)"),
             );
         for flag in FLAGS {
             let value_name = if flag.unit.is_empty() { "X" } else { flag.unit };
@@ -369,8 +365,8 @@ impl clap::FromArgMatches for SceneArgs {
         if let Some(p) = m.get_one::<Precision>("precision") {
             self.precision = *p;
         }
-        if let Some(n) = m.get_one::<LcpSize>("lcp-size") {
-            self.lcp_size = *n;
+        if let Some(l) = m.get_one::<LcpLayout>("layout") {
+            self.layout = *l;
         }
         for flag in FLAGS {
             if let Some(v) = m.get_one::<Vec<f64>>(flag.long) {
@@ -392,7 +388,7 @@ impl SceneArgs {
     /// The core implementation these options ask for.
     #[must_use]
     pub const fn implementation(&self) -> Implementation {
-        Implementation::Core(self.precision, self.lcp_size)
+        Implementation::Core(self.precision, self.layout)
     }
 
     /// The scenes to run, `(name, spec)`: the defaults with the flags applied, one per value of
@@ -403,9 +399,9 @@ impl SceneArgs {
     /// # Errors
     /// A flag that does not apply to the scene, several listing flags, or an invalid value (in
     /// the user's words).
-    pub fn specs(&self, default_list: Option<(&str, &[f64])>) -> anyhow::Result<Vec<(String, SceneSpec)>> {
+    pub fn specs(&self, default_list: Option<(&str, &[f64])>) -> anyhow::Result<Vec<(String, SceneParams)>> {
         let kind = self.kind();
-        let mut base = SceneSpec::defaults(kind);
+        let mut base = SceneParams::defaults(kind);
         let mut list: Option<(&Flag, Vec<f64>)> = None;
         for (flag, values) in &self.given {
             let Some(field) = flag.field(kind) else {
@@ -445,7 +441,7 @@ impl SceneArgs {
         }
         let duration_given = self.given.iter().any(|(f, _)| f.long == "duration");
         let mut out = Vec::new();
-        let runs: Vec<(String, SceneSpec)> = match list {
+        let runs: Vec<(String, SceneParams)> = match list {
             None => vec![(kind.name().to_string(), base)],
             Some((flag, values)) => values
                 .iter()
@@ -513,7 +509,7 @@ mod tests {
     /// A value only f32 refuses says so.
     #[test]
     fn an_f32_only_refusal_says_so() {
-        let mut spec = SceneSpec::defaults(SceneKind::MeterStick);
+        let mut spec = SceneParams::defaults(SceneKind::MeterStick);
         spec.set("rod_mass", 1e39);
         let e = spec.validate(Precision::F32).unwrap_err();
         assert_eq!(
@@ -529,10 +525,10 @@ mod tests {
     #[test]
     fn labels_name_the_scenes_lcp_size() {
         let label = |i: Implementation, kind| i.of_scene(kind).to_string();
-        assert_eq!(label(Implementation::CORE_F32_6, SceneKind::MeterStick), "core f32 6x6");
-        assert_eq!(label(Implementation::CORE_F32_6, SceneKind::Cylinder), "core f32 3x3");
-        assert_eq!(label(Implementation::CORE_F64_8, SceneKind::Painleve), "core f64 4x4");
-        assert_eq!(label(Implementation::CORE_F32_8, SceneKind::ThreeFingers), "core f32 12x12");
+        assert_eq!(label(Implementation::CORE_F32_REDUCED, SceneKind::MeterStick), "core f32 6x6");
+        assert_eq!(label(Implementation::CORE_F32_REDUCED, SceneKind::Cylinder), "core f32 3x3");
+        assert_eq!(label(Implementation::CORE_F64_FULL, SceneKind::Painleve), "core f64 4x4");
+        assert_eq!(label(Implementation::CORE_F32_FULL, SceneKind::ThreeFingers), "core f32 12x12");
         assert_eq!(label(Implementation::Reference, SceneKind::ThreeFingers), "reference f64 12x12");
         assert_eq!(
             label(Implementation::Reference, SceneKind::Ladder),

@@ -20,21 +20,21 @@ use meterstick_core::scene::MeterStickParams;
 use rayon::prelude::*;
 
 use crate::progress::bar as progress;
-use crate::scenes::{Implementation, SceneSpec};
-use crate::trajectory::{OutcomeClass, Paths, Record, Trajectory, run as run_scene, switches};
+use crate::scenes::{Implementation, SceneParams};
+use crate::trajectory::{OutcomeKind, Paths, Record, Trajectory, run as run_scene, switches};
 
 /// The implementations the report compares.
 pub const CONFIGS: [Implementation; 4] = [
-    Implementation::CORE_F32_6,
-    Implementation::CORE_F32_8,
-    Implementation::CORE_F64_8,
+    Implementation::CORE_F32_REDUCED,
+    Implementation::CORE_F32_FULL,
+    Implementation::CORE_F64_FULL,
     Implementation::Reference,
 ];
 
 /// The sweep's scene with step `h`: the paper's, finger 1 from -0.35 m.
 #[must_use]
-pub fn sweep_scene(h: f64) -> SceneSpec {
-    SceneSpec::MeterStick(MeterStickParams { finger1_x: -0.35, step: h, ..MeterStickParams::paper() })
+pub fn sweep_scene(h: f64) -> SceneParams {
+    SceneParams::MeterStick(MeterStickParams { finger1_x: -0.35, step: h, ..MeterStickParams::paper() })
 }
 
 /// The longest COM-error horizon the sweep can measure (s): its scene's converged run ends,
@@ -99,7 +99,7 @@ pub struct SweepRow {
     /// Steps of the whole run.
     pub steps: u64,
     /// Outcome class.
-    pub outcome: OutcomeClass,
+    pub outcome: OutcomeKind,
     /// Errors against the converged reference.
     pub errors: Errors,
     /// Median host ns per step.
@@ -120,7 +120,7 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn time_run(config: Implementation, p: &SceneSpec) -> anyhow::Result<(f64, usize)> {
+fn time_run(config: Implementation, p: &SceneParams) -> anyhow::Result<(f64, usize)> {
     let mut samples = Vec::new();
     loop {
         let start = Instant::now();

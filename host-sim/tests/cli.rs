@@ -230,7 +230,7 @@ fn run_and_scene_take_a_three_contact_scene() {
     assert!(dir.join("core-events.csv").exists() && dir.join("positions.svg").exists());
     std::fs::remove_dir_all(&out).unwrap();
     let (code, stdout, err) =
-        host_sim(&["scene", "--scene", "three-fingers", "--precision", "f64", "--lcp-size", "8"]);
+        host_sim(&["scene", "--scene", "three-fingers", "--precision", "f64", "--layout", "full"]);
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("outcome Held at t = ") && stdout.contains("checksum "), "{stdout}");
     // A flag of a two-contact scene is refused by name.
@@ -307,10 +307,10 @@ fn the_painleve_rod_jams() {
             .unwrap();
     assert_eq!(s["core"]["outcome"], "Jammed", "{s}");
     // 45 degrees, m = 1, V = 1: normal impulse 3 m V s c / 4 = 0.375 N s, within m g h.
-    let pn = s["core"]["measured"]["jam"]["normal_impulse_ns"].as_f64().unwrap();
+    let pn = s["core"]["measured"]["jam"]["normal_impulse_n_s"].as_f64().unwrap();
     assert!((pn - 0.375).abs() < 9.81e-3, "{s}");
     // The reference's jam beside it (the core here is f32: within its round-off).
-    let reference_pn = s["reference"]["measured"]["jam"]["normal_impulse_ns"].as_f64().unwrap();
+    let reference_pn = s["reference"]["measured"]["jam"]["normal_impulse_n_s"].as_f64().unwrap();
     assert!((reference_pn - pn).abs() < 1e-5, "{s}");
     std::fs::remove_dir_all(&out).unwrap();
 }
@@ -507,14 +507,26 @@ fn run_and_scene_reject_each_invalid_parameter() {
         (&["--finger-width", "-0.01"], "--finger-width -0.01 m: must not be negative"),
         (&["--mu-k", "0.7"], "--mu-k 0.7 must not exceed --mu-s 0.6"),
         (&["--x1", "-0.6"], "a finger starts beyond an end of the rod: --x1 -0.6 m"),
-        (&["--x2", "0.51"], "--x2 0.51 m"),
+        (
+            &["--x2", "0.51"],
+            "a finger starts beyond an end of the rod: --x2 0.51 m must be within --length 1 m / 2",
+        ),
+        (
+            &["--scene", "three-fingers", "--x3", "0.6"],
+            "a finger starts beyond an end of the rod: --x3 0.6 m must be",
+        ),
+        (
+            &["--scene", "three-fingers", "--x3", "-0.1"],
+            "finger 3 must start right of finger 2: --x3 -0.1 m > --x2 0 m",
+        ),
         (&["--x1", "0.3", "--x2", "0.305"], "finger 1 must start left of finger 2"),
         (&["--scene", "incline", "--angle", "95"], "--angle 95 deg: out of range (0 <= angle < 90 deg)"),
         (&["--scene", "ladder", "--angle", "0"], "--angle 0 deg: out of range (0 < angle < 90 deg)"),
         (&["--scene", "ladder", "--mu-s", "0.3"], "--mu-s does not apply to --scene ladder"),
         (&["--width", "0.2"], "--width does not apply to --scene meter-stick (it is a parameter of incline)"),
         (&["--speed", "0.1,0.2", "--h", "1e-3,1e-4"], "only one flag may"),
-        (&["--lcp-size", "7"], "invalid value '7' for '--lcp-size"),
+        (&["--layout", "8"], "invalid value '8' for '--layout"),
+        (&["--lcp-size", "8"], "unexpected argument '--lcp-size'"),
         (&["--precision", "f16"], "invalid value 'f16'"),
         (&["--speed", "fast"], "\"fast\" is not a number"),
         (&["--scene", "pendulum"], "invalid value 'pendulum' for '--scene"),

@@ -68,7 +68,7 @@
 //!
 //! ## Versions
 //!
-//! [`PROTOCOL_VERSION`] (now 4) is sent by the rig in [`Report::Hello`]. It changes with any
+//! [`PROTOCOL_VERSION`] (now 5) is sent by the rig in [`Report::Hello`]. It changes with any
 //! change a peer could see: a field added, removed, reordered or retyped, a variant added,
 //! or a meaning changed. postcard is not self-describing, so the host must compare it and
 //! refuse (or warn about) a rig with another version rather than guess. Two things never
@@ -86,6 +86,13 @@
 //! could not follow: no longer reported as a core fault and an unfinished run),
 //! `RejectReason::BeyondRig` (a value the model accepts but the rig cannot perform), and a
 //! refused `Command::Preset` may be answered with `Report::Rejected` naming the parameter.
+//!
+//! Version 4: `RejectReason::OutOfRange` and `RejectReason::InertiaOutOfRange` (a value outside
+//! its range, such as a step longer than the run or a rod as thick as it is long, and a mass and
+//! size whose moment of inertia the rig's precision cannot hold; both were `Other`).
+//!
+//! Version 5: `OutcomeCode::Rolled` and `OutcomeCode::Jammed`, so that every outcome of the
+//! core crosses the link as itself (a run ending in either was reported as `Unfinished`).
 //!
 //! ## Errors and counting
 //!
@@ -292,7 +299,7 @@ pub use wire::{
 
 /// The protocol version, sent in [`Report::Hello`]. Bumped on every change a peer could
 /// see (see the crate docs, "Versions").
-pub const PROTOCOL_VERSION: u16 = 4;
+pub const PROTOCOL_VERSION: u16 = 5;
 
 /// The largest postcard message of this protocol version, in bytes: a [`Report::Telemetry`]
 /// (tag 1, `step` up to a 5-byte varint, 13 `f32`, 2 modes).

@@ -206,6 +206,11 @@ pub enum OutcomeCode {
     /// The rig's actuator could not follow the scene (more stepper pulses due in one tick than
     /// it can emit); the rig stopped in [`RigState::Fault`].
     ActuatorOverrun,
+    /// The body rolled without slipping (a cylinder on an incline). Since version 5.
+    Rolled,
+    /// A sliding end stopped within one step under an impulsive friction (Painlevé's rod).
+    /// Since version 5.
+    Jammed,
 }
 
 /// The rig's run state ([`Report::State`]).

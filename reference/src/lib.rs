@@ -55,6 +55,7 @@
 
 pub mod enumerate;
 mod geometry;
+pub mod multibody;
 mod other_scenes;
 mod scenes;
 mod simulate;

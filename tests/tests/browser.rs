@@ -25,7 +25,7 @@ use std::time::{Duration, Instant};
 
 use meterstick_host_sim::commands::{run as run_command, scene};
 use meterstick_host_sim::lcp_io::Precision;
-use meterstick_host_sim::scenes::{FLAGS, LcpSize, SceneArgs, SceneKind};
+use meterstick_host_sim::scenes::{Catalogued as _, FLAGS, LcpLayout, SceneArgs, SceneKind};
 use meterstick_host_sim::serve::{Replay, ServeArgs, Server};
 use meterstick_host_sim::trajectory::{Record, run_k};
 use meterstick_host_sim::with_contacts;
@@ -277,7 +277,8 @@ fn scene_args(query: &str) -> SceneArgs {
         match key {
             "scene" => args.scene = Some(*SceneKind::ALL.iter().find(|k| k.name() == value).unwrap()),
             "precision" => args.precision = if value == "f64" { Precision::F64 } else { Precision::F32 },
-            "lcp-size" => args.lcp_size = if value == "8" { LcpSize::Full } else { LcpSize::Reduced },
+            // The page's key names the two-contact size of the layout (6 reduced, 8 full).
+            "lcp-size" => args.layout = if value == "8" { LcpLayout::Full } else { LcpLayout::Reduced },
             "autorun" | "rate" => {}
             flag => {
                 let f = FLAGS.iter().find(|f| f.long == flag).unwrap_or_else(|| panic!("no flag {flag}"));
@@ -440,8 +441,8 @@ fn check_scene(b: &Browser, base: &str, name: &str, query: &str, expected: &str)
     let info = kind.info();
     let shown = b.js("return window.meterstick.contacts()");
     assert_eq!(shown["names"], json!(info.contact_names), "{name}: the contacts");
-    assert_eq!(shown["row"].as_u64(), Some(7 + 6 * info.contacts as u64), "{name}: the row");
-    let module = format!("pkg/meterstick_web_k{}.wasm", info.contacts);
+    assert_eq!(shown["row"].as_u64(), Some(7 + 6 * kind.contacts() as u64), "{name}: the row");
+    let module = format!("pkg/meterstick_web_k{}.wasm", kind.contacts());
     let fetched = b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
     assert!(fetched.as_str().unwrap().contains(&module), "{name}: {module} not fetched: {fetched}");
     let spec = args.specs(None).unwrap()[0].1;
@@ -461,7 +462,7 @@ fn check_scene(b: &Browser, base: &str, name: &str, query: &str, expected: &str)
     }
     println!(
         "    {} contact(s) {:?}, from {module}; measured: {}",
-        info.contacts,
+        kind.contacts(),
         info.contact_names,
         b.text("measured")
     );

@@ -26,7 +26,7 @@ use meterstick_host_sim::cli::{self, Cmd};
 use meterstick_host_sim::commands::{map, run as run_command};
 use meterstick_host_sim::lcp_io::{self, LcpData, MAX_N, Precision};
 use meterstick_host_sim::monitor;
-use meterstick_host_sim::scenes::{MAX_STEPS, SceneArgs, SpecExt as _};
+use meterstick_host_sim::scenes::{MAX_STEPS, ParamsExt as _, SceneArgs};
 use meterstick_tests::corpus_dir;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};

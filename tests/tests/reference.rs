@@ -23,16 +23,14 @@ use meterstick_core::scene::{
     CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
 };
 use meterstick_host_sim::lcp_io::Precision;
-use meterstick_host_sim::scenes::{Implementation, LcpSize, SceneSpec, SpecExt as _};
-use meterstick_host_sim::trajectory::{
-    OutcomeClass, Record, Trajectory, max_deviation, run, run_k, switches,
-};
+use meterstick_host_sim::scenes::{Implementation, LcpLayout, ParamsExt as _, SceneParams};
+use meterstick_host_sim::trajectory::{OutcomeKind, Record, Trajectory, max_deviation, run, run_k, switches};
 
 fn stick(v: f64, x1: f64, duration: f64) -> MeterStickParams<f64> {
     MeterStickParams { finger1_velocity: v, finger1_x: x1, max_time: duration, ..MeterStickParams::paper() }
 }
 
-fn reference(spec: &SceneSpec) -> Trajectory {
+fn reference(spec: &SceneParams) -> Trajectory {
     run(spec, Implementation::Reference, Record::All).unwrap()
 }
 
@@ -53,8 +51,8 @@ fn close(a: Option<f64>, b: Option<f64>, what: &str) {
 
 /// Every scene, in several regimes: the meter stick with either or both fingers moving and a
 /// raised finger; a block held, sliding, tipping; a ladder standing, slipping, frictionless.
-fn scenes() -> Vec<(&'static str, SceneSpec)> {
-    use SceneSpec::{Incline, Ladder, MeterStick};
+fn scenes() -> Vec<(&'static str, SceneParams)> {
+    use SceneParams::{Incline, Ladder, MeterStick};
     let deg = f64::to_radians;
     vec![
         ("slow", MeterStick(stick(0.1, -0.35, 30.0))),
@@ -100,7 +98,7 @@ fn f64_core_matches_the_reference_to_round_off_on_every_scene() {
     for (name, spec) in scenes() {
         let r = reference(&spec);
         for implementation in
-            [Implementation::CORE_F64_8, Implementation::Core(Precision::F64, LcpSize::Reduced)]
+            [Implementation::CORE_F64_FULL, Implementation::Core(Precision::F64, LcpLayout::Reduced)]
         {
             let core = run(&spec, implementation, Record::All).unwrap();
             let what = format!("{name}: {implementation}");
@@ -125,9 +123,9 @@ fn f64_core_matches_the_reference_to_round_off_on_every_scene() {
 fn f32_core_matches_the_reference_within_one_step_of_travel() {
     for (v, x1) in [(0.1, -0.35), (0.1, -0.4), (5.0, -0.4)] {
         let p = stick(v, x1, 30.0);
-        let spec = SceneSpec::MeterStick(p);
+        let spec = SceneParams::MeterStick(p);
         let r = reference(&spec);
-        for implementation in [Implementation::CORE_F32_6, Implementation::CORE_F32_8] {
+        for implementation in [Implementation::CORE_F32_REDUCED, Implementation::CORE_F32_FULL] {
             let core = run(&spec, implementation, Record::All).unwrap();
             let what = format!("{implementation} at v = {v}, x1 = {x1}");
             assert_eq!(core.outcome, r.outcome, "{what}");
@@ -151,8 +149,8 @@ fn f32_core_matches_the_reference_within_one_step_of_travel() {
 #[test]
 fn the_reference_reproduces_the_papers_claims_by_itself() {
     // Slow finger: balanced, fingers meet near the COM, eq. 21 ratios near mu_k/mu_s.
-    let r = reference(&SceneSpec::MeterStick(stick(0.1, -0.35, 30.0)));
-    assert_eq!(r.outcome.class, OutcomeClass::Balanced);
+    let r = reference(&SceneParams::MeterStick(stick(0.1, -0.35, 30.0)));
+    assert_eq!(r.outcome.class, OutcomeKind::Balanced);
     let meeting = r.measured.meeting.unwrap();
     assert!(meeting.com_offset_m.abs() < 3e-3, "{meeting:?}"); // bound: tests/scene.rs MEETING_BOUND
     let sw = switches(&r);
@@ -161,12 +159,12 @@ fn the_reference_reproduces_the_papers_claims_by_itself() {
         assert!((s.ratio / (0.4 / 0.6) - 1.0).abs() < 0.02, "{s:?}");
     }
     // Fast finger: the rod falls.
-    assert_eq!(reference(&SceneSpec::MeterStick(stick(5.0, -0.4, 30.0))).outcome.class, OutcomeClass::Fell);
+    assert_eq!(reference(&SceneParams::MeterStick(stick(5.0, -0.4, 30.0))).outcome.class, OutcomeKind::Fell);
 }
 
 #[test]
 fn the_reference_rejects_invalid_parameters() {
-    let spec = SceneSpec::MeterStick(MeterStickParams { step: 0.0, ..MeterStickParams::paper() });
+    let spec = SceneParams::MeterStick(MeterStickParams { step: 0.0, ..MeterStickParams::paper() });
     let e = run(&spec, Implementation::Reference, Record::Nothing).unwrap_err().to_string();
     assert!(e.contains("step"), "{e}");
 }
@@ -179,9 +177,9 @@ fn the_reference_rejects_invalid_parameters() {
 /// 1e-5 m, and the same switches with ratios within 1e-3.
 #[test]
 fn f32_core_holds_1e_5_m_at_a_slow_finger() {
-    let spec = SceneSpec::MeterStick(MeterStickParams { finger2_x: 0.1, ..stick(0.001, -0.1, 200.0) });
+    let spec = SceneParams::MeterStick(MeterStickParams { finger2_x: 0.1, ..stick(0.001, -0.1, 200.0) });
     let r = reference(&spec);
-    let core = run(&spec, Implementation::CORE_F32_6, Record::All).unwrap();
+    let core = run(&spec, Implementation::CORE_F32_REDUCED, Record::All).unwrap();
     assert_eq!(core.outcome, r.outcome);
     let (com, _) = max_deviation(&core, &r);
     assert!(com < 1e-5, "COM deviation {com:e} m");
@@ -195,11 +193,12 @@ fn f32_core_holds_1e_5_m_at_a_slow_finger() {
 /// The core in f64, both layouts, against the reference on a one-contact scene: the same steps,
 /// outcome and switch events, the trajectory within 1e-9 m / 1e-9 rad, measured quantities within
 /// 1e-9. Returns the largest COM and angle deviations.
-fn one_contact_matches(name: &str, spec: &SceneSpec) -> (f64, f64) {
+fn one_contact_matches(name: &str, spec: &SceneParams) -> (f64, f64) {
     let r = run_k::<1>(spec, Implementation::Reference, Record::All).unwrap();
     assert_eq!(r.counters.ambiguous_steps, 0, "{name}");
     let mut worst: (f64, f64) = (0.0, 0.0);
-    for implementation in [Implementation::CORE_F64_8, Implementation::Core(Precision::F64, LcpSize::Reduced)]
+    for implementation in
+        [Implementation::CORE_F64_FULL, Implementation::Core(Precision::F64, LcpLayout::Reduced)]
     {
         let core = run_k::<1>(spec, implementation, Record::All).unwrap();
         let what = format!("{name}: {implementation}");
@@ -228,8 +227,8 @@ fn one_contact_matches(name: &str, spec: &SceneSpec) -> (f64, f64) {
         assert!(impulse < 1e-9, "{what}: impulses {impulse:e} N s");
         let (mc, mr) = (&core.measured, &r.measured);
         close(mc.acceleration_m_s2, mr.acceleration_m_s2, &what);
-        close(mc.jam.map(|j| j.normal_impulse_ns), mr.jam.map(|j| j.normal_impulse_ns), &what);
-        close(mc.jam.map(|j| j.friction_impulse_ns), mr.jam.map(|j| j.friction_impulse_ns), &what);
+        close(mc.jam.map(|j| j.normal_impulse_n_s), mr.jam.map(|j| j.normal_impulse_n_s), &what);
+        close(mc.jam.map(|j| j.friction_impulse_n_s), mr.jam.map(|j| j.friction_impulse_n_s), &what);
         close(mc.jam.map(|j| j.time_s), mr.jam.map(|j| j.time_s), &what);
         close(mc.angular_acceleration_rad_s2, mr.angular_acceleration_rad_s2, &what);
         println!(
@@ -254,23 +253,23 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
         inertia_factor: k,
         ..CylinderParams::default()
     };
-    let scenes: Vec<(&str, SceneSpec, OutcomeClass)> = vec![
-        ("cylinder default", SceneSpec::Cylinder(CylinderParams::default()), OutcomeClass::Rolled),
+    let scenes: Vec<(&str, SceneParams, OutcomeKind)> = vec![
+        ("cylinder default", SceneParams::Cylinder(CylinderParams::default()), OutcomeKind::Rolled),
         // Critical angles atan(mu_s (1 + k) / k): 30.96 deg (k = 1/2), 21.80 deg (k = 1).
-        ("cylinder rolls, k = 1/2", SceneSpec::Cylinder(cylinder(28.96, 0.5)), OutcomeClass::Rolled),
-        ("cylinder slides, k = 1/2", SceneSpec::Cylinder(cylinder(32.96, 0.5)), OutcomeClass::Slid),
-        ("ring slides", SceneSpec::Cylinder(cylinder(40.0, 1.0)), OutcomeClass::Slid),
-        ("painleve default", SceneSpec::Painleve(PainleveParams::default()), OutcomeClass::Jammed),
+        ("cylinder rolls, k = 1/2", SceneParams::Cylinder(cylinder(28.96, 0.5)), OutcomeKind::Rolled),
+        ("cylinder slides, k = 1/2", SceneParams::Cylinder(cylinder(32.96, 0.5)), OutcomeKind::Slid),
+        ("ring slides", SceneParams::Cylinder(cylinder(40.0, 1.0)), OutcomeKind::Slid),
+        ("painleve default", SceneParams::Painleve(PainleveParams::default()), OutcomeKind::Jammed),
         (
             "painleve 45 deg, h = 1e-4",
-            SceneSpec::Painleve(PainleveParams {
+            SceneParams::Painleve(PainleveParams {
                 angle: deg(45.0),
                 mu_static: 2.0,
                 mu_kinetic: 2.0,
                 step: 1e-4,
                 ..PainleveParams::default()
             }),
-            OutcomeClass::Jammed,
+            OutcomeKind::Jammed,
         ),
         (
             // 0.96 times the critical mu at the start: the rod turns up, the normal response
@@ -278,35 +277,35 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
             // after 5 steps under an impulse of the order of the last step's, a stop and no impact,
             // and the rod falls.
             "painleve stops late, falls",
-            SceneSpec::Painleve(PainleveParams {
+            SceneParams::Painleve(PainleveParams {
                 mu_static: 2.4,
                 mu_kinetic: 2.4,
                 ..PainleveParams::default()
             }),
-            OutcomeClass::Fell,
+            OutcomeKind::Fell,
         ),
         (
             // 0.8 times the critical mu: friction stops the slow end (no impact, no jam); the rod
             // pivots on its end and falls.
             "painleve stops, falls",
-            SceneSpec::Painleve(PainleveParams {
+            SceneParams::Painleve(PainleveParams {
                 speed: -0.1,
                 mu_static: 2.0,
                 mu_kinetic: 2.0,
                 max_time: 1.0,
                 ..PainleveParams::default()
             }),
-            OutcomeClass::Fell,
+            OutcomeKind::Fell,
         ),
         (
             "painleve slides",
-            SceneSpec::Painleve(PainleveParams {
+            SceneParams::Painleve(PainleveParams {
                 mu_static: 1.0,
                 mu_kinetic: 1.0,
                 max_time: 0.2,
                 ..PainleveParams::default()
             }),
-            OutcomeClass::Slid,
+            OutcomeKind::Slid,
         ),
     ];
     let mut worst: (f64, f64) = (0.0, 0.0);
@@ -340,15 +339,16 @@ fn f64_core_matches_the_reference_on_the_one_contact_scenes() {
 #[test]
 fn three_fingers_part_only_where_the_contact_model_does_not_decide_the_motion() {
     let p = ThreeFingersParams::default();
-    let spec = SceneSpec::ThreeFingers(p);
+    let spec = SceneParams::ThreeFingers(p);
     let r = run_k::<3>(&spec, Implementation::Reference, Record::All).unwrap();
     let direct =
         meterstick_reference::run(&spec.to_reference().unwrap(), meterstick_reference::Sample::None).unwrap();
-    assert_eq!(r.outcome.class, OutcomeClass::Held);
+    assert_eq!(r.outcome.class, OutcomeKind::Held);
     let rest = r.rows.iter().map(|row| row.q[0].abs().max(row.q[2].abs())).fold(0.0, f64::max);
     assert!(rest < 1e-12, "the reference's rod moved: {rest:e}");
     let departure_x = -p.finger3_x * p.mu_kinetic / p.mu_static;
-    for implementation in [Implementation::CORE_F64_8, Implementation::Core(Precision::F64, LcpSize::Reduced)]
+    for implementation in
+        [Implementation::CORE_F64_FULL, Implementation::Core(Precision::F64, LcpLayout::Reduced)]
     {
         let core = run_k::<3>(&spec, implementation, Record::All).unwrap();
         let what = format!("three fingers: {implementation}");

@@ -7,7 +7,7 @@ use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{BodyState, ContactMode};
 use meterstick_core::scene::{MeterStick, MeterStick6, MeterStick8, MeterStickParams, Outcome, Scene};
-use meterstick_host_sim::scenes::SceneSpec;
+use meterstick_host_sim::scenes::{LcpLayout, Precision, SceneParams};
 use meterstick_host_sim::trajectory::{Record, run_core, switches};
 
 /// The paper's scene with an asymmetric start, so the first slip is determined.
@@ -26,7 +26,9 @@ fn eq21_switches<T: Real, const N: usize>(
     meeting_time: f64,
 ) -> Vec<(f64, f64)> {
     let p64 = params.cast::<f64>();
-    let run = run_core::<T, N>(&SceneSpec::MeterStick(p64), Record::Nothing).unwrap();
+    let precision = Precision::from_name(T::NAME).unwrap();
+    let layout = if N == 6 { LcpLayout::Reduced } else { LcpLayout::Full };
+    let run = run_core::<2>(&SceneParams::MeterStick(p64), precision, layout, Record::Nothing).unwrap();
     switches(&run).iter().filter(|s| s.t < meeting_time - p64.step).map(|s| (s.x_start, s.x_stop)).collect()
 }
 
@@ -404,8 +406,8 @@ fn eq21_switches_stop_where_the_fingers_stop() {
         ..MeterStickParams::paper()
     };
     let t = run(
-        &SceneSpec::MeterStick(p),
-        meterstick_host_sim::scenes::Implementation::CORE_F32_6,
+        &SceneParams::MeterStick(p),
+        meterstick_host_sim::scenes::Implementation::CORE_F32_REDUCED,
         Record::Nothing,
     )
     .unwrap();
@@ -474,10 +476,10 @@ fn the_step_report_warns_where_f32_cannot_resolve_the_impulses() {
 fn f32_switches_on_time_at_a_small_step() {
     let p =
         MeterStickParams { finger1_velocity: 0.1, step: 1e-5, max_time: 1.5, ..MeterStickParams::paper() };
-    let spec = SceneSpec::MeterStick(p);
+    let spec = SceneParams::MeterStick(p);
     let first = |run: &meterstick_host_sim::trajectory::Trajectory| switches(run).first().copied().unwrap();
-    let f32_run = run_core::<f32, 6>(&spec, Record::Nothing).unwrap();
-    let f64_run = run_core::<f64, 8>(&spec, Record::Nothing).unwrap();
+    let f32_run = run_core::<2>(&spec, Precision::F32, LcpLayout::Reduced, Record::Nothing).unwrap();
+    let f64_run = run_core::<2>(&spec, Precision::F64, LcpLayout::Full, Record::Nothing).unwrap();
     let (a, b) = (first(&f32_run), first(&f64_run));
     assert!((a.ratio - b.ratio).abs() < 5e-4, "f32 {a:?} vs f64 {b:?}");
 }

@@ -2,7 +2,7 @@
 //! Pico (RP2040) can use its boot ROM's floating-point routines and still reproduce the host's f32
 //! trajectory bit for bit: rp2040-hal maps `+ - * /` of f32 to them, and they round as IEEE 754
 //! does (round to nearest even) except that they flush subnormal operands and results to zero
-//! (README "The Picos"). So the Pico computes what the host computes exactly when no addition,
+//! (docs/hardware.md). So the Pico computes what the host computes exactly when no addition,
 //! subtraction, multiplication or division on the way meets or makes a subnormal.
 //!
 //! x86-64 records both in MXCSR's sticky flags: DE (a subnormal operand) and UE (underflow: a
@@ -27,7 +27,7 @@ use meterstick_core::planar::Checksum;
 use meterstick_core::scene::{
     Incline, InclineParams, Ladder, LadderParams, MeterStick, MeterStickParams, Scene,
 };
-use meterstick_host_sim::scenes::SceneSpec;
+use meterstick_host_sim::scenes::SceneParams;
 use meterstick_host_sim::stress::cases::cases;
 
 /// MXCSR bits: the sticky flags DE (denormal operand) and UE (underflow), and the modes DAZ and
@@ -109,16 +109,16 @@ fn both<S: Scene<f32, 2>>(make: &dyn Fn() -> Option<S>) -> Option<(Run, Run)> {
 }
 
 /// The stress case `spec` (start raised by `dy`) in f32 with the `N`-row LCP.
-fn stress_run<const N: usize>(spec: &SceneSpec, dy: f64) -> Option<(Run, Run)> {
+fn stress_run<const N: usize>(spec: &SceneParams, dy: f64) -> Option<(Run, Run)> {
     match *spec {
-        SceneSpec::MeterStick(p) => both(&|| {
+        SceneParams::MeterStick(p) => both(&|| {
             let p = p.cast::<f32>();
             let mut start = p.resting_state();
             start.y += dy as f32;
             MeterStick::<f32, N, 0>::with_state(p, start).ok()
         }),
-        SceneSpec::Incline(p) => both(&|| Incline::<f32, N, 0>::new(p.cast()).ok()),
-        SceneSpec::Ladder(p) => both(&|| Ladder::<f32, N, 0>::new(p.cast()).ok()),
+        SceneParams::Incline(p) => both(&|| Incline::<f32, N, 0>::new(p.cast()).ok()),
+        SceneParams::Ladder(p) => both(&|| Ladder::<f32, N, 0>::new(p.cast()).ok()),
         _ => None, // the stress grid's scenes are the three above (`host-sim/src/stress/cases.rs`)
     }
 }

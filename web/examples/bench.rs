@@ -8,7 +8,7 @@
 
 use std::time::Instant;
 
-use meterstick_web::config::{LcpSize, Precision};
+use meterstick_web::config::{LcpLayout, Precision};
 use meterstick_web::flags::{SceneKind, flag_index};
 use meterstick_web::session::Session;
 use meterstick_web::sim::OUTCOMES;
@@ -27,7 +27,7 @@ fn session(given: &[(&str, f64)]) -> Session {
     for (long, v) in given {
         assert!(s.give(flag_index(long).unwrap(), *v));
     }
-    s.create(Precision::F32, LcpSize::Reduced).expect("valid");
+    s.create(Precision::F32, LcpLayout::Reduced).expect("valid");
     s
 }
 

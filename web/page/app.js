@@ -26,8 +26,8 @@ const MEASURE_WORDS = {
   wall_release_height_m: (v) => `the top left the wall at ${v.toFixed(4)} m`,
   wall_release_ratio: (v) => `${v.toFixed(4)} of its start height`,
   'jam.time_s': (v) => `the end jammed at t = ${v.toFixed(4)} s`,
-  'jam.normal_impulse_ns': (v) => `normal impulse ${v.toFixed(5)} N s`,
-  'jam.friction_impulse_ns': (v) => `friction impulse ${v.toFixed(5)} N s`,
+  'jam.normal_impulse_n_s': (v) => `normal impulse ${v.toFixed(5)} N s`,
+  'jam.friction_impulse_n_s': (v) => `friction impulse ${v.toFixed(5)} N s`,
 };
 
 /// The measured quantities ({key: value | null}) in words; '-' when there are none.

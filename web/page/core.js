@@ -1,6 +1,6 @@
 // The wasm modules (meterstick-web, built into pkg/) and their exports, wrapped for the page and
 // the map workers. A module has no imports; its API is plain numbers and two buffers in linear
-// memory (see web/src/exports.rs and README.md, "The page"). Each module holds the scenes of some
+// memory (see web/src/exports.rs and docs/page.md). Each module holds the scenes of some
 // numbers of contacts (its description's `holds`): meterstick_web.wasm the two-contact scenes,
 // meterstick_web_k1.wasm and meterstick_web_k3.wasm the others, fetched when such a scene is chosen.
 

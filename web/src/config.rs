@@ -1,5 +1,5 @@
 //! A scene's configuration as the page gives it: the scene, the flags the user set (in their
-//! units), the precision and the LCP size; [`Config::resolve`] turns it into the core's
+//! units), the precision and the LCP layout; [`Config::resolve`] turns it into the core's
 //! parameters exactly as `host-sim scene` does (`SceneArgs::specs`: flags in table order, the
 //! meter stick's time limit following the fingers' travel unless `duration` is given, validation
 //! in f64 and in the run's precision, at most [`MAX_STEPS`] steps), and [`ConfigError`] words a
@@ -8,66 +8,35 @@
 
 use core::fmt;
 
+pub use meterstick_catalogue::MAX_STEPS;
+use meterstick_catalogue::Refusal;
 use meterstick_core::ParamError;
-pub use meterstick_core::scene::catalogue::MAX_STEPS;
-use meterstick_core::scene::catalogue::Refusal;
 
 use crate::flags::{FLAGS, SceneKind};
 
-/// Scalar precision of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Precision {
-    /// `f32`, as on the microcontroller (the default).
-    #[default]
-    F32,
-    /// `f64`.
-    F64,
-}
+/// Scalar precision and LCP layout of a run: the core's, as `host-sim`'s `--precision` and
+/// `--layout`.
+pub use meterstick_core::scene::{LcpLayout, Precision};
 
-impl Precision {
-    /// From the number of bits (32 or 64).
-    #[must_use]
-    pub const fn from_bits(bits: u32) -> Option<Self> {
-        match bits {
-            32 => Some(Self::F32),
-            64 => Some(Self::F64),
-            _ => None,
-        }
+/// The layout the page's `lcp-size` names by its size for two contacts: 6 reduced, 8 full (a scene
+/// of one or three contacts runs the same layout: 3 or 4, 9 or 12).
+#[must_use]
+pub const fn layout_of_page_size(n: u32) -> Option<LcpLayout> {
+    match n {
+        6 => Some(LcpLayout::Reduced),
+        8 => Some(LcpLayout::Full),
+        _ => None,
     }
 }
 
-/// LCP size of a run: 6x6 (one friction direction per contact, checked, with the 8x8 fallback;
-/// the firmware's) or 8x8 (the paper's form).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum LcpSize {
-    /// 6x6 (the default).
-    #[default]
-    Reduced,
-    /// 8x8.
-    Full,
-}
-
-impl LcpSize {
-    /// From `n` (6 or 8).
-    #[must_use]
-    pub const fn from_n(n: u32) -> Option<Self> {
-        match n {
-            6 => Some(Self::Reduced),
-            8 => Some(Self::Full),
-            _ => None,
-        }
-    }
-}
-
-/// A scene with its parameters in the core's units (SI, radians), f64 as given: the catalogue's
-/// `AnyParams`, under the name the page's layer gave it.
-pub use meterstick_core::scene::AnyParams as Spec;
+/// A scene with its parameters in the core's units (SI, radians), f64 as given: the catalogue's.
+pub use meterstick_core::scene::SceneParams;
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.
 ///
 /// # Errors
 /// The core's first complaint.
-pub fn validate(spec: &Spec, precision: Precision) -> Result<(), ParamError> {
+pub fn validate(spec: &SceneParams, precision: Precision) -> Result<(), ParamError> {
     // Only the scenes this module holds (`crate::sim::holds`; the session refuses the others
     // before this): naming them keeps the other scenes' checks out of the module.
     if !crate::sim::holds(spec.kind()) {
@@ -124,8 +93,8 @@ impl Config {
     /// # Errors
     /// A flag that does not apply to the scene, an invalid value, or too many steps.
     #[allow(clippy::result_large_err)] // the refusal carries the parameters it words; no heap on wasm
-    pub fn resolve(&self, precision: Precision) -> Result<Spec, ConfigError> {
-        let mut spec = Spec::defaults(self.kind);
+    pub fn resolve(&self, precision: Precision) -> Result<SceneParams, ConfigError> {
+        let mut spec = SceneParams::defaults(self.kind);
         for (i, (flag, value)) in FLAGS.iter().zip(self.given).enumerate() {
             let Some(value) = value else { continue };
             let Some(field) = flag.field(self.kind) else {

@@ -1,7 +1,7 @@
 //! The page's API: plain `extern "C"` functions over one [`Session`] per wasm instance, with
 //! numbers for arguments and results and two buffers in linear memory that the page reads (the
 //! text buffer: JSON descriptions, refusals, outcomes; the trace buffer: one row of f64 per step,
-//! as many as the scene's row has, [`crate::sim::row_len`]). `README.md` ("The page") lists them; `web/page/core.js` is their one caller.
+//! as many as the scene's row has, [`crate::sim::row_len`]). `docs/page.md` lists them; `web/page/core.js` is their one caller.
 //!
 //! Return conventions: counts as `u32` (or `f64` where they may exceed 2^32), codes as `i32`
 //! (`-1`: none or a bad argument), a text's length in bytes as `u32` (read from [`ms_text_ptr`]).
@@ -14,7 +14,7 @@
 
 use core::fmt::Write as _;
 
-use crate::config::{LcpSize, Precision};
+use crate::config::{Precision, layout_of_page_size};
 use crate::session::{CreateError, Session, TEXT_BYTES, TRACE_ROWS, describe, outcome_text};
 use crate::sim::{MAX_ROW, outcome_code};
 use crate::text::Text;
@@ -163,7 +163,7 @@ pub extern "C" fn ms_give(flag: u32, value: f64) -> i32 {
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_create(bits: u32, n: u32) -> i32 {
-    let (Some(precision), Some(size)) = (Precision::from_bits(bits), LcpSize::from_n(n)) else {
+    let (Some(precision), Some(size)) = (Precision::from_bits(bits), layout_of_page_size(n)) else {
         return -1;
     };
     store::with(|s, text, _| match s.session.create(precision, size) {
@@ -347,7 +347,7 @@ mod tests {
         assert!(json.contains(r#""contacts":["finger 1","finger 2","finger 3"],"row":25,"#), "{json}");
         assert!(json.contains(r#""holds":[1,2,3],"#), "the host build holds every scene: {json}");
         assert!(json.contains(r#""ends":["Rolled","Slid"],"main_flags":["angle","mu-s","mu-k","radius","inertia-ratio","h"]}"#), "{json}");
-        assert!(json.contains(r#""measures":["jam.time_s","jam.normal_impulse_ns","jam.friction_impulse_ns"],"ends":["Jammed","Slid","Fell","Unfinished"]"#), "{json}");
+        assert!(json.contains(r#""measures":["jam.time_s","jam.normal_impulse_n_s","jam.friction_impulse_n_s"],"ends":["Jammed","Slid","Fell","Unfinished"]"#), "{json}");
         assert!(json.contains(r#""defaults":[1,0.005,0.2,9.81,-0.4,0.4,0,0,0.1,0,0.01,0.6,0.4,0.001,0.00001,0.35,0.02,0.5,30]"#), "{json}");
     }
 

@@ -10,7 +10,7 @@
 //!   resolves it, and refusals in the user's words;
 //! * [`sim`]: one run in f32/f64 x 6x6/8x8, one row of numbers per step, the trajectory checksum;
 //! * [`session`]: what the exports operate on;
-//! * `exports`: the plain `extern "C"` functions the page calls (listed in `README.md`, "The page").
+//! * `exports`: the plain `extern "C"` functions the page calls (listed in `docs/page.md`).
 #![cfg_attr(target_arch = "wasm32", no_std)]
 
 pub mod config;

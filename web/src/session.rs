@@ -5,8 +5,8 @@ use core::fmt::Write as _;
 
 use meterstick_core::scene::Outcome;
 
-use crate::config::{Config, ConfigError, LcpSize, MAX_STEPS, Precision, Spec};
-use crate::flags::{FLAGS, SceneKind};
+use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneParams};
+use crate::flags::{Catalogued as _, FLAGS, SceneKind};
 use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, holds, row_len};
 use crate::text::{Text, json_num, json_str};
 
@@ -30,7 +30,7 @@ pub enum CreateError {
 #[derive(Debug, Clone)]
 pub struct Session {
     config: Config,
-    spec: Option<Spec>,
+    spec: Option<SceneParams>,
     sim: Option<Sim>,
 }
 
@@ -70,7 +70,7 @@ impl Session {
     /// # Errors
     /// The refusal, to be shown in the user's words (`Display`).
     #[allow(clippy::result_large_err)] // the refusal carries the parameters it words; no heap on wasm
-    pub fn create(&mut self, precision: Precision, size: LcpSize) -> Result<(), CreateError> {
+    pub fn create(&mut self, precision: Precision, size: LcpLayout) -> Result<(), CreateError> {
         self.sim = None;
         self.spec = None;
         if !holds(self.config.kind) {
@@ -84,7 +84,7 @@ impl Session {
 
     /// The parameters of the run (after [`Self::create`] succeeded).
     #[must_use]
-    pub const fn spec(&self) -> Option<&Spec> {
+    pub const fn spec(&self) -> Option<&SceneParams> {
         self.spec.as_ref()
     }
 
@@ -106,7 +106,7 @@ impl core::fmt::Display for CreateError {
             Self::Config(e) => write!(f, "{e}"),
             Self::Core(e) => write!(f, "{e}"),
             Self::OtherModule(kind) => {
-                let k = kind.info().contacts;
+                let k = kind.contacts();
                 write!(f, "scene {kind} runs in meterstick_web_k{k}.wasm, not in this module")
             }
         }
@@ -135,19 +135,19 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
         let info = kind.info();
         out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
-        json_str(out, info.name)?;
+        json_str(out, kind.name())?;
         out.write_str(",\"title\":")?;
         json_str(out, info.title)?;
         list(out, "fields", &mut kind.field_names().iter().copied())?;
         out.write_str(",\"defaults\":[")?;
-        let spec = Spec::defaults(kind);
+        let spec = SceneParams::defaults(kind);
         for j in 0..kind.field_names().len() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_num(out, spec.field(j).unwrap_or(f64::NAN))?;
         }
         out.write_char(']')?;
         list(out, "contacts", &mut info.contact_names.iter().copied())?;
-        write!(out, ",\"row\":{}", row_len(info.contacts))?;
+        write!(out, ",\"row\":{}", row_len(kind.contacts()))?;
         list(out, "measures", &mut info.measures.iter().copied())?;
         list(out, "ends", &mut info.outcomes.iter().map(|o| o.name()))?;
         list(out, "main_flags", &mut info.main_flags.iter().copied())?;
@@ -176,7 +176,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     out.write_str(",\"holds\":[")?;
     let mut first = true;
     for k in 1..=MAX_CONTACTS {
-        if SceneKind::ALL.iter().any(|s| s.info().contacts == k && holds(*s)) {
+        if SceneKind::ALL.iter().any(|s| s.contacts() == k && holds(*s)) {
             write!(out, "{}{k}", if first { "" } else { "," })?;
             first = false;
         }
@@ -195,7 +195,7 @@ pub fn outcome_text(out: &mut Text<'_>, outcome: Outcome) -> core::fmt::Result {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::{LcpSize, Precision};
+    use crate::config::{LcpLayout, Precision};
     use crate::text::StackStr;
 
     #[test]
@@ -204,8 +204,8 @@ mod tests {
         for kind in SceneKind::ALL {
             assert!(holds(kind), "{kind}");
             s.configure(kind);
-            assert!(s.create(Precision::F32, LcpSize::Reduced).is_ok(), "{kind}");
-            assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.info().contacts)), "{kind}");
+            assert!(s.create(Precision::F32, LcpLayout::Reduced).is_ok(), "{kind}");
+            assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.contacts())), "{kind}");
         }
         let e = CreateError::OtherModule(SceneKind::Cylinder);
         assert_eq!(

@@ -1,6 +1,5 @@
 //! One run of a scene in the core, as the page drives it: [`Sim`] holds any scene of the catalogue
-//! in the precision and layout asked for (f32/f64 x reduced/full: 6x6/8x8 for two contacts, the
-//! scene's own sizes for the others), steps it, writes one row of numbers per step for the
+//! in the precision and layout asked for (the core's `AnyScene`), steps it, writes one row of numbers per step for the
 //! animation and the plots (the columns of `host-sim run`'s `core.csv` for the scene's `K`
 //! contacts, [`row_len`], so a live run and a replayed one are read alike), and keeps the
 //! trajectory checksum (`planar::Checksum`, as the firmware and `host-sim scene` print it).
@@ -14,11 +13,9 @@
 use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-use meterstick_core::scene::{
-    Cylinder, Incline, Ladder, MeterStick, Outcome, OutcomeKind, Painleve, Scene, SceneKind, ThreeFingers,
-};
+use meterstick_core::scene::{AnyScene, Outcome, OutcomeKind, Scene, SceneKind, SceneVisitor};
 
-use crate::config::{LcpSize, Precision, Spec};
+use crate::config::{LcpLayout, Precision, SceneParams};
 
 /// The most contacts a scene of the catalogue has (three fingers).
 pub const MAX_CONTACTS: usize = 3;
@@ -35,7 +32,7 @@ pub const fn row_len(k: usize) -> usize {
 /// `k3`: the page's first module has the two-contact scenes and loads the others' on demand).
 #[must_use]
 pub const fn holds(kind: SceneKind) -> bool {
-    let k = kind.info().contacts;
+    let k = kind.contacts();
     (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
 }
 
@@ -68,189 +65,29 @@ pub const fn outcome_code(o: Outcome) -> u8 {
     o.kind().code()
 }
 
-/// The scene in its precision and layout (`E = 0`: the page finds switch events in the rows).
-/// Two-contact scenes: 6 reduced, 8 full; three fingers 9 or 12; one contact 3 or 4, as
-/// `host-sim --lcp-size 6|8` selects them.
-#[derive(Debug, Clone)]
-#[allow(clippy::large_enum_variant)] // one scene per session, held in place: there is no heap on wasm
-enum AnyScene {
-    #[cfg(feature = "k2")]
-    MeterStickF32R(MeterStick<f32, 6, 0>),
-    #[cfg(feature = "k2")]
-    MeterStickF32F(MeterStick<f32, 8, 0>),
-    #[cfg(feature = "k2")]
-    MeterStickF64R(MeterStick<f64, 6, 0>),
-    #[cfg(feature = "k2")]
-    MeterStickF64F(MeterStick<f64, 8, 0>),
-    #[cfg(feature = "k2")]
-    InclineF32R(Incline<f32, 6, 0>),
-    #[cfg(feature = "k2")]
-    InclineF32F(Incline<f32, 8, 0>),
-    #[cfg(feature = "k2")]
-    InclineF64R(Incline<f64, 6, 0>),
-    #[cfg(feature = "k2")]
-    InclineF64F(Incline<f64, 8, 0>),
-    #[cfg(feature = "k2")]
-    LadderF32R(Ladder<f32, 6, 0>),
-    #[cfg(feature = "k2")]
-    LadderF32F(Ladder<f32, 8, 0>),
-    #[cfg(feature = "k2")]
-    LadderF64R(Ladder<f64, 6, 0>),
-    #[cfg(feature = "k2")]
-    LadderF64F(Ladder<f64, 8, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF32R(ThreeFingers<f32, 9, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF32F(ThreeFingers<f32, 12, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF64R(ThreeFingers<f64, 9, 0>),
-    #[cfg(feature = "k3")]
-    ThreeFingersF64F(ThreeFingers<f64, 12, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF32R(Cylinder<f32, 3, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF32F(Cylinder<f32, 4, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF64R(Cylinder<f64, 3, 0>),
-    #[cfg(feature = "k1")]
-    CylinderF64F(Cylinder<f64, 4, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF32R(Painleve<f32, 3, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF32F(Painleve<f32, 4, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF64R(Painleve<f64, 3, 0>),
-    #[cfg(feature = "k1")]
-    PainleveF64F(Painleve<f64, 4, 0>),
-}
-
-/// Runs `$body` with `$s` bound to the scene, whatever its type.
-macro_rules! each {
-    ($any:expr, $s:ident => $body:expr) => {
-        match $any {
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF32R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF32F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF64R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::MeterStickF64F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF32R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF32F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF64R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::InclineF64F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF32R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF32F($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF64R($s) => $body,
-            #[cfg(feature = "k2")]
-            AnyScene::LadderF64F($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF32R($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF32F($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF64R($s) => $body,
-            #[cfg(feature = "k3")]
-            AnyScene::ThreeFingersF64F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF32R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF32F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF64R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::CylinderF64F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF32R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF32F($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF64R($s) => $body,
-            #[cfg(feature = "k1")]
-            AnyScene::PainleveF64F($s) => $body,
-        }
-    };
-}
-
 /// One run.
 #[derive(Debug, Clone)]
 pub struct Sim {
-    scene: AnyScene,
+    /// The scene (`E = 0`: the page finds switch events in the rows), from the core's registry.
+    scene: AnyScene<0>,
     kind: SceneKind,
     checksum: Checksum,
     start: [f64; MAX_ROW],
 }
 
 impl Sim {
-    /// The scene of `spec` in `precision` and `size`, at its start at `t = 0`.
+    /// The scene of `spec` in `precision` and `layout`, at its start at `t = 0`.
     ///
     /// # Errors
     /// The core's complaint about the parameters (in its precision).
-    pub fn new(spec: &Spec, precision: Precision, size: LcpSize) -> Result<Self, ParamError> {
-        use {LcpSize::Full as Fu, LcpSize::Reduced as Re, Precision::F32, Precision::F64};
-        let scene = match (*spec, precision, size) {
-            #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F32, Re) => AnyScene::MeterStickF32R(MeterStick::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F32, Fu) => AnyScene::MeterStickF32F(MeterStick::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F64, Re) => AnyScene::MeterStickF64R(MeterStick::new(p)?),
-            #[cfg(feature = "k2")]
-            (Spec::MeterStick(p), F64, Fu) => AnyScene::MeterStickF64F(MeterStick::new(p)?),
-            #[cfg(feature = "k2")]
-            (Spec::Incline(p), F32, Re) => AnyScene::InclineF32R(Incline::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (Spec::Incline(p), F32, Fu) => AnyScene::InclineF32F(Incline::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (Spec::Incline(p), F64, Re) => AnyScene::InclineF64R(Incline::new(p)?),
-            #[cfg(feature = "k2")]
-            (Spec::Incline(p), F64, Fu) => AnyScene::InclineF64F(Incline::new(p)?),
-            #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F32, Re) => AnyScene::LadderF32R(Ladder::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F32, Fu) => AnyScene::LadderF32F(Ladder::new(p.cast())?),
-            #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F64, Re) => AnyScene::LadderF64R(Ladder::new(p)?),
-            #[cfg(feature = "k2")]
-            (Spec::Ladder(p), F64, Fu) => AnyScene::LadderF64F(Ladder::new(p)?),
-            #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F32, Re) => AnyScene::ThreeFingersF32R(ThreeFingers::new(p.cast())?),
-            #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F32, Fu) => AnyScene::ThreeFingersF32F(ThreeFingers::new(p.cast())?),
-            #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F64, Re) => AnyScene::ThreeFingersF64R(ThreeFingers::new(p)?),
-            #[cfg(feature = "k3")]
-            (Spec::ThreeFingers(p), F64, Fu) => AnyScene::ThreeFingersF64F(ThreeFingers::new(p)?),
-            #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F32, Re) => AnyScene::CylinderF32R(Cylinder::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F32, Fu) => AnyScene::CylinderF32F(Cylinder::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F64, Re) => AnyScene::CylinderF64R(Cylinder::new(p)?),
-            #[cfg(feature = "k1")]
-            (Spec::Cylinder(p), F64, Fu) => AnyScene::CylinderF64F(Cylinder::new(p)?),
-            #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F32, Re) => AnyScene::PainleveF32R(Painleve::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F32, Fu) => AnyScene::PainleveF32F(Painleve::new(p.cast())?),
-            #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F64, Re) => AnyScene::PainleveF64R(Painleve::new(p)?),
-            #[cfg(feature = "k1")]
-            (Spec::Painleve(p), F64, Fu) => AnyScene::PainleveF64F(Painleve::new(p)?),
-            // A scene of another module (the page loads the module of the scene's contacts).
-            #[allow(unreachable_patterns)]
-            _ => return Err(ParamError::OutOfRange("scene")),
-        };
+    pub fn new(spec: &SceneParams, precision: Precision, layout: LcpLayout) -> Result<Self, ParamError> {
+        // A scene of another module (the page loads the module of the scene's contacts).
+        if !holds(spec.kind()) {
+            return Err(ParamError::OutOfRange("scene"));
+        }
+        let mut scene = AnyScene::new(spec, precision, layout)?;
         let mut start = [0.0; MAX_ROW];
-        each!(&scene, s => start_row(s, &mut start));
+        scene.visit_mut(StartRow(&mut start));
         Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start })
     }
 
@@ -263,7 +100,7 @@ impl Sim {
     /// Numbers per row of this run ([`row_len`] of its contacts).
     #[must_use]
     pub const fn row_len(&self) -> usize {
-        row_len(self.kind.info().contacts)
+        row_len(self.kind.contacts())
     }
 
     /// The row of the state at `t = 0` (the contacts' initial modes; no impulses).
@@ -275,29 +112,19 @@ impl Sim {
     /// Steps until the run ends or `rows` is full, writing one row per step into `rows`
     /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
-        let checksum = &mut self.checksum;
-        each!(&mut self.scene, s => step_rows(s, checksum, rows))
+        self.scene.visit_mut(StepRows { checksum: &mut self.checksum, rows })
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
     /// benchmark); returns the steps taken.
     pub fn run(&mut self, max: u64) -> u64 {
-        let checksum = &mut self.checksum;
-        each!(&mut self.scene, s => {
-            let mut taken = 0;
-            while taken < max {
-                let Some(report) = s.step() else { break };
-                checksum.add(&report.state);
-                taken += 1;
-            }
-            taken
-        })
+        self.scene.visit_mut(Run { checksum: &mut self.checksum, max })
     }
 
     /// The outcome, once the run has ended.
     #[must_use]
     pub fn outcome(&self) -> Option<Outcome> {
-        each!(&self.scene, s => s.outcome())
+        self.scene.outcome()
     }
 
     /// The trajectory checksum so far (FNV-1a over the state's bits after every step).
@@ -309,20 +136,62 @@ impl Sim {
     /// Simulated time (s).
     #[must_use]
     pub fn time(&self) -> f64 {
-        each!(&self.scene, s => s.time().as_f64())
+        self.scene.time()
     }
 
     /// The stepper's counters (steps, pivots, warm starts, full-layout fallbacks, ...).
     #[must_use]
     pub fn stats(&self) -> RunStats {
-        each!(&self.scene, s => *s.stats())
+        *self.scene.stats()
     }
 
     /// The scene's measured quantities so far, in the order of the catalogue's `measures` for
     /// the scene (`summary.json`'s keys, [`Scene::measured`]); NaN where there is none (yet).
     #[must_use]
     pub fn measured(&self) -> [f64; MAX_MEASURES] {
-        each!(&self.scene, s => s.measured().map(|v| v.map_or(f64::NAN, Real::as_f64)))
+        self.scene.measured().map(|v| v.unwrap_or(f64::NAN))
+    }
+}
+
+/// [`start_row`] as a visitor of the core's registry.
+struct StartRow<'a>(&'a mut [f64; MAX_ROW]);
+
+impl SceneVisitor for StartRow<'_> {
+    type Output = ();
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, scene: S) {
+        start_row(&scene, self.0);
+    }
+}
+
+/// [`step_rows`] as a visitor of the core's registry.
+struct StepRows<'a> {
+    checksum: &'a mut Checksum,
+    rows: &'a mut [f64],
+}
+
+impl SceneVisitor for StepRows<'_> {
+    type Output = usize;
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> usize {
+        step_rows(&mut scene, self.checksum, self.rows)
+    }
+}
+
+/// Steps until the run ends or `max` steps were taken, adding each state to the checksum.
+struct Run<'a> {
+    checksum: &'a mut Checksum,
+    max: u64,
+}
+
+impl SceneVisitor for Run<'_> {
+    type Output = u64;
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> u64 {
+        let mut taken = 0;
+        while taken < self.max {
+            let Some(report) = scene.step() else { break };
+            self.checksum.add(&report.state);
+            taken += 1;
+        }
+        taken
     }
 }
 
@@ -386,7 +255,7 @@ mod tests {
 
     const ROW: usize = row_len(2);
 
-    fn sim(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpSize) -> Sim {
+    fn sim(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpLayout) -> Sim {
         let mut c = Config::new(kind);
         for (long, v) in given {
             c.give(flag_index(long).unwrap(), *v);
@@ -397,7 +266,7 @@ mod tests {
     #[test]
     fn rows_and_quiet_runs_agree() {
         let slow = [("x1", -0.35)];
-        let mut a = sim(SceneKind::MeterStick, &slow, Precision::F32, LcpSize::Reduced);
+        let mut a = sim(SceneKind::MeterStick, &slow, Precision::F32, LcpLayout::Reduced);
         let mut b = a.clone();
         let mut rows = [0.0; 64 * ROW];
         let mut steps = 0;
@@ -423,14 +292,14 @@ mod tests {
 
     #[test]
     fn the_start_row_is_the_rest_state_with_the_initial_modes() {
-        let s = sim(SceneKind::MeterStick, &[], Precision::F64, LcpSize::Full);
+        let s = sim(SceneKind::MeterStick, &[], Precision::F64, LcpLayout::Full);
         let row = s.start_row();
         assert_eq!(row.len(), 19, "core.csv's columns");
         assert_eq!(row[..4], [0.0, 0.0, 0.0025, 0.0]);
         assert_eq!(row[7..11], [-0.4, 0.0, 0.4, 0.0]);
         // Finger 1 starts sliding under the resting rod (sliding+), finger 2 sticks.
         assert_eq!((row[11], row[12]), (2.0, 1.0));
-        let ladder = sim(SceneKind::Ladder, &[("angle", 60.0)], Precision::F32, LcpSize::Reduced);
+        let ladder = sim(SceneKind::Ladder, &[("angle", 60.0)], Precision::F32, LcpLayout::Reduced);
         let row = ladder.start_row();
         // The foot on the floor, the top against the wall (f32 round-off).
         assert!((row[7] + 0.5).abs() < 1e-6 && row[8].abs() < 1e-6, "{row:?}");
@@ -448,7 +317,7 @@ mod tests {
             (SceneKind::Painleve, Outcome::Jammed),
         ] {
             for precision in [Precision::F32, Precision::F64] {
-                for size in [LcpSize::Reduced, LcpSize::Full] {
+                for size in [LcpLayout::Reduced, LcpLayout::Full] {
                     let given: &[(&str, f64)] =
                         if kind == SceneKind::MeterStick { &[("speed", 1.0)] } else { &[] };
                     let mut s = sim(kind, given, precision, size);
@@ -464,7 +333,7 @@ mod tests {
     #[test]
     fn rows_follow_the_scenes_contacts() {
         // The cylinder: one contact, rows of 13 (core.csv's columns for one contact).
-        let mut c = sim(SceneKind::Cylinder, &[("angle", 30.0)], Precision::F64, LcpSize::Reduced);
+        let mut c = sim(SceneKind::Cylinder, &[("angle", 30.0)], Precision::F64, LcpLayout::Reduced);
         assert_eq!((c.row_len(), c.start_row().len()), (13, 13));
         let mut rows = [0.0; 3 * 13 + 5];
         assert_eq!(c.step_rows(&mut rows), 3, "whole rows only");
@@ -481,7 +350,7 @@ mod tests {
         assert_eq!(r[9], 1.0, "sticking");
         assert!((r[10] - 9.81 * a.cos() * 1e-3).abs() < 1e-5, "{r:?}");
         // Three fingers: rows of 25, the third finger's support and mode in their places.
-        let t = sim(SceneKind::ThreeFingers, &[], Precision::F32, LcpSize::Full);
+        let t = sim(SceneKind::ThreeFingers, &[], Precision::F32, LcpLayout::Full);
         let r = t.start_row();
         assert_eq!(r.len(), 25);
         assert_eq!((r[7], r[9], r[11]), (f64::from(-0.4_f32), 0.0, f64::from(0.4_f32)));
@@ -491,9 +360,9 @@ mod tests {
     #[test]
     fn measured_quantities_follow_the_catalogues_names() {
         for kind in SceneKind::ALL {
-            assert!(kind.info().measures.len() <= MAX_MEASURES, "{kind}");
+            assert!(meterstick_catalogue::Catalogued::info(kind).measures.len() <= MAX_MEASURES, "{kind}");
         }
-        let mut p = sim(SceneKind::Painleve, &[], Precision::F64, LcpSize::Reduced);
+        let mut p = sim(SceneKind::Painleve, &[], Precision::F64, LcpLayout::Reduced);
         p.run(u64::MAX);
         assert_eq!(p.outcome(), Some(Outcome::Jammed));
         let [t, pn, pf] = p.measured();
@@ -501,8 +370,12 @@ mod tests {
         // m V / 4 (1 + 3 c^2, 3 s c) at 30 degrees: (0.8125, 0.3248).
         assert_eq!(t, 1e-3);
         assert!((pf - 0.8125).abs() < 0.02 && (pn - 0.3248).abs() < 0.02, "{pn} {pf}");
-        let l =
-            sim(SceneKind::Ladder, &[("mu-floor", 0.0), ("mu-wall", 0.0)], Precision::F64, LcpSize::Reduced);
+        let l = sim(
+            SceneKind::Ladder,
+            &[("mu-floor", 0.0), ("mu-wall", 0.0)],
+            Precision::F64,
+            LcpLayout::Reduced,
+        );
         let mut l = l;
         l.run(u64::MAX);
         let [h, ratio, none] = l.measured();

@@ -1,27 +1,26 @@
 //! The page's layer against the command line it mirrors (both generated from the core's catalogue,
-//! `core/src/scene/catalogue.rs`): the same refusals (without the `--`), the same resolved parameters and the same trajectory
+//! `catalogue/src/lib.rs`): the same refusals (without the `--`), the same resolved parameters and the same trajectory
 //! checksum and outcome as `host-sim scene` (on the host; the browser test checks the wasm build).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use meterstick_host_sim::commands::scene::{SceneCmdArgs as SceneCmd, run as run_scene};
-use meterstick_host_sim::lcp_io::Precision as HostPrecision;
-use meterstick_host_sim::scenes::{LcpSize as HostSize, SceneArgs};
+use meterstick_host_sim::scenes::SceneArgs;
 use meterstick_host_sim::trajectory::{Record, run_k};
-use meterstick_web::config::{Config, LcpSize, Precision};
-use meterstick_web::flags::{FLAGS, SceneKind, flag_index};
+use meterstick_web::config::{Config, LcpLayout, Precision};
+use meterstick_web::flags::{Catalogued as _, FLAGS, SceneKind, flag_index};
 use meterstick_web::session::Session;
 
 /// Flags and their values, in their units.
 type Given = &'static [(&'static str, f64)];
 
 /// The same configuration for both: `host-sim scene` options and the page's.
-fn both(kind: SceneKind, given: &[(&str, f64)], precision: Precision, size: LcpSize) -> (SceneArgs, Session) {
-    let mut args = SceneArgs {
-        scene: Some(kind),
-        precision: if precision == Precision::F64 { HostPrecision::F64 } else { HostPrecision::F32 },
-        lcp_size: if size == LcpSize::Full { HostSize::Full } else { HostSize::Reduced },
-        ..SceneArgs::default()
-    };
+fn both(
+    kind: SceneKind,
+    given: &[(&str, f64)],
+    precision: Precision,
+    layout: LcpLayout,
+) -> (SceneArgs, Session) {
+    let mut args = SceneArgs { scene: Some(kind), precision, layout, ..SceneArgs::default() };
     let mut session = Session::new();
     session.configure(kind);
     for (long, v) in given {
@@ -58,40 +57,40 @@ fn refusals_are_worded_as_host_sim_words_them() {
         (SceneKind::Painleve, &[("mu-k", -3.0)], Precision::F64),
     ];
     for (kind, given, precision) in cases {
-        let (args, mut session) = both(*kind, given, *precision, LcpSize::Reduced);
+        let (args, mut session) = both(*kind, given, *precision, LcpLayout::Reduced);
         let theirs = run_scene(&SceneCmd { scene: args }).unwrap_err().to_string();
-        let ours = session.create(*precision, LcpSize::Reduced).unwrap_err().to_string();
+        let ours = session.create(*precision, LcpLayout::Reduced).unwrap_err().to_string();
         assert_eq!(ours, theirs.replace("--", ""), "{kind:?} {given:?}");
     }
 }
 
 #[test]
 fn parameters_outcome_and_checksum_match_host_sim_scene() {
-    let cases: &[(SceneKind, Given, Precision, LcpSize)] = &[
-        (SceneKind::MeterStick, &[("x1", -0.35)], Precision::F32, LcpSize::Reduced),
-        (SceneKind::MeterStick, &[("x1", -0.35), ("speed", 0.5)], Precision::F32, LcpSize::Full),
-        (SceneKind::MeterStick, &[("speed", 0.05), ("speed2", -0.05)], Precision::F64, LcpSize::Reduced),
-        (SceneKind::MeterStick, &[("speed", 0.02), ("duration", 3.0)], Precision::F32, LcpSize::Reduced),
+    let cases: &[(SceneKind, Given, Precision, LcpLayout)] = &[
+        (SceneKind::MeterStick, &[("x1", -0.35)], Precision::F32, LcpLayout::Reduced),
+        (SceneKind::MeterStick, &[("x1", -0.35), ("speed", 0.5)], Precision::F32, LcpLayout::Full),
+        (SceneKind::MeterStick, &[("speed", 0.05), ("speed2", -0.05)], Precision::F64, LcpLayout::Reduced),
+        (SceneKind::MeterStick, &[("speed", 0.02), ("duration", 3.0)], Precision::F32, LcpLayout::Reduced),
         (
             SceneKind::Incline,
             &[("angle", 20.0), ("width", 0.05), ("height", 0.2)],
             Precision::F32,
-            LcpSize::Reduced,
+            LcpLayout::Reduced,
         ),
-        (SceneKind::Incline, &[], Precision::F64, LcpSize::Full),
+        (SceneKind::Incline, &[], Precision::F64, LcpLayout::Full),
         (
             SceneKind::Ladder,
             &[("angle", 60.0), ("mu-floor", 0.0), ("mu-wall", 0.0)],
             Precision::F32,
-            LcpSize::Reduced,
+            LcpLayout::Reduced,
         ),
-        (SceneKind::ThreeFingers, &[], Precision::F32, LcpSize::Reduced),
-        (SceneKind::ThreeFingers, &[("speed", 0.5), ("duration", 3.0)], Precision::F64, LcpSize::Full),
-        (SceneKind::Cylinder, &[], Precision::F32, LcpSize::Reduced),
-        (SceneKind::Cylinder, &[("angle", 70.0)], Precision::F64, LcpSize::Full),
-        (SceneKind::Painleve, &[], Precision::F32, LcpSize::Reduced),
-        (SceneKind::Painleve, &[("mu-s", 1.0), ("mu-k", 1.0)], Precision::F64, LcpSize::Full),
-        (SceneKind::Painleve, &[("angle", 60.0), ("mu-k", 2.0)], Precision::F32, LcpSize::Full),
+        (SceneKind::ThreeFingers, &[], Precision::F32, LcpLayout::Reduced),
+        (SceneKind::ThreeFingers, &[("speed", 0.5), ("duration", 3.0)], Precision::F64, LcpLayout::Full),
+        (SceneKind::Cylinder, &[], Precision::F32, LcpLayout::Reduced),
+        (SceneKind::Cylinder, &[("angle", 70.0)], Precision::F64, LcpLayout::Full),
+        (SceneKind::Painleve, &[], Precision::F32, LcpLayout::Reduced),
+        (SceneKind::Painleve, &[("mu-s", 1.0), ("mu-k", 1.0)], Precision::F64, LcpLayout::Full),
+        (SceneKind::Painleve, &[("angle", 60.0), ("mu-k", 2.0)], Precision::F32, LcpLayout::Full),
     ];
     for (kind, given, precision, size) in cases {
         let (args, mut session) = both(*kind, given, *precision, *size);

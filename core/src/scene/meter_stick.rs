@@ -117,6 +117,25 @@ impl<T: Real> MeterStickParams<T> {
         BodyState::at_rest(foot_x - s * half_t, foot_y + c * half_t, theta)
     }
 
+    /// The first finger (its field) that starts beyond an end of the rod
+    /// ([`ParamError::FingerOutsideRod`]).
+    #[must_use]
+    pub fn finger_outside_rod(&self) -> Option<&'static str> {
+        // The tips lie on the rod's lower face at rest; their distance along it from the foot of
+        // the centre of mass (above x = 0) is the horizontal distance times sqrt(1 + slope^2).
+        let slope = (self.finger2_y - self.finger1_y) / (self.finger2_x - self.finger1_x);
+        let stretch = (T::one() + slope * slope).sqrt_libm();
+        let foot_x = slope / stretch * (self.rod_thickness / T::of(2.0));
+        let half = self.rod_length / T::of(2.0);
+        [("finger1_x", self.finger1_x), ("finger2_x", self.finger2_x)]
+            .into_iter()
+            .find(|&(_, x)| {
+                let along = (x - foot_x) * stretch;
+                !along.finite() || along.abs_exact() > half
+            })
+            .map(|(field, _)| field)
+    }
+
     /// Checks every parameter.
     ///
     /// # Errors
@@ -133,17 +152,8 @@ impl<T: Real> MeterStickParams<T> {
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
-        // The tips lie on the rod's lower face at rest; their distance along it from the foot of
-        // the centre of mass (above x = 0) is the horizontal distance times sqrt(1 + slope^2).
-        let slope = (self.finger2_y - self.finger1_y) / (self.finger2_x - self.finger1_x);
-        let stretch = (T::one() + slope * slope).sqrt_libm();
-        let foot_x = slope / stretch * (self.rod_thickness / T::of(2.0));
-        let half = self.rod_length / T::of(2.0);
-        for x in [self.finger1_x, self.finger2_x] {
-            let along = (x - foot_x) * stretch;
-            if !along.finite() || along.abs_exact() > half {
-                return Err(ParamError::FingerOutsideRod);
-            }
+        if self.finger_outside_rod().is_some() {
+            return Err(ParamError::FingerOutsideRod);
         }
         let gap = self.finger2_x - self.finger1_x;
         if !gap.finite() || gap <= self.finger_width {

@@ -9,28 +9,33 @@
 //! * [`Cylinder`]: a round body on an incline, rolling or sliding as the analytic law says;
 //! * [`Painleve`]: a rod whose sliding end jams on a rough floor (Painlevé's paradox).
 //!
-//! [`catalogue`] lists them for the drivers (names, flags, outcomes, measured quantities).
+//! [`SceneKind`] names them and [`SceneParams`] holds any one's parameters (`kind.rs`; what the
+//! front ends say of them is `meterstick-catalogue`'s);
+//! [`SceneParams::build`] makes any of them, in a [`Precision`] and an [`LcpLayout`], for a
+//! [`SceneVisitor`] (`registry.rs`).
 //!
 //! All implement [`Scene`] and run to an [`Outcome`]; parameters are validated first ([`crate::ParamError`]); a step that
 //! fails ends the run with [`Outcome::Failed`] and the state before it. A scene of your own is about
 //! a hundred lines on [`crate::planar::Stepper`]: see `core/examples/three_fingers.rs`.
 
-pub mod catalogue;
 mod cylinder;
 mod incline;
+mod kind;
 mod ladder;
 mod meter_stick;
 mod outcome;
 mod painleve;
+mod registry;
 mod scene_trait;
 mod three_fingers;
 
-pub use catalogue::{AnyParams, MAX_MEASURES, SceneKind};
 pub use cylinder::{Cylinder, CylinderParams};
 pub use incline::{Incline, InclineParams};
+pub use kind::{MAX_MEASURES, SceneKind, SceneParams};
 pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
 pub use outcome::{Outcome, OutcomeKind};
 pub use painleve::{Jam, Painleve, PainleveParams};
+pub use registry::{AnyScene, LcpLayout, Precision, SceneIn, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};

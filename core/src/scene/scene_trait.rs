@@ -1,13 +1,13 @@
 //! [`Scene`]: what every scene offers its drivers (host tools, firmware, the browser page).
 
-use super::catalogue::MAX_MEASURES;
+use super::kind::MAX_MEASURES;
 use super::outcome::Outcome;
 use crate::planar::{BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support, SwitchEvent};
 use crate::real::Real;
 
 /// A scene: one body on `K` supports the scene moves, stepped to an [`Outcome`].
 ///
-/// Implemented by every scene of the catalogue (`super::catalogue`); a scene of your own
+/// Implemented by every scene of the catalogue (`super::kind`); a scene of your own
 /// implements it the same way (`core/examples/three_fingers.rs`).
 pub trait Scene<T: Real, const K: usize> {
     /// Advances one step; `None` once the run has an outcome (a failed step ends the run with
@@ -33,7 +33,7 @@ pub trait Scene<T: Real, const K: usize> {
         &[]
     }
     /// What the scene measures, in the order of its catalogue entry's `measures`
-    /// (`super::catalogue::SceneInfo`, the keys of `host-sim`'s `summary.json`); `None` where a
+    /// (`meterstick-catalogue`'s `SceneInfo`, the keys of `host-sim`'s `summary.json`); `None` where a
     /// quantity has no value (yet). A scene outside the catalogue measures nothing.
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {
         [None; MAX_MEASURES]
@@ -48,6 +48,40 @@ pub trait Scene<T: Real, const K: usize> {
             observe(&report);
         }
         self.outcome().unwrap_or(Outcome::Unfinished)
+    }
+}
+
+/// A scene borrowed mutably is a scene (a driver steps a scene it keeps: [`super::AnyScene`]).
+impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
+    fn step(&mut self) -> Option<StepReport<T, K>> {
+        (**self).step()
+    }
+    fn outcome(&self) -> Option<Outcome> {
+        (**self).outcome()
+    }
+    fn state(&self) -> &BodyState<T> {
+        (**self).state()
+    }
+    fn time(&self) -> T {
+        (**self).time()
+    }
+    fn supports(&self) -> &[Support<T>; K] {
+        (**self).supports()
+    }
+    fn frames(&self) -> &[ContactFrame<T>; K] {
+        (**self).frames()
+    }
+    fn modes(&self) -> [ContactMode; K] {
+        (**self).modes()
+    }
+    fn stats(&self) -> &RunStats {
+        (**self).stats()
+    }
+    fn events(&self) -> &[SwitchEvent<T, K>] {
+        (**self).events()
+    }
+    fn measured(&self) -> [Option<T>; MAX_MEASURES] {
+        (**self).measured()
     }
 }
 

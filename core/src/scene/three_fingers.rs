@@ -78,14 +78,36 @@ impl<T: Real> ThreeFingersParams<T> {
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
-        let half = self.rod_length / T::of(2.0);
-        if [self.finger1_x, self.finger2_x, self.finger3_x].iter().any(|x| x.abs_exact() > half) {
+        if self.finger_outside_rod().is_some() {
             return Err(ParamError::FingerOutsideRod);
         }
-        if !(self.finger2_x - self.finger1_x > self.finger_width && self.finger3_x > self.finger2_x) {
+        if self.finger_out_of_order().is_some() {
             return Err(ParamError::FingersCrossed);
         }
         Ok(())
+    }
+
+    /// The first finger (its field) that starts beyond an end of the rod
+    /// ([`ParamError::FingerOutsideRod`]).
+    #[must_use]
+    pub fn finger_outside_rod(&self) -> Option<&'static str> {
+        let half = self.rod_length / T::of(2.0);
+        [("finger1_x", self.finger1_x), ("finger2_x", self.finger2_x), ("finger3_x", self.finger3_x)]
+            .into_iter()
+            .find(|(_, x)| x.abs_exact() > half)
+            .map(|(field, _)| field)
+    }
+
+    /// The finger (its field) out of order ([`ParamError::FingersCrossed`]): `finger1_x` when
+    /// finger 1 does not start left of finger 2 by more than the finger width, `finger3_x` when
+    /// finger 3 does not start right of finger 2.
+    #[must_use]
+    pub fn finger_out_of_order(&self) -> Option<&'static str> {
+        if self.finger2_x - self.finger1_x > self.finger_width {
+            if self.finger3_x > self.finger2_x { None } else { Some("finger3_x") }
+        } else {
+            Some("finger1_x")
+        }
     }
 
     /// Where finger 1 stops.

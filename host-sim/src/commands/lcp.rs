@@ -10,7 +10,7 @@ pub struct LcpArgs {
     /// The LCP file.
     pub file: PathBuf,
     /// Scalar precision of the core solver.
-    #[arg(long, value_enum, default_value = "f64")]
+    #[arg(long, value_parser = crate::scenes::precision_parser(), default_value = "f64")]
     pub precision: lcp_io::Precision,
 }
 

@@ -20,9 +20,11 @@ use serde::Serialize;
 use crate::output::{create_dir, parameters_json, write_json};
 use crate::plot;
 use crate::progress::{Interrupted, interrupted, is_interrupted};
-use crate::scenes::{Implementation, ImplementationOf, SceneArgs, SceneKind, SceneSpec, SpecExt as _};
+use crate::scenes::{
+    Catalogued as _, Implementation, ImplementationOf, ParamsExt as _, SceneArgs, SceneKind, SceneParams,
+};
 use crate::trajectory::{
-    Measured, OutcomeClass, Record, SolverCounters, Switch, Trajectory, check_recorded_steps,
+    Measured, OutcomeKind, Record, SolverCounters, Switch, Trajectory, check_recorded_steps,
     check_total_recorded_steps, max_deviation, run_k, switches, write_csv, write_events_csv,
 };
 
@@ -47,7 +49,7 @@ pub struct ImplementationSummary {
     /// Who computed it.
     pub implementation: ImplementationOf,
     /// How it ended.
-    pub outcome: OutcomeClass,
+    pub outcome: OutcomeKind,
     /// Why it failed, if it did.
     pub outcome_detail: Option<String>,
     /// Simulated time at the end (s).
@@ -141,7 +143,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<String> {
     // The paper's speeds are the meter stick's (three-fingers has a `--speed` too, and one run).
     let paper = (args.scene.kind() == SceneKind::MeterStick).then_some(("speed", &PAPER_SPEEDS[..]));
     let specs = args.scene.specs(paper)?;
-    // Only the meter stick's default duration follows its fingers ([`SceneSpec::follow_travel_time`]).
+    // Only the meter stick's default duration follows its fingers ([`SceneParams::follow_travel_time`]).
     let followed = args.scene.kind() == SceneKind::MeterStick
         && !args.scene.given.iter().any(|(f, _)| f.long == "duration");
     let travel_time = |e: anyhow::Error| {
@@ -176,7 +178,7 @@ fn list_text_values(values: &[f64]) -> String {
 
 /// Runs the scenes (of `K` contacts each) and writes their files (the reference beside the core
 /// where the reference implements the scene).
-fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneSpec)]) -> anyhow::Result<String> {
+fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneParams)]) -> anyhow::Result<String> {
     let core = args.scene.implementation();
     let has_reference = specs.iter().all(|(_, s)| s.to_reference().is_some());
     let per_run = if has_reference { 2 } else { 1 };
@@ -270,21 +272,21 @@ fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneSpec)]) -> any
 /// The run's pictures, titled with the scene, the parameters that vary and both outcomes.
 fn plot_run<const K: usize>(
     dir: &Path,
-    spec: &SceneSpec,
+    spec: &SceneParams,
     core: &Trajectory<K>,
     reference: Option<&Trajectory<K>>,
 ) -> anyhow::Result<()> {
     let what = match spec {
-        SceneSpec::MeterStick(p) => {
+        SceneParams::MeterStick(p) => {
             format!("meter stick, v1 = {} m/s, v2 = {} m/s", p.finger1_velocity, p.finger2_velocity)
         }
-        SceneSpec::Incline(p) => format!(
+        SceneParams::Incline(p) => format!(
             "incline {:.1} deg, mu_s = {}, mu_k = {}",
             p.angle.to_degrees(),
             p.mu_static,
             p.mu_kinetic
         ),
-        SceneSpec::Ladder(p) => format!(
+        SceneParams::Ladder(p) => format!(
             "ladder {:.1} deg, mu_floor = {}, mu_wall = {}",
             p.angle.to_degrees(),
             p.mu_floor,
@@ -326,7 +328,7 @@ fn measured_text(m: &Measured) -> String {
         return format!("meet {} mm", mm(Some(meeting.com_offset_m)));
     }
     if let Some(j) = m.jam {
-        return format!("jam {:.4}, {:.4} N s", j.normal_impulse_ns, j.friction_impulse_ns);
+        return format!("jam {:.4}, {:.4} N s", j.normal_impulse_n_s, j.friction_impulse_n_s);
     }
     if let (Some(a), Some(w)) = (m.acceleration_m_s2, m.angular_acceleration_rad_s2) {
         return format!("a = {a:.4}, {w:.3} rad/s^2");
@@ -359,7 +361,7 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
                 format!("{lo:.4}..{hi:.4} ({})", t.eq21_switches.len())
             };
             let check = match t.implementation.implementation {
-                Implementation::Core(_, crate::scenes::LcpSize::Reduced) => format!(
+                Implementation::Core(_, crate::scenes::LcpLayout::Reduced) => format!(
                     "{} ({} before meeting)",
                     t.counters.reduced_check_fired, t.counters.reduced_check_fired_before_meeting
                 ),

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use crate::scenes::{SceneArgs, SceneSpec};
+use crate::scenes::{SceneArgs, SceneParams};
 use crate::trajectory::{Record, run_watched, switches};
 
 /// `host-sim scene` options.
@@ -29,7 +29,7 @@ pub fn run(cmd: &SceneCmdArgs) -> anyhow::Result<String> {
 }
 
 /// Runs a scene of `K` contacts and summarises it.
-fn summarise<const K: usize>(cmd: &SceneCmdArgs, spec: &SceneSpec) -> anyhow::Result<String> {
+fn summarise<const K: usize>(cmd: &SceneCmdArgs, spec: &SceneParams) -> anyhow::Result<String> {
     let implementation = cmd.scene.implementation();
     let planned = (spec.max_time() / spec.step()).ceil() as u64;
     let bar = crate::progress::bar(planned, "steps");
@@ -106,7 +106,7 @@ fn summarise<const K: usize>(cmd: &SceneCmdArgs, spec: &SceneSpec) -> anyhow::Re
 }
 
 /// The scene's measured quantities, each beside its analytic value where the scene has one.
-fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Measured) {
+fn write_measured(out: &mut String, spec: &SceneParams, m: &crate::trajectory::Measured) {
     if let Some(meeting) = m.meeting {
         let _ = writeln!(
             out,
@@ -116,12 +116,12 @@ fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Mea
         );
     }
     if let Some(a) = m.acceleration_m_s2 {
-        let exact = if let SceneSpec::Incline(p) = spec {
+        let exact = if let SceneParams::Incline(p) = spec {
             format!(
                 " (g (sin a - mu_k cos a) = {:.6})",
                 p.gravity * (p.angle.sin() - p.mu_kinetic * p.angle.cos())
             )
-        } else if let SceneSpec::Cylinder(p) = spec {
+        } else if let SceneParams::Cylinder(p) = spec {
             let law =
                 if p.rolls() { "rolling: g sin a / (1 + k)" } else { "sliding: g (sin a - mu_k cos a)" };
             format!(" ({law} = {:.6})", p.analytic_acceleration())
@@ -131,7 +131,7 @@ fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Mea
         let _ = writeln!(out, "acceleration down the slope {a:.6} m/s^2{exact}");
     }
     if let Some(w) = m.angular_acceleration_rad_s2 {
-        let exact = if let SceneSpec::Cylinder(p) = spec {
+        let exact = if let SceneParams::Cylinder(p) = spec {
             let law = if p.rolls() {
                 format!("rolling: a / r = {:.6}", p.analytic_acceleration() / p.radius)
             } else {
@@ -148,7 +148,7 @@ fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Mea
         let _ = writeln!(out, "angular acceleration {w:.6} rad/s^2, counter-clockwise{exact}");
     }
     if let Some(j) = m.jam {
-        let exact = if let SceneSpec::Painleve(p) = spec {
+        let exact = if let SceneParams::Painleve(p) = spec {
             let (pf, pn) = p.jam_impulses();
             format!(
                 " (tangential impact m V / 4 (1 + 3 c^2, 3 s c) = {pf:.6}, {pn:.6}; jams above mu_k = {:.4})",
@@ -160,7 +160,7 @@ fn write_measured(out: &mut String, spec: &SceneSpec, m: &crate::trajectory::Mea
         let _ = writeln!(
             out,
             "the end jammed at t = {:.6} s: friction impulse {:.6} N s, normal impulse {:.6} N s{exact}",
-            j.time_s, j.friction_impulse_ns, j.normal_impulse_ns
+            j.time_s, j.friction_impulse_n_s, j.normal_impulse_n_s
         );
     }
     if let (Some(h), Some(r)) = (m.wall_release_height_m, m.wall_release_ratio) {

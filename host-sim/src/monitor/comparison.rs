@@ -3,7 +3,7 @@
 use serde::Serialize;
 
 use super::Recording;
-use crate::scenes::SceneSpec;
+use crate::scenes::{LcpLayout, Precision, SceneParams};
 use crate::trajectory::{Record, Trajectory, check_recorded_steps, run_core};
 
 /// The rig's run against the host's core f32 6x6 run of the same parameters.
@@ -43,12 +43,12 @@ impl RigComparison {
 /// # Errors
 /// The parameters are invalid on the host.
 pub fn compare(rec: &Recording) -> anyhow::Result<(Trajectory, RigComparison)> {
-    let spec = SceneSpec::MeterStick(rec.params.cast::<f64>());
+    let spec = SceneParams::MeterStick(rec.params.cast::<f64>());
     // The rig's parameters, not the user's: bounded like `host-sim run`'s before anything runs.
     check_recorded_steps(&spec).map_err(|e| {
         anyhow::anyhow!("the rig's step and max_time: {e}; --no-compare records the rig's run alone")
     })?;
-    let host = run_core::<f32, 6>(&spec, Record::All)?;
+    let host = run_core::<2>(&spec, Precision::F32, LcpLayout::Reduced, Record::All)?;
     let rig = &rec.trajectory;
     let same_events = rig.events.len() == host.events.len()
         && rig

@@ -17,4 +17,4 @@ mod recording;
 
 pub use client::{Refused, apply_params, read_params};
 pub use comparison::{RigComparison, compare};
-pub use recording::{Margin, Observer, Recording, mode_of, record_run};
+pub use recording::{Margin, Observer, Recording, mode_of, outcome_of, record_run};

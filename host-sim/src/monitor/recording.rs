@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use crate::scenes::{Implementation, SceneKind};
 use crate::trajectory::{
-    ContactRow, Event, Measured, OutcomeClass, Row, RunOutcome, SolverCounters, Trajectory,
+    ContactRow, Event, Measured, OutcomeKind, Row, RunOutcome, SolverCounters, Trajectory,
 };
 
 /// The rig's scene is the meter stick: two contacts (its telemetry's `contacts`).
@@ -62,15 +62,20 @@ pub const fn mode_of(m: Mode) -> ContactMode {
     }
 }
 
-fn outcome_of(o: OutcomeCode) -> RunOutcome {
+/// The run outcome a rig reported: each outcome of the core as itself
+/// (`meterstick_rig::session::outcome_code` is the other direction), a fault with its code.
+#[must_use]
+pub fn outcome_of(o: OutcomeCode) -> RunOutcome {
     match o {
-        OutcomeCode::Balanced => RunOutcome::of(OutcomeClass::Balanced),
-        OutcomeCode::Fell => RunOutcome::of(OutcomeClass::Fell),
-        OutcomeCode::Held => RunOutcome::of(OutcomeClass::Held),
-        OutcomeCode::Slid => RunOutcome::of(OutcomeClass::Slid),
-        OutcomeCode::Tipped => RunOutcome::of(OutcomeClass::Tipped),
-        OutcomeCode::Unfinished => RunOutcome::of(OutcomeClass::Unfinished),
-        other => RunOutcome { class: OutcomeClass::Failed, detail: Some(format!("{other:?}")) },
+        OutcomeCode::Balanced => RunOutcome::of(OutcomeKind::Balanced),
+        OutcomeCode::Fell => RunOutcome::of(OutcomeKind::Fell),
+        OutcomeCode::Held => RunOutcome::of(OutcomeKind::Held),
+        OutcomeCode::Slid => RunOutcome::of(OutcomeKind::Slid),
+        OutcomeCode::Tipped => RunOutcome::of(OutcomeKind::Tipped),
+        OutcomeCode::Rolled => RunOutcome::of(OutcomeKind::Rolled),
+        OutcomeCode::Jammed => RunOutcome::of(OutcomeKind::Jammed),
+        OutcomeCode::Unfinished => RunOutcome::of(OutcomeKind::Unfinished),
+        other => RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("{other:?}")) },
     }
 }
 
@@ -157,7 +162,7 @@ pub fn record_run(
     }
     let Some((code, time, steps, checksum)) = outcome else { bail!("no outcome") };
     let trajectory = Trajectory {
-        implementation: Implementation::CORE_F32_6,
+        implementation: Implementation::CORE_F32_REDUCED,
         scene: SceneKind::MeterStick,
         steps: u64::from(steps),
         end_time: f64::from(time),

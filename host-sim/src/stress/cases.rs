@@ -3,8 +3,8 @@
 
 use meterstick_core::scene::{CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams};
 
-use crate::scenes::SceneSpec;
-use crate::trajectory::OutcomeClass;
+use crate::scenes::SceneParams;
+use crate::trajectory::OutcomeKind;
 
 /// A physics claim a case makes beyond the generic criteria.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,11 +26,11 @@ pub struct Case {
     /// A short name, unique.
     pub name: String,
     /// The scene.
-    pub spec: SceneSpec,
+    pub spec: SceneParams,
     /// Meter stick: start height above the resting position (m; negative: penetrating).
     pub start_dy: f64,
     /// The outcome class physics decides, if any.
-    pub outcome: Option<OutcomeClass>,
+    pub outcome: Option<OutcomeKind>,
     /// Further claim.
     pub claim: Claim,
 }
@@ -66,8 +66,8 @@ fn similar(l: f64) -> MeterStickParams<f64> {
 }
 
 /// A block on an incline at `deg` degrees, `w x hgt`, friction `mu_s / mu_k`.
-fn incline(deg: f64, (w, hgt): (f64, f64), (mu_s, mu_k): (f64, f64)) -> SceneSpec {
-    SceneSpec::Incline(InclineParams {
+fn incline(deg: f64, (w, hgt): (f64, f64), (mu_s, mu_k): (f64, f64)) -> SceneParams {
+    SceneParams::Incline(InclineParams {
         angle: deg.to_radians(),
         width: w,
         height: hgt,
@@ -81,27 +81,27 @@ fn incline(deg: f64, (w, hgt): (f64, f64), (mu_s, mu_k): (f64, f64)) -> SceneSpe
 /// `tan a < w/h`; tipped when `w/h < tan a < mu_s`; slid when `tan a > mu_s` and it tips neither
 /// at rest (`tan a < w/h`) nor while sliding (friction at the base tips a sliding block when
 /// `mu_k > w/h`). `None` near a boundary (within 2 %).
-fn incline_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
-    let SceneSpec::Incline(p) = spec else { return None };
+fn incline_claim(spec: &SceneParams) -> Option<OutcomeKind> {
+    let SceneParams::Incline(p) = spec else { return None };
     let (tan, aspect) = (p.angle.tan(), p.width / p.height);
     let clear = |a: f64, b: f64| (a - b).abs() > 0.02 * a.abs().max(b.abs());
     if !(clear(tan, p.mu_static) && clear(tan, aspect) && clear(p.mu_kinetic, aspect)) {
         return None;
     }
     if tan < p.mu_static && tan < aspect {
-        Some(OutcomeClass::Held)
+        Some(OutcomeKind::Held)
     } else if aspect < tan && tan < p.mu_static {
-        Some(OutcomeClass::Tipped)
+        Some(OutcomeKind::Tipped)
     } else if tan > p.mu_static && tan < aspect && p.mu_kinetic < aspect {
-        Some(OutcomeClass::Slid)
+        Some(OutcomeKind::Slid)
     } else {
         None
     }
 }
 
 /// A ladder at `deg` degrees with `mu_floor`, `mu_wall`.
-fn ladder(deg: f64, mu_f: f64, mu_w: f64) -> SceneSpec {
-    SceneSpec::Ladder(LadderParams {
+fn ladder(deg: f64, mu_f: f64, mu_w: f64) -> SceneParams {
+    SceneParams::Ladder(LadderParams {
         angle: deg.to_radians(),
         mu_floor: mu_f,
         mu_wall: mu_w,
@@ -112,8 +112,8 @@ fn ladder(deg: f64, mu_f: f64, mu_w: f64) -> SceneSpec {
 /// The ladder's outcome by statics: it stands iff `tan theta >= (1 - mu_f mu_w) / (2 mu_f)`;
 /// `None` within 2 degrees of the critical angle (a near-critical ladder slips too slowly to
 /// reach the floor in the run, or stands by round-off).
-fn ladder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
-    let SceneSpec::Ladder(p) = spec else { return None };
+fn ladder_claim(spec: &SceneParams) -> Option<OutcomeKind> {
+    let SceneParams::Ladder(p) = spec else { return None };
     let critical = if p.mu_floor > 0.0 {
         ((1.0 - p.mu_floor * p.mu_wall) / (2.0 * p.mu_floor)).atan()
     } else {
@@ -121,9 +121,9 @@ fn ladder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
     };
     let margin = 2f64.to_radians();
     if p.angle > critical + margin {
-        Some(OutcomeClass::Held)
+        Some(OutcomeKind::Held)
     } else if p.angle < critical - margin {
-        Some(OutcomeClass::Fell)
+        Some(OutcomeKind::Fell)
     } else {
         None
     }
@@ -132,8 +132,8 @@ fn ladder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
 /// Painlevé's rod at `deg` degrees, `mu_s = mu_k = mu`, speed `v`, step `h`; `stick_speed` 1e-5 of `v` from
 /// 1 m/s up (as [`at_speed`]: a slip threshold below `v`'s round-off would read an f32 jam as a
 /// slide).
-fn painleve(deg: f64, mu: f64, v: f64, h: f64) -> SceneSpec {
-    SceneSpec::Painleve(PainleveParams {
+fn painleve(deg: f64, mu: f64, v: f64, h: f64) -> SceneParams {
+    SceneParams::Painleve(PainleveParams {
         angle: deg.to_radians(),
         mu_static: mu,
         mu_kinetic: mu,
@@ -148,18 +148,18 @@ fn painleve(deg: f64, mu: f64, v: f64, h: f64) -> SceneSpec {
 /// `(1 + 3 c^2) / (3 s c)` by more than 5 % and the impact `m V / 4 (1 + 3 c^2)` exceeds the
 /// weight's impulse over four steps; `None` otherwise (below it, sliding or falling depends on the
 /// run's length).
-fn painleve_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
-    let SceneSpec::Painleve(p) = spec else { return None };
+fn painleve_claim(spec: &SceneParams) -> Option<OutcomeKind> {
+    let SceneParams::Painleve(p) = spec else { return None };
     let (s, c) = p.angle.sin_cos();
     let critical = (1.0 + 3.0 * c * c) / (3.0 * s * c);
     let impact = -p.mass * p.speed / 4.0 * (1.0 + 3.0 * c * c);
     (p.mu_kinetic > 1.05 * critical && impact > 4.0 * p.mass * p.gravity * p.step)
-        .then_some(OutcomeClass::Jammed)
+        .then_some(OutcomeKind::Jammed)
 }
 
 /// A cylinder at `deg` degrees, inertia ratio `k`, `mu_s` (and `mu_k = mu_s`).
-fn cylinder(deg: f64, k: f64, mu: f64) -> SceneSpec {
-    SceneSpec::Cylinder(CylinderParams {
+fn cylinder(deg: f64, k: f64, mu: f64) -> SceneParams {
+    SceneParams::Cylinder(CylinderParams {
         angle: deg.to_radians(),
         inertia_factor: k,
         mu_static: mu,
@@ -169,15 +169,15 @@ fn cylinder(deg: f64, k: f64, mu: f64) -> SceneSpec {
 }
 
 /// The cylinder's outcome by the law: Rolled iff `tan a <= mu_s (1 + k) / k`; `None` within 2 %.
-fn cylinder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
-    let SceneSpec::Cylinder(p) = spec else { return None };
+fn cylinder_claim(spec: &SceneParams) -> Option<OutcomeKind> {
+    let SceneParams::Cylinder(p) = spec else { return None };
     let (tan, limit) = (p.angle.tan(), p.mu_static * (1.0 + p.inertia_factor) / p.inertia_factor);
     if (tan - limit).abs() <= 0.02 * limit {
         None
     } else if tan < limit {
-        Some(OutcomeClass::Rolled)
+        Some(OutcomeKind::Rolled)
     } else {
-        Some(OutcomeClass::Slid)
+        Some(OutcomeKind::Slid)
     }
 }
 
@@ -185,12 +185,12 @@ fn cylinder_claim(spec: &SceneSpec) -> Option<OutcomeClass> {
 #[must_use]
 #[allow(clippy::too_many_lines)] // one table of cases
 pub fn cases(quick: bool) -> Vec<Case> {
-    use OutcomeClass::{Balanced, Fell, Unfinished};
+    use OutcomeKind::{Balanced, Fell, Unfinished};
     let mut out = Vec::new();
-    let mut add = |group, name: &str, spec: SceneSpec, start_dy, outcome, claim| {
+    let mut add = |group, name: &str, spec: SceneParams, start_dy, outcome, claim| {
         out.push(Case { group, name: name.into(), spec, start_dy, outcome, claim });
     };
-    let stick = SceneSpec::MeterStick;
+    let stick = SceneParams::MeterStick;
     let (balanced, fell, unfinished) = (Some(Balanced), Some(Fell), Some(Unfinished));
 
     // Finger speed, h = 1 ms.
@@ -364,7 +364,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
     }
 
     // Block on an incline (outcome by statics, where it is clear).
-    let mut add_incline = |name: &str, spec: SceneSpec, claim: Claim| {
+    let mut add_incline = |name: &str, spec: SceneParams, claim: Claim| {
         let outcome = incline_claim(&spec);
         out.push(Case { group: "incline", name: name.into(), spec, start_dy: 0.0, outcome, claim });
     };
@@ -385,7 +385,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
     }
 
     // Ladder (outcome by statics, away from the critical angle).
-    let mut add_ladder = |name: &str, spec: SceneSpec, claim: Claim| {
+    let mut add_ladder = |name: &str, spec: SceneParams, claim: Claim| {
         let outcome = ladder_claim(&spec);
         out.push(Case { group: "ladder", name: name.into(), spec, start_dy: 0.0, outcome, claim });
     };
@@ -404,7 +404,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
     // friction. Above the critical mu the sliding end jams in one step under an impact whose
     // impulse does not shrink with h; the outcome by the law away from the critical mu (within
     // 5 %, or an impact below the weight's impulse over a step, the outcome is left open).
-    let mut add_painleve = |name: &str, spec: SceneSpec| {
+    let mut add_painleve = |name: &str, spec: SceneParams| {
         let outcome = painleve_claim(&spec);
         out.push(Case {
             group: "painleve",
@@ -428,7 +428,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
 
     // A cylinder on an incline (docs/scenes.md, "cylinder"): rolls iff tan a <= mu_s (1 + k) / k.
     if !quick {
-        let mut add_cylinder = |name: &str, spec: SceneSpec| {
+        let mut add_cylinder = |name: &str, spec: SceneParams| {
             let outcome = cylinder_claim(&spec);
             out.push(Case {
                 group: "cylinder",
@@ -480,22 +480,22 @@ mod tests {
 
     #[test]
     fn statics_claims() {
-        assert_eq!(incline_claim(&incline(35.0, (0.1, 0.05), (0.6, 0.4))), Some(OutcomeClass::Slid));
-        assert_eq!(incline_claim(&incline(20.0, (0.05, 0.2), (0.6, 0.4))), Some(OutcomeClass::Tipped));
-        assert_eq!(incline_claim(&incline(10.0, (0.1, 0.05), (0.6, 0.4))), Some(OutcomeClass::Held));
+        assert_eq!(incline_claim(&incline(35.0, (0.1, 0.05), (0.6, 0.4))), Some(OutcomeKind::Slid));
+        assert_eq!(incline_claim(&incline(20.0, (0.05, 0.2), (0.6, 0.4))), Some(OutcomeKind::Tipped));
+        assert_eq!(incline_claim(&incline(10.0, (0.1, 0.05), (0.6, 0.4))), Some(OutcomeKind::Held));
         assert_eq!(incline_claim(&incline(30.96, (0.1, 0.05), (0.6, 0.4))), None); // tan = 0.6: boundary
-        assert_eq!(ladder_claim(&ladder(60.0, 0.4, 0.3)), Some(OutcomeClass::Held));
-        assert_eq!(ladder_claim(&ladder(40.0, 0.4, 0.3)), Some(OutcomeClass::Fell));
+        assert_eq!(ladder_claim(&ladder(60.0, 0.4, 0.3)), Some(OutcomeKind::Held));
+        assert_eq!(ladder_claim(&ladder(40.0, 0.4, 0.3)), Some(OutcomeKind::Fell));
         assert_eq!(ladder_claim(&ladder(47.7, 0.4, 0.3)), None);
-        assert_eq!(ladder_claim(&ladder(60.0, 0.0, 0.0)), Some(OutcomeClass::Fell));
+        assert_eq!(ladder_claim(&ladder(60.0, 0.0, 0.0)), Some(OutcomeKind::Fell));
         // Painleve: critical mu 2.50 at 30 degrees, 1.67 at 45.
-        assert_eq!(painleve_claim(&painleve(30.0, 3.0, 1.0, 1e-3)), Some(OutcomeClass::Jammed));
+        assert_eq!(painleve_claim(&painleve(30.0, 3.0, 1.0, 1e-3)), Some(OutcomeKind::Jammed));
         assert_eq!(painleve_claim(&painleve(30.0, 2.55, 1.0, 1e-3)), None); // within 5 %
         assert_eq!(painleve_claim(&painleve(45.0, 1.0, 1.0, 1e-3)), None); // below: no claim
         assert_eq!(painleve_claim(&painleve(30.0, 3.0, 1e-3, 1e-3)), None); // impact below m g h
         // Cylinder, k = 0.5, mu_s = 0.6: rolls up to tan a = 1.8 (60.9 degrees).
-        assert_eq!(cylinder_claim(&cylinder(60.0, 0.5, 0.6)), Some(OutcomeClass::Rolled));
-        assert_eq!(cylinder_claim(&cylinder(62.0, 0.5, 0.6)), Some(OutcomeClass::Slid));
+        assert_eq!(cylinder_claim(&cylinder(60.0, 0.5, 0.6)), Some(OutcomeKind::Rolled));
+        assert_eq!(cylinder_claim(&cylinder(62.0, 0.5, 0.6)), Some(OutcomeKind::Slid));
         assert_eq!(cylinder_claim(&cylinder(60.95, 0.5, 0.6)), None);
     }
 }

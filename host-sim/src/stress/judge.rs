@@ -18,7 +18,7 @@
 
 use super::cases::{Case, Claim};
 use super::metrics::{Metrics, STILL_TOLERANCE};
-use crate::trajectory::OutcomeClass;
+use crate::trajectory::OutcomeKind;
 
 /// A criterion a run can fail.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -90,7 +90,7 @@ pub fn judge(case: &Case, m: &Metrics) -> Verdict {
     let mut failures = Vec::new();
     match m.class() {
         None => failures.push(Failure::Panic),
-        Some(OutcomeClass::Failed) => failures.push(Failure::NoPhysicalOutcome),
+        Some(OutcomeKind::Failed) => failures.push(Failure::NoPhysicalOutcome),
         Some(_) => {}
     }
     if m.residual_ratio > 1.0 {
@@ -122,7 +122,7 @@ mod tests {
 
     fn passing() -> Metrics {
         Metrics {
-            outcome: Some(RunOutcome::of(OutcomeClass::Balanced)),
+            outcome: Some(RunOutcome::of(OutcomeKind::Balanced)),
             steps: 10,
             eps: f64::from(f32::EPSILON),
             ..Metrics::default()
@@ -135,18 +135,18 @@ mod tests {
     #[test]
     fn every_criterion_can_fail() {
         let mut c = cases(true).into_iter().find(|c| c.name == "v=0.1").unwrap();
-        c.outcome = Some(OutcomeClass::Balanced);
+        c.outcome = Some(OutcomeKind::Balanced);
         c.claim = Claim::NotDragged;
         assert!(judge(&c, &passing()).passed());
         let failing: [(Failure, Breaker); 8] = [
             (Failure::Panic, |m| m.outcome = None),
             (Failure::NoPhysicalOutcome, |m| {
-                m.outcome = Some(RunOutcome { class: OutcomeClass::Failed, detail: Some("ray".into()) });
+                m.outcome = Some(RunOutcome { class: OutcomeKind::Failed, detail: Some("ray".into()) });
             }),
             (Failure::LcpResidual, |m| m.residual_ratio = 1.5),
             (Failure::Penetration, |m| m.penetration_ratio = 1.01),
             (Failure::EnergyGain, |m| m.energy_ratio = 2.0),
-            (Failure::Outcome, |m| m.outcome = Some(RunOutcome::of(OutcomeClass::Fell))),
+            (Failure::Outcome, |m| m.outcome = Some(RunOutcome::of(OutcomeKind::Fell))),
             (Failure::Dragged, |m| m.claim_motion = 1e-4),
             (Failure::Panic, |m| m.outcome = None),
         ];

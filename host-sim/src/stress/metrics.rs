@@ -20,11 +20,11 @@ use std::time::Instant;
 use meterstick_core::Real;
 use meterstick_core::lcp::default_tolerance;
 use meterstick_core::planar::{BodyState, StepReport};
-use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
+use meterstick_core::scene::{MeterStick, Outcome, Scene, SceneVisitor};
 
 use super::cases::{Case, Claim};
-use crate::scenes::SceneSpec;
-use crate::trajectory::{OutcomeClass, RunOutcome};
+use crate::scenes::{LcpLayout, Precision, SceneParams};
+use crate::trajectory::{OutcomeKind, RunOutcome};
 
 /// What one run of one case measured.
 #[derive(Debug, Clone, Default)]
@@ -67,7 +67,7 @@ pub struct Metrics {
 impl Metrics {
     /// The outcome's class (`None`: the run panicked).
     #[must_use]
-    pub fn class(&self) -> Option<OutcomeClass> {
+    pub fn class(&self) -> Option<OutcomeKind> {
         self.outcome.as_ref().map(|o| o.class)
     }
 }
@@ -79,28 +79,28 @@ pub const STILL_TOLERANCE: f64 = 64.0;
 /// The body's mass, inertia, size and the scene's characteristic speed (a support's, or the
 /// body's at the start).
 #[must_use]
-pub fn body_of(spec: &SceneSpec) -> (f64, f64, f64, f64) {
+pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
     match spec {
-        SceneSpec::MeterStick(p) => (
+        SceneParams::MeterStick(p) => (
             p.rod_mass,
             p.rod_mass * p.rod_length * p.rod_length / 12.0,
             p.rod_length,
             p.finger1_velocity.abs().max(p.finger2_velocity.abs()),
         ),
-        SceneSpec::ThreeFingers(p) => (
+        SceneParams::ThreeFingers(p) => (
             p.rod_mass,
             p.rod_mass * p.rod_length * p.rod_length / 12.0,
             p.rod_length,
             p.finger1_velocity.abs(),
         ),
-        SceneSpec::Incline(p) => {
+        SceneParams::Incline(p) => {
             (p.mass, p.mass * (p.width * p.width + p.height * p.height) / 12.0, p.width.max(p.height), 0.0)
         }
-        SceneSpec::Ladder(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, 0.0),
-        SceneSpec::Cylinder(p) => {
+        SceneParams::Ladder(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, 0.0),
+        SceneParams::Cylinder(p) => {
             (p.mass, p.inertia_factor * p.mass * p.radius * p.radius, 2.0 * p.radius, 0.0)
         }
-        SceneSpec::Painleve(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, p.speed.abs()),
+        SceneParams::Painleve(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, p.speed.abs()),
     }
 }
 
@@ -109,7 +109,7 @@ pub fn body_of(spec: &SceneSpec) -> (f64, f64, f64, f64) {
 /// `size omega^2 / 2` for the arc, `g` for gravity within the step), and round-off of the
 /// coordinates (`64 eps (size + |x| + |y|)`).
 #[must_use]
-pub fn penetration_bound(spec: &SceneSpec, eps: f64, pen_before: f64, s: &[f64; 6], u: f64) -> f64 {
+pub fn penetration_bound(spec: &SceneParams, eps: f64, pen_before: f64, s: &[f64; 6], u: f64) -> f64 {
     let (_, _, size, _) = body_of(spec);
     let h = spec.step();
     let g = spec.get("gravity").unwrap_or(0.0);
@@ -125,7 +125,7 @@ pub fn penetration_bound(spec: &SceneSpec, eps: f64, pen_before: f64, s: &[f64; 
 /// speed), `N` the LCP size (the verification tolerance is `256 N eps`, and each of `N`
 /// complementarity products contributes up to it times the impulse and velocity scales).
 #[must_use]
-pub fn energy_tolerance(spec: &SceneSpec, eps: f64, n: usize, s: &[f64; 6]) -> f64 {
+pub fn energy_tolerance(spec: &SceneParams, eps: f64, n: usize, s: &[f64; 6]) -> f64 {
     let (m, _, size, v_f) = body_of(spec);
     let g = spec.get("gravity").unwrap_or(0.0);
     let v2 = s[3] * s[3] + s[4] * s[4] + (size * s[5]).powi(2);
@@ -134,7 +134,7 @@ pub fn energy_tolerance(spec: &SceneSpec, eps: f64, n: usize, s: &[f64; 6]) -> f
 
 /// The body's energy.
 #[must_use]
-pub fn energy(spec: &SceneSpec, s: &[f64; 6]) -> f64 {
+pub fn energy(spec: &SceneParams, s: &[f64; 6]) -> f64 {
     let (m, j, _, _) = body_of(spec);
     let g = spec.get("gravity").unwrap_or(0.0);
     0.5 * m * (s[3] * s[3] + s[4] * s[4]) + 0.5 * j * s[5] * s[5] + m * g * s[1]
@@ -143,7 +143,7 @@ pub fn energy(spec: &SceneSpec, s: &[f64; 6]) -> f64 {
 /// Each contact's penetration (0 when apart, or a finger not under the rod), with this module's
 /// own geometry; `supports` are the finger tips (meter stick, three fingers).
 #[must_use]
-pub fn penetrations(spec: &SceneSpec, s: &[f64; 6], supports: &[[f64; 2]]) -> Vec<f64> {
+pub fn penetrations(spec: &SceneParams, s: &[f64; 6], supports: &[[f64; 2]]) -> Vec<f64> {
     let (sn, cs) = s[2].sin_cos();
     let world = |p: [f64; 2]| [s[0] + cs * p[0] - sn * p[1], s[1] + sn * p[0] + cs * p[1]];
     let under_rod = |length: f64, thickness: f64| {
@@ -158,9 +158,9 @@ pub fn penetrations(spec: &SceneSpec, s: &[f64; 6], supports: &[[f64; 2]]) -> Ve
             .collect()
     };
     match spec {
-        SceneSpec::MeterStick(p) => under_rod(p.rod_length, p.rod_thickness),
-        SceneSpec::ThreeFingers(p) => under_rod(p.rod_length, p.rod_thickness),
-        SceneSpec::Incline(p) => {
+        SceneParams::MeterStick(p) => under_rod(p.rod_length, p.rod_thickness),
+        SceneParams::ThreeFingers(p) => under_rod(p.rod_length, p.rod_thickness),
+        SceneParams::Incline(p) => {
             let n = [-p.angle.sin(), p.angle.cos()];
             [-1.0, 1.0]
                 .iter()
@@ -170,14 +170,16 @@ pub fn penetrations(spec: &SceneSpec, s: &[f64; 6], supports: &[[f64; 2]]) -> Ve
                 })
                 .collect()
         }
-        SceneSpec::Ladder(p) => {
+        SceneParams::Ladder(p) => {
             let (bottom, top) = (world([-p.length / 2.0, 0.0]), world([p.length / 2.0, 0.0]));
             vec![(-bottom[1]).max(0.0), top[0].max(0.0)]
         }
         // The rim against the plane through the origin with normal (-sin a, cos a).
-        SceneSpec::Cylinder(p) => vec![(p.radius - (-p.angle.sin() * s[0] + p.angle.cos() * s[1])).max(0.0)],
+        SceneParams::Cylinder(p) => {
+            vec![(p.radius - (-p.angle.sin() * s[0] + p.angle.cos() * s[1])).max(0.0)]
+        }
         // The lower end, body point (-L/2, 0), against the floor y = 0.
-        SceneSpec::Painleve(p) => vec![(-world([-p.length / 2.0, 0.0])[1]).max(0.0)],
+        SceneParams::Painleve(p) => vec![(-world([-p.length / 2.0, 0.0])[1]).max(0.0)],
     }
 }
 
@@ -190,58 +192,47 @@ fn support_points<T: Real, S: Scene<T, K>, const K: usize>(scene: &S) -> Vec<[f6
     scene.supports().iter().map(|s| s.position().map(Real::as_f64)).collect()
 }
 
-/// Runs `case` in scalar `T` with LCP size `N` (6 the reduced layout, 8 the full one of a
-/// two-contact scene; the other scenes run their own: three fingers 9 or 12, the cylinder and
-/// Painlevé's rod 3 or 4), measuring as it goes; samples the state every `stride` steps.
+/// Runs `case` in `precision` and `layout`, measuring as it goes; samples the state every
+/// `stride` steps.
 #[must_use]
-pub fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
-    let failed = |e: meterstick_core::ParamError| Metrics {
-        outcome: Some(RunOutcome { class: OutcomeClass::Failed, detail: Some(format!("invalid: {e}")) }),
+pub fn measure(case: &Case, precision: Precision, layout: LcpLayout, stride: u64) -> Metrics {
+    case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(|e| Metrics {
+        outcome: Some(RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("invalid: {e}")) }),
         ..Metrics::default()
-    };
-    let reduced = N == 6;
-    match case.spec {
-        SceneSpec::MeterStick(p) => {
-            let p = p.cast::<T>();
-            let mut start = p.resting_state();
-            start.y += T::of(case.start_dy);
-            match MeterStick::<T, N, 0>::with_state(p, start) {
-                Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
-                Err(e) => failed(e),
-            }
+    })
+}
+
+/// [`measure_scene`] as a visitor of the core's registry.
+struct Measure<'a> {
+    case: &'a Case,
+    stride: u64,
+}
+
+impl SceneVisitor for Measure<'_> {
+    type Output = Metrics;
+
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> Metrics {
+        measure_scene::<T, N, _, K>(&mut scene, self.case, self.stride, LcpLayout::Full.size(K))
+    }
+
+    /// The meter stick starts `case.start_dy` above its rest on the fingers.
+    fn visit_meter_stick<T: Real, const N: usize, const E: usize>(
+        self,
+        scene: MeterStick<T, N, E>,
+    ) -> Metrics {
+        let p = *scene.params();
+        let mut start = p.resting_state();
+        start.y += T::of(self.case.start_dy);
+        match MeterStick::<T, N, E>::with_state(p, start) {
+            Ok(lifted) => self.visit::<T, 2, N, _>(lifted),
+            Err(e) => Metrics {
+                outcome: Some(RunOutcome {
+                    class: OutcomeKind::Failed,
+                    detail: Some(format!("invalid: {e}")),
+                }),
+                ..Metrics::default()
+            },
         }
-        SceneSpec::Incline(p) => match Incline::<T, N, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
-            Err(e) => failed(e),
-        },
-        SceneSpec::Ladder(p) => match Ladder::<T, N, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, N, _, 2>(&mut s, case, stride, 8),
-            Err(e) => failed(e),
-        },
-        SceneSpec::ThreeFingers(p) if reduced => match ThreeFingers::<T, 9, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 9, _, 3>(&mut s, case, stride, 12),
-            Err(e) => failed(e),
-        },
-        SceneSpec::ThreeFingers(p) => match ThreeFingers::<T, 12, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 12, _, 3>(&mut s, case, stride, 12),
-            Err(e) => failed(e),
-        },
-        SceneSpec::Cylinder(p) if reduced => match Cylinder::<T, 3, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 3, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
-        SceneSpec::Cylinder(p) => match Cylinder::<T, 4, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 4, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
-        SceneSpec::Painleve(p) if reduced => match Painleve::<T, 3, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 3, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
-        SceneSpec::Painleve(p) => match Painleve::<T, 4, 0>::new(p.cast()) {
-            Ok(mut s) => measure_scene::<T, 4, _, 1>(&mut s, case, stride, 4),
-            Err(e) => failed(e),
-        },
     }
 }
 
@@ -249,13 +240,13 @@ pub fn measure<T: Real, const N: usize>(case: &Case, stride: u64) -> Metrics {
 /// the supports' positions before and after, `n = R(theta) (0, 1)`, `d = R(theta) (1, 0)` for a
 /// finger under the rod at the step's start angle (supports on lines do not move).
 fn support_work<T: Real, const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     r: &StepReport<T, K>,
     before: &[[f64; 2]],
     after: &[[f64; 2]],
     theta: f64,
 ) -> f64 {
-    if !matches!(spec, SceneSpec::MeterStick(_) | SceneSpec::ThreeFingers(_)) {
+    if !matches!(spec, SceneParams::MeterStick(_) | SceneParams::ThreeFingers(_)) {
         return 0.0;
     }
     let (sn, cs) = theta.sin_cos();

@@ -23,7 +23,7 @@ use self::cases::Case;
 use self::judge::{Verdict, judge};
 use self::metrics::{Metrics, measure};
 use crate::progress::bar as progress;
-use crate::scenes::Implementation;
+use crate::scenes::{Implementation, LcpLayout, Precision};
 
 /// `host-sim stress` options.
 #[derive(Debug, Clone, clap::Args)]
@@ -41,17 +41,17 @@ pub struct StressArgs {
 
 /// The core configurations the grid runs.
 pub const CONFIGS: [Implementation; 3] =
-    [Implementation::CORE_F32_6, Implementation::CORE_F32_8, Implementation::CORE_F64_8];
+    [Implementation::CORE_F32_REDUCED, Implementation::CORE_F32_FULL, Implementation::CORE_F64_FULL];
 
 /// Runs `case` in `config`, catching a panic.
 #[must_use]
 pub fn run_case(case: &Case, config: Implementation) -> Metrics {
     let stride = ((case.spec.max_time() / case.spec.step()) / 100_000.0).ceil().max(1.0) as u64;
-    let run = std::panic::catch_unwind(|| match config {
-        Implementation::CORE_F32_6 => measure::<f32, 6>(case, stride),
-        Implementation::CORE_F32_8 => measure::<f32, 8>(case, stride),
-        _ => measure::<f64, 8>(case, stride),
-    });
+    let (precision, layout) = match config {
+        Implementation::Core(precision, layout) => (precision, layout),
+        Implementation::Reference => (Precision::F64, LcpLayout::Full),
+    };
+    let run = std::panic::catch_unwind(|| measure(case, precision, layout, stride));
     run.unwrap_or_default()
 }
 

@@ -11,7 +11,7 @@ use super::{CONFIGS, CaseResult};
 use crate::output::{parameters_json, sci, write_json, write_lines};
 use crate::plot;
 use crate::scenes::Implementation;
-use crate::trajectory::OutcomeClass;
+use crate::trajectory::OutcomeKind;
 
 fn outcome_text(m: &super::Metrics) -> String {
     m.outcome.as_ref().map_or_else(|| "Panicked".to_string(), ToString::to_string)
@@ -21,7 +21,7 @@ fn outcome_text(m: &super::Metrics) -> String {
 #[derive(Debug, Serialize)]
 struct RunJson<'a> {
     implementation: Implementation,
-    outcome: Option<OutcomeClass>,
+    outcome: Option<OutcomeKind>,
     outcome_detail: Option<&'a str>,
     steps: u64,
     failures: &'a [super::judge::Failure],

@@ -1,93 +1,76 @@
-//! The core's run of a scene (scalar `T`, LCP size `N`), stepped to its outcome and recorded.
+//! The core's run of a scene, stepped to its outcome and recorded: a [`SceneVisitor`] of the
+//! core's registry (`SceneParams::build`), so any scene in any precision and layout is driven by
+//! one generic [`drive`].
 
 use indicatif::ProgressBar;
 use meterstick_core::Real;
 use meterstick_core::planar::{Checksum, ContactMode, StepReport};
-use meterstick_core::scene::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
+use meterstick_core::scene::{MeterStick, Outcome, Scene, SceneVisitor};
 
 use super::{ContactRow, Event, Measured, Record, Recorder, Row, SolverCounters, Trajectory};
-use crate::lcp_io::Precision;
 use crate::progress;
-use crate::scenes::{Implementation, LcpSize, SceneKind, SceneSpec};
+use crate::scenes::{Implementation, LcpLayout, Precision, SceneKind, SceneParams};
 
-fn invalid(e: meterstick_core::ParamError) -> anyhow::Error {
-    anyhow::anyhow!("invalid scene: {e}")
-}
-
-/// Runs the core scene (scalar `T`, LCP size `N`) to its outcome and records it.
+/// Runs the core scene in `precision` and `layout` to its outcome and records it.
 ///
 /// # Errors
-/// Invalid parameters.
-pub fn run_core<T: Real, const N: usize>(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory> {
-    let t = run_inner_core::<T, N, 2>(spec, record)?;
+/// Invalid parameters, or a scene with other than `K` contacts.
+pub fn run_core<const K: usize>(
+    spec: &SceneParams,
+    precision: Precision,
+    layout: LcpLayout,
+    record: Record,
+) -> anyhow::Result<Trajectory<K>> {
+    let t = core_run::<K>(spec, precision, layout, record, None)?;
     progress::check()?;
     Ok(t)
 }
 
-fn run_inner_core<T: Real, const N: usize, const K: usize>(
-    spec: &SceneSpec,
-    record: Record,
-) -> anyhow::Result<Trajectory<K>> {
-    let contacts = spec.kind().info().contacts;
-    anyhow::ensure!(contacts == K, "scene {} has {contacts} contacts, not {K}", spec.kind());
-    core_run::<T, N, K>(spec, record, None)
-}
-
-/// The core's run of `spec` (its contacts are `K`: checked by the callers). `N` is the LCP size of
-/// a two-contact scene (6 reduced, 8 full); other scenes run their own reduced or full layout
-/// (three fingers 9 or 12, the cylinder 3 or 4).
-pub(super) fn core_run<T: Real, const N: usize, const K: usize>(
-    spec: &SceneSpec,
+/// The core's run of `spec`, a scene of `K` contacts (checked before it starts).
+pub(super) fn core_run<const K: usize>(
+    spec: &SceneParams,
+    precision: Precision,
+    layout: LcpLayout,
     record: Record,
     bar: Option<&ProgressBar>,
 ) -> anyhow::Result<Trajectory<K>> {
-    let implementation =
-        Implementation::Core(if T::NAME == "f32" { Precision::F32 } else { Precision::F64 }, size_of(N));
-    Ok(match *spec {
-        SceneSpec::MeterStick(p) => {
-            let mut s = MeterStick::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            let mut t = drive::<T, _, 2, K>(&mut s, implementation, SceneKind::MeterStick, record, bar);
-            t.counters.reduced_check_fired_before_meeting = s.reduced_check_fired_before_meeting();
-            t
-        }
-        SceneSpec::Incline(p) => {
-            let mut s = Incline::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Incline, record, bar)
-        }
-        SceneSpec::Ladder(p) => {
-            let mut s = Ladder::<T, N, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 2, K>(&mut s, implementation, SceneKind::Ladder, record, bar)
-        }
-        // The one- and three-contact scenes in their own reduced or full layout.
-        SceneSpec::ThreeFingers(p) if N == 6 => {
-            let mut s = ThreeFingers::<T, 9, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 3, K>(&mut s, implementation, SceneKind::ThreeFingers, record, bar)
-        }
-        SceneSpec::ThreeFingers(p) => {
-            let mut s = ThreeFingers::<T, 12, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 3, K>(&mut s, implementation, SceneKind::ThreeFingers, record, bar)
-        }
-        SceneSpec::Cylinder(p) if N == 6 => {
-            let mut s = Cylinder::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Cylinder, record, bar)
-        }
-        SceneSpec::Cylinder(p) => {
-            let mut s = Cylinder::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Cylinder, record, bar)
-        }
-        SceneSpec::Painleve(p) if N == 6 => {
-            let mut s = Painleve::<T, 3, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Painleve, record, bar)
-        }
-        SceneSpec::Painleve(p) => {
-            let mut s = Painleve::<T, 4, 0>::new(p.cast()).map_err(invalid)?;
-            drive::<T, _, 1, K>(&mut s, implementation, SceneKind::Painleve, record, bar)
-        }
-    })
+    let contacts = spec.kind().contacts();
+    anyhow::ensure!(contacts == K, "scene {} has {contacts} contacts, not {K}", spec.kind());
+    let drive = Drive::<K> {
+        implementation: Implementation::Core(precision, layout),
+        kind: spec.kind(),
+        record,
+        bar,
+    };
+    spec.build::<0, _>(precision, layout, drive).map_err(|e| anyhow::anyhow!("invalid scene: {e}"))
 }
 
-fn size_of(n: usize) -> LcpSize {
-    if n == 6 { LcpSize::Reduced } else { LcpSize::Full }
+/// [`drive`] as a visitor of the core's registry, recording `K` contacts.
+struct Drive<'a, const K: usize> {
+    implementation: Implementation,
+    kind: SceneKind,
+    record: Record,
+    bar: Option<&'a ProgressBar>,
+}
+
+impl<const K: usize> SceneVisitor for Drive<'_, K> {
+    type Output = Trajectory<K>;
+
+    fn visit<T: Real, const KS: usize, const N: usize, S: Scene<T, KS>>(self, mut scene: S) -> Trajectory<K> {
+        let d = self;
+        drive::<T, _, KS, K>(&mut scene, d.implementation, d.kind, d.record, d.bar)
+    }
+
+    /// The meter stick also counts the reduced check's firings before the fingers met.
+    fn visit_meter_stick<T: Real, const N: usize, const E: usize>(
+        self,
+        mut scene: MeterStick<T, N, E>,
+    ) -> Trajectory<K> {
+        let d = self;
+        let mut t = drive::<T, _, 2, K>(&mut scene, d.implementation, d.kind, d.record, d.bar);
+        t.counters.reduced_check_fired_before_meeting = scene.reduced_check_fired_before_meeting();
+        t
+    }
 }
 
 /// Where each support touches the body: the contact point `com + r` moved back by the gap along

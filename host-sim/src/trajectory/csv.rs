@@ -79,7 +79,7 @@ pub fn write_events_csv<const K: usize>(traj: &Trajectory<K>, path: &Path) -> an
 mod tests {
     use super::csv_header;
 
-    /// Two contacts give the columns `core.csv` always had (README, "The main job").
+    /// Two contacts give the columns `core.csv` always had (`docs/host-sim.md`, "The main job").
     #[test]
     fn the_header_of_two_contacts_is_the_old_one() {
         assert_eq!(

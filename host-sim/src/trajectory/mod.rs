@@ -75,22 +75,22 @@ pub struct Event<const K: usize = 2> {
     pub supports: [[f64; 2]; K],
 }
 
-/// How a run ended, by class: the core's one list of outcomes.
-pub use meterstick_core::scene::OutcomeKind as OutcomeClass;
+/// How a run ended, by kind: the core's one list of outcomes.
+pub use meterstick_core::scene::OutcomeKind;
 
 /// How a run ended: its class, and for a failure why.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct RunOutcome {
     /// The class.
-    pub class: OutcomeClass,
-    /// Why it failed (`None` unless [`OutcomeClass::Failed`]).
+    pub class: OutcomeKind,
+    /// Why it failed (`None` unless [`OutcomeKind::Failed`]).
     pub detail: Option<String>,
 }
 
 impl RunOutcome {
     /// A physical outcome.
     #[must_use]
-    pub const fn of(class: OutcomeClass) -> Self {
+    pub const fn of(class: OutcomeKind) -> Self {
         Self { class, detail: None }
     }
 }
@@ -107,7 +107,7 @@ impl fmt::Display for RunOutcome {
 impl From<Outcome> for RunOutcome {
     fn from(o: Outcome) -> Self {
         match o {
-            Outcome::Failed(e) => Self { class: OutcomeClass::Failed, detail: Some(e.to_string()) },
+            Outcome::Failed(e) => Self { class: OutcomeKind::Failed, detail: Some(e.to_string()) },
             other => Self::of(other.kind()),
         }
     }
@@ -159,8 +159,8 @@ impl Measured {
             SceneKind::ThreeFingers => {}
             SceneKind::Cylinder => (m.acceleration_m_s2, m.angular_acceleration_rad_s2) = (a, b),
             SceneKind::Painleve => {
-                m.jam = a.zip(b).zip(c).map(|((time_s, normal_impulse_ns), friction_impulse_ns)| {
-                    JamImpulses { time_s, normal_impulse_ns, friction_impulse_ns }
+                m.jam = a.zip(b).zip(c).map(|((time_s, normal_impulse_n_s), friction_impulse_n_s)| {
+                    JamImpulses { time_s, normal_impulse_n_s, friction_impulse_n_s }
                 });
             }
         }
@@ -174,9 +174,9 @@ pub struct JamImpulses {
     /// The end of that step (s).
     pub time_s: f64,
     /// Its normal impulse (N s).
-    pub normal_impulse_ns: f64,
+    pub normal_impulse_n_s: f64,
     /// Its friction impulse along `+x` (N s).
-    pub friction_impulse_ns: f64,
+    pub friction_impulse_n_s: f64,
 }
 
 /// Solver counters of a run (zero where an implementation has no such thing).

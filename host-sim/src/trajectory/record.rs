@@ -1,7 +1,7 @@
 //! Which rows a run keeps ([`Record`], [`Recorder`]), and the most steps `host-sim run` records.
 
 use super::Row;
-use crate::scenes::SceneSpec;
+use crate::scenes::SceneParams;
 
 /// Which rows a run keeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,7 +74,7 @@ pub const MAX_RECORDED_STEPS: f64 = 2e6;
 ///
 /// # Errors
 /// The step count `--h` and `--duration` imply is above the cap.
-pub fn check_recorded_steps(spec: &SceneSpec) -> anyhow::Result<()> {
+pub fn check_recorded_steps(spec: &SceneParams) -> anyhow::Result<()> {
     let steps = (spec.max_time() / spec.step()).ceil();
     anyhow::ensure!(
         steps <= MAX_RECORDED_STEPS,
@@ -96,7 +96,7 @@ pub fn check_recorded_steps(spec: &SceneSpec) -> anyhow::Result<()> {
 /// # Errors
 /// The steps of all the runs together are above the cap.
 pub fn check_total_recorded_steps(
-    specs: &[(String, SceneSpec)],
+    specs: &[(String, SceneParams)],
     listed: &str,
     flag: &str,
 ) -> anyhow::Result<()> {
@@ -105,9 +105,9 @@ pub fn check_total_recorded_steps(
         return Ok(());
     }
     let same =
-        |f: fn(&SceneSpec) -> f64| specs.iter().all(|(_, s)| f(s).to_bits() == f(&specs[0].1).to_bits());
+        |f: fn(&SceneParams) -> f64| specs.iter().all(|(_, s)| f(s).to_bits() == f(&specs[0].1).to_bits());
     let runs = match specs.first() {
-        Some((_, first)) if same(SceneSpec::step) && same(SceneSpec::max_time) => format!(
+        Some((_, first)) if same(SceneParams::step) && same(SceneParams::max_time) => format!(
             "runs of --h {} s and --duration {} s",
             crate::scenes::short_number(first.step()),
             crate::scenes::short_number(first.max_time())

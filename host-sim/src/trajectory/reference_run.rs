@@ -4,12 +4,12 @@
 use meterstick_core::planar::{ContactMode, Direction};
 
 use super::{
-    ContactRow, Event, JamImpulses, Measured, Meeting, OutcomeClass, Record, Recorder, Row, RunOutcome,
+    ContactRow, Event, JamImpulses, Measured, Meeting, OutcomeKind, Record, Recorder, Row, RunOutcome,
     SolverCounters, Trajectory,
 };
 use crate::progress;
 use crate::reference;
-use crate::scenes::{Implementation, SceneSpec, SpecExt as _};
+use crate::scenes::{Implementation, ParamsExt as _, SceneParams};
 
 /// The reference's mode as the core names it (data only).
 fn mode_of(m: reference::Mode) -> ContactMode {
@@ -29,7 +29,7 @@ fn pair<T: Copy + Default, const K: usize>(v: &[T]) -> [T; K] {
 ///
 /// # Errors
 /// Invalid parameters (the reference's own checks).
-pub fn run_reference<const K: usize>(spec: &SceneSpec, record: Record) -> anyhow::Result<Trajectory<K>> {
+pub fn run_reference<const K: usize>(spec: &SceneParams, record: Record) -> anyhow::Result<Trajectory<K>> {
     let Some(reference_spec) = spec.to_reference() else {
         anyhow::bail!("scene {} has no independent reference", spec.kind());
     };
@@ -83,20 +83,20 @@ pub fn run_reference<const K: usize>(spec: &SceneSpec, record: Record) -> anyhow
         })
         .collect();
     let outcome = match &run.outcome {
-        reference::Outcome::Balanced => RunOutcome::of(OutcomeClass::Balanced),
-        reference::Outcome::Fell => RunOutcome::of(OutcomeClass::Fell),
-        reference::Outcome::Held => RunOutcome::of(OutcomeClass::Held),
-        reference::Outcome::Slid => RunOutcome::of(OutcomeClass::Slid),
-        reference::Outcome::Tipped => RunOutcome::of(OutcomeClass::Tipped),
-        reference::Outcome::Rolled => RunOutcome::of(OutcomeClass::Rolled),
-        reference::Outcome::Jammed => RunOutcome::of(OutcomeClass::Jammed),
-        reference::Outcome::Unfinished => RunOutcome::of(OutcomeClass::Unfinished),
+        reference::Outcome::Balanced => RunOutcome::of(OutcomeKind::Balanced),
+        reference::Outcome::Fell => RunOutcome::of(OutcomeKind::Fell),
+        reference::Outcome::Held => RunOutcome::of(OutcomeKind::Held),
+        reference::Outcome::Slid => RunOutcome::of(OutcomeKind::Slid),
+        reference::Outcome::Tipped => RunOutcome::of(OutcomeKind::Tipped),
+        reference::Outcome::Rolled => RunOutcome::of(OutcomeKind::Rolled),
+        reference::Outcome::Jammed => RunOutcome::of(OutcomeKind::Jammed),
+        reference::Outcome::Unfinished => RunOutcome::of(OutcomeKind::Unfinished),
         reference::Outcome::Failed(why) => {
-            RunOutcome { class: OutcomeClass::Failed, detail: Some(why.clone()) }
+            RunOutcome { class: OutcomeKind::Failed, detail: Some(why.clone()) }
         }
     };
     let start_top = match spec {
-        SceneSpec::Ladder(p) => p.length * p.angle.sin(),
+        SceneParams::Ladder(p) => p.length * p.angle.sin(),
         _ => f64::NAN,
     };
     Ok(Trajectory {
@@ -118,8 +118,8 @@ pub fn run_reference<const K: usize>(spec: &SceneSpec, record: Record) -> anyhow
             wall_release_ratio: run.wall_release_height.map(|h| h / start_top),
             jam: run.jam.map(|j| JamImpulses {
                 time_s: j.t,
-                normal_impulse_ns: j.normal_impulse,
-                friction_impulse_ns: j.friction_impulse,
+                normal_impulse_n_s: j.normal_impulse,
+                friction_impulse_n_s: j.friction_impulse,
             }),
         },
         counters: SolverCounters { ambiguous_steps: run.ambiguous_steps, ..SolverCounters::default() },

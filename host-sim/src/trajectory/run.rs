@@ -6,15 +6,14 @@ use indicatif::ProgressBar;
 use super::core_run::core_run;
 use super::reference_run::run_reference;
 use super::{Record, Trajectory};
-use crate::lcp_io::Precision;
 use crate::progress;
-use crate::scenes::{Implementation, LcpSize, SceneSpec};
+use crate::scenes::{Implementation, SceneParams};
 
 /// Runs `spec` (a scene with two contacts) in `implementation` to its outcome and records it.
 ///
 /// # Errors
 /// Invalid parameters, or a scene without two contacts ([`run_k`]).
-pub fn run(spec: &SceneSpec, implementation: Implementation, record: Record) -> anyhow::Result<Trajectory> {
+pub fn run(spec: &SceneParams, implementation: Implementation, record: Record) -> anyhow::Result<Trajectory> {
     run_inner(spec, implementation, record, None)
 }
 
@@ -23,7 +22,7 @@ pub fn run(spec: &SceneSpec, implementation: Implementation, record: Record) -> 
 #[macro_export]
 macro_rules! with_contacts {
     ($kind:expr, $k:ident => $body:expr) => {
-        match $kind.info().contacts {
+        match $kind.contacts() {
             1 => {
                 const $k: usize = 1;
                 $body
@@ -45,7 +44,7 @@ macro_rules! with_contacts {
 /// # Errors
 /// Invalid parameters, or a scene with other than `K` contacts.
 pub fn run_k<const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     implementation: Implementation,
     record: Record,
 ) -> anyhow::Result<Trajectory<K>> {
@@ -57,7 +56,7 @@ pub fn run_k<const K: usize>(
 /// # Errors
 /// As [`run`].
 pub fn run_watched<const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     implementation: Implementation,
     record: Record,
     bar: &ProgressBar,
@@ -68,20 +67,17 @@ pub fn run_watched<const K: usize>(
 /// Every run checks for Ctrl-C ([`crate::progress`]) before it starts and every
 /// [`progress::CHECK_EVERY_STEPS`] steps; an interrupted run is dropped.
 fn run_inner<const K: usize>(
-    spec: &SceneSpec,
+    spec: &SceneParams,
     implementation: Implementation,
     record: Record,
     bar: Option<&ProgressBar>,
 ) -> anyhow::Result<Trajectory<K>> {
-    let contacts = spec.kind().info().contacts;
+    let contacts = spec.kind().contacts();
     anyhow::ensure!(contacts == K, "scene {} has {contacts} contacts, not {K}", spec.kind());
     progress::check()?;
     let t = match implementation {
         Implementation::Reference => run_reference(spec, record),
-        Implementation::Core(Precision::F32, LcpSize::Reduced) => core_run::<f32, 6, K>(spec, record, bar),
-        Implementation::Core(Precision::F32, LcpSize::Full) => core_run::<f32, 8, K>(spec, record, bar),
-        Implementation::Core(Precision::F64, LcpSize::Reduced) => core_run::<f64, 6, K>(spec, record, bar),
-        Implementation::Core(Precision::F64, LcpSize::Full) => core_run::<f64, 8, K>(spec, record, bar),
+        Implementation::Core(precision, layout) => core_run::<K>(spec, precision, layout, record, bar),
     }?;
     progress::check()?;
     Ok(t)

@@ -38,7 +38,7 @@ pub fn all_commands() -> Vec<Command> {
 }
 
 pub const MODES: [Mode; 4] = [Mode::Separated, Mode::Sticking, Mode::SlidingPositive, Mode::SlidingNegative];
-pub const OUTCOMES: [OutcomeCode; 10] = [
+pub const OUTCOMES: [OutcomeCode; 12] = [
     OutcomeCode::Balanced,
     OutcomeCode::Fell,
     OutcomeCode::Held,
@@ -49,6 +49,8 @@ pub const OUTCOMES: [OutcomeCode; 10] = [
     OutcomeCode::NonFinite,
     OutcomeCode::ReducedModelLeftRange,
     OutcomeCode::ActuatorOverrun,
+    OutcomeCode::Rolled,
+    OutcomeCode::Jammed,
 ];
 pub const STATES: [RigState; 4] = [RigState::Waiting, RigState::Running, RigState::Finished, RigState::Fault];
 pub const REASONS: [RejectReason; 9] = [

@@ -2,7 +2,7 @@
 
 use meterstick_core::ParamError;
 use meterstick_core::planar::{ContactMode, Direction, StepError};
-use meterstick_core::scene::Outcome;
+use meterstick_core::scene::{Outcome, OutcomeKind};
 use meterstick_link::{ErrorCode, Mode, OutcomeCode, ParamId, RejectReason, RigState};
 
 use crate::{RigFault, RigState as CoreState, Unperformable};
@@ -36,16 +36,26 @@ const fn step_error_code(e: StepError) -> OutcomeCode {
     }
 }
 
+/// The link's code for a run that ended in `o`: every outcome as itself, a failed step by its
+/// cause. The match is over [`OutcomeKind`], which has no hidden variants, so an outcome added
+/// to the core does not compile here until the link names it.
 #[inline]
-pub(super) const fn outcome_code(o: Outcome) -> OutcomeCode {
-    match o {
-        Outcome::Balanced => OutcomeCode::Balanced,
-        Outcome::Fell => OutcomeCode::Fell,
-        Outcome::Held => OutcomeCode::Held,
-        Outcome::Slid => OutcomeCode::Slid,
-        Outcome::Tipped => OutcomeCode::Tipped,
-        Outcome::Failed(e) => step_error_code(e),
-        _ => OutcomeCode::Unfinished,
+#[must_use]
+pub const fn outcome_code(o: Outcome) -> OutcomeCode {
+    if let Outcome::Failed(e) = o {
+        return step_error_code(e);
+    }
+    match o.kind() {
+        OutcomeKind::Balanced => OutcomeCode::Balanced,
+        OutcomeKind::Fell => OutcomeCode::Fell,
+        OutcomeKind::Held => OutcomeCode::Held,
+        OutcomeKind::Slid => OutcomeCode::Slid,
+        OutcomeKind::Tipped => OutcomeCode::Tipped,
+        OutcomeKind::Rolled => OutcomeCode::Rolled,
+        OutcomeKind::Jammed => OutcomeCode::Jammed,
+        OutcomeKind::Unfinished => OutcomeCode::Unfinished,
+        // `Outcome::Failed` returned above; its kind is the only one left.
+        OutcomeKind::Failed => OutcomeCode::SolverFailed,
     }
 }
 

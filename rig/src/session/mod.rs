@@ -28,6 +28,8 @@
 //! no indexing, no slicing that can fail, no unchecked arithmetic that matters (counters wrap).
 
 mod codes;
+
+pub use codes::outcome_code;
 mod queue;
 
 use embedded_hal::delay::DelayNs;
@@ -39,7 +41,7 @@ use meterstick_link::{
     OutcomeCode, PROTOCOL_VERSION, RejectReason, Report, RigState, SceneId, encode,
 };
 
-use codes::{fault_code, fault_error, mode_of, outcome_code, param_of, reason_of, state_of};
+use codes::{fault_code, fault_error, mode_of, param_of, reason_of, state_of};
 use queue::TxQueue;
 
 use crate::{PresetScene as _, Rig, RigError, RigState as CoreState};

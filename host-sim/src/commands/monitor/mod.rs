@@ -25,9 +25,9 @@ use serde::Serialize;
 
 use crate::monitor::{Margin, RigComparison, apply_params, compare, read_params, record_run};
 use crate::output::{create_dir, parameters_json, write_json};
-use crate::scenes::{SceneKind, SceneSpec};
-use crate::trajectory::{OutcomeClass, write_csv, write_events_csv};
-use meterstick_core::scene::catalogue::Short;
+use crate::scenes::{SceneKind, SceneParams};
+use crate::trajectory::{OutcomeKind, write_csv, write_events_csv};
+use meterstick_catalogue::Short;
 
 use print::Printer;
 
@@ -121,7 +121,7 @@ pub struct MonitorSummary {
     /// Every parameter the rig ran (core names, SI units, radians).
     pub parameters: serde_json::Map<String, serde_json::Value>,
     /// The rig's outcome.
-    pub outcome: OutcomeClass,
+    pub outcome: OutcomeKind,
     /// Simulated time at the end (s).
     pub end_time_s: f64,
     /// Steps.
@@ -280,7 +280,7 @@ fn record_and_write(
     let s = MonitorSummary {
         port: args.port.clone(),
         scene: SceneKind::MeterStick,
-        parameters: parameters_json(&SceneSpec::MeterStick(rec.params.cast())),
+        parameters: parameters_json(&SceneParams::MeterStick(rec.params.cast())),
         outcome: t.outcome.class,
         end_time_s: t.end_time,
         steps: t.steps,

@@ -14,8 +14,8 @@ use serde::Serialize;
 use super::MonitorArgs;
 use crate::monitor::{Margin, apply_params, compare, read_params, record_run};
 use crate::output::{create_dir, write_lines};
-use crate::scenes::SceneSpec;
-use crate::trajectory::OutcomeClass;
+use crate::scenes::SceneParams;
+use crate::trajectory::OutcomeKind;
 
 /// One case of `--stress-grid`.
 #[derive(Debug, Clone, Serialize)]
@@ -25,7 +25,7 @@ pub struct WorstStep {
     /// Steps run (at most `--max-steps`).
     pub steps: u64,
     /// The rig's outcome (`Unfinished` when cut).
-    pub outcome: OutcomeClass,
+    pub outcome: OutcomeKind,
     /// The rig's longest step (cycles; SysTick ticks under QEMU).
     pub worst_cycles: u32,
     /// Its step number.
@@ -53,7 +53,7 @@ pub fn run(link: &mut Link, args: &MonitorArgs) -> anyhow::Result<String> {
     }
     let mut rows = Vec::new();
     for case in crate::stress::cases::cases(false) {
-        let SceneSpec::MeterStick(p) = case.spec else { continue };
+        let SceneParams::MeterStick(p) = case.spec else { continue };
         if case.start_dy != 0.0 {
             continue; // the link sets parameters, not an initial state
         }

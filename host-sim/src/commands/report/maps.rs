@@ -7,12 +7,12 @@ use std::path::Path;
 use meterstick_core::scene::MeterStickParams;
 
 use crate::map::{self, Grid, Map};
-use crate::scenes::{Implementation, SceneSpec};
+use crate::scenes::{Implementation, SceneParams};
 
 /// The implementations of the success map: the core f32 6x6 (the firmware's, drawn), the core
 /// f64 8x8 and the reference.
 pub const MAP_CONFIGS: [Implementation; 3] =
-    [Implementation::CORE_F32_6, Implementation::CORE_F64_8, Implementation::Reference];
+    [Implementation::CORE_F32_REDUCED, Implementation::CORE_F64_FULL, Implementation::Reference];
 
 /// One grid, the map of each of [`MAP_CONFIGS`].
 #[derive(Debug, Clone)]
@@ -40,7 +40,7 @@ impl SuccessMaps {
     pub fn compute(quick: bool) -> anyhow::Result<Self> {
         let cells = if quick { [2, 2] } else { [48, 16] };
         let grid = Grid::speed_by_mu_ratio((0.05, 1.25), cells, 0.0)?;
-        let base = SceneSpec::MeterStick(MeterStickParams { mu_static: 0.6, ..MeterStickParams::paper() });
+        let base = SceneParams::MeterStick(MeterStickParams { mu_static: 0.6, ..MeterStickParams::paper() });
         let [f32_map, f64_map, ref_map] = MAP_CONFIGS.map(|c| map::compute(&base, &grid, c));
         Ok(Self { grid, maps: [f32_map?, f64_map?, ref_map?] })
     }

@@ -20,7 +20,7 @@ use crate::output::{create_dir, sci, write_json};
 use crate::plot;
 use crate::scenes::Implementation;
 use crate::sweep::{self, CONFIGS, Sweep, SweepRow, order_fit};
-use meterstick_core::scene::catalogue::Short;
+use meterstick_catalogue::Short;
 
 use maps::SuccessMaps;
 

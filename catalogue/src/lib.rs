@@ -1,61 +1,40 @@
-//! The scene catalogue: every scene the drivers offer, written once. `host-sim`'s command line
-//! (`host-sim/src/scenes.rs`: its clap arguments and `--help`) and the browser page (`web/src/`:
-//! its controls and URL contract, through `ms_describe`) are generated from it, and both word a
-//! refusal with [`Worded`], so a page URL `?scene=meter-stick&speed=0.1&x1=-0.35` and
-//! `host-sim scene --speed 0.1 --x1 -0.35` describe the same run and are refused alike.
+//! The scene catalogue's words: what the front ends (`host-sim`'s command line, the browser page)
+//! say of the core's scenes, written once. `host-sim`'s clap arguments and `--help`
+//! (`host-sim/src/scenes.rs`) and the page's controls and URL contract (`web/src/`, through
+//! `ms_describe`) are generated from it, and both word a refusal with [`Worded`], so a page URL
+//! `?scene=meter-stick&speed=0.1&x1=-0.35` and `host-sim scene --speed 0.1 --x1 -0.35` describe the
+//! same run and are refused alike.
 //!
-//! * [`SceneKind`] and [`SCENES`]: each scene's name, title, number of contacts, the outcomes it
-//!   can end in ([`OutcomeKind`], the one list of outcomes) and what its summary measures;
+//! * [`SCENES`] ([`Catalogued::info`]): each scene's title, contact names, the outcomes it can end
+//!   in ([`OutcomeKind`], the one list of outcomes) and what its summary measures;
 //! * [`FLAGS`]: each parameter flag once (name, unit, help), with the core field it sets in each
 //!   scene it applies to; defaults are read from the core's `Default`, the checks are the core's
 //!   `validate` ([`SceneInfo::ranges`] words a range the core checks beyond a sign);
-//! * [`AnyParams`]: any scene's parameters (f64, core units), get/set by field name, validation in
-//!   a precision, and [`Refusal`]: why a configuration was refused, in the user's words.
+//! * [`Refusal`]: why a configuration was refused, in the user's words.
 //!
-//! No heap, no feature: the catalogue is data and a few lookups, off the stepping path.
+//! The scenes themselves, their names, contacts and parameters ([`SceneKind`], [`SceneParams`])
+//! and the physics checks ([`ParamError`]) are the core's; this crate is for the front ends only
+//! (the firmware does not depend on it). No heap, no feature: data and a few lookups.
 //!
-//! **Adding a scene**: its module (the scene, its `params!`), a [`SceneKind`] variant with its
-//! [`SceneInfo`] in [`SCENES`], an [`AnyParams`] variant (four `match` arms below), and its field in
-//! each [`FLAGS`] entry it uses (or a new flag).
+//! **Adding a scene**: its [`SceneInfo`] in [`SCENES`] and its field in each [`FLAGS`] entry it
+//! uses (or a new flag), besides the core's part (`core/src/scene/kind.rs`).
+#![no_std]
+
+#[cfg(test)]
+extern crate std;
 
 use core::fmt::{self, Write as _};
 
-use super::outcome::OutcomeKind;
-use super::{
-    CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
-};
-use crate::params::ParamError;
-use crate::real::Real;
-
-/// A scene of the catalogue (`docs/scenes.md`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "kebab-case"))]
-pub enum SceneKind {
-    /// The paper's rod on two fingers.
-    MeterStick,
-    /// A block on an inclined plane.
-    Incline,
-    /// A rod leaning against a wall.
-    Ladder,
-    /// A rod on three fingers (`core/examples/three_fingers.rs`).
-    ThreeFingers,
-    /// A round body released on an incline: it rolls or slides.
-    Cylinder,
-    /// Painlevé's paradox: a rod whose end slides on a rough floor jams.
-    Painleve,
-}
+use meterstick_core::ParamError;
+use meterstick_core::scene::{MAX_MEASURES, OutcomeKind, SceneKind, SceneParams};
 
 /// What the catalogue says of one scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SceneInfo {
     /// The scene.
     pub kind: SceneKind,
-    /// Its name on the command line and in the page's URL, e.g. `meter-stick`.
-    pub name: &'static str,
     /// One line of what it is.
     pub title: &'static str,
-    /// Its contacts (`K` of its [`super::Scene`]).
-    pub contacts: usize,
     /// Each contact's name, in the scene's order (contact 1 first).
     pub contact_names: &'static [&'static str],
     /// The flags a lesson turns first (the page shows them, the others under "More parameters"):
@@ -70,9 +49,6 @@ pub struct SceneInfo {
     pub ranges: &'static [(&'static str, &'static str)],
 }
 
-/// The most quantities a scene measures ([`SceneInfo::measures`], [`super::Scene::measured`]).
-pub const MAX_MEASURES: usize = 3;
-
 const _: () = {
     let mut i = 0;
     while i < SCENES.len() {
@@ -85,9 +61,7 @@ const _: () = {
 pub const SCENES: [SceneInfo; 6] = [
     SceneInfo {
         kind: SceneKind::MeterStick,
-        name: "meter-stick",
         title: "The paper's rod on two fingers",
-        contacts: 2,
         contact_names: &["finger 1", "finger 2"],
         main_flags: &["speed", "speed2", "x1", "x2", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Balanced, OutcomeKind::Fell, OutcomeKind::Unfinished],
@@ -96,9 +70,7 @@ pub const SCENES: [SceneInfo; 6] = [
     },
     SceneInfo {
         kind: SceneKind::Incline,
-        name: "incline",
         title: "A block on an inclined plane",
-        contacts: 2,
         contact_names: &["lower left corner", "lower right corner"],
         main_flags: &["angle", "mu-s", "mu-k", "width", "height", "h"],
         outcomes: &[OutcomeKind::Tipped, OutcomeKind::Slid, OutcomeKind::Held],
@@ -107,9 +79,7 @@ pub const SCENES: [SceneInfo; 6] = [
     },
     SceneInfo {
         kind: SceneKind::Ladder,
-        name: "ladder",
         title: "A rod leaning against a wall",
-        contacts: 2,
         contact_names: &["foot (floor)", "top (wall)"],
         main_flags: &["angle", "mu-floor", "mu-wall", "length", "h"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
@@ -122,9 +92,7 @@ pub const SCENES: [SceneInfo; 6] = [
     },
     SceneInfo {
         kind: SceneKind::ThreeFingers,
-        name: "three-fingers",
         title: "A rod on three fingers, finger 1 moving to finger 2",
-        contacts: 3,
         contact_names: &["finger 1", "finger 2", "finger 3"],
         main_flags: &["speed", "x1", "x2", "x3", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Fell, OutcomeKind::Held, OutcomeKind::Unfinished],
@@ -133,9 +101,7 @@ pub const SCENES: [SceneInfo; 6] = [
     },
     SceneInfo {
         kind: SceneKind::Cylinder,
-        name: "cylinder",
         title: "A round body released on an incline: it rolls or slides",
-        contacts: 1,
         contact_names: &["rim"],
         main_flags: &["angle", "mu-s", "mu-k", "radius", "inertia-ratio", "h"],
         outcomes: &[OutcomeKind::Rolled, OutcomeKind::Slid],
@@ -144,13 +110,11 @@ pub const SCENES: [SceneInfo; 6] = [
     },
     SceneInfo {
         kind: SceneKind::Painleve,
-        name: "painleve",
         title: "Painleve's paradox: a rod sliding on a rough floor jams",
-        contacts: 1,
         contact_names: &["lower end"],
         main_flags: &["angle", "speed", "mu-s", "mu-k", "length", "h"],
         outcomes: &[OutcomeKind::Jammed, OutcomeKind::Slid, OutcomeKind::Fell, OutcomeKind::Unfinished],
-        measures: &["jam.time_s", "jam.normal_impulse_ns", "jam.friction_impulse_ns"],
+        measures: &["jam.time_s", "jam.normal_impulse_n_s", "jam.friction_impulse_n_s"],
         ranges: &[
             ("angle", "0 < angle < 90 deg"),
             ("step", "0 < h <= duration"),
@@ -159,64 +123,21 @@ pub const SCENES: [SceneInfo; 6] = [
     },
 ];
 
-impl SceneKind {
-    /// Every scene, in the order of their numbers ([`Self::from_index`]).
-    pub const ALL: [Self; 6] =
-        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder, Self::Painleve];
-
+/// The catalogue's entry of a scene.
+pub trait Catalogued {
     /// The catalogue's entry.
-    #[must_use]
-    pub const fn info(self) -> &'static SceneInfo {
-        &SCENES[self as usize]
-    }
-
-    /// The scene's name, e.g. `meter-stick`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        self.info().name
-    }
-
-    /// The scene's number (its index in [`Self::ALL`]).
-    #[must_use]
-    pub const fn index(self) -> usize {
-        self as usize
-    }
-
-    /// The scene with number `i`.
-    #[must_use]
-    pub const fn from_index(i: u32) -> Option<Self> {
-        if (i as usize) < Self::ALL.len() { Some(Self::ALL[i as usize]) } else { None }
-    }
-
-    /// The scene called `name`.
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|k| k.name() == name)
-    }
-
-    /// The core's field names of this scene's parameters, in declaration order.
-    #[must_use]
-    pub fn field_names(self) -> &'static [&'static str] {
-        match self {
-            Self::MeterStick => MeterStickParams::<f64>::NAMES,
-            Self::Incline => InclineParams::<f64>::NAMES,
-            Self::Ladder => LadderParams::<f64>::NAMES,
-            Self::ThreeFingers => ThreeFingersParams::<f64>::NAMES,
-            Self::Cylinder => CylinderParams::<f64>::NAMES,
-            Self::Painleve => PainleveParams::<f64>::NAMES,
-        }
-    }
-
+    fn info(self) -> &'static SceneInfo;
     /// How the range of `field` is worded in a refusal.
-    #[must_use]
-    pub fn range_of(self, field: &str) -> &'static str {
-        self.info().ranges.iter().find(|(f, _)| *f == field).map_or("its documented range", |(_, r)| r)
-    }
+    fn range_of(self, field: &str) -> &'static str;
 }
 
-impl fmt::Display for SceneKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+impl Catalogued for SceneKind {
+    fn info(self) -> &'static SceneInfo {
+        &SCENES[self.index()]
+    }
+
+    fn range_of(self, field: &str) -> &'static str {
+        self.info().ranges.iter().find(|(f, _)| *f == field).map_or("its documented range", |(_, r)| r)
     }
 }
 
@@ -445,161 +366,6 @@ pub fn flag_index(long: &str) -> Option<usize> {
 /// it is refused before anything runs.
 pub const MAX_STEPS: f64 = 1e8;
 
-/// Any scene's parameters in the core's units (SI, radians), f64 as given; cast to the run's
-/// precision when run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum AnyParams {
-    /// The meter stick.
-    MeterStick(MeterStickParams<f64>),
-    /// The block on an incline.
-    Incline(InclineParams<f64>),
-    /// The ladder.
-    Ladder(LadderParams<f64>),
-    /// The rod on three fingers.
-    ThreeFingers(ThreeFingersParams<f64>),
-    /// The round body on an incline.
-    Cylinder(CylinderParams<f64>),
-    /// Painlevé's rod.
-    Painleve(PainleveParams<f64>),
-}
-
-impl AnyParams {
-    /// The scene with the core's defaults.
-    #[must_use]
-    pub fn defaults(kind: SceneKind) -> Self {
-        match kind {
-            SceneKind::MeterStick => Self::MeterStick(MeterStickParams::default()),
-            SceneKind::Incline => Self::Incline(InclineParams::default()),
-            SceneKind::Ladder => Self::Ladder(LadderParams::default()),
-            SceneKind::ThreeFingers => Self::ThreeFingers(ThreeFingersParams::default()),
-            SceneKind::Cylinder => Self::Cylinder(CylinderParams::default()),
-            SceneKind::Painleve => Self::Painleve(PainleveParams::default()),
-        }
-    }
-
-    /// Which scene.
-    #[must_use]
-    pub const fn kind(&self) -> SceneKind {
-        match self {
-            Self::MeterStick(_) => SceneKind::MeterStick,
-            Self::Incline(_) => SceneKind::Incline,
-            Self::Ladder(_) => SceneKind::Ladder,
-            Self::ThreeFingers(_) => SceneKind::ThreeFingers,
-            Self::Cylinder(_) => SceneKind::Cylinder,
-            Self::Painleve(_) => SceneKind::Painleve,
-        }
-    }
-
-    /// The value of a field (core name).
-    #[must_use]
-    pub fn get(&self, field: &str) -> Option<f64> {
-        match self {
-            Self::MeterStick(p) => p.get(field),
-            Self::Incline(p) => p.get(field),
-            Self::Ladder(p) => p.get(field),
-            Self::ThreeFingers(p) => p.get(field),
-            Self::Cylinder(p) => p.get(field),
-            Self::Painleve(p) => p.get(field),
-        }
-    }
-
-    /// Sets a field (core name); `false` when the scene has none of that name.
-    pub fn set(&mut self, field: &str, value: f64) -> bool {
-        match self {
-            Self::MeterStick(p) => p.set(field, value),
-            Self::Incline(p) => p.set(field, value),
-            Self::Ladder(p) => p.set(field, value),
-            Self::ThreeFingers(p) => p.set(field, value),
-            Self::Cylinder(p) => p.set(field, value),
-            Self::Painleve(p) => p.set(field, value),
-        }
-    }
-
-    /// Checks the parameters in f64 and again after rounding to `T` (a value may overflow f32,
-    /// or round to an invalid one).
-    ///
-    /// # Errors
-    /// The core's first complaint.
-    pub fn validate_as<T: Real>(&self) -> Result<(), ParamError> {
-        match self {
-            Self::MeterStick(p) => {
-                p.validate()?;
-                p.cast::<T>().validate()
-            }
-            Self::Incline(p) => {
-                p.validate()?;
-                p.cast::<T>().validate()
-            }
-            Self::Ladder(p) => {
-                p.validate()?;
-                p.cast::<T>().validate()
-            }
-            Self::ThreeFingers(p) => {
-                p.validate()?;
-                p.cast::<T>().validate()
-            }
-            Self::Cylinder(p) => {
-                p.validate()?;
-                p.cast::<T>().validate()
-            }
-            Self::Painleve(p) => {
-                p.validate()?;
-                p.cast::<T>().validate()
-            }
-        }
-    }
-
-    /// The `i`-th field's value, in the order of [`SceneKind::field_names`].
-    #[must_use]
-    pub fn field(&self, i: usize) -> Option<f64> {
-        self.kind().field_names().get(i).and_then(|name| self.get(name))
-    }
-
-    /// Every field, `(core name, value)`, in declaration order.
-    pub fn fields(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
-        self.kind().field_names().iter().map(|name| (*name, self.get(name).unwrap_or(f64::NAN)))
-    }
-
-    /// The step `h` (s).
-    #[must_use]
-    pub fn step(&self) -> f64 {
-        self.get("step").unwrap_or(f64::NAN)
-    }
-
-    /// The time limit (s).
-    #[must_use]
-    pub fn max_time(&self) -> f64 {
-        self.get("max_time").unwrap_or(f64::NAN)
-    }
-
-    /// The steps `h` and the time limit imply (`ceil(max_time / h)`; NaN when undefined).
-    #[must_use]
-    pub fn steps(&self) -> f64 {
-        libm::ceil(self.max_time() / self.step())
-    }
-
-    /// The meter stick's default time limit follows the fingers' travel: at least its default,
-    /// and long enough for the fingers to meet and the rod to hold (`2 x` travel time + hold time
-    /// + 1 s), so that a slow finger does not end "Unfinished" by default. Other scenes keep theirs.
-    ///
-    /// Returns `true` when it raised the time limit (a refusal then says so:
-    /// [`Refusal::TooManySteps`]).
-    pub fn follow_travel_time(&mut self) -> bool {
-        if let Self::MeterStick(p) = self {
-            let closing = p.finger1_velocity - p.finger2_velocity;
-            if closing > 0.0 {
-                let travel = (p.finger2_x - p.finger1_x - p.finger_width).max(0.0) / closing;
-                let wanted = 2.0 * travel + p.hold_time + 1.0;
-                if wanted.is_finite() && wanted > p.max_time {
-                    p.max_time = wanted;
-                    return true;
-                }
-            }
-        }
-        false
-    }
-}
-
 /// Why a configuration was refused, before anything ran.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Refusal {
@@ -613,20 +379,20 @@ pub enum Refusal {
     /// The core rejected a parameter (the message says so when only f32 refuses it).
     Invalid {
         /// The parameters as resolved.
-        params: AnyParams,
+        params: SceneParams,
         /// The core's complaint.
         error: ParamError,
     },
     /// `h` and the time limit imply more than `limit` steps.
     TooManySteps {
         /// The parameters as resolved.
-        params: AnyParams,
+        params: SceneParams,
         /// The steps they imply.
         steps: f64,
         /// The most a run may take.
         limit: f64,
         /// The time limit is the meter stick's default raised to the fingers' travel time
-        /// ([`AnyParams::follow_travel_time`]), not a duration the user gave.
+        /// ([`SceneParams::follow_travel_time`]), not a duration the user gave.
         followed: bool,
     },
 }
@@ -641,12 +407,7 @@ impl Refusal {
         match *self {
             Self::NotApplicable { flag, .. } => Some(flag),
             Self::Invalid { params, error } => {
-                let field = match error {
-                    ParamError::KineticAboveStatic => Some("mu_kinetic"),
-                    ParamError::FingerOutsideRod | ParamError::FingersCrossed => Some("finger1_x"),
-                    other => other.field(),
-                };
-                field.and_then(|f| index(params.kind(), f))
+                params.field_at_fault(error).and_then(|f| index(params.kind(), f))
             }
             Self::TooManySteps { params, .. } => index(params.kind(), "step"),
         }
@@ -668,7 +429,7 @@ pub struct Worded {
 }
 
 /// A field as the user set it: `--flag value unit` (e.g. `--mu-k 0.7`, `--angle 95 deg`).
-struct Shown<'a>(&'a AnyParams, &'a str, &'static str);
+struct Shown<'a>(&'a SceneParams, &'a str, &'static str);
 
 impl fmt::Display for Shown<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -717,11 +478,18 @@ impl fmt::Display for Worded {
                     }
                     ParamError::FingerOutsideRod => write!(
                         f,
-                        "a finger starts beyond an end of the rod: {} and {} must be within {} / 2",
-                        show("finger1_x"),
-                        show("finger2_x"),
+                        "a finger starts beyond an end of the rod: {} must be within {} / 2",
+                        show(params.field_at_fault(error).unwrap_or("finger1_x")),
                         show("rod_length")
                     ),
+                    ParamError::FingersCrossed if params.field_at_fault(error) == Some("finger3_x") => {
+                        write!(
+                            f,
+                            "finger 3 must start right of finger 2: {} > {}",
+                            show("finger3_x"),
+                            show("finger2_x")
+                        )
+                    }
                     ParamError::FingersCrossed => write!(
                         f,
                         "finger 1 must start left of finger 2 by more than the finger width: {} < {} - {}",
@@ -824,16 +592,13 @@ mod tests {
     fn every_scene_is_in_its_place_and_every_flag_names_a_field() {
         for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
             assert_eq!(kind.info().kind, kind);
-            assert_eq!(SceneKind::from_index(i as u32), Some(kind));
-            assert_eq!(SceneKind::from_name(kind.name()), Some(kind));
-            assert_eq!(AnyParams::defaults(kind).kind(), kind);
-            assert_eq!(kind.info().contact_names.len(), kind.info().contacts, "{kind}");
+            assert_eq!(kind.index(), i);
+            assert_eq!(kind.info().contact_names.len(), kind.contacts(), "{kind}");
             for long in kind.info().main_flags {
                 let flag = FLAGS.iter().find(|f| f.long == *long);
                 assert!(flag.is_some_and(|f| f.field(kind).is_some()), "{kind}: main flag --{long}");
             }
         }
-        assert_eq!(SceneKind::from_index(SceneKind::ALL.len() as u32), None);
         for flag in FLAGS {
             assert_eq!(flag_index(flag.long).map(|i| FLAGS[i].long), Some(flag.long));
             for &(kind, field) in flag.fields {
@@ -850,13 +615,29 @@ mod tests {
 
     #[test]
     fn refusals_are_worded_with_the_prefix_asked_for() {
-        let mut p = AnyParams::defaults(SceneKind::MeterStick);
+        let mut p = SceneParams::defaults(SceneKind::MeterStick);
         assert!(p.set("mu_kinetic", 0.7));
         let e = p.validate_as::<f32>().unwrap_err();
         let r = Refusal::Invalid { params: p, error: e };
         assert_eq!(r.worded("--").to_string(), "--mu-k 0.7 must not exceed --mu-s 0.6");
         assert_eq!(r.worded("").to_string(), "mu-k 0.7 must not exceed mu-s 0.6");
         assert_eq!(r.flag(), flag_index("mu-k"));
+        // The finger the user moved is the one named (it was --x1 and --x2 for any finger).
+        let mut p = SceneParams::defaults(SceneKind::ThreeFingers);
+        assert!(p.set("finger3_x", 0.6));
+        let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
+        assert_eq!(
+            r.worded("--").to_string(),
+            "a finger starts beyond an end of the rod: --x3 0.6 m must be within --length 1 m / 2"
+        );
+        assert_eq!(r.flag(), flag_index("x3"));
+        assert!(p.set("finger3_x", -0.1));
+        let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
+        assert_eq!(
+            r.worded("--").to_string(),
+            "finger 3 must start right of finger 2: --x3 -0.1 m > --x2 0 m"
+        );
+        assert_eq!(r.flag(), flag_index("x3"));
         let r = Refusal::NotApplicable { kind: SceneKind::MeterStick, flag: flag_index("angle").unwrap() };
         assert_eq!(
             r.worded("--").to_string(),

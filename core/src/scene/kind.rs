@@ -1,0 +1,311 @@
+//! The scenes of the catalogue by kind ([`SceneKind`]: name, contacts, field names) and any
+//! scene's parameters ([`SceneParams`]: get/set by field name, validation in a precision). What
+//! the front ends say of them (titles, flags, refusals in English) is `meterstick-catalogue`'s
+//! (`catalogue/`), which the firmware does not link.
+//!
+//! **Adding a scene**: its module (the scene, its `params!`), a [`SceneKind`] variant (its name and
+//! contacts below), a [`SceneParams`] variant (the `match` arms below), its arm in
+//! [`SceneParams::build`] (`registry.rs`) and its entry in `meterstick-catalogue`.
+
+use core::fmt;
+
+use super::{
+    CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
+};
+use crate::params::ParamError;
+use crate::real::Real;
+
+/// A scene of the catalogue (`docs/scenes.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "kebab-case"))]
+pub enum SceneKind {
+    /// The paper's rod on two fingers.
+    MeterStick,
+    /// A block on an inclined plane.
+    Incline,
+    /// A rod leaning against a wall.
+    Ladder,
+    /// A rod on three fingers (`core/examples/three_fingers.rs`).
+    ThreeFingers,
+    /// A round body released on an incline: it rolls or slides.
+    Cylinder,
+    /// Painlevé's paradox: a rod whose end slides on a rough floor jams.
+    Painleve,
+}
+
+/// The most quantities a scene measures ([`super::Scene::measured`]; `meterstick-catalogue` names
+/// them).
+pub const MAX_MEASURES: usize = 3;
+
+impl SceneKind {
+    /// Every scene, in the order of their numbers ([`Self::from_index`]).
+    pub const ALL: [Self; 6] =
+        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder, Self::Painleve];
+
+    /// The scene's name on the command line and in the page's URL, e.g. `meter-stick`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::MeterStick => "meter-stick",
+            Self::Incline => "incline",
+            Self::Ladder => "ladder",
+            Self::ThreeFingers => "three-fingers",
+            Self::Cylinder => "cylinder",
+            Self::Painleve => "painleve",
+        }
+    }
+
+    /// Its contacts (`K` of its [`super::Scene`]).
+    #[must_use]
+    pub const fn contacts(self) -> usize {
+        match self {
+            Self::MeterStick | Self::Incline | Self::Ladder => 2,
+            Self::ThreeFingers => 3,
+            Self::Cylinder | Self::Painleve => 1,
+        }
+    }
+
+    /// The scene's number (its index in [`Self::ALL`]).
+    #[must_use]
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The scene with number `i`.
+    #[must_use]
+    pub const fn from_index(i: u32) -> Option<Self> {
+        if (i as usize) < Self::ALL.len() { Some(Self::ALL[i as usize]) } else { None }
+    }
+
+    /// The scene called `name`.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// The core's field names of this scene's parameters, in declaration order.
+    #[must_use]
+    pub fn field_names(self) -> &'static [&'static str] {
+        match self {
+            Self::MeterStick => MeterStickParams::<f64>::NAMES,
+            Self::Incline => InclineParams::<f64>::NAMES,
+            Self::Ladder => LadderParams::<f64>::NAMES,
+            Self::ThreeFingers => ThreeFingersParams::<f64>::NAMES,
+            Self::Cylinder => CylinderParams::<f64>::NAMES,
+            Self::Painleve => PainleveParams::<f64>::NAMES,
+        }
+    }
+}
+
+impl fmt::Display for SceneKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Any scene's parameters in the core's units (SI, radians), f64 as given; cast to the run's
+/// precision when run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SceneParams {
+    /// The meter stick.
+    MeterStick(MeterStickParams<f64>),
+    /// The block on an incline.
+    Incline(InclineParams<f64>),
+    /// The ladder.
+    Ladder(LadderParams<f64>),
+    /// The rod on three fingers.
+    ThreeFingers(ThreeFingersParams<f64>),
+    /// The round body on an incline.
+    Cylinder(CylinderParams<f64>),
+    /// Painlevé's rod.
+    Painleve(PainleveParams<f64>),
+}
+
+impl SceneParams {
+    /// The scene with the core's defaults.
+    #[must_use]
+    pub fn defaults(kind: SceneKind) -> Self {
+        match kind {
+            SceneKind::MeterStick => Self::MeterStick(MeterStickParams::default()),
+            SceneKind::Incline => Self::Incline(InclineParams::default()),
+            SceneKind::Ladder => Self::Ladder(LadderParams::default()),
+            SceneKind::ThreeFingers => Self::ThreeFingers(ThreeFingersParams::default()),
+            SceneKind::Cylinder => Self::Cylinder(CylinderParams::default()),
+            SceneKind::Painleve => Self::Painleve(PainleveParams::default()),
+        }
+    }
+
+    /// Which scene.
+    #[must_use]
+    pub const fn kind(&self) -> SceneKind {
+        match self {
+            Self::MeterStick(_) => SceneKind::MeterStick,
+            Self::Incline(_) => SceneKind::Incline,
+            Self::Ladder(_) => SceneKind::Ladder,
+            Self::ThreeFingers(_) => SceneKind::ThreeFingers,
+            Self::Cylinder(_) => SceneKind::Cylinder,
+            Self::Painleve(_) => SceneKind::Painleve,
+        }
+    }
+
+    /// The value of a field (core name).
+    #[must_use]
+    pub fn get(&self, field: &str) -> Option<f64> {
+        match self {
+            Self::MeterStick(p) => p.get(field),
+            Self::Incline(p) => p.get(field),
+            Self::Ladder(p) => p.get(field),
+            Self::ThreeFingers(p) => p.get(field),
+            Self::Cylinder(p) => p.get(field),
+            Self::Painleve(p) => p.get(field),
+        }
+    }
+
+    /// Sets a field (core name); `false` when the scene has none of that name.
+    pub fn set(&mut self, field: &str, value: f64) -> bool {
+        match self {
+            Self::MeterStick(p) => p.set(field, value),
+            Self::Incline(p) => p.set(field, value),
+            Self::Ladder(p) => p.set(field, value),
+            Self::ThreeFingers(p) => p.set(field, value),
+            Self::Cylinder(p) => p.set(field, value),
+            Self::Painleve(p) => p.set(field, value),
+        }
+    }
+
+    /// Checks the parameters in f64 and again after rounding to `T` (a value may overflow f32,
+    /// or round to an invalid one).
+    ///
+    /// # Errors
+    /// The core's first complaint.
+    pub fn validate_as<T: Real>(&self) -> Result<(), ParamError> {
+        match self {
+            Self::MeterStick(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Incline(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Ladder(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::ThreeFingers(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Cylinder(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            Self::Painleve(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+        }
+    }
+
+    /// The `i`-th field's value, in the order of [`SceneKind::field_names`].
+    #[must_use]
+    pub fn field(&self, i: usize) -> Option<f64> {
+        self.kind().field_names().get(i).and_then(|name| self.get(name))
+    }
+
+    /// Every field, `(core name, value)`, in declaration order.
+    pub fn fields(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
+        self.kind().field_names().iter().map(|name| (*name, self.get(name).unwrap_or(f64::NAN)))
+    }
+
+    /// The step `h` (s).
+    #[must_use]
+    pub fn step(&self) -> f64 {
+        self.get("step").unwrap_or(f64::NAN)
+    }
+
+    /// The time limit (s).
+    #[must_use]
+    pub fn max_time(&self) -> f64 {
+        self.get("max_time").unwrap_or(f64::NAN)
+    }
+
+    /// The steps `h` and the time limit imply (`ceil(max_time / h)`; NaN when undefined).
+    #[must_use]
+    pub fn steps(&self) -> f64 {
+        libm::ceil(self.max_time() / self.step())
+    }
+
+    /// The field to blame for `error` (what the user should change): the error's own field, the
+    /// kinetic coefficient above the static one, or the finger out of place (the first beyond an
+    /// end of the rod, the one out of order; finger 1 when the scene does not say).
+    #[must_use]
+    pub fn field_at_fault(&self, error: ParamError) -> Option<&'static str> {
+        let finger = match (error, self) {
+            (ParamError::FingerOutsideRod, Self::MeterStick(p)) => p.finger_outside_rod(),
+            (ParamError::FingerOutsideRod, Self::ThreeFingers(p)) => p.finger_outside_rod(),
+            (ParamError::FingersCrossed, Self::ThreeFingers(p)) => p.finger_out_of_order(),
+            _ => None,
+        };
+        match error {
+            ParamError::KineticAboveStatic => Some("mu_kinetic"),
+            ParamError::FingerOutsideRod | ParamError::FingersCrossed => Some(finger.unwrap_or("finger1_x")),
+            other => other.field(),
+        }
+    }
+
+    /// The meter stick's default time limit follows the fingers' travel: at least its default,
+    /// and long enough for the fingers to meet and the rod to hold (`2 x` travel time + hold time
+    /// + 1 s), so that a slow finger does not end "Unfinished" by default. Other scenes keep theirs.
+    ///
+    /// Returns `true` when it raised the time limit (a refusal then says so).
+    pub fn follow_travel_time(&mut self) -> bool {
+        if let Self::MeterStick(p) = self {
+            let closing = p.finger1_velocity - p.finger2_velocity;
+            if closing > 0.0 {
+                let travel = (p.finger2_x - p.finger1_x - p.finger_width).max(0.0) / closing;
+                let wanted = 2.0 * travel + p.hold_time + 1.0;
+                if wanted.is_finite() && wanted > p.max_time {
+                    p.max_time = wanted;
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_scene_is_in_its_place() {
+        for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
+            assert_eq!(SceneKind::from_index(i as u32), Some(kind));
+            assert_eq!(SceneKind::from_name(kind.name()), Some(kind));
+            assert_eq!(SceneParams::defaults(kind).kind(), kind);
+            for (j, name) in kind.field_names().iter().enumerate() {
+                assert!(SceneParams::defaults(kind).field(j).is_some(), "{kind} {name}");
+            }
+        }
+        assert_eq!(SceneKind::from_index(SceneKind::ALL.len() as u32), None);
+    }
+
+    /// The finger to blame is the one out of place (it was finger 1 for any finger).
+    #[test]
+    fn the_finger_out_of_place_is_blamed() {
+        let mut p = SceneParams::defaults(SceneKind::ThreeFingers);
+        assert!(p.set("finger3_x", 0.6));
+        let e = p.validate_as::<f64>().unwrap_err();
+        assert_eq!((e, p.field_at_fault(e)), (ParamError::FingerOutsideRod, Some("finger3_x")));
+        assert!(p.set("finger3_x", -0.1));
+        let e = p.validate_as::<f64>().unwrap_err();
+        assert_eq!((e, p.field_at_fault(e)), (ParamError::FingersCrossed, Some("finger3_x")));
+        let mut p = SceneParams::defaults(SceneKind::MeterStick);
+        assert!(p.set("finger2_x", 0.51));
+        let e = p.validate_as::<f64>().unwrap_err();
+        assert_eq!((e, p.field_at_fault(e)), (ParamError::FingerOutsideRod, Some("finger2_x")));
+    }
+}

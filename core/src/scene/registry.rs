@@ -1,0 +1,383 @@
+//! Every catalogue scene as a runnable scene, written once: [`SceneParams::build`] turns a scene's
+//! parameters, a [`Precision`] and an [`LcpLayout`] into the concrete scene (`MeterStick<f32, 6>`,
+//! `ThreeFingers<f64, 12>`, ...) and hands it to a [`SceneVisitor`], whose one generic method
+//! drives any of them; [`AnyScene`] holds any of them in place for a driver that keeps a run between
+//! calls (the browser page). The scenes x layouts are one table here (`registry!`); a driver
+//! (`host-sim`'s run, scene, stress and map commands, the page) names no scene type and no LCP
+//! size.
+//!
+//! **Adding a scene**: its two rows in the `registry!` table (besides its kind and parameters,
+//! `kind.rs`).
+
+use super::kind::{MAX_MEASURES, SceneParams};
+use super::{Cylinder, Incline, Ladder, MeterStick, Outcome, Painleve, Scene, ThreeFingers};
+use crate::params::ParamError;
+use crate::planar::RunStats;
+use crate::real::Real;
+
+/// Scalar precision of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "lowercase"))]
+pub enum Precision {
+    /// `f32`, as on the microcontroller (the default).
+    #[default]
+    F32,
+    /// `f64`.
+    F64,
+}
+
+impl Precision {
+    /// Both, f32 first.
+    pub const ALL: [Self; 2] = [Self::F32, Self::F64];
+
+    /// `f32` or `f64`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::F32 => "f32",
+            Self::F64 => "f64",
+        }
+    }
+
+    /// The precision called `name` (`f32`, `f64`).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// From the number of bits (32 or 64).
+    #[must_use]
+    pub const fn from_bits(bits: u32) -> Option<Self> {
+        match bits {
+            32 => Some(Self::F32),
+            64 => Some(Self::F64),
+            _ => None,
+        }
+    }
+}
+
+/// The layout of a scene's LCP (`docs/formulation.md`): per contact its normal, its slack and one
+/// friction direction (reduced, checked each step with the full form as fallback: the firmware's)
+/// or two (full: the paper's form). A scene of `K` contacts solves a `3K x 3K` or `4K x 4K` LCP
+/// ([`Self::size`]): 6x6 or 8x8 for two contacts, 3x3 or 4x4 for one, 9x9 or 12x12 for three.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "lowercase"))]
+pub enum LcpLayout {
+    /// One friction direction per contact (the default).
+    #[default]
+    Reduced,
+    /// Two friction directions per contact.
+    Full,
+}
+
+impl LcpLayout {
+    /// Both, reduced first.
+    pub const ALL: [Self; 2] = [Self::Reduced, Self::Full];
+
+    /// `reduced` or `full`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Reduced => "reduced",
+            Self::Full => "full",
+        }
+    }
+
+    /// The layout called `name` (`reduced`, `full`).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|l| l.name() == name)
+    }
+
+    /// The LCP's size `N` for a scene of `contacts` contacts: 3 or 4 per contact.
+    #[must_use]
+    pub const fn size(self, contacts: usize) -> usize {
+        contacts
+            * match self {
+                Self::Reduced => 3,
+                Self::Full => 4,
+            }
+    }
+}
+
+/// What a driver does with a scene, whichever it is: [`Self::visit`] receives the concrete scene
+/// (scalar `T`, `K` contacts, an `N x N` LCP) from [`SceneParams::build`].
+pub trait SceneVisitor {
+    /// What the visit gives.
+    type Output;
+
+    /// Drives `scene`.
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, scene: S) -> Self::Output;
+
+    /// Drives the meter stick, which reports more than [`Scene`] (its meeting's counters) and can
+    /// start from another state ([`MeterStick::with_state`]); by default as any scene.
+    fn visit_meter_stick<T: Real, const N: usize, const E: usize>(
+        self,
+        scene: MeterStick<T, N, E>,
+    ) -> Self::Output
+    where
+        Self: Sized,
+    {
+        self.visit::<T, 2, N, _>(scene)
+    }
+}
+
+impl SceneParams {
+    /// The scene in `precision` and `layout`, keeping `E` switch events, handed to `visitor`.
+    ///
+    /// # Errors
+    /// The core's first complaint about the parameters in `precision` (the scene's `new`).
+    pub fn build<const E: usize, V: SceneVisitor>(
+        &self,
+        precision: Precision,
+        layout: LcpLayout,
+        visitor: V,
+    ) -> Result<V::Output, ParamError> {
+        Ok(match precision {
+            Precision::F32 => SceneIn::<f32, E>::new(self, layout)?.visit(visitor),
+            Precision::F64 => SceneIn::<f64, E>::new(self, layout)?.visit(visitor),
+        })
+    }
+}
+
+/// Hands a scene to a visitor: the meter stick to [`SceneVisitor::visit_meter_stick`], any other
+/// to [`SceneVisitor::visit`].
+macro_rules! hand {
+    (visit_meter_stick, $visitor:expr, $scene:expr, $t:ty, $k:literal, $n:literal) => {
+        $visitor.visit_meter_stick($scene)
+    };
+    (visit, $visitor:expr, $scene:expr, $t:ty, $k:literal, $n:literal) => {
+        $visitor.visit::<$t, $k, $n, _>($scene)
+    };
+}
+
+/// The registry's table, one row per scene and layout: `variant: Scene<K contacts, N> =
+/// SceneParams variant, layout, visitor method`.
+macro_rules! registry {
+    ($($variant:ident: $scene:ident<$k:literal, $n:literal> = $params:ident, $layout:ident, $hand:ident;)*) => {
+        /// Any catalogue scene in scalar `T` and either layout, keeping `E` switch events, held in
+        /// place (no heap: as large as the largest).
+        #[derive(Debug, Clone)]
+        #[allow(clippy::large_enum_variant)] // one scene per run, held in place: no heap
+        pub enum SceneIn<T: Real, const E: usize> {
+            $(
+                #[doc = concat!("`", stringify!($scene), "` with a ", stringify!($n), "x", stringify!($n), " LCP.")]
+                $variant($scene<T, $n, E>),
+            )*
+        }
+
+        impl<T: Real, const E: usize> SceneIn<T, E> {
+            /// The scene of `params` in `layout`, at its start.
+            ///
+            /// # Errors
+            /// The core's first complaint about the parameters in `T` (the scene's `new`).
+            pub fn new(params: &SceneParams, layout: LcpLayout) -> Result<Self, ParamError> {
+                Ok(match (*params, layout) {
+                    $((SceneParams::$params(p), LcpLayout::$layout) => Self::$variant($scene::new(p.cast())?),)*
+                })
+            }
+
+            /// Hands the scene to `visitor`.
+            pub fn visit<V: SceneVisitor>(self, visitor: V) -> V::Output {
+                match self {
+                    $(Self::$variant(s) => hand!($hand, visitor, s, T, $k, $n),)*
+                }
+            }
+
+            /// Hands the scene, in place, to `visitor`.
+            pub fn visit_mut<V: SceneVisitor>(&mut self, visitor: V) -> V::Output {
+                match self {
+                    $(Self::$variant(s) => visitor.visit::<T, $k, $n, _>(s),)*
+                }
+            }
+
+            /// The outcome, once the run has ended ([`Scene::outcome`]).
+            #[must_use]
+            pub fn outcome(&self) -> Option<Outcome> {
+                match self {
+                    $(Self::$variant(s) => s.outcome(),)*
+                }
+            }
+
+            /// Simulated time ([`Scene::time`]).
+            #[must_use]
+            pub fn time(&self) -> T {
+                match self {
+                    $(Self::$variant(s) => s.time(),)*
+                }
+            }
+
+            /// The stepper's counters ([`Scene::stats`]).
+            #[must_use]
+            pub fn stats(&self) -> &RunStats {
+                match self {
+                    $(Self::$variant(s) => s.stats(),)*
+                }
+            }
+
+            /// What the scene measures ([`Scene::measured`]).
+            #[must_use]
+            pub fn measured(&self) -> [Option<T>; MAX_MEASURES] {
+                match self {
+                    $(Self::$variant(s) => s.measured(),)*
+                }
+            }
+        }
+    };
+}
+
+registry! {
+    MeterStickReduced: MeterStick<2, 6> = MeterStick, Reduced, visit_meter_stick;
+    MeterStickFull: MeterStick<2, 8> = MeterStick, Full, visit_meter_stick;
+    InclineReduced: Incline<2, 6> = Incline, Reduced, visit;
+    InclineFull: Incline<2, 8> = Incline, Full, visit;
+    LadderReduced: Ladder<2, 6> = Ladder, Reduced, visit;
+    LadderFull: Ladder<2, 8> = Ladder, Full, visit;
+    ThreeFingersReduced: ThreeFingers<3, 9> = ThreeFingers, Reduced, visit;
+    ThreeFingersFull: ThreeFingers<3, 12> = ThreeFingers, Full, visit;
+    CylinderReduced: Cylinder<1, 3> = Cylinder, Reduced, visit;
+    CylinderFull: Cylinder<1, 4> = Cylinder, Full, visit;
+    PainleveReduced: Painleve<1, 3> = Painleve, Reduced, visit;
+    PainleveFull: Painleve<1, 4> = Painleve, Full, visit;
+}
+
+/// Any catalogue scene in any precision and layout ([`SceneIn`] in f32 or f64), held in place:
+/// for a driver that keeps a run between calls (the browser page steps a frame at a time).
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // one scene per run, held in place: there is no heap on wasm
+pub enum AnyScene<const E: usize> {
+    /// In f32.
+    F32(SceneIn<f32, E>),
+    /// In f64.
+    F64(SceneIn<f64, E>),
+}
+
+impl<const E: usize> AnyScene<E> {
+    /// The scene of `params` in `precision` and `layout`, at its start.
+    ///
+    /// # Errors
+    /// The core's first complaint about the parameters in `precision`.
+    pub fn new(params: &SceneParams, precision: Precision, layout: LcpLayout) -> Result<Self, ParamError> {
+        Ok(match precision {
+            Precision::F32 => Self::F32(SceneIn::new(params, layout)?),
+            Precision::F64 => Self::F64(SceneIn::new(params, layout)?),
+        })
+    }
+
+    /// Hands the scene, in place, to `visitor`.
+    pub fn visit_mut<V: SceneVisitor>(&mut self, visitor: V) -> V::Output {
+        match self {
+            Self::F32(s) => s.visit_mut(visitor),
+            Self::F64(s) => s.visit_mut(visitor),
+        }
+    }
+
+    /// The outcome, once the run has ended.
+    #[must_use]
+    pub fn outcome(&self) -> Option<Outcome> {
+        match self {
+            Self::F32(s) => s.outcome(),
+            Self::F64(s) => s.outcome(),
+        }
+    }
+
+    /// Simulated time (s).
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        match self {
+            Self::F32(s) => s.time().as_f64(),
+            Self::F64(s) => s.time(),
+        }
+    }
+
+    /// The stepper's counters.
+    #[must_use]
+    pub fn stats(&self) -> &RunStats {
+        match self {
+            Self::F32(s) => s.stats(),
+            Self::F64(s) => s.stats(),
+        }
+    }
+
+    /// What the scene measures, in f64.
+    #[must_use]
+    pub fn measured(&self) -> [Option<f64>; MAX_MEASURES] {
+        match self {
+            Self::F32(s) => s.measured().map(|v| v.map(Real::as_f64)),
+            Self::F64(s) => s.measured(),
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use crate::scene::SceneKind;
+
+    /// Reports what it was given: the scalar's name, the contacts and the LCP's size.
+    struct Sizes;
+
+    impl SceneVisitor for Sizes {
+        type Output = (&'static str, usize, usize);
+        fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, _: S) -> Self::Output {
+            (T::NAME, K, N)
+        }
+    }
+
+    /// Takes up to its number of steps; gives the steps taken and the state's bits after them.
+    struct Steps(u64);
+
+    impl SceneVisitor for Steps {
+        type Output = (u64, [u64; 6]);
+        fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(
+            self,
+            mut scene: S,
+        ) -> Self::Output {
+            let mut taken = 0;
+            while taken < self.0 && scene.step().is_some() {
+                taken += 1;
+            }
+            (taken, scene.state().to_array().map(|v| v.as_f64().to_bits()))
+        }
+    }
+
+    /// Every scene is built in the precision and layout asked for, with its catalogue's contacts
+    /// and the LCP size the layout gives them.
+    #[test]
+    fn every_scene_is_built_as_asked() {
+        for kind in SceneKind::ALL {
+            for precision in Precision::ALL {
+                for layout in LcpLayout::ALL {
+                    let built = SceneParams::defaults(kind).build::<0, _>(precision, layout, Sizes).unwrap();
+                    let k = kind.contacts();
+                    assert_eq!(
+                        built,
+                        (precision.name(), k, layout.size(k)),
+                        "{kind} {precision:?} {layout:?}"
+                    );
+                }
+            }
+        }
+        // Held in place and visited step by step, a scene runs as built and handed over whole.
+        for kind in SceneKind::ALL {
+            for precision in Precision::ALL {
+                for layout in LcpLayout::ALL {
+                    let params = SceneParams::defaults(kind);
+                    let whole = params.build::<0, _>(precision, layout, Steps(300)).unwrap();
+                    let mut held = AnyScene::<0>::new(&params, precision, layout).unwrap();
+                    let (a, b) = (held.visit_mut(Steps(100)), held.visit_mut(Steps(200)));
+                    let state = held.visit_mut(Steps(0)).1;
+                    assert_eq!((a.0 + b.0, state), whole, "{kind} {precision:?} {layout:?}");
+                    assert_eq!(held.stats().steps, whole.0, "{kind}");
+                }
+            }
+        }
+        let mut p = SceneParams::defaults(SceneKind::Incline);
+        assert!(p.set("mass", -1.0));
+        assert_eq!(
+            p.build::<0, _>(Precision::F32, LcpLayout::Full, Sizes),
+            Err(ParamError::NotPositive("mass"))
+        );
+    }
+}

@@ -1,0 +1,131 @@
+//! The independent f64 reference for several bodies (docs/formulation.md, "Several bodies";
+//! docs/scenes.md, "block-on-block", "tablecloth", "stack"): planar boxes resting on each other
+//! and on a fixed table, coupled through corner-on-face contacts in one LCP per step, written
+//! from those texts and sharing no code with `meterstick-core` or with the single-body
+//! reference (its enumerator, [`crate::enumerate`], is only its tests' check).
+//!
+//! * `geometry.rs`: boxes, the table, the candidate contacts of each pair and their activity
+//!   rule, the Jacobian rows in `3B` coordinates.
+//! * `lcp.rs`: Lemke's method with the lexicographic rule, the solve of one basis, the
+//!   verification.
+//! * `step.rs`: the step's LCP and the least-kinetic-energy choice among the verified solutions
+//!   found from the previous basis, Lemke's method and a descent over neighbouring bases.
+//! * `system.rs`: the bodies, pairs and loads of a scene, and one step of its state.
+//! * `scenes.rs`: [`BlockOnBlock`], [`Tablecloth`] and [`Stack`], run to their outcome by
+//!   [`run`].
+
+mod geometry;
+pub mod lcp;
+mod scenes;
+mod step;
+mod system;
+#[cfg(test)]
+mod tests;
+
+pub use scenes::{BlockOnBlock, Stack, Tablecloth};
+
+use crate::Sample;
+
+/// A multibody scene and its parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Spec {
+    /// docs/scenes.md, "block-on-block".
+    BlockOnBlock(BlockOnBlock),
+    /// docs/scenes.md, "tablecloth".
+    Tablecloth(Tablecloth),
+    /// docs/scenes.md, "stack".
+    Stack(Stack),
+}
+
+/// How a multibody run ended (docs/scenes.md, each scene's "Outcome").
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Outcome {
+    /// Nothing slid (block-on-block, tablecloth) or nothing fell (stack) by `max_time`.
+    Held,
+    /// The bodies moved together: the lower one slid on the floor, the upper one never slid on
+    /// it.
+    Rode,
+    /// Block-on-block: the top block slid on the bottom one.
+    Slid,
+    /// Block-on-block: the top block tipped.
+    Tipped,
+    /// Tablecloth: the board came out from under the block, which came to rest.
+    Stayed,
+    /// Stack: a block tilted or dropped.
+    Fell,
+    /// `max_time` and no other outcome applies.
+    Unfinished,
+    /// A step found no verified solution, or the state became non-finite.
+    Failed(String),
+}
+
+/// The state after one step (or the start, row 0).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// `t = n h`, s.
+    pub t: f64,
+    /// Each body's `(x, y, theta)`.
+    pub q: Vec<[f64; 3]>,
+    /// Each body's `(vx, vy, omega)` (the step's `v+`).
+    pub v: Vec<[f64; 3]>,
+    /// Each pair's summed contact force on its upper body over the step, world, N (row 0: zero).
+    pub interface_forces: Vec<[f64; 2]>,
+    /// Whether the step's verified solutions moved the bodies differently.
+    pub ambiguous: bool,
+}
+
+/// A finished multibody run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// The kept rows ([`crate::Sample`]; row 0, the start, always).
+    pub rows: Vec<Row>,
+    /// How it ended.
+    pub outcome: Outcome,
+    /// Steps taken.
+    pub steps: u64,
+    /// `steps h`, s.
+    pub end_time: f64,
+    /// Each body's `(x, y, theta)` at the end.
+    pub q: Vec<[f64; 3]>,
+    /// Each body's `(vx, vy, omega)` at the end.
+    pub v: Vec<[f64; 3]>,
+    /// Each pair's summed contact force on its upper body over the last step, world, N (the
+    /// model decides the sum, not one corner's share).
+    pub interface_forces: Vec<[f64; 2]>,
+    /// Block-on-block: the bottom block's acceleration along `x` while both are in full contact;
+    /// tablecloth: the board's (docs/scenes.md, "Measured"), m/s^2.
+    pub lower_acceleration: Option<f64>,
+    /// Block-on-block: the top block's; tablecloth: the block's, m/s^2.
+    pub upper_acceleration: Option<f64>,
+    /// Tablecloth: the block's displacement along `x` at the end, m.
+    pub block_displacement: Option<f64>,
+    /// The largest body speed over the run, `|(vx, vy)| + reach |omega|`, m/s.
+    pub max_speed: f64,
+    /// Steps whose verified solutions moved the bodies differently.
+    pub ambiguous_steps: u64,
+    /// The largest LCP of the run, rows.
+    pub max_rows: usize,
+    /// The run's wall time per step, s (for reports; never asserted).
+    pub seconds_per_step: f64,
+}
+
+/// Validates `spec` and runs it to its outcome, keeping the rows `sample` asks for.
+///
+/// # Errors
+/// A broken validity rule, naming its parameter.
+pub fn run(spec: &Spec, sample: Sample) -> Result<Run, String> {
+    match *spec {
+        Spec::BlockOnBlock(p) => {
+            p.validate()?;
+            Ok(scenes::run_block_on_block(&p, sample))
+        }
+        Spec::Tablecloth(p) => {
+            p.validate()?;
+            Ok(scenes::run_tablecloth(&p, sample))
+        }
+        Spec::Stack(p) => {
+            p.validate()?;
+            Ok(scenes::run_stack(&p, sample))
+        }
+    }
+}

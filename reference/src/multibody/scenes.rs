@@ -1,0 +1,758 @@
+//! The multibody scenes of docs/scenes.md ("block-on-block", "tablecloth", "stack"):
+//! parameters with their defaults and validity rules, start states, loads, outcome rules and
+//! measurements, and the loop that runs them.
+
+use std::time::Instant;
+
+use super::geometry::{BoxBody, Lower, Pair, Table};
+use super::step::Starts;
+use super::system::{State, Stepped, System};
+use super::{Outcome, Row, Run};
+use crate::scenes::{finite, kinetic_at_most_static, non_negative, positive};
+use crate::{Mode, Sample};
+
+/// A block on a block on a floor, the bottom one pulled (docs/scenes.md, "block-on-block").
+/// Body 0 the bottom block, body 1 the top one; pair 0 (bottom, floor), pair 1 (top, bottom).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockOnBlock {
+    /// Top block's mass `m`, kg.
+    pub top_mass: f64,
+    /// Top block's width `w`, m.
+    pub top_width: f64,
+    /// Top block's height `h`, m.
+    pub top_height: f64,
+    /// Bottom block's mass `M`, kg.
+    pub bottom_mass: f64,
+    /// Bottom block's width `w2`, m.
+    pub bottom_width: f64,
+    /// Bottom block's height `h2`, m.
+    pub bottom_height: f64,
+    /// Horizontal force `F` on the bottom block at its centre of mass, along `+x`, N.
+    pub force: f64,
+    /// `mu_s` between the blocks.
+    pub mu_static: f64,
+    /// `mu_k` between the blocks.
+    pub mu_kinetic: f64,
+    /// The floor's coefficient (static = kinetic) under the bottom block.
+    pub mu_floor: f64,
+    /// `g`, m/s^2.
+    pub gravity: f64,
+    /// `h`, s.
+    pub step: f64,
+    /// Slip speed at or below which a touching contact sticks, m/s.
+    pub stick_speed: f64,
+    /// Largest `|theta|` of the top block before it counts as tipped, rad.
+    pub tilt_limit: f64,
+    /// The activity rule's margin (docs/formulation.md, "Several bodies"), m.
+    pub contact_margin: f64,
+    /// Time limit, s.
+    pub max_time: f64,
+}
+
+impl Default for BlockOnBlock {
+    fn default() -> Self {
+        Self {
+            top_mass: 1.0,
+            top_width: 0.1,
+            top_height: 0.1,
+            bottom_mass: 2.0,
+            bottom_width: 0.4,
+            bottom_height: 0.1,
+            force: 30.0,
+            mu_static: 0.5,
+            mu_kinetic: 0.4,
+            mu_floor: 0.2,
+            gravity: 9.81,
+            step: 1e-3,
+            stick_speed: 1e-5,
+            tilt_limit: 0.2,
+            contact_margin: 1e-3,
+            max_time: 0.3,
+        }
+    }
+}
+
+/// A board pulled from under a block (docs/scenes.md, "tablecloth"). Body 0 the board, body 1
+/// the block; pair 0 (board, table), pair 1 (block, board), pair 2 (block, table).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tablecloth {
+    /// Board's mass `m_b`, kg.
+    pub board_mass: f64,
+    /// Board's length, m.
+    pub board_length: f64,
+    /// Board's thickness, m.
+    pub board_thickness: f64,
+    /// Block's mass `m`, kg.
+    pub block_mass: f64,
+    /// Block's width `w`, m.
+    pub block_width: f64,
+    /// Block's height `h`, m.
+    pub block_height: f64,
+    /// Distance from the board's trailing (left) end to the block's rear (left) face, m.
+    pub offset: f64,
+    /// Horizontal force `F` on the board at its centre of mass, along `+x`, N.
+    pub force: f64,
+    /// `mu_s` block on board.
+    pub mu_static: f64,
+    /// `mu_k` block on board.
+    pub mu_kinetic: f64,
+    /// Table's coefficient (static = kinetic) under the board and the block.
+    pub mu_floor: f64,
+    /// `g`, m/s^2.
+    pub gravity: f64,
+    /// `h`, s.
+    pub step: f64,
+    /// Slip speed at or below which a touching contact sticks (and a body counts as at rest), m/s.
+    pub stick_speed: f64,
+    /// The activity rule's margin, m.
+    pub contact_margin: f64,
+    /// Time limit, s.
+    pub max_time: f64,
+}
+
+impl Default for Tablecloth {
+    fn default() -> Self {
+        Self {
+            board_mass: 0.2,
+            board_length: 1.0,
+            board_thickness: 0.005,
+            block_mass: 0.5,
+            block_width: 0.05,
+            block_height: 0.05,
+            offset: 0.1,
+            force: 20.0,
+            mu_static: 0.5,
+            mu_kinetic: 0.4,
+            mu_floor: 0.3,
+            gravity: 9.81,
+            step: 1e-3,
+            stick_speed: 1e-5,
+            contact_margin: 1e-3,
+            max_time: 1.0,
+        }
+    }
+}
+
+/// Identical blocks stacked over a table's edge with harmonic overhangs (docs/scenes.md,
+/// "stack"). Body 0 the bottom block; pair 0 (block 0, table), pair `i` (block `i`, block `i-1`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stack {
+    /// Number of blocks, 1 to 5.
+    pub blocks: usize,
+    /// Each block's length `L`, m.
+    pub length: f64,
+    /// Each block's height, m.
+    pub height: f64,
+    /// Each block's mass, kg.
+    pub mass: f64,
+    /// Every contact's coefficient (static = kinetic).
+    pub mu: f64,
+    /// The harmonic overhangs' scale (1: each block's and its load's centre of mass exactly over
+    /// the edge below it).
+    pub overhang: f64,
+    /// `g`, m/s^2.
+    pub gravity: f64,
+    /// `h`, s.
+    pub step: f64,
+    /// Slip speed at or below which a touching contact sticks, m/s.
+    pub stick_speed: f64,
+    /// Largest `|theta|` of a block before the stack counts as fallen, rad.
+    pub tilt_limit: f64,
+    /// Largest drop of a block's centre of mass before the stack counts as fallen, m.
+    pub drop_limit: f64,
+    /// The activity rule's margin, m.
+    pub contact_margin: f64,
+    /// Time limit, s.
+    pub max_time: f64,
+}
+
+impl Default for Stack {
+    fn default() -> Self {
+        Self {
+            blocks: 3,
+            length: 0.2,
+            height: 0.05,
+            mass: 1.0,
+            mu: 0.5,
+            overhang: 0.98,
+            gravity: 9.81,
+            step: 1e-3,
+            stick_speed: 1e-5,
+            tilt_limit: 0.1,
+            drop_limit: 0.01,
+            contact_margin: 1e-3,
+            max_time: 10.0,
+        }
+    }
+}
+
+/// The common validity rules: finite, `h <= max_time`, each box's inertia finite and positive.
+fn common(step: f64, max_time: f64, boxes: &[(&str, f64, f64, f64)]) -> Result<(), String> {
+    if step > max_time {
+        return Err(format!("step {step} is longer than max_time {max_time}"));
+    }
+    for &(name, w, h, m) in boxes {
+        let b = BoxBody::new(w, h, m);
+        if !(b.inertia.is_finite() && b.inertia > 0.0 && (m / b.inertia).is_finite()) {
+            return Err(format!(
+                "{name}: its inertia m (w^2 + h^2) / 12 = {} is not finite and positive",
+                b.inertia
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl BlockOnBlock {
+    /// Checks the validity rules of docs/scenes.md ("block-on-block", "Validity").
+    ///
+    /// # Errors
+    /// The first rule broken, naming its parameter.
+    pub fn validate(&self) -> Result<(), String> {
+        finite(&[
+            ("top_mass", self.top_mass),
+            ("top_width", self.top_width),
+            ("top_height", self.top_height),
+            ("bottom_mass", self.bottom_mass),
+            ("bottom_width", self.bottom_width),
+            ("bottom_height", self.bottom_height),
+            ("force", self.force),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
+            ("mu_floor", self.mu_floor),
+            ("gravity", self.gravity),
+            ("step", self.step),
+            ("stick_speed", self.stick_speed),
+            ("tilt_limit", self.tilt_limit),
+            ("contact_margin", self.contact_margin),
+            ("max_time", self.max_time),
+        ])?;
+        positive(&[
+            ("top_mass", self.top_mass),
+            ("top_width", self.top_width),
+            ("top_height", self.top_height),
+            ("bottom_mass", self.bottom_mass),
+            ("bottom_width", self.bottom_width),
+            ("bottom_height", self.bottom_height),
+            ("step", self.step),
+            ("tilt_limit", self.tilt_limit),
+            ("max_time", self.max_time),
+        ])?;
+        non_negative(&[
+            ("force", self.force),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
+            ("mu_floor", self.mu_floor),
+            ("gravity", self.gravity),
+            ("stick_speed", self.stick_speed),
+            ("contact_margin", self.contact_margin),
+        ])?;
+        kinetic_at_most_static(self.mu_static, self.mu_kinetic)?;
+        if self.top_width > self.bottom_width {
+            return Err(format!(
+                "top_width {} is wider than bottom_width {}: the top block must fit on the bottom one",
+                self.top_width, self.bottom_width
+            ));
+        }
+        common(
+            self.step,
+            self.max_time,
+            &[
+                ("top block", self.top_width, self.top_height, self.top_mass),
+                ("bottom block", self.bottom_width, self.bottom_height, self.bottom_mass),
+            ],
+        )
+    }
+
+    /// The start: both blocks level and at rest, the bottom one's centre at `(0, h2/2)`, the top
+    /// one's centred over it.
+    pub(super) fn start(&self) -> Vec<[f64; 3]> {
+        vec![[0.0, self.bottom_height / 2.0, 0.0], [0.0, self.bottom_height + self.top_height / 2.0, 0.0]]
+    }
+
+    /// The scene's bodies, pairs and loads.
+    pub(super) fn system(&self) -> System {
+        System {
+            bodies: vec![
+                BoxBody::new(self.bottom_width, self.bottom_height, self.bottom_mass),
+                BoxBody::new(self.top_width, self.top_height, self.top_mass),
+            ],
+            table: Table { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
+            pairs: vec![
+                Pair { upper: 0, lower: Lower::Table, mu_static: self.mu_floor, mu_kinetic: self.mu_floor },
+                Pair {
+                    upper: 1,
+                    lower: Lower::Body(0),
+                    mu_static: self.mu_static,
+                    mu_kinetic: self.mu_kinetic,
+                },
+            ],
+            forces: vec![[self.force, 0.0], [0.0, 0.0]],
+            gravity: self.gravity,
+            step: self.step,
+            stick_speed: self.stick_speed,
+            margin: self.contact_margin,
+        }
+    }
+}
+
+impl Tablecloth {
+    /// Checks the validity rules of docs/scenes.md ("tablecloth", "Validity").
+    ///
+    /// # Errors
+    /// The first rule broken, naming its parameter.
+    pub fn validate(&self) -> Result<(), String> {
+        finite(&[
+            ("board_mass", self.board_mass),
+            ("board_length", self.board_length),
+            ("board_thickness", self.board_thickness),
+            ("block_mass", self.block_mass),
+            ("block_width", self.block_width),
+            ("block_height", self.block_height),
+            ("offset", self.offset),
+            ("force", self.force),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
+            ("mu_floor", self.mu_floor),
+            ("gravity", self.gravity),
+            ("step", self.step),
+            ("stick_speed", self.stick_speed),
+            ("contact_margin", self.contact_margin),
+            ("max_time", self.max_time),
+        ])?;
+        positive(&[
+            ("board_mass", self.board_mass),
+            ("board_length", self.board_length),
+            ("board_thickness", self.board_thickness),
+            ("block_mass", self.block_mass),
+            ("block_width", self.block_width),
+            ("block_height", self.block_height),
+            ("step", self.step),
+            ("max_time", self.max_time),
+        ])?;
+        non_negative(&[
+            ("offset", self.offset),
+            ("force", self.force),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
+            ("mu_floor", self.mu_floor),
+            ("gravity", self.gravity),
+            ("stick_speed", self.stick_speed),
+            ("contact_margin", self.contact_margin),
+        ])?;
+        kinetic_at_most_static(self.mu_static, self.mu_kinetic)?;
+        if self.offset + self.block_width > self.board_length {
+            return Err(format!(
+                "offset {} + block_width {} is beyond board_length {}: the block must start on the board",
+                self.offset, self.block_width, self.board_length
+            ));
+        }
+        if self.contact_margin >= self.board_thickness {
+            return Err(format!(
+                "contact_margin {} is not below board_thickness {}: the block would touch the table through the board",
+                self.contact_margin, self.board_thickness
+            ));
+        }
+        common(
+            self.step,
+            self.max_time,
+            &[
+                ("board", self.board_length, self.board_thickness, self.board_mass),
+                ("block", self.block_width, self.block_height, self.block_mass),
+            ],
+        )
+    }
+
+    /// The start: the board's centre at `(0, t_b/2)`, the block's rear face `offset` from the
+    /// board's left end, both level and at rest.
+    pub(super) fn start(&self) -> Vec<[f64; 3]> {
+        let block_x = -self.board_length / 2.0 + self.offset + self.block_width / 2.0;
+        vec![
+            [0.0, self.board_thickness / 2.0, 0.0],
+            [block_x, self.board_thickness + self.block_height / 2.0, 0.0],
+        ]
+    }
+
+    /// The scene's bodies, pairs and loads.
+    pub(super) fn system(&self) -> System {
+        System {
+            bodies: vec![
+                BoxBody::new(self.board_length, self.board_thickness, self.board_mass),
+                BoxBody::new(self.block_width, self.block_height, self.block_mass),
+            ],
+            table: Table { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
+            pairs: vec![
+                Pair { upper: 0, lower: Lower::Table, mu_static: self.mu_floor, mu_kinetic: self.mu_floor },
+                Pair {
+                    upper: 1,
+                    lower: Lower::Body(0),
+                    mu_static: self.mu_static,
+                    mu_kinetic: self.mu_kinetic,
+                },
+                Pair { upper: 1, lower: Lower::Table, mu_static: self.mu_floor, mu_kinetic: self.mu_floor },
+            ],
+            forces: vec![[self.force, 0.0], [0.0, 0.0]],
+            gravity: self.gravity,
+            step: self.step,
+            stick_speed: self.stick_speed,
+            margin: self.contact_margin,
+        }
+    }
+}
+
+impl Stack {
+    /// Checks the validity rules of docs/scenes.md ("stack", "Validity").
+    ///
+    /// # Errors
+    /// The first rule broken, naming its parameter.
+    pub fn validate(&self) -> Result<(), String> {
+        finite(&[
+            ("length", self.length),
+            ("height", self.height),
+            ("mass", self.mass),
+            ("mu", self.mu),
+            ("overhang", self.overhang),
+            ("gravity", self.gravity),
+            ("step", self.step),
+            ("stick_speed", self.stick_speed),
+            ("tilt_limit", self.tilt_limit),
+            ("drop_limit", self.drop_limit),
+            ("contact_margin", self.contact_margin),
+            ("max_time", self.max_time),
+        ])?;
+        positive(&[
+            ("length", self.length),
+            ("height", self.height),
+            ("mass", self.mass),
+            ("step", self.step),
+            ("tilt_limit", self.tilt_limit),
+            ("drop_limit", self.drop_limit),
+            ("max_time", self.max_time),
+        ])?;
+        non_negative(&[
+            ("mu", self.mu),
+            ("overhang", self.overhang),
+            ("gravity", self.gravity),
+            ("stick_speed", self.stick_speed),
+            ("contact_margin", self.contact_margin),
+        ])?;
+        if !(1..=5).contains(&self.blocks) {
+            return Err(format!("blocks {} is outside 1..=5", self.blocks));
+        }
+        // The bottom block must reach back over the table: its left end left of the edge.
+        if self.overhang / (2.0 * self.blocks as f64) >= 1.0 {
+            return Err(format!(
+                "overhang {}: the bottom block would start beyond the table's edge",
+                self.overhang
+            ));
+        }
+        common(self.step, self.max_time, &[("block", self.length, self.height, self.mass)])
+    }
+
+    /// Each block's start `x` (bottom first): block `k` from the top (`k = 1..n`) reaches
+    /// `overhang L / (2 k)` beyond the right end of the one below it, the bottom one beyond the
+    /// table's edge at `x = 0`.
+    #[must_use]
+    pub fn start_x(&self) -> Vec<f64> {
+        let n = self.blocks;
+        let mut right = 0.0;
+        let mut xs = Vec::with_capacity(n);
+        for i in 0..n {
+            let k = n - i;
+            right += self.overhang * self.length / (2.0 * k as f64);
+            xs.push(right - self.length / 2.0);
+        }
+        xs
+    }
+
+    /// The start: block `i` (bottom first) at `(start_x[i], (i + 1/2) height)`, level, at rest.
+    pub(super) fn start(&self) -> Vec<[f64; 3]> {
+        self.start_x()
+            .into_iter()
+            .enumerate()
+            .map(|(i, x)| [x, (i as f64 + 0.5) * self.height, 0.0])
+            .collect()
+    }
+
+    /// The scene's bodies, pairs and loads.
+    pub(super) fn system(&self) -> System {
+        let mut pairs = vec![Pair { upper: 0, lower: Lower::Table, mu_static: self.mu, mu_kinetic: self.mu }];
+        pairs.extend((1..self.blocks).map(|i| Pair {
+            upper: i,
+            lower: Lower::Body(i - 1),
+            mu_static: self.mu,
+            mu_kinetic: self.mu,
+        }));
+        System {
+            bodies: vec![BoxBody::new(self.length, self.height, self.mass); self.blocks],
+            table: Table { lo: f64::NEG_INFINITY, hi: 0.0 },
+            pairs,
+            forces: vec![[0.0; 2]; self.blocks],
+            gravity: self.gravity,
+            step: self.step,
+            stick_speed: self.stick_speed,
+            margin: self.contact_margin,
+        }
+    }
+}
+
+/// What the loop tracks beside the scene's own rules.
+struct Loop {
+    run: Run,
+    sample: Sample,
+    started: Instant,
+}
+
+impl Loop {
+    fn new(sample: Sample) -> Self {
+        Self {
+            run: Run {
+                rows: Vec::new(),
+                outcome: Outcome::Unfinished,
+                steps: 0,
+                end_time: 0.0,
+                q: Vec::new(),
+                v: Vec::new(),
+                interface_forces: Vec::new(),
+                lower_acceleration: None,
+                upper_acceleration: None,
+                block_displacement: None,
+                max_speed: 0.0,
+                ambiguous_steps: 0,
+                max_rows: 0,
+                seconds_per_step: 0.0,
+            },
+            sample,
+            started: Instant::now(),
+        }
+    }
+
+    /// Steps until `judge` gives an outcome or `max_time` passes (then `at_end` decides).
+    fn drive(
+        mut self,
+        system: &System,
+        state: &mut State,
+        max_time: f64,
+        mut judge: impl FnMut(&State, &Stepped) -> Option<Outcome>,
+        at_end: impl FnOnce(&State) -> Outcome,
+    ) -> Run {
+        let max_steps = (max_time / system.step - 1e-9).ceil().max(1.0) as u64;
+        self.run.rows.push(Row {
+            t: 0.0,
+            q: state.q.clone(),
+            v: state.v.clone(),
+            interface_forces: vec![[0.0; 2]; system.pairs.len()],
+            ambiguous: false,
+        });
+        let outcome = loop {
+            let stepped = match state.advance(system, Starts::ALL) {
+                Ok(s) => s,
+                Err(e) => break Outcome::Failed(e),
+            };
+            self.record(system, state, &stepped);
+            if let Some(outcome) = judge(state, &stepped) {
+                break outcome;
+            }
+            if state.steps >= max_steps {
+                break at_end(state);
+            }
+        };
+        self.run.outcome = outcome;
+        self.run.steps = state.steps;
+        self.run.end_time = state.time(system);
+        self.run.q.clone_from(&state.q);
+        self.run.v.clone_from(&state.v);
+        self.run.seconds_per_step = self.started.elapsed().as_secs_f64() / state.steps.max(1) as f64;
+        self.run
+    }
+
+    fn record(&mut self, system: &System, state: &State, stepped: &Stepped) {
+        let r = &stepped.result;
+        self.run.ambiguous_steps += u64::from(r.ambiguous);
+        self.run.max_rows = self.run.max_rows.max(r.rows);
+        for (v, b) in state.v.iter().zip(&system.bodies) {
+            self.run.max_speed = self.run.max_speed.max(v[0].hypot(v[1]) + b.reach() * v[2].abs());
+        }
+        let mut forces = vec![[0.0; 2]; system.pairs.len()];
+        for (i, f) in stepped.frames.iter().enumerate() {
+            let on_corner = [
+                f.normal[0] * r.normal[i] + f.tangent[0] * r.friction[i],
+                f.normal[1] * r.normal[i] + f.tangent[1] * r.friction[i],
+            ];
+            let sign = if f.corner_body == Some(system.pairs[f.pair].upper) { 1.0 } else { -1.0 };
+            for c in 0..2 {
+                forces[f.pair][c] += sign * on_corner[c] / system.step;
+            }
+        }
+        let keep = match self.sample {
+            Sample::All => true,
+            Sample::Every(every) => every > 0 && state.steps.is_multiple_of(every),
+            Sample::None => false,
+        };
+        if keep {
+            self.run.rows.push(Row {
+                t: state.time(system),
+                q: state.q.clone(),
+                v: state.v.clone(),
+                interface_forces: forces.clone(),
+                ambiguous: r.ambiguous,
+            });
+        }
+        self.run.interface_forces = forces;
+    }
+}
+
+/// The candidates of pair `p` whose corner is the upper body's (its lower corners on the lower
+/// one's top face).
+fn upper_corners(system: &System, frames: &[super::geometry::Frame], p: usize) -> Vec<usize> {
+    (0..frames.len())
+        .filter(|&i| frames[i].pair == p && frames[i].corner_body == Some(system.pairs[p].upper))
+        .collect()
+}
+
+/// Whether any contact of pair `p` slid after the step.
+fn pair_slid(stepped: &Stepped, modes: &[Mode], p: usize) -> bool {
+    stepped.frames.iter().zip(modes).any(|(f, m)| f.pair == p && m.is_sliding())
+}
+
+/// The accelerations along `x` of bodies 0 and 1 between the end of step 1 and the end of the
+/// last step of the first run of steps after which every contact in `full` touched.
+#[derive(Default)]
+struct Window {
+    first: Option<(f64, [f64; 2])>,
+    last: Option<(f64, [f64; 2])>,
+    open: bool,
+}
+
+impl Window {
+    fn update(&mut self, t: f64, v: &[[f64; 3]], full: bool) {
+        let vx = [v[0][0], v[1][0]];
+        if self.first.is_none() {
+            self.first = Some((t, vx));
+            self.open = full;
+            return;
+        }
+        if self.open && full {
+            self.last = Some((t, vx));
+        } else {
+            self.open = false;
+        }
+    }
+
+    fn accelerations(&self) -> (Option<f64>, Option<f64>) {
+        match (self.first, self.last) {
+            (Some((t1, v1)), Some((t2, v2))) if t2 > t1 => {
+                (Some((v2[0] - v1[0]) / (t2 - t1)), Some((v2[1] - v1[1]) / (t2 - t1)))
+            }
+            _ => (None, None),
+        }
+    }
+}
+
+/// Runs a valid block-on-block scene (docs/scenes.md, "block-on-block").
+pub(super) fn run_block_on_block(p: &BlockOnBlock, sample: Sample) -> Run {
+    let system = p.system();
+    let mut state = State::at_rest(&system, p.start());
+    let (mut slid_top, mut slid_floor) = (false, false);
+    let mut window = Window::default();
+    let half = p.bottom_width / 2.0;
+    let tilt = p.tilt_limit;
+    let mut run = Loop::new(sample).drive(
+        &system,
+        &mut state,
+        p.max_time,
+        |state, stepped| {
+            slid_floor |= pair_slid(stepped, &state.modes, 0);
+            slid_top |= pair_slid(stepped, &state.modes, 1);
+            let mut full = upper_corners(&system, &stepped.frames, 0);
+            full.extend(upper_corners(&system, &stepped.frames, 1));
+            window.update(
+                state.time(&system),
+                &state.v,
+                full.iter().all(|&i| state.modes[i] != Mode::Separated),
+            );
+            let (bottom, top) = (state.q[0], state.q[1]);
+            if top[2].abs() > tilt {
+                Some(Outcome::Tipped)
+            } else if (top[0] - bottom[0]).abs() > half {
+                Some(Outcome::Slid)
+            } else {
+                None
+            }
+        },
+        |_| Outcome::Unfinished,
+    );
+    if run.outcome == Outcome::Unfinished {
+        run.outcome = if slid_top {
+            Outcome::Slid
+        } else if slid_floor {
+            Outcome::Rode
+        } else {
+            Outcome::Held
+        };
+    }
+    (run.lower_acceleration, run.upper_acceleration) = window.accelerations();
+    run
+}
+
+/// Runs a valid tablecloth scene (docs/scenes.md, "tablecloth").
+pub(super) fn run_tablecloth(p: &Tablecloth, sample: Sample) -> Run {
+    let system = p.system();
+    let q0 = p.start();
+    let block_x0 = q0[1][0];
+    let mut state = State::at_rest(&system, q0);
+    let (mut slid_any, mut slid_block) = (false, false);
+    let mut window = Window::default();
+    let (half, reach, rest) = (p.board_length / 2.0, system.bodies[1].reach(), p.stick_speed);
+    let mut run = Loop::new(sample).drive(
+        &system,
+        &mut state,
+        p.max_time,
+        |state, stepped| {
+            slid_any |= state.modes.iter().any(|m| m.is_sliding());
+            slid_block |= pair_slid(stepped, &state.modes, 1);
+            let mut full = upper_corners(&system, &stepped.frames, 0);
+            full.extend(upper_corners(&system, &stepped.frames, 1));
+            window.update(
+                state.time(&system),
+                &state.v,
+                full.iter().all(|&i| state.modes[i] != Mode::Separated),
+            );
+            let (board, block) = (state.q[0], state.q[1]);
+            let v = state.v[1];
+            let trailing = board[0] - half * board[2].cos();
+            let at_rest = v[0].abs() <= rest && v[1].abs() <= rest && reach * v[2].abs() <= rest;
+            (block[0] < trailing && at_rest).then_some(Outcome::Stayed)
+        },
+        |_| Outcome::Unfinished,
+    );
+    if run.outcome == Outcome::Unfinished {
+        if !slid_any {
+            run.outcome = Outcome::Held;
+        } else if !slid_block {
+            run.outcome = Outcome::Rode;
+        }
+    }
+    (run.lower_acceleration, run.upper_acceleration) = window.accelerations();
+    run.block_displacement = Some(run.q[1][0] - block_x0);
+    run
+}
+
+/// Runs a valid stack scene (docs/scenes.md, "stack").
+pub(super) fn run_stack(p: &Stack, sample: Sample) -> Run {
+    let system = p.system();
+    let q0 = p.start();
+    let y0: Vec<f64> = q0.iter().map(|q| q[1]).collect();
+    let mut state = State::at_rest(&system, q0);
+    Loop::new(sample).drive(
+        &system,
+        &mut state,
+        p.max_time,
+        |state, _| {
+            let fell =
+                state.q.iter().zip(&y0).any(|(q, y)| q[2].abs() > p.tilt_limit || y - q[1] > p.drop_limit);
+            fell.then_some(Outcome::Fell)
+        },
+        |_| Outcome::Held,
+    )
+}

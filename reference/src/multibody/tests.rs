@@ -1,0 +1,642 @@
+//! The multibody reference's checks: its solver against textbook LCPs and against the
+//! exhaustive enumerator (`crate::enumerate`) on random small multibody steps, the
+//! indeterminate interface, and the analytic laws of docs/scenes.md ("block-on-block",
+//! "tablecloth", "stack") on its own runs. The measured figures are printed
+//! (`-- --nocapture`).
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use super::geometry::{BoxBody, Lower, Pair, Table};
+use super::lcp::{LemkeFailure, lemke, solve_basis, verify};
+use super::step::{Starts, StepLcp, assemble, solve};
+use super::system::{State, System};
+use super::*;
+use crate::Sample;
+use crate::enumerate::{Lcp, enumerate, is_lcp_solution};
+
+const G: f64 = 9.81;
+
+/// A small deterministic generator (xorshift64*), uniform in `[lo, hi)`.
+struct Random(u64);
+
+impl Random {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
+        lo + (hi - lo) * (x as f64 / (1_u64 << 53) as f64)
+    }
+}
+
+fn run_spec(spec: Spec) -> Run {
+    run(&spec, Sample::None).unwrap()
+}
+
+// ---------------------------------------------------------------------------------------------
+// The solver.
+
+#[test]
+fn lemke_solves_textbook_lcps() {
+    // A cyclic P-matrix (each row 1 on the diagonal, 2 on the next): the unique solution
+    // z = (1/3, 1/3, 1/3), w = 0.
+    let a = [1.0, 2.0, 0.0, 0.0, 1.0, 2.0, 2.0, 0.0, 1.0];
+    let b = [-1.0, -1.0, -1.0];
+    let (z, basis) = lemke(&a, &b, &[1.0; 3], 100).unwrap();
+    assert!(verify(&a, &b, &z) && basis == vec![true; 3], "{z:?}");
+    assert!(z.iter().all(|x| (x - 1.0 / 3.0).abs() < 1e-15), "{z:?}");
+    // A symmetric positive definite matrix: z = (4/3, 7/3).
+    let (a, b) = ([2.0, 1.0, 1.0, 2.0], [-5.0, -6.0]);
+    let (z, _) = lemke(&a, &b, &[1.0; 2], 100).unwrap();
+    assert!((z[0] - 4.0 / 3.0).abs() < 1e-14 && (z[1] - 7.0 / 3.0).abs() < 1e-14, "{z:?}");
+    // b >= 0: z = 0 without a pivot.
+    assert_eq!(lemke(&a, &[1.0, 0.0], &[1.0; 2], 0).unwrap().0, vec![0.0, 0.0]);
+    // Degenerate: A = [[1, 1], [1, 1]], b = (-1, -1): the solutions are z1 + z2 = 1; any answer
+    // must verify.
+    let (a, b) = ([1.0; 4], [-1.0, -1.0]);
+    let (z, _) = lemke(&a, &b, &[1.0; 2], 100).unwrap();
+    assert!(verify(&a, &b, &z) && (z[0] + z[1] - 1.0).abs() < 1e-15, "{z:?}");
+    // Infeasible with a copositive-plus (skew) matrix: w1 = -z2 - 1 < 0 always, so the method
+    // must end on a ray (for a copositive-plus matrix Lemke's method ends on a ray only when
+    // the LCP has no solution: Cottle, Pang & Stone, section 4.4).
+    let (a, b) = ([0.0, -1.0, 1.0, 0.0], [-1.0, -1.0]);
+    assert_eq!(lemke(&a, &b, &[1.0; 2], 100), Err(LemkeFailure::Ray));
+    // An upper-triangular P-matrix (1 on the diagonal, 2 above, as in Murty's examples of long
+    // pivot paths), n = 8, b = -1: the unique
+    // solution is found by the enumeration too.
+    let n = 8;
+    let a: Vec<f64> = (0..n * n)
+        .map(|e| match (e / n, e % n) {
+            (i, j) if i == j => 1.0,
+            (i, j) if j > i => 2.0,
+            _ => 0.0,
+        })
+        .collect();
+    let b = vec![-1.0; n];
+    let (z, _) = lemke(&a, &b, &vec![1.0; n], 10_000).unwrap();
+    let all = enumerate(&Lcp { size: n, matrix: a.clone(), offset: b.clone() });
+    assert_eq!(all.len(), 1);
+    assert!(verify(&a, &b, &z) && z.iter().zip(&all[0].z).all(|(x, y)| (x - y).abs() < 1e-14), "{z:?}");
+}
+
+#[test]
+fn lemke_agrees_with_enumeration_on_random_p_matrix_lcps() {
+    // A = B B^T + I/2 is positive definite (a P-matrix): exactly one solution, which Lemke's
+    // method must reach.
+    let mut rng = Random(0x9e37_79b9_7f4a_7c15);
+    for n in [3, 6, 10, 12] {
+        for _ in 0..20 {
+            let m: Vec<f64> = (0..n * n).map(|_| rng.uniform(-1.0, 1.0)).collect();
+            let mut a = vec![0.0; n * n];
+            for i in 0..n {
+                for j in 0..n {
+                    a[i * n + j] = (0..n).map(|k| m[i * n + k] * m[j * n + k]).sum::<f64>();
+                }
+                a[i * n + i] += 0.5;
+            }
+            let b: Vec<f64> = (0..n).map(|_| rng.uniform(-1.0, 1.0)).collect();
+            let (z, _) = lemke(&a, &b, &vec![1.0; n], 100 * n).unwrap();
+            let all = enumerate(&Lcp { size: n, matrix: a.clone(), offset: b.clone() });
+            assert_eq!(all.len(), 1, "a P-matrix LCP with {} solutions", all.len());
+            let err = z.iter().zip(&all[0].z).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+            assert!(verify(&a, &b, &z) && err < 1e-12, "n = {n}: |z - z_enum| = {err:e}");
+        }
+    }
+}
+
+/// A system, its state `(q, v)` and each candidate's `mu` for one step.
+type RandomStep = (System, Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<f64>);
+
+/// A random two-box step: a box (body 1) on a box (body 0) on the floor, tilted, moving and
+/// penetrating a little, pulled; `k` (2..=4) active contacts: 16 rows at most.
+fn random_step(rng: &mut Random) -> RandomStep {
+    let (w0, h0, w1, h1) =
+        (rng.uniform(0.2, 0.5), rng.uniform(0.05, 0.2), rng.uniform(0.05, 0.2), rng.uniform(0.05, 0.3));
+    let system = System {
+        bodies: vec![
+            BoxBody::new(w0, h0, rng.uniform(0.5, 3.0)),
+            BoxBody::new(w1, h1, rng.uniform(0.2, 2.0)),
+        ],
+        table: Table { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
+        pairs: vec![
+            Pair { upper: 0, lower: Lower::Table, mu_static: 0.3, mu_kinetic: 0.3 },
+            Pair { upper: 1, lower: Lower::Body(0), mu_static: 0.6, mu_kinetic: 0.4 },
+        ],
+        forces: vec![[rng.uniform(-40.0, 40.0), 0.0], [rng.uniform(-5.0, 5.0), 0.0]],
+        gravity: G,
+        step: 1e-3,
+        stick_speed: 1e-5,
+        margin: 1e-3,
+    };
+    let tilt0 = rng.uniform(-0.01, 0.01);
+    let tilt1 = rng.uniform(-0.03, 0.03);
+    let x1 = rng.uniform(-(w0 - w1) / 2.0, (w0 - w1) / 2.0);
+    let q = vec![
+        [0.0, h0 / 2.0 + rng.uniform(-1e-4, 1e-4) + (w0 / 2.0) * tilt0.abs(), tilt0],
+        [
+            x1,
+            h0 + h1 / 2.0 + rng.uniform(-1e-4, 1e-4) + (w1 / 2.0) * (tilt1 - tilt0).abs() + x1 * tilt0,
+            tilt1,
+        ],
+    ];
+    let mut speed = || rng.uniform(-0.2, 0.2);
+    let v = vec![[speed(), speed() * 0.1, speed()], [speed(), speed() * 0.1, speed()]];
+    let mu: Vec<f64> = (0..6)
+        .map(|i| {
+            if i < 2 {
+                0.3
+            } else if rng.uniform(0.0, 1.0) < 0.5 {
+                0.6
+            } else {
+                0.4
+            }
+        })
+        .collect();
+    (system, q, v, mu)
+}
+
+/// The least-kinetic-energy motion among the enumerated solutions of `lcp`, ties by the smallest
+/// `||z||_1` (the single-body reference's rule, `reference/src/step.rs`).
+fn enumerated_choice(system: &System, lcp: &StepLcp) -> Option<(Vec<f64>, bool)> {
+    let n = lcp.offset.len();
+    let solutions = enumerate(&Lcp { size: n, matrix: lcp.matrix.clone(), offset: lcp.offset.clone() });
+    let energy = |v: &[f64]| (0..v.len()).map(|c| v[c] * v[c] / lcp.weights[c]).sum::<f64>();
+    let velocities: Vec<Vec<f64>> = solutions.iter().map(|s| lcp.velocity(&s.z)).collect();
+    let least = velocities.iter().map(|v| energy(v)).min_by(f64::total_cmp)?;
+    let scale = lcp.free.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-3);
+    let mass_sum: f64 = system.bodies.iter().map(|b| b.mass / system.reference_mass()).sum();
+    let chosen = velocities.iter().find(|v| energy(v) <= least + 1e-12 * scale * scale * mass_sum)?.clone();
+    let ambiguous =
+        velocities.iter().any(|v| v.iter().zip(&chosen).any(|(a, b)| (a - b).abs() > 1e-9 * scale));
+    Some((chosen, ambiguous))
+}
+
+#[test]
+fn the_solver_agrees_with_enumeration_on_random_two_box_steps() {
+    let mut rng = Random(0x2545_f491_4f6c_dd1d);
+    let (mut cases, mut ambiguous, mut by_size) = (0, 0, [0_usize; 5]);
+    let mut worst: f64 = 0.0;
+    while cases < 60 {
+        let (system, q, v, mu) = random_step(&mut rng);
+        let frames = system.frames(&q, &v);
+        let lcp = assemble(&system, &q, &v, &frames, &mu);
+        let k = lcp.active.len();
+        if k < 2 {
+            continue;
+        }
+        cases += 1;
+        by_size[k] += 1;
+        let Some((expected, enumerated_ambiguous)) = enumerated_choice(&system, &lcp) else {
+            panic!("the enumeration found no solution of a {}-row step", 4 * k);
+        };
+        let result = solve(&system, &lcp, &vec![0; frames.len()], frames.len(), Starts::ALL).unwrap();
+        let got: Vec<f64> = result.velocity.iter().flatten().copied().collect();
+        let scale = lcp.free.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-3);
+        let err = got.iter().zip(&expected).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / scale;
+        worst = worst.max(err);
+        ambiguous += usize::from(enumerated_ambiguous);
+        assert!(err < 1e-9, "case {cases} ({k} contacts): v+ {got:?}, the enumeration's {expected:?}");
+        assert!(result.normal.iter().chain(&result.friction).all(|x| x.is_finite()));
+        assert!(result.normal.iter().all(|&x| x >= 0.0));
+    }
+    eprintln!(
+        "random two-box steps: {cases} ({:?} with 2/3/4 contacts), {ambiguous} ambiguous by enumeration, worst |v - v_enum| / S = {worst:e}",
+        &by_size[2..]
+    );
+}
+
+#[test]
+fn every_answer_of_the_solver_passes_the_enumerators_acceptance_check() {
+    let mut rng = Random(0xdead_beef_cafe_f00d);
+    let (mut checked, mut rays) = (0, 0);
+    while checked < 40 {
+        let (system, q, v, mu) = random_step(&mut rng);
+        let frames = system.frames(&q, &v);
+        let lcp = assemble(&system, &q, &v, &frames, &mu);
+        let n = lcp.offset.len();
+        if n == 0 {
+            continue;
+        }
+        let Ok((z, basis)) = lemke(&lcp.matrix, &lcp.offset, &vec![1.0; n], 50 * (n + 1)) else {
+            rays += 1;
+            continue;
+        };
+        checked += 1;
+        let m: Vec<Vec<f64>> = (0..n).map(|i| lcp.matrix[i * n..(i + 1) * n].to_vec()).collect();
+        assert!(verify(&lcp.matrix, &lcp.offset, &z));
+        assert!(is_lcp_solution(&m, &lcp.offset, &z, 1e-9), "{z:?}");
+        // The basis Lemke's method ended on solves to the same z.
+        let again = solve_basis(&lcp.matrix, &lcp.offset, &basis).unwrap();
+        assert!(again.iter().zip(&z).all(|(a, b)| (a.max(0.0) - b).abs() < 1e-12), "{again:?} {z:?}");
+    }
+    eprintln!(
+        "Lemke's method on random two-box steps: {checked} answers verified, {rays} rays (the step then opens the cone rows)"
+    );
+    assert!(rays <= checked / 4, "{rays} rays in {} steps", checked + rays);
+}
+
+#[test]
+fn an_indeterminate_interface_moves_the_same_from_every_start() {
+    // The default top block on the bottom one pulled so that they ride together: the top block's
+    // two corners stick, their split of the load is statically indeterminate.
+    let p = BlockOnBlock { force: 15.0, ..BlockOnBlock::default() };
+    let system = p.system();
+    let mut state = State::at_rest(&system, p.start());
+    for _ in 0..3 {
+        state.advance(&system, Starts::ALL).unwrap();
+    }
+    let frames = system.frames(&state.q, &state.v);
+    let mu: Vec<f64> = frames.iter().map(|f| system.pairs[f.pair].mu_static).collect();
+    let lcp = assemble(&system, &state.q, &state.v, &frames, &mu);
+    let reference = solve(&system, &lcp, &state.patterns, frames.len(), Starts::ALL).unwrap();
+    let top: Vec<usize> = (0..frames.len()).filter(|&i| frames[i].pair == 1 && frames[i].active).collect();
+    assert_eq!(top.len(), 2, "the top block's two corners");
+    // Every start: Lemke's method alone, and each of the 8 x 8 warm patterns of the top block's
+    // corners (the floor's as in the reference answer) alone.
+    let mut answers = vec![
+        solve(
+            &system,
+            &lcp,
+            &state.patterns,
+            frames.len(),
+            Starts { warm: false, lemke: true, descend: false },
+        )
+        .unwrap(),
+    ];
+    let patterns = [0, 2 | 8, 4 | 8, 1, 1 | 2, 1 | 4, 1 | 2 | 8, 1 | 4 | 8];
+    for &a in &patterns {
+        for &b in &patterns {
+            let mut previous = reference.patterns.clone();
+            previous[top[0]] = a;
+            previous[top[1]] = b;
+            if let Ok(r) = solve(
+                &system,
+                &lcp,
+                &previous,
+                frames.len(),
+                Starts { warm: true, lemke: false, descend: false },
+            ) {
+                answers.push(r);
+            }
+        }
+    }
+    let splits: Vec<(f64, f64)> = answers.iter().map(|r| (r.normal[top[0]], r.friction[top[0]])).collect();
+    let distinct = splits
+        .iter()
+        .filter(|s| (s.0 - splits[0].0).abs() > 1e-9 || (s.1 - splits[0].1).abs() > 1e-9)
+        .count();
+    eprintln!(
+        "indeterminate interface: {} verified starts, {} with another split than the first",
+        answers.len(),
+        distinct
+    );
+    assert!(answers.len() >= 3 && distinct >= 1, "{splits:?}");
+    let total = |r: &step::StepResult| {
+        top.iter().map(|&i| (r.normal[i], r.friction[i])).fold((0.0, 0.0), |s, x| (s.0 + x.0, s.1 + x.1))
+    };
+    for r in &answers {
+        for (a, b) in r.velocity.iter().flatten().zip(reference.velocity.iter().flatten()) {
+            assert!((a - b).abs() < 1e-12, "{:?} vs {:?}", r.velocity, reference.velocity);
+        }
+        let (t, t0) = (total(r), total(&reference));
+        assert!(
+            (t.0 - t0.0).abs() < 1e-12 && (t.1 - t0.1).abs() < 1e-12,
+            "summed interface impulse {t:?} vs {t0:?}"
+        );
+        assert!(!r.ambiguous);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// block-on-block.
+
+#[test]
+fn block_on_block_follows_its_laws() {
+    let p = BlockOnBlock::default();
+    let (m, big_m) = (p.top_mass, p.bottom_mass);
+    let held = p.mu_floor * (big_m + m) * G;
+    let slides = (p.mu_static + p.mu_floor) * (big_m + m) * G;
+    let tol = 1e-9;
+    let mut worst: f64 = 0.0;
+    for (force, expected) in [
+        (0.5 * held, Outcome::Held),
+        (0.98 * held, Outcome::Held),
+        (1.02 * held, Outcome::Rode),
+        (0.5 * (held + slides), Outcome::Rode),
+        (0.98 * slides, Outcome::Rode),
+        (1.02 * slides, Outcome::Slid),
+        (1.5 * slides, Outcome::Slid),
+        (3.0 * slides, Outcome::Slid),
+    ] {
+        let r = run_spec(Spec::BlockOnBlock(BlockOnBlock { force, ..p }));
+        let (lower, upper) = (r.lower_acceleration.unwrap(), r.upper_acceleration.unwrap());
+        let (expected_lower, expected_upper) = match expected {
+            Outcome::Held => (0.0, 0.0),
+            Outcome::Rode => {
+                let a = force / (big_m + m) - p.mu_floor * G;
+                (a, a)
+            }
+            _ => ((force - p.mu_kinetic * m * G - p.mu_floor * (big_m + m) * G) / big_m, p.mu_kinetic * G),
+        };
+        let err = (lower - expected_lower).abs().max((upper - expected_upper).abs());
+        worst = worst.max(err);
+        eprintln!(
+            "block-on-block F = {force:7.3} N: {:?}, a_bottom {lower:.12} (law {expected_lower:.12}), a_top {upper:.12} (law {expected_upper:.12}), {} ambiguous",
+            r.outcome, r.ambiguous_steps
+        );
+        assert_eq!(r.outcome, expected, "F = {force}");
+        assert!(err < tol, "F = {force}: accelerations off the law by {err:e}");
+        // Held or riding to the end: the summed force of the bottom block on the top one (the
+        // model decides the sum, not the corners' shares) is m a along x and m g up; the
+        // floor's on the pair (M + m) a - F along x and (M + m) g up.
+        if expected != Outcome::Slid {
+            let [top, floor] = [r.interface_forces[1], r.interface_forces[0]];
+            let floor_x = (big_m + m) * expected_upper - force;
+            assert!((top[0] - m * expected_upper).abs() < 1e-9 && (top[1] - m * G).abs() < 1e-9, "{top:?}");
+            assert!(
+                (floor[0] - floor_x).abs() < 1e-9 && (floor[1] - (big_m + m) * G).abs() < 1e-9,
+                "{floor:?}"
+            );
+        }
+        if expected == Outcome::Held {
+            assert!(r.max_speed < 1e-12, "held, yet moved at {:e} m/s", r.max_speed);
+        }
+    }
+    eprintln!("block-on-block: worst acceleration error {worst:e} m/s^2 (tolerance {tol:e})");
+}
+
+#[test]
+fn a_tall_top_block_tips_above_g_w_over_h() {
+    // w / h = 1/4 < mu_s: tipping comes first, at a = g w / h.
+    let p = BlockOnBlock { top_width: 0.05, top_height: 0.2, max_time: 1.0, ..BlockOnBlock::default() };
+    let total = p.top_mass + p.bottom_mass;
+    let tips = total * (G * p.top_width / p.top_height + p.mu_floor * G);
+    assert!(p.top_width / p.top_height < p.mu_static);
+    for (factor, expected) in
+        [(0.9, Outcome::Rode), (0.97, Outcome::Rode), (1.03, Outcome::Tipped), (1.2, Outcome::Tipped)]
+    {
+        let force = factor * tips;
+        let r = run_spec(Spec::BlockOnBlock(BlockOnBlock { force, ..p }));
+        eprintln!(
+            "tall top block F = {force:.3} N ({factor} of the tipping force): {:?} at t = {:.3} s",
+            r.outcome, r.end_time
+        );
+        assert_eq!(r.outcome, expected, "F = {force}");
+        if expected == Outcome::Rode {
+            let a = force / total - p.mu_floor * G;
+            assert!((r.upper_acceleration.unwrap() - a).abs() < 1e-9, "{r:?}");
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// tablecloth.
+
+#[test]
+fn tablecloth_follows_its_laws() {
+    let p = Tablecloth::default();
+    let (m, mb) = (p.block_mass, p.board_mass);
+    let held = p.mu_floor * (m + mb) * G;
+    let rides = (p.mu_static + p.mu_floor) * (m + mb) * G;
+    let tol = 1e-9;
+    let mut worst: f64 = 0.0;
+    for (force, expected) in [
+        (0.5 * held, Outcome::Held),
+        (0.98 * held, Outcome::Held),
+        (1.02 * held, Outcome::Rode),
+        (0.98 * rides, Outcome::Rode),
+    ] {
+        let r = run_spec(Spec::Tablecloth(Tablecloth { force, max_time: 0.3, ..p }));
+        let a = if expected == Outcome::Held { 0.0 } else { force / (m + mb) - p.mu_floor * G };
+        let (lower, upper) = (r.lower_acceleration.unwrap(), r.upper_acceleration.unwrap());
+        eprintln!(
+            "tablecloth F = {force:.3} N: {:?}, a_board {lower:.12}, a_block {upper:.12} (law {a:.12})",
+            r.outcome
+        );
+        assert_eq!(r.outcome, expected, "F = {force}");
+        worst = worst.max((lower - a).abs()).max((upper - a).abs());
+        assert!((lower - a).abs() < tol && (upper - a).abs() < tol, "{r:?}");
+    }
+    let mut previous = f64::INFINITY;
+    for factor in [1.03, 1.5, 3.0, 6.0, 12.0] {
+        let force = factor * rides;
+        let r = run_spec(Spec::Tablecloth(Tablecloth { force, ..p }));
+        let a_board = (force - p.mu_kinetic * m * G - p.mu_floor * (m + mb) * G) / mb;
+        let a_block = p.mu_kinetic * G;
+        let (lower, upper) = (r.lower_acceleration.unwrap(), r.upper_acceleration.unwrap());
+        let d = r.block_displacement.unwrap();
+        // The block leaves the board after a relative travel between `offset` (its rear corner
+        // reaches the trailing edge) and `offset + w` (its front corner does), accelerating at
+        // mu_k g until then (time `t = sqrt(2 s / a_rel)`, speed `v = mu_k g t`); it then drops
+        // the board's thickness `t_b` (at most `sqrt(2 t_b / g)` in the air) and slides to rest
+        // at mu_floor g, having lost at most `mu_floor sqrt(2 g t_b)` of speed in the landing.
+        let travel = |s: f64| {
+            let t = (2.0 * s / (a_board - a_block)).sqrt();
+            (0.5 * a_block * t * t, a_block * t)
+        };
+        let stop = |v: f64| v * v / (2.0 * p.mu_floor * G);
+        let (x_low, v_low) = travel(p.offset);
+        let low = x_low + stop((v_low - p.mu_floor * (2.0 * G * p.board_thickness).sqrt()).max(0.0));
+        let (x_high, v_high) = travel(p.offset + p.block_width);
+        let high = x_high + v_high * (2.0 * p.board_thickness / G).sqrt() + stop(v_high);
+        eprintln!(
+            "tablecloth F = {force:.3} N: {:?} at {:.3} s, a_board {lower:.9} (law {a_board:.9}), a_block {upper:.9} (law {a_block:.9}), displacement {d:.6} m in [{low:.6}, {high:.6}]",
+            r.outcome, r.end_time
+        );
+        assert_eq!(r.outcome, Outcome::Stayed, "F = {force}");
+        worst = worst.max((lower - a_board).abs() / a_board).max((upper - a_block).abs());
+        assert!((lower - a_board).abs() < tol * a_board && (upper - a_block).abs() < tol, "{r:?}");
+        assert!(low <= d && d <= high, "displacement {d} outside [{low}, {high}]");
+        assert!(d < previous, "pulling harder moved the block more: {d} after {previous}");
+        previous = d;
+    }
+    eprintln!(
+        "tablecloth: worst acceleration error {worst:e} (m/s^2, the board's above the threshold relative)"
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// stack.
+
+#[test]
+fn the_stack_holds_below_the_harmonic_overhangs_and_falls_above() {
+    for blocks in [2, 3] {
+        for (overhang, expected) in
+            [(0.9, Outcome::Held), (0.98, Outcome::Held), (1.02, Outcome::Fell), (1.1, Outcome::Fell)]
+        {
+            let r = run_spec(Spec::Stack(Stack { blocks, overhang, max_time: 1.0, ..Stack::default() }));
+            eprintln!(
+                "stack of {blocks} at overhang {overhang}: {:?} at {:.3} s, max speed {:e} m/s, {} rows, {:.1} us/step",
+                r.outcome,
+                r.end_time,
+                r.max_speed,
+                r.max_rows,
+                r.seconds_per_step * 1e6
+            );
+            assert_eq!(r.outcome, expected, "{blocks} blocks at {overhang}");
+            if expected == Outcome::Held {
+                assert!(r.max_speed < 1e-12, "held, yet moved at {:e} m/s", r.max_speed);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_held_stack_of_three_does_not_creep_in_ten_seconds() {
+    let p = Stack::default();
+    assert_eq!((p.blocks, p.overhang, p.max_time, p.step), (3, 0.98, 10.0, 1e-3));
+    let start = p.start();
+    let r = run_spec(Spec::Stack(p));
+    let drift =
+        r.q.iter()
+            .zip(&start)
+            .flat_map(|(q, s)| (0..3).map(move |c| (q[c] - s[c]).abs()))
+            .fold(0.0, f64::max);
+    eprintln!(
+        "stack of 3 at 0.98 over 10 s: {:?}, max speed {:e} m/s, largest drift {drift:e}, interface forces {:?} N, {} rows, {:.1} us/step",
+        r.outcome,
+        r.max_speed,
+        r.interface_forces,
+        r.max_rows,
+        r.seconds_per_step * 1e6
+    );
+    assert_eq!(r.outcome, Outcome::Held);
+    assert_eq!(r.steps, 10_000);
+    assert!(r.max_speed < 1e-12, "creep: {:e} m/s", r.max_speed);
+    assert!(drift < 1e-12, "drift {drift:e}");
+    // The table carries the whole stack; each interface the blocks above it (the sums the
+    // model decides).
+    for (pair, f) in r.interface_forces.iter().enumerate() {
+        let carried = (p.blocks - pair) as f64 * p.mass * G;
+        assert!((f[1] - carried).abs() < 1e-9 * carried && f[0].abs() < 1e-9 * carried, "pair {pair}: {f:?}");
+    }
+    assert_eq!(r.ambiguous_steps, 0);
+}
+
+#[test]
+fn bad_parameters_are_refused_by_name() {
+    let err =
+        run(&Spec::BlockOnBlock(BlockOnBlock { top_width: 0.5, ..BlockOnBlock::default() }), Sample::None)
+            .unwrap_err();
+    assert!(err.contains("top_width"), "{err}");
+    let err = run(&Spec::Tablecloth(Tablecloth { mu_kinetic: 0.9, ..Tablecloth::default() }), Sample::None)
+        .unwrap_err();
+    assert!(err.contains("mu_kinetic"), "{err}");
+    let err =
+        run(&Spec::Tablecloth(Tablecloth { contact_margin: 0.01, ..Tablecloth::default() }), Sample::None)
+            .unwrap_err();
+    assert!(err.contains("contact_margin"), "{err}");
+    let err = run(&Spec::Stack(Stack { blocks: 6, ..Stack::default() }), Sample::None).unwrap_err();
+    assert!(err.contains("blocks"), "{err}");
+    let err = run(&Spec::Stack(Stack { overhang: f64::NAN, ..Stack::default() }), Sample::None).unwrap_err();
+    assert!(err.contains("overhang"), "{err}");
+}
+
+#[test]
+fn stacks_of_four_and_five_solve_32_and_40_rows_and_an_aligned_stack_holds() {
+    // Four blocks: 4 interfaces x 2 contacts = 8 contacts, a 32-row LCP each step; five: 40.
+    for (blocks, overhang, expected, max_time) in [
+        (4, 0.98, Outcome::Held, 1.0),
+        (4, 1.02, Outcome::Fell, 1.0),
+        (5, 0.98, Outcome::Held, 0.3),
+        (5, 1.02, Outcome::Fell, 1.0),
+        (3, 0.0, Outcome::Held, 1.0),
+    ] {
+        let p = Stack { blocks, overhang, max_time, ..Stack::default() };
+        let r = run_spec(Spec::Stack(p));
+        eprintln!(
+            "stack of {blocks} at overhang {overhang}: {:?} at {:.3} s, max speed {:e} m/s, {} rows, {:.1} us/step",
+            r.outcome,
+            r.end_time,
+            r.max_speed,
+            r.max_rows,
+            r.seconds_per_step * 1e6
+        );
+        assert_eq!(r.outcome, expected);
+        assert_eq!(r.max_rows, 8 * blocks);
+        if expected == Outcome::Held {
+            assert!(r.max_speed < 1e-12, "held, yet moved at {:e} m/s", r.max_speed);
+            // Aligned blocks (overhang 0) rest on both corners: indeterminate, the sums decided.
+            for (pair, f) in r.interface_forces.iter().enumerate() {
+                let carried = (blocks - pair) as f64 * p.mass * G;
+                assert!(
+                    (f[1] - carried).abs() < 1e-9 * carried && f[0].abs() < 1e-9 * carried,
+                    "pair {pair}: {f:?}"
+                );
+            }
+        }
+    }
+}
+
+/// A violent two-box step: the top box tilted up to 0.6 rad, moving at up to 3 m/s and turning at
+/// up to 5 rad/s, every coefficient up to 4 (Painlevé's territory: several motions solve the LCP).
+fn violent_step(rng: &mut Random) -> RandomStep {
+    let (mut system, mut q, mut v, _) = random_step(rng);
+    let mu = rng.uniform(0.5, 4.0);
+    for p in &mut system.pairs {
+        p.mu_static = mu;
+        p.mu_kinetic = mu * rng.uniform(0.3, 1.0);
+    }
+    let top = system.bodies[1];
+    q[1][2] = rng.uniform(-0.6, 0.6);
+    q[1][1] = q[0][1]
+        + system.bodies[0].half_height
+        + top.half_width * q[1][2].sin().abs()
+        + top.half_height * q[1][2].cos()
+        + rng.uniform(-1e-4, 1e-4);
+    v[1] = [rng.uniform(-3.0, 3.0), rng.uniform(-1.0, 0.2), rng.uniform(-5.0, 5.0)];
+    let frames = system.frames(&q, &v);
+    let mu = frames
+        .iter()
+        .map(|f| {
+            let pair = system.pairs[f.pair];
+            if rng.uniform(0.0, 1.0) < 0.5 { pair.mu_static } else { pair.mu_kinetic }
+        })
+        .collect();
+    (system, q, v, mu)
+}
+
+#[test]
+fn the_solver_takes_the_least_energy_motion_of_violent_steps_as_enumeration_does() {
+    let mut rng = Random(0x1234_5678_9abc_def1);
+    let (mut cases, mut ambiguous, mut flagged) = (0, 0, 0);
+    while cases < 300 {
+        let (system, q, v, mu) = violent_step(&mut rng);
+        let frames = system.frames(&q, &v);
+        let lcp = assemble(&system, &q, &v, &frames, &mu);
+        if lcp.active.len() < 2 {
+            continue;
+        }
+        cases += 1;
+        let (expected, enumerated_ambiguous) = enumerated_choice(&system, &lcp).unwrap();
+        let result = solve(&system, &lcp, &vec![0; frames.len()], frames.len(), Starts::ALL).unwrap();
+        let got: Vec<f64> = result.velocity.iter().flatten().copied().collect();
+        let scale = lcp.free.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-3);
+        let err = got.iter().zip(&expected).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / scale;
+        assert!(err < 1e-9, "case {cases}: v+ {got:?}, the enumeration's least-energy {expected:?}");
+        ambiguous += usize::from(enumerated_ambiguous);
+        flagged += usize::from(enumerated_ambiguous && result.ambiguous);
+    }
+    eprintln!(
+        "violent two-box steps: {cases}, {ambiguous} with several motions (enumeration), {flagged} of them flagged ambiguous"
+    );
+    assert!(ambiguous >= 5, "the rule was exercised on {ambiguous} steps only");
+    assert_eq!(flagged, ambiguous, "an ambiguous step was not flagged");
+}
+
+#[test]
+fn rows_are_kept_as_asked() {
+    let spec = Spec::BlockOnBlock(BlockOnBlock { force: 15.0, ..BlockOnBlock::default() });
+    let all = run(&spec, Sample::All).unwrap();
+    assert_eq!((all.outcome.clone(), all.steps), (Outcome::Rode, 300));
+    assert_eq!(all.rows.len(), 301);
+    assert_eq!(all.rows[0].t.to_bits(), 0.0_f64.to_bits());
+    assert_eq!(all.rows[0].v, vec![[0.0; 3]; 2]);
+    let last = all.rows.last().unwrap();
+    assert_eq!((last.q.clone(), last.v.clone()), (all.q.clone(), all.v.clone()));
+    assert_eq!(last.interface_forces, all.interface_forces);
+    let every = run(&spec, Sample::Every(100)).unwrap();
+    let times: Vec<f64> = every.rows.iter().map(|r| r.t).collect();
+    assert_eq!(times, vec![0.0, all.rows[100].t, all.rows[200].t, all.rows[300].t]);
+    assert_eq!(every.rows[2], all.rows[200]);
+    assert_eq!(run(&spec, Sample::None).unwrap().rows.len(), 1);
+}
