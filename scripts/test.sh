@@ -58,6 +58,9 @@ fi
 
 step "host tests"
 $HOST_CARGO test --locked --workspace
+# The core alone, without `host-tuned` (host-sim turns it on for the whole workspace run): the
+# shape the microcontrollers and the page run, built and tested on the host too.
+$HOST_CARGO test --locked -p meterstick-core
 
 step "the page: the core for the browser (wasm32), the page in headless Chromium"
 wasm=$(build_web)

@@ -166,10 +166,10 @@ impl Real for f64 {
 /// `__cos`). Error against the f64 values on a dense grid of the range (unit test): 0.78 ulp
 /// (sin) and 0.77 ulp (cos); `libm`'s f64 evaluation is within about 0.5.
 ///
-/// On a microcontroller out of line: one copy per program (inlined, it was copied into every
-/// caller: flash); on a host inlined (a call per step costs time there, not flash).
-#[cfg_attr(target_os = "none", inline(never))]
-#[cfg_attr(not(target_os = "none"), inline)]
+/// Without `host-tuned` out of line: one copy per program (inlined, it is copied into every
+/// caller: flash); with it inlined (a call per step costs time there, not flash).
+#[cfg_attr(not(feature = "host-tuned"), inline(never))]
+#[cfg_attr(feature = "host-tuned", inline)]
 #[must_use]
 pub(crate) fn sin_cos_f32(x: f32) -> (f32, f32) {
     // musl `__sindf.c` / `__cosdf.c`, rounded to f32.

@@ -1,46 +1,45 @@
 //! The QEMU board binding: the rig loop headless, with pins that count their edges and a start
 //! button that reads pressed. Runs a small LCP, then the slow (0.1 m/s) and fast (5 m/s) meter-stick
 //! scenes (finger 1 from -0.35 m) through the rig, and every other catalogue scene at its defaults
-//! directly (incline and ladder with the 6x6 LCP, three fingers 9x9, cylinder and Painlevé's rod
-//! 3x3), all in f32, and prints for each its switch events, its outcome, statistics and the
+//! directly through the scene registry (`SceneParams::build_in`, the reduced layout: incline and
+//! ladder 6x6, three fingers 9x9, cylinder and Painlevé's rod 3x3), all in f32, and prints for each its switch events, its outcome, statistics and the
 //! trajectory checksum (`meterstick_core::planar::Checksum`), then the SysTick ticks the rig's
 //! steps took and a calibration of ticks against instructions. Exit status: 0 when the LCP was
 //! solved and every scene ended as physics says (balanced, fell, slid, fell, held, rolled, jammed).
 
-use meterstick_core::ParamError;
+use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::scene::{
-    Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStickParams, Outcome,
-    Painleve, PainleveParams, Scene, ThreeFingers, ThreeFingersParams,
+    LcpLayout, MeterStickParams, Outcome, Scene, SceneKind, SceneParams, SceneVisitor,
 };
 use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 
 use crate::systick;
 
 /// Prints a run's switch events (1-based contacts).
-fn print_events<const K: usize>(name: &str, events: &[SwitchEvent<f32, K>]) {
+fn print_events<T: Real, const K: usize>(name: &str, events: &[SwitchEvent<T, K>]) {
     for e in events {
         defmt::println!(
             "{=str} event t={=f32} contact={=u8} mode={=str} along1={=f32}",
             name,
-            e.time,
+            e.time.as_f64() as f32,
             e.contact + 1,
             e.mode.name(),
-            e.along[0],
+            e.along[0].as_f64() as f32,
         );
     }
 }
 
 /// Runs a scene to its outcome outside the rig and prints its checksum and outcome.
-fn run_plain<S: Scene<f32, K>, const K: usize>(name: &str, scene: &mut S) -> Outcome {
+fn run_plain<T: Real, S: Scene<T, K>, const K: usize>(name: &str, scene: &mut S) -> Outcome {
     let mut checksum = Checksum::new();
     let outcome = scene.run(|r| checksum.add(&r.state));
     defmt::println!(
         "{=str} outcome={} t={=f32} steps={=u64} pivots={=u64} checks={=u64} checksum={=u32:08x}",
         name,
         outcome,
-        scene.time(),
+        scene.time().as_f64() as f32,
         scene.stats().steps,
         scene.stats().pivots,
         scene.stats().reduced_check_fired,
@@ -151,26 +150,55 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     Some(outcome)
 }
 
-/// Runs a scene built outside the rig (`run_plain`), prints its events, and counts 1 when it was
-/// refused or ended other than `expected`. Not inlined, so that each scene's stack
-/// frame is its own (the micro:bit has 16 KiB of RAM).
-#[inline(never)]
-fn check_plain<S: Scene<f32, K>, const K: usize>(
-    name: &str,
-    scene: Result<S, ParamError>,
-    expected: Outcome,
-) -> i32 {
-    match scene {
-        Ok(mut scene) => {
-            let outcome = run_plain(name, &mut scene);
-            print_events(name, scene.events());
-            i32::from(outcome != expected)
-        }
-        Err(e) => {
-            defmt::println!("{=str}: {}", name, e);
-            1
-        }
+/// What a scene outside the rig must end in, by the laws of `docs/scenes.md` at its defaults.
+const fn expected(kind: SceneKind) -> Outcome {
+    match kind {
+        SceneKind::MeterStick => Outcome::Balanced,
+        SceneKind::Incline => Outcome::Slid,
+        SceneKind::Ladder => Outcome::Fell,
+        SceneKind::ThreeFingers => Outcome::Held,
+        SceneKind::Cylinder => Outcome::Rolled,
+        SceneKind::Painleve => Outcome::Jammed,
     }
+}
+
+/// Runs the scene it is handed outside the rig (`run_plain`), prints its events, and counts 1
+/// when it ended other than `expected`.
+struct CheckPlain {
+    name: &'static str,
+    expected: Outcome,
+}
+
+impl SceneVisitor for CheckPlain {
+    type Output = i32;
+
+    /// Not inlined, so that each scene's stack frame is its own (the micro:bit has 16 KiB of RAM).
+    #[inline(never)]
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> i32 {
+        let outcome = run_plain(self.name, &mut scene);
+        print_events(self.name, scene.events());
+        i32::from(outcome != self.expected)
+    }
+}
+
+/// Every catalogue scene but the meter stick (which the rig runs) at its defaults, in f32 and the
+/// reduced layout, through the scene registry; the number that were refused or ended otherwise.
+fn check_other_scenes() -> i32 {
+    let mut failures = 0;
+    for kind in SceneKind::ALL {
+        if kind == SceneKind::MeterStick {
+            continue;
+        }
+        let check = CheckPlain { name: kind.name(), expected: expected(kind) };
+        failures += match SceneParams::defaults(kind).build_in::<f32, 16, _>(LcpLayout::Reduced, check) {
+            Ok(failed) => failed,
+            Err(e) => {
+                defmt::println!("{=str}: {}", kind.name(), e);
+                1
+            }
+        };
+    }
+    failures
 }
 
 pub fn main() -> ! {
@@ -209,17 +237,7 @@ pub fn main() -> ! {
     if run_scene("fast", 5.0) != Some(Outcome::Fell) {
         failures += 1;
     }
-    failures += check_plain("incline", Incline::<f32, 6, 16>::new(InclineParams::default()), Outcome::Slid);
-    failures += check_plain("ladder", Ladder::<f32, 6, 16>::new(LadderParams::default()), Outcome::Fell);
-    failures += check_plain(
-        "three-fingers",
-        ThreeFingers::<f32, 9, 16>::new(ThreeFingersParams::default()),
-        Outcome::Held,
-    );
-    failures +=
-        check_plain("cylinder", Cylinder::<f32, 3, 16>::new(CylinderParams::default()), Outcome::Rolled);
-    failures +=
-        check_plain("painleve", Painleve::<f32, 3, 16>::new(PainleveParams::default()), Outcome::Jammed);
+    failures += check_other_scenes();
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)
 }

@@ -4,6 +4,7 @@
 use nalgebra::SVector;
 
 use super::basis::Basis;
+use super::elimination::solve_leading;
 use super::error::LcpError;
 use super::problem::{Lcp, Scales};
 use super::verify::{Verification, default_tolerance, residual};
@@ -398,83 +399,61 @@ impl<T: Real, const N: usize> Tableau<T, N> {
 
 /// The complementary solution of basis `warm` (set `a` of basic `z`): `M_aa z_a = -q_a`,
 /// `z = 0` elsewhere, by Gaussian elimination with partial pivoting (`|a|^3 / 3`
-/// multiply-adds). `Some(z)` only when `z_a >= 0` as computed (no tolerance: a basis that is
-/// infeasible by round-off goes through Lemke's lexicographic pivoting instead, so switches
-/// are not delayed); `None` when `M_aa` is numerically singular (a pivot at most
+/// multiply-adds, [`solve_leading`]). `Some(z)` only when `z_a >= 0` as computed (no tolerance:
+/// a basis that is infeasible by round-off goes through Lemke's lexicographic pivoting instead,
+/// so switches are not delayed); `None` when `M_aa` is numerically singular (a pivot at most
 /// `N eps scale`) or `z_a` has a negative entry. The caller checks the other half of
 /// feasibility, `w >= 0` outside `a`, on the `w` it verifies with.
 ///
-/// `M_aa` is not gathered into a smaller matrix: the elimination works in a copy of `M` and
-/// visits only the rows and columns of `a` (bit tests on the basis mask; a pivot swap
-/// exchanges two rows of `a`, so they stay in place). Every loop has the constant bound `N`
-/// (no index vector, no bounds checks), and the floating-point work is exactly that of the
-/// `|a| x |a|` system: on a Cortex-M0 every float operation, compares included, is a
-/// library call.
+/// `M_aa` and `-q_a` are gathered, the basis' indices in increasing order, into the leading
+/// `|a| x |a|` block of a local array (moves only: the floating-point work is exactly that of
+/// the `|a| x |a|` system, which matters on a Cortex-M0, where every float operation, compares
+/// included, is a library call). Every loop has the constant bound `N`, each index is clamped
+/// below `N`: no panic path.
 fn basis_solution<T: Real, const N: usize>(
     lcp: &Lcp<T, N>,
     warm: Basis<N>,
     scale: T,
 ) -> Option<SVector<T, N>> {
     let set = warm.z_mask();
-    let in_set = |i: usize| (set >> i) & 1 == 1;
-    let mut a = lcp.m;
-    let mut x = -lcp.q;
-    let tiny = T::of(N as f64) * T::EPS * scale;
-    let mut inv_pivot = [T::zero(); N];
-    for col in 0..N {
-        if !in_set(col) {
-            continue;
-        }
-        let mut piv = col;
-        let mut piv_abs = a[(col, col)].abs_exact();
-        for r in col + 1..N {
-            if in_set(r) && a[(r, col)].abs_exact() > piv_abs {
-                piv = r;
-                piv_abs = a[(r, col)].abs_exact();
-            }
-        }
-        if piv_abs <= tiny {
-            return None;
-        }
-        if piv != col {
-            a.swap_rows(col, piv);
-            x.swap_rows(col, piv);
-        }
-        let inv = T::one() / a[(col, col)];
-        inv_pivot[col] = inv;
-        for r in col + 1..N {
-            if !in_set(r) {
-                continue;
-            }
-            let f = a[(r, col)] * inv;
-            if f == T::zero() {
-                continue;
-            }
-            for c in col + 1..N {
-                if in_set(c) {
-                    let update = f * a[(col, c)];
-                    a[(r, c)] -= update;
-                }
-            }
-            let update = f * x[col];
-            x[r] -= update;
+    let mut index = [0usize; N];
+    let mut m = 0usize;
+    for i in 0..N {
+        if (set >> i) & 1 == 1
+            && let Some(slot) = index.get_mut(m)
+        {
+            *slot = i;
+            m += 1;
         }
     }
-    let mut z = SVector::<T, N>::zeros();
-    for col in (0..N).rev() {
-        if !in_set(col) {
-            continue;
+    let mut a = [[T::zero(); N]; N];
+    let mut x = [T::zero(); N];
+    for k in 0..N {
+        if k >= m {
+            break;
         }
-        let mut acc = x[col];
-        for c in col + 1..N {
-            if in_set(c) {
-                acc -= a[(col, c)] * z[c];
+        let row = index[k].min(N - 1);
+        for l in 0..N {
+            if l >= m {
+                break;
             }
+            a[k][l] = lcp.m[(row, index[l].min(N - 1))];
         }
-        z[col] = acc * inv_pivot[col];
-        if z[col] < T::zero() {
+        x[k] = -lcp.q[row];
+    }
+    let tiny = T::of(N as f64) * T::EPS * scale;
+    if !solve_leading(&mut a, &mut x, m, tiny) {
+        return None;
+    }
+    let mut z = SVector::<T, N>::zeros();
+    for k in 0..N {
+        if k >= m {
+            break;
+        }
+        if x[k] < T::zero() {
             return None;
         }
+        z[index[k].min(N - 1)] = x[k];
     }
     Some(z)
 }

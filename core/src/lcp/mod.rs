@@ -67,6 +67,7 @@
 //!   exists. The solver then reports [`LcpError::Ray`]; it never guesses.
 
 mod basis;
+pub(crate) mod elimination;
 mod error;
 mod lemke;
 mod problem;

@@ -1,52 +1,28 @@
-//! Assembly of one time step's LCP (`docs/formulation.md`, "One time step"; paper, eqs. 13-18) for
-//! any [`Layout`].
+//! The dense form of one step's LCP (`docs/formulation.md`, "One time step"; paper, eq. 18) for
+//! any [`Layout`]: `A` and `q` written out, for Lemke's method ([`crate::lcp::Lemke`]) when the
+//! factored solve declines (`docs/formulation.md`, "Solving a step"), and for tests.
 //!
 //! With `c_j` the wrench column of impulse variable `j` (`W_n` of its contact, or `+-W_d` for a
-//! friction row along `+-d`), `M^-1` per unit mass and `v~ = v + h M^-1 w_ext`:
+//! friction row along `+-d`) and `M^-1` per unit mass:
 //!
 //! ```text
 //! A[j][k] = c_j^T M^-1 c_k                      impulse rows and columns (symmetric)
 //! A[f][sigma_i] = 1, A[sigma_i][f] = -1         for each friction row f of contact i (E, -E^T)
 //! A[sigma_i][n_i] = mu_i                        (U)
-//! b_n = W_n^T v~ - n . u_i + beta(psi_i)        normal rows (eq. 13)
-//! b_f = +-(W_d^T v~ - d . u_i)                  friction rows
-//! b_sigma = 0
 //! ```
 //!
-//! `beta(psi) = psi / h` for a gap, and for a penetration the push-out speed capped at the speed of
-//! a fall through it, `max(psi / h, -sqrt(2 g |psi|))`, the gap first shrunk toward zero by its
-//! round-off, `4 eps (|x| + |y| + size)` ([`normal_bias`]). An inactive contact keeps
-//! its rows decoupled: identity rows and columns and `b = 1`, so its variables are zero.
+//! and `q` the right-hand side of eq. 18 ([`StepInputs`], [`normal_bias`]). An inactive contact keeps its
+//! rows decoupled: identity rows and columns and `q = 1`, so its variables are zero. The entries
+//! are those of the factored rows ([`FactoredLcp`]), which this module only writes out.
 
-use super::contact::ContactFrame;
+pub use super::inputs::{StepInputs, normal_bias};
+
 use super::factored::FactoredLcp;
-use super::layout::{Direction, Layout};
+use super::inputs::dot3;
+use super::layout::Layout;
 use crate::lcp::Lcp;
 use crate::nalgebra::{SMatrix, SVector};
 use crate::real::Real;
-
-/// What one step's assembly needs besides the layout.
-#[derive(Debug, Clone, Copy)]
-pub struct StepInputs<'a, T, const K: usize> {
-    /// Each contact's frame at the step's start.
-    pub frames: &'a [ContactFrame<T>; K],
-    /// Each contact's friction coefficient for this step.
-    pub mu: [T; K],
-    /// Each support's velocity over the step (world).
-    pub support_velocity: [[T; 2]; K],
-    /// `v~ = v + h M^-1 w_ext`.
-    pub v_free: [T; 3],
-    /// `diag(M^-1)` times the body's mass, `(1, 1, m / J)`: the impulses `z` then come out per unit
-    /// mass and every row of the LCP is a velocity ([`super::Body::inverse_mass_per_unit_mass`]).
-    pub m_inv: [T; 3],
-    /// Step `h`.
-    pub h: T,
-    /// Gravity `g` (for the penetration-recovery cap).
-    pub gravity: T,
-    /// A gap with at most this magnitude counts as zero: the round-off of the positions it is
-    /// computed from ([`normal_bias`]).
-    pub gap_round_off: T,
-}
 
 /// The step's LCP and the wrench column of each variable (zero for `sigma` and for the rows of an
 /// inactive contact).
@@ -56,53 +32,6 @@ pub struct StepLcp<T: Real, const N: usize> {
     pub lcp: Lcp<T, N>,
     /// Wrench column of each variable of `z`.
     pub columns: [[T; 3]; N],
-}
-
-/// The normal row's stabilisation term `beta(psi)`: `psi / h` for a gap, the push-out speed capped
-/// at `sqrt(2 g |psi|)` for a penetration, after the gap is shrunk toward zero by its round-off:
-/// `psi' = sign(psi) max(|psi| - round_off, 0)`.
-///
-/// **Round-off is not a gap.** A gap is a difference of positions of order `|x| + |y| + size`,
-/// computed with a few roundings: its error is a few `eps` of that. Divided by `h` it becomes a
-/// velocity: in f32, one ulp of a 0.5 m coordinate over h = 1e-4 s is 6e-4 m/s, more than a ladder's
-/// fall in its first steps, and the contact flickered between touching and apart every step (the
-/// top of a frictionless ladder "left the wall" at once); at h = 1 ms it is 3e-5 m/s against a
-/// 1e-5 m/s stick threshold, and the slow meter stick drifted 2.2e-4 m from the f64 reference at
-/// 0.001 m/s. Within `round_off` (the stepper passes `4 eps (|x| + |y| + size)`: 0.8 um in f32 for a
-/// 1 m rod, 1e-15 m in f64) the contact counts as exactly touching; beyond it the gap counts less
-/// that much, so the term is continuous (a cut-off would turn the drift that reaches its edge into a
-/// jump of `round_off / h`).
-#[must_use]
-pub fn normal_bias<T: Real>(gap: T, h: T, gravity: T, round_off: T) -> T {
-    let excess = gap.abs_exact() - round_off;
-    if excess <= T::zero() {
-        return T::zero();
-    }
-    if gap > T::zero() {
-        return excess / h;
-    }
-    let one_step = -excess / h;
-    let cap = -(T::of(2.0) * gravity * excess).sqrt_libm();
-    if one_step > cap { one_step } else { cap }
-}
-
-#[inline]
-pub(crate) fn dot3<T: Real>(a: &[T; 3], b: &[T; 3]) -> T {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline]
-pub(crate) fn dot2<T: Real>(a: &[T; 2], b: &[T; 2]) -> T {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-/// `+1` or `-1`.
-#[inline]
-pub(crate) fn sign<T: Real>(direction: Direction) -> T {
-    match direction {
-        Direction::Plus => T::one(),
-        Direction::Minus => -T::one(),
-    }
 }
 
 /// Assembles the LCP of eq. 18 for `layout`.

@@ -3,7 +3,7 @@
 use heapless::Vec;
 
 use super::contact::ContactMode;
-use super::stepper::StepReport;
+use super::report::StepReport;
 use crate::real::Real;
 
 /// A change of one contact's mode.

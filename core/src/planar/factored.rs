@@ -51,13 +51,14 @@
 //! This is the complementary solution of the same basis that Lemke's warm start computes from
 //! the assembled `A` (the same `z` to round-off); the property tests compare the two.
 
-use super::assemble::{StepInputs, dot2, dot3, normal_bias, sign};
-use super::contact::ContactMode;
+use super::inputs::{StepInputs, dot2, dot3, normal_bias, sign};
 use super::layout::{Direction, Layout, Tangents};
 use crate::lcp::Basis;
+use crate::lcp::elimination::solve_leading;
 use crate::real::{AllFinite, Real, max, min};
 
-/// The factored rows of one step's LCP (`docs/formulation.md`, "Solving a step").
+/// The factored rows of one step's LCP (`docs/formulation.md`, "Solving a step"; the rows and
+/// the elimination are written out in the docs of `core/src/planar/factored.rs`).
 #[derive(Debug, Clone, Copy)]
 pub struct FactoredLcp<T, const K: usize, const N: usize> {
     /// `c_j`, the wrench column of impulse variable `j` (zero for the `sigma`s and for an inactive
@@ -71,7 +72,7 @@ pub struct FactoredLcp<T, const K: usize, const N: usize> {
     /// Each contact's friction coefficient for this step.
     pub(crate) mu: [T; K],
     /// The kept tangent directions.
-    tangents: [Tangents; K],
+    pub(crate) tangents: [Tangents; K],
     /// Bit `j` set: variable `j` belongs to an inactive contact.
     pub(crate) inactive: u32,
     /// Bit `j` of entry `i` set: variable `j` belongs to contact `i`.
@@ -120,7 +121,7 @@ pub enum Declined {
 /// A basis' unknowns ([`FactoredLcp::solve_basis_cached_into`]): what the elimination needs of
 /// the basis alone.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(target_os = "none", allow(dead_code))] // the cache is the host's
+#[cfg_attr(not(feature = "host-tuned"), allow(dead_code))] // the cache is the host's
 pub(crate) struct Plan<const K: usize> {
     /// The variable each unknown sets (whose own row holds it).
     var: [usize; DOF],
@@ -133,29 +134,14 @@ pub(crate) struct Plan<const K: usize> {
     sigma_row: [Option<usize>; K],
 }
 
-/// The stepper's [`Plan`] of its last warm basis, with the basis' mask: on the host; nothing on a
-/// microcontroller ([`FactoredLcp::solve_basis_cached_into`]).
-#[cfg(not(target_os = "none"))]
+/// The stepper's [`Plan`] of its last warm basis, with the basis' mask: with `host-tuned`
+/// ([`FactoredLcp::solve_basis_cached_into`]).
+#[cfg(feature = "host-tuned")]
 pub(crate) type PlanCache<const K: usize> = Option<(u32, Plan<K>)>;
-/// The stepper's [`Plan`] of its last warm basis: nothing on a microcontroller.
-#[cfg(target_os = "none")]
-pub(crate) type PlanCache<const K: usize> = ();
 
-/// What a contact's variables do in a basis: which are basic.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Pattern {
-    /// Nothing basic: separated (or touching with no impulse).
-    Off,
-    /// Only `p_n` basic: touching with no friction impulse (frictionless, or a slip the kept
-    /// directions do not oppose).
-    Touch,
-    /// `p_n` and `p_f` along the direction basic: sticking.
-    Stick(Direction),
-    /// `p_n`, `p_f` and `sigma` basic: sliding, friction on the cone's edge.
-    Slide(Direction),
-    /// `p_f` (at zero) and `sigma` basic: separated while the support slips past.
-    Skid(Direction),
-}
+/// The stepper's [`Plan`] of its last warm basis: nothing without `host-tuned`.
+#[cfg(not(feature = "host-tuned"))]
+pub(crate) type PlanCache<const K: usize> = ();
 
 /// At most this many unknowns: the body's degrees of freedom.
 const DOF: usize = 3;
@@ -332,7 +318,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// `v+ = v~ + M^-1 C p` for the impulses in `z` (eq. 16).
     #[must_use]
-    #[cfg_attr(target_os = "none", inline(never))] // called from the fast path and Lemke's: one copy of flash
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))] // called from the fast path and Lemke's: one copy of flash
     pub fn velocity_after(&self, z: &[T; N]) -> [T; 3] {
         let dv = self.velocity_change(z);
         [self.v_free[0] + dv[0], self.v_free[1] + dv[1], self.v_free[2] + dv[2]]
@@ -340,11 +326,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// `dv = M^-1 C p` for the impulses in `z`, summed on its own (not `v+ - v~`, which would
     /// lose `eps |v~|` when the body moves fast and the impulses change it little).
-    // Inlined on the host (not on a microcontroller, nor in the page's smaller modules): called,
-    // it reads `z` (in f32) as 8-byte pairs of values just written one by one, which an x86 core
-    // cannot forward from its store buffer.
-    #[cfg_attr(target_os = "none", inline(never))]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    // Inlined with `host-tuned`: called, it reads `z` (in f32) as 8-byte pairs of values just
+    // written one by one, which an x86 core cannot forward from its store buffer. Otherwise out
+    // of line: one copy (flash).
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))]
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always)] // measured, as said above
     fn velocity_change(&self, z: &[T; N]) -> [T; 3] {
         let mut dv = [T::zero(); 3];
@@ -381,7 +367,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     ) -> Result<([T; 3], T), Declined> {
         self.solve_basis_with(
             basis,
-            #[cfg(not(target_os = "none"))]
+            #[cfg(feature = "host-tuned")]
             None,
             tolerance,
             z,
@@ -391,8 +377,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
 
     /// [`Self::solve_basis_into`] with the basis' [`Plan`] kept in `cache` from the last call with
     /// the same basis (the stepper's warm basis is usually the previous step's: its unknowns need
-    /// not be found again). Same answer, same bits. On the host only: on a Cortex-M4F it cost
-    /// more than it saved (mean step +0.6 %, worst step +11 %), so there `cache` is `()`.
+    /// not be found again). Same answer, same bits. With `host-tuned` only: on a Cortex-M4F it
+    /// cost more than it saved, so without it `cache` is `()`.
     pub(crate) fn solve_basis_cached_into(
         &self,
         basis: Basis<N>,
@@ -401,25 +387,24 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         z: &mut [T; N],
         w: &mut [T; N],
     ) -> Result<([T; 3], T), Declined> {
-        #[cfg(target_os = "none")]
-        let _ = cache;
-        #[cfg(target_os = "none")]
+        #[cfg(not(feature = "host-tuned"))]
+        let () = *cache;
+        #[cfg(not(feature = "host-tuned"))]
         return self.solve_basis_into(basis, tolerance, z, w);
-        #[cfg(not(target_os = "none"))]
+        #[cfg(feature = "host-tuned")]
         return self.solve_basis_with(basis, Some(cache), tolerance, z, w);
     }
 
     /// [`Self::solve_basis_into`], with the basis' unknowns taken from `cache` when it holds them
-    /// (and put there when it does not). On the host inlined into both callers (without a cache,
-    /// `None` is a constant there); on a microcontroller it has no cache and is the plain solve,
-    /// the same code as before the cache (the split into a search and a solve, or any other shape
-    /// tried, cost the Cortex-M4F 1-3 % or 2.5 kB of flash).
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    /// (and put there when it does not). With `host-tuned` inlined into both callers (without a
+    /// cache, `None` is a constant there); without it there is no cache and this is the plain
+    /// solve (a split into a search and a solve costs a Cortex-M4F time or flash).
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always, clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
     fn solve_basis_with(
         &self,
         basis: Basis<N>,
-        #[cfg(not(target_os = "none"))] cache: Option<&mut Option<(u32, Plan<K>)>>,
+        #[cfg(feature = "host-tuned")] cache: Option<&mut Option<(u32, Plan<K>)>>,
         tolerance: T,
         z: &mut [T; N],
         w: &mut [T; N],
@@ -438,7 +423,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // The friction row that gives each contact's basic sigma.
         let mut sigma_row: [Option<usize>; K] = [None; K];
         // From the cache when it holds this basis (`m` clamped as the search below clamps it).
-        #[cfg(not(target_os = "none"))]
+        #[cfg(feature = "host-tuned")]
         let found = match &cache {
             Some(Some((key, plan))) if *key == mask => {
                 (var, follower, m, sigma_row) = (plan.var, plan.follower, plan.m.min(DOF), plan.sigma_row);
@@ -446,7 +431,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             }
             _ => false,
         };
-        #[cfg(target_os = "none")]
+        #[cfg(not(feature = "host-tuned"))]
         let found = false;
         if !found {
             let mut j = K;
@@ -487,15 +472,15 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
                     }
                 }
             }
-            #[cfg(not(target_os = "none"))]
+            #[cfg(feature = "host-tuned")]
             if let Some(cache) = cache {
                 *cache = Some((mask, Plan { var, follower, m, sigma_row }));
             }
         }
-        // On the host each number of unknowns the warm path meets gets its own copy of the rest,
-        // with `m` a constant: its loops unrolled, the same operations in the same order (the same
-        // bits). A microcontroller (flash) and the page (module size) keep one copy.
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        // With `host-tuned` each number of unknowns the warm path meets gets its own copy of the
+        // rest, with `m` a constant: its loops unrolled, the same operations in the same order (the
+        // same bits). Without it one copy (flash, module size).
+        #[cfg(feature = "host-tuned")]
         match m {
             3 => return self.solve_unknowns(mask, &var, &follower, 3, &sigma_row, tolerance, z, w),
             2 => return self.solve_unknowns(mask, &var, &follower, 2, &sigma_row, tolerance, z, w),
@@ -544,9 +529,9 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             y[k] = -self.q[var[k].min(N - 1)];
         }
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        let solved = solve_small_sized(&mut a, &mut y, m, tiny);
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(feature = "host-tuned")]
+        let solved = solve_leading(&mut a, &mut y, m, tiny);
+        #[cfg(not(feature = "host-tuned"))]
         let solved = solve_small(&mut a, &mut y, m, tiny);
         if !solved {
             return Err(Declined::Singular);
@@ -554,8 +539,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // An impulse is held to `>= 0` exactly; one that is positive but within the round-off of
         // the step's impulses (`N eps` of the largest) is the round-off of a zero: the basis is
         // degenerate, and the one without it (the contact off, an exact zero) is the answer that
-        // injects no noise. (A rod balanced on a finger under its centre of mass, the other finger
-        // touching without load, tipped over after 16 s from a 1e-13 N s impulse that way.)
+        // injects no noise (a rod balanced on a finger under its centre of mass, the other finger
+        // touching without load, is tipped over by such an impulse; `docs/formulation.md`).
         let mut y_max = T::zero();
         for k in 0..m {
             y_max = max(y_max, y[k]);
@@ -636,7 +621,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     }
 
     /// `w = A z + q` in factored form, with `dv = M^-1 C p` of the same `z`.
-    #[cfg_attr(target_os = "none", inline(never))]
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))]
     fn w_of(&self, z: &[T; N], dv: &[T; 3], w: &mut [T; N]) {
         let sigma_start = Layout::<K, N>::SIGMA_START;
         for v in 0..sigma_start {
@@ -682,152 +667,10 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         }
         slips
     }
-
-    /// `basis` with contact `i`'s friction turned to `direction` (sliding, sticking or skidding
-    /// as before): the full layout's first try when a reduced layout's dropped direction was
-    /// needed.
-    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
-    pub(crate) fn with_direction(&self, basis: Basis<N>, i: usize, direction: Direction) -> Basis<N> {
-        let turned = match pattern(&self.tangents, basis, i) {
-            Some(Pattern::Slide(_)) => Pattern::Slide(direction),
-            Some(Pattern::Stick(_)) => Pattern::Stick(direction),
-            Some(Pattern::Skid(_)) => Pattern::Skid(direction),
-            Some(Pattern::Off | Pattern::Touch) | None => return basis,
-        };
-        with_pattern(&self.tangents, basis, i, turned)
-    }
-
-    /// Candidate `k` (`k < CANDIDATES * K`) of the bases near `basis`, which failed with `why`
-    /// ([`candidate`]); `None` for a slot that has no basis (a direction not kept, or the
-    /// contact's current pattern).
-    pub(crate) fn candidate(&self, basis: Basis<N>, why: Declined, k: usize) -> Option<Basis<N>> {
-        let (first, hint) = match why {
-            Declined::Infeasible(v) => variable_of::<K, N>(&self.tangents, usize::from(v)),
-            Declined::Pattern | Declined::Singular | Declined::Unverified => (0, Hint::None),
-        };
-        candidate(&self.tangents, basis, first, hint, k)
-    }
-}
-
-/// What kind of variable made a basis infeasible: it orders the first contact's candidates.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Hint {
-    /// Nothing known.
-    None,
-    /// The normal impulse or row: the contact wants to separate (or to touch).
-    Normal,
-    /// `sigma`: the slip reversed, the contact wants to stick.
-    Sigma,
-    /// A friction impulse or row along this direction.
-    Friction(Direction),
-}
-
-/// Slots per contact in the list of candidate bases ([`candidate`]).
-pub(crate) const CANDIDATES: usize = 8;
-
-/// The bases near `basis` worth trying when it fails, at most `K x 7` (`K x 4` with one kept
-/// direction per contact), in a fixed order: for each contact from `first` on, every other
-/// pattern of its variables with the other contacts as they are: sliding and sticking along each
-/// kept direction (`direction` first for contact `first`), separated, touching without friction,
-/// separated with the support slipping past. A mode change of one contact is what a step usually
-/// brings; a step that changes two goes to Lemke's method. Candidate `k` is slot `k % 8` of
-/// contact `(first + k / 8) % K`; `None` for a slot with no basis (a direction not kept, or the
-/// contact's current pattern). The first contact's slots are ordered by `hint`, the kind of
-/// variable that failed: a normal tries separating first, a sigma (the slip reversed) sticking.
-pub(crate) fn candidate<const K: usize, const N: usize>(
-    tangents: &[Tangents; K],
-    basis: Basis<N>,
-    first: usize,
-    hint: Hint,
-    k: usize,
-) -> Option<Basis<N>> {
-    // Slots: 0 slide along d0, 1 stick along d0, 2 slide along d1, 3 stick along d1, 4 off,
-    // 5 touch, 6 skid along d0, 7 skid along d1; the order of the first contact's follows the
-    // variable that failed (a normal: separate first; a sigma: stick first), the others' is 0..8.
-    const ORDER: [[usize; CANDIDATES]; 3] =
-        [[0, 1, 2, 3, 4, 5, 6, 7], [4, 5, 1, 0, 3, 2, 6, 7], [1, 5, 3, 2, 0, 4, 6, 7]];
-    let i = (first + k / CANDIDATES) % K;
-    let current = pattern(tangents, basis, i);
-    let (order, d0) = match (i == first, hint) {
-        (true, Hint::Normal) => (1, None),
-        (true, Hint::Sigma) => (2, None),
-        (true, Hint::Friction(d)) => (0, Some(d)),
-        (true, Hint::None) | (false, _) => (0, None),
-    };
-    // d0: the failing friction row's direction, else the contact's current one, else +d.
-    let d0 = d0
-        .or(match current {
-            Some(Pattern::Slide(d) | Pattern::Stick(d) | Pattern::Skid(d)) => Some(d),
-            _ => None,
-        })
-        .unwrap_or(Direction::Plus);
-    let d1 = d0.opposite();
-    let p = match ORDER[order][k % CANDIDATES] {
-        0 => Pattern::Slide(d0),
-        1 => Pattern::Stick(d0),
-        2 => Pattern::Slide(d1),
-        3 => Pattern::Stick(d1),
-        4 => Pattern::Off,
-        5 => Pattern::Touch,
-        6 => Pattern::Skid(d0),
-        _ => Pattern::Skid(d1),
-    };
-    let kept = match p {
-        Pattern::Slide(d) | Pattern::Stick(d) | Pattern::Skid(d) => {
-            tangents.get(i).is_some_and(|t| t.keeps(d))
-        }
-        Pattern::Off | Pattern::Touch => true,
-    };
-    (kept && current != Some(p)).then(|| with_pattern(tangents, basis, i, p))
-}
-
-/// A basis for contacts in `modes` (before the first step: the modes of the prescribed
-/// motion): sticking and sliding contacts touch, the others are off; a sliding contact's
-/// friction opposes its slip; a sticking contact's takes its first kept direction.
-pub(crate) fn basis_of_modes<const K: usize, const N: usize>(
-    tangents: &[Tangents; K],
-    modes: &[ContactMode; K],
-) -> Basis<N> {
-    let mut basis = Basis::all_w();
-    for i in 0..K {
-        let t = tangents[i];
-        let first = if t.keeps(Direction::Plus) { Direction::Plus } else { Direction::Minus };
-        let p = match modes[i] {
-            ContactMode::Separated => Pattern::Off,
-            ContactMode::Sticking => Pattern::Stick(first),
-            ContactMode::Sliding(d) if t.keeps(d) => Pattern::Slide(d),
-            ContactMode::Sliding(_) => Pattern::Touch,
-        };
-        basis = with_pattern(tangents, basis, i, p);
-    }
-    basis
-}
-
-/// The contact variable `v` belongs to, and what kind of variable it is.
-fn variable_of<const K: usize, const N: usize>(tangents: &[Tangents; K], v: usize) -> (usize, Hint) {
-    let sigma_start = Layout::<K, N>::SIGMA_START;
-    if v < K {
-        return (v, Hint::Normal);
-    }
-    if v >= sigma_start {
-        return ((v - sigma_start).min(K - 1), Hint::Sigma);
-    }
-    let mut j = K;
-    for (i, t) in tangents.iter().enumerate() {
-        for d in [Direction::Plus, Direction::Minus] {
-            if t.keeps(d) {
-                if j == v {
-                    return (i, Hint::Friction(d));
-                }
-                j += 1;
-            }
-        }
-    }
-    (0, Hint::None)
 }
 
 /// Contact `i`'s variables: its normal, its friction rows `[+d, -d]` (as kept) and its sigma.
-fn rows_of<const K: usize, const N: usize>(
+pub(crate) fn rows_of<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
     i: usize,
 ) -> (usize, [Option<usize>; 2], usize) {
@@ -841,135 +684,11 @@ fn rows_of<const K: usize, const N: usize>(
     (i, [plus, minus], Layout::<K, N>::SIGMA_START + i)
 }
 
-/// The pattern of contact `i` in `basis`, `None` when it is none of [`Pattern`]'s.
-fn pattern<const K: usize, const N: usize>(
-    tangents: &[Tangents; K],
-    basis: Basis<N>,
-    i: usize,
-) -> Option<Pattern> {
-    let (n, f, s) = rows_of::<K, N>(tangents, i);
-    let (bn, bs) = (basis.is_z_basic(n), basis.is_z_basic(s));
-    let fp = f[0].is_some_and(|f| basis.is_z_basic(f));
-    let fm = f[1].is_some_and(|f| basis.is_z_basic(f));
-    let d = match (fp, fm) {
-        (false, false) => {
-            return match (bn, bs) {
-                (false, false) => Some(Pattern::Off),
-                (true, false) => Some(Pattern::Touch),
-                _ => None,
-            };
-        }
-        (true, true) => return None,
-        (true, false) => Direction::Plus,
-        (false, true) => Direction::Minus,
-    };
-    match (bn, bs) {
-        (true, false) => Some(Pattern::Stick(d)),
-        (true, true) => Some(Pattern::Slide(d)),
-        (false, true) => Some(Pattern::Skid(d)),
-        (false, false) => None,
-    }
-}
-
-/// `basis` with contact `i`'s variables set to `pattern`.
-fn with_pattern<const K: usize, const N: usize>(
-    tangents: &[Tangents; K],
-    basis: Basis<N>,
-    i: usize,
-    pattern: Pattern,
-) -> Basis<N> {
-    let (n, f, s) = rows_of::<K, N>(tangents, i);
-    // Bit masks of the contact's variables (an index beyond 31 gives no bit).
-    let bit = |v: Option<usize>| v.map_or(0, |v| 1u32.checked_shl(v as u32).unwrap_or(0));
-    let (bn, bs) = (bit(Some(n)), bit(Some(s)));
-    let bf = |d: Direction| match d {
-        Direction::Plus => bit(f[0]),
-        Direction::Minus => bit(f[1]),
-    };
-    let set = match pattern {
-        Pattern::Off => 0,
-        Pattern::Touch => bn,
-        Pattern::Stick(d) => bn | bf(d),
-        Pattern::Slide(d) => bn | bf(d) | bs,
-        Pattern::Skid(d) => bf(d) | bs,
-    };
-    let all = bn | bit(f[0]) | bit(f[1]) | bs;
-    Basis::from_z_mask((basis.z_mask() & !all) | set)
-}
-
-/// Solves the leading `m x m` block of `a y = rhs` in place (`y` returned in `rhs`), by Gaussian
-/// elimination with partial pivoting; `false` when a pivot is at most `tiny` (numerically
-/// singular). On a microcontroller and in the page; on the host [`solve_small_sized`] is inlined
-/// into each copy of [`FactoredLcp::solve_unknowns`], with `m` a constant.
-#[cfg(any(target_os = "none", target_family = "wasm"))]
-#[cfg_attr(target_os = "none", inline(never))]
+/// The basis' `m x m` system by [`solve_leading`], in one copy out of line (flash): without
+/// `host-tuned`. With it, [`solve_leading`] is inlined into each copy of
+/// [`FactoredLcp::solve_unknowns`], with `m` a constant.
+#[cfg(not(feature = "host-tuned"))]
+#[inline(never)]
 fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
-    // In the page each size the fast path meets (2 and 3 unknowns) gets its own copy, with `m` a
-    // constant: no per-row size tests (the same operations in the same order, so the same bits).
-    // A microcontroller keeps one copy (flash).
-    #[cfg(not(target_os = "none"))]
-    match m {
-        2 => return solve_small_sized(a, rhs, 2, tiny),
-        3 => return solve_small_sized(a, rhs, 3, tiny),
-        _ => {}
-    }
-    solve_small_sized(a, rhs, m, tiny)
-}
-
-/// The elimination of `solve_small`, inlined where it is called so that a constant `m` specialises it.
-#[inline(always)]
-#[allow(clippy::inline_always)] // the point of it: `m` known at the call
-fn solve_small_sized<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
-    // Constant loop bounds (rows and columns at or beyond `m` skipped): every index is provably
-    // in range, so no panic path is linked.
-    for col in 0..DOF {
-        if col >= m {
-            break;
-        }
-        let mut piv = col;
-        for r in col + 1..DOF {
-            if r < m && a[r][col].abs_exact() > a[piv][col].abs_exact() {
-                piv = r;
-            }
-        }
-        if a[piv][col].abs_exact() <= tiny {
-            return false;
-        }
-        if piv != col {
-            let (row, value) = (a[col], rhs[col]);
-            a[col] = a[piv];
-            rhs[col] = rhs[piv];
-            a[piv] = row;
-            rhs[piv] = value;
-        }
-        let inv = T::one() / a[col][col];
-        for r in col + 1..DOF {
-            if r >= m {
-                break;
-            }
-            let f = a[r][col] * inv;
-            for c in col + 1..DOF {
-                if c < m {
-                    let u = f * a[col][c];
-                    a[r][c] -= u;
-                }
-            }
-            let u = f * rhs[col];
-            rhs[r] -= u;
-        }
-        a[col][col] = inv;
-    }
-    for col in (0..DOF).rev() {
-        if col >= m {
-            continue;
-        }
-        let mut acc = rhs[col];
-        for c in col + 1..DOF {
-            if c < m {
-                acc -= a[col][c] * rhs[c];
-            }
-        }
-        rhs[col] = acc * a[col][col];
-    }
-    true
+    solve_leading(a, rhs, m, tiny)
 }

@@ -36,13 +36,28 @@
 //! # Ok::<(), Box<dyn core::error::Error>>(())
 //! ```
 
-pub mod assemble;
+// In the order they depend on one another (each imports only modules above it, and `body`,
+// `contact`, `layout`): the step's inputs, its factored rows and their basis solve, the
+// neighbouring bases, the dense form, the solve strategy, the reports, the stepper.
 mod body;
 mod checksum;
 mod contact;
 mod events;
-mod factored;
 mod layout;
+mod model;
+
+mod inputs;
+
+mod factored;
+
+mod candidates;
+
+pub mod assemble;
+
+mod strategy;
+
+mod report;
+
 mod stepper;
 
 pub use body::{Body, BodyState};
@@ -51,7 +66,7 @@ pub use contact::{Contact, ContactFrame, ContactMode, Feature, Pose, Support};
 pub use events::{EventLog, SwitchEvent};
 pub use factored::{BasisAnswer, Declined, FactoredLcp};
 pub use layout::{Direction, Layout, Tangents, Variable};
-pub use stepper::{
-    ContactReport, Model, PathCounts, ROUND_OFF_LIMIT, RunStats, Settings, SolvePath, StepError, StepReport,
-    Stepper,
-};
+pub use model::{Model, Settings};
+pub use report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
+pub use stepper::{StepError, Stepper};
+pub use strategy::{PathCounts, SolvePath};

@@ -6,8 +6,9 @@
 //!    supports' velocities over the step, given by the scene;
 //! 2. each contact's friction coefficient from its mode after the previous step (`mu_s` while
 //!    sticking or separated, `mu_k` while sliding);
-//! 3. the LCP of eq. 18 for the solved [`Layout`], solved by [`Lemke`] warm-started from the
-//!    previous step's basis;
+//! 3. the LCP of eq. 18 for the solved [`Layout`], in factored form ([`FactoredLcp`]), solved
+//!    along the paths of [`SolvePath`]: the previous step's basis, its neighbours, [`Lemke`]'s
+//!    method warm-started from it;
 //! 4. for a reduced layout, the dropped directions checked; when one is needed (or the reduced LCP
 //!    has no solution) the step is solved again in the full layout, warm-started from the reduced
 //!    basis mapped into it (feature `fallback`; without it the step fails with
@@ -18,37 +19,19 @@
 //!
 //! A failed step leaves the state as it was and returns a [`StepError`]; nothing here panics.
 
-use super::assemble::{StepInputs, StepLcp, fill_from_factored, sign};
-use super::body::{Body, BodyState};
+use super::assemble::StepInputs;
+use super::body::BodyState;
+use super::candidates::basis_of_modes;
 use super::contact::{Contact, ContactFrame, ContactMode, Pose, Support};
-use super::factored::{CANDIDATES, Declined, FactoredLcp, PlanCache, basis_of_modes};
+use super::factored::{FactoredLcp, PlanCache};
+use super::inputs::sign;
 use super::layout::{Direction, Layout, Variable};
+use super::model::{Model, Settings, validate};
+use super::report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
+use super::strategy::{SolvePath, solve};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
 use crate::real::{Real, max, zero_if_finite};
-
-/// The stepper's numbers, besides the body and its contacts.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Settings<T> {
-    /// Time step `h` (s, > 0).
-    pub step: T,
-    /// Gravity `g` along `-y` (m/s^2, >= 0).
-    pub gravity: T,
-    /// A touching contact whose slip speed is at most this sticks (m/s, >= 0).
-    pub stick_speed: T,
-}
-
-/// What the stepper moves: the body, its contacts and the numbers.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Model<T, const K: usize> {
-    /// The body.
-    pub body: Body<T>,
-    /// Its contacts, in the order of the LCP's variables.
-    pub contacts: [Contact<T>; K],
-    /// Step, gravity, thresholds.
-    pub settings: Settings<T>,
-}
 
 /// Why a step failed. The state is that before the step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,189 +70,6 @@ impl core::fmt::Display for StepError {
 
 impl core::error::Error for StepError {}
 
-/// One contact's part of a [`StepReport`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactReport<T> {
-    /// Mode after the step.
-    pub mode: ContactMode,
-    /// Mode before it (after the previous step; before the first, the initial mode).
-    pub previous_mode: ContactMode,
-    /// Normal impulse on the body (N s).
-    pub normal_impulse: T,
-    /// Net friction impulse on the body along the contact's `+d` (N s).
-    pub friction_impulse: T,
-    /// The contact's coordinate along its tangent at the step's start ([`ContactFrame::along`]).
-    pub along: T,
-}
-
-impl<T> ContactReport<T> {
-    /// `true` when the contact's mode changed in this step: a switch event.
-    #[must_use]
-    pub fn switched(&self) -> bool {
-        self.mode != self.previous_mode
-    }
-}
-
-/// What one step did.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StepReport<T, const K: usize> {
-    /// Time at the end of the step (s).
-    pub time: T,
-    /// State at the end of the step.
-    pub state: BodyState<T>,
-    /// Each contact.
-    pub contacts: [ContactReport<T>; K],
-    /// Complementary pivots of the step's solve(s).
-    pub pivots: u32,
-    /// `true` when the warm-start basis gave the answer.
-    pub warm_start_used: bool,
-    /// Which path answered the step's LCP (the full layout's, when it was used).
-    pub path: SolvePath,
-    /// Reduced layout only: a dropped direction was needed (or the reduced LCP had no solution),
-    /// so the step was solved in the full layout (the reported values are the full layout's).
-    pub full_layout_used: bool,
-    /// The normalised verification residual of the solution used ([`crate::lcp::verify`]).
-    pub residual: T,
-    /// The step's impulses are resolved only to `eps V / (g h)` of their size, more than
-    /// [`ROUND_OFF_LIMIT`], where `V` is the step's velocity scale (the fastest support's speed
-    /// plus the body's): the LCP holds both slips of order `V` and impulses of order `g h`, and
-    /// its solve is exact only to round-off of the larger. In f32 that is `V > 0.082 m/s x (h /
-    /// 1e-5 s)`: fingers from about 0.1 m/s at h = 1e-5 s, 1 m/s at 1e-4 s, 10 m/s at 1e-3 s
-    /// (`docs/formulation.md`, "Precision", has the measured deviations). Take a larger `h` or
-    /// f64.
-    pub round_off_limited: bool,
-}
-
-/// The largest `eps V / (g h)` a step may have before [`StepReport::round_off_limited`] says
-/// so: 1e-4 (in f32, `V / (g h)` of 840). Chosen so that every cell of `host-sim envelope`'s
-/// table where f32 misses its target is flagged: the least of them, 0.1 m/s at h = 1e-5 s
-/// (1.2e-4 .. 2.4e-4), held its COM within 6e-6 m of f64 but switched 11 steps late; 0.2 m/s
-/// at 1e-5 s drifted 2.9e-4 m, 1 m/s 3e-5 m. Beyond the limit f32 may still hold (1 and
-/// 10 m/s at 1e-4 s held within 1.6e-6 m): the flag says it is no longer assured.
-pub const ROUND_OFF_LIMIT: f64 = 1e-4;
-
-impl<T: Real, const K: usize> StepReport<T, K> {
-    /// Each contact's mode after the step.
-    #[must_use]
-    pub fn modes(&self) -> [ContactMode; K] {
-        let mut modes = [ContactMode::Separated; K];
-        for (m, c) in modes.iter_mut().zip(&self.contacts) {
-            *m = c.mode;
-        }
-        modes
-    }
-
-    /// Each contact's coordinate along it at the step's start.
-    #[must_use]
-    pub fn along(&self) -> [T; K] {
-        let mut along = [T::zero(); K];
-        for (a, c) in along.iter_mut().zip(&self.contacts) {
-            *a = c.along;
-        }
-        along
-    }
-
-    /// The contacts whose mode changed in this step, with their new mode.
-    pub fn switches(&self) -> impl Iterator<Item = (usize, ContactMode)> + '_ {
-        self.contacts.iter().enumerate().filter(|(_, c)| c.switched()).map(|(i, c)| (i, c.mode))
-    }
-}
-
-/// Which path answered a step's LCP (`docs/formulation.md`, "Solving a step"). Every path's
-/// answer is verified; a path that cannot answer hands the step to the next.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum SolvePath {
-    /// `q >= 0`: no impulse is needed, `z = 0` (as Lemke's method answers it, before any pivot).
-    Free,
-    /// The previous step's basis, solved in the body's coordinates ([`FactoredLcp`]).
-    Warm,
-    /// One of the bases next to the previous one (one contact's mode changed), solved the same way.
-    Candidate,
-    /// Lemke's method on the assembled LCP, warm-started from the previous basis: the solver of
-    /// record, for whatever the other paths do not answer.
-    Lemke,
-}
-
-impl SolvePath {
-    /// Every path, in the order they are tried.
-    pub const ALL: [Self; 4] = [Self::Free, Self::Warm, Self::Candidate, Self::Lemke];
-
-    /// A short stable name: `free`, `warm`, `candidate`, `lemke`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Free => "free",
-            Self::Warm => "warm",
-            Self::Candidate => "candidate",
-            Self::Lemke => "lemke",
-        }
-    }
-}
-
-/// How many solves each [`SolvePath`] answered over a run (a step that fell back to the full
-/// layout counts two solves), and how many candidate bases were tried.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PathCounts {
-    /// Answered with `z = 0`.
-    pub free: u64,
-    /// Answered by the previous basis.
-    pub warm: u64,
-    /// Answered by a candidate basis.
-    pub candidate: u64,
-    /// Answered by Lemke's method (or failed there).
-    pub lemke: u64,
-    /// Candidate bases solved, answered or not.
-    pub candidates_tried: u64,
-}
-
-impl PathCounts {
-    /// The solves `path` answered.
-    #[must_use]
-    pub const fn of(&self, path: SolvePath) -> u64 {
-        match path {
-            SolvePath::Free => self.free,
-            SolvePath::Warm => self.warm,
-            SolvePath::Candidate => self.candidate,
-            SolvePath::Lemke => self.lemke,
-        }
-    }
-
-    fn count(&mut self, path: SolvePath) {
-        match path {
-            SolvePath::Free => self.free += 1,
-            SolvePath::Warm => self.warm += 1,
-            SolvePath::Candidate => self.candidate += 1,
-            SolvePath::Lemke => self.lemke += 1,
-        }
-    }
-}
-
-/// Counters over a run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RunStats {
-    /// Steps taken.
-    pub steps: u64,
-    /// Complementary pivots, summed.
-    pub pivots: u64,
-    /// Most pivots in one step.
-    pub max_pivots: u32,
-    /// Steps whose answer came from the warm-start basis.
-    pub warm_starts: u64,
-    /// Steps where a reduced layout's dropped direction was needed.
-    pub reduced_check_fired: u64,
-    /// Solves answered by the solver's regularised retry after a round-off ray
-    /// ([`crate::lcp::LcpSolution::regularized`]).
-    pub regularized_solves: u64,
-    /// Steps whose impulses were resolved only to more than [`ROUND_OFF_LIMIT`] of their size
-    /// ([`StepReport::round_off_limited`]).
-    pub round_off_limited: u64,
-    /// Solves per path.
-    pub paths: PathCounts,
-}
-
 /// One rigid body against `K` supports; each step solves the `N`-variable LCP of a [`Layout`],
 /// and, when that layout is reduced, falls back to the `NF`-variable full layout (`NF = N`: no
 /// reduction, no check).
@@ -285,8 +85,7 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     /// A contact with at most this normal impulse per unit mass is separated: `64 eps g h`, the
     /// round-off of a step's gravity impulse (constant, so computed once). Not `eps V`: the
     /// impulses are solved to round-off of their own scale even when the support speed `V` is in
-    /// the same LCP, and a floor of `eps V` called a contact carrying 1/40 of a 1 m/s scene's
-    /// weight at h = 1e-5 s separated (and its next step used `mu_s`).
+    /// the same LCP, and at h = 1e-5 s `eps V` of a 1 m/s scene is 1/40 of its weight's impulse.
     impulse_floor: T,
     /// A step whose velocity scale exceeds this is [`StepReport::round_off_limited`]:
     /// `ROUND_OFF_LIMIT g h / eps` (infinite without gravity: no impulse scale).
@@ -464,9 +263,9 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// support that does not fit gives an inactive frame; `new` and `step` refuse those first).
     /// The supports are passed in, not read back from `self.supports` just after they were
     /// copied there (an 8-byte load of a position stored as two 4-byte halves cannot be forwarded
-    /// from the store buffer). Out of line on a microcontroller: one copy for `new` and `step`.
-    #[cfg_attr(target_os = "none", inline(never))]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    /// from the store buffer). Without `host-tuned` out of line: one copy for `new` and `step`.
+    #[cfg_attr(not(feature = "host-tuned"), inline(never))]
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always)] // measured: the host's step is faster so (left to itself, it was not inlined)
     fn update_frames(&mut self, supports: &[Support<T>; K]) {
         let pose = Pose { com: [self.state.x, self.state.y], sin_cos: self.state.theta.sin_cos_portable() };
@@ -500,11 +299,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    // Inlined into its caller on the host (not on a microcontroller, nor in the page's smaller
-    // modules): the supports, just built there, and the report are then not read back from memory
-    // at once, which stalls an x86 core.
+    // Inlined into its caller with `host-tuned`: the supports, just built there, and the report
+    // are then not read back from memory at once, which stalls an x86 core.
     #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(feature = "host-tuned", inline(always))]
     #[allow(clippy::inline_always)] // measured, as said above
     pub fn step(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
         let s = self.settings;
@@ -557,7 +355,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             self.basis,
             &mut self.plan,
             &self.solver,
-            &mut self.stats,
+            &mut self.stats.paths,
+            &mut self.stats.regularized_solves,
             &mut z,
             &mut w,
         ) {
@@ -598,7 +397,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                     wide,
                     &mut PlanCache::<K>::default(),
                     &Lemke::<T, NF>::new(),
-                    &mut self.stats,
+                    &mut self.stats.paths,
+                    &mut self.stats.regularized_solves,
                     &mut z_full,
                     &mut w_full,
                 )
@@ -699,15 +499,14 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// The reduced layout's check (`docs/formulation.md`, "Reduced friction layouts"): for each
     /// active contact that keeps one direction `s` of two, the row of the dropped direction,
     /// `-s (W_d^T v+ - d . u) + sigma`, must not be negative beyond round-off: `64 N eps` of this
-    /// step's velocities (the fastest support's and the body's). Not of a scene-wide speed: after
-    /// a 10 m/s finger stopped, a tolerance of `eps x 10 m/s` let an f32 rod slide the wrong way
-    /// on the kept direction for 500 steps (2 mm from the full layout; `host-sim envelope`).
+    /// step's velocities (the fastest support's and the body's). Not of a scene-wide speed: once
+    /// a fast finger stops, `eps` of its former speed exceeds the slow slips the check must see.
     ///
     /// Except where `sigma` is free: when the kept direction carries no impulse and the cone row
     /// `mu p_n - p_f` is zero too (`mu = 0`, or no normal impulse), `sigma` can be raised to
     /// `|W_d^T v+ - d . u|` without breaking any complementarity, and the reduced answer (same
-    /// impulses) extends to a solution of the full LCP. (Without this exception the frictionless
-    /// meter stick fell back to the full layout in 441 of 3,998 steps; `host-sim stress`.)
+    /// impulses) extends to a solution of the full LCP (the frictionless meter stick's every
+    /// step is such a case).
     ///
     /// Returns the first contact that needs its dropped direction, and that direction.
     fn dropped_direction_needed(
@@ -776,176 +575,8 @@ fn impulses<T: Real, const K: usize, const M: usize>(
     (normal, friction, per_unit_mass)
 }
 
-/// One layout's verified answer ([`solve`]); `z` and `w` are written into the caller's arrays.
-struct Solved<T: Real, const M: usize> {
-    v_plus: [T; 3],
-    basis: Basis<M>,
-    pivots: u32,
-    warm_start_used: bool,
-    residual: T,
-    path: SolvePath,
-}
-
-/// Solves the step's LCP `factored` (`docs/formulation.md`, "Solving a step"): `z = 0` when
-/// `q >= 0`; else the previous basis `warm` in the body's coordinates; else its neighbours the same
-/// way; else Lemke's method on the assembled LCP, warm-started from `warm`. Every answer is
-/// verified; `z` and `w` receive it. Counts the path (and each candidate tried) in `stats`.
-/// `plan` keeps the warm basis' unknowns from one call to the next ([`FactoredLcp`]'s layout must
-/// be the same each call; a default one for a one-off).
-fn solve<T: Real, const K: usize, const M: usize>(
-    factored: &FactoredLcp<T, K, M>,
-    warm: Basis<M>,
-    plan: &mut PlanCache<K>,
-    solver: &Lemke<T, M>,
-    stats: &mut RunStats,
-    z: &mut [T; M],
-    w: &mut [T; M],
-) -> Result<Solved<T, M>, LcpError> {
-    if !factored.is_finite() {
-        return Err(LcpError::NonFiniteInput);
-    }
-    if factored.is_free() {
-        *z = [T::zero(); M];
-        *w = *factored.q();
-        stats.paths.count(SolvePath::Free);
-        return Ok(Solved {
-            v_plus: *factored.v_free(),
-            basis: Basis::all_w(),
-            pivots: 0,
-            warm_start_used: false,
-            residual: T::zero(),
-            path: SolvePath::Free,
-        });
-    }
-    match factored.solve_basis_cached_into(warm, plan, solver.tolerance(), z, w) {
-        Ok((v_plus, residual)) => {
-            stats.paths.count(SolvePath::Warm);
-            Ok(Solved {
-                v_plus,
-                basis: warm,
-                pivots: 0,
-                warm_start_used: true,
-                residual,
-                path: SolvePath::Warm,
-            })
-        }
-        Err(why) => solve_cold(factored, warm, why, solver, stats, z, w),
-    }
-}
-
-/// [`solve`] after the previous basis failed with `why`: its neighbours, then Lemke's method. Out
-/// of line, so that the warm path the most steps take stays small.
-#[cold]
-#[inline(never)]
-fn solve_cold<T: Real, const K: usize, const M: usize>(
-    factored: &FactoredLcp<T, K, M>,
-    warm: Basis<M>,
-    why: Declined,
-    solver: &Lemke<T, M>,
-    stats: &mut RunStats,
-    z: &mut [T; M],
-    w: &mut [T; M],
-) -> Result<Solved<T, M>, LcpError> {
-    let tolerance = solver.tolerance();
-    let answer = (0..CANDIDATES * K).find_map(|k| {
-        let basis = factored.candidate(warm, why, k)?;
-        stats.paths.candidates_tried += 1;
-        factored.solve_basis_into(basis, tolerance, z, w).ok().map(|(v_plus, residual)| Solved {
-            v_plus,
-            basis,
-            pivots: 0,
-            warm_start_used: false,
-            residual,
-            path: SolvePath::Candidate,
-        })
-    });
-    if let Some(answer) = answer {
-        stats.paths.count(SolvePath::Candidate);
-        return Ok(answer);
-    }
-    stats.paths.count(SolvePath::Lemke);
-    let mut lcp = StepLcp::zeros();
-    fill_from_factored(factored, &mut lcp);
-    let sol = solver.solve_from_basis(&lcp.lcp, warm)?;
-    stats.regularized_solves += u64::from(sol.regularized);
-    for j in 0..M {
-        z[j] = sol.z[j];
-        w[j] = sol.w[j];
-    }
-    Ok(Solved {
-        v_plus: factored.velocity_after(z),
-        basis: sol.basis,
-        pivots: sol.pivots,
-        warm_start_used: sol.warm_start_used,
-        residual: sol.residual,
-        path: SolvePath::Lemke,
-    })
-}
-
 /// A step count for [`Real::of_count`], saturating at `u32::MAX` (4.3e9 steps: 50 days at
 /// h = 1 ms; f32 time is exact only to 2^24 steps anyway).
 fn count_u32(n: u64) -> u32 {
     u32::try_from(n).unwrap_or(u32::MAX)
-}
-
-/// The set-up checks of [`Stepper::new`].
-fn validate<T: Real, const K: usize>(
-    model: &Model<T, K>,
-    start: &BodyState<T>,
-    supports: &[Support<T>; K],
-) -> Result<(), ParamError> {
-    use crate::params::{Check, check_fields};
-    let (b, s) = (&model.body, &model.settings);
-    check_fields(&[
-        ("width", b.width, Check::Positive),
-        ("height", b.height, Check::NonNegative),
-        ("mass", b.mass, Check::Positive),
-        ("inertia", b.inertia, Check::Positive),
-        ("step", s.step, Check::Positive),
-        ("gravity", s.gravity, Check::NonNegative),
-        ("stick_speed", s.stick_speed, Check::NonNegative),
-    ])?;
-    for (i, c) in model.contacts.iter().enumerate() {
-        check_fields(&[
-            ("mu_static", c.mu_static, Check::NonNegative),
-            ("mu_kinetic", c.mu_kinetic, Check::NonNegative),
-        ])?;
-        if c.mu_kinetic > c.mu_static {
-            return Err(ParamError::KineticAboveStatic);
-        }
-        if let super::Feature::Point(p) = c.feature
-            && !(p[0].finite() && p[1].finite())
-        {
-            return Err(ParamError::NonFinite("feature"));
-        }
-        if let super::Feature::Round(radius) = c.feature {
-            check_fields(&[("radius", radius, Check::Positive)])?;
-        }
-        let sup = &supports[i];
-        if !sup.fits(&c.feature) {
-            return Err(ParamError::SupportMismatch(i as u8));
-        }
-        let mut values = [
-            sup.position()[0],
-            sup.position()[1],
-            sup.velocity()[0],
-            sup.velocity()[1],
-            T::zero(),
-            T::zero(),
-        ];
-        if let Support::Line { normal, .. } = sup {
-            values[4] = normal[0];
-            values[5] = normal[1];
-        }
-        if !values.iter().all(|v| v.finite()) {
-            return Err(ParamError::NonFinite("support"));
-        }
-        if !sup.is_well_formed() {
-            return Err(ParamError::OutOfRange("support")); // a line's normal not a unit vector
-        }
-    }
-    if !start.is_finite() {
-        return Err(ParamError::NonFiniteState);
-    }
-    Ok(())
 }

@@ -198,10 +198,10 @@ impl SceneParams {
         visitor: V,
     ) -> Result<V::Output, ParamError> {
         #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
-        return Ok(match precision {
-            Precision::F32 => SceneIn::<f32, E>::new(self, layout)?.visit(visitor),
-            Precision::F64 => SceneIn::<f64, E>::new(self, layout)?.visit(visitor),
-        });
+        return match precision {
+            Precision::F32 => self.build_in::<f32, E, V>(layout, visitor),
+            Precision::F64 => self.build_in::<f64, E, V>(layout, visitor),
+        };
         #[cfg(not(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3")))]
         {
             let _ = (precision, layout, visitor);
@@ -238,6 +238,31 @@ macro_rules! registry {
                 #[$built]
                 $variant($scene<T, $n, E>),
             )*
+        }
+
+        impl SceneParams {
+            /// The scene in scalar `T` and `layout`, keeping `E` switch events, handed to
+            /// `visitor`: [`Self::build`] with the precision a type (a microcontroller's driver
+            /// builds only `f32`'s code), the scene on the stack for the visit only.
+            ///
+            /// # Errors
+            /// The core's first complaint about the parameters in `T` (the scene's `new`); a scene
+            /// this build leaves out (features `scenes-k1`..`scenes-k3`) is `OutOfRange("scene")`.
+            pub fn build_in<T: Real, const E: usize, V: SceneVisitor>(
+                &self,
+                layout: LcpLayout,
+                visitor: V,
+            ) -> Result<V::Output, ParamError> {
+                Ok(match (*self, layout) {
+                    $(#[$built] (SceneParams::$params(p), LcpLayout::$layout) => {
+                        let scene = $scene::<T, $n, E>::new(p.cast())?;
+                        hand!($hand, visitor, scene, T, $k, $n)
+                    })*
+                    // A scene this build leaves out (features `scenes-k1`..`scenes-k3`).
+                    #[allow(unreachable_patterns)]
+                    _ => return Err(ParamError::OutOfRange("scene")),
+                })
+            }
         }
 
         impl<T: Real, const E: usize> SceneIn<T, E> {

@@ -5,8 +5,8 @@
 use std::time::Instant;
 
 use super::geometry::{BoxBody, Lower, Pair, Table};
-use super::step::Starts;
-use super::system::{State, Stepped, System};
+use super::step::{Starts, Stepped};
+use super::system::{State, System};
 use super::{Outcome, Row, Run};
 use crate::scenes::{finite, kinetic_at_most_static, non_negative, positive};
 use crate::{Mode, Sample};

@@ -42,7 +42,7 @@
 
 use super::geometry::{Frame, dot};
 use super::lcp::{Basis, lemke, solve_basis, verify};
-use super::system::System;
+use super::system::{State, System, slip_mode};
 use crate::Mode;
 
 /// Rounds of the descent over neighbouring bases.
@@ -392,17 +392,6 @@ pub(super) fn solve(
     Ok(StepResult { velocity, normal, friction, patterns, ambiguous, solutions: pool.len(), rows: n })
 }
 
-/// The mode of a touching contact with slip `s`.
-pub(super) fn slip_mode(slip: f64, stick_speed: f64) -> Mode {
-    if slip.abs() <= stick_speed {
-        Mode::Sticking
-    } else if slip > 0.0 {
-        Mode::SlidingPositive
-    } else {
-        Mode::SlidingNegative
-    }
-}
-
 /// Each candidate's mode after a step: separated when inactive or its normal impulse is at most
 /// the floor (`System::impulse_floor`); else from its slip `s = -d . v_rel(v+)` (the face's
 /// owner moving along `+d` relative to the corner: positive).
@@ -418,4 +407,46 @@ pub(super) fn modes_after(system: &System, frames: &[Frame], result: &StepResult
             slip_mode(-dot(f.tangent, f.relative_velocity(&result.velocity)), system.stick_speed)
         })
         .collect()
+}
+
+/// What one step did.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Stepped {
+    /// The candidates at the step's start.
+    pub frames: Vec<Frame>,
+    /// The step's answer.
+    pub result: StepResult,
+    /// Modes before the step.
+    pub before: Vec<Mode>,
+}
+
+impl State {
+    /// One step with the solver's `starts`.
+    ///
+    /// # Errors
+    /// No verified solution, or a non-finite state.
+    pub fn advance(&mut self, system: &System, starts: Starts) -> Result<Stepped, String> {
+        let frames = system.frames(&self.q, &self.v);
+        let mu: Vec<f64> = system
+            .friction(&frames)
+            .iter()
+            .zip(&self.modes)
+            .map(|(&(mu_s, mu_k), mode)| if mode.is_sliding() { mu_k } else { mu_s })
+            .collect();
+        let lcp = assemble(system, &self.q, &self.v, &frames, &mu);
+        let result = solve(system, &lcp, &self.patterns, frames.len(), starts)?;
+        for (q, v) in self.q.iter_mut().zip(&result.velocity) {
+            for c in 0..3 {
+                q[c] += system.step * v[c];
+            }
+        }
+        if self.q.iter().chain(&result.velocity).flatten().any(|x| !x.is_finite()) {
+            return Err("the state became non-finite".to_string());
+        }
+        self.v.clone_from(&result.velocity);
+        self.steps += 1;
+        let before = std::mem::replace(&mut self.modes, modes_after(system, &frames, &result));
+        self.patterns.clone_from(&result.patterns);
+        Ok(Stepped { frames, result, before })
+    }
 }

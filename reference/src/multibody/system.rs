@@ -5,7 +5,6 @@
 //! the step).
 
 use super::geometry::{BoxBody, Frame, Pair, Table, dot, frames};
-use super::step::{Starts, StepResult, assemble, modes_after, slip_mode, solve};
 use crate::Mode;
 
 /// Everything a multibody scene's steps share.
@@ -84,7 +83,7 @@ impl System {
     }
 
     /// Each candidate's `(mu_s, mu_k)`.
-    fn friction(&self, frames: &[Frame]) -> Vec<(f64, f64)> {
+    pub(super) fn friction(&self, frames: &[Frame]) -> Vec<(f64, f64)> {
         frames.iter().map(|f| (self.pairs[f.pair].mu_static, self.pairs[f.pair].mu_kinetic)).collect()
     }
 }
@@ -102,17 +101,6 @@ pub(super) struct State {
     pub modes: Vec<Mode>,
     /// Each candidate's pattern of basic variables in the last step.
     pub patterns: Vec<u8>,
-}
-
-/// What one step did.
-#[derive(Debug, Clone, PartialEq)]
-pub(super) struct Stepped {
-    /// The candidates at the step's start.
-    pub frames: Vec<Frame>,
-    /// The step's answer.
-    pub result: StepResult,
-    /// Modes before the step.
-    pub before: Vec<Mode>,
 }
 
 impl State {
@@ -144,33 +132,15 @@ impl State {
     pub fn time(&self, system: &System) -> f64 {
         self.steps as f64 * system.step
     }
+}
 
-    /// One step with the solver's `starts`.
-    ///
-    /// # Errors
-    /// No verified solution, or a non-finite state.
-    pub fn advance(&mut self, system: &System, starts: Starts) -> Result<Stepped, String> {
-        let frames = system.frames(&self.q, &self.v);
-        let mu: Vec<f64> = system
-            .friction(&frames)
-            .iter()
-            .zip(&self.modes)
-            .map(|(&(mu_s, mu_k), mode)| if mode.is_sliding() { mu_k } else { mu_s })
-            .collect();
-        let lcp = assemble(system, &self.q, &self.v, &frames, &mu);
-        let result = solve(system, &lcp, &self.patterns, frames.len(), starts)?;
-        for (q, v) in self.q.iter_mut().zip(&result.velocity) {
-            for c in 0..3 {
-                q[c] += system.step * v[c];
-            }
-        }
-        if self.q.iter().chain(&result.velocity).flatten().any(|x| !x.is_finite()) {
-            return Err("the state became non-finite".to_string());
-        }
-        self.v.clone_from(&result.velocity);
-        self.steps += 1;
-        let before = std::mem::replace(&mut self.modes, modes_after(system, &frames, &result));
-        self.patterns.clone_from(&result.patterns);
-        Ok(Stepped { frames, result, before })
+/// The mode of a touching contact with slip `s`.
+pub(super) fn slip_mode(slip: f64, stick_speed: f64) -> Mode {
+    if slip.abs() <= stick_speed {
+        Mode::Sticking
+    } else if slip > 0.0 {
+        Mode::SlidingPositive
+    } else {
+        Mode::SlidingNegative
     }
 }

@@ -1,0 +1,121 @@
+//! What a step and a run report: each contact's impulses and mode ([`ContactReport`]), the step's
+//! state, solve path and precision flag ([`StepReport`]), and the counters over a run
+//! ([`RunStats`]). Impulses are physical (N s): the LCP's `z` per unit mass times the body's mass
+//! (`docs/formulation.md`, "Friction and contact modes", "Precision").
+
+use super::body::BodyState;
+use super::contact::ContactMode;
+use super::strategy::{PathCounts, SolvePath};
+use crate::real::Real;
+
+/// One contact's part of a [`StepReport`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactReport<T> {
+    /// Mode after the step.
+    pub mode: ContactMode,
+    /// Mode before it (after the previous step; before the first, the initial mode).
+    pub previous_mode: ContactMode,
+    /// Normal impulse on the body (N s).
+    pub normal_impulse: T,
+    /// Net friction impulse on the body along the contact's `+d` (N s).
+    pub friction_impulse: T,
+    /// The contact's coordinate along its tangent at the step's start ([`super::ContactFrame::along`]).
+    pub along: T,
+}
+
+impl<T> ContactReport<T> {
+    /// `true` when the contact's mode changed in this step: a switch event.
+    #[must_use]
+    pub fn switched(&self) -> bool {
+        self.mode != self.previous_mode
+    }
+}
+
+/// What one step did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport<T, const K: usize> {
+    /// Time at the end of the step (s).
+    pub time: T,
+    /// State at the end of the step.
+    pub state: BodyState<T>,
+    /// Each contact.
+    pub contacts: [ContactReport<T>; K],
+    /// Complementary pivots of the step's solve(s).
+    pub pivots: u32,
+    /// `true` when the warm-start basis gave the answer.
+    pub warm_start_used: bool,
+    /// Which path answered the step's LCP (the full layout's, when it was used).
+    pub path: SolvePath,
+    /// Reduced layout only: a dropped direction was needed (or the reduced LCP had no solution),
+    /// so the step was solved in the full layout (the reported values are the full layout's).
+    pub full_layout_used: bool,
+    /// The normalised verification residual of the solution used ([`crate::lcp::verify`]).
+    pub residual: T,
+    /// The step's impulses are resolved only to `eps V / (g h)` of their size, more than
+    /// [`ROUND_OFF_LIMIT`], where `V` is the step's velocity scale (the fastest support's speed
+    /// plus the body's): the LCP holds both slips of order `V` and impulses of order `g h`, and
+    /// its solve is exact only to round-off of the larger. In f32 that is `V > 0.082 m/s x (h /
+    /// 1e-5 s)`: fingers from about 0.1 m/s at h = 1e-5 s, 1 m/s at 1e-4 s, 10 m/s at 1e-3 s
+    /// (`docs/formulation.md`, "Precision", has the measured deviations). Take a larger `h` or
+    /// f64.
+    pub round_off_limited: bool,
+}
+
+/// The largest `eps V / (g h)` a step may have before [`StepReport::round_off_limited`] says
+/// so: 1e-4 (in f32, `V / (g h)` of 840). Chosen so that every cell of `host-sim envelope`'s
+/// table where f32 misses its target is flagged: the least of them, 0.1 m/s at h = 1e-5 s
+/// (1.2e-4 .. 2.4e-4), held its COM within 6e-6 m of f64 but switched 11 steps late; 0.2 m/s
+/// at 1e-5 s drifted 2.9e-4 m, 1 m/s 3e-5 m. Beyond the limit f32 may still hold (1 and
+/// 10 m/s at 1e-4 s held within 1.6e-6 m): the flag says it is no longer assured.
+pub const ROUND_OFF_LIMIT: f64 = 1e-4;
+
+impl<T: Real, const K: usize> StepReport<T, K> {
+    /// Each contact's mode after the step.
+    #[must_use]
+    pub fn modes(&self) -> [ContactMode; K] {
+        let mut modes = [ContactMode::Separated; K];
+        for (m, c) in modes.iter_mut().zip(&self.contacts) {
+            *m = c.mode;
+        }
+        modes
+    }
+
+    /// Each contact's coordinate along it at the step's start.
+    #[must_use]
+    pub fn along(&self) -> [T; K] {
+        let mut along = [T::zero(); K];
+        for (a, c) in along.iter_mut().zip(&self.contacts) {
+            *a = c.along;
+        }
+        along
+    }
+
+    /// The contacts whose mode changed in this step, with their new mode.
+    pub fn switches(&self) -> impl Iterator<Item = (usize, ContactMode)> + '_ {
+        self.contacts.iter().enumerate().filter(|(_, c)| c.switched()).map(|(i, c)| (i, c.mode))
+    }
+}
+
+/// Counters over a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RunStats {
+    /// Steps taken.
+    pub steps: u64,
+    /// Complementary pivots, summed.
+    pub pivots: u64,
+    /// Most pivots in one step.
+    pub max_pivots: u32,
+    /// Steps whose answer came from the warm-start basis.
+    pub warm_starts: u64,
+    /// Steps where a reduced layout's dropped direction was needed.
+    pub reduced_check_fired: u64,
+    /// Solves answered by the solver's regularised retry after a round-off ray
+    /// ([`crate::lcp::LcpSolution::regularized`]).
+    pub regularized_solves: u64,
+    /// Steps whose impulses were resolved only to more than [`ROUND_OFF_LIMIT`] of their size
+    /// ([`StepReport::round_off_limited`]).
+    pub round_off_limited: u64,
+    /// Solves per path.
+    pub paths: PathCounts,
+}
