@@ -4,7 +4,8 @@
 #   - scripts/firmware-report.sh: flash/RAM of every firmware build (out/firmware/report.md) and
 #     Cortex-M instructions per step under QEMU -icount (out/firmware/*-icount.json, read as JSON);
 #   - the rapier bench (`cargo bench -p meterstick-tests --features rapier --bench rapier`): the
-#     same scene in rapier2d and in the core, one process (out/bench/rapier.md, quoted as written);
+#     meter stick and the 3-block stack in rapier2d and in the core, one process
+#     (out/bench/rapier.md, quoted as written);
 #   - `host-sim report --quick`: host ns/step, pivots and solve paths at h = 1 ms
 #     (out/performance/report/report.json, read as JSON);
 #   - the page's wasm modules (scripts/lib.sh `build_web`): their sizes, plain and gzipped.
@@ -135,8 +136,9 @@ print()
 print("## Against rapier2d")
 print()
 print("`cargo bench -p meterstick-tests --features rapier --bench rapier`: rapier2d (kinematic fingers, "
-      "contact recycling off, one Coulomb coefficient: mu_k) and the core on the same scene, in one process, "
-      "as it printed:")
+      "contact recycling off, one Coulomb coefficient: mu_k) and the core on the same scene, then the 3-block "
+      "stack (cuboid blocks on a fixed cuboid table, the pair's coefficient mu, the same fall judge) in rapier2d "
+      "and in the core's Stack3, in one process, as it printed:")
 print()
 with open("out/bench/rapier.md") as f:
     print(f.read().rstrip())

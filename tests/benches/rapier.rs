@@ -1,5 +1,5 @@
-//! `cargo bench -p meterstick-tests --features rapier --bench rapier`: the same meter-stick scene
-//! stepped by `rapier2d` and by the core, in one process, side by side.
+//! `cargo bench -p meterstick-tests --features rapier --bench rapier`: the same meter-stick scene,
+//! then the same 3-block stack, stepped by `rapier2d` and by the core, in one process, side by side.
 //!
 //! The rapier scene: the rod is a dynamic cuboid (L x t, mass m), the fingers are kinematic
 //! (velocity-based) balls of diameter `finger_width` whose tops touch the rod's bottom face;
@@ -8,11 +8,24 @@
 //! it gets mu_k; contact recycling (on by default: a pair that moved less than a threshold
 //! keeps its previous contacts) is turned off for honest contacts. Each engine runs the slow
 //! scene to its outcome; run time is the median over repeats of the stepping loop alone.
+//!
+//! Then the 3-block stack over a table's edge (`docs/scenes.md`, "stack"; the core's `Stack3`):
+//! in rapier the blocks are dynamic cuboids (L x hb, mass m each, never asleep), the table a fixed
+//! cuboid whose top-right corner is the edge at (0, 0), block `i` (0 at the bottom) centred at
+//! `(R_k - L/2, (i + 1/2) hb)` with `R_k = s (L/2) (1/k + ... + 1/3)`, `k = 3 - i` (the core's
+//! harmonic start). Every collider has friction mu and the `Min` combine rule (the pair's
+//! coefficient is mu), restitution 0; gravity, h and the duration are `StackParams`' defaults,
+//! rapier's solver its defaults, contact recycling off. The same judge for both engines: a block
+//! whose centre drops more than `drop_limit` below its start or tilts beyond `tilt_limit` fell;
+//! all standing after `max_time` held. Run time: the median over repeats of the held stack at
+//! s = 0.98 (every step of the duration); the outcome at s = 0.98 and s = 1.02 from one run each.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::print_stderr, missing_docs)]
 
 use std::fmt::Write as _;
 use std::time::Instant;
 
+use meterstick_core::Real;
+use meterstick_core::multibody::scenes::{Stack3, StackParams};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use rapier2d::prelude::*;
 
@@ -110,6 +123,123 @@ fn rapier_run(p: &MeterStickParams<f32>) -> End {
     }
 }
 
+/// The overhang scales whose outcome both engines report: just under and just over the critical
+/// stack (`s = 1`).
+const OVERHANGS: [f64; 2] = [0.98, 1.02];
+
+/// The timed run: the held stack.
+const TIMED_OVERHANG: f64 = 0.98;
+
+/// The end of one stack run.
+struct StackEnd {
+    outcome: Outcome,
+    time: f64,
+    ns_per_step: f64,
+}
+
+fn stack_params<T: Real>(overhang: f64) -> StackParams<T> {
+    StackParams { overhang: T::of(overhang), ..StackParams::<T>::default() }
+}
+
+fn core_stack_run<T: Real>(overhang: f64) -> StackEnd {
+    let mut s = Stack3::<T>::new(stack_params::<T>(overhang)).unwrap();
+    let start = Instant::now();
+    let outcome = s.run(|_| {});
+    let ns = start.elapsed().as_nanos() as f64;
+    let steps = s.stepper().stats().steps;
+    StackEnd { outcome, time: s.stepper().time().as_f64(), ns_per_step: ns / f64::from(steps) }
+}
+
+fn rapier_stack_run(overhang: f64) -> StackEnd {
+    const B: usize = 3;
+    let p = stack_params::<f32>(overhang);
+    let mut world = PhysicsWorld { gravity: Vector::new(0.0, -p.gravity), ..Default::default() };
+    world.integration_parameters.dt = p.step;
+    world.integration_parameters.contact_recycling = false;
+    let (hl, hh) = (p.length / 2.0, p.height / 2.0);
+    let collider = |half_x: f32, half_y: f32| {
+        ColliderBuilder::cuboid(half_x, half_y)
+            .friction(p.mu)
+            .friction_combine_rule(CoefficientCombineRule::Min)
+            .restitution(0.0)
+    };
+    // The table: its top face y = 0 for x <= 0, its top-right corner the edge (0, 0).
+    let table_half = Vector::new(2.0 * p.length, p.length);
+    world.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(-table_half.x, -table_half.y)),
+        collider(table_half.x, table_half.y),
+    );
+    // The core's start (`StackParams::start`): body i is the k-th from the top, k = B - i.
+    let mut right = 0.0;
+    let mut blocks = Vec::with_capacity(B);
+    let mut start_y = [0.0; B];
+    for (i, y0) in start_y.iter_mut().enumerate() {
+        right += p.overhang * hl / (B - i) as f32;
+        *y0 = (i as f32 + 0.5) * p.height;
+        let (body, _) = world.insert(
+            RigidBodyBuilder::dynamic().translation(Vector::new(right - hl, *y0)).can_sleep(false),
+            collider(hl, hh).density(p.mass / (p.length * p.height)),
+        );
+        blocks.push(body);
+    }
+    let total = (p.max_time / p.step).round() as u64;
+    let mut steps = 0u64;
+    let start = Instant::now();
+    let outcome = loop {
+        world.step();
+        steps += 1;
+        let fell = blocks.iter().zip(start_y).any(|(&b, y0)| {
+            let body = &world.bodies[b];
+            body.rotation().angle().abs() > p.tilt_limit || y0 - body.translation().y > p.drop_limit
+        });
+        if fell {
+            break Outcome::Fell;
+        }
+        if steps >= total {
+            break Outcome::Held;
+        }
+    };
+    let ns = start.elapsed().as_nanos() as f64;
+    StackEnd { outcome, time: steps as f64 * f64::from(p.step), ns_per_step: ns / steps as f64 }
+}
+
+/// One engine's line: the timed runs' median and the outcome at each of [`OVERHANGS`].
+fn stack_line(text: &mut String, name: &str, repeats: usize, run: impl Fn(f64) -> StackEnd) -> f64 {
+    let ns = median((0..repeats).map(|_| run(TIMED_OVERHANG).ns_per_step).collect());
+    write!(text, "  {name:<26} {ns:>9.1} ns/step").unwrap();
+    for s in OVERHANGS {
+        let e = run(s);
+        let how = if e.outcome == Outcome::Held { "for" } else { "at t =" };
+        write!(text, "  s = {s:.2}: {} {how} {:.3} s", e.outcome.name(), e.time).unwrap();
+    }
+    text.push('\n');
+    ns
+}
+
+fn stack_section(text: &mut String, repeats: usize) {
+    let p = StackParams::<f64>::default();
+    writeln!(
+        text,
+        "3-block stack over a table's edge (L = {} m, hb = {} m, m = {} kg, mu = {}, g = {} m/s^2, h = {} ms, \
+         {} s),\n  fell: a block's centre {} mm below its start or tilted beyond {} rad; ns/step: {repeats} runs each of \
+         the held stack at s = {TIMED_OVERHANG}, median:",
+        p.length,
+        p.height,
+        p.mass,
+        p.mu,
+        p.gravity,
+        1e3 * p.step,
+        p.max_time,
+        1e3 * p.drop_limit,
+        p.tilt_limit
+    )
+    .unwrap();
+    let c32 = stack_line(text, "meterstick core f32 Stack3", repeats, core_stack_run::<f32>);
+    let c64 = stack_line(text, "meterstick core f64 Stack3", repeats, core_stack_run::<f64>);
+    let r = stack_line(text, "rapier2d 0.36 (f32)", repeats, rapier_stack_run);
+    writeln!(text, "  ratio rapier2d / core: {:.1}x (f32), {:.1}x (f64)", r / c32, r / c64).unwrap();
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -149,6 +279,7 @@ fn main() {
         .unwrap();
     }
     writeln!(text, "  ratio rapier2d / core: {:.1}x", rm / cm).unwrap();
+    stack_section(&mut text, repeats);
     print!("{text}");
     // For `host-sim report` (its "Performance" section includes this file when present).
     if repeats > 1 {
