@@ -11,9 +11,8 @@
 //!
 //! Then the 3-block stack over a table's edge (`docs/scenes.md`, "stack"; the core's `Stack3`):
 //! in rapier the blocks are dynamic cuboids (L x hb, mass m each, never asleep), the table a fixed
-//! cuboid whose top-right corner is the edge at (0, 0), block `i` (0 at the bottom) centred at
-//! `(R_k - L/2, (i + 1/2) hb)` with `R_k = s (L/2) (1/k + ... + 1/3)`, `k = 3 - i` (the core's
-//! harmonic start). Every collider has friction mu and the `Min` combine rule (the pair's
+//! cuboid whose top-right corner is the edge at (0, 0), each block where the core's `Stack3`
+//! starts it (harmonic offsets scaled by the overhang s, read from its stepper). Every collider has friction mu and the `Min` combine rule (the pair's
 //! coefficient is mu), restitution 0; gravity, h and the duration are `StackParams`' defaults,
 //! rapier's solver its defaults, contact recycling off. The same judge for both engines: a block
 //! whose centre drops more than `drop_limit` below its start or tilts beyond `tilt_limit` fell;
@@ -151,7 +150,6 @@ fn core_stack_run<T: Real>(overhang: f64) -> StackEnd {
 }
 
 fn rapier_stack_run(overhang: f64) -> StackEnd {
-    const B: usize = 3;
     let p = stack_params::<f32>(overhang);
     let mut world = PhysicsWorld { gravity: Vector::new(0.0, -p.gravity), ..Default::default() };
     world.integration_parameters.dt = p.step;
@@ -169,28 +167,28 @@ fn rapier_stack_run(overhang: f64) -> StackEnd {
         RigidBodyBuilder::fixed().translation(Vector::new(-table_half.x, -table_half.y)),
         collider(table_half.x, table_half.y),
     );
-    // The core's start (`StackParams::start`): body i is the k-th from the top, k = B - i.
-    let mut right = 0.0;
-    let mut blocks = Vec::with_capacity(B);
-    let mut start_y = [0.0; B];
-    for (i, y0) in start_y.iter_mut().enumerate() {
-        right += p.overhang * hl / (B - i) as f32;
-        *y0 = (i as f32 + 0.5) * p.height;
-        let (body, _) = world.insert(
-            RigidBodyBuilder::dynamic().translation(Vector::new(right - hl, *y0)).can_sleep(false),
-            collider(hl, hh).density(p.mass / (p.length * p.height)),
-        );
-        blocks.push(body);
-    }
+    // The core's own start (its harmonic offsets scaled by s), read from a fresh `Stack3`.
+    let starts = *Stack3::<f32>::new(p).unwrap().stepper().states();
+    let blocks = starts.map(|st| {
+        world
+            .insert(
+                RigidBodyBuilder::dynamic()
+                    .translation(Vector::new(st.x, st.y))
+                    .rotation(st.theta)
+                    .can_sleep(false),
+                collider(hl, hh).density(p.mass / (p.length * p.height)),
+            )
+            .0
+    });
     let total = (p.max_time / p.step).round() as u64;
     let mut steps = 0u64;
     let start = Instant::now();
     let outcome = loop {
         world.step();
         steps += 1;
-        let fell = blocks.iter().zip(start_y).any(|(&b, y0)| {
+        let fell = blocks.iter().zip(&starts).any(|(&b, st)| {
             let body = &world.bodies[b];
-            body.rotation().angle().abs() > p.tilt_limit || y0 - body.translation().y > p.drop_limit
+            body.rotation().angle().abs() > p.tilt_limit || st.y - body.translation().y > p.drop_limit
         });
         if fell {
             break Outcome::Fell;
