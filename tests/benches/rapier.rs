@@ -24,6 +24,7 @@ use std::fmt::Write as _;
 use std::time::Instant;
 
 use meterstick_core::Real;
+use meterstick_core::multibody::Stats;
 use meterstick_core::multibody::scenes::{Stack3, StackParams};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use rapier2d::prelude::*;
@@ -134,6 +135,8 @@ struct StackEnd {
     outcome: Outcome,
     time: f64,
     ns_per_step: f64,
+    /// The core's solver counters (`None` for rapier).
+    stats: Option<Stats>,
 }
 
 fn stack_params<T: Real>(overhang: f64) -> StackParams<T> {
@@ -145,8 +148,13 @@ fn core_stack_run<T: Real>(overhang: f64) -> StackEnd {
     let start = Instant::now();
     let outcome = s.run(|_| {});
     let ns = start.elapsed().as_nanos() as f64;
-    let steps = s.stepper().stats().steps;
-    StackEnd { outcome, time: s.stepper().time().as_f64(), ns_per_step: ns / f64::from(steps) }
+    let stats = *s.stepper().stats();
+    StackEnd {
+        outcome,
+        time: s.stepper().time().as_f64(),
+        ns_per_step: ns / f64::from(stats.steps),
+        stats: Some(stats),
+    }
 }
 
 fn rapier_stack_run(overhang: f64) -> StackEnd {
@@ -198,12 +206,15 @@ fn rapier_stack_run(overhang: f64) -> StackEnd {
         }
     };
     let ns = start.elapsed().as_nanos() as f64;
-    StackEnd { outcome, time: steps as f64 * f64::from(p.step), ns_per_step: ns / steps as f64 }
+    StackEnd { outcome, time: steps as f64 * f64::from(p.step), ns_per_step: ns / steps as f64, stats: None }
 }
 
-/// One engine's line: the timed runs' median and the outcome at each of [`OVERHANGS`].
+/// One engine's line: the timed runs' median and the outcome at each of [`OVERHANGS`]; for the
+/// core, a second line with the timed run's solver counters.
 fn stack_line(text: &mut String, name: &str, repeats: usize, run: impl Fn(f64) -> StackEnd) -> f64 {
-    let ns = median((0..repeats).map(|_| run(TIMED_OVERHANG).ns_per_step).collect());
+    let timed: Vec<StackEnd> = (0..repeats).map(|_| run(TIMED_OVERHANG)).collect();
+    let stats = timed[0].stats;
+    let ns = median(timed.into_iter().map(|e| e.ns_per_step).collect());
     write!(text, "  {name:<26} {ns:>9.1} ns/step").unwrap();
     for s in OVERHANGS {
         let e = run(s);
@@ -211,6 +222,17 @@ fn stack_line(text: &mut String, name: &str, repeats: usize, run: impl Fn(f64) -
         write!(text, "  s = {s:.2}: {} {how} {:.3} s", e.outcome.name(), e.time).unwrap();
     }
     text.push('\n');
+    if let Some(st) = stats {
+        writeln!(
+            text,
+            "    (s = {TIMED_OVERHANG}: warm basis solved {:.0}% of steps without a pivot, {:.2} pivots/step, \
+             at most {} active contacts)",
+            100.0 * f64::from(st.warm_direct) / f64::from(st.steps),
+            st.pivots as f64 / f64::from(st.steps),
+            st.max_active
+        )
+        .unwrap();
+    }
     ns
 }
 
