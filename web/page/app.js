@@ -40,6 +40,7 @@ function measuredText(values) {
 /// The LCP of a scene of k contacts in the layout the form's lcp-size (6 reduced, 8 full) selects:
 /// 3k x 3k or 4k x 4k.
 function lcpText(k, size) {
+  if (k === 0) return 'full LCP'; // a scene of several bodies: sized by its candidate contacts
   const n = (size === '8' ? 4 : 3) * k;
   return `${n}x${n}`;
 }
@@ -189,10 +190,11 @@ function writeUrl() {
 /// A live run of the core.
 function liveSource(params) {
   const core = S.core;
-  const trace = new Trace(core.contacts(S.scene));
+  const shapes = core.shapes();
+  const trace = new Trace(core.contacts(S.scene), shapes ? shapes.sizes.length : 0);
   trace.push(core.startRow());
   return {
-    kind: 'live', scene: S.scene, params, trace, ended: false, outcome: null,
+    kind: 'live', scene: S.scene, params, trace, shapes, ended: false, outcome: null,
     precision: $('precision').value, lcpSize: $('lcp-size').value,
     advance(n) {
       if (this.ended) return 0;
@@ -283,7 +285,7 @@ function makeRun() {
   }
   S.source = liveSource(made.params);
   S.simTarget = 0;
-  view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k);
+  view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
   if (S.scene === 'meter-stick') {
     map.setCurrent({ speed: made.params.finger1_velocity, ratio: made.params.mu_kinetic / made.params.mu_static });
   }
@@ -306,8 +308,8 @@ function finish() {
     const s = src.stats;
     const k = src.trace.k;
     $('run-info').textContent = `${src.precision} ${lcpText(k, src.lcpSize)}, h = ${plain(src.params.step)} s: `
-      + `${s.steps.toLocaleString('en')} steps, ${s.pivots.toLocaleString('en')} pivots, `
-      + `${s.fullLayout.toLocaleString('en')} steps needed the ${lcpText(k, '8')} form`;
+      + `${s.steps.toLocaleString('en')} steps, ${s.pivots.toLocaleString('en')} pivots`
+      + (src.trace.bodies > 0 ? '' : `, ${s.fullLayout.toLocaleString('en')} steps needed the ${lcpText(k, '8')} form`);
     $('measured').textContent = measuredText(src.measured);
     $('measured').dataset.values = JSON.stringify(src.measured);
   } else {
@@ -433,6 +435,14 @@ function drawPlots(src) {
   const marks = tr.events.filter((e) => e.ratio !== null).map((e) => ({
     t: e.t, y: e.x, color: CONTACT_COLORS[e.contact], label: e.ratio.toFixed(3),
   }));
+  if (tr.bodies > 0) {
+    // Each body's x, angle and height (body 1 the lowest), in the contacts' colours.
+    const each = (key, scale) => Array.from({ length: tr.bodies }, (_, b) => series(`b${b + 1}${key}`, CONTACT_COLORS[b], 2.5, scale)).flat();
+    drawPlot($('plot-positions'), { series: each('x', 1), ticks, tMax, yLabel: 'x (m)', aspect: 0.39 });
+    drawPlot($('plot-angle'), { series: each('theta', 180 / Math.PI), ticks, tMax, yLabel: 'angle (deg)', aspect: 0.24, minSpan: 2 });
+    drawPlot($('plot-height'), { series: each('y', 100), ticks, tMax, yLabel: 'height (cm)', aspect: 0.24, minSpan: 1 });
+    return;
+  }
   const supports = Array.from({ length: tr.k }, (_, i) => series(`s${i + 1}x`, CONTACT_COLORS[i], 2.5)).flat();
   drawPlot($('plot-positions'), {
     series: [...supports, ...series('x', COLORS.com, 3.5)],
@@ -477,7 +487,7 @@ function startReplay(run) {
   S.simTarget = 0;
   clearResult('replay: press Play');
   $('error').textContent = '';
-  view.setScene(S.source.scene, S.source.params, S.source.trace.last, S.source.trace.k);
+  view.setScene(S.source.scene, S.source.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
   const { reference, comparison } = run.summary;
   $('replay-info').textContent = `${run.name}: ${run.summary.scene}, core ${run.summary.core.implementation} ${run.summary.core.outcome}, `
     + (reference && comparison ? `reference ${reference.outcome}; max |COM| deviation ${comparison.max_com_deviation_m.toExponential(2)} m` : 'no reference');
@@ -693,8 +703,14 @@ window.meterstick = {
   trace() {
     const tr = S.source && S.source.trace;
     if (!tr) return null;
-    const pick = (k) => Array.from(tr.cols[k].subarray(0, tr.n));
+    // A scene of several bodies keeps no velocities (x, y, theta: the top body's).
+    const pick = (k) => (tr.cols[k] ? Array.from(tr.cols[k].subarray(0, tr.n)) : []);
     return { t: pick('t'), x: pick('x'), y: pick('y'), theta: pick('theta'), vx: pick('vx'), vy: pick('vy'), omega: pick('omega') };
+  },
+  /// The shown run's last row (a scene of several bodies: t, then each body's x, y, theta).
+  lastRow() {
+    const tr = S.source && S.source.trace;
+    return tr ? Array.from(tr.last) : null;
   },
   /// The shown scene's contacts, as the description names them, and the last row's length.
   contacts() {
