@@ -116,6 +116,15 @@ function buildForm(scene) {
   const k = S.core.contacts(scene);
   $('lcp-size').options[0].textContent = `${lcpText(k, '6')} (firmware)`;
   $('lcp-size').options[1].textContent = `${lcpText(k, '8')} (${k === 2 ? 'paper' : 'full'})`;
+  // A scene of several bodies has one LCP form, sized by its candidate contacts: no choice.
+  $('lcp-size').disabled = k === 0;
+  const bodies = S.core.isBodies(scene);
+  if (!S.captions) S.captions = ['cap-positions', 'cap-angle', 'cap-height'].map((id) => $(id).innerHTML);
+  const bodyCaptions = ['Positions: each body\'s centre of mass (body 1 the lowest), x (m) over t (s)',
+    'Angle of each body (deg) over t (s)', 'Height of each body\'s centre of mass (cm) over t (s)'];
+  ['cap-positions', 'cap-angle', 'cap-height'].forEach((id, i) => {
+    if (bodies) $(id).textContent = bodyCaptions[i]; else $(id).innerHTML = S.captions[i];
+  });
   // The catalogue's main flags are shown first, the rest under "More parameters".
   const isMain = (flag) => S.core.scene(scene).main_flags.includes(flag.long);
   const main = $('main-fields'); const more = $('more-fields');

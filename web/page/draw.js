@@ -357,7 +357,7 @@ export class SceneView {
     g.fillText(info.title, 14, 42);
     g.fillText(`step ${info.steps}${info.rate ? ` · ${info.rate}` : ''}`, 14, 64);
     // Legend.
-    const items = [
+    const items = this.shapes ? [['com', COLORS.com, 'centre of mass']] : [
       ['circle', COLORS.stick, 'sticking'], ['circle', COLORS.slide, 'sliding'], ['ring', COLORS.separated, 'separated'],
       ['line', COLORS.normal, 'normal force'], ['line', COLORS.friction, 'friction'], ['com', COLORS.com, 'centre of mass'],
     ];
