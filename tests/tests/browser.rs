@@ -9,8 +9,9 @@
 //! ladder, three fingers, the cylinder rolling and sliding and Painleve's rod jamming and sliding;
 //! on a difference it prints the first step that differs; for the scenes of one and three contacts
 //! also the module they ran in, their contacts and the measured quantities shown, against
-//! `host-sim`'s `summary.json` values; the tablecloth, a scene of several bodies, to the outcome,
-//! end state and measured quantity of host-sim's core run), that the scene selector loads a scene's module and runs
+//! `host-sim`'s `summary.json` values; the tablecloth, block-on-block and a falling stack, scenes
+//! of several bodies, to the outcome, end state and measured quantities of host-sim's core run),
+//! that the scene selector loads a scene's module and runs
 //! it, that the controls change the run
 //! (typing, Enter, the keyboard shortcut) and that a bad value shows `host-sim`'s sentence, that a
 //! click on the outcome map loads a run with the map's outcome, and the replay of a `host-sim run`
@@ -411,8 +412,11 @@ fn the_page_in_chromium() {
         "Slid",
     );
     check_scene(&b, &base, "three-fingers", "scene=three-fingers&speed=0.2&autorun=1&rate=max", "Held");
-    // The scenes of several bodies, in their module: the tablecloth pulled out from under the block.
+    // The scenes of several bodies, in their module: the tablecloth pulled out from under the
+    // block, a block riding on a block, a stack past its balance falling off the table's edge.
     check_bodies(&b, &base, "tablecloth", "scene=tablecloth&autorun=1&rate=max");
+    check_bodies(&b, &base, "block-on-block", "scene=block-on-block&precision=f64&autorun=1&rate=max");
+    check_bodies(&b, &base, "stack-falling", "scene=stack&overhang=1.5&autorun=1&rate=max");
     check_scene_selector(&b, &base);
 
     check_controls(&b, &base, &slow);

@@ -28,12 +28,21 @@ const MEASURE_WORDS = {
   'jam.time_s': (v) => `the end jammed at t = ${v.toFixed(4)} s`,
   'jam.normal_impulse_n_s': (v) => `normal impulse ${v.toFixed(5)} N s`,
   'jam.friction_impulse_n_s': (v) => `friction impulse ${v.toFixed(5)} N s`,
+  block_displacement_m: (v) => `the block moved ${(100 * v).toFixed(2)} cm`,
+  top_acceleration_m_s2: (v) => `the top block's acceleration ${v.toFixed(4)} m/s²`,
+  max_speed_m_s: (v) => `the fastest point's largest speed ${v.toFixed(4)} m/s`,
 };
 
-/// The measured quantities ({key: value | null}) in words; '-' when there are none.
-function measuredText(values) {
+/// A scene's own words for a key it shares with others.
+const SCENE_MEASURE_WORDS = {
+  'block-on-block': { acceleration_m_s2: (v) => `the bottom block's acceleration ${v.toFixed(4)} m/s²` },
+};
+
+/// The measured quantities ({key: value | null}) of `scene` in words; '-' when there are none.
+function measuredText(values, scene) {
+  const words = { ...MEASURE_WORDS, ...(SCENE_MEASURE_WORDS[scene] || {}) };
   const parts = Object.entries(values).filter(([, v]) => v !== null && v !== undefined)
-    .map(([key, v]) => (MEASURE_WORDS[key] ? MEASURE_WORDS[key](v) : `${key} ${v}`));
+    .map(([key, v]) => (words[key] ? words[key](v) : `${key} ${v}`));
   return parts.length ? parts.join('; ') : '-';
 }
 
@@ -319,7 +328,7 @@ function finish() {
     $('run-info').textContent = `${src.precision} ${lcpText(k, src.lcpSize)}, h = ${plain(src.params.step)} s: `
       + `${s.steps.toLocaleString('en')} steps, ${s.pivots.toLocaleString('en')} pivots`
       + (src.trace.bodies > 0 ? '' : `, ${s.fullLayout.toLocaleString('en')} steps needed the ${lcpText(k, '8')} form`);
-    $('measured').textContent = measuredText(src.measured);
+    $('measured').textContent = measuredText(src.measured, src.scene);
     $('measured').dataset.values = JSON.stringify(src.measured);
   } else {
     $('checksum').textContent = 'replay: see host-sim scene';
@@ -328,7 +337,7 @@ function finish() {
       + (r ? `${r.implementation}: ${r.outcome}` : 'no reference');
     const keys = S.main.scene(src.scene).measures;
     const values = Object.fromEntries(keys.map((key) => [key, key.split('.').reduce((v, part) => (v == null ? null : v[part]), c.measured)]));
-    $('measured').textContent = measuredText(values);
+    $('measured').textContent = measuredText(values, src.scene);
   }
   setState('ended');
   render(true);
