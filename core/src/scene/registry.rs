@@ -652,6 +652,56 @@ mod tests {
         assert_eq!(build(SceneKind::Incline, None, Precision::F64), Err(ParamError::OutOfRange("scene")));
     }
 
+    /// Steps a scene of several bodies `0` times (0: none), giving the steps taken and every
+    /// body's `x` in f64.
+    #[cfg(feature = "scenes-multibody")]
+    struct BodySteps(usize);
+
+    #[cfg(feature = "scenes-multibody")]
+    impl MultibodyVisitor for BodySteps {
+        type Output = (usize, [f64; MAX_BODIES]);
+        fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+            self,
+            mut scene: S,
+        ) -> Self::Output {
+            let taken = (0..self.0).take_while(|_| scene.step().is_some()).count();
+            let mut x = [f64::NAN; MAX_BODIES];
+            for (x, s) in x.iter_mut().zip(scene.states()) {
+                *x = s.x.as_f64();
+            }
+            (taken, x)
+        }
+    }
+
+    /// Held in place ([`AnyMultibody`]) and visited step by step, a scene of several bodies runs
+    /// as built and handed over whole; it gives its bodies' sizes and its table.
+    #[cfg(feature = "scenes-multibody")]
+    #[test]
+    fn a_held_multibody_scene_runs_as_built() {
+        for kind in SceneKind::ALL.into_iter().filter(|k| k.is_multibody()) {
+            for precision in Precision::ALL {
+                let params = SceneParams::defaults(kind);
+                let whole = params.build_multibody(precision, BodySteps(300)).unwrap();
+                let mut held = AnyMultibody::new(&params, precision).unwrap();
+                let (a, b) = (held.visit_mut(BodySteps(100)), held.visit_mut(BodySteps(200)));
+                let x = held.visit_mut(BodySteps(0)).1;
+                assert_eq!((a.0 + b.0, x.map(f64::to_bits)), (whole.0, whole.1.map(f64::to_bits)), "{kind}");
+                assert_eq!(held.stats().steps as usize, whole.0, "{kind}");
+                assert_eq!(held.sizes().iter().flatten().count(), held.bodies(), "{kind}");
+            }
+        }
+        let stack = AnyMultibody::new(&SceneParams::defaults(SceneKind::Stack), Precision::F32).unwrap();
+        assert_eq!(
+            (stack.bodies(), stack.table()),
+            (3, [None, Some(0.0)]),
+            "three blocks, the table's edge at 0"
+        );
+        assert_eq!(
+            AnyMultibody::new(&SceneParams::defaults(SceneKind::Incline), Precision::F32).err(),
+            Some(ParamError::OutOfRange("scene"))
+        );
+    }
+
     /// Every scene is built in the precision and layout asked for, with its catalogue's contacts
     /// and the LCP size the layout gives them.
     #[test]
