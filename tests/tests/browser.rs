@@ -9,7 +9,9 @@
 //! ladder, three fingers, the cylinder rolling and sliding and Painleve's rod jamming and sliding;
 //! on a difference it prints the first step that differs; for the scenes of one and three contacts
 //! also the module they ran in, their contacts and the measured quantities shown, against
-//! `host-sim`'s `summary.json` values), that the scene selector loads a scene's module and runs
+//! `host-sim`'s `summary.json` values; the tablecloth, block-on-block and a falling stack, scenes
+//! of several bodies, to the outcome, end state and measured quantities of host-sim's core run),
+//! that the scene selector loads a scene's module and runs
 //! it, that the controls change the run
 //! (typing, Enter, the keyboard shortcut) and that a bad value shows `host-sim`'s sentence, that a
 //! click on the outcome map loads a run with the map's outcome, and the replay of a `host-sim run`
@@ -25,6 +27,7 @@ use std::time::{Duration, Instant};
 
 use meterstick_host_sim::commands::{run as run_command, scene};
 use meterstick_host_sim::lcp_io::Precision;
+use meterstick_host_sim::multibody;
 use meterstick_host_sim::scenes::{Catalogued as _, FLAGS, LcpLayout, SceneArgs, SceneKind};
 use meterstick_host_sim::serve::{Replay, ServeArgs, Server};
 use meterstick_host_sim::trajectory::{Record, run_k};
@@ -409,6 +412,11 @@ fn the_page_in_chromium() {
         "Slid",
     );
     check_scene(&b, &base, "three-fingers", "scene=three-fingers&speed=0.2&autorun=1&rate=max", "Held");
+    // The scenes of several bodies, in their module: the tablecloth pulled out from under the
+    // block, a block riding on a block, a stack past its balance falling off the table's edge.
+    check_bodies(&b, &base, "tablecloth", "scene=tablecloth&autorun=1&rate=max");
+    check_bodies(&b, &base, "block-on-block", "scene=block-on-block&precision=f64&autorun=1&rate=max");
+    check_bodies(&b, &base, "stack-falling", "scene=stack&overhang=1.5&autorun=1&rate=max");
     check_scene_selector(&b, &base);
 
     check_controls(&b, &base, &slow);
@@ -468,15 +476,63 @@ fn check_scene(b: &Browser, base: &str, name: &str, query: &str, expected: &str)
     );
 }
 
+/// A scene of several bodies on the page (`query`): it runs in `meterstick_web_mb.wasm` to the
+/// outcome, the end state (time and every body's x, y, theta, bit for bit) and the measured
+/// quantities of host-sim's core run of the same flags.
+fn check_bodies(b: &Browser, base: &str, name: &str, query: &str) {
+    let started = Instant::now();
+    b.goto(&format!("{base}?{query}"));
+    let outcome = b.wait(
+        "the outcome",
+        "return document.getElementById('outcome').textContent",
+        Duration::from_secs(90),
+    );
+    let args = scene_args(query);
+    let spec = args.specs(None).unwrap()[0].1;
+    let host = multibody::run_core(&spec, args.precision, false, None).unwrap();
+    let shot = b.screenshot(name, None);
+    println!(
+        "{name}: ?{query}\n    page {}, host-sim's core {} ({:.1} s; {})",
+        outcome.as_str().unwrap(),
+        host.outcome.class.name(),
+        started.elapsed().as_secs_f64(),
+        shot.display()
+    );
+    assert_eq!(outcome.as_str(), Some(host.outcome.class.name()), "{name}: the outcome");
+    let fetched = b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
+    assert!(fetched.as_str().unwrap().contains("pkg/meterstick_web_mb.wasm"), "{name}: {fetched}");
+    let last = b.js("return window.meterstick.lastRow()");
+    let last: Vec<f64> = last.as_array().unwrap().iter().map(|v| v.as_f64().unwrap_or(f64::NAN)).collect();
+    let mut want = vec![host.end_time];
+    want.extend(host.last.q.iter().flatten());
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&last[..want.len()]), bits(&want), "{name}: the end state, page {last:?}, host {want:?}");
+    let host_measured = serde_json::to_value(host.measured).unwrap();
+    let values = b.js("return document.getElementById('measured').dataset.values");
+    let page: Value = serde_json::from_str(values.as_str().unwrap()).unwrap();
+    for key in args.scene.unwrap().info().measures {
+        let theirs = key.split('.').fold(&host_measured, |v, part| &v[part]);
+        assert_eq!(
+            page[key].as_f64().map(f64::to_bits),
+            theirs.as_f64().map(f64::to_bits),
+            "{name}: {key}: page {page}, host {host_measured}"
+        );
+    }
+    println!(
+        "    {} bodies, from pkg/meterstick_web_mb.wasm; measured: {}",
+        host.last.q.len(),
+        b.text("measured")
+    );
+}
+
 /// The scene selector: choosing the cylinder loads its module and its flags, and the run it makes
 /// is host-sim's.
 fn check_scene_selector(b: &Browser, base: &str) {
     b.goto(&format!("{base}?scene=meter-stick&rate=max"));
     b.wait("the page", "return document.body.dataset.state === 'ready'", Duration::from_secs(30));
     let options = b.js("return [...document.getElementById('scene-select').options].map((o) => o.value)");
-    // The scenes of several bodies are not on the page yet.
-    let names: Vec<&str> = SceneKind::ALL.iter().filter(|k| !k.is_multibody()).map(|k| k.name()).collect();
-    assert_eq!(options, json!(names), "the selector lists the catalogue's scenes of one body");
+    let names: Vec<&str> = SceneKind::ALL.iter().map(|k| k.name()).collect();
+    assert_eq!(options, json!(names), "the selector lists the catalogue's scenes");
     let fetched = || b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
     assert!(
         !fetched().as_str().unwrap().contains("meterstick_web_k1.wasm"),

@@ -28,18 +28,28 @@ const MEASURE_WORDS = {
   'jam.time_s': (v) => `the end jammed at t = ${v.toFixed(4)} s`,
   'jam.normal_impulse_n_s': (v) => `normal impulse ${v.toFixed(5)} N s`,
   'jam.friction_impulse_n_s': (v) => `friction impulse ${v.toFixed(5)} N s`,
+  block_displacement_m: (v) => `the block moved ${(100 * v).toFixed(2)} cm`,
+  top_acceleration_m_s2: (v) => `the top block's acceleration ${v.toFixed(4)} m/s²`,
+  max_speed_m_s: (v) => `the fastest point's largest speed ${v.toFixed(4)} m/s`,
 };
 
-/// The measured quantities ({key: value | null}) in words; '-' when there are none.
-function measuredText(values) {
+/// A scene's own words for a key it shares with others.
+const SCENE_MEASURE_WORDS = {
+  'block-on-block': { acceleration_m_s2: (v) => `the bottom block's acceleration ${v.toFixed(4)} m/s²` },
+};
+
+/// The measured quantities ({key: value | null}) of `scene` in words; '-' when there are none.
+function measuredText(values, scene) {
+  const words = { ...MEASURE_WORDS, ...(SCENE_MEASURE_WORDS[scene] || {}) };
   const parts = Object.entries(values).filter(([, v]) => v !== null && v !== undefined)
-    .map(([key, v]) => (MEASURE_WORDS[key] ? MEASURE_WORDS[key](v) : `${key} ${v}`));
+    .map(([key, v]) => (words[key] ? words[key](v) : `${key} ${v}`));
   return parts.length ? parts.join('; ') : '-';
 }
 
 /// The LCP of a scene of k contacts in the layout the form's lcp-size (6 reduced, 8 full) selects:
 /// 3k x 3k or 4k x 4k.
 function lcpText(k, size) {
+  if (k === 0) return 'full LCP'; // a scene of several bodies: sized by its candidate contacts
   const n = (size === '8' ? 4 : 3) * k;
   return `${n}x${n}`;
 }
@@ -115,6 +125,15 @@ function buildForm(scene) {
   const k = S.core.contacts(scene);
   $('lcp-size').options[0].textContent = `${lcpText(k, '6')} (firmware)`;
   $('lcp-size').options[1].textContent = `${lcpText(k, '8')} (${k === 2 ? 'paper' : 'full'})`;
+  // A scene of several bodies has one LCP form, sized by its candidate contacts: no choice.
+  $('lcp-size').disabled = k === 0;
+  const bodies = S.core.isBodies(scene);
+  if (!S.captions) S.captions = ['cap-positions', 'cap-angle', 'cap-height'].map((id) => $(id).innerHTML);
+  const bodyCaptions = ['Positions: each body\'s centre of mass (body 1 the lowest), x (m) over t (s)',
+    'Angle of each body (deg) over t (s)', 'Height of each body\'s centre of mass (cm) over t (s)'];
+  ['cap-positions', 'cap-angle', 'cap-height'].forEach((id, i) => {
+    if (bodies) $(id).textContent = bodyCaptions[i]; else $(id).innerHTML = S.captions[i];
+  });
   // The catalogue's main flags are shown first, the rest under "More parameters".
   const isMain = (flag) => S.core.scene(scene).main_flags.includes(flag.long);
   const main = $('main-fields'); const more = $('more-fields');
@@ -189,10 +208,11 @@ function writeUrl() {
 /// A live run of the core.
 function liveSource(params) {
   const core = S.core;
-  const trace = new Trace(core.contacts(S.scene));
+  const shapes = core.shapes();
+  const trace = new Trace(core.contacts(S.scene), shapes ? shapes.sizes.length : 0);
   trace.push(core.startRow());
   return {
-    kind: 'live', scene: S.scene, params, trace, ended: false, outcome: null,
+    kind: 'live', scene: S.scene, params, trace, shapes, ended: false, outcome: null,
     precision: $('precision').value, lcpSize: $('lcp-size').value,
     advance(n) {
       if (this.ended) return 0;
@@ -283,7 +303,7 @@ function makeRun() {
   }
   S.source = liveSource(made.params);
   S.simTarget = 0;
-  view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k);
+  view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
   if (S.scene === 'meter-stick') {
     map.setCurrent({ speed: made.params.finger1_velocity, ratio: made.params.mu_kinetic / made.params.mu_static });
   }
@@ -306,9 +326,9 @@ function finish() {
     const s = src.stats;
     const k = src.trace.k;
     $('run-info').textContent = `${src.precision} ${lcpText(k, src.lcpSize)}, h = ${plain(src.params.step)} s: `
-      + `${s.steps.toLocaleString('en')} steps, ${s.pivots.toLocaleString('en')} pivots, `
-      + `${s.fullLayout.toLocaleString('en')} steps needed the ${lcpText(k, '8')} form`;
-    $('measured').textContent = measuredText(src.measured);
+      + `${s.steps.toLocaleString('en')} steps, ${s.pivots.toLocaleString('en')} pivots`
+      + (src.trace.bodies > 0 ? '' : `, ${s.fullLayout.toLocaleString('en')} steps needed the ${lcpText(k, '8')} form`);
+    $('measured').textContent = measuredText(src.measured, src.scene);
     $('measured').dataset.values = JSON.stringify(src.measured);
   } else {
     $('checksum').textContent = 'replay: see host-sim scene';
@@ -317,7 +337,7 @@ function finish() {
       + (r ? `${r.implementation}: ${r.outcome}` : 'no reference');
     const keys = S.main.scene(src.scene).measures;
     const values = Object.fromEntries(keys.map((key) => [key, key.split('.').reduce((v, part) => (v == null ? null : v[part]), c.measured)]));
-    $('measured').textContent = measuredText(values);
+    $('measured').textContent = measuredText(values, src.scene);
   }
   setState('ended');
   render(true);
@@ -433,6 +453,14 @@ function drawPlots(src) {
   const marks = tr.events.filter((e) => e.ratio !== null).map((e) => ({
     t: e.t, y: e.x, color: CONTACT_COLORS[e.contact], label: e.ratio.toFixed(3),
   }));
+  if (tr.bodies > 0) {
+    // Each body's x, angle and height (body 1 the lowest), in the contacts' colours.
+    const each = (key, scale) => Array.from({ length: tr.bodies }, (_, b) => series(`b${b + 1}${key}`, CONTACT_COLORS[b], 2.5, scale)).flat();
+    drawPlot($('plot-positions'), { series: each('x', 1), ticks, tMax, yLabel: 'x (m)', aspect: 0.39 });
+    drawPlot($('plot-angle'), { series: each('theta', 180 / Math.PI), ticks, tMax, yLabel: 'angle (deg)', aspect: 0.24, minSpan: 2 });
+    drawPlot($('plot-height'), { series: each('y', 100), ticks, tMax, yLabel: 'height (cm)', aspect: 0.24, minSpan: 1 });
+    return;
+  }
   const supports = Array.from({ length: tr.k }, (_, i) => series(`s${i + 1}x`, CONTACT_COLORS[i], 2.5)).flat();
   drawPlot($('plot-positions'), {
     series: [...supports, ...series('x', COLORS.com, 3.5)],
@@ -477,7 +505,7 @@ function startReplay(run) {
   S.simTarget = 0;
   clearResult('replay: press Play');
   $('error').textContent = '';
-  view.setScene(S.source.scene, S.source.params, S.source.trace.last, S.source.trace.k);
+  view.setScene(S.source.scene, S.source.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
   const { reference, comparison } = run.summary;
   $('replay-info').textContent = `${run.name}: ${run.summary.scene}, core ${run.summary.core.implementation} ${run.summary.core.outcome}, `
     + (reference && comparison ? `reference ${reference.outcome}; max |COM| deviation ${comparison.max_com_deviation_m.toExponential(2)} m` : 'no reference');
@@ -693,8 +721,14 @@ window.meterstick = {
   trace() {
     const tr = S.source && S.source.trace;
     if (!tr) return null;
-    const pick = (k) => Array.from(tr.cols[k].subarray(0, tr.n));
+    // A scene of several bodies keeps no velocities (x, y, theta: the top body's).
+    const pick = (k) => (tr.cols[k] ? Array.from(tr.cols[k].subarray(0, tr.n)) : []);
     return { t: pick('t'), x: pick('x'), y: pick('y'), theta: pick('theta'), vx: pick('vx'), vy: pick('vy'), omega: pick('omega') };
+  },
+  /// The shown run's last row (a scene of several bodies: t, then each body's x, y, theta).
+  lastRow() {
+    const tr = S.source && S.source.trace;
+    return tr ? Array.from(tr.last) : null;
   },
   /// The shown scene's contacts, as the description names them, and the last row's length.
   contacts() {

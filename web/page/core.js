@@ -2,13 +2,15 @@
 // the map workers. A module has no imports; its API is plain numbers and two buffers in linear
 // memory (see web/src/exports.rs and docs/page.md). Each module holds the scenes of some
 // numbers of contacts (its description's `holds`): meterstick_web.wasm the two-contact scenes,
-// meterstick_web_k1.wasm and meterstick_web_k3.wasm the others, fetched when such a scene is chosen.
+// meterstick_web_k1.wasm and meterstick_web_k3.wasm the others, meterstick_web_mb.wasm the scenes
+// of several bodies (contacts 0 in `holds`), fetched when such a scene is chosen.
 
 export const WASM_URL = new URL('./pkg/meterstick_web.wasm', import.meta.url);
 
-/// The module that holds the scenes of k contacts.
+/// The module that holds the scenes of k contacts (0: the scenes of several bodies).
 export function moduleUrl(k) {
-  return k === 2 ? WASM_URL : new URL(`./pkg/meterstick_web_k${k}.wasm`, import.meta.url);
+  if (k === 2) return WASM_URL;
+  return new URL(k === 0 ? './pkg/meterstick_web_mb.wasm' : `./pkg/meterstick_web_k${k}.wasm`, import.meta.url);
 }
 
 /// Compiles a module (once; the map workers get the compiled module).
@@ -45,7 +47,13 @@ export class Core {
     return this.desc.scenes.find((s) => s.name === name);
   }
 
-  /// The number of contacts of a scene.
+  /// `true` for a scene of several bodies (rows of time and each body's x, y, theta).
+  isBodies(name) {
+    const scene = this.scene(name);
+    return Boolean(scene && scene.bodies);
+  }
+
+  /// The number of contacts of a scene (0 for a scene of several bodies).
   contacts(name) {
     const scene = this.scene(name);
     return scene ? scene.contacts.length : 0;
@@ -82,6 +90,16 @@ export class Core {
     const fields = this.current.fields;
     const params = Object.fromEntries(fields.map((name, i) => [name, this.x.ms_param(i)]));
     return { ok: true, params };
+  }
+
+  /// The run's bodies, for a scene of several bodies: {sizes: [[width, height]] (body 0 the
+  /// lowest), table: [lo, hi] (null for an end it does not have)}; null for a scene of one body.
+  shapes() {
+    if (!this.current || !this.current.bodies) return null;
+    const sizes = [];
+    for (let i = 0; !Number.isNaN(this.x.ms_body_size(i, 0)); i += 1) sizes.push([this.x.ms_body_size(i, 0), this.x.ms_body_size(i, 1)]);
+    const end = (i) => { const v = this.x.ms_table_end(i); return Number.isNaN(v) ? null : v; };
+    return { sizes, table: [end(0), end(1)] };
   }
 
   /// The state at t = 0 as a row (a copy).

@@ -97,16 +97,19 @@ export class SceneView {
     this.aspect = 0.52;
   }
 
-  /// A new scene: its name, parameters (core fields, SI), start row, number of contacts.
-  setScene(scene, params, start, k) {
+  /// A new scene: its name, parameters (core fields, SI), start row, number of contacts, and for
+  /// a scene of several bodies their shapes ({sizes: [[w, h]], table: [lo, hi]}, core.js `shapes`).
+  setScene(scene, params, start, k, shapes = null) {
     this.scene = scene;
     this.k = k;
+    this.shapes = shapes;
     this.params = params;
     this.start = start;
     this.camera = null;
   }
 
   camera0(w, h) {
+    if (this.shapes) return this.bodiesCamera(w, h);
     const p = this.params;
     const [bw, bh] = bodySize(this.scene, p);
     if (this.scene === 'meter-stick') {
@@ -142,10 +145,67 @@ export class SceneView {
     return { k: w / span, x0: this.start[COL.x], y0: this.start[COL.y], cx: w / 2, cy: h * 0.5, follow: true };
   }
 
+  /// The view of a scene of several bodies: every body at the start with room around it (the
+  /// tablecloth's board leaves to the right, a stack's blocks fall past the table's edge), fixed.
+  bodiesCamera(w, h) {
+    const s = this.start; const sizes = this.shapes.sizes;
+    let left = Infinity; let right = -Infinity; let top = 0;
+    sizes.forEach(([bw, bh], b) => {
+      const x = s[1 + 3 * b]; const y = s[2 + 3 * b]; const r = Math.hypot(bw, bh) / 2;
+      left = Math.min(left, x - r); right = Math.max(right, x + r); top = Math.max(top, y + r);
+    });
+    for (const end of this.shapes.table) if (end !== null) { left = Math.min(left, end); right = Math.max(right, end); }
+    const span = right - left;
+    const k = Math.min(w / (1.6 * span), (0.6 * h) / Math.max(top, 1e-3));
+    return { k, x0: (left + right) / 2 + 0.15 * span, y0: 0, cx: w / 2, cy: h * 0.8, follow: false };
+  }
+
+  /// Draws a row of a scene of several bodies: the table (hatched, with its edge), each body a box.
+  drawBodies(g, w, h, row, info) {
+    const cam = this.camera;
+    const X = (x) => cam.cx + (x - cam.x0) * cam.k;
+    const Y = (y) => cam.cy - (y - cam.y0) * cam.k;
+    g.fillStyle = COLORS.paper; g.fillRect(0, 0, w, h);
+    const [lo, hi] = this.shapes.table;
+    const a = lo === null ? 0 : Math.max(0, X(lo)); const b = hi === null ? w : Math.min(w, X(hi));
+    if (b > a) {
+      hatch(g, a, Y(0), b - a, h - Y(0));
+      g.strokeStyle = COLORS.ink; g.lineWidth = 3;
+      g.beginPath();
+      if (lo !== null) { g.moveTo(a, h); g.lineTo(a, Y(0)); } else g.moveTo(a, Y(0));
+      g.lineTo(b, Y(0));
+      if (hi !== null) g.lineTo(b, h);
+      g.stroke();
+      // A mark every 10 cm on the table, so that the motion shows.
+      g.lineWidth = 2;
+      const from = Math.ceil((cam.x0 - w / (2 * cam.k)) / 0.1); const to = Math.floor((cam.x0 + w / (2 * cam.k)) / 0.1);
+      for (let i = from; i <= to; i += 1) {
+        const x = X(i * 0.1);
+        if (x >= a && x <= b) { g.beginPath(); g.moveTo(x, Y(0)); g.lineTo(x - 8, Y(0) + 10); g.stroke(); }
+      }
+    }
+    this.shapes.sizes.forEach(([bw, bh], i) => {
+      const x = row[1 + 3 * i]; const y = row[2 + 3 * i]; const theta = row[3 + 3 * i];
+      g.save();
+      g.translate(X(x), Y(y)); g.rotate(-theta);
+      const pw = bw * cam.k; const ph = Math.max(bh * cam.k, 3);
+      g.fillStyle = CONTACT_COLORS[i % CONTACT_COLORS.length]; g.globalAlpha = 0.45;
+      g.fillRect(-pw / 2, -ph / 2, pw, ph);
+      g.globalAlpha = 1; g.strokeStyle = COLORS.ink; g.lineWidth = 2; g.strokeRect(-pw / 2, -ph / 2, pw, ph);
+      g.restore();
+      comSymbol(g, X(x), Y(y), 7);
+    });
+    this.drawOverlay(g, w, h, cam, info);
+  }
+
   /// Draws the row; `info` = {title, time, steps, outcome: {name} | null, reference: row | null, rate}.
   draw(row, info) {
     const { g, w, h } = fitCanvas(this.canvas, this.aspect);
     if (!this.camera || this.camera.w !== w) this.camera = { ...this.camera0(w, h), w };
+    if (this.shapes) {
+      this.drawBodies(g, w, h, row, info);
+      return;
+    }
     const cam = this.camera;
     if (cam.follow) {
       // The camera rides with the body (the slope's marks show the motion).
@@ -297,7 +357,7 @@ export class SceneView {
     g.fillText(info.title, 14, 42);
     g.fillText(`step ${info.steps}${info.rate ? ` · ${info.rate}` : ''}`, 14, 64);
     // Legend.
-    const items = [
+    const items = this.shapes ? [['com', COLORS.com, 'centre of mass']] : [
       ['circle', COLORS.stick, 'sticking'], ['circle', COLORS.slide, 'sliding'], ['ring', COLORS.separated, 'separated'],
       ['line', COLORS.normal, 'normal force'], ['line', COLORS.friction, 'friction'], ['com', COLORS.com, 'centre of mass'],
     ];

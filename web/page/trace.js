@@ -27,13 +27,25 @@ export function contactColumns(k, i) {
 
 const isSliding = (m) => m === 2 || m === 3;
 
+/// Numbers per row of a scene of several bodies: t, then each of up to 3 bodies' x, y, theta.
+export const BODIES_ROW = 10;
+
 export class Trace {
-  /// An empty trace of a scene with k contacts.
-  constructor(k) {
+  /// An empty trace of a scene with k contacts, or of `bodies` bodies (k = 0): rows of t and each
+  /// body's x, y, theta (body 0 the lowest), kept as b<i>x, b<i>y, b<i>theta (1-based; x, y and
+  /// theta are the top body's).
+  constructor(k, bodies = 0) {
     this.k = k;
-    this.row = rowLength(k);
+    this.bodies = bodies;
+    this.row = bodies > 0 ? BODIES_ROW : rowLength(k);
     this.at = Array.from({ length: k }, (_, i) => contactColumns(k, i));
-    this.kept = [...STATE.map((name, c) => [name, c]), ...this.at.map((c, i) => [`s${i + 1}x`, c.sx])];
+    if (bodies > 0) {
+      const top = 1 + 3 * (bodies - 1);
+      this.kept = [['t', 0], ['x', top], ['y', top + 1], ['theta', top + 2]];
+      for (let b = 0; b < bodies; b += 1) this.kept.push([`b${b + 1}x`, 1 + 3 * b], [`b${b + 1}y`, 2 + 3 * b], [`b${b + 1}theta`, 3 + 3 * b]);
+    } else {
+      this.kept = [...STATE.map((name, c) => [name, c]), ...this.at.map((c, i) => [`s${i + 1}x`, c.sx])];
+    }
     this.n = 0;
     this.cap = 1024;
     this.cols = Object.fromEntries(this.kept.map(([name]) => [name, new Float64Array(this.cap)]));

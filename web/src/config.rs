@@ -33,9 +33,13 @@ pub const fn layout_of_page_size(n: u32) -> Option<LcpLayout> {
 pub use meterstick_core::scene::SceneParams;
 
 /// `true` when this module holds the scenes of `kind`'s contact count (cargo features `k1`, `k2`,
-/// `k3`: the page's first module has the two-contact scenes and loads the others' on demand).
+/// `k3`: the page's first module has the two-contact scenes and loads the others' on demand), or
+/// `kind` is a scene of several bodies and this module has them (feature `mb`).
 #[must_use]
 pub const fn holds(kind: SceneKind) -> bool {
+    if kind.is_multibody() {
+        return cfg!(feature = "mb");
+    }
     let k = kind.contacts();
     (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
 }

@@ -142,8 +142,7 @@ pub extern "C" fn ms_describe() -> u32 {
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_configure(scene: u32) -> i32 {
-    // The scenes of several bodies are not in the description: the page does not run them yet.
-    let Some(kind) = crate::flags::SceneKind::from_index(scene).filter(|k| !k.is_multibody()) else {
+    let Some(kind) = crate::flags::SceneKind::from_index(scene) else {
         return -1;
     };
     store::with(|s, _, _| s.session.configure(kind));
@@ -309,6 +308,28 @@ pub extern "C" fn ms_measured(i: u32) -> f64 {
     })
 }
 
+/// A scene of several bodies' body `i` (0 the lowest): its width (`axis` 0) or height (`axis` 1)
+/// in m; NaN past its bodies, for another axis, for a scene of one body or without a run.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_body_size(i: u32, axis: u32) -> f64 {
+    store::with(|s, _, _| {
+        let size = s.session.sim().and_then(|sim| sim.body_size(i as usize));
+        size.and_then(|wh| wh.get(axis as usize).copied()).unwrap_or(f64::NAN)
+    })
+}
+
+/// A scene of several bodies' table: its left (`end` 0) or right (`end` 1) end in m (the top
+/// face is `y = 0`); NaN for an end it does not have (a floor has none), or without such a run.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_table_end(end: u32) -> f64 {
+    store::with(|s, _, _| {
+        let ends = s.session.sim().map_or([None, None], crate::sim::Sim::table);
+        ends.get(end as usize).copied().flatten().unwrap_or(f64::NAN)
+    })
+}
+
 /// The text buffer's content (host only: tests).
 #[cfg(not(target_arch = "wasm32"))]
 #[must_use]
@@ -341,14 +362,17 @@ mod tests {
         assert_eq!(json.len(), n as usize);
         assert!(json.len() < TEXT_BYTES / 2, "room to grow: {} bytes", json.len());
         assert!(json.starts_with("{\"version\":") && json.ends_with('}'), "{json}");
-        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic"}}"#), "{json}");
+        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic"}}"#), "{json}");
         assert!(json.contains(r#""contacts":["finger 1","finger 2"],"row":19,"measures":["meeting.time_s","meeting.com_offset_m"]"#), "{json}");
         assert!(
             json.contains(r#""name":"cylinder","#) && json.contains(r#""contacts":["rim"],"row":13,"#),
             "{json}"
         );
         assert!(json.contains(r#""contacts":["finger 1","finger 2","finger 3"],"row":25,"#), "{json}");
-        assert!(json.contains(r#""holds":[1,2,3],"#), "the host build holds every scene: {json}");
+        assert!(json.contains(r#""holds":[0,1,2,3],"#), "the host build holds every scene: {json}");
+        // The scenes of several bodies come last, rows of time and each body's x, y, theta.
+        assert!(json.contains(r#"{"name":"stack","#), "{json}");
+        assert!(json.contains(r#""contacts":[],"bodies":true,"row":10,"#), "{json}");
         assert!(json.contains(r#""ends":["Rolled","Slid"],"main_flags":["angle","mu-s","mu-k","radius","inertia-ratio","h"]}"#), "{json}");
         assert!(json.contains(r#""measures":["jam.time_s","jam.normal_impulse_n_s","jam.friction_impulse_n_s"],"ends":["Jammed","Slid","Fell","Unfinished"]"#), "{json}");
         assert!(json.contains(r#""defaults":[1,0.005,0.2,9.81,-0.4,0.4,0,0,0.1,0,0.01,0.6,0.4,0.001,0.00001,0.35,0.02,0.5,30]"#), "{json}");
@@ -422,7 +446,7 @@ mod tests {
         assert!(ms_param(0).is_nan());
         assert_eq!(ms_create(16, 6), -1);
         assert_eq!(ms_create(32, 7), -1);
-        assert_eq!(ms_configure(6), -1);
+        assert_eq!(ms_configure(crate::flags::SceneKind::ALL.len() as u32), -1);
         assert_eq!(ms_give(FLAGS.len() as u32, 1.0), -1);
     }
 }

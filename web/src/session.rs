@@ -7,14 +7,13 @@ use meterstick_core::scene::Outcome;
 
 use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneParams, holds};
 use crate::flags::{Catalogued as _, FLAGS, SceneKind};
-use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Sim, row_len};
+use crate::sim::{BODIES_ROW, MAX_CONTACTS, MODES, OUTCOMES, Sim, row_len};
 use crate::text::{Text, json_num, json_str};
-use meterstick_catalogue::Refusal;
 
 /// Rows one `ms_step` call may write (the trace buffer holds this many).
 pub const TRACE_ROWS: usize = 2048;
 /// Bytes of text one call may return (the description, an error, an outcome).
-pub const TEXT_BYTES: usize = 16 * 1024;
+pub const TEXT_BYTES: usize = 32 * 1024;
 
 /// Why [`Session::create`] made no run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,10 +73,6 @@ impl Session {
     pub fn create(&mut self, precision: Precision, size: LcpLayout) -> Result<(), CreateError> {
         self.sim = None;
         self.spec = None;
-        if self.config.kind.is_multibody() {
-            let refusal = Refusal::NotYet { kind: self.config.kind, driver: "the page" };
-            return Err(CreateError::Config(ConfigError(refusal)));
-        }
         if !holds(self.config.kind) {
             return Err(CreateError::OtherModule(self.config.kind));
         }
@@ -110,6 +105,9 @@ impl core::fmt::Display for CreateError {
         match self {
             Self::Config(e) => write!(f, "{e}"),
             Self::Core(e) => write!(f, "{e}"),
+            Self::OtherModule(kind) if kind.is_multibody() => {
+                write!(f, "scene {kind} runs in meterstick_web_mb.wasm, not in this module")
+            }
             Self::OtherModule(kind) => {
                 let k = kind.contacts();
                 write!(f, "scene {kind} runs in meterstick_web_k{k}.wasm, not in this module")
@@ -118,12 +116,13 @@ impl core::fmt::Display for CreateError {
     }
 }
 
-/// Writes the description the page builds its controls from, as JSON: each scene of one body (the
-/// scenes of several bodies come last in the catalogue and the page does not run them yet, so
-/// the numbers of those it lists are unchanged) with its name, title,
-/// core fields and defaults, contacts (named; a row has [`row_len`] numbers for them), measured
-/// quantities (`summary.json`'s keys) and the outcomes it can end in; each flag's name, unit, help
-/// and field per scene; the mode and outcome names; the limits.
+/// Writes the description the page builds its controls from, as JSON: each scene of the
+/// catalogue, in its order, with its name, title, core fields and defaults, contacts (named; a row
+/// has [`row_len`] numbers for them; a scene of several bodies has `"contacts":[]`, `"bodies":true`
+/// and rows of [`BODIES_ROW`]: time and each body's `x, y, theta`), measured quantities
+/// (`summary.json`'s keys) and the outcomes it can end in; each flag's name, unit, help and field
+/// per scene; the mode and outcome names; the limits; `holds`, the contact counts of the scenes
+/// this module runs (0: the scenes of several bodies).
 ///
 /// # Errors
 /// Never in practice (a [`Text`] drops what does not fit and says so).
@@ -139,7 +138,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     out.write_str("{\"version\":")?;
     json_str(out, crate::VERSION)?;
     out.write_str(",\"scenes\":[")?;
-    for (i, kind) in SceneKind::ALL.into_iter().filter(|k| !k.is_multibody()).enumerate() {
+    for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
         let info = kind.info();
         out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
         json_str(out, kind.name())?;
@@ -154,17 +153,18 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         }
         out.write_char(']')?;
         list(out, "contacts", &mut info.contact_names.iter().copied())?;
-        write!(out, ",\"row\":{}", row_len(kind.contacts()))?;
+        if kind.is_multibody() {
+            write!(out, ",\"bodies\":true,\"row\":{BODIES_ROW}")?;
+        } else {
+            write!(out, ",\"row\":{}", row_len(kind.contacts()))?;
+        }
         list(out, "measures", &mut info.measures.iter().copied())?;
         list(out, "ends", &mut info.outcomes.iter().map(|o| o.name()))?;
         list(out, "main_flags", &mut info.main_flags.iter().copied())?;
         out.write_char('}')?;
     }
     out.write_str("],\"flags\":[")?;
-    // The flags of the scenes of several bodies alone come last in the catalogue (its tests check
-    // it): the page lists those before them, with their numbers.
-    for (i, flag) in FLAGS.iter().take_while(|f| f.fields.iter().any(|(k, _)| !k.is_multibody())).enumerate()
-    {
+    for (i, flag) in FLAGS.iter().enumerate() {
         out.write_str(if i > 0 { ",{\"long\":" } else { "{\"long\":" })?;
         json_str(out, flag.long)?;
         out.write_str(",\"unit\":")?;
@@ -172,9 +172,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         out.write_str(",\"help\":")?;
         json_str(out, flag.help)?;
         out.write_str(",\"fields\":{")?;
-        // The page's scenes only (a flag of the scenes of several bodies alone keeps its place,
-        // with no field: the flags' numbers are the command line's).
-        for (j, (kind, field)) in flag.fields.iter().filter(|(k, _)| !k.is_multibody()).enumerate() {
+        for (j, (kind, field)) in flag.fields.iter().enumerate() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_str(out, kind.name())?;
             out.write_char(':')?;
@@ -187,7 +185,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     list(out, "outcomes", &mut OUTCOMES.iter().copied())?;
     out.write_str(",\"holds\":[")?;
     let mut first = true;
-    for k in 1..=MAX_CONTACTS {
+    for k in 0..=MAX_CONTACTS {
         if SceneKind::ALL.iter().any(|s| s.contacts() == k && holds(*s)) {
             write!(out, "{}{k}", if first { "" } else { "," })?;
             first = false;
@@ -214,29 +212,21 @@ mod tests {
     fn the_host_build_runs_every_scene_and_a_module_words_what_it_does_not_hold() {
         let mut s = Session::new();
         for kind in SceneKind::ALL {
-            if kind.is_multibody() {
-                // Refused in the user's words before anything is built.
-                s.configure(kind);
-                let e = s.create(Precision::F32, LcpLayout::Reduced);
-                let e = e.err().map(|e| StackStr::<128>::of(format_args!("{e}")));
-                let want = match kind {
-                    SceneKind::Stack => "scene stack: not yet in the page",
-                    SceneKind::Tablecloth => "scene tablecloth: not yet in the page",
-                    _ => "scene block-on-block: not yet in the page",
-                };
-                assert_eq!(e.as_ref().map(StackStr::as_str), Some(want));
-                assert!(s.sim().is_none());
-                continue;
-            }
             assert!(holds(kind), "{kind}");
             s.configure(kind);
             assert!(s.create(Precision::F32, LcpLayout::Reduced).is_ok(), "{kind}");
-            assert_eq!(s.sim().map(Sim::row_len), Some(row_len(kind.contacts())), "{kind}");
+            let row = if kind.is_multibody() { BODIES_ROW } else { row_len(kind.contacts()) };
+            assert_eq!(s.sim().map(Sim::row_len), Some(row), "{kind}");
         }
         let e = CreateError::OtherModule(SceneKind::Cylinder);
         assert_eq!(
             StackStr::<128>::of(format_args!("{e}")).as_str(),
             "scene cylinder runs in meterstick_web_k1.wasm, not in this module"
+        );
+        let e = CreateError::OtherModule(SceneKind::Tablecloth);
+        assert_eq!(
+            StackStr::<128>::of(format_args!("{e}")).as_str(),
+            "scene tablecloth runs in meterstick_web_mb.wasm, not in this module"
         );
     }
 }

@@ -6,14 +6,20 @@
 
 // A module built with some of the scene features leaves the others' helpers unused.
 #![cfg_attr(
-    not(all(feature = "k1", feature = "k2", feature = "k3")),
+    not(all(feature = "k1", feature = "k2", feature = "k3", feature = "mb")),
     allow(dead_code, unused_imports, unused_mut, unused_variables)
 )]
 
 use meterstick_core::ParamError;
 use meterstick_core::Real;
+#[cfg(feature = "mb")]
+use meterstick_core::multibody::scenes::MultibodyScene;
 use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-use meterstick_core::scene::{AnyScene, Outcome, OutcomeKind, Scene, SceneKind, SceneVisitor};
+#[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+use meterstick_core::scene::AnyScene;
+#[cfg(feature = "mb")]
+use meterstick_core::scene::{AnyMultibody, MultibodyVisitor};
+use meterstick_core::scene::{Outcome, OutcomeKind, Scene, SceneKind, SceneVisitor};
 
 use crate::config::{LcpLayout, Precision, SceneParams, holds};
 
@@ -28,8 +34,16 @@ pub const fn row_len(k: usize) -> usize {
     7 + 6 * k
 }
 
+/// The most bodies a scene of several bodies has (the stack of three; the core's `MAX_BODIES`).
+pub const MAX_BODIES: usize = 3;
+
+/// Numbers per row of a scene of several bodies: time, then each body's `x, y, theta` (body 0 the
+/// lowest; NaN for a body the scene does not have), as `host-sim`'s trajectory of bodies.
+pub const BODIES_ROW: usize = 1 + 3 * MAX_BODIES;
+
 /// The longest row (a scene with [`MAX_CONTACTS`]).
 pub const MAX_ROW: usize = row_len(MAX_CONTACTS);
+const _: () = assert!(BODIES_ROW <= MAX_ROW);
 
 /// The modes by code ([`mode_code`]), as `core.csv` spells them.
 pub const MODES: [&str; 4] = ["separated", "sticking", "sliding+", "sliding-"];
@@ -57,11 +71,23 @@ pub const fn outcome_code(o: Outcome) -> u8 {
     o.kind().code()
 }
 
+/// A scene of one body or of several, held in place.
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // one scene per run, held in place: there is no heap on wasm
+enum Held {
+    /// A scene of one body (`E = 0`: the page finds switch events in the rows).
+    #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+    One(AnyScene<0>),
+    /// A scene of several bodies.
+    #[cfg(feature = "mb")]
+    Many(AnyMultibody),
+}
+
 /// One run.
 #[derive(Debug, Clone)]
 pub struct Sim {
-    /// The scene (`E = 0`: the page finds switch events in the rows), from the core's registry.
-    scene: AnyScene<0>,
+    /// The scene, from the core's registry.
+    scene: Held,
     kind: SceneKind,
     checksum: Checksum,
     start: [f64; MAX_ROW],
@@ -77,9 +103,26 @@ impl Sim {
         if !holds(spec.kind()) {
             return Err(ParamError::OutOfRange("scene"));
         }
-        let mut scene = AnyScene::new(spec, precision, layout)?;
         let mut start = [0.0; MAX_ROW];
-        scene.visit_mut(StartRow(&mut start));
+        let scene = if spec.kind().is_multibody() {
+            #[cfg(feature = "mb")]
+            {
+                let mut scene = AnyMultibody::new(spec, precision)?;
+                scene.visit_mut(BodiesStartRow(&mut start));
+                Held::Many(scene)
+            }
+            #[cfg(not(feature = "mb"))]
+            return Err(ParamError::OutOfRange("scene"));
+        } else {
+            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+            {
+                let mut scene = AnyScene::new(spec, precision, layout)?;
+                scene.visit_mut(StartRow(&mut start));
+                Held::One(scene)
+            }
+            #[cfg(not(any(feature = "k1", feature = "k2", feature = "k3")))]
+            return Err(ParamError::OutOfRange("scene"));
+        };
         Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start })
     }
 
@@ -92,7 +135,7 @@ impl Sim {
     /// Numbers per row of this run ([`row_len`] of its contacts).
     #[must_use]
     pub const fn row_len(&self) -> usize {
-        row_len(self.kind.contacts())
+        if self.kind.is_multibody() { BODIES_ROW } else { row_len(self.kind.contacts()) }
     }
 
     /// The row of the state at `t = 0` (the contacts' initial modes; no impulses).
@@ -104,19 +147,34 @@ impl Sim {
     /// Steps until the run ends or `rows` is full, writing one row per step into `rows`
     /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
-        self.scene.visit_mut(StepRows { checksum: &mut self.checksum, rows })
+        match &mut self.scene {
+            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+            Held::One(s) => s.visit_mut(StepRows { checksum: &mut self.checksum, rows }),
+            #[cfg(feature = "mb")]
+            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum: &mut self.checksum, rows }),
+        }
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
     /// benchmark); returns the steps taken.
     pub fn run(&mut self, max: u64) -> u64 {
-        self.scene.visit_mut(Run { checksum: &mut self.checksum, max })
+        match &mut self.scene {
+            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+            Held::One(s) => s.visit_mut(Run { checksum: &mut self.checksum, max }),
+            #[cfg(feature = "mb")]
+            Held::Many(s) => s.visit_mut(Run { checksum: &mut self.checksum, max }),
+        }
     }
 
     /// The outcome, once the run has ended.
     #[must_use]
     pub fn outcome(&self) -> Option<Outcome> {
-        self.scene.outcome()
+        match &self.scene {
+            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+            Held::One(s) => s.outcome(),
+            #[cfg(feature = "mb")]
+            Held::Many(s) => s.outcome(),
+        }
     }
 
     /// The trajectory checksum so far (FNV-1a over the state's bits after every step).
@@ -128,20 +186,136 @@ impl Sim {
     /// Simulated time (s).
     #[must_use]
     pub fn time(&self) -> f64 {
-        self.scene.time()
+        match &self.scene {
+            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+            Held::One(s) => s.time(),
+            #[cfg(feature = "mb")]
+            Held::Many(s) => s.time(),
+        }
     }
 
-    /// The stepper's counters (steps, pivots, warm starts, full-layout fallbacks, ...).
+    /// The stepper's counters (steps, pivots, warm starts, full-layout fallbacks, ...); a scene of
+    /// several bodies has steps, pivots, the most in a step and its warm starts (the rest 0).
     #[must_use]
     pub fn stats(&self) -> RunStats {
-        *self.scene.stats()
+        match &self.scene {
+            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+            Held::One(s) => *s.stats(),
+            #[cfg(feature = "mb")]
+            Held::Many(s) => {
+                let st = s.stats();
+                RunStats {
+                    steps: u64::from(st.steps),
+                    pivots: st.pivots,
+                    max_pivots: st.max_pivots,
+                    warm_starts: u64::from(st.warm_direct),
+                    ..RunStats::default()
+                }
+            }
+        }
     }
 
     /// The scene's measured quantities so far, in the order of the catalogue's `measures` for
     /// the scene (`summary.json`'s keys, [`Scene::measured`]); NaN where there is none (yet).
     #[must_use]
     pub fn measured(&self) -> [f64; MAX_MEASURES] {
-        self.scene.measured().map(|v| v.unwrap_or(f64::NAN))
+        let m = match &self.scene {
+            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+            Held::One(s) => s.measured(),
+            #[cfg(feature = "mb")]
+            Held::Many(s) => s.measured(),
+        };
+        m.map(|v| v.unwrap_or(f64::NAN))
+    }
+
+    /// A scene of several bodies' body `i`'s `[width, height]` (m); `None` past its bodies or for
+    /// a scene of one body.
+    #[must_use]
+    pub fn body_size(&self, i: usize) -> Option<[f64; 2]> {
+        match &self.scene {
+            #[cfg(feature = "mb")]
+            Held::Many(s) => s.sizes().get(i).copied().flatten(),
+            #[allow(unreachable_patterns)]
+            _ => None,
+        }
+    }
+
+    /// A scene of several bodies' table ends `[lo, hi]` (m; `None` for an infinite end, and both
+    /// for a scene of one body).
+    #[must_use]
+    pub fn table(&self) -> [Option<f64>; 2] {
+        match &self.scene {
+            #[cfg(feature = "mb")]
+            Held::Many(s) => s.table(),
+            #[allow(unreachable_patterns)]
+            _ => [None, None],
+        }
+    }
+}
+
+/// A scene of several bodies' row: `time`, then every body's `x, y, theta` ([`BODIES_ROW`]; NaN
+/// past its bodies).
+fn bodies_row<T: Real>(time: T, states: &[meterstick_core::planar::BodyState<T>], row: &mut [f64]) {
+    row[0] = time.as_f64();
+    for (b, slot) in row[1..BODIES_ROW].chunks_exact_mut(3).enumerate() {
+        let q = states.get(b).map_or([f64::NAN; 3], |s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]);
+        slot.copy_from_slice(&q);
+    }
+}
+
+/// The start row of a scene of several bodies, as a visitor of the core's registry.
+#[cfg(feature = "mb")]
+struct BodiesStartRow<'a>(&'a mut [f64; MAX_ROW]);
+
+#[cfg(feature = "mb")]
+impl MultibodyVisitor for BodiesStartRow<'_> {
+    type Output = ();
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, scene: S) {
+        bodies_row(scene.time(), scene.states(), &mut self.0[..]);
+    }
+}
+
+/// Steps a scene of several bodies into rows of [`BODIES_ROW`], adding every body's state to
+/// the checksum.
+#[cfg(feature = "mb")]
+struct BodiesStepRows<'a> {
+    checksum: &'a mut Checksum,
+    rows: &'a mut [f64],
+}
+
+#[cfg(feature = "mb")]
+impl MultibodyVisitor for BodiesStepRows<'_> {
+    type Output = usize;
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+        self,
+        mut scene: S,
+    ) -> usize {
+        let mut taken = 0;
+        for row in self.rows.chunks_exact_mut(BODIES_ROW) {
+            let Some(report) = scene.step() else { break };
+            for s in &report.states {
+                self.checksum.add(s);
+            }
+            bodies_row(report.time, &report.states, row);
+            taken += 1;
+        }
+        taken
+    }
+}
+
+#[cfg(feature = "mb")]
+impl MultibodyVisitor for Run<'_> {
+    type Output = u64;
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, mut scene: S) -> u64 {
+        let mut taken = 0;
+        while taken < self.max {
+            let Some(report) = scene.step() else { break };
+            for s in &report.states {
+                self.checksum.add(s);
+            }
+            taken += 1;
+        }
+        taken
     }
 }
 

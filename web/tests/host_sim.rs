@@ -139,3 +139,65 @@ fn a_config_gives_each_flag_once() {
         "the last value given counts, as on the command line"
     );
 }
+
+#[test]
+#[allow(clippy::float_cmp)] // exact: the same computation, the bits compared
+fn a_run_of_several_bodies_through_the_exports_ends_as_host_sims_core_run() {
+    use meterstick_host_sim::multibody::run_core;
+    use meterstick_web::{
+        ms_configure, ms_create, ms_give, ms_outcome, ms_start_row, ms_step, ms_time, trace_row,
+    };
+    let cases: &[(SceneKind, Given, Precision)] = &[
+        (SceneKind::Tablecloth, &[], Precision::F32),
+        (SceneKind::Tablecloth, &[("force", 2.0)], Precision::F64),
+        (SceneKind::BlockOnBlock, &[], Precision::F32),
+        (SceneKind::BlockOnBlock, &[("force", 5.0)], Precision::F64),
+        (SceneKind::Stack, &[("blocks", 2.0)], Precision::F32),
+        (SceneKind::Stack, &[("overhang", 1.5)], Precision::F64),
+    ];
+    for (kind, given, precision) in cases {
+        let scene = SceneKind::ALL.iter().position(|k| k == kind).unwrap();
+        assert_eq!(ms_configure(u32::try_from(scene).unwrap()), 0);
+        for (long, v) in *given {
+            assert_eq!(ms_give(u32::try_from(flag_index(long).unwrap()).unwrap(), *v), 0);
+        }
+        let bits = if *precision == Precision::F32 { 32 } else { 64 };
+        assert_eq!(ms_create(bits, 8), 0, "{kind:?} {given:?}");
+        assert_eq!(ms_start_row(), 1);
+        let (mut steps, mut last) = (0_u64, trace_row(0, 10));
+        loop {
+            let n = ms_step(2048);
+            if n == 0 {
+                break;
+            }
+            steps += u64::from(n);
+            last = trace_row(n as usize - 1, 10);
+        }
+        // host-sim's own resolution of the same flags, and its core run.
+        let (args, _) = both(*kind, given, *precision, LcpLayout::Reduced);
+        let (_, spec) = args.specs(None).unwrap().remove(0);
+        let theirs = run_core(&spec, *precision, false, None).unwrap();
+        let ours = meterstick_web::sim::OUTCOMES[usize::try_from(ms_outcome()).unwrap()];
+        assert_eq!(ours, theirs.outcome.class.name(), "{kind:?} {given:?}");
+        assert_eq!((steps, last[0]), (theirs.steps, theirs.end_time), "{kind:?} {given:?}");
+        assert_eq!(ms_time(), theirs.end_time);
+        for (b, q) in theirs.last.q.iter().enumerate() {
+            assert_eq!(&last[1 + 3 * b..4 + 3 * b], q, "{kind:?} {given:?} body {b}");
+        }
+        assert!(last[1 + 3 * theirs.last.q.len()..].iter().all(|v| v.is_nan()), "no further bodies");
+    }
+}
+
+#[test]
+fn a_run_of_several_bodies_gives_its_shapes() {
+    use meterstick_web::{ms_body_size, ms_configure, ms_create, ms_table_end};
+    let stack = SceneKind::ALL.iter().position(|k| *k == SceneKind::Stack).unwrap();
+    assert_eq!(ms_configure(u32::try_from(stack).unwrap()), 0);
+    assert_eq!(ms_create(64, 6), 0);
+    // Three blocks of the defaults, 0.2 m x 0.05 m, on a table with one edge.
+    for b in 0..3 {
+        assert_eq!((ms_body_size(b, 0), ms_body_size(b, 1)), (0.2, 0.05), "block {b}");
+    }
+    assert!(ms_body_size(3, 0).is_nan() && ms_body_size(0, 2).is_nan());
+    assert_eq!(u8::from(ms_table_end(0).is_nan()) + u8::from(ms_table_end(1).is_nan()), 1, "one edge");
+}

@@ -41,7 +41,7 @@ pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickP
 pub use outcome::{Outcome, OutcomeKind};
 pub use painleve::{Jam, Painleve, PainleveParams};
 #[cfg(feature = "scenes-multibody")]
-pub use registry::MultibodyVisitor;
+pub use registry::{AnyMultibody, MAX_BODIES, MultibodyVisitor};
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use registry::{AnyScene, SceneIn};
 pub use registry::{LcpLayout, Precision, SceneVisitor};

@@ -20,9 +20,16 @@ use super::{MeterStick, Scene};
 #[cfg(feature = "scenes-multibody")]
 use crate::multibody::scenes::{BlockOnBlock, MultibodyScene, Stack2, Stack3, Tablecloth};
 use crate::params::ParamError;
-use crate::real::Real;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
-use {super::Outcome, super::kind::MAX_MEASURES, crate::planar::RunStats};
+use crate::planar::RunStats;
+use crate::real::Real;
+#[cfg(any(
+    feature = "scenes-k1",
+    feature = "scenes-k2",
+    feature = "scenes-k3",
+    feature = "scenes-multibody"
+))]
+use {super::Outcome, super::kind::MAX_MEASURES};
 
 /// Scalar precision of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -426,6 +433,157 @@ impl<const E: usize> AnyScene<E> {
     }
 }
 
+#[cfg(feature = "scenes-multibody")]
+impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Sized> MultibodyScene<T, B, P>
+    for &mut S
+{
+    const ROWS: usize = S::ROWS;
+    fn step(&mut self) -> Option<crate::multibody::StepReport<T, B, P>> {
+        (**self).step()
+    }
+    fn outcome(&self) -> Option<Outcome> {
+        (**self).outcome()
+    }
+    fn states(&self) -> &[crate::planar::BodyState<T>; B] {
+        (**self).states()
+    }
+    fn time(&self) -> T {
+        (**self).time()
+    }
+    fn stats(&self) -> &crate::multibody::Stats {
+        (**self).stats()
+    }
+    fn measured(&self) -> [Option<T>; MAX_MEASURES] {
+        (**self).measured()
+    }
+}
+
+/// The most bodies a scene of several bodies has (the stack of three).
+#[cfg(feature = "scenes-multibody")]
+pub const MAX_BODIES: usize = 3;
+
+#[cfg(feature = "scenes-multibody")]
+/// Any scene of several bodies in either precision, held in place ([`SceneParams::build_multibody`]'s
+/// scenes, kept between calls: the browser page steps a frame at a time).
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // one scene per run, held in place: there is no heap on wasm
+pub enum AnyMultibody {
+    /// Block-on-block in f32.
+    BlockOnBlockF32(BlockOnBlock<f32>),
+    /// Block-on-block in f64.
+    BlockOnBlockF64(BlockOnBlock<f64>),
+    /// The tablecloth in f32.
+    TableclothF32(Tablecloth<f32>),
+    /// The tablecloth in f64.
+    TableclothF64(Tablecloth<f64>),
+    /// The stack of two in f32.
+    Stack2F32(Stack2<f32>),
+    /// The stack of two in f64.
+    Stack2F64(Stack2<f64>),
+    /// The stack of three in f32.
+    Stack3F32(Stack3<f32>),
+    /// The stack of three in f64.
+    Stack3F64(Stack3<f64>),
+}
+
+#[cfg(feature = "scenes-multibody")]
+/// `$body` with `$s` bound to the held scene, whichever it is.
+macro_rules! each_multibody {
+    ($held:expr, $s:ident => $body:expr) => {
+        match $held {
+            AnyMultibody::BlockOnBlockF32($s) => $body,
+            AnyMultibody::BlockOnBlockF64($s) => $body,
+            AnyMultibody::TableclothF32($s) => $body,
+            AnyMultibody::TableclothF64($s) => $body,
+            AnyMultibody::Stack2F32($s) => $body,
+            AnyMultibody::Stack2F64($s) => $body,
+            AnyMultibody::Stack3F32($s) => $body,
+            AnyMultibody::Stack3F64($s) => $body,
+        }
+    };
+}
+
+#[cfg(feature = "scenes-multibody")]
+impl AnyMultibody {
+    /// The scene of `params` in `precision`, at its start.
+    ///
+    /// # Errors
+    /// As [`SceneParams::build_multibody`].
+    pub fn new(params: &SceneParams, precision: Precision) -> Result<Self, ParamError> {
+        use Precision::{F32, F64};
+        Ok(match (*params, precision) {
+            (SceneParams::BlockOnBlock(p), F32) => Self::BlockOnBlockF32(BlockOnBlock::new(p.cast())?),
+            (SceneParams::BlockOnBlock(p), F64) => Self::BlockOnBlockF64(BlockOnBlock::new(p.cast())?),
+            (SceneParams::Tablecloth(p), F32) => Self::TableclothF32(Tablecloth::new(p.cast())?),
+            (SceneParams::Tablecloth(p), F64) => Self::TableclothF64(Tablecloth::new(p.cast())?),
+            (SceneParams::Stack(s), precision) => match (s.block_count(), precision) {
+                (Some(2), F32) => Self::Stack2F32(Stack2::new(s.params.cast())?),
+                (Some(2), F64) => Self::Stack2F64(Stack2::new(s.params.cast())?),
+                (Some(3), F32) => Self::Stack3F32(Stack3::new(s.params.cast())?),
+                (Some(3), F64) => Self::Stack3F64(Stack3::new(s.params.cast())?),
+                _ => return Err(ParamError::OutOfRange("blocks")),
+            },
+            _ => return Err(ParamError::OutOfRange("scene")),
+        })
+    }
+
+    /// Hands the scene, in place, to `visitor`.
+    pub fn visit_mut<V: MultibodyVisitor>(&mut self, visitor: V) -> V::Output {
+        each_multibody!(self, s => visitor.visit(s))
+    }
+
+    /// The outcome, once the run has ended.
+    #[must_use]
+    pub fn outcome(&self) -> Option<Outcome> {
+        each_multibody!(self, s => s.outcome())
+    }
+
+    /// Simulated time (s).
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        each_multibody!(self, s => s.stepper().time().as_f64())
+    }
+
+    /// What the scene measures, in f64.
+    #[must_use]
+    pub fn measured(&self) -> [Option<f64>; MAX_MEASURES] {
+        each_multibody!(self, s => MultibodyScene::measured(s).map(|v| v.map(Real::as_f64)))
+    }
+
+    /// The stepper's counters.
+    #[must_use]
+    pub fn stats(&self) -> &crate::multibody::Stats {
+        each_multibody!(self, s => s.stepper().stats())
+    }
+
+    /// The number of bodies (body 0 the lowest).
+    #[must_use]
+    pub fn bodies(&self) -> usize {
+        each_multibody!(self, s => s.stepper().states().len())
+    }
+
+    /// Each body's `[width, height]` (m), `None` past [`Self::bodies`].
+    #[must_use]
+    pub fn sizes(&self) -> [Option<[f64; 2]>; MAX_BODIES] {
+        let mut out = [None; MAX_BODIES];
+        each_multibody!(self, s => {
+            for (o, b) in out.iter_mut().zip(&s.stepper().system().bodies) {
+                *o = Some([b.width.as_f64(), b.height.as_f64()]);
+            }
+        });
+        out
+    }
+
+    /// The table's ends `[lo, hi]` (m), `None` for an infinite end.
+    #[must_use]
+    pub fn table(&self) -> [Option<f64>; 2] {
+        each_multibody!(self, s => {
+            let t = s.stepper().system().table;
+            [t.lo.map(Real::as_f64), t.hi.map(Real::as_f64)]
+        })
+    }
+}
+
 #[cfg(all(test, feature = "scenes"))]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -492,6 +650,56 @@ mod tests {
         assert_eq!(build(SceneKind::Stack, Some(3.0), Precision::F64), Ok(("f64", 3, 3, 32)));
         assert_eq!(build(SceneKind::Stack, Some(4.0), Precision::F64), Err(ParamError::OutOfRange("blocks")));
         assert_eq!(build(SceneKind::Incline, None, Precision::F64), Err(ParamError::OutOfRange("scene")));
+    }
+
+    /// Steps a scene of several bodies `0` times (0: none), giving the steps taken and every
+    /// body's `x` in f64.
+    #[cfg(feature = "scenes-multibody")]
+    struct BodySteps(usize);
+
+    #[cfg(feature = "scenes-multibody")]
+    impl MultibodyVisitor for BodySteps {
+        type Output = (usize, [f64; MAX_BODIES]);
+        fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+            self,
+            mut scene: S,
+        ) -> Self::Output {
+            let taken = (0..self.0).take_while(|_| scene.step().is_some()).count();
+            let mut x = [f64::NAN; MAX_BODIES];
+            for (x, s) in x.iter_mut().zip(scene.states()) {
+                *x = s.x.as_f64();
+            }
+            (taken, x)
+        }
+    }
+
+    /// Held in place ([`AnyMultibody`]) and visited step by step, a scene of several bodies runs
+    /// as built and handed over whole; it gives its bodies' sizes and its table.
+    #[cfg(feature = "scenes-multibody")]
+    #[test]
+    fn a_held_multibody_scene_runs_as_built() {
+        for kind in SceneKind::ALL.into_iter().filter(|k| k.is_multibody()) {
+            for precision in Precision::ALL {
+                let params = SceneParams::defaults(kind);
+                let whole = params.build_multibody(precision, BodySteps(300)).unwrap();
+                let mut held = AnyMultibody::new(&params, precision).unwrap();
+                let (a, b) = (held.visit_mut(BodySteps(100)), held.visit_mut(BodySteps(200)));
+                let x = held.visit_mut(BodySteps(0)).1;
+                assert_eq!((a.0 + b.0, x.map(f64::to_bits)), (whole.0, whole.1.map(f64::to_bits)), "{kind}");
+                assert_eq!(held.stats().steps as usize, whole.0, "{kind}");
+                assert_eq!(held.sizes().iter().flatten().count(), held.bodies(), "{kind}");
+            }
+        }
+        let stack = AnyMultibody::new(&SceneParams::defaults(SceneKind::Stack), Precision::F32).unwrap();
+        assert_eq!(
+            (stack.bodies(), stack.table()),
+            (3, [None, Some(0.0)]),
+            "three blocks, the table's edge at 0"
+        );
+        assert_eq!(
+            AnyMultibody::new(&SceneParams::defaults(SceneKind::Incline), Precision::F32).err(),
+            Some(ParamError::OutOfRange("scene"))
+        );
     }
 
     /// Every scene is built in the precision and layout asked for, with its catalogue's contacts
