@@ -7,7 +7,7 @@ use super::geometry::{CornerFrame, Pair, Table, pair_frames, slip};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
-use crate::planar::{Body, BodyState, ContactMode};
+use crate::planar::{Body, BodyState, Checksum, ContactMode};
 use crate::real::Real;
 
 /// The scalars of a step: time step, gravity, stick threshold and the activity rule's margin.
@@ -96,6 +96,16 @@ impl<T, const B: usize, const P: usize> StepReport<T, B, P> {
         contacts.iter().all(|&(p, c)| {
             self.modes.get(p).and_then(|m| m.get(c)).is_some_and(|m| *m != ContactMode::Separated)
         })
+    }
+}
+
+impl<T: Real, const B: usize, const P: usize> StepReport<T, B, P> {
+    /// Adds every body's state after the step, in body order, to a trajectory checksum: over a
+    /// run, the fingerprint the firmware prints and the host compares bit for bit.
+    pub fn add_to(&self, checksum: &mut Checksum) {
+        for state in &self.states {
+            checksum.add(state);
+        }
     }
 }
 
