@@ -30,7 +30,8 @@ done
   done
   echo
   echo "Instructions per step (slow scene v = 0.1 m/s and fast v = 5 m/s, x1 = -0.35 m, f32 6x6 with the 8x8"
-  echo "fallback, through the rig loop; QEMU -icount shift=0, SysTick ticks converted with the calibration loop):"
+  echo "fallback, through the rig loop; on the M4F and M33F also block-on-block and the 3-block stack at their"
+  echo "defaults, f32, stepped directly; QEMU -icount shift=0, SysTick ticks converted with the calibration loop):"
   echo
   echo "| core (QEMU machine) | scene | steps | instructions/step (mean) | worst step (instructions) |"
   echo "|---|---|---|---|---|"

@@ -4,15 +4,23 @@
 //! directly through the scene registry (`SceneParams::build_in`, the reduced layout: incline and
 //! ladder 6x6, three fingers 9x9, cylinder and Painlevé's rod 3x3), all in f32, and prints for each its switch events, its outcome, statistics and the
 //! trajectory checksum (`meterstick_core::planar::Checksum`), then the SysTick ticks the rig's
-//! steps took and a calibration of ticks against instructions. Exit status: 0 when the LCP was
-//! solved and every scene ended as physics says (balanced, fell, slid, fell, held, rolled, jammed).
+//! steps took and a calibration of ticks against instructions. With `qemu-multibody` (M4F and M33F;
+//! see firmware/Cargo.toml) also block-on-block and the 3-block stack at their defaults in f32 through the
+//! registry (`SceneParams::build_multibody`): outcome, steps, the checksum of every step's states
+//! of all bodies in body order (`StepReport::add_to`) and the SysTick ticks of their steps. Exit
+//! status: 0 when the LCP was solved and every scene ended as physics says (balanced, fell, slid,
+//! fell, held, rolled, jammed; block-on-block slid, the stack held).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
+#[cfg(feature = "qemu-multibody")]
+use meterstick_core::multibody::scenes::MultibodyScene;
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::scene::{
     LcpLayout, MeterStickParams, Outcome, Scene, SceneKind, SceneParams, SceneVisitor,
 };
+#[cfg(feature = "qemu-multibody")]
+use meterstick_core::scene::{MultibodyVisitor, Precision};
 use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 
 use crate::systick;
@@ -159,6 +167,12 @@ const fn expected(kind: SceneKind) -> Outcome {
         SceneKind::ThreeFingers => Outcome::Held,
         SceneKind::Cylinder => Outcome::Rolled,
         SceneKind::Painleve => Outcome::Jammed,
+        #[cfg(feature = "qemu-multibody")]
+        SceneKind::BlockOnBlock => Outcome::Slid,
+        #[cfg(feature = "qemu-multibody")]
+        SceneKind::Stack => Outcome::Held,
+        #[cfg(feature = "qemu-multibody")]
+        SceneKind::Tablecloth => Outcome::Stayed,
     }
 }
 
@@ -186,11 +200,81 @@ impl SceneVisitor for CheckPlain {
 fn check_other_scenes() -> i32 {
     let mut failures = 0;
     for kind in SceneKind::ALL {
-        if kind == SceneKind::MeterStick {
+        if kind == SceneKind::MeterStick || kind.is_multibody() {
             continue;
         }
         let check = CheckPlain { name: kind.name(), expected: expected(kind) };
         failures += match SceneParams::defaults(kind).build_in::<f32, 16, _>(LcpLayout::Reduced, check) {
+            Ok(failed) => failed,
+            Err(e) => {
+                defmt::println!("{=str}: {}", kind.name(), e);
+                1
+            }
+        };
+    }
+    failures
+}
+
+/// Runs the scene of several bodies it is handed to its outcome, timing each step in SysTick
+/// ticks, and prints its outcome, statistics and checksum, then the ticks (`<name> timing ..`, as
+/// the rig's scenes print theirs, for `host-sim qemu --icount`); counts 1 when it ended other than
+/// `expected`.
+#[cfg(feature = "qemu-multibody")]
+struct CheckMultibody {
+    name: &'static str,
+    expected: Outcome,
+}
+
+#[cfg(feature = "qemu-multibody")]
+impl MultibodyVisitor for CheckMultibody {
+    type Output = i32;
+
+    /// Not inlined, so that each scene's stack frame is its own.
+    #[inline(never)]
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, mut scene: S) -> i32 {
+        let mut checksum = Checksum::new();
+        let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
+        loop {
+            let t0 = systick::now();
+            let report = scene.step();
+            let used = systick::elapsed(t0, systick::now());
+            let Some(report) = report else { break };
+            steps += 1;
+            ticks += u64::from(used);
+            worst = worst.max(used);
+            report.add_to(&mut checksum);
+        }
+        let outcome = scene.outcome().unwrap_or(Outcome::Unfinished);
+        let st = scene.stats();
+        defmt::println!(
+            "{=str} outcome={} t={=f32} steps={=u64} pivots={=u64} max_active={=u8} checksum={=u32:08x}",
+            self.name,
+            outcome,
+            scene.time().as_f64() as f32,
+            u64::from(st.steps),
+            st.pivots,
+            st.max_active,
+            checksum.value()
+        );
+        defmt::println!(
+            "{=str} timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
+            self.name,
+            ticks,
+            worst,
+            steps
+        );
+        i32::from(outcome != self.expected)
+    }
+}
+
+/// Block-on-block and the stack (3 blocks) at their defaults, in f32, through the registry; the
+/// number that were refused or ended otherwise.
+#[cfg(feature = "qemu-multibody")]
+fn check_multibody_scenes() -> i32 {
+    let mut failures = 0;
+    for kind in [SceneKind::BlockOnBlock, SceneKind::Stack] {
+        let check = CheckMultibody { name: kind.name(), expected: expected(kind) };
+        failures += match SceneParams::defaults(kind).build_multibody(Precision::F32, check) {
             Ok(failed) => failed,
             Err(e) => {
                 defmt::println!("{=str}: {}", kind.name(), e);
@@ -238,6 +322,10 @@ pub fn main() -> ! {
         failures += 1;
     }
     failures += check_other_scenes();
+    #[cfg(feature = "qemu-multibody")]
+    {
+        failures += check_multibody_scenes();
+    }
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)
 }

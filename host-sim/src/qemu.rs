@@ -238,14 +238,15 @@ pub struct RunSummary {
 pub struct Timing {
     /// Instructions per `SysTick` tick.
     pub instructions_per_tick: f64,
-    /// Each scene run through the rig loop.
+    /// Each scene timed step by step: through the rig loop (`<scene> rig ..`) or driven directly
+    /// (`<scene> timing ..`, the scenes of several bodies).
     pub scenes: Vec<SceneTiming>,
 }
 
-/// One scene's steps through the rig loop.
+/// One scene's steps.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct SceneTiming {
-    /// The firmware's name for the run (`slow`, `fast`).
+    /// The firmware's name for the run (`slow`, `fast`, `block-on-block`, `stack`).
     pub scene: String,
     /// Steps taken.
     pub steps: u64,
@@ -276,7 +277,8 @@ fn fields(line: &str, skip: usize) -> std::collections::HashMap<&str, &str> {
 }
 
 /// Reads the firmware's timing lines (`calibration instructions=.. systicks=..`, `<scene> rig
-/// .. systicks=.. worst_step_systicks=.. steps=..`, `<scene> path=<name> steps=.. systicks=..
+/// .. systicks=.. worst_step_systicks=.. steps=..` or `<scene> timing systicks=..
+/// worst_step_systicks=.. steps=..`, `<scene> path=<name> steps=.. systicks=..
 /// worst_step_systicks=..`; `firmware/src/qemu.rs` prints them) into instructions. `None` without
 /// a calibration line; a malformed number is an error naming the line.
 ///
@@ -298,7 +300,7 @@ pub fn timing(lines: &[String]) -> anyhow::Result<Option<Timing>> {
     let mut scenes = Vec::new();
     for line in lines {
         let words: Vec<&str> = line.split_whitespace().collect();
-        if words.get(1) != Some(&"rig") || !line.contains("worst_step_systicks=") {
+        if !matches!(words.get(1), Some(&("rig" | "timing"))) || !line.contains("worst_step_systicks=") {
             continue;
         }
         let f = fields(line, 2);
@@ -342,6 +344,8 @@ mod timing_tests {
             "slow path=free steps=0 systicks=0 worst_step_systicks=0",
             "slow path=warm steps=7871 systicks=398000 worst_step_systicks=58",
             "slow path=candidate steps=29 systicks=2000 worst_step_systicks=150",
+            "stack outcome=Held t=10 steps=10000 pivots=0 max_active=3 checksum=0badcafe",
+            "stack timing systicks=1000000 worst_step_systicks=900 steps=10000",
         ]
         .map(String::from)
         .to_vec();
@@ -355,6 +359,12 @@ mod timing_tests {
         assert_eq!(s.paths.iter().map(|p| p.path).collect::<Vec<_>>(), ["free", "warm", "candidate"]);
         assert_eq!(s.paths[0].mean_instructions, None);
         assert_eq!(s.paths[2].steps, 29);
+        // A scene driven directly (no rig, no solve paths): its `timing` line.
+        let m = &t.scenes[1];
+        assert_eq!((m.scene.as_str(), m.steps, t.scenes.len()), ("stack", 10_000, 2));
+        assert!((m.mean_instructions - 1_000_000.0 * per / 10_000.0).abs() < 1e-9);
+        assert!((m.worst_instructions - 900.0 * per).abs() < 1e-9);
+        assert!(m.paths.is_empty());
         let bad = vec!["calibration instructions=2000002 systicks=0".to_owned()];
         assert!(timing(&bad).is_err());
         let garbled = vec!["calibration instructions=x systicks=5".to_owned()];

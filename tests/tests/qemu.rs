@@ -7,10 +7,13 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
+use meterstick_core::Real;
+use meterstick_core::multibody::scenes::MultibodyScene;
 use meterstick_core::planar::Checksum;
 use meterstick_core::scene::{
     Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams,
-    Painleve, PainleveParams, Scene, ThreeFingers, ThreeFingersParams,
+    MultibodyVisitor, Outcome, Painleve, PainleveParams, Precision, Scene, SceneKind, SceneParams,
+    ThreeFingers, ThreeFingersParams,
 };
 use meterstick_host_sim::qemu::{self, FirmwareRun, Machine};
 
@@ -125,12 +128,53 @@ fn check_other_scenes(run: &FirmwareRun) {
     check_plain_scene(run, "painleve", || Painleve::<f32, 3, 32>::new(PainleveParams::default()).unwrap());
 }
 
+/// The host's f32 run of a scene of several bodies, built by the registry as the firmware builds
+/// it: outcome, steps and the checksum of every step's states of all bodies in body order.
+struct HostMultibody;
+
+impl MultibodyVisitor for HostMultibody {
+    type Output = (Outcome, u64, u32);
+
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+        self,
+        mut scene: S,
+    ) -> Self::Output {
+        let mut sum = Checksum::new();
+        let mut steps = 0;
+        while let Some(report) = scene.step() {
+            steps += 1;
+            report.add_to(&mut sum);
+        }
+        (scene.outcome().unwrap(), steps, sum.value())
+    }
+}
+
+/// Block-on-block and the 3-block stack at their defaults (firmware/src/qemu.rs, `qemu-multibody`):
+/// the outcome physics says (`docs/scenes.md`), and outcome, steps and checksum equal to the
+/// host's f32 run (bit-identical IEEE f32 arithmetic); a timing line for every step.
+fn check_multibody_scenes(run: &FirmwareRun) {
+    for (kind, expected) in [(SceneKind::BlockOnBlock, Outcome::Slid), (SceneKind::Stack, Outcome::Held)] {
+        let (outcome, steps, sum) =
+            SceneParams::defaults(kind).build_multibody(Precision::F32, HostMultibody).unwrap();
+        assert_eq!(outcome, expected, "{kind} on the host");
+        let name = kind.name();
+        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
+        assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
+        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+        assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
+        let timing =
+            run.lines.iter().find(|l| l.starts_with(&format!("{name} timing "))).expect("timing line");
+        assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
+    }
+}
+
 #[test]
 #[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
 fn cortex_m4f_on_mps2_an386() {
     let run = run("MS_FIRMWARE_M4", Machine::Mps2An386);
     check_common(&run);
     check_other_scenes(&run);
+    check_multibody_scenes(&run);
 }
 
 /// The Cortex-M33 with FPU (the Raspberry Pi Pico 2's core, `thumbv8m.main-none-eabihf`) on
@@ -141,6 +185,7 @@ fn cortex_m33_on_mps2_an505() {
     let run = run("MS_FIRMWARE_M33", Machine::Mps2An505);
     check_common(&run);
     check_other_scenes(&run);
+    check_multibody_scenes(&run);
 }
 
 #[test]

@@ -165,10 +165,8 @@ impl<T: Real> JacobianRow<T> {
     #[must_use]
     pub fn dot<const B: usize>(&self, v: &[[T; 3]; B]) -> T {
         let part = |e: Option<(u8, [T; 3])>| {
-            e.map_or(T::zero(), |(b, c)| {
-                let u = v[usize::from(b)];
-                c[0] * u[0] + c[1] * u[1] + c[2] * u[2]
-            })
+            e.and_then(|(b, c)| v.get(usize::from(b)).map(|u| c[0] * u[0] + c[1] * u[1] + c[2] * u[2]))
+                .unwrap_or(T::zero())
         };
         part(self.corner) + part(self.face)
     }
@@ -178,7 +176,9 @@ impl<T: Real> JacobianRow<T> {
     pub fn dense<const B: usize>(&self) -> [[T; 3]; B] {
         let mut row = [[T::zero(); 3]; B];
         for (b, c) in [self.corner, self.face].into_iter().flatten() {
-            row[usize::from(b)] = c;
+            if let Some(slot) = row.get_mut(usize::from(b)) {
+                *slot = c;
+            }
         }
         row
     }
@@ -243,12 +243,13 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     h: T,
 ) -> [CornerFrame<T>; 4] {
     let two = T::of(2.0);
-    let u = usize::from(pair.upper);
-    let upper = Pose::of(&bodies[u], &states[u]);
+    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact.
+    let pose = |b: u8| Some(Pose::of(bodies.get(usize::from(b))?, states.get(usize::from(b))?));
     let lower = match pair.lower {
-        Support::Body(s) => Some((s, Pose::of(&bodies[usize::from(s)], &states[usize::from(s)]))),
-        Support::Table => None,
+        Support::Body(s) => pose(s).map(|p| Some((s, p))),
+        Support::Table => Some(None),
     };
+    let (Some(upper), Some(lower)) = (pose(pair.upper), lower) else { return [CornerFrame::inactive(); 4] };
     // The lower's top face and the upper's lower face.
     let top = lower.map_or(
         Face {
@@ -350,10 +351,8 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
 /// `v_rel` (the table's terms are zero).
 pub(crate) fn relative_velocity<T: Real, const B: usize>(frame: &CornerFrame<T>, v: &[[T; 3]; B]) -> [T; 2] {
     let at = |b: Option<u8>, r: [T; 2]| {
-        b.map_or([T::zero(); 2], |b| {
-            let u = v[usize::from(b)];
-            [u[0] - u[2] * r[1], u[1] + u[2] * r[0]]
-        })
+        b.and_then(|b| v.get(usize::from(b)))
+            .map_or([T::zero(); 2], |u| [u[0] - u[2] * r[1], u[1] + u[2] * r[0]])
     };
     let (a, f) = (at(frame.corner, frame.lever_corner), at(frame.face, frame.lever_face));
     [a[0] - f[0], a[1] - f[1]]

@@ -7,7 +7,7 @@ use super::geometry::{CornerFrame, Pair, Table, pair_frames, slip};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
-use crate::planar::{Body, BodyState, ContactMode};
+use crate::planar::{Body, BodyState, Checksum, ContactMode};
 use crate::real::Real;
 
 /// The scalars of a step: time step, gravity, stick threshold and the activity rule's margin.
@@ -96,6 +96,16 @@ impl<T, const B: usize, const P: usize> StepReport<T, B, P> {
         contacts.iter().all(|&(p, c)| {
             self.modes.get(p).and_then(|m| m.get(c)).is_some_and(|m| *m != ContactMode::Separated)
         })
+    }
+}
+
+impl<T: Real, const B: usize, const P: usize> StepReport<T, B, P> {
+    /// Adds every body's state after the step, in body order, to a trajectory checksum: over a
+    /// run, the fingerprint the firmware prints and the host compares bit for bit.
+    pub fn add_to(&self, checksum: &mut Checksum) {
+        for state in &self.states {
+            checksum.add(state);
+        }
     }
 }
 
@@ -347,6 +357,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         if usize::from(active) > k {
             return Err(StepError::TooManyContacts(active));
         }
+        // `k <= N / 4` already; said so that every row index below (< 4 k) is in range without a
+        // check (no panic path).
+        let k = k.min(N / 4);
         // v~ = V + h M^-1 w_ext (eq. 16).
         let m_ref = self.system.bodies[0].mass;
         let mut v_free = [[T::zero(); 3]; B];
@@ -359,7 +372,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         // is then 3B multiply-adds without a branch.
         let mut rows = [[[T::zero(); 3]; B]; N];
         let mut scaled = [[[T::zero(); 3]; B]; N];
-        for (j, &(p, c)) in slots.iter().take(k).enumerate() {
+        for (j, &(p, c)) in slots[..k].iter().enumerate() {
+            // Every slot's (p, c) is below (P, 4) by construction: said so, so that no index below
+            // needs a check (no panic path).
+            let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let d = f.tangent;
             rows[j] = f.row(f.normal).dense();
@@ -375,26 +391,40 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         }
         let mut a = SMatrix::<T, N, N>::zeros();
         let mut b = SVector::<T, N>::zeros();
-        for i in 0..3 * k {
-            for j in i..3 * k {
+        // The 3k impulse rows (3k < N: `min` and `get_mut` say so, no panic path).
+        let rows_3k = (3 * k).min(N);
+        for i in 0..rows_3k {
+            for j in i..rows_3k {
                 let e = dense_dot(&rows[i], &scaled[j]);
-                a[(i, j)] = e;
-                a[(j, i)] = e;
+                for entry in [(i, j), (j, i)] {
+                    if let Some(x) = a.get_mut(entry) {
+                        *x = e;
+                    }
+                }
             }
             b[i] = dense_dot(&rows[i], &v_free);
         }
         let mut warm = Basis::<N>::all_w();
-        for (j, &(p, c)) in slots.iter().take(k).enumerate() {
+        for (j, &(p, c)) in slots[..k].iter().enumerate() {
+            let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             b[j] += normal_bias(f.gap, h, s.gravity, f.gap_round_off);
             let pair = &self.system.pairs[p];
             let mu = if self.modes[p][c].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
             let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
-            a[(plus, sigma)] = T::one();
-            a[(minus, sigma)] = T::one();
-            a[(sigma, j)] = mu;
-            a[(sigma, plus)] = -T::one();
-            a[(sigma, minus)] = -T::one();
+            // All below 4k <= N (`get_mut`: no panic path).
+            let cone = [
+                ((plus, sigma), T::one()),
+                ((minus, sigma), T::one()),
+                ((sigma, j), mu),
+                ((sigma, plus), -T::one()),
+                ((sigma, minus), -T::one()),
+            ];
+            for (entry, value) in cone {
+                if let Some(x) = a.get_mut(entry) {
+                    *x = value;
+                }
+            }
             let pattern = self.patterns[p][c];
             for (bit, row) in [j, plus, minus, sigma].into_iter().enumerate() {
                 warm.set_z_basic(row, pattern >> bit & 1 == 1);
@@ -442,7 +472,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
-        for (j, &(p, c)) in slots.iter().take(k).enumerate() {
+        for (j, &(p, c)) in slots[..k].iter().enumerate() {
+            let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
             let mut pattern = 0;
