@@ -9,7 +9,9 @@ use std::time::Instant;
 
 use meterstick_core::Real;
 use meterstick_core::multibody::Stats;
-use meterstick_core::multibody::scenes::{BlockOnBlock, BlockOnBlockParams, Stack3, StackParams};
+use meterstick_core::multibody::scenes::{
+    BlockOnBlock, BlockOnBlockParams, MultibodyScene as _, Stack3, StackParams,
+};
 
 /// Runs `run` `repeats` times; the best of the repeats' ns/step and the last run's counters.
 fn best(repeats: u32, mut run: impl FnMut() -> Stats) -> (f64, Stats) {

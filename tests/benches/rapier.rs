@@ -25,7 +25,7 @@ use std::time::Instant;
 
 use meterstick_core::Real;
 use meterstick_core::multibody::Stats;
-use meterstick_core::multibody::scenes::{Stack3, StackParams};
+use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack3, StackParams};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use rapier2d::prelude::*;
 

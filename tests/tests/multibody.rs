@@ -6,7 +6,8 @@
 use meterstick_core::Real;
 use meterstick_core::lcp::LcpError;
 use meterstick_core::multibody::scenes::{
-    BlockOnBlock, BlockOnBlockParams, Stack, Stack2, Stack3, StackParams, Tablecloth, TableclothParams,
+    BlockOnBlock, BlockOnBlockParams, MultibodyScene as _, Stack, Stack2, Stack3, StackParams, Tablecloth,
+    TableclothParams,
 };
 use meterstick_core::multibody::{Pair, Settings, StepError, StepReport, Stepper, Support, System, Table};
 use meterstick_core::planar::{Body, BodyState, ContactMode};

@@ -158,14 +158,6 @@ impl<T: Real> BlockOnBlock<T> {
         Some(report)
     }
 
-    /// Runs until an outcome, calling `observe` after every step.
-    pub fn run(&mut self, mut observe: impl FnMut(&StepReport<T, 2, 2>)) -> Outcome {
-        while let Some(report) = self.step() {
-            observe(&report);
-        }
-        self.outcome.unwrap_or(Outcome::Unfinished)
-    }
-
     /// The outcome, once the run has ended.
     #[must_use]
     pub const fn outcome(&self) -> Option<Outcome> {

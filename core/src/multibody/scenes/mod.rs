@@ -41,6 +41,17 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     /// each scene's "Measured"): block-on-block `[a_bottom, a_top]`, the tablecloth the block's
     /// displacement, the stack its largest point speed.
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
+
+    /// Runs until an outcome, calling `observe` after every step.
+    fn run(&mut self, mut observe: impl FnMut(&StepReport<T, B, P>)) -> Outcome
+    where
+        Self: Sized,
+    {
+        while let Some(report) = self.step() {
+            observe(&report);
+        }
+        self.outcome().unwrap_or(Outcome::Unfinished)
+    }
 }
 
 /// [`MultibodyScene`] for a scene whose inherent `step`, `outcome` and `stepper` say it all.

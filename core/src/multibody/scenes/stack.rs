@@ -161,14 +161,6 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
         Some(report)
     }
 
-    /// Runs until an outcome, calling `observe` after every step.
-    pub fn run(&mut self, mut observe: impl FnMut(&StepReport<T, B, B>)) -> Outcome {
-        while let Some(report) = self.step() {
-            observe(&report);
-        }
-        self.outcome.unwrap_or(Outcome::Unfinished)
-    }
-
     /// The outcome, once the run has ended.
     #[must_use]
     pub const fn outcome(&self) -> Option<Outcome> {
