@@ -228,6 +228,45 @@ fn reduced_check_fires_only_after_the_fingers_stop() {
     assert!(fired > 0, "the 6x6 check never fired");
 }
 
+/// A tilted start's switch events, `(contact, mode)` in order, and the outcome.
+fn switch_sequence<T: Real, const N: usize>(
+    y1: f64,
+    speed: f64,
+    x1: f64,
+) -> (Vec<(u8, ContactMode)>, Outcome) {
+    let params = MeterStickParams::<f64> {
+        finger1_y: y1,
+        finger1_velocity: speed,
+        finger1_x: x1,
+        ..MeterStickParams::paper()
+    };
+    let mut scene = MeterStick::<T, N, 128>::new(params.cast::<T>()).unwrap();
+    let outcome = scene.run(|_| {});
+    assert_eq!(scene.events_dropped(), 0);
+    (scene.events().iter().map(|e| (e.contact, e.mode)).collect(), outcome)
+}
+
+/// The firmware's layout (f32 6x6) logs f64's switch sequence on tilted starts (finger 1 raised
+/// by `y1`), where finger 1's friction changes sign while it sticks near the end of the run. The
+/// reduced layout drops that finger's `-d`; its check must not let f32's round-off floor (3e-5
+/// m/s, above `stick_speed`) hide a slip in the dropped direction. It did: at `y1 = 0.02`,
+/// `v = 0.12`, `x1 = -0.36` (issue #33) contact 0 alternated sticking / sliding fourteen times
+/// in 35 ms, 24 events against f64's 10; the other starts logged 18, 15 and 49 against 10, 11, 11.
+#[test]
+fn f32_reduced_logs_the_f64_switch_sequence_on_tilted_starts() {
+    for (y1, speed, x1) in
+        [(0.02, 0.12, -0.36), (0.02, 0.10, -0.36), (0.01, 0.12, -0.36), (0.03, 0.10, -0.36)]
+    {
+        let (f32_reduced, f32_outcome) = switch_sequence::<f32, 6>(y1, speed, x1);
+        let (f64_reduced, f64_outcome) = switch_sequence::<f64, 6>(y1, speed, x1);
+        let (f64_full, _) = switch_sequence::<f64, 8>(y1, speed, x1);
+        assert_eq!(f64_reduced, f64_full, "y1={y1} v={speed} x1={x1}: f64 6x6 against 8x8");
+        assert_eq!(f32_reduced, f64_full, "y1={y1} v={speed} x1={x1}: f32 6x6 against f64");
+        assert_eq!(f32_outcome, f64_outcome, "y1={y1} v={speed} x1={x1}");
+        assert!(f64_full.len() >= 10, "y1={y1} v={speed} x1={x1}: {} events", f64_full.len());
+    }
+}
+
 /// Symmetric start (both fingers 0.4 m from the centre of mass): there is no tie to break.
 /// Finger 1 starts at full speed under a rod at rest, so it slides from `t = 0+` (kinetic
 /// friction) while finger 2 holds the rod with static friction; the rod stays put until

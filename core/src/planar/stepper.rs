@@ -31,7 +31,7 @@ use super::report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
 use super::strategy::{SolvePath, solve};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
-use crate::real::{Real, max, zero_if_finite};
+use crate::real::{Real, max, min, zero_if_finite};
 
 /// Why a step failed. The state is that before the step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -499,7 +499,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// The reduced layout's check (`docs/formulation.md`, "Reduced friction layouts"): for each
     /// active contact that keeps one direction `s` of two, the row of the dropped direction,
     /// `-s (W_d^T v+ - d . u) + sigma`, must not be negative beyond round-off: `64 N eps` of this
-    /// step's velocities (the fastest support's and the body's). Not of a scene-wide speed: once
+    /// step's velocities (the fastest support's and the body's), and never beyond `stick_speed`,
+    /// the slip at which the contact would be classified sliding. Not of a scene-wide speed: once
     /// a fast finger stops, `eps` of its former speed exceeds the slow slips the check must see.
     ///
     /// Except where `sigma` is free: when the kept direction carries no impulse and the cone row
@@ -519,6 +520,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let s = &self.settings;
         let speed_scale = speed + s.gravity * s.step;
         let tol = T::of(64.0 * N as f64) * T::EPS * speed_scale + T::TINY;
+        // The dropped row's value is the contact's slip in the dropped direction (`sigma` is 0 while
+        // the kept direction carries no impulse and the cone row is positive). A slip beyond
+        // `stick_speed` is one the modes see: the contact would be classified sliding that way with
+        // no friction against it. So the round-off floor may not hide it (in f32 `64 N eps V` is
+        // 3e-5 m/s at V = 0.6 m/s, above the default 1e-5).
+        let slip_tol = min(tol, s.stick_speed);
         for i in 0..K {
             let Some((j, kept)) = self.kept_alone[i] else { continue };
             let f = &inputs.frames[i];
@@ -531,7 +538,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             // The kept row is `w_j = s g + sigma` (`g = W_d^T v+ - d . u`); the dropped one is
             // `-s g + sigma = 2 sigma - w_j`.
             let sigma = Layout::<K, N>::SIGMA_START + i;
-            if sigma < N && z[sigma] + z[sigma] - w[j] < -tol {
+            if sigma < N && z[sigma] + z[sigma] - w[j] < -slip_tol {
                 return Some((i, kept.opposite()));
             }
         }
