@@ -12,6 +12,7 @@
 //!
 //! A single-body scene compiles none of this: nothing outside this module refers to it.
 
+mod factored;
 mod geometry;
 pub mod scenes;
 mod stepper;

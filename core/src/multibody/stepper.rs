@@ -1,13 +1,12 @@
 //! [`Stepper`]: `B` boxes on each other and on a table, one LCP per step solved by Lemke's method
 //! (`docs/formulation.md`, "Several bodies", "One step").
 
-use nalgebra::{SMatrix, SVector};
-
+use super::factored::Factored;
 use super::geometry::{CornerFrame, Pair, Table, pair_frames, slip};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
-use crate::planar::{Body, BodyState, Checksum, ContactMode};
+use crate::planar::{Body, BodyState, Checksum, ContactMode, Declined, PathCounts, SolvePath};
 use crate::real::Real;
 
 /// The scalars of a step: time step, gravity, stick threshold and the activity rule's margin.
@@ -114,7 +113,7 @@ impl<T: Real, const B: usize, const P: usize> StepReport<T, B, P> {
 pub struct Stats {
     /// Steps taken.
     pub steps: u32,
-    /// Steps the warm basis solved without a pivot.
+    /// Steps the warm basis answered ([`SolvePath::Warm`]).
     pub warm_direct: u32,
     /// Lemke pivots over the run.
     pub pivots: u64,
@@ -122,14 +121,17 @@ pub struct Stats {
     pub max_pivots: u32,
     /// The most active candidates of one step.
     pub max_active: u8,
+    /// How many steps each path answered (`docs/formulation.md`, "Solving a multibody step").
+    pub paths: PathCounts,
 }
 
 /// The basic variables of one candidate's slot: bit 0 `p_n`, 1 `p_+d`, 2 `p_-d`, 3 `sigma`.
 type Pattern = u8;
 
-/// The eight patterns of a contact a retry tries: separated; separated while slipping along `+d`,
-/// `-d`; touching without friction; sticking with `p_+d`, `p_-d`; sliding along `+d`, `-d`.
-const PATTERNS: [Pattern; 8] = [0b0000, 0b1010, 0b1100, 0b0001, 0b0011, 0b0101, 0b1011, 0b1101];
+/// The eight patterns of a contact the candidates and a retry try, in order: sticking with `p_+d`,
+/// `p_-d`; sliding along `+d`, `-d`; touching without friction; separated; separated while
+/// slipping along `+d`, `-d`.
+const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b0001, 0b0000, 0b1010, 0b1100];
 
 /// Steps a [`System`] of `B` bodies and `P` pairs (`4 P` candidate contacts) with an LCP of
 /// capacity `N` rows (at most `N / 4` active contacts; `N <= 32`, Lemke's limit).
@@ -215,12 +217,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         };
         stepper.update_frames();
         for p in 0..P {
+            let mut sticking = false;
             for c in 0..4 {
                 let f = &stepper.frames[p][c];
                 if f.active && f.gap <= f.touch {
                     stepper.modes[p][c] = ContactMode::Sticking;
-                    // The warm start's guess: touching, no friction yet.
-                    stepper.patterns[p][c] = 1;
+                    // The warm start's guess: the pair's first touching corner sticks (`p_n`,
+                    // `p_+d`), the others touch (`p_n`): both sticking is singular.
+                    stepper.patterns[p][c] = if sticking { 0b0001 } else { 0b0011 };
+                    sticking = true;
                 }
             }
         }
@@ -301,6 +306,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         warm: Basis<N>,
         error: LcpError,
     ) -> Result<LcpSolution<T, N>, StepError> {
+        // `k <= N / 4` (said so: every row index below is in range, no panic path).
+        let k = k.min(N / 4);
         let mut opened = *lcp;
         let delta = T::EPS.sqrt_libm() * lcp.q_norm_inf();
         for j in 3 * k..4 * k {
@@ -329,17 +336,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         Err(StepError::Solver(error))
     }
 
-    /// Advances one step: the active candidates' LCP (per unit reference mass), solved by Lemke's
-    /// method warm-started from the last step's basic variables, verified; `V+ = v~ + M~ J^T z`,
-    /// `q+ = q + h V+` (compensated sums), modes after the step.
+    /// This step's LCP in factored form ([`Factored`]): the active candidates in candidate order
+    /// (`slots`), `v~ = V + h M^-1 w_ext` (eq. 16), each slot's Jacobian rows, bias and `mu`; and
+    /// the warm basis (each slot's pattern of the last step).
     ///
     /// # Errors
-    /// [`StepError`]; the state is then unchanged.
-    #[allow(clippy::too_many_lines)] // the model's step in order: slots, assemble, solve, integrate, classify
-    pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    /// [`StepError::TooManyContacts`].
+    pub(super) fn factored(&self) -> Result<StepLcp<T, B, N>, StepError> {
         let s = self.system.settings;
         let h = s.step;
-        // Slots: the active candidates in candidate order.
         let mut slots = [(0usize, 0usize); N];
         let mut k = 0usize;
         let mut active = 0u8;
@@ -360,98 +365,131 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         // `k <= N / 4` already; said so that every row index below (< 4 k) is in range without a
         // check (no panic path).
         let k = k.min(N / 4);
-        // v~ = V + h M^-1 w_ext (eq. 16).
-        let m_ref = self.system.bodies[0].mass;
         let mut v_free = [[T::zero(); 3]; B];
         for i in 0..B {
             let (st, f, m) = (&self.states[i], self.system.forces[i], self.system.bodies[i].mass);
             v_free[i] = [st.vx + h * f[0] / m, st.vy + h * (f[1] / m - s.gravity), st.omega];
         }
-        // Rows of the 3k impulses: normal of slot j at j, +d at k + 2j, -d at k + 2j + 1.
-        // Each row dense in 3B coordinates (zero outside its two bodies): an entry of `J M~ J^T`
-        // is then 3B multiply-adds without a branch.
-        let mut rows = [[[T::zero(); 3]; B]; N];
-        let mut scaled = [[[T::zero(); 3]; B]; N];
+        let mut factored = Factored::new(k, v_free);
+        let mut warm = Basis::<N>::all_w();
         for (j, &(p, c)) in slots[..k].iter().enumerate() {
             // Every slot's (p, c) is below (P, 4) by construction: said so, so that no index below
             // needs a check (no panic path).
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let d = f.tangent;
-            rows[j] = f.row(f.normal).dense();
-            rows[k + 2 * j] = f.row(d).dense();
-            rows[k + 2 * j + 1] = f.row([-d[0], -d[1]]).dense();
-        }
-        for j in 0..3 * k {
-            for body in 0..B {
-                for c in 0..3 {
-                    scaled[j][body][c] = rows[j][body][c] * self.inverse_mass[body][c];
-                }
-            }
-        }
-        let mut a = SMatrix::<T, N, N>::zeros();
-        let mut b = SVector::<T, N>::zeros();
-        // The 3k impulse rows (3k < N: `min` and `get_mut` say so, no panic path).
-        let rows_3k = (3 * k).min(N);
-        for i in 0..rows_3k {
-            for j in i..rows_3k {
-                let e = dense_dot(&rows[i], &scaled[j]);
-                for entry in [(i, j), (j, i)] {
-                    if let Some(x) = a.get_mut(entry) {
-                        *x = e;
-                    }
-                }
-            }
-            b[i] = dense_dot(&rows[i], &v_free);
-        }
-        let mut warm = Basis::<N>::all_w();
-        for (j, &(p, c)) in slots[..k].iter().enumerate() {
-            let (p, c) = (p.min(P - 1), c.min(3));
-            let f = &self.frames[p][c];
-            b[j] += normal_bias(f.gap, h, s.gravity, f.gap_round_off);
             let pair = &self.system.pairs[p];
             let mu = if self.modes[p][c].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
-            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
-            // All below 4k <= N (`get_mut`: no panic path).
-            let cone = [
-                ((plus, sigma), T::one()),
-                ((minus, sigma), T::one()),
-                ((sigma, j), mu),
-                ((sigma, plus), -T::one()),
-                ((sigma, minus), -T::one()),
-            ];
-            for (entry, value) in cone {
-                if let Some(x) = a.get_mut(entry) {
-                    *x = value;
-                }
-            }
+            factored.set_slot(
+                j,
+                p as u8,
+                [f.row(f.normal), f.row(d), f.row([-d[0], -d[1]])],
+                normal_bias(f.gap, h, s.gravity, f.gap_round_off),
+                mu,
+                &self.inverse_mass,
+            );
             let pattern = self.patterns[p][c];
-            for (bit, row) in [j, plus, minus, sigma].into_iter().enumerate() {
+            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
                 warm.set_z_basic(row, pattern >> bit & 1 == 1);
             }
         }
-        for i in 4 * k..N {
-            a[(i, i)] = T::one();
-            b[i] = T::one();
+        factored.finish();
+        Ok(StepLcp { factored, slots, k, active, warm })
+    }
+
+    /// Solves the step's LCP (`docs/formulation.md`, "Solving a multibody step"): `z = 0` when
+    /// `q >= 0` ([`SolvePath::Free`]); else the warm basis in factored form
+    /// ([`SolvePath::Warm`]); else its neighbours, one slot's pattern replaced by each of
+    /// [`PATTERNS`], the slot that failed first ([`SolvePath::Candidate`]); else Lemke's method on
+    /// the assembled LCP from the warm basis, with its retries ([`SolvePath::Lemke`]). Every answer
+    /// is verified. Writes `z`; returns `v+`, the basis and the pivots.
+    fn solve(
+        &self,
+        step: &StepLcp<T, B, N>,
+        paths: &mut PathCounts,
+        z: &mut [T; N],
+    ) -> Result<Solved<T, B, N>, StepError> {
+        let f = &step.factored;
+        if !f.is_finite() {
+            return Err(StepError::Solver(LcpError::NonFiniteInput));
         }
-        let lcp = Lcp::new(a, b);
-        let solution = match self.solver.solve_warm(&lcp, warm) {
+        if f.is_free() {
+            *z = [T::zero(); N];
+            return Ok(Solved {
+                v_plus: *f.v_free(),
+                basis: Basis::all_w(),
+                pivots: 0,
+                path: SolvePath::Free,
+            });
+        }
+        let tolerance = self.solver.tolerance();
+        let mut w = [T::zero(); N];
+        let warm = step.warm;
+        let why = match f.solve_basis(warm.z_mask(), tolerance, z, &mut w) {
+            Ok(a) => {
+                let basis = Basis::from_z_mask(a.mask);
+                return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Warm });
+            }
+            Err(why) => why,
+        };
+        let k = step.k.min(N / 4);
+        let first = match why {
+            Declined::Infeasible(v) => f.slot_of(usize::from(v)),
+            Declined::Pattern | Declined::Singular | Declined::Unverified => 0,
+        };
+        for c in 0..k {
+            let rows = slot_rows(k, (first + c) % k);
+            let current = rows
+                .iter()
+                .enumerate()
+                .fold(0u8, |acc, (bit, &row)| acc | u8::from(warm.is_z_basic(row)) << bit);
+            for pattern in PATTERNS {
+                if pattern == current {
+                    continue;
+                }
+                let mut basis = warm;
+                for (bit, &row) in rows.iter().enumerate() {
+                    basis.set_z_basic(row, pattern >> bit & 1 == 1);
+                }
+                paths.candidates_tried += 1;
+                if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, &mut w) {
+                    let basis = Basis::from_z_mask(a.mask);
+                    return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
+                }
+            }
+        }
+        let lcp = f.assemble();
+        let solution = match self.solver.solve_from_basis(&lcp, warm) {
             Err(LcpError::NonFiniteInput) => return Err(StepError::Solver(LcpError::NonFiniteInput)),
             Err(error) => self.retry(&lcp, k, warm, error)?,
             Ok(solution) => solution,
         };
-        let z = solution.z;
-        // V+ = v~ + M~ J^T z.
-        let mut v_plus = v_free;
-        for j in 0..3 * k {
-            if z[j] != T::zero() {
-                for body in 0..B {
-                    for c in 0..3 {
-                        v_plus[body][c] += z[j] * scaled[j][body][c];
-                    }
-                }
-            }
+        for j in 0..N {
+            z[j] = solution.z[j];
         }
+        Ok(Solved {
+            v_plus: f.velocity_after(z),
+            basis: solution.basis,
+            pivots: solution.pivots,
+            path: SolvePath::Lemke,
+        })
+    }
+
+    /// Advances one step: the active candidates' LCP (per unit reference mass) in factored form,
+    /// solved by the paths of [`Self::solve`] and verified; `V+ = v~ + M~ J^T z`, `q+ = q + h V+`
+    /// (compensated sums), modes after the step.
+    ///
+    /// # Errors
+    /// [`StepError`]; the state is then unchanged.
+    pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+        let s = self.system.settings;
+        let h = s.step;
+        let step = self.factored()?;
+        let (k, active) = (step.k.min(N / 4), step.active);
+        let mut z = [T::zero(); N];
+        let mut paths = self.stats.paths;
+        let Solved { v_plus, basis, pivots, path } = self.solve(&step, &mut paths, &mut z)?;
+        let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
         let mut carry = self.carry;
@@ -472,16 +510,16 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
-        for (j, &(p, c)) in slots[..k].iter().enumerate() {
+        for (j, &(p, c)) in step.slots[..k].iter().enumerate() {
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
-            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let rows = slot_rows(k, j);
             let mut pattern = 0;
-            for (bit, row) in [j, plus, minus, sigma].into_iter().enumerate() {
-                pattern |= u8::from(solution.basis.is_z_basic(row)) << bit;
+            for (bit, row) in rows.into_iter().enumerate() {
+                pattern |= u8::from(basis.is_z_basic(row)) << bit;
             }
             patterns[p][c] = pattern;
-            let (pn, pf) = (z[j], z[plus] - z[minus]);
+            let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
                 modes[p][c] = ContactMode::from_slip(slip(f, &v_plus), s.stick_speed);
             }
@@ -502,23 +540,49 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         self.steps += 1;
         self.update_frames();
         let st = &mut self.stats;
+        paths.count(path);
+        st.paths = paths;
         st.steps += 1;
-        st.pivots += u64::from(solution.pivots);
-        st.max_pivots = st.max_pivots.max(solution.pivots);
+        st.pivots += u64::from(pivots);
+        st.max_pivots = st.max_pivots.max(pivots);
         st.max_active = st.max_active.max(active);
-        if solution.warm_start_used && solution.pivots == 0 {
+        if path == SolvePath::Warm {
             st.warm_direct += 1;
         }
-        Ok(StepReport { time: self.time(), states, interface_forces, modes, active, pivots: solution.pivots })
+        Ok(StepReport { time: self.time(), states, interface_forces, modes, active, pivots })
     }
 }
 
-/// `sum over bodies and coordinates of a * b` (two rows dense in `3B` coordinates).
+/// Slot `j`'s variables among `k` slots: `p_n`, `p_+d`, `p_-d`, `sigma` (the bits of a
+/// [`Pattern`] in order).
 #[inline]
-fn dense_dot<T: Real, const B: usize>(a: &[[T; 3]; B], b: &[[T; 3]; B]) -> T {
-    let mut sum = T::zero();
-    for body in 0..B {
-        sum += a[body][0] * b[body][0] + a[body][1] * b[body][1] + a[body][2] * b[body][2];
-    }
-    sum
+const fn slot_rows(k: usize, j: usize) -> [usize; 4] {
+    [j, k + 2 * j, k + 2 * j + 1, 3 * k + j]
+}
+
+/// A step's verified answer ([`Stepper::solve`]; `z` is written into the caller's array).
+struct Solved<T, const B: usize, const N: usize> {
+    /// `v+ = v~ + M~ J^T z`.
+    v_plus: [[T; 3]; B],
+    /// The basis of the answer (the next step's warm basis).
+    basis: Basis<N>,
+    /// Lemke pivots spent.
+    pivots: u32,
+    /// The path that answered.
+    path: SolvePath,
+}
+
+/// One step's LCP in factored form with its slots and warm basis ([`Stepper::factored`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct StepLcp<T, const B: usize, const N: usize> {
+    /// The factored rows.
+    pub(super) factored: Factored<T, B, N>,
+    /// The active candidates `(pair, candidate)` in slot order.
+    pub(super) slots: [(usize, usize); N],
+    /// How many slots.
+    pub(super) k: usize,
+    /// Active candidates (`k`, as a count).
+    pub(super) active: u8,
+    /// The last step's patterns as a basis.
+    pub(super) warm: Basis<N>,
 }

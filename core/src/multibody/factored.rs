@@ -1,0 +1,538 @@
+//! One multibody step's LCP in factored form, and its solution for a given complementary basis in
+//! the bodies' `3B` coordinates: the stepper's fast path (`docs/formulation.md`, "Solving a
+//! multibody step"). The single body's form (`core/src/planar/factored.rs`) in `3B` coordinates.
+//!
+//! # The factored form
+//! With `k` active candidates the variables are laid out as the stepper's LCP
+//! ([`super::Stepper`]): `p_n` of slot `j` at `j`, `p_+d` at `k + 2 j`, `p_-d` at `k + 2 j + 1`,
+//! `sigma` at `3 k + j`; rows `4 k .. N` are the identity's (`q = 1`). Impulse variable `v` has
+//! the Jacobian column `c_v` (one or two bodies' three entries: a contact on the table touches one
+//! body, one between two bodies both), `M~ c_v` (per unit reference mass) and `q_v = c_v^T v~ +
+//! c0_v`, so that
+//!
+//! ```text
+//! w_v     = q_v + c_v^T dv (+ sigma_j for a friction row of slot j),   dv = sum_v M~ c_v p_v
+//! w_sigma = mu_j p_n,j - p_+d,j - p_-d,j
+//! ```
+//!
+//! Nothing here forms the `N x N` matrix; a row costs one or two 3-vector dot products.
+//!
+//! # The solution of a basis
+//! Per slot the eliminations of the single body's form: `sigma` basic with one friction row `f`
+//! basic (sliding, or at the cone's edge): `p_f = mu p_n`, one unknown `p_n` acting through
+//! `c_n + mu c_f`, held by its normal row, `sigma = -(q_f + c_f^T dv)` afterwards (without a basic
+//! `p_n`, only `sigma`); `sigma` not basic: each basic `p_n`, `p_f` is an unknown held by its own
+//! row; any other pattern is declined. At most `min(3 B, UNKNOWNS)` unknowns (more rows than the
+//! bodies' degrees of freedom make the system singular): `H^T M~ G y = -q_H` by elimination with
+//! partial pivoting ([`solve_leading`]), then `z`, `dv`, `w` in factored form and the single body's
+//! acceptance rules with its round-off floors: impulses `>= 0` exactly and not within `N eps` of the
+//! largest, velocity rows and `sigma`s `>= 0` within `N eps (||A|| ||p|| + ||q||)`, cone rows `>= 0`
+//! exactly, finite, and the verification residual ([`crate::lcp::verify`]) held to a scale no
+//! larger than Lemke's (`||A||_inf` replaced by `max_v (|A_vv| + the row's unit entries)`, a lower
+//! bound). A singular system (both corners of one interface sticking: four rows of rank three) is
+//! declined.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::lcp::Lcp;
+use crate::lcp::elimination::solve_leading;
+use crate::planar::Declined;
+use crate::planar::inputs::dot3;
+use crate::real::{AllFinite, Real, max, min};
+
+/// The most unknowns a basis may have here: three bodies' degrees of freedom (a basis of more is
+/// declined, and Lemke's method answers it).
+pub(super) const UNKNOWNS: usize = 9;
+
+/// A basis' verified answer ([`Factored::solve_basis`]; `z` and `w` are written into the caller's
+/// arrays).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Answer<T, const B: usize> {
+    /// `v+ = v~ + dv`.
+    pub(super) v_plus: [[T; 3]; B],
+    /// The basis answered (the one given, a sticking contact's friction turned to the direction
+    /// its impulse takes).
+    pub(super) mask: u32,
+}
+
+/// The column of one impulse variable: its (one or two) bodies' entries of `c_v` and of `M~ c_v`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Column<T> {
+    /// The bodies (entry 1 unused when `parts` is 1).
+    body: [u8; 2],
+    /// How many bodies the column touches: 1 or 2.
+    parts: u8,
+    /// `c_v` per body.
+    c: [[T; 3]; 2],
+    /// `M~ c_v` per body.
+    mc: [[T; 3]; 2],
+}
+
+impl<T: Real> Column<T> {
+    fn zero() -> Self {
+        let zero3 = [T::zero(); 3];
+        Self { body: [0; 2], parts: 0, c: [zero3; 2], mc: [zero3; 2] }
+    }
+
+    /// `c^T v` for velocities (or velocity changes) `v` in `3B` coordinates.
+    #[inline]
+    fn dot<const B: usize>(&self, v: &[[T; 3]; B]) -> T {
+        let mut sum = T::zero();
+        for p in 0..usize::from(self.parts).min(2) {
+            if let Some(u) = v.get(usize::from(self.body[p])) {
+                sum += dot3(&self.c[p], u);
+            }
+        }
+        sum
+    }
+
+    /// `c^T (M~ g)` for the column `g` (`g`'s `M~ c`): the entry of `J M~ J^T` in this row and
+    /// `g`'s column.
+    #[inline]
+    fn dot_scaled(&self, g: &Self) -> T {
+        let mut sum = T::zero();
+        for p in 0..usize::from(self.parts).min(2) {
+            for r in 0..usize::from(g.parts).min(2) {
+                if self.body[p] == g.body[r] {
+                    sum += dot3(&self.c[p], &g.mc[r]);
+                }
+            }
+        }
+        sum
+    }
+
+    /// `dv += M~ c z`.
+    #[inline]
+    fn add_scaled_to<const B: usize>(&self, z: T, dv: &mut [[T; 3]; B]) {
+        for p in 0..usize::from(self.parts).min(2) {
+            if let Some(u) = dv.get_mut(usize::from(self.body[p])) {
+                for c in 0..3 {
+                    u[c] += self.mc[p][c] * z;
+                }
+            }
+        }
+    }
+}
+
+/// The factored rows of one multibody step's LCP (module docs).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Factored<T, const B: usize, const N: usize> {
+    /// Active slots `k` (`4 k <= N`).
+    k: usize,
+    /// Each impulse variable's column (`v < 3 k`).
+    cols: [Column<T>; N],
+    /// `q`.
+    q: [T; N],
+    /// Each slot's friction coefficient this step.
+    mu: [T; N],
+    /// Each slot's pair (its two bodies: the corners of one interface share their slip).
+    pair: [u8; N],
+    /// `v~`.
+    v_free: [[T; 3]; B],
+    /// `max_v (|A_vv| + the row's unit entries)`, a lower bound of `||A||_inf`.
+    m_low: T,
+    /// `||q||_inf`.
+    q_norm: T,
+    /// `min_v q_v`.
+    q_min: T,
+    /// Every entry of `q` and `M~ c` is finite.
+    finite: bool,
+}
+
+impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
+    /// No contact yet, `v~` given: [`Self::set_slot`] each active slot, then [`Self::finish`].
+    pub(super) fn new(k: usize, v_free: [[T; 3]; B]) -> Self {
+        Self {
+            k: k.min(N / 4),
+            cols: [Column::zero(); N],
+            q: [T::zero(); N],
+            mu: [T::zero(); N],
+            pair: [0; N],
+            v_free,
+            m_low: T::one(),
+            q_norm: T::zero(),
+            q_min: T::zero(),
+            finite: true,
+        }
+    }
+
+    /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows (`n`, `+d`, `-d`: each entry the
+    /// corner's owner and the face's owner, [`super::JacobianRow`]), its normal row's bias `c0`
+    /// and its `mu`; `inverse_mass` is `M~`'s diagonal per body.
+    #[allow(clippy::too_many_arguments)] // a slot's data, as the stepper has them
+    pub(super) fn set_slot(
+        &mut self,
+        j: usize,
+        pair: u8,
+        rows: [super::JacobianRow<T>; 3],
+        bias: T,
+        mu: T,
+        inverse_mass: &[[T; 3]; B],
+    ) {
+        let k = self.k.min(N / 4);
+        if j >= k {
+            return;
+        }
+        for (r, row) in rows.iter().enumerate() {
+            let v = if r == 0 { j } else { k + 2 * j + r - 1 };
+            let mut col = Column::zero();
+            for (b, c) in [row.corner, row.face].into_iter().flatten() {
+                let p = usize::from(col.parts).min(1);
+                let m = inverse_mass.get(usize::from(b)).copied().unwrap_or([T::zero(); 3]);
+                col.body[p] = b;
+                col.c[p] = c;
+                col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
+                col.parts = (col.parts + 1).min(2);
+            }
+            if let (Some(slot), Some(q)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
+                *q = col.dot(&self.v_free);
+                *slot = col;
+            }
+        }
+        if let (Some(q), Some(m), Some(g)) = (self.q.get_mut(j), self.mu.get_mut(j), self.pair.get_mut(j)) {
+            *q += bias;
+            *m = mu;
+            *g = pair;
+        }
+    }
+
+    /// After every slot is set: the identity's rows beyond `4 k`, the scales, finiteness.
+    pub(super) fn finish(&mut self) {
+        let k = self.k.min(N / 4);
+        for v in 4 * k..N {
+            self.q[v] = T::one();
+        }
+        let mut m_low = T::one();
+        let mut finite = AllFinite::new();
+        for v in 0..(3 * k).min(N) {
+            let col = &self.cols[v];
+            let unit = if v < k { T::zero() } else { T::one() };
+            m_low = max(m_low, col.dot_scaled(col).abs_exact() + unit);
+            for p in 0..2 {
+                for c in 0..3 {
+                    finite.add(col.mc[p][c]);
+                }
+            }
+        }
+        for j in 0..k.min(N) {
+            m_low = max(m_low, self.mu[j].abs_exact() + T::of(2.0));
+        }
+        let (mut q_norm, mut q_min) = (T::zero(), self.q[0]);
+        for v in 0..N {
+            finite.add(self.q[v]);
+            q_norm = max(q_norm, self.q[v].abs_exact());
+            q_min = min(q_min, self.q[v]);
+        }
+        self.m_low = m_low;
+        self.q_norm = q_norm;
+        self.q_min = q_min;
+        self.finite = finite.holds();
+    }
+
+    /// `true` when every entry of `q` and of the columns is finite.
+    pub(super) const fn is_finite(&self) -> bool {
+        self.finite
+    }
+
+    /// `true` when the data are finite and `q >= 0`: `z = 0` solves the LCP exactly.
+    pub(super) fn is_free(&self) -> bool {
+        self.finite && self.q_min >= T::zero()
+    }
+
+    /// `v~`.
+    pub(super) const fn v_free(&self) -> &[[T; 3]; B] {
+        &self.v_free
+    }
+
+    /// The slot the variable `v` belongs to (0 for an identity row's).
+    pub(super) const fn slot_of(&self, v: usize) -> usize {
+        let k = if self.k < N / 4 { self.k } else { N / 4 };
+        if v < k {
+            v
+        } else if v < 3 * k {
+            (v - k) / 2
+        } else if v < 4 * k {
+            v - 3 * k
+        } else {
+            0
+        }
+    }
+
+    /// `dv = M~ J^T p` for the impulses in `z` (eq. 16), summed on its own.
+    #[inline(never)]
+    pub(super) fn velocity_change(&self, z: &[T; N]) -> [[T; 3]; B] {
+        let mut dv = [[T::zero(); 3]; B];
+        for v in 0..(3 * self.k.min(N / 4)).min(N) {
+            if z[v] != T::zero() {
+                self.cols[v].add_scaled_to(z[v], &mut dv);
+            }
+        }
+        dv
+    }
+
+    /// `v+ = v~ + dv` with `dv` of [`Self::velocity_change`].
+    pub(super) fn velocity_after(&self, z: &[T; N]) -> [[T; 3]; B] {
+        let dv = self.velocity_change(z);
+        let mut v = self.v_free;
+        for b in 0..B {
+            for c in 0..3 {
+                v[b][c] += dv[b][c];
+            }
+        }
+        v
+    }
+
+    /// The assembled LCP (the solver of record's form): `J M~ J^T` from the columns, the cone
+    /// rows, the identity beyond `4 k`.
+    pub(super) fn assemble(&self) -> Lcp<T, N> {
+        let k = self.k.min(N / 4);
+        let mut a = SMatrix::<T, N, N>::zeros();
+        let rows = (3 * k).min(N);
+        for i in 0..rows {
+            for j in i..rows {
+                let e = self.cols[i].dot_scaled(&self.cols[j]);
+                for entry in [(i, j), (j, i)] {
+                    if let Some(x) = a.get_mut(entry) {
+                        *x = e;
+                    }
+                }
+            }
+        }
+        for j in 0..k {
+            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let cone = [
+                ((plus, sigma), T::one()),
+                ((minus, sigma), T::one()),
+                ((sigma, j), self.mu[j.min(N - 1)]),
+                ((sigma, plus), -T::one()),
+                ((sigma, minus), -T::one()),
+            ];
+            for (entry, value) in cone {
+                if let Some(x) = a.get_mut(entry) {
+                    *x = value;
+                }
+            }
+        }
+        for i in 4 * k..N {
+            a[(i, i)] = T::one();
+        }
+        Lcp::new(a, SVector::from(self.q))
+    }
+
+    /// The complementary solution of the basis `mask` (bit `v`: `z_v` basic) in the bodies'
+    /// coordinates, verified within `tolerance` (module docs), written into `z` and `w`; returns
+    /// `v+` and the basis answered, or why there is none.
+    ///
+    /// # Errors
+    /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
+    /// basic without exactly one friction row, more unknowns than it holds), a singular system,
+    /// an infeasible basis, an answer that fails verification.
+    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
+    #[inline(never)]
+    pub(super) fn solve_basis(
+        &self,
+        mask: u32,
+        tolerance: T,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Result<Answer<T, B>, Declined> {
+        let k = self.k.min(N / 4);
+        let rows = 4 * k;
+        let outside = if rows >= 32 { 0 } else { !((1u32 << rows) - 1) };
+        if mask & outside != 0 {
+            return Err(Declined::Pattern);
+        }
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        let cap = UNKNOWNS.min(3 * B);
+        // The unknowns: the variable each sets and the friction row following it at `mu` (`N`:
+        // none); the friction row giving each slot's basic sigma (`N`: none).
+        let mut var = [0usize; UNKNOWNS];
+        let mut follower = [N; UNKNOWNS];
+        let mut m = 0usize;
+        let mut sigma_row = [N; N];
+        for j in 0..k {
+            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let frictions = usize::from(basic(plus)) + usize::from(basic(minus));
+            if basic(sigma) {
+                if frictions != 1 {
+                    return Err(Declined::Pattern);
+                }
+                let f = if basic(plus) { plus } else { minus };
+                sigma_row[j.min(N - 1)] = f;
+                if basic(j) {
+                    if m >= cap {
+                        return Err(Declined::Pattern);
+                    }
+                    var[m] = j;
+                    follower[m] = f;
+                    m += 1;
+                }
+                continue;
+            }
+            for v in [j, plus, minus] {
+                if basic(v) {
+                    if m >= cap {
+                        return Err(Declined::Pattern);
+                    }
+                    var[m] = v;
+                    m += 1;
+                }
+            }
+        }
+        let m = m.min(UNKNOWNS);
+        // H^T M~ G y = -q_H; unknown l's column G_l = c_var + mu c_follower (the same bodies).
+        // Between two unknowns without a follower the entry is `c_r^T M~ c_l`, symmetric: taken
+        // from its mirror when that is already formed.
+        let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+        let mut y = [T::zero(); UNKNOWNS];
+        for l in 0..m {
+            let mut g = self.cols[var[l].min(N - 1)];
+            if follower[l] < N {
+                let (f, mu) = (&self.cols[follower[l]], self.mu[var[l].min(N - 1)]);
+                for p in 0..2 {
+                    for c in 0..3 {
+                        g.mc[p][c] += mu * f.mc[p][c];
+                    }
+                }
+            }
+            for r in 0..m {
+                a[r][l] = if r < l && follower[r] == N && follower[l] == N {
+                    a[l][r]
+                } else {
+                    self.cols[var[r].min(N - 1)].dot_scaled(&g)
+                };
+            }
+            y[l] = -self.q[var[l].min(N - 1)];
+        }
+        let tiny = T::of(N as f64) * T::EPS * self.m_low;
+        if !solve_unknowns(&mut a, &mut y, m, tiny) {
+            return Err(Declined::Singular);
+        }
+        // Impulses `>= 0` exactly, no normal impulse positive within the round-off of the largest
+        // (a degenerate basis: the one without it answers, `core/src/planar/factored.rs`). A
+        // sticking contact's friction unknown of either sign is an answer: `c_-d = -c_+d`
+        // exactly, so a negative `p_+d` is the same solution as `p_-d = -p_+d` in the basis with
+        // `p_-d` basic instead (its row `w_-d = -w_+d = 0`, `w_+d = 0` outside it), and that basis
+        // is the one kept. A friction impulse within round-off of zero (a resting stack's zero
+        // tangential load) is kept: it holds the interface's slip at zero; declining it would leave
+        // the interface without friction, whose slip round-off nothing opposes (the stack creeps).
+        let mut y_max = T::zero();
+        for l in 0..m {
+            y_max = max(y_max, y[l].abs_exact());
+        }
+        let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
+        let mut mask = mask;
+        for l in 0..m {
+            let v = var[l];
+            if v >= k && y[l] < T::zero() {
+                // The other direction of the same contact (`k + 2 j` <-> `k + 2 j + 1`).
+                let other = if (v - k) & 1 == 0 { v + 1 } else { v - 1 };
+                mask ^= (1u32 << v.min(31)) | (1u32 << other.min(31));
+                var[l] = other;
+                y[l] = -y[l];
+            }
+        }
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        *z = [T::zero(); N];
+        for l in 0..m {
+            let normal = var[l] < k;
+            if y[l] < T::zero() || (normal && y[l] > T::zero() && y[l] <= impulse_round_off) {
+                return Err(Declined::Infeasible(var[l] as u8));
+            }
+            z[var[l].min(N - 1)] = y[l];
+            if follower[l] < N {
+                z[follower[l]] = self.mu[var[l].min(N - 1)] * y[l];
+            }
+        }
+        let dv = self.velocity_change(z);
+        let mut p_norm = T::zero();
+        for v in 0..(3 * k).min(N) {
+            p_norm = max(p_norm, z[v]);
+        }
+        let speed_round_off = T::of(N as f64) * T::EPS * (self.m_low * p_norm + self.q_norm);
+        for j in 0..k.min(N) {
+            let f = sigma_row[j];
+            if f < N {
+                let sigma = -(self.q[f] + self.cols[f].dot(&dv));
+                if sigma < -speed_round_off {
+                    return Err(Declined::Infeasible((3 * k + j) as u8));
+                }
+                z[(3 * k + j).min(N - 1)] = max(sigma, T::zero());
+            }
+        }
+        // w in factored form.
+        for v in 0..(3 * k).min(N) {
+            w[v] = self.q[v] + self.cols[v].dot(&dv);
+        }
+        for j in 0..k.min(N / 4) {
+            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let s = z[sigma];
+            w[plus] += s;
+            w[minus] += s;
+            w[sigma] = self.mu[j] * z[j] - z[plus] - z[minus];
+        }
+        for (wv, &qv) in w.iter_mut().zip(&self.q).skip(rows) {
+            *wv = qv;
+        }
+        // Feasibility outside the basis and the verification residual (`crate::lcp::verify`),
+        // bounded without a division per row, on the scale `||A||_low ||z|| + ||q||`.
+        let mut violation = T::zero();
+        let mut z_norm = p_norm;
+        for v in 3 * k..rows.min(N) {
+            z_norm = max(z_norm, z[v]);
+        }
+        // The pairs with a basic friction impulse: a touching contact of any other pair holds its
+        // slip to `>= 0` in both directions exactly (zero), not within round-off. (Within a pair
+        // every corner's slip is the one relative slip of the two bodies along their face, held
+        // at zero by the corner whose friction is basic; another pair's touching contact with no
+        // friction would let that slip's round-off run unopposed.)
+        let mut held = 0u32;
+        for j in 0..k.min(N / 4) {
+            if basic(k + 2 * j) || basic(k + 2 * j + 1) {
+                held |= 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
+            }
+        }
+        let mut finite = AllFinite::new();
+        for v in 0..N {
+            let wv = w[v];
+            finite.add(wv);
+            if basic(v) {
+                violation = max(violation, wv.abs_exact());
+            } else {
+                let unheld = v >= k
+                    && v < 3 * k
+                    && basic(self.slot_of(v))
+                    && held.checked_shr(u32::from(self.pair[self.slot_of(v).min(N - 1)])).unwrap_or(0) & 1
+                        == 0;
+                let floor = if v < 3 * k && !unheld { -speed_round_off } else { T::zero() };
+                if wv < floor {
+                    return Err(Declined::Infeasible(v as u8));
+                }
+                violation = max(violation, -wv);
+            }
+        }
+        let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
+        finite.add(s_w);
+        if !finite.holds() || violation > tolerance * s_w {
+            return Err(Declined::Unverified);
+        }
+        let mut v_plus = self.v_free;
+        for b in 0..B {
+            for c in 0..3 {
+                v_plus[b][c] += dv[b][c];
+            }
+        }
+        Ok(Answer { v_plus, mask })
+    }
+}
+
+/// The basis' `m x m` system by [`solve_leading`], one copy out of line.
+#[inline(never)]
+fn solve_unknowns<T: Real>(
+    a: &mut [[T; UNKNOWNS]; UNKNOWNS],
+    rhs: &mut [T; UNKNOWNS],
+    m: usize,
+    tiny: T,
+) -> bool {
+    solve_leading(a, rhs, m, tiny)
+}
