@@ -536,3 +536,214 @@ fn solve_unknowns<T: Real>(
 ) -> bool {
     solve_leading(a, rhs, m, tiny)
 }
+
+#[cfg(test)]
+#[allow(clippy::float_cmp, clippy::expect_used)] // exact zeros are the point; a test's setup may fail loudly
+mod tests {
+    //! The factored basis solve against the assembled LCP on random, violent two-box steps: every
+    //! answer it gives verifies on the assembled LCP ([`crate::lcp::verify`]), is zero off its
+    //! basis and is that basis' complementary solution (the dense principal system `A_SS z_S =
+    //! -q_S`, solved here by nalgebra's LU, gives the same `z`); where Lemke's method's direct
+    //! solve of a basis (`Lemke::solve_warm`, no pivot) answers, the factored solve answers too
+    //! unless it declines a degenerate answer (a normal impulse within round-off of zero, a
+    //! touching contact's slip that is not exactly zero) — counted and bounded.
+    use std::vec::Vec;
+
+    use nalgebra::{SMatrix, SVector};
+    use proptest::prelude::*;
+    use proptest::strategy::ValueTree as _;
+
+    use super::Factored;
+    use crate::lcp::{Basis, Lcp, Lemke, default_tolerance, verify};
+    use crate::multibody::stepper::slot_rows;
+    use crate::multibody::{Pair, Settings, Stepper, Support, System, Table};
+    use crate::planar::{Body, BodyState};
+
+    /// The LCP's capacity (block-on-block's).
+    const N: usize = 24;
+
+    /// One random two-box system: a bottom box on a floor, a top box on it.
+    #[derive(Debug, Clone)]
+    struct Case {
+        sizes: [f64; 4],
+        masses: [f64; 2],
+        offset: f64,
+        thetas: [f64; 2],
+        gaps: [f64; 2],
+        velocities: [[f64; 3]; 2],
+        mu: [f64; 2],
+        force: f64,
+    }
+
+    fn case() -> impl Strategy<Value = Case> {
+        let gap = prop_oneof![3 => Just(0.0), 1 => -1e-5..1e-5f64, 1 => Just(5e-4)];
+        let speed = prop_oneof![2 => Just(0.0), 1 => -3.0..3.0f64];
+        let tilt = prop_oneof![2 => Just(0.0), 1 => -0.6..0.6f64];
+        (
+            (0.2..1.0f64, 0.05..0.3f64, 0.1..0.8f64, 0.05..0.4f64),
+            (0.1..10.0f64, 0.01..10.0f64),
+            -0.5..0.5f64,
+            (prop_oneof![3 => Just(0.0), 1 => -0.05..0.05f64], tilt),
+            (gap.clone(), gap),
+            ((speed.clone(), speed.clone(), speed.clone()), (speed.clone(), speed.clone(), speed)),
+            (prop_oneof![Just(0.0), 0.05..4.0f64], prop_oneof![Just(0.0), 0.05..4.0f64]),
+            prop_oneof![Just(0.0), -50.0..50.0f64],
+        )
+            .prop_map(|(s, m, offset, t, g, v, mu, force)| Case {
+                sizes: [s.0, s.1, s.2, s.3],
+                masses: [m.0, m.1],
+                offset,
+                thetas: [t.0, t.1],
+                gaps: [g.0, g.1],
+                velocities: [[v.0.0, v.0.1, v.0.2], [v.1.0, v.1.1, v.1.2]],
+                mu: [mu.0, mu.1],
+                force,
+            })
+    }
+
+    fn stepper(c: &Case) -> Option<Stepper<f64, 2, 2, N>> {
+        let [w0, h0, w1, h1] = c.sizes;
+        let lowest = |w: f64, h: f64, t: f64| 0.5 * (h * t.cos() + w * t.sin().abs());
+        let y0 = lowest(w0, h0, c.thetas[0]) + c.gaps[0];
+        let y1 = y0 + lowest(w0, h0, c.thetas[0]) + lowest(w1, h1, c.thetas[1]) + c.gaps[1];
+        let system = System {
+            bodies: [Body::block(c.masses[0], w0, h0), Body::block(c.masses[1], w1, h1)],
+            table: Table::floor(),
+            pairs: [
+                Pair { upper: 0, lower: Support::Table, mu_static: c.mu[0], mu_kinetic: c.mu[0] },
+                Pair { upper: 1, lower: Support::Body(0), mu_static: c.mu[1], mu_kinetic: 0.5 * c.mu[1] },
+            ],
+            forces: [[c.force, 0.0], [0.0; 2]],
+            settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-4, margin: 1e-3 },
+        };
+        let state = |x: f64, y: f64, t: f64, v: [f64; 3]| BodyState {
+            x,
+            y,
+            theta: t,
+            vx: v[0],
+            vy: v[1],
+            omega: v[2],
+        };
+        let states = [
+            state(0.0, y0, c.thetas[0], c.velocities[0]),
+            state(c.offset * w0, y1, c.thetas[1], c.velocities[1]),
+        ];
+        Stepper::new(system, states).ok()
+    }
+
+    #[derive(Debug, Default)]
+    struct Counts {
+        accepted: u32,
+        lemke_direct: u32,
+        declined_where_lemke_answered: u32,
+    }
+
+    /// The basis `mask`'s complementary solution by the dense principal system, `None` when it
+    /// is singular.
+    fn principal(lcp: &Lcp<f64, N>, mask: u32) -> Option<[f64; N]> {
+        // Rows outside the basis are the identity's with right-hand side 0 (their z is 0).
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        let a = SMatrix::<f64, N, N>::from_fn(|r, c| match (basic(r), basic(c)) {
+            (true, true) => lcp.m[(r, c)],
+            (false, _) | (_, false) => f64::from(u8::from(r == c)),
+        });
+        let b = SVector::<f64, N>::from_fn(|r, _| if basic(r) { -lcp.q[r] } else { 0.0 });
+        let x = a.lu().solve(&b)?;
+        Some(x.into())
+    }
+
+    fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
+        let tolerance = default_tolerance::<f64, N>();
+        let (mut z, mut w) = ([0.0; N], [0.0; N]);
+        let answer = f.solve_basis(mask, tolerance, &mut z, &mut w);
+        let direct = Lemke::<f64, N>::new()
+            .solve_warm(lcp, Basis::from_z_mask(mask))
+            .ok()
+            .filter(|s| s.warm_start_used && s.pivots == 0 && s.basis.z_mask() == mask);
+        counts.lemke_direct += u32::from(direct.is_some());
+        let Ok(answer) = answer else {
+            counts.declined_where_lemke_answered += u32::from(direct.is_some());
+            return;
+        };
+        counts.accepted += 1;
+        let zs = SVector::from(z);
+        let check = verify(lcp, &zs, tolerance);
+        assert!(check.passed(), "basis {mask:#x}: residual {:e}", check.residual);
+        let z_norm = z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let w_dense = lcp.w_of(&zs);
+        let scale = lcp.m_norm_inf() * z_norm + lcp.q_norm_inf();
+        for v in 0..N {
+            if (answer.mask >> v) & 1 == 0 {
+                assert_eq!(z[v], 0.0, "basis {:#x}: z[{v}] off the basis", answer.mask);
+            }
+            assert!((w[v] - w_dense[v]).abs() <= 1e-12 * scale, "w[{v}] {} vs {}", w[v], w_dense[v]);
+        }
+        let expected = direct.map(|s| s.z.into()).or_else(|| principal(lcp, answer.mask));
+        if let Some(expected) = expected {
+            for v in 0..N {
+                assert!(
+                    (z[v] - expected[v]).abs() <= 1e-9 * z_norm.max(1e-300),
+                    "basis {:#x}: z[{v}] {} vs dense {}",
+                    answer.mask,
+                    z[v],
+                    expected[v]
+                );
+            }
+        }
+    }
+
+    /// The warm basis, Lemke's answer and every neighbour of both (one slot's pattern replaced by
+    /// each of the stepper's eight), for up to five steps of the case.
+    fn check_case(c: &Case, counts: &mut Counts) {
+        let Some(mut stepper) = stepper(c) else { return };
+        for _ in 0..5 {
+            let Ok(step) = stepper.factored() else { return };
+            let lcp = step.factored.assemble();
+            let mut bases = Vec::from([step.warm.z_mask()]);
+            if let Ok(s) = Lemke::<f64, N>::new().solve(&lcp) {
+                bases.push(s.basis.z_mask());
+            }
+            for base in bases.clone() {
+                for j in 0..step.k {
+                    for pattern in super::super::stepper::PATTERNS {
+                        let mut mask = base;
+                        for (bit, row) in slot_rows(step.k, j).into_iter().enumerate() {
+                            mask = (mask & !(1 << row)) | (u32::from(pattern >> bit & 1) << row);
+                        }
+                        bases.push(mask);
+                    }
+                }
+            }
+            for mask in bases {
+                check(&step.factored, &lcp, mask, counts);
+            }
+            if stepper.step().is_err() {
+                return;
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn factored_answers_are_the_bases_complementary_solutions(c in case()) {
+            let mut counts = Counts::default();
+            check_case(&c, &mut counts);
+        }
+    }
+
+    /// Over a fixed set of random cases: the factored solve answers most bases Lemke's direct
+    /// solve answers (it declines the degenerate ones).
+    #[test]
+    fn the_factored_solve_answers_most_bases_lemke_answers_directly() {
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        let mut counts = Counts::default();
+        for _ in 0..300 {
+            let c = case().new_tree(&mut runner).expect("a case").current();
+            check_case(&c, &mut counts);
+        }
+        std::println!("{counts:?}");
+        assert!(counts.lemke_direct > 500, "{counts:?}");
+        assert!(counts.declined_where_lemke_answered * 10 < counts.lemke_direct, "{counts:?}");
+    }
+}

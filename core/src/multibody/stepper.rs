@@ -131,7 +131,7 @@ type Pattern = u8;
 /// The eight patterns of a contact the candidates and a retry try, in order: sticking with `p_+d`,
 /// `p_-d`; sliding along `+d`, `-d`; touching without friction; separated; separated while
 /// slipping along `+d`, `-d`.
-const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b0001, 0b0000, 0b1010, 0b1100];
+pub(super) const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b0001, 0b0000, 0b1010, 0b1100];
 
 /// Steps a [`System`] of `B` bodies and `P` pairs (`4 P` candidate contacts) with an LCP of
 /// capacity `N` rows (at most `N / 4` active contacts; `N <= 32`, Lemke's limit).
@@ -556,7 +556,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 /// Slot `j`'s variables among `k` slots: `p_n`, `p_+d`, `p_-d`, `sigma` (the bits of a
 /// [`Pattern`] in order).
 #[inline]
-const fn slot_rows(k: usize, j: usize) -> [usize; 4] {
+pub(super) const fn slot_rows(k: usize, j: usize) -> [usize; 4] {
     [j, k + 2 * j, k + 2 * j + 1, 3 * k + j]
 }
 
