@@ -140,20 +140,27 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
-    /// No contact yet, `v~` given: [`Self::set_slot`] each active slot, then [`Self::finish`].
-    pub(super) fn new(k: usize, v_free: [[T; 3]; B]) -> Self {
+    /// No contact: [`Self::reset`] it for a step.
+    pub(super) fn new() -> Self {
         Self {
-            k: k.min(N / 4),
+            k: 0,
             cols: [Column::zero(); N],
             q: [T::zero(); N],
             mu: [T::zero(); N],
             pair: [0; N],
-            v_free,
+            v_free: [[T::zero(); 3]; B],
             m_low: T::one(),
             q_norm: T::zero(),
             q_min: T::zero(),
             finite: true,
         }
+    }
+
+    /// A step of `k` active slots with `v~`, in place (nothing cleared: [`Self::set_slot`] writes
+    /// each active slot's variables, [`Self::finish`] the rest).
+    pub(super) fn reset(&mut self, k: usize, v_free: [[T; 3]; B]) {
+        self.k = k.min(N / 4);
+        self.v_free = v_free;
     }
 
     /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows (`n`, `+d`, `-d`: each entry the
@@ -196,11 +203,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
     }
 
-    /// After every slot is set: the identity's rows beyond `4 k`, the scales, finiteness.
+    /// After every slot is set: the sigma rows' `q` (0), the identity's rows beyond `4 k`, the
+    /// scales, finiteness.
     pub(super) fn finish(&mut self) {
         let k = self.k.min(N / 4);
-        for v in 4 * k..N {
-            self.q[v] = T::one();
+        for v in 3 * k..N {
+            self.q[v] = if v < 4 * k { T::zero() } else { T::one() };
         }
         let mut m_low = T::one();
         let mut finite = AllFinite::new();
@@ -697,7 +705,10 @@ mod tests {
     fn check_case(c: &Case, counts: &mut Counts) {
         let Some(mut stepper) = stepper(c) else { return };
         for _ in 0..5 {
-            let Ok(step) = stepper.factored() else { return };
+            if stepper.refill().is_err() {
+                return;
+            }
+            let step = stepper.lcp;
             let lcp = step.factored.assemble();
             let mut bases = Vec::from([step.warm.z_mask()]);
             if let Ok(s) = Lemke::<f64, N>::new().solve(&lcp) {

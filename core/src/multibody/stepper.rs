@@ -165,6 +165,8 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     impulse_floor: T,
     steps: u32,
     solver: Lemke<T, N>,
+    /// The step's LCP in factored form, refilled each step ([`Self::refill`]).
+    pub(super) lcp: StepLcp<T, B, N>,
     stats: Stats,
 }
 
@@ -213,6 +215,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             impulse_floor: T::of(64.0) * T::EPS * s.gravity * s.step * m_min / m_ref,
             steps: 0,
             solver: Lemke::new(),
+            lcp: StepLcp {
+                factored: Factored::new(),
+                slots: [(0, 0); N],
+                k: 0,
+                active: 0,
+                warm: Basis::all_w(),
+            },
             stats: Stats::default(),
         };
         stepper.update_frames();
@@ -336,16 +345,17 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         Err(StepError::Solver(error))
     }
 
-    /// This step's LCP in factored form ([`Factored`]): the active candidates in candidate order
-    /// (`slots`), `v~ = V + h M^-1 w_ext` (eq. 16), each slot's Jacobian rows, bias and `mu`; and
-    /// the warm basis (each slot's pattern of the last step).
+    /// Refills this step's LCP in factored form ([`StepLcp`], kept in the stepper and refilled in
+    /// place each step: no copy of its rows): the active candidates in candidate order (`slots`),
+    /// `v~ = V + h M^-1 w_ext` (eq. 16), each slot's Jacobian rows, bias and `mu`; and the warm
+    /// basis (each slot's pattern of the last step).
     ///
     /// # Errors
     /// [`StepError::TooManyContacts`].
-    pub(super) fn factored(&self) -> Result<StepLcp<T, B, N>, StepError> {
+    pub(super) fn refill(&mut self) -> Result<(), StepError> {
         let s = self.system.settings;
         let h = s.step;
-        let mut slots = [(0usize, 0usize); N];
+        let out = &mut self.lcp;
         let mut k = 0usize;
         let mut active = 0u8;
         for p in 0..P {
@@ -353,7 +363,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 if self.frames[p][c].active {
                     active = active.saturating_add(1);
                     if 4 * (k + 1) <= N {
-                        slots[k] = (p, c);
+                        out.slots[k] = (p, c);
                         k += 1;
                     }
                 }
@@ -370,9 +380,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let (st, f, m) = (&self.states[i], self.system.forces[i], self.system.bodies[i].mass);
             v_free[i] = [st.vx + h * f[0] / m, st.vy + h * (f[1] / m - s.gravity), st.omega];
         }
-        let mut factored = Factored::new(k, v_free);
+        out.factored.reset(k, v_free);
         let mut warm = Basis::<N>::all_w();
-        for (j, &(p, c)) in slots[..k].iter().enumerate() {
+        for (j, &(p, c)) in out.slots[..k].iter().enumerate() {
             // Every slot's (p, c) is below (P, 4) by construction: said so, so that no index below
             // needs a check (no panic path).
             let (p, c) = (p.min(P - 1), c.min(3));
@@ -380,7 +390,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let d = f.tangent;
             let pair = &self.system.pairs[p];
             let mu = if self.modes[p][c].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
-            factored.set_slot(
+            out.factored.set_slot(
                 j,
                 p as u8,
                 [f.row(f.normal), f.row(d), f.row([-d[0], -d[1]])],
@@ -393,8 +403,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 warm.set_z_basic(row, pattern >> bit & 1 == 1);
             }
         }
-        factored.finish();
-        Ok(StepLcp { factored, slots, k, active, warm })
+        out.factored.finish();
+        out.k = k;
+        out.active = active;
+        out.warm = warm;
+        Ok(())
     }
 
     /// Solves the step's LCP (`docs/formulation.md`, "Solving a multibody step"): `z = 0` when
@@ -403,12 +416,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// [`PATTERNS`], the slot that failed first ([`SolvePath::Candidate`]); else Lemke's method on
     /// the assembled LCP from the warm basis, with its retries ([`SolvePath::Lemke`]). Every answer
     /// is verified. Writes `z`; returns `v+`, the basis and the pivots.
-    fn solve(
-        &self,
-        step: &StepLcp<T, B, N>,
-        paths: &mut PathCounts,
-        z: &mut [T; N],
-    ) -> Result<Solved<T, B, N>, StepError> {
+    fn solve(&self, paths: &mut PathCounts, z: &mut [T; N]) -> Result<Solved<T, B, N>, StepError> {
+        let step = &self.lcp;
         let f = &step.factored;
         if !f.is_finite() {
             return Err(StepError::Solver(LcpError::NonFiniteInput));
@@ -484,11 +493,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
         let s = self.system.settings;
         let h = s.step;
-        let step = self.factored()?;
-        let (k, active) = (step.k.min(N / 4), step.active);
+        self.refill()?;
+        let (k, active) = (self.lcp.k.min(N / 4), self.lcp.active);
         let mut z = [T::zero(); N];
         let mut paths = self.stats.paths;
-        let Solved { v_plus, basis, pivots, path } = self.solve(&step, &mut paths, &mut z)?;
+        let Solved { v_plus, basis, pivots, path } = self.solve(&mut paths, &mut z)?;
         let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
@@ -510,7 +519,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
-        for (j, &(p, c)) in step.slots[..k].iter().enumerate() {
+        for (j, &(p, c)) in self.lcp.slots[..k].iter().enumerate() {
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
@@ -572,7 +581,7 @@ struct Solved<T, const B: usize, const N: usize> {
     path: SolvePath,
 }
 
-/// One step's LCP in factored form with its slots and warm basis ([`Stepper::factored`]).
+/// One step's LCP in factored form with its slots and warm basis ([`Stepper::refill`]).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct StepLcp<T, const B: usize, const N: usize> {
     /// The factored rows.
