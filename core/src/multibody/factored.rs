@@ -500,23 +500,25 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 held |= 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
             }
         }
+        // Slot by slot (the identity's rows beyond `4 k` have `w = 1`, `z = 0`: nothing to check).
         let mut finite = AllFinite::new();
-        for v in 0..N {
-            let wv = w[v];
-            finite.add(wv);
-            if basic(v) {
-                violation = max(violation, wv.abs_exact());
-            } else {
-                let unheld = v >= k
-                    && v < 3 * k
-                    && basic(self.slot_of(v))
-                    && held.checked_shr(u32::from(self.pair[self.slot_of(v).min(N - 1)])).unwrap_or(0) & 1
-                        == 0;
-                let floor = if v < 3 * k && !unheld { -speed_round_off } else { T::zero() };
-                if wv < floor {
-                    return Err(Declined::Infeasible(v as u8));
+        for j in 0..k.min(N / 4) {
+            let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j];
+            let unheld = basic(n) && held.checked_shr(u32::from(self.pair[j])).unwrap_or(0) & 1 == 0;
+            let friction_floor = if unheld { T::zero() } else { -speed_round_off };
+            for (v, floor) in
+                [(n, -speed_round_off), (plus, friction_floor), (minus, friction_floor), (sigma, T::zero())]
+            {
+                let wv = w[v.min(N - 1)];
+                finite.add(wv);
+                if basic(v) {
+                    violation = max(violation, wv.abs_exact());
+                } else {
+                    if wv < floor {
+                        return Err(Declined::Infeasible(v as u8));
+                    }
+                    violation = max(violation, -wv);
                 }
-                violation = max(violation, -wv);
             }
         }
         let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
