@@ -247,6 +247,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.finite && self.q_min >= T::zero()
     }
 
+    /// `q`.
+    pub(super) const fn q(&self) -> &[T; N] {
+        &self.q
+    }
+
     /// `v~`.
     pub(super) const fn v_free(&self) -> &[[T; 3]; B] {
         &self.v_free

@@ -128,6 +128,9 @@ pub struct Stats {
 /// The basic variables of one candidate's slot: bit 0 `p_n`, 1 `p_+d`, 2 `p_-d`, 3 `sigma`.
 type Pattern = u8;
 
+/// Touching without friction (`p_n` basic).
+const TOUCH: Pattern = 0b0001;
+
 /// The eight patterns of a contact the candidates and a retry try, in order: sticking with `p_+d`,
 /// `p_-d`; sliding along `+d`, `-d`; touching without friction; separated; separated while
 /// slipping along `+d`, `-d`.
@@ -446,25 +449,68 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             Declined::Infeasible(v) => f.slot_of(usize::from(v)),
             Declined::Pattern | Declined::Singular | Declined::Unverified => 0,
         };
-        for c in 0..k {
-            let rows = slot_rows(k, (first + c) % k);
-            let current = rows
-                .iter()
-                .enumerate()
-                .fold(0u8, |acc, (bit, &row)| acc | u8::from(warm.is_z_basic(row)) << bit);
-            for pattern in PATTERNS {
-                if pattern == current {
-                    continue;
+        // One slot's pattern replaced, or every slot of one pair at once (an interface that starts
+        // or stops sliding changes both its corners: sticking and touching to sliding along the
+        // same direction); sticking patterns pair-wide stick the pair's first slot and touch the
+        // others (both sticking is singular). The failing slot first, then its pair, then the
+        // other slots, then the other pairs.
+        let pair_of = |j: usize| step.slots[j.min(N - 1)].0;
+        let with_slot = |mut basis: Basis<N>, j: usize, pattern: Pattern| {
+            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
+                basis.set_z_basic(row, pattern >> bit & 1 == 1);
+            }
+            basis
+        };
+        let with_pair = |p: usize, pattern: Pattern| {
+            let mut basis = warm;
+            let mut slots = 0;
+            for j in 0..k {
+                if pair_of(j) == p {
+                    let sticking = pattern == PATTERNS[0] || pattern == PATTERNS[1];
+                    basis = with_slot(basis, j, if sticking && slots > 0 { TOUCH } else { pattern });
+                    slots += 1;
                 }
-                let mut basis = warm;
-                for (bit, &row) in rows.iter().enumerate() {
-                    basis.set_z_basic(row, pattern >> bit & 1 == 1);
+            }
+            (slots > 1).then_some(basis)
+        };
+        // And the basis in which every touching slot slides against its free slip (the sign of
+        // its `+d` row's `q`, the relative tangential velocity before any impulse): several
+        // interfaces starting to slide in one step (a pushed block under another).
+        let sliding = {
+            let mut basis = warm;
+            for j in 0..k {
+                let [n, plus, ..] = slot_rows(k, j);
+                let q = f.q()[plus.min(N - 1)];
+                if warm.is_z_basic(n) && q != T::zero() {
+                    basis = with_slot(basis, j, if q < T::zero() { PATTERNS[2] } else { PATTERNS[3] });
                 }
-                paths.candidates_tried += 1;
-                if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, &mut w) {
-                    let basis = Basis::from_z_mask(a.mask);
-                    return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
-                }
+            }
+            basis
+        };
+        let first_pair = pair_of(first);
+        // The list, as one index (no iterator adapters: no panic path): the failing slot's 8, its
+        // pair's 8, the sliding one, the other slots' 8 each, the other pairs' 8 each.
+        let slots = k.max(1);
+        let others = 17 + 8 * (slots - 1);
+        for n in 0..others + 8 * P {
+            let basis = if n < 8 {
+                Some(with_slot(warm, first, PATTERNS[n % 8]))
+            } else if n < 16 {
+                with_pair(first_pair, PATTERNS[n % 8])
+            } else if n == 16 {
+                Some(sliding)
+            } else if n < others {
+                let m = n - 17;
+                Some(with_slot(warm, (first + 1 + m / 8) % slots, PATTERNS[m % 8]))
+            } else {
+                let m = n - others;
+                (m / 8 != first_pair).then(|| with_pair(m / 8, PATTERNS[m % 8])).flatten()
+            };
+            let Some(basis) = basis.filter(|&b| b != warm) else { continue };
+            paths.candidates_tried += 1;
+            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, &mut w) {
+                let basis = Basis::from_z_mask(a.mask);
+                return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
             }
         }
         let lcp = f.assemble();
