@@ -2,7 +2,7 @@
 //! (`docs/formulation.md`, "Several bodies", "One step").
 
 use super::factored::Factored;
-use super::geometry::{CornerFrame, Pair, Table, pair_frames, slip};
+use super::geometry::{CornerFrame, Pair, Table, pair_frames, poses, slip};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
@@ -282,11 +282,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 
     fn update_frames(&mut self) {
         let s = self.system.settings;
+        let poses = poses(&self.system.bodies, &self.states);
         for p in 0..P {
             self.frames[p] = pair_frames(
                 &self.system.pairs[p],
                 &self.system.bodies,
                 &self.states,
+                &poses,
                 &self.system.table,
                 s.margin,
                 s.step,
@@ -488,17 +490,18 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             basis
         };
         let first_pair = pair_of(first);
-        // The list, as one index (no iterator adapters: no panic path): the failing slot's 8, its
-        // pair's 8, the sliding one, the other slots' 8 each, the other pairs' 8 each.
+        // The list, as one index (no iterator adapters: no panic path): the sliding one (one solve,
+        // and the first step of a push needs it), the failing slot's 8, its pair's 8, the other
+        // slots' 8 each, the other pairs' 8 each.
         let slots = k.max(1);
         let others = 17 + 8 * (slots - 1);
         for n in 0..others + 8 * P {
-            let basis = if n < 8 {
-                Some(with_slot(warm, first, PATTERNS[n % 8]))
-            } else if n < 16 {
-                with_pair(first_pair, PATTERNS[n % 8])
-            } else if n == 16 {
+            let basis = if n == 0 {
                 Some(sliding)
+            } else if n < 9 {
+                Some(with_slot(warm, first, PATTERNS[(n - 1) % 8]))
+            } else if n < 17 {
+                with_pair(first_pair, PATTERNS[(n - 1) % 8])
             } else if n < others {
                 let m = n - 17;
                 Some(with_slot(warm, (first + 1 + m / 8) % slots, PATTERNS[m % 8]))
