@@ -541,7 +541,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 }
 
-/// The basis' `m x m` system by [`solve_leading`], one copy out of line.
+/// The basis' `m x m` system by [`solve_leading`], one copy out of line, and one specialised to
+/// `m = 9` (three bodies' resting interfaces: the 3-block stack's every step), its loops unrolled:
+/// the same operations in the same order (the same bits).
 #[inline(never)]
 fn solve_unknowns<T: Real>(
     a: &mut [[T; UNKNOWNS]; UNKNOWNS],
@@ -549,7 +551,13 @@ fn solve_unknowns<T: Real>(
     m: usize,
     tiny: T,
 ) -> bool {
-    solve_leading(a, rhs, m, tiny)
+    if m == UNKNOWNS { solve_all(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
+}
+
+/// [`solve_leading`] with every unknown (`m = 9`).
+#[inline(never)]
+fn solve_all<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
+    solve_leading(a, rhs, UNKNOWNS, tiny)
 }
 
 #[cfg(test)]
