@@ -1,5 +1,6 @@
-//! [`Stepper`]: `B` boxes on each other and on a table, one LCP per step solved by Lemke's method
-//! (`docs/formulation.md`, "Several bodies", "One step").
+//! [`Stepper`]: `B` boxes on each other and on a table, one LCP per step, solved in the bodies'
+//! coordinates when a basis near the last one answers and by Lemke's method otherwise
+//! (`docs/formulation.md`, "Several bodies", "One step", "Solving a multibody step (the core)").
 
 use super::factored::Factored;
 use super::geometry::{CornerFrame, Pair, Table, pair_frames, poses, slip};
@@ -78,7 +79,7 @@ pub struct StepReport<T, const B: usize, const P: usize> {
     pub modes: [[ContactMode; 4]; P],
     /// Active candidates this step (the LCP has `4` rows for each).
     pub active: u8,
-    /// Lemke pivots spent (0 when the warm basis solved directly).
+    /// Lemke pivots spent (0 when a basis solved in the bodies' coordinates answered).
     pub pivots: u32,
 }
 
@@ -146,13 +147,14 @@ pub(super) const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b000
 ///
 /// **Indeterminacy.** Two sticking corners of one box on another leave the split of the load
 /// between them undetermined: the impulse block `J M~ J^T` is singular and the LCP has a set of
-/// solutions. Lemke's method with its lexicographic rule (`core/src/lcp/lemke.rs`) ends on one
-/// vertex of that set, verified; a singular warm basis is declined by its direct solve and the
-/// method starts cold. What is reported is what every solution shares: velocities, positions and
-/// per pair the summed interface force ([`StepReport::interface_forces`]); no corner's share.
-/// Where solutions move the bodies differently (the model's "ambiguous" steps), the reference
-/// takes the least kinetic energy after the step and this stepper the solution Lemke's method
-/// reaches.
+/// solutions. A singular basis (both corners sticking) is declined by the factored solve; the
+/// regular one in which one corner carries the interface's friction and the other only its
+/// normal is what the first step's guess, the candidates and Lemke's method (with its
+/// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it. What is
+/// reported is what every solution shares: velocities, positions and per pair the summed
+/// interface force ([`StepReport::interface_forces`]); no corner's share. Where solutions move
+/// the bodies differently (the model's "ambiguous" steps), the reference takes the least kinetic
+/// energy after the step and this stepper the solution its paths reach first.
 #[derive(Debug, Clone)]
 pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     system: System<T, B, P>,
@@ -306,10 +308,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     ///    there is solved on the exact problem (its direct solve, verified), or the opened answer
     ///    counts if it verifies against the exact problem (`docs/formulation.md`, "Solving a
     ///    multibody step", 2).
-    /// 2. The warm basis with one active contact's pattern replaced by each of the eight of the
-    ///    reference's descent (separated; separated while slipping either way; touching without
-    ///    friction; sticking either way; sliding either way), each solved directly and then by
-    ///    Lemke's method from its tableau.
+    /// 2. The warm basis with one active contact's pattern replaced by each of [`PATTERNS`] (the
+    ///    eight of the reference's descent: sticking, sliding either way; touching without
+    ///    friction; separated; separated while slipping either way), each solved directly and then
+    ///    by Lemke's method from its tableau.
     ///
     /// Every answer is verified against the exact problem; the first error is the step's when none
     /// answers.
