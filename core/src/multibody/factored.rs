@@ -163,15 +163,16 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.v_free = v_free;
     }
 
-    /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows (`n`, `+d`, `-d`: each entry the
-    /// corner's owner and the face's owner, [`super::JacobianRow`]), its normal row's bias `c0`
-    /// and its `mu`; `inverse_mass` is `M~`'s diagonal per body.
+    /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d` (each
+    /// entry the corner's owner and the face's owner, [`super::JacobianRow`]; the `-d` column is
+    /// the `+d` one negated), its normal row's bias `c0` and its `mu`; `inverse_mass` is `M~`'s
+    /// diagonal per body.
     #[allow(clippy::too_many_arguments)] // a slot's data, as the stepper has them
     pub(super) fn set_slot(
         &mut self,
         j: usize,
         pair: u8,
-        rows: [super::JacobianRow<T>; 3],
+        rows: [super::JacobianRow<T>; 2],
         bias: T,
         mu: T,
         inverse_mass: &[[T; 3]; B],
@@ -181,7 +182,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             return;
         }
         for (r, row) in rows.iter().enumerate() {
-            let v = if r == 0 { j } else { k + 2 * j + r - 1 };
+            let v = if r == 0 { j } else { k + 2 * j };
             let mut col = Column::zero();
             for (b, c) in [row.corner, row.face].into_iter().flatten() {
                 let p = usize::from(col.parts).min(1);
@@ -191,9 +192,24 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
                 col.parts = (col.parts + 1).min(2);
             }
-            if let (Some(slot), Some(q)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
-                *q = col.dot(&self.v_free);
+            let q = col.dot(&self.v_free);
+            if let (Some(slot), Some(qv)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
+                *qv = q;
                 *slot = col;
+            }
+            if r == 1 {
+                // `-d`: the `+d` column negated, and its `q` (every product and sum negates
+                // exactly: the same bits as computing it from `-d`).
+                for p in 0..2 {
+                    for c in 0..3 {
+                        col.c[p][c] = -col.c[p][c];
+                        col.mc[p][c] = -col.mc[p][c];
+                    }
+                }
+                if let (Some(slot), Some(qv)) = (self.cols.get_mut(v + 1), self.q.get_mut(v + 1)) {
+                    *qv = -q;
+                    *slot = col;
+                }
             }
         }
         if let (Some(q), Some(m), Some(g)) = (self.q.get_mut(j), self.mu.get_mut(j), self.pair.get_mut(j)) {
@@ -212,13 +228,16 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         let mut m_low = T::one();
         let mut finite = AllFinite::new();
-        for v in 0..(3 * k).min(N) {
-            let col = &self.cols[v];
-            let unit = if v < k { T::zero() } else { T::one() };
-            m_low = max(m_low, col.dot_scaled(col).abs_exact() + unit);
-            for p in 0..2 {
-                for c in 0..3 {
-                    finite.add(col.mc[p][c]);
+        // Each slot's normal and `+d` columns (the `-d` one is the `+d` one negated: the same
+        // diagonal, finite with it).
+        for j in 0..k.min(N / 4) {
+            for (v, unit) in [(j, T::zero()), (k + 2 * j, T::one())] {
+                let col = &self.cols[v.min(N - 1)];
+                m_low = max(m_low, col.dot_scaled(col).abs_exact() + unit);
+                for p in 0..2 {
+                    for c in 0..3 {
+                        finite.add(col.mc[p][c]);
+                    }
                 }
             }
         }

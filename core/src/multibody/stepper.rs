@@ -400,7 +400,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             out.factored.set_slot(
                 j,
                 p as u8,
-                [f.row(f.normal), f.row(d), f.row([-d[0], -d[1]])],
+                [f.row(f.normal), f.row(d)],
                 normal_bias(f.gap, h, s.gravity, f.gap_round_off),
                 mu,
                 &self.inverse_mass,
