@@ -55,13 +55,14 @@ pub(super) struct Answer<T, const B: usize> {
     pub(super) mask: u32,
 }
 
+/// An unused body entry of a [`Column`] (beyond any `B`: no lookup finds it).
+const NO_BODY: u8 = u8::MAX;
+
 /// The column of one impulse variable: its (one or two) bodies' entries of `c_v` and of `M~ c_v`.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Column<T> {
-    /// The bodies (entry 1 unused when `parts` is 1).
+    /// The bodies ([`NO_BODY`] for an unused entry: a contact on the table touches one body).
     body: [u8; 2],
-    /// How many bodies the column touches: 1 or 2.
-    parts: u8,
     /// `c_v` per body.
     c: [[T; 3]; 2],
     /// `M~ c_v` per body.
@@ -71,14 +72,14 @@ pub(super) struct Column<T> {
 impl<T: Real> Column<T> {
     fn zero() -> Self {
         let zero3 = [T::zero(); 3];
-        Self { body: [0; 2], parts: 0, c: [zero3; 2], mc: [zero3; 2] }
+        Self { body: [NO_BODY; 2], c: [zero3; 2], mc: [zero3; 2] }
     }
 
     /// `c^T v` for velocities (or velocity changes) `v` in `3B` coordinates.
     #[inline]
     fn dot<const B: usize>(&self, v: &[[T; 3]; B]) -> T {
         let mut sum = T::zero();
-        for p in 0..usize::from(self.parts).min(2) {
+        for p in 0..2 {
             if let Some(u) = v.get(usize::from(self.body[p])) {
                 sum += dot3(&self.c[p], u);
             }
@@ -91,9 +92,9 @@ impl<T: Real> Column<T> {
     #[inline]
     fn dot_scaled(&self, g: &Self) -> T {
         let mut sum = T::zero();
-        for p in 0..usize::from(self.parts).min(2) {
-            for r in 0..usize::from(g.parts).min(2) {
-                if self.body[p] == g.body[r] {
+        for p in 0..2 {
+            for r in 0..2 {
+                if self.body[p] == g.body[r] && self.body[p] != NO_BODY {
                     sum += dot3(&self.c[p], &g.mc[r]);
                 }
             }
@@ -104,7 +105,7 @@ impl<T: Real> Column<T> {
     /// `dv += M~ c z`.
     #[inline]
     fn add_scaled_to<const B: usize>(&self, z: T, dv: &mut [[T; 3]; B]) {
-        for p in 0..usize::from(self.parts).min(2) {
+        for p in 0..2 {
             if let Some(u) = dv.get_mut(usize::from(self.body[p])) {
                 for c in 0..3 {
                     u[c] += self.mc[p][c] * z;
@@ -185,12 +186,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             let v = if r == 0 { j } else { k + 2 * j };
             let mut col = Column::zero();
             for (b, c) in [row.corner, row.face].into_iter().flatten() {
-                let p = usize::from(col.parts).min(1);
+                let p = usize::from(col.body[0] != NO_BODY);
                 let m = inverse_mass.get(usize::from(b)).copied().unwrap_or([T::zero(); 3]);
                 col.body[p] = b;
                 col.c[p] = c;
                 col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
-                col.parts = (col.parts + 1).min(2);
             }
             let q = col.dot(&self.v_free);
             if let (Some(slot), Some(qv)) = (self.cols.get_mut(v), self.q.get_mut(v)) {

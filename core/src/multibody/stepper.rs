@@ -176,8 +176,10 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
 }
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
-    const SIZE_CHECK: () =
-        assert!(B > 0 && P > 0 && N >= 4 && N <= 32, "Stepper needs B, P > 0, 4 <= N <= 32");
+    const SIZE_CHECK: () = assert!(
+        B > 0 && B < 255 && P > 0 && N >= 4 && N <= 32,
+        "Stepper needs 0 < B < 255, P > 0, 4 <= N <= 32"
+    );
 
     /// A stepper at `states` (every body at rest: the modes before the first step are sticking
     /// for an active touching candidate, separated otherwise).
