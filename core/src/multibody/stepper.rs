@@ -419,10 +419,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         Ok(())
     }
 
-    /// Solves the step's LCP (`docs/formulation.md`, "Solving a multibody step"): `z = 0` when
-    /// `q >= 0` ([`SolvePath::Free`]); else the warm basis in factored form
-    /// ([`SolvePath::Warm`]); else its neighbours, one slot's pattern replaced by each of
-    /// [`PATTERNS`], the slot that failed first ([`SolvePath::Candidate`]); else Lemke's method on
+    /// Solves the step's LCP (`docs/formulation.md`, "Solving a multibody step (the core)"): `z = 0`
+    /// when `q >= 0` ([`SolvePath::Free`]); else the warm basis in factored form
+    /// ([`SolvePath::Warm`]); else the bases of [`Self::candidate`] ([`SolvePath::Candidate`]);
+    /// else Lemke's method on
     /// the assembled LCP from the warm basis, with its retries ([`SolvePath::Lemke`]). Every answer
     /// is verified. Writes `z`; returns `v+`, the basis and the pivots.
     fn solve(&self, paths: &mut PathCounts, z: &mut [T; N]) -> Result<Solved<T, B, N>, StepError> {
@@ -450,6 +450,40 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             }
             Err(why) => why,
         };
+        if let Some(answer) = self.candidate(why, paths, z, &mut w) {
+            return Ok(answer);
+        }
+        let k = step.k.min(N / 4);
+        let lcp = f.assemble();
+        let solution = match self.solver.solve_from_basis(&lcp, warm) {
+            Err(LcpError::NonFiniteInput) => return Err(StepError::Solver(LcpError::NonFiniteInput)),
+            Err(error) => self.retry(&lcp, k, warm, error)?,
+            Ok(solution) => solution,
+        };
+        for j in 0..N {
+            z[j] = solution.z[j];
+        }
+        Ok(Solved {
+            v_plus: f.velocity_after(z),
+            basis: solution.basis,
+            pivots: solution.pivots,
+            path: SolvePath::Lemke,
+        })
+    }
+
+    /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
+    /// answers (written into `z`, `w`), or `None`.
+    fn candidate(
+        &self,
+        why: Declined,
+        paths: &mut PathCounts,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Option<Solved<T, B, N>> {
+        let step = &self.lcp;
+        let f = &step.factored;
+        let tolerance = self.solver.tolerance();
+        let warm = step.warm;
         let k = step.k.min(N / 4);
         let first = match why {
             Declined::Infeasible(v) => f.slot_of(usize::from(v)),
@@ -494,20 +528,35 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             basis
         };
         let first_pair = pair_of(first);
+        // A failing slot whose normal impulse came out negative wants to separate: its own
+        // pattern without `p_n` first (a sliding contact lifting off keeps its friction row and
+        // sigma basic: separated while the support slips past).
+        let lifting = match why {
+            Declined::Infeasible(v) if usize::from(v) < k && warm.is_z_basic(usize::from(v)) => {
+                let current = slot_rows(k, first)
+                    .iter()
+                    .enumerate()
+                    .fold(0, |acc, (bit, &row)| acc | u8::from(warm.is_z_basic(row)) << bit);
+                PATTERNS.contains(&(current & !1)).then(|| with_slot(warm, first, current & !1))
+            }
+            _ => None,
+        };
         // The list, as one index (no iterator adapters: no panic path): the sliding one (one solve,
-        // and the first step of a push needs it), the failing slot's 8, its pair's 8, the other
-        // slots' 8 each, the other pairs' 8 each.
+        // and the first step of a push needs it), the lifting one, the failing slot's 8, its
+        // pair's 8, the other slots' 8 each, the other pairs' 8 each.
         let slots = k.max(1);
-        let others = 17 + 8 * (slots - 1);
+        let others = 18 + 8 * (slots - 1);
         for n in 0..others + 8 * P {
             let basis = if n == 0 {
                 Some(sliding)
-            } else if n < 9 {
-                Some(with_slot(warm, first, PATTERNS[(n - 1) % 8]))
-            } else if n < 17 {
-                with_pair(first_pair, PATTERNS[(n - 1) % 8])
+            } else if n == 1 {
+                lifting
+            } else if n < 10 {
+                Some(with_slot(warm, first, PATTERNS[(n - 2) % 8])).filter(|&b| Some(b) != lifting)
+            } else if n < 18 {
+                with_pair(first_pair, PATTERNS[(n - 2) % 8])
             } else if n < others {
-                let m = n - 17;
+                let m = n - 18;
                 Some(with_slot(warm, (first + 1 + m / 8) % slots, PATTERNS[m % 8]))
             } else {
                 let m = n - others;
@@ -515,26 +564,12 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             };
             let Some(basis) = basis.filter(|&b| b != warm) else { continue };
             paths.candidates_tried += 1;
-            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, &mut w) {
+            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, w) {
                 let basis = Basis::from_z_mask(a.mask);
-                return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
+                return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
             }
         }
-        let lcp = f.assemble();
-        let solution = match self.solver.solve_from_basis(&lcp, warm) {
-            Err(LcpError::NonFiniteInput) => return Err(StepError::Solver(LcpError::NonFiniteInput)),
-            Err(error) => self.retry(&lcp, k, warm, error)?,
-            Ok(solution) => solution,
-        };
-        for j in 0..N {
-            z[j] = solution.z[j];
-        }
-        Ok(Solved {
-            v_plus: f.velocity_after(z),
-            basis: solution.basis,
-            pivots: solution.pivots,
-            path: SolvePath::Lemke,
-        })
+        None
     }
 
     /// Advances one step: the active candidates' LCP (per unit reference mass) in factored form,
