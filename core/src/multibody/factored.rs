@@ -377,11 +377,10 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let basic = |v: usize| (mask >> v) & 1 == 1;
         let cap = UNKNOWNS.min(3 * B);
         // The unknowns: the variable each sets and the friction row following it at `mu` (`N`:
-        // none); the friction row giving each slot's basic sigma (`N`: none).
+        // none).
         let mut var = [0usize; UNKNOWNS];
         let mut follower = [N; UNKNOWNS];
         let mut m = 0usize;
-        let mut sigma_row = [N; N];
         for j in 0..k {
             let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
             let frictions = usize::from(basic(plus)) + usize::from(basic(minus));
@@ -390,7 +389,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     return Err(Declined::Pattern);
                 }
                 let f = if basic(plus) { plus } else { minus };
-                sigma_row[j.min(N - 1)] = f;
                 if basic(j) {
                     if m >= cap {
                         return Err(Declined::Pattern);
@@ -482,37 +480,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             p_norm = max(p_norm, z[v]);
         }
         let speed_round_off = T::of(N as f64) * T::EPS * (self.m_low * p_norm + self.q_norm);
-        for j in 0..k.min(N) {
-            let f = sigma_row[j];
-            if f < N {
-                let sigma = -(self.q[f] + self.cols[f].dot(&dv));
-                if sigma < -speed_round_off {
-                    return Err(Declined::Infeasible((3 * k + j) as u8));
-                }
-                z[(3 * k + j).min(N - 1)] = max(sigma, T::zero());
-            }
-        }
-        // w in factored form.
-        for v in 0..(3 * k).min(N) {
-            w[v] = self.q[v] + self.cols[v].dot(&dv);
-        }
-        for j in 0..k.min(N / 4) {
-            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
-            let s = z[sigma];
-            w[plus] += s;
-            w[minus] += s;
-            w[sigma] = self.mu[j] * z[j] - z[plus] - z[minus];
-        }
-        for (wv, &qv) in w.iter_mut().zip(&self.q).skip(rows) {
-            *wv = qv;
-        }
-        // Feasibility outside the basis and the verification residual (`crate::lcp::verify`),
-        // bounded without a division per row, on the scale `||A||_low ||z|| + ||q||`.
-        let mut violation = T::zero();
-        let mut z_norm = p_norm;
-        for v in 3 * k..rows.min(N) {
-            z_norm = max(z_norm, z[v]);
-        }
         // The pairs with a basic friction impulse: a touching contact of any other pair holds its
         // slip to `>= 0` in both directions exactly (zero), not within round-off. (Within a pair
         // every corner's slip is the one relative slip of the two bodies along their face, held
@@ -524,10 +491,29 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 held |= 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
             }
         }
-        // Slot by slot (the identity's rows beyond `4 k` have `w = 1`, `z = 0`: nothing to check).
+        // Slot by slot: each basic sigma from its friction row, `w` in factored form, feasibility
+        // outside the basis and the verification residual (`crate::lcp::verify`) bounded without a
+        // division per row, on the scale `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row
+        // negated (its column and `q`: the same bits). The identity's rows beyond `4 k` have
+        // `w = 1`, `z = 0`: nothing to check.
+        let mut violation = T::zero();
+        let mut z_norm = p_norm;
         let mut finite = AllFinite::new();
         for j in 0..k.min(N / 4) {
-            let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j];
+            let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j].map(|v| v.min(N - 1));
+            let slip = self.q[plus] + self.cols[plus].dot(&dv);
+            if basic(sigma) {
+                let value = if basic(plus) { -slip } else { slip };
+                if value < -speed_round_off {
+                    return Err(Declined::Infeasible(sigma as u8));
+                }
+                z[sigma] = max(value, T::zero());
+                z_norm = max(z_norm, z[sigma]);
+            }
+            w[n] = self.q[n] + self.cols[n].dot(&dv);
+            w[plus] = slip + z[sigma];
+            w[minus] = -slip + z[sigma];
+            w[sigma] = self.mu[j] * z[n] - z[plus] - z[minus];
             let unheld = basic(n) && held.checked_shr(u32::from(self.pair[j])).unwrap_or(0) & 1 == 0;
             let friction_floor = if unheld { T::zero() } else { -speed_round_off };
             for (v, floor) in
@@ -544,6 +530,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     violation = max(violation, -wv);
                 }
             }
+        }
+        for (wv, &qv) in w.iter_mut().zip(&self.q).skip(rows) {
+            *wv = qv;
         }
         let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
         finite.add(s_w);
