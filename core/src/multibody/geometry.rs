@@ -197,7 +197,7 @@ fn dot<T: Real>(a: [T; 2], b: [T; 2]) -> T {
 
 /// A body's pose: centre, `R(theta)` as `(cos, sin)`, half extents.
 #[derive(Clone, Copy)]
-struct Pose<T> {
+pub(crate) struct Pose<T> {
     com: [T; 2],
     cos: T,
     sin: T,
@@ -232,19 +232,39 @@ struct Face<T> {
     normal: [T; 2],
 }
 
+/// Each body's pose (one sine and cosine per body, shared by the pairs it is in).
+pub(crate) fn poses<T: Real, const B: usize>(
+    bodies: &[Body<T>; B],
+    states: &[BodyState<T>; B],
+) -> [Pose<T>; B] {
+    let zero = [T::zero(); 2];
+    let mut poses = [Pose { com: zero, cos: T::one(), sin: T::zero(), half: zero }; B];
+    for ((pose, body), state) in poses.iter_mut().zip(bodies).zip(states) {
+        *pose = Pose::of(body, state);
+    }
+    poses
+}
+
 /// The frames of the four candidates of `pair` (`docs/formulation.md`, "The corner-on-face
-/// contact"), given the bodies, their states, the table and the settings' `margin` and step `h`.
+/// contact"), given the bodies, their states and [`poses`], the table and the settings' `margin`
+/// and step `h`.
+#[allow(clippy::too_many_arguments, clippy::too_many_lines)] // the geometry's inputs; the four candidates in order
 pub(crate) fn pair_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
     bodies: &[Body<T>; B],
     states: &[BodyState<T>; B],
+    poses: &[Pose<T>; B],
     table: &Table<T>,
     margin: T,
     h: T,
 ) -> [CornerFrame<T>; 4] {
     let two = T::of(2.0);
-    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact.
-    let pose = |b: u8| Some(Pose::of(bodies.get(usize::from(b))?, states.get(usize::from(b))?));
+    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact (body
+    // and state looked up too: their indices below are then provably in range, no panic path).
+    let pose = |b: u8| {
+        let i = usize::from(b);
+        bodies.get(i).and(states.get(i)).and(poses.get(i)).copied()
+    };
     let lower = match pair.lower {
         Support::Body(s) => pose(s).map(|p| Some((s, p))),
         Support::Table => Some(None),

@@ -1,17 +1,20 @@
 //! Several rigid boxes resting on each other and on a fixed table (`docs/formulation.md`, "Several
 //! bodies"; issue #32): velocities in `3B` coordinates, corner-on-face contacts between a box and
-//! the table or between two boxes, one LCP per step in the paper's full friction form, solved by
-//! Lemke's method ([`crate::lcp::Lemke`]) and verified.
+//! the table or between two boxes, one LCP per step in the paper's full friction form, solved in
+//! the bodies' coordinates from the last step's basis or a neighbour of it, else by Lemke's method
+//! ([`crate::lcp::Lemke`]), and verified.
 //!
 //! * [`System`]: `B` boxes ([`crate::planar::Body`]), the [`Table`], `P` resting [`Pair`]s (each
 //!   with four candidate contacts, [`Candidate`]), external forces and [`Settings`].
-//! * [`Stepper`]: the step (activity rule, assembly per unit reference mass, warm-started verified
-//!   solve, compensated integration, contact modes), each pair's summed interface force.
+//! * [`Stepper`]: the step (activity rule, the LCP per unit reference mass in factored form, the
+//!   paths free, warm, candidate and Lemke, each answer verified, compensated integration, contact
+//!   modes), each pair's summed interface force.
 //! * [`scenes`]: block-on-block, the tablecloth and the stack, returning the one
 //!   [`crate::scene::Outcome`].
 //!
 //! A single-body scene compiles none of this: nothing outside this module refers to it.
 
+mod factored;
 mod geometry;
 pub mod scenes;
 mod stepper;

@@ -1,13 +1,13 @@
-//! [`Stepper`]: `B` boxes on each other and on a table, one LCP per step solved by Lemke's method
-//! (`docs/formulation.md`, "Several bodies", "One step").
+//! [`Stepper`]: `B` boxes on each other and on a table, one LCP per step, solved in the bodies'
+//! coordinates when a basis near the last one answers and by Lemke's method otherwise
+//! (`docs/formulation.md`, "Several bodies", "One step", "Solving a multibody step (the core)").
 
-use nalgebra::{SMatrix, SVector};
-
-use super::geometry::{CornerFrame, Pair, Table, pair_frames, slip};
+use super::factored::Factored;
+use super::geometry::{CornerFrame, Pair, Table, pair_frames, poses, slip};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
-use crate::planar::{Body, BodyState, Checksum, ContactMode};
+use crate::planar::{Body, BodyState, Checksum, ContactMode, Declined, PathCounts, SolvePath};
 use crate::real::Real;
 
 /// The scalars of a step: time step, gravity, stick threshold and the activity rule's margin.
@@ -79,7 +79,7 @@ pub struct StepReport<T, const B: usize, const P: usize> {
     pub modes: [[ContactMode; 4]; P],
     /// Active candidates this step (the LCP has `4` rows for each).
     pub active: u8,
-    /// Lemke pivots spent (0 when the warm basis solved directly).
+    /// Lemke pivots spent (0 when a basis solved in the bodies' coordinates answered).
     pub pivots: u32,
 }
 
@@ -114,7 +114,7 @@ impl<T: Real, const B: usize, const P: usize> StepReport<T, B, P> {
 pub struct Stats {
     /// Steps taken.
     pub steps: u32,
-    /// Steps the warm basis solved without a pivot.
+    /// Steps the warm basis answered ([`SolvePath::Warm`]).
     pub warm_direct: u32,
     /// Lemke pivots over the run.
     pub pivots: u64,
@@ -122,14 +122,20 @@ pub struct Stats {
     pub max_pivots: u32,
     /// The most active candidates of one step.
     pub max_active: u8,
+    /// How many steps each path answered (`docs/formulation.md`, "Solving a multibody step").
+    pub paths: PathCounts,
 }
 
 /// The basic variables of one candidate's slot: bit 0 `p_n`, 1 `p_+d`, 2 `p_-d`, 3 `sigma`.
 type Pattern = u8;
 
-/// The eight patterns of a contact a retry tries: separated; separated while slipping along `+d`,
-/// `-d`; touching without friction; sticking with `p_+d`, `p_-d`; sliding along `+d`, `-d`.
-const PATTERNS: [Pattern; 8] = [0b0000, 0b1010, 0b1100, 0b0001, 0b0011, 0b0101, 0b1011, 0b1101];
+/// Touching without friction (`p_n` basic).
+const TOUCH: Pattern = 0b0001;
+
+/// The eight patterns of a contact the candidates and a retry try, in order: sticking with `p_+d`,
+/// `p_-d`; sliding along `+d`, `-d`; touching without friction; separated; separated while
+/// slipping along `+d`, `-d`.
+pub(super) const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b0001, 0b0000, 0b1010, 0b1100];
 
 /// Steps a [`System`] of `B` bodies and `P` pairs (`4 P` candidate contacts) with an LCP of
 /// capacity `N` rows (at most `N / 4` active contacts; `N <= 32`, Lemke's limit).
@@ -141,13 +147,14 @@ const PATTERNS: [Pattern; 8] = [0b0000, 0b1010, 0b1100, 0b0001, 0b0011, 0b0101, 
 ///
 /// **Indeterminacy.** Two sticking corners of one box on another leave the split of the load
 /// between them undetermined: the impulse block `J M~ J^T` is singular and the LCP has a set of
-/// solutions. Lemke's method with its lexicographic rule (`core/src/lcp/lemke.rs`) ends on one
-/// vertex of that set, verified; a singular warm basis is declined by its direct solve and the
-/// method starts cold. What is reported is what every solution shares: velocities, positions and
-/// per pair the summed interface force ([`StepReport::interface_forces`]); no corner's share.
-/// Where solutions move the bodies differently (the model's "ambiguous" steps), the reference
-/// takes the least kinetic energy after the step and this stepper the solution Lemke's method
-/// reaches.
+/// solutions. A singular basis (both corners sticking) is declined by the factored solve; the
+/// regular one in which one corner carries the interface's friction and the other only its
+/// normal is what the first step's guess, the candidates and Lemke's method (with its
+/// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it. What is
+/// reported is what every solution shares: velocities, positions and per pair the summed
+/// interface force ([`StepReport::interface_forces`]); no corner's share. Where solutions move
+/// the bodies differently (the model's "ambiguous" steps), the reference takes the least kinetic
+/// energy after the step and this stepper the solution its paths reach first.
 #[derive(Debug, Clone)]
 pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     system: System<T, B, P>,
@@ -163,12 +170,16 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     impulse_floor: T,
     steps: u32,
     solver: Lemke<T, N>,
+    /// The step's LCP in factored form, refilled each step ([`Self::refill`]).
+    pub(super) lcp: StepLcp<T, B, N>,
     stats: Stats,
 }
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
-    const SIZE_CHECK: () =
-        assert!(B > 0 && P > 0 && N >= 4 && N <= 32, "Stepper needs B, P > 0, 4 <= N <= 32");
+    const SIZE_CHECK: () = assert!(
+        B > 0 && B < 255 && P > 0 && N >= 4 && N <= 32,
+        "Stepper needs 0 < B < 255, P > 0, 4 <= N <= 32"
+    );
 
     /// A stepper at `states` (every body at rest: the modes before the first step are sticking
     /// for an active touching candidate, separated otherwise).
@@ -211,16 +222,26 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             impulse_floor: T::of(64.0) * T::EPS * s.gravity * s.step * m_min / m_ref,
             steps: 0,
             solver: Lemke::new(),
+            lcp: StepLcp {
+                factored: Factored::new(),
+                slots: [(0, 0); N],
+                k: 0,
+                active: 0,
+                warm: Basis::all_w(),
+            },
             stats: Stats::default(),
         };
         stepper.update_frames();
         for p in 0..P {
+            let mut sticking = false;
             for c in 0..4 {
                 let f = &stepper.frames[p][c];
                 if f.active && f.gap <= f.touch {
                     stepper.modes[p][c] = ContactMode::Sticking;
-                    // The warm start's guess: touching, no friction yet.
-                    stepper.patterns[p][c] = 1;
+                    // The warm start's guess: the pair's first touching corner sticks (`p_n`,
+                    // `p_+d`), the others touch (`p_n`): both sticking is singular.
+                    stepper.patterns[p][c] = if sticking { 0b0001 } else { 0b0011 };
+                    sticking = true;
                 }
             }
         }
@@ -265,11 +286,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 
     fn update_frames(&mut self) {
         let s = self.system.settings;
+        let poses = poses(&self.system.bodies, &self.states);
         for p in 0..P {
             self.frames[p] = pair_frames(
                 &self.system.pairs[p],
                 &self.system.bodies,
                 &self.states,
+                &poses,
                 &self.system.table,
                 s.margin,
                 s.step,
@@ -287,10 +310,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     ///    there is solved on the exact problem (its direct solve, verified), or the opened answer
     ///    counts if it verifies against the exact problem (`docs/formulation.md`, "Solving a
     ///    multibody step", 2).
-    /// 2. The warm basis with one active contact's pattern replaced by each of the eight of the
-    ///    reference's descent (separated; separated while slipping either way; touching without
-    ///    friction; sticking either way; sliding either way), each solved directly and then by
-    ///    Lemke's method from its tableau.
+    /// 2. The warm basis with one active contact's pattern replaced by each of [`PATTERNS`] (the
+    ///    eight of the reference's descent: sticking, sliding either way; touching without
+    ///    friction; separated; separated while slipping either way), each solved directly and then
+    ///    by Lemke's method from its tableau.
     ///
     /// Every answer is verified against the exact problem; the first error is the step's when none
     /// answers.
@@ -301,6 +324,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         warm: Basis<N>,
         error: LcpError,
     ) -> Result<LcpSolution<T, N>, StepError> {
+        // `k <= N / 4` (said so: every row index below is in range, no panic path).
+        let k = k.min(N / 4);
         let mut opened = *lcp;
         let delta = T::EPS.sqrt_libm() * lcp.q_norm_inf();
         for j in 3 * k..4 * k {
@@ -329,18 +354,17 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         Err(StepError::Solver(error))
     }
 
-    /// Advances one step: the active candidates' LCP (per unit reference mass), solved by Lemke's
-    /// method warm-started from the last step's basic variables, verified; `V+ = v~ + M~ J^T z`,
-    /// `q+ = q + h V+` (compensated sums), modes after the step.
+    /// Refills this step's LCP in factored form ([`StepLcp`], kept in the stepper and refilled in
+    /// place each step: no copy of its rows): the active candidates in candidate order (`slots`),
+    /// `v~ = V + h M^-1 w_ext` (eq. 16), each slot's Jacobian rows, bias and `mu`; and the warm
+    /// basis (each slot's pattern of the last step).
     ///
     /// # Errors
-    /// [`StepError`]; the state is then unchanged.
-    #[allow(clippy::too_many_lines)] // the model's step in order: slots, assemble, solve, integrate, classify
-    pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    /// [`StepError::TooManyContacts`].
+    pub(super) fn refill(&mut self) -> Result<(), StepError> {
         let s = self.system.settings;
         let h = s.step;
-        // Slots: the active candidates in candidate order.
-        let mut slots = [(0usize, 0usize); N];
+        let out = &mut self.lcp;
         let mut k = 0usize;
         let mut active = 0u8;
         for p in 0..P {
@@ -348,7 +372,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 if self.frames[p][c].active {
                     active = active.saturating_add(1);
                     if 4 * (k + 1) <= N {
-                        slots[k] = (p, c);
+                        out.slots[k] = (p, c);
                         k += 1;
                     }
                 }
@@ -360,98 +384,209 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         // `k <= N / 4` already; said so that every row index below (< 4 k) is in range without a
         // check (no panic path).
         let k = k.min(N / 4);
-        // v~ = V + h M^-1 w_ext (eq. 16).
-        let m_ref = self.system.bodies[0].mass;
         let mut v_free = [[T::zero(); 3]; B];
         for i in 0..B {
             let (st, f, m) = (&self.states[i], self.system.forces[i], self.system.bodies[i].mass);
             v_free[i] = [st.vx + h * f[0] / m, st.vy + h * (f[1] / m - s.gravity), st.omega];
         }
-        // Rows of the 3k impulses: normal of slot j at j, +d at k + 2j, -d at k + 2j + 1.
-        // Each row dense in 3B coordinates (zero outside its two bodies): an entry of `J M~ J^T`
-        // is then 3B multiply-adds without a branch.
-        let mut rows = [[[T::zero(); 3]; B]; N];
-        let mut scaled = [[[T::zero(); 3]; B]; N];
-        for (j, &(p, c)) in slots[..k].iter().enumerate() {
+        out.factored.reset(k, v_free);
+        let mut warm = Basis::<N>::all_w();
+        for (j, &(p, c)) in out.slots[..k].iter().enumerate() {
             // Every slot's (p, c) is below (P, 4) by construction: said so, so that no index below
             // needs a check (no panic path).
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let d = f.tangent;
-            rows[j] = f.row(f.normal).dense();
-            rows[k + 2 * j] = f.row(d).dense();
-            rows[k + 2 * j + 1] = f.row([-d[0], -d[1]]).dense();
-        }
-        for j in 0..3 * k {
-            for body in 0..B {
-                for c in 0..3 {
-                    scaled[j][body][c] = rows[j][body][c] * self.inverse_mass[body][c];
-                }
-            }
-        }
-        let mut a = SMatrix::<T, N, N>::zeros();
-        let mut b = SVector::<T, N>::zeros();
-        // The 3k impulse rows (3k < N: `min` and `get_mut` say so, no panic path).
-        let rows_3k = (3 * k).min(N);
-        for i in 0..rows_3k {
-            for j in i..rows_3k {
-                let e = dense_dot(&rows[i], &scaled[j]);
-                for entry in [(i, j), (j, i)] {
-                    if let Some(x) = a.get_mut(entry) {
-                        *x = e;
-                    }
-                }
-            }
-            b[i] = dense_dot(&rows[i], &v_free);
-        }
-        let mut warm = Basis::<N>::all_w();
-        for (j, &(p, c)) in slots[..k].iter().enumerate() {
-            let (p, c) = (p.min(P - 1), c.min(3));
-            let f = &self.frames[p][c];
-            b[j] += normal_bias(f.gap, h, s.gravity, f.gap_round_off);
             let pair = &self.system.pairs[p];
             let mu = if self.modes[p][c].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
-            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
-            // All below 4k <= N (`get_mut`: no panic path).
-            let cone = [
-                ((plus, sigma), T::one()),
-                ((minus, sigma), T::one()),
-                ((sigma, j), mu),
-                ((sigma, plus), -T::one()),
-                ((sigma, minus), -T::one()),
-            ];
-            for (entry, value) in cone {
-                if let Some(x) = a.get_mut(entry) {
-                    *x = value;
-                }
-            }
+            out.factored.set_slot(
+                j,
+                p as u8,
+                [f.row(f.normal), f.row(d)],
+                normal_bias(f.gap, h, s.gravity, f.gap_round_off),
+                mu,
+                &self.inverse_mass,
+            );
             let pattern = self.patterns[p][c];
-            for (bit, row) in [j, plus, minus, sigma].into_iter().enumerate() {
+            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
                 warm.set_z_basic(row, pattern >> bit & 1 == 1);
             }
         }
-        for i in 4 * k..N {
-            a[(i, i)] = T::one();
-            b[i] = T::one();
+        out.factored.finish();
+        out.k = k;
+        out.active = active;
+        out.warm = warm;
+        Ok(())
+    }
+
+    /// Solves the step's LCP (`docs/formulation.md`, "Solving a multibody step (the core)"): `z = 0`
+    /// when `q >= 0` ([`SolvePath::Free`]); else the warm basis in factored form
+    /// ([`SolvePath::Warm`]); else the bases of [`Self::candidate`] ([`SolvePath::Candidate`]);
+    /// else Lemke's method on
+    /// the assembled LCP from the warm basis, with its retries ([`SolvePath::Lemke`]). Every answer
+    /// is verified. Writes `z`; returns `v+`, the basis and the pivots.
+    fn solve(&self, paths: &mut PathCounts, z: &mut [T; N]) -> Result<Solved<T, B, N>, StepError> {
+        let step = &self.lcp;
+        let f = &step.factored;
+        if !f.is_finite() {
+            return Err(StepError::Solver(LcpError::NonFiniteInput));
         }
-        let lcp = Lcp::new(a, b);
-        let solution = match self.solver.solve_warm(&lcp, warm) {
+        if f.is_free() {
+            *z = [T::zero(); N];
+            return Ok(Solved {
+                v_plus: *f.v_free(),
+                basis: Basis::all_w(),
+                pivots: 0,
+                path: SolvePath::Free,
+            });
+        }
+        let tolerance = self.solver.tolerance();
+        let mut w = [T::zero(); N];
+        let warm = step.warm;
+        let why = match f.solve_basis(warm.z_mask(), tolerance, z, &mut w) {
+            Ok(a) => {
+                let basis = Basis::from_z_mask(a.mask);
+                return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Warm });
+            }
+            Err(why) => why,
+        };
+        if let Some(answer) = self.candidate(why, paths, z, &mut w) {
+            return Ok(answer);
+        }
+        let k = step.k.min(N / 4);
+        let lcp = f.assemble();
+        let solution = match self.solver.solve_from_basis(&lcp, warm) {
             Err(LcpError::NonFiniteInput) => return Err(StepError::Solver(LcpError::NonFiniteInput)),
             Err(error) => self.retry(&lcp, k, warm, error)?,
             Ok(solution) => solution,
         };
-        let z = solution.z;
-        // V+ = v~ + M~ J^T z.
-        let mut v_plus = v_free;
-        for j in 0..3 * k {
-            if z[j] != T::zero() {
-                for body in 0..B {
-                    for c in 0..3 {
-                        v_plus[body][c] += z[j] * scaled[j][body][c];
-                    }
+        for j in 0..N {
+            z[j] = solution.z[j];
+        }
+        Ok(Solved {
+            v_plus: f.velocity_after(z),
+            basis: solution.basis,
+            pivots: solution.pivots,
+            path: SolvePath::Lemke,
+        })
+    }
+
+    /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
+    /// answers (written into `z`, `w`), or `None`.
+    fn candidate(
+        &self,
+        why: Declined,
+        paths: &mut PathCounts,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Option<Solved<T, B, N>> {
+        let step = &self.lcp;
+        let f = &step.factored;
+        let tolerance = self.solver.tolerance();
+        let warm = step.warm;
+        let k = step.k.min(N / 4);
+        let first = match why {
+            Declined::Infeasible(v) => f.slot_of(usize::from(v)),
+            Declined::Pattern | Declined::Singular | Declined::Unverified => 0,
+        };
+        // One slot's pattern replaced, or every slot of one pair at once (an interface that starts
+        // or stops sliding changes both its corners: sticking and touching to sliding along the
+        // same direction); sticking patterns pair-wide stick the pair's first slot and touch the
+        // others (both sticking is singular). The failing slot first, then its pair, then the
+        // other slots, then the other pairs.
+        let pair_of = |j: usize| step.slots[j.min(N - 1)].0;
+        let with_slot = |mut basis: Basis<N>, j: usize, pattern: Pattern| {
+            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
+                basis.set_z_basic(row, pattern >> bit & 1 == 1);
+            }
+            basis
+        };
+        let with_pair = |p: usize, pattern: Pattern| {
+            let mut basis = warm;
+            let mut slots = 0;
+            for j in 0..k {
+                if pair_of(j) == p {
+                    let sticking = pattern == PATTERNS[0] || pattern == PATTERNS[1];
+                    basis = with_slot(basis, j, if sticking && slots > 0 { TOUCH } else { pattern });
+                    slots += 1;
                 }
             }
+            (slots > 1).then_some(basis)
+        };
+        // And the basis in which every touching slot slides against its free slip (the sign of
+        // its `+d` row's `q`, the relative tangential velocity before any impulse): several
+        // interfaces starting to slide in one step (a pushed block under another).
+        let sliding = {
+            let mut basis = warm;
+            for j in 0..k {
+                let [n, plus, ..] = slot_rows(k, j);
+                let q = f.q()[plus.min(N - 1)];
+                if warm.is_z_basic(n) && q != T::zero() {
+                    basis = with_slot(basis, j, if q < T::zero() { PATTERNS[2] } else { PATTERNS[3] });
+                }
+            }
+            basis
+        };
+        let first_pair = pair_of(first);
+        // A failing slot whose normal impulse came out negative wants to separate: its own
+        // pattern without `p_n` first (a sliding contact lifting off keeps its friction row and
+        // sigma basic: separated while the support slips past).
+        let lifting = match why {
+            Declined::Infeasible(v) if usize::from(v) < k && warm.is_z_basic(usize::from(v)) => {
+                let current = slot_rows(k, first)
+                    .iter()
+                    .enumerate()
+                    .fold(0, |acc, (bit, &row)| acc | u8::from(warm.is_z_basic(row)) << bit);
+                PATTERNS.contains(&(current & !1)).then(|| with_slot(warm, first, current & !1))
+            }
+            _ => None,
+        };
+        // The list, as one index (no iterator adapters: no panic path): the sliding one (one solve,
+        // and the first step of a push needs it), the lifting one, the failing slot's 8, its
+        // pair's 8, the other slots' 8 each, the other pairs' 8 each.
+        let slots = k.max(1);
+        let others = 18 + 8 * (slots - 1);
+        for n in 0..others + 8 * P {
+            let basis = if n == 0 {
+                Some(sliding)
+            } else if n == 1 {
+                lifting
+            } else if n < 10 {
+                Some(with_slot(warm, first, PATTERNS[(n - 2) % 8])).filter(|&b| Some(b) != lifting)
+            } else if n < 18 {
+                with_pair(first_pair, PATTERNS[(n - 2) % 8])
+            } else if n < others {
+                let m = n - 18;
+                Some(with_slot(warm, (first + 1 + m / 8) % slots, PATTERNS[m % 8]))
+            } else {
+                let m = n - others;
+                (m / 8 != first_pair).then(|| with_pair(m / 8, PATTERNS[m % 8])).flatten()
+            };
+            let Some(basis) = basis.filter(|&b| b != warm) else { continue };
+            paths.candidates_tried += 1;
+            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, w) {
+                let basis = Basis::from_z_mask(a.mask);
+                return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
+            }
         }
+        None
+    }
+
+    /// Advances one step: the active candidates' LCP (per unit reference mass) in factored form,
+    /// solved by the paths of [`Self::solve`] and verified; `V+ = v~ + M~ J^T z`, `q+ = q + h V+`
+    /// (compensated sums), modes after the step.
+    ///
+    /// # Errors
+    /// [`StepError`]; the state is then unchanged.
+    pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+        let s = self.system.settings;
+        let h = s.step;
+        self.refill()?;
+        let (k, active) = (self.lcp.k.min(N / 4), self.lcp.active);
+        let mut z = [T::zero(); N];
+        let mut paths = self.stats.paths;
+        let Solved { v_plus, basis, pivots, path } = self.solve(&mut paths, &mut z)?;
+        let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
         let mut carry = self.carry;
@@ -472,16 +607,16 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
-        for (j, &(p, c)) in slots[..k].iter().enumerate() {
+        for (j, &(p, c)) in self.lcp.slots[..k].iter().enumerate() {
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
-            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let rows = slot_rows(k, j);
             let mut pattern = 0;
-            for (bit, row) in [j, plus, minus, sigma].into_iter().enumerate() {
-                pattern |= u8::from(solution.basis.is_z_basic(row)) << bit;
+            for (bit, row) in rows.into_iter().enumerate() {
+                pattern |= u8::from(basis.is_z_basic(row)) << bit;
             }
             patterns[p][c] = pattern;
-            let (pn, pf) = (z[j], z[plus] - z[minus]);
+            let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
                 modes[p][c] = ContactMode::from_slip(slip(f, &v_plus), s.stick_speed);
             }
@@ -502,23 +637,49 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         self.steps += 1;
         self.update_frames();
         let st = &mut self.stats;
+        paths.count(path);
+        st.paths = paths;
         st.steps += 1;
-        st.pivots += u64::from(solution.pivots);
-        st.max_pivots = st.max_pivots.max(solution.pivots);
+        st.pivots += u64::from(pivots);
+        st.max_pivots = st.max_pivots.max(pivots);
         st.max_active = st.max_active.max(active);
-        if solution.warm_start_used && solution.pivots == 0 {
+        if path == SolvePath::Warm {
             st.warm_direct += 1;
         }
-        Ok(StepReport { time: self.time(), states, interface_forces, modes, active, pivots: solution.pivots })
+        Ok(StepReport { time: self.time(), states, interface_forces, modes, active, pivots })
     }
 }
 
-/// `sum over bodies and coordinates of a * b` (two rows dense in `3B` coordinates).
+/// Slot `j`'s variables among `k` slots: `p_n`, `p_+d`, `p_-d`, `sigma` (the bits of a
+/// [`Pattern`] in order).
 #[inline]
-fn dense_dot<T: Real, const B: usize>(a: &[[T; 3]; B], b: &[[T; 3]; B]) -> T {
-    let mut sum = T::zero();
-    for body in 0..B {
-        sum += a[body][0] * b[body][0] + a[body][1] * b[body][1] + a[body][2] * b[body][2];
-    }
-    sum
+pub(super) const fn slot_rows(k: usize, j: usize) -> [usize; 4] {
+    [j, k + 2 * j, k + 2 * j + 1, 3 * k + j]
+}
+
+/// A step's verified answer ([`Stepper::solve`]; `z` is written into the caller's array).
+struct Solved<T, const B: usize, const N: usize> {
+    /// `v+ = v~ + M~ J^T z`.
+    v_plus: [[T; 3]; B],
+    /// The basis of the answer (the next step's warm basis).
+    basis: Basis<N>,
+    /// Lemke pivots spent.
+    pivots: u32,
+    /// The path that answered.
+    path: SolvePath,
+}
+
+/// One step's LCP in factored form with its slots and warm basis ([`Stepper::refill`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct StepLcp<T, const B: usize, const N: usize> {
+    /// The factored rows.
+    pub(super) factored: Factored<T, B, N>,
+    /// The active candidates `(pair, candidate)` in slot order.
+    pub(super) slots: [(usize, usize); N],
+    /// How many slots.
+    pub(super) k: usize,
+    /// Active candidates (`k`, as a count).
+    pub(super) active: u8,
+    /// The last step's patterns as a basis.
+    pub(super) warm: Basis<N>,
 }

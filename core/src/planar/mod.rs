@@ -46,7 +46,7 @@ mod events;
 mod layout;
 mod model;
 
-mod inputs;
+pub(crate) mod inputs;
 
 mod factored;
 

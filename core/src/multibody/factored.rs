@@ -1,0 +1,783 @@
+//! One multibody step's LCP in factored form, and its solution for a given complementary basis in
+//! the bodies' `3B` coordinates: the stepper's fast path (`docs/formulation.md`, "Solving a
+//! multibody step"). The single body's form (`core/src/planar/factored.rs`) in `3B` coordinates.
+//!
+//! # The factored form
+//! With `k` active candidates the variables are laid out as the stepper's LCP
+//! ([`super::Stepper`]): `p_n` of slot `j` at `j`, `p_+d` at `k + 2 j`, `p_-d` at `k + 2 j + 1`,
+//! `sigma` at `3 k + j`; rows `4 k .. N` are the identity's (`q = 1`). Impulse variable `v` has
+//! the Jacobian column `c_v` (one or two bodies' three entries: a contact on the table touches one
+//! body, one between two bodies both), `M~ c_v` (per unit reference mass) and `q_v = c_v^T v~ +
+//! c0_v`, so that
+//!
+//! ```text
+//! w_v     = q_v + c_v^T dv (+ sigma_j for a friction row of slot j),   dv = sum_v M~ c_v p_v
+//! w_sigma = mu_j p_n,j - p_+d,j - p_-d,j
+//! ```
+//!
+//! Nothing here forms the `N x N` matrix; a row costs one or two 3-vector dot products.
+//!
+//! # The solution of a basis
+//! Per slot the eliminations of the single body's form: `sigma` basic with one friction row `f`
+//! basic (sliding, or at the cone's edge): `p_f = mu p_n`, one unknown `p_n` acting through
+//! `c_n + mu c_f`, held by its normal row, `sigma = -(q_f + c_f^T dv)` afterwards (without a basic
+//! `p_n`, only `sigma`); `sigma` not basic: each basic `p_n`, `p_f` is an unknown held by its own
+//! row; any other pattern is declined. At most `min(3 B, UNKNOWNS)` unknowns (more rows than the
+//! bodies' degrees of freedom make the system singular): `H^T M~ G y = -q_H` by elimination with
+//! partial pivoting ([`solve_leading`]), then `z`, `dv`, `w` in factored form and the single body's
+//! acceptance rules with its round-off floors: impulses `>= 0` exactly and not within `N eps` of the
+//! largest, velocity rows and `sigma`s `>= 0` within `N eps (||A|| ||p|| + ||q||)`, cone rows `>= 0`
+//! exactly, finite, and the verification residual ([`crate::lcp::verify`]) held to a scale no
+//! larger than Lemke's (`||A||_inf` replaced by `max_v (|A_vv| + the row's unit entries)`, a lower
+//! bound). A singular system (both corners of one interface sticking: four rows of rank three) is
+//! declined.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::lcp::Lcp;
+use crate::lcp::elimination::solve_leading;
+use crate::planar::Declined;
+use crate::planar::inputs::dot3;
+use crate::real::{AllFinite, Real, max, min};
+
+/// The most unknowns a basis may have here: three bodies' degrees of freedom (a basis of more is
+/// declined, and Lemke's method answers it).
+pub(super) const UNKNOWNS: usize = 9;
+
+/// A basis' verified answer ([`Factored::solve_basis`]; `z` and `w` are written into the caller's
+/// arrays).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Answer<T, const B: usize> {
+    /// `v+ = v~ + dv`.
+    pub(super) v_plus: [[T; 3]; B],
+    /// The basis answered (the one given, a sticking contact's friction turned to the direction
+    /// its impulse takes).
+    pub(super) mask: u32,
+}
+
+/// An unused body entry of a [`Column`] (beyond any `B`: no lookup finds it).
+const NO_BODY: u8 = u8::MAX;
+
+/// The column of one impulse variable: its (one or two) bodies' entries of `c_v` and of `M~ c_v`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Column<T> {
+    /// The bodies ([`NO_BODY`] for an unused entry: a contact on the table touches one body).
+    body: [u8; 2],
+    /// `c_v` per body.
+    c: [[T; 3]; 2],
+    /// `M~ c_v` per body.
+    mc: [[T; 3]; 2],
+}
+
+impl<T: Real> Column<T> {
+    fn zero() -> Self {
+        let zero3 = [T::zero(); 3];
+        Self { body: [NO_BODY; 2], c: [zero3; 2], mc: [zero3; 2] }
+    }
+
+    /// `c^T v` for velocities (or velocity changes) `v` in `3B` coordinates.
+    #[inline]
+    fn dot<const B: usize>(&self, v: &[[T; 3]; B]) -> T {
+        let mut sum = T::zero();
+        for p in 0..2 {
+            if let Some(u) = v.get(usize::from(self.body[p])) {
+                sum += dot3(&self.c[p], u);
+            }
+        }
+        sum
+    }
+
+    /// `c^T (M~ g)` for the column `g` (`g`'s `M~ c`): the entry of `J M~ J^T` in this row and
+    /// `g`'s column.
+    #[inline]
+    fn dot_scaled(&self, g: &Self) -> T {
+        let mut sum = T::zero();
+        for p in 0..2 {
+            for r in 0..2 {
+                if self.body[p] == g.body[r] && self.body[p] != NO_BODY {
+                    sum += dot3(&self.c[p], &g.mc[r]);
+                }
+            }
+        }
+        sum
+    }
+
+    /// `dv += M~ c z`.
+    #[inline]
+    fn add_scaled_to<const B: usize>(&self, z: T, dv: &mut [[T; 3]; B]) {
+        for p in 0..2 {
+            if let Some(u) = dv.get_mut(usize::from(self.body[p])) {
+                for c in 0..3 {
+                    u[c] += self.mc[p][c] * z;
+                }
+            }
+        }
+    }
+}
+
+/// The factored rows of one multibody step's LCP (module docs).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Factored<T, const B: usize, const N: usize> {
+    /// Active slots `k` (`4 k <= N`).
+    k: usize,
+    /// Each impulse variable's column (`v < 3 k`).
+    cols: [Column<T>; N],
+    /// `q`.
+    q: [T; N],
+    /// Each slot's friction coefficient this step.
+    mu: [T; N],
+    /// Each slot's pair (its two bodies: the corners of one interface share their slip).
+    pair: [u8; N],
+    /// `v~`.
+    v_free: [[T; 3]; B],
+    /// `max_v (|A_vv| + the row's unit entries)`, a lower bound of `||A||_inf`.
+    m_low: T,
+    /// `||q||_inf`.
+    q_norm: T,
+    /// `min_v q_v`.
+    q_min: T,
+    /// Every entry of `q` and `M~ c` is finite.
+    finite: bool,
+}
+
+impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
+    /// No contact: [`Self::reset`] it for a step.
+    pub(super) fn new() -> Self {
+        Self {
+            k: 0,
+            cols: [Column::zero(); N],
+            q: [T::zero(); N],
+            mu: [T::zero(); N],
+            pair: [0; N],
+            v_free: [[T::zero(); 3]; B],
+            m_low: T::one(),
+            q_norm: T::zero(),
+            q_min: T::zero(),
+            finite: true,
+        }
+    }
+
+    /// A step of `k` active slots with `v~`, in place (nothing cleared: [`Self::set_slot`] writes
+    /// each active slot's variables, [`Self::finish`] the rest).
+    pub(super) fn reset(&mut self, k: usize, v_free: [[T; 3]; B]) {
+        self.k = k.min(N / 4);
+        self.v_free = v_free;
+    }
+
+    /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d` (each
+    /// entry the corner's owner and the face's owner, [`super::JacobianRow`]; the `-d` column is
+    /// the `+d` one negated), its normal row's bias `c0` and its `mu`; `inverse_mass` is `M~`'s
+    /// diagonal per body.
+    #[allow(clippy::too_many_arguments)] // a slot's data, as the stepper has them
+    pub(super) fn set_slot(
+        &mut self,
+        j: usize,
+        pair: u8,
+        rows: [super::JacobianRow<T>; 2],
+        bias: T,
+        mu: T,
+        inverse_mass: &[[T; 3]; B],
+    ) {
+        let k = self.k.min(N / 4);
+        if j >= k {
+            return;
+        }
+        for (r, row) in rows.iter().enumerate() {
+            let v = if r == 0 { j } else { k + 2 * j };
+            let mut col = Column::zero();
+            for (b, c) in [row.corner, row.face].into_iter().flatten() {
+                let p = usize::from(col.body[0] != NO_BODY);
+                let m = inverse_mass.get(usize::from(b)).copied().unwrap_or([T::zero(); 3]);
+                col.body[p] = b;
+                col.c[p] = c;
+                col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
+            }
+            let q = col.dot(&self.v_free);
+            if let (Some(slot), Some(qv)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
+                *qv = q;
+                *slot = col;
+            }
+            if r == 1 {
+                // `-d`: the `+d` column negated, and its `q` (every product and sum negates
+                // exactly: the same bits as computing it from `-d`).
+                for p in 0..2 {
+                    for c in 0..3 {
+                        col.c[p][c] = -col.c[p][c];
+                        col.mc[p][c] = -col.mc[p][c];
+                    }
+                }
+                if let (Some(slot), Some(qv)) = (self.cols.get_mut(v + 1), self.q.get_mut(v + 1)) {
+                    *qv = -q;
+                    *slot = col;
+                }
+            }
+        }
+        if let (Some(q), Some(m), Some(g)) = (self.q.get_mut(j), self.mu.get_mut(j), self.pair.get_mut(j)) {
+            *q += bias;
+            *m = mu;
+            *g = pair;
+        }
+    }
+
+    /// After every slot is set: the sigma rows' `q` (0), the identity's rows beyond `4 k`, the
+    /// scales, finiteness.
+    pub(super) fn finish(&mut self) {
+        let k = self.k.min(N / 4);
+        for v in 3 * k..N {
+            self.q[v] = if v < 4 * k { T::zero() } else { T::one() };
+        }
+        let mut m_low = T::one();
+        let mut finite = AllFinite::new();
+        // Each slot's normal and `+d` columns (the `-d` one is the `+d` one negated: the same
+        // diagonal, finite with it).
+        for j in 0..k.min(N / 4) {
+            for (v, unit) in [(j, T::zero()), (k + 2 * j, T::one())] {
+                let col = &self.cols[v.min(N - 1)];
+                m_low = max(m_low, col.dot_scaled(col).abs_exact() + unit);
+                for p in 0..2 {
+                    for c in 0..3 {
+                        finite.add(col.mc[p][c]);
+                    }
+                }
+            }
+        }
+        for j in 0..k.min(N) {
+            m_low = max(m_low, self.mu[j].abs_exact() + T::of(2.0));
+        }
+        let (mut q_norm, mut q_min) = (T::zero(), self.q[0]);
+        for v in 0..N {
+            finite.add(self.q[v]);
+            q_norm = max(q_norm, self.q[v].abs_exact());
+            q_min = min(q_min, self.q[v]);
+        }
+        self.m_low = m_low;
+        self.q_norm = q_norm;
+        self.q_min = q_min;
+        self.finite = finite.holds();
+    }
+
+    /// `true` when every entry of `q` and of the columns is finite.
+    pub(super) const fn is_finite(&self) -> bool {
+        self.finite
+    }
+
+    /// `true` when the data are finite and `q >= 0`: `z = 0` solves the LCP exactly.
+    pub(super) fn is_free(&self) -> bool {
+        self.finite && self.q_min >= T::zero()
+    }
+
+    /// `q`.
+    pub(super) const fn q(&self) -> &[T; N] {
+        &self.q
+    }
+
+    /// `v~`.
+    pub(super) const fn v_free(&self) -> &[[T; 3]; B] {
+        &self.v_free
+    }
+
+    /// The slot the variable `v` belongs to (0 for an identity row's).
+    pub(super) const fn slot_of(&self, v: usize) -> usize {
+        let k = if self.k < N / 4 { self.k } else { N / 4 };
+        if v < k {
+            v
+        } else if v < 3 * k {
+            (v - k) / 2
+        } else if v < 4 * k {
+            v - 3 * k
+        } else {
+            0
+        }
+    }
+
+    /// `dv = M~ J^T p` for the impulses in `z` (eq. 16), summed on its own.
+    #[inline(never)]
+    pub(super) fn velocity_change(&self, z: &[T; N]) -> [[T; 3]; B] {
+        let mut dv = [[T::zero(); 3]; B];
+        for v in 0..(3 * self.k.min(N / 4)).min(N) {
+            if z[v] != T::zero() {
+                self.cols[v].add_scaled_to(z[v], &mut dv);
+            }
+        }
+        dv
+    }
+
+    /// `v+ = v~ + dv` with `dv` of [`Self::velocity_change`].
+    pub(super) fn velocity_after(&self, z: &[T; N]) -> [[T; 3]; B] {
+        let dv = self.velocity_change(z);
+        let mut v = self.v_free;
+        for b in 0..B {
+            for c in 0..3 {
+                v[b][c] += dv[b][c];
+            }
+        }
+        v
+    }
+
+    /// The assembled LCP (the solver of record's form): `J M~ J^T` from the columns, the cone
+    /// rows, the identity beyond `4 k`.
+    pub(super) fn assemble(&self) -> Lcp<T, N> {
+        let k = self.k.min(N / 4);
+        let mut a = SMatrix::<T, N, N>::zeros();
+        let rows = (3 * k).min(N);
+        for i in 0..rows {
+            for j in i..rows {
+                let e = self.cols[i].dot_scaled(&self.cols[j]);
+                for entry in [(i, j), (j, i)] {
+                    if let Some(x) = a.get_mut(entry) {
+                        *x = e;
+                    }
+                }
+            }
+        }
+        for j in 0..k {
+            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let cone = [
+                ((plus, sigma), T::one()),
+                ((minus, sigma), T::one()),
+                ((sigma, j), self.mu[j.min(N - 1)]),
+                ((sigma, plus), -T::one()),
+                ((sigma, minus), -T::one()),
+            ];
+            for (entry, value) in cone {
+                if let Some(x) = a.get_mut(entry) {
+                    *x = value;
+                }
+            }
+        }
+        for i in 4 * k..N {
+            a[(i, i)] = T::one();
+        }
+        Lcp::new(a, SVector::from(self.q))
+    }
+
+    /// The complementary solution of the basis `mask` (bit `v`: `z_v` basic) in the bodies'
+    /// coordinates, verified within `tolerance` (module docs), written into `z` and `w`; returns
+    /// `v+` and the basis answered, or why there is none.
+    ///
+    /// # Errors
+    /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
+    /// basic without exactly one friction row, more unknowns than it holds), a singular system,
+    /// an infeasible basis, an answer that fails verification.
+    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
+    #[inline(never)]
+    pub(super) fn solve_basis(
+        &self,
+        mask: u32,
+        tolerance: T,
+        z: &mut [T; N],
+        w: &mut [T; N],
+    ) -> Result<Answer<T, B>, Declined> {
+        let k = self.k.min(N / 4);
+        let rows = 4 * k;
+        let outside = if rows >= 32 { 0 } else { !((1u32 << rows) - 1) };
+        if mask & outside != 0 {
+            return Err(Declined::Pattern);
+        }
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        let cap = UNKNOWNS.min(3 * B);
+        // The unknowns: the variable each sets and the friction row following it at `mu` (`N`:
+        // none).
+        let mut var = [0usize; UNKNOWNS];
+        let mut follower = [N; UNKNOWNS];
+        let mut m = 0usize;
+        for j in 0..k {
+            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let frictions = usize::from(basic(plus)) + usize::from(basic(minus));
+            if basic(sigma) {
+                if frictions != 1 {
+                    return Err(Declined::Pattern);
+                }
+                let f = if basic(plus) { plus } else { minus };
+                if basic(j) {
+                    if m >= cap {
+                        return Err(Declined::Pattern);
+                    }
+                    var[m] = j;
+                    follower[m] = f;
+                    m += 1;
+                }
+                continue;
+            }
+            for v in [j, plus, minus] {
+                if basic(v) {
+                    if m >= cap {
+                        return Err(Declined::Pattern);
+                    }
+                    var[m] = v;
+                    m += 1;
+                }
+            }
+        }
+        let m = m.min(UNKNOWNS);
+        // H^T M~ G y = -q_H; unknown l's column G_l = c_var + mu c_follower (the same bodies).
+        // Between two unknowns without a follower the entry is `c_r^T M~ c_l`, symmetric: taken
+        // from its mirror when that is already formed.
+        let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+        let mut y = [T::zero(); UNKNOWNS];
+        for l in 0..m {
+            let mut g = self.cols[var[l].min(N - 1)];
+            if follower[l] < N {
+                let (f, mu) = (&self.cols[follower[l]], self.mu[var[l].min(N - 1)]);
+                for p in 0..2 {
+                    for c in 0..3 {
+                        g.mc[p][c] += mu * f.mc[p][c];
+                    }
+                }
+            }
+            for r in 0..m {
+                a[r][l] = if r < l && follower[r] == N && follower[l] == N {
+                    a[l][r]
+                } else {
+                    self.cols[var[r].min(N - 1)].dot_scaled(&g)
+                };
+            }
+            y[l] = -self.q[var[l].min(N - 1)];
+        }
+        let tiny = T::of(N as f64) * T::EPS * self.m_low;
+        if !solve_unknowns(&mut a, &mut y, m, tiny) {
+            return Err(Declined::Singular);
+        }
+        // Impulses `>= 0` exactly, no normal impulse positive within the round-off of the largest
+        // (a degenerate basis: the one without it answers, `core/src/planar/factored.rs`). A
+        // sticking contact's friction unknown of either sign is an answer: `c_-d = -c_+d`
+        // exactly, so a negative `p_+d` is the same solution as `p_-d = -p_+d` in the basis with
+        // `p_-d` basic instead (its row `w_-d = -w_+d = 0`, `w_+d = 0` outside it), and that basis
+        // is the one kept. A friction impulse within round-off of zero (a resting stack's zero
+        // tangential load) is kept: it holds the interface's slip at zero; declining it would leave
+        // the interface without friction, whose slip round-off nothing opposes (the stack creeps).
+        let mut y_max = T::zero();
+        for l in 0..m {
+            y_max = max(y_max, y[l].abs_exact());
+        }
+        let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
+        let mut mask = mask;
+        for l in 0..m {
+            let v = var[l];
+            if v >= k && y[l] < T::zero() {
+                // The other direction of the same contact (`k + 2 j` <-> `k + 2 j + 1`).
+                let other = if (v - k) & 1 == 0 { v + 1 } else { v - 1 };
+                mask ^= (1u32 << v.min(31)) | (1u32 << other.min(31));
+                var[l] = other;
+                y[l] = -y[l];
+            }
+        }
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        *z = [T::zero(); N];
+        for l in 0..m {
+            let normal = var[l] < k;
+            if y[l] < T::zero() || (normal && y[l] > T::zero() && y[l] <= impulse_round_off) {
+                return Err(Declined::Infeasible(var[l] as u8));
+            }
+            z[var[l].min(N - 1)] = y[l];
+            if follower[l] < N {
+                z[follower[l]] = self.mu[var[l].min(N - 1)] * y[l];
+            }
+        }
+        let dv = self.velocity_change(z);
+        let mut p_norm = T::zero();
+        for v in 0..(3 * k).min(N) {
+            p_norm = max(p_norm, z[v]);
+        }
+        let speed_round_off = T::of(N as f64) * T::EPS * (self.m_low * p_norm + self.q_norm);
+        // The pairs with a basic friction impulse: a touching contact of any other pair holds its
+        // slip to `>= 0` in both directions exactly (zero), not within round-off. (Within a pair
+        // every corner's slip is the one relative slip of the two bodies along their face, held
+        // at zero by the corner whose friction is basic; another pair's touching contact with no
+        // friction would let that slip's round-off run unopposed.)
+        let mut held = 0u32;
+        for j in 0..k.min(N / 4) {
+            if basic(k + 2 * j) || basic(k + 2 * j + 1) {
+                held |= 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
+            }
+        }
+        // Slot by slot: each basic sigma from its friction row, `w` in factored form, feasibility
+        // outside the basis and the verification residual (`crate::lcp::verify`) bounded without a
+        // division per row, on the scale `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row
+        // negated (its column and `q`: the same bits). The identity's rows beyond `4 k` have
+        // `w = 1`, `z = 0`: nothing to check.
+        let mut violation = T::zero();
+        let mut z_norm = p_norm;
+        let mut finite = AllFinite::new();
+        for j in 0..k.min(N / 4) {
+            let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j].map(|v| v.min(N - 1));
+            let slip = self.q[plus] + self.cols[plus].dot(&dv);
+            if basic(sigma) {
+                let value = if basic(plus) { -slip } else { slip };
+                if value < -speed_round_off {
+                    return Err(Declined::Infeasible(sigma as u8));
+                }
+                z[sigma] = max(value, T::zero());
+                z_norm = max(z_norm, z[sigma]);
+            }
+            w[n] = self.q[n] + self.cols[n].dot(&dv);
+            w[plus] = slip + z[sigma];
+            w[minus] = -slip + z[sigma];
+            w[sigma] = self.mu[j] * z[n] - z[plus] - z[minus];
+            let unheld = basic(n) && held.checked_shr(u32::from(self.pair[j])).unwrap_or(0) & 1 == 0;
+            let friction_floor = if unheld { T::zero() } else { -speed_round_off };
+            for (v, floor) in
+                [(n, -speed_round_off), (plus, friction_floor), (minus, friction_floor), (sigma, T::zero())]
+            {
+                let wv = w[v.min(N - 1)];
+                finite.add(wv);
+                if basic(v) {
+                    violation = max(violation, wv.abs_exact());
+                } else {
+                    if wv < floor {
+                        return Err(Declined::Infeasible(v as u8));
+                    }
+                    violation = max(violation, -wv);
+                }
+            }
+        }
+        for (wv, &qv) in w.iter_mut().zip(&self.q).skip(rows) {
+            *wv = qv;
+        }
+        let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
+        finite.add(s_w);
+        if !finite.holds() || violation > tolerance * s_w {
+            return Err(Declined::Unverified);
+        }
+        let mut v_plus = self.v_free;
+        for b in 0..B {
+            for c in 0..3 {
+                v_plus[b][c] += dv[b][c];
+            }
+        }
+        Ok(Answer { v_plus, mask })
+    }
+}
+
+/// The basis' `m x m` system by [`solve_leading`], one copy out of line, and one specialised to
+/// `m = 9` (three bodies' resting interfaces: the 3-block stack's every step), its loops unrolled:
+/// the same operations in the same order (the same bits).
+#[inline(never)]
+fn solve_unknowns<T: Real>(
+    a: &mut [[T; UNKNOWNS]; UNKNOWNS],
+    rhs: &mut [T; UNKNOWNS],
+    m: usize,
+    tiny: T,
+) -> bool {
+    if m == UNKNOWNS { solve_all(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
+}
+
+/// [`solve_leading`] with every unknown (`m = 9`).
+#[inline(never)]
+fn solve_all<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
+    solve_leading(a, rhs, UNKNOWNS, tiny)
+}
+
+#[cfg(test)]
+#[allow(clippy::float_cmp, clippy::expect_used)] // exact zeros are the point; a test's setup may fail loudly
+mod tests {
+    //! The factored basis solve against the assembled LCP on random, violent two-box steps: every
+    //! answer it gives verifies on the assembled LCP ([`crate::lcp::verify`]), is zero off its
+    //! basis and is that basis' complementary solution (the dense principal system `A_SS z_S =
+    //! -q_S`, solved here by nalgebra's LU, gives the same `z`); where Lemke's method's direct
+    //! solve of a basis (`Lemke::solve_warm`, no pivot) answers, the factored solve answers too
+    //! unless it declines a degenerate answer (a normal impulse within round-off of zero, a
+    //! touching contact's slip that is not exactly zero) — counted and bounded.
+    use std::vec::Vec;
+
+    use nalgebra::{SMatrix, SVector};
+    use proptest::prelude::*;
+    use proptest::strategy::ValueTree as _;
+
+    use super::Factored;
+    use crate::lcp::{Basis, Lcp, Lemke, default_tolerance, verify};
+    use crate::multibody::stepper::slot_rows;
+    use crate::multibody::{Pair, Settings, Stepper, Support, System, Table};
+    use crate::planar::{Body, BodyState};
+
+    /// The LCP's capacity (block-on-block's).
+    const N: usize = 24;
+
+    /// One random two-box system: a bottom box on a floor, a top box on it.
+    #[derive(Debug, Clone)]
+    struct Case {
+        sizes: [f64; 4],
+        masses: [f64; 2],
+        offset: f64,
+        thetas: [f64; 2],
+        gaps: [f64; 2],
+        velocities: [[f64; 3]; 2],
+        mu: [f64; 2],
+        force: f64,
+    }
+
+    fn case() -> impl Strategy<Value = Case> {
+        let gap = prop_oneof![3 => Just(0.0), 1 => -1e-5..1e-5f64, 1 => Just(5e-4)];
+        let speed = prop_oneof![2 => Just(0.0), 1 => -3.0..3.0f64];
+        let tilt = prop_oneof![2 => Just(0.0), 1 => -0.6..0.6f64];
+        (
+            (0.2..1.0f64, 0.05..0.3f64, 0.1..0.8f64, 0.05..0.4f64),
+            (0.1..10.0f64, 0.01..10.0f64),
+            -0.5..0.5f64,
+            (prop_oneof![3 => Just(0.0), 1 => -0.05..0.05f64], tilt),
+            (gap.clone(), gap),
+            ((speed.clone(), speed.clone(), speed.clone()), (speed.clone(), speed.clone(), speed)),
+            (prop_oneof![Just(0.0), 0.05..4.0f64], prop_oneof![Just(0.0), 0.05..4.0f64]),
+            prop_oneof![Just(0.0), -50.0..50.0f64],
+        )
+            .prop_map(|(s, m, offset, t, g, v, mu, force)| Case {
+                sizes: [s.0, s.1, s.2, s.3],
+                masses: [m.0, m.1],
+                offset,
+                thetas: [t.0, t.1],
+                gaps: [g.0, g.1],
+                velocities: [[v.0.0, v.0.1, v.0.2], [v.1.0, v.1.1, v.1.2]],
+                mu: [mu.0, mu.1],
+                force,
+            })
+    }
+
+    fn stepper(c: &Case) -> Option<Stepper<f64, 2, 2, N>> {
+        let [w0, h0, w1, h1] = c.sizes;
+        let lowest = |w: f64, h: f64, t: f64| 0.5 * (h * t.cos() + w * t.sin().abs());
+        let y0 = lowest(w0, h0, c.thetas[0]) + c.gaps[0];
+        let y1 = y0 + lowest(w0, h0, c.thetas[0]) + lowest(w1, h1, c.thetas[1]) + c.gaps[1];
+        let system = System {
+            bodies: [Body::block(c.masses[0], w0, h0), Body::block(c.masses[1], w1, h1)],
+            table: Table::floor(),
+            pairs: [
+                Pair { upper: 0, lower: Support::Table, mu_static: c.mu[0], mu_kinetic: c.mu[0] },
+                Pair { upper: 1, lower: Support::Body(0), mu_static: c.mu[1], mu_kinetic: 0.5 * c.mu[1] },
+            ],
+            forces: [[c.force, 0.0], [0.0; 2]],
+            settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-4, margin: 1e-3 },
+        };
+        let state = |x: f64, y: f64, t: f64, v: [f64; 3]| BodyState {
+            x,
+            y,
+            theta: t,
+            vx: v[0],
+            vy: v[1],
+            omega: v[2],
+        };
+        let states = [
+            state(0.0, y0, c.thetas[0], c.velocities[0]),
+            state(c.offset * w0, y1, c.thetas[1], c.velocities[1]),
+        ];
+        Stepper::new(system, states).ok()
+    }
+
+    #[derive(Debug, Default)]
+    struct Counts {
+        accepted: u32,
+        lemke_direct: u32,
+        declined_where_lemke_answered: u32,
+    }
+
+    /// The basis `mask`'s complementary solution by the dense principal system, `None` when it
+    /// is singular.
+    fn principal(lcp: &Lcp<f64, N>, mask: u32) -> Option<[f64; N]> {
+        // Rows outside the basis are the identity's with right-hand side 0 (their z is 0).
+        let basic = |v: usize| (mask >> v) & 1 == 1;
+        let a = SMatrix::<f64, N, N>::from_fn(|r, c| match (basic(r), basic(c)) {
+            (true, true) => lcp.m[(r, c)],
+            (false, _) | (_, false) => f64::from(u8::from(r == c)),
+        });
+        let b = SVector::<f64, N>::from_fn(|r, _| if basic(r) { -lcp.q[r] } else { 0.0 });
+        let x = a.lu().solve(&b)?;
+        Some(x.into())
+    }
+
+    fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
+        let tolerance = default_tolerance::<f64, N>();
+        let (mut z, mut w) = ([0.0; N], [0.0; N]);
+        let answer = f.solve_basis(mask, tolerance, &mut z, &mut w);
+        let direct = Lemke::<f64, N>::new()
+            .solve_warm(lcp, Basis::from_z_mask(mask))
+            .ok()
+            .filter(|s| s.warm_start_used && s.pivots == 0 && s.basis.z_mask() == mask);
+        counts.lemke_direct += u32::from(direct.is_some());
+        let Ok(answer) = answer else {
+            counts.declined_where_lemke_answered += u32::from(direct.is_some());
+            return;
+        };
+        counts.accepted += 1;
+        let zs = SVector::from(z);
+        let check = verify(lcp, &zs, tolerance);
+        assert!(check.passed(), "basis {mask:#x}: residual {:e}", check.residual);
+        let z_norm = z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let w_dense = lcp.w_of(&zs);
+        let scale = lcp.m_norm_inf() * z_norm + lcp.q_norm_inf();
+        for v in 0..N {
+            if (answer.mask >> v) & 1 == 0 {
+                assert_eq!(z[v], 0.0, "basis {:#x}: z[{v}] off the basis", answer.mask);
+            }
+            assert!((w[v] - w_dense[v]).abs() <= 1e-12 * scale, "w[{v}] {} vs {}", w[v], w_dense[v]);
+        }
+        let expected = direct.map(|s| s.z.into()).or_else(|| principal(lcp, answer.mask));
+        if let Some(expected) = expected {
+            for v in 0..N {
+                assert!(
+                    (z[v] - expected[v]).abs() <= 1e-9 * z_norm.max(1e-300),
+                    "basis {:#x}: z[{v}] {} vs dense {}",
+                    answer.mask,
+                    z[v],
+                    expected[v]
+                );
+            }
+        }
+    }
+
+    /// The warm basis, Lemke's answer and every neighbour of both (one slot's pattern replaced by
+    /// each of the stepper's eight), for up to five steps of the case.
+    fn check_case(c: &Case, counts: &mut Counts) {
+        let Some(mut stepper) = stepper(c) else { return };
+        for _ in 0..5 {
+            if stepper.refill().is_err() {
+                return;
+            }
+            let step = stepper.lcp;
+            let lcp = step.factored.assemble();
+            let mut bases = Vec::from([step.warm.z_mask()]);
+            if let Ok(s) = Lemke::<f64, N>::new().solve(&lcp) {
+                bases.push(s.basis.z_mask());
+            }
+            for base in bases.clone() {
+                for j in 0..step.k {
+                    for pattern in super::super::stepper::PATTERNS {
+                        let mut mask = base;
+                        for (bit, row) in slot_rows(step.k, j).into_iter().enumerate() {
+                            mask = (mask & !(1 << row)) | (u32::from(pattern >> bit & 1) << row);
+                        }
+                        bases.push(mask);
+                    }
+                }
+            }
+            for mask in bases {
+                check(&step.factored, &lcp, mask, counts);
+            }
+            if stepper.step().is_err() {
+                return;
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn factored_answers_are_the_bases_complementary_solutions(c in case()) {
+            let mut counts = Counts::default();
+            check_case(&c, &mut counts);
+        }
+    }
+
+    /// Over a fixed set of random cases: the factored solve answers most bases Lemke's direct
+    /// solve answers (it declines the degenerate ones).
+    #[test]
+    fn the_factored_solve_answers_most_bases_lemke_answers_directly() {
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        let mut counts = Counts::default();
+        for _ in 0..300 {
+            let c = case().new_tree(&mut runner).expect("a case").current();
+            check_case(&c, &mut counts);
+        }
+        std::println!("{counts:?}");
+        assert!(counts.lemke_direct > 500, "{counts:?}");
+        assert!(counts.declined_where_lemke_answered * 10 < counts.lemke_direct, "{counts:?}");
+    }
+}
