@@ -16,8 +16,11 @@ params! {
         height: 0.05, Positive;
         /// `m` (kg), each block.
         mass: 1.0, Positive;
-        /// Every contact's friction coefficient (static = kinetic).
-        mu: 0.5, NonNegative;
+        /// Every contact's static friction coefficient.
+        mu_static: 0.5, NonNegative;
+        /// Every contact's kinetic friction coefficient (at most `mu_static`; the default equals
+        /// its default).
+        mu_kinetic: 0.5, NonNegative;
         /// `s`: the harmonic overhangs' scale (1 the critical stack).
         overhang: 0.98, NonNegative;
         /// `g` (m/s^2).
@@ -44,6 +47,9 @@ impl<T: Real> StackParams<T> {
     /// The first broken rule, naming its field.
     pub fn validate(&self, blocks: usize) -> Result<(), ParamError> {
         self.check_fields()?;
+        if self.mu_kinetic > self.mu_static {
+            return Err(ParamError::KineticAboveStatic);
+        }
         if !(1..=4).contains(&blocks) {
             return Err(ParamError::OutOfRange("blocks"));
         }
@@ -100,10 +106,10 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
         params.validate(B)?;
         let p = params;
         let block = Body::block(p.mass, p.length, p.height);
-        let mut pairs = [Pair { upper: 0, lower: Support::Table, mu_static: p.mu, mu_kinetic: p.mu }; B];
+        let (mu_static, mu_kinetic) = (p.mu_static, p.mu_kinetic);
+        let mut pairs = [Pair { upper: 0, lower: Support::Table, mu_static, mu_kinetic }; B];
         for (i, pair) in pairs.iter_mut().enumerate().skip(1) {
-            *pair =
-                Pair { upper: i as u8, lower: Support::Body(i as u8 - 1), mu_static: p.mu, mu_kinetic: p.mu };
+            *pair = Pair { upper: i as u8, lower: Support::Body(i as u8 - 1), mu_static, mu_kinetic };
         }
         let system = System {
             bodies: [block; B],
