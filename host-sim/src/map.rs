@@ -23,7 +23,8 @@ use crate::output::{create_dir, write_json, write_lines};
 use crate::plot;
 use crate::progress::bar as progress;
 use crate::scenes::{
-    FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, ParamsExt as _, SceneParams, flag_error,
+    FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, ParamsExt as _, SceneKind, SceneParams,
+    flag_error,
 };
 use crate::trajectory::{OutcomeKind, Record, run_k};
 use meterstick_catalogue::Refusal;
@@ -45,15 +46,15 @@ impl Axis {
     /// The axis `--x-axis`/`--y-axis` name: `mu-ratio` or a scene flag's long name.
     ///
     /// # Errors
-    /// An unknown name, listing the known ones.
-    pub fn parse(name: &str) -> anyhow::Result<Self> {
+    /// An unknown name, listing the names `kind` takes.
+    pub fn parse(name: &str, kind: SceneKind) -> anyhow::Result<Self> {
         if name == "mu-ratio" {
             return Ok(Self::MuRatio);
         }
         let name = name.trim_start_matches("--");
         FLAGS.iter().find(|f| f.long == name).map(Self::Flag).with_context(|| {
-            let names: Vec<&str> = FLAGS.iter().map(|f| f.long).collect();
-            format!("no axis {name:?}: use mu-ratio or a scene flag ({})", names.join(", "))
+            let names: Vec<&str> = FLAGS.iter().filter(|f| f.field(kind).is_some()).map(|f| f.long).collect();
+            format!("no axis {name:?}: use mu-ratio or a flag of --scene {kind} ({})", names.join(", "))
         })
     }
 
@@ -111,7 +112,7 @@ pub struct Boundary {
 #[derive(Debug, Clone, Serialize)]
 pub struct MapSummary {
     /// The scene.
-    pub scene: crate::scenes::SceneKind,
+    pub scene: SceneKind,
     /// Who computed it.
     pub implementation: ImplementationOf,
     /// Axes.
@@ -204,29 +205,32 @@ fn law_boundaries(
     points.extend_from_slice(xs);
     points.push(to);
     let mut found = Vec::new();
-    for w in points.windows(2) {
-        let (mut lo, mut hi) = (w[0], w[1]);
-        let (below, mut above) = (class(lo)?, class(hi)?);
-        if below == above {
+    // Consecutive points the law decides (a point at its threshold is skipped, so a boundary
+    // on a scan point is still found).
+    let mut last: Option<(f64, OutcomeKind)> = None;
+    for x in points {
+        let Some(class_here) = class(x)? else { continue };
+        let Some((from, below)) = last.replace((x, class_here)) else { continue };
+        if below == class_here {
             continue;
         }
+        let (mut lo, mut hi, mut above) = (from, x, class_here);
         loop {
             let mid = 0.5 * (lo + hi);
             if mid <= lo || mid >= hi {
                 break;
             }
-            let here = class(mid)?;
-            if here == below {
-                lo = mid;
-            } else {
-                hi = mid;
-                above = here;
+            match class(mid)? {
+                Some(here) if here == below => lo = mid,
+                // The law's threshold itself (undecided) bounds the interval, not a class.
+                None => hi = mid,
+                Some(here) => {
+                    hi = mid;
+                    above = here;
+                }
             }
         }
-        // A threshold's own point (the law undecided there) is not a region of its own.
-        if let (Some(below), Some(above)) = (below, above) {
-            found.push(Boundary { y, x: 0.5 * (lo + hi), width: hi - lo, below, above });
-        }
+        found.push(Boundary { y, x: 0.5 * (lo + hi), width: hi - lo, below, above });
     }
     Ok(found)
 }
@@ -286,7 +290,7 @@ impl Grid {
         cells: [usize; 2],
         tolerance: f64,
     ) -> anyhow::Result<Self> {
-        let speed = Axis::parse("speed")?;
+        let speed = Axis::parse("speed", SceneKind::MeterStick)?;
         Ok(Self { axes: (speed, Axis::MuRatio), x: (from, to), y: (0.2, 1.0), cells, tolerance })
     }
 

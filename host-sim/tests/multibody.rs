@@ -340,3 +340,57 @@ fn block_on_block_map_shows_the_laws_regions() {
         std::fs::remove_dir_all(&out).unwrap();
     }
 }
+
+/// `host-sim map` of the stack over its overhang scale: the law's boundary at `s = 1` (the
+/// bisection on the law reaches its undecided point and stops there), held below, fallen above
+/// (`s >= 1.02`: a stack barely over 1 falls too slowly for the run's limits).
+#[test]
+fn stack_map_has_the_law_boundary_at_the_critical_overhang() {
+    let out = temp_dir("map-stack");
+    let (code, _, err) = host_sim(&[
+        "map",
+        "--scene",
+        "stack",
+        "--mu-k",
+        "0.1",
+        "--duration",
+        "0.5",
+        "--precision",
+        "f64",
+        "--x-axis",
+        "overhang",
+        "--x-range",
+        "0.9,1.1",
+        "--x-cells",
+        "5",
+        "--y-axis",
+        "mu-s",
+        "--y-range",
+        "0.2,0.8",
+        "--y-cells",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let bounds = std::fs::read_to_string(out.join("law_boundaries.csv")).unwrap();
+    assert_eq!(bounds.lines().count(), 3, "{bounds}");
+    for line in bounds.lines().skip(1) {
+        let v: Vec<&str> = line.split(',').collect();
+        assert!((v[1].parse::<f64>().unwrap() - 1.0).abs() < 1e-12 && v[3..] == ["Held", "Fell"], "{line}");
+    }
+    let csv = std::fs::read_to_string(out.join("map.csv")).unwrap();
+    for line in csv.lines().skip(1) {
+        let v: Vec<&str> = line.split(',').collect();
+        let s: f64 = v[0].parse().unwrap();
+        let want = if s < 1.0 {
+            "Held"
+        } else if s >= 1.02 {
+            "Fell"
+        } else {
+            continue;
+        };
+        assert_eq!(v[2], want, "{line}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}

@@ -69,7 +69,7 @@ fn parse_range(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
 /// Bad axes, ranges, cell counts or tolerance, naming the flag.
 pub fn grid(args: &MapArgs) -> anyhow::Result<Grid> {
     let grid = Grid {
-        axes: (Axis::parse(&args.x_axis)?, Axis::parse(&args.y_axis)?),
+        axes: (Axis::parse(&args.x_axis, args.scene.kind())?, Axis::parse(&args.y_axis, args.scene.kind())?),
         x: parse_range("--x-range", &args.x_range)?,
         y: parse_range("--y-range", &args.y_range)?,
         cells: [args.x_cells, args.y_cells],

@@ -28,7 +28,6 @@ use meterstick_core::scene::{MultibodyVisitor, Outcome, SceneParams};
 use super::cases::{Case, Claim};
 use super::metrics::Metrics;
 use crate::scenes::Precision;
-use crate::trajectory::{OutcomeKind, RunOutcome};
 
 /// Each body's `(mass, width, height)` (body 0 the lowest) and the pull on body 0 (N, along `x`).
 #[must_use]
@@ -71,10 +70,7 @@ pub fn acceleration_tolerance(law: f64, g: f64) -> f64 {
 /// centres every `stride` steps (body 0's `(x, y, theta)` in the trace, the deviation's input).
 #[must_use]
 pub fn measure(case: &Case, precision: Precision, stride: u64) -> Metrics {
-    case.spec.build_multibody(precision, Measure { case, stride }).unwrap_or_else(|e| Metrics {
-        outcome: Some(RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("invalid: {e}")) }),
-        ..Metrics::default()
-    })
+    case.spec.build_multibody(precision, Measure { case, stride }).unwrap_or_else(Metrics::invalid)
 }
 
 struct Measure<'a> {

@@ -538,31 +538,26 @@ fn multibody_cases(quick: bool) -> Vec<Case> {
         (1.5, "rides", Claim::LawAccelerations),
         (3.0, "slides", Claim::LawAccelerations),
     ];
-    for (top, bottom) in [(1.0, 1000.0), (1000.0, 1.0)] {
-        for &(regime, word, claim) in &regimes {
-            if quick {
-                continue;
-            }
-            let mut p = BlockOnBlockParams { top_mass: top, bottom_mass: bottom, ..bob };
-            p.force = pull(&p, regime);
-            add(
-                "block-on-block",
-                format!("block-on-block m:M = {top}:{bottom} {word}"),
-                SceneParams::BlockOnBlock(p),
-                claim,
-            );
+    let mut variants = Vec::new();
+    if !quick {
+        for (top, bottom) in [(1.0, 1000.0), (1000.0, 1.0)] {
+            variants.push((
+                format!("m:M = {top}:{bottom}"),
+                BlockOnBlockParams { top_mass: top, bottom_mass: bottom, ..bob },
+            ));
         }
     }
     for (h, max_time) in [(1e-6, 0.01), (1e-4, 0.3), (1e-2, 0.3), (1e-1, 1.0)] {
-        if quick && h < 1e-2 {
-            continue;
+        if !quick || h >= 1e-2 {
+            variants.push((format!("h={h:e}"), BlockOnBlockParams { step: h, max_time, ..bob }));
         }
+    }
+    for (label, p) in variants {
         for &(regime, word, claim) in &regimes {
-            let mut p = BlockOnBlockParams { step: h, max_time, ..bob };
-            p.force = pull(&p, regime);
+            let p = BlockOnBlockParams { force: pull(&p, regime), ..p };
             add(
                 "block-on-block",
-                format!("block-on-block h={h:e} {word}"),
+                format!("block-on-block {label} {word}"),
                 SceneParams::BlockOnBlock(p),
                 claim,
             );

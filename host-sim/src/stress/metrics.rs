@@ -70,6 +70,15 @@ pub struct Metrics {
 }
 
 impl Metrics {
+    /// A run the core refused to build: `Failed`, the refusal its detail.
+    #[must_use]
+    pub fn invalid(e: impl std::fmt::Display) -> Self {
+        Self {
+            outcome: Some(RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("invalid: {e}")) }),
+            ..Self::default()
+        }
+    }
+
     /// The outcome's class (`None`: the run panicked).
     #[must_use]
     pub fn class(&self) -> Option<OutcomeKind> {
@@ -211,10 +220,7 @@ pub fn measure(case: &Case, precision: Precision, layout: LcpLayout, stride: u64
     if case.spec.kind().is_multibody() {
         return super::bodies::measure(case, precision, stride);
     }
-    case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(|e| Metrics {
-        outcome: Some(RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("invalid: {e}")) }),
-        ..Metrics::default()
-    })
+    case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(Metrics::invalid)
 }
 
 /// [`measure_scene`] as a visitor of the core's registry.
@@ -240,13 +246,7 @@ impl SceneVisitor for Measure<'_> {
         start.y += T::of(self.case.start_dy);
         match MeterStick::<T, N, E>::with_state(p, start) {
             Ok(lifted) => self.visit::<T, 2, N, _>(lifted),
-            Err(e) => Metrics {
-                outcome: Some(RunOutcome {
-                    class: OutcomeKind::Failed,
-                    detail: Some(format!("invalid: {e}")),
-                }),
-                ..Metrics::default()
-            },
+            Err(e) => Metrics::invalid(e),
         }
     }
 }
