@@ -3,11 +3,10 @@
 //! independent reference (`meterstick_reference::multibody::run`), recorded as a [`BodiesRun`]
 //! (every body's state after every step, the outcome, what the scene measures, the solver's
 //! counters), the deviation between two runs, and the laws of `docs/scenes.md` they are shown
-//! beside. `host-sim scene` and `host-sim run` drive them; a driver that does not yet refuses
-//! them by name before anything runs ([`refuse`]).
+//! beside, its plots. `host-sim scene`, `run` and `map` drive them (`host-sim stress` through
+//! `crate::stress::bodies`).
 
 use indicatif::ProgressBar;
-use meterstick_catalogue::Refusal;
 use meterstick_core::Real;
 use meterstick_core::multibody::scenes::MultibodyScene;
 use meterstick_core::planar::{BodyState, Checksum};
@@ -19,18 +18,6 @@ use crate::progress::{self, CHECK_EVERY_STEPS};
 use crate::reference::Sample;
 use crate::reference::multibody as reference;
 use crate::trajectory::{Measured, RunOutcome};
-
-/// Refuses a scene of several bodies in a driver that does not run them yet, in the user's
-/// words: `--scene stack: not yet in host-sim map`.
-///
-/// # Errors
-/// `kind` is a scene of several bodies.
-pub fn refuse(kind: SceneKind, driver: &'static str) -> anyhow::Result<()> {
-    if kind.is_multibody() {
-        anyhow::bail!("{}", Refusal::NotYet { kind, driver }.worded("--"));
-    }
-    Ok(())
-}
 
 /// Every body's state after one step (row 0: the start).
 #[derive(Debug, Clone, PartialEq)]
