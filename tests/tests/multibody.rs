@@ -444,7 +444,10 @@ fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
             Pair { upper: 1, lower: Support::Body(0), mu_static: 0.5, mu_kinetic: 0.5 },
         ],
         forces: [[force, 0.0], [0.0; 2]],
-        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+        settings: Settings {
+            base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+            margin: 1e-3,
+        },
     };
     Stepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
         .expect("a valid system")
@@ -469,7 +472,10 @@ fn aligned_edges_make_one_contact_each() {
         table: Table { lo: None, hi: Some(0.05) },
         pairs: [Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 }],
         forces: [[0.0; 2]],
-        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+        settings: Settings {
+            base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+            margin: 1e-3,
+        },
     };
     let edge = Stepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, 0.05, 0.0)]).expect("valid");
     assert_eq!(edge.frames()[0].map(|f| f.active), [true, false, false, true]);

@@ -91,9 +91,11 @@ impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Par
 macro_rules! settings_of {
     ($p:expr) => {
         $crate::multibody::Settings {
-            step: $p.step,
-            gravity: $p.gravity,
-            stick_speed: $p.stick_speed,
+            base: $crate::planar::Settings {
+                step: $p.step,
+                gravity: $p.gravity,
+                stick_speed: $p.stick_speed,
+            },
             margin: $p.contact_margin,
         }
     };
