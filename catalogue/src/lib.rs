@@ -153,7 +153,7 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
         kind: SceneKind::Stack,
         title: "Blocks stacked over a table's edge with harmonic overhangs",
         contact_names: &[],
-        main_flags: &["blocks", "overhang", "mu-s", "length", "height"],
+        main_flags: &["blocks", "overhang", "mu-s", "mu-k", "length", "height"],
         outcomes: &[OutcomeKind::Held, OutcomeKind::Fell],
         measures: &["max_speed_m_s"],
         ranges: &[
@@ -265,7 +265,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "mu-s",
         unit: "",
-        help: "Static friction coefficient (>= 0; between the bodies; stack: every contact's, kinetic too)",
+        help: "Static friction coefficient (>= 0; between the bodies; stack: every contact's)",
         fields: &[
             (M, "mu_static"),
             (I, "mu_static"),
@@ -277,7 +277,7 @@ pub const FLAGS: &[Flag] = &[
             #[cfg(feature = "multibody")]
             (TC, "mu_static"),
             #[cfg(feature = "multibody")]
-            (ST, "mu"),
+            (ST, "mu_static"),
         ],
     },
     Flag {
@@ -294,6 +294,8 @@ pub const FLAGS: &[Flag] = &[
             (BB, "mu_kinetic"),
             #[cfg(feature = "multibody")]
             (TC, "mu_kinetic"),
+            #[cfg(feature = "multibody")]
+            (ST, "mu_kinetic"),
         ],
     },
     Flag {

@@ -23,7 +23,8 @@ use crate::output::{create_dir, write_json, write_lines};
 use crate::plot;
 use crate::progress::bar as progress;
 use crate::scenes::{
-    FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, ParamsExt as _, SceneParams, flag_error,
+    FLAGS, Flag, Implementation, ImplementationOf, MAX_STEPS, ParamsExt as _, SceneKind, SceneParams,
+    flag_error,
 };
 use crate::trajectory::{OutcomeKind, Record, run_k};
 use meterstick_catalogue::Refusal;
@@ -45,20 +46,15 @@ impl Axis {
     /// The axis `--x-axis`/`--y-axis` name: `mu-ratio` or a scene flag's long name.
     ///
     /// # Errors
-    /// An unknown name, listing the known ones.
-    pub fn parse(name: &str) -> anyhow::Result<Self> {
+    /// An unknown name, listing the names `kind` takes.
+    pub fn parse(name: &str, kind: SceneKind) -> anyhow::Result<Self> {
         if name == "mu-ratio" {
             return Ok(Self::MuRatio);
         }
         let name = name.trim_start_matches("--");
         FLAGS.iter().find(|f| f.long == name).map(Self::Flag).with_context(|| {
-            // The map runs the scenes of one body: their flags.
-            let names: Vec<&str> = FLAGS
-                .iter()
-                .filter(|f| f.fields.iter().any(|(k, _)| !k.is_multibody()))
-                .map(|f| f.long)
-                .collect();
-            format!("no axis {name:?}: use mu-ratio or a scene flag ({})", names.join(", "))
+            let names: Vec<&str> = FLAGS.iter().filter(|f| f.field(kind).is_some()).map(|f| f.long).collect();
+            format!("no axis {name:?}: use mu-ratio or a flag of --scene {kind} ({})", names.join(", "))
         })
     }
 
@@ -116,7 +112,7 @@ pub struct Boundary {
 #[derive(Debug, Clone, Serialize)]
 pub struct MapSummary {
     /// The scene.
-    pub scene: crate::scenes::SceneKind,
+    pub scene: SceneKind,
     /// Who computed it.
     pub implementation: ImplementationOf,
     /// Axes.
@@ -133,6 +129,22 @@ pub struct MapSummary {
     pub counts: Vec<(OutcomeKind, usize)>,
     /// Every boundary found.
     pub boundaries: Vec<Boundary>,
+    /// Where `docs/scenes.md`'s law changes its outcome along x in each row (a scene of several
+    /// bodies; none for the others), bisected on the law to the last representable x.
+    pub law_boundaries: Vec<Boundary>,
+    /// Cells whose eight neighbours' centres the law classifies as their own centre (so more than
+    /// one cell from any law boundary) and whose run's outcome differs from the law's (none for a
+    /// scene without a law).
+    pub law_disagreements: Option<LawAgreement>,
+}
+
+/// The runs against the law away from its boundaries ([`MapSummary::law_disagreements`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct LawAgreement {
+    /// Cells more than one cell from every law boundary.
+    pub cells_compared: usize,
+    /// Of them, those whose outcome is not the law's.
+    pub disagree: usize,
 }
 
 /// A computed map.
@@ -144,6 +156,9 @@ pub struct Map {
     pub ys: Vec<f64>,
     /// `outcomes[row][column]`.
     pub outcomes: Vec<Vec<OutcomeKind>>,
+    /// The law's outcome at each cell's centre, `[row][column]`, for a scene with a law
+    /// ([`crate::multibody::law`]; `None` in a cell at the law's threshold).
+    pub law: Option<Vec<Vec<Option<OutcomeKind>>>>,
     /// The summary.
     pub summary: MapSummary,
 }
@@ -157,9 +172,86 @@ fn outcome_at(
     let spec = apply_axes(base, axes, (x, y))?;
     spec.validate(implementation.precision())
         .map_err(|e| anyhow::anyhow!("at ({x:?}, {y:?}): {}", flag_error(&spec, e)))?;
+    if spec.kind().is_multibody() {
+        let run = match implementation {
+            Implementation::Core(precision, _) => crate::multibody::run_core(&spec, precision, false, None)?,
+            Implementation::Reference => crate::multibody::run_reference(&spec, false)?,
+        };
+        return Ok(run.outcome.class);
+    }
     Ok(
         crate::with_contacts!(spec.kind(), K => run_k::<K>(&spec, implementation, Record::Nothing)?.outcome.class),
     )
+}
+
+/// The law's outcome at `(x, y)` (`docs/scenes.md`; [`crate::multibody::law`]): `None` for a scene
+/// without a law or at its threshold.
+fn law_at(base: &SceneParams, axes: (Axis, Axis), (x, y): (f64, f64)) -> anyhow::Result<Option<OutcomeKind>> {
+    let spec = apply_axes(base, axes, (x, y))?;
+    Ok(crate::multibody::law(&spec).and_then(|l| l.outcome))
+}
+
+/// The law's boundaries along x in the row at `y` over `(from, to)`: scanned at the cells' edges
+/// and centres `xs`, each change bisected on the law until no representable x lies between.
+fn law_boundaries(
+    base: &SceneParams,
+    axes: (Axis, Axis),
+    (from, to): (f64, f64),
+    xs: &[f64],
+    y: f64,
+) -> anyhow::Result<Vec<Boundary>> {
+    let class = |x: f64| -> anyhow::Result<Option<OutcomeKind>> { law_at(base, axes, (x, y)) };
+    let mut points = vec![from];
+    points.extend_from_slice(xs);
+    points.push(to);
+    let mut found = Vec::new();
+    // Consecutive points the law decides (a point at its threshold is skipped, so a boundary
+    // on a scan point is still found).
+    let mut last: Option<(f64, OutcomeKind)> = None;
+    for x in points {
+        let Some(class_here) = class(x)? else { continue };
+        let Some((from, below)) = last.replace((x, class_here)) else { continue };
+        if below == class_here {
+            continue;
+        }
+        let (mut lo, mut hi, mut above) = (from, x, class_here);
+        loop {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            match class(mid)? {
+                Some(here) if here == below => lo = mid,
+                // The law's threshold itself (undecided) bounds the interval, not a class.
+                None => hi = mid,
+                Some(here) => {
+                    hi = mid;
+                    above = here;
+                }
+            }
+        }
+        found.push(Boundary { y, x: 0.5 * (lo + hi), width: hi - lo, below, above });
+    }
+    Ok(found)
+}
+
+/// Cells compared with the law away from its boundaries ([`MapSummary::law_disagreements`]).
+fn agreement(outcomes: &[Vec<OutcomeKind>], law: &[Vec<Option<OutcomeKind>>]) -> LawAgreement {
+    let mut tally = LawAgreement { cells_compared: 0, disagree: 0 };
+    for (j, row) in law.iter().enumerate() {
+        for (i, &here) in row.iter().enumerate() {
+            let Some(expected) = here else { continue };
+            let rows = j.saturating_sub(1)..=(j + 1).min(law.len() - 1);
+            let alike = rows
+                .into_iter()
+                .all(|r| (i.saturating_sub(1)..=(i + 1).min(row.len() - 1)).all(|c| law[r][c] == here));
+            if alike {
+                tally.cells_compared += 1;
+                tally.disagree += usize::from(outcomes[j][i] != expected);
+            }
+        }
+    }
+    tally
 }
 
 /// `base` with the axes at `(x, y)`: a scene flag first, then `mu-ratio` (which scales the
@@ -198,7 +290,7 @@ impl Grid {
         cells: [usize; 2],
         tolerance: f64,
     ) -> anyhow::Result<Self> {
-        let speed = Axis::parse("speed")?;
+        let speed = Axis::parse("speed", SceneKind::MeterStick)?;
         Ok(Self { axes: (speed, Axis::MuRatio), x: (from, to), y: (0.2, 1.0), cells, tolerance })
     }
 
@@ -301,7 +393,26 @@ pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) 
             None => counts.push((*o, 1)),
         }
     }
+    let law = if crate::multibody::law(base).is_some() {
+        let rows = ys
+            .iter()
+            .map(|&y| xs.iter().map(|&x| law_at(base, axes, (x, y))).collect())
+            .collect::<anyhow::Result<Vec<Vec<_>>>>()?;
+        Some(rows)
+    } else {
+        None
+    };
+    let law_boundaries = match law {
+        Some(_) => ys
+            .iter()
+            .map(|&y| law_boundaries(base, axes, grid.x, &xs, y))
+            .collect::<anyhow::Result<Vec<_>>>()?
+            .concat(),
+        None => Vec::new(),
+    };
     let summary = MapSummary {
+        law_boundaries,
+        law_disagreements: law.as_deref().map(|l| agreement(&outcomes, l)),
         scene: base.kind(),
         implementation: implementation.of_scene(base.kind()),
         x_axis: axes.0.label(),
@@ -312,7 +423,7 @@ pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) 
         counts,
         boundaries: bisected.into_iter().map(|b| b.0).collect(),
     };
-    Ok(Map { xs, ys, outcomes, summary })
+    Ok(Map { xs, ys, outcomes, law, summary })
 }
 
 /// Writes `map.csv`, `boundaries.csv`, `summary.json` and `map.svg` into `out`.
@@ -328,7 +439,21 @@ pub fn write(map: &Map, out: &Path) -> anyhow::Result<()> {
     write_lines(&out.join("map.csv"), "x,y,outcome", cells)?;
     let bounds = s.boundaries.iter().map(|b| format!("{},{},{},{},{}", b.y, b.x, b.width, b.below, b.above));
     write_lines(&out.join("boundaries.csv"), "y,x,width,below,above", bounds)?;
+    let laws =
+        s.law_boundaries.iter().map(|b| format!("{},{},{},{},{}", b.y, b.x, b.width, b.below, b.above));
+    if map.law.is_some() {
+        write_lines(&out.join("law_boundaries.csv"), "y,x,width,below,above", laws)?;
+    }
     write_json(&out.join("summary.json"), s)?;
+    // One line per kind of law boundary (`Held | Rode`), through its points in row order.
+    let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for b in &s.law_boundaries {
+        let label = format!("law: {} | {}", b.below, b.above);
+        match lines.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, points)) => points.push((b.x, b.y)),
+            None => lines.push((label, vec![(b.x, b.y)])),
+        }
+    }
     let title = format!("{} outcome, {} ({} x {} cells)", s.scene, s.implementation, s.cells[0], s.cells[1]);
     plot::outcome_raster(
         &out.join("map.svg"),
@@ -337,5 +462,6 @@ pub fn write(map: &Map, out: &Path) -> anyhow::Result<()> {
         (&s.y_axis, &map.ys),
         &map.outcomes,
         &s.boundaries.iter().map(|b| (b.x, b.y)).collect::<Vec<_>>(),
+        &lines,
     )
 }

@@ -3,33 +3,21 @@
 //! independent reference (`meterstick_reference::multibody::run`), recorded as a [`BodiesRun`]
 //! (every body's state after every step, the outcome, what the scene measures, the solver's
 //! counters), the deviation between two runs, and the laws of `docs/scenes.md` they are shown
-//! beside. `host-sim scene` and `host-sim run` drive them; a driver that does not yet refuses
-//! them by name before anything runs ([`refuse`]).
+//! beside, its plots. `host-sim scene`, `run` and `map` drive them (`host-sim stress` through
+//! `crate::stress::bodies`).
 
 use indicatif::ProgressBar;
-use meterstick_catalogue::Refusal;
 use meterstick_core::Real;
 use meterstick_core::multibody::scenes::MultibodyScene;
-use meterstick_core::planar::BodyState;
+use meterstick_core::planar::{BodyState, Checksum};
 use meterstick_core::scene::{MultibodyVisitor, Outcome, OutcomeKind, Precision, SceneKind, SceneParams};
 use serde::Serialize;
 
+use crate::plot::{self, Series, SeriesLabelPosition};
 use crate::progress::{self, CHECK_EVERY_STEPS};
 use crate::reference::Sample;
 use crate::reference::multibody as reference;
 use crate::trajectory::{Measured, RunOutcome};
-
-/// Refuses a scene of several bodies in a driver that does not run them yet, in the user's
-/// words: `--scene stack: not yet in host-sim map`.
-///
-/// # Errors
-/// `kind` is a scene of several bodies.
-pub fn refuse(kind: SceneKind, driver: &'static str) -> anyhow::Result<()> {
-    if kind.is_multibody() {
-        anyhow::bail!("{}", Refusal::NotYet { kind, driver }.worded("--"));
-    }
-    Ok(())
-}
 
 /// Every body's state after one step (row 0: the start).
 #[derive(Debug, Clone, PartialEq)]
@@ -80,6 +68,10 @@ pub struct BodiesRun {
     pub measured: Measured,
     /// Solver counters.
     pub counters: BodiesCounters,
+    /// The trajectory checksum over every step's states of all bodies in body order
+    /// ([`meterstick_core::multibody::StepReport::add_to`]: the firmware's fingerprint; the core's
+    /// runs only).
+    pub checksum: Option<u32>,
 }
 
 fn row_of<T: Real>(t: T, states: &[BodyState<T>]) -> BodiesRow {
@@ -107,8 +99,10 @@ impl MultibodyVisitor for CoreRun<'_> {
         let start = row_of(scene.time(), scene.states());
         let mut rows = if self.record { vec![start.clone()] } else { Vec::new() };
         let mut steps = 0_u64;
+        let mut checksum = Checksum::new();
         while let Some(report) = scene.step() {
             steps += 1;
+            report.add_to(&mut checksum);
             if self.record {
                 rows.push(row_of(report.time, &report.states));
             }
@@ -137,6 +131,7 @@ impl MultibodyVisitor for CoreRun<'_> {
                 lcp_rows: S::ROWS,
                 ambiguous_steps: 0,
             },
+            checksum: Some(checksum.value()),
         })
     }
 }
@@ -207,7 +202,8 @@ pub fn to_reference(spec: &SceneParams) -> Option<reference::Spec> {
                 length: p.length,
                 height: p.height,
                 mass: p.mass,
-                mu: p.mu,
+                mu_static: p.mu_static,
+                mu_kinetic: p.mu_kinetic,
                 overhang: p.overhang,
                 gravity: p.gravity,
                 step: p.step,
@@ -268,6 +264,7 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
             ambiguous_steps: r.ambiguous_steps,
             ..BodiesCounters::default()
         },
+        checksum: None,
     })
 }
 
@@ -427,6 +424,9 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
         c.max_active,
         c.lcp_rows
     );
+    if let Some(sum) = run.checksum {
+        let _ = writeln!(out, "checksum {sum:08x}");
+    }
     Ok(out)
 }
 
@@ -535,9 +535,65 @@ fn write_trajectory(run: &BodiesRun, path: &std::path::Path) -> anyhow::Result<(
     crate::output::write_lines(path, &header, lines)
 }
 
+/// Body `i`'s name in `docs/scenes.md`'s words.
+fn body_name(kind: SceneKind, i: usize) -> String {
+    match (kind, i) {
+        (SceneKind::BlockOnBlock, 0) => "bottom block".into(),
+        (SceneKind::BlockOnBlock, _) => "top block".into(),
+        (SceneKind::Tablecloth, 0) => "board".into(),
+        (SceneKind::Tablecloth, _) => "block".into(),
+        (_, 0) => "block 1 (bottom)".into(),
+        _ => format!("block {}", i + 1),
+    }
+}
+
+/// One series per body and run of `quantity` over time: the first run's solid, the others'
+/// dashed, each body in the same colour in every run.
+fn body_series(runs: &[&BodiesRun], quantity: &str, value: impl Fn(&BodiesRow, usize) -> f64) -> Vec<Series> {
+    let bodies = runs.first().map_or(0, |r| r.last.q.len());
+    let mut series = Vec::new();
+    for (k, run) in runs.iter().enumerate() {
+        for body in 0..bodies {
+            series.push(Series {
+                label: format!("{} {quantity} ({})", body_name(run.scene, body), run.label),
+                points: run.rows.iter().map(|r| (r.t, value(r, body))).collect(),
+                dashed: k > 0,
+            });
+        }
+    }
+    series
+}
+
+/// A run's plots in `dir`: every body's position (`positions.svg`: `x`, and `y` in a second
+/// panel), velocity (`velocities.svg`: `vx`, `vy`) and angle (`angles.svg`) over time, core
+/// solid, reference dashed.
+fn write_plots(name: &str, runs: &[&BodiesRun], dir: &std::path::Path) -> anyhow::Result<()> {
+    let legend = SeriesLabelPosition::UpperLeft;
+    for (file, title, panels) in [
+        ("positions.svg", "positions", [("x (m)", 0, "x"), ("y (m)", 1, "y")]),
+        ("velocities.svg", "velocities", [("vx (m/s)", 3, "vx"), ("vy (m/s)", 4, "vy")]),
+    ] {
+        let panels = panels.map(|(axis, index, quantity)| {
+            let series =
+                body_series(runs, quantity, |r, b| if index < 3 { r.q[b][index] } else { r.v[b][index - 3] });
+            (axis, series, legend.clone())
+        });
+        plot::panels(&dir.join(file), &format!("{name}: {title}"), "t (s)", &panels)?;
+    }
+    let angles = body_series(runs, "angle", |r, b| r.q[b][2].to_degrees());
+    plot::lines(
+        &dir.join("angles.svg"),
+        &format!("{name}: angles"),
+        ("t (s)", "angle (deg)"),
+        &angles,
+        false,
+        &legend,
+    )
+}
+
 /// `host-sim run` for scenes of several bodies: each in the core (`precision`) beside the
-/// independent reference, each body's trajectory as CSV (`core.csv`, `reference.csv`), its
-/// `summary.json`, and `summary.json` over all runs under `out`; no plots yet.
+/// independent reference, each body's trajectory as CSV (`core.csv`, `reference.csv`), its plots
+/// ([`write_plots`]), its `summary.json`, and `summary.json` over all runs under `out`.
 ///
 /// # Errors
 /// Invalid parameters (before anything runs), Ctrl-C, or I/O.
@@ -584,6 +640,7 @@ pub fn run_all(
         crate::output::create_dir(&dir)?;
         write_trajectory(&core, &dir.join("core.csv"))?;
         write_trajectory(&reference, &dir.join("reference.csv"))?;
+        write_plots(name, &[&core, &reference], &dir)?;
         crate::output::write_json(&dir.join("summary.json"), &summary)?;
         for run in [&core, &reference] {
             let _ = writeln!(
@@ -617,7 +674,7 @@ pub fn run_all(
     crate::output::write_json(&out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;
     let _ = writeln!(
         text,
-        "files in {} (trajectories of every body; no plots yet for scenes of several bodies)",
+        "files in {} (each run: core.csv, reference.csv, positions.svg, velocities.svg, angles.svg, summary.json)",
         out.display()
     );
     Ok(text)

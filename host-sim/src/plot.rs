@@ -157,6 +157,28 @@ where
     Ok(())
 }
 
+/// One panel of [`panels`]: its y axis, its series, where its legend goes.
+pub type Panel<'a> = (&'a str, Vec<Series>, SeriesLabelPosition);
+
+/// Line charts stacked vertically, one per [`Panel`], over a common x axis, the title over the
+/// first.
+///
+/// # Errors
+/// A panel with nothing to plot, or I/O.
+pub fn panels(path: &Path, title: &str, x_desc: &str, panels: &[Panel<'_>]) -> anyhow::Result<()> {
+    let height = 380 * u32::try_from(panels.len()).unwrap_or(1).max(1);
+    let root = SVGBackend::new(path, (900, height)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    for (k, (area, (y_desc, series, legend))) in
+        root.split_evenly((panels.len(), 1)).iter().zip(panels).enumerate()
+    {
+        let title = if k == 0 { title } else { "" };
+        draw_lines(area, title, (x_desc, y_desc), series, false, legend)
+            .with_context(|| format!("plotting {}", path.display()))?;
+    }
+    root.present().map_err(err)
+}
+
 /// Series of one quantity of every run: solid for the first run, dashed for the others.
 fn per_run<const K: usize>(
     runs: &[&Trajectory<K>],
@@ -198,16 +220,17 @@ pub fn positions<const K: usize>(path: &Path, title: &str, runs: &[&Trajectory<K
 /// # Errors
 /// I/O.
 pub fn motion<const K: usize>(path: &Path, title: &str, runs: &[&Trajectory<K>]) -> anyhow::Result<()> {
-    let root = SVGBackend::new(path, (900, 760)).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    let (top, bottom) = root.split_vertically(380);
     let angle = per_run(runs, "angle", |r| r.q[2].to_degrees());
-    draw_lines(&top, title, ("t (s)", "angle (deg)"), &angle, false, &SeriesLabelPosition::UpperLeft)
-        .with_context(|| format!("plotting {}", path.display()))?;
     let height = per_run(runs, "centre of mass height", |r| r.q[1]);
-    draw_lines(&bottom, "", ("t (s)", "height y (m)"), &height, false, &SeriesLabelPosition::LowerLeft)
-        .with_context(|| format!("plotting {}", path.display()))?;
-    root.present().map_err(err)
+    panels(
+        path,
+        title,
+        "t (s)",
+        &[
+            ("angle (deg)", angle, SeriesLabelPosition::UpperLeft),
+            ("height y (m)", height, SeriesLabelPosition::LowerLeft),
+        ],
+    )
 }
 
 /// Finger positions relative to the centre of mass, along the rod, over time (meter stick).
@@ -245,7 +268,8 @@ pub const fn outcome_color(class: crate::trajectory::OutcomeKind) -> RGBColor {
 
 /// A map of outcomes over two continuous axes: one rectangle per cell (`cells[row][column]` at
 /// the centres `xs`, `ys`), coloured by class, with the bisected boundaries as black dots, numeric
-/// axes, and a legend of the classes present. `boundaries` are `(x, y)` points.
+/// axes, and a legend of the classes present. `boundaries` are `(x, y)` points; `laws` the
+/// analytic boundaries, each a labelled polyline drawn dashed.
 ///
 /// # Errors
 /// I/O.
@@ -256,6 +280,7 @@ pub fn outcome_raster(
     (y_desc, ys): (&str, &[f64]),
     cells: &[Vec<crate::trajectory::OutcomeKind>],
     boundaries: &[(f64, f64)],
+    laws: &[(String, Vec<(f64, f64)>)],
 ) -> anyhow::Result<()> {
     use crate::trajectory::OutcomeKind as O;
     let color = outcome_color;
@@ -294,6 +319,16 @@ pub fn outcome_raster(
         .map_err(err)?
         .label("boundary (bisected)")
         .legend(|(x, y)| Circle::new((x + 6, y), 3, BLACK.filled()));
+    for (k, (label, points)) in laws.iter().enumerate() {
+        // Dark, so that they show on every class's colour.
+        let color = [BLACK, RGBColor(110, 0, 130), RGBColor(120, 70, 0)][k % 3];
+        let style = color.stroke_width(2);
+        chart
+            .draw_series(DashedLineSeries::new(points.iter().copied(), 8, 5, style))
+            .map_err(err)?
+            .label(label.as_str())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
+    }
     let mut present: Vec<O> = cells.iter().flatten().copied().collect();
     present.sort_by_key(|c| c.name());
     present.dedup();

@@ -226,6 +226,9 @@ pub struct ImplementationOf {
 impl fmt::Display for ImplementationOf {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.implementation {
+            // A scene of several bodies: its LCP's size is its own (`host-sim scene` says it).
+            Implementation::Core(p, _) if self.contacts == 0 => write!(f, "core {}", p.name()),
+            Implementation::Reference if self.contacts == 0 => f.write_str("reference f64"),
             Implementation::Core(p, layout) => {
                 write!(f, "core {} {n}x{n}", p.name(), n = layout.size(self.contacts))
             }

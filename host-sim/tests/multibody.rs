@@ -2,7 +2,8 @@
 //! bodies"): `run` and `scene` take them, their outcomes and measures agree with the laws written
 //! out here from `docs/scenes.md` on each side of every threshold, the core agrees with the
 //! independent reference, a refused flag names itself, and the drivers that do not run them yet
-//! refuse them before any work.
+//! refuse them before any work; `scene` prints the firmware's checksum, `run` draws the bodies'
+//! motion, and `map` draws block-on-block's regions where the laws put them.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod common;
@@ -168,7 +169,8 @@ fn refusals_name_the_flag_and_the_driver() {
             "--mu-k 0.7 must not exceed --mu-s 0.5",
         ),
         (&["scene", "--scene", "stack", "--x1", "0.1"][..], "--x1 does not apply to --scene stack"),
-        (&["map", "--scene", "stack"][..], "--scene stack: not yet in host-sim map"),
+        (&["map", "--scene", "stack"][..], "--speed does not apply to --scene stack"),
+        (&["scene", "--scene", "stack", "--mu-k", "0.6"][..], "--mu-k 0.6 must not exceed --mu-s 0.5"),
         (&["run", "--scene", "stack", "--layout", "reduced"][..], "--layout does not apply to --scene stack"),
     ] {
         let (code, stdout, err) = host_sim(args);
@@ -176,4 +178,224 @@ fn refusals_name_the_flag_and_the_driver() {
         assert!(err.contains(words), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
+}
+
+/// `host-sim scene` prints the trajectory checksum of the core's run, the fingerprint the
+/// firmware prints (`tests/tests/qemu.rs`): every step's states of all bodies in body order
+/// (`StepReport::add_to`), computed here through the registry; the stack's at its defaults is the
+/// one the QEMU runs print (`tests/tests/qemu.rs`), and a stack whose `mu_k` is its default `mu_s` is that stack.
+#[test]
+fn scene_prints_the_firmwares_checksum() {
+    use meterstick_core::Real;
+    use meterstick_core::multibody::scenes::MultibodyScene;
+    use meterstick_core::planar::Checksum;
+    use meterstick_core::scene::{MultibodyVisitor, Precision, SceneKind, SceneParams};
+    struct Sum;
+    impl MultibodyVisitor for Sum {
+        type Output = u32;
+        fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+            self,
+            mut scene: S,
+        ) -> u32 {
+            let mut sum = Checksum::new();
+            while let Some(report) = scene.step() {
+                report.add_to(&mut sum);
+            }
+            sum.value()
+        }
+    }
+    let mut stack_sum = None;
+    for (kind, precision) in [
+        (SceneKind::BlockOnBlock, Precision::F32),
+        (SceneKind::Tablecloth, Precision::F64),
+        (SceneKind::Stack, Precision::F32),
+    ] {
+        let sum = SceneParams::defaults(kind).build_multibody(precision, Sum).unwrap();
+        let (code, stdout, err) =
+            host_sim(&["scene", "--scene", kind.name(), "--precision", precision.name()]);
+        assert_eq!(code, 0, "{kind}: {err}");
+        assert!(stdout.lines().any(|l| l == format!("checksum {sum:08x}")), "{kind}: {sum:08x}: {stdout}");
+        if kind == SceneKind::Stack {
+            stack_sum = Some(sum);
+        }
+    }
+    let stack_sum = stack_sum.unwrap();
+    let (_, stdout, _) =
+        host_sim(&["scene", "--scene", "stack", "--precision", "f32", "--mu-s", "0.5", "--mu-k", "0.5"]);
+    assert!(stdout.lines().any(|l| l == format!("checksum {stack_sum:08x}")), "{stdout}");
+}
+
+/// `host-sim run` draws each body's positions, velocities and angle, core beside reference.
+#[test]
+fn run_draws_every_bodys_motion() {
+    let out = temp_dir("plots");
+    let (code, _, err) = host_sim(&[
+        "run",
+        "--scene",
+        "stack",
+        "--blocks",
+        "2",
+        "--duration",
+        "0.2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    for file in ["positions.svg", "velocities.svg", "angles.svg"] {
+        let svg = std::fs::read_to_string(out.join("stack").join(file)).unwrap();
+        for label in ["block 1 (bottom)", "block 2", "(core f32)", "(reference f64)"] {
+            assert!(svg.contains(label), "{file} has no {label}");
+        }
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `host-sim map` of block-on-block over force x mu_s (`m = 1`, `M = 2`, `mu_floor = 0.2`,
+/// `mu_k = 0.1` so that every `mu_s` of the range is valid) in f32 and f64: the three regions,
+/// every cell more than one cell from the laws' boundaries (`F = mu_floor (M + m) g`,
+/// `F = (mu_s + mu_floor) (M + m) g`; the top block is too squat to tip below `mu_s = w / h = 1`)
+/// classified as the laws say (computed here, not by host-sim), and the laws' boundaries it draws
+/// where the formulas put them.
+#[test]
+fn block_on_block_map_shows_the_laws_regions() {
+    let (total, mu_floor) = (3.0, 0.2);
+    let law = |f: f64, mu_s: f64| {
+        if f <= mu_floor * total * G {
+            "Held"
+        } else if f <= (mu_s + mu_floor) * total * G {
+            "Rode"
+        } else {
+            "Slid"
+        }
+    };
+    let (columns, rows) = (36_usize, 12_usize);
+    let (f_range, mu_range) = ((0.0, 45.0), (0.1, 1.0));
+    let centre = |(a, b): (f64, f64), n: usize, k: f64| a + (b - a) * (k + 0.5) / n as f64;
+    for precision in ["f32", "f64"] {
+        let out = temp_dir(&format!("map-{precision}"));
+        let (code, stdout, err) = host_sim(&[
+            "map",
+            "--scene",
+            "block-on-block",
+            "--mu-k",
+            "0.1",
+            "--precision",
+            precision,
+            "--x-axis",
+            "force",
+            "--x-range",
+            "0,45",
+            "--x-cells",
+            &columns.to_string(),
+            "--y-axis",
+            "mu-s",
+            "--y-range",
+            "0.1,1",
+            "--y-cells",
+            &rows.to_string(),
+            "--tolerance",
+            "0.01",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{precision}: {err}");
+        let csv = std::fs::read_to_string(out.join("map.csv")).unwrap();
+        let (mut compared, mut seen) = (0, std::collections::BTreeSet::new());
+        for (k, line) in csv.lines().skip(1).enumerate() {
+            let v: Vec<&str> = line.split(',').collect();
+            let (f, mu_s, outcome) = (v[0].parse::<f64>().unwrap(), v[1].parse::<f64>().unwrap(), v[2]);
+            seen.insert(outcome.to_string());
+            let (i, j) = ((k % columns) as f64, (k / columns) as f64);
+            let here = law(f, mu_s);
+            let far = [-1.0, 0.0, 1.0].iter().all(|di| {
+                [-1.0, 0.0, 1.0]
+                    .iter()
+                    .all(|dj| law(centre(f_range, columns, i + di), centre(mu_range, rows, j + dj)) == here)
+            });
+            if far {
+                compared += 1;
+                assert_eq!(outcome, here, "{precision}: force {f} N, mu_s {mu_s}");
+            }
+        }
+        assert_eq!(seen.into_iter().collect::<Vec<_>>(), ["Held", "Rode", "Slid"], "{precision}");
+        assert!(compared > columns * rows / 2, "{precision}: only {compared} cells away from the boundaries");
+        // The drawn law boundaries, row by row.
+        let bounds = std::fs::read_to_string(out.join("law_boundaries.csv")).unwrap();
+        assert_eq!(bounds.lines().count(), 1 + 2 * rows, "{bounds}");
+        for line in bounds.lines().skip(1) {
+            let v: Vec<&str> = line.split(',').collect();
+            let (mu_s, f) = (v[0].parse::<f64>().unwrap(), v[1].parse::<f64>().unwrap());
+            let want = match (v[3], v[4]) {
+                ("Held", "Rode") => mu_floor * total * G,
+                ("Rode", "Slid") => (mu_s + mu_floor) * total * G,
+                other => panic!("{other:?}"),
+            };
+            assert!((f - want).abs() < 1e-9, "{line}: {want}");
+        }
+        // The runs' own boundaries, bisected to 0.01 N, beside the laws'.
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        for b in summary["boundaries"].as_array().unwrap() {
+            let (f, mu_s) = (b["x"].as_f64().unwrap(), b["y"].as_f64().unwrap());
+            let want =
+                if b["below"] == "Held" { mu_floor * total * G } else { (mu_s + mu_floor) * total * G };
+            assert!((f - want).abs() < 0.05, "{precision}: {b} vs the law's {want}");
+        }
+        assert!(stdout.contains("disagree"), "{stdout}");
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+}
+
+/// `host-sim map` of the stack over its overhang scale: the law's boundary at `s = 1` (the
+/// bisection on the law reaches its undecided point and stops there), held below, fallen above
+/// (`s >= 1.02`: a stack barely over 1 falls too slowly for the run's limits).
+#[test]
+fn stack_map_has_the_law_boundary_at_the_critical_overhang() {
+    let out = temp_dir("map-stack");
+    let (code, _, err) = host_sim(&[
+        "map",
+        "--scene",
+        "stack",
+        "--mu-k",
+        "0.1",
+        "--duration",
+        "0.5",
+        "--precision",
+        "f64",
+        "--x-axis",
+        "overhang",
+        "--x-range",
+        "0.9,1.1",
+        "--x-cells",
+        "5",
+        "--y-axis",
+        "mu-s",
+        "--y-range",
+        "0.2,0.8",
+        "--y-cells",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let bounds = std::fs::read_to_string(out.join("law_boundaries.csv")).unwrap();
+    assert_eq!(bounds.lines().count(), 3, "{bounds}");
+    for line in bounds.lines().skip(1) {
+        let v: Vec<&str> = line.split(',').collect();
+        assert!((v[1].parse::<f64>().unwrap() - 1.0).abs() < 1e-12 && v[3..] == ["Held", "Fell"], "{line}");
+    }
+    let csv = std::fs::read_to_string(out.join("map.csv")).unwrap();
+    for line in csv.lines().skip(1) {
+        let v: Vec<&str> = line.split(',').collect();
+        let s: f64 = v[0].parse().unwrap();
+        let want = if s < 1.0 {
+            "Held"
+        } else if s >= 1.02 {
+            "Fell"
+        } else {
+            continue;
+        };
+        assert_eq!(v[2], want, "{line}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
 }

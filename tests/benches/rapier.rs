@@ -12,8 +12,8 @@
 //! Then the 3-block stack over a table's edge (`docs/scenes.md`, "stack"; the core's `Stack3`):
 //! in rapier the blocks are dynamic cuboids (L x hb, mass m each, never asleep), the table a fixed
 //! cuboid whose top-right corner is the edge at (0, 0), each block where the core's `Stack3`
-//! starts it (harmonic offsets scaled by the overhang s, read from its stepper). Every collider has friction mu and the `Min` combine rule (the pair's
-//! coefficient is mu), restitution 0; gravity, h and the duration are `StackParams`' defaults,
+//! starts it (harmonic offsets scaled by the overhang s, read from its stepper). Every collider has friction mu_s (rapier has one coefficient; the
+//! stack's default mu_k equals its mu_s) and the `Min` combine rule (the pair's coefficient is mu_s), restitution 0; gravity, h and the duration are `StackParams`' defaults,
 //! rapier's solver its defaults, contact recycling off. The same judge for both engines: a block
 //! whose centre drops more than `drop_limit` below its start or tilts beyond `tilt_limit` fell;
 //! all standing after `max_time` held. Run time: the median over repeats of the held stack at
@@ -165,7 +165,7 @@ fn rapier_stack_run(overhang: f64) -> StackEnd {
     let (hl, hh) = (p.length / 2.0, p.height / 2.0);
     let collider = |half_x: f32, half_y: f32| {
         ColliderBuilder::cuboid(half_x, half_y)
-            .friction(p.mu)
+            .friction(p.mu_static)
             .friction_combine_rule(CoefficientCombineRule::Min)
             .restitution(0.0)
     };
@@ -240,13 +240,13 @@ fn stack_section(text: &mut String, repeats: usize) {
     let p = StackParams::<f64>::default();
     writeln!(
         text,
-        "3-block stack over a table's edge (L = {} m, hb = {} m, m = {} kg, mu = {}, g = {} m/s^2, h = {} ms, \
+        "3-block stack over a table's edge (L = {} m, hb = {} m, m = {} kg, mu_s = mu_k = {}, g = {} m/s^2, h = {} ms, \
          {} s),\n  fell: a block's centre {} mm below its start or tilted beyond {} rad; ns/step: {repeats} runs each of \
          the held stack at s = {TIMED_OVERHANG}, median:",
         p.length,
         p.height,
         p.mass,
-        p.mu,
+        p.mu_static,
         p.gravity,
         1e3 * p.step,
         p.max_time,

@@ -329,12 +329,15 @@ fn a_raised_finger_tilts_the_resting_rod() {
 /// `tan a = mu_s (1 + k) / k` (docs/scenes.md, "cylinder"), in f32 as the firmware runs and in f64.
 #[test]
 fn the_cylinders_map_boundary_is_the_rolling_law() {
-    use meterstick_core::scene::{CylinderParams, OutcomeKind};
+    use meterstick_core::scene::{CylinderParams, OutcomeKind, SceneKind};
     use meterstick_host_sim::map::{Axis, Grid, compute};
     use meterstick_host_sim::scenes::{Implementation, SceneParams};
     let params = CylinderParams::default();
     let base = SceneParams::Cylinder(params);
-    let axes = (Axis::parse("angle").unwrap(), Axis::parse("inertia-ratio").unwrap());
+    let axes = (
+        Axis::parse("angle", SceneKind::Cylinder).unwrap(),
+        Axis::parse("inertia-ratio", SceneKind::Cylinder).unwrap(),
+    );
     let grid = Grid { axes, x: (10.0, 80.0), y: (0.3, 1.0), cells: [15, 5], tolerance: 1e-3 };
     for implementation in [Implementation::CORE_F32_REDUCED, Implementation::CORE_F64_FULL] {
         let map = compute(&base, &grid, implementation).unwrap();

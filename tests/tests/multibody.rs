@@ -444,7 +444,10 @@ fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
             Pair { upper: 1, lower: Support::Body(0), mu_static: 0.5, mu_kinetic: 0.5 },
         ],
         forces: [[force, 0.0], [0.0; 2]],
-        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+        settings: Settings {
+            base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+            margin: 1e-3,
+        },
     };
     Stepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
         .expect("a valid system")
@@ -469,7 +472,10 @@ fn aligned_edges_make_one_contact_each() {
         table: Table { lo: None, hi: Some(0.05) },
         pairs: [Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 }],
         forces: [[0.0; 2]],
-        settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5, margin: 1e-3 },
+        settings: Settings {
+            base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+            margin: 1e-3,
+        },
     };
     let edge = Stepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, 0.05, 0.0)]).expect("valid");
     assert_eq!(edge.frames()[0].map(|f| f.active), [true, false, false, true]);
@@ -492,4 +498,41 @@ fn a_failed_step_is_a_typed_error() {
     assert_eq!(report.active, 4);
     let [fx, fy] = report.interface_forces[0];
     assert!((fx + 5.0).abs() < 1e-9 && (fy - 2.0 * 9.81).abs() < 1e-9, "floor force ({fx}, {fy})");
+}
+
+/// The stack's two friction coefficients: a stack of three beyond its harmonic overhangs
+/// (`s = 1.1`, `mu_s = 0.3`) falling past the default tilt and drop limits, its corners sliding,
+/// with `mu_k = mu_s` and with `mu_k = mu_s / 3`: the core (f64) steps as the independent reference
+/// does in both (same steps, positions within 1e-9 m), and the kinetic coefficient changes the
+/// fall (the run ends on another step).
+#[test]
+fn stack_slides_with_its_kinetic_coefficient_as_the_reference() {
+    let d = StackParams::<f64> {
+        overhang: 1.1,
+        mu_static: 0.3,
+        tilt_limit: 1.2,
+        drop_limit: 0.2,
+        max_time: 1.0,
+        ..StackParams::default()
+    };
+    let mut steps = Vec::new();
+    for mu_kinetic in [0.3, 0.1] {
+        let p = StackParams { mu_kinetic, ..d };
+        let mut scene = Stack3::<f64>::new(p).expect("valid parameters");
+        let outcome = scene.run(|_| {});
+        let r = reference_run(reference::Spec::Stack(reference::Stack {
+            overhang: p.overhang,
+            mu_static: p.mu_static,
+            mu_kinetic,
+            tilt_limit: p.tilt_limit,
+            drop_limit: p.drop_limit,
+            max_time: p.max_time,
+            ..reference::Stack::default()
+        }));
+        assert_eq!((outcome, r.outcome), (Outcome::Fell, reference::Outcome::Fell), "mu_k {mu_kinetic}");
+        assert_eq!(u64::from(scene.stepper().stats().steps), r.steps, "mu_k {mu_kinetic}");
+        assert_positions_near("stack", &positions(scene.stepper().states()), &r.q, REFERENCE_TOLERANCE);
+        steps.push(r.steps);
+    }
+    assert_ne!(steps[0], steps[1], "mu_k changes the fall");
 }

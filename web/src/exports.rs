@@ -362,7 +362,7 @@ mod tests {
         assert_eq!(json.len(), n as usize);
         assert!(json.len() < TEXT_BYTES / 2, "room to grow: {} bytes", json.len());
         assert!(json.starts_with("{\"version\":") && json.ends_with('}'), "{json}");
-        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic"}}"#), "{json}");
+        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic","stack":"mu_kinetic"}}"#), "{json}");
         assert!(json.contains(r#""contacts":["finger 1","finger 2"],"row":19,"measures":["meeting.time_s","meeting.com_offset_m"]"#), "{json}");
         assert!(
             json.contains(r#""name":"cylinder","#) && json.contains(r#""contacts":["rim"],"row":13,"#),

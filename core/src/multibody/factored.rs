@@ -645,7 +645,10 @@ mod tests {
                 Pair { upper: 1, lower: Support::Body(0), mu_static: c.mu[1], mu_kinetic: 0.5 * c.mu[1] },
             ],
             forces: [[c.force, 0.0], [0.0; 2]],
-            settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-4, margin: 1e-3 },
+            settings: Settings {
+                base: crate::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-4 },
+                margin: 1e-3,
+            },
         };
         let state = |x: f64, y: f64, t: f64, v: [f64; 3]| BodyState {
             x,

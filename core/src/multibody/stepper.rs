@@ -10,16 +10,14 @@ use crate::planar::assemble::normal_bias;
 use crate::planar::{Body, BodyState, Checksum, ContactMode, Declined, PathCounts, SolvePath};
 use crate::real::Real;
 
-/// The scalars of a step: time step, gravity, stick threshold and the activity rule's margin.
+/// The scalars of a step: one body's ([`crate::planar::Settings`]: time step, gravity, stick
+/// threshold) and the activity rule's margin.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Settings<T> {
-    /// Time step `h` (s).
-    pub step: T,
-    /// Gravity `g` (m/s^2), along world `-y`.
-    pub gravity: T,
-    /// A contact whose slip is at most this (m/s) sticks.
-    pub stick_speed: T,
+    /// Time step `h` (s), gravity `g` (m/s^2, along world `-y`), and the slip (m/s) at or below
+    /// which a contact sticks.
+    pub base: crate::planar::Settings<T>,
     /// The activity rule's `margin` (m): a corner further than this (plus what the approach speed
     /// closes within the step) from a face is not a contact.
     pub margin: T,
@@ -210,7 +208,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 m_min = body.mass;
             }
         }
-        let s = system.settings;
+        let s = system.settings.base;
         let mut stepper = Self {
             system,
             inverse_mass,
@@ -281,7 +279,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// Time now, `n h` after `n` steps (s).
     #[must_use]
     pub fn time(&self) -> T {
-        T::of_count(self.steps) * self.system.settings.step
+        T::of_count(self.steps) * self.system.settings.base.step
     }
 
     fn update_frames(&mut self) {
@@ -295,7 +293,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 &poses,
                 &self.system.table,
                 s.margin,
-                s.step,
+                s.base.step,
             );
         }
     }
@@ -362,7 +360,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// # Errors
     /// [`StepError::TooManyContacts`].
     pub(super) fn refill(&mut self) -> Result<(), StepError> {
-        let s = self.system.settings;
+        let s = self.system.settings.base;
         let h = s.step;
         let out = &mut self.lcp;
         let mut k = 0usize;
@@ -579,7 +577,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
     pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
-        let s = self.system.settings;
+        let s = self.system.settings.base;
         let h = s.step;
         self.refill()?;
         let (k, active) = (self.lcp.k.min(N / 4), self.lcp.active);

@@ -169,12 +169,13 @@ impl fmt::Display for SceneKind {
 
 #[cfg(feature = "scenes-multibody")]
 /// The stack's fields: `blocks`, then [`StackParams`]'s.
-const STACK_FIELDS: [&str; 13] = [
+const STACK_FIELDS: [&str; 14] = [
     "blocks",
     "length",
     "height",
     "mass",
-    "mu",
+    "mu_static",
+    "mu_kinetic",
     "overhang",
     "gravity",
     "step",

@@ -7,6 +7,10 @@
 //! `--y-axis angle`), and `mu-ratio` scales `mu_k` to `ratio * mu_s`. Each row's boundaries are
 //! bisected to `--tolerance` (default 1e-3, in the x axis's unit), every run in the precision and
 //! LCP size given (default the firmware's, core f32 6x6). Runs go in parallel on all cores.
+//!
+//! A scene of several bodies maps the same way (`--scene block-on-block --x-axis force --y-axis
+//! mu-s`), its law's boundaries (`docs/scenes.md`) drawn beside the runs' and the cells away from
+//! them compared with it.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -65,7 +69,7 @@ fn parse_range(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
 /// Bad axes, ranges, cell counts or tolerance, naming the flag.
 pub fn grid(args: &MapArgs) -> anyhow::Result<Grid> {
     let grid = Grid {
-        axes: (Axis::parse(&args.x_axis)?, Axis::parse(&args.y_axis)?),
+        axes: (Axis::parse(&args.x_axis, args.scene.kind())?, Axis::parse(&args.y_axis, args.scene.kind())?),
         x: parse_range("--x-range", &args.x_range)?,
         y: parse_range("--y-range", &args.y_range)?,
         cells: [args.x_cells, args.y_cells],
@@ -100,7 +104,6 @@ pub fn grid(args: &MapArgs) -> anyhow::Result<Grid> {
 /// # Errors
 /// Bad axes, ranges, cell counts or parameters (before anything runs), or a cell that cannot run.
 pub fn compute(args: &MapArgs) -> anyhow::Result<Map> {
-    crate::multibody::refuse(args.scene.kind(), "host-sim map")?;
     let grid = grid(args)?;
     let specs = args.scene.specs(None)?;
     let [(_, base)] = specs.as_slice() else {
@@ -123,6 +126,15 @@ pub fn run(args: &MapArgs) -> anyhow::Result<String> {
     );
     for (class, n) in &s.counts {
         let _ = writeln!(text, "  {class}: {n} cells");
+    }
+    if let Some(a) = s.law_disagreements {
+        let _ = writeln!(
+            text,
+            "the law (docs/scenes.md): {} boundaries (law_boundaries.csv, dashed in map.svg); of the {} cells more than one cell from them, {} disagree with it",
+            s.law_boundaries.len(),
+            a.cells_compared,
+            a.disagree
+        );
     }
     let _ = writeln!(
         text,

@@ -14,7 +14,8 @@
 //!    scaling, statics or a clear quasi-static argument), "not dragged" (frictionless or
 //!    `mu_k = 0`: while finger 1 is left of the centre of mass the rod does not move along `x`),
 //!    or "still" (zero speed or gravity, a block or a ladder held by friction: the body does not
-//!    move beyond [`super::metrics::STILL_TOLERANCE`] `eps size`).
+//!    move beyond [`super::metrics::STILL_TOLERANCE`] `eps size`; several bodies: none moves), or
+//!    block-on-block's accelerations in full contact the laws' ([`super::bodies`]).
 
 use super::cases::{Case, Claim};
 use super::metrics::{Metrics, STILL_TOLERANCE};
@@ -39,6 +40,8 @@ pub enum Failure {
     Dragged,
     /// The body moved although it should be still.
     Moved,
+    /// A measured acceleration is not the law's.
+    Acceleration,
 }
 
 impl Failure {
@@ -54,6 +57,7 @@ impl Failure {
             Self::Outcome => "outcome",
             Self::Dragged => "rod dragged",
             Self::Moved => "body moved",
+            Self::Acceleration => "law's acceleration",
         }
     }
 }
@@ -79,11 +83,6 @@ impl Verdict {
     }
 }
 
-/// The body's size, for the claims' tolerance.
-fn size_of(case: &Case) -> f64 {
-    super::metrics::body_of(&case.spec).2
-}
-
 /// Applies the pass criteria to one run of `case`.
 #[must_use]
 pub fn judge(case: &Case, m: &Metrics) -> Verdict {
@@ -107,9 +106,16 @@ pub fn judge(case: &Case, m: &Metrics) -> Verdict {
     {
         failures.push(Failure::Outcome);
     }
-    if case.claim != Claim::None && m.claim_motion > STILL_TOLERANCE * m.eps * size_of(case) {
-        failures.push(if case.claim == Claim::NotDragged { Failure::Dragged } else { Failure::Moved });
-    }
+    let still = STILL_TOLERANCE * m.eps * m.still_scale;
+    // A NaN (a claim that could not be measured) is not within any bound: it fails.
+    let within = |x: f64, bound: f64| x.is_finite() && x <= bound;
+    let failed = match case.claim {
+        Claim::None => None,
+        Claim::NotDragged => (!within(m.claim_motion, still)).then_some(Failure::Dragged),
+        Claim::BodyStill => (!within(m.claim_motion, still)).then_some(Failure::Moved),
+        Claim::LawAccelerations => (!within(m.claim_motion, 1.0)).then_some(Failure::Acceleration),
+    };
+    failures.extend(failed);
     Verdict { failures }
 }
 
@@ -125,6 +131,7 @@ mod tests {
             outcome: Some(RunOutcome::of(OutcomeKind::Balanced)),
             steps: 10,
             eps: f64::from(f32::EPSILON),
+            still_scale: 1.0,
             ..Metrics::default()
         }
     }
@@ -160,5 +167,12 @@ mod tests {
         let mut m = passing();
         m.claim_motion = 1e-4;
         assert!(judge(&c, &m).failures.contains(&Failure::Moved));
+        c.claim = Claim::LawAccelerations;
+        for off in [1.5, f64::NAN] {
+            m.claim_motion = off;
+            assert!(judge(&c, &m).failures.contains(&Failure::Acceleration), "{off}");
+        }
+        m.claim_motion = 0.5;
+        assert!(judge(&c, &m).passed());
     }
 }

@@ -52,8 +52,13 @@ pub struct Metrics {
     /// Reduced-layout check firings.
     pub reduced_check_fired: u64,
     /// For [`Claim::NotDragged`]: largest `|x - x_0|` while finger 1 was left of the centre of
-    /// mass; for [`Claim::BodyStill`]: largest change of `x`, `y`, `size theta / 2` (m).
+    /// mass; for [`Claim::BodyStill`]: largest change of `x`, `y`, `size theta / 2` (m); for
+    /// [`Claim::LawAccelerations`]: the largest difference from the law over its tolerance.
     pub claim_motion: f64,
+    /// The length a claim of no motion's round-off scales with (m): the body's size; several
+    /// bodies: the largest body's size plus the largest `|x| + |y|` of a body's start (positions
+    /// round relative to their magnitude, as [`penetration_bound`]'s round-off term).
+    pub still_scale: f64,
     /// Solves answered by the solver's regularised retry.
     pub regularized_solves: u64,
     /// Machine epsilon of the run's scalar.
@@ -65,6 +70,15 @@ pub struct Metrics {
 }
 
 impl Metrics {
+    /// A run the core refused to build: `Failed`, the refusal its detail.
+    #[must_use]
+    pub fn invalid(e: impl std::fmt::Display) -> Self {
+        Self {
+            outcome: Some(RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("invalid: {e}")) }),
+            ..Self::default()
+        }
+    }
+
     /// The outcome's class (`None`: the run panicked).
     #[must_use]
     pub fn class(&self) -> Option<OutcomeKind> {
@@ -101,8 +115,8 @@ pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
             (p.mass, p.inertia_factor * p.mass * p.radius * p.radius, 2.0 * p.radius, 0.0)
         }
         SceneParams::Painleve(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, p.speed.abs()),
-        // The grid has no scene of several bodies (`cases.rs`); one body's figures do not
-        // describe one, and NaN fails any bound it enters.
+        // One body's figures do not describe a scene of several bodies (`super::bodies` measures
+        // them); NaN fails any bound it enters.
         SceneParams::BlockOnBlock(_) | SceneParams::Tablecloth(_) | SceneParams::Stack(_) => {
             (f64::NAN, f64::NAN, f64::NAN, f64::NAN)
         }
@@ -185,7 +199,7 @@ pub fn penetrations(spec: &SceneParams, s: &[f64; 6], supports: &[[f64; 2]]) -> 
         }
         // The lower end, body point (-L/2, 0), against the floor y = 0.
         SceneParams::Painleve(p) => vec![(-world([-p.length / 2.0, 0.0])[1]).max(0.0)],
-        // The grid has no scene of several bodies (`cases.rs`): NaN fails any bound.
+        // Not for several bodies (`super::bodies`): NaN fails any bound.
         SceneParams::BlockOnBlock(_) | SceneParams::Tablecloth(_) | SceneParams::Stack(_) => vec![f64::NAN],
     }
 }
@@ -203,10 +217,10 @@ fn support_points<T: Real, S: Scene<T, K>, const K: usize>(scene: &S) -> Vec<[f6
 /// `stride` steps.
 #[must_use]
 pub fn measure(case: &Case, precision: Precision, layout: LcpLayout, stride: u64) -> Metrics {
-    case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(|e| Metrics {
-        outcome: Some(RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("invalid: {e}")) }),
-        ..Metrics::default()
-    })
+    if case.spec.kind().is_multibody() {
+        return super::bodies::measure(case, precision, stride);
+    }
+    case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(Metrics::invalid)
 }
 
 /// [`measure_scene`] as a visitor of the core's registry.
@@ -232,13 +246,7 @@ impl SceneVisitor for Measure<'_> {
         start.y += T::of(self.case.start_dy);
         match MeterStick::<T, N, E>::with_state(p, start) {
             Ok(lifted) => self.visit::<T, 2, N, _>(lifted),
-            Err(e) => Metrics {
-                outcome: Some(RunOutcome {
-                    class: OutcomeKind::Failed,
-                    detail: Some(format!("invalid: {e}")),
-                }),
-                ..Metrics::default()
-            },
+            Err(e) => Metrics::invalid(e),
         }
     }
 }
@@ -280,7 +288,7 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
     let (m_body, _, size, _) = body_of(spec);
     let eps = T::EPS.as_f64();
     let g = spec.get("gravity").unwrap_or(0.0);
-    let mut m = Metrics { eps, ..Metrics::default() };
+    let mut m = Metrics { eps, still_scale: size, ..Metrics::default() };
     let mut s = state_of(scene.state());
     let s0 = s;
     let mut supports = support_points(scene);
@@ -326,7 +334,7 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
                 let moved = [after[0] - s0[0], after[1] - s0[1], size / 2.0 * (after[2] - s0[2])];
                 m.claim_motion = moved.iter().fold(m.claim_motion, |a, d| a.max(d.abs()));
             }
-            Claim::None => {}
+            Claim::None | Claim::LawAccelerations => {}
         }
         s = after;
         e_before = e_after;

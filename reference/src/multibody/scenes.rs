@@ -145,8 +145,10 @@ pub struct Stack {
     pub height: f64,
     /// Each block's mass, kg.
     pub mass: f64,
-    /// Every contact's coefficient (static = kinetic).
-    pub mu: f64,
+    /// Every contact's static coefficient `mu_s`.
+    pub mu_static: f64,
+    /// Every contact's kinetic coefficient `mu_k` (at most `mu_s`).
+    pub mu_kinetic: f64,
     /// The harmonic overhangs' scale (1: each block's and its load's centre of mass exactly over
     /// the edge below it).
     pub overhang: f64,
@@ -173,7 +175,8 @@ impl Default for Stack {
             length: 0.2,
             height: 0.05,
             mass: 1.0,
-            mu: 0.5,
+            mu_static: 0.5,
+            mu_kinetic: 0.5,
             overhang: 0.98,
             gravity: 9.81,
             step: 1e-3,
@@ -410,7 +413,8 @@ impl Stack {
             ("length", self.length),
             ("height", self.height),
             ("mass", self.mass),
-            ("mu", self.mu),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
             ("overhang", self.overhang),
             ("gravity", self.gravity),
             ("step", self.step),
@@ -430,12 +434,14 @@ impl Stack {
             ("max_time", self.max_time),
         ])?;
         non_negative(&[
-            ("mu", self.mu),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
             ("overhang", self.overhang),
             ("gravity", self.gravity),
             ("stick_speed", self.stick_speed),
             ("contact_margin", self.contact_margin),
         ])?;
+        kinetic_at_most_static(self.mu_static, self.mu_kinetic)?;
         if !(1..=5).contains(&self.blocks) {
             return Err(format!("blocks {} is outside 1..=5", self.blocks));
         }
@@ -476,12 +482,13 @@ impl Stack {
 
     /// The scene's bodies, pairs and loads.
     pub(super) fn system(&self) -> System {
-        let mut pairs = vec![Pair { upper: 0, lower: Lower::Table, mu_static: self.mu, mu_kinetic: self.mu }];
+        let (mu_static, mu_kinetic) = (self.mu_static, self.mu_kinetic);
+        let mut pairs = vec![Pair { upper: 0, lower: Lower::Table, mu_static, mu_kinetic }];
         pairs.extend((1..self.blocks).map(|i| Pair {
             upper: i,
             lower: Lower::Body(i - 1),
-            mu_static: self.mu,
-            mu_kinetic: self.mu,
+            mu_static,
+            mu_kinetic,
         }));
         System {
             bodies: vec![BoxBody::new(self.length, self.height, self.mass); self.blocks],

@@ -1,7 +1,7 @@
 //! [`BlockOnBlock`]: a block on a block pulled along a floor (`docs/scenes.md`, "block-on-block").
 
-use super::{FullContact, Outcome};
-use crate::multibody::{Pair, Settings, StepReport, Stepper, Support, System, Table};
+use super::{FullContact, Outcome, Run, settings_of};
+use crate::multibody::{Pair, StepReport, Support, System, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -80,9 +80,7 @@ pub const BLOCK_ON_BLOCK_ROWS: usize = 24;
 /// (top, bottom).
 #[derive(Debug, Clone)]
 pub struct BlockOnBlock<T: Real> {
-    params: BlockOnBlockParams<T>,
-    stepper: Stepper<T, 2, 2, BLOCK_ON_BLOCK_ROWS>,
-    outcome: Option<Outcome>,
+    pub(super) run: Run<T, BlockOnBlockParams<T>, 2, 2, BLOCK_ON_BLOCK_ROWS>,
     /// Pair 0 / pair 1 slid after some step.
     slid: [bool; 2],
     full_contact: FullContact<T>,
@@ -105,21 +103,14 @@ impl<T: Real> BlockOnBlock<T> {
                 Pair { upper: 1, lower: Support::Body(0), mu_static: p.mu_static, mu_kinetic: p.mu_kinetic },
             ],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
-            settings: Settings {
-                step: p.step,
-                gravity: p.gravity,
-                stick_speed: p.stick_speed,
-                margin: p.contact_margin,
-            },
+            settings: settings_of!(p),
         };
         let states = [
             BodyState::at_rest(T::zero(), half * p.bottom_height, T::zero()),
             BodyState::at_rest(T::zero(), p.bottom_height + half * p.top_height, T::zero()),
         ];
         Ok(Self {
-            params,
-            stepper: Stepper::new(system, states)?,
-            outcome: None,
+            run: Run::new(params, system, states)?,
             slid: [false; 2],
             full_contact: FullContact::new(),
         })
@@ -127,29 +118,20 @@ impl<T: Real> BlockOnBlock<T> {
 
     /// Advances one step; `None` once the run has an outcome.
     pub fn step(&mut self) -> Option<StepReport<T, 2, 2>> {
-        if self.outcome.is_some() {
-            return None;
-        }
-        let report = match self.stepper.step() {
-            Ok(report) => report,
-            Err(e) => {
-                self.outcome = Some(Outcome::MultibodyFailed(e));
-                return None;
-            }
-        };
+        let report = self.run.advance()?;
         for p in 0..2 {
             self.slid[p] |= report.pair_slid(p);
         }
         let [bottom, top] = report.states;
         let touching = report.touching(&[(0, 0), (0, 1), (1, 0), (1, 1)]);
         self.full_contact.record(touching, report.time, [bottom.vx, top.vx]);
-        let p = &self.params;
+        let p = &self.run.params;
         if top.theta.abs_exact() > p.tilt_limit {
-            self.outcome = Some(Outcome::Tipped);
+            self.run.outcome = Some(Outcome::Tipped);
         } else if (top.x - bottom.x).abs_exact() > p.bottom_width / T::of(2.0) {
-            self.outcome = Some(Outcome::Slid);
+            self.run.outcome = Some(Outcome::Slid);
         } else if report.time >= p.max_time {
-            self.outcome = Some(match self.slid {
+            self.run.outcome = Some(match self.slid {
                 [_, true] => Outcome::Slid,
                 [true, false] => Outcome::Rode,
                 [false, false] => Outcome::Held,
@@ -158,28 +140,10 @@ impl<T: Real> BlockOnBlock<T> {
         Some(report)
     }
 
-    /// The outcome, once the run has ended.
-    #[must_use]
-    pub const fn outcome(&self) -> Option<Outcome> {
-        self.outcome
-    }
-
     /// `[a_bottom, a_top]` (m/s^2): the blocks' accelerations along `x` while both are in full
     /// contact; `None` before two such steps.
     #[must_use]
     pub fn accelerations(&self) -> Option<[T; 2]> {
         self.full_contact.accelerations()
-    }
-
-    /// The stepper (states, frames, modes, counters).
-    #[must_use]
-    pub const fn stepper(&self) -> &Stepper<T, 2, 2, BLOCK_ON_BLOCK_ROWS> {
-        &self.stepper
-    }
-
-    /// The parameters.
-    #[must_use]
-    pub const fn params(&self) -> &BlockOnBlockParams<T> {
-        &self.params
     }
 }

@@ -15,7 +15,8 @@ pub use block_on_block::{BLOCK_ON_BLOCK_ROWS, BlockOnBlock, BlockOnBlockParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
-use super::{Stats, StepReport};
+use super::{Stats, StepReport, Stepper, System};
+use crate::params::ParamError;
 use crate::planar::BodyState;
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome};
@@ -54,9 +55,77 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     }
 }
 
-/// [`MultibodyScene`] for a scene whose inherent `step`, `outcome` and `stepper` say it all.
+/// What every scene of several bodies keeps besides its own judge: its parameters, its stepper
+/// and its outcome once decided.
+#[derive(Debug, Clone)]
+struct Run<T: Real, Params, const B: usize, const P: usize, const N: usize> {
+    params: Params,
+    stepper: Stepper<T, B, P, N>,
+    outcome: Option<Outcome>,
+}
+
+impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Params, B, P, N> {
+    /// The scene's parameters (validated by the caller), its system and its bodies' start.
+    fn new(params: Params, system: System<T, B, P>, states: [BodyState<T>; B]) -> Result<Self, ParamError> {
+        Ok(Self { params, stepper: Stepper::new(system, states)?, outcome: None })
+    }
+
+    /// One step, unless the run has its outcome; a step that fails ends the run
+    /// ([`Outcome::MultibodyFailed`]; the state is that before the step).
+    fn advance(&mut self) -> Option<StepReport<T, B, P>> {
+        if self.outcome.is_some() {
+            return None;
+        }
+        match self.stepper.step() {
+            Ok(report) => Some(report),
+            Err(e) => {
+                self.outcome = Some(Outcome::MultibodyFailed(e));
+                None
+            }
+        }
+    }
+}
+
+/// The step's scalars of a scene's parameters (each has `step`, `gravity`, `stick_speed` and
+/// `contact_margin`).
+macro_rules! settings_of {
+    ($p:expr) => {
+        $crate::multibody::Settings {
+            base: $crate::planar::Settings {
+                step: $p.step,
+                gravity: $p.gravity,
+                stick_speed: $p.stick_speed,
+            },
+            margin: $p.contact_margin,
+        }
+    };
+}
+use settings_of;
+
+/// A scene's accessors of its [`Run`] (`outcome`, `stepper`, `params`) and [`MultibodyScene`],
+/// given its inherent `step` and what it measures.
 macro_rules! multibody_scene {
-    ($scene:ty, [$($generics:tt)*], $b:expr, $p:expr, $rows:expr, |$s:ident| $measured:expr) => {
+    ($scene:ty, [$($generics:tt)*], $params:ty, $b:expr, $p:expr, $rows:expr, |$s:ident| $measured:expr) => {
+        impl<$($generics)*> $scene {
+            /// The outcome, once the run has ended.
+            #[must_use]
+            pub const fn outcome(&self) -> Option<Outcome> {
+                self.run.outcome
+            }
+
+            /// The stepper (states, frames, modes, counters).
+            #[must_use]
+            pub const fn stepper(&self) -> &Stepper<T, $b, $p, $rows> {
+                &self.run.stepper
+            }
+
+            /// The parameters.
+            #[must_use]
+            pub const fn params(&self) -> &$params {
+                &self.run.params
+            }
+        }
+
         impl<$($generics)*> MultibodyScene<T, $b, $p> for $scene {
             const ROWS: usize = $rows;
             fn step(&mut self) -> Option<StepReport<T, $b, $p>> {
@@ -82,12 +151,12 @@ macro_rules! multibody_scene {
     };
 }
 
-multibody_scene!(BlockOnBlock<T>, [T: Real], 2, 2, BLOCK_ON_BLOCK_ROWS, |s| {
+multibody_scene!(BlockOnBlock<T>, [T: Real], BlockOnBlockParams<T>, 2, 2, BLOCK_ON_BLOCK_ROWS, |s| {
     let a = s.accelerations();
     [a.map(|a| a[0]), a.map(|a| a[1]), None]
 });
-multibody_scene!(Tablecloth<T>, [T: Real], 2, 3, TABLECLOTH_ROWS, |s| [Some(s.block_displacement()), None, None]);
-multibody_scene!(Stack<T, B, N>, [T: Real, const B: usize, const N: usize], B, B, N, |s| [
+multibody_scene!(Tablecloth<T>, [T: Real], TableclothParams<T>, 2, 3, TABLECLOTH_ROWS, |s| [Some(s.block_displacement()), None, None]);
+multibody_scene!(Stack<T, B, N>, [T: Real, const B: usize, const N: usize], StackParams<T>, B, B, N, |s| [
     Some(s.max_speed()),
     None,
     None

@@ -1,8 +1,8 @@
 //! [`Stack`]: `B` blocks stacked over a table's edge with harmonic overhangs (`docs/scenes.md`,
 //! "stack").
 
-use super::{Outcome, point_speed_bound};
-use crate::multibody::{Pair, Settings, StepReport, Stepper, Support, System, Table};
+use super::{Outcome, Run, point_speed_bound, settings_of};
+use crate::multibody::{Pair, StepReport, Support, System, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -16,8 +16,11 @@ params! {
         height: 0.05, Positive;
         /// `m` (kg), each block.
         mass: 1.0, Positive;
-        /// Every contact's friction coefficient (static = kinetic).
-        mu: 0.5, NonNegative;
+        /// Every contact's static friction coefficient.
+        mu_static: 0.5, NonNegative;
+        /// Every contact's kinetic friction coefficient (at most `mu_static`; the default equals
+        /// its default).
+        mu_kinetic: 0.5, NonNegative;
         /// `s`: the harmonic overhangs' scale (1 the critical stack).
         overhang: 0.98, NonNegative;
         /// `g` (m/s^2).
@@ -44,6 +47,9 @@ impl<T: Real> StackParams<T> {
     /// The first broken rule, naming its field.
     pub fn validate(&self, blocks: usize) -> Result<(), ParamError> {
         self.check_fields()?;
+        if self.mu_kinetic > self.mu_static {
+            return Err(ParamError::KineticAboveStatic);
+        }
         if !(1..=4).contains(&blocks) {
             return Err(ParamError::OutOfRange("blocks"));
         }
@@ -78,9 +84,7 @@ impl<T: Real> StackParams<T> {
 /// `i - 1`). `N` is the LCP's capacity ([`Stack2`], [`Stack3`]).
 #[derive(Debug, Clone)]
 pub struct Stack<T: Real, const B: usize, const N: usize> {
-    params: StackParams<T>,
-    stepper: Stepper<T, B, B, N>,
-    outcome: Option<Outcome>,
+    pub(super) run: Run<T, StackParams<T>, B, B, N>,
     start_y: [T; B],
     reach: T,
     max_speed: T,
@@ -100,22 +104,17 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
         params.validate(B)?;
         let p = params;
         let block = Body::block(p.mass, p.length, p.height);
-        let mut pairs = [Pair { upper: 0, lower: Support::Table, mu_static: p.mu, mu_kinetic: p.mu }; B];
+        let (mu_static, mu_kinetic) = (p.mu_static, p.mu_kinetic);
+        let mut pairs = [Pair { upper: 0, lower: Support::Table, mu_static, mu_kinetic }; B];
         for (i, pair) in pairs.iter_mut().enumerate().skip(1) {
-            *pair =
-                Pair { upper: i as u8, lower: Support::Body(i as u8 - 1), mu_static: p.mu, mu_kinetic: p.mu };
+            *pair = Pair { upper: i as u8, lower: Support::Body(i as u8 - 1), mu_static, mu_kinetic };
         }
         let system = System {
             bodies: [block; B],
             table: Table { lo: None, hi: Some(T::zero()) },
             pairs,
             forces: [[T::zero(); 2]; B],
-            settings: Settings {
-                step: p.step,
-                gravity: p.gravity,
-                stick_speed: p.stick_speed,
-                margin: p.contact_margin,
-            },
+            settings: settings_of!(p),
         };
         let states = p.start::<B>();
         let mut start_y = [T::zero(); B];
@@ -123,9 +122,7 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
             start_y[i] = states[i].y;
         }
         Ok(Self {
-            params,
-            stepper: Stepper::new(system, states)?,
-            outcome: None,
+            run: Run::new(params, system, states)?,
             start_y,
             reach: T::of(0.5) * (p.length * p.length + p.height * p.height).sqrt_libm(),
             max_speed: T::zero(),
@@ -134,17 +131,8 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
 
     /// Advances one step; `None` once the run has an outcome.
     pub fn step(&mut self) -> Option<StepReport<T, B, B>> {
-        if self.outcome.is_some() {
-            return None;
-        }
-        let report = match self.stepper.step() {
-            Ok(report) => report,
-            Err(e) => {
-                self.outcome = Some(Outcome::MultibodyFailed(e));
-                return None;
-            }
-        };
-        let p = &self.params;
+        let report = self.run.advance()?;
+        let p = &self.run.params;
         let mut fell = false;
         for (i, st) in report.states.iter().enumerate() {
             let speed = point_speed_bound(st, self.reach);
@@ -154,17 +142,11 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
             fell |= st.theta.abs_exact() > p.tilt_limit || self.start_y[i] - st.y > p.drop_limit;
         }
         if fell {
-            self.outcome = Some(Outcome::Fell);
+            self.run.outcome = Some(Outcome::Fell);
         } else if report.time >= p.max_time {
-            self.outcome = Some(Outcome::Held);
+            self.run.outcome = Some(Outcome::Held);
         }
         Some(report)
-    }
-
-    /// The outcome, once the run has ended.
-    #[must_use]
-    pub const fn outcome(&self) -> Option<Outcome> {
-        self.outcome
     }
 
     /// `max_speed`: the largest `|(vx, vy)| + reach |omega|` over the steps so far and the blocks
@@ -172,17 +154,5 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
     #[must_use]
     pub const fn max_speed(&self) -> T {
         self.max_speed
-    }
-
-    /// The stepper (states, frames, modes, counters).
-    #[must_use]
-    pub const fn stepper(&self) -> &Stepper<T, B, B, N> {
-        &self.stepper
-    }
-
-    /// The parameters.
-    #[must_use]
-    pub const fn params(&self) -> &StackParams<T> {
-        &self.params
     }
 }

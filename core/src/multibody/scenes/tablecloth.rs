@@ -1,7 +1,7 @@
 //! [`Tablecloth`]: a board pulled from under a block (`docs/scenes.md`, "tablecloth").
 
-use super::{FullContact, Outcome};
-use crate::multibody::{Pair, Settings, StepReport, Stepper, Support, System, Table};
+use super::{FullContact, Outcome, Run, settings_of};
+use crate::multibody::{Pair, StepReport, Support, System, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -81,9 +81,7 @@ pub const TABLECLOTH_ROWS: usize = 24;
 /// board), pair 2 (block, table).
 #[derive(Debug, Clone)]
 pub struct Tablecloth<T: Real> {
-    params: TableclothParams<T>,
-    stepper: Stepper<T, 2, 3, TABLECLOTH_ROWS>,
-    outcome: Option<Outcome>,
+    pub(super) run: Run<T, TableclothParams<T>, 2, 3, TABLECLOTH_ROWS>,
     start_x: T,
     /// Pair `p` slid after some step.
     slid: [bool; 3],
@@ -110,12 +108,7 @@ impl<T: Real> Tablecloth<T> {
                 floor(1),
             ],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
-            settings: Settings {
-                step: p.step,
-                gravity: p.gravity,
-                stick_speed: p.stick_speed,
-                margin: p.contact_margin,
-            },
+            settings: settings_of!(p),
         };
         let start_x = -half * p.board_length + p.offset + half * p.block_width;
         let states = [
@@ -123,9 +116,7 @@ impl<T: Real> Tablecloth<T> {
             BodyState::at_rest(start_x, p.board_thickness + half * p.block_height, T::zero()),
         ];
         Ok(Self {
-            params,
-            stepper: Stepper::new(system, states)?,
-            outcome: None,
+            run: Run::new(params, system, states)?,
             start_x,
             slid: [false; 3],
             full_contact: FullContact::new(),
@@ -134,23 +125,14 @@ impl<T: Real> Tablecloth<T> {
 
     /// Advances one step; `None` once the run has an outcome.
     pub fn step(&mut self) -> Option<StepReport<T, 2, 3>> {
-        if self.outcome.is_some() {
-            return None;
-        }
-        let report = match self.stepper.step() {
-            Ok(report) => report,
-            Err(e) => {
-                self.outcome = Some(Outcome::MultibodyFailed(e));
-                return None;
-            }
-        };
+        let report = self.run.advance()?;
         for p in 0..3 {
             self.slid[p] |= report.pair_slid(p);
         }
         let [board, block] = report.states;
         let touching = report.touching(&[(0, 0), (0, 1), (1, 0), (1, 1)]);
         self.full_contact.record(touching, report.time, [board.vx, block.vx]);
-        let p = &self.params;
+        let p = &self.run.params;
         let half = T::of(0.5);
         let (_, cos) = board.theta.sin_cos_portable();
         let behind = block.x < board.x - half * p.board_length * cos;
@@ -159,9 +141,9 @@ impl<T: Real> Tablecloth<T> {
             && block.vy.abs_exact() <= p.stick_speed
             && reach * block.omega.abs_exact() <= p.stick_speed;
         if behind && at_rest {
-            self.outcome = Some(Outcome::Stayed);
+            self.run.outcome = Some(Outcome::Stayed);
         } else if report.time >= p.max_time {
-            self.outcome = Some(if !self.slid.iter().any(|&s| s) {
+            self.run.outcome = Some(if !self.slid.iter().any(|&s| s) {
                 Outcome::Held
             } else if !self.slid[1] {
                 Outcome::Rode
@@ -172,33 +154,15 @@ impl<T: Real> Tablecloth<T> {
         Some(report)
     }
 
-    /// The outcome, once the run has ended.
-    #[must_use]
-    pub const fn outcome(&self) -> Option<Outcome> {
-        self.outcome
-    }
-
     /// `block_displacement_m`: the block's `x` now less its start (m).
     #[must_use]
     pub fn block_displacement(&self) -> T {
-        self.stepper.states()[1].x - self.start_x
+        self.run.stepper.states()[1].x - self.start_x
     }
 
     /// `[a_board, a_block]` (m/s^2) while both are in full contact; `None` before two such steps.
     #[must_use]
     pub fn accelerations(&self) -> Option<[T; 2]> {
         self.full_contact.accelerations()
-    }
-
-    /// The stepper (states, frames, modes, counters).
-    #[must_use]
-    pub const fn stepper(&self) -> &Stepper<T, 2, 3, TABLECLOTH_ROWS> {
-        &self.stepper
-    }
-
-    /// The parameters.
-    #[must_use]
-    pub const fn params(&self) -> &TableclothParams<T> {
-        &self.params
     }
 }

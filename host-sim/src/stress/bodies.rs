@@ -1,0 +1,170 @@
+//! What one stress run of a scene of several bodies measures, in f64, from the core's
+//! [`meterstick_core::multibody::StepReport`] after every step (the counterpart of
+//! [`super::metrics::measure`], which is shaped for one body):
+//!
+//! * **Energy** `E = sum_b m_b (vx^2 + vy^2) / 2 + J_b omega^2 / 2 + m_b g y_b` against the work of
+//!   the scene's pull, `W = sum F . (x+ - x)` (the pull acts at the bottom block's or the board's
+//!   centre of mass). The implicit step (`docs/formulation.md`, "Several bodies": `q+ = q + h v+`)
+//!   gives `E+ - E <= F . h v+` up to what pushing out of a penetration adds, as for one body; the
+//!   bodies start touching without penetration, so the allowance is round-off:
+//!   `4096 N eps` of the energy scale `sum_b m_b (g (size_b + |y_b|) + |v_b|^2 + (size_b omega_b)^2)`
+//!   plus `|F| size`.
+//! * **Still** ([`Claim::BodyStill`]): the largest change of any body's `x`, `y`, `size theta / 2`,
+//!   judged against `64 eps (size + |x| + |y|)` ([`Metrics::still_scale`]).
+//! * **The laws' accelerations** ([`Claim::LawAccelerations`], block-on-block): the scene's measured
+//!   `a_bottom`, `a_top` in full contact against `docs/scenes.md`'s ([`crate::multibody::law`]), their largest
+//!   difference over [`acceleration_tolerance`].
+//!
+//! Every LCP answer is verified in the core (a step that cannot be verified ends the run with
+//! `Failed`), so no residual is reported here (0); penetration is not measured for several bodies
+//! (0: the single-body geometry of [`super::metrics::penetrations`] does not describe them).
+
+use std::time::Instant;
+
+use meterstick_core::Real;
+use meterstick_core::multibody::scenes::MultibodyScene;
+use meterstick_core::scene::{MultibodyVisitor, Outcome, SceneParams};
+
+use super::cases::{Case, Claim};
+use super::metrics::Metrics;
+use crate::scenes::Precision;
+
+/// Each body's `(mass, width, height)` (body 0 the lowest) and the pull on body 0 (N, along `x`).
+#[must_use]
+pub fn bodies_of(spec: &SceneParams) -> (Vec<(f64, f64, f64)>, f64) {
+    match spec {
+        SceneParams::BlockOnBlock(p) => (
+            vec![(p.bottom_mass, p.bottom_width, p.bottom_height), (p.top_mass, p.top_width, p.top_height)],
+            p.force,
+        ),
+        SceneParams::Tablecloth(p) => (
+            vec![
+                (p.board_mass, p.board_length, p.board_thickness),
+                (p.block_mass, p.block_width, p.block_height),
+            ],
+            p.force,
+        ),
+        SceneParams::Stack(s) => {
+            let p = s.params;
+            (vec![(p.mass, p.length, p.height); s.block_count().unwrap_or(0)], 0.0)
+        }
+        _ => (Vec::new(), 0.0),
+    }
+}
+
+/// The largest body dimension of a scene of several bodies (m).
+#[must_use]
+pub fn size_of(spec: &SceneParams) -> f64 {
+    bodies_of(spec).0.iter().fold(0.0, |a: f64, b| a.max(b.1).max(b.2))
+}
+
+/// The tolerance of a measured acceleration against the law's: `1e-3 (|a| + g)` (the law is
+/// exact for the implicit step once the contacts settle into their modes; this allows for the
+/// finite differences in f32 over a short window).
+#[must_use]
+pub fn acceleration_tolerance(law: f64, g: f64) -> f64 {
+    1e-3 * (law.abs() + g)
+}
+
+/// Runs a scene of several bodies in `precision`, measuring as it goes; samples the bodies'
+/// centres every `stride` steps (body 0's `(x, y, theta)` in the trace, the deviation's input).
+#[must_use]
+pub fn measure(case: &Case, precision: Precision, stride: u64) -> Metrics {
+    case.spec.build_multibody(precision, Measure { case, stride }).unwrap_or_else(Metrics::invalid)
+}
+
+struct Measure<'a> {
+    case: &'a Case,
+    stride: u64,
+}
+
+impl MultibodyVisitor for Measure<'_> {
+    type Output = Metrics;
+
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
+        self,
+        mut scene: S,
+    ) -> Metrics {
+        let started = Instant::now();
+        let spec = &self.case.spec;
+        let (bodies, force) = bodies_of(spec);
+        let g = spec.get("gravity").unwrap_or(0.0);
+        let eps = T::EPS.as_f64();
+        let size = size_of(spec);
+        let state = |s: &[meterstick_core::planar::BodyState<T>; B]| -> Vec<[f64; 6]> {
+            s.iter().map(|b| b.to_array().map(Real::as_f64)).collect()
+        };
+        let energy = |s: &[[f64; 6]]| -> f64 {
+            s.iter()
+                .zip(&bodies)
+                .map(|(s, &(m, w, h))| {
+                    let j = m * (w * w + h * h) / 12.0;
+                    0.5 * m * (s[3] * s[3] + s[4] * s[4]) + 0.5 * j * s[5] * s[5] + m * g * s[1]
+                })
+                .sum()
+        };
+        let scale = |s: &[[f64; 6]]| -> f64 {
+            s.iter()
+                .zip(&bodies)
+                .map(|(s, &(m, w, h))| {
+                    let d = w.max(h);
+                    m * (g * (d + s[1].abs()) + s[3] * s[3] + s[4] * s[4] + (d * s[5]).powi(2))
+                })
+                .sum::<f64>()
+                + force.abs() * size
+        };
+        let s0 = state(scene.states());
+        let extent = s0.iter().fold(0.0, |a: f64, s| a.max(s[0].abs() + s[1].abs()));
+        let mut m = Metrics { eps, still_scale: size + extent, ..Metrics::default() };
+        let mut s = s0.clone();
+        let e0 = energy(&s0);
+        let mut e_before = e0;
+        let mut work = 0.0;
+        m.trace.push([s[0][0], s[0][1], s[0][2]]);
+        let mut steps = 0_u64;
+        while let Some(r) = scene.step() {
+            steps += 1;
+            m.max_pivots = m.max_pivots.max(r.pivots);
+            let after = state(&r.states);
+            let step_work = force * (after[0][0] - s[0][0]);
+            let e_after = energy(&after);
+            if e_after.is_finite() {
+                m.step_energy_gain = m.step_energy_gain.max(e_after - e_before - step_work);
+                work += step_work;
+                let gain = e_after - e0 - work;
+                m.energy_gain = m.energy_gain.max(gain);
+                m.energy_ratio = m.energy_ratio.max(gain / (4096.0 * S::ROWS as f64 * eps * scale(&after)));
+            }
+            if self.case.claim == Claim::BodyStill {
+                for (a, b) in after.iter().zip(&s0) {
+                    let moved = [a[0] - b[0], a[1] - b[1], size / 2.0 * (a[2] - b[2])];
+                    m.claim_motion = moved.iter().fold(m.claim_motion, |acc, d| acc.max(d.abs()));
+                }
+            }
+            s = after;
+            e_before = e_after;
+            if steps.is_multiple_of(self.stride) {
+                m.trace.push([s[0][0], s[0][1], s[0][2]]);
+            }
+        }
+        if self.case.claim == Claim::LawAccelerations {
+            let measured = scene.measured();
+            let law = crate::multibody::law(spec);
+            let laws = [law.and_then(|l| l.lower_acceleration), law.and_then(|l| l.upper_acceleration)];
+            // A missing measure (or law) is NaN, which fails the judge's `<= 1`.
+            m.claim_motion =
+                laws.iter().zip(&measured).fold(0.0, |acc: f64, (want, got)| match (want, got) {
+                    (Some(want), Some(got)) if !acc.is_nan() => {
+                        acc.max((got.as_f64() - want).abs() / acceleration_tolerance(*want, g))
+                    }
+                    _ => f64::NAN,
+                });
+        }
+        let stats = scene.stats();
+        m.steps = steps;
+        m.mean_pivots = stats.pivots as f64 / steps.max(1) as f64;
+        m.outcome = Some(scene.outcome().unwrap_or(Outcome::Unfinished).into());
+        m.wall_s = started.elapsed().as_secs_f64();
+        m
+    }
+}
