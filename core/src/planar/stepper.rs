@@ -308,12 +308,37 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    // Inlined into its caller with `host-tuned`: the supports, just built there, and the report
-    // are then not read back from memory at once, which stalls an x86 core.
-    #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
-    #[cfg_attr(feature = "host-tuned", inline(always))]
+    // Inlined into its caller: with `host-tuned` the supports, just built there, and the report
+    // are then not read back from memory at once, which stalls an x86 core; on a Cortex-M4F the
+    // report is not copied out of a call (measured: 100 instructions a step).
+    #[inline(always)]
     #[allow(clippy::inline_always)] // measured, as said above
     pub fn step(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
+        // A model none of whose steps can have several answers steps without the rule's code in
+        // its way (measured: a runtime test inside the one step cost the Cortex-M4F 2 % a step).
+        if cfg!(feature = "fallback") && self.detector.possible() {
+            self.step_flagging(supports)
+        } else {
+            self.step_with_rule::<false>(supports)
+        }
+    }
+
+    /// [`Self::step`] of a model whose steps may have several answers: out of line, so that the
+    /// other models' step is the one it always was.
+    #[inline(never)]
+    fn step_flagging(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
+        self.step_with_rule::<true>(supports)
+    }
+
+    /// [`Self::step`], with the rule's detection when `RULE` (`docs/formulation.md`, "One answer:
+    /// the rule").
+    #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
+    #[inline(always)] // into `step` (the model without the rule's steps) and `step_flagging`
+    #[allow(clippy::inline_always)]
+    fn step_with_rule<const RULE: bool>(
+        &mut self,
+        supports: &[Support<T>; K],
+    ) -> Result<StepReport<T, K>, StepError> {
         let s = self.settings;
         let h = s.step;
         let mut support_velocity = [[T::zero(); 2]; K];
@@ -360,7 +385,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let reduced = N != NF;
         // Whether the step may have several answers: the rule applies (`docs/formulation.md`,
         // "One answer: the rule").
-        let flagged = cfg!(feature = "fallback") && self.detector.possible() && Detector::flags(&inputs);
+        let flagged = RULE && Detector::flags(&inputs);
         let mut rule = Resolution::default();
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
         let (mut pivots, mut warm_start_used, mut residual, mut path, solved) = match solve(
@@ -378,8 +403,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 v_plus = sol.v_plus;
                 (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
             }
-            // A reduced LCP may have no solution when a dropped direction is needed: that too
-            // is the reduced model leaving its range.
             // On a step that may have several answers, the rule's enumeration answers when the
             // solver's paths did not (each of its answers is verified as theirs are).
             Err(e) => match flagged
