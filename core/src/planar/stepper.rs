@@ -488,7 +488,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 if let Some((i, dropped)) = needed {
                     wide = full.with_direction(wide, i, dropped);
                 }
-                let solved_full = solve(
+                let mut by_rule = false;
+                let mut sol = match solve(
                     &full,
                     wide,
                     &mut PlanCache::<K>::default(),
@@ -497,29 +498,24 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                     &mut self.stats.regularized_solves,
                     &mut z_full,
                     &mut w_full,
-                );
-                let (mut sol, by_rule) = match solved_full {
-                    Ok(sol) => (sol, false),
-                    Err(e) => {
-                        let tolerance = self.solver.tolerance();
+                ) {
+                    Ok(sol) => sol,
+                    Err(e) if flagged => {
                         let rule_full = self.detector.rule(&inputs);
-                        let found = flagged
-                            .then(|| {
-                                solve_by_rule(
-                                    &full,
-                                    rule_full,
-                                    tolerance,
-                                    &mut z_full,
-                                    &mut w_full,
-                                    |_, _, _| true,
-                                )
-                            })
-                            .flatten();
+                        let found = solve_by_rule(
+                            &full,
+                            rule_full,
+                            self.solver.tolerance(),
+                            &mut z_full,
+                            &mut w_full,
+                            |_, _, _| true,
+                        );
                         let (sol, r) = found.ok_or(StepError::Solver(e))?;
-                        rule.enumerated = true;
+                        (rule.enumerated, by_rule) = (true, true);
                         rule.ambiguous |= r.ambiguous;
-                        (sol, true)
+                        sol
                     }
+                    Err(e) => return Err(StepError::Solver(e)),
                 };
                 if flagged && !by_rule {
                     let r = resolve(
