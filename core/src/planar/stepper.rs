@@ -314,8 +314,13 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     #[inline(always)]
     #[allow(clippy::inline_always)] // measured, as said above
     pub fn step(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
-        // A model none of whose steps can have several answers steps without the rule's code in
-        // its way (measured: a runtime test inside the one step cost the Cortex-M4F 2 % a step).
+        // Without `host-tuned`, a model none of whose steps can have several answers steps
+        // without the rule's code in its way (measured: a runtime test inside the one step cost
+        // the Cortex-M4F 2 % a step). With it, one step tests at run time (measured: a branch to
+        // two copies cost the host 8 %, the report no longer kept out of memory).
+        #[cfg(feature = "host-tuned")]
+        return self.step_with_rule::<true>(supports);
+        #[cfg(not(feature = "host-tuned"))]
         if cfg!(feature = "fallback") && self.detector.possible() {
             self.step_flagging(supports)
         } else {
@@ -325,6 +330,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
 
     /// [`Self::step`] of a model whose steps may have several answers: out of line, so that the
     /// other models' step is the one it always was.
+    #[cfg(not(feature = "host-tuned"))]
     #[inline(never)]
     fn step_flagging(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
         self.step_with_rule::<true>(supports)
@@ -385,7 +391,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let reduced = N != NF;
         // Whether the step may have several answers: the rule applies (`docs/formulation.md`,
         // "One answer: the rule").
-        let flagged = RULE && Detector::flags(&inputs);
+        let flagged =
+            RULE && cfg!(feature = "fallback") && self.detector.possible() && Detector::flags(&inputs);
         let mut rule = Resolution::default();
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
         let (mut pivots, mut warm_start_used, mut residual, mut path, solved) = match solve(
