@@ -30,6 +30,7 @@ pub mod multibody;
 mod params;
 pub mod planar;
 mod real;
+pub mod rule;
 pub mod scene;
 pub mod soft_float;
 

@@ -228,3 +228,29 @@ fn with_pattern<const K: usize, const N: usize>(
     let all = bn | bit(f[0]) | bit(f[1]) | bs;
     Basis::from_z_mask((basis.z_mask() & !all) | set)
 }
+
+/// Patterns per contact that [`pattern_basis`] numbers: off, touching, and sticking, sliding and
+/// skidding along each direction.
+pub(crate) const PATTERNS: usize = 8;
+
+/// `basis` with contact `i` set to its pattern number `slot` (`slot < PATTERNS`: off, touching,
+/// sticking `+d`, sticking `-d`, sliding `+d`, sliding `-d`, skidding `+d`, skidding `-d`);
+/// `None` when the slot's direction is not kept. The rule's enumeration of a step's solutions
+/// ([`super::resolve`]) walks these.
+pub(crate) fn pattern_basis<const K: usize, const N: usize>(
+    tangents: &[Tangents; K],
+    basis: Basis<N>,
+    i: usize,
+    slot: usize,
+) -> Option<Basis<N>> {
+    let d = if slot.is_multiple_of(2) { Direction::Plus } else { Direction::Minus };
+    let p = match slot {
+        0 => Pattern::Off,
+        1 => Pattern::Touch,
+        2 | 3 => Pattern::Stick(d),
+        4 | 5 => Pattern::Slide(d),
+        _ => Pattern::Skid(d),
+    };
+    let kept = slot < 2 || tangents.get(i).is_some_and(|t| t.keeps(d));
+    kept.then(|| with_pattern(tangents, basis, i, p))
+}

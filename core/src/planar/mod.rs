@@ -56,6 +56,8 @@ pub mod assemble;
 
 mod strategy;
 
+mod resolve;
+
 mod report;
 
 mod stepper;

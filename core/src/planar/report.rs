@@ -118,4 +118,15 @@ pub struct RunStats {
     pub round_off_limited: u64,
     /// Solves per path.
     pub paths: PathCounts,
+    /// Steps the rule looked at (`docs/formulation.md`, "One answer: the rule"): flagged as
+    /// possibly having several answers, their solutions enumerated.
+    pub rule_checked_steps: u64,
+    /// Of those, steps whose solutions were enumerated: the solver's answer was not at rest
+    /// (an answer of zero kinetic energy is the rule's choice as it is).
+    pub rule_enumerated_steps: u64,
+    /// Of those, steps whose LCP had solutions that move the body differently.
+    pub ambiguous_steps: u64,
+    /// Of those, steps where the rule's choice moves the body differently from the answer the
+    /// solver's path reached first.
+    pub rule_changed_answer: u64,
 }

@@ -28,7 +28,8 @@ use super::inputs::sign;
 use super::layout::{Direction, Layout, Variable};
 use super::model::{Model, Settings, validate};
 use super::report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
-use super::strategy::{SolvePath, solve};
+use super::resolve::{Detector, Resolution, resolve, solve_by_rule};
+use super::strategy::{SolvePath, Solved, solve};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
 use crate::real::{Real, max, min, zero_if_finite};
@@ -114,6 +115,8 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     /// basis is usually the same.
     plan: PlanCache<K>,
     solver: Lemke<T, N>,
+    /// Which steps may have several answers, for the rule (`docs/formulation.md`, "One answer").
+    detector: Detector<T>,
     stats: RunStats,
 }
 
@@ -199,6 +202,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             factored: FactoredLcp::empty(&layout),
             plan: PlanCache::<K>::default(),
             solver: Lemke::new(),
+            detector: Detector::new(
+                &model.contacts,
+                body.inverse_mass_per_unit_mass(),
+                body.half_extents(),
+                body.size(),
+            ),
             stats: RunStats::default(),
         };
         stepper.update_frames(&supports);
@@ -299,12 +308,43 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    // Inlined into its caller with `host-tuned`: the supports, just built there, and the report
-    // are then not read back from memory at once, which stalls an x86 core.
-    #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
-    #[cfg_attr(feature = "host-tuned", inline(always))]
+    // Inlined into its caller: with `host-tuned` the supports, just built there, and the report
+    // are then not read back from memory at once, which stalls an x86 core; on a Cortex-M4F the
+    // report is not copied out of a call (measured: 100 instructions a step).
+    #[inline(always)]
     #[allow(clippy::inline_always)] // measured, as said above
     pub fn step(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
+        // Without `host-tuned`, a model none of whose steps can have several answers steps
+        // without the rule's code in its way (measured: a runtime test inside the one step cost
+        // the Cortex-M4F 2 % a step). With it, one step tests at run time (measured: a branch to
+        // two copies cost the host 8 %, the report no longer kept out of memory).
+        #[cfg(feature = "host-tuned")]
+        return self.step_with_rule::<true>(supports);
+        #[cfg(not(feature = "host-tuned"))]
+        if cfg!(feature = "fallback") && self.detector.possible() {
+            self.step_flagging(supports)
+        } else {
+            self.step_with_rule::<false>(supports)
+        }
+    }
+
+    /// [`Self::step`] of a model whose steps may have several answers: out of line, so that the
+    /// other models' step is the one it always was.
+    #[cfg(not(feature = "host-tuned"))]
+    #[inline(never)]
+    fn step_flagging(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
+        self.step_with_rule::<true>(supports)
+    }
+
+    /// [`Self::step`], with the rule's detection when `RULE` (`docs/formulation.md`, "One answer:
+    /// the rule").
+    #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
+    #[inline(always)] // into `step` (the model without the rule's steps) and `step_flagging`
+    #[allow(clippy::inline_always)]
+    fn step_with_rule<const RULE: bool>(
+        &mut self,
+        supports: &[Support<T>; K],
+    ) -> Result<StepReport<T, K>, StepError> {
         let s = self.settings;
         let h = s.step;
         let mut support_velocity = [[T::zero(); 2]; K];
@@ -349,6 +389,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let (mut z_full, mut w_full) = ([T::zero(); NF], [T::zero(); NF]);
         let mut v_plus = v_free;
         let reduced = N != NF;
+        // Whether the step may have several answers: the rule applies (`docs/formulation.md`,
+        // "One answer: the rule").
+        let flagged =
+            RULE && cfg!(feature = "fallback") && self.detector.possible() && Detector::flags(&inputs);
+        let mut rule = Resolution::default();
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
         let (mut pivots, mut warm_start_used, mut residual, mut path, solved) = match solve(
             factored,
@@ -365,17 +410,75 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 v_plus = sol.v_plus;
                 (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
             }
-            // A reduced LCP may have no solution when a dropped direction is needed: that too
-            // is the reduced model leaving its range.
-            Err(e) if reduced => {
-                self.basis = Basis::all_w();
-                (e.pivots(), false, T::zero(), SolvePath::Lemke, false)
-            }
-            Err(e) => return Err(StepError::Solver(e)),
+            // On a step that may have several answers, the rule's enumeration answers when the
+            // solver's paths did not (each of its answers is verified as theirs are).
+            Err(e) => match flagged
+                .then(|| {
+                    solve_by_rule(
+                        factored,
+                        self.detector.rule(&inputs),
+                        self.solver.tolerance(),
+                        &mut z,
+                        &mut w,
+                        |z, w, v| {
+                            !reduced
+                                || self
+                                    .dropped_direction_needed(
+                                        &inputs,
+                                        z,
+                                        w,
+                                        velocity_scale(&support_velocity, v, self.size),
+                                    )
+                                    .is_none()
+                        },
+                    )
+                })
+                .flatten()
+            {
+                Some((sol, r)) => {
+                    rule = r;
+                    self.basis = sol.basis;
+                    v_plus = sol.v_plus;
+                    (sol.pivots, sol.warm_start_used, sol.residual, sol.path, true)
+                }
+                // A reduced LCP may have no solution when a dropped direction is needed: that
+                // too is the reduced model leaving its range.
+                None if reduced => {
+                    self.basis = Basis::all_w();
+                    (e.pivots(), false, T::zero(), SolvePath::Lemke, false)
+                }
+                None => return Err(StepError::Solver(e)),
+            },
         };
         // The step's velocity scale, for the reduced check's round-off and the precision flag.
-        let speed = velocity_scale(&support_velocity, &v_plus, self.size);
+        let mut speed = velocity_scale(&support_velocity, &v_plus, self.size);
         let needed = if solved { self.dropped_direction_needed(&inputs, &z, &w, speed) } else { None };
+        // The rule, where the step may have several answers: among the solutions that need no
+        // dropped direction (one that does goes to the full layout, which applies the rule again).
+        if flagged && solved && needed.is_none() && !rule.enumerated {
+            let mut sol = Solved { v_plus, basis: self.basis, pivots, warm_start_used, residual, path };
+            rule = resolve(
+                factored,
+                self.detector.rule(&inputs),
+                self.solver.tolerance(),
+                &mut sol,
+                &mut z,
+                &mut w,
+                |z, w, v| {
+                    !reduced
+                        || self
+                            .dropped_direction_needed(
+                                &inputs,
+                                z,
+                                w,
+                                velocity_scale(&support_velocity, v, self.size),
+                            )
+                            .is_none()
+                },
+            );
+            (self.basis, v_plus, residual) = (sol.basis, sol.v_plus, sol.residual);
+            speed = velocity_scale(&support_velocity, &v_plus, self.size);
+        }
         let full_layout_used = reduced && (!solved || needed.is_some());
         #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
         let mut slips = factored.slips(&z, &w);
@@ -392,7 +495,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 if let Some((i, dropped)) = needed {
                     wide = full.with_direction(wide, i, dropped);
                 }
-                let sol = solve(
+                let mut by_rule = false;
+                let mut sol = match solve(
                     &full,
                     wide,
                     &mut PlanCache::<K>::default(),
@@ -401,8 +505,39 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                     &mut self.stats.regularized_solves,
                     &mut z_full,
                     &mut w_full,
-                )
-                .map_err(StepError::Solver)?;
+                ) {
+                    Ok(sol) => sol,
+                    Err(e) if flagged => {
+                        let rule_full = self.detector.rule(&inputs);
+                        let found = solve_by_rule(
+                            &full,
+                            rule_full,
+                            self.solver.tolerance(),
+                            &mut z_full,
+                            &mut w_full,
+                            |_, _, _| true,
+                        );
+                        let (sol, r) = found.ok_or(StepError::Solver(e))?;
+                        (rule.enumerated, by_rule) = (true, true);
+                        rule.ambiguous |= r.ambiguous;
+                        sol
+                    }
+                    Err(e) => return Err(StepError::Solver(e)),
+                };
+                if flagged && !by_rule {
+                    let r = resolve(
+                        &full,
+                        self.detector.rule(&inputs),
+                        self.solver.tolerance(),
+                        &mut sol,
+                        &mut z_full,
+                        &mut w_full,
+                        |_, _, _| true,
+                    );
+                    rule.enumerated |= r.enumerated;
+                    rule.ambiguous |= r.ambiguous;
+                    rule.changed |= r.changed;
+                }
                 pivots += sol.pivots;
                 residual = sol.residual;
                 warm_start_used = sol.warm_start_used;
@@ -442,6 +577,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         // 32-bit core).
         if round_off_limited {
             self.stats.round_off_limited += 1;
+        }
+        if flagged {
+            self.stats.rule_checked_steps += 1;
+            self.stats.rule_enumerated_steps += u64::from(rule.enumerated);
+            self.stats.ambiguous_steps += u64::from(rule.ambiguous);
+            self.stats.rule_changed_answer += u64::from(rule.changed);
         }
         if pivots > 0 {
             self.stats.pivots += u64::from(pivots);

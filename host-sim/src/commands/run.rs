@@ -402,7 +402,8 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
                     let _ = writeln!(
                         s,
                         "{:<w$} the reference found {ambiguous} steps whose LCP has solutions that move the body \
-                         differently (statically indeterminate contacts): core and reference may both be right and differ",
+                         differently; both take the least kinetic energy after the step (docs/formulation.md, \
+                         \"One answer: the rule\")",
                         ""
                     );
                 }
@@ -414,6 +415,21 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
         }
         if let Some(warning) = r.core.counters.round_off_warning(r.core.steps) {
             let _ = writeln!(s, "{:<w$} {warning}", "");
+        }
+        let c = &r.core.counters;
+        if c.rule_checked_steps > 0 {
+            let _ = writeln!(
+                s,
+                "{:<w$} core: {} steps flagged as possibly having several answers ({} at rest, the rule's \
+                 choice as they were); of the {} enumerated {} had several, and the rule changed the solver's \
+                 first answer on {}",
+                "",
+                c.rule_checked_steps,
+                c.rule_checked_steps - c.rule_enumerated_steps,
+                c.rule_enumerated_steps,
+                c.ambiguous_steps,
+                c.rule_changed_answer
+            );
         }
     }
     if runs.iter().any(|r| r.scene == SceneKind::MeterStick) {

@@ -209,8 +209,16 @@ pub struct SolverCounters {
     pub reduced_check_fired_before_meeting: u64,
     /// Solves answered by the solver's regularised retry (core).
     pub regularized_solves: u64,
-    /// Steps whose LCP had solutions with different motions (reference).
+    /// Steps whose LCP had solutions with different motions (reference; core: of the steps its
+    /// rule enumerated).
     pub ambiguous_steps: u64,
+    /// Steps the core's rule looked at (flagged as possibly having several answers; core).
+    pub rule_checked_steps: u64,
+    /// Of those, steps whose solutions it enumerated (the solver's answer not at rest; core).
+    pub rule_enumerated_steps: u64,
+    /// Steps where the rule's choice moved the body differently from the answer the solver's
+    /// path reached first (core).
+    pub rule_changed_answer: u64,
     /// Steps resolved only to more than `ROUND_OFF_LIMIT` of their impulses (core; see
     /// [`meterstick_core::planar::StepReport::round_off_limited`]).
     pub round_off_limited: u64,
@@ -281,6 +289,10 @@ impl From<&RunStats> for SolverCounters {
             regularized_solves: s.regularized_solves,
             round_off_limited: s.round_off_limited,
             paths: Paths::from(&s.paths),
+            ambiguous_steps: s.ambiguous_steps,
+            rule_checked_steps: s.rule_checked_steps,
+            rule_enumerated_steps: s.rule_enumerated_steps,
+            rule_changed_answer: s.rule_changed_answer,
             ..Self::default()
         }
     }
