@@ -69,6 +69,32 @@ pub struct StepReport<T, const K: usize> {
 /// 10 m/s at 1e-4 s held within 1.6e-6 m): the flag says it is no longer assured.
 pub const ROUND_OFF_LIMIT: f64 = 1e-4;
 
+/// The largest `mu eps` a friction coefficient may have in a precision before
+/// [`friction_beyond_precision`] says so: `2^-8`. A contact that sticks under friction impulses up
+/// to `mu` times its normal one holds them against another contact's (the meter stick's two
+/// fingers, whatever moves the body), and what is left, the net impulse (the weight's `g h` per
+/// unit mass), is resolved only to `mu eps` of itself. With the cone rows weighted
+/// (`docs/formulation.md`, "Precision") f32 reaches f64's outcome on the meter stick (both
+/// layouts, h = 1 ms) up to `mu = 3e4` (`mu eps = 3.6e-3`); at `5e4` (6.0e-3) the 8x8 falls, at
+/// `1e5` (1.2e-2) both fail near the meeting (Lemke's answer no longer verifies). So the limit is
+/// `mu = 2^15 = 32,768` in f32 and `2^44 = 1.8e13` in f64.
+pub const FRICTION_ROUND_OFF_LIMIT: f64 = 1.0 / 256.0;
+
+/// `true` when the friction coefficient `mu` is beyond what precision `T` resolves:
+/// `mu eps > FRICTION_ROUND_OFF_LIMIT` ([`FRICTION_ROUND_OFF_LIMIT`]). For drivers, before a run
+/// (the step does not check it).
+#[must_use]
+pub fn friction_beyond_precision<T: Real>(mu: f64) -> bool {
+    mu * T::EPS.as_f64() > FRICTION_ROUND_OFF_LIMIT
+}
+
+/// The largest friction coefficient precision `T` resolves ([`friction_beyond_precision`]):
+/// `FRICTION_ROUND_OFF_LIMIT / eps`.
+#[must_use]
+pub fn friction_limit<T: Real>() -> f64 {
+    FRICTION_ROUND_OFF_LIMIT / T::EPS.as_f64()
+}
+
 impl<T: Real, const K: usize> StepReport<T, K> {
     /// Each contact's mode after the step.
     #[must_use]

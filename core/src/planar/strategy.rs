@@ -8,6 +8,7 @@
 use super::assemble::{StepLcp, fill_from_factored};
 use super::candidates::CANDIDATES;
 use super::factored::{Declined, FactoredLcp, PlanCache};
+use super::layout::Layout;
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::real::Real;
 
@@ -176,12 +177,15 @@ fn solve_cold<T: Real, const K: usize, const M: usize>(
     }
     paths.count(SolvePath::Lemke);
     let mut lcp = StepLcp::zeros();
-    fill_from_factored(factored, &mut lcp);
+    fill_from_factored(factored, true, &mut lcp);
     let sol = solver.solve_from_basis(&lcp.lcp, warm)?;
     *regularized_solves += u64::from(sol.regularized);
     for j in 0..M {
         z[j] = sol.z[j];
         w[j] = sol.w[j];
+    }
+    if factored.cone_scaled != 0 {
+        unweigh(factored, w);
     }
     Ok(Solved {
         v_plus: factored.velocity_after(z),
@@ -191,4 +195,18 @@ fn solve_cold<T: Real, const K: usize, const M: usize>(
         residual: sol.residual,
         path: SolvePath::Lemke,
     })
+}
+
+/// The model's cone rows of `w` from those of the weighted LCP ([`fill_from_factored`]): each
+/// weighted row divided by its power of two, exactly.
+#[cold]
+#[inline(never)]
+fn unweigh<T: Real, const K: usize, const M: usize>(factored: &FactoredLcp<T, K, M>, w: &mut [T; M]) {
+    for i in 0..K {
+        if (factored.cone_scaled >> i) & 1 == 1
+            && let Some(wi) = w.get_mut(Layout::<K, M>::SIGMA_START + i)
+        {
+            *wi *= factored.mu[i].power_of_two_below();
+        }
+    }
 }
