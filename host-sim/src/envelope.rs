@@ -210,7 +210,7 @@ pub struct Envelope {
     pub cells: Vec<Cell>,
     /// The friction coefficients of the friction table.
     pub mus: Vec<f64>,
-    /// The friction table: scene-, layout-, then `mu`-major ([`friction_cells`]).
+    /// The friction table: scene-, layout-, then `mu`-major ([`FRICTION_SCENES`], both layouts, `mus`).
     pub friction: Vec<FrictionCell>,
     /// The step cap.
     pub max_steps: u64,
