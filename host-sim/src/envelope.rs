@@ -474,7 +474,7 @@ impl Envelope {
         let (within_n, within_agree) = within.fold((0, 0), |(n, a), c| (n + 1, a + usize::from(c.agrees())));
         md += &format!(
             "\n\nEach cell: the f32 and f64 cores' outcomes (same layout) with mu_s = mu_k = mu, every other \
-             parameter at the scene's default; \"beyond f32\": mu eps > 2^-8 (mu > {}), where `host-sim run` \
+             parameter at the scene's default; \"beyond f32\": mu eps > 2^-9 (mu > {}), where `host-sim run` \
              warns that f32 does not resolve the friction (`docs/formulation.md`, \"Precision\"). {agree} of {} \
              cells agree; within f32's friction limit {within_agree} of {within_n}.\n",
             friction_limit::<f32>(),

@@ -279,7 +279,7 @@ pub fn friction_warning(spec: &SceneParams, precision: Precision) -> Option<Stri
     let precision = precision.name();
     (!flags.is_empty()).then(|| {
         format!(
-            "warning: {}: friction beyond what {precision} resolves (mu eps = {} > 2^-8: sticking friction \
+            "warning: {}: friction beyond what {precision} resolves (mu eps = {} > 2^-9: sticking friction \
              impulses up to mu times the normal ones cancel, and the net impulse they leave is resolved only to \
              mu eps of itself; {precision} resolves mu up to {}); use --precision f64 or a smaller friction \
              coefficient",
@@ -575,19 +575,19 @@ mod tests {
     }
 
     /// Friction beyond what f32 resolves gets a warning naming the flags and values the user
-    /// typed, in f32 only, from `mu eps > 2^-8` (f32: mu > 32768); within it, none.
+    /// typed, in f32 only, from `mu eps > 2^-9` (f32: mu > 16384); within it, none.
     #[test]
     fn friction_beyond_f32_is_named_in_the_users_flags() {
         let mut spec = SceneParams::defaults(SceneKind::MeterStick);
         assert!(spec.set("mu_static", 1e5) && spec.set("mu_kinetic", 1e4));
         let w = friction_warning(&spec, Precision::F32).unwrap();
         assert!(w.starts_with("warning: --mu-s 100000: friction beyond what f32 resolves"), "{w}");
-        assert!(w.contains("mu eps = 1.19e-2") && w.contains("up to 32768"), "{w}");
+        assert!(w.contains("mu eps = 1.19e-2") && w.contains("up to 16384"), "{w}");
         assert_eq!(friction_warning(&spec, Precision::F64), None);
         assert!(spec.set("mu_kinetic", 4e4));
         let w = friction_warning(&spec, Precision::F32).unwrap();
         assert!(w.starts_with("warning: --mu-s 100000 and --mu-k 40000: friction"), "{w}");
-        assert!(spec.set("mu_static", 32768.0) && spec.set("mu_kinetic", 1e4));
+        assert!(spec.set("mu_static", 16384.0) && spec.set("mu_kinetic", 1e4));
         assert_eq!(friction_warning(&spec, Precision::F32), None);
         let mut ladder = SceneParams::defaults(SceneKind::Ladder);
         assert!(ladder.set("mu_wall", 1e6));
