@@ -647,6 +647,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         Ok((v_plus, violation / s_w))
     }
 
+    /// `w = A z + q` of the model's LCP (its cone rows unweighted) for `z`, in factored form.
+    pub(crate) fn w_into(&self, z: &[T; N], w: &mut [T; N]) {
+        self.w_of(z, &self.velocity_change(z), w);
+    }
+
     /// `w = A z + q` in factored form, with `dv = M^-1 C p` of the same `z`.
     #[cfg_attr(not(feature = "host-tuned"), inline(never))]
     fn w_of(&self, z: &[T; N], dv: &[T; 3], w: &mut [T; N]) {

@@ -8,7 +8,6 @@
 use super::assemble::{StepLcp, fill_from_factored};
 use super::candidates::CANDIDATES;
 use super::factored::{Declined, FactoredLcp, PlanCache};
-use super::layout::Layout;
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::real::Real;
 
@@ -180,27 +179,24 @@ fn solve_cold<T: Real, const K: usize, const M: usize>(
     // The weighted cone rows first (`docs/formulation.md`, "Precision"); when Lemke's method has
     // no verified answer to them (an ill-conditioned step at extreme friction: two fingers' columns
     // nearly parallel at their meeting), the model's own rows, verified on their own scale.
+    // (The pivots reported are the answering solve's.)
     let mut weighted = factored.cone_scaled != 0;
-    let mut spent = 0;
-    let mut sol = loop {
+    let sol = loop {
         fill_from_factored(factored, weighted, &mut lcp);
         match solver.solve_from_basis(&lcp.lcp, warm) {
             Ok(sol) => break sol,
-            Err(e) if weighted => {
-                spent = e.pivots();
-                weighted = false;
-            }
+            Err(_) if weighted => weighted = false,
             Err(e) => return Err(e),
         }
     };
-    sol.pivots += spent;
     *regularized_solves += u64::from(sol.regularized);
     for j in 0..M {
         z[j] = sol.z[j];
         w[j] = sol.w[j];
     }
     if weighted {
-        unweigh(factored, w);
+        // The model's `w` (its cone rows unweighted), in factored form.
+        factored.w_into(z, w);
     }
     Ok(Solved {
         v_plus: factored.velocity_after(z),
@@ -210,18 +206,4 @@ fn solve_cold<T: Real, const K: usize, const M: usize>(
         residual: sol.residual,
         path: SolvePath::Lemke,
     })
-}
-
-/// The model's cone rows of `w` from those of the weighted LCP ([`fill_from_factored`]): each
-/// weighted row divided by its power of two, exactly.
-#[cold]
-#[inline(never)]
-fn unweigh<T: Real, const K: usize, const M: usize>(factored: &FactoredLcp<T, K, M>, w: &mut [T; M]) {
-    for i in 0..K {
-        if (factored.cone_scaled >> i) & 1 == 1
-            && let Some(wi) = w.get_mut(Layout::<K, M>::SIGMA_START + i)
-        {
-            *wi *= factored.mu[i].power_of_two_below();
-        }
-    }
 }
