@@ -57,6 +57,10 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     fn finite(self) -> bool;
     /// The IEEE bits in little-endian bytes, zero-padded to 8 (the first [`Self::BYTES`] count).
     fn to_le_bytes_u64(self) -> [u8; 8];
+    /// `2^k` with `2^k <= x < 2^(k+1)`, for a positive normal `x` (the mantissa bits cleared: exact,
+    /// no library call).
+    #[must_use]
+    fn power_of_two_below(self) -> Self;
 }
 
 impl Real for f32 {
@@ -104,6 +108,10 @@ impl Real for f32 {
     fn to_le_bytes_u64(self) -> [u8; 8] {
         u64::from(self.to_bits()).to_le_bytes()
     }
+    #[inline]
+    fn power_of_two_below(self) -> Self {
+        f32::from_bits(self.to_bits() & 0xff80_0000)
+    }
 }
 
 impl Real for f64 {
@@ -150,6 +158,10 @@ impl Real for f64 {
     #[inline]
     fn to_le_bytes_u64(self) -> [u8; 8] {
         self.to_bits().to_le_bytes()
+    }
+    #[inline]
+    fn power_of_two_below(self) -> Self {
+        f64::from_bits(self.to_bits() & 0xfff0_0000_0000_0000)
     }
 }
 

@@ -34,8 +34,15 @@ use serde::Serialize;
 
 use crate::output::sci;
 use crate::progress::bar as progress;
-use crate::scenes::{Implementation, MAX_STEPS, SceneParams};
-use crate::trajectory::{OutcomeKind, Record, Trajectory, max_deviation, run};
+use crate::scenes::{Implementation, LcpLayout, MAX_STEPS, Precision, SceneKind, SceneParams};
+use crate::trajectory::{OutcomeKind, Record, Trajectory, max_deviation, run, run_k};
+use meterstick_core::planar::{friction_beyond_precision, friction_limit};
+
+/// The friction coefficients of the friction table (`mu_s = mu_k`; `docs/formulation.md`,
+/// "Precision").
+pub const MUS: [f64; 5] = [1e2, 1e3, 1e4, 1e5, 1e6];
+/// The scenes of the friction table, each at its defaults but for `mu`.
+pub const FRICTION_SCENES: [SceneKind; 3] = [SceneKind::MeterStick, SceneKind::Incline, SceneKind::Painleve];
 
 /// The finger speeds of the table (m/s).
 pub const SPEEDS: [f64; 9] = [1e-4, 1e-3, 1e-2, 0.1, 0.2, 0.3, 0.5, 1.0, 10.0];
@@ -120,6 +127,78 @@ pub struct Cell {
     pub verdict: Verdict,
 }
 
+/// One cell of the friction table: a scene in one layout at one `mu = mu_s = mu_k`, in f32 and f64.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FrictionCell {
+    /// The scene.
+    pub scene: SceneKind,
+    /// The layout both runs solve.
+    pub layout: LcpLayout,
+    /// `mu_s = mu_k`.
+    pub mu: f64,
+    /// Outcome of the f32 run.
+    pub outcome_f32: OutcomeKind,
+    /// Outcome of the f64 run.
+    pub outcome_f64: OutcomeKind,
+    /// `mu` is beyond what f32 resolves ([`meterstick_core::planar::friction_beyond_precision`]):
+    /// `host-sim run` warns.
+    pub beyond_f32: bool,
+}
+
+impl FrictionCell {
+    /// f32 reaches f64's outcome.
+    #[must_use]
+    pub fn agrees(&self) -> bool {
+        self.outcome_f32 == self.outcome_f64
+    }
+}
+
+/// The scene `kind` at its defaults with `mu_s = mu_k = mu`.
+fn friction_scene(kind: SceneKind, mu: f64) -> anyhow::Result<SceneParams> {
+    let mut spec = SceneParams::defaults(kind);
+    if !(spec.set("mu_static", mu) && spec.set("mu_kinetic", mu)) {
+        bail!("internal: scene {kind} has no mu_static and mu_kinetic");
+    }
+    Ok(spec)
+}
+
+/// The friction table: every scene of [`FRICTION_SCENES`] in both layouts at every `mu` of `mus`,
+/// in f32 and f64.
+fn friction_cells(mus: &[f64]) -> anyhow::Result<Vec<FrictionCell>> {
+    let mut jobs = Vec::new();
+    for &kind in &FRICTION_SCENES {
+        for layout in [LcpLayout::Reduced, LcpLayout::Full] {
+            for &mu in mus {
+                jobs.push((kind, layout, mu));
+            }
+        }
+    }
+    let bar = progress(2 * jobs.len() as u64, "friction runs");
+    let cells = jobs
+        .par_iter()
+        .map(|&(kind, layout, mu)| {
+            let spec = friction_scene(kind, mu)?;
+            let outcome = |precision| {
+                let implementation = Implementation::Core(precision, layout);
+                let t = crate::with_contacts!(kind, K => run_k::<K>(&spec, implementation, Record::Nothing)
+                    .map(|t| t.outcome.class));
+                bar.inc(1);
+                t
+            };
+            Ok(FrictionCell {
+                scene: kind,
+                layout,
+                mu,
+                outcome_f32: outcome(Precision::F32)?,
+                outcome_f64: outcome(Precision::F64)?,
+                beyond_f32: friction_beyond_precision::<f32>(mu),
+            })
+        })
+        .collect();
+    bar.finish_and_clear();
+    cells
+}
+
 /// The whole table and what it took.
 #[derive(Debug, Clone, Serialize)]
 pub struct Envelope {
@@ -129,6 +208,10 @@ pub struct Envelope {
     pub steps: Vec<f64>,
     /// Cells, speed-major: `cells[row * steps.len() + column]`.
     pub cells: Vec<Cell>,
+    /// The friction coefficients of the friction table.
+    pub mus: Vec<f64>,
+    /// The friction table: scene-, layout-, then `mu`-major ([`FRICTION_SCENES`], both layouts, `mus`).
+    pub friction: Vec<FrictionCell>,
     /// The step cap.
     pub max_steps: u64,
     /// Wall-clock time (s).
@@ -193,6 +276,7 @@ pub fn compute(quick: bool, max_steps: u64) -> anyhow::Result<Envelope> {
         );
     }
     let (speeds, hs): (&[f64], &[f64]) = if quick { (&[0.1, 1.0], &[1e-3, 1e-2]) } else { (&SPEEDS, &STEPS) };
+    let mus: &[f64] = if quick { &[1e2, 1e4] } else { &MUS };
     // Jobs by (row, column, who).
     let mut jobs = Vec::new();
     for (i, &v) in speeds.iter().enumerate() {
@@ -277,10 +361,13 @@ pub fn compute(quick: bool, max_steps: u64) -> anyhow::Result<Envelope> {
             });
         }
     }
+    let friction = friction_cells(mus)?;
     Ok(Envelope {
         speeds: speeds.to_vec(),
         steps: hs.to_vec(),
         cells,
+        mus: mus.to_vec(),
+        friction,
         max_steps,
         wall_s: started.elapsed().as_secs_f64(),
     })
@@ -359,6 +446,39 @@ impl Envelope {
             self.cells.len(),
             reference.map_or_else(|| "n/a".into(), sci),
             self.wall_s
+        );
+        md += &self.friction_markdown();
+        md
+    }
+
+    /// The friction table in Markdown: rows by scene and layout, columns by `mu`, each cell the f32
+    /// and f64 outcomes.
+    #[must_use]
+    pub fn friction_markdown(&self) -> String {
+        let mut md = String::from("\n| scene (layout) |");
+        for mu in &self.mus {
+            md += &format!(" mu = {mu:e} |");
+        }
+        md += "\n|---|";
+        md += &"---|".repeat(self.mus.len());
+        for (k, c) in self.friction.iter().enumerate() {
+            if k % self.mus.len().max(1) == 0 {
+                md += &format!("\n| {} ({}) |", c.scene, c.layout.name());
+            }
+            let verdict = if c.agrees() { "ok" } else { "**differs**" };
+            let beyond = if c.beyond_f32 { "; beyond f32 (warned)" } else { "" };
+            md += &format!(" {} / {}; {verdict}{beyond} |", c.outcome_f32, c.outcome_f64);
+        }
+        let agree = self.friction.iter().filter(|c| c.agrees()).count();
+        let within = self.friction.iter().filter(|c| !c.beyond_f32);
+        let (within_n, within_agree) = within.fold((0, 0), |(n, a), c| (n + 1, a + usize::from(c.agrees())));
+        md += &format!(
+            "\n\nEach cell: the f32 and f64 cores' outcomes (same layout) with mu_s = mu_k = mu, every other \
+             parameter at the scene's default; \"beyond f32\": mu eps > 2^-9 (mu > {}), where `host-sim run` \
+             warns that f32 does not resolve the friction (`docs/formulation.md`, \"Precision\"). {agree} of {} \
+             cells agree; within f32's friction limit {within_agree} of {within_n}.\n",
+            friction_limit::<f32>(),
+            self.friction.len()
         );
         md
     }

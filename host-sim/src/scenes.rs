@@ -253,6 +253,46 @@ pub fn flag_error(spec: &SceneParams, e: ParamError) -> String {
     Refusal::Invalid { params: *spec, error: e }.worded("--").to_string()
 }
 
+/// The warning a run of `spec` in `precision` gets when a friction coefficient is beyond what the
+/// precision resolves ([`meterstick_core::planar::friction_beyond_precision`]), in the user's flags
+/// (`--mu-s 1e5 and --mu-k 1e5: friction beyond what f32 resolves ...`); `None` when none is.
+#[must_use]
+pub fn friction_warning(spec: &SceneParams, precision: Precision) -> Option<String> {
+    use meterstick_core::planar::{friction_beyond_precision, friction_limit};
+    let (beyond, limit): (fn(f64) -> bool, f64) = match precision {
+        Precision::F32 => (friction_beyond_precision::<f32>, friction_limit::<f32>()),
+        Precision::F64 => (friction_beyond_precision::<f64>, friction_limit::<f64>()),
+    };
+    let eps = match precision {
+        Precision::F32 => f64::from(f32::EPSILON),
+        Precision::F64 => f64::EPSILON,
+    };
+    let beyond: Vec<(&str, f64)> =
+        spec.fields().filter(|&(f, mu)| f.starts_with("mu_") && beyond(mu)).collect();
+    let worst = beyond.iter().map(|&(_, mu)| mu).fold(0.0, f64::max);
+    let flags: Vec<String> = beyond
+        .iter()
+        .map(|&(field, mu)| {
+            flag_of(spec.kind(), field).map_or_else(
+                || format!("{field} {}", short_number(mu)),
+                |f| format!("--{} {}", f.long, short_number(mu)),
+            )
+        })
+        .collect();
+    let precision = precision.name();
+    (!flags.is_empty()).then(|| {
+        format!(
+            "warning: {}: friction beyond what {precision} resolves (mu eps = {} > 2^-9: sticking friction \
+             impulses up to mu times the normal ones cancel, and the net impulse they leave is resolved only to \
+             mu eps of itself; {precision} resolves mu up to {}); use --precision f64 or a smaller friction \
+             coefficient",
+            flags.join(" and "),
+            crate::output::sci(worst * eps),
+            short_number(limit)
+        )
+    })
+}
+
 /// A number as a person typed it (the catalogue's [`Short`]): `{}` when that is short; else 9
 /// decimals with the trailing zeros dropped when that is the same number to 12 digits; else the
 /// shorter of `{}` and `{:e}` (`1e-30`, `1e39`, never a rounded `0`).
@@ -535,6 +575,32 @@ mod tests {
         spec.set("rod_mass", -1.0);
         let e = spec.validate(Precision::F32).unwrap_err();
         assert_eq!(flag_error(&spec, e), "--mass -1 kg: must be greater than 0");
+    }
+
+    /// Friction beyond what f32 resolves gets a warning naming the flags and values the user
+    /// typed, in f32 only, from `mu eps > 2^-9` (f32: mu > 16384); within it, none.
+    #[test]
+    fn friction_beyond_f32_is_named_in_the_users_flags() {
+        let mut spec = SceneParams::defaults(SceneKind::MeterStick);
+        assert!(spec.set("mu_static", 1e5) && spec.set("mu_kinetic", 1e4));
+        let w = friction_warning(&spec, Precision::F32).unwrap();
+        assert!(w.starts_with("warning: --mu-s 100000: friction beyond what f32 resolves"), "{w}");
+        assert!(w.contains("mu eps = 1.19e-2") && w.contains("up to 16384"), "{w}");
+        assert_eq!(friction_warning(&spec, Precision::F64), None);
+        assert!(spec.set("mu_kinetic", 4e4));
+        let w = friction_warning(&spec, Precision::F32).unwrap();
+        assert!(w.starts_with("warning: --mu-s 100000 and --mu-k 40000: friction"), "{w}");
+        assert!(spec.set("mu_static", 16384.0) && spec.set("mu_kinetic", 1e4));
+        assert_eq!(friction_warning(&spec, Precision::F32), None);
+        let mut ladder = SceneParams::defaults(SceneKind::Ladder);
+        assert!(ladder.set("mu_wall", 1e6));
+        let w = friction_warning(&ladder, Precision::F32).unwrap();
+        assert!(w.starts_with("warning: --mu-wall 1000000: friction"), "{w}");
+        // The round-off warning then blames the friction, not speed / (g h).
+        let counters = crate::trajectory::SolverCounters { round_off_limited: 3, ..Default::default() };
+        let r = counters.round_off_warning(10, true).unwrap();
+        assert!(r.contains("the friction above") && !r.contains("speed / (g h)"), "{r}");
+        assert!(counters.round_off_warning(10, false).unwrap().contains("speed / (g h)"));
     }
 
     /// A run's label names the LCP its scene's contacts give: 3 per contact reduced, 4 full.

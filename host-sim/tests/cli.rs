@@ -370,7 +370,8 @@ fn report_quick_writes_its_tables_and_pictures() {
 }
 
 /// `host-sim envelope --quick`: 2 speeds x 2 steps, where the f32 core holds within 1e-5 m of
-/// the f64 core and the f64 core equals the independent reference to round-off.
+/// the f64 core and the f64 core equals the independent reference to round-off; and the friction
+/// table at two `mu`, where f32 reaches f64's outcome in every scene and layout.
 #[test]
 fn envelope_quick_holds_and_checks_the_reference() {
     let out = temp_dir("envelope");
@@ -388,6 +389,19 @@ fn envelope_quick_holds_and_checks_the_reference() {
         assert_eq!(r[col("outcome_f32")], r[col("outcome_f64")], "{r:?}");
         assert_eq!(r[col("flagged_steps")], "0", "no step beyond f32's resolution here: {r:?}");
         assert!(num(&r[col("reference_deviation_m")]) < 1e-9, "f64 core vs reference: {r:?}");
+    }
+    // The mu axis: meter stick, incline and Painleve in both layouts at mu_s = mu_k = 1e2 and 1e4,
+    // where f32 reaches f64's outcome (and no warning is due).
+    assert!(stdout.contains("| scene (layout) |"), "{stdout}");
+    let (header, rows) = read_csv(&out.join("envelope-mu.csv"));
+    let col =
+        |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("{name}: {header:?}"));
+    assert_eq!(rows.len(), 12);
+    for r in &rows {
+        assert_eq!(r[col("outcome_f32")], r[col("outcome_f64")], "{r:?}");
+        assert_eq!(r[col("agree")], "true", "{r:?}");
+        assert_eq!(r[col("beyond_f32")], "false", "{r:?}");
+        assert_ne!(r[col("outcome_f32")], "Failed", "{r:?}");
     }
     let (code, _, err) = host_sim(&["envelope", "--max-steps", "0"]);
     assert_eq!(code, 2);

@@ -67,14 +67,17 @@ pub fn assemble_into<T: Real, const K: usize, const N: usize>(
     input: &StepInputs<'_, T, K>,
     out: &mut StepLcp<T, N>,
 ) {
-    fill_from_factored(&FactoredLcp::new(layout, input), out);
+    fill_from_factored(&FactoredLcp::new(layout, input), false, out);
 }
 
 /// Writes `A` and `q` of the step whose factored rows are `f` into `out` (zeroed): the impulse
 /// block `C^T M^-1 C` (its upper triangle computed and mirrored, so it is exactly symmetric), the
-/// friction cone's `E`, `-E^T` and `U`, and an inactive contact's identity rows.
+/// friction cone's `E`, `-E^T` and `U`, and an inactive contact's identity rows. With `weighted`,
+/// each cone row `f` weighs is written multiplied by its power of two `s`
+/// ([`super::factored::cone_scale`]): `s mu` and `-s`, exact (`docs/formulation.md`, "Precision").
 pub(crate) fn fill_from_factored<T: Real, const K: usize, const N: usize>(
     f: &FactoredLcp<T, K, N>,
+    weighted: bool,
     out: &mut StepLcp<T, N>,
 ) {
     let sigma_start = Layout::<K, N>::SIGMA_START;
@@ -94,15 +97,16 @@ pub(crate) fn fill_from_factored<T: Real, const K: usize, const N: usize>(
     for i in 0..K {
         let end = (j + f.tangents()[i].count()).min(sigma_start);
         let active = (f.inactive >> i) & 1 == 0;
+        let s = if weighted && (f.cone_scaled >> i) & 1 == 1 { f.cone_scale[i] } else { T::one() };
         for row in j..end {
             if active {
                 a[(row, sigma_start + i)] = T::one();
-                a[(sigma_start + i, row)] = -T::one();
+                a[(sigma_start + i, row)] = -s;
             }
         }
         j = end;
         if active {
-            a[(sigma_start + i, i)] = f.mu[i];
+            a[(sigma_start + i, i)] = s * f.mu[i];
         }
     }
     for v in 0..N {

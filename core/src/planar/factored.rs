@@ -79,6 +79,11 @@ pub struct FactoredLcp<T, const K: usize, const N: usize> {
     variables_of: [u32; K],
     /// `v~`.
     v_free: [T; 3],
+    /// Bit `i` set: contact `i`'s cone row is weighted by `cone_scale[i]` ([`cone_scale`]).
+    pub(crate) cone_scaled: u32,
+    /// The power of two each weighted cone row is multiplied by (meaningful where `cone_scaled`
+    /// has its bit).
+    pub(crate) cone_scale: [T; K],
     /// A lower bound of `||A||_inf` from the structure ([`Self::new`]).
     m_low: T,
     /// `||q||_inf`.
@@ -175,6 +180,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             tangents: *layout.tangents(),
             inactive: 0,
             v_free: [T::zero(); 3],
+            cone_scaled: 0,
+            cone_scale: [T::one(); K],
             m_low: T::zero(),
             q_norm: T::zero(),
             q_min: T::zero(),
@@ -245,14 +252,20 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // diagonal `c_j^T M^-1 c_j >= min(M^-1_xx, M^-1_yy)` (the linear part of `c_j` is a unit
         // vector), a friction row its sigma's 1 besides, a sigma row sums to `mu + kept
         // directions` exactly; an inactive contact's rows are the identity's.
+        // A cone row with `mu >= MU_WEIGHTED_FROM` counts weighted by its `cone_scale`: its sum
+        // is then `s (mu + kept directions)`, in `[1, 3)`.
         let linear = min(input.m_inv[0], input.m_inv[1]);
+        let from = T::of(MU_WEIGHTED_FROM);
         let mut m_low = T::one();
+        out.cone_scaled = 0;
         for i in 0..K {
             if (out.inactive >> i) & 1 == 0 {
-                m_low = max(
-                    m_low,
-                    max(linear + T::one(), out.mu[i] + T::of_count(out.tangents[i].count() as u32)),
-                );
+                let mu = out.mu[i];
+                let mut cone_row = mu + T::of_count(out.tangents[i].count() as u32);
+                if mu >= from {
+                    cone_row = out.weigh_cone_row(i, cone_row);
+                }
+                m_low = max(m_low, max(linear + T::one(), cone_row));
             }
         }
         // Finite data: `q` finite implies `c_j` finite (`q_j = c_j^T v~ + c0_j`, and an infinite
@@ -282,6 +295,20 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // stores, and this copy reads it as an 8-byte and a 4-byte load, which an x86 core cannot
         // forward from stores still in its store buffer: it waits for them to reach the cache.
         out.v_free = input.v_free;
+    }
+
+    /// Weighs contact `i`'s cone row by [`cone_scale`] of its `mu` (sets its bit of `cone_scaled`
+    /// and its `cone_scale`) and returns the weighted row's sum, `cone_row` (its sum unweighted)
+    /// times the weight. Out of line: only a run at extreme friction comes here.
+    #[cold]
+    #[inline(never)]
+    fn weigh_cone_row(&mut self, i: usize, cone_row: T) -> T {
+        let s = cone_scale(self.mu[i]);
+        self.cone_scaled |= 1 << i;
+        if let Some(slot) = self.cone_scale.get_mut(i) {
+            *slot = s;
+        }
+        s * cone_row
     }
 
     /// `true` when every entry of `q` and of the columns is finite; otherwise no path may answer
@@ -620,6 +647,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         Ok((v_plus, violation / s_w))
     }
 
+    /// `w = A z + q` of the model's LCP (its cone rows unweighted) for `z`, in factored form.
+    pub(crate) fn w_into(&self, z: &[T; N], w: &mut [T; N]) {
+        self.w_of(z, &self.velocity_change(z), w);
+    }
+
     /// `w = A z + q` in factored form, with `dv = M^-1 C p` of the same `z`.
     #[cfg_attr(not(feature = "host-tuned"), inline(never))]
     fn w_of(&self, z: &[T; N], dv: &[T; 3], w: &mut [T; N]) {
@@ -669,6 +701,26 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     }
 }
 
+/// The friction coefficient from which a contact's cone row `mu p_n - sum p_f >= 0` is weighted
+/// ([`cone_scale`]): 64, in either precision. Every other row of the LCP sums to at most about 3 (a
+/// velocity row: its `c_j^T M^-1 c_k` of a unit-speed column and its sigma's 1; per unit mass), so
+/// from 64 on the cone row's `mu` sets `||A||_inf` more than 20 times above them, and with it every
+/// round-off floor, pivot tolerance and verification scale of the step (`docs/formulation.md`,
+/// "Precision"). Measured: unweighted, f32 misses f64's outcome on the meter stick from `mu = 1e3`
+/// and f64 fails it at 1,783 (a Lemke ray at the meeting); weighted, both balance. Below it (every
+/// built-in scene's default, `mu <= 3`) nothing changes, not a bit. A power of two: `2^6`.
+pub(crate) const MU_WEIGHTED_FROM: f64 = 64.0;
+
+/// The weight of a cone row with friction coefficient `mu >= 1`: `s = 2^-k` with `2^k <= mu <
+/// 2^(k+1)`, so that the weighted row `s mu p_n - s sum p_f >= 0` has entries `s mu` in `[1, 2)`
+/// and `-s`. A power of two: every weighted entry and every product with it is exact (the weighted
+/// LCP has the same solutions and, row for row, `w` times `s` to the bit; `docs/formulation.md`,
+/// "Precision").
+#[must_use]
+pub(crate) fn cone_scale<T: Real>(mu: T) -> T {
+    T::one() / mu.power_of_two_below()
+}
+
 /// Contact `i`'s variables: its normal, its friction rows `[+d, -d]` (as kept) and its sigma.
 pub(crate) fn rows_of<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
@@ -691,4 +743,35 @@ pub(crate) fn rows_of<const K: usize, const N: usize>(
 #[inline(never)]
 fn solve_small<T: Real>(a: &mut [[T; DOF]; DOF], rhs: &mut [T; DOF], m: usize, tiny: T) -> bool {
     solve_leading(a, rhs, m, tiny)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{MU_WEIGHTED_FROM, cone_scale};
+    use crate::real::Real;
+
+    /// The weighting starts at `2^6`, above every built-in default (`mu <= 3`), and a power of two.
+    #[test]
+    fn weighting_starts_at_64() {
+        assert!((MU_WEIGHTED_FROM - 64.0).abs() < f64::EPSILON);
+        assert_eq!(MU_WEIGHTED_FROM.to_bits() & ((1 << 52) - 1), 0);
+    }
+
+    /// A cone row's weight is a power of two that brings `mu` into `[1, 2)`, exactly.
+    #[test]
+    fn a_cone_rows_weight_is_the_power_of_two_below_one_over_mu() {
+        fn check<T: Real>(mu: f64) {
+            let mu = T::of(mu);
+            let s = cone_scale(mu);
+            assert_eq!(s * s.power_of_two_below(), s * s, "{s:?} is a power of two");
+            let weighted = s * mu;
+            assert!(weighted >= T::one() && weighted < T::one() + T::one(), "mu {mu:?}: s mu = {weighted:?}");
+            // Exact: weighing and unweighing give back the same bits.
+            assert_eq!(weighted * mu.power_of_two_below(), mu);
+        }
+        for mu in [64.0, 100.0, 1e3, 1e4, 16384.0, 3e4, 1e5, 1e6, 1e30] {
+            check::<f32>(mu);
+            check::<f64>(mu);
+        }
+    }
 }

@@ -69,6 +69,9 @@ pub use events::{EventLog, SwitchEvent};
 pub use factored::{BasisAnswer, Declined, FactoredLcp};
 pub use layout::{Direction, Layout, Tangents, Variable};
 pub use model::{Model, Settings};
-pub use report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
+pub use report::{
+    ContactReport, FRICTION_ROUND_OFF_LIMIT, ROUND_OFF_LIMIT, RunStats, StepReport,
+    friction_beyond_precision, friction_limit,
+};
 pub use stepper::{StepError, Stepper};
 pub use strategy::{PathCounts, SolvePath};

@@ -69,6 +69,33 @@ pub struct StepReport<T, const K: usize> {
 /// 10 m/s at 1e-4 s held within 1.6e-6 m): the flag says it is no longer assured.
 pub const ROUND_OFF_LIMIT: f64 = 1e-4;
 
+/// The largest `mu eps` a friction coefficient may have in a precision before
+/// [`friction_beyond_precision`] says so: `2^-9`. A contact that sticks under friction impulses up
+/// to `mu` times its normal one holds them against another contact's (the meter stick's two
+/// fingers, whatever moves the body), and what is left, the net impulse (the weight's `g h` per
+/// unit mass), is resolved only to `mu eps` of itself. With the cone rows weighted
+/// (`docs/formulation.md`, "Precision") f32 reaches f64's outcome on the meter stick (both
+/// layouts, h = 1 ms) at every `mu` measured up to `3.2e4`, but at `32,768` (`mu eps = 2^-8`) and
+/// `5e4` the 8x8 falls; at `1e5` it balances with eq. 21's ratios 1.3 % off (f64: 0.4 %), at `1e6`
+/// 18 %. So the limit is half the first failure: `mu = 2^14 = 16,384` in f32, `2^43 = 8.8e12` in
+/// f64.
+pub const FRICTION_ROUND_OFF_LIMIT: f64 = 1.0 / 512.0;
+
+/// `true` when the friction coefficient `mu` is beyond what precision `T` resolves:
+/// `mu eps > FRICTION_ROUND_OFF_LIMIT` ([`FRICTION_ROUND_OFF_LIMIT`]). For drivers, before a run
+/// (the step does not check it).
+#[must_use]
+pub fn friction_beyond_precision<T: Real>(mu: f64) -> bool {
+    mu * T::EPS.as_f64() > FRICTION_ROUND_OFF_LIMIT
+}
+
+/// The largest friction coefficient precision `T` resolves ([`friction_beyond_precision`]):
+/// `FRICTION_ROUND_OFF_LIMIT / eps`.
+#[must_use]
+pub fn friction_limit<T: Real>() -> f64 {
+    FRICTION_ROUND_OFF_LIMIT / T::EPS.as_f64()
+}
+
 impl<T: Real, const K: usize> StepReport<T, K> {
     /// Each contact's mode after the step.
     #[must_use]

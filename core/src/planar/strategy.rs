@@ -176,12 +176,27 @@ fn solve_cold<T: Real, const K: usize, const M: usize>(
     }
     paths.count(SolvePath::Lemke);
     let mut lcp = StepLcp::zeros();
-    fill_from_factored(factored, &mut lcp);
-    let sol = solver.solve_from_basis(&lcp.lcp, warm)?;
+    // The weighted cone rows first (`docs/formulation.md`, "Precision"); when Lemke's method has
+    // no verified answer to them (an ill-conditioned step at extreme friction: two fingers' columns
+    // nearly parallel at their meeting), the model's own rows, verified on their own scale.
+    // (The pivots reported are the answering solve's.)
+    let mut weighted = factored.cone_scaled != 0;
+    let sol = loop {
+        fill_from_factored(factored, weighted, &mut lcp);
+        match solver.solve_from_basis(&lcp.lcp, warm) {
+            Ok(sol) => break sol,
+            Err(_) if weighted => weighted = false,
+            Err(e) => return Err(e),
+        }
+    };
     *regularized_solves += u64::from(sol.regularized);
     for j in 0..M {
         z[j] = sol.z[j];
         w[j] = sol.w[j];
+    }
+    if weighted {
+        // The model's `w` (its cone rows unweighted), in factored form.
+        factored.w_into(z, w);
     }
     Ok(Solved {
         v_plus: factored.velocity_after(z),

@@ -1,6 +1,6 @@
 //! `host-sim envelope`: where f32 holds ([`crate::envelope`]): the f32 core against the f64 core
-//! over finger speed x `h`, with f64's own error; writes `envelope.csv`, `envelope.json` and
-//! `envelope.md`.
+//! over finger speed x `h`, with f64's own error, and over friction `mu` (meter stick, incline,
+//! Painleve); writes `envelope.csv`, `envelope-mu.csv`, `envelope.json` and `envelope.md`.
 
 use std::path::PathBuf;
 
@@ -56,6 +56,23 @@ pub fn run(args: &EnvelopeArgs) -> anyhow::Result<String> {
         "speed_m_s,h_s,horizon_s,capped,steps,outcome_f32,outcome_f64,f32_deviation_m,events_agree,\
          event_time_deviation_s,flagged_steps,f64_own_error_m,outcome_f64_half,f64_events_converged,converged,reference_deviation_m,verdict",
         lines,
+    )?;
+    let friction = envelope.friction.iter().map(|c| {
+        format!(
+            "{},{},{},{},{},{},{}",
+            c.scene,
+            c.layout.name(),
+            c.mu,
+            c.outcome_f32,
+            c.outcome_f64,
+            c.agrees(),
+            c.beyond_f32
+        )
+    });
+    write_lines(
+        &args.out.join("envelope-mu.csv"),
+        "scene,layout,mu,outcome_f32,outcome_f64,agree,beyond_f32",
+        friction,
     )?;
     write_json(&args.out.join("envelope.json"), &envelope)?;
     let md = envelope.markdown();

@@ -127,6 +127,9 @@ pub struct RunSummary {
     pub reference: Option<ImplementationSummary>,
     /// Core against reference.
     pub comparison: Option<Comparison>,
+    /// The core's friction is beyond its precision: the warning, in the user's flags
+    /// ([`crate::scenes::friction_warning`]).
+    pub friction_warning: Option<String>,
 }
 
 /// A run and who computes it.
@@ -257,6 +260,7 @@ fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneParams)]) -> a
             core: ImplementationSummary::of(&core, mu_ratio, core_s),
             reference: reference.as_ref().map(|(r, ref_s)| ImplementationSummary::of(r, mu_ratio, *ref_s)),
             comparison,
+            friction_warning: crate::scenes::friction_warning(spec, args.scene.precision),
         };
         write_csv(&core, &dir.join("core.csv"))?;
         write_events_csv(&core, &dir.join("core-events.csv"))?;
@@ -413,7 +417,10 @@ fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
                     writeln!(s, "{:<w$} no independent reference for scene {}: the core alone", "", r.scene);
             }
         }
-        if let Some(warning) = r.core.counters.round_off_warning(r.core.steps) {
+        if let Some(warning) = &r.friction_warning {
+            let _ = writeln!(s, "{:<w$} {warning}", "");
+        }
+        if let Some(warning) = r.core.counters.round_off_warning(r.core.steps, r.friction_warning.is_some()) {
             let _ = writeln!(s, "{:<w$} {warning}", "");
         }
         let c = &r.core.counters;

@@ -62,7 +62,11 @@ fn summarise<const K: usize>(cmd: &SceneCmdArgs, spec: &SceneParams) -> anyhow::
         c.reduced_check_fired_before_meeting
     );
     let _ = writeln!(out, "solves by path: {}", c.paths);
-    if let Some(warning) = c.round_off_warning(traj.steps) {
+    let friction = crate::scenes::friction_warning(spec, cmd.scene.precision);
+    if let Some(warning) = &friction {
+        let _ = writeln!(out, "{warning}");
+    }
+    if let Some(warning) = c.round_off_warning(traj.steps, friction.is_some()) {
         let _ = writeln!(out, "{warning}");
     }
     if let Some(sum) = traj.checksum {

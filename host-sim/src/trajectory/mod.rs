@@ -264,14 +264,22 @@ impl fmt::Display for Paths {
 }
 
 impl SolverCounters {
-    /// The warning a run with [`Self::round_off_limited`] steps gets, in the user's flags.
+    /// The warning a run with [`Self::round_off_limited`] steps gets, in the user's flags. With
+    /// `friction_beyond` (the run's friction is beyond its precision,
+    /// [`crate::scenes::friction_warning`]) the cause named is that, not `speed / (g h)`: the
+    /// flagged steps' speeds are then what the unresolved friction made of the motion.
     #[must_use]
-    pub fn round_off_warning(&self, steps: u64) -> Option<String> {
+    pub fn round_off_warning(&self, steps: u64, friction_beyond: bool) -> Option<String> {
         (self.round_off_limited > 0).then(|| {
+            let cause = if friction_beyond {
+                "the friction above, beyond this precision: the speeds follow from it; use --precision f64"
+            } else {
+                "speed / (g h) too large for this precision: beyond the measured f32 envelope, \
+                 `host-sim envelope`; use a larger --h or --precision f64"
+            };
             format!(
                 "warning: {} of {steps} steps resolved their impulses only to more than {:e} of their size \
-                 (speed / (g h) too large for this precision: beyond the measured f32 envelope, \
-                 `host-sim envelope`); use a larger --h or --precision f64",
+                 ({cause})",
                 self.round_off_limited,
                 meterstick_core::planar::ROUND_OFF_LIMIT
             )
