@@ -247,7 +247,7 @@ pub(crate) fn poses<T: Real, const B: usize>(
 
 /// The frames of the four candidates of `pair` (`docs/formulation.md`, "The corner-on-face
 /// contact"), given the bodies, their states and [`poses`], the table and the settings' `margin`
-/// and step `h`.
+/// and step `h`, written into `frames` (in place: no copy of the four).
 #[allow(clippy::too_many_arguments, clippy::too_many_lines)] // the geometry's inputs; the four candidates in order
 pub(crate) fn pair_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
@@ -257,7 +257,8 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     table: &Table<T>,
     margin: T,
     h: T,
-) -> [CornerFrame<T>; 4] {
+    frames: &mut [CornerFrame<T>; 4],
+) {
     let two = T::of(2.0);
     // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact (body
     // and state looked up too: their indices below are then provably in range, no panic path).
@@ -269,7 +270,10 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
         Support::Body(s) => pose(s).map(|p| Some((s, p))),
         Support::Table => Some(None),
     };
-    let (Some(upper), Some(lower)) = (pose(pair.upper), lower) else { return [CornerFrame::inactive(); 4] };
+    let (Some(upper), Some(lower)) = (pose(pair.upper), lower) else {
+        *frames = [CornerFrame::inactive(); 4];
+        return;
+    };
     // The lower's top face and the upper's lower face.
     let top = lower.map_or(
         Face {
@@ -303,7 +307,6 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     let height = |b: Option<u8>| {
         b.map_or(T::zero(), |b| bodies[usize::from(b)].size() + states[usize::from(b)].y.abs_exact())
     };
-    let mut frames = [CornerFrame::inactive(); 4];
     for (k, candidate) in Candidate::ALL.into_iter().enumerate() {
         // The corner (owner, world point), the face, and the rule "over the face".
         let (corner_owner, point, face) = match candidate {
@@ -315,15 +318,15 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
             }
             Candidate::LowerLeftUnderUpper | Candidate::LowerRightUnderUpper => {
                 let left = candidate == Candidate::LowerLeftUnderUpper;
-                match lower {
-                    Some((s, p)) => {
-                        let x = if left { -p.half[0] } else { p.half[0] };
-                        (Some(s), p.world([x, p.half[1]]), bottom)
-                    }
-                    None => match if left { table.lo } else { table.hi } {
-                        Some(x) => (None, [x, T::zero()], bottom),
-                        None => continue,
-                    },
+                if let Some((s, p)) = lower {
+                    let x = if left { -p.half[0] } else { p.half[0] };
+                    (Some(s), p.world([x, p.half[1]]), bottom)
+                } else if let Some(x) = if left { table.lo } else { table.hi } {
+                    (None, [x, T::zero()], bottom)
+                } else {
+                    // No table edge on this side: no candidate.
+                    frames[k] = CornerFrame::inactive();
+                    continue;
                 }
             }
         };
@@ -364,7 +367,6 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
             touch: T::of(64.0) * T::EPS * (height(corner_owner) + height(face.owner)),
         };
     }
-    frames
 }
 
 /// The velocity of the corner's owner relative to the face's owner at the frame's point,

@@ -288,7 +288,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let s = self.system.settings;
         let poses = poses(&self.system.bodies, &self.states);
         for p in 0..P {
-            self.frames[p] = pair_frames(
+            pair_frames(
                 &self.system.pairs[p],
                 &self.system.bodies,
                 &self.states,
@@ -296,6 +296,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 &self.system.table,
                 s.margin,
                 s.step,
+                &mut self.frames[p],
             );
         }
     }
