@@ -573,9 +573,9 @@ fn solve_unknowns<T: Real>(
 /// matrix `G^T M~ G` is symmetric positive semidefinite) by `L D L^T` without pivoting, from its
 /// lower triangle: about half the operations of [`solve_leading`] and backward stable for a
 /// positive definite matrix. A pivot `d` not above `tiny` (a rank-deficient set of rows: both
-/// corners of one interface sticking; or not finite) is a singular system: `false`. The strict
-/// upper triangle holds `L^T` afterwards, the diagonal `1 / d`.
-/// One copy for any `m`, one for `m = 9` (the 3-block stack's every step) with its loops unrolled.
+/// corners of one interface sticking; or not finite) is a singular system: `false`. The solution
+/// is written into `rhs`, the lower triangle of `a` overwritten. One copy for any `m`, one for
+/// `m = 9` (the 3-block stack's every step).
 #[inline(never)]
 fn solve_symmetric<T: Real>(
     a: &mut [[T; UNKNOWNS]; UNKNOWNS],
@@ -595,7 +595,6 @@ fn solve_symmetric_all<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T;
 /// [`solve_symmetric`]'s factorisation and substitutions.
 #[inline(always)]
 #[allow(clippy::inline_always)] // the point of it: `m` known at the call
-#[allow(clippy::range_plus_one)] // `..=` compiles to a slower loop (RangeInclusive's end flag)
 fn ldl_leading<T: Real>(
     a: &mut [[T; UNKNOWNS]; UNKNOWNS],
     rhs: &mut [T; UNKNOWNS],
@@ -603,32 +602,41 @@ fn ldl_leading<T: Real>(
     tiny: T,
 ) -> bool {
     let m = m.min(UNKNOWNS);
-    for col in 0..m {
-        let d = a[col][col];
+    // Row by row (each sum a dot product along rows): `a`'s lower triangle becomes
+    // `U = L D` (`u_ij = a_ij - sum_{k<j} u_ik l_jk`), `l` holds `L`, `inv` holds `1 / d`.
+    let mut l = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+    let mut inv = [T::zero(); UNKNOWNS];
+    for i in 0..m {
+        for j in 0..i {
+            let mut u = a[i][j];
+            for k in 0..j {
+                u -= a[i][k] * l[j][k];
+            }
+            a[i][j] = u;
+            l[i][j] = u * inv[j];
+        }
+        let mut d = a[i][i];
+        for k in 0..i {
+            d -= a[i][k] * l[i][k];
+        }
         if d.partial_cmp(&tiny) != Some(core::cmp::Ordering::Greater) {
             return false;
         }
-        let inv = T::one() / d;
-        for r in col + 1..m {
-            // `L[r][col]`, kept in the upper triangle: the lower one's column `col` is still read
-            // unscaled by the rows below.
-            let f = a[r][col] * inv;
-            a[col][r] = f;
-            for c in col + 1..r + 1 {
-                let u = f * a[c][col];
-                a[r][c] -= u;
-            }
-            let u = f * rhs[col];
-            rhs[r] -= u;
+        inv[i] = T::one() / d;
+        // Forward: `L y = rhs`.
+        let mut y = rhs[i];
+        for k in 0..i {
+            y -= l[i][k] * rhs[k];
         }
-        a[col][col] = inv;
+        rhs[i] = y;
     }
-    for col in (0..m).rev() {
-        let mut acc = rhs[col] * a[col][col];
-        for c in col + 1..m {
-            acc -= a[col][c] * rhs[c];
+    // Back: `L^T x = D^-1 y`.
+    for i in (0..m).rev() {
+        let mut x = rhs[i] * inv[i];
+        for k in i + 1..m {
+            x -= l[k][i] * rhs[k];
         }
-        rhs[col] = acc;
+        rhs[i] = x;
     }
     true
 }
