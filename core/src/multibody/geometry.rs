@@ -307,6 +307,11 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     let height = |b: Option<u8>| {
         b.map_or(T::zero(), |b| bodies[usize::from(b)].size() + states[usize::from(b)].y.abs_exact())
     };
+    // The upper and lower bodies' extents and heights (the table's 0), once per pair: a corner's
+    // owner and its face's owner are these two, in an order the candidate gives.
+    let lower_body = lower.map(|(s, _)| s);
+    let extents = [extent(Some(pair.upper)), extent(lower_body)];
+    let heights = [height(Some(pair.upper)), height(lower_body)];
     for (k, candidate) in Candidate::ALL.into_iter().enumerate() {
         // The corner (owner, world point), the face, and the rule "over the face".
         let (corner_owner, point, face) = match candidate {
@@ -350,6 +355,8 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
         let approach = -dot([va[0] - vb[0], va[1] - vb[1]], face.normal);
         let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
         let n = face.normal;
+        // Indices into `extents`, `heights`: the corner's owner's, the face's owner's.
+        let owners = if candidate.is_upper_corner() { [0, 1] } else { [1, 0] };
         frames[k] = CornerFrame {
             active: over && above_centre && gap <= reach,
             corner: corner_owner,
@@ -363,8 +370,8 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
             lever_face,
             gap_round_off: T::of(4.0)
                 * T::EPS
-                * (point[0].abs_exact() + point[1].abs_exact() + extent(corner_owner) + extent(face.owner)),
-            touch: T::of(64.0) * T::EPS * (height(corner_owner) + height(face.owner)),
+                * (point[0].abs_exact() + point[1].abs_exact() + extents[owners[0]] + extents[owners[1]]),
+            touch: T::of(64.0) * T::EPS * (heights[owners[0]] + heights[owners[1]]),
         };
     }
 }
