@@ -312,6 +312,12 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     let lower_body = lower.map(|(s, _)| s);
     let extents = [extent(Some(pair.upper)), extent(lower_body)];
     let heights = [height(Some(pair.upper)), height(lower_body)];
+    // Half the height of the upper body (the face of the lower candidates) and of the lower one
+    // (the table's face has none).
+    let half_heights = [
+        Some(bodies[usize::from(pair.upper)].height / two),
+        lower_body.map(|b| bodies[usize::from(b)].height / two),
+    ];
     for (k, candidate) in Candidate::ALL.into_iter().enumerate() {
         // The corner (owner, world point), the face, and the rule "over the face".
         let (corner_owner, point, face) = match candidate {
@@ -344,7 +350,7 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
             (false, _) => along.abs_exact() < upper.half[0],
         };
         // Not past the face owner's centre line (no limit on the table).
-        let face_half_height = face.owner.map(|b| bodies[usize::from(b)].height / two);
+        let face_half_height = half_heights[usize::from(candidate.is_upper_corner())];
         let above_centre = face_half_height.is_none_or(|half| gap >= -half);
         let lever = |b: Option<u8>| com(b).map_or([T::zero(); 2], |c| [point[0] - c[0], point[1] - c[1]]);
         let (lever_corner, lever_face) = (lever(corner_owner), lever(face.owner));
