@@ -557,8 +557,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 }
 
 /// The basis' `m x m` system by [`solve_leading`], one copy out of line, and one specialised to
-/// `m = 9` (three bodies' resting interfaces: the 3-block stack's every step), its loops unrolled:
-/// the same operations in the same order (the same bits).
+/// `m = 4` (two interfaces of two corners each sliding, each `p_n` with its friction row
+/// following: block-on-block's usual step), its loops unrolled: the same operations in the same
+/// order (the same bits).
 #[inline(never)]
 fn solve_unknowns<T: Real>(
     a: &mut [[T; UNKNOWNS]; UNKNOWNS],
@@ -566,7 +567,7 @@ fn solve_unknowns<T: Real>(
     m: usize,
     tiny: T,
 ) -> bool {
-    if m == UNKNOWNS { solve_all(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
+    if m == 4 { solve_four(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
 }
 
 /// The leading `m x m` block of a symmetric system (`H = G`: no unknown has a follower, the
@@ -641,10 +642,10 @@ fn ldl_leading<T: Real>(
     true
 }
 
-/// [`solve_leading`] with every unknown (`m = 9`).
+/// [`solve_leading`] with four unknowns.
 #[inline(never)]
-fn solve_all<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
-    solve_leading(a, rhs, UNKNOWNS, tiny)
+fn solve_four<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
+    solve_leading(a, rhs, 4, tiny)
 }
 
 #[cfg(test)]
