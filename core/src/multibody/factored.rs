@@ -413,6 +413,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // H^T M~ G y = -q_H; unknown l's column G_l = c_var + mu c_follower (the same bodies).
         // Between two unknowns without a follower the entry is `c_r^T M~ c_l`, symmetric: taken
         // from its mirror when that is already formed.
+        let symmetric = follower.iter().all(|&f| f == N);
         let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
         let mut y = [T::zero(); UNKNOWNS];
         for l in 0..m {
@@ -425,7 +426,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     }
                 }
             }
-            for r in 0..m {
+            // Symmetric: the lower triangle only (all `solve_symmetric` reads).
+            for r in (if symmetric { l } else { 0 })..m {
                 a[r][l] = if r < l && follower[r] == N && follower[l] == N {
                     a[l][r]
                 } else {
@@ -435,7 +437,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             y[l] = -self.q[var[l].min(N - 1)];
         }
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        if !solve_unknowns(&mut a, &mut y, m, tiny) {
+        let solved = if symmetric {
+            solve_symmetric(&mut a, &mut y, m, tiny)
+        } else {
+            solve_unknowns(&mut a, &mut y, m, tiny)
+        };
+        if !solved {
             return Err(Declined::Singular);
         }
         // Impulses `>= 0` exactly, no normal impulse positive within the round-off of the largest
@@ -550,8 +557,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 }
 
 /// The basis' `m x m` system by [`solve_leading`], one copy out of line, and one specialised to
-/// `m = 9` (three bodies' resting interfaces: the 3-block stack's every step), its loops unrolled:
-/// the same operations in the same order (the same bits).
+/// `m = 4` (two interfaces of two corners each sliding, each `p_n` with its friction row
+/// following: block-on-block's usual step), its loops unrolled: the same operations in the same
+/// order (the same bits).
 #[inline(never)]
 fn solve_unknowns<T: Real>(
     a: &mut [[T; UNKNOWNS]; UNKNOWNS],
@@ -559,13 +567,85 @@ fn solve_unknowns<T: Real>(
     m: usize,
     tiny: T,
 ) -> bool {
-    if m == UNKNOWNS { solve_all(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
+    if m == 4 { solve_four(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
 }
 
-/// [`solve_leading`] with every unknown (`m = 9`).
+/// The leading `m x m` block of a symmetric system (`H = G`: no unknown has a follower, the
+/// matrix `G^T M~ G` is symmetric positive semidefinite) by `L D L^T` without pivoting, from its
+/// lower triangle: about half the operations of [`solve_leading`] and backward stable for a
+/// positive definite matrix. A pivot `d` not above `tiny` (a rank-deficient set of rows: both
+/// corners of one interface sticking; or not finite) is a singular system: `false`. The solution
+/// is written into `rhs`, the lower triangle of `a` overwritten. One copy for any `m`, one for
+/// `m = 9` (the 3-block stack's every step).
 #[inline(never)]
-fn solve_all<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
-    solve_leading(a, rhs, UNKNOWNS, tiny)
+fn solve_symmetric<T: Real>(
+    a: &mut [[T; UNKNOWNS]; UNKNOWNS],
+    rhs: &mut [T; UNKNOWNS],
+    m: usize,
+    tiny: T,
+) -> bool {
+    if m == UNKNOWNS { solve_symmetric_all(a, rhs, tiny) } else { ldl_leading(a, rhs, m, tiny) }
+}
+
+/// [`solve_symmetric`] with every unknown (`m = 9`).
+#[inline(never)]
+fn solve_symmetric_all<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
+    ldl_leading(a, rhs, UNKNOWNS, tiny)
+}
+
+/// [`solve_symmetric`]'s factorisation and substitutions.
+#[inline(always)]
+#[allow(clippy::inline_always)] // the point of it: `m` known at the call
+fn ldl_leading<T: Real>(
+    a: &mut [[T; UNKNOWNS]; UNKNOWNS],
+    rhs: &mut [T; UNKNOWNS],
+    m: usize,
+    tiny: T,
+) -> bool {
+    let m = m.min(UNKNOWNS);
+    // Row by row (each sum a dot product along rows): `a`'s lower triangle becomes
+    // `U = L D` (`u_ij = a_ij - sum_{k<j} u_ik l_jk`), `l` holds `L`, `inv` holds `1 / d`.
+    let mut l = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+    let mut inv = [T::zero(); UNKNOWNS];
+    for i in 0..m {
+        for j in 0..i {
+            let mut u = a[i][j];
+            for k in 0..j {
+                u -= a[i][k] * l[j][k];
+            }
+            a[i][j] = u;
+            l[i][j] = u * inv[j];
+        }
+        let mut d = a[i][i];
+        for k in 0..i {
+            d -= a[i][k] * l[i][k];
+        }
+        if d.partial_cmp(&tiny) != Some(core::cmp::Ordering::Greater) {
+            return false;
+        }
+        inv[i] = T::one() / d;
+        // Forward: `L y = rhs`.
+        let mut y = rhs[i];
+        for k in 0..i {
+            y -= l[i][k] * rhs[k];
+        }
+        rhs[i] = y;
+    }
+    // Back: `L^T x = D^-1 y`.
+    for i in (0..m).rev() {
+        let mut x = rhs[i] * inv[i];
+        for k in i + 1..m {
+            x -= l[k][i] * rhs[k];
+        }
+        rhs[i] = x;
+    }
+    true
+}
+
+/// [`solve_leading`] with four unknowns.
+#[inline(never)]
+fn solve_four<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
+    solve_leading(a, rhs, 4, tiny)
 }
 
 #[cfg(test)]
@@ -713,10 +793,14 @@ mod tests {
             assert!((w[v] - w_dense[v]).abs() <= 1e-12 * scale, "w[{v}] {} vs {}", w[v], w_dense[v]);
         }
         let expected = direct.map(|s| s.z.into()).or_else(|| principal(lcp, answer.mask));
+        // The impulses' scale: `||z||`, and at least the impulse that would change a row of `w` by
+        // `||q||` (a basis without unknowns has `z = 0` exactly, where the dense solve's round-off,
+        // e.g. -1.8e-33, must be compared against something).
+        let z_scale = z_norm.max(lcp.q_norm_inf() / lcp.m_norm_inf().max(1e-300)).max(1e-300);
         if let Some(expected) = expected {
             for v in 0..N {
                 assert!(
-                    (z[v] - expected[v]).abs() <= 1e-9 * z_norm.max(1e-300),
+                    (z[v] - expected[v]).abs() <= 1e-9 * z_scale,
                     "basis {:#x}: z[{v}] {} vs dense {}",
                     answer.mask,
                     z[v],

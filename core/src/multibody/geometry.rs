@@ -247,7 +247,7 @@ pub(crate) fn poses<T: Real, const B: usize>(
 
 /// The frames of the four candidates of `pair` (`docs/formulation.md`, "The corner-on-face
 /// contact"), given the bodies, their states and [`poses`], the table and the settings' `margin`
-/// and step `h`.
+/// and step `h`, written into `frames` (in place: no copy of the four).
 #[allow(clippy::too_many_arguments, clippy::too_many_lines)] // the geometry's inputs; the four candidates in order
 pub(crate) fn pair_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
@@ -257,7 +257,8 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     table: &Table<T>,
     margin: T,
     h: T,
-) -> [CornerFrame<T>; 4] {
+    frames: &mut [CornerFrame<T>; 4],
+) {
     let two = T::of(2.0);
     // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact (body
     // and state looked up too: their indices below are then provably in range, no panic path).
@@ -269,7 +270,10 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
         Support::Body(s) => pose(s).map(|p| Some((s, p))),
         Support::Table => Some(None),
     };
-    let (Some(upper), Some(lower)) = (pose(pair.upper), lower) else { return [CornerFrame::inactive(); 4] };
+    let (Some(upper), Some(lower)) = (pose(pair.upper), lower) else {
+        *frames = [CornerFrame::inactive(); 4];
+        return;
+    };
     // The lower's top face and the upper's lower face.
     let top = lower.map_or(
         Face {
@@ -303,7 +307,17 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     let height = |b: Option<u8>| {
         b.map_or(T::zero(), |b| bodies[usize::from(b)].size() + states[usize::from(b)].y.abs_exact())
     };
-    let mut frames = [CornerFrame::inactive(); 4];
+    // The upper and lower bodies' extents and heights (the table's 0), once per pair: a corner's
+    // owner and its face's owner are these two, in an order the candidate gives.
+    let lower_body = lower.map(|(s, _)| s);
+    let extents = [extent(Some(pair.upper)), extent(lower_body)];
+    let heights = [height(Some(pair.upper)), height(lower_body)];
+    // Half the height of the upper body (the face of the lower candidates) and of the lower one
+    // (the table's face has none).
+    let half_heights = [
+        Some(bodies[usize::from(pair.upper)].height / two),
+        lower_body.map(|b| bodies[usize::from(b)].height / two),
+    ];
     for (k, candidate) in Candidate::ALL.into_iter().enumerate() {
         // The corner (owner, world point), the face, and the rule "over the face".
         let (corner_owner, point, face) = match candidate {
@@ -315,15 +329,15 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
             }
             Candidate::LowerLeftUnderUpper | Candidate::LowerRightUnderUpper => {
                 let left = candidate == Candidate::LowerLeftUnderUpper;
-                match lower {
-                    Some((s, p)) => {
-                        let x = if left { -p.half[0] } else { p.half[0] };
-                        (Some(s), p.world([x, p.half[1]]), bottom)
-                    }
-                    None => match if left { table.lo } else { table.hi } {
-                        Some(x) => (None, [x, T::zero()], bottom),
-                        None => continue,
-                    },
+                if let Some((s, p)) = lower {
+                    let x = if left { -p.half[0] } else { p.half[0] };
+                    (Some(s), p.world([x, p.half[1]]), bottom)
+                } else if let Some(x) = if left { table.lo } else { table.hi } {
+                    (None, [x, T::zero()], bottom)
+                } else {
+                    // No table edge on this side: no candidate.
+                    frames[k] = CornerFrame::inactive();
+                    continue;
                 }
             }
         };
@@ -336,7 +350,7 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
             (false, _) => along.abs_exact() < upper.half[0],
         };
         // Not past the face owner's centre line (no limit on the table).
-        let face_half_height = face.owner.map(|b| bodies[usize::from(b)].height / two);
+        let face_half_height = half_heights[usize::from(candidate.is_upper_corner())];
         let above_centre = face_half_height.is_none_or(|half| gap >= -half);
         let lever = |b: Option<u8>| com(b).map_or([T::zero(); 2], |c| [point[0] - c[0], point[1] - c[1]]);
         let (lever_corner, lever_face) = (lever(corner_owner), lever(face.owner));
@@ -347,6 +361,8 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
         let approach = -dot([va[0] - vb[0], va[1] - vb[1]], face.normal);
         let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
         let n = face.normal;
+        // Indices into `extents`, `heights`: the corner's owner's, the face's owner's.
+        let owners = if candidate.is_upper_corner() { [0, 1] } else { [1, 0] };
         frames[k] = CornerFrame {
             active: over && above_centre && gap <= reach,
             corner: corner_owner,
@@ -360,11 +376,10 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
             lever_face,
             gap_round_off: T::of(4.0)
                 * T::EPS
-                * (point[0].abs_exact() + point[1].abs_exact() + extent(corner_owner) + extent(face.owner)),
-            touch: T::of(64.0) * T::EPS * (height(corner_owner) + height(face.owner)),
+                * (point[0].abs_exact() + point[1].abs_exact() + extents[owners[0]] + extents[owners[1]]),
+            touch: T::of(64.0) * T::EPS * (heights[owners[0]] + heights[owners[1]]),
         };
     }
-    frames
 }
 
 /// The velocity of the corner's owner relative to the face's owner at the frame's point,

@@ -286,7 +286,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let s = self.system.settings;
         let poses = poses(&self.system.bodies, &self.states);
         for p in 0..P {
-            self.frames[p] = pair_frames(
+            pair_frames(
                 &self.system.pairs[p],
                 &self.system.bodies,
                 &self.states,
@@ -294,6 +294,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 &self.system.table,
                 s.margin,
                 s.base.step,
+                &mut self.frames[p],
             );
         }
     }
@@ -388,7 +389,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             v_free[i] = [st.vx + h * f[0] / m, st.vy + h * (f[1] / m - s.gravity), st.omega];
         }
         out.factored.reset(k, v_free);
-        let mut warm = Basis::<N>::all_w();
+        // The warm basis' bit mask (bit `row`: `z_row` basic), each slot's pattern at its rows.
+        let mut warm = 0u32;
         for (j, &(p, c)) in out.slots[..k].iter().enumerate() {
             // Every slot's (p, c) is below (P, 4) by construction: said so, so that no index below
             // needs a check (no panic path).
@@ -407,13 +409,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             );
             let pattern = self.patterns[p][c];
             for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
-                warm.set_z_basic(row, pattern >> bit & 1 == 1);
+                warm |= u32::from(pattern >> bit & 1).checked_shl(row as u32).unwrap_or(0);
             }
         }
         out.factored.finish();
         out.k = k;
         out.active = active;
-        out.warm = warm;
+        out.warm = Basis::from_z_mask(warm);
         Ok(())
     }
 
@@ -610,8 +612,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
             let mut pattern = 0;
+            let mask = basis.z_mask();
             for (bit, row) in rows.into_iter().enumerate() {
-                pattern |= u8::from(basis.is_z_basic(row)) << bit;
+                pattern |= u8::from(mask.checked_shr(row as u32).unwrap_or(0) & 1 == 1) << bit;
             }
             patterns[p][c] = pattern;
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
