@@ -593,7 +593,7 @@ fn write_plots(name: &str, runs: &[&BodiesRun], dir: &std::path::Path) -> anyhow
 
 /// `host-sim run` for scenes of several bodies: each in the core (`precision`) beside the
 /// independent reference, each body's trajectory as CSV (`core.csv`, `reference.csv`), its plots
-/// ([`write_plots`]), its `summary.json`, and `summary.json` over all runs under `out`.
+/// (`write_plots`), its `summary.json`, and `summary.json` over all runs under `out`.
 ///
 /// # Errors
 /// Invalid parameters (before anything runs), Ctrl-C, or I/O.

@@ -573,8 +573,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     }
 
     /// Advances one step: the active candidates' LCP (per unit reference mass) in factored form,
-    /// solved by the paths of [`Self::solve`] and verified; `V+ = v~ + M~ J^T z`, `q+ = q + h V+`
-    /// (compensated sums), modes after the step.
+    /// solved by the paths of `docs/formulation.md` ("Solving a multibody step") and verified;
+    /// `V+ = v~ + M~ J^T z`, `q+ = q + h V+` (compensated sums), modes after the step.
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
