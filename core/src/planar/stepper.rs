@@ -420,17 +420,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                         self.solver.tolerance(),
                         &mut z,
                         &mut w,
-                        |z, w, v| {
-                            !reduced
-                                || self
-                                    .dropped_direction_needed(
-                                        &inputs,
-                                        z,
-                                        w,
-                                        velocity_scale(&support_velocity, v, self.size),
-                                    )
-                                    .is_none()
-                        },
+                        |z, w, v| self.layout_admits(&inputs, &support_velocity, z, w, v),
                     )
                 })
                 .flatten()
@@ -464,17 +454,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 &mut sol,
                 &mut z,
                 &mut w,
-                |z, w, v| {
-                    !reduced
-                        || self
-                            .dropped_direction_needed(
-                                &inputs,
-                                z,
-                                w,
-                                velocity_scale(&support_velocity, v, self.size),
-                            )
-                            .is_none()
-                },
+                |z, w, v| self.layout_admits(&inputs, &support_velocity, z, w, v),
             );
             (self.basis, v_plus, residual) = (sol.basis, sol.v_plus, sol.residual);
             speed = velocity_scale(&support_velocity, &v_plus, self.size);
@@ -635,6 +615,23 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             residual,
             round_off_limited,
         })
+    }
+
+    /// `true` when this layout may answer with `z`, `w` and `v+ = v`: always in the full layout;
+    /// in a reduced one when no dropped friction direction is needed (the rule's candidates are
+    /// held to the same check as the solver's answer).
+    fn layout_admits(
+        &self,
+        inputs: &StepInputs<'_, T, K>,
+        support_velocity: &[[T; 2]; K],
+        z: &[T; N],
+        w: &[T; N],
+        v: &[T; 3],
+    ) -> bool {
+        N == NF
+            || self
+                .dropped_direction_needed(inputs, z, w, velocity_scale(support_velocity, v, self.size))
+                .is_none()
     }
 
     /// The reduced layout's check (`docs/formulation.md`, "Reduced friction layouts"): for each
