@@ -31,10 +31,11 @@ done
   echo
   echo "Instructions per step (slow scene v = 0.1 m/s and fast v = 5 m/s, x1 = -0.35 m, f32 6x6 with the 8x8"
   echo "fallback, through the rig loop; on the M4F and M33F also block-on-block and the 3-block stack at their"
-  echo "defaults, f32, stepped directly; QEMU -icount shift=0, SysTick ticks converted with the calibration loop):"
+  echo "defaults, f32, stepped directly; QEMU -icount shift=0, SysTick ticks converted with the calibration loop;"
+  echo "stack peak: the deepest the stack grew in the scene, painted and read back, firmware/src/stack_peak.rs):"
   echo
-  echo "| core (QEMU machine) | scene | steps | instructions/step (mean) | worst step (instructions) |"
-  echo "|---|---|---|---|---|"
+  echo "| core (QEMU machine) | scene | steps | instructions/step (mean) | worst step (instructions) | stack peak (B) |"
+  echo "|---|---|---|---|---|---|"
   for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0" "qemu-m33 mps2-an505 Cortex-M33F"; do
     set -- $m
     # host-sim reads the firmware's timing lines and converts them (JSON, `host-sim qemu --json`).
@@ -43,7 +44,9 @@ done
 import json, sys
 timing = json.load(open(sys.argv[1]))["timing"]
 for s in timing["scenes"]:
-    print(f"| {sys.argv[2]} | {s['scene']} | {s['steps']} | {s['mean_instructions']:,.0f} | {s['worst_instructions']:,.0f} |")
+    peak = s["stack_peak_bytes"]
+    peak = "-" if peak is None else f"{peak:,}"
+    print(f"| {sys.argv[2]} | {s['scene']} | {s['steps']} | {s['mean_instructions']:,.0f} | {s['worst_instructions']:,.0f} | {peak} |")
 PY
   done
   echo

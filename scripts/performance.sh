@@ -111,6 +111,10 @@ for label, build, machine, board in cores:
     slow = timings[build]["slow"]
     print(f"| {label} ({board}): instructions per step, mean / worst | "
           f"{n(slow['mean_instructions'])} / {n(slow['worst_instructions'])} |")
+for scene, title in (("block-on-block", "block-on-block"), ("stack", "the 3-block stack")):
+    t = timings["qemu-m4f"][scene]
+    print(f"| Cortex-M4F, {title} (f32, defaults): instructions per step, mean / worst | "
+          f"{n(t['mean_instructions'])} / {n(t['worst_instructions'])} |")
 flash, ram = flash_ram("rig-m4f-6x6-nolog")
 print(f"| flash / static RAM of `rig-m4f-6x6-nolog` (the smallest rig build) | {n(flash)} B / {n(ram)} B |")
 flash, ram = flash_ram("rig-m4f-link")
@@ -155,6 +159,29 @@ for label, build, machine, board in cores:
     t = timings[build]
     cells = [f"{n(t[s]['mean_instructions'])} / {n(t[s]['worst_instructions'])}" for s in ("slow", "fast")]
     print(f"| {label} (`{machine}`) | {board} | {cells[0]} | {cells[1]} |")
+print()
+print("The scenes of several bodies at their defaults (f32, stepped directly, not through the rig loop; "
+      "issue targets on the M4F: block-on-block mean <= 5,000 / worst <= 25,000, the 3-block stack "
+      "<= 12,000 / <= 100,000), with the deepest the stack grew (painted RAM read back, "
+      "`firmware/src/stack_peak.rs`):")
+print()
+print("| core (QEMU machine) | block-on-block: mean / worst | stack: mean / worst | stack peak (B): slow run / block-on-block / stack |")
+print("|---|---|---|---|")
+for label, build, machine, board in cores:
+    t = timings[build]
+    peaks = " / ".join("-" if s not in t or t[s].get("stack_peak_bytes") is None else n(t[s]["stack_peak_bytes"])
+                       for s in ("slow", "block-on-block", "stack"))
+    if "stack" not in t:
+        print(f"| {label} (`{machine}`) | not run | not run | {peaks} |")
+        continue
+    cells = [f"{n(t[s]['mean_instructions'])} / {n(t[s]['worst_instructions'])}" for s in ("block-on-block", "stack")]
+    print(f"| {label} (`{machine}`) | {cells[0]} | {cells[1]} | {peaks} |")
+m4f = timings["qemu-m4f"]
+if "stack" in m4f and m4f["stack"].get("stack_peak_bytes") is not None:
+    print()
+    print(f"The Cortex-M0 build (`microbit`: 16,384 B of RAM) runs the scenes of one body only: the 3-block "
+          f"stack needs {n(m4f['stack']['stack_peak_bytes'])} B of stack on the M4F (block-on-block "
+          f"{n(m4f['block-on-block']['stack_peak_bytes'])} B), more than its whole RAM.")
 print()
 print("The slow run's steps by the path that answered their LCP, each path's mean / worst instructions:")
 print()

@@ -74,6 +74,8 @@ mod realtime;
 mod semihosting_log;
 #[cfg(soft_float)]
 mod soft_float;
+#[cfg(all(feature = "qemu", not(feature = "link")))]
+mod stack_peak;
 mod systick;
 #[cfg(all(feature = "qemu", feature = "link"))]
 mod uart;

@@ -23,7 +23,7 @@ use meterstick_core::scene::{
 use meterstick_core::scene::{MultibodyVisitor, Precision};
 use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 
-use crate::systick;
+use crate::{stack_peak, systick};
 
 /// Prints a run's switch events (1-based contacts).
 fn print_events<T: Real, const K: usize>(name: &str, events: &[SwitchEvent<T, K>]) {
@@ -70,7 +70,9 @@ const CONFIG: RigConfig = RigConfig {
 };
 
 /// Runs the paper's scene at `speed` (finger 1 starting at -0.35 m) through the rig and
-/// reports it; `None` on a rig fault.
+/// reports it; `None` on a rig fault. Not inlined, so that the rig's frame is its own (not held on
+/// the stack while later scenes run) and the code it times does not depend on its caller.
+#[inline(never)]
 fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     let params =
         MeterStickParams { finger1_velocity: speed, finger1_x: -0.35, ..MeterStickParams::<f32>::paper() };
@@ -156,6 +158,13 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
         steps
     );
     Some(outcome)
+}
+
+/// Prints the deepest the stack grew since the last [`stack_peak::paint`] (`<name> stack
+/// peak_bytes=..`, for `host-sim qemu --json`). Painted and read outside the timed functions, so
+/// that the measurement does not change the code whose instructions they count.
+fn print_stack_peak(name: &str) {
+    defmt::println!("{=str} stack peak_bytes={=u32}", name, stack_peak::peak_bytes());
 }
 
 /// What a scene outside the rig must end in, by the laws of `docs/scenes.md` at its defaults.
@@ -274,6 +283,7 @@ fn check_multibody_scenes() -> i32 {
     let mut failures = 0;
     for kind in [SceneKind::BlockOnBlock, SceneKind::Stack] {
         let check = CheckMultibody { name: kind.name(), expected: expected(kind) };
+        stack_peak::paint();
         failures += match SceneParams::defaults(kind).build_multibody(Precision::F32, check) {
             Ok(failed) => failed,
             Err(e) => {
@@ -281,6 +291,7 @@ fn check_multibody_scenes() -> i32 {
                 1
             }
         };
+        print_stack_peak(kind.name());
     }
     failures
 }
@@ -315,11 +326,12 @@ pub fn main() -> ! {
             failures += 1;
         }
     }
-    if run_scene("slow", 0.1) != Some(Outcome::Balanced) {
-        failures += 1;
-    }
-    if run_scene("fast", 5.0) != Some(Outcome::Fell) {
-        failures += 1;
+    for (name, speed, expected) in [("slow", 0.1, Outcome::Balanced), ("fast", 5.0, Outcome::Fell)] {
+        stack_peak::paint();
+        if run_scene(name, speed) != Some(expected) {
+            failures += 1;
+        }
+        print_stack_peak(name);
     }
     failures += check_other_scenes();
     #[cfg(feature = "qemu-multibody")]

@@ -256,6 +256,9 @@ pub struct SceneTiming {
     pub worst_instructions: f64,
     /// The same per solve path (`SolvePath`'s names), for the steps each answered.
     pub paths: Vec<PathTiming>,
+    /// The deepest the stack grew during the scene, in bytes below the stack top (the firmware
+    /// paints the free RAM before it: `firmware/src/stack_peak.rs`); `None` when the line has none.
+    pub stack_peak_bytes: Option<u64>,
 }
 
 /// The steps one solve path answered in a scene.
@@ -279,7 +282,8 @@ fn fields(line: &str, skip: usize) -> std::collections::HashMap<&str, &str> {
 /// Reads the firmware's timing lines (`calibration instructions=.. systicks=..`, `<scene> rig
 /// .. systicks=.. worst_step_systicks=.. steps=..` or `<scene> timing systicks=..
 /// worst_step_systicks=.. steps=..`, `<scene> path=<name> steps=.. systicks=..
-/// worst_step_systicks=..`; `firmware/src/qemu.rs` prints them) into instructions. `None` without
+/// worst_step_systicks=..`, `<scene> stack peak_bytes=..`; `firmware/src/qemu.rs` prints them)
+/// into instructions. `None` without
 /// a calibration line; a malformed number is an error naming the line.
 ///
 /// # Errors
@@ -326,6 +330,11 @@ pub fn timing(lines: &[String]) -> anyhow::Result<Option<Timing>> {
             mean_instructions: number(line, &f, "systicks")? as f64 * per_tick / steps.max(1) as f64,
             worst_instructions: number(line, &f, "worst_step_systicks")? as f64 * per_tick,
             paths,
+            stack_peak_bytes: lines
+                .iter()
+                .find(|l| l.starts_with(&format!("{} stack ", words[0])))
+                .map(|l| number(l, &fields(l, 2), "peak_bytes"))
+                .transpose()?,
         });
     }
     Ok(Some(Timing { instructions_per_tick: per_tick, scenes }))
@@ -346,6 +355,7 @@ mod timing_tests {
             "slow path=candidate steps=29 systicks=2000 worst_step_systicks=150",
             "stack outcome=Held t=10 steps=10000 pivots=0 max_active=3 checksum=0badcafe",
             "stack timing systicks=1000000 worst_step_systicks=900 steps=10000",
+            "stack stack peak_bytes=6144",
         ]
         .map(String::from)
         .to_vec();
@@ -365,6 +375,7 @@ mod timing_tests {
         assert!((m.mean_instructions - 1_000_000.0 * per / 10_000.0).abs() < 1e-9);
         assert!((m.worst_instructions - 900.0 * per).abs() < 1e-9);
         assert!(m.paths.is_empty());
+        assert_eq!((s.stack_peak_bytes, m.stack_peak_bytes), (None, Some(6144)));
         let bad = vec!["calibration instructions=2000002 systicks=0".to_owned()];
         assert!(timing(&bad).is_err());
         let garbled = vec!["calibration instructions=x systicks=5".to_owned()];
