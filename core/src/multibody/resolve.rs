@@ -240,3 +240,130 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
 fn impulse_sum<T: Real, const N: usize>(z: &[T; N]) -> T {
     z.iter().fold(T::zero(), |s, &x| s + x)
 }
+
+#[cfg(test)]
+#[allow(clippy::expect_used, clippy::float_cmp)] // a test's setup may fail loudly
+mod tests {
+    //! The rule's choice on steps whose LCP has solutions that move the bodies differently (the
+    //! tablecloth at `mu = 2`: the block tipping about its corner on the board, which may stick,
+    //! slide or lift), against an enumeration written apart from the factored form: every basis
+    //! of the active contacts' eight patterns solved densely from the assembled LCP (its principal
+    //! system by nalgebra's LU), verified ([`crate::lcp::verify`]), the least kinetic energy
+    //! `sum_i m_i |v_i|^2 + J_i omega_i^2` taken, ties (`1e-12 S^2 sum_i m_i`) by the smallest
+    //! `||z||_1`: the reference's rule (`reference/src/multibody/step.rs`).
+    use std::vec::Vec;
+
+    use nalgebra::{SMatrix, SVector};
+
+    use super::{Detector, flags, resolve};
+    use crate::lcp::{default_tolerance, verify};
+    use crate::multibody::scenes::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
+    use crate::multibody::stepper::{PATTERNS, slot_rows};
+
+    const N: usize = TABLECLOTH_ROWS;
+
+    /// One verified solution of the dense enumeration.
+    struct Dense {
+        z: [f64; N],
+        mask: u32,
+        v: [[f64; 3]; 2],
+        energy: f64,
+        sum: f64,
+    }
+
+    #[test]
+    fn the_rule_takes_the_least_energy_of_every_solution_whatever_the_path_answered() {
+        let params =
+            TableclothParams::<f64> { mu_static: 2.0, mu_kinetic: 2.0, ..TableclothParams::default() };
+        let mut scene = Tablecloth::new(params).expect("valid parameters");
+        let (mut ambiguous, mut flagged) = (0, 0);
+        for _ in 0..60 {
+            let mut stepper = scene.stepper().clone();
+            stepper.refill().expect("room for the contacts");
+            let f = &stepper.lcp.factored;
+            let k = f.slots();
+            let bodies = stepper.system().bodies;
+            let m_ref = bodies[0].mass;
+            let inverse_mass = bodies.map(|b| [m_ref / b.mass, m_ref / b.mass, m_ref / b.inertia]);
+            let rule = Detector::new(&bodies, &inverse_mass).rule(f);
+            let lcp = f.assemble();
+            let tolerance = default_tolerance::<f64, N>();
+            // The dense enumeration: 8^k bases.
+            let mut found: Vec<Dense> = Vec::new();
+            for code in 0..8usize.pow(k as u32) {
+                let mut mask = 0u32;
+                let mut digits = code;
+                for j in 0..k {
+                    let pattern = PATTERNS[digits % 8];
+                    digits /= 8;
+                    for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
+                        mask |= u32::from(pattern >> bit & 1) << row;
+                    }
+                }
+                let basic = |v: usize| (mask >> v) & 1 == 1;
+                let a = SMatrix::<f64, N, N>::from_fn(|r, c| match (basic(r), basic(c)) {
+                    (true, true) => lcp.m[(r, c)],
+                    _ => f64::from(u8::from(r == c)),
+                });
+                let b = SVector::<f64, N>::from_fn(|r, _| if basic(r) { -lcp.q[r] } else { 0.0 });
+                let Some(z) = a.lu().solve(&b) else { continue };
+                // Round-off below zero (a zero impulse solved as -1e-20) is zero.
+                let z = z.map(|x| if x < 0.0 && x > -1e-12 * lcp.q_norm_inf() { 0.0 } else { x });
+                if z.iter().any(|&x| x < 0.0) || !verify(&lcp, &z, tolerance).passed() {
+                    continue;
+                }
+                let z: [f64; N] = z.into();
+                let v = f.velocity_after(&z);
+                let energy = (0..2)
+                    .map(|i| {
+                        bodies[i].mass * (v[i][0] * v[i][0] + v[i][1] * v[i][1])
+                            + bodies[i].inertia * v[i][2] * v[i][2]
+                    })
+                    .sum();
+                found.push(Dense { z, mask, v, energy, sum: z.iter().sum() });
+            }
+            // The reference's choice among them.
+            let speed = f
+                .v_free()
+                .iter()
+                .zip(&bodies)
+                .map(|(v, b)| v[0].abs().max(v[1].abs()).max(0.5 * b.width.hypot(b.height) * v[2].abs()))
+                .fold(0.0, f64::max);
+            let tie = 1e-12 * speed * speed * (bodies[0].mass + bodies[1].mass);
+            let least = found.iter().map(|d| d.energy).fold(f64::INFINITY, f64::min);
+            let chosen = found
+                .iter()
+                .filter(|d| d.energy <= least + tie)
+                .min_by(|a, b| a.sum.total_cmp(&b.sum))
+                .expect("the step has a solution");
+            let differ = |a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]| {
+                (0..2).any(|i| {
+                    let reach = 0.5 * bodies[i].width.hypot(bodies[i].height);
+                    (a[i][0] - b[i][0])
+                        .abs()
+                        .max((a[i][1] - b[i][1]).abs())
+                        .max(reach * (a[i][2] - b[i][2]).abs())
+                        > 1e-9 * speed
+                })
+            };
+            let several = found.iter().any(|d| differ(&d.v, &chosen.v));
+            ambiguous += u32::from(several);
+            if several {
+                // Detection: a step with several motions is flagged.
+                assert!(flags(f), "an ambiguous step not flagged");
+                flagged += 1;
+                // Whatever solution the path answered, the rule ends on the dense choice.
+                for start in &found {
+                    let (mut v, mut z, mut mask) = (start.v, start.z, start.mask);
+                    let r = resolve(f, rule, tolerance, &mut v, &mut z, &mut mask);
+                    assert!(r.enumerated && r.ambiguous);
+                    assert_eq!(r.changed, differ(&start.v, &chosen.v));
+                    assert!(!differ(&v, &chosen.v), "rule {v:?}, enumeration {:?}", chosen.v);
+                }
+            }
+            let _ = scene.step().expect("the run goes on");
+        }
+        // The reference counts 4 such steps in this run (steps 43 to 46).
+        assert_eq!((ambiguous, flagged), (4, 4));
+    }
+}
