@@ -162,8 +162,9 @@ pub(super) const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b000
 /// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it. What is
 /// reported is what every solution shares: velocities, positions and per pair the summed
 /// interface force ([`StepReport::interface_forces`]); no corner's share. Where solutions move
-/// the bodies differently (the model's "ambiguous" steps), the reference takes the least kinetic
-/// energy after the step and this stepper the solution its paths reach first.
+/// the bodies differently (the model's "ambiguous" steps), this stepper takes the reference's rule,
+/// the least kinetic energy after the step (`docs/formulation.md`, "Several bodies: the rule";
+/// `resolve.rs`).
 #[derive(Debug, Clone)]
 pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     system: System<T, B, P>,
