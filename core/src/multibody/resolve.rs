@@ -1,8 +1,9 @@
 //! The rule of [`crate::rule`] on a multibody step (`docs/formulation.md`, "One answer: the
 //! rule"): which steps may have several answers that move the bodies differently ([`Detector`]),
 //! and on those every solution the factored form reaches over the active contacts' patterns, the
-//! rule's choice kept ([`resolve`]). The single body's detection (`core/src/planar/resolve.rs`)
-//! in the bodies' `3B` coordinates, with its thresholds.
+//! rule's choice kept ([`resolve`]). The single body's one-contact test and its threshold
+//! (`core/src/planar/resolve.rs`) for each contact with the others' normals held ([`flags`]), in
+//! the bodies' `3B` coordinates; the at-rest shortcut and the enumeration as for one body.
 //!
 //! The bodies' velocities after a step are `v~ + M~ J^T z`; two solutions move the bodies
 //! differently only where the contacts do not decide `z`'s effect on them. Two sticking corners of
