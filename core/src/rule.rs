@@ -3,19 +3,19 @@
 //! (maximum dissipation); energies within a tie of each other by the smallest `||z||_1`; then the
 //! first offered. The same rule as the independent reference's (`reference/src/step.rs`).
 //!
-//! Written for velocities in `D` coordinates with a diagonal mass metric: a planar body has
-//! `D = 3` (`vx`, `vy`, `omega`; metric `1, 1, J/m` per unit mass), `B` bodies `D = 3B` (each
-//! body's `m, m, J` block). The caller enumerates its verified solutions and offers them to a
-//! [`Choice`]; nothing here knows how a solution was found.
+//! Written for the velocities `(vx, vy, omega)` of `B` bodies with a diagonal mass metric: one
+//! planar body has `B = 1` (metric `1, 1, J/m` per unit mass), several bodies each their own
+//! `m, m, J` block (`core/src/multibody/resolve.rs`). The caller enumerates its verified solutions
+//! and offers them to a [`Choice`]; nothing here knows how a solution was found.
 
 use crate::real::{Real, max};
 
 /// What the rule compares of one verified solution of a step's LCP.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Answer<T, const D: usize> {
-    /// The velocities after the step.
-    pub velocity: [T; D],
+pub struct Answer<T, const B: usize> {
+    /// Each body's velocities `(vx, vy, omega)` after the step.
+    pub velocity: [[T; 3]; B],
     /// `||z||_1`: the sum of the LCP's unknowns (all non-negative).
     pub impulse_sum: T,
 }
@@ -23,12 +23,12 @@ pub struct Answer<T, const D: usize> {
 /// The rule's metric and tolerances for one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Rule<T, const D: usize> {
-    /// The kinetic energy's diagonal metric: `E = sum_k metric_k v_k^2`.
-    metric: [T; D],
-    /// The length that turns coordinate `k` into a speed (1 for a linear velocity, the body's
-    /// half size for an angular one).
-    reach: [T; D],
+pub struct Rule<T, const B: usize> {
+    /// The kinetic energy's diagonal metric: `E = sum_b sum_k metric_bk v_bk^2`.
+    metric: [[T; 3]; B],
+    /// The length that turns coordinate `k` of body `b` into a speed (1 for a linear velocity, the
+    /// body's half size for an angular one).
+    reach: [[T; 3]; B],
     /// Two velocities whose coordinate (times its reach) differ by more than this move the
     /// bodies differently: `max(1e-9, 256 eps) S`.
     velocity_tolerance: T,
@@ -38,13 +38,13 @@ pub struct Rule<T, const D: usize> {
     sum_tie: T,
 }
 
-impl<T: Real, const D: usize> Rule<T, D> {
+impl<T: Real, const B: usize> Rule<T, B> {
     /// The rule for a step whose speed scale is `speed` (`S`: the fastest support's speed and the
     /// bodies' free velocities, each coordinate times its `reach`), with the energy's `metric`.
     /// The reference's tolerances (`1e-9 S`, `1e-12 S^2`, `1e-12`) where the scalar carries them,
     /// `256 eps` of the same scales where it does not (f32).
     #[must_use]
-    pub fn new(metric: [T; D], reach: [T; D], speed: T) -> Self {
+    pub fn new(metric: [[T; 3]; B], reach: [[T; 3]; B], speed: T) -> Self {
         let round_off = T::of(256.0) * T::EPS;
         let relative = |floor: f64| max(T::of(floor), round_off);
         let speed = max(speed, T::TINY);
@@ -59,10 +59,12 @@ impl<T: Real, const D: usize> Rule<T, D> {
 
     /// The kinetic energy of `velocity` in the rule's metric.
     #[must_use]
-    pub fn energy(&self, velocity: &[T; D]) -> T {
+    pub fn energy(&self, velocity: &[[T; 3]; B]) -> T {
         let mut e = T::zero();
-        for k in 0..D {
-            e += self.metric[k] * velocity[k] * velocity[k];
+        for b in 0..B {
+            for k in 0..3 {
+                e += self.metric[b][k] * velocity[b][k] * velocity[b][k];
+            }
         }
         e
     }
@@ -71,21 +73,23 @@ impl<T: Real, const D: usize> Rule<T, D> {
     /// energy is within the tie of zero): it is the rule's choice without looking at the others
     /// (up to the `||z||_1` order among solutions of energies within the tie of zero).
     #[must_use]
-    pub fn at_least_energy(&self, velocity: &[T; D]) -> bool {
+    pub fn at_least_energy(&self, velocity: &[[T; 3]; B]) -> bool {
         self.energy(velocity) <= self.energy_tie
     }
 
     /// `true` when `a` and `b` move the bodies differently: a coordinate (times its reach)
     /// differs by more than the velocity tolerance.
     #[must_use]
-    pub fn moves_differently(&self, a: &[T; D], b: &[T; D]) -> bool {
-        (0..D).any(|k| (self.reach[k] * (a[k] - b[k])).abs_exact() > self.velocity_tolerance)
+    pub fn moves_differently(&self, a: &[[T; 3]; B], b: &[[T; 3]; B]) -> bool {
+        (0..B).any(|i| {
+            (0..3).any(|k| (self.reach[i][k] * (a[i][k] - b[i][k])).abs_exact() > self.velocity_tolerance)
+        })
     }
 
     /// `true` when the rule takes `a` over `b`: a lower energy beyond the tie, or a tied energy
     /// and a smaller `||z||_1` beyond its tie.
     #[must_use]
-    fn prefers(&self, a: &Answer<T, D>, energy_a: T, b: &Answer<T, D>, energy_b: T) -> bool {
+    fn prefers(&self, a: &Answer<T, B>, energy_a: T, b: &Answer<T, B>, energy_b: T) -> bool {
         if energy_a < energy_b - self.energy_tie {
             return true;
         }
@@ -97,10 +101,10 @@ impl<T: Real, const D: usize> Rule<T, D> {
 /// then every other one offered ([`Self::offer`]) in a fixed order.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Choice<T, const D: usize> {
-    rule: Rule<T, D>,
-    first: Answer<T, D>,
-    best: Answer<T, D>,
+pub struct Choice<T, const B: usize> {
+    rule: Rule<T, B>,
+    first: Answer<T, B>,
+    best: Answer<T, B>,
     best_energy: T,
     /// The offer that is `best` (`None`: the first).
     best_offer: Option<usize>,
@@ -108,16 +112,16 @@ pub struct Choice<T, const D: usize> {
     several: bool,
 }
 
-impl<T: Real, const D: usize> Choice<T, D> {
+impl<T: Real, const B: usize> Choice<T, B> {
     /// The choice with the path's answer `first` alone.
     #[must_use]
-    pub fn new(rule: Rule<T, D>, first: Answer<T, D>) -> Self {
+    pub fn new(rule: Rule<T, B>, first: Answer<T, B>) -> Self {
         let best_energy = rule.energy(&first.velocity);
         Self { rule, first, best: first, best_energy, best_offer: None, several: false }
     }
 
     /// Offers solution number `index`; returns `true` when it is now the rule's choice.
-    pub fn offer(&mut self, index: usize, answer: Answer<T, D>) -> bool {
+    pub fn offer(&mut self, index: usize, answer: Answer<T, B>) -> bool {
         self.several |= self.rule.moves_differently(&answer.velocity, &self.first.velocity);
         let energy = self.rule.energy(&answer.velocity);
         if self.rule.prefers(&answer, energy, &self.best, self.best_energy) {
@@ -154,12 +158,12 @@ impl<T: Real, const D: usize> Choice<T, D> {
 mod tests {
     use super::*;
 
-    fn answer(v: [f64; 3], impulse_sum: f64) -> Answer<f64, 3> {
-        Answer { velocity: v, impulse_sum }
+    fn answer(v: [f64; 3], impulse_sum: f64) -> Answer<f64, 1> {
+        Answer { velocity: [v], impulse_sum }
     }
 
-    fn rule() -> Rule<f64, 3> {
-        Rule::new([1.0, 1.0, 1.0 / 12.0], [1.0, 1.0, 0.5], 0.1)
+    fn rule() -> Rule<f64, 1> {
+        Rule::new([[1.0, 1.0, 1.0 / 12.0]], [[1.0, 1.0, 0.5]], 0.1)
     }
 
     #[test]

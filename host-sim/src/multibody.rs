@@ -43,8 +43,17 @@ pub struct BodiesCounters {
     pub max_active: u8,
     /// The LCP's capacity (core) or its largest size (reference), rows.
     pub lcp_rows: usize,
-    /// Steps whose verified solutions moved the bodies differently (reference).
+    /// Steps whose verified solutions moved the bodies differently (reference; core: of the
+    /// steps its rule enumerated).
     pub ambiguous_steps: u64,
+    /// Steps the core's rule looked at: not at rest and flagged as possibly having several
+    /// answers (core; `docs/formulation.md`, "One answer: the rule").
+    pub rule_checked_steps: u64,
+    /// Of those, steps whose solutions it enumerated (core).
+    pub rule_enumerated_steps: u64,
+    /// Steps where the rule's choice moved the bodies differently from the answer the solver's
+    /// path reached first (core).
+    pub rule_changed_answer: u64,
 }
 
 /// One run of a scene of several bodies, recorded.
@@ -129,7 +138,10 @@ impl MultibodyVisitor for CoreRun<'_> {
                 warm_direct: stats.warm_direct,
                 max_active: stats.max_active,
                 lcp_rows: S::ROWS,
-                ambiguous_steps: 0,
+                ambiguous_steps: stats.ambiguous_steps,
+                rule_checked_steps: stats.rule_checked_steps,
+                rule_enumerated_steps: stats.rule_enumerated_steps,
+                rule_changed_answer: stats.rule_changed_answer,
             },
             checksum: Some(checksum.value()),
         })
@@ -289,6 +301,15 @@ pub fn max_deviation(a: &BodiesRun, b: &BodiesRun) -> (f64, f64) {
     worst
 }
 
+/// The core's rule counters in words (`docs/formulation.md`, "One answer: the rule").
+fn rule_text(c: &BodiesCounters) -> String {
+    format!(
+        "core: {} steps not at rest flagged as possibly having several answers; of the {} enumerated {} had \
+         several, and the rule changed the solver's first answer on {}",
+        c.rule_checked_steps, c.rule_enumerated_steps, c.ambiguous_steps, c.rule_changed_answer
+    )
+}
+
 /// What `docs/scenes.md`'s laws say of a scene of several bodies: the outcome, and the
 /// accelerations where the law gives them.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -424,6 +445,9 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
         c.max_active,
         c.lcp_rows
     );
+    if run.checksum.is_some() {
+        let _ = writeln!(out, "{}", rule_text(c));
+    }
     if let Some(sum) = run.checksum {
         let _ = writeln!(out, "checksum {sum:08x}");
     }
@@ -662,13 +686,12 @@ pub fn run_all(
             "{name}: core vs reference: max position deviation {dev_q:.3e} m, max angle deviation {dev_angle:.3e} rad{}",
             if summary.comparison.same_outcome { "" } else { "  OUTCOMES DIFFER" }
         );
-        if reference.counters.ambiguous_steps > 0 {
-            let _ = writeln!(
-                text,
-                "{name}: the reference found {} steps whose LCP has solutions that move the bodies differently: core and reference may both be right and differ",
-                reference.counters.ambiguous_steps
-            );
-        }
+        let _ = writeln!(
+            text,
+            "{name}: the reference found {} steps whose LCP has solutions that move the bodies differently; both take the least kinetic energy after the step (docs/formulation.md, \"One answer: the rule\")",
+            reference.counters.ambiguous_steps
+        );
+        let _ = writeln!(text, "{name}: {}", rule_text(&core.counters));
         summaries.push(summary);
     }
     crate::output::write_json(&out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;

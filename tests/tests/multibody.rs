@@ -536,3 +536,59 @@ fn stack_slides_with_its_kinetic_coefficient_as_the_reference() {
     }
     assert_ne!(steps[0], steps[1], "mu_k changes the fall");
 }
+
+/// The core's run of the tablecloth at `mu = 2` beside the reference's `r`: its ambiguous steps and
+/// the largest position (m) and angle (rad) deviation over the steps.
+fn open_tablecloth<T: Real>(r: &reference::Run) -> (u64, f64, f64) {
+    let p = TableclothParams::<f64> { mu_static: 2.0, mu_kinetic: 2.0, ..TableclothParams::default() };
+    let mut scene = Tablecloth::new(p.cast::<T>()).expect("valid parameters");
+    let (mut position, mut angle) = (0.0_f64, 0.0_f64);
+    let mut n = 0;
+    while let Some(report) = scene.step() {
+        n += 1;
+        let row = &r.rows[n];
+        for (s, q) in report.states.iter().zip(&row.q) {
+            position = position.max((s.x.as_f64() - q[0]).hypot(s.y.as_f64() - q[1]));
+            angle = angle.max((s.theta.as_f64() - q[2]).abs());
+        }
+    }
+    assert_eq!(n as u64, r.steps);
+    let stats = scene.stepper().stats();
+    assert!(stats.rule_enumerated_steps >= stats.ambiguous_steps && stats.rule_checked_steps > 0);
+    (stats.ambiguous_steps, position, angle)
+}
+
+/// The tablecloth at `mu_s = mu_k = 2`: the block tips about its corner on the board, and on 4
+/// steps (43 to 46) its LCP has solutions that move the bodies differently (the corner sticks,
+/// slides or lifts): the reference counts them, the core's rule finds the same steps among those
+/// it flags, and both take the least kinetic energy: the core in f64 on the reference's path
+/// within 1e-9 m and rad on every step (measured 2.4e-14 m), in f32 within 1e-5 m and 1e-3 rad
+/// (measured 6.5e-6 m, 2.0e-4 rad: a block turning at 20 rad/s).
+#[test]
+fn where_the_tablecloths_motion_is_open_the_core_takes_the_references_answer() {
+    let spec = reference::Tablecloth { mu_static: 2.0, mu_kinetic: 2.0, ..reference::Tablecloth::default() };
+    let r = reference::run(&reference::Spec::Tablecloth(spec), meterstick_reference::Sample::All)
+        .expect("valid parameters");
+    assert_eq!(r.ambiguous_steps, 4);
+    let (ambiguous, position, angle) = open_tablecloth::<f64>(&r);
+    assert_eq!(ambiguous, r.ambiguous_steps);
+    assert!(position < REFERENCE_TOLERANCE && angle < REFERENCE_TOLERANCE, "{position:e} m, {angle:e} rad");
+    let (ambiguous, position, angle) = open_tablecloth::<f32>(&r);
+    assert_eq!(ambiguous, r.ambiguous_steps);
+    assert!(position < 1e-5 && angle < 1e-3, "f32: {position:e} m, {angle:e} rad");
+}
+
+/// The rule's detection costs the determinate steps one test: the default block-on-block (always
+/// sliding) and stack (always at rest) have no step it flags, in f32 and f64.
+#[test]
+fn the_default_block_on_block_and_stack_flag_no_step() {
+    fn flagged<T: Real>() -> [u64; 2] {
+        let mut block = BlockOnBlock::new(BlockOnBlockParams::<f64>::default().cast::<T>()).expect("valid");
+        let _ = block.run(|_| ());
+        let mut stack = Stack3::<T>::new(StackParams::<f64>::default().cast::<T>()).expect("valid");
+        let _ = stack.run(|_| ());
+        [block.stepper().stats().rule_checked_steps, stack.stepper().stats().rule_checked_steps]
+    }
+    assert_eq!(flagged::<f64>(), [0, 0]);
+    assert_eq!(flagged::<f32>(), [0, 0]);
+}

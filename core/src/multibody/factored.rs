@@ -290,6 +290,21 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
     }
 
+    /// Active slots `k`.
+    pub(super) const fn slots(&self) -> usize {
+        if self.k < N / 4 { self.k } else { N / 4 }
+    }
+
+    /// `c_r^T M~ c_c`: the entry of `J M~ J^T` in row `r` and column `c` (`r, c < 3 k`).
+    pub(super) fn entry(&self, r: usize, c: usize) -> T {
+        self.cols[r.min(N - 1)].dot_scaled(&self.cols[c.min(N - 1)])
+    }
+
+    /// Slot `j`'s friction coefficient this step.
+    pub(super) fn mu(&self, j: usize) -> T {
+        self.mu[j.min(N - 1)]
+    }
+
     /// `dv = M~ J^T p` for the impulses in `z` (eq. 16), summed on its own.
     #[inline(never)]
     pub(super) fn velocity_change(&self, z: &[T; N]) -> [[T; 3]; B] {

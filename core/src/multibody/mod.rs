@@ -16,6 +16,7 @@
 
 mod factored;
 mod geometry;
+mod resolve;
 pub mod scenes;
 mod stepper;
 

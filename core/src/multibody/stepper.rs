@@ -4,6 +4,7 @@
 
 use super::factored::Factored;
 use super::geometry::{CornerFrame, Pair, Table, pair_frames, poses, slip};
+use super::resolve::{self, Detector};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
@@ -122,6 +123,16 @@ pub struct Stats {
     pub max_active: u8,
     /// How many steps each path answered (`docs/formulation.md`, "Solving a multibody step").
     pub paths: PathCounts,
+    /// Steps the rule looked at (`docs/formulation.md`, "One answer: the rule"): not at rest and
+    /// flagged as possibly having several answers that move the bodies differently.
+    pub rule_checked_steps: u64,
+    /// Of those, steps whose solutions were enumerated (at most four active contacts).
+    pub rule_enumerated_steps: u64,
+    /// Of those, steps whose LCP had solutions that move the bodies differently.
+    pub ambiguous_steps: u64,
+    /// Of those, steps where the rule's choice moves the bodies differently from the answer the
+    /// solver's path reached first.
+    pub rule_changed_answer: u64,
 }
 
 /// The basic variables of one candidate's slot: bit 0 `p_n`, 1 `p_+d`, 2 `p_-d`, 3 `sigma`.
@@ -151,8 +162,9 @@ pub(super) const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b000
 /// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it. What is
 /// reported is what every solution shares: velocities, positions and per pair the summed
 /// interface force ([`StepReport::interface_forces`]); no corner's share. Where solutions move
-/// the bodies differently (the model's "ambiguous" steps), the reference takes the least kinetic
-/// energy after the step and this stepper the solution its paths reach first.
+/// the bodies differently (the model's "ambiguous" steps), this stepper takes the reference's rule,
+/// the least kinetic energy after the step (`docs/formulation.md`, "Several bodies: the rule";
+/// `resolve.rs`).
 #[derive(Debug, Clone)]
 pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     system: System<T, B, P>,
@@ -170,6 +182,8 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     solver: Lemke<T, N>,
     /// The step's LCP in factored form, refilled each step ([`Self::refill`]).
     pub(super) lcp: StepLcp<T, B, N>,
+    /// The rule's metric and reaches (`docs/formulation.md`, "One answer: the rule").
+    detector: Detector<T, B>,
     stats: Stats,
 }
 
@@ -227,6 +241,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 active: 0,
                 warm: Basis::all_w(),
             },
+            detector: Detector::new(&system.bodies, &inverse_mass),
             stats: Stats::default(),
         };
         stepper.update_frames();
@@ -585,7 +600,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let (k, active) = (self.lcp.k.min(N / 4), self.lcp.active);
         let mut z = [T::zero(); N];
         let mut paths = self.stats.paths;
-        let Solved { v_plus, basis, pivots, path } = self.solve(&mut paths, &mut z)?;
+        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, &mut z)?;
+        let mut mask = basis.z_mask();
+        let tolerance = self.solver.tolerance();
+        let rule =
+            resolve::apply(&self.detector, &self.lcp.factored, tolerance, (&mut v_plus, &mut z, &mut mask));
         let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
@@ -612,7 +631,6 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
             let mut pattern = 0;
-            let mask = basis.z_mask();
             for (bit, row) in rows.into_iter().enumerate() {
                 pattern |= u8::from(mask.checked_shr(row as u32).unwrap_or(0) & 1 == 1) << bit;
             }
@@ -640,6 +658,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let st = &mut self.stats;
         paths.count(path);
         st.paths = paths;
+        st.count_rule(rule);
         st.steps += 1;
         st.pivots += u64::from(pivots);
         st.max_pivots = st.max_pivots.max(pivots);

@@ -56,7 +56,7 @@ pub mod assemble;
 
 mod strategy;
 
-mod resolve;
+pub(crate) mod resolve;
 
 mod report;
 

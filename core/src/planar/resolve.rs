@@ -22,7 +22,7 @@ use crate::rule::{Answer, Choice, Rule};
 /// Friction coupling at or above this fraction of a normal row's own stiffness flags a step
 /// ([`Detector::flags`]). For one contact 1 is exact: below it a sliding contact's normal row
 /// cannot change sign (Painleve's paradox needs `mu |W_n^T M^-1 W_d| > W_n^T M^-1 W_n`).
-const COUPLING: f64 = 1.0;
+pub(crate) const COUPLING: f64 = 1.0;
 
 /// With two or three active contacts, the coupling is compared with this many times the lower
 /// bound of the normal block's least eigenvalue ([`Detector::flags`]; the bound is within a factor
@@ -161,13 +161,13 @@ impl<T: Real> Detector<T> {
 
     /// The rule for the step `inputs`: its speed scale `S` is the fastest support's speed and the
     /// free velocity's (`omega` times `D/2`), as the reference's.
-    pub(crate) fn rule<const K: usize>(&self, inputs: &StepInputs<'_, T, K>) -> Rule<T, 3> {
+    pub(crate) fn rule<const K: usize>(&self, inputs: &StepInputs<'_, T, K>) -> Rule<T, 1> {
         let v = &inputs.v_free;
         let mut speed = max(max(v[0].abs_exact(), v[1].abs_exact()), self.reach[2] * v[2].abs_exact());
         for u in &inputs.support_velocity {
             speed = max(speed, max(u[0].abs_exact(), u[1].abs_exact()));
         }
-        Rule::new(self.metric, self.reach, speed)
+        Rule::new([self.metric], [self.reach], speed)
     }
 }
 
@@ -193,21 +193,21 @@ pub(crate) struct Resolution {
 #[inline(never)]
 pub(crate) fn resolve<T: Real, const K: usize, const N: usize>(
     factored: &FactoredLcp<T, K, N>,
-    rule: Rule<T, 3>,
+    rule: Rule<T, 1>,
     tolerance: T,
     sol: &mut Solved<T, N>,
     z: &mut [T; N],
     w: &mut [T; N],
     admissible: impl Fn(&[T; N], &[T; N], &[T; 3]) -> bool,
 ) -> Resolution {
-    if rule.at_least_energy(&sol.v_plus) {
+    if rule.at_least_energy(&[sol.v_plus]) {
         return Resolution::default();
     }
-    let mut choice = Choice::new(rule, Answer { velocity: sol.v_plus, impulse_sum: impulse_sum(z) });
+    let mut choice = Choice::new(rule, Answer { velocity: [sol.v_plus], impulse_sum: impulse_sum(z) });
     let mut best: Option<BasisSolution<T, N>> = None;
     each_solution(factored, tolerance, Some(sol.basis), |code, found| {
         if admissible(&found.z, &found.w, &found.v_plus)
-            && choice.offer(code, Answer { velocity: found.v_plus, impulse_sum: impulse_sum(&found.z) })
+            && choice.offer(code, Answer { velocity: [found.v_plus], impulse_sum: impulse_sum(&found.z) })
         {
             best = Some(*found);
         }
@@ -228,20 +228,20 @@ pub(crate) fn resolve<T: Real, const K: usize, const N: usize>(
 #[inline(never)]
 pub(crate) fn solve_by_rule<T: Real, const K: usize, const N: usize>(
     factored: &FactoredLcp<T, K, N>,
-    rule: Rule<T, 3>,
+    rule: Rule<T, 1>,
     tolerance: T,
     z: &mut [T; N],
     w: &mut [T; N],
     admissible: impl Fn(&[T; N], &[T; N], &[T; 3]) -> bool,
 ) -> Option<(Solved<T, N>, Resolution)> {
-    let mut choice: Option<Choice<T, 3>> = None;
+    let mut choice: Option<Choice<T, 1>> = None;
     let mut first: Option<BasisSolution<T, N>> = None;
     let mut best: Option<BasisSolution<T, N>> = None;
     each_solution(factored, tolerance, None, |code, found| {
         if !admissible(&found.z, &found.w, &found.v_plus) {
             return;
         }
-        let answer = Answer { velocity: found.v_plus, impulse_sum: impulse_sum(&found.z) };
+        let answer = Answer { velocity: [found.v_plus], impulse_sum: impulse_sum(&found.z) };
         match &mut choice {
             None => {
                 choice = Some(Choice::new(rule, answer));

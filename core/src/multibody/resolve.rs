@@ -1,0 +1,370 @@
+//! The rule of [`crate::rule`] on a multibody step (`docs/formulation.md`, "One answer: the
+//! rule"): which steps may have several answers that move the bodies differently ([`Detector`]),
+//! and on those every solution the factored form reaches over the active contacts' patterns, the
+//! rule's choice kept ([`resolve`]). The single body's one-contact test and its threshold
+//! (`core/src/planar/resolve.rs`) for each contact with the others' normals held ([`flags`]), in
+//! the bodies' `3B` coordinates; the at-rest shortcut and the enumeration as for one body.
+//!
+//! The bodies' velocities after a step are `v~ + M~ J^T z`; two solutions move the bodies
+//! differently only where the contacts do not decide `z`'s effect on them. Two sticking corners of
+//! one interface leave only the split of the interface's friction open (four rows of rank three:
+//! the friction columns, not the normals, are dependent) and the motion decided: nothing here
+//! looks at that. What can leave the motion open is what opens it for one body: a rank-deficient
+//! set of active normal rows (a block resting on a board and on the table beside it at once: more
+//! vertical normals than the bodies' `vy`, `omega`), or friction whose coupling into the normal
+//! rows outweighs their stiffness (a block tipping about a sticking corner at `mu = 2`: the
+//! Painleve-type case).
+
+use super::factored::Factored;
+use super::stepper::Stats;
+use super::stepper::{PATTERNS, slot_rows};
+use crate::planar::Body;
+use crate::planar::resolve::COUPLING;
+use crate::real::{Real, max};
+use crate::rule::{Answer, Choice, Rule};
+
+/// At most this many active contacts are enumerated (`ENUMERATED.len()^4 = 2401` bases, the
+/// worst step's work); a flagged step with more keeps its path's answer.
+pub(super) const MAX_CONTACTS: usize = 4;
+
+/// The patterns a contact takes in the enumeration: the stepper's [`PATTERNS`] but sticking along
+/// `-d` (the factored solve turns a sticking contact's negative `p_+d` into `p_-d` itself: the
+/// same solution).
+const ENUMERATED: [u8; 7] =
+    [PATTERNS[0], PATTERNS[2], PATTERNS[3], PATTERNS[4], PATTERNS[5], PATTERNS[6], PATTERNS[7]];
+
+/// The rule's data of a system of `B` bodies: the energy's metric, each coordinate's reach.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Detector<T, const B: usize> {
+    /// `1 / diag(M~) / sum_i (m_i / m_ref)`: the reference's energy `sum_i (m_i |v_i|^2 + J_i
+    /// omega_i^2) / m_ref` divided by the bodies' mass in units of `m_ref`, so that the rule's tie
+    /// `1e-12 S^2` is the reference's `1e-12 S^2 sum_i m_i / m_ref`.
+    metric: [[T; 3]; B],
+    /// `(1, 1, r_i)`, `r_i` half body `i`'s diagonal (the reference's reach).
+    reach: [[T; 3]; B],
+}
+
+impl<T: Real, const B: usize> Detector<T, B> {
+    /// The rule's data of `bodies` whose `M~ = m_ref M^-1` has the diagonal `inverse_mass`.
+    pub(super) fn new(bodies: &[Body<T>; B], inverse_mass: &[[T; 3]; B]) -> Self {
+        let mut mass_sum = T::zero();
+        for m in inverse_mass {
+            mass_sum += T::one() / m[0];
+        }
+        let mut metric = [[T::zero(); 3]; B];
+        let mut reach = [[T::one(); 3]; B];
+        for i in 0..B {
+            for c in 0..3 {
+                metric[i][c] = T::one() / (inverse_mass[i][c] * mass_sum);
+            }
+            let [a, b] = bodies[i].half_extents();
+            reach[i][2] = (a * a + b * b).sqrt_libm();
+        }
+        Self { metric, reach }
+    }
+
+    /// The rule for the step `f`: its speed scale `S` is the largest free velocity's coordinate
+    /// (`omega` times its body's reach), as the reference's.
+    pub(super) fn rule<const N: usize>(&self, f: &Factored<T, B, N>) -> Rule<T, B> {
+        let mut speed = T::zero();
+        for (v, r) in f.v_free().iter().zip(&self.reach) {
+            speed = max(speed, max(max(v[0].abs_exact(), v[1].abs_exact()), r[2] * v[2].abs_exact()));
+        }
+        Rule::new(self.metric, self.reach, speed)
+    }
+}
+
+/// `true` when the step `f` may have several answers that move the bodies differently: the
+/// normal block `N = J_n M~ J_n^T` of its `k` active contacts is rank-deficient (a pivot of its
+/// `L D L^T` factorisation within `64 eps` of its diagonal entry, or not positive), or friction
+/// outweighs a contact's normal stiffness with the other contacts' normals held: with
+/// `C_ij = mu_j J_n,i M~ J_d,j^T` (the friction of contact `j` in the normal row of `i`), the largest
+/// row sum of `|N^-1 C|` reaches [`COUPLING`]. Row `i` of `N^-1 C` is row `i` of the Schur
+/// complement of the others' normals in `C` divided by the one in `N` (the block inverse): the
+/// single body's one-contact test `mu |W_n^T M^-1 W_d| >= W_n^T M^-1 W_n`
+/// (`core/src/planar/resolve.rs`, `Detector::flags`) for each contact as the others leave it, and
+/// exactly that test for `k = 1`. The friction block's own singularity (two sticking corners of
+/// one interface) is not looked at: it leaves the split of a force open, not the motion.
+#[inline(never)] // called only for a step not at rest: out of the resting steps' path
+pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, N>) -> bool {
+    const MOST: usize = 8;
+    let k = f.slots().min(MOST);
+    let round_off = T::of(64.0) * T::EPS;
+    // `N = L D L^T` by rows.
+    let mut l = [[T::zero(); MOST]; MOST];
+    let mut d = [T::zero(); MOST];
+    for i in 0..k {
+        for j in 0..i {
+            let mut u = f.entry(i, j);
+            for m in 0..j {
+                u -= l[i][m] * d[m] * l[j][m];
+            }
+            l[i][j] = u / d[j];
+        }
+        let diagonal = f.entry(i, i);
+        let mut pivot = diagonal;
+        for m in 0..i {
+            pivot -= l[i][m] * l[i][m] * d[m];
+        }
+        if pivot.partial_cmp(&(round_off * diagonal)) != Some(core::cmp::Ordering::Greater) {
+            return true; // rank-deficient within round-off (or not finite)
+        }
+        d[i] = pivot;
+    }
+    // `N^-1 C` column by column (one solve each), its rows' sums of magnitudes.
+    let mut rows = [T::zero(); MOST];
+    for j in 0..k {
+        let mu = f.mu(j);
+        if mu == T::zero() {
+            continue;
+        }
+        let mut x = [T::zero(); MOST];
+        for i in 0..k {
+            let mut y = f.entry(i, k + 2 * j);
+            for m in 0..i {
+                y -= l[i][m] * x[m];
+            }
+            x[i] = y;
+        }
+        for i in (0..k).rev() {
+            let mut y = x[i] / d[i];
+            for m in i + 1..k {
+                y -= l[m][i] * x[m];
+            }
+            x[i] = y;
+            rows[i] += mu * y.abs_exact();
+        }
+    }
+    rows.iter().any(|&r| r >= T::of(COUPLING))
+}
+
+/// The rule on the step `f` whose path answered `v_plus`, `z` with the basis `mask`
+/// (`docs/formulation.md`, "One answer: the rule"): an answer at rest (its energy within the
+/// rule's tie of zero) is the rule's choice as it is, with no other test; otherwise, when
+/// [`flags`] says the step may have several answers, [`resolve`]; `None` when the step was not
+/// flagged. Without the `fallback` feature nothing (and none of the rule's code is linked), as
+/// for one body.
+#[inline]
+pub(super) fn apply<T: Real, const B: usize, const N: usize>(
+    detector: &Detector<T, B>,
+    f: &Factored<T, B, N>,
+    tolerance: T,
+    answer: (&mut [[T; 3]; B], &mut [T; N], &mut u32),
+) -> Option<Resolution> {
+    if !cfg!(feature = "fallback") {
+        return None;
+    }
+    let rule = detector.rule(f);
+    let (v_plus, z, mask) = answer;
+    if rule.at_least_energy(v_plus) || !flags(f) {
+        return None;
+    }
+    Some(resolve(f, rule, tolerance, v_plus, z, mask))
+}
+
+impl Stats {
+    /// Counts what the rule did on a step ([`apply`]'s answer).
+    pub(super) fn count_rule(&mut self, rule: Option<Resolution>) {
+        if let Some(r) = rule {
+            self.rule_checked_steps += 1;
+            self.rule_enumerated_steps += u64::from(r.enumerated);
+            self.ambiguous_steps += u64::from(r.ambiguous);
+            self.rule_changed_answer += u64::from(r.changed);
+        }
+    }
+}
+
+/// What the rule did on one step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) struct Resolution {
+    /// The solutions were enumerated (at most [`MAX_CONTACTS`] active contacts).
+    pub(super) enumerated: bool,
+    /// Solutions moved the bodies differently.
+    pub(super) ambiguous: bool,
+    /// The rule's choice moves the bodies differently from the path's answer.
+    pub(super) changed: bool,
+}
+
+/// Applies `rule` to the flagged step `f` whose path answered `v_plus`, `z` with the basis `mask`:
+/// every verified solution of the bases of the active contacts' [`ENUMERATED`] patterns (contact by
+/// contact, the first the fastest digit; `7^k` for `k <= MAX_CONTACTS`) is offered to the rule after
+/// the path's answer. When the rule takes another, `v_plus`, `z` and `mask` become it. No heap:
+/// two `z` arrays on the stack.
+#[cold] // only flagged steps come here: out of the stepper's determinate path
+#[inline(never)]
+pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
+    f: &Factored<T, B, N>,
+    rule: Rule<T, B>,
+    tolerance: T,
+    v_plus: &mut [[T; 3]; B],
+    z: &mut [T; N],
+    mask: &mut u32,
+) -> Resolution {
+    let k = f.slots();
+    if k > MAX_CONTACTS {
+        return Resolution::default();
+    }
+    let mut choice = Choice::new(rule, Answer { velocity: *v_plus, impulse_sum: impulse_sum(z) });
+    let mut best: Option<([[T; 3]; B], u32)> = None;
+    let mut best_z = [T::zero(); N];
+    let (mut found, mut w) = ([T::zero(); N], [T::zero(); N]);
+    let count = ENUMERATED.len().pow(k as u32);
+    for code in 0..count {
+        let mut basis = 0u32;
+        let mut digits = code;
+        for j in 0..k {
+            let pattern = ENUMERATED[digits % ENUMERATED.len()];
+            digits /= ENUMERATED.len();
+            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
+                basis |= u32::from(pattern >> bit & 1).checked_shl(row as u32).unwrap_or(0);
+            }
+        }
+        if basis == *mask {
+            continue;
+        }
+        if let Ok(a) = f.solve_basis(basis, tolerance, &mut found, &mut w)
+            && choice.offer(code, Answer { velocity: a.v_plus, impulse_sum: impulse_sum(&found) })
+        {
+            best = Some((a.v_plus, a.mask));
+            best_z = found;
+        }
+    }
+    if choice.chosen().is_some()
+        && let Some((v, m)) = best
+    {
+        (*v_plus, *z, *mask) = (v, best_z, m);
+    }
+    Resolution { enumerated: true, ambiguous: choice.ambiguous(), changed: choice.changed() }
+}
+
+/// `||z||_1` (every entry is `>= 0`).
+fn impulse_sum<T: Real, const N: usize>(z: &[T; N]) -> T {
+    z.iter().fold(T::zero(), |s, &x| s + x)
+}
+
+#[cfg(test)]
+#[allow(clippy::expect_used, clippy::float_cmp)] // a test's setup may fail loudly
+mod tests {
+    //! The rule's choice on steps whose LCP has solutions that move the bodies differently (the
+    //! tablecloth at `mu = 2`: the block tipping about its corner on the board, which may stick,
+    //! slide or lift), against an enumeration written apart from the factored form: every basis
+    //! of the active contacts' eight patterns solved densely from the assembled LCP (its principal
+    //! system by nalgebra's LU), verified ([`crate::lcp::verify`]), the least kinetic energy
+    //! `sum_i m_i |v_i|^2 + J_i omega_i^2` taken, ties (`1e-12 S^2 sum_i m_i`) by the smallest
+    //! `||z||_1`: the reference's rule (`reference/src/multibody/step.rs`).
+    use std::vec::Vec;
+
+    use nalgebra::{SMatrix, SVector};
+
+    use super::{Detector, flags, resolve};
+    use crate::lcp::{default_tolerance, verify};
+    use crate::multibody::scenes::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
+    use crate::multibody::stepper::{PATTERNS, slot_rows};
+
+    const N: usize = TABLECLOTH_ROWS;
+
+    /// One verified solution of the dense enumeration.
+    struct Dense {
+        z: [f64; N],
+        mask: u32,
+        v: [[f64; 3]; 2],
+        energy: f64,
+        sum: f64,
+    }
+
+    #[test]
+    fn the_rule_takes_the_least_energy_of_every_solution_whatever_the_path_answered() {
+        let params =
+            TableclothParams::<f64> { mu_static: 2.0, mu_kinetic: 2.0, ..TableclothParams::default() };
+        let mut scene = Tablecloth::new(params).expect("valid parameters");
+        let (mut ambiguous, mut flagged) = (0, 0);
+        for _ in 0..60 {
+            let mut stepper = scene.stepper().clone();
+            stepper.refill().expect("room for the contacts");
+            let f = &stepper.lcp.factored;
+            let k = f.slots();
+            let bodies = stepper.system().bodies;
+            let m_ref = bodies[0].mass;
+            let inverse_mass = bodies.map(|b| [m_ref / b.mass, m_ref / b.mass, m_ref / b.inertia]);
+            let rule = Detector::new(&bodies, &inverse_mass).rule(f);
+            let lcp = f.assemble();
+            let tolerance = default_tolerance::<f64, N>();
+            // The dense enumeration: 8^k bases.
+            let mut found: Vec<Dense> = Vec::new();
+            for code in 0..8usize.pow(k as u32) {
+                let mut mask = 0u32;
+                let mut digits = code;
+                for j in 0..k {
+                    let pattern = PATTERNS[digits % 8];
+                    digits /= 8;
+                    for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
+                        mask |= u32::from(pattern >> bit & 1) << row;
+                    }
+                }
+                let basic = |v: usize| (mask >> v) & 1 == 1;
+                let a = SMatrix::<f64, N, N>::from_fn(|r, c| match (basic(r), basic(c)) {
+                    (true, true) => lcp.m[(r, c)],
+                    _ => f64::from(u8::from(r == c)),
+                });
+                let b = SVector::<f64, N>::from_fn(|r, _| if basic(r) { -lcp.q[r] } else { 0.0 });
+                let Some(z) = a.lu().solve(&b) else { continue };
+                // Round-off below zero (a zero impulse solved as -1e-20) is zero.
+                let z = z.map(|x| if x < 0.0 && x > -1e-12 * lcp.q_norm_inf() { 0.0 } else { x });
+                if z.iter().any(|&x| x < 0.0) || !verify(&lcp, &z, tolerance).passed() {
+                    continue;
+                }
+                let z: [f64; N] = z.into();
+                let v = f.velocity_after(&z);
+                let energy = (0..2)
+                    .map(|i| {
+                        bodies[i].mass * (v[i][0] * v[i][0] + v[i][1] * v[i][1])
+                            + bodies[i].inertia * v[i][2] * v[i][2]
+                    })
+                    .sum();
+                found.push(Dense { z, mask, v, energy, sum: z.iter().sum() });
+            }
+            // The reference's choice among them.
+            let speed = f
+                .v_free()
+                .iter()
+                .zip(&bodies)
+                .map(|(v, b)| v[0].abs().max(v[1].abs()).max(0.5 * b.width.hypot(b.height) * v[2].abs()))
+                .fold(0.0, f64::max);
+            let tie = 1e-12 * speed * speed * (bodies[0].mass + bodies[1].mass);
+            let least = found.iter().map(|d| d.energy).fold(f64::INFINITY, f64::min);
+            let chosen = found
+                .iter()
+                .filter(|d| d.energy <= least + tie)
+                .min_by(|a, b| a.sum.total_cmp(&b.sum))
+                .expect("the step has a solution");
+            let differ = |a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]| {
+                (0..2).any(|i| {
+                    let reach = 0.5 * bodies[i].width.hypot(bodies[i].height);
+                    (a[i][0] - b[i][0])
+                        .abs()
+                        .max((a[i][1] - b[i][1]).abs())
+                        .max(reach * (a[i][2] - b[i][2]).abs())
+                        > 1e-9 * speed
+                })
+            };
+            let several = found.iter().any(|d| differ(&d.v, &chosen.v));
+            ambiguous += u32::from(several);
+            if several {
+                // Detection: a step with several motions is flagged.
+                assert!(flags(f), "an ambiguous step not flagged");
+                flagged += 1;
+                // Whatever solution the path answered, the rule ends on the dense choice.
+                for start in &found {
+                    let (mut v, mut z, mut mask) = (start.v, start.z, start.mask);
+                    let r = resolve(f, rule, tolerance, &mut v, &mut z, &mut mask);
+                    assert!(r.enumerated && r.ambiguous);
+                    assert_eq!(r.changed, differ(&start.v, &chosen.v));
+                    assert!(!differ(&v, &chosen.v), "rule {v:?}, enumeration {:?}", chosen.v);
+                }
+            }
+            let _ = scene.step().expect("the run goes on");
+        }
+        // The reference counts 4 such steps in this run (steps 43 to 46).
+        assert_eq!((ambiguous, flagged), (4, 4));
+    }
+}
