@@ -26,8 +26,8 @@
 //! bodies' degrees of freedom make the system singular): `H^T M~ G y = -q_H` by elimination with
 //! partial pivoting ([`solve_leading`]), then `z`, `dv`, `w` in factored form and the single body's
 //! acceptance rules with its round-off floors: impulses `>= 0` exactly and not within `N eps` of the
-//! largest, velocity rows and `sigma`s `>= 0` within `N eps (||A|| ||p|| + ||q||)`, cone rows `>= 0`
-//! exactly, finite, and the verification residual ([`crate::lcp::verify`]) held to a scale no
+//! largest, velocity rows and `sigma`s `>= 0` within each row's own round-off
+//! ([`Factored::row_round_off`]), cone rows `>= 0` exactly, finite, and the verification residual ([`crate::lcp::verify`]) held to a scale no
 //! larger than Lemke's (`||A||_inf` replaced by `max_v (|A_vv| + the row's unit entries)`, a lower
 //! bound). A singular system (both corners of one interface sticking: four rows of rank three) is
 //! declined.
@@ -112,6 +112,21 @@ impl<T: Real> Column<T> {
                 }
             }
         }
+    }
+
+    /// `|c|^T a` for per-body magnitudes `a >= 0`: this row's share of a round-off bound
+    /// ([`Factored::row_round_off`]).
+    #[inline]
+    fn dot_abs<const B: usize>(&self, a: &[[T; 3]; B]) -> T {
+        let mut sum = T::zero();
+        for p in 0..2 {
+            if let Some(u) = a.get(usize::from(self.body[p])) {
+                for c in 0..3 {
+                    sum += self.c[p][c].abs_exact() * u[c];
+                }
+            }
+        }
+        sum
     }
 }
 
@@ -302,6 +317,40 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         dv
     }
 
+    /// The round-off bound of row `v`'s `w_v = q_v + c_v^T dv` as [`Self::solve_basis`] computes
+    /// it for the impulses in `z`: `(t + 8) eps (|q_v| + |c_v|^T sum_u |M~ c_u| |z_u|)`, `t` the
+    /// non-zero impulses (the running error bound of `dv`'s sums of at most `t` products, the dot
+    /// product of at most six and the sum with `q_v`), each row on its own data. `scale` caches
+    /// `t` and `sum_u |M~ c_u| |z_u|` per body (filled at the first call).
+    ///
+    /// A row's own scale, not `||A|| ||z||`: with masses 1000:1 apart that product pairs the light
+    /// body's diagonal (per unit reference mass about 1000 times the heavy one's) with the heavy
+    /// body's impulses, and let through a basis whose slip of 2.2e-5 m/s was no round-off
+    /// (`docs/formulation.md`, "Solving a multibody step (the core)").
+    #[cold]
+    #[inline(never)]
+    fn row_round_off(&self, v: usize, z: &[T; N], scale: &mut Option<(u32, [[T; 3]; B])>) -> T {
+        let (terms, a) = scale.get_or_insert_with(|| {
+            let (mut terms, mut a) = (0u32, [[T::zero(); 3]; B]);
+            for u in 0..(3 * self.k.min(N / 4)).min(N) {
+                let (col, zu) = (&self.cols[u], z[u].abs_exact());
+                if zu != T::zero() {
+                    terms += 1;
+                    for p in 0..2 {
+                        if let Some(b) = a.get_mut(usize::from(col.body[p])) {
+                            for c in 0..3 {
+                                b[c] += col.mc[p][c].abs_exact() * zu;
+                            }
+                        }
+                    }
+                }
+            }
+            (terms, a)
+        });
+        let v = v.min(N - 1);
+        T::of_count(*terms + 8) * T::EPS * (self.q[v].abs_exact() + self.cols[v].dot_abs(a))
+    }
+
     /// `v+ = v~ + dv` with `dv` of [`Self::velocity_change`].
     pub(super) fn velocity_after(&self, z: &[T; N]) -> [[T; 3]; B] {
         let dv = self.velocity_change(z);
@@ -486,7 +535,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for v in 0..(3 * k).min(N) {
             p_norm = max(p_norm, z[v]);
         }
-        let speed_round_off = T::of(N as f64) * T::EPS * (self.m_low * p_norm + self.q_norm);
         // The pairs with a basic friction impulse: a touching contact of any other pair holds its
         // slip to `>= 0` in both directions exactly (zero), not within round-off. (Within a pair
         // every corner's slip is the one relative slip of the two bodies along their face, held
@@ -499,19 +547,22 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
         }
         // Slot by slot: each basic sigma from its friction row, `w` in factored form, feasibility
-        // outside the basis and the verification residual (`crate::lcp::verify`) bounded without a
-        // division per row, on the scale `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row
-        // negated (its column and `q`: the same bits). The identity's rows beyond `4 k` have
-        // `w = 1`, `z = 0`: nothing to check.
+        // outside the basis (a negative velocity row or sigma within its own row's round-off,
+        // [`Self::row_round_off`], computed only for a negative one) and the verification residual
+        // (`crate::lcp::verify`) bounded without a division per row, on the scale
+        // `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row negated (its column and `q`: the
+        // same bits, the same round-off bound). The identity's rows beyond `4 k` have `w = 1`,
+        // `z = 0`: nothing to check.
         let mut violation = T::zero();
         let mut z_norm = p_norm;
         let mut finite = AllFinite::new();
+        let mut scale = None;
         for j in 0..k.min(N / 4) {
             let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j].map(|v| v.min(N - 1));
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
             if basic(sigma) {
                 let value = if basic(plus) { -slip } else { slip };
-                if value < -speed_round_off {
+                if value < T::zero() && value < -self.row_round_off(plus, z, &mut scale) {
                     return Err(Declined::Infeasible(sigma as u8));
                 }
                 z[sigma] = max(value, T::zero());
@@ -522,16 +573,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             w[minus] = -slip + z[sigma];
             w[sigma] = self.mu[j] * z[n] - z[plus] - z[minus];
             let unheld = basic(n) && held.checked_shr(u32::from(self.pair[j])).unwrap_or(0) & 1 == 0;
-            let friction_floor = if unheld { T::zero() } else { -speed_round_off };
-            for (v, floor) in
-                [(n, -speed_round_off), (plus, friction_floor), (minus, friction_floor), (sigma, T::zero())]
-            {
+            // The row whose round-off may excuse a negative `w` (`N`: none, `w >= 0` exactly).
+            let friction_row = if unheld { N } else { plus };
+            for (v, row) in [(n, n), (plus, friction_row), (minus, friction_row), (sigma, N)] {
                 let wv = w[v.min(N - 1)];
                 finite.add(wv);
                 if basic(v) {
                     violation = max(violation, wv.abs_exact());
                 } else {
-                    if wv < floor {
+                    if wv < T::zero() && (row == N || wv < -self.row_round_off(row, z, &mut scale)) {
                         return Err(Declined::Infeasible(v as u8));
                     }
                     violation = max(violation, -wv);
