@@ -36,8 +36,8 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::lcp::Lcp;
 use crate::lcp::elimination::solve_leading;
-use crate::planar::Declined;
 use crate::planar::inputs::dot3;
+use crate::planar::{Declined, MU_WEIGHTED_FROM, cone_scale};
 use crate::real::{AllFinite, Real, max, min};
 
 /// The most unknowns a basis may have here: three bodies' degrees of freedom (a basis of more is
@@ -153,6 +153,8 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     q_min: T,
     /// Every entry of `q` and `M~ c` is finite.
     finite: bool,
+    /// Some slot's cone row is weighted (`mu >= MU_WEIGHTED_FROM`, [`crate::planar::cone_scale`]).
+    weighted: bool,
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
@@ -169,6 +171,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             q_norm: T::zero(),
             q_min: T::zero(),
             finite: true,
+            weighted: false,
         }
     }
 
@@ -256,9 +259,22 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
+        // A cone row sums to `mu + 2`; from `mu >= MU_WEIGHTED_FROM` on it counts weighted by its
+        // power of two, `s (mu + 2)` in `[1, 4)`, as the single body's (`docs/formulation.md`,
+        // "Extreme friction: the cone rows weighted"): the floors, pivot tolerance and verification
+        // scale stay the velocity rows' instead of `mu` times theirs.
+        let from = T::of(MU_WEIGHTED_FROM);
+        let mut weighted = false;
         for j in 0..k.min(N) {
-            m_low = max(m_low, self.mu[j].abs_exact() + T::of(2.0));
+            let mu = self.mu[j].abs_exact();
+            let mut cone_row = mu + T::of(2.0);
+            if mu >= from {
+                cone_row = cone_scale(mu) * cone_row;
+                weighted = true;
+            }
+            m_low = max(m_low, cone_row);
         }
+        self.weighted = weighted;
         let (mut q_norm, mut q_min) = (T::zero(), self.q[0]);
         for v in 0..N {
             finite.add(self.q[v]);
@@ -269,6 +285,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.q_norm = q_norm;
         self.q_min = q_min;
         self.finite = finite.holds();
+    }
+
+    /// `true` when some slot's cone row is weighted ([`Self::assemble`]).
+    pub(super) const fn is_weighted(&self) -> bool {
+        self.weighted
     }
 
     /// `true` when every entry of `q` and of the columns is finite.
@@ -364,8 +385,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// The assembled LCP (the solver of record's form): `J M~ J^T` from the columns, the cone
-    /// rows, the identity beyond `4 k`.
-    pub(super) fn assemble(&self) -> Lcp<T, N> {
+    /// rows, the identity beyond `4 k`. With `weighted`, each cone row with `mu >=
+    /// MU_WEIGHTED_FROM` multiplied by its power of two `s` ([`crate::planar::cone_scale`]): `s mu`
+    /// and `-s`, exact; the same solutions (`docs/formulation.md`, "Extreme friction: the cone rows
+    /// weighted").
+    pub(super) fn assemble(&self, weighted: bool) -> Lcp<T, N> {
         let k = self.k.min(N / 4);
         let mut a = SMatrix::<T, N, N>::zeros();
         let rows = (3 * k).min(N);
@@ -379,14 +403,17 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
+        let from = T::of(MU_WEIGHTED_FROM);
         for j in 0..k {
             let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let mu = self.mu[j.min(N - 1)];
+            let s = if weighted && mu >= from { cone_scale(mu) } else { T::one() };
             let cone = [
                 ((plus, sigma), T::one()),
                 ((minus, sigma), T::one()),
-                ((sigma, j), self.mu[j.min(N - 1)]),
-                ((sigma, plus), -T::one()),
-                ((sigma, minus), -T::one()),
+                ((sigma, j), s * mu),
+                ((sigma, plus), -s),
+                ((sigma, minus), -s),
             ];
             for (entry, value) in cone {
                 if let Some(x) = a.get_mut(entry) {
@@ -869,7 +896,7 @@ mod tests {
                 return;
             }
             let step = stepper.lcp;
-            let lcp = step.factored.assemble();
+            let lcp = step.factored.assemble(false);
             let mut bases = Vec::from([step.warm.z_mask()]);
             if let Ok(s) = Lemke::<f64, N>::new().solve(&lcp) {
                 bases.push(s.basis.z_mask());
