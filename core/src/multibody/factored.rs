@@ -27,10 +27,10 @@
 //! partial pivoting ([`solve_leading`]), then `z`, `dv`, `w` in factored form and the single body's
 //! acceptance rules with its round-off floors: impulses `>= 0` exactly and not within `N eps` of the
 //! largest, velocity rows and `sigma`s `>= 0` within each row's own round-off
-//! ([`Factored::row_round_off`]), cone rows `>= 0` exactly, finite, and the verification residual ([`crate::lcp::verify`]) held to a scale no
-//! larger than Lemke's (`||A||_inf` replaced by `max_v (|A_vv| + the row's unit entries)`, a lower
-//! bound). A singular system (both corners of one interface sticking: four rows of rank three) is
-//! declined.
+//! ([`Factored::within_round_off`]), cone rows `>= 0` exactly, finite, and the verification
+//! residual ([`crate::lcp::verify`]) held to a scale no larger than Lemke's (`||A||_inf` replaced by
+//! `max_v (|A_vv| + the row's unit entries)`, a lower bound). A singular system (both corners of
+//! one interface sticking: four rows of rank three) is declined.
 
 use nalgebra::{SMatrix, SVector};
 
@@ -114,8 +114,25 @@ impl<T: Real> Column<T> {
         }
     }
 
+    /// `|c|^T |M~ g|` for the column `g`: one term of a round-off bound
+    /// ([`Factored::within_round_off`]).
+    #[inline]
+    fn dot_abs_scaled(&self, g: &Self) -> T {
+        let mut sum = T::zero();
+        for p in 0..2 {
+            for r in 0..2 {
+                if self.body[p] == g.body[r] && self.body[p] != NO_BODY {
+                    for c in 0..3 {
+                        sum += self.c[p][c].abs_exact() * g.mc[r][c].abs_exact();
+                    }
+                }
+            }
+        }
+        sum
+    }
+
     /// `|c|^T a` for per-body magnitudes `a >= 0`: this row's share of a round-off bound
-    /// ([`Factored::row_round_off`]).
+    /// ([`Factored::within_round_off`]).
     #[inline]
     fn dot_abs<const B: usize>(&self, a: &[[T; 3]; B]) -> T {
         let mut sum = T::zero();
@@ -338,19 +355,33 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         dv
     }
 
-    /// The round-off bound of row `v`'s `w_v = q_v + c_v^T dv` as [`Self::solve_basis`] computes
-    /// it for the impulses in `z`: `(t + 8) eps (|q_v| + |c_v|^T sum_u |M~ c_u| |z_u|)`, `t` the
-    /// non-zero impulses (the running error bound of `dv`'s sums of at most `t` products, the dot
-    /// product of at most six and the sum with `q_v`), each row on its own data. `scale` caches
-    /// `t` and `sum_u |M~ c_u| |z_u|` per body (filled at the first call).
+    /// `true` when `w_v = wv < 0`, computed by [`Self::solve_basis`] from the impulses in `z`, is
+    /// within row `v`'s round-off: `-wv <= (t + 8) eps (|q_v| + |c_v|^T sum_u |M~ c_u| |z_u|)`,
+    /// `t` the non-zero impulses (the running error bound of `dv`'s sums of at most `t` products,
+    /// the dot product of at most six and the sum with `q_v`), each row on its own data. First the
+    /// one term of the slot's own normal impulse `n`, `8 eps (|q_v| + |c_v|^T |M~ c_n| z_n)`, a
+    /// lower bound that excuses a resting contact's usual round-off in a few operations; the whole
+    /// sum only when it does not (`scale` caches `t` and `sum_u |M~ c_u| |z_u|` per body, filled
+    /// at the first such call).
     ///
     /// A row's own scale, not `||A|| ||z||`: with masses 1000:1 apart that product pairs the light
     /// body's diagonal (per unit reference mass about 1000 times the heavy one's) with the heavy
     /// body's impulses, and let through a basis whose slip of 2.2e-5 m/s was no round-off
     /// (`docs/formulation.md`, "Solving a multibody step (the core)").
-    #[cold]
     #[inline(never)]
-    fn row_round_off(&self, v: usize, z: &[T; N], scale: &mut Option<(u32, [[T; 3]; B])>) -> T {
+    fn within_round_off(
+        &self,
+        v: usize,
+        n: usize,
+        wv: T,
+        z: &[T; N],
+        scale: &mut Option<(u32, [[T; 3]; B])>,
+    ) -> bool {
+        let (v, n) = (v.min(N - 1), n.min(N - 1));
+        let (col, q) = (&self.cols[v], self.q[v].abs_exact());
+        if -wv <= T::of(8.0) * T::EPS * (q + col.dot_abs_scaled(&self.cols[n]) * z[n]) {
+            return true;
+        }
         let (terms, a) = scale.get_or_insert_with(|| {
             let (mut terms, mut a) = (0u32, [[T::zero(); 3]; B]);
             for u in 0..(3 * self.k.min(N / 4)).min(N) {
@@ -368,8 +399,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
             (terms, a)
         });
-        let v = v.min(N - 1);
-        T::of_count(*terms + 8) * T::EPS * (self.q[v].abs_exact() + self.cols[v].dot_abs(a))
+        -wv <= T::of_count(*terms + 8) * T::EPS * (q + col.dot_abs(a))
     }
 
     /// `v+ = v~ + dv` with `dv` of [`Self::velocity_change`].
@@ -575,7 +605,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         // Slot by slot: each basic sigma from its friction row, `w` in factored form, feasibility
         // outside the basis (a negative velocity row or sigma within its own row's round-off,
-        // [`Self::row_round_off`], computed only for a negative one) and the verification residual
+        // [`Self::within_round_off`], computed only for a negative one) and the verification residual
         // (`crate::lcp::verify`) bounded without a division per row, on the scale
         // `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row negated (its column and `q`: the
         // same bits, the same round-off bound). The identity's rows beyond `4 k` have `w = 1`,
@@ -589,7 +619,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
             if basic(sigma) {
                 let value = if basic(plus) { -slip } else { slip };
-                if value < T::zero() && value < -self.row_round_off(plus, z, &mut scale) {
+                if value < T::zero() && !self.within_round_off(plus, n, value, z, &mut scale) {
                     return Err(Declined::Infeasible(sigma as u8));
                 }
                 z[sigma] = max(value, T::zero());
@@ -608,7 +638,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 if basic(v) {
                     violation = max(violation, wv.abs_exact());
                 } else {
-                    if wv < T::zero() && (row == N || wv < -self.row_round_off(row, z, &mut scale)) {
+                    if wv < T::zero() && (row == N || !self.within_round_off(row, n, wv, z, &mut scale)) {
                         return Err(Declined::Infeasible(v as u8));
                     }
                     violation = max(violation, -wv);
