@@ -114,23 +114,6 @@ impl<T: Real> Column<T> {
         }
     }
 
-    /// `|c|^T |M~ g|` for the column `g`: one term of a round-off bound
-    /// ([`Factored::within_round_off`]).
-    #[inline]
-    fn dot_abs_scaled(&self, g: &Self) -> T {
-        let mut sum = T::zero();
-        for p in 0..2 {
-            for r in 0..2 {
-                if self.body[p] == g.body[r] && self.body[p] != NO_BODY {
-                    for c in 0..3 {
-                        sum += self.c[p][c].abs_exact() * g.mc[r][c].abs_exact();
-                    }
-                }
-            }
-        }
-        sum
-    }
-
     /// `|c|^T a` for per-body magnitudes `a >= 0`: this row's share of a round-off bound
     /// ([`Factored::within_round_off`]).
     #[inline]
@@ -145,6 +128,15 @@ impl<T: Real> Column<T> {
         }
         sum
     }
+}
+
+/// The scale of a basis answer's round-off ([`Factored::round_off_scale`]).
+#[derive(Debug, Clone, Copy)]
+struct RoundOffScale<T, const B: usize> {
+    /// The non-zero impulses.
+    terms: u32,
+    /// `sum_v |M~ c_v| |z_v|` per body.
+    sums: [[T; 3]; B],
 }
 
 /// The factored rows of one multibody step's LCP (module docs).
@@ -355,51 +347,45 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         dv
     }
 
-    /// `true` when `w_v = wv < 0`, computed by [`Self::solve_basis`] from the impulses in `z`, is
-    /// within row `v`'s round-off: `-wv <= (t + 8) eps (|q_v| + |c_v|^T sum_u |M~ c_u| |z_u|)`,
-    /// `t` the non-zero impulses (the running error bound of `dv`'s sums of at most `t` products,
-    /// the dot product of at most six and the sum with `q_v`), each row on its own data. First the
-    /// one term of the slot's own normal impulse `n`, `8 eps (|q_v| + |c_v|^T |M~ c_n| z_n)`, a
-    /// lower bound that excuses a resting contact's usual round-off in a few operations; the whole
-    /// sum only when it does not (`scale` caches `t` and `sum_u |M~ c_u| |z_u|` per body, filled
-    /// at the first such call).
+    /// `true` when `w_v = wv < 0`, computed by [`Self::solve_basis`] from impulses whose scale is
+    /// `scale` ([`Self::round_off_scale`]), is within row `v`'s round-off:
+    /// `-wv <= (t + 8) eps (|q_v| + |c_v|^T sum_u |M~ c_u| |z_u|)`, `t` the non-zero impulses (the
+    /// running error bound of `dv`'s sums of at most `t` products, the dot product of at most six
+    /// and the sum with `q_v`), each row on its own data.
     ///
     /// A row's own scale, not `||A|| ||z||`: with masses 1000:1 apart that product pairs the light
     /// body's diagonal (per unit reference mass about 1000 times the heavy one's) with the heavy
     /// body's impulses, and let through a basis whose slip of 2.2e-5 m/s was no round-off
     /// (`docs/formulation.md`, "Solving a multibody step (the core)").
+    #[inline]
+    fn within_round_off(&self, v: usize, wv: T, scale: &RoundOffScale<T, B>) -> bool {
+        let v = v.min(N - 1);
+        -wv <= T::of_count(scale.terms + 8)
+            * T::EPS
+            * (self.q[v].abs_exact() + self.cols[v].dot_abs(&scale.sums))
+    }
+
+    /// The scale of [`Self::within_round_off`] for the impulses in `z`: the non-zero impulses `t`
+    /// and `sum_v |M~ c_v| |z_v|` per body. Computed at a basis answer's first negative `w` (a
+    /// resting contact's round-off), not for every answer.
     #[inline(never)]
-    fn within_round_off(
-        &self,
-        v: usize,
-        n: usize,
-        wv: T,
-        z: &[T; N],
-        scale: &mut Option<(u32, [[T; 3]; B])>,
-    ) -> bool {
-        let (v, n) = (v.min(N - 1), n.min(N - 1));
-        let (col, q) = (&self.cols[v], self.q[v].abs_exact());
-        if -wv <= T::of(8.0) * T::EPS * (q + col.dot_abs_scaled(&self.cols[n]) * z[n]) {
-            return true;
-        }
-        let (terms, a) = scale.get_or_insert_with(|| {
-            let (mut terms, mut a) = (0u32, [[T::zero(); 3]; B]);
-            for u in 0..(3 * self.k.min(N / 4)).min(N) {
-                let (col, zu) = (&self.cols[u], z[u].abs_exact());
-                if zu != T::zero() {
-                    terms += 1;
-                    for p in 0..2 {
-                        if let Some(b) = a.get_mut(usize::from(col.body[p])) {
-                            for c in 0..3 {
-                                b[c] += col.mc[p][c].abs_exact() * zu;
-                            }
+    fn round_off_scale(&self, z: &[T; N]) -> RoundOffScale<T, B> {
+        let mut scale = RoundOffScale { terms: 0, sums: [[T::zero(); 3]; B] };
+        for v in 0..(3 * self.k.min(N / 4)).min(N) {
+            let magnitude = z[v].abs_exact();
+            if magnitude != T::zero() {
+                let col = &self.cols[v];
+                scale.terms += 1;
+                for p in 0..2 {
+                    if let Some(a) = scale.sums.get_mut(usize::from(col.body[p])) {
+                        for c in 0..3 {
+                            a[c] += col.mc[p][c].abs_exact() * magnitude;
                         }
                     }
                 }
             }
-            (terms, a)
-        });
-        -wv <= T::of_count(*terms + 8) * T::EPS * (q + col.dot_abs(a))
+        }
+        scale
     }
 
     /// `v+ = v~ + dv` with `dv` of [`Self::velocity_change`].
@@ -592,20 +578,28 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for v in 0..(3 * k).min(N) {
             p_norm = max(p_norm, z[v]);
         }
-        // The pairs with a basic friction impulse: a touching contact of any other pair holds its
-        // slip to `>= 0` in both directions exactly (zero), not within round-off. (Within a pair
-        // every corner's slip is the one relative slip of the two bodies along their face, held
-        // at zero by the corner whose friction is basic; another pair's touching contact with no
-        // friction would let that slip's round-off run unopposed.)
-        let mut held = 0u32;
+        // The pairs with a basic friction impulse (`held`): a touching contact of any other pair
+        // holds its slip to `>= 0` in both directions exactly (zero), not within round-off. (Within
+        // a pair every corner's slip is the one relative slip of the two bodies along their face,
+        // held by the corner whose friction is basic; another pair's touching contact with no
+        // friction would let that slip's round-off run unopposed.) Of those, the pairs whose basic
+        // friction sticks (`pinned`: its row, basic, holds the slip at zero): another touching
+        // corner's friction rows carry that row's `w` (the same slip) and are held to the
+        // verification residual as it is; where it slides at its cone's edge the slip is its
+        // `sigma >= 0`, and another corner's rows are held to their own round-off.
+        let (mut held, mut pinned) = (0u32, 0u32);
         for j in 0..k.min(N / 4) {
             if basic(k + 2 * j) || basic(k + 2 * j + 1) {
-                held |= 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
+                let bit = 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
+                held |= bit;
+                if !basic(3 * k + j) {
+                    pinned |= bit;
+                }
             }
         }
         // Slot by slot: each basic sigma from its friction row, `w` in factored form, feasibility
         // outside the basis (a negative velocity row or sigma within its own row's round-off,
-        // [`Self::within_round_off`], computed only for a negative one) and the verification residual
+        // [`Self::within_round_off`], its scale computed at the first negative one) and the verification residual
         // (`crate::lcp::verify`) bounded without a division per row, on the scale
         // `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row negated (its column and `q`: the
         // same bits, the same round-off bound). The identity's rows beyond `4 k` have `w = 1`,
@@ -619,7 +613,13 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
             if basic(sigma) {
                 let value = if basic(plus) { -slip } else { slip };
-                if value < T::zero() && !self.within_round_off(plus, n, value, z, &mut scale) {
+                if value < T::zero()
+                    && !self.within_round_off(
+                        plus,
+                        value,
+                        scale.get_or_insert_with(|| self.round_off_scale(z)),
+                    )
+                {
                     return Err(Declined::Infeasible(sigma as u8));
                 }
                 z[sigma] = max(value, T::zero());
@@ -629,16 +629,35 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             w[plus] = slip + z[sigma];
             w[minus] = -slip + z[sigma];
             w[sigma] = self.mu[j] * z[n] - z[plus] - z[minus];
-            let unheld = basic(n) && held.checked_shr(u32::from(self.pair[j])).unwrap_or(0) & 1 == 0;
-            // The row whose round-off may excuse a negative `w` (`N`: none, `w >= 0` exactly).
-            let friction_row = if unheld { N } else { plus };
+            let pair = u32::from(self.pair[j]);
+            let unheld = basic(n) && held.checked_shr(pair).unwrap_or(0) & 1 == 0;
+            let is_pinned = basic(n) && pinned.checked_shr(pair).unwrap_or(0) & 1 == 1;
+            // The row whose round-off may excuse a negative `w` (`N`: none, `w >= 0` exactly; `N +
+            // 1`: a touching corner of a pinned pair, held to the residual as the pair's basic
+            // friction row is).
+            let friction_row = if unheld {
+                N
+            } else if is_pinned {
+                N + 1
+            } else {
+                plus
+            };
             for (v, row) in [(n, n), (plus, friction_row), (minus, friction_row), (sigma, N)] {
                 let wv = w[v.min(N - 1)];
                 finite.add(wv);
                 if basic(v) {
                     violation = max(violation, wv.abs_exact());
+                } else if row == N + 1 {
+                    violation = max(violation, -wv);
                 } else {
-                    if wv < T::zero() && (row == N || !self.within_round_off(row, n, wv, z, &mut scale)) {
+                    if wv < T::zero()
+                        && (row == N
+                            || !self.within_round_off(
+                                row,
+                                wv,
+                                scale.get_or_insert_with(|| self.round_off_scale(z)),
+                            ))
+                    {
                         return Err(Declined::Infeasible(v as u8));
                     }
                     violation = max(violation, -wv);
