@@ -448,6 +448,9 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
     if run.checksum.is_some() {
         let _ = writeln!(out, "{}", rule_text(c));
     }
+    if let Some(warning) = crate::scenes::friction_warning(spec, precision) {
+        let _ = writeln!(out, "{warning}");
+    }
     if let Some(sum) = run.checksum {
         let _ = writeln!(out, "checksum {sum:08x}");
     }
@@ -680,6 +683,9 @@ pub fn run_all(
         if let Some(law) = &law {
             let predicted = law.outcome.map_or_else(|| "undecided".to_string(), |o| o.to_string());
             let _ = writeln!(text, "{name}: law {predicted} ({})", law.text);
+        }
+        if let Some(warning) = crate::scenes::friction_warning(spec, precision) {
+            let _ = writeln!(text, "{name}: {warning}");
         }
         let _ = writeln!(
             text,

@@ -225,6 +225,41 @@ fn scene_prints_the_firmwares_checksum() {
     assert!(stdout.lines().any(|l| l == format!("checksum {stack_sum:08x}")), "{stdout}");
 }
 
+/// Friction beyond what f32 resolves (`mu eps > 2^-9`, f32: `mu > 16384`) on a scene of several
+/// bodies gets the single body's warning from `scene` and `run`, naming the flags typed; within it,
+/// and in f64, none. (The f32 stack at s = 1.02 with `mu = 3e4` falls 8 steps after f64's.)
+#[test]
+fn friction_beyond_f32_is_warned_about_on_several_bodies() {
+    let beyond =
+        ["--scene", "stack", "--overhang", "1.02", "--duration", "0.3", "--mu-s", "3e4", "--mu-k", "3e4"];
+    let warning = "warning: --mu-s 30000 and --mu-k 30000: friction beyond what f32 resolves";
+    let (code, stdout, err) = host_sim(&[&["scene"], &beyond[..]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.lines().any(|l| l.starts_with(warning)), "{stdout}");
+    let (_, stdout, _) = host_sim(&[&["scene"], &beyond[..], &["--precision", "f64"]].concat());
+    assert!(!stdout.contains("warning"), "{stdout}");
+    let within = [
+        "scene",
+        "--scene",
+        "stack",
+        "--overhang",
+        "1.02",
+        "--max-time",
+        "0.3",
+        "--mu-s",
+        "1e4",
+        "--mu-k",
+        "1e4",
+    ];
+    let (_, stdout, _) = host_sim(&within);
+    assert!(!stdout.contains("warning"), "{stdout}");
+    let out = temp_dir("friction-warning");
+    let (code, stdout, err) = host_sim(&[&["run", "--out", out.to_str().unwrap()], &beyond[..]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.lines().any(|l| l.starts_with(&format!("stack: {warning}"))), "{stdout}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
 /// `host-sim run` draws each body's positions, velocities and angle, core beside reference.
 #[test]
 fn run_draws_every_bodys_motion() {

@@ -26,18 +26,18 @@
 //! bodies' degrees of freedom make the system singular): `H^T M~ G y = -q_H` by elimination with
 //! partial pivoting ([`solve_leading`]), then `z`, `dv`, `w` in factored form and the single body's
 //! acceptance rules with its round-off floors: impulses `>= 0` exactly and not within `N eps` of the
-//! largest, velocity rows and `sigma`s `>= 0` within `N eps (||A|| ||p|| + ||q||)`, cone rows `>= 0`
-//! exactly, finite, and the verification residual ([`crate::lcp::verify`]) held to a scale no
-//! larger than Lemke's (`||A||_inf` replaced by `max_v (|A_vv| + the row's unit entries)`, a lower
-//! bound). A singular system (both corners of one interface sticking: four rows of rank three) is
-//! declined.
+//! largest, velocity rows and `sigma`s `>= 0` within each row's own round-off
+//! ([`Factored::within_round_off`]), cone rows `>= 0` exactly, finite, and the verification
+//! residual ([`crate::lcp::verify`]) held to a scale no larger than Lemke's (`||A||_inf` replaced by
+//! `max_v (|A_vv| + the row's unit entries)`, a lower bound). A singular system (both corners of
+//! one interface sticking: four rows of rank three) is declined.
 
 use nalgebra::{SMatrix, SVector};
 
 use crate::lcp::Lcp;
 use crate::lcp::elimination::solve_leading;
-use crate::planar::Declined;
 use crate::planar::inputs::dot3;
+use crate::planar::{Declined, MU_WEIGHTED_FROM, cone_scale};
 use crate::real::{AllFinite, Real, max, min};
 
 /// The most unknowns a basis may have here: three bodies' degrees of freedom (a basis of more is
@@ -113,6 +113,30 @@ impl<T: Real> Column<T> {
             }
         }
     }
+
+    /// `|c|^T a` for per-body magnitudes `a >= 0`: this row's share of a round-off bound
+    /// ([`Factored::within_round_off`]).
+    #[inline]
+    fn dot_abs<const B: usize>(&self, a: &[[T; 3]; B]) -> T {
+        let mut sum = T::zero();
+        for p in 0..2 {
+            if let Some(u) = a.get(usize::from(self.body[p])) {
+                for c in 0..3 {
+                    sum += self.c[p][c].abs_exact() * u[c];
+                }
+            }
+        }
+        sum
+    }
+}
+
+/// The scale of a basis answer's round-off ([`Factored::round_off_scale`]).
+#[derive(Debug, Clone, Copy)]
+struct RoundOffScale<T, const B: usize> {
+    /// The non-zero impulses.
+    terms: u32,
+    /// `sum_v |M~ c_v| |z_v|` per body.
+    sums: [[T; 3]; B],
 }
 
 /// The factored rows of one multibody step's LCP (module docs).
@@ -138,6 +162,8 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     q_min: T,
     /// Every entry of `q` and `M~ c` is finite.
     finite: bool,
+    /// Some slot's cone row is weighted (`mu >= MU_WEIGHTED_FROM`, [`crate::planar::cone_scale`]).
+    weighted: bool,
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
@@ -154,6 +180,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             q_norm: T::zero(),
             q_min: T::zero(),
             finite: true,
+            weighted: false,
         }
     }
 
@@ -241,9 +268,22 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
+        // A cone row sums to `mu + 2`; from `mu >= MU_WEIGHTED_FROM` on it counts weighted by its
+        // power of two, `s (mu + 2)` in `[1, 4)`, as the single body's (`docs/formulation.md`,
+        // "Extreme friction: the cone rows weighted"): the floors, pivot tolerance and verification
+        // scale stay the velocity rows' instead of `mu` times theirs.
+        let from = T::of(MU_WEIGHTED_FROM);
+        let mut weighted = false;
         for j in 0..k.min(N) {
-            m_low = max(m_low, self.mu[j].abs_exact() + T::of(2.0));
+            let mu = self.mu[j].abs_exact();
+            let mut cone_row = mu + T::of(2.0);
+            if mu >= from {
+                cone_row = cone_scale(mu) * cone_row;
+                weighted = true;
+            }
+            m_low = max(m_low, cone_row);
         }
+        self.weighted = weighted;
         let (mut q_norm, mut q_min) = (T::zero(), self.q[0]);
         for v in 0..N {
             finite.add(self.q[v]);
@@ -254,6 +294,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.q_norm = q_norm;
         self.q_min = q_min;
         self.finite = finite.holds();
+    }
+
+    /// `true` when some slot's cone row is weighted ([`Self::assemble`]).
+    pub(super) const fn is_weighted(&self) -> bool {
+        self.weighted
     }
 
     /// `true` when every entry of `q` and of the columns is finite.
@@ -317,6 +362,47 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         dv
     }
 
+    /// `true` when `w_v = wv < 0`, computed by [`Self::solve_basis`] from impulses whose scale is
+    /// `scale` ([`Self::round_off_scale`]), is within row `v`'s round-off:
+    /// `-wv <= (t + 8) eps (|q_v| + |c_v|^T sum_u |M~ c_u| |z_u|)`, `t` the non-zero impulses (the
+    /// running error bound of `dv`'s sums of at most `t` products, the dot product of at most six
+    /// and the sum with `q_v`), each row on its own data.
+    ///
+    /// A row's own scale, not `||A|| ||z||`: with masses 1000:1 apart that product pairs the light
+    /// body's diagonal (per unit reference mass about 1000 times the heavy one's) with the heavy
+    /// body's impulses, and let through a basis whose slip of 2.2e-5 m/s was no round-off
+    /// (`docs/formulation.md`, "Solving a multibody step (the core)").
+    #[inline]
+    fn within_round_off(&self, v: usize, wv: T, scale: &RoundOffScale<T, B>) -> bool {
+        let v = v.min(N - 1);
+        -wv <= T::of_count(scale.terms + 8)
+            * T::EPS
+            * (self.q[v].abs_exact() + self.cols[v].dot_abs(&scale.sums))
+    }
+
+    /// The scale of [`Self::within_round_off`] for the impulses in `z`: the non-zero impulses `t`
+    /// and `sum_v |M~ c_v| |z_v|` per body. Computed at a basis answer's first negative `w` (a
+    /// resting contact's round-off), not for every answer.
+    #[inline(never)]
+    fn round_off_scale(&self, z: &[T; N]) -> RoundOffScale<T, B> {
+        let mut scale = RoundOffScale { terms: 0, sums: [[T::zero(); 3]; B] };
+        for v in 0..(3 * self.k.min(N / 4)).min(N) {
+            let magnitude = z[v].abs_exact();
+            if magnitude != T::zero() {
+                let col = &self.cols[v];
+                scale.terms += 1;
+                for p in 0..2 {
+                    if let Some(a) = scale.sums.get_mut(usize::from(col.body[p])) {
+                        for c in 0..3 {
+                            a[c] += col.mc[p][c].abs_exact() * magnitude;
+                        }
+                    }
+                }
+            }
+        }
+        scale
+    }
+
     /// `v+ = v~ + dv` with `dv` of [`Self::velocity_change`].
     pub(super) fn velocity_after(&self, z: &[T; N]) -> [[T; 3]; B] {
         let dv = self.velocity_change(z);
@@ -330,8 +416,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// The assembled LCP (the solver of record's form): `J M~ J^T` from the columns, the cone
-    /// rows, the identity beyond `4 k`.
-    pub(super) fn assemble(&self) -> Lcp<T, N> {
+    /// rows, the identity beyond `4 k`. With `weighted`, each cone row with `mu >=
+    /// MU_WEIGHTED_FROM` multiplied by its power of two `s` ([`crate::planar::cone_scale`]): `s mu`
+    /// and `-s`, exact; the same solutions (`docs/formulation.md`, "Extreme friction: the cone rows
+    /// weighted").
+    pub(super) fn assemble(&self, weighted: bool) -> Lcp<T, N> {
         let k = self.k.min(N / 4);
         let mut a = SMatrix::<T, N, N>::zeros();
         let rows = (3 * k).min(N);
@@ -345,14 +434,17 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
+        let from = T::of(MU_WEIGHTED_FROM);
         for j in 0..k {
             let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let mu = self.mu[j.min(N - 1)];
+            let s = if weighted && mu >= from { cone_scale(mu) } else { T::one() };
             let cone = [
                 ((plus, sigma), T::one()),
                 ((minus, sigma), T::one()),
-                ((sigma, j), self.mu[j.min(N - 1)]),
-                ((sigma, plus), -T::one()),
-                ((sigma, minus), -T::one()),
+                ((sigma, j), s * mu),
+                ((sigma, plus), -s),
+                ((sigma, minus), -s),
             ];
             for (entry, value) in cone {
                 if let Some(x) = a.get_mut(entry) {
@@ -501,32 +593,48 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for v in 0..(3 * k).min(N) {
             p_norm = max(p_norm, z[v]);
         }
-        let speed_round_off = T::of(N as f64) * T::EPS * (self.m_low * p_norm + self.q_norm);
-        // The pairs with a basic friction impulse: a touching contact of any other pair holds its
-        // slip to `>= 0` in both directions exactly (zero), not within round-off. (Within a pair
-        // every corner's slip is the one relative slip of the two bodies along their face, held
-        // at zero by the corner whose friction is basic; another pair's touching contact with no
-        // friction would let that slip's round-off run unopposed.)
-        let mut held = 0u32;
+        // The pairs with a basic friction impulse (`held`): a touching contact of any other pair
+        // holds its slip to `>= 0` in both directions exactly (zero), not within round-off. (Within
+        // a pair every corner's slip is the one relative slip of the two bodies along their face,
+        // held by the corner whose friction is basic; another pair's touching contact with no
+        // friction would let that slip's round-off run unopposed.) Of those, the pairs whose basic
+        // friction sticks (`pinned`: its row, basic, holds the slip at zero): another touching
+        // corner's friction rows carry that row's `w` (the same slip) and are held to the
+        // verification residual as it is; where it slides at its cone's edge the slip is its
+        // `sigma >= 0`, and another corner's rows are held to their own round-off.
+        let (mut held, mut pinned) = (0u32, 0u32);
         for j in 0..k.min(N / 4) {
             if basic(k + 2 * j) || basic(k + 2 * j + 1) {
-                held |= 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
+                let bit = 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
+                held |= bit;
+                if !basic(3 * k + j) {
+                    pinned |= bit;
+                }
             }
         }
         // Slot by slot: each basic sigma from its friction row, `w` in factored form, feasibility
-        // outside the basis and the verification residual (`crate::lcp::verify`) bounded without a
-        // division per row, on the scale `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row
-        // negated (its column and `q`: the same bits). The identity's rows beyond `4 k` have
-        // `w = 1`, `z = 0`: nothing to check.
+        // outside the basis (a negative velocity row or sigma within its own row's round-off,
+        // [`Self::within_round_off`], its scale computed at the first negative one) and the verification residual
+        // (`crate::lcp::verify`) bounded without a division per row, on the scale
+        // `||A||_low ||z|| + ||q||`. The `-d` row is the `+d` row negated (its column and `q`: the
+        // same bits, the same round-off bound). The identity's rows beyond `4 k` have `w = 1`,
+        // `z = 0`: nothing to check.
         let mut violation = T::zero();
         let mut z_norm = p_norm;
         let mut finite = AllFinite::new();
+        let mut scale = None;
         for j in 0..k.min(N / 4) {
             let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j].map(|v| v.min(N - 1));
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
             if basic(sigma) {
                 let value = if basic(plus) { -slip } else { slip };
-                if value < -speed_round_off {
+                if value < T::zero()
+                    && !self.within_round_off(
+                        plus,
+                        value,
+                        scale.get_or_insert_with(|| self.round_off_scale(z)),
+                    )
+                {
                     return Err(Declined::Infeasible(sigma as u8));
                 }
                 z[sigma] = max(value, T::zero());
@@ -536,17 +644,35 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             w[plus] = slip + z[sigma];
             w[minus] = -slip + z[sigma];
             w[sigma] = self.mu[j] * z[n] - z[plus] - z[minus];
-            let unheld = basic(n) && held.checked_shr(u32::from(self.pair[j])).unwrap_or(0) & 1 == 0;
-            let friction_floor = if unheld { T::zero() } else { -speed_round_off };
-            for (v, floor) in
-                [(n, -speed_round_off), (plus, friction_floor), (minus, friction_floor), (sigma, T::zero())]
-            {
+            let pair = u32::from(self.pair[j]);
+            let unheld = basic(n) && held.checked_shr(pair).unwrap_or(0) & 1 == 0;
+            let is_pinned = basic(n) && pinned.checked_shr(pair).unwrap_or(0) & 1 == 1;
+            // The row whose round-off may excuse a negative `w` (`N`: none, `w >= 0` exactly; `N +
+            // 1`: a touching corner of a pinned pair, held to the residual as the pair's basic
+            // friction row is).
+            let friction_row = if unheld {
+                N
+            } else if is_pinned {
+                N + 1
+            } else {
+                plus
+            };
+            for (v, row) in [(n, n), (plus, friction_row), (minus, friction_row), (sigma, N)] {
                 let wv = w[v.min(N - 1)];
                 finite.add(wv);
                 if basic(v) {
                     violation = max(violation, wv.abs_exact());
+                } else if row == N + 1 {
+                    violation = max(violation, -wv);
                 } else {
-                    if wv < floor {
+                    if wv < T::zero()
+                        && (row == N
+                            || !self.within_round_off(
+                                row,
+                                wv,
+                                scale.get_or_insert_with(|| self.round_off_scale(z)),
+                            ))
+                    {
                         return Err(Declined::Infeasible(v as u8));
                     }
                     violation = max(violation, -wv);
@@ -834,7 +960,7 @@ mod tests {
                 return;
             }
             let step = stepper.lcp;
-            let lcp = step.factored.assemble();
+            let lcp = step.factored.assemble(false);
             let mut bases = Vec::from([step.warm.z_mask()]);
             if let Ok(s) = Lemke::<f64, N>::new().solve(&lcp) {
                 bases.push(s.basis.z_mask());
@@ -866,6 +992,50 @@ mod tests {
             let mut counts = Counts::default();
             check_case(&c, &mut counts);
         }
+    }
+
+    /// At `mu >= 64` the weighted assembly ([`Factored::assemble`] with `weighted`) is the same
+    /// LCP: on random two-box steps with `mu` up to `1e4`, every answer Lemke's method gives the
+    /// weighted rows verifies on the model's rows, whose `w` is the weighted one's with each cone
+    /// row divided by its power of two, to the bit; below 64 the two assemblies are equal.
+    #[test]
+    fn weighted_cone_rows_are_the_same_lcp() {
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        let (mut solved, mut weighted_steps) = (0, 0);
+        for i in 0..200 {
+            let mut c = case().new_tree(&mut runner).expect("a case").current();
+            let mu = [0.5, 64.0, 1e2, 1e3, 1e4][i % 5];
+            c.mu = [mu, 2.0 * mu];
+            let Some(mut stepper) = stepper(&c) else { continue };
+            if stepper.refill().is_err() {
+                continue;
+            }
+            let f = &stepper.lcp.factored;
+            let (model, weighted) = (f.assemble(false), f.assemble(true));
+            assert_eq!(f.is_weighted(), mu >= 64.0);
+            if !f.is_weighted() {
+                assert_eq!(model.m, weighted.m);
+                continue;
+            }
+            weighted_steps += 1;
+            let Ok(answer) = Lemke::<f64, N>::new().solve(&weighted) else { continue };
+            solved += 1;
+            let check = verify(&model, &answer.z, default_tolerance::<f64, N>());
+            assert!(check.passed(), "mu {mu}: residual {:e}", check.residual);
+            let (w, w_weighted) = (model.w_of(&answer.z), weighted.w_of(&answer.z));
+            let k = stepper.lcp.k;
+            for v in 0..N {
+                let s = if (3 * k..4 * k).contains(&v) {
+                    crate::planar::cone_scale(f.mu[v - 3 * k])
+                } else {
+                    1.0
+                };
+                assert_eq!(w[v] * s, w_weighted[v], "mu {mu}: row {v}");
+            }
+        }
+        // Lemke's method from the zero basis ends in a ray on some violent steps (the friction LCP
+        // is not copositive-plus; the stepper's paths and retries answer those): 140 of 160 here.
+        assert!(weighted_steps > 100 && solved > 100, "{solved} of {weighted_steps}");
     }
 
     /// Over a fixed set of random cases: the factored solve answers most bases Lemke's direct

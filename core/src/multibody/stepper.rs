@@ -469,11 +469,22 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             return Ok(answer);
         }
         let k = step.k.min(N / 4);
-        let lcp = f.assemble();
-        let solution = match self.solver.solve_from_basis(&lcp, warm) {
-            Err(LcpError::NonFiniteInput) => return Err(StepError::Solver(LcpError::NonFiniteInput)),
-            Err(error) => self.retry(&lcp, k, warm, error)?,
-            Ok(solution) => solution,
+        // The weighted cone rows first (`docs/formulation.md`, "Extreme friction: the cone rows
+        // weighted"; the same solutions), with their retries; when none answers, the model's own
+        // rows, verified on their own scale.
+        let mut weighted = f.is_weighted();
+        let solution = loop {
+            let lcp = f.assemble(weighted);
+            let solved = match self.solver.solve_from_basis(&lcp, warm) {
+                Err(LcpError::NonFiniteInput) => return Err(StepError::Solver(LcpError::NonFiniteInput)),
+                Err(error) => self.retry(&lcp, k, warm, error),
+                Ok(solution) => Ok(solution),
+            };
+            match solved {
+                Ok(solution) => break solution,
+                Err(_) if weighted => weighted = false,
+                Err(error) => return Err(error),
+            }
         };
         for j in 0..N {
             z[j] = solution.z[j];

@@ -67,6 +67,7 @@ pub use checksum::Checksum;
 pub use contact::{Contact, ContactFrame, ContactMode, Feature, Pose, Support};
 pub use events::{EventLog, SwitchEvent};
 pub use factored::{BasisAnswer, Declined, FactoredLcp};
+pub(crate) use factored::{MU_WEIGHTED_FROM, cone_scale};
 pub use layout::{Direction, Layout, Tangents, Variable};
 pub use model::{Model, Settings};
 pub use report::{
