@@ -287,7 +287,7 @@ mod tests {
             let m_ref = bodies[0].mass;
             let inverse_mass = bodies.map(|b| [m_ref / b.mass, m_ref / b.mass, m_ref / b.inertia]);
             let rule = Detector::new(&bodies, &inverse_mass).rule(f);
-            let lcp = f.assemble();
+            let lcp = f.assemble(false);
             let tolerance = default_tolerance::<f64, N>();
             // The dense enumeration: 8^k bases.
             let mut found: Vec<Dense> = Vec::new();
