@@ -138,6 +138,8 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     q_min: T,
     /// Every entry of `q` and `M~ c` is finite.
     finite: bool,
+    /// The finiteness of the columns set so far this step ([`Self::set_slot`]).
+    columns_finite: AllFinite<T>,
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
@@ -154,6 +156,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             q_norm: T::zero(),
             q_min: T::zero(),
             finite: true,
+            columns_finite: AllFinite::new(),
         }
     }
 
@@ -162,6 +165,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     pub(super) fn reset(&mut self, k: usize, v_free: [[T; 3]; B]) {
         self.k = k.min(N / 4);
         self.v_free = v_free;
+        self.m_low = T::one();
+        self.columns_finite = AllFinite::new();
     }
 
     /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d` (each
@@ -182,17 +187,33 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         if j >= k {
             return;
         }
+        // `finish`'s scale and finiteness of the columns, accumulated here (each slot's normal and
+        // `+d` columns: the `-d` one is the `+d` one negated, the same diagonal, finite with it).
+        let (mut m_low, mut finite) = (self.m_low, self.columns_finite);
         for (r, row) in rows.iter().enumerate() {
             let v = if r == 0 { j } else { k + 2 * j };
+            // The corner's owner's entries first, the face's owner's second (an unused one has no
+            // body: a contact on the table touches one body).
             let mut col = Column::zero();
-            for (b, c) in [row.corner, row.face].into_iter().flatten() {
-                let p = usize::from(col.body[0] != NO_BODY);
-                let m = inverse_mass.get(usize::from(b)).copied().unwrap_or([T::zero(); 3]);
-                col.body[p] = b;
-                col.c[p] = c;
-                col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
+            for (p, entry) in [row.corner, row.face].into_iter().enumerate() {
+                if let Some((b, c)) = entry {
+                    let m = inverse_mass.get(usize::from(b)).copied().unwrap_or([T::zero(); 3]);
+                    col.body[p] = b;
+                    col.c[p] = c;
+                    col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
+                }
             }
             let q = col.dot(&self.v_free);
+            // `A_vv = c^T M~ c` (the two bodies differ: `dot_scaled` of the column with itself).
+            let mut diagonal = T::zero();
+            for p in 0..2 {
+                diagonal += dot3(&col.c[p], &col.mc[p]);
+                for c in 0..3 {
+                    finite.add(col.mc[p][c]);
+                }
+            }
+            let unit = if r == 0 { T::zero() } else { T::one() };
+            m_low = max(m_low, diagonal.abs_exact() + unit);
             if let (Some(slot), Some(qv)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
                 *qv = q;
                 *slot = col;
@@ -212,6 +233,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
+        self.m_low = m_low;
+        self.columns_finite = finite;
         if let (Some(q), Some(m), Some(g)) = (self.q.get_mut(j), self.mu.get_mut(j), self.pair.get_mut(j)) {
             *q += bias;
             *m = mu;
@@ -226,29 +249,20 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for v in 3 * k..N {
             self.q[v] = if v < 4 * k { T::zero() } else { T::one() };
         }
-        let mut m_low = T::one();
-        let mut finite = AllFinite::new();
-        // Each slot's normal and `+d` columns (the `-d` one is the `+d` one negated: the same
-        // diagonal, finite with it).
-        for j in 0..k.min(N / 4) {
-            for (v, unit) in [(j, T::zero()), (k + 2 * j, T::one())] {
-                let col = &self.cols[v.min(N - 1)];
-                m_low = max(m_low, col.dot_scaled(col).abs_exact() + unit);
-                for p in 0..2 {
-                    for c in 0..3 {
-                        finite.add(col.mc[p][c]);
-                    }
-                }
-            }
-        }
+        let (mut m_low, mut finite) = (self.m_low, self.columns_finite);
         for j in 0..k.min(N) {
             m_low = max(m_low, self.mu[j].abs_exact() + T::of(2.0));
         }
+        // `q` over the slots' rows, then the identity's (`q = 1`) when there are any.
         let (mut q_norm, mut q_min) = (T::zero(), self.q[0]);
-        for v in 0..N {
+        for v in 0..(4 * k).min(N) {
             finite.add(self.q[v]);
             q_norm = max(q_norm, self.q[v].abs_exact());
             q_min = min(q_min, self.q[v]);
+        }
+        if 4 * k < N {
+            q_norm = max(q_norm, T::one());
+            q_min = min(q_min, T::one());
         }
         self.m_low = m_low;
         self.q_norm = q_norm;
@@ -291,12 +305,24 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// `dv = M~ J^T p` for the impulses in `z` (eq. 16), summed on its own.
-    #[inline(never)]
     pub(super) fn velocity_change(&self, z: &[T; N]) -> [[T; 3]; B] {
+        self.velocity_change_on(z, u32::MAX)
+    }
+
+    /// [`Self::velocity_change`] for `z` zero outside `support` (bit `v`: `z_v` may be nonzero),
+    /// the same sum in the same order over fewer columns.
+    #[inline(never)]
+    fn velocity_change_on(&self, z: &[T; N], support: u32) -> [[T; 3]; B] {
         let mut dv = [[T::zero(); 3]; B];
-        for v in 0..(3 * self.k.min(N / 4)).min(N) {
-            if z[v] != T::zero() {
-                self.cols[v].add_scaled_to(z[v], &mut dv);
+        let impulses = 3 * self.k.min(N / 4);
+        let mut bits = support & 1u32.checked_shl(impulses as u32).map_or(u32::MAX, |b| b - 1);
+        while bits != 0 {
+            let v = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            if let (Some(&zv), Some(col)) = (z.get(v), self.cols.get(v))
+                && zv != T::zero()
+            {
+                col.add_scaled_to(zv, &mut dv);
             }
         }
         dv
@@ -481,7 +507,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 z[follower[l]] = self.mu[var[l].min(N - 1)] * y[l];
             }
         }
-        let dv = self.velocity_change(z);
+        let dv = self.velocity_change_on(z, mask);
         let mut p_norm = T::zero();
         for v in 0..(3 * k).min(N) {
             p_norm = max(p_norm, z[v]);
@@ -575,7 +601,7 @@ fn solve_unknowns<T: Real>(
 /// lower triangle: about half the operations of [`solve_leading`] and backward stable for a
 /// positive definite matrix. A pivot `d` not above `tiny` (a rank-deficient set of rows: both
 /// corners of one interface sticking; or not finite) is a singular system: `false`. The solution
-/// is written into `rhs`, the lower triangle of `a` overwritten. One copy for any `m`, one for
+/// is written into `rhs`, `a` overwritten. One copy for any `m`, one for
 /// `m = 9` (the 3-block stack's every step).
 #[inline(never)]
 fn solve_symmetric<T: Real>(
@@ -604,21 +630,21 @@ fn ldl_leading<T: Real>(
 ) -> bool {
     let m = m.min(UNKNOWNS);
     // Row by row (each sum a dot product along rows): `a`'s lower triangle becomes
-    // `U = L D` (`u_ij = a_ij - sum_{k<j} u_ik l_jk`), `l` holds `L`, `inv` holds `1 / d`.
-    let mut l = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+    // `U = L D` (`u_ij = a_ij - sum_{k<j} u_ik l_jk`), its upper triangle holds `L^T`
+    // (`a[j][i] = l_ij`, `j < i`: no other array to clear), `inv` holds `1 / d`.
     let mut inv = [T::zero(); UNKNOWNS];
     for i in 0..m {
         for j in 0..i {
             let mut u = a[i][j];
             for k in 0..j {
-                u -= a[i][k] * l[j][k];
+                u -= a[i][k] * a[k][j];
             }
             a[i][j] = u;
-            l[i][j] = u * inv[j];
+            a[j][i] = u * inv[j];
         }
         let mut d = a[i][i];
         for k in 0..i {
-            d -= a[i][k] * l[i][k];
+            d -= a[i][k] * a[k][i];
         }
         if d.partial_cmp(&tiny) != Some(core::cmp::Ordering::Greater) {
             return false;
@@ -627,7 +653,7 @@ fn ldl_leading<T: Real>(
         // Forward: `L y = rhs`.
         let mut y = rhs[i];
         for k in 0..i {
-            y -= l[i][k] * rhs[k];
+            y -= a[k][i] * rhs[k];
         }
         rhs[i] = y;
     }
@@ -635,7 +661,7 @@ fn ldl_leading<T: Real>(
     for i in (0..m).rev() {
         let mut x = rhs[i] * inv[i];
         for k in i + 1..m {
-            x -= l[k][i] * rhs[k];
+            x -= a[i][k] * rhs[k];
         }
         rhs[i] = x;
     }
