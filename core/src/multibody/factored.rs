@@ -613,10 +613,29 @@ fn solve_symmetric<T: Real>(
     if m == UNKNOWNS { solve_symmetric_all(a, rhs, tiny) } else { ldl_leading(a, rhs, m, tiny) }
 }
 
-/// [`solve_symmetric`] with every unknown (`m = 9`).
+/// [`solve_symmetric`] with every unknown (`m = 9`): each row's and each back substitution's
+/// step called with its index written out, so that every loop's bounds are constants (unrolled:
+/// no loop counters), the same operations in the same order as [`ldl_leading`].
 #[inline(never)]
 fn solve_symmetric_all<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
-    ldl_leading(a, rhs, UNKNOWNS, tiny)
+    const _: () = assert!(UNKNOWNS == 9, "the rows below are written out for nine unknowns");
+    let mut inv = [T::zero(); UNKNOWNS];
+    let factored = ldl_row(a, rhs, &mut inv, tiny, 0)
+        && ldl_row(a, rhs, &mut inv, tiny, 1)
+        && ldl_row(a, rhs, &mut inv, tiny, 2)
+        && ldl_row(a, rhs, &mut inv, tiny, 3)
+        && ldl_row(a, rhs, &mut inv, tiny, 4)
+        && ldl_row(a, rhs, &mut inv, tiny, 5)
+        && ldl_row(a, rhs, &mut inv, tiny, 6)
+        && ldl_row(a, rhs, &mut inv, tiny, 7)
+        && ldl_row(a, rhs, &mut inv, tiny, 8);
+    if !factored {
+        return false;
+    }
+    for i in [8, 7, 6, 5, 4, 3, 2, 1, 0] {
+        ldl_back(a, rhs, &inv, i, UNKNOWNS);
+    }
+    true
 }
 
 /// [`solve_symmetric`]'s factorisation and substitutions.
@@ -629,43 +648,73 @@ fn ldl_leading<T: Real>(
     tiny: T,
 ) -> bool {
     let m = m.min(UNKNOWNS);
-    // Row by row (each sum a dot product along rows): `a`'s lower triangle becomes
-    // `U = L D` (`u_ij = a_ij - sum_{k<j} u_ik l_jk`), its upper triangle holds `L^T`
-    // (`a[j][i] = l_ij`, `j < i`: no other array to clear), `inv` holds `1 / d`.
     let mut inv = [T::zero(); UNKNOWNS];
     for i in 0..m {
-        for j in 0..i {
-            let mut u = a[i][j];
-            for k in 0..j {
-                u -= a[i][k] * a[k][j];
-            }
-            a[i][j] = u;
-            a[j][i] = u * inv[j];
-        }
-        let mut d = a[i][i];
-        for k in 0..i {
-            d -= a[i][k] * a[k][i];
-        }
-        if d.partial_cmp(&tiny) != Some(core::cmp::Ordering::Greater) {
+        if !ldl_row(a, rhs, &mut inv, tiny, i) {
             return false;
         }
-        inv[i] = T::one() / d;
-        // Forward: `L y = rhs`.
-        let mut y = rhs[i];
-        for k in 0..i {
-            y -= a[k][i] * rhs[k];
-        }
-        rhs[i] = y;
     }
-    // Back: `L^T x = D^-1 y`.
     for i in (0..m).rev() {
-        let mut x = rhs[i] * inv[i];
-        for k in i + 1..m {
-            x -= a[i][k] * rhs[k];
-        }
-        rhs[i] = x;
+        ldl_back(a, rhs, &inv, i, m);
     }
     true
+}
+
+/// Row `i` of [`ldl_leading`]'s factorisation and forward substitution: `false` for a pivot not
+/// above `tiny`. Row by row (each sum a dot product along rows): `a`'s lower triangle becomes
+/// `U = L D` (`u_ij = a_ij - sum_{k<j} u_ik l_jk`), its upper triangle holds `L^T`
+/// (`a[j][i] = l_ij`, `j < i`: no other array to clear), `inv` holds `1 / d`.
+#[inline(always)]
+#[allow(clippy::inline_always)] // the point of it: `i` known at the call
+fn ldl_row<T: Real>(
+    a: &mut [[T; UNKNOWNS]; UNKNOWNS],
+    rhs: &mut [T; UNKNOWNS],
+    inv: &mut [T; UNKNOWNS],
+    tiny: T,
+    i: usize,
+) -> bool {
+    let i = i.min(UNKNOWNS - 1);
+    for j in 0..i {
+        let mut u = a[i][j];
+        for k in 0..j {
+            u -= a[i][k] * a[k][j];
+        }
+        a[i][j] = u;
+        a[j][i] = u * inv[j];
+    }
+    let mut d = a[i][i];
+    for k in 0..i {
+        d -= a[i][k] * a[k][i];
+    }
+    if d.partial_cmp(&tiny) != Some(core::cmp::Ordering::Greater) {
+        return false;
+    }
+    inv[i] = T::one() / d;
+    // Forward: `L y = rhs`.
+    let mut y = rhs[i];
+    for k in 0..i {
+        y -= a[k][i] * rhs[k];
+    }
+    rhs[i] = y;
+    true
+}
+
+/// Row `i` of [`ldl_leading`]'s back substitution, `L^T x = D^-1 y` (rows after `i` done).
+#[inline(always)]
+#[allow(clippy::inline_always)] // the point of it: `i` known at the call
+fn ldl_back<T: Real>(
+    a: &[[T; UNKNOWNS]; UNKNOWNS],
+    rhs: &mut [T; UNKNOWNS],
+    inv: &[T; UNKNOWNS],
+    i: usize,
+    m: usize,
+) {
+    let (i, m) = (i.min(UNKNOWNS - 1), m.min(UNKNOWNS));
+    let mut x = rhs[i] * inv[i];
+    for k in i + 1..m {
+        x -= a[i][k] * rhs[k];
+    }
+    rhs[i] = x;
 }
 
 /// [`solve_leading`] with four unknowns.
