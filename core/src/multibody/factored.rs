@@ -436,31 +436,26 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
         }
         let m = m.min(UNKNOWNS);
-        // H^T M~ G y = -q_H; unknown l's column G_l = c_var + mu c_follower (the same bodies).
-        // Between two unknowns without a follower the entry is `c_r^T M~ c_l`, symmetric: taken
-        // from its mirror when that is already formed.
+        // H^T M~ G y = -q_H ([`Self::form_column`]).
         let symmetric = follower.iter().all(|&f| f == N);
         let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
         let mut y = [T::zero(); UNKNOWNS];
-        for l in 0..m {
-            let mut g = self.cols[var[l].min(N - 1)];
-            if follower[l] < N {
-                let (f, mu) = (&self.cols[follower[l]], self.mu[var[l].min(N - 1)]);
-                for p in 0..2 {
-                    for c in 0..3 {
-                        g.mc[p][c] += mu * f.mc[p][c];
-                    }
-                }
+        if symmetric && m == UNKNOWNS {
+            // Every unknown (the 3-block stack's every step): each column's index written out,
+            // so that its loop's bounds are constants (unrolled).
+            const _: () = assert!(UNKNOWNS == 9, "the columns below are written out for nine unknowns");
+            for l in [0, 1, 2, 3, 4, 5, 6, 7, 8] {
+                self.form_column(&mut a, &mut y, (&var, &follower), l, true, UNKNOWNS);
             }
-            // Symmetric: the lower triangle only (all `solve_symmetric` reads).
-            for r in (if symmetric { l } else { 0 })..m {
-                a[r][l] = if r < l && follower[r] == N && follower[l] == N {
-                    a[l][r]
-                } else {
-                    self.cols[var[r].min(N - 1)].dot_scaled(&g)
-                };
+        } else if !symmetric && m == 4 {
+            // Four unknowns with followers (block-on-block's sliding steps): written out too.
+            for l in [0, 1, 2, 3] {
+                self.form_column(&mut a, &mut y, (&var, &follower), l, false, 4);
             }
-            y[l] = -self.q[var[l].min(N - 1)];
+        } else {
+            for l in 0..m {
+                self.form_column(&mut a, &mut y, (&var, &follower), l, symmetric, m);
+            }
         }
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
         let solved = if symmetric {
@@ -579,6 +574,44 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
         }
         Ok(Answer { v_plus, mask })
+    }
+}
+
+impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
+    /// Column `l` of [`Self::solve_basis`]'s system and its right-hand side: unknown `l`'s
+    /// column `G_l = c_var + mu c_follower` (the same bodies), each row's `c_r^T M~ G_l`, taken
+    /// from its mirror between two unknowns without a follower when that is already formed
+    /// (`c_r^T M~ c_l`, symmetric); `symmetric`: the lower triangle only (all `solve_symmetric`
+    /// reads).
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // the point of it: `l` and `m` known at the call
+    fn form_column(
+        &self,
+        a: &mut [[T; UNKNOWNS]; UNKNOWNS],
+        y: &mut [T; UNKNOWNS],
+        (var, follower): (&[usize; UNKNOWNS], &[usize; UNKNOWNS]),
+        l: usize,
+        symmetric: bool,
+        m: usize,
+    ) {
+        let (l, m) = (l.min(UNKNOWNS - 1), m.min(UNKNOWNS));
+        let mut g = self.cols[var[l].min(N - 1)];
+        if follower[l] < N {
+            let (f, mu) = (&self.cols[follower[l]], self.mu[var[l].min(N - 1)]);
+            for p in 0..2 {
+                for c in 0..3 {
+                    g.mc[p][c] += mu * f.mc[p][c];
+                }
+            }
+        }
+        for r in (if symmetric { l } else { 0 })..m {
+            a[r][l] = if r < l && follower[r] == N && follower[l] == N {
+                a[l][r]
+            } else {
+                self.cols[var[r].min(N - 1)].dot_scaled(&g)
+            };
+        }
+        y[l] = -self.q[var[l].min(N - 1)];
     }
 }
 
