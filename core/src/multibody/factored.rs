@@ -167,6 +167,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.v_free = v_free;
         self.m_low = T::one();
         self.columns_finite = AllFinite::new();
+        self.q_norm = T::zero();
+        // Above every row's `q` but the identity's (a step with slots has sigma rows, `q = 0`).
+        self.q_min = T::one();
     }
 
     /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d` (each
@@ -190,6 +193,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // `finish`'s scale and finiteness of the columns, accumulated here (each slot's normal and
         // `+d` columns: the `-d` one is the `+d` one negated, the same diagonal, finite with it).
         let (mut m_low, mut finite) = (self.m_low, self.columns_finite);
+        let (mut q_norm, mut q_min) = (self.q_norm, self.q_min);
         for (r, row) in rows.iter().enumerate() {
             let v = if r == 0 { j } else { k + 2 * j };
             // The corner's owner's entries first, the face's owner's second (an unused one has no
@@ -203,7 +207,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
                 }
             }
-            let q = col.dot(&self.v_free);
+            let q = if r == 0 { col.dot(&self.v_free) + bias } else { col.dot(&self.v_free) };
+            // `q`'s finiteness and scales (the `-d` row's `-q`: as finite, as large, and the
+            // smaller of the two is `-|q|`).
+            finite.add(q);
+            q_norm = max(q_norm, q.abs_exact());
+            q_min = min(q_min, if r == 0 { q } else { -q.abs_exact() });
             // `A_vv = c^T M~ c` (the two bodies differ: `dot_scaled` of the column with itself).
             let mut diagonal = T::zero();
             for p in 0..2 {
@@ -235,8 +244,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         self.m_low = m_low;
         self.columns_finite = finite;
-        if let (Some(q), Some(m), Some(g)) = (self.q.get_mut(j), self.mu.get_mut(j), self.pair.get_mut(j)) {
-            *q += bias;
+        self.q_norm = q_norm;
+        self.q_min = q_min;
+        if let (Some(m), Some(g)) = (self.mu.get_mut(j), self.pair.get_mut(j)) {
             *m = mu;
             *g = pair;
         }
@@ -249,16 +259,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for v in 3 * k..N {
             self.q[v] = if v < 4 * k { T::zero() } else { T::one() };
         }
-        let (mut m_low, mut finite) = (self.m_low, self.columns_finite);
+        let (mut m_low, finite) = (self.m_low, self.columns_finite);
         for j in 0..k.min(N) {
             m_low = max(m_low, self.mu[j].abs_exact() + T::of(2.0));
         }
-        // `q` over the slots' rows, then the identity's (`q = 1`) when there are any.
-        let (mut q_norm, mut q_min) = (T::zero(), self.q[0]);
-        for v in 0..(4 * k).min(N) {
-            finite.add(self.q[v]);
-            q_norm = max(q_norm, self.q[v].abs_exact());
-            q_min = min(q_min, self.q[v]);
+        // `q`'s scales over the impulse rows (`set_slot`'s), the sigma rows' (`q = 0`) and the
+        // identity's (`q = 1`) when there are any.
+        let (mut q_norm, mut q_min) = (self.q_norm, self.q_min);
+        if k > 0 {
+            q_min = min(q_min, T::zero());
         }
         if 4 * k < N {
             q_norm = max(q_norm, T::one());
