@@ -177,6 +177,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// the `+d` one negated), its normal row's bias `c0` and its `mu`; `inverse_mass` is `M~`'s
     /// diagonal per body.
     #[allow(clippy::too_many_arguments)] // a slot's data, as the stepper has them
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // one call per slot in the refill: its rows built in place there
     pub(super) fn set_slot(
         &mut self,
         j: usize,
