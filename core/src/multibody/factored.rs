@@ -570,8 +570,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
-        for (wv, &qv) in w.iter_mut().zip(&self.q).skip(rows) {
-            *wv = qv;
+        for v in rows.min(N)..N {
+            w[v] = self.q[v];
         }
         let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
         finite.add(s_w);
