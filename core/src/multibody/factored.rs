@@ -140,6 +140,9 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     finite: bool,
     /// The finiteness of the columns set so far this step ([`Self::set_slot`]).
     columns_finite: AllFinite<T>,
+    /// The `k` of the last [`Self::finish`] (`q`'s sigma and identity rows are its), `usize::MAX`
+    /// before the first.
+    finished_k: usize,
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
@@ -157,6 +160,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             q_min: T::zero(),
             finite: true,
             columns_finite: AllFinite::new(),
+            finished_k: usize::MAX,
         }
     }
 
@@ -258,8 +262,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// scales, finiteness.
     pub(super) fn finish(&mut self) {
         let k = self.k.min(N / 4);
-        for v in 3 * k..N {
-            self.q[v] = if v < 4 * k { T::zero() } else { T::one() };
+        // Written when the slots' count changed (no other row writes them).
+        if self.finished_k != k {
+            for v in 3 * k..N {
+                self.q[v] = if v < 4 * k { T::zero() } else { T::one() };
+            }
+            self.finished_k = k;
         }
         let (mut m_low, finite) = (self.m_low, self.columns_finite);
         for j in 0..k.min(N) {
