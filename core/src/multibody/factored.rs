@@ -457,21 +457,30 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let m = m.min(UNKNOWNS);
         // H^T M~ G y = -q_H ([`Self::form_column`]).
         let symmetric = follower.iter().all(|&f| f == N);
-        let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
         let mut y = [T::zero(); UNKNOWNS];
+        let mut a;
         if symmetric && m == UNKNOWNS {
-            // Every unknown (the 3-block stack's every step): each column's index written out,
-            // so that its loop's bounds are constants (unrolled).
-            const _: () = assert!(UNKNOWNS == 9, "the columns below are written out for nine unknowns");
-            for l in [0, 1, 2, 3, 4, 5, 6, 7, 8] {
-                self.form_column(&mut a, &mut y, (&var, &follower), l, true, UNKNOWNS);
+            // Every unknown, none with a follower (the 3-block stack's every step): the lower
+            // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
+            // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
+            // reading it).
+            a = core::array::from_fn(|r| {
+                let row = &self.cols[var[r].min(N - 1)];
+                core::array::from_fn(|l| {
+                    if l <= r { row.dot_scaled(&self.cols[var[l].min(N - 1)]) } else { T::zero() }
+                })
+            });
+            for l in 0..UNKNOWNS {
+                y[l] = -self.q[var[l].min(N - 1)];
             }
         } else if !symmetric && m == 4 {
+            a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
             // Four unknowns with followers (block-on-block's sliding steps): written out too.
             for l in [0, 1, 2, 3] {
                 self.form_column(&mut a, &mut y, (&var, &follower), l, false, 4);
             }
         } else {
+            a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
             for l in 0..m {
                 self.form_column(&mut a, &mut y, (&var, &follower), l, symmetric, m);
             }
