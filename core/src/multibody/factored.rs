@@ -587,6 +587,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
+        // By index: `copy_from_slice` (a memcpy call) or a zip of the two costs 20 to 45
+        // instructions a step more on the M4F.
+        #[allow(clippy::manual_memcpy)]
         for v in rows.min(N)..N {
             w[v] = self.q[v];
         }
