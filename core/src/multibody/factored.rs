@@ -520,21 +520,22 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         let basic = |v: usize| (mask >> v) & 1 == 1;
         *z = [T::zero(); N];
+        // `p_norm`: the largest impulse (every other impulse is zero).
+        let mut p_norm = T::zero();
         for l in 0..m {
             let normal = var[l] < k;
             if y[l] < T::zero() || (normal && y[l] > T::zero() && y[l] <= impulse_round_off) {
                 return Err(Declined::Infeasible(var[l] as u8));
             }
             z[var[l].min(N - 1)] = y[l];
+            p_norm = max(p_norm, y[l]);
             if follower[l] < N {
-                z[follower[l]] = self.mu[var[l].min(N - 1)] * y[l];
+                let friction = self.mu[var[l].min(N - 1)] * y[l];
+                z[follower[l]] = friction;
+                p_norm = max(p_norm, friction);
             }
         }
         let dv = self.velocity_change_on(z, mask);
-        let mut p_norm = T::zero();
-        for v in 0..(3 * k).min(N) {
-            p_norm = max(p_norm, z[v]);
-        }
         let speed_round_off = T::of(N as f64) * T::EPS * (self.m_low * p_norm + self.q_norm);
         // The pairs with a basic friction impulse: a touching contact of any other pair holds its
         // slip to `>= 0` in both directions exactly (zero), not within round-off. (Within a pair
