@@ -248,7 +248,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
-        self.m_low = m_low;
+        // The sigma row's `|mu| + 2` (its entries `mu`, `-1`, `-1`).
+        self.m_low = max(m_low, mu.abs_exact() + T::of(2.0));
         self.columns_finite = finite;
         self.q_norm = q_norm;
         self.q_min = q_min;
@@ -269,10 +270,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
             self.finished_k = k;
         }
-        let (mut m_low, finite) = (self.m_low, self.columns_finite);
-        for j in 0..k.min(N) {
-            m_low = max(m_low, self.mu[j].abs_exact() + T::of(2.0));
-        }
+        let (m_low, finite) = (self.m_low, self.columns_finite);
         // `q`'s scales over the impulse rows (`set_slot`'s), the sigma rows' (`q = 0`) and the
         // identity's (`q = 1`) when there are any.
         let (mut q_norm, mut q_min) = (self.q_norm, self.q_min);
