@@ -204,16 +204,23 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             let v = if r == 0 { j } else { k + 2 * j };
             // The corner's owner's entries first, the face's owner's second (an unused one has no
             // body: a contact on the table touches one body).
+            // `c^T v~` summed as `Column::dot` sums it.
             let mut col = Column::zero();
+            let mut q = T::zero();
             for (p, entry) in [row.corner, row.face].into_iter().enumerate() {
                 if let Some((b, c)) = entry {
                     let m = inverse_mass.get(usize::from(b)).copied().unwrap_or([T::zero(); 3]);
                     col.body[p] = b;
                     col.c[p] = c;
                     col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
+                    if let Some(u) = self.v_free.get(usize::from(b)) {
+                        q += dot3(&c, u);
+                    }
                 }
             }
-            let q = if r == 0 { col.dot(&self.v_free) + bias } else { col.dot(&self.v_free) };
+            if r == 0 {
+                q += bias;
+            }
             // `q`'s finiteness and scales (the `-d` row's `-q`: as finite, as large, and the
             // smaller of the two is `-|q|`).
             finite.add(q);
