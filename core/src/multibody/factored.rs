@@ -165,7 +165,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// A step of `k` active slots with `v~`, in place (nothing cleared: [`Self::set_slot`] writes
-    /// each active slot's variables, [`Self::finish`] the rest).
+    /// each active slot's variables, [`Self::finish`] the rest); the scales and finiteness the
+    /// slots accumulate start over.
     pub(super) fn reset(&mut self, k: usize, v_free: [[T; 3]; B]) {
         self.k = k.min(N / 4);
         self.v_free = v_free;
@@ -179,7 +180,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d` (each
     /// entry the corner's owner and the face's owner, [`super::JacobianRow`]; the `-d` column is
     /// the `+d` one negated), its normal row's bias `c0` and its `mu`; `inverse_mass` is `M~`'s
-    /// diagonal per body.
+    /// diagonal per body. Accumulates [`Self::finish`]'s scales (`||A||`'s lower bound, `||q||`,
+    /// `min q`) and finiteness while the slot's values are at hand.
     #[allow(clippy::too_many_arguments)] // a slot's data, as the stepper has them
     #[inline(always)]
     #[allow(clippy::inline_always)] // one call per slot in the refill: its rows built in place there
@@ -266,8 +268,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
     }
 
-    /// After every slot is set: the sigma rows' `q` (0), the identity's rows beyond `4 k`, the
-    /// scales, finiteness.
+    /// After every slot is set: the sigma rows' `q` (0) and the identity's beyond `4 k` (when `k`
+    /// changed), the scales and finiteness the slots accumulated closed over those rows.
     pub(super) fn finish(&mut self) {
         let k = self.k.min(N / 4);
         // Written when the slots' count changed (no other row writes them).
