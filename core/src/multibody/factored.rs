@@ -205,8 +205,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for (r, row) in rows.iter().enumerate() {
             let v = if r == 0 { j } else { k + 2 * j };
             // The corner's owner's entries first, the face's owner's second (an unused one has no
-            // body: a contact on the table touches one body).
-            // `c^T v~` summed as `Column::dot` sums it.
+            // body: a contact on the table touches one body); `q = c^T v~` summed as `Column::dot`
+            // sums it.
             let mut col = Column::zero();
             let mut q = T::zero();
             for (p, entry) in [row.corner, row.face].into_iter().enumerate() {
