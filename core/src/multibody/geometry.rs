@@ -354,17 +354,23 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
         let above_centre = face_half_height.is_none_or(|half| gap >= -half);
         let lever = |b: Option<u8>| com(b).map_or([T::zero(); 2], |c| [point[0] - c[0], point[1] - c[1]]);
         let (lever_corner, lever_face) = (lever(corner_owner), lever(face.owner));
-        let point_velocity = |b: Option<u8>, r: [T; 2]| {
-            velocity(b).map_or([T::zero(); 2], |v| [v[0] - v[2] * r[1], v[1] + v[2] * r[0]])
+        // Within reach: `margin` plus what the approach closes within the step (`reach >= margin`:
+        // the approach is needed only for a candidate over the face beyond the margin).
+        let within_reach = || {
+            let point_velocity = |b: Option<u8>, r: [T; 2]| {
+                velocity(b).map_or([T::zero(); 2], |v| [v[0] - v[2] * r[1], v[1] + v[2] * r[0]])
+            };
+            let (va, vb) =
+                (point_velocity(corner_owner, lever_corner), point_velocity(face.owner, lever_face));
+            let approach = -dot([va[0] - vb[0], va[1] - vb[1]], face.normal);
+            let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
+            gap <= reach
         };
-        let (va, vb) = (point_velocity(corner_owner, lever_corner), point_velocity(face.owner, lever_face));
-        let approach = -dot([va[0] - vb[0], va[1] - vb[1]], face.normal);
-        let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
         let n = face.normal;
         // Indices into `extents`, `heights`: the corner's owner's, the face's owner's.
         let owners = if candidate.is_upper_corner() { [0, 1] } else { [1, 0] };
         frames[k] = CornerFrame {
-            active: over && above_centre && gap <= reach,
+            active: over && above_centre && (gap <= margin || within_reach()),
             corner: corner_owner,
             face: face.owner,
             gap,

@@ -422,10 +422,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 mu,
                 &self.inverse_mass,
             );
-            let pattern = self.patterns[p][c];
-            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
-                warm |= u32::from(pattern >> bit & 1).checked_shl(row as u32).unwrap_or(0);
-            }
+            warm |= pattern_bits(self.patterns[p][c], k, j);
         }
         out.factored.finish();
         out.k = k;
@@ -641,11 +638,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
-            let mut pattern = 0;
-            for (bit, row) in rows.into_iter().enumerate() {
-                pattern |= u8::from(mask.checked_shr(row as u32).unwrap_or(0) & 1 == 1) << bit;
-            }
-            patterns[p][c] = pattern;
+            patterns[p][c] = slot_pattern(mask, k, j);
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
                 modes[p][c] = ContactMode::from_slip(slip(f, &v_plus), s.stick_speed);
@@ -686,6 +679,24 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 #[inline]
 pub(super) const fn slot_rows(k: usize, j: usize) -> [usize; 4] {
     [j, k + 2 * j, k + 2 * j + 1, 3 * k + j]
+}
+
+/// Slot `j`'s [`Pattern`] (among `k` slots) in the basis mask `mask` (bit `v`: `z_v` basic): the
+/// bits of its rows `p_n`, `p_+d` and `p_-d` (adjacent), `sigma`.
+#[inline]
+fn slot_pattern(mask: u32, k: usize, j: usize) -> Pattern {
+    let [n, plus, _, sigma] = slot_rows(k, j);
+    let bits = |v: usize, width: u32| mask.checked_shr(v as u32).unwrap_or(0) & ((1 << width) - 1);
+    (bits(n, 1) | bits(plus, 2) << 1 | bits(sigma, 1) << 3) as Pattern
+}
+
+/// The basis mask of slot `j`'s [`Pattern`] `pattern` (among `k` slots): [`slot_pattern`]'s
+/// inverse.
+#[inline]
+fn pattern_bits(pattern: Pattern, k: usize, j: usize) -> u32 {
+    let [n, plus, _, sigma] = slot_rows(k, j);
+    let place = |bits: u8, v: usize| u32::from(bits).checked_shl(v as u32).unwrap_or(0);
+    place(pattern & 1, n) | place(pattern >> 1 & 3, plus) | place(pattern >> 3 & 1, sigma)
 }
 
 /// A step's verified answer ([`Stepper::solve`]; `z` is written into the caller's array).
