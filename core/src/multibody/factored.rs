@@ -428,6 +428,22 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             * (self.q[v].abs_exact() + self.cols[v].dot_abs(&scale.sums))
     }
 
+    /// `true` when the negative `wv` of a row whose round-off may excuse it is beyond that round-off
+    /// ([`Self::within_round_off`] of row `row`; `row >= N`: no row excuses it, `w >= 0` exactly),
+    /// the scale computed into `scale` at the first call for `z`. Out of line and cold: a basis
+    /// answer reaches it only at a negative `w` (the resting stack never does).
+    #[cold]
+    #[inline(never)]
+    fn beyond_round_off(
+        &self,
+        row: usize,
+        wv: T,
+        scale: &mut Option<RoundOffScale<T, B>>,
+        z: &[T; N],
+    ) -> bool {
+        row >= N || !self.within_round_off(row, wv, scale.get_or_insert_with(|| self.round_off_scale(z)))
+    }
+
     /// The scale of [`Self::within_round_off`] for the impulses in `z`: the non-zero impulses `t`
     /// and `sum_v |M~ c_v| |z_v|` per body. Computed at a basis answer's first negative `w` (a
     /// resting contact's round-off), not for every answer.
@@ -681,13 +697,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
             if basic(sigma) {
                 let value = if basic(plus) { -slip } else { slip };
-                if value < T::zero()
-                    && !self.within_round_off(
-                        plus,
-                        value,
-                        scale.get_or_insert_with(|| self.round_off_scale(z)),
-                    )
-                {
+                if value < T::zero() && self.beyond_round_off(plus, value, &mut scale, z) {
                     return Err(Declined::Infeasible(sigma as u8));
                 }
                 z[sigma] = max(value, T::zero());
@@ -719,14 +729,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 } else if row == N + 1 {
                     violation = max(violation, -wv);
                 } else {
-                    if wv < T::zero()
-                        && (row == N
-                            || !self.within_round_off(
-                                row,
-                                wv,
-                                scale.get_or_insert_with(|| self.round_off_scale(z)),
-                            ))
-                    {
+                    if wv < T::zero() && self.beyond_round_off(row, wv, &mut scale, z) {
                         return Err(Declined::Infeasible(v as u8));
                     }
                     violation = max(violation, -wv);
