@@ -203,7 +203,12 @@ fn pattern<const K: usize, const N: usize>(
     }
 }
 
-/// `basis` with contact `i`'s variables set to `pattern`.
+/// `basis` with contact `i`'s variables set to `pattern`. Inlined into each caller: a few bit
+/// operations once `i` and `pattern` are known there, where a call costs more (out of line, as the
+/// compiler left it once the rule's enumeration called it too, each candidate basis a step tries
+/// paid for one).
+#[inline(always)]
+#[allow(clippy::inline_always)] // measured, as said above
 fn with_pattern<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
     basis: Basis<N>,

@@ -79,11 +79,8 @@ pub struct FactoredLcp<T, const K: usize, const N: usize> {
     variables_of: [u32; K],
     /// `v~`.
     v_free: [T; 3],
-    /// Bit `i` set: contact `i`'s cone row is weighted by `cone_scale[i]` ([`cone_scale`]).
+    /// Bit `i` set: contact `i`'s cone row is weighted by [`cone_scale`] of its `mu`.
     pub(crate) cone_scaled: u32,
-    /// The power of two each weighted cone row is multiplied by (meaningful where `cone_scaled`
-    /// has its bit).
-    pub(crate) cone_scale: [T; K],
     /// A lower bound of `||A||_inf` from the structure ([`Self::new`]).
     m_low: T,
     /// `||q||_inf`.
@@ -181,7 +178,6 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
             inactive: 0,
             v_free: [T::zero(); 3],
             cone_scaled: 0,
-            cone_scale: [T::one(); K],
             m_low: T::zero(),
             q_norm: T::zero(),
             q_min: T::zero(),
@@ -308,12 +304,8 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     #[cold]
     #[inline(never)]
     fn weigh_cone_row(&mut self, i: usize, cone_row: T) -> T {
-        let s = cone_scale(self.mu[i]);
         self.cone_scaled |= 1 << i;
-        if let Some(slot) = self.cone_scale.get_mut(i) {
-            *slot = s;
-        }
-        s * cone_row
+        cone_scale(self.mu[i]) * cone_row
     }
 
     /// `true` when every entry of `q` and of the columns is finite; otherwise no path may answer
