@@ -154,7 +154,7 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     #[must_use]
     pub fn new(layout: &Layout<K, N>, input: &StepInputs<'_, T, K>) -> Self {
         let mut out = Self::empty(layout);
-        out.refill(input);
+        out.refill_out_of_line(input);
         out
     }
 
@@ -189,10 +189,16 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     /// `FactoredLcp` and refills it each step: no copy of the rows, no clearing). Every impulse
     /// row's column and `q` is written; the `sigma` rows' columns stay zero, as [`Self::empty`]
     /// made them.
-    // Inlined into the step without `host-tuned` (which inlines the step into its caller, where
-    // the compiler left this call out of line): measured on the Cortex-M4F with `impulses`
-    // inlined too, the slow scene's step 15 instructions fewer, its worst step 40.
-    #[cfg_attr(not(feature = "host-tuned"), inline(always))]
+    ///
+    /// Inlined into its caller without `host-tuned` on a core with a floating-point unit (the
+    /// hard-float ABI): the step of a model without the rule's steps (itself inlined into its
+    /// caller, where the compiler left this call out of line; measured on the Cortex-M4F with
+    /// the step's `impulses` inlined too, the slow scene's step 27 instructions fewer). The other
+    /// callers take [`Self::refill_out_of_line`]: a copy in each cost the Cortex-M0's build 32 kB
+    /// of flash. With software floats the refill is mostly library calls and the copy does not
+    /// pay: on the Cortex-M0 the slow scene's step is 317 instructions fewer without it, and its
+    /// flash 13.6 kB smaller.
+    #[cfg_attr(all(not(feature = "host-tuned"), target_abi = "eabihf"), inline(always))]
     #[allow(clippy::inline_always)] // measured, as said above
     pub(crate) fn refill(&mut self, input: &StepInputs<'_, T, K>) {
         let sigma_start = Layout::<K, N>::SIGMA_START;
@@ -296,6 +302,12 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
         // stores, and this copy reads it as an 8-byte and a 4-byte load, which an x86 core cannot
         // forward from stores still in its store buffer: it waits for them to reach the cache.
         out.v_free = input.v_free;
+    }
+
+    /// [`Self::refill`] out of line: one copy for the callers off the determinate step's path.
+    #[inline(never)]
+    pub(crate) fn refill_out_of_line(&mut self, input: &StepInputs<'_, T, K>) {
+        self.refill(input);
     }
 
     /// Weighs contact `i`'s cone row by [`cone_scale`] of its `mu` (sets its bit of `cone_scaled`

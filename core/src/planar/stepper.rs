@@ -379,7 +379,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             gravity: s.gravity,
             gap_round_off,
         };
-        self.factored.refill(&inputs);
+        if RULE {
+            self.factored.refill_out_of_line(&inputs);
+        } else {
+            self.factored.refill(&inputs);
+        }
         let factored = &self.factored;
         // The reduced layout's answer, and the full layout's when it is used.
         let (mut z, mut w) = ([T::zero(); N], [T::zero(); N]);
