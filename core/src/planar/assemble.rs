@@ -17,7 +17,7 @@
 
 pub use super::inputs::{StepInputs, normal_bias};
 
-use super::factored::FactoredLcp;
+use super::factored::{FactoredLcp, cone_scale};
 use super::inputs::dot3;
 use super::layout::Layout;
 use crate::lcp::Lcp;
@@ -67,22 +67,23 @@ pub fn assemble_into<T: Real, const K: usize, const N: usize>(
     input: &StepInputs<'_, T, K>,
     out: &mut StepLcp<T, N>,
 ) {
-    fill_from_factored(&FactoredLcp::new(layout, input), false, out);
+    let factored = FactoredLcp::new(layout, input);
+    out.columns = factored.col;
+    fill_from_factored(&factored, &[T::one(); K], &mut out.lcp);
 }
 
-/// Writes `A` and `q` of the step whose factored rows are `f` into `out` (zeroed): the impulse
+/// Writes `A` and `q` of the step whose factored rows are `f` into `lcp` (zeroed): the impulse
 /// block `C^T M^-1 C` (its upper triangle computed and mirrored, so it is exactly symmetric), the
-/// friction cone's `E`, `-E^T` and `U`, and an inactive contact's identity rows. With `weighted`,
-/// each cone row `f` weighs is written multiplied by its power of two `s`
-/// ([`super::factored::cone_scale`]): `s mu` and `-s`, exact (`docs/formulation.md`, "Precision").
+/// friction cone's `E`, `-E^T` and `U`, and an inactive contact's identity rows. Contact `i`'s
+/// cone row is written multiplied by `weights[i]`: `s mu` and `-s`, exact for a power of two
+/// (1, or a weighted row's [`cone_scale`]; `docs/formulation.md`, "Precision").
 pub(crate) fn fill_from_factored<T: Real, const K: usize, const N: usize>(
     f: &FactoredLcp<T, K, N>,
-    weighted: bool,
-    out: &mut StepLcp<T, N>,
+    weights: &[T; K],
+    lcp: &mut Lcp<T, N>,
 ) {
     let sigma_start = Layout::<K, N>::SIGMA_START;
-    let StepLcp { lcp: Lcp { m: a, q: b }, columns } = out;
-    *columns = f.col;
+    let Lcp { m: a, q: b } = lcp;
     for j in 0..N {
         b[j] = f.q[j];
     }
@@ -97,7 +98,7 @@ pub(crate) fn fill_from_factored<T: Real, const K: usize, const N: usize>(
     for i in 0..K {
         let end = (j + f.tangents()[i].count()).min(sigma_start);
         let active = (f.inactive >> i) & 1 == 0;
-        let s = if weighted && (f.cone_scaled >> i) & 1 == 1 { f.cone_scale[i] } else { T::one() };
+        let s = weights[i];
         for row in j..end {
             if active {
                 a[(row, sigma_start + i)] = T::one();
@@ -114,4 +115,16 @@ pub(crate) fn fill_from_factored<T: Real, const K: usize, const N: usize>(
             a[(v, v)] = T::one();
         }
     }
+}
+
+/// The weight of each contact's cone row in the step `f`: [`cone_scale`] of its `mu` where `f`
+/// weighs it (its bit of `cone_scaled`), 1 elsewhere ([`fill_from_factored`]).
+pub(crate) fn cone_weights<T: Real, const K: usize, const N: usize>(f: &FactoredLcp<T, K, N>) -> [T; K] {
+    let mut weights = [T::one(); K];
+    for (i, weight) in weights.iter_mut().enumerate() {
+        if (f.cone_scaled >> i) & 1 == 1 {
+            *weight = cone_scale(f.mu[i]);
+        }
+    }
+    weights
 }

@@ -33,7 +33,13 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     /// `basis` with contact `i`'s friction turned to `direction` (sliding, sticking or skidding
     /// as before): the full layout's first try when a reduced layout's dropped direction was
     /// needed.
+    ///
+    /// Inlined into the step's fallback: out of line (where the compiler had put it), each step
+    /// solved again in the full layout paid a call; measured, the slow scene's worst step on the
+    /// Cortex-M33F was one SysTick tick (50 instructions) longer.
     #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // measured, as said above
     pub(crate) fn with_direction(&self, basis: Basis<N>, i: usize, direction: Direction) -> Basis<N> {
         let turned = match pattern(&self.tangents, basis, i) {
             Some(Pattern::Slide(_)) => Pattern::Slide(direction),
@@ -203,7 +209,12 @@ fn pattern<const K: usize, const N: usize>(
     }
 }
 
-/// `basis` with contact `i`'s variables set to `pattern`.
+/// `basis` with contact `i`'s variables set to `pattern`. Inlined into each caller: a few bit
+/// operations once `i` and `pattern` are known there, where a call costs more (out of line, as the
+/// compiler left it once the rule's enumeration called it too, each candidate basis a step tries
+/// paid for one).
+#[inline(always)]
+#[allow(clippy::inline_always)] // measured, as said above
 fn with_pattern<const K: usize, const N: usize>(
     tangents: &[Tangents; K],
     basis: Basis<N>,

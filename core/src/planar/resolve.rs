@@ -35,19 +35,17 @@ const COUPLING_SEVERAL: f64 = 2.0;
 /// its path's answer.
 const MAX_CONTACTS: usize = 4;
 
-/// Whether a step may have several answers.
+/// Whether a step may have several answers. The model's part is one flag: the rule's metric
+/// and reach are the step's ([`Self::rule`]), so that a model the rule never applies to (every
+/// model without the `fallback` feature) carries nothing else for it.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Detector<T> {
+pub(crate) struct Detector {
     /// Some step of the model may: `K >= 3` contacts (their normals can be rank-deficient), or
     /// a bound of the friction coupling over every pose reaches [`COUPLING`].
     possible: bool,
-    /// The kinetic energy's metric per unit mass: `1 / diag(M^-1)` = `(1, 1, J/m)`.
-    metric: [T; 3],
-    /// `(1, 1, D/2)`, `D` the body's size: turns `omega` into a speed.
-    reach: [T; 3],
 }
 
-impl<T: Real> Detector<T> {
+impl Detector {
     /// The detector of a body with `diag(M^-1)` per unit mass `m_inv` and half extents `half`
     /// under `contacts`. The coupling bound: contact `i`'s normal row has `W_n,i^T M^-1 W_n,i >= 1`
     /// and `|W_n,i^T M^-1 W_d,j| <= l_ij + (m/J) |r_i x n_i| |r_j x d_j|`, with `l_ij = 0` for two
@@ -58,14 +56,13 @@ impl<T: Real> Detector<T> {
     /// Without the `fallback` feature nothing is ever flagged (and no code of the rule is
     /// linked): the rule's choice may need the full layout, and a build without it (the 6x6-only
     /// rig builds, whose flash is counted) takes its solver's answer.
-    pub(crate) fn new<const K: usize>(
+    pub(crate) fn new<T: Real, const K: usize>(
         contacts: &[Contact<T>; K],
         m_inv: [T; 3],
         half: [T; 2],
-        size: T,
     ) -> Self {
         if !cfg!(feature = "fallback") {
-            return Self { possible: false, metric: [T::zero(); 3], reach: [T::zero(); 3] };
+            return Self { possible: false };
         }
         let levers = |c: &Contact<T>| match c.feature {
             Feature::LowerFace => (half[0], half[1]),
@@ -87,16 +84,12 @@ impl<T: Real> Detector<T> {
             }
             bound = max(bound, row);
         }
-        Self {
-            possible: K >= 3 || bound >= T::of(COUPLING),
-            metric: [T::one() / m_inv[0], T::one() / m_inv[1], T::one() / m_inv[2]],
-            reach: [T::one(), T::one(), size * T::of(0.5)],
-        }
+        Self { possible: K >= 3 || bound >= T::of(COUPLING) }
     }
 
     /// `true` when some step of the model may have several answers.
     #[inline]
-    pub(crate) const fn possible(&self) -> bool {
+    pub(crate) const fn possible(self) -> bool {
         self.possible
     }
 
@@ -107,7 +100,7 @@ impl<T: Real> Detector<T> {
     /// bound of the normal block's least eigenvalue (two or three: for two fingers under a rod it
     /// falls as the fingers close in).
     #[inline(never)] // called only for a model that may have such steps: out of the others' step
-    pub(crate) fn flags<const K: usize>(inputs: &StepInputs<'_, T, K>) -> bool {
+    pub(crate) fn flags<T: Real, const K: usize>(inputs: &StepInputs<'_, T, K>) -> bool {
         let frames = inputs.frames;
         let m_inv = &inputs.m_inv;
         let scaled = |c: &[T; 3]| [c[0] * m_inv[0], c[1] * m_inv[1], c[2] * m_inv[2]];
@@ -159,15 +152,20 @@ impl<T: Real> Detector<T> {
         coupling >= T::of(factor) * least
     }
 
-    /// The rule for the step `inputs`: its speed scale `S` is the fastest support's speed and the
-    /// free velocity's (`omega` times `D/2`), as the reference's.
-    pub(crate) fn rule<const K: usize>(&self, inputs: &StepInputs<'_, T, K>) -> Rule<T, 1> {
+    /// The rule for the step `inputs` of a body of size `size` (`D`): the kinetic energy's metric
+    /// per unit mass `1 / diag(M^-1)` = `(1, 1, J/m)`, the reach `(1, 1, D/2)` that turns `omega`
+    /// into a speed, and the speed scale `S`, the fastest support's speed and the free velocity's
+    /// (`omega` times `D/2`), as the reference's.
+    pub(crate) fn rule<T: Real, const K: usize>(inputs: &StepInputs<'_, T, K>, size: T) -> Rule<T, 1> {
+        let m_inv = &inputs.m_inv;
+        let metric = [T::one() / m_inv[0], T::one() / m_inv[1], T::one() / m_inv[2]];
+        let reach = [T::one(), T::one(), size * T::of(0.5)];
         let v = &inputs.v_free;
-        let mut speed = max(max(v[0].abs_exact(), v[1].abs_exact()), self.reach[2] * v[2].abs_exact());
+        let mut speed = max(max(v[0].abs_exact(), v[1].abs_exact()), reach[2] * v[2].abs_exact());
         for u in &inputs.support_velocity {
             speed = max(speed, max(u[0].abs_exact(), u[1].abs_exact()));
         }
-        Rule::new([self.metric], [self.reach], speed)
+        Rule::new([metric], [reach], speed)
     }
 }
 

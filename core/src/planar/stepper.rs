@@ -94,8 +94,9 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     layout: Layout<K, N>,
     #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
     full: Layout<K, NF>,
-    /// Where each solved variable sits in the full layout.
-    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    /// Where each solved variable sits in the full layout (only the fallback reads it: without
+    /// it the stepper keeps none).
+    #[cfg(feature = "fallback")]
     to_full: [usize; N],
     /// For each contact that keeps one direction of two: the kept friction row and direction.
     kept_alone: [Option<(usize, Direction)>; K],
@@ -116,7 +117,7 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     plan: PlanCache<K>,
     solver: Lemke<T, N>,
     /// Which steps may have several answers, for the rule (`docs/formulation.md`, "One answer").
-    detector: Detector<T>,
+    detector: Detector,
     stats: RunStats,
 }
 
@@ -155,6 +156,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         supports: [Support<T>; K],
     ) -> Result<Self, ParamError> {
         let () = Self::SIZES;
+        #[cfg_attr(not(feature = "fallback"), allow(unused_variables))]
         let to_full = layout.index_in(&full).ok_or(ParamError::LayoutNotInFull)?;
         let mut kept_alone = [None; K];
         for (j, v) in layout.variables().iter().enumerate() {
@@ -183,6 +185,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             },
             layout,
             full,
+            #[cfg(feature = "fallback")]
             to_full,
             kept_alone,
             state: start,
@@ -202,12 +205,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             factored: FactoredLcp::empty(&layout),
             plan: PlanCache::<K>::default(),
             solver: Lemke::new(),
-            detector: Detector::new(
-                &model.contacts,
-                body.inverse_mass_per_unit_mass(),
-                body.half_extents(),
-                body.size(),
-            ),
+            detector: Detector::new(&model.contacts, body.inverse_mass_per_unit_mass(), body.half_extents()),
             stats: RunStats::default(),
         };
         stepper.update_frames(&supports);
@@ -381,7 +379,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             gravity: s.gravity,
             gap_round_off,
         };
-        self.factored.refill(&inputs);
+        if RULE {
+            self.factored.refill_out_of_line(&inputs);
+        } else {
+            self.factored.refill(&inputs);
+        }
         let factored = &self.factored;
         // The reduced layout's answer, and the full layout's when it is used.
         let (mut z, mut w) = ([T::zero(); N], [T::zero(); N]);
@@ -416,7 +418,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 .then(|| {
                     solve_by_rule(
                         factored,
-                        self.detector.rule(&inputs),
+                        Detector::rule(&inputs, self.size),
                         self.solver.tolerance(),
                         &mut z,
                         &mut w,
@@ -449,7 +451,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             let mut sol = Solved { v_plus, basis: self.basis, pivots, warm_start_used, residual, path };
             rule = resolve(
                 factored,
-                self.detector.rule(&inputs),
+                Detector::rule(&inputs, self.size),
                 self.solver.tolerance(),
                 &mut sol,
                 &mut z,
@@ -488,7 +490,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 ) {
                     Ok(sol) => sol,
                     Err(e) if flagged => {
-                        let rule_full = self.detector.rule(&inputs);
+                        let rule_full = Detector::rule(&inputs, self.size);
                         let found = solve_by_rule(
                             &full,
                             rule_full,
@@ -507,7 +509,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 if flagged && !by_rule {
                     let r = resolve(
                         &full,
-                        self.detector.rule(&inputs),
+                        Detector::rule(&inputs, self.size),
                         self.solver.tolerance(),
                         &mut sol,
                         &mut z_full,
@@ -698,6 +700,10 @@ fn velocity_scale<T: Real, const K: usize>(support_velocity: &[[T; 2]; K], v: &[
 /// Each contact's normal and net friction impulse (physical, N s) and normal impulse per unit
 /// mass, from `z` (per unit mass) in `layout`'s order (friction rows contact by contact, `+d`
 /// before `-d`).
+// Inlined into the step without `host-tuned`: out of line its three arrays are returned through
+// memory and copied (measured on the Cortex-M4F: 35 instructions a step).
+#[cfg_attr(not(feature = "host-tuned"), inline(always))]
+#[allow(clippy::inline_always)] // measured, as said above
 fn impulses<T: Real, const K: usize, const M: usize>(
     layout: &Layout<K, M>,
     z: &[T; M],

@@ -5,10 +5,11 @@
 //! [`super::assemble`], warm-started from the previous basis). Every path's answer is verified
 //! ([`crate::lcp::verify`]); a path that cannot answer hands the step to the next.
 
-use super::assemble::{StepLcp, fill_from_factored};
+use super::assemble::{cone_weights, fill_from_factored};
 use super::candidates::CANDIDATES;
 use super::factored::{Declined, FactoredLcp, PlanCache};
-use crate::lcp::{Basis, LcpError, Lemke};
+use crate::lcp::{Basis, Lcp, LcpError, Lemke};
+use crate::nalgebra::{SMatrix, SVector};
 use crate::real::Real;
 
 /// Which path answered a step's LCP (`docs/formulation.md`, "Solving a step"). Every path's
@@ -99,6 +100,10 @@ pub(crate) struct Solved<T: Real, const M: usize> {
 /// answer of Lemke's regularised retry in `regularized_solves`.
 /// `plan` keeps the warm basis' unknowns from one call to the next ([`FactoredLcp`]'s layout must
 /// be the same each call; a default one for a one-off).
+// Inlined into the step without `host-tuned`: out of line (where the compiler put it once the
+// step had two copies), every step paid a call and its answer's copy through memory.
+#[cfg_attr(not(feature = "host-tuned"), inline(always))]
+#[allow(clippy::inline_always)] // measured, as said above
 #[allow(clippy::too_many_arguments)] // the two counters of `RunStats` it writes, passed on their own
 pub(crate) fn solve<T: Real, const K: usize, const M: usize>(
     factored: &FactoredLcp<T, K, M>,
@@ -138,57 +143,64 @@ pub(crate) fn solve<T: Real, const K: usize, const M: usize>(
                 path: SolvePath::Warm,
             })
         }
-        Err(why) => solve_cold(factored, warm, why, solver, paths, regularized_solves, z, w),
+        // The weighted cone rows first (`docs/formulation.md`, "Precision"); when Lemke's method
+        // has no verified answer to them (an ill-conditioned step at extreme friction: two
+        // fingers' columns nearly parallel at their meeting), the model's own rows, verified on
+        // their own scale. (The pivots reported are the answering solve's.) The retry is a second
+        // call, not a loop around Lemke's method: one copy of it, and no state kept across it.
+        Err(why) => match solve_cold(factored, warm, Some(why), solver, paths, regularized_solves, z, w) {
+            Err(_) if factored.cone_scaled != 0 => {
+                solve_cold(factored, warm, None, solver, paths, regularized_solves, z, w)
+            }
+            answer => answer,
+        },
     }
 }
 
-/// [`solve`] after the previous basis failed with `why`: its neighbours, then Lemke's method. Out
-/// of line, so that the warm path the most steps take stays small.
+/// [`solve`] after the previous basis failed with `why`: its neighbours, then Lemke's method on
+/// the step's LCP with its cone rows weighted as `factored` says ([`fill_from_factored`]); with
+/// `why` `None` (a retry after that failed), Lemke's method on the model's own rows alone. A
+/// weighted solve's `w` is the model's, recomputed in factored form. Out of line, so that the
+/// warm path the most steps take stays small.
 #[cold]
 #[inline(never)]
 #[allow(clippy::too_many_arguments)] // as `solve`
 fn solve_cold<T: Real, const K: usize, const M: usize>(
     factored: &FactoredLcp<T, K, M>,
     warm: Basis<M>,
-    why: Declined,
+    why: Option<Declined>,
     solver: &Lemke<T, M>,
     paths: &mut PathCounts,
     regularized_solves: &mut u64,
     z: &mut [T; M],
     w: &mut [T; M],
 ) -> Result<Solved<T, M>, LcpError> {
-    let tolerance = solver.tolerance();
-    let answer = (0..CANDIDATES * K).find_map(|k| {
-        let basis = factored.candidate(warm, why, k)?;
-        paths.candidates_tried += 1;
-        factored.solve_basis_into(basis, tolerance, z, w).ok().map(|(v_plus, residual)| Solved {
-            v_plus,
-            basis,
-            pivots: 0,
-            warm_start_used: false,
-            residual,
-            path: SolvePath::Candidate,
-        })
-    });
-    if let Some(answer) = answer {
-        paths.count(SolvePath::Candidate);
-        return Ok(answer);
-    }
-    paths.count(SolvePath::Lemke);
-    let mut lcp = StepLcp::zeros();
-    // The weighted cone rows first (`docs/formulation.md`, "Precision"); when Lemke's method has
-    // no verified answer to them (an ill-conditioned step at extreme friction: two fingers' columns
-    // nearly parallel at their meeting), the model's own rows, verified on their own scale.
-    // (The pivots reported are the answering solve's.)
-    let mut weighted = factored.cone_scaled != 0;
-    let sol = loop {
-        fill_from_factored(factored, weighted, &mut lcp);
-        match solver.solve_from_basis(&lcp.lcp, warm) {
-            Ok(sol) => break sol,
-            Err(_) if weighted => weighted = false,
-            Err(e) => return Err(e),
+    let weighted = why.is_some() && factored.cone_scaled != 0;
+    if let Some(why) = why {
+        let tolerance = solver.tolerance();
+        let answer = (0..CANDIDATES * K).find_map(|k| {
+            let basis = factored.candidate(warm, why, k)?;
+            paths.candidates_tried += 1;
+            factored.solve_basis_into(basis, tolerance, z, w).ok().map(|(v_plus, residual)| Solved {
+                v_plus,
+                basis,
+                pivots: 0,
+                warm_start_used: false,
+                residual,
+                path: SolvePath::Candidate,
+            })
+        });
+        if let Some(answer) = answer {
+            paths.count(SolvePath::Candidate);
+            return Ok(answer);
         }
-    };
+        paths.count(SolvePath::Lemke);
+    }
+    // `A` and `q` alone: Lemke's method needs no wrench columns.
+    let mut lcp = Lcp::new(SMatrix::zeros(), SVector::zeros());
+    let weights = if weighted { cone_weights(factored) } else { [T::one(); K] };
+    fill_from_factored(factored, &weights, &mut lcp);
+    let sol = solver.solve_from_basis(&lcp, warm)?;
     *regularized_solves += u64::from(sol.regularized);
     for j in 0..M {
         z[j] = sol.z[j];
