@@ -77,6 +77,10 @@ def icount(build):
 def n(x):
     return f"{x:,.0f}"
 
+def mean_worst(scene):
+    """A timed scene's `mean / worst` instructions per step."""
+    return f"{n(scene['mean_instructions'])} / {n(scene['worst_instructions'])}"
+
 with open(report_json) as f:
     report = json.load(f)
 host = [r for r in report["sweep"] if abs(r["h"] - 1e-3) < 1e-12]
@@ -109,12 +113,10 @@ f32_6 = next(r for r in host if r["config"] == "core f32 6x6")
 print(f"| host, core f32 6x6, ns per step (`host-sim report`) | {f32_6['ns_per_step']:.0f} |")
 for label, build, machine, board in cores:
     slow = timings[build]["slow"]
-    print(f"| {label} ({board}): instructions per step, mean / worst | "
-          f"{n(slow['mean_instructions'])} / {n(slow['worst_instructions'])} |")
+    print(f"| {label} ({board}): instructions per step, mean / worst | {mean_worst(slow)} |")
 for scene, title in (("block-on-block", "block-on-block"), ("stack", "the 3-block stack")):
-    t = timings["qemu-m4f"][scene]
     print(f"| Cortex-M4F, {title} (f32, defaults): instructions per step, mean / worst | "
-          f"{n(t['mean_instructions'])} / {n(t['worst_instructions'])} |")
+          f"{mean_worst(timings['qemu-m4f'][scene])} |")
 flash, ram = flash_ram("rig-m4f-6x6-nolog")
 print(f"| flash / static RAM of `rig-m4f-6x6-nolog` (the smallest rig build) | {n(flash)} B / {n(ram)} B |")
 flash, ram = flash_ram("rig-m4f-link")
@@ -157,7 +159,7 @@ print("| core (QEMU machine) | board it stands for | slow: mean / worst | fast: 
 print("|---|---|---|---|")
 for label, build, machine, board in cores:
     t = timings[build]
-    cells = [f"{n(t[s]['mean_instructions'])} / {n(t[s]['worst_instructions'])}" for s in ("slow", "fast")]
+    cells = [mean_worst(t[s]) for s in ("slow", "fast")]
     print(f"| {label} (`{machine}`) | {board} | {cells[0]} | {cells[1]} |")
 print()
 print("The scenes of several bodies at their defaults (f32, stepped directly, not through the rig loop; "
@@ -174,7 +176,7 @@ for label, build, machine, board in cores:
     if "stack" not in t:
         print(f"| {label} (`{machine}`) | not run | not run | {peaks} |")
         continue
-    cells = [f"{n(t[s]['mean_instructions'])} / {n(t[s]['worst_instructions'])}" for s in ("block-on-block", "stack")]
+    cells = [mean_worst(t[s]) for s in ("block-on-block", "stack")]
     print(f"| {label} (`{machine}`) | {cells[0]} | {cells[1]} | {peaks} |")
 m4f = timings["qemu-m4f"]
 if "stack" in m4f and m4f["stack"].get("stack_peak_bytes") is not None:
@@ -192,7 +194,7 @@ for label, build, _, _ in cores:
     cells = []
     for name in ("free", "warm", "candidate", "lemke"):
         p = paths[name]
-        cells.append(f"{n(p['steps'])} steps, {n(p['mean_instructions'])} / {n(p['worst_instructions'])}"
+        cells.append(f"{n(p['steps'])} steps, {mean_worst(p)}"
                      if p["steps"] else "0")
     print(f"| {label} | " + " | ".join(cells) + " |")
 print()
