@@ -341,6 +341,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// `c_r^T M~ c_c`: the entry of `J M~ J^T` in row `r` and column `c` (`r, c < 3 k`).
+    #[cfg(test)] // the tests' entry-by-entry reference of [`Self::contact_blocks`]
     pub(super) fn entry(&self, r: usize, c: usize) -> T {
         self.cols[r.min(N - 1)].dot_scaled(&self.cols[c.min(N - 1)])
     }
@@ -694,6 +695,55 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
         }
         Ok(Answer { v_plus, mask })
+    }
+}
+
+impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
+    /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
+    /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~ c_+d,j`
+    /// by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is left as
+    /// given. Each column is first laid out densely in the bodies' `3B` coordinates (zero on the
+    /// bodies it does not touch) and each entry summed body by body with no comparison of bodies:
+    /// `sum_b dot3(c_i[b], (M~ c_j)[b])`. That is [`Self::entry`]'s value exactly, for finite
+    /// columns: a body the two columns do not share adds a signed zero (`0 x finite`), which
+    /// changes no sum but a zero's sign, and a column touches at most two bodies, so at most two
+    /// non-zero terms are added, in either order the same (IEEE addition commutes).
+    #[inline(never)]
+    pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
+        let k = self.slots();
+        let rows = k.min(K);
+        let zero = [[T::zero(); 3]; B];
+        // Per slot: `c_n`, `M~ c_n`, `M~ c_+d`, dense.
+        let (mut normal, mut scaled, mut friction) = ([zero; K], [zero; K], [zero; K]);
+        for i in 0..rows {
+            let (a, f) = (&self.cols[i.min(N - 1)], &self.cols[(k + 2 * i).min(N - 1)]);
+            for p in 0..2 {
+                if let (Some(u), Some(m)) =
+                    (normal[i].get_mut(usize::from(a.body[p])), scaled[i].get_mut(usize::from(a.body[p])))
+                {
+                    *u = a.c[p];
+                    *m = a.mc[p];
+                }
+                if let Some(m) = friction[i].get_mut(usize::from(f.body[p])) {
+                    *m = f.mc[p];
+                }
+            }
+        }
+        let dense_dot = |u: &[[T; 3]; B], v: &[[T; 3]; B]| {
+            let mut sum = T::zero();
+            for b in 0..B {
+                sum += dot3(&u[b], &v[b]);
+            }
+            sum
+        };
+        for i in 0..rows {
+            for j in 0..=i {
+                n[i][j] = dense_dot(&normal[i], &scaled[j]);
+            }
+            for j in 0..rows {
+                c[j][i] = dense_dot(&normal[i], &friction[j]);
+            }
+        }
     }
 }
 
