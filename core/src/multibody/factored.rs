@@ -712,7 +712,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// Returns the columns of `C` that repeat the one before (bit `j`): a slot whose `M~ c_+d`
     /// equals the previous slot's (two corners of one level interface: the same bodies, tangent
     /// and lever height) has its column of `C` copied, not summed again.
-    #[inline(never)]
+    #[inline]
     pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) -> u32 {
         let k = self.slots();
         let rows = k.min(K);
