@@ -708,12 +708,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// columns: a body the two columns do not share adds a signed zero (`0 x finite`), which
     /// changes no sum but a zero's sign, and a column touches at most two bodies, so at most two
     /// non-zero terms are added, in either order the same (IEEE addition commutes).
-    ///
-    /// Returns the columns of `C` that repeat the one before (bit `j`): a slot whose `M~ c_+d`
-    /// equals the previous slot's (two corners of one level interface: the same bodies, tangent
-    /// and lever height) has its column of `C` copied, not summed again.
     #[inline]
-    pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) -> u32 {
+    pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
         let k = self.slots();
         let rows = k.min(K);
         let zero = [[T::zero(); 3]; B];
@@ -740,23 +736,14 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
             sum
         };
-        let mut repeats = 0;
         for j in 0..rows {
             for i in j..rows {
                 n[i][j] = dense_dot(&normal[i], &scaled[j]);
             }
-            if j > 0 && friction[j] == friction[j - 1] {
-                for i in 0..rows {
-                    c[j][i] = c[j - 1][i];
-                }
-                repeats |= 1 << j;
-            } else {
-                for i in 0..rows {
-                    c[j][i] = dense_dot(&normal[i], &friction[j]);
-                }
+            for i in 0..rows {
+                c[j][i] = dense_dot(&normal[i], &friction[j]);
             }
         }
-        repeats
     }
 }
 
