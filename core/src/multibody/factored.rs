@@ -341,7 +341,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// `c_r^T M~ c_c`: the entry of `J M~ J^T` in row `r` and column `c` (`r, c < 3 k`).
-    #[cfg(test)] // the tests' entry-by-entry reference of [`Self::contact_blocks`]
+    #[cfg(test)] // the tests' entry-by-entry reference of `contact_blocks`
     pub(super) fn entry(&self, r: usize, c: usize) -> T {
         self.cols[r.min(N - 1)].dot_scaled(&self.cols[c.min(N - 1)])
     }
@@ -704,10 +704,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is left as
     /// given. Each column is first laid out densely in the bodies' `3B` coordinates (zero on the
     /// bodies it does not touch) and each entry summed body by body with no comparison of bodies:
-    /// `sum_b dot3(c_i[b], (M~ c_j)[b])`. That is [`Self::entry`]'s value exactly, for finite
-    /// columns: a body the two columns do not share adds a signed zero (`0 x finite`), which
-    /// changes no sum but a zero's sign, and a column touches at most two bodies, so at most two
-    /// non-zero terms are added, in either order the same (IEEE addition commutes).
+    /// `sum_b dot3(c_i[b], (M~ c_j)[b])`. That is [`Column::dot_scaled`]'s value exactly, for finite
+    /// columns (those of every step solved: a non-finite one is refused first, [`Self::is_finite`]):
+    /// the bodies both columns touch give the same `dot3` products, a body the two do not share
+    /// adds a signed zero (`0 x finite`), which changes no sum but a zero's sign, and a column
+    /// touches at most two bodies, so at most two non-zero terms are added, in either order the
+    /// same (IEEE addition commutes).
     #[inline]
     pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
         let k = self.slots();

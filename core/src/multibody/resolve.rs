@@ -87,10 +87,11 @@ impl<T: Real, const B: usize> Detector<T, B> {
 /// one interface) is not looked at: it leaves the split of a force open, not the motion.
 ///
 /// The work, on every step not at rest, is that of the decision and no more: `N` (its lower
-/// triangle) and `C` from the columns laid out by body ([`Factored::contact_blocks`], each entry
-/// [`Factored::entry`]'s value with no comparison of bodies per entry), and the usual four
-/// contacts in a copy whose loop bounds are constants. The same entries and the same operations
-/// on them as the definition above: the same decision.
+/// triangle) and `C` from the columns laid out by body ([`Factored::contact_blocks`]: each entry
+/// the columns' product, with no comparison of bodies per entry), and the usual four
+/// contacts in a copy whose loop bounds are constants. The same entries (up to a zero's sign,
+/// which no comparison here sees) and the same operations on them as the definition above: the
+/// same decision.
 #[inline(never)] // called only for a step not at rest: out of the resting steps' path
 pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, N>) -> bool {
     // Four contacts (two interfaces of two corners: block-on-block's step) with every bound a
