@@ -348,6 +348,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// `c_r^T M~ c_c`: the entry of `J M~ J^T` in row `r` and column `c` (`r, c < 3 k`).
+    #[cfg(test)] // the tests' entry-by-entry reference of `contact_blocks`
     pub(super) fn entry(&self, r: usize, c: usize) -> T {
         self.cols[r.min(N - 1)].dot_scaled(&self.cols[c.min(N - 1)])
     }
@@ -797,6 +798,55 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             };
         }
         y[l] = -self.q[var[l].min(N - 1)];
+    }
+
+    /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
+    /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~ c_+d,j`
+    /// by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is left as
+    /// given. Each column is first laid out densely in the bodies' `3B` coordinates (zero on the
+    /// bodies it does not touch) and each entry summed body by body with no comparison of bodies:
+    /// `sum_b dot3(c_i[b], (M~ c_j)[b])`. That is [`Column::dot_scaled`]'s value exactly, for finite
+    /// columns (those of every step solved: a non-finite one is refused first, [`Self::is_finite`]):
+    /// the bodies both columns touch give the same `dot3` products, a body the two do not share
+    /// adds a signed zero (`0 x finite`), which changes no sum but a zero's sign, and a column
+    /// touches at most two bodies, so at most two non-zero terms are added, in either order the
+    /// same (IEEE addition commutes).
+    #[inline]
+    pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
+        let k = self.slots();
+        let rows = k.min(K);
+        let zero = [[T::zero(); 3]; B];
+        // Per slot: `c_n`, `M~ c_n`, `M~ c_+d`, dense.
+        let (mut normal, mut scaled, mut friction) = ([zero; K], [zero; K], [zero; K]);
+        for i in 0..rows {
+            let (a, f) = (&self.cols[i.min(N - 1)], &self.cols[(k + 2 * i).min(N - 1)]);
+            for p in 0..2 {
+                if let (Some(u), Some(m)) =
+                    (normal[i].get_mut(usize::from(a.body[p])), scaled[i].get_mut(usize::from(a.body[p])))
+                {
+                    *u = a.c[p];
+                    *m = a.mc[p];
+                }
+                if let Some(m) = friction[i].get_mut(usize::from(f.body[p])) {
+                    *m = f.mc[p];
+                }
+            }
+        }
+        let dense_dot = |u: &[[T; 3]; B], v: &[[T; 3]; B]| {
+            let mut sum = T::zero();
+            for b in 0..B {
+                sum += dot3(&u[b], &v[b]);
+            }
+            sum
+        };
+        for j in 0..rows {
+            for i in j..rows {
+                n[i][j] = dense_dot(&normal[i], &scaled[j]);
+            }
+            for i in 0..rows {
+                c[j][i] = dense_dot(&normal[i], &friction[j]);
+            }
+        }
     }
 }
 

@@ -85,23 +85,46 @@ impl<T: Real, const B: usize> Detector<T, B> {
 /// (`core/src/planar/resolve.rs`, `Detector::flags`) for each contact as the others leave it, and
 /// exactly that test for `k = 1`. The friction block's own singularity (two sticking corners of
 /// one interface) is not looked at: it leaves the split of a force open, not the motion.
+///
+/// The work, on every step not at rest, is that of the decision and no more: `N` (its lower
+/// triangle) and `C` from the columns laid out by body ([`Factored::contact_blocks`]: each entry
+/// the columns' product, with no comparison of bodies per entry), and the usual four
+/// contacts in a copy whose loop bounds are constants. The same entries (up to a zero's sign,
+/// which no comparison here sees) and the same operations on them as the definition above: the
+/// same decision.
 #[inline(never)] // called only for a step not at rest: out of the resting steps' path
 pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, N>) -> bool {
-    const MOST: usize = 8;
-    let k = f.slots().min(MOST);
+    // Four contacts (two interfaces of two corners: block-on-block's step) with every bound a
+    // constant; any other count (at most `N / 4 <= 8`) in arrays of eight.
+    match f.slots() {
+        4 => flags_of::<T, B, N, 4>(f, 4),
+        k => flags_of::<T, B, N, 8>(f, k.min(8)),
+    }
+}
+
+/// [`flags`] for `k <= MOST` contacts.
+#[allow(clippy::inline_always)] // `k` a constant in the four contacts' copy: its loops unrolled
+#[inline(always)]
+fn flags_of<T: Real, const B: usize, const N: usize, const MOST: usize>(
+    f: &Factored<T, B, N>,
+    k: usize,
+) -> bool {
+    let k = k.min(MOST);
     let round_off = T::of(64.0) * T::EPS;
+    let (mut n, mut c) = ([[T::zero(); MOST]; MOST], [[T::zero(); MOST]; MOST]);
+    f.contact_blocks(&mut n, &mut c);
     // `N = L D L^T` by rows.
     let mut l = [[T::zero(); MOST]; MOST];
     let mut d = [T::zero(); MOST];
     for i in 0..k {
         for j in 0..i {
-            let mut u = f.entry(i, j);
+            let mut u = n[i][j];
             for m in 0..j {
                 u -= l[i][m] * d[m] * l[j][m];
             }
             l[i][j] = u / d[j];
         }
-        let diagonal = f.entry(i, i);
+        let diagonal = n[i][i];
         let mut pivot = diagonal;
         for m in 0..i {
             pivot -= l[i][m] * l[i][m] * d[m];
@@ -120,7 +143,7 @@ pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, 
         }
         let mut x = [T::zero(); MOST];
         for i in 0..k {
-            let mut y = f.entry(i, k + 2 * j);
+            let mut y = c[j][i];
             for m in 0..i {
                 y -= l[i][m] * x[m];
             }
@@ -258,8 +281,12 @@ mod tests {
 
     use super::{Detector, flags, resolve};
     use crate::lcp::{default_tolerance, verify};
-    use crate::multibody::scenes::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
+    use crate::multibody::factored::Factored;
+    use crate::multibody::scenes::{
+        BlockOnBlock, BlockOnBlockParams, TABLECLOTH_ROWS, Tablecloth, TableclothParams,
+    };
     use crate::multibody::stepper::{PATTERNS, slot_rows};
+    use crate::planar::resolve::COUPLING;
 
     const N: usize = TABLECLOTH_ROWS;
 
@@ -366,5 +393,87 @@ mod tests {
         }
         // The reference counts 4 such steps in this run (steps 43 to 46).
         assert_eq!((ambiguous, flagged), (4, 4));
+    }
+
+    /// [`flags`] written entry by entry from [`Factored::entry`] with no shortcut: `N` and `C`
+    /// formed whole, `N = L D L^T`, one solve per column of `C`, the rows of `|N^-1 C|` summed.
+    fn flags_by_entries<const N: usize>(f: &Factored<f64, 2, N>) -> bool {
+        let k = f.slots();
+        let (mut l, mut d) = ([[0.0; 8]; 8], [0.0; 8]);
+        for i in 0..k {
+            for j in 0..i {
+                let u = f.entry(i, j) - (0..j).map(|m| l[i][m] * d[m] * l[j][m]).sum::<f64>();
+                l[i][j] = u / d[j];
+            }
+            let diagonal = f.entry(i, i);
+            let pivot = diagonal - (0..i).map(|m| l[i][m] * l[i][m] * d[m]).sum::<f64>();
+            if pivot.partial_cmp(&(64.0 * f64::EPSILON * diagonal)) != Some(core::cmp::Ordering::Greater) {
+                return true;
+            }
+            d[i] = pivot;
+        }
+        let mut rows = [0.0; 8];
+        for j in 0..k {
+            let mut x = [0.0; 8];
+            for i in 0..k {
+                x[i] = f.entry(i, k + 2 * j) - (0..i).map(|m| l[i][m] * x[m]).sum::<f64>();
+            }
+            for i in (0..k).rev() {
+                x[i] = x[i] / d[i] - (i + 1..k).map(|m| l[m][i] * x[m]).sum::<f64>();
+            }
+            for i in 0..k {
+                rows[i] += f.mu(j) * x[i].abs();
+            }
+        }
+        rows.iter().any(|&r| r >= COUPLING)
+    }
+
+    /// One step's check: the blocks [`flags`] reads are [`Factored::entry`]'s exactly, and
+    /// its decision is [`flags_by_entries`]'s; returns (active contacts, flagged).
+    fn check_step<const N: usize>(f: &Factored<f64, 2, N>) -> (usize, bool) {
+        let k = f.slots();
+        let (mut n, mut c) = ([[f64::NAN; 8]; 8], [[f64::NAN; 8]; 8]);
+        f.contact_blocks(&mut n, &mut c);
+        for i in 0..k {
+            for j in 0..k {
+                if j <= i {
+                    assert_eq!(n[i][j], f.entry(i, j), "N[{i}][{j}]");
+                }
+                assert_eq!(c[j][i], f.entry(i, k + 2 * j), "C[{i}][{j}]");
+            }
+        }
+        let flagged = flags(f);
+        assert_eq!(flagged, flags_by_entries(f), "k = {k}");
+        (k, flagged)
+    }
+
+    #[test]
+    fn the_detection_decides_as_the_whole_blocks_do() {
+        // Block-on-block (default: four contacts sliding, never flagged).
+        let mut scene = BlockOnBlock::new(BlockOnBlockParams::<f64>::default()).expect("valid parameters");
+        let mut four = 0;
+        for _ in 0..200 {
+            let mut stepper = scene.stepper().clone();
+            stepper.refill().expect("room for the contacts");
+            let (k, flagged) = check_step(&stepper.lcp.factored);
+            assert!(!flagged);
+            four += u32::from(k == 4);
+            if scene.step().is_none() {
+                break;
+            }
+        }
+        assert!(four > 100, "{four} steps of four contacts");
+        // The tablecloth at `mu = 2` (flagged steps 43 to 46).
+        let params =
+            TableclothParams::<f64> { mu_static: 2.0, mu_kinetic: 2.0, ..TableclothParams::default() };
+        let mut scene = Tablecloth::new(params).expect("valid parameters");
+        let mut flagged = 0;
+        for _ in 0..60 {
+            let mut stepper = scene.stepper().clone();
+            stepper.refill().expect("room for the contacts");
+            flagged += u32::from(check_step(&stepper.lcp.factored).1);
+            let _ = scene.step().expect("the run goes on");
+        }
+        assert!(flagged >= 4, "{flagged} flagged steps");
     }
 }
