@@ -152,6 +152,24 @@ impl<T: Real, const B: usize> Choice<T, B> {
     pub fn changed(&self) -> bool {
         self.chosen().is_some() && self.rule.moves_differently(&self.best.velocity, &self.first.velocity)
     }
+
+    /// What the rule did on a step whose solutions were all offered to this choice.
+    #[must_use]
+    pub(crate) fn resolution(&self) -> Resolution {
+        Resolution { enumerated: true, ambiguous: self.ambiguous(), changed: self.changed() }
+    }
+}
+
+/// What the rule did on one step (or one layout's solve): counted by the steppers' statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct Resolution {
+    /// The solutions were enumerated (for one body: the path's answer was not already at the least
+    /// energy any solution can have; for several: at most `MAX_CONTACTS` active contacts).
+    pub(crate) enumerated: bool,
+    /// Solutions moved the bodies differently.
+    pub(crate) ambiguous: bool,
+    /// The rule's choice moves the bodies differently from the path's answer.
+    pub(crate) changed: bool,
 }
 
 #[cfg(test)]

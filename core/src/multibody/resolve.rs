@@ -21,7 +21,7 @@ use super::stepper::{PATTERNS, slot_rows};
 use crate::planar::Body;
 use crate::planar::resolve::COUPLING;
 use crate::real::{Real, max};
-use crate::rule::{Answer, Choice, Rule};
+use crate::rule::{Answer, Choice, Resolution, Rule};
 
 /// At most this many active contacts are enumerated (`ENUMERATED.len()^4 = 2401` bases, the
 /// worst step's work); a flagged step with more keeps its path's answer.
@@ -197,17 +197,6 @@ impl Stats {
     }
 }
 
-/// What the rule did on one step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(super) struct Resolution {
-    /// The solutions were enumerated (at most [`MAX_CONTACTS`] active contacts).
-    pub(super) enumerated: bool,
-    /// Solutions moved the bodies differently.
-    pub(super) ambiguous: bool,
-    /// The rule's choice moves the bodies differently from the path's answer.
-    pub(super) changed: bool,
-}
-
 /// Applies `rule` to the flagged step `f` whose path answered `v_plus`, `z` with the basis `mask`:
 /// every verified solution of the bases of the active contacts' [`ENUMERATED`] patterns (contact by
 /// contact, the first the fastest digit; `7^k` for `k <= MAX_CONTACTS`) is offered to the rule after
@@ -257,7 +246,7 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
     {
         (*v_plus, *z, *mask) = (v, best_z, m);
     }
-    Resolution { enumerated: true, ambiguous: choice.ambiguous(), changed: choice.changed() }
+    choice.resolution()
 }
 
 /// `||z||_1` (every entry is `>= 0`).

@@ -17,7 +17,7 @@ use super::inputs::{StepInputs, dot3};
 use super::strategy::{SolvePath, Solved};
 use crate::lcp::Basis;
 use crate::real::{Real, max};
-use crate::rule::{Answer, Choice, Rule};
+use crate::rule::{Answer, Choice, Resolution, Rule};
 
 /// Friction coupling at or above this fraction of a normal row's own stiffness flags a step
 /// ([`Detector::flags`]). For one contact 1 is exact: below it a sliding contact's normal row
@@ -169,18 +169,6 @@ impl Detector {
     }
 }
 
-/// What the rule did on one layout's solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) struct Resolution {
-    /// The solutions were enumerated: the path's answer was not already at the least energy any
-    /// solution can have (zero, within the tie).
-    pub(crate) enumerated: bool,
-    /// Solutions moved the body differently.
-    pub(crate) ambiguous: bool,
-    /// The rule's choice moves the body differently from the path's answer.
-    pub(crate) changed: bool,
-}
-
 /// Applies `rule` to the step `factored` whose path answered `sol` (`z`, `w`). An answer at the
 /// least energy any solution can have (zero, within the tie: the body at rest relative to the
 /// energy's frame) is the rule's choice as it is. Otherwise every solution [`each_solution`]
@@ -216,7 +204,7 @@ pub(crate) fn resolve<T: Real, const K: usize, const N: usize>(
         (*z, *w) = (found.z, found.w);
         (sol.basis, sol.v_plus, sol.residual) = (found.basis, found.v_plus, found.residual);
     }
-    Resolution { enumerated: true, ambiguous: choice.ambiguous(), changed: choice.changed() }
+    choice.resolution()
 }
 
 /// The rule's choice among the solutions [`each_solution`] finds that `admissible` accepts, for a

@@ -28,11 +28,12 @@ use super::inputs::sign;
 use super::layout::{Direction, Layout, Variable};
 use super::model::{Model, Settings, validate};
 use super::report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
-use super::resolve::{Detector, Resolution, resolve, solve_by_rule};
+use super::resolve::{Detector, resolve, solve_by_rule};
 use super::strategy::{SolvePath, Solved, solve};
 use crate::lcp::{Basis, LcpError, Lemke};
 use crate::params::ParamError;
 use crate::real::{Real, max, min, zero_if_finite};
+use crate::rule::Resolution;
 
 /// Why a step failed. The state is that before the step.
 #[derive(Debug, Clone, Copy, PartialEq)]
