@@ -115,6 +115,9 @@ for label, build, machine, board in cores:
     slow = timings[build]["slow"]
     print(f"| {label} ({board}): instructions per step, mean / worst | {mean_worst(slow)} |")
 for scene, title in (("block-on-block", "block-on-block"), ("stack", "the 3-block stack")):
+    if scene not in timings["qemu-m4f"]:
+        sys.exit(f"performance.sh: out/firmware/qemu-m4f-icount.json has no {scene} run "
+                 "(the M4F firmware runs the scenes of several bodies: see firmware/Cargo.toml)")
     print(f"| Cortex-M4F, {title} (f32, defaults): instructions per step, mean / worst | "
           f"{mean_worst(timings['qemu-m4f'][scene])} |")
 flash, ram = flash_ram("rig-m4f-6x6-nolog")
@@ -173,13 +176,10 @@ for label, build, machine, board in cores:
     t = timings[build]
     peaks = " / ".join("-" if s not in t or t[s].get("stack_peak_bytes") is None else n(t[s]["stack_peak_bytes"])
                        for s in ("slow", "block-on-block", "stack"))
-    if "stack" not in t:
-        print(f"| {label} (`{machine}`) | not run | not run | {peaks} |")
-        continue
-    cells = [mean_worst(t[s]) for s in ("block-on-block", "stack")]
+    cells = [mean_worst(t[s]) if s in t else "not run" for s in ("block-on-block", "stack")]
     print(f"| {label} (`{machine}`) | {cells[0]} | {cells[1]} | {peaks} |")
 m4f = timings["qemu-m4f"]
-if "stack" in m4f and m4f["stack"].get("stack_peak_bytes") is not None:
+if all(m4f[s].get("stack_peak_bytes") is not None for s in ("stack", "block-on-block")):
     print()
     print(f"The Cortex-M0 build (`microbit`: 16,384 B of RAM) runs the scenes of one body only: the 3-block "
           f"stack needs {n(m4f['stack']['stack_peak_bytes'])} B of stack on the M4F (block-on-block "

@@ -20,6 +20,15 @@ pub struct Answer<T, const B: usize> {
     pub impulse_sum: T,
 }
 
+impl<T: Real, const B: usize> Answer<T, B> {
+    /// The answer whose velocities after the step are `velocity` and whose LCP unknowns are `z`
+    /// (all non-negative: their sum is `||z||_1`).
+    #[must_use]
+    pub fn of<const N: usize>(velocity: [[T; 3]; B], z: &[T; N]) -> Self {
+        Self { velocity, impulse_sum: z.iter().fold(T::zero(), |s, &x| s + x) }
+    }
+}
+
 /// The rule's metric and tolerances for one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

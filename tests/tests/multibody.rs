@@ -595,9 +595,10 @@ fn the_default_block_on_block_and_stack_flag_no_step() {
 
 /// Block-on-block with masses 1000:1 apart both ways and the tablecloth with a 1 g block on a 1 kg
 /// board, each below, between and above its thresholds: the laws' outcomes, and held runs still
-/// (largest `|vx|` at round-off). In f32 both held block-on-block runs read `Rode` when a basis
-/// whose slip (2.2e-5 m/s) was no round-off passed a floor scaled by the light body's diagonal
-/// times the heavy body's impulses (`docs/formulation.md`, "Solving a multibody step (the core)").
+/// (largest `|vx|` at round-off). In f32 the held block-on-block runs need each velocity row held
+/// to its own round-off: a floor scaled by the light body's diagonal times the heavy body's
+/// impulses passes a basis whose slip (2.2e-5 m/s) is no round-off, and the run reads `Rode`
+/// (`docs/formulation.md`, "Solving a multibody step (the core)").
 fn mass_ratios<T: Real>() {
     let d = BlockOnBlockParams::<f64> { max_time: 0.2, ..BlockOnBlockParams::default() };
     for (top_mass, bottom_mass) in [(1.0, 1000.0), (1000.0, 1.0)] {
@@ -650,9 +651,8 @@ fn stack_energy<T: Real>(p: &StackParams<f64>, states: &[BodyState<T>]) -> f64 {
 /// 3-block stack beyond the harmonic overhang (s = 1.02) falls on the reference's step (200) with
 /// positions within 1e-5 m of it (measured 1.4e-6), and its energy never rises above the start's
 /// by more than 1e-5 J (no pull does work on it: the implicit step only loses energy; measured: it
-/// never rises).
-/// Unweighted, f32 at 1e3 gained 4.5e-2 J and fell 2 steps early, at 1e4 gained up to 3e-5 J in a
-/// step and fell 3 steps early.
+/// never rises). With the cone rows unweighted, f32 at 1e3 gains 4.5e-2 J and falls 2 steps early,
+/// at 1e4 gains up to 3e-5 J in a step and falls 3 steps early.
 #[test]
 fn extreme_friction_in_f32() {
     let held = block_on_block::<f32>(BlockOnBlockParams { mu_floor: 1e4, ..BlockOnBlockParams::default() });
@@ -685,8 +685,8 @@ fn extreme_friction_in_f32() {
 }
 
 /// The frictionless 3-block stack beyond the harmonic overhang in f64 falls as the reference does
-/// (the same step, 207: 0.207 s; positions within 1e-9 m, measured 1.2e-13). It once ended in a
-/// Lemke ray at step 3.
+/// (the same step, 207: 0.207 s; positions within 1e-9 m, measured 1.2e-13), with no Lemke ray
+/// on its violent first steps.
 #[test]
 fn frictionless_stack_falls_as_the_reference_in_f64() {
     let p = StackParams::<f64> {

@@ -414,13 +414,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// `true` when `w_v = wv < 0`, computed by [`Self::solve_basis`] from impulses whose scale is
     /// `scale` ([`Self::round_off_scale`]), is within row `v`'s round-off:
     /// `-wv <= (t + 8) eps (|q_v| + |c_v|^T sum_u |M~ c_u| |z_u|)`, `t` the non-zero impulses (the
-    /// running error bound of `dv`'s sums of at most `t` products, the dot product of at most six
-    /// and the sum with `q_v`), each row on its own data.
+    /// error bound of evaluating `w_v` from the computed `z`: `dv`'s sums of at most `t` products,
+    /// the dot product of at most six and the sum with `q_v`; the basis solve's own error in `z`
+    /// is not in it, so the test errs towards declining, and a declined basis goes to the next
+    /// path), each row on its own data.
     ///
     /// A row's own scale, not `||A|| ||z||`: with masses 1000:1 apart that product pairs the light
     /// body's diagonal (per unit reference mass about 1000 times the heavy one's) with the heavy
-    /// body's impulses, and let through a basis whose slip of 2.2e-5 m/s was no round-off
-    /// (`docs/formulation.md`, "Solving a multibody step (the core)").
+    /// body's impulses, a floor of 6e-5 m/s that would pass a real slip of 2.2e-5 m/s, above the
+    /// stick speed (`docs/formulation.md`, "Solving a multibody step (the core)").
     #[inline]
     fn within_round_off(&self, v: usize, wv: T, scale: &RoundOffScale<T, B>) -> bool {
         let v = v.min(N - 1);

@@ -17,7 +17,7 @@
 
 use super::factored::Factored;
 use super::stepper::Stats;
-use super::stepper::{PATTERNS, slot_rows};
+use super::stepper::{PATTERNS, pattern_bits};
 use crate::planar::Body;
 use crate::planar::resolve::COUPLING;
 use crate::real::{Real, max};
@@ -27,8 +27,8 @@ use crate::rule::{Answer, Choice, Resolution, Rule};
 /// worst step's work); a flagged step with more keeps its path's answer.
 pub(super) const MAX_CONTACTS: usize = 4;
 
-/// The patterns a contact takes in the enumeration: the stepper's [`PATTERNS`] but sticking along
-/// `-d` (the factored solve turns a sticking contact's negative `p_+d` into `p_-d` itself: the
+/// The patterns a contact takes in the enumeration: the stepper's [`PATTERNS`] without sticking
+/// along `-d` (the factored solve turns a sticking contact's negative `p_+d` into `p_-d` itself: the
 /// same solution).
 const ENUMERATED: [u8; 7] =
     [PATTERNS[0], PATTERNS[2], PATTERNS[3], PATTERNS[4], PATTERNS[5], PATTERNS[6], PATTERNS[7]];
@@ -164,9 +164,9 @@ fn flags_of<T: Real, const B: usize, const N: usize, const MOST: usize>(
 /// The rule on the step `f` whose path answered `v_plus`, `z` with the basis `mask`
 /// (`docs/formulation.md`, "One answer: the rule"): an answer at rest (its energy within the
 /// rule's tie of zero) is the rule's choice as it is, with no other test; otherwise, when
-/// [`flags`] says the step may have several answers, [`resolve`]; `None` when the step was not
-/// flagged. Without the `fallback` feature nothing (and none of the rule's code is linked), as
-/// for one body.
+/// [`flags`] says the step may have several answers, [`resolve`]; `None` when the answer is at
+/// rest or the step was not flagged. Without the `fallback` feature nothing (and none of the
+/// rule's code is linked), as for one body: such a build keeps the path's answer.
 #[inline]
 pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     detector: &Detector<T, B>,
@@ -201,7 +201,9 @@ impl Stats {
 /// every verified solution of the bases of the active contacts' [`ENUMERATED`] patterns (contact by
 /// contact, the first the fastest digit; `7^k` for `k <= MAX_CONTACTS`) is offered to the rule after
 /// the path's answer. When the rule takes another, `v_plus`, `z` and `mask` become it. No heap:
-/// two `z` arrays on the stack.
+/// two `z` arrays on the stack. The cost of a flagged step with four active contacts: 2,400 basis
+/// solves, 0.3 to 0.4 ms on the host; on a Cortex-M4F, at about 2,000 instructions a solve, some 5
+/// million instructions (50 ms at 100 MHz): such a step does not fit a 1 kHz real-time tick.
 #[cold] // only flagged steps come here: out of the stepper's determinate path
 #[inline(never)]
 pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
@@ -216,7 +218,7 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
     if k > MAX_CONTACTS {
         return Resolution::default();
     }
-    let mut choice = Choice::new(rule, Answer { velocity: *v_plus, impulse_sum: impulse_sum(z) });
+    let mut choice = Choice::new(rule, Answer::of(*v_plus, z));
     let mut best: Option<([[T; 3]; B], u32)> = None;
     let mut best_z = [T::zero(); N];
     let (mut found, mut w) = ([T::zero(); N], [T::zero(); N]);
@@ -227,15 +229,13 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
         for j in 0..k {
             let pattern = ENUMERATED[digits % ENUMERATED.len()];
             digits /= ENUMERATED.len();
-            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
-                basis |= u32::from(pattern >> bit & 1).checked_shl(row as u32).unwrap_or(0);
-            }
+            basis |= pattern_bits(pattern, k, j);
         }
         if basis == *mask {
             continue;
         }
         if let Ok(a) = f.solve_basis(basis, tolerance, &mut found, &mut w)
-            && choice.offer(code, Answer { velocity: a.v_plus, impulse_sum: impulse_sum(&found) })
+            && choice.offer(code, Answer::of(a.v_plus, &found))
         {
             best = Some((a.v_plus, a.mask));
             best_z = found;
@@ -247,11 +247,6 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
         (*v_plus, *z, *mask) = (v, best_z, m);
     }
     choice.resolution()
-}
-
-/// `||z||_1` (every entry is `>= 0`).
-fn impulse_sum<T: Real, const N: usize>(z: &[T; N]) -> T {
-    z.iter().fold(T::zero(), |s, &x| s + x)
 }
 
 #[cfg(test)]
@@ -365,10 +360,10 @@ mod tests {
             };
             let several = found.iter().any(|d| differ(&d.v, &chosen.v));
             ambiguous += u32::from(several);
+            flagged += u32::from(flags(f));
             if several {
                 // Detection: a step with several motions is flagged.
                 assert!(flags(f), "an ambiguous step not flagged");
-                flagged += 1;
                 // Whatever solution the path answered, the rule ends on the dense choice.
                 for start in &found {
                     let (mut v, mut z, mut mask) = (start.v, start.z, start.mask);
@@ -380,8 +375,10 @@ mod tests {
             }
             let _ = scene.step().expect("the run goes on");
         }
-        // The reference counts 4 such steps in this run (steps 43 to 46).
-        assert_eq!((ambiguous, flagged), (4, 4));
+        // The reference counts 4 such steps in this run (steps 43 to 46); the detection flags them
+        // and more (it is a sufficient test), not every step.
+        assert_eq!(ambiguous, 4);
+        assert!(flagged >= ambiguous && flagged < 60, "{flagged} of 60 steps flagged");
     }
 
     /// [`flags`] written entry by entry from [`Factored::entry`] with no shortcut: `N` and `C`

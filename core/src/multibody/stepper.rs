@@ -693,7 +693,7 @@ fn slot_pattern(mask: u32, k: usize, j: usize) -> Pattern {
 /// The basis mask of slot `j`'s [`Pattern`] `pattern` (among `k` slots): [`slot_pattern`]'s
 /// inverse.
 #[inline]
-fn pattern_bits(pattern: Pattern, k: usize, j: usize) -> u32 {
+pub(super) fn pattern_bits(pattern: Pattern, k: usize, j: usize) -> u32 {
     let [n, plus, _, sigma] = slot_rows(k, j);
     let place = |bits: u8, v: usize| u32::from(bits).checked_shl(v as u32).unwrap_or(0);
     place(pattern & 1, n) | place(pattern >> 1 & 3, plus) | place(pattern >> 3 & 1, sigma)

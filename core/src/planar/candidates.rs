@@ -34,9 +34,9 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     /// as before): the full layout's first try when a reduced layout's dropped direction was
     /// needed.
     ///
-    /// Inlined into the step's fallback: out of line (where the compiler had put it), each step
-    /// solved again in the full layout paid a call; measured, the slow scene's worst step on the
-    /// Cortex-M33F was one SysTick tick (50 instructions) longer.
+    /// Inlined into the step's fallback: out of line, each step solved again in the full layout
+    /// pays a call; measured, the slow scene's worst step on the Cortex-M33F is one SysTick tick
+    /// (50 instructions) longer that way.
     #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
     #[inline(always)]
     #[allow(clippy::inline_always)] // measured, as said above
@@ -210,9 +210,8 @@ fn pattern<const K: usize, const N: usize>(
 }
 
 /// `basis` with contact `i`'s variables set to `pattern`. Inlined into each caller: a few bit
-/// operations once `i` and `pattern` are known there, where a call costs more (out of line, as the
-/// compiler left it once the rule's enumeration called it too, each candidate basis a step tries
-/// paid for one).
+/// operations once `i` and `pattern` are known there, where a call costs more (out of line, each
+/// candidate basis a step tries pays for one).
 #[inline(always)]
 #[allow(clippy::inline_always)] // measured, as said above
 fn with_pattern<const K: usize, const N: usize>(

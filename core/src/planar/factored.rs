@@ -190,10 +190,11 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     /// row's column and `q` is written; the `sigma` rows' columns stay zero, as [`Self::empty`]
     /// made them.
     ///
-    /// Inlined into its caller without `host-tuned` on a core with a floating-point unit (the
-    /// hard-float ABI): the step of a model without the rule's steps (itself inlined into its
-    /// caller, where the compiler left this call out of line; measured on the Cortex-M4F with
-    /// the step's `impulses` inlined too, the slow scene's step 27 instructions fewer). The other
+    /// Inlined into its caller without `host-tuned` on a target with the hard-float ABI
+    /// (`target_abi = "eabihf"`: the Cortex-M4F and M33F): the step of a model without the rule's
+    /// steps (itself inlined into its caller; measured on the Cortex-M4F with the step's
+    /// `impulses` inlined too, the slow scene's step 27 instructions fewer than with this call out
+    /// of line). The other
     /// callers take [`Self::refill_out_of_line`]: a copy in each cost the Cortex-M0's build 32 kB
     /// of flash. With software floats the refill is mostly library calls and the copy does not
     /// pay: on the Cortex-M0 the slow scene's step is 317 instructions fewer without it, and its

@@ -189,11 +189,11 @@ pub(crate) fn resolve<T: Real, const K: usize, const N: usize>(
     if rule.at_least_energy(&[sol.v_plus]) {
         return Resolution::default();
     }
-    let mut choice = Choice::new(rule, Answer { velocity: [sol.v_plus], impulse_sum: impulse_sum(z) });
+    let mut choice = Choice::new(rule, Answer::of([sol.v_plus], z));
     let mut best: Option<BasisSolution<T, N>> = None;
     each_solution(factored, tolerance, Some(sol.basis), |code, found| {
         if admissible(&found.z, &found.w, &found.v_plus)
-            && choice.offer(code, Answer { velocity: [found.v_plus], impulse_sum: impulse_sum(&found.z) })
+            && choice.offer(code, Answer::of([found.v_plus], &found.z))
         {
             best = Some(*found);
         }
@@ -227,7 +227,7 @@ pub(crate) fn solve_by_rule<T: Real, const K: usize, const N: usize>(
         if !admissible(&found.z, &found.w, &found.v_plus) {
             return;
         }
-        let answer = Answer { velocity: [found.v_plus], impulse_sum: impulse_sum(&found.z) };
+        let answer = Answer::of([found.v_plus], &found.z);
         match &mut choice {
             None => {
                 choice = Some(Choice::new(rule, answer));
@@ -262,11 +262,6 @@ pub(crate) struct BasisSolution<T, const N: usize> {
     w: [T; N],
     v_plus: [T; 3],
     residual: T,
-}
-
-/// `||z||_1` (every entry is `>= 0`).
-fn impulse_sum<T: Real, const N: usize>(z: &[T; N]) -> T {
-    z.iter().fold(T::zero(), |s, &x| s + x)
 }
 
 /// Calls `found` with every verified solution of `factored` over the bases of the active

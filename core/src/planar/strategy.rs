@@ -100,8 +100,8 @@ pub(crate) struct Solved<T: Real, const M: usize> {
 /// answer of Lemke's regularised retry in `regularized_solves`.
 /// `plan` keeps the warm basis' unknowns from one call to the next ([`FactoredLcp`]'s layout must
 /// be the same each call; a default one for a one-off).
-// Inlined into the step without `host-tuned`: out of line (where the compiler put it once the
-// step had two copies), every step paid a call and its answer's copy through memory.
+// Inlined into the step without `host-tuned`: out of line, every step pays a call and its
+// answer's copy through memory.
 #[cfg_attr(not(feature = "host-tuned"), inline(always))]
 #[allow(clippy::inline_always)] // measured, as said above
 #[allow(clippy::too_many_arguments)] // the two counters of `RunStats` it writes, passed on their own
