@@ -77,6 +77,13 @@ def icount(build):
 def n(x):
     return f"{x:,.0f}"
 
+def table(header, rows):
+    """A Markdown table: its header's cells, then each row's."""
+    print("| " + " | ".join(header) + " |")
+    print("|" + "---|" * len(header))
+    for cells in rows:
+        print("| " + " | ".join(cells) + " |")
+
 def mean_worst(scene):
     """A timed scene's `mean / worst` instructions per step."""
     return f"{n(scene['mean_instructions'])} / {n(scene['worst_instructions'])}"
@@ -158,26 +165,23 @@ print("Instructions per step under QEMU (`-icount shift=0`: one instruction per 
       "SysTick read around every tick of the rig loop, calibrated against a loop of known length); "
       "f32, the 6x6 layout with the 8x8 fallback:")
 print()
-print("| core (QEMU machine) | board it stands for | slow: mean / worst | fast: mean / worst |")
-print("|---|---|---|---|")
-for label, build, machine, board in cores:
-    t = timings[build]
-    cells = [mean_worst(t[s]) for s in ("slow", "fast")]
-    print(f"| {label} (`{machine}`) | {board} | {cells[0]} | {cells[1]} |")
+table(["core (QEMU machine)", "board it stands for", "slow: mean / worst", "fast: mean / worst"],
+      [[f"{label} (`{machine}`)", board] + [mean_worst(timings[build][s]) for s in ("slow", "fast")]
+       for label, build, machine, board in cores])
 print()
 print("The scenes of several bodies at their defaults (f32, stepped directly, not through the rig loop; "
       "issue targets on the M4F: block-on-block mean <= 5,000 / worst <= 25,000, the 3-block stack "
       "<= 12,000 / <= 100,000), with the deepest the stack grew (painted RAM read back, "
       "`firmware/src/stack_peak.rs`):")
 print()
-print("| core (QEMU machine) | block-on-block: mean / worst | stack: mean / worst | stack peak (B): slow run / block-on-block / stack |")
-print("|---|---|---|---|")
-for label, build, machine, board in cores:
-    t = timings[build]
-    peaks = " / ".join("-" if s not in t or t[s].get("stack_peak_bytes") is None else n(t[s]["stack_peak_bytes"])
-                       for s in ("slow", "block-on-block", "stack"))
-    cells = [mean_worst(t[s]) if s in t else "not run" for s in ("block-on-block", "stack")]
-    print(f"| {label} (`{machine}`) | {cells[0]} | {cells[1]} | {peaks} |")
+def peak(t, s):
+    return "-" if s not in t or t[s].get("stack_peak_bytes") is None else n(t[s]["stack_peak_bytes"])
+table(["core (QEMU machine)", "block-on-block: mean / worst", "stack: mean / worst",
+       "stack peak (B): slow run / block-on-block / stack"],
+      [[f"{label} (`{machine}`)"]
+       + [mean_worst(timings[build][s]) if s in timings[build] else "not run" for s in ("block-on-block", "stack")]
+       + [" / ".join(peak(timings[build], s) for s in ("slow", "block-on-block", "stack"))]
+       for label, build, machine, _ in cores])
 m4f = timings["qemu-m4f"]
 if all(m4f[s].get("stack_peak_bytes") is not None for s in ("stack", "block-on-block")):
     print()
