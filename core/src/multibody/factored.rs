@@ -807,12 +807,16 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is left as
     /// given. Each column is first laid out densely in the bodies' `3B` coordinates (zero on the
     /// bodies it does not touch) and each entry summed body by body with no comparison of bodies:
-    /// `sum_b dot3(c_i[b], (M~ c_j)[b])`. That is [`Column::dot_scaled`]'s value exactly, for finite
+    /// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1` (the first term not added to a zero: one
+    /// addition fewer per entry). That is [`Column::dot_scaled`]'s value exactly, for finite
     /// columns (those of every step solved: a non-finite one is refused first, [`Self::is_finite`]):
     /// the bodies both columns touch give the same `dot3` products, a body the two do not share
     /// adds a signed zero (`0 x finite`), which changes no sum but a zero's sign, and a column
     /// touches at most two bodies, so at most two non-zero terms are added, in either order the
-    /// same (IEEE addition commutes).
+    /// same (IEEE addition commutes). Only a zero's sign may differ, and no decision made from
+    /// these blocks reads it: [`super::resolve::flags`] adds, subtracts, multiplies, divides by its
+    /// pivots (each `> 0`), takes magnitudes and compares, and a zero's sign changes none of those
+    /// results but in the sign of a zero.
     #[inline]
     pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
         let k = self.slots();
@@ -835,11 +839,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             }
         }
         let dense_dot = |u: &[[T; 3]; B], v: &[[T; 3]; B]| {
-            let mut sum = T::zero();
-            for b in 0..B {
-                sum += dot3(&u[b], &v[b]);
-            }
-            sum
+            u.iter().zip(v).map(|(u, v)| dot3(u, v)).reduce(|sum, d| sum + d).unwrap_or(T::zero())
         };
         for j in 0..rows {
             for i in j..rows {
