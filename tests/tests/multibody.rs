@@ -3,15 +3,17 @@
 //! the independent reference (`meterstick_reference::multibody`) on the three default runs.
 #![allow(clippy::expect_used)]
 
-use meterstick_core::Real;
 use meterstick_core::lcp::LcpError;
 use meterstick_core::multibody::scenes::{
     BlockOnBlock, BlockOnBlockParams, MultibodyScene as _, Stack, Stack2, Stack3, StackParams, Tablecloth,
     TableclothParams,
 };
-use meterstick_core::multibody::{Pair, Settings, StepError, StepReport, Stepper, Support, System, Table};
+use meterstick_core::multibody::{
+    Pair, Settings, Shape, StepError, StepReport, Stepper, Support, System, Table,
+};
 use meterstick_core::planar::{Body, BodyState, ContactMode};
 use meterstick_core::scene::Outcome;
+use meterstick_core::{ParamError, Real};
 use meterstick_reference::multibody as reference;
 
 /// What a run measured, in f64.
@@ -402,7 +404,6 @@ fn three_block_stack_rests_for_ten_seconds_in_f64_as_the_reference() {
 
 #[test]
 fn invalid_parameters_are_refused_by_name() {
-    use meterstick_core::ParamError;
     let d = BlockOnBlockParams::<f64>::default();
     assert_eq!(
         BlockOnBlock::new(BlockOnBlockParams { top_width: 0.5, ..d }).err(),
@@ -440,8 +441,20 @@ fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
         bodies: [block; 2],
         table: Table::floor(),
         pairs: [
-            Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 },
-            Pair { upper: 1, lower: Support::Body(0), mu_static: 0.5, mu_kinetic: 0.5 },
+            Pair {
+                upper: 0,
+                lower: Support::Table,
+                mu_static: 0.5,
+                mu_kinetic: 0.5,
+                upper_shape: Shape::Box,
+            },
+            Pair {
+                upper: 1,
+                lower: Support::Body(0),
+                mu_static: 0.5,
+                mu_kinetic: 0.5,
+                upper_shape: Shape::Box,
+            },
         ],
         forces: [[force, 0.0], [0.0; 2]],
         settings: Settings {
@@ -470,7 +483,13 @@ fn aligned_edges_make_one_contact_each() {
     let system = System {
         bodies: [block],
         table: Table { lo: None, hi: Some(0.05) },
-        pairs: [Pair { upper: 0, lower: Support::Table, mu_static: 0.5, mu_kinetic: 0.5 }],
+        pairs: [Pair {
+            upper: 0,
+            lower: Support::Table,
+            mu_static: 0.5,
+            mu_kinetic: 0.5,
+            upper_shape: Shape::Box,
+        }],
         forces: [[0.0; 2]],
         settings: Settings {
             base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
@@ -708,4 +727,155 @@ fn frictionless_stack_falls_as_the_reference_in_f64() {
     assert_eq!((outcome, r.outcome), (Outcome::Fell, reference::Outcome::Fell));
     assert_eq!(u64::from(scene.stepper().stats().steps), r.steps);
     assert_positions_near("stack", &positions(scene.stepper().states()), &r.q, REFERENCE_TOLERANCE);
+}
+
+/// What [`disc_on_board`] measured.
+#[derive(Debug)]
+struct DiscRun {
+    /// The board's and the disc's accelerations along `x` between steps `from` and the last (m/s^2).
+    accelerations: [f64; 2],
+    /// The largest `|v_c + omega r - V_board|` over the run (the rim's slip on the board, m/s).
+    max_slip: f64,
+    /// Some step left the disc's contact sliding.
+    slid: bool,
+    /// The disc's contact was active on every step.
+    on_board: bool,
+}
+
+/// A disc (radius 0.05 m, 1 kg; its rim on a face: `docs/formulation.md`, "The rim-on-face
+/// contact") at rest on the middle of a board (1 m x 0.02 m, 2 kg) on a floor, the board pulled by
+/// `force` (N) along `x`; `mu_s` / `mu_k` disc on board, `mu_floor` board on floor; `steps` steps
+/// of 1 ms in `T`, accelerations measured from step `from` on.
+fn disc_on_board<T: Real>(force: f64, mu: [f64; 3], steps: u32, from: u32) -> DiscRun {
+    let t = T::of;
+    let (board, disc) = (Body::block(t(2.0), t(1.0), t(0.02)), Body::disc(t(1.0), t(0.05)));
+    let [mu_s, mu_k, mu_floor] = mu.map(t);
+    let system = System {
+        bodies: [board, disc],
+        table: Table::floor(),
+        pairs: [
+            Pair {
+                upper: 0,
+                lower: Support::Table,
+                mu_static: mu_floor,
+                mu_kinetic: mu_floor,
+                upper_shape: Shape::Box,
+            },
+            Pair {
+                upper: 1,
+                lower: Support::Body(0),
+                mu_static: mu_s,
+                mu_kinetic: mu_k,
+                upper_shape: Shape::Disc,
+            },
+        ],
+        forces: [[t(force), T::zero()], [T::zero(); 2]],
+        settings: Settings {
+            base: meterstick_core::planar::Settings { step: t(1e-3), gravity: t(9.81), stick_speed: t(1e-5) },
+            margin: t(1e-3),
+        },
+    };
+    let states = [
+        BodyState::at_rest(T::zero(), t(0.01), T::zero()),
+        BodyState::at_rest(T::zero(), t(0.07), T::zero()),
+    ];
+    let mut stepper = Stepper::<T, 2, 2, 16>::new(system, states).expect("a valid system");
+    let (mut start, mut end) = ([0.0; 2], [0.0; 2]);
+    let (mut max_slip, mut slid, mut on_board) = (0.0f64, false, true);
+    for n in 1..=steps {
+        let report = stepper.step().expect("a step");
+        let [b, d] = report.states.map(|s| [s.vx.as_f64(), s.omega.as_f64()]);
+        let disc_vx = report.states[1].vx.as_f64();
+        max_slip = max_slip.max((disc_vx + d[1] * 0.05 - b[0]).abs());
+        slid |= report.modes[1][0].is_sliding();
+        on_board &= report.touching(&[(1, 0)]);
+        if n == from {
+            start = [b[0], disc_vx];
+        }
+        end = [b[0], disc_vx];
+    }
+    let span = f64::from(steps - from) * 1e-3;
+    DiscRun {
+        accelerations: [(end[0] - start[0]) / span, (end[1] - start[1]) / span],
+        max_slip,
+        slid,
+        on_board,
+    }
+}
+
+/// The rim-on-face contact against its law (`docs/formulation.md`, "The rim-on-face contact"), in
+/// f32 and f64: rolling, the disc moves at a third of the board's acceleration
+/// `A = (F - mu_floor (M + m) g) / (M + m / 3)` with its rim's slip at round-off; beyond
+/// `A = 3 mu_s g` it slides, `a_c = mu_k g`, `A = (F - mu_k m g - mu_floor (M + m) g) / M`; at
+/// `F <= mu_floor (M + m) g` nothing moves.
+#[test]
+fn a_disc_rolls_on_a_pulled_board_at_a_third_of_its_acceleration() {
+    let (g, big_m, m) = (9.81, 2.0, 1.0);
+    let mu = [0.5, 0.4, 0.1];
+    let floor = mu[2] * (big_m + m) * g;
+    for (precision, run) in [
+        ("f64", disc_on_board::<f64> as fn(f64, [f64; 3], u32, u32) -> DiscRun),
+        ("f32", disc_on_board::<f32>),
+    ] {
+        let tol = if precision == "f64" { 1e-12 } else { 1e-5 };
+        // Rolling: F = 20 N, A = 7.31 m/s^2 below 3 mu_s g = 14.7.
+        let a = (20.0 - floor) / (big_m + m / 3.0);
+        let rolled = run(20.0, mu, 300, 50);
+        let [board, disc] = rolled.accelerations;
+        assert!(!rolled.slid && rolled.on_board, "{precision}: {rolled:?}");
+        assert!(
+            (board - a).abs() < tol * a && (disc - a / 3.0).abs() < tol * a,
+            "{precision}: {rolled:?} vs A = {a}"
+        );
+        assert!(rolled.max_slip < 1e-5, "{precision}: the rim slipped {rolled:?}");
+        // Sliding: F = 100 N (A would be 41.6 rolling), until the disc nears the board's end.
+        let sliding = run(100.0, mu, 120, 20);
+        let [board, disc] = sliding.accelerations;
+        let a_board = (100.0 - mu[1] * m * g - floor) / big_m;
+        assert!(sliding.slid && sliding.on_board, "{precision}: {sliding:?}");
+        assert!(
+            (board - a_board).abs() < tol * a_board && (disc - mu[1] * g).abs() < tol * a_board,
+            "{precision}: {sliding:?}"
+        );
+        // Held: F = 2 N below the floor's 2.94 N.
+        let held = run(2.0, mu, 100, 10);
+        assert!(held.accelerations.iter().all(|a| a.abs() < tol) && !held.slid, "{precision}: {held:?}");
+    }
+}
+
+/// A disc has no faces: a pair resting on one is refused; so are a disc whose width and height (its
+/// diameter) differ and a body two pairs give two shapes; named by the field.
+#[test]
+fn a_disc_is_only_an_upper_body() {
+    let settings = Settings {
+        base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+        margin: 1e-3,
+    };
+    let (disc, block) = (Body::disc(1.0, 0.05), Body::block(1.0, 0.1, 0.1));
+    let pair = |upper: u8, lower: Support, upper_shape: Shape| Pair {
+        upper,
+        lower,
+        mu_static: 0.5,
+        mu_kinetic: 0.5,
+        upper_shape,
+    };
+    let states = [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)];
+    let build = |bodies: [Body<f64>; 2], pairs: [Pair<f64>; 2]| {
+        let system = System { bodies, table: Table::floor(), pairs, forces: [[0.0; 2]; 2], settings };
+        Stepper::<f64, 2, 2, 16>::new(system, states).err()
+    };
+    // The disc on a block on the floor: valid.
+    let valid = [pair(0, Support::Table, Shape::Box), pair(1, Support::Body(0), Shape::Disc)];
+    assert_eq!(build([block, disc], valid), None);
+    // A block on a disc.
+    let on_disc = [pair(0, Support::Table, Shape::Disc), pair(1, Support::Body(0), Shape::Box)];
+    assert_eq!(build([disc, block], on_disc), Some(ParamError::OutOfRange("pairs")));
+    // A disc 0.2 m wide and 0.1 m high.
+    assert_eq!(
+        build([block, Body { width: 0.2, ..disc }], valid),
+        Some(ParamError::OutOfRange("upper_shape"))
+    );
+    // Body 1 a disc on body 0 and a box on the table.
+    let both = [pair(1, Support::Table, Shape::Box), pair(1, Support::Body(0), Shape::Disc)];
+    assert_eq!(build([block, disc], both), Some(ParamError::OutOfRange("upper_shape")));
 }

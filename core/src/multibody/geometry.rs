@@ -39,7 +39,19 @@ pub enum Support {
     Table,
 }
 
-/// A body `upper` resting on `lower`, with the pair's friction coefficients. Its four candidate
+/// A body's shape (`docs/formulation.md`, "Bodies, table and order"): what of it touches the body it
+/// rests on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Shape {
+    /// A box of the body's width and height: its corners on faces, faces under corners.
+    Box,
+    /// A disc whose diameter is the body's width (and height): its rim on the face it rests on
+    /// ("The rim-on-face contact"). Only ever a pair's upper body (it has no faces).
+    Disc,
+}
+
+/// A body `upper` resting on `lower`, with the pair's friction coefficients. A box's four candidate
 /// contacts, in order ([`Candidate`]): `upper`'s lower-left and lower-right corners on `lower`'s top
 /// face, `lower`'s upper-left and upper-right corners (the table's ends `lo`, `hi`) on `upper`'s
 /// lower face.
@@ -54,6 +66,9 @@ pub struct Pair<T> {
     pub mu_static: T,
     /// Kinetic friction coefficient (used while a contact slides).
     pub mu_kinetic: T,
+    /// The upper body's shape: a box rests by its corners (the four candidates), a disc by its
+    /// rim (the first). Every pair naming a body as its upper gives it the same shape.
+    pub upper_shape: Shape,
 }
 
 /// The four candidate contacts of a pair, in their order (`docs/formulation.md`, "Bodies, table
@@ -403,4 +418,86 @@ pub(crate) fn relative_velocity<T: Real, const B: usize>(frame: &CornerFrame<T>,
 /// is positive).
 pub(crate) fn slip<T: Real, const B: usize>(frame: &CornerFrame<T>, v: &[[T; 3]; B]) -> T {
     -dot(frame.tangent, relative_velocity(frame, v))
+}
+
+/// The frames of a pair whose upper body is a disc (`docs/formulation.md`, "The rim-on-face
+/// contact"): the first candidate is the rim's point nearest the lower body's top face (or the
+/// table), `P = c_U - r n_f`, a corner of the disc on that face under every rule of
+/// [`pair_frames`]; the other three do not exist (inactive). Same inputs as [`pair_frames`].
+#[allow(clippy::too_many_arguments)] // as pair_frames
+#[inline(never)] // a scene of boxes calls it never: kept out of the step's code
+pub(crate) fn rim_frames<T: Real, const B: usize>(
+    pair: &Pair<T>,
+    bodies: &[Body<T>; B],
+    states: &[BodyState<T>; B],
+    poses: &[Pose<T>; B],
+    table: &Table<T>,
+    margin: T,
+    h: T,
+    frames: &mut [CornerFrame<T>; 4],
+) {
+    *frames = [CornerFrame::inactive(); 4];
+    let look = |b: u8| {
+        let i = usize::from(b);
+        match (bodies.get(i), states.get(i), poses.get(i)) {
+            (Some(body), Some(state), Some(pose)) => Some((body, state, pose)),
+            _ => None,
+        }
+    };
+    let lower = match pair.lower {
+        Support::Body(s) => look(s).map(|l| Some((s, l))),
+        Support::Table => Some(None),
+    };
+    let (Some((disc, disc_state, _)), Some(lower)) = (look(pair.upper), lower) else {
+        return;
+    };
+    let radius = disc.width / T::of(2.0);
+    // The lower body's top face: centre `o`, tangent `e`, outward normal `n_f`; the table's at `y = 0`.
+    let (centre, tangent, n) = match lower {
+        Some((_, (_, _, p))) => (
+            p.world([T::zero(), p.half[1]]),
+            p.rotate([T::one(), T::zero()]),
+            p.rotate([T::zero(), T::one()]),
+        ),
+        None => ([T::zero(); 2], [T::one(), T::zero()], [T::zero(), T::one()]),
+    };
+    let com = [disc_state.x, disc_state.y];
+    let point = [com[0] - radius * n[0], com[1] - radius * n[1]];
+    let l = [point[0] - centre[0], point[1] - centre[1]];
+    let along = dot(l, tangent);
+    let gap = dot(l, n);
+    let (over, above_centre) = match lower {
+        Some((_, (body, _, p))) => (along.abs_exact() <= p.half[0], gap >= -(body.height / T::of(2.0))),
+        None => (table.covers(along), true),
+    };
+    let lever_corner = [point[0] - com[0], point[1] - com[1]];
+    let lever_face = lower.map_or([T::zero(); 2], |(_, (_, st, _))| [point[0] - st.x, point[1] - st.y]);
+    let face = lower.map(|(s, _)| s);
+    // Within reach: `margin` plus what the approach closes within the step.
+    let at = |v: [T; 3], r: [T; 2]| [v[0] - v[2] * r[1], v[1] + v[2] * r[0]];
+    let va = at(disc_state.velocity(), lever_corner);
+    let vb = lower.map_or([T::zero(); 2], |(_, (_, st, _))| at(st.velocity(), lever_face));
+    let approach = -dot([va[0] - vb[0], va[1] - vb[1]], n);
+    let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
+    // `|x| + |y| + size` and `size + |y|` of the disc and of the lower body (the table's 0).
+    let extent = |b: &Body<T>, st: &BodyState<T>| st.x.abs_exact() + st.y.abs_exact() + b.size();
+    let height = |b: &Body<T>, st: &BodyState<T>| b.size() + st.y.abs_exact();
+    let (lower_extent, lower_height) =
+        lower.map_or((T::zero(), T::zero()), |(_, (b, st, _))| (extent(b, st), height(b, st)));
+    frames[0] = CornerFrame {
+        active: over && above_centre && gap <= reach,
+        corner: Some(pair.upper),
+        face,
+        gap,
+        along,
+        point,
+        normal: n,
+        tangent: [n[1], -n[0]],
+        lever_corner,
+        lever_face,
+        gap_round_off: T::of(4.0)
+            * T::EPS
+            * (point[0].abs_exact() + point[1].abs_exact() + extent(disc, disc_state) + lower_extent),
+        touch: T::of(64.0) * T::EPS * (height(disc, disc_state) + lower_height),
+    };
 }

@@ -1,11 +1,12 @@
-//! Several rigid boxes resting on each other and on a fixed table (`docs/formulation.md`, "Several
-//! bodies"; issue #32): velocities in `3B` coordinates, corner-on-face contacts between a box and
-//! the table or between two boxes, one LCP per step in the paper's full friction form, solved in
+//! Several rigid boxes (or discs) resting on each other and on a fixed table (`docs/formulation.md`,
+//! "Several bodies"; issue #32): velocities in `3B` coordinates, corner-on-face contacts between a
+//! box and the table or between two boxes, rim-on-face contacts of a disc on a box or the table, one LCP per step in the paper's full friction form, solved in
 //! the bodies' coordinates from the last step's basis or a neighbour of it, else by Lemke's method
 //! ([`crate::lcp::Lemke`]), and verified.
 //!
-//! * [`System`]: `B` boxes ([`crate::planar::Body`]), the [`Table`], `P` resting [`Pair`]s (each
-//!   with four candidate contacts, [`Candidate`]), external forces and [`Settings`].
+//! * [`System`]: `B` bodies ([`crate::planar::Body`], each of a [`Shape`]), the [`Table`], `P`
+//!   resting [`Pair`]s (each with four candidate contacts, [`Candidate`]; a disc's pair one),
+//!   external forces and [`Settings`].
 //! * [`Stepper`]: the step (activity rule, the LCP per unit reference mass in factored form, the
 //!   paths free, warm, candidate and Lemke, each answer verified, compensated integration, contact
 //!   modes), each pair's summed interface force.
@@ -20,5 +21,5 @@ mod resolve;
 pub mod scenes;
 mod stepper;
 
-pub use geometry::{Candidate, CornerFrame, JacobianRow, Pair, Support, Table};
+pub use geometry::{Candidate, CornerFrame, JacobianRow, Pair, Shape, Support, Table};
 pub use stepper::{Settings, Stats, StepError, StepReport, Stepper, System};

@@ -16,6 +16,7 @@
 //! Painleve-type case).
 
 use super::factored::Factored;
+use super::geometry::Shape;
 use super::stepper::Stats;
 use super::stepper::{PATTERNS, pattern_bits};
 use crate::planar::Body;
@@ -45,8 +46,9 @@ pub(super) struct Detector<T, const B: usize> {
 }
 
 impl<T: Real, const B: usize> Detector<T, B> {
-    /// The rule's data of `bodies` whose `M~ = m_ref M^-1` has the diagonal `inverse_mass`.
-    pub(super) fn new(bodies: &[Body<T>; B], inverse_mass: &[[T; 3]; B]) -> Self {
+    /// The rule's data of `bodies` of `shapes` whose `M~ = m_ref M^-1` has the diagonal
+    /// `inverse_mass`: a box's reach half its diagonal, a disc's its radius.
+    pub(super) fn new(bodies: &[Body<T>; B], shapes: &[Shape; B], inverse_mass: &[[T; 3]; B]) -> Self {
         let mut mass_sum = T::zero();
         for m in inverse_mass {
             mass_sum += T::one() / m[0];
@@ -58,7 +60,7 @@ impl<T: Real, const B: usize> Detector<T, B> {
                 metric[i][c] = T::one() / (inverse_mass[i][c] * mass_sum);
             }
             let [a, b] = bodies[i].half_extents();
-            reach[i][2] = (a * a + b * b).sqrt_libm();
+            reach[i][2] = if shapes[i] == Shape::Disc { a } else { (a * a + b * b).sqrt_libm() };
         }
         Self { metric, reach }
     }
@@ -297,7 +299,7 @@ mod tests {
             let bodies = stepper.system().bodies;
             let m_ref = bodies[0].mass;
             let inverse_mass = bodies.map(|b| [m_ref / b.mass, m_ref / b.mass, m_ref / b.inertia]);
-            let rule = Detector::new(&bodies, &inverse_mass).rule(f);
+            let rule = Detector::new(&bodies, &[super::Shape::Box; 2], &inverse_mass).rule(f);
             let lcp = f.assemble(false);
             let tolerance = default_tolerance::<f64, N>();
             // The dense enumeration: 8^k bases.

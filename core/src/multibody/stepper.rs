@@ -3,7 +3,7 @@
 //! (`docs/formulation.md`, "Several bodies", "One step", "Solving a multibody step (the core)").
 
 use super::factored::Factored;
-use super::geometry::{CornerFrame, Pair, Table, pair_frames, poses, slip};
+use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames, slip};
 use super::resolve::{self, Detector};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
@@ -27,7 +27,7 @@ pub struct Settings<T> {
 /// The bodies, the table, the `P` resting pairs and the external forces of a system of `B` boxes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct System<T, const B: usize, const P: usize> {
-    /// The boxes, in body order (body 0's mass is the reference mass of the LCP).
+    /// The bodies, in body order (body 0's mass is the reference mass of the LCP).
     pub bodies: [Body<T>; B],
     /// The fixed table.
     pub table: Table<T>,
@@ -198,17 +198,35 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     ///
     /// # Errors
     /// [`ParamError::NonFiniteState`] for a non-finite state, [`ParamError::OutOfRange`]`("pairs")`
-    /// for a pair naming a body that does not exist or resting on itself.
+    /// for a pair naming a body that does not exist, resting on itself or on a disc,
+    /// [`ParamError::OutOfRange`]`("upper_shape")` for a disc whose width and height differ or a
+    /// body the pairs give two shapes.
     pub fn new(system: System<T, B, P>, states: [BodyState<T>; B]) -> Result<Self, ParamError> {
         let () = Self::SIZE_CHECK;
         if !states.iter().all(BodyState::is_finite) {
             return Err(ParamError::NonFiniteState);
         }
+        // Each body's shape, from the pairs it rests in (a box unless one says it is a disc).
+        let mut shapes = [Shape::Box; B];
+        for pair in &system.pairs {
+            if let (Shape::Disc, Some(shape)) = (pair.upper_shape, shapes.get_mut(usize::from(pair.upper))) {
+                *shape = Shape::Disc;
+            }
+        }
+        for (body, shape) in system.bodies.iter().zip(&shapes) {
+            if *shape == Shape::Disc && body.width != body.height {
+                return Err(ParamError::OutOfRange("upper_shape"));
+            }
+        }
         for pair in &system.pairs {
             let bad_lower = match pair.lower {
-                super::Support::Body(s) => usize::from(s) >= B || s == pair.upper,
+                // A body that does not exist has no shape: refused as a disc is.
+                super::Support::Body(s) => s == pair.upper || shapes.get(usize::from(s)) != Some(&Shape::Box),
                 super::Support::Table => false,
             };
+            if shapes.get(usize::from(pair.upper)).is_some_and(|shape| *shape != pair.upper_shape) {
+                return Err(ParamError::OutOfRange("upper_shape"));
+            }
             if usize::from(pair.upper) >= B || bad_lower {
                 return Err(ParamError::OutOfRange("pairs"));
             }
@@ -241,7 +259,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 active: 0,
                 warm: Basis::all_w(),
             },
-            detector: Detector::new(&system.bodies, &inverse_mass),
+            detector: Detector::new(&system.bodies, &shapes, &inverse_mass),
             stats: Stats::default(),
         };
         stepper.update_frames();
@@ -301,16 +319,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let s = self.system.settings;
         let poses = poses(&self.system.bodies, &self.states);
         for p in 0..P {
-            pair_frames(
-                &self.system.pairs[p],
-                &self.system.bodies,
-                &self.states,
-                &poses,
-                &self.system.table,
-                s.margin,
-                s.base.step,
-                &mut self.frames[p],
-            );
+            let (pair, frames) = (&self.system.pairs[p], &mut self.frames[p]);
+            let (bodies, states, table) = (&self.system.bodies, &self.states, &self.system.table);
+            if pair.upper_shape == Shape::Disc {
+                rim_frames(pair, bodies, states, &poses, table, s.margin, s.base.step, frames);
+            } else {
+                pair_frames(pair, bodies, states, &poses, table, s.margin, s.base.step, frames);
+            }
         }
     }
 

@@ -24,6 +24,14 @@ impl<T: Real> Body<T> {
         Self { width: length, height: thickness, mass, inertia: mass * length * length / T::of(12.0) }
     }
 
+    /// A solid disc (a cylinder seen end-on) of radius `radius`: width and height its diameter,
+    /// `J = m r^2 / 2`.
+    #[must_use]
+    pub fn disc(mass: T, radius: T) -> Self {
+        let diameter = radius + radius;
+        Self { width: diameter, height: diameter, mass, inertia: mass * radius * radius / T::of(2.0) }
+    }
+
     /// A solid box: `J = m (w^2 + h^2) / 12`.
     #[must_use]
     pub fn block(mass: T, width: T, height: T) -> Self {
