@@ -950,3 +950,50 @@ fn bad_disc_on_board_parameters_and_a_disc_under_a_body_are_refused_by_name() {
     assert!(system.frames(&q, &[[0.0; 3]; 2]).iter().all(|f| f.pair == 0));
     assert!(DiscOnBoard::default().system().check_pairs(&["board", "disc"]).is_ok());
 }
+
+#[test]
+fn a_disc_pushed_at_its_centre_on_the_table_rolls_at_two_thirds_of_f_over_m() {
+    // The rim on the table (no face body): F at the centre, friction f back, m a = F - f,
+    // (m r^2 / 2) alpha = r f, rolling a = alpha r: a = 2 F / (3 m) while F / 3 <= mu_s m g;
+    // beyond, a = F / m - mu_k g and alpha = 2 mu_k g / r.
+    let (m, r, mu_s, mu_k) = (1.5, 0.08, 0.4, 0.3);
+    for (force, rolls) in [(6.0, true), (0.99 * 3.0 * mu_s * m * G, true), (20.0, false)] {
+        let system = System {
+            bodies: vec![Body::disc(r, m)],
+            table: Table { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
+            pairs: vec![Pair { upper: 0, lower: Lower::Table, mu_static: mu_s, mu_kinetic: mu_k }],
+            forces: vec![[force, 0.0]],
+            gravity: G,
+            step: 1e-3,
+            stick_speed: 1e-5,
+            margin: 1e-3,
+        };
+        let mut state = State::at_rest(&system, vec![[0.0, r, 0.0]]);
+        let mut slid = false;
+        for _ in 0..200 {
+            let stepped = state.advance(&system, Starts::ALL).unwrap();
+            assert_eq!(stepped.frames.len(), 1);
+            slid |= state.modes[0].is_sliding();
+        }
+        let t = state.time(&system);
+        // Sliding, the first step's friction is mu_s (the disc was sticking at rest), mu_k after.
+        let (v_law, omega_law) = if rolls {
+            (2.0 * force / (3.0 * m) * t, -2.0 * force / (3.0 * m * r) * t)
+        } else {
+            let h = system.step;
+            (
+                (force / m - mu_k * G) * t - h * (mu_s - mu_k) * G,
+                -2.0 * G * (mu_k * t + h * (mu_s - mu_k)) / r,
+            )
+        };
+        let v = state.v[0];
+        eprintln!(
+            "disc on the table F = {force:.4} N: v {:.12} (law {v_law:.12}), omega {:.9} (law {omega_law:.9}), slid {slid}",
+            v[0], v[2]
+        );
+        assert_eq!(slid, !rolls, "F = {force}");
+        // Moving to the right, turning clockwise (omega < 0).
+        assert!((v[0] - v_law).abs() < 1e-12 && (v[2] - omega_law).abs() < 1e-10, "{v:?}");
+        assert!((state.q[0][1] - r).abs() < 1e-12 && v[1].abs() < 1e-12, "{:?}", state.q);
+    }
+}
