@@ -250,6 +250,7 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
     let outcome = match r.outcome {
         reference::Outcome::Held => RunOutcome::of(OutcomeKind::Held),
         reference::Outcome::Rode => RunOutcome::of(OutcomeKind::Rode),
+        reference::Outcome::Rolled => RunOutcome::of(OutcomeKind::Rolled),
         reference::Outcome::Slid => RunOutcome::of(OutcomeKind::Slid),
         reference::Outcome::Tipped => RunOutcome::of(OutcomeKind::Tipped),
         reference::Outcome::Stayed => RunOutcome::of(OutcomeKind::Stayed),

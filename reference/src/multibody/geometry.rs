@@ -1,5 +1,5 @@
-//! Multibody contact geometry (docs/formulation.md, "Several bodies"): boxes, the fixed table,
-//! and the corner-on-face contacts between them.
+//! Multibody contact geometry (docs/formulation.md, "Several bodies"): boxes and discs, the
+//! fixed table, and the corner-on-face and rim-on-face contacts between them.
 //!
 //! Body `i` is a box of half-width `a_i`, half-height `b_i` at `q_i = (x, y, theta)`. Its
 //! corners (body frame) are lower-left `(-a, -b)`, lower-right `(a, -b)`, upper-left `(-a, b)`,
@@ -26,6 +26,12 @@
 //! (and `-t` on `B`) has the row `J_t` of `3B` entries: `(t_x, t_y, r_A x t)` in `A`'s block,
 //! `-(t_x, t_y, r_B x t)` in `B`'s, zero elsewhere (the table has no block), and `J_t . V` is
 //! `t . v_rel`.
+//!
+//! A **disc** `U` (centre `c_U`, radius `r`) has no corners and no faces: its pair has one
+//! candidate, the first, its rim's point nearest S's top face `P = c_U - r n_f`, a corner of `U`
+//! on that face with every rule above (docs/formulation.md, "The rim-on-face contact"; its lever
+//! `r_U = P - c_U = -r n_f`). A disc is never a pair's lower body (the scenes' validation refuses
+//! it): such a pair has no candidates.
 
 /// `R(theta) v`.
 pub(super) fn rotate(theta: f64, v: [f64; 2]) -> [f64; 2] {
@@ -43,38 +49,66 @@ pub(super) fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[0] + a[1] * b[1]
 }
 
-/// One rigid box.
+/// A body's shape (docs/formulation.md, "Bodies, table and order").
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct BoxBody {
-    /// Half-width `a` (body `x`), m.
-    pub half_width: f64,
-    /// Half-height `b` (body `y`), m.
-    pub half_height: f64,
+pub(super) enum Shape {
+    /// A box of half-width `a` (body `x`) and half-height `b` (body `y`), m.
+    Box {
+        /// `a`, m.
+        half_width: f64,
+        /// `b`, m.
+        half_height: f64,
+    },
+    /// A disc (a solid cylinder seen end-on) of radius `r`, m: no faces, no corners; only ever a
+    /// pair's upper body, touching the lower one with its rim.
+    Disc {
+        /// `r`, m.
+        radius: f64,
+    },
+}
+
+/// One rigid body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Body {
+    /// Its shape.
+    pub shape: Shape,
     /// Mass, kg.
     pub mass: f64,
-    /// Inertia about the centre of mass, `m (w^2 + h^2) / 12`, kg m^2.
+    /// Inertia about the centre of mass, kg m^2: a box's `m (w^2 + h^2) / 12`, a disc's
+    /// `m r^2 / 2`.
     pub inertia: f64,
 }
 
-impl BoxBody {
+impl Body {
     /// A box of width `w`, height `h`, mass `m` (uniform: `J = m (w^2 + h^2) / 12`).
-    pub fn new(width: f64, height: f64, mass: f64) -> Self {
+    pub fn block(width: f64, height: f64, mass: f64) -> Self {
         Self {
-            half_width: width / 2.0,
-            half_height: height / 2.0,
+            shape: Shape::Box { half_width: width / 2.0, half_height: height / 2.0 },
             mass,
             inertia: mass * (width * width + height * height) / 12.0,
         }
     }
 
-    /// Its largest extent `max(w, h)`, m.
-    pub fn size(&self) -> f64 {
-        2.0 * self.half_width.max(self.half_height)
+    /// A disc of radius `r`, mass `m` (uniform: `J = m r^2 / 2`).
+    pub fn disc(radius: f64, mass: f64) -> Self {
+        Self { shape: Shape::Disc { radius }, mass, inertia: mass * radius * radius / 2.0 }
     }
 
-    /// Half its diagonal: the fastest point's distance from the centre of mass, m.
+    /// Its size: a box's largest extent `max(w, h)`, a disc's diameter `2 r`, m.
+    pub fn size(&self) -> f64 {
+        match self.shape {
+            Shape::Box { half_width, half_height } => 2.0 * half_width.max(half_height),
+            Shape::Disc { radius } => 2.0 * radius,
+        }
+    }
+
+    /// The fastest point's distance from the centre of mass: a box's half diagonal, a disc's
+    /// radius, m.
     pub fn reach(&self) -> f64 {
-        self.half_width.hypot(self.half_height)
+        match self.shape {
+            Shape::Box { half_width, half_height } => half_width.hypot(half_height),
+            Shape::Disc { radius } => radius,
+        }
     }
 }
 
@@ -188,10 +222,11 @@ fn corner_world(q: [f64; 3], corner: [f64; 2]) -> [f64; 2] {
 }
 
 /// The candidate contacts of every pair at state `(q, v)`, in the order of the module's
-/// documentation: pair by pair, four per pair (fewer against a table with infinite ends).
+/// documentation: pair by pair, four per pair (fewer against a table with infinite ends; one,
+/// the rim, for a disc on a face).
 /// `margin` and `step` set the reach of the activity rule.
 pub(super) fn frames(
-    bodies: &[BoxBody],
+    bodies: &[Body],
     table: &Table,
     pairs: &[Pair],
     q: &[[f64; 3]],
@@ -202,7 +237,6 @@ pub(super) fn frames(
     let mut out = Vec::new();
     for (p, pair) in pairs.iter().enumerate() {
         let u = pair.upper;
-        let ub = bodies[u];
         // The lower's top face and upper corners.
         let (top_face, lower_corners, lower_body): (Face, Vec<[f64; 2]>, Option<usize>) = match pair.lower {
             Lower::Table => (
@@ -219,40 +253,50 @@ pub(super) fn frames(
                 None,
             ),
             Lower::Body(j) => {
-                let sb = bodies[j];
-                let c = rotate(q[j][2], [0.0, sb.half_height]);
+                // A disc has no top face: nothing rests on it.
+                let Shape::Box { half_width, half_height } = bodies[j].shape else { continue };
+                let c = rotate(q[j][2], [0.0, half_height]);
                 (
                     Face {
                         origin: [q[j][0] + c[0], q[j][1] + c[1]],
                         tangent: rotate(q[j][2], [1.0, 0.0]),
                         normal: rotate(q[j][2], [0.0, 1.0]),
-                        lo: -sb.half_width,
-                        hi: sb.half_width,
+                        lo: -half_width,
+                        hi: half_width,
                         strict: false,
-                        depth: sb.half_height,
+                        depth: half_height,
                     },
                     vec![
-                        corner_world(q[j], [-sb.half_width, sb.half_height]),
-                        corner_world(q[j], [sb.half_width, sb.half_height]),
+                        corner_world(q[j], [-half_width, half_height]),
+                        corner_world(q[j], [half_width, half_height]),
                     ],
                     Some(j),
                 )
             }
         };
-        let c = rotate(q[u][2], [0.0, -ub.half_height]);
+        let (half_width, half_height) = match bodies[u].shape {
+            Shape::Box { half_width, half_height } => (half_width, half_height),
+            Shape::Disc { radius } => {
+                // The rim's point nearest the face, P = c_U - r n_f (docs/formulation.md, "The
+                // rim-on-face contact"): candidate 1; candidates 2-4 do not exist.
+                let n = top_face.normal;
+                let rim = [q[u][0] - radius * n[0], q[u][1] - radius * n[1]];
+                out.push(frame(p, rim, Some(u), &top_face, lower_body, q, v, margin, step));
+                continue;
+            }
+        };
+        let c = rotate(q[u][2], [0.0, -half_height]);
         let lower_face = Face {
             origin: [q[u][0] + c[0], q[u][1] + c[1]],
             tangent: rotate(q[u][2], [1.0, 0.0]),
             normal: rotate(q[u][2], [0.0, -1.0]),
-            lo: -ub.half_width,
-            hi: ub.half_width,
+            lo: -half_width,
+            hi: half_width,
             strict: true,
-            depth: ub.half_height,
+            depth: half_height,
         };
-        let upper_corners = [
-            corner_world(q[u], [-ub.half_width, -ub.half_height]),
-            corner_world(q[u], [ub.half_width, -ub.half_height]),
-        ];
+        let upper_corners =
+            [corner_world(q[u], [-half_width, -half_height]), corner_world(q[u], [half_width, -half_height])];
         for corner in upper_corners {
             out.push(frame(p, corner, Some(u), &top_face, lower_body, q, v, margin, step));
         }
@@ -263,7 +307,7 @@ pub(super) fn frames(
     out
 }
 
-/// One corner-on-face contact.
+/// One corner-on-face contact (a disc's rim point is its corner).
 #[allow(clippy::too_many_arguments)]
 fn frame(
     pair: usize,

@@ -1,18 +1,19 @@
 //! The independent f64 reference for several bodies (docs/formulation.md, "Several bodies";
-//! docs/scenes.md, "block-on-block", "tablecloth", "stack"): planar boxes resting on each other
-//! and on a fixed table, coupled through corner-on-face contacts in one LCP per step, written
+//! docs/scenes.md, "block-on-block", "tablecloth", "stack"): planar boxes (and discs) resting on
+//! each other and on a fixed table, coupled through corner-on-face (and rim-on-face) contacts in
+//! one LCP per step, written
 //! from those texts and sharing no code with `meterstick-core` or with the single-body
 //! reference (its enumerator, [`crate::enumerate`], is only its tests' check).
 //!
-//! * `geometry.rs`: boxes, the table, the candidate contacts of each pair and their activity
-//!   rule, the Jacobian rows in `3B` coordinates.
+//! * `geometry.rs`: boxes, discs, the table, the candidate contacts of each pair and their
+//!   activity rule, the Jacobian rows in `3B` coordinates.
 //! * `lcp.rs`: Lemke's method with the lexicographic rule, the solve of one basis, the
 //!   verification.
 //! * `step.rs`: the step's LCP and the least-kinetic-energy choice among the verified solutions
 //!   found from the previous basis, Lemke's method and a descent over neighbouring bases.
 //! * `system.rs`: the bodies, pairs and loads of a scene, and one step of its state.
-//! * `scenes.rs`: [`BlockOnBlock`], [`Tablecloth`] and [`Stack`], run to their outcome by
-//!   [`run`].
+//! * `scenes.rs`: [`BlockOnBlock`], [`Tablecloth`], [`Stack`] and [`DiscOnBoard`], run to their
+//!   outcome by [`run`].
 
 mod geometry;
 pub mod lcp;
@@ -22,7 +23,7 @@ mod system;
 #[cfg(test)]
 mod tests;
 
-pub use scenes::{BlockOnBlock, Stack, Tablecloth};
+pub use scenes::{BlockOnBlock, DiscOnBoard, Stack, Tablecloth};
 
 use crate::Sample;
 
@@ -35,17 +36,23 @@ pub enum Spec {
     Tablecloth(Tablecloth),
     /// docs/scenes.md, "stack".
     Stack(Stack),
+    /// docs/formulation.md, "The rim-on-face contact": a disc on a pulled board.
+    DiscOnBoard(DiscOnBoard),
 }
 
 /// How a multibody run ended (docs/scenes.md, each scene's "Outcome").
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Outcome {
-    /// Nothing slid (block-on-block, tablecloth) or nothing fell (stack) by `max_time`.
+    /// Nothing slid (block-on-block, tablecloth, disc-on-board) or nothing fell (stack) by
+    /// `max_time`.
     Held,
     /// The bodies moved together: the lower one slid on the floor, the upper one never slid on
     /// it.
     Rode,
-    /// Block-on-block: the top block slid on the bottom one.
+    /// Disc-on-board: the board slid on the floor, the disc never slid on it (it rolled).
+    Rolled,
+    /// Block-on-block: the top block slid on the bottom one; disc-on-board: the disc slid on the
+    /// board.
     Slid,
     /// Block-on-block: the top block tipped.
     Tipped,
@@ -53,7 +60,8 @@ pub enum Outcome {
     Stayed,
     /// Stack: a block tilted or dropped.
     Fell,
-    /// `max_time` and no other outcome applies.
+    /// `max_time` and no other outcome applies; disc-on-board: the disc's contact point went
+    /// beyond the board's ends (the run ends there).
     Unfinished,
     /// A step found no verified solution, or the state became non-finite.
     Failed(String),
@@ -93,9 +101,11 @@ pub struct Run {
     /// model decides the sum, not one corner's share).
     pub interface_forces: Vec<[f64; 2]>,
     /// Block-on-block: the bottom block's acceleration along `x` while both are in full contact;
-    /// tablecloth: the board's (docs/scenes.md, "Measured"), m/s^2.
+    /// tablecloth: the board's (docs/scenes.md, "Measured"); disc-on-board: the board's while the
+    /// board and the disc touch, m/s^2.
     pub lower_acceleration: Option<f64>,
-    /// Block-on-block: the top block's; tablecloth: the block's, m/s^2.
+    /// Block-on-block: the top block's; tablecloth: the block's; disc-on-board: the disc
+    /// centre's, m/s^2.
     pub upper_acceleration: Option<f64>,
     /// Tablecloth: the block's displacement along `x` at the end, m.
     pub block_displacement: Option<f64>,
@@ -126,6 +136,10 @@ pub fn run(spec: &Spec, sample: Sample) -> Result<Run, String> {
         Spec::Stack(p) => {
             p.validate()?;
             Ok(scenes::run_stack(&p, sample))
+        }
+        Spec::DiscOnBoard(p) => {
+            p.validate()?;
+            Ok(scenes::run_disc_on_board(&p, sample))
         }
     }
 }

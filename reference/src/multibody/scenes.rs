@@ -1,10 +1,11 @@
-//! The multibody scenes of docs/scenes.md ("block-on-block", "tablecloth", "stack"):
-//! parameters with their defaults and validity rules, start states, loads, outcome rules and
-//! measurements, and the loop that runs them.
+//! The multibody scenes of docs/scenes.md ("block-on-block", "tablecloth", "stack") and the disc
+//! on a pulled board (docs/formulation.md, "The rim-on-face contact"): parameters with their
+//! defaults and validity rules, start states, loads, outcome rules and measurements, and the loop
+//! that runs them.
 
 use std::time::Instant;
 
-use super::geometry::{BoxBody, Lower, Pair, Table};
+use super::geometry::{Body, Lower, Pair, Table};
 use super::step::{Starts, Stepped};
 use super::system::{State, System};
 use super::{Outcome, Row, Run};
@@ -189,13 +190,72 @@ impl Default for Stack {
     }
 }
 
+/// A disc resting on a board pulled along a floor (docs/formulation.md, "The rim-on-face
+/// contact", its law). Body 0 the board, body 1 the disc; pair 0 (board, floor), pair 1 (disc,
+/// board).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiscOnBoard {
+    /// Board's mass `M`, kg.
+    pub board_mass: f64,
+    /// Board's length, m.
+    pub board_length: f64,
+    /// Board's height, m.
+    pub board_height: f64,
+    /// Disc's mass `m`, kg.
+    pub disc_mass: f64,
+    /// Disc's radius `r`, m.
+    pub disc_radius: f64,
+    /// The disc's start along `x` from the board's centre, m.
+    pub offset: f64,
+    /// Horizontal force `F` on the board at its centre of mass, along `+x`, N.
+    pub force: f64,
+    /// `mu_s` disc on board.
+    pub mu_static: f64,
+    /// `mu_k` disc on board.
+    pub mu_kinetic: f64,
+    /// The floor's coefficient (static = kinetic) under the board.
+    pub mu_floor: f64,
+    /// `g`, m/s^2.
+    pub gravity: f64,
+    /// `h`, s.
+    pub step: f64,
+    /// Slip speed at or below which a touching contact sticks, m/s.
+    pub stick_speed: f64,
+    /// The activity rule's margin, m.
+    pub contact_margin: f64,
+    /// Time limit, s.
+    pub max_time: f64,
+}
+
+impl Default for DiscOnBoard {
+    fn default() -> Self {
+        Self {
+            board_mass: 2.0,
+            board_length: 1.0,
+            board_height: 0.02,
+            disc_mass: 1.0,
+            disc_radius: 0.05,
+            offset: 0.0,
+            force: 20.0,
+            mu_static: 0.5,
+            mu_kinetic: 0.4,
+            mu_floor: 0.1,
+            gravity: 9.81,
+            step: 1e-3,
+            stick_speed: 1e-5,
+            contact_margin: 1e-3,
+            max_time: 0.3,
+        }
+    }
+}
+
 /// The common validity rules: finite, `h <= max_time`, each box's inertia finite and positive.
 fn common(step: f64, max_time: f64, boxes: &[(&str, f64, f64, f64)]) -> Result<(), String> {
     if step > max_time {
         return Err(format!("step {step} is longer than max_time {max_time}"));
     }
     for &(name, w, h, m) in boxes {
-        let b = BoxBody::new(w, h, m);
+        let b = Body::block(w, h, m);
         if !(b.inertia.is_finite() && b.inertia > 0.0 && (m / b.inertia).is_finite()) {
             return Err(format!(
                 "{name}: its inertia m (w^2 + h^2) / 12 = {} is not finite and positive",
@@ -277,8 +337,8 @@ impl BlockOnBlock {
     pub(super) fn system(&self) -> System {
         System {
             bodies: vec![
-                BoxBody::new(self.bottom_width, self.bottom_height, self.bottom_mass),
-                BoxBody::new(self.top_width, self.top_height, self.top_mass),
+                Body::block(self.bottom_width, self.bottom_height, self.bottom_mass),
+                Body::block(self.top_width, self.top_height, self.top_mass),
             ],
             table: Table { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
             pairs: vec![
@@ -380,8 +440,8 @@ impl Tablecloth {
     pub(super) fn system(&self) -> System {
         System {
             bodies: vec![
-                BoxBody::new(self.board_length, self.board_thickness, self.board_mass),
-                BoxBody::new(self.block_width, self.block_height, self.block_mass),
+                Body::block(self.board_length, self.board_thickness, self.board_mass),
+                Body::block(self.block_width, self.block_height, self.block_mass),
             ],
             table: Table { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
             pairs: vec![
@@ -491,10 +551,112 @@ impl Stack {
             mu_kinetic,
         }));
         System {
-            bodies: vec![BoxBody::new(self.length, self.height, self.mass); self.blocks],
+            bodies: vec![Body::block(self.length, self.height, self.mass); self.blocks],
             table: Table { lo: f64::NEG_INFINITY, hi: 0.0 },
             pairs,
             forces: vec![[0.0; 2]; self.blocks],
+            gravity: self.gravity,
+            step: self.step,
+            stick_speed: self.stick_speed,
+            margin: self.contact_margin,
+        }
+    }
+}
+
+impl DiscOnBoard {
+    /// The bodies' names, in body order (the validity messages' words).
+    const NAMES: [&'static str; 2] = ["board", "disc"];
+
+    /// Checks the validity rules: every parameter finite; masses, sizes, `step`, `max_time`
+    /// positive; `force`, the coefficients, `gravity`, `stick_speed`, `contact_margin`
+    /// non-negative; `mu_k <= mu_s`; the disc over the board (`|offset| <= board_length / 2`);
+    /// `step <= max_time`; both inertias finite and positive; the disc resting on the board, never
+    /// under it.
+    ///
+    /// # Errors
+    /// The first rule broken, naming its parameter.
+    pub fn validate(&self) -> Result<(), String> {
+        finite(&[
+            ("board_mass", self.board_mass),
+            ("board_length", self.board_length),
+            ("board_height", self.board_height),
+            ("disc_mass", self.disc_mass),
+            ("disc_radius", self.disc_radius),
+            ("offset", self.offset),
+            ("force", self.force),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
+            ("mu_floor", self.mu_floor),
+            ("gravity", self.gravity),
+            ("step", self.step),
+            ("stick_speed", self.stick_speed),
+            ("contact_margin", self.contact_margin),
+            ("max_time", self.max_time),
+        ])?;
+        positive(&[
+            ("board_mass", self.board_mass),
+            ("board_length", self.board_length),
+            ("board_height", self.board_height),
+            ("disc_mass", self.disc_mass),
+            ("disc_radius", self.disc_radius),
+            ("step", self.step),
+            ("max_time", self.max_time),
+        ])?;
+        non_negative(&[
+            ("force", self.force),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic),
+            ("mu_floor", self.mu_floor),
+            ("gravity", self.gravity),
+            ("stick_speed", self.stick_speed),
+            ("contact_margin", self.contact_margin),
+        ])?;
+        kinetic_at_most_static(self.mu_static, self.mu_kinetic)?;
+        if self.offset.abs() > self.board_length / 2.0 {
+            return Err(format!(
+                "offset {} is beyond half the board_length {}: the disc must start over the board",
+                self.offset, self.board_length
+            ));
+        }
+        common(
+            self.step,
+            self.max_time,
+            &[("board", self.board_length, self.board_height, self.board_mass)],
+        )?;
+        let disc = Body::disc(self.disc_radius, self.disc_mass);
+        if !(disc.inertia.is_finite() && disc.inertia > 0.0 && (self.disc_mass / disc.inertia).is_finite()) {
+            return Err(format!(
+                "disc_radius {}: the disc's inertia m r^2 / 2 = {} is not finite and positive",
+                self.disc_radius, disc.inertia
+            ));
+        }
+        self.system().check_pairs(&Self::NAMES)
+    }
+
+    /// The start: the board's centre at `(0, board_height / 2)`, the disc's at
+    /// `(offset, board_height + r)` resting on its top face, both at rest.
+    pub(super) fn start(&self) -> Vec<[f64; 3]> {
+        vec![[0.0, self.board_height / 2.0, 0.0], [self.offset, self.board_height + self.disc_radius, 0.0]]
+    }
+
+    /// The scene's bodies, pairs and loads: a floor without ends.
+    pub(super) fn system(&self) -> System {
+        System {
+            bodies: vec![
+                Body::block(self.board_length, self.board_height, self.board_mass),
+                Body::disc(self.disc_radius, self.disc_mass),
+            ],
+            table: Table { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
+            pairs: vec![
+                Pair { upper: 0, lower: Lower::Table, mu_static: self.mu_floor, mu_kinetic: self.mu_floor },
+                Pair {
+                    upper: 1,
+                    lower: Lower::Body(0),
+                    mu_static: self.mu_static,
+                    mu_kinetic: self.mu_kinetic,
+                },
+            ],
+            forces: vec![[self.force, 0.0], [0.0, 0.0]],
             gravity: self.gravity,
             step: self.step,
             stick_speed: self.stick_speed,
@@ -762,4 +924,52 @@ pub(super) fn run_stack(p: &Stack, sample: Sample) -> Run {
         },
         |_| Outcome::Held,
     )
+}
+
+/// Runs a valid disc-on-board scene: `Slid` once the disc's contact slid on the board, else
+/// `Rolled` once the board slid on the floor, else `Held`, at `max_time`; `Unfinished` as soon as
+/// the disc's contact point is beyond the board's ends (the rim-on-face contact has no edge: off
+/// the board the disc would fall, which the scene does not model). The accelerations are
+/// block-on-block's window (the board's and the disc centre's along `x`, while both bodies' contacts
+/// touch).
+pub(super) fn run_disc_on_board(p: &DiscOnBoard, sample: Sample) -> Run {
+    let system = p.system();
+    let mut state = State::at_rest(&system, p.start());
+    let (mut slid_disc, mut slid_floor, mut left) = (false, false, false);
+    let mut window = Window::default();
+    let half = p.board_length / 2.0;
+    let mut run = Loop::new(sample).drive(
+        &system,
+        &mut state,
+        p.max_time,
+        |state, stepped| {
+            slid_floor |= pair_slid(stepped, &state.modes, 0);
+            slid_disc |= pair_slid(stepped, &state.modes, 1);
+            let mut full = upper_corners(&system, &stepped.frames, 0);
+            full.extend(upper_corners(&system, &stepped.frames, 1));
+            window.update(
+                state.time(&system),
+                &state.v,
+                full.iter().all(|&i| state.modes[i] != Mode::Separated),
+            );
+            // The rim point's coordinate along the board's top face, `(c_U - o) . e` (`P - c_U`
+            // is normal to the face, `o - com` too).
+            let (board, disc) = (state.q[0], state.q[1]);
+            let along = (disc[0] - board[0]) * board[2].cos() + (disc[1] - board[1]) * board[2].sin();
+            left = along.abs() > half;
+            left.then_some(Outcome::Unfinished)
+        },
+        |_| Outcome::Unfinished,
+    );
+    if run.outcome == Outcome::Unfinished && !left {
+        run.outcome = if slid_disc {
+            Outcome::Slid
+        } else if slid_floor {
+            Outcome::Rolled
+        } else {
+            Outcome::Held
+        };
+    }
+    (run.lower_acceleration, run.upper_acceleration) = window.accelerations();
+    run
 }

@@ -36,9 +36,9 @@
 //! `sum_i (m_i |v_i|^2 + J_i omega_i^2) / m_ref` wins, energies within
 //! `1e-12 S^2 sum_i m_i / m_ref` tie and go to the smallest `||z||_1` (within `1e-12`, relative),
 //! then to the first found. `S` is the step's speed scale,
-//! `max_i max(|v~_x|, |v~_y|, reach_i |v~_omega|)` (`reach_i` half body `i`'s diagonal). The
-//! step is **ambiguous** when two verified solutions' velocities differ by more than `1e-9 S`
-//! in a component (`omega` times `reach_i`).
+//! `max_i max(|v~_x|, |v~_y|, reach_i |v~_omega|)` (`reach_i` half body `i`'s diagonal, a
+//! disc's radius). The step is **ambiguous** when two verified solutions' velocities differ by
+//! more than `1e-9 S` in a component (`omega` times `reach_i`).
 
 use super::geometry::{Frame, dot};
 use super::lcp::{Basis, lemke, solve_basis, verify};

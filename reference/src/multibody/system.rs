@@ -4,14 +4,14 @@
 //! step and `mu_k` for one sliding, the step's LCP, `q+ = q + h v+`, `t = n h`, the modes after
 //! the step).
 
-use super::geometry::{BoxBody, Frame, Pair, Table, dot, frames};
+use super::geometry::{Body, Frame, Lower, Pair, Shape, Table, dot, frames};
 use crate::Mode;
 
 /// Everything a multibody scene's steps share.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct System {
     /// The bodies, in the scene's order.
-    pub bodies: Vec<BoxBody>,
+    pub bodies: Vec<Body>,
     /// The table.
     pub table: Table,
     /// The pairs, in the scene's order.
@@ -29,6 +29,26 @@ pub(super) struct System {
 }
 
 impl System {
+    /// Checks that every pair rests on a box or the table (docs/formulation.md, "Bodies, table and
+    /// order": a disc is only ever a pair's upper body), naming the bodies by `names` (one per
+    /// body, the scene's words).
+    ///
+    /// # Errors
+    /// The first pair whose lower body is a disc.
+    pub fn check_pairs(&self, names: &[&str]) -> Result<(), String> {
+        for pair in &self.pairs {
+            if let Lower::Body(j) = pair.lower
+                && let Shape::Disc { .. } = self.bodies[j].shape
+            {
+                return Err(format!(
+                    "{} rests on {}, a disc: a disc has no faces and is only ever the upper body of a pair",
+                    names[pair.upper], names[j]
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// `m_ref`: body 0's mass.
     pub fn reference_mass(&self) -> f64 {
         self.bodies[0].mass
