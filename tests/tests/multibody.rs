@@ -740,6 +740,8 @@ struct DiscRun {
     slid: bool,
     /// The disc's contact was active on every step.
     on_board: bool,
+    /// Each step's `(x, y, theta)` of the board and the disc.
+    q: Vec<[[f64; 3]; 2]>,
 }
 
 /// A disc (radius 0.05 m, 1 kg; its rim on a face: `docs/formulation.md`, "The rim-on-face
@@ -781,12 +783,13 @@ fn disc_on_board<T: Real>(force: f64, mu: [f64; 3], steps: u32, from: u32) -> Di
     ];
     let mut stepper = Stepper::<T, 2, 2, 16>::new(system, states).expect("a valid system");
     let (mut start, mut end) = ([0.0; 2], [0.0; 2]);
-    let (mut max_slip, mut slid, mut on_board) = (0.0f64, false, true);
+    let (mut max_slip, mut slid, mut on_board, mut q) = (0.0f64, false, true, Vec::new());
     for n in 1..=steps {
         let report = stepper.step().expect("a step");
         let [b, d] = report.states.map(|s| [s.vx.as_f64(), s.omega.as_f64()]);
         let disc_vx = report.states[1].vx.as_f64();
         max_slip = max_slip.max((disc_vx + d[1] * 0.05 - b[0]).abs());
+        q.push(report.states.map(|s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]));
         slid |= report.modes[1][0].is_sliding();
         on_board &= report.touching(&[(1, 0)]);
         if n == from {
@@ -800,6 +803,7 @@ fn disc_on_board<T: Real>(force: f64, mu: [f64; 3], steps: u32, from: u32) -> Di
         max_slip,
         slid,
         on_board,
+        q,
     }
 }
 
@@ -878,4 +882,41 @@ fn a_disc_is_only_an_upper_body() {
     // Body 1 a disc on body 0 and a box on the table.
     let both = [pair(1, Support::Table, Shape::Box), pair(1, Support::Body(0), Shape::Disc)];
     assert_eq!(build([block, disc], both), Some(ParamError::OutOfRange("upper_shape")));
+}
+
+/// The rim-on-face contact against the independent reference (`meterstick_reference::multibody`,
+/// `DiscOnBoard`, written from the same text, sharing no code): rolling slowly (3 N) and at the
+/// defaults (20 N), sliding just beyond the rolling limit (38.02 N), the same outcome and every
+/// step's positions of both bodies close (f64 to round-off, f32 to its precision over 300 steps).
+#[test]
+fn a_disc_on_a_board_steps_as_the_reference() {
+    let mu = [0.5, 0.4, 0.1];
+    for (force, steps) in [(3.0, 300), (20.0, 300), (38.02, 200)] {
+        let spec = reference::DiscOnBoard {
+            force,
+            max_time: f64::from(steps) * 1e-3,
+            ..reference::DiscOnBoard::default()
+        };
+        let r = reference::run(&reference::Spec::DiscOnBoard(spec), meterstick_reference::Sample::All)
+            .expect("valid parameters");
+        let rolled = r.outcome == reference::Outcome::Rolled;
+        assert!(rolled || r.outcome == reference::Outcome::Slid, "{force} N: {:?}", r.outcome);
+        for (precision, run, tol) in [
+            ("f64", disc_on_board::<f64> as fn(f64, [f64; 3], u32, u32) -> DiscRun, 1e-12),
+            ("f32", disc_on_board::<f32>, 2e-5),
+        ] {
+            let core = run(force, mu, steps, 1);
+            assert_eq!(core.slid, !rolled, "{precision} {force} N: the core slid {}", core.slid);
+            assert_eq!(core.q.len() + 1, r.rows.len(), "{precision} {force} N: steps");
+            let mut worst = 0.0f64;
+            for (c, row) in core.q.iter().zip(&r.rows[1..]) {
+                for (body, reference) in c.iter().zip(&row.q) {
+                    for (a, b) in body.iter().zip(reference) {
+                        worst = worst.max((a - b).abs());
+                    }
+                }
+            }
+            assert!(worst < tol, "{precision} {force} N: positions {worst:e} from the reference");
+        }
+    }
 }
