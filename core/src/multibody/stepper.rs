@@ -303,7 +303,6 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         for p in 0..P {
             pair_frames(
                 &self.system.pairs[p],
-                &self.system.bodies,
                 &self.states,
                 &poses,
                 &self.system.table,
