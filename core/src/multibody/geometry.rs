@@ -340,17 +340,32 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
         *frames = [CornerFrame::inactive(); 4];
         return;
     };
-    let lower = match pair.lower {
+    // Each support in a copy of its own (the table's missing corners and limits known there).
+    match pair.lower {
         Support::Body(s) => {
             let Some(p) = poses.get(usize::from(s)) else {
                 *frames = [CornerFrame::inactive(); 4];
                 return;
             };
-            Some((s, p))
+            four_frames((pair.upper, upper), Some((s, p)), table, states, margin, h, frames);
         }
-        Support::Table => None,
-    };
-    let upper_owner = Some((pair.upper, upper));
+        Support::Table => four_frames((pair.upper, upper), None, table, states, margin, h, frames),
+    }
+}
+
+/// [`pair_frames`] for the upper body (index, pose) on `lower` (`None`: the table).
+#[allow(clippy::inline_always)] // twice in `pair_frames`, `lower`'s variant known in each
+#[inline(always)]
+fn four_frames<T: Real, const B: usize>(
+    (upper_index, upper): (u8, &Pose<T>),
+    lower: Owner<'_, T>,
+    table: &Table<T>,
+    states: &[BodyState<T>; B],
+    margin: T,
+    h: T,
+    frames: &mut [CornerFrame<T>; 4],
+) {
+    let upper_owner = Some((upper_index, upper));
     let lower_height = lower.map_or(T::zero(), |(_, p)| p.height);
     // `64 eps (size + |y|)` summed over the two bodies (the table's term 0), in either order.
     let touch = T::of(64.0) * T::EPS * (upper.height + lower_height);
