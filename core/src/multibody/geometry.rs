@@ -367,7 +367,8 @@ fn four_frames<T: Real, const B: usize>(
 ) {
     let upper_owner = Some((upper_index, upper));
     let lower_height = lower.map_or(T::zero(), |(_, p)| p.height);
-    // `64 eps (size + |y|)` summed over the two bodies (the table's term 0), in either order.
+    // `64 eps (size + |y|)` summed over the two bodies (the table's term 0): the same bits for every
+    // candidate, whichever body owns its corner (IEEE addition commutes).
     let touch = T::of(64.0) * T::EPS * (upper.height + lower_height);
     let reach = Reach { states, margin, h, touch };
     // The upper body's lower-left and lower-right corners on the lower one's top face: over it,
