@@ -103,7 +103,9 @@ impl Candidate {
 }
 
 /// One candidate contact's geometry at a step's start: a corner of body `corner` (or the table)
-/// on a face of body `face` (or the table).
+/// on a face of body `face` (or the table). Only an active frame's fields are the step's: the
+/// geometry of an inactive candidate is computed only as far as the activity rule needs, and its
+/// frame keeps every field but `active` from before.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct CornerFrame<T> {
@@ -210,19 +212,32 @@ fn dot<T: Real>(a: [T; 2], b: [T; 2]) -> T {
     a[0] * b[0] + a[1] * b[1]
 }
 
-/// A body's pose: centre, `R(theta)` as `(cos, sin)`, half extents.
+/// A body's pose at a step's start and its terms of a contact's round-off: centre, `R(theta)` as
+/// `(cos, sin)`, half extents, `|x| + |y| + size` and `size + |y|`.
 #[derive(Clone, Copy)]
 pub(crate) struct Pose<T> {
     com: [T; 2],
     cos: T,
     sin: T,
     half: [T; 2],
+    /// `|x| + |y| + size`: the body's term of a gap's round-off.
+    extent: T,
+    /// `size + |y|`: the body's term of the touching threshold.
+    height: T,
 }
 
 impl<T: Real> Pose<T> {
     fn of(body: &Body<T>, state: &BodyState<T>) -> Self {
         let (sin, cos) = state.theta.sin_cos_portable();
-        Self { com: [state.x, state.y], cos, sin, half: body.half_extents() }
+        let size = body.size();
+        Self {
+            com: [state.x, state.y],
+            cos,
+            sin,
+            half: body.half_extents(),
+            extent: state.x.abs_exact() + state.y.abs_exact() + size,
+            height: size + state.y.abs_exact(),
+        }
     }
 
     /// `R v`.
@@ -235,16 +250,74 @@ impl<T: Real> Pose<T> {
         let r = self.rotate(p);
         [self.com[0] + r[0], self.com[1] + r[1]]
     }
+
+    /// `P - com` for a world point `P`.
+    fn lever(&self, point: [T; 2]) -> [T; 2] {
+        [point[0] - self.com[0], point[1] - self.com[1]]
+    }
 }
 
-/// A face: its owner, centre `o`, tangent `e`, outward normal, half width and half height of its
-/// owner (the centre-line limit), `None` for the table's.
+/// A face: its centre `o`, tangent `e` and outward normal `n_f`.
 #[derive(Clone, Copy)]
 struct Face<T> {
-    owner: Option<u8>,
     centre: [T; 2],
     tangent: [T; 2],
     normal: [T; 2],
+}
+
+impl<T: Real> Face<T> {
+    /// A body's top face.
+    fn top(p: &Pose<T>) -> Self {
+        Self {
+            centre: p.world([T::zero(), p.half[1]]),
+            tangent: p.rotate([T::one(), T::zero()]),
+            normal: p.rotate([T::zero(), T::one()]),
+        }
+    }
+
+    /// A body's lower face.
+    fn bottom(p: &Pose<T>) -> Self {
+        Self {
+            centre: p.world([T::zero(), -p.half[1]]),
+            tangent: p.rotate([T::one(), T::zero()]),
+            normal: p.rotate([T::zero(), -T::one()]),
+        }
+    }
+
+    /// The table's top face.
+    fn table() -> Self {
+        Self { centre: [T::zero(); 2], tangent: [T::one(), T::zero()], normal: [T::zero(), T::one()] }
+    }
+
+    /// The coordinate along the face `s = l . e` and the gap `psi = l . n_f` of a corner `P`,
+    /// `l = P - o`.
+    fn locate(&self, point: [T; 2]) -> (T, T) {
+        let l = [point[0] - self.centre[0], point[1] - self.centre[1]];
+        (dot(l, self.tangent), dot(l, self.normal))
+    }
+}
+
+/// The owner of a candidate's corner or face: the body's index and pose, `None` for the table.
+type Owner<'a, T> = Option<(u8, &'a Pose<T>)>;
+
+/// What the four candidates of a pair share: the states (for the approach), the settings' `margin`
+/// and step `h`, and the touching threshold.
+struct Reach<'a, T, const B: usize> {
+    states: &'a [BodyState<T>; B],
+    margin: T,
+    h: T,
+    touch: T,
+}
+
+/// One candidate located on its face: the corner `P` and its owner, the face's owner and normal,
+/// `s` and `psi` ([`Face::locate`]).
+struct Located<'a, T> {
+    corner: Owner<'a, T>,
+    face: Owner<'a, T>,
+    point: [T; 2],
+    normal: [T; 2],
+    along: T,
+    gap: T,
 }
 
 /// Each body's pose (one sine and cosine per body, shared by the pairs it is in).
@@ -253,7 +326,9 @@ pub(crate) fn poses<T: Real, const B: usize>(
     states: &[BodyState<T>; B],
 ) -> [Pose<T>; B] {
     let zero = [T::zero(); 2];
-    let mut poses = [Pose { com: zero, cos: T::one(), sin: T::zero(), half: zero }; B];
+    let mut poses =
+        [Pose { com: zero, cos: T::one(), sin: T::zero(), half: zero, extent: T::zero(), height: T::zero() };
+            B];
     for ((pose, body), state) in poses.iter_mut().zip(bodies).zip(states) {
         *pose = Pose::of(body, state);
     }
@@ -261,12 +336,13 @@ pub(crate) fn poses<T: Real, const B: usize>(
 }
 
 /// The frames of the four candidates of `pair` (`docs/formulation.md`, "The corner-on-face
-/// contact"), given the bodies, their states and [`poses`], the table and the settings' `margin`
-/// and step `h`, written into `frames` (in place: no copy of the four).
-#[allow(clippy::too_many_arguments, clippy::too_many_lines)] // the geometry's inputs; the four candidates in order
+/// contact"), given the bodies' states and [`poses`], the table and the settings' `margin` and
+/// step `h`, written into `frames` (in place: no copy of the four). An inactive candidate's frame
+/// gets `active: false` and keeps its other fields: the tests "over the face" and "not past its
+/// owner's centre line" come first, and only an active candidate's levers, approach and
+/// round-off are computed.
 pub(crate) fn pair_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
-    bodies: &[Body<T>; B],
     states: &[BodyState<T>; B],
     poses: &[Pose<T>; B],
     table: &Table<T>,
@@ -274,133 +350,127 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
     h: T,
     frames: &mut [CornerFrame<T>; 4],
 ) {
-    let two = T::of(2.0);
-    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact (body
-    // and state looked up too: their indices below are then provably in range, no panic path).
-    let pose = |b: u8| {
-        let i = usize::from(b);
-        bodies.get(i).and(states.get(i)).and(poses.get(i)).copied()
-    };
-    let lower = match pair.lower {
-        Support::Body(s) => pose(s).map(|p| Some((s, p))),
-        Support::Table => Some(None),
-    };
-    let (Some(upper), Some(lower)) = (pose(pair.upper), lower) else {
+    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact.
+    let Some(upper) = poses.get(usize::from(pair.upper)) else {
         *frames = [CornerFrame::inactive(); 4];
         return;
     };
-    // The lower's top face and the upper's lower face.
-    let top = lower.map_or(
-        Face {
-            owner: None,
-            centre: [T::zero(); 2],
-            tangent: [T::one(), T::zero()],
-            normal: [T::zero(), T::one()],
-        },
-        |(s, p)| Face {
-            owner: Some(s),
-            centre: p.world([T::zero(), p.half[1]]),
-            tangent: p.rotate([T::one(), T::zero()]),
-            normal: p.rotate([T::zero(), T::one()]),
-        },
-    );
-    let bottom = Face {
-        owner: Some(pair.upper),
-        centre: upper.world([T::zero(), -upper.half[1]]),
-        tangent: upper.rotate([T::one(), T::zero()]),
-        normal: upper.rotate([T::zero(), -T::one()]),
-    };
-    let com = |b: Option<u8>| b.map(|b| [states[usize::from(b)].x, states[usize::from(b)].y]);
-    let velocity = |b: Option<u8>| b.map(|b| states[usize::from(b)].velocity());
-    // |x| + |y| + size of a body, and size + |y|.
-    let extent = |b: Option<u8>| {
-        b.map_or(T::zero(), |b| {
-            let s = &states[usize::from(b)];
-            s.x.abs_exact() + s.y.abs_exact() + bodies[usize::from(b)].size()
-        })
-    };
-    let height = |b: Option<u8>| {
-        b.map_or(T::zero(), |b| bodies[usize::from(b)].size() + states[usize::from(b)].y.abs_exact())
-    };
-    // The upper and lower bodies' extents and heights (the table's 0), once per pair: a corner's
-    // owner and its face's owner are these two, in an order the candidate gives.
-    let lower_body = lower.map(|(s, _)| s);
-    let extents = [extent(Some(pair.upper)), extent(lower_body)];
-    let heights = [height(Some(pair.upper)), height(lower_body)];
-    // Half the height of the upper body (the face of the lower candidates) and of the lower one
-    // (the table's face has none).
-    let half_heights = [
-        Some(bodies[usize::from(pair.upper)].height / two),
-        lower_body.map(|b| bodies[usize::from(b)].height / two),
-    ];
-    for (k, candidate) in Candidate::ALL.into_iter().enumerate() {
-        // The corner (owner, world point), the face, and the rule "over the face".
-        let (corner_owner, point, face) = match candidate {
-            Candidate::UpperLeftOnLower => {
-                (Some(pair.upper), upper.world([-upper.half[0], -upper.half[1]]), top)
-            }
-            Candidate::UpperRightOnLower => {
-                (Some(pair.upper), upper.world([upper.half[0], -upper.half[1]]), top)
-            }
-            Candidate::LowerLeftUnderUpper | Candidate::LowerRightUnderUpper => {
-                let left = candidate == Candidate::LowerLeftUnderUpper;
-                if let Some((s, p)) = lower {
-                    let x = if left { -p.half[0] } else { p.half[0] };
-                    (Some(s), p.world([x, p.half[1]]), bottom)
-                } else if let Some(x) = if left { table.lo } else { table.hi } {
-                    (None, [x, T::zero()], bottom)
-                } else {
-                    // No table edge on this side: no candidate.
-                    frames[k] = CornerFrame::inactive();
-                    continue;
-                }
-            }
-        };
-        let l = [point[0] - face.centre[0], point[1] - face.centre[1]];
-        let along = dot(l, face.tangent);
-        let gap = dot(l, face.normal);
-        let over = match (candidate.is_upper_corner(), lower) {
-            (true, Some((_, p))) => along.abs_exact() <= p.half[0],
-            (true, None) => table.covers(along),
-            (false, _) => along.abs_exact() < upper.half[0],
-        };
-        // Not past the face owner's centre line (no limit on the table).
-        let face_half_height = half_heights[usize::from(candidate.is_upper_corner())];
-        let above_centre = face_half_height.is_none_or(|half| gap >= -half);
-        let lever = |b: Option<u8>| com(b).map_or([T::zero(); 2], |c| [point[0] - c[0], point[1] - c[1]]);
-        let (lever_corner, lever_face) = (lever(corner_owner), lever(face.owner));
-        // Within reach: `margin` plus what the approach closes within the step (`reach >= margin`:
-        // the approach is needed only for a candidate over the face beyond the margin).
-        let within_reach = || {
-            let point_velocity = |b: Option<u8>, r: [T; 2]| {
-                velocity(b).map_or([T::zero(); 2], |v| [v[0] - v[2] * r[1], v[1] + v[2] * r[0]])
+    // Each support in a copy of its own (the table's missing corners and limits known there).
+    match pair.lower {
+        Support::Body(s) => {
+            let Some(p) = poses.get(usize::from(s)) else {
+                *frames = [CornerFrame::inactive(); 4];
+                return;
             };
-            let (va, vb) =
-                (point_velocity(corner_owner, lever_corner), point_velocity(face.owner, lever_face));
-            let approach = -dot([va[0] - vb[0], va[1] - vb[1]], face.normal);
-            let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
-            gap <= reach
-        };
-        let n = face.normal;
-        // Indices into `extents`, `heights`: the corner's owner's, the face's owner's.
-        let owners = if candidate.is_upper_corner() { [0, 1] } else { [1, 0] };
-        frames[k] = CornerFrame {
-            active: over && above_centre && (gap <= margin || within_reach()),
-            corner: corner_owner,
-            face: face.owner,
-            gap,
-            along,
-            point,
-            normal: n,
-            tangent: [n[1], -n[0]],
-            lever_corner,
-            lever_face,
-            gap_round_off: T::of(4.0)
-                * T::EPS
-                * (point[0].abs_exact() + point[1].abs_exact() + extents[owners[0]] + extents[owners[1]]),
-            touch: T::of(64.0) * T::EPS * (heights[owners[0]] + heights[owners[1]]),
-        };
+            four_frames((pair.upper, upper), Some((s, p)), table, states, margin, h, frames);
+        }
+        Support::Table => four_frames((pair.upper, upper), None, table, states, margin, h, frames),
     }
+}
+
+/// [`pair_frames`] for the upper body (index, pose) on `lower` (`None`: the table).
+#[allow(clippy::inline_always)] // twice in `pair_frames`, `lower`'s variant known in each
+#[inline(always)]
+fn four_frames<T: Real, const B: usize>(
+    (upper_index, upper): (u8, &Pose<T>),
+    lower: Owner<'_, T>,
+    table: &Table<T>,
+    states: &[BodyState<T>; B],
+    margin: T,
+    h: T,
+    frames: &mut [CornerFrame<T>; 4],
+) {
+    let upper_owner = Some((upper_index, upper));
+    let lower_height = lower.map_or(T::zero(), |(_, p)| p.height);
+    // `64 eps (size + |y|)` summed over the two bodies (the table's term 0): the same bits for every
+    // candidate, whichever body owns its corner (IEEE addition commutes).
+    let touch = T::of(64.0) * T::EPS * (upper.height + lower_height);
+    let reach = Reach { states, margin, h, touch };
+    // The upper body's lower-left and lower-right corners on the lower one's top face: over it,
+    // `|s| <= w / 2` (the table: `lo <= s <= hi`), and not past its centre line `psi >= -hgt / 2`
+    // (no limit on the table).
+    let top = lower.map_or_else(Face::table, |(_, p)| Face::top(p));
+    for (k, x) in [-upper.half[0], upper.half[0]].into_iter().enumerate() {
+        let point = upper.world([x, -upper.half[1]]);
+        let (along, gap) = top.locate(point);
+        let in_rule = match lower {
+            Some((_, p)) => along.abs_exact() <= p.half[0] && gap >= -p.half[1],
+            None => table.covers(along),
+        };
+        let located = Located { corner: upper_owner, face: lower, point, normal: top.normal, along, gap };
+        settle(&mut frames[k], in_rule, &located, &reach);
+    }
+    // The lower body's upper-left and upper-right corners (the table's ends `lo`, `hi`) on the
+    // upper one's lower face: over it, `|s| < w / 2` (strict), not past its centre line.
+    let bottom = Face::bottom(upper);
+    for (k, left) in [(2, true), (3, false)] {
+        let point = if let Some((_, p)) = lower {
+            p.world([if left { -p.half[0] } else { p.half[0] }, p.half[1]])
+        } else if let Some(x) = if left { table.lo } else { table.hi } {
+            [x, T::zero()]
+        } else {
+            // No table edge on this side: no candidate.
+            frames[k].active = false;
+            continue;
+        };
+        let (along, gap) = bottom.locate(point);
+        let in_rule = along.abs_exact() < upper.half[0] && gap >= -upper.half[1];
+        let located = Located { corner: lower, face: upper_owner, point, normal: bottom.normal, along, gap };
+        settle(&mut frames[k], in_rule, &located, &reach);
+    }
+}
+
+/// Writes one candidate's frame: `active: false` when `in_rule` (over the face, not past its
+/// owner's centre line) fails or the corner is out of reach, `psi > margin + h max(0, approach)`;
+/// else the whole frame.
+#[allow(clippy::inline_always)] // four times in `pair_frames`, its owners known there
+#[inline(always)]
+fn settle<T: Real, const B: usize>(
+    frame: &mut CornerFrame<T>,
+    in_rule: bool,
+    c: &Located<'_, T>,
+    reach: &Reach<'_, T, B>,
+) {
+    if !in_rule {
+        frame.active = false;
+        return;
+    }
+    let lever = |owner: Owner<'_, T>| owner.map_or([T::zero(); 2], |(_, p)| p.lever(c.point));
+    let (lever_corner, lever_face) = (lever(c.corner), lever(c.face));
+    // Within reach: `margin` plus what the approach closes within the step (`reach >= margin`:
+    // the approach is needed only beyond the margin).
+    let within_reach = || {
+        let point_velocity = |owner: Owner<'_, T>, r: [T; 2]| {
+            owner
+                .and_then(|(b, _)| reach.states.get(usize::from(b)))
+                .map_or([T::zero(); 2], |s| [s.vx - s.omega * r[1], s.vy + s.omega * r[0]])
+        };
+        let (va, vb) = (point_velocity(c.corner, lever_corner), point_velocity(c.face, lever_face));
+        let approach = -dot([va[0] - vb[0], va[1] - vb[1]], c.normal);
+        c.gap <= reach.margin + reach.h * if approach > T::zero() { approach } else { T::zero() }
+    };
+    if !(c.gap <= reach.margin || within_reach()) {
+        frame.active = false;
+        return;
+    }
+    let extent = |owner: Owner<'_, T>| owner.map_or(T::zero(), |(_, p)| p.extent);
+    let n = c.normal;
+    *frame = CornerFrame {
+        active: true,
+        corner: c.corner.map(|(b, _)| b),
+        face: c.face.map(|(b, _)| b),
+        gap: c.gap,
+        along: c.along,
+        point: c.point,
+        normal: n,
+        tangent: [n[1], -n[0]],
+        lever_corner,
+        lever_face,
+        gap_round_off: T::of(4.0)
+            * T::EPS
+            * (c.point[0].abs_exact() + c.point[1].abs_exact() + extent(c.corner) + extent(c.face)),
+        touch: reach.touch,
+    };
 }
 
 /// The velocity of the corner's owner relative to the face's owner at the frame's point,
@@ -423,12 +493,11 @@ pub(crate) fn slip<T: Real, const B: usize>(frame: &CornerFrame<T>, v: &[[T; 3];
 /// The frames of a pair whose upper body is a disc (`docs/formulation.md`, "The rim-on-face
 /// contact"): the first candidate is the rim's point nearest the lower body's top face (or the
 /// table), `P = c_U - r n_f`, a corner of the disc on that face under every rule of
-/// [`pair_frames`]; the other three do not exist (inactive). Same inputs as [`pair_frames`].
-#[allow(clippy::too_many_arguments)] // as pair_frames
+/// [`pair_frames`]; the other three do not exist (`active: false`). Same inputs as
+/// [`pair_frames`], and as there an inactive frame keeps its other fields.
 #[inline(never)] // a scene of boxes calls it never: kept out of the step's code
 pub(crate) fn rim_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
-    bodies: &[Body<T>; B],
     states: &[BodyState<T>; B],
     poses: &[Pose<T>; B],
     table: &Table<T>,
@@ -436,25 +505,24 @@ pub(crate) fn rim_frames<T: Real, const B: usize>(
     h: T,
     frames: &mut [CornerFrame<T>; 4],
 ) {
-    *frames = [CornerFrame::inactive(); 4];
+    for frame in frames.iter_mut() {
+        frame.active = false;
+    }
     let look = |b: u8| {
         let i = usize::from(b);
-        match (bodies.get(i), states.get(i), poses.get(i)) {
-            (Some(body), Some(state), Some(pose)) => Some((body, state, pose)),
-            _ => None,
-        }
+        states.get(i).zip(poses.get(i))
     };
     let lower = match pair.lower {
         Support::Body(s) => look(s).map(|l| Some((s, l))),
         Support::Table => Some(None),
     };
-    let (Some((disc, disc_state, _)), Some(lower)) = (look(pair.upper), lower) else {
+    let (Some((disc_state, disc)), Some(lower)) = (look(pair.upper), lower) else {
         return;
     };
-    let radius = disc.width / T::of(2.0);
+    let radius = disc.half[0];
     // The lower body's top face: centre `o`, tangent `e`, outward normal `n_f`; the table's at `y = 0`.
     let (centre, tangent, n) = match lower {
-        Some((_, (_, _, p))) => (
+        Some((_, (_, p))) => (
             p.world([T::zero(), p.half[1]]),
             p.rotate([T::one(), T::zero()]),
             p.rotate([T::zero(), T::one()]),
@@ -467,27 +535,24 @@ pub(crate) fn rim_frames<T: Real, const B: usize>(
     let along = dot(l, tangent);
     let gap = dot(l, n);
     let (over, above_centre) = match lower {
-        Some((_, (body, _, p))) => (along.abs_exact() <= p.half[0], gap >= -(body.height / T::of(2.0))),
+        Some((_, (_, p))) => (along.abs_exact() <= p.half[0], gap >= -p.half[1]),
         None => (table.covers(along), true),
     };
     let lever_corner = [point[0] - com[0], point[1] - com[1]];
-    let lever_face = lower.map_or([T::zero(); 2], |(_, (_, st, _))| [point[0] - st.x, point[1] - st.y]);
-    let face = lower.map(|(s, _)| s);
+    let lever_face = lower.map_or([T::zero(); 2], |(_, (st, _))| [point[0] - st.x, point[1] - st.y]);
     // Within reach: `margin` plus what the approach closes within the step.
     let at = |v: [T; 3], r: [T; 2]| [v[0] - v[2] * r[1], v[1] + v[2] * r[0]];
     let va = at(disc_state.velocity(), lever_corner);
-    let vb = lower.map_or([T::zero(); 2], |(_, (_, st, _))| at(st.velocity(), lever_face));
+    let vb = lower.map_or([T::zero(); 2], |(_, (st, _))| at(st.velocity(), lever_face));
     let approach = -dot([va[0] - vb[0], va[1] - vb[1]], n);
     let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
-    // `|x| + |y| + size` and `size + |y|` of the disc and of the lower body (the table's 0).
-    let extent = |b: &Body<T>, st: &BodyState<T>| st.x.abs_exact() + st.y.abs_exact() + b.size();
-    let height = |b: &Body<T>, st: &BodyState<T>| b.size() + st.y.abs_exact();
+    // The lower body's `|x| + |y| + size` and `size + |y|` (the table's 0).
     let (lower_extent, lower_height) =
-        lower.map_or((T::zero(), T::zero()), |(_, (b, st, _))| (extent(b, st), height(b, st)));
+        lower.map_or((T::zero(), T::zero()), |(_, (_, p))| (p.extent, p.height));
     frames[0] = CornerFrame {
         active: over && above_centre && gap <= reach,
         corner: Some(pair.upper),
-        face,
+        face: lower.map(|(s, _)| s),
         gap,
         along,
         point,
@@ -497,7 +562,7 @@ pub(crate) fn rim_frames<T: Real, const B: usize>(
         lever_face,
         gap_round_off: T::of(4.0)
             * T::EPS
-            * (point[0].abs_exact() + point[1].abs_exact() + extent(disc, disc_state) + lower_extent),
-        touch: T::of(64.0) * T::EPS * (height(disc, disc_state) + lower_height),
+            * (point[0].abs_exact() + point[1].abs_exact() + disc.extent + lower_extent),
+        touch: T::of(64.0) * T::EPS * (disc.height + lower_height),
     };
 }

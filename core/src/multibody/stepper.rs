@@ -291,7 +291,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         &self.states
     }
 
-    /// Each candidate's geometry now (the next step's frames).
+    /// Each candidate's geometry now (the next step's frames): an active candidate's frame; an
+    /// inactive one's `active` is `false` and its other fields are from an earlier step.
     #[must_use]
     pub const fn frames(&self) -> &[[CornerFrame<T>; 4]; P] {
         &self.frames
@@ -320,11 +321,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let poses = poses(&self.system.bodies, &self.states);
         for p in 0..P {
             let (pair, frames) = (&self.system.pairs[p], &mut self.frames[p]);
-            let (bodies, states, table) = (&self.system.bodies, &self.states, &self.system.table);
+            let (states, table) = (&self.states, &self.system.table);
             if pair.upper_shape == Shape::Disc {
-                rim_frames(pair, bodies, states, &poses, table, s.margin, s.base.step, frames);
+                rim_frames(pair, states, &poses, table, s.margin, s.base.step, frames);
             } else {
-                pair_frames(pair, bodies, states, &poses, table, s.margin, s.base.step, frames);
+                pair_frames(pair, states, &poses, table, s.margin, s.base.step, frames);
             }
         }
     }
