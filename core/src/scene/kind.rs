@@ -363,32 +363,40 @@ impl SceneParams {
     }
 
     /// Checks the parameters in f64 and again after rounding to `T` (a value may overflow f32,
-    /// or round to an invalid one).
+    /// or round to an invalid one). A scene of one body whose registry rows this build leaves out
+    /// (features `scenes-k1`..`scenes-k3`, as [`Self::build`]) is refused, unchecked: a driver
+    /// that cannot run it links none of its checks (the page's module of several bodies).
     ///
     /// # Errors
-    /// The core's first complaint.
+    /// The core's first complaint; `OutOfRange("scene")` for a scene this build leaves out.
     pub fn validate_as<T: Real>(&self) -> Result<(), ParamError> {
         match self {
+            #[cfg(feature = "scenes-k2")]
             Self::MeterStick(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k2")]
             Self::Incline(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k2")]
             Self::Ladder(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k3")]
             Self::ThreeFingers(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k1")]
             Self::Cylinder(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k1")]
             Self::Painleve(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
@@ -410,6 +418,8 @@ impl SceneParams {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[allow(unreachable_patterns)] // every scene, when the build has them all
+            _ => Err(ParamError::OutOfRange("scene")),
         }
     }
 
