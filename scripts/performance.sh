@@ -220,7 +220,7 @@ print("|---|---|---|---|")
 holds = {"meterstick_web.wasm": "meter stick, incline, ladder (two contacts)",
          "meterstick_web_k1.wasm": "cylinder, Painlevé's rod (one contact)",
          "meterstick_web_k3.wasm": "three fingers (three contacts)",
-         "meterstick_web_mb.wasm": "block-on-block, tablecloth, stack (several bodies)"}
+         "meterstick_web_mb.wasm": "block-on-block, tablecloth, stack, disc-on-board (several bodies)"}
 for m in modules:
     with open(m, "rb") as f:
         data = f.read()

@@ -162,6 +162,19 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
             ("step", "0 < h <= duration"),
         ],
     },
+    #[cfg(feature = "multibody")]
+    SceneInfo {
+        kind: SceneKind::DiscOnBoard,
+        title: "A cylinder on a pulled board: it rolls back on the board at a third of its acceleration, or slides",
+        contact_names: &[],
+        main_flags: &["force", "mu-s", "mu-k", "mu-floor", "mass", "mass2", "radius", "offset"],
+        outcomes: &[OutcomeKind::Held, OutcomeKind::Rolled, OutcomeKind::Slid, OutcomeKind::Unfinished],
+        measures: &["acceleration_m_s2", "top_acceleration_m_s2"],
+        ranges: &[
+            ("offset", "the disc starts over the board: |offset| <= length2 / 2"),
+            ("step", "0 < h <= duration"),
+        ],
+    },
 ];
 
 /// The catalogue's entry of a scene.
@@ -216,7 +229,7 @@ impl Flag {
 }
 
 #[cfg(feature = "multibody")]
-use SceneKind::{BlockOnBlock as BB, Stack as ST, Tablecloth as TC};
+use SceneKind::{BlockOnBlock as BB, DiscOnBoard as DB, Stack as ST, Tablecloth as TC};
 use SceneKind::{
     Cylinder as C, Incline as I, Ladder as L, MeterStick as M, Painleve as P, ThreeFingers as F,
 };
@@ -278,6 +291,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "mu_static"),
             #[cfg(feature = "multibody")]
             (ST, "mu_static"),
+            #[cfg(feature = "multibody")]
+            (DB, "mu_static"),
         ],
     },
     Flag {
@@ -296,6 +311,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "mu_kinetic"),
             #[cfg(feature = "multibody")]
             (ST, "mu_kinetic"),
+            #[cfg(feature = "multibody")]
+            (DB, "mu_kinetic"),
         ],
     },
     Flag {
@@ -308,6 +325,8 @@ pub const FLAGS: &[Flag] = &[
             (BB, "mu_floor"),
             #[cfg(feature = "multibody")]
             (TC, "mu_floor"),
+            #[cfg(feature = "multibody")]
+            (DB, "mu_floor"),
         ],
     },
     Flag {
@@ -325,7 +344,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "mass",
         unit: "kg",
-        help: "Mass of the body (> 0; the upper block; each block of a stack)",
+        help: "Mass of the body (> 0; the upper block; each block of a stack; disc-on-board the disc)",
         fields: &[
             (M, "rod_mass"),
             (I, "mass"),
@@ -339,6 +358,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "block_mass"),
             #[cfg(feature = "multibody")]
             (ST, "mass"),
+            #[cfg(feature = "multibody")]
+            (DB, "disc_mass"),
         ],
     },
     Flag {
@@ -386,7 +407,16 @@ pub const FLAGS: &[Flag] = &[
             (ST, "height"),
         ],
     },
-    Flag { long: "radius", unit: "m", help: "Radius of the round body (> 0)", fields: &[(C, "radius")] },
+    Flag {
+        long: "radius",
+        unit: "m",
+        help: "Radius of the round body (> 0)",
+        fields: &[
+            (C, "radius"),
+            #[cfg(feature = "multibody")]
+            (DB, "disc_radius"),
+        ],
+    },
     Flag {
         long: "inertia-ratio",
         unit: "",
@@ -410,6 +440,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "gravity"),
             #[cfg(feature = "multibody")]
             (ST, "gravity"),
+            #[cfg(feature = "multibody")]
+            (DB, "gravity"),
         ],
     },
     Flag {
@@ -429,6 +461,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "step"),
             #[cfg(feature = "multibody")]
             (ST, "step"),
+            #[cfg(feature = "multibody")]
+            (DB, "step"),
         ],
     },
     Flag {
@@ -448,6 +482,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "max_time"),
             #[cfg(feature = "multibody")]
             (ST, "max_time"),
+            #[cfg(feature = "multibody")]
+            (DB, "max_time"),
         ],
     },
     Flag {
@@ -467,6 +503,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "stick_speed"),
             #[cfg(feature = "multibody")]
             (ST, "stick_speed"),
+            #[cfg(feature = "multibody")]
+            (DB, "stick_speed"),
         ],
     },
     Flag {
@@ -504,15 +542,15 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "mass2",
         unit: "kg",
-        help: "Mass of the lower body (> 0): block-on-block the bottom block, tablecloth the board",
-        fields: &[(BB, "bottom_mass"), (TC, "board_mass")],
+        help: "Mass of the lower body (> 0): block-on-block the bottom block, tablecloth and disc-on-board the board",
+        fields: &[(BB, "bottom_mass"), (TC, "board_mass"), (DB, "board_mass")],
     },
     #[cfg(feature = "multibody")]
     Flag {
         long: "length2",
         unit: "m",
-        help: "Length of the board (> 0, at least offset + width)",
-        fields: &[(TC, "board_length")],
+        help: "Length of the board (> 0; tablecloth: at least offset + width)",
+        fields: &[(TC, "board_length"), (DB, "board_length")],
     },
     #[cfg(feature = "multibody")]
     Flag {
@@ -532,22 +570,22 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "thickness2",
         unit: "m",
-        help: "Thickness of the board (> 0, more than the margin)",
-        fields: &[(TC, "board_thickness")],
+        help: "Thickness of the board (> 0; tablecloth: more than the margin)",
+        fields: &[(TC, "board_thickness"), (DB, "board_height")],
     },
     #[cfg(feature = "multibody")]
     Flag {
         long: "force",
         unit: "N",
-        help: "The pull along +x on the lower body at its centre of mass (>= 0): block-on-block the bottom block, tablecloth the board",
-        fields: &[(BB, "force"), (TC, "force")],
+        help: "The pull along +x on the lower body at its centre of mass (>= 0): block-on-block the bottom block, tablecloth and disc-on-board the board",
+        fields: &[(BB, "force"), (TC, "force"), (DB, "force")],
     },
     #[cfg(feature = "multibody")]
     Flag {
         long: "offset",
         unit: "m",
-        help: "The block's rear (left) face from the board's trailing (left) end (>= 0)",
-        fields: &[(TC, "offset")],
+        help: "Tablecloth: the block's rear (left) face from the board's trailing (left) end (>= 0); disc-on-board: the disc's centre from the board's centre (within +-length2 / 2)",
+        fields: &[(TC, "offset"), (DB, "offset")],
     },
     #[cfg(feature = "multibody")]
     Flag { long: "blocks", unit: "", help: "Blocks in the stack: 2 or 3", fields: &[(ST, "blocks")] },
@@ -563,7 +601,12 @@ pub const FLAGS: &[Flag] = &[
         long: "margin",
         unit: "m",
         help: "The activity rule's margin: a corner this near a face is a candidate contact (>= 0)",
-        fields: &[(BB, "contact_margin"), (TC, "contact_margin"), (ST, "contact_margin")],
+        fields: &[
+            (BB, "contact_margin"),
+            (TC, "contact_margin"),
+            (ST, "contact_margin"),
+            (DB, "contact_margin"),
+        ],
     },
 ];
 
@@ -902,5 +945,13 @@ mod tests {
         assert!(p.set("blocks", 4.0));
         let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
         assert_eq!(r.worded("--").to_string(), "--blocks 4: out of range (2 or 3)");
+        let mut p = SceneParams::defaults(SceneKind::DiscOnBoard);
+        assert!(p.set("offset", -0.6));
+        let r = Refusal::Invalid { params: p, error: p.validate_as::<f64>().unwrap_err() };
+        assert_eq!(
+            r.worded("--").to_string(),
+            "--offset -0.6 m: out of range (the disc starts over the board: |offset| <= length2 / 2)"
+        );
+        assert_eq!(r.flag(), flag_index("offset"));
     }
 }

@@ -5,11 +5,11 @@
 //! ladder 6x6, three fingers 9x9, cylinder and Painlevé's rod 3x3), all in f32, and prints for each its switch events, its outcome, statistics and the
 //! trajectory checksum (`meterstick_core::planar::Checksum`), then the SysTick ticks the rig's
 //! steps took and a calibration of ticks against instructions. With `qemu-multibody` (M4F and M33F;
-//! see firmware/Cargo.toml) also block-on-block and the 3-block stack at their defaults in f32 through the
-//! registry (`SceneParams::build_multibody`): outcome, steps, the checksum of every step's states
-//! of all bodies in body order (`StepReport::add_to`) and the SysTick ticks of their steps. Exit
-//! status: 0 when the LCP was solved and every scene ended as physics says (balanced, fell, slid,
-//! fell, held, rolled, jammed; block-on-block slid, the stack held).
+//! see firmware/Cargo.toml) also block-on-block, the 3-block stack and disc-on-board at their defaults
+//! in f32 through the registry (`SceneParams::build_multibody`): outcome, steps, the checksum of every
+//! step's states of all bodies in body order (`StepReport::add_to`) and the SysTick ticks of their
+//! steps. Exit status: 0 when the LCP was solved and every scene ended as physics says (balanced,
+//! fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc rolled).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
@@ -182,6 +182,8 @@ const fn expected(kind: SceneKind) -> Outcome {
         SceneKind::Stack => Outcome::Held,
         #[cfg(feature = "qemu-multibody")]
         SceneKind::Tablecloth => Outcome::Stayed,
+        #[cfg(feature = "qemu-multibody")]
+        SceneKind::DiscOnBoard => Outcome::Rolled,
     }
 }
 
@@ -276,12 +278,12 @@ impl MultibodyVisitor for CheckMultibody {
     }
 }
 
-/// Block-on-block and the stack (3 blocks) at their defaults, in f32, through the registry; the
-/// number that were refused or ended otherwise.
+/// Block-on-block, the stack (3 blocks) and disc-on-board (on block-on-block's stepper) at their
+/// defaults, in f32, through the registry; the number that were refused or ended otherwise.
 #[cfg(feature = "qemu-multibody")]
 fn check_multibody_scenes() -> i32 {
     let mut failures = 0;
-    for kind in [SceneKind::BlockOnBlock, SceneKind::Stack] {
+    for kind in [SceneKind::BlockOnBlock, SceneKind::Stack, SceneKind::DiscOnBoard] {
         let check = CheckMultibody { name: kind.name(), expected: expected(kind) };
         stack_peak::paint();
         failures += match SceneParams::defaults(kind).build_multibody(Precision::F32, check) {

@@ -8,7 +8,7 @@
 
 use indicatif::ProgressBar;
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::MultibodyScene;
+use meterstick_core::multibody::scenes::{DiscOnBoardParams, MultibodyScene};
 use meterstick_core::planar::{BodyState, Checksum};
 use meterstick_core::scene::{MultibodyVisitor, Outcome, OutcomeKind, Precision, SceneKind, SceneParams};
 use serde::Serialize;
@@ -226,6 +226,23 @@ pub fn to_reference(spec: &SceneParams) -> Option<reference::Spec> {
                 max_time: p.max_time,
             })
         }
+        SceneParams::DiscOnBoard(p) => reference::Spec::DiscOnBoard(reference::DiscOnBoard {
+            board_mass: p.board_mass,
+            board_length: p.board_length,
+            board_height: p.board_height,
+            disc_mass: p.disc_mass,
+            disc_radius: p.disc_radius,
+            offset: p.offset,
+            force: p.force,
+            mu_static: p.mu_static,
+            mu_kinetic: p.mu_kinetic,
+            mu_floor: p.mu_floor,
+            gravity: p.gravity,
+            step: p.step,
+            stick_speed: p.stick_speed,
+            contact_margin: p.contact_margin,
+            max_time: p.max_time,
+        }),
         _ => return None,
     })
 }
@@ -259,7 +276,9 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
         reference::Outcome::Failed(why) => RunOutcome { class: OutcomeKind::Failed, detail: Some(why) },
     };
     let measures = match kind {
-        SceneKind::BlockOnBlock => [r.lower_acceleration, r.upper_acceleration, None],
+        SceneKind::BlockOnBlock | SceneKind::DiscOnBoard => {
+            [r.lower_acceleration, r.upper_acceleration, None]
+        }
         SceneKind::Tablecloth => [r.block_displacement, None, None],
         _ => [Some(r.max_speed), None, None],
     };
@@ -329,7 +348,8 @@ pub struct Law {
 /// `F` up to `mu_floor (M + m) g`; up to `(mu_s + mu_floor) (M + m) g` both ride at
 /// `a = F / (M + m) - mu_floor g` (block-on-block: a tall top block tips first when
 /// `g w / h < a`); above it the upper one slides back at `mu_k g` and the lower one accelerates
-/// at `(F - mu_k m g - mu_floor (M + m) g) / M`; the stack holds iff its overhang scale is below 1.
+/// at `(F - mu_k m g - mu_floor (M + m) g) / M`; the stack holds iff its overhang scale is below 1;
+/// disc-on-board's ([`disc_on_board_law`]).
 #[must_use]
 pub fn law(spec: &SceneParams) -> Option<Law> {
     let pulled = |force: f64, lower: f64, upper: f64, mu_s: f64, mu_k: f64, mu_floor: f64, g: f64| {
@@ -383,8 +403,42 @@ pub fn law(spec: &SceneParams) -> Option<Law> {
             upper_acceleration: None,
             text: "Held iff the overhang scale s < 1 (every block's load inside the edge below it), Fell above",
         },
+        SceneParams::DiscOnBoard(p) => disc_on_board_law(&p),
         _ => return None,
     })
+}
+
+/// Disc-on-board's law (`docs/scenes.md`, "disc-on-board"; `docs/formulation.md`, "The rim-on-face
+/// contact"): the floor holds the pull `F` up to `mu_floor (M + m) g`; beyond it the board
+/// accelerates at `A = (F - mu_floor (M + m) g) / (M + m / 3)` with the disc rolling, its centre
+/// at `a_c = A / 3` (the board's friction `m A / 3` on the disc, its turning `J alpha = r m A / 3`
+/// with `J = m r^2 / 2`, and the rim's point moving with the board: `a_c + r alpha = A`), while that
+/// friction is within `mu_s m g`: `A <= 3 mu_s g`; beyond, the disc slides at `a_c = mu_k g` and
+/// the board accelerates at `(F - mu_k m g - mu_floor (M + m) g) / M`. The rim's point moves along
+/// the board by `(a_c - A) t^2 / 2`: past an end of the board (`|offset + (a_c - A) T^2 / 2| >
+/// L / 2` by `max_time` `T`) the run ends `Unfinished`.
+#[must_use]
+pub fn disc_on_board_law(p: &DiscOnBoardParams<f64>) -> Law {
+    let (big_m, m, g) = (p.board_mass, p.disc_mass, p.gravity);
+    let floor = p.mu_floor * (big_m + m) * g;
+    let rolling = (p.force - floor) / (big_m + m / 3.0);
+    let (outcome, a_board, a_disc) = if p.force <= floor {
+        (OutcomeKind::Held, 0.0, 0.0)
+    } else if rolling <= 3.0 * p.mu_static * g {
+        (OutcomeKind::Rolled, rolling, rolling / 3.0)
+    } else {
+        (OutcomeKind::Slid, (p.force - p.mu_kinetic * m * g - floor) / big_m, p.mu_kinetic * g)
+    };
+    let travel = p.offset + 0.5 * (a_disc - a_board) * p.max_time * p.max_time;
+    let outcome = if travel.abs() > p.board_length / 2.0 { OutcomeKind::Unfinished } else { outcome };
+    Law {
+        outcome: Some(outcome),
+        lower_acceleration: Some(a_board),
+        upper_acceleration: Some(a_disc),
+        text: "Held iff F <= mu_floor (M + m) g; else Rolled at A = (F - mu_floor (M + m) g) / (M + m / 3), \
+               a_disc = A / 3, iff A <= 3 mu_s g; else Slid: a_disc = mu_k g; Unfinished once the rim's point \
+               passes an end of the board",
+    }
 }
 
 /// The scene's measured quantities in words, beside the law's where it gives them.
@@ -395,6 +449,13 @@ fn measured_text(spec: &SceneParams, m: &Measured, law: Option<&Law>) -> String 
     match spec.kind() {
         SceneKind::BlockOnBlock => format!(
             "acceleration in full contact: bottom block {} m/s^2 (law {}), top block {} m/s^2 (law {})",
+            of(m.acceleration_m_s2),
+            of(lower),
+            of(m.top_acceleration_m_s2),
+            of(upper)
+        ),
+        SceneKind::DiscOnBoard => format!(
+            "acceleration while touching: board {} m/s^2 (law {}), disc centre {} m/s^2 (law {})",
             of(m.acceleration_m_s2),
             of(lower),
             of(m.top_acceleration_m_s2),
@@ -568,8 +629,9 @@ fn body_name(kind: SceneKind, i: usize) -> String {
     match (kind, i) {
         (SceneKind::BlockOnBlock, 0) => "bottom block".into(),
         (SceneKind::BlockOnBlock, _) => "top block".into(),
-        (SceneKind::Tablecloth, 0) => "board".into(),
+        (SceneKind::Tablecloth | SceneKind::DiscOnBoard, 0) => "board".into(),
         (SceneKind::Tablecloth, _) => "block".into(),
+        (SceneKind::DiscOnBoard, _) => "disc".into(),
         (_, 0) => "block 1 (bottom)".into(),
         _ => format!("block {}", i + 1),
     }

@@ -3,7 +3,7 @@
 //! out here from `docs/scenes.md` on each side of every threshold, the core agrees with the
 //! independent reference, a refused flag names itself, and the drivers that do not run them yet
 //! refuse them before any work; `scene` prints the firmware's checksum, `run` draws the bodies'
-//! motion, and `map` draws block-on-block's regions where the laws put them.
+//! motion, and `map` draws block-on-block's and disc-on-board's regions where the laws put them.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod common;
@@ -132,6 +132,55 @@ fn the_tablecloth_holds_rides_and_stays_as_the_laws_say() {
     }
 }
 
+/// Disc-on-board at its defaults (`M = 2`, `m = 1`, `mu_s = 0.5`, `mu_k = 0.4`, `mu_floor = 0.1`):
+/// held up to `mu_floor (M + m) g`; beyond it the board accelerates at
+/// `A = (F - mu_floor (M + m) g) / (M + m / 3)` with the disc rolling, its centre at `A / 3`, up to
+/// `A = 3 mu_s g`; beyond, the disc slides at `mu_k g` and the board accelerates at
+/// `(F - mu_k m g - mu_floor (M + m) g) / M`; the rim's point past the board's end ends the run.
+#[test]
+fn disc_on_board_holds_rolls_and_slides_as_the_law_says() {
+    let (big_m, m, mu_s, mu_k, mu_floor) = (2.0, 1.0, 0.5, 0.4, 0.1);
+    let held = mu_floor * (big_m + m) * G;
+    let rolls = 3.0 * mu_s * G * (big_m + m / 3.0) + held;
+    for (force, outcome) in [
+        (0.98 * held, "Held"),
+        (1.02 * held, "Rolled"),
+        (20.0, "Rolled"),
+        (0.98 * rolls, "Rolled"),
+        (1.02 * rolls, "Slid"),
+    ] {
+        let s = run("disc-on-board", "disc", &["--force", &force.to_string(), "--duration", "0.2"]);
+        assert_eq!(s["core"]["outcome"], outcome, "F = {force}: {s}");
+        let a = (force - held) / (big_m + m / 3.0);
+        let (a_board, a_disc) = match outcome {
+            "Held" => (0.0, 0.0),
+            "Rolled" => (a, a / 3.0),
+            _ => ((force - mu_k * m * G - held) / big_m, mu_k * G),
+        };
+        for who in ["core", "reference"] {
+            let (board, disc) =
+                (measured(&s, who, "acceleration_m_s2"), measured(&s, who, "top_acceleration_m_s2"));
+            assert!((board - a_board).abs() < 1e-6 && (disc - a_disc).abs() < 1e-6, "{who} F = {force}: {s}");
+        }
+        assert_eq!(s["law"]["outcome"], outcome, "{s}");
+        assert!(s["comparison"]["max_position_deviation_m"].as_f64().unwrap() < 1e-6, "{s}");
+    }
+    // Sliding back at A - mu_k g = 42.6 m/s^2 at 100 N, the rim leaves the board within 0.16 s.
+    let s = run("disc-on-board", "disc", &["--force", "100"]);
+    assert_eq!(
+        (&s["core"]["outcome"], &s["law"]["outcome"]),
+        (&"Unfinished".into(), &"Unfinished".into()),
+        "{s}"
+    );
+    assert!(s["core"]["end_time_s"].as_f64().unwrap() < 0.16, "{s}");
+    let (code, stdout, err) = host_sim(&["scene", "--scene", "disc-on-board"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("core f32: outcome Rolled at t = 0.300 s") && stdout.contains("law: Rolled"),
+        "{stdout}"
+    );
+}
+
 /// The stack (`docs/scenes.md`, "stack"): harmonic overhangs scaled below 1 hold (nothing moves
 /// beyond round-off), above 1 fall, with two blocks and with three.
 #[test]
@@ -172,6 +221,15 @@ fn refusals_name_the_flag_and_the_driver() {
         (&["map", "--scene", "stack"][..], "--speed does not apply to --scene stack"),
         (&["scene", "--scene", "stack", "--mu-k", "0.6"][..], "--mu-k 0.6 must not exceed --mu-s 0.5"),
         (&["run", "--scene", "stack", "--layout", "reduced"][..], "--layout does not apply to --scene stack"),
+        (
+            &["scene", "--scene", "disc-on-board", "--offset", "0.6"][..],
+            "--offset 0.6 m: out of range (the disc starts over the board: |offset| <= length2 / 2)",
+        ),
+        (&["run", "--scene", "disc-on-board", "--radius", "0"][..], "--radius 0 m: must be greater than 0"),
+        (
+            &["scene", "--scene", "disc-on-board", "--width", "0.1"][..],
+            "--width does not apply to --scene disc-on-board",
+        ),
     ] {
         let (code, stdout, err) = host_sim(args);
         assert_ne!(code, 0, "{args:?}: {stdout}");
@@ -209,6 +267,8 @@ fn scene_prints_the_firmwares_checksum() {
         (SceneKind::BlockOnBlock, Precision::F32),
         (SceneKind::Tablecloth, Precision::F64),
         (SceneKind::Stack, Precision::F32),
+        (SceneKind::DiscOnBoard, Precision::F32),
+        (SceneKind::DiscOnBoard, Precision::F64),
     ] {
         let sum = SceneParams::defaults(kind).build_multibody(precision, Sum).unwrap();
         let (code, stdout, err) =
@@ -431,6 +491,100 @@ fn stack_map_has_the_law_boundary_at_the_critical_overhang() {
             continue;
         };
         assert_eq!(v[2], want, "{line}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `host-sim map` of disc-on-board over force x mu_s (`M = 2`, `m = 1`, `mu_floor = 0.1`,
+/// `mu_k = 0.1` so that every `mu_s` of the range is valid; 0.1 s, so that no sliding disc leaves
+/// the board) in f64: the three regions, every cell more than one cell from the law's boundaries
+/// (`F = mu_floor (M + m) g`; `A = 3 mu_s g`, i.e. `F = 3 mu_s g (M + m / 3) + mu_floor (M + m) g`)
+/// classified as the law says (computed here, not by host-sim), the law's boundaries drawn where
+/// the formulas put them, and the runs' own within 0.05 N of them.
+#[test]
+fn disc_on_board_map_shows_the_laws_regions() {
+    let (big_m, m, mu_floor) = (2.0, 1.0, 0.1);
+    let held = mu_floor * (big_m + m) * G;
+    let rolls = |mu_s: f64| 3.0 * mu_s * G * (big_m + m / 3.0) + held;
+    let law = |f: f64, mu_s: f64| {
+        if f <= held {
+            "Held"
+        } else if f <= rolls(mu_s) {
+            "Rolled"
+        } else {
+            "Slid"
+        }
+    };
+    let (columns, rows) = (24_usize, 6_usize);
+    let (f_range, mu_range) = ((0.0, 48.0), (0.2, 0.6));
+    let centre = |(a, b): (f64, f64), n: usize, k: f64| a + (b - a) * (k + 0.5) / n as f64;
+    let out = temp_dir("map-disc");
+    let (code, _, err) = host_sim(&[
+        "map",
+        "--scene",
+        "disc-on-board",
+        "--mu-k",
+        "0.1",
+        "--duration",
+        "0.1",
+        "--precision",
+        "f64",
+        "--x-axis",
+        "force",
+        "--x-range",
+        "0,48",
+        "--x-cells",
+        &columns.to_string(),
+        "--y-axis",
+        "mu-s",
+        "--y-range",
+        "0.2,0.6",
+        "--y-cells",
+        &rows.to_string(),
+        "--tolerance",
+        "0.01",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(out.join("map.csv")).unwrap();
+    let (mut compared, mut seen) = (0, std::collections::BTreeSet::new());
+    for (k, line) in csv.lines().skip(1).enumerate() {
+        let v: Vec<&str> = line.split(',').collect();
+        let (f, mu_s, outcome) = (v[0].parse::<f64>().unwrap(), v[1].parse::<f64>().unwrap(), v[2]);
+        seen.insert(outcome.to_string());
+        let (i, j) = ((k % columns) as f64, (k / columns) as f64);
+        let here = law(f, mu_s);
+        let far = [-1.0, 0.0, 1.0].iter().all(|di| {
+            [-1.0, 0.0, 1.0]
+                .iter()
+                .all(|dj| law(centre(f_range, columns, i + di), centre(mu_range, rows, j + dj)) == here)
+        });
+        if far {
+            compared += 1;
+            assert_eq!(outcome, here, "force {f} N, mu_s {mu_s}");
+        }
+    }
+    assert_eq!(seen.into_iter().collect::<Vec<_>>(), ["Held", "Rolled", "Slid"]);
+    assert!(compared > columns * rows / 2, "only {compared} cells away from the boundaries");
+    let bounds = std::fs::read_to_string(out.join("law_boundaries.csv")).unwrap();
+    assert_eq!(bounds.lines().count(), 1 + 2 * rows, "{bounds}");
+    for line in bounds.lines().skip(1) {
+        let v: Vec<&str> = line.split(',').collect();
+        let (mu_s, f) = (v[0].parse::<f64>().unwrap(), v[1].parse::<f64>().unwrap());
+        let want = match (v[3], v[4]) {
+            ("Held", "Rolled") => held,
+            ("Rolled", "Slid") => rolls(mu_s),
+            other => panic!("{other:?}"),
+        };
+        assert!((f - want).abs() < 1e-9, "{line}: {want}");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for b in summary["boundaries"].as_array().unwrap() {
+        let (f, mu_s) = (b["x"].as_f64().unwrap(), b["y"].as_f64().unwrap());
+        let want = if b["below"] == "Held" { held } else { rolls(mu_s) };
+        assert!((f - want).abs() < 0.05, "{b} vs the law's {want}");
     }
     std::fs::remove_dir_all(&out).unwrap();
 }

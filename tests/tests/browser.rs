@@ -9,8 +9,9 @@
 //! ladder, three fingers, the cylinder rolling and sliding and Painleve's rod jamming and sliding;
 //! on a difference it prints the first step that differs; for the scenes of one and three contacts
 //! also the module they ran in, their contacts and the measured quantities shown, against
-//! `host-sim`'s `summary.json` values; the tablecloth, block-on-block and a falling stack, scenes
-//! of several bodies, to the outcome, end state and measured quantities of host-sim's core run),
+//! `host-sim`'s `summary.json` values; the tablecloth, block-on-block, a falling stack and a disc on
+//! a pulled board rolling and sliding, scenes of several bodies, to the outcome, end state and
+//! measured quantities of host-sim's core run),
 //! that the scene selector loads a scene's module and runs
 //! it, that the controls change the run
 //! (typing, Enter, the keyboard shortcut) and that a bad value shows `host-sim`'s sentence, that a
@@ -417,6 +418,15 @@ fn the_page_in_chromium() {
     check_bodies(&b, &base, "tablecloth", "scene=tablecloth&autorun=1&rate=max");
     check_bodies(&b, &base, "block-on-block", "scene=block-on-block&precision=f64&autorun=1&rate=max");
     check_bodies(&b, &base, "stack-falling", "scene=stack&overhang=1.5&autorun=1&rate=max");
+    // A cylinder on a pulled board rolls back on it (Rolled, a_c = A / 3), and pulled beyond
+    // A = 3 mu_s g slides (f64).
+    check_bodies(&b, &base, "disc-on-board", "scene=disc-on-board&autorun=1&rate=max");
+    check_bodies(
+        &b,
+        &base,
+        "disc-on-board-sliding",
+        "scene=disc-on-board&force=40&duration=0.2&precision=f64&autorun=1&rate=max",
+    );
     check_scene_selector(&b, &base);
 
     check_controls(&b, &base, &slow);

@@ -5,8 +5,8 @@
 
 use meterstick_core::lcp::LcpError;
 use meterstick_core::multibody::scenes::{
-    BlockOnBlock, BlockOnBlockParams, MultibodyScene as _, Stack, Stack2, Stack3, StackParams, Tablecloth,
-    TableclothParams,
+    BlockOnBlock, BlockOnBlockParams, DiscOnBoard, DiscOnBoardParams, MultibodyScene as _, Stack, Stack2,
+    Stack3, StackParams, Tablecloth, TableclothParams,
 };
 use meterstick_core::multibody::{
     Pair, Settings, Shape, StepError, StepReport, Stepper, Support, System, Table,
@@ -729,122 +729,122 @@ fn frictionless_stack_falls_as_the_reference_in_f64() {
     assert_positions_near("stack", &positions(scene.stepper().states()), &r.q, REFERENCE_TOLERANCE);
 }
 
-/// What [`disc_on_board`] measured.
+/// What [`disc_on_board`] measured, in f64.
 #[derive(Debug)]
 struct DiscRun {
-    /// The board's and the disc's accelerations along `x` between steps `from` and the last (m/s^2).
-    accelerations: [f64; 2],
+    outcome: Outcome,
+    /// The scene's `[a_board, a_disc]` (m/s^2).
+    accelerations: Option<[f64; 2]>,
     /// The largest `|v_c + omega r - V_board|` over the run (the rim's slip on the board, m/s).
     max_slip: f64,
-    /// Some step left the disc's contact sliding.
-    slid: bool,
     /// The disc's contact was active on every step.
     on_board: bool,
     /// Each step's `(x, y, theta)` of the board and the disc.
     q: Vec<[[f64; 3]; 2]>,
+    /// The end time (s).
+    end_time: f64,
 }
 
-/// A disc (radius 0.05 m, 1 kg; its rim on a face: `docs/formulation.md`, "The rim-on-face
-/// contact") at rest on the middle of a board (1 m x 0.02 m, 2 kg) on a floor, the board pulled by
-/// `force` (N) along `x`; `mu_s` / `mu_k` disc on board, `mu_floor` board on floor; `steps` steps
-/// of 1 ms in `T`, accelerations measured from step `from` on.
-fn disc_on_board<T: Real>(force: f64, mu: [f64; 3], steps: u32, from: u32) -> DiscRun {
-    let t = T::of;
-    let (board, disc) = (Body::block(t(2.0), t(1.0), t(0.02)), Body::disc(t(1.0), t(0.05)));
-    let [mu_s, mu_k, mu_floor] = mu.map(t);
-    let system = System {
-        bodies: [board, disc],
-        table: Table::floor(),
-        pairs: [
-            Pair {
-                upper: 0,
-                lower: Support::Table,
-                mu_static: mu_floor,
-                mu_kinetic: mu_floor,
-                upper_shape: Shape::Box,
-            },
-            Pair {
-                upper: 1,
-                lower: Support::Body(0),
-                mu_static: mu_s,
-                mu_kinetic: mu_k,
-                upper_shape: Shape::Disc,
-            },
-        ],
-        forces: [[t(force), T::zero()], [T::zero(); 2]],
-        settings: Settings {
-            base: meterstick_core::planar::Settings { step: t(1e-3), gravity: t(9.81), stick_speed: t(1e-5) },
-            margin: t(1e-3),
-        },
-    };
-    let states = [
-        BodyState::at_rest(T::zero(), t(0.01), T::zero()),
-        BodyState::at_rest(T::zero(), t(0.07), T::zero()),
-    ];
-    let mut stepper = Stepper::<T, 2, 2, 16>::new(system, states).expect("a valid system");
-    let (mut start, mut end) = ([0.0; 2], [0.0; 2]);
-    let (mut max_slip, mut slid, mut on_board, mut q) = (0.0f64, false, true, Vec::new());
-    for n in 1..=steps {
-        let report = stepper.step().expect("a step");
-        let [b, d] = report.states.map(|s| [s.vx.as_f64(), s.omega.as_f64()]);
-        let disc_vx = report.states[1].vx.as_f64();
-        max_slip = max_slip.max((disc_vx + d[1] * 0.05 - b[0]).abs());
-        q.push(report.states.map(|s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]));
-        slid |= report.modes[1][0].is_sliding();
+/// The disc-on-board scene (`docs/scenes.md`, "disc-on-board": a disc whose rim rests on a board
+/// pulled along a floor, `docs/formulation.md`, "The rim-on-face contact") with `p` in `T`.
+fn disc_on_board<T: Real>(p: DiscOnBoardParams<f64>) -> DiscRun {
+    let mut scene = DiscOnBoard::new(p.cast::<T>()).expect("valid parameters");
+    let r = p.disc_radius;
+    let (mut max_slip, mut on_board, mut q) = (0.0f64, true, Vec::new());
+    let outcome = scene.run(|report| {
+        let [board, disc] = report.states.map(|s| s.to_array().map(Real::as_f64));
+        max_slip = max_slip.max((disc[3] + disc[5] * r - board[3]).abs());
+        q.push([[board[0], board[1], board[2]], [disc[0], disc[1], disc[2]]]);
         on_board &= report.touching(&[(1, 0)]);
-        if n == from {
-            start = [b[0], disc_vx];
-        }
-        end = [b[0], disc_vx];
-    }
-    let span = f64::from(steps - from) * 1e-3;
+    });
     DiscRun {
-        accelerations: [(end[0] - start[0]) / span, (end[1] - start[1]) / span],
+        outcome,
+        accelerations: scene.accelerations().map(|a| a.map(Real::as_f64)),
         max_slip,
-        slid,
         on_board,
         q,
+        end_time: scene.stepper().time().as_f64(),
     }
 }
 
-/// The rim-on-face contact against its law (`docs/formulation.md`, "The rim-on-face contact"), in
-/// f32 and f64: rolling, the disc moves at a third of the board's acceleration
-/// `A = (F - mu_floor (M + m) g) / (M + m / 3)` with its rim's slip at round-off; beyond
-/// `A = 3 mu_s g` it slides, `a_c = mu_k g`, `A = (F - mu_k m g - mu_floor (M + m) g) / M`; at
-/// `F <= mu_floor (M + m) g` nothing moves.
-#[test]
-fn a_disc_rolls_on_a_pulled_board_at_a_third_of_its_acceleration() {
-    let (g, big_m, m) = (9.81, 2.0, 1.0);
-    let mu = [0.5, 0.4, 0.1];
-    let floor = mu[2] * (big_m + m) * g;
-    for (precision, run) in [
-        ("f64", disc_on_board::<f64> as fn(f64, [f64; 3], u32, u32) -> DiscRun),
-        ("f32", disc_on_board::<f32>),
-    ] {
-        let tol = if precision == "f64" { 1e-12 } else { 1e-5 };
-        // Rolling: F = 20 N, A = 7.31 m/s^2 below 3 mu_s g = 14.7.
-        let a = (20.0 - floor) / (big_m + m / 3.0);
-        let rolled = run(20.0, mu, 300, 50);
-        let [board, disc] = rolled.accelerations;
-        assert!(!rolled.slid && rolled.on_board, "{precision}: {rolled:?}");
-        assert!(
-            (board - a).abs() < tol * a && (disc - a / 3.0).abs() < tol * a,
-            "{precision}: {rolled:?} vs A = {a}"
-        );
-        assert!(rolled.max_slip < 1e-5, "{precision}: the rim slipped {rolled:?}");
-        // Sliding: F = 100 N (A would be 41.6 rolling), until the disc nears the board's end.
-        let sliding = run(100.0, mu, 120, 20);
-        let [board, disc] = sliding.accelerations;
-        let a_board = (100.0 - mu[1] * m * g - floor) / big_m;
-        assert!(sliding.slid && sliding.on_board, "{precision}: {sliding:?}");
-        assert!(
-            (board - a_board).abs() < tol * a_board && (disc - mu[1] * g).abs() < tol * a_board,
-            "{precision}: {sliding:?}"
-        );
-        // Held: F = 2 N below the floor's 2.94 N.
-        let held = run(2.0, mu, 100, 10);
-        assert!(held.accelerations.iter().all(|a| a.abs() < tol) && !held.slid, "{precision}: {held:?}");
+/// The law of `docs/scenes.md` ("disc-on-board") for `p`, written out here: the outcome and
+/// `[A, a_c]`. Nothing moves while `F <= mu_floor (M + m) g`; the disc rolls while
+/// `A = (F - mu_floor (M + m) g) / (M + m / 3) <= 3 mu_s g`, its centre at `A / 3`; beyond it
+/// slides, `a_c = mu_k g`, `A = (F - mu_k m g - mu_floor (M + m) g) / M`.
+fn disc_law(p: &DiscOnBoardParams<f64>) -> (Outcome, [f64; 2]) {
+    let (big_m, m, g) = (p.board_mass, p.disc_mass, p.gravity);
+    let floor = p.mu_floor * (big_m + m) * g;
+    let rolling = (p.force - floor) / (big_m + m / 3.0);
+    if p.force <= floor {
+        (Outcome::Held, [0.0; 2])
+    } else if rolling <= 3.0 * p.mu_static * g {
+        (Outcome::Rolled, [rolling, rolling / 3.0])
+    } else {
+        (Outcome::Slid, [(p.force - p.mu_kinetic * m * g - floor) / big_m, p.mu_kinetic * g])
     }
+}
+
+fn disc_laws<T: Real>() {
+    let d = DiscOnBoardParams::<f64>::default();
+    let (big_m, m, g) = (d.board_mass, d.disc_mass, d.gravity);
+    let held = d.mu_floor * (big_m + m) * g;
+    let rolls = 3.0 * d.mu_static * g * (big_m + m / 3.0) + held;
+    // Relative to the larger of A and g: f64 measured 3.3e-15, f32 8.1e-7.
+    let tol = if T::BYTES == 8 { 1e-12 } else { 1e-5 };
+    let mut worst = 0.0f64;
+    // The sliding runs are cut short before the disc slides back over the board's rear end.
+    for (force, max_time, expected) in [
+        (0.5 * held, 0.3, Outcome::Held),
+        (0.98 * held, 0.3, Outcome::Held),
+        (1.02 * held, 0.3, Outcome::Rolled),
+        (d.force, 0.3, Outcome::Rolled),
+        (0.98 * rolls, 0.3, Outcome::Rolled),
+        (1.02 * rolls, 0.2, Outcome::Slid),
+        (100.0, 0.12, Outcome::Slid),
+    ] {
+        let p = DiscOnBoardParams { force, max_time, ..d };
+        let (law, a) = disc_law(&p);
+        assert_eq!(law, expected, "the law at F = {force}");
+        let run = disc_on_board::<T>(p);
+        assert_eq!(run.outcome, expected, "{} F = {force}: {run:?}", T::NAME);
+        assert!(run.on_board, "{} F = {force}", T::NAME);
+        let got = run.accelerations.expect("measured");
+        let scale = a[0].max(g);
+        worst = worst.max((got[0] - a[0]).abs().max((got[1] - a[1]).abs()) / scale);
+        assert!(
+            (got[0] - a[0]).abs() < tol * scale && (got[1] - a[1]).abs() < tol * scale,
+            "{} F = {force}: {got:?} vs the law's {a:?}",
+            T::NAME
+        );
+        match expected {
+            Outcome::Rolled => assert!(run.max_slip < 1e-5, "{} F = {force}: the rim slipped", T::NAME),
+            Outcome::Slid => assert!(run.max_slip > 1e-3, "{} F = {force}: sliding, yet rolling", T::NAME),
+            _ => assert!(run.max_slip < rest_speed::<T>(), "{} F = {force}: held, yet moved", T::NAME),
+        }
+    }
+    eprintln!("disc-on-board {}: accelerations within {worst:e} of the law, relative", T::NAME);
+    // The rim's point past an end of the board ends the run: sliding back at 100 N, or rolling
+    // back from 5 cm before the rear end.
+    for p in [DiscOnBoardParams { force: 100.0, ..d }, DiscOnBoardParams { offset: -0.45, ..d }] {
+        let run = disc_on_board::<T>(p);
+        let [board, disc] = *run.q.last().expect("steps");
+        assert_eq!(run.outcome, Outcome::Unfinished, "{} {p:?}", T::NAME);
+        assert!(run.end_time < 0.2 && disc[0] - board[0] < -0.5, "{} {run:?}", T::NAME);
+    }
+}
+
+/// The disc on a pulled board against its law (`docs/scenes.md`, "disc-on-board"), through the
+/// scene, on each side of both thresholds: held, rolling (the disc's centre at a third of the
+/// board's acceleration, the rim's slip at round-off), sliding at `mu_k g`, and ended when the rim
+/// passes an end of the board.
+#[test]
+fn a_disc_rolls_on_a_pulled_board_at_a_third_of_its_acceleration_in_f64() {
+    disc_laws::<f64>();
+}
+
+#[test]
+fn a_disc_rolls_on_a_pulled_board_at_a_third_of_its_acceleration_in_f32() {
+    disc_laws::<f32>();
 }
 
 /// A disc has no faces: a pair resting on one is refused; so are a disc whose width and height (its
@@ -884,29 +884,30 @@ fn a_disc_is_only_an_upper_body() {
     assert_eq!(build([block, disc], both), Some(ParamError::OutOfRange("upper_shape")));
 }
 
-/// The rim-on-face contact against the independent reference (`meterstick_reference::multibody`,
+/// The disc-on-board scene against the independent reference (`meterstick_reference::multibody`,
 /// `DiscOnBoard`, written from the same text, sharing no code): rolling slowly (3 N) and at the
-/// defaults (20 N), sliding just beyond the rolling limit (38.02 N), the same outcome and every
-/// step's positions of both bodies close (f64 to round-off, f32 to its precision over 300 steps).
+/// defaults (20 N), sliding just beyond the rolling limit (38.02 N), the same outcome, the same
+/// accelerations and every step's positions of both bodies close (f64 to round-off, f32 to its
+/// precision over 300 steps; measured f64 2.6e-14 m and 1.9e-13 m/s^2, f32 7.7e-6 m and 3.0e-5
+/// m/s^2).
 #[test]
 fn a_disc_on_a_board_steps_as_the_reference() {
-    let mu = [0.5, 0.4, 0.1];
     for (force, steps) in [(3.0, 300), (20.0, 300), (38.02, 200)] {
-        let spec = reference::DiscOnBoard {
-            force,
-            max_time: f64::from(steps) * 1e-3,
-            ..reference::DiscOnBoard::default()
-        };
+        let max_time = f64::from(steps) * 1e-3;
+        let spec = reference::DiscOnBoard { force, max_time, ..reference::DiscOnBoard::default() };
         let r = reference::run(&reference::Spec::DiscOnBoard(spec), meterstick_reference::Sample::All)
             .expect("valid parameters");
+        let p = DiscOnBoardParams { force, max_time, ..DiscOnBoardParams::default() };
         let rolled = r.outcome == reference::Outcome::Rolled;
         assert!(rolled || r.outcome == reference::Outcome::Slid, "{force} N: {:?}", r.outcome);
-        for (precision, run, tol) in [
-            ("f64", disc_on_board::<f64> as fn(f64, [f64; 3], u32, u32) -> DiscRun, 1e-12),
-            ("f32", disc_on_board::<f32>, 2e-5),
+        let expected = if rolled { Outcome::Rolled } else { Outcome::Slid };
+        let ra = [r.lower_acceleration.expect("measured"), r.upper_acceleration.expect("measured")];
+        for (precision, run, tol, a_tol) in [
+            ("f64", disc_on_board::<f64> as fn(DiscOnBoardParams<f64>) -> DiscRun, 1e-12, 1e-9),
+            ("f32", disc_on_board::<f32>, 2e-5, 1e-4),
         ] {
-            let core = run(force, mu, steps, 1);
-            assert_eq!(core.slid, !rolled, "{precision} {force} N: the core slid {}", core.slid);
+            let core = run(p);
+            assert_eq!(core.outcome, expected, "{precision} {force} N");
             assert_eq!(core.q.len() + 1, r.rows.len(), "{precision} {force} N: steps");
             let mut worst = 0.0f64;
             for (c, row) in core.q.iter().zip(&r.rows[1..]) {
@@ -917,6 +918,15 @@ fn a_disc_on_a_board_steps_as_the_reference() {
                 }
             }
             assert!(worst < tol, "{precision} {force} N: positions {worst:e} from the reference");
+            let a = core.accelerations.expect("measured");
+            eprintln!(
+                "disc-on-board {precision} {force} N: positions within {worst:e} m, accelerations within {:e} m/s^2 of the reference",
+                (a[0] - ra[0]).abs().max((a[1] - ra[1]).abs())
+            );
+            assert!(
+                (a[0] - ra[0]).abs() < a_tol && (a[1] - ra[1]).abs() < a_tol,
+                "{precision} {force} N: {a:?} vs the reference's {ra:?}"
+            );
         }
     }
 }

@@ -149,11 +149,16 @@ impl MultibodyVisitor for HostMultibody {
     }
 }
 
-/// Block-on-block and the 3-block stack at their defaults (firmware/src/qemu.rs, `qemu-multibody`):
+/// Block-on-block, the 3-block stack and disc-on-board at their defaults (firmware/src/qemu.rs,
+/// `qemu-multibody`):
 /// the outcome physics says (`docs/scenes.md`), and outcome, steps and checksum equal to the
 /// host's f32 run (bit-identical IEEE f32 arithmetic); a timing line for every step.
 fn check_multibody_scenes(run: &FirmwareRun) {
-    for (kind, expected) in [(SceneKind::BlockOnBlock, Outcome::Slid), (SceneKind::Stack, Outcome::Held)] {
+    for (kind, expected) in [
+        (SceneKind::BlockOnBlock, Outcome::Slid),
+        (SceneKind::Stack, Outcome::Held),
+        (SceneKind::DiscOnBoard, Outcome::Rolled),
+    ] {
         let (outcome, steps, sum) =
             SceneParams::defaults(kind).build_multibody(Precision::F32, HostMultibody).unwrap();
         assert_eq!(outcome, expected, "{kind} on the host");

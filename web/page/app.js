@@ -36,6 +36,10 @@ const MEASURE_WORDS = {
 /// A scene's own words for a key it shares with others.
 const SCENE_MEASURE_WORDS = {
   'block-on-block': { acceleration_m_s2: (v) => `the bottom block's acceleration ${v.toFixed(4)} m/s²` },
+  'disc-on-board': {
+    acceleration_m_s2: (v) => `the board's acceleration ${v.toFixed(4)} m/s²`,
+    top_acceleration_m_s2: (v) => `the disc centre's ${v.toFixed(4)} m/s²`,
+  },
 };
 
 /// The measured quantities ({key: value | null}) of `scene` in words; '-' when there are none.

@@ -93,13 +93,15 @@ export class Core {
   }
 
   /// The run's bodies, for a scene of several bodies: {sizes: [[width, height]] (body 0 the
-  /// lowest), table: [lo, hi] (null for an end it does not have)}; null for a scene of one body.
+  /// lowest), round: [bool] (a disc, its diameter the width), table: [lo, hi] (null for an end it
+  /// does not have)}; null for a scene of one body.
   shapes() {
     if (!this.current || !this.current.bodies) return null;
     const sizes = [];
     for (let i = 0; !Number.isNaN(this.x.ms_body_size(i, 0)); i += 1) sizes.push([this.x.ms_body_size(i, 0), this.x.ms_body_size(i, 1)]);
+    const round = sizes.map((_, i) => this.x.ms_body_round(i) === 1);
     const end = (i) => { const v = this.x.ms_table_end(i); return Number.isNaN(v) ? null : v; };
-    return { sizes, table: [end(0), end(1)] };
+    return { sizes, round, table: [end(0), end(1)] };
   }
 
   /// The state at t = 0 as a row (a copy).

@@ -160,7 +160,8 @@ export class SceneView {
     return { k, x0: (left + right) / 2 + 0.15 * span, y0: 0, cx: w / 2, cy: h * 0.8, follow: false };
   }
 
-  /// Draws a row of a scene of several bodies: the table (hatched, with its edge), each body a box.
+  /// Draws a row of a scene of several bodies: the table (hatched, with its edge), each body a box
+  /// (a long one marked every 10 cm) or a disc with a spoke.
   drawBodies(g, w, h, row, info) {
     const cam = this.camera;
     const X = (x) => cam.cx + (x - cam.x0) * cam.k;
@@ -190,8 +191,30 @@ export class SceneView {
       g.translate(X(x), Y(y)); g.rotate(-theta);
       const pw = bw * cam.k; const ph = Math.max(bh * cam.k, 3);
       g.fillStyle = CONTACT_COLORS[i % CONTACT_COLORS.length]; g.globalAlpha = 0.45;
+      if (this.shapes.round[i]) {
+        // A disc with a spoke from the centre to the rim (and a lighter one across), as the
+        // cylinder: rolling turns the spoke as the disc moves over the board.
+        const r = pw / 2;
+        g.beginPath(); g.arc(0, 0, r, 0, 2 * Math.PI); g.fill();
+        g.globalAlpha = 1; g.strokeStyle = COLORS.ink; g.lineWidth = 2; g.stroke();
+        g.lineWidth = 1.5; g.strokeStyle = COLORS.muted;
+        g.beginPath(); g.moveTo(0, -r); g.lineTo(0, r); g.stroke();
+        g.lineWidth = 4; g.strokeStyle = COLORS.ink;
+        g.beginPath(); g.moveTo(0, 0); g.lineTo(r, 0); g.stroke();
+        g.restore();
+        comSymbol(g, X(x), Y(y), 7);
+        return;
+      }
       g.fillRect(-pw / 2, -ph / 2, pw, ph);
       g.globalAlpha = 1; g.strokeStyle = COLORS.ink; g.lineWidth = 2; g.strokeRect(-pw / 2, -ph / 2, pw, ph);
+      if (bw >= 0.5) {
+        // Marks every 10 cm on a long body (a board), so that what moves over it shows.
+        g.lineWidth = 1.5;
+        for (let m = 1; m < Math.round(bw / 0.1); m += 1) {
+          const mx = -pw / 2 + m * 0.1 * cam.k;
+          g.beginPath(); g.moveTo(mx, -ph / 2); g.lineTo(mx, -ph / 2 + Math.max(ph * 0.6, 3)); g.stroke();
+        }
+      }
       g.restore();
       comSymbol(g, X(x), Y(y), 7);
     });

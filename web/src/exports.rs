@@ -319,6 +319,15 @@ pub extern "C" fn ms_body_size(i: u32, axis: u32) -> f64 {
     })
 }
 
+/// A scene of several bodies' body `i` (0 the lowest): 1 when it is round (a disc, drawn with a
+/// spoke so that its turning shows), 0 for a box, past its bodies, for a scene of one body or
+/// without a run.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_body_round(i: u32) -> u32 {
+    store::with(|s, _, _| u32::from(s.session.sim().is_some_and(|sim| sim.body_round(i as usize))))
+}
+
 /// A scene of several bodies' table: its left (`end` 0) or right (`end` 1) end in m (the top
 /// face is `y = 0`); NaN for an end it does not have (a floor has none), or without such a run.
 #[unsafe(no_mangle)]
@@ -362,7 +371,7 @@ mod tests {
         assert_eq!(json.len(), n as usize);
         assert!(json.len() < TEXT_BYTES / 2, "room to grow: {} bytes", json.len());
         assert!(json.starts_with("{\"version\":") && json.ends_with('}'), "{json}");
-        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic","stack":"mu_kinetic"}}"#), "{json}");
+        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic","stack":"mu_kinetic","disc-on-board":"mu_kinetic"}}"#), "{json}");
         assert!(json.contains(r#""contacts":["finger 1","finger 2"],"row":19,"measures":["meeting.time_s","meeting.com_offset_m"]"#), "{json}");
         assert!(
             json.contains(r#""name":"cylinder","#) && json.contains(r#""contacts":["rim"],"row":13,"#),
@@ -372,6 +381,7 @@ mod tests {
         assert!(json.contains(r#""holds":[0,1,2,3],"#), "the host build holds every scene: {json}");
         // The scenes of several bodies come last, rows of time and each body's x, y, theta.
         assert!(json.contains(r#"{"name":"stack","#), "{json}");
+        assert!(json.contains(r#"{"name":"disc-on-board","#), "{json}");
         assert!(json.contains(r#""contacts":[],"bodies":true,"row":10,"#), "{json}");
         assert!(json.contains(r#""ends":["Rolled","Slid"],"main_flags":["angle","mu-s","mu-k","radius","inertia-ratio","h"]}"#), "{json}");
         assert!(json.contains(r#""measures":["jam.time_s","jam.normal_impulse_n_s","jam.friction_impulse_n_s"],"ends":["Jammed","Slid","Fell","Unfinished"]"#), "{json}");

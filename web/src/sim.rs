@@ -240,6 +240,24 @@ impl Sim {
         }
     }
 
+    /// `true` when a scene of several bodies' body `i` is round (a disc whose rim rests on a face:
+    /// [`meterstick_core::multibody::Shape::Disc`]); `false` for a box, past its bodies or for a
+    /// scene of one body.
+    #[must_use]
+    pub fn body_round(&self, i: usize) -> bool {
+        match &self.scene {
+            #[cfg(feature = "mb")]
+            Held::Many(s) => {
+                s.shapes().get(i).copied().flatten() == Some(meterstick_core::multibody::Shape::Disc)
+            }
+            #[allow(unreachable_patterns)]
+            _ => {
+                let _ = i;
+                false
+            }
+        }
+    }
+
     /// A scene of several bodies' table ends `[lo, hi]` (m; `None` for an infinite end, and both
     /// for a scene of one body).
     #[must_use]

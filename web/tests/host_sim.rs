@@ -154,6 +154,8 @@ fn a_run_of_several_bodies_through_the_exports_ends_as_host_sims_core_run() {
         (SceneKind::BlockOnBlock, &[("force", 5.0)], Precision::F64),
         (SceneKind::Stack, &[("blocks", 2.0)], Precision::F32),
         (SceneKind::Stack, &[("overhang", 1.5)], Precision::F64),
+        (SceneKind::DiscOnBoard, &[], Precision::F32),
+        (SceneKind::DiscOnBoard, &[("force", 40.0), ("mu-s", 0.3), ("mu-k", 0.2)], Precision::F64),
     ];
     for (kind, given, precision) in cases {
         let scene = SceneKind::ALL.iter().position(|k| k == kind).unwrap();
@@ -190,7 +192,7 @@ fn a_run_of_several_bodies_through_the_exports_ends_as_host_sims_core_run() {
 
 #[test]
 fn a_run_of_several_bodies_gives_its_shapes() {
-    use meterstick_web::{ms_body_size, ms_configure, ms_create, ms_table_end};
+    use meterstick_web::{ms_body_round, ms_body_size, ms_configure, ms_create, ms_table_end};
     let stack = SceneKind::ALL.iter().position(|k| *k == SceneKind::Stack).unwrap();
     assert_eq!(ms_configure(u32::try_from(stack).unwrap()), 0);
     assert_eq!(ms_create(64, 6), 0);
@@ -200,4 +202,15 @@ fn a_run_of_several_bodies_gives_its_shapes() {
     }
     assert!(ms_body_size(3, 0).is_nan() && ms_body_size(0, 2).is_nan());
     assert_eq!(u8::from(ms_table_end(0).is_nan()) + u8::from(ms_table_end(1).is_nan()), 1, "one edge");
+    assert_eq!([0_u32, 1, 2, 3].map(|b| ms_body_round(b)), [0; 4], "boxes");
+    // Disc-on-board: a board of 1 m x 0.02 m on a floor, a disc of radius 0.05 m on it.
+    let disc = SceneKind::ALL.iter().position(|k| *k == SceneKind::DiscOnBoard).unwrap();
+    assert_eq!(ms_configure(u32::try_from(disc).unwrap()), 0);
+    assert_eq!(ms_create(32, 6), 0);
+    assert_eq!(
+        [0, 1].map(|b| [ms_body_size(b, 0), ms_body_size(b, 1)]),
+        [[1.0, 0.02f32.into()], [0.1f32.into(); 2]]
+    );
+    assert_eq!([0_u32, 1, 2].map(|b| ms_body_round(b)), [0, 1, 0], "the board a box, the disc round");
+    assert!(ms_table_end(0).is_nan() && ms_table_end(1).is_nan(), "a floor without ends");
 }

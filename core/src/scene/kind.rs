@@ -22,7 +22,7 @@ use super::{
     CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
 };
 #[cfg(feature = "scenes-multibody")]
-use crate::multibody::scenes::{BlockOnBlockParams, StackParams, TableclothParams};
+use crate::multibody::scenes::{BlockOnBlockParams, DiscOnBoardParams, StackParams, TableclothParams};
 use crate::params::ParamError;
 use crate::real::Real;
 
@@ -51,6 +51,9 @@ pub enum SceneKind {
     /// Two or three blocks stacked over a table's edge (several bodies).
     #[cfg(feature = "scenes-multibody")]
     Stack,
+    /// A disc on a board pulled along a floor: it rolls or slides (several bodies).
+    #[cfg(feature = "scenes-multibody")]
+    DiscOnBoard,
 }
 
 /// The most quantities a scene measures ([`super::Scene::measured`]; `meterstick-catalogue` names
@@ -61,7 +64,7 @@ impl SceneKind {
     /// Every scene, in the order of their numbers ([`Self::from_index`]).
     /// The scenes of several bodies come last (feature `scenes-multibody`).
     #[cfg(feature = "scenes-multibody")]
-    pub const ALL: [Self; 9] = [
+    pub const ALL: [Self; 10] = [
         Self::MeterStick,
         Self::Incline,
         Self::Ladder,
@@ -71,6 +74,7 @@ impl SceneKind {
         Self::BlockOnBlock,
         Self::Tablecloth,
         Self::Stack,
+        Self::DiscOnBoard,
     ];
     /// Every scene, in the order of their numbers ([`Self::from_index`]).
     #[cfg(not(feature = "scenes-multibody"))]
@@ -93,6 +97,8 @@ impl SceneKind {
             Self::Tablecloth => "tablecloth",
             #[cfg(feature = "scenes-multibody")]
             Self::Stack => "stack",
+            #[cfg(feature = "scenes-multibody")]
+            Self::DiscOnBoard => "disc-on-board",
         }
     }
 
@@ -105,7 +111,7 @@ impl SceneKind {
             Self::ThreeFingers => 3,
             Self::Cylinder | Self::Painleve => 1,
             #[cfg(feature = "scenes-multibody")]
-            Self::BlockOnBlock | Self::Tablecloth | Self::Stack => 0,
+            Self::BlockOnBlock | Self::Tablecloth | Self::Stack | Self::DiscOnBoard => 0,
         }
     }
 
@@ -115,7 +121,7 @@ impl SceneKind {
     #[must_use]
     pub const fn is_multibody(self) -> bool {
         #[cfg(feature = "scenes-multibody")]
-        return matches!(self, Self::BlockOnBlock | Self::Tablecloth | Self::Stack);
+        return matches!(self, Self::BlockOnBlock | Self::Tablecloth | Self::Stack | Self::DiscOnBoard);
         #[cfg(not(feature = "scenes-multibody"))]
         {
             let _ = self;
@@ -157,6 +163,8 @@ impl SceneKind {
             Self::Tablecloth => TableclothParams::<f64>::NAMES,
             #[cfg(feature = "scenes-multibody")]
             Self::Stack => &STACK_FIELDS,
+            #[cfg(feature = "scenes-multibody")]
+            Self::DiscOnBoard => DiscOnBoardParams::<f64>::NAMES,
         }
     }
 }
@@ -265,6 +273,9 @@ pub enum SceneParams {
     /// The stack.
     #[cfg(feature = "scenes-multibody")]
     Stack(StackSetup),
+    /// Disc-on-board.
+    #[cfg(feature = "scenes-multibody")]
+    DiscOnBoard(DiscOnBoardParams<f64>),
 }
 
 impl SceneParams {
@@ -284,6 +295,8 @@ impl SceneParams {
             SceneKind::Tablecloth => Self::Tablecloth(TableclothParams::default()),
             #[cfg(feature = "scenes-multibody")]
             SceneKind::Stack => Self::Stack(StackSetup::default()),
+            #[cfg(feature = "scenes-multibody")]
+            SceneKind::DiscOnBoard => Self::DiscOnBoard(DiscOnBoardParams::default()),
         }
     }
 
@@ -303,6 +316,8 @@ impl SceneParams {
             Self::Tablecloth(_) => SceneKind::Tablecloth,
             #[cfg(feature = "scenes-multibody")]
             Self::Stack(_) => SceneKind::Stack,
+            #[cfg(feature = "scenes-multibody")]
+            Self::DiscOnBoard(_) => SceneKind::DiscOnBoard,
         }
     }
 
@@ -322,6 +337,8 @@ impl SceneParams {
             Self::Tablecloth(p) => p.get(field),
             #[cfg(feature = "scenes-multibody")]
             Self::Stack(p) => p.get(field),
+            #[cfg(feature = "scenes-multibody")]
+            Self::DiscOnBoard(p) => p.get(field),
         }
     }
 
@@ -340,36 +357,46 @@ impl SceneParams {
             Self::Tablecloth(p) => p.set(field, value),
             #[cfg(feature = "scenes-multibody")]
             Self::Stack(p) => p.set(field, value),
+            #[cfg(feature = "scenes-multibody")]
+            Self::DiscOnBoard(p) => p.set(field, value),
         }
     }
 
     /// Checks the parameters in f64 and again after rounding to `T` (a value may overflow f32,
-    /// or round to an invalid one).
+    /// or round to an invalid one). A scene of one body whose registry rows this build leaves out
+    /// (features `scenes-k1`..`scenes-k3`, as [`Self::build`]) is refused, unchecked: a driver
+    /// that cannot run it links none of its checks (the page's module of several bodies).
     ///
     /// # Errors
-    /// The core's first complaint.
+    /// The core's first complaint; `OutOfRange("scene")` for a scene this build leaves out.
     pub fn validate_as<T: Real>(&self) -> Result<(), ParamError> {
         match self {
+            #[cfg(feature = "scenes-k2")]
             Self::MeterStick(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k2")]
             Self::Incline(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k2")]
             Self::Ladder(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k3")]
             Self::ThreeFingers(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k1")]
             Self::Cylinder(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-k1")]
             Self::Painleve(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
@@ -386,6 +413,13 @@ impl SceneParams {
             }
             #[cfg(feature = "scenes-multibody")]
             Self::Stack(p) => p.validate_as::<T>(),
+            #[cfg(feature = "scenes-multibody")]
+            Self::DiscOnBoard(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            #[allow(unreachable_patterns)] // every scene, when the build has them all
+            _ => Err(ParamError::OutOfRange("scene")),
         }
     }
 

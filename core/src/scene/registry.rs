@@ -18,7 +18,7 @@ use super::{Cylinder, Painleve};
 use super::{Incline, Ladder};
 use super::{MeterStick, Scene};
 #[cfg(feature = "scenes-multibody")]
-use crate::multibody::scenes::{BlockOnBlock, MultibodyScene, Stack2, Stack3, Tablecloth};
+use crate::multibody::scenes::{BlockOnBlock, DiscOnBoard, MultibodyScene, Stack2, Stack3, Tablecloth};
 use crate::params::ParamError;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 use crate::planar::RunStats;
@@ -186,6 +186,7 @@ impl SceneParams {
                 Some(3) => visitor.visit(Stack3::<T>::new(s.params.cast())?),
                 _ => return Err(ParamError::OutOfRange("blocks")),
             },
+            Self::DiscOnBoard(p) => visitor.visit(DiscOnBoard::<T>::new(p.cast())?),
             _ => return Err(ParamError::OutOfRange("scene")),
         })
     }
@@ -484,6 +485,10 @@ pub enum AnyMultibody {
     Stack3F32(Stack3<f32>),
     /// The stack of three in f64.
     Stack3F64(Stack3<f64>),
+    /// Disc-on-board in f32.
+    DiscOnBoardF32(DiscOnBoard<f32>),
+    /// Disc-on-board in f64.
+    DiscOnBoardF64(DiscOnBoard<f64>),
 }
 
 #[cfg(feature = "scenes-multibody")]
@@ -499,6 +504,8 @@ macro_rules! each_multibody {
             AnyMultibody::Stack2F64($s) => $body,
             AnyMultibody::Stack3F32($s) => $body,
             AnyMultibody::Stack3F64($s) => $body,
+            AnyMultibody::DiscOnBoardF32($s) => $body,
+            AnyMultibody::DiscOnBoardF64($s) => $body,
         }
     };
 }
@@ -516,6 +523,8 @@ impl AnyMultibody {
             (SceneParams::BlockOnBlock(p), F64) => Self::BlockOnBlockF64(BlockOnBlock::new(p.cast())?),
             (SceneParams::Tablecloth(p), F32) => Self::TableclothF32(Tablecloth::new(p.cast())?),
             (SceneParams::Tablecloth(p), F64) => Self::TableclothF64(Tablecloth::new(p.cast())?),
+            (SceneParams::DiscOnBoard(p), F32) => Self::DiscOnBoardF32(DiscOnBoard::new(p.cast())?),
+            (SceneParams::DiscOnBoard(p), F64) => Self::DiscOnBoardF64(DiscOnBoard::new(p.cast())?),
             (SceneParams::Stack(s), precision) => match (s.block_count(), precision) {
                 (Some(2), F32) => Self::Stack2F32(Stack2::new(s.params.cast())?),
                 (Some(2), F64) => Self::Stack2F64(Stack2::new(s.params.cast())?),
@@ -569,6 +578,24 @@ impl AnyMultibody {
         each_multibody!(self, s => {
             for (o, b) in out.iter_mut().zip(&s.stepper().system().bodies) {
                 *o = Some([b.width.as_f64(), b.height.as_f64()]);
+            }
+        });
+        out
+    }
+
+    /// Each body's shape ([`crate::multibody::Shape`]: a disc is a pair's upper body whose rim
+    /// rests on a face), `None` past [`Self::bodies`].
+    #[must_use]
+    pub fn shapes(&self) -> [Option<crate::multibody::Shape>; MAX_BODIES] {
+        let mut out = [None; MAX_BODIES];
+        each_multibody!(self, s => {
+            let system = s.stepper().system();
+            for (i, o) in out.iter_mut().enumerate().take(system.bodies.len()) {
+                let round = system
+                    .pairs
+                    .iter()
+                    .any(|p| usize::from(p.upper) == i && p.upper_shape == crate::multibody::Shape::Disc);
+                *o = Some(if round { crate::multibody::Shape::Disc } else { crate::multibody::Shape::Box });
             }
         });
         out
@@ -648,6 +675,7 @@ mod tests {
         assert_eq!(build(SceneKind::Tablecloth, None, Precision::F64), Ok(("f64", 2, 3, 24)));
         assert_eq!(build(SceneKind::Stack, Some(2.0), Precision::F32), Ok(("f32", 2, 2, 24)));
         assert_eq!(build(SceneKind::Stack, Some(3.0), Precision::F64), Ok(("f64", 3, 3, 32)));
+        assert_eq!(build(SceneKind::DiscOnBoard, None, Precision::F32), Ok(("f32", 2, 2, 24)));
         assert_eq!(build(SceneKind::Stack, Some(4.0), Precision::F64), Err(ParamError::OutOfRange("blocks")));
         assert_eq!(build(SceneKind::Incline, None, Precision::F64), Err(ParamError::OutOfRange("scene")));
     }
@@ -688,6 +716,7 @@ mod tests {
                 assert_eq!((a.0 + b.0, x.map(f64::to_bits)), (whole.0, whole.1.map(f64::to_bits)), "{kind}");
                 assert_eq!(held.stats().steps as usize, whole.0, "{kind}");
                 assert_eq!(held.sizes().iter().flatten().count(), held.bodies(), "{kind}");
+                assert_eq!(held.shapes().iter().flatten().count(), held.bodies(), "{kind}");
             }
         }
         let stack = AnyMultibody::new(&SceneParams::defaults(SceneKind::Stack), Precision::F32).unwrap();
@@ -695,6 +724,12 @@ mod tests {
             (stack.bodies(), stack.table()),
             (3, [None, Some(0.0)]),
             "three blocks, the table's edge at 0"
+        );
+        let disc = AnyMultibody::new(&SceneParams::defaults(SceneKind::DiscOnBoard), Precision::F64).unwrap();
+        assert_eq!(
+            disc.shapes(),
+            [Some(crate::multibody::Shape::Box), Some(crate::multibody::Shape::Disc), None],
+            "the board a box, the disc round"
         );
         assert_eq!(
             AnyMultibody::new(&SceneParams::defaults(SceneKind::Incline), Precision::F32).err(),

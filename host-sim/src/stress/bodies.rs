@@ -11,9 +11,9 @@
 //!   plus `|F| size`.
 //! * **Still** ([`Claim::BodyStill`]): the largest change of any body's `x`, `y`, `size theta / 2`,
 //!   judged against `64 eps (size + |x| + |y|)` ([`Metrics::still_scale`]).
-//! * **The laws' accelerations** ([`Claim::LawAccelerations`], block-on-block): the scene's measured
-//!   `a_bottom`, `a_top` in full contact against `docs/scenes.md`'s ([`crate::multibody::law`]), their largest
-//!   difference over [`acceleration_tolerance`].
+//! * **The laws' accelerations** ([`Claim::LawAccelerations`], block-on-block, disc-on-board): the
+//!   scene's measured lower and upper accelerations against `docs/scenes.md`'s
+//!   ([`crate::multibody::law`]), their largest difference over [`acceleration_tolerance`].
 //!
 //! Every LCP answer is verified in the core (a step that cannot be verified ends the run with
 //! `Failed`), so no residual is reported here (0); penetration is not measured for several bodies
@@ -29,24 +29,39 @@ use super::cases::{Case, Claim};
 use super::metrics::Metrics;
 use crate::scenes::Precision;
 
-/// Each body's `(mass, width, height)` (body 0 the lowest) and the pull on body 0 (N, along `x`).
+/// Each body's `(mass, width, height, inertia)` (body 0 the lowest; a box's inertia
+/// `m (w^2 + h^2) / 12`, a disc's `m r^2 / 2`) and the pull on body 0 (N, along `x`).
 #[must_use]
-pub fn bodies_of(spec: &SceneParams) -> (Vec<(f64, f64, f64)>, f64) {
+pub fn bodies_of(spec: &SceneParams) -> (Vec<(f64, f64, f64, f64)>, f64) {
+    let block = |m: f64, w: f64, h: f64| (m, w, h, m * (w * w + h * h) / 12.0);
     match spec {
         SceneParams::BlockOnBlock(p) => (
-            vec![(p.bottom_mass, p.bottom_width, p.bottom_height), (p.top_mass, p.top_width, p.top_height)],
+            vec![
+                block(p.bottom_mass, p.bottom_width, p.bottom_height),
+                block(p.top_mass, p.top_width, p.top_height),
+            ],
             p.force,
         ),
         SceneParams::Tablecloth(p) => (
             vec![
-                (p.board_mass, p.board_length, p.board_thickness),
-                (p.block_mass, p.block_width, p.block_height),
+                block(p.board_mass, p.board_length, p.board_thickness),
+                block(p.block_mass, p.block_width, p.block_height),
             ],
             p.force,
         ),
         SceneParams::Stack(s) => {
             let p = s.params;
-            (vec![(p.mass, p.length, p.height); s.block_count().unwrap_or(0)], 0.0)
+            (vec![block(p.mass, p.length, p.height); s.block_count().unwrap_or(0)], 0.0)
+        }
+        SceneParams::DiscOnBoard(p) => {
+            let (m, r) = (p.disc_mass, p.disc_radius);
+            (
+                vec![
+                    block(p.board_mass, p.board_length, p.board_height),
+                    (m, 2.0 * r, 2.0 * r, m * r * r / 2.0),
+                ],
+                p.force,
+            )
         }
         _ => (Vec::new(), 0.0),
     }
@@ -97,8 +112,7 @@ impl MultibodyVisitor for Measure<'_> {
         let energy = |s: &[[f64; 6]]| -> f64 {
             s.iter()
                 .zip(&bodies)
-                .map(|(s, &(m, w, h))| {
-                    let j = m * (w * w + h * h) / 12.0;
+                .map(|(s, &(m, _, _, j))| {
                     0.5 * m * (s[3] * s[3] + s[4] * s[4]) + 0.5 * j * s[5] * s[5] + m * g * s[1]
                 })
                 .sum()
@@ -106,7 +120,7 @@ impl MultibodyVisitor for Measure<'_> {
         let scale = |s: &[[f64; 6]]| -> f64 {
             s.iter()
                 .zip(&bodies)
-                .map(|(s, &(m, w, h))| {
+                .map(|(s, &(m, w, h, _))| {
                     let d = w.max(h);
                     m * (g * (d + s[1].abs()) + s[3] * s[3] + s[4] * s[4] + (d * s[5]).powi(2))
                 })

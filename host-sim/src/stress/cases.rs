@@ -1,7 +1,9 @@
 //! The grid of `host-sim stress`: one [`Case`] per stiff or extreme scene, with what physics says
 //! about it where physics decides.
 
-use meterstick_core::multibody::scenes::{BlockOnBlockParams, StackParams, TableclothParams};
+use meterstick_core::multibody::scenes::{
+    BlockOnBlockParams, DiscOnBoardParams, StackParams, TableclothParams,
+};
 use meterstick_core::scene::{
     CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, StackSetup,
 };
@@ -514,6 +516,23 @@ fn multibody_claim(spec: &SceneParams) -> Option<OutcomeKind> {
             riding && out_in_time && !tips
         }
         SceneParams::Stack(s) => clear(s.params.overhang, 1.0),
+        // Disc-on-board: the pull against `mu_floor (M + m) g`, the rolling board's acceleration
+        // against `3 mu_s g`, and the rim on the board to the end also as the implicit step moves
+        // it (`a T (T + h) / 2` after `T / h` steps of `a h^2 n (n + 1) / 2`, not `a T^2 / 2`).
+        SceneParams::DiscOnBoard(p) => {
+            let floor = p.mu_floor * (p.board_mass + p.disc_mass) * p.gravity;
+            let rolling = (p.force - floor) / (p.board_mass + p.disc_mass / 3.0);
+            let stepped = match (law.lower_acceleration, law.upper_acceleration) {
+                (Some(board), Some(disc)) => {
+                    p.offset + 0.5 * (disc - board) * p.max_time * (p.max_time + p.step)
+                }
+                _ => f64::NAN,
+            };
+            clear(p.force, floor)
+                && clear(rolling, 3.0 * p.mu_static * p.gravity)
+                && law.outcome != Some(OutcomeKind::Unfinished)
+                && stepped.abs() < 0.5 * p.board_length
+        }
         _ => false,
     };
     if decided { law.outcome } else { None }
@@ -521,7 +540,7 @@ fn multibody_claim(spec: &SceneParams) -> Option<OutcomeKind> {
 
 /// The scenes of several bodies (`docs/scenes.md`): mass ratios 1:1000 both ways, steps from
 /// 1e-6 s to 0.1 s, friction up to 1e4, each case's outcome by the laws where they decide it,
-/// held cases still, and block-on-block's accelerations the laws'.
+/// held cases still, and block-on-block's and disc-on-board's accelerations the laws'.
 #[must_use]
 #[allow(clippy::too_many_lines)] // one table of cases
 fn multibody_cases(quick: bool) -> Vec<Case> {
@@ -657,6 +676,44 @@ fn multibody_cases(quick: bool) -> Vec<Case> {
         }
         let p = StackParams { mu_static: 1.0, mu_kinetic: 0.1, overhang: 1.02, ..base };
         add("stack", "stack of 2 mu_s=1 mu_k=0.1 s=1.02".into(), stack(2.0, p), Claim::None);
+    }
+
+    // Disc-on-board: held (half the floor's hold), rolling (half way to the rolling limit),
+    // sliding (1.5 x the rolling limit, 0.1 s: the disc stays on the board); steps from 1e-6 s to
+    // 0.1 s, mass ratios 1:1000 both ways.
+    let disc = DiscOnBoardParams::<f64>::default();
+    let pull = |p: &DiscOnBoardParams<f64>, regime: f64| {
+        let held = p.mu_floor * (p.board_mass + p.disc_mass) * p.gravity;
+        let rolls = 3.0 * p.mu_static * p.gravity * (p.board_mass + p.disc_mass / 3.0) + held;
+        match regime {
+            r if r < 1.0 => r * held,
+            r if r < 2.0 => 0.5 * (held + rolls),
+            r => 0.5 * r * rolls,
+        }
+    };
+    let mut variants = Vec::new();
+    if !quick {
+        for (m, big_m) in [(1.0, 1000.0), (1000.0, 1.0)] {
+            variants.push((
+                format!("m:M = {m}:{big_m}"),
+                DiscOnBoardParams { disc_mass: m, board_mass: big_m, max_time: 0.1, ..disc },
+            ));
+        }
+    }
+    for (h, max_time) in [(1e-6, 0.01), (1e-4, 0.1), (1e-2, 0.1), (1e-1, 0.2)] {
+        if !quick || h >= 1e-2 {
+            variants.push((format!("h={h:e}"), DiscOnBoardParams { step: h, max_time, ..disc }));
+        }
+    }
+    for (label, p) in variants {
+        for (regime, word, claim) in [
+            (0.5, "held", Claim::BodyStill),
+            (1.5, "rolls", Claim::LawAccelerations),
+            (3.0, "slides", Claim::LawAccelerations),
+        ] {
+            let p = DiscOnBoardParams { force: pull(&p, regime), ..p };
+            add("disc-on-board", format!("disc-on-board {label} {word}"), SceneParams::DiscOnBoard(p), claim);
+        }
     }
     out
 }

@@ -117,9 +117,10 @@ pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
         SceneParams::Painleve(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, p.speed.abs()),
         // One body's figures do not describe a scene of several bodies (`super::bodies` measures
         // them); NaN fails any bound it enters.
-        SceneParams::BlockOnBlock(_) | SceneParams::Tablecloth(_) | SceneParams::Stack(_) => {
-            (f64::NAN, f64::NAN, f64::NAN, f64::NAN)
-        }
+        SceneParams::BlockOnBlock(_)
+        | SceneParams::Tablecloth(_)
+        | SceneParams::Stack(_)
+        | SceneParams::DiscOnBoard(_) => (f64::NAN, f64::NAN, f64::NAN, f64::NAN),
     }
 }
 
@@ -200,7 +201,10 @@ pub fn penetrations(spec: &SceneParams, s: &[f64; 6], supports: &[[f64; 2]]) -> 
         // The lower end, body point (-L/2, 0), against the floor y = 0.
         SceneParams::Painleve(p) => vec![(-world([-p.length / 2.0, 0.0])[1]).max(0.0)],
         // Not for several bodies (`super::bodies`): NaN fails any bound.
-        SceneParams::BlockOnBlock(_) | SceneParams::Tablecloth(_) | SceneParams::Stack(_) => vec![f64::NAN],
+        SceneParams::BlockOnBlock(_)
+        | SceneParams::Tablecloth(_)
+        | SceneParams::Stack(_)
+        | SceneParams::DiscOnBoard(_) => vec![f64::NAN],
     }
 }
 

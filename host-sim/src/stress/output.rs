@@ -276,15 +276,15 @@ const CRITERIA_MD: &str = "\
    of the COM the rod does not move along x by more than 64 eps L), 'still' (zero speed or gravity,
    a held block or ladder: the body does not move by more than 64 eps size).
 
-The scenes of several bodies (block-on-block, the tablecloth, the stack; their LCP's layout is
+The scenes of several bodies (block-on-block, the tablecloth, the stack, disc-on-board; their LCP's layout is
 its own, so the two f32 columns are one run): every LCP is verified in the core (a step it cannot
 verify ends the run Failed: no residual is reported) and penetration is not measured (0); energy
 as 5. with W the pull's work F (x+ - x) on the lower body, the allowance 4096 N eps
 (sum_b m_b (g (size_b + |y_b|) + |v_b|^2 + (size_b omega_b)^2) + |F| size); the outcome by the laws of
-docs/scenes.md, no claim within 5 % of a threshold (nor for a tablecloth block that would tip, or a
-board not out within half the run); 'still' (held): no body moves by more than
-64 eps (size + |x| + |y|) of its start; block-on-block's accelerations in full contact within
-1e-3 (|a| + g) of the laws'.
+docs/scenes.md, no claim within 5 % of a threshold (nor for a tablecloth block that would tip, a
+board not out within half the run, or a disc whose rim would leave its board); 'still' (held): no
+body moves by more than 64 eps (size + |x| + |y|) of its start; block-on-block's and
+disc-on-board's accelerations within 1e-3 (|a| + g) of the laws'.
 
 Energies in J, lengths in m. 'dev.' is the largest distance between the f32 and the f64 8x8
 centre of mass over the sampled steps both runs have (a chaotic case diverges legitimately).

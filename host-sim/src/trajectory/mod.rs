@@ -143,7 +143,9 @@ pub struct Measured {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub jam: Option<JamImpulses>,
     /// Block-on-block: the top block's acceleration along `x` while both blocks are in full
-    /// contact (`acceleration_m_s2` is the bottom block's; m/s^2; absent for other scenes).
+    /// contact (`acceleration_m_s2` is the bottom block's); disc-on-board: the disc centre's while
+    /// the board and the rim touch (`acceleration_m_s2` the board's); m/s^2; absent for other
+    /// scenes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub top_acceleration_m_s2: Option<f64>,
     /// Tablecloth: the block's displacement along `x` at the end (m; absent for other scenes).
@@ -175,7 +177,9 @@ impl Measured {
                     JamImpulses { time_s, normal_impulse_n_s, friction_impulse_n_s }
                 });
             }
-            SceneKind::BlockOnBlock => (m.acceleration_m_s2, m.top_acceleration_m_s2) = (a, b),
+            SceneKind::BlockOnBlock | SceneKind::DiscOnBoard => {
+                (m.acceleration_m_s2, m.top_acceleration_m_s2) = (a, b);
+            }
             SceneKind::Tablecloth => m.block_displacement_m = a,
             SceneKind::Stack => m.max_speed_m_s = a,
         }

@@ -1,5 +1,5 @@
 //! The scenes of several bodies (`docs/scenes.md`, "Scenes of several bodies"): [`BlockOnBlock`],
-//! [`Tablecloth`] and [`Stack`], each with its parameters, validity rules, outcome and measures.
+//! [`Tablecloth`], [`Stack`] and [`DiscOnBoard`], each with its parameters, validity rules, outcome and measures.
 //!
 //! Their outcomes are the one list's, [`Outcome`] (`crate::scene::Outcome`; a failed step is
 //! [`Outcome::MultibodyFailed`]). They do not implement `crate::scene::Scene`, which is shaped for one body (its
@@ -8,10 +8,12 @@
 //! pair's interface force), and [`MultibodyScene`], what a driver asks of any of them.
 
 mod block_on_block;
+mod disc_on_board;
 mod stack;
 mod tablecloth;
 
 pub use block_on_block::{BLOCK_ON_BLOCK_ROWS, BlockOnBlock, BlockOnBlockParams};
+pub use disc_on_board::{DiscOnBoard, DiscOnBoardParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
@@ -40,7 +42,7 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     fn stats(&self) -> &Stats;
     /// What the scene measures so far, in the order the catalogue names them (`docs/scenes.md`,
     /// each scene's "Measured"): block-on-block `[a_bottom, a_top]`, the tablecloth the block's
-    /// displacement, the stack its largest point speed.
+    /// displacement, the stack its largest point speed, disc-on-board `[a_board, a_disc]`.
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
 
     /// Runs until an outcome, calling `observe` after every step.
@@ -152,6 +154,10 @@ macro_rules! multibody_scene {
 }
 
 multibody_scene!(BlockOnBlock<T>, [T: Real], BlockOnBlockParams<T>, 2, 2, BLOCK_ON_BLOCK_ROWS, |s| {
+    let a = s.accelerations();
+    [a.map(|a| a[0]), a.map(|a| a[1]), None]
+});
+multibody_scene!(DiscOnBoard<T>, [T: Real], DiscOnBoardParams<T>, 2, 2, BLOCK_ON_BLOCK_ROWS, |s| {
     let a = s.accelerations();
     [a.map(|a| a[0]), a.map(|a| a[1]), None]
 });
