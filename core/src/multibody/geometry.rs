@@ -1,6 +1,6 @@
-//! The table, the pairs of resting bodies, and the corner-on-face contact of each candidate
-//! (`docs/formulation.md`, "Several bodies": "Bodies, table and order", "The corner-on-face
-//! contact").
+//! The table, the pairs of resting bodies, and the corner-on-face contact of each candidate, or a
+//! disc's rim-on-face contact (`docs/formulation.md`, "Several bodies": "Bodies, table and order",
+//! "The corner-on-face contact", "The rim-on-face contact").
 
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -76,7 +76,8 @@ pub struct Pair<T> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Candidate {
-    /// The upper body's lower-left corner on the lower one's top face.
+    /// The upper body's lower-left corner on the lower one's top face (a disc's rim, the one
+    /// candidate of a disc's pair).
     UpperLeftOnLower,
     /// The upper body's lower-right corner on the lower one's top face.
     UpperRightOnLower,
@@ -493,8 +494,10 @@ pub(crate) fn slip<T: Real, const B: usize>(frame: &CornerFrame<T>, v: &[[T; 3];
 /// The frames of a pair whose upper body is a disc (`docs/formulation.md`, "The rim-on-face
 /// contact"): the first candidate is the rim's point nearest the lower body's top face (or the
 /// table), `P = c_U - r n_f`, a corner of the disc on that face under every rule of
-/// [`pair_frames`]; the other three do not exist (`active: false`). Same inputs as
-/// [`pair_frames`], and as there an inactive frame keeps its other fields.
+/// [`pair_frames`] (the same face, rule and frame code); the other three do not exist
+/// (`active: false`). Same inputs as [`pair_frames`], and as there an inactive frame keeps its
+/// other fields, but the rim's `along` and `gap`, always this step's (the rim's place on the face
+/// is defined wherever the disc is: a scene reads where it is, e.g. past an end).
 #[inline(never)] // a scene of boxes calls it never: kept out of the step's code
 pub(crate) fn rim_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
@@ -505,64 +508,29 @@ pub(crate) fn rim_frames<T: Real, const B: usize>(
     h: T,
     frames: &mut [CornerFrame<T>; 4],
 ) {
-    for frame in frames.iter_mut() {
-        frame.active = false;
-    }
-    let look = |b: u8| {
-        let i = usize::from(b);
-        states.get(i).zip(poses.get(i))
-    };
+    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact.
     let lower = match pair.lower {
-        Support::Body(s) => look(s).map(|l| Some((s, l))),
+        Support::Body(s) => poses.get(usize::from(s)).map(|p| Some((s, p))),
         Support::Table => Some(None),
     };
-    let (Some((disc_state, disc)), Some(lower)) = (look(pair.upper), lower) else {
+    let (Some(disc), Some(lower)) = (poses.get(usize::from(pair.upper)), lower) else {
+        *frames = [CornerFrame::inactive(); 4];
         return;
     };
+    for frame in frames.iter_mut().skip(1) {
+        frame.active = false;
+    }
+    let top = lower.map_or_else(Face::table, |(_, p)| Face::top(p));
     let radius = disc.half[0];
-    // The lower body's top face: centre `o`, tangent `e`, outward normal `n_f`; the table's at `y = 0`.
-    let (centre, tangent, n) = match lower {
-        Some((_, (_, p))) => (
-            p.world([T::zero(), p.half[1]]),
-            p.rotate([T::one(), T::zero()]),
-            p.rotate([T::zero(), T::one()]),
-        ),
-        None => ([T::zero(); 2], [T::one(), T::zero()], [T::zero(), T::one()]),
+    let point = [disc.com[0] - radius * top.normal[0], disc.com[1] - radius * top.normal[1]];
+    let (along, gap) = top.locate(point);
+    (frames[0].along, frames[0].gap) = (along, gap);
+    let in_rule = match lower {
+        Some((_, p)) => along.abs_exact() <= p.half[0] && gap >= -p.half[1],
+        None => table.covers(along),
     };
-    let com = [disc_state.x, disc_state.y];
-    let point = [com[0] - radius * n[0], com[1] - radius * n[1]];
-    let l = [point[0] - centre[0], point[1] - centre[1]];
-    let along = dot(l, tangent);
-    let gap = dot(l, n);
-    let (over, above_centre) = match lower {
-        Some((_, (_, p))) => (along.abs_exact() <= p.half[0], gap >= -p.half[1]),
-        None => (table.covers(along), true),
-    };
-    let lever_corner = [point[0] - com[0], point[1] - com[1]];
-    let lever_face = lower.map_or([T::zero(); 2], |(_, (st, _))| [point[0] - st.x, point[1] - st.y]);
-    // Within reach: `margin` plus what the approach closes within the step.
-    let at = |v: [T; 3], r: [T; 2]| [v[0] - v[2] * r[1], v[1] + v[2] * r[0]];
-    let va = at(disc_state.velocity(), lever_corner);
-    let vb = lower.map_or([T::zero(); 2], |(_, (st, _))| at(st.velocity(), lever_face));
-    let approach = -dot([va[0] - vb[0], va[1] - vb[1]], n);
-    let reach = margin + h * if approach > T::zero() { approach } else { T::zero() };
-    // The lower body's `|x| + |y| + size` and `size + |y|` (the table's 0).
-    let (lower_extent, lower_height) =
-        lower.map_or((T::zero(), T::zero()), |(_, (_, p))| (p.extent, p.height));
-    frames[0] = CornerFrame {
-        active: over && above_centre && gap <= reach,
-        corner: Some(pair.upper),
-        face: lower.map(|(s, _)| s),
-        gap,
-        along,
-        point,
-        normal: n,
-        tangent: [n[1], -n[0]],
-        lever_corner,
-        lever_face,
-        gap_round_off: T::of(4.0)
-            * T::EPS
-            * (point[0].abs_exact() + point[1].abs_exact() + disc.extent + lower_extent),
-        touch: T::of(64.0) * T::EPS * (disc.height + lower_height),
-    };
+    let touch = T::of(64.0) * T::EPS * (disc.height + lower.map_or(T::zero(), |(_, p)| p.height));
+    let located =
+        Located { corner: Some((pair.upper, disc)), face: lower, point, normal: top.normal, along, gap };
+    settle(&mut frames[0], in_rule, &located, &Reach { states, margin, h, touch });
 }

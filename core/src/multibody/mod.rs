@@ -1,7 +1,8 @@
 //! Several rigid boxes (or discs) resting on each other and on a fixed table (`docs/formulation.md`,
 //! "Several bodies"; issue #32): velocities in `3B` coordinates, corner-on-face contacts between a
-//! box and the table or between two boxes, rim-on-face contacts of a disc on a box or the table, one LCP per step in the paper's full friction form, solved in
-//! the bodies' coordinates from the last step's basis or a neighbour of it, else by Lemke's method
+//! box and the table or between two boxes, rim-on-face contacts of a disc on a box or the table,
+//! one LCP per step in the paper's full friction form, solved in the bodies' coordinates from the
+//! last step's basis or a neighbour of it, else by Lemke's method
 //! ([`crate::lcp::Lemke`]), and verified.
 //!
 //! * [`System`]: `B` bodies ([`crate::planar::Body`], each of a [`Shape`]), the [`Table`], `P`

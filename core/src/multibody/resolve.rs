@@ -41,7 +41,7 @@ pub(super) struct Detector<T, const B: usize> {
     /// omega_i^2) / m_ref` divided by the bodies' mass in units of `m_ref`, so that the rule's tie
     /// `1e-12 S^2` is the reference's `1e-12 S^2 sum_i m_i / m_ref`.
     metric: [[T; 3]; B],
-    /// `(1, 1, r_i)`, `r_i` half body `i`'s diagonal (the reference's reach).
+    /// `(1, 1, r_i)`, `r_i` half body `i`'s diagonal, a disc's radius (the reference's reach).
     reach: [[T; 3]; B],
 }
 

@@ -24,7 +24,8 @@ pub struct Settings<T> {
     pub margin: T,
 }
 
-/// The bodies, the table, the `P` resting pairs and the external forces of a system of `B` boxes.
+/// The bodies, the table, the `P` resting pairs and the external forces of a system of `B` bodies
+/// (boxes, or discs resting by their rims).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct System<T, const B: usize, const P: usize> {
     /// The bodies, in body order (body 0's mass is the reference mass of the LCP).
@@ -37,6 +38,21 @@ pub struct System<T, const B: usize, const P: usize> {
     pub forces: [[T; 2]; B],
     /// The step's scalars.
     pub settings: Settings<T>,
+}
+
+impl<T, const B: usize, const P: usize> System<T, B, P> {
+    /// Each body's shape: a disc when a pair says its upper body is one
+    /// ([`Pair::upper_shape`]), else a box ([`Stepper::new`] refuses pairs that disagree).
+    #[must_use]
+    pub fn shapes(&self) -> [Shape; B] {
+        let mut shapes = [Shape::Box; B];
+        for pair in &self.pairs {
+            if let (Shape::Disc, Some(shape)) = (pair.upper_shape, shapes.get_mut(usize::from(pair.upper))) {
+                *shape = Shape::Disc;
+            }
+        }
+        shapes
+    }
 }
 
 /// Why a step failed. The state is then that before the step.
@@ -206,13 +222,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         if !states.iter().all(BodyState::is_finite) {
             return Err(ParamError::NonFiniteState);
         }
-        // Each body's shape, from the pairs it rests in (a box unless one says it is a disc).
-        let mut shapes = [Shape::Box; B];
-        for pair in &system.pairs {
-            if let (Shape::Disc, Some(shape)) = (pair.upper_shape, shapes.get_mut(usize::from(pair.upper))) {
-                *shape = Shape::Disc;
-            }
-        }
+        let shapes = system.shapes();
         for (body, shape) in system.bodies.iter().zip(&shapes) {
             if *shape == Shape::Disc && body.width != body.height {
                 return Err(ParamError::OutOfRange("upper_shape"));

@@ -25,7 +25,8 @@ impl<T: Real> Body<T> {
     }
 
     /// A solid disc (a cylinder seen end-on) of radius `radius`: width and height its diameter,
-    /// `J = m r^2 / 2`.
+    /// `J = m r^2 / 2`. In a multibody system the pair it rests in says it is one
+    /// (`crate::multibody::Pair::upper_shape`); a body is otherwise a box of its width and height.
     #[must_use]
     pub fn disc(mass: T, radius: T) -> Self {
         let diameter = radius + radius;

@@ -589,13 +589,8 @@ impl AnyMultibody {
     pub fn shapes(&self) -> [Option<crate::multibody::Shape>; MAX_BODIES] {
         let mut out = [None; MAX_BODIES];
         each_multibody!(self, s => {
-            let system = s.stepper().system();
-            for (i, o) in out.iter_mut().enumerate().take(system.bodies.len()) {
-                let round = system
-                    .pairs
-                    .iter()
-                    .any(|p| usize::from(p.upper) == i && p.upper_shape == crate::multibody::Shape::Disc);
-                *o = Some(if round { crate::multibody::Shape::Disc } else { crate::multibody::Shape::Box });
+            for (o, shape) in out.iter_mut().zip(s.stepper().system().shapes()) {
+                *o = Some(shape);
             }
         });
         out

@@ -139,11 +139,9 @@ impl<T: Real> DiscOnBoard<T> {
         let touching = report.touching(&[(0, 0), (0, 1), (1, 0)]);
         self.full_contact.record(touching, report.time, [board.vx, disc.vx]);
         let p = &self.run.params;
-        // The rim point's coordinate along the board's top face, `(c - o) . e` (the rim point less
-        // the disc's centre is normal to the face, as the face's point below the board's centre
-        // less that centre is).
-        let (sin, cos) = board.theta.sin_cos_portable();
-        let along = (disc.x - board.x) * cos + (disc.y - board.y) * sin;
+        // The rim point's coordinate along the board's top face at the step's end, as the activity
+        // rule computed it for the next step (`rim_frames`: the same number, one formula).
+        let along = self.run.stepper.frames()[1][0].along;
         if along.abs_exact() > p.board_length / T::of(2.0) {
             self.run.outcome = Some(Outcome::Unfinished);
         } else if report.time >= p.max_time {

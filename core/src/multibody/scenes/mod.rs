@@ -1,9 +1,11 @@
 //! The scenes of several bodies (`docs/scenes.md`, "Scenes of several bodies"): [`BlockOnBlock`],
-//! [`Tablecloth`], [`Stack`] and [`DiscOnBoard`], each with its parameters, validity rules, outcome and measures.
+//! [`Tablecloth`], [`Stack`] and [`DiscOnBoard`], each with its parameters, validity rules, outcome
+//! and measures.
 //!
 //! Their outcomes are the one list's, [`Outcome`] (`crate::scene::Outcome`; a failed step is
-//! [`Outcome::MultibodyFailed`]). They do not implement `crate::scene::Scene`, which is shaped for one body (its
-//! `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact); each has
+//! [`Outcome::MultibodyFailed`]). They do not implement `crate::scene::Scene`, which is shaped for
+//! one body (its `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact);
+//! each has
 //! `step()` and `run()` of its own returning [`super::StepReport`] (every body's state, each
 //! pair's interface force), and [`MultibodyScene`], what a driver asks of any of them.
 
