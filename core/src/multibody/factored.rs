@@ -806,7 +806,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// only: `N` is symmetric; zero above) as `n[i][j]` and their friction coupling
     /// `C_ij = c_n,i^T M~ c_+d,j` by columns as `c[j][i]`, for the first `min(k, K)` slots; every
     /// other entry zero. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of
-    /// each body both touch, summed), built in place (no array cleared first). That is the dense
+    /// each body both touch, summed), built in place; `N_ij` and `C_ji` (`j <= i`) share one
+    /// comparison of the two slots' bodies (a slot's normal and friction columns touch the same
+    /// bodies; checked, and otherwise each entry on its own). That is the dense
     /// sum over the bodies' `3B` coordinates, `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body
     /// `B - 1`, exactly for finite columns (those of every step solved: a non-finite one is
     /// refused first, [`Self::is_finite`]) up to a zero's sign: a body the two columns do not
@@ -820,14 +822,34 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let k = self.slots();
         let rows = k.min(K);
         let col = |v: usize| &self.cols[v.min(N - 1)];
-        let n = core::array::from_fn(|i| {
-            core::array::from_fn(|j| if j <= i && i < rows { col(i).dot_scaled(col(j)) } else { T::zero() })
-        });
-        let c = core::array::from_fn(|j| {
-            core::array::from_fn(|i| {
-                if i < rows && j < rows { col(i).dot_scaled(col(k + 2 * j)) } else { T::zero() }
-            })
-        });
+        let mut n = [[T::zero(); K]; K];
+        let mut c = [[T::zero(); K]; K];
+        for j in 0..rows {
+            let (a, f) = (col(j), col(k + 2 * j));
+            for i in 0..rows {
+                let u = col(i);
+                if j <= i && a.body == f.body {
+                    // `N_ij` and `C_ji` from one comparison of the bodies (a slot's normal and
+                    // friction columns touch the same bodies): each `dot_scaled`'s sum.
+                    let (mut normal, mut friction) = (T::zero(), T::zero());
+                    for p in 0..2 {
+                        for r in 0..2 {
+                            if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
+                                normal += dot3(&u.c[p], &a.mc[r]);
+                                friction += dot3(&u.c[p], &f.mc[r]);
+                            }
+                        }
+                    }
+                    n[i][j] = normal;
+                    c[j][i] = friction;
+                } else {
+                    if j <= i {
+                        n[i][j] = u.dot_scaled(a);
+                    }
+                    c[j][i] = u.dot_scaled(f);
+                }
+            }
+        }
         (n, c)
     }
 }
