@@ -806,7 +806,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// only: `N` is symmetric; zero above) as `n[i][j]` and their friction coupling
     /// `C_ij = c_n,i^T M~ c_+d,j` by columns as `c[j][i]`, for the first `min(k, K)` slots; every
     /// other entry zero. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of
-    /// each body both touch, summed), built in place; `N_ij` and `C_ji` (`j <= i`) share one
+    /// each body both touch, summed), straight from the columns; `N_ij` and `C_ji` (`j <= i`) share one
     /// comparison of the two slots' bodies (a slot's normal and friction columns touch the same
     /// bodies; checked, and otherwise each entry on its own). That is the dense
     /// sum over the bodies' `3B` coordinates, `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body

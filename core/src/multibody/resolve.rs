@@ -88,7 +88,7 @@ impl<T: Real, const B: usize> Detector<T, B> {
 ///
 /// The work, on every step not at rest, is that of the decision and no more: `N` (its lower
 /// triangle) and `C` from the step's factored columns ([`Factored::contact_blocks`]: each entry
-/// the product of the bodies the two columns share, no array cleared), and the usual four
+/// the product of the bodies the two columns share, no copy of a column), and the usual four
 /// contacts in a copy whose loop bounds are constants. The same entries (up to a zero's sign,
 /// which no comparison here sees) and the same operations on them as the definition above: the
 /// same decision.
