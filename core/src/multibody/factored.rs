@@ -806,9 +806,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// only: `N` is symmetric; zero above) as `n[i][j]` and their friction coupling
     /// `C_ij = c_n,i^T M~ c_+d,j` by columns as `c[j][i]`, for the first `min(k, K)` slots; every
     /// other entry zero. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of
-    /// each body both touch, summed), straight from the columns; `N_ij` and `C_ji` (`j <= i`) share one
-    /// comparison of the two slots' bodies (a slot's normal and friction columns touch the same
-    /// bodies; checked, and otherwise each entry on its own). That is the dense
+    /// each body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij`
+    /// (`j <= i`) share one comparison of the two slots' bodies (a slot's normal and friction
+    /// columns touch the same bodies; checked, and otherwise each entry on its own). That is the dense
     /// sum over the bodies' `3B` coordinates, `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body
     /// `B - 1`, exactly for finite columns (those of every step solved: a non-finite one is
     /// refused first, [`Self::is_finite`]) up to a zero's sign: a body the two columns do not
@@ -827,26 +827,31 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for j in 0..rows {
             let (a, f) = (col(j), col(k + 2 * j));
             for i in 0..rows {
-                let u = col(i);
-                if j <= i && a.body == f.body {
-                    // `N_ij` and `C_ji` from one comparison of the bodies (a slot's normal and
-                    // friction columns touch the same bodies): each `dot_scaled`'s sum.
-                    let (mut normal, mut friction) = (T::zero(), T::zero());
+                let (u, g) = (col(i), col(k + 2 * i));
+                if j > i {
+                    // `C_ji` was written with `(j, i)`.
+                } else if a.body == f.body && u.body == g.body {
+                    // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies (a
+                    // slot's normal and friction columns touch the same bodies): each
+                    // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
+                    // twice, the same).
+                    let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
                     for p in 0..2 {
                         for r in 0..2 {
                             if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
                                 normal += dot3(&u.c[p], &a.mc[r]);
-                                friction += dot3(&u.c[p], &f.mc[r]);
+                                friction_j += dot3(&u.c[p], &f.mc[r]);
+                                friction_i += dot3(&a.c[r], &g.mc[p]);
                             }
                         }
                     }
                     n[i][j] = normal;
-                    c[j][i] = friction;
+                    c[j][i] = friction_j;
+                    c[i][j] = friction_i;
                 } else {
-                    if j <= i {
-                        n[i][j] = u.dot_scaled(a);
-                    }
+                    n[i][j] = u.dot_scaled(a);
                     c[j][i] = u.dot_scaled(f);
+                    c[i][j] = a.dot_scaled(g);
                 }
             }
         }
