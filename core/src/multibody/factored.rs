@@ -803,36 +803,39 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
-    /// only: `N` is symmetric; zero above) as `n[i][j]` and their friction coupling
-    /// `C_ij = c_n,i^T M~ c_+d,j` by columns as `c[j][i]`, for the first `min(k, K)` slots; every
-    /// other entry zero. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of
-    /// each body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij`
-    /// (`j <= i`) share one comparison of the two slots' bodies (a slot's normal and friction
-    /// columns touch the same bodies; checked, and otherwise each entry on its own). That is the dense
-    /// sum over the bodies' `3B` coordinates, `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body
-    /// `B - 1`, exactly for finite columns (those of every step solved: a non-finite one is
-    /// refused first, [`Self::is_finite`]) up to a zero's sign: a body the two columns do not
-    /// share adds a signed zero (`0 x finite`) to the dense sum, which changes no sum but a zero's
-    /// sign, and a column touches at most two bodies, so at most two non-zero terms are added, in
-    /// either order the same (IEEE addition commutes). No decision made from these blocks reads a
-    /// zero's sign: [`super::resolve::flags`] adds, subtracts, multiplies, divides by its pivots
-    /// (each `> 0`), takes magnitudes and compares.
+    /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
+    /// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
+    /// left as given. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of each
+    /// body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij` (`j <= i`)
+    /// share one comparison of the two slots' bodies (when each slot's normal and friction columns
+    /// touch the same bodies, as [`Self::set_slot`] writes them; checked once, and otherwise each
+    /// entry on its own). That is the dense sum over the bodies' `3B` coordinates,
+    /// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1`, exactly for finite columns (those of
+    /// every step solved: a non-finite one is refused first, [`Self::is_finite`]) up to a zero's
+    /// sign: a body the two columns do not share adds a signed zero (`0 x finite`) to the dense
+    /// sum, which changes no sum but a zero's sign, and a column touches at most two bodies, so at
+    /// most two non-zero terms are added, in either order the same (IEEE addition commutes). No
+    /// decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
+    /// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
     #[inline]
-    pub(super) fn contact_blocks<const K: usize>(&self) -> ([[T; K]; K], [[T; K]; K]) {
+    pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
         let k = self.slots();
         let rows = k.min(K);
         let col = |v: usize| &self.cols[v.min(N - 1)];
-        let mut n = [[T::zero(); K]; K];
-        let mut c = [[T::zero(); K]; K];
+        // Each slot's normal and friction columns touch the same bodies (as `set_slot` writes them).
+        let bodies = |v: usize| u16::from_ne_bytes(col(v).body);
+        let mut paired = true;
+        for i in 0..rows {
+            paired &= bodies(i) == bodies(k + 2 * i);
+        }
         for j in 0..rows {
             let (a, f) = (col(j), col(k + 2 * j));
             for i in 0..rows {
                 let (u, g) = (col(i), col(k + 2 * i));
                 if j > i {
                     // `C_ji` was written with `(j, i)`.
-                } else if a.body == f.body && u.body == g.body {
-                    // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies (a
-                    // slot's normal and friction columns touch the same bodies): each
+                } else if paired {
+                    // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies: each
                     // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
                     // twice, the same).
                     let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
@@ -855,7 +858,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
             }
         }
-        (n, c)
     }
 }
 

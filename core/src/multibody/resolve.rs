@@ -111,7 +111,8 @@ fn flags_of<T: Real, const B: usize, const N: usize, const MOST: usize>(
 ) -> bool {
     let k = k.min(MOST);
     let round_off = T::of(64.0) * T::EPS;
-    let (n, c) = f.contact_blocks::<MOST>();
+    let (mut n, mut c) = ([[T::zero(); MOST]; MOST], [[T::zero(); MOST]; MOST]);
+    f.contact_blocks(&mut n, &mut c);
     // `N = L D L^T` by rows.
     let mut l = [[T::zero(); MOST]; MOST];
     let mut d = [T::zero(); MOST];
@@ -434,7 +435,8 @@ mod tests {
     /// (active contacts, flagged).
     fn check_step<T: Real + core::fmt::Debug, const N: usize>(f: &Factored<T, 2, N>) -> (usize, bool) {
         let k = f.slots();
-        let (n, c) = f.contact_blocks::<8>();
+        let (mut n, mut c) = ([[T::zero(); 8]; 8], [[T::zero(); 8]; 8]);
+        f.contact_blocks(&mut n, &mut c);
         for i in 0..k {
             for j in 0..k {
                 if j <= i {
