@@ -803,50 +803,59 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
-    /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~ c_+d,j`
-    /// by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is left as
-    /// given. Each column is first laid out densely in the bodies' `3B` coordinates (zero on the
-    /// bodies it does not touch) and each entry summed body by body with no comparison of bodies:
-    /// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1` (the first term not added to a zero: one
-    /// addition fewer per entry). That is [`Column::dot_scaled`]'s value exactly, for finite
-    /// columns (those of every step solved: a non-finite one is refused first, [`Self::is_finite`]):
-    /// the bodies both columns touch give the same `dot3` products, a body the two do not share
-    /// adds a signed zero (`0 x finite`), which changes no sum but a zero's sign, and a column
-    /// touches at most two bodies, so at most two non-zero terms are added, in either order the
-    /// same (IEEE addition commutes). Only a zero's sign may differ, and no decision made from
-    /// these blocks reads it: [`super::resolve::flags`] adds, subtracts, multiplies, divides by its
-    /// pivots (each `> 0`), takes magnitudes and compares, and a zero's sign changes none of those
-    /// results but in the sign of a zero.
+    /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
+    /// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
+    /// left as given. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of each
+    /// body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij` (`j <= i`)
+    /// share one comparison of the two slots' bodies (when each slot's normal and friction columns
+    /// touch the same bodies, as [`Self::set_slot`] writes them; checked once, and otherwise each
+    /// entry on its own). That is the dense sum over the bodies' `3B` coordinates,
+    /// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1`, exactly for finite columns (those of
+    /// every step solved: a non-finite one is refused first, [`Self::is_finite`]) up to a zero's
+    /// sign: a body the two columns do not share adds a signed zero (`0 x finite`) to the dense
+    /// sum, which changes no sum but a zero's sign, and a column touches at most two bodies, so at
+    /// most two non-zero terms are added, in either order the same (IEEE addition commutes). No
+    /// decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
+    /// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
     #[inline]
     pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
         let k = self.slots();
         let rows = k.min(K);
-        let zero = [[T::zero(); 3]; B];
-        // Per slot: `c_n`, `M~ c_n`, `M~ c_+d`, dense.
-        let (mut normal, mut scaled, mut friction) = ([zero; K], [zero; K], [zero; K]);
+        let col = |v: usize| &self.cols[v.min(N - 1)];
+        // Each slot's normal and friction columns touch the same bodies (as `set_slot` writes them).
+        let bodies = |v: usize| u16::from_ne_bytes(col(v).body);
+        let mut paired = true;
         for i in 0..rows {
-            let (a, f) = (&self.cols[i.min(N - 1)], &self.cols[(k + 2 * i).min(N - 1)]);
-            for p in 0..2 {
-                if let (Some(u), Some(m)) =
-                    (normal[i].get_mut(usize::from(a.body[p])), scaled[i].get_mut(usize::from(a.body[p])))
-                {
-                    *u = a.c[p];
-                    *m = a.mc[p];
-                }
-                if let Some(m) = friction[i].get_mut(usize::from(f.body[p])) {
-                    *m = f.mc[p];
-                }
-            }
+            paired &= bodies(i) == bodies(k + 2 * i);
         }
-        let dense_dot = |u: &[[T; 3]; B], v: &[[T; 3]; B]| {
-            u.iter().zip(v).map(|(u, v)| dot3(u, v)).reduce(|sum, d| sum + d).unwrap_or(T::zero())
-        };
         for j in 0..rows {
-            for i in j..rows {
-                n[i][j] = dense_dot(&normal[i], &scaled[j]);
-            }
+            let (a, f) = (col(j), col(k + 2 * j));
             for i in 0..rows {
-                c[j][i] = dense_dot(&normal[i], &friction[j]);
+                let (u, g) = (col(i), col(k + 2 * i));
+                if j > i {
+                    // `C_ji` was written with `(j, i)`.
+                } else if paired {
+                    // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies: each
+                    // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
+                    // twice, the same).
+                    let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
+                    for p in 0..2 {
+                        for r in 0..2 {
+                            if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
+                                normal += dot3(&u.c[p], &a.mc[r]);
+                                friction_j += dot3(&u.c[p], &f.mc[r]);
+                                friction_i += dot3(&a.c[r], &g.mc[p]);
+                            }
+                        }
+                    }
+                    n[i][j] = normal;
+                    c[j][i] = friction_j;
+                    c[i][j] = friction_i;
+                } else {
+                    n[i][j] = u.dot_scaled(a);
+                    c[j][i] = u.dot_scaled(f);
+                    c[i][j] = a.dot_scaled(g);
+                }
             }
         }
     }

@@ -89,8 +89,8 @@ impl<T: Real, const B: usize> Detector<T, B> {
 /// one interface) is not looked at: it leaves the split of a force open, not the motion.
 ///
 /// The work, on every step not at rest, is that of the decision and no more: `N` (its lower
-/// triangle) and `C` from the columns laid out by body ([`Factored::contact_blocks`]: each entry
-/// the columns' product, with no comparison of bodies per entry), and the usual four
+/// triangle) and `C` from the step's factored columns ([`Factored::contact_blocks`]: each entry
+/// the product of the bodies the two columns share, no copy of a column), and the usual four
 /// contacts in a copy whose loop bounds are constants. The same entries (up to a zero's sign,
 /// which no comparison here sees) and the same operations on them as the definition above: the
 /// same decision.
@@ -273,6 +273,7 @@ mod tests {
     };
     use crate::multibody::stepper::{PATTERNS, slot_rows};
     use crate::planar::resolve::COUPLING;
+    use crate::real::Real;
 
     const N: usize = TABLECLOTH_ROWS;
 
@@ -384,43 +385,59 @@ mod tests {
     }
 
     /// [`flags`] written entry by entry from [`Factored::entry`] with no shortcut: `N` and `C`
-    /// formed whole, `N = L D L^T`, one solve per column of `C`, the rows of `|N^-1 C|` summed.
-    fn flags_by_entries<const N: usize>(f: &Factored<f64, 2, N>) -> bool {
+    /// formed whole, `N = L D L^T`, one solve per column of `C`, the rows of `|N^-1 C|` summed,
+    /// each sum in [`flags`]'s order (the same operations on the same entries: the same decision,
+    /// borderline steps included).
+    fn flags_by_entries<T: Real, const N: usize>(f: &Factored<T, 2, N>) -> bool {
         let k = f.slots();
-        let (mut l, mut d) = ([[0.0; 8]; 8], [0.0; 8]);
+        let (mut l, mut d) = ([[T::zero(); 8]; 8], [T::zero(); 8]);
         for i in 0..k {
             for j in 0..i {
-                let u = f.entry(i, j) - (0..j).map(|m| l[i][m] * d[m] * l[j][m]).sum::<f64>();
+                let mut u = f.entry(i, j);
+                for m in 0..j {
+                    u -= l[i][m] * d[m] * l[j][m];
+                }
                 l[i][j] = u / d[j];
             }
             let diagonal = f.entry(i, i);
-            let pivot = diagonal - (0..i).map(|m| l[i][m] * l[i][m] * d[m]).sum::<f64>();
-            if pivot.partial_cmp(&(64.0 * f64::EPSILON * diagonal)) != Some(core::cmp::Ordering::Greater) {
+            let mut pivot = diagonal;
+            for m in 0..i {
+                pivot -= l[i][m] * l[i][m] * d[m];
+            }
+            if pivot.partial_cmp(&(T::of(64.0) * T::EPS * diagonal)) != Some(core::cmp::Ordering::Greater) {
                 return true;
             }
             d[i] = pivot;
         }
-        let mut rows = [0.0; 8];
+        let mut rows = [T::zero(); 8];
         for j in 0..k {
-            let mut x = [0.0; 8];
+            if f.mu(j) == T::zero() {
+                continue;
+            }
+            let mut x = [T::zero(); 8];
             for i in 0..k {
-                x[i] = f.entry(i, k + 2 * j) - (0..i).map(|m| l[i][m] * x[m]).sum::<f64>();
+                x[i] = f.entry(i, k + 2 * j);
+                for m in 0..i {
+                    x[i] -= l[i][m] * x[m];
+                }
             }
             for i in (0..k).rev() {
-                x[i] = x[i] / d[i] - (i + 1..k).map(|m| l[m][i] * x[m]).sum::<f64>();
-            }
-            for i in 0..k {
-                rows[i] += f.mu(j) * x[i].abs();
+                x[i] /= d[i];
+                for m in i + 1..k {
+                    x[i] -= l[m][i] * x[m];
+                }
+                rows[i] += f.mu(j) * x[i].abs_exact();
             }
         }
-        rows.iter().any(|&r| r >= COUPLING)
+        rows.iter().any(|&r| r >= T::of(COUPLING))
     }
 
-    /// One step's check: the blocks [`flags`] reads are [`Factored::entry`]'s exactly, and
-    /// its decision is [`flags_by_entries`]'s; returns (active contacts, flagged).
-    fn check_step<const N: usize>(f: &Factored<f64, 2, N>) -> (usize, bool) {
+    /// One step's check: the blocks [`flags`] reads are [`Factored::entry`]'s exactly (up to a
+    /// zero's sign, which `==` does not see), and its decision is [`flags_by_entries`]'s; returns
+    /// (active contacts, flagged).
+    fn check_step<T: Real + core::fmt::Debug, const N: usize>(f: &Factored<T, 2, N>) -> (usize, bool) {
         let k = f.slots();
-        let (mut n, mut c) = ([[f64::NAN; 8]; 8], [[f64::NAN; 8]; 8]);
+        let (mut n, mut c) = ([[T::zero(); 8]; 8], [[T::zero(); 8]; 8]);
         f.contact_blocks(&mut n, &mut c);
         for i in 0..k {
             for j in 0..k {
@@ -433,6 +450,94 @@ mod tests {
         let flagged = flags(f);
         assert_eq!(flagged, flags_by_entries(f), "k = {k}");
         (k, flagged)
+    }
+
+    /// Steps checked by [`check_step`], flagged, and flagged with four active contacts.
+    #[derive(Default, Debug)]
+    struct Sweep {
+        steps: u32,
+        flagged: u32,
+        flagged_four: u32,
+    }
+
+    impl Sweep {
+        fn add(&mut self, (k, flagged): (usize, bool)) {
+            self.steps += 1;
+            self.flagged += u32::from(flagged);
+            self.flagged_four += u32::from(flagged && k == 4);
+        }
+    }
+
+    /// Block-on-block runs over the pull, the friction between the blocks and the top block's
+    /// shape (a tall narrow one tips at high friction), every step checked, `max_steps` at most.
+    fn sweep_block_on_block<T: Real + core::fmt::Debug>(max_steps: u32) -> Sweep {
+        let mut sweep = Sweep::default();
+        for force in [10.0, 30.0, 60.0] {
+            for mu in [0.3, 0.5, 1.0, 2.0] {
+                for (width, height) in [(0.1, 0.1), (0.04, 0.2)] {
+                    let params = BlockOnBlockParams::<T> {
+                        force: T::of(force),
+                        mu_static: T::of(mu),
+                        mu_kinetic: T::of(mu),
+                        top_width: T::of(width),
+                        top_height: T::of(height),
+                        ..BlockOnBlockParams::default()
+                    };
+                    let mut scene = BlockOnBlock::new(params).expect("valid parameters");
+                    for _ in 0..max_steps {
+                        let mut stepper = scene.stepper().clone();
+                        stepper.refill().expect("room for the contacts");
+                        sweep.add(check_step(&stepper.lcp.factored));
+                        if scene.step().is_none() {
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        sweep
+    }
+
+    /// Tablecloth runs over the pull, the friction on the board and the block's place on it.
+    fn sweep_tablecloth<T: Real + core::fmt::Debug>(max_steps: u32) -> Sweep {
+        let mut sweep = Sweep::default();
+        for force in [10.0, 20.0, 50.0] {
+            for mu in [0.5, 2.0, 3.0] {
+                for offset in [0.1, 0.3] {
+                    let params = TableclothParams::<T> {
+                        force: T::of(force),
+                        mu_static: T::of(mu),
+                        mu_kinetic: T::of(mu),
+                        offset: T::of(offset),
+                        ..TableclothParams::default()
+                    };
+                    let mut scene = Tablecloth::new(params).expect("valid parameters");
+                    for _ in 0..max_steps {
+                        let mut stepper = scene.stepper().clone();
+                        stepper.refill().expect("room for the contacts");
+                        sweep.add(check_step(&stepper.lcp.factored));
+                        if scene.step().is_none() {
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        sweep
+    }
+
+    #[test]
+    fn the_detection_decides_as_the_whole_blocks_do_over_forces_frictions_and_shapes() {
+        for (name, sweep) in [
+            ("block-on-block f64", sweep_block_on_block::<f64>(300)),
+            ("block-on-block f32", sweep_block_on_block::<f32>(300)),
+            ("tablecloth f64", sweep_tablecloth::<f64>(150)),
+            ("tablecloth f32", sweep_tablecloth::<f32>(150)),
+        ] {
+            std::println!("{name}: {sweep:?}");
+            // Both decisions taken: steps flagged (four contacts among them) and steps not.
+            assert!(sweep.flagged_four > 0 && sweep.flagged < sweep.steps, "{name}: {sweep:?}");
+        }
     }
 
     #[test]
