@@ -44,8 +44,8 @@ use crate::real::{AllFinite, Real, max, min};
 /// declined, and Lemke's method answers it).
 pub(super) const UNKNOWNS: usize = 9;
 
-/// A basis' verified answer ([`Factored::solve_basis`]; `z` and `w` are written into the caller's
-/// arrays).
+/// A basis' verified answer ([`Factored::solve_basis`]; `z`, and `w` when asked for, are written
+/// into the caller's arrays).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Answer<T, const B: usize> {
     /// `v+ = v~ + dv`.
@@ -526,8 +526,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// The complementary solution of the basis `mask` (bit `v`: `z_v` basic) in the bodies'
-    /// coordinates, verified within `tolerance` (module docs), written into `z` and `w`; returns
-    /// `v+` and the basis answered, or why there is none.
+    /// coordinates, verified within `tolerance` (module docs), written into `z` (and `w`, when
+    /// given: the stepper's paths need only `z`); returns `v+` and the basis answered, or why there
+    /// is none.
     ///
     /// # Errors
     /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
@@ -540,7 +541,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         mask: u32,
         tolerance: T,
         z: &mut [T; N],
-        w: &mut [T; N],
+        mut w: Option<&mut [T; N]>,
     ) -> Result<Answer<T, B>, Declined> {
         let k = self.k.min(N / 4);
         let rows = 4 * k;
@@ -586,14 +587,14 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let m = m.min(UNKNOWNS);
         // H^T M~ G y = -q_H ([`Self::form_column`]).
         let symmetric = follower.iter().all(|&f| f == N);
+        let tiny = T::of(N as f64) * T::EPS * self.m_low;
         let mut y = [T::zero(); UNKNOWNS];
-        let mut a;
-        if symmetric && m == UNKNOWNS {
+        let solved = if symmetric && m == UNKNOWNS {
             // Every unknown, none with a follower (the 3-block stack's every step): the lower
             // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
             // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
             // reading it).
-            a = core::array::from_fn(|r| {
+            let mut a = core::array::from_fn(|r| {
                 let row = &self.cols[var[r].min(N - 1)];
                 core::array::from_fn(|l| {
                     if l <= r { row.dot_scaled(&self.cols[var[l].min(N - 1)]) } else { T::zero() }
@@ -602,23 +603,27 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             for l in 0..UNKNOWNS {
                 y[l] = -self.q[var[l].min(N - 1)];
             }
+            solve_symmetric(&mut a, &mut y, m, tiny)
         } else if !symmetric && m == 4 {
-            a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
-            // Four unknowns with followers (block-on-block's sliding steps): written out too.
+            // Four unknowns with followers (block-on-block's sliding steps): written out in a
+            // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
+            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
             for l in [0, 1, 2, 3] {
-                self.form_column(&mut a, &mut y, (&var, &follower), l, false, 4);
+                self.form_column(&mut a, &mut rhs, (&var, &follower), l, false, 4);
             }
+            let solved = solve_four(&mut a, &mut rhs, tiny);
+            y[..4].copy_from_slice(&rhs);
+            solved
         } else {
-            a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+            let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
             for l in 0..m {
                 self.form_column(&mut a, &mut y, (&var, &follower), l, symmetric, m);
             }
-        }
-        let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        let solved = if symmetric {
-            solve_symmetric(&mut a, &mut y, m, tiny)
-        } else {
-            solve_unknowns(&mut a, &mut y, m, tiny)
+            if symmetric {
+                solve_symmetric(&mut a, &mut y, m, tiny)
+            } else {
+                solve_leading_out_of_line(&mut a, &mut y, m, tiny)
+            }
         };
         if !solved {
             return Err(Declined::Singular);
@@ -706,10 +711,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 z[sigma] = max(value, T::zero());
                 z_norm = max(z_norm, z[sigma]);
             }
-            w[n] = self.q[n] + self.cols[n].dot(&dv);
-            w[plus] = slip + z[sigma];
-            w[minus] = -slip + z[sigma];
-            w[sigma] = self.mu[j] * z[n] - z[plus] - z[minus];
+            let rows_w = [
+                self.q[n] + self.cols[n].dot(&dv),
+                slip + z[sigma],
+                -slip + z[sigma],
+                self.mu[j] * z[n] - z[plus] - z[minus],
+            ];
+            if let Some(w) = w.as_deref_mut() {
+                [w[n], w[plus], w[minus], w[sigma]] = rows_w;
+            }
             let pair = u32::from(self.pair[j]);
             let unheld = basic(n) && held.checked_shr(pair).unwrap_or(0) & 1 == 0;
             let is_pinned = basic(n) && pinned.checked_shr(pair).unwrap_or(0) & 1 == 1;
@@ -724,8 +734,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 plus
             };
             // The slot's four rows in order (written out: no loop over them).
-            let mut check = |v: usize, row: usize| {
-                let wv = w[v.min(N - 1)];
+            let mut check = |v: usize, wv: T, row: usize| {
                 finite.add(wv);
                 if basic(v) {
                     violation = max(violation, wv.abs_exact());
@@ -739,16 +748,13 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
                 Ok(())
             };
-            check(n, n)?;
-            check(plus, friction_row)?;
-            check(minus, friction_row)?;
-            check(sigma, N)?;
+            check(n, rows_w[0], n)?;
+            check(plus, rows_w[1], friction_row)?;
+            check(minus, rows_w[2], friction_row)?;
+            check(sigma, rows_w[3], N)?;
         }
-        // By index: `copy_from_slice` (a memcpy call) or a zip of the two costs 20 to 45
-        // instructions a step more on the M4F.
-        #[allow(clippy::manual_memcpy)]
-        for v in rows.min(N)..N {
-            w[v] = self.q[v];
+        if let Some(w) = w {
+            w[rows.min(N)..].copy_from_slice(&self.q[rows.min(N)..]);
         }
         let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
         finite.add(s_w);
@@ -773,16 +779,16 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// reads).
     #[inline(always)]
     #[allow(clippy::inline_always)] // the point of it: `l` and `m` known at the call
-    fn form_column(
+    fn form_column<const D: usize>(
         &self,
-        a: &mut [[T; UNKNOWNS]; UNKNOWNS],
-        y: &mut [T; UNKNOWNS],
+        a: &mut [[T; D]; D],
+        y: &mut [T; D],
         (var, follower): (&[usize; UNKNOWNS], &[usize; UNKNOWNS]),
         l: usize,
         symmetric: bool,
         m: usize,
     ) {
-        let (l, m) = (l.min(UNKNOWNS - 1), m.min(UNKNOWNS));
+        let (l, m) = (l.min(D - 1).min(UNKNOWNS - 1), m.min(D));
         let mut g = self.cols[var[l].min(N - 1)];
         if follower[l] < N {
             let (f, mu) = (&self.cols[follower[l]], self.mu[var[l].min(N - 1)]);
@@ -852,18 +858,16 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 }
 
-/// The basis' `m x m` system by [`solve_leading`], one copy out of line, and one specialised to
-/// `m = 4` (two interfaces of two corners each sliding, each `p_n` with its friction row
-/// following: block-on-block's usual step), its loops unrolled: the same operations in the same
-/// order (the same bits).
+/// The basis' `m x m` system by [`solve_leading`], one copy out of line for any `m`
+/// ([`solve_four`]: block-on-block's usual four unknowns).
 #[inline(never)]
-fn solve_unknowns<T: Real>(
+fn solve_leading_out_of_line<T: Real>(
     a: &mut [[T; UNKNOWNS]; UNKNOWNS],
     rhs: &mut [T; UNKNOWNS],
     m: usize,
     tiny: T,
 ) -> bool {
-    if m == 4 { solve_four(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
+    solve_leading(a, rhs, m, tiny)
 }
 
 /// The leading `m x m` block of a symmetric system (`H = G`: no unknown has a follower, the
@@ -987,9 +991,11 @@ fn ldl_back<T: Real>(
     rhs[i] = x;
 }
 
-/// [`solve_leading`] with four unknowns.
+/// [`solve_leading`] with four unknowns (two interfaces of two corners each sliding, each `p_n`
+/// with its friction row following: block-on-block's usual step), its loops unrolled: the same
+/// operations in the same order as on the leading block of a larger array (the same bits).
 #[inline(never)]
-fn solve_four<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
+fn solve_four<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], tiny: T) -> bool {
     solve_leading(a, rhs, 4, tiny)
 }
 
@@ -1114,7 +1120,7 @@ mod tests {
     fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
         let tolerance = default_tolerance::<f64, N>();
         let (mut z, mut w) = ([0.0; N], [0.0; N]);
-        let answer = f.solve_basis(mask, tolerance, &mut z, &mut w);
+        let answer = f.solve_basis(mask, tolerance, &mut z, Some(&mut w));
         let direct = Lemke::<f64, N>::new()
             .solve_warm(lcp, Basis::from_z_mask(mask))
             .ok()
