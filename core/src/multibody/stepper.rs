@@ -636,11 +636,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             if pn > self.impulse_floor {
                 modes[p][c] = ContactMode::from_slip(slip(f, &v_plus), s.stick_speed);
             }
-            // On the upper body: + for its corners, - for the lower body's.
-            let sign = if c < 2 { T::one() } else { -T::one() };
+            // On the upper body: + for its corners, - for the lower body's (negated: the bits of
+            // `+-1` times it, a product by `+-1` being exact).
             let impulse = &mut impulses[p];
-            impulse[0] += sign * (pn * f.normal[0] + pf * f.tangent[0]);
-            impulse[1] += sign * (pn * f.normal[1] + pf * f.tangent[1]);
+            let mut along = [pn * f.normal[0] + pf * f.tangent[0], pn * f.normal[1] + pf * f.tangent[1]];
+            if c >= 2 {
+                along = [-along[0], -along[1]];
+            }
+            impulse[0] += along[0];
+            impulse[1] += along[1];
         }
         let mut interface_forces = [[T::zero(); 2]; P];
         for p in 0..P {
