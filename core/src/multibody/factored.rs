@@ -35,7 +35,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::lcp::Lcp;
-use crate::lcp::elimination::solve_leading;
+use crate::lcp::elimination::{back_substitute, eliminate_column, solve_leading};
 use crate::planar::inputs::dot3;
 use crate::planar::{Declined, MU_WEIGHTED_FROM, cone_scale};
 use crate::real::{AllFinite, Real, max, min};
@@ -992,11 +992,19 @@ fn ldl_back<T: Real>(
 }
 
 /// [`solve_leading`] with four unknowns (two interfaces of two corners each sliding, each `p_n`
-/// with its friction row following: block-on-block's usual step), its loops unrolled: the same
-/// operations in the same order as on the leading block of a larger array (the same bits).
+/// with its friction row following: block-on-block's usual step), column by column with each
+/// index written out (its loops unrolled): the same operations in the same order (the same bits).
 #[inline(never)]
 fn solve_four<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], tiny: T) -> bool {
-    solve_leading(a, rhs, 4, tiny)
+    eliminate_column!(a, rhs, 0, 4, 4, tiny);
+    eliminate_column!(a, rhs, 1, 4, 4, tiny);
+    eliminate_column!(a, rhs, 2, 4, 4, tiny);
+    eliminate_column!(a, rhs, 3, 4, 4, tiny);
+    back_substitute!(a, rhs, 3, 4, 4);
+    back_substitute!(a, rhs, 2, 4, 4);
+    back_substitute!(a, rhs, 1, 4, 4);
+    back_substitute!(a, rhs, 0, 4, 4);
+    true
 }
 
 #[cfg(test)]
