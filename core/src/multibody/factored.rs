@@ -160,7 +160,8 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     q_norm: T,
     /// `min_v q_v`.
     q_min: T,
-    /// Every entry of `q` and `M~ c` is finite.
+    /// Every entry of `q` and every diagonal entry `A_vv` is finite (and so every entry of `c` and
+    /// `M~ c`, [`Self::set_slot`]).
     finite: bool,
     /// The finiteness of the columns set so far this step ([`Self::set_slot`]).
     columns_finite: AllFinite<T>,
@@ -256,14 +257,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             finite.add(q);
             q_norm = max(q_norm, q.abs_exact());
             q_min = min(q_min, if r == 0 { q } else { -q.abs_exact() });
-            // `A_vv = c^T M~ c` (the two bodies differ: `dot_scaled` of the column with itself).
+            // `A_vv = c^T M~ c` (the two bodies differ: `dot_scaled` of the column with itself);
+            // its finiteness stands for the column's: a non-finite entry of `M~ c` (or of `c`,
+            // `M~` being finite) makes its product with `c`, and so the sum, infinite or NaN
+            // (`0 x inf` is NaN), and a diagonal beyond the format's range is refused with them.
             let mut diagonal = T::zero();
             for p in 0..2 {
                 diagonal += dot3(&col.c[p], &col.mc[p]);
-                for c in 0..3 {
-                    finite.add(col.mc[p][c]);
-                }
             }
+            finite.add(diagonal);
             let unit = if r == 0 { T::zero() } else { T::one() };
             m_low = max(m_low, diagonal.abs_exact() + unit);
             if let (Some(slot), Some(qv)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
@@ -332,7 +334,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.finite = finite.holds();
     }
 
-    /// `true` when every entry of `q` and of the columns is finite.
+    /// `true` when every entry of `q` and of the columns is finite (and every diagonal entry
+    /// `c^T M~ c` within the format's range).
     pub(super) const fn is_finite(&self) -> bool {
         self.finite
     }
