@@ -639,13 +639,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // is the one kept. A friction impulse within round-off of zero (a resting stack's zero
         // tangential load) is kept: it holds the interface's slip at zero; declining it would leave
         // the interface without friction, whose slip round-off nothing opposes (the stack creeps).
-        let mut y_max = T::zero();
+        let (mut y_max, mut mask) = (T::zero(), mask);
         for l in 0..m {
             y_max = max(y_max, y[l].abs_exact());
-        }
-        let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
-        let mut mask = mask;
-        for l in 0..m {
             let v = var[l];
             if v >= k && y[l] < T::zero() {
                 // The other direction of the same contact (`k + 2 j` <-> `k + 2 j + 1`).
@@ -655,6 +651,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 y[l] = -y[l];
             }
         }
+        let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
         let basic = |v: usize| (mask >> v) & 1 == 1;
         *z = [T::zero(); N];
         // `p_norm`: the largest impulse (every other impulse is zero).
