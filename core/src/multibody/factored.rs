@@ -397,7 +397,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 
     /// [`Self::velocity_change`] for `z` zero outside `support` (bit `v`: `z_v` may be nonzero),
     /// the same sum in the same order over fewer columns.
-    #[inline(never)]
+    #[inline]
     fn velocity_change_on(&self, z: &[T; N], support: u32) -> [[T; 3]; B] {
         let mut dv = [[T::zero(); 3]; B];
         let impulses = 3 * self.k.min(N / 4);
