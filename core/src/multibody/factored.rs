@@ -272,18 +272,18 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 *qv = q;
                 *slot = col;
             }
-            if r == 1 {
+            if r == 1
+                && let (Some(slot), Some(qv)) = (self.cols.get_mut(v + 1), self.q.get_mut(v + 1))
+            {
                 // `-d`: the `+d` column negated, and its `q` (every product and sum negates
-                // exactly: the same bits as computing it from `-d`).
+                // exactly: the same bits as computing it from `-d`), written in place.
+                *qv = -q;
+                slot.body = col.body;
                 for p in 0..2 {
                     for c in 0..3 {
-                        col.c[p][c] = -col.c[p][c];
-                        col.mc[p][c] = -col.mc[p][c];
+                        slot.c[p][c] = -col.c[p][c];
+                        slot.mc[p][c] = -col.mc[p][c];
                     }
-                }
-                if let (Some(slot), Some(qv)) = (self.cols.get_mut(v + 1), self.q.get_mut(v + 1)) {
-                    *qv = -q;
-                    *slot = col;
                 }
             }
         }
