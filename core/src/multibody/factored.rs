@@ -556,7 +556,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let cap = UNKNOWNS.min(3 * B);
         // The unknowns: the variable each sets and the friction row following it at `mu` (`N`:
         // none).
-        let mut var = [0usize; UNKNOWNS];
+        let mut var = [0u8; UNKNOWNS];
         let mut follower = [N; UNKNOWNS];
         let mut m = 0usize;
         for j in 0..k {
@@ -571,7 +571,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     if m >= cap {
                         return Err(Declined::Pattern);
                     }
-                    var[m] = j;
+                    var[m] = j as u8;
                     follower[m] = f;
                     m += 1;
                 }
@@ -582,7 +582,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     if m >= cap {
                         return Err(Declined::Pattern);
                     }
-                    var[m] = v;
+                    var[m] = v as u8;
                     m += 1;
                 }
             }
@@ -591,22 +591,23 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // H^T M~ G y = -q_H ([`Self::form_column`]).
         let symmetric = follower.iter().all(|&f| f == N);
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        let mut y = [T::zero(); UNKNOWNS];
-        let solved = if symmetric && m == UNKNOWNS {
+        let (solved, mut y) = if symmetric && m == UNKNOWNS {
             // Every unknown, none with a follower (the 3-block stack's every step): the lower
             // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
             // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
             // reading it).
             let mut a = core::array::from_fn(|r| {
-                let row = &self.cols[var[r].min(N - 1)];
+                let row = &self.cols[usize::from(var[r]).min(N - 1)];
                 core::array::from_fn(|l| {
-                    if l <= r { row.dot_scaled(&self.cols[var[l].min(N - 1)]) } else { T::zero() }
+                    if l <= r {
+                        row.dot_scaled(&self.cols[usize::from(var[l]).min(N - 1)])
+                    } else {
+                        T::zero()
+                    }
                 })
             });
-            for l in 0..UNKNOWNS {
-                y[l] = -self.q[var[l].min(N - 1)];
-            }
-            solve_symmetric(&mut a, &mut y, m, tiny)
+            let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
+            (solve_symmetric(&mut a, &mut y, m, tiny), y)
         } else if !symmetric && m == 4 {
             // Four unknowns with followers (block-on-block's sliding steps): written out in a
             // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
@@ -615,18 +616,21 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 self.form_column(&mut a, &mut rhs, (&var, &follower), l, false, 4);
             }
             let solved = solve_four(&mut a, &mut rhs, tiny);
-            y[..4].copy_from_slice(&rhs);
-            solved
+            let [y0, y1, y2, y3] = rhs;
+            let zero = T::zero();
+            (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
         } else {
             let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+            let mut y = [T::zero(); UNKNOWNS];
             for l in 0..m {
                 self.form_column(&mut a, &mut y, (&var, &follower), l, symmetric, m);
             }
-            if symmetric {
+            let solved = if symmetric {
                 solve_symmetric(&mut a, &mut y, m, tiny)
             } else {
                 solve_leading_out_of_line(&mut a, &mut y, m, tiny)
-            }
+            };
+            (solved, y)
         };
         if !solved {
             return Err(Declined::Singular);
@@ -642,12 +646,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let (mut y_max, mut mask) = (T::zero(), mask);
         for l in 0..m {
             y_max = max(y_max, y[l].abs_exact());
-            let v = var[l];
+            let v = usize::from(var[l]);
             if v >= k && y[l] < T::zero() {
                 // The other direction of the same contact (`k + 2 j` <-> `k + 2 j + 1`).
                 let other = if (v - k) & 1 == 0 { v + 1 } else { v - 1 };
                 mask ^= (1u32 << v.min(31)) | (1u32 << other.min(31));
-                var[l] = other;
+                var[l] = other as u8;
                 y[l] = -y[l];
             }
         }
@@ -657,14 +661,14 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // `p_norm`: the largest impulse (every other impulse is zero).
         let mut p_norm = T::zero();
         for l in 0..m {
-            let normal = var[l] < k;
+            let normal = usize::from(var[l]) < k;
             if y[l] < T::zero() || (normal && y[l] > T::zero() && y[l] <= impulse_round_off) {
-                return Err(Declined::Infeasible(var[l] as u8));
+                return Err(Declined::Infeasible(var[l]));
             }
-            z[var[l].min(N - 1)] = y[l];
+            z[usize::from(var[l]).min(N - 1)] = y[l];
             p_norm = max(p_norm, y[l]);
             if follower[l] < N {
-                let friction = self.mu[var[l].min(N - 1)] * y[l];
+                let friction = self.mu[usize::from(var[l]).min(N - 1)] * y[l];
                 z[follower[l]] = friction;
                 p_norm = max(p_norm, friction);
             }
@@ -783,15 +787,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         &self,
         a: &mut [[T; D]; D],
         y: &mut [T; D],
-        (var, follower): (&[usize; UNKNOWNS], &[usize; UNKNOWNS]),
+        (var, follower): (&[u8; UNKNOWNS], &[usize; UNKNOWNS]),
         l: usize,
         symmetric: bool,
         m: usize,
     ) {
         let (l, m) = (l.min(D - 1).min(UNKNOWNS - 1), m.min(D));
-        let mut g = self.cols[var[l].min(N - 1)];
+        let mut g = self.cols[usize::from(var[l]).min(N - 1)];
         if follower[l] < N {
-            let (f, mu) = (&self.cols[follower[l]], self.mu[var[l].min(N - 1)]);
+            let (f, mu) = (&self.cols[follower[l]], self.mu[usize::from(var[l]).min(N - 1)]);
             for p in 0..2 {
                 for c in 0..3 {
                     g.mc[p][c] += mu * f.mc[p][c];
@@ -802,10 +806,10 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             a[r][l] = if r < l && follower[r] == N && follower[l] == N {
                 a[l][r]
             } else {
-                self.cols[var[r].min(N - 1)].dot_scaled(&g)
+                self.cols[usize::from(var[r]).min(N - 1)].dot_scaled(&g)
             };
         }
-        y[l] = -self.q[var[l].min(N - 1)];
+        y[l] = -self.q[usize::from(var[l]).min(N - 1)];
     }
 
     /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
