@@ -29,50 +29,74 @@ pub(crate) fn solve_leading<T: Real, const D: usize>(
         if col >= m {
             break;
         }
-        let mut piv = col;
-        for r in col + 1..D {
-            if r < m && a[r][col].abs_exact() > a[piv][col].abs_exact() {
-                piv = r;
-            }
-        }
-        if a[piv][col].abs_exact() <= tiny {
-            return false;
-        }
-        if piv != col {
-            let (row, value) = (a[col], rhs[col]);
-            a[col] = a[piv];
-            rhs[col] = rhs[piv];
-            a[piv] = row;
-            rhs[piv] = value;
-        }
-        let inv = T::one() / a[col][col];
-        for r in col + 1..D {
-            if r >= m {
-                break;
-            }
-            let f = a[r][col] * inv;
-            for c in col + 1..D {
-                if c < m {
-                    let u = f * a[col][c];
-                    a[r][c] -= u;
-                }
-            }
-            let u = f * rhs[col];
-            rhs[r] -= u;
-        }
-        a[col][col] = inv;
+        eliminate_column!(a, rhs, col, m, D, tiny);
     }
     for col in (0..D).rev() {
         if col >= m {
             continue;
         }
-        let mut acc = rhs[col];
-        for c in col + 1..D {
-            if c < m {
-                acc -= a[col][c] * rhs[c];
-            }
-        }
-        rhs[col] = acc * a[col][col];
+        back_substitute!(a, rhs, col, m, D);
     }
     true
 }
+
+/// Column `col < m` of [`solve_leading`]'s elimination in a `D x D` array: its pivot (the first
+/// row of largest magnitude at or below `col`, swapped whole into row `col`), the rows below it
+/// eliminated, the inverse pivot left on the diagonal; `return false` from the function it is in
+/// when the pivot is at most `tiny`. A macro, so that [`solve_leading`] and a caller that writes
+/// its columns out with constant indices (`col = 0, 1, ...`, then [`back_substitute!`] from `m -
+/// 1` down to `0`) share one text and get the same operations in the same order.
+macro_rules! eliminate_column {
+    ($a:ident, $rhs:ident, $col:expr, $m:expr, $d:expr, $tiny:expr) => {{
+        let (col, m) = ($col, $m);
+        let mut piv = col;
+        for r in col + 1..$d {
+            if r < m && $a[r][col].abs_exact() > $a[piv][col].abs_exact() {
+                piv = r;
+            }
+        }
+        if $a[piv][col].abs_exact() <= $tiny {
+            return false;
+        }
+        if piv != col {
+            let (row, value) = ($a[col], $rhs[col]);
+            $a[col] = $a[piv];
+            $rhs[col] = $rhs[piv];
+            $a[piv] = row;
+            $rhs[piv] = value;
+        }
+        let inv = T::one() / $a[col][col];
+        for r in col + 1..$d {
+            if r >= m {
+                break;
+            }
+            let f = $a[r][col] * inv;
+            for c in col + 1..$d {
+                if c < m {
+                    let u = f * $a[col][c];
+                    $a[r][c] -= u;
+                }
+            }
+            let u = f * $rhs[col];
+            $rhs[r] -= u;
+        }
+        $a[col][col] = inv;
+    }};
+}
+pub(crate) use eliminate_column;
+
+/// Row `col < m` of [`solve_leading`]'s back substitution in a `D x D` array (the rows after it
+/// done): [`eliminate_column!`]'s counterpart.
+macro_rules! back_substitute {
+    ($a:ident, $rhs:ident, $col:expr, $m:expr, $d:expr) => {{
+        let (col, m) = ($col, $m);
+        let mut acc = $rhs[col];
+        for c in col + 1..$d {
+            if c < m {
+                acc -= $a[col][c] * $rhs[c];
+            }
+        }
+        $rhs[col] = acc * $a[col][col];
+    }};
+}
+pub(crate) use back_substitute;

@@ -35,7 +35,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::lcp::Lcp;
-use crate::lcp::elimination::solve_leading;
+use crate::lcp::elimination::{back_substitute, eliminate_column, solve_leading};
 use crate::planar::inputs::dot3;
 use crate::planar::{Declined, MU_WEIGHTED_FROM, cone_scale};
 use crate::real::{AllFinite, Real, max, min};
@@ -44,8 +44,8 @@ use crate::real::{AllFinite, Real, max, min};
 /// declined, and Lemke's method answers it).
 pub(super) const UNKNOWNS: usize = 9;
 
-/// A basis' verified answer ([`Factored::solve_basis`]; `z` and `w` are written into the caller's
-/// arrays).
+/// A basis' verified answer ([`Factored::solve_basis`]; `z`, and `w` when asked for, are written
+/// into the caller's arrays).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Answer<T, const B: usize> {
     /// `v+ = v~ + dv`.
@@ -160,7 +160,8 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     q_norm: T,
     /// `min_v q_v`.
     q_min: T,
-    /// Every entry of `q` and `M~ c` is finite.
+    /// Every entry of `q` and every diagonal entry `A_vv` is finite (and so every entry of `c` and
+    /// `M~ c`, [`Self::set_slot`]).
     finite: bool,
     /// The finiteness of the columns set so far this step ([`Self::set_slot`]).
     columns_finite: AllFinite<T>,
@@ -256,32 +257,33 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             finite.add(q);
             q_norm = max(q_norm, q.abs_exact());
             q_min = min(q_min, if r == 0 { q } else { -q.abs_exact() });
-            // `A_vv = c^T M~ c` (the two bodies differ: `dot_scaled` of the column with itself).
+            // `A_vv = c^T M~ c` (the two bodies differ: `dot_scaled` of the column with itself);
+            // its finiteness stands for the column's: a non-finite entry of `M~ c` (or of `c`,
+            // `M~` being finite) makes its product with `c`, and so the sum, infinite or NaN
+            // (`0 x inf` is NaN), and a diagonal beyond the format's range is refused with them.
             let mut diagonal = T::zero();
             for p in 0..2 {
                 diagonal += dot3(&col.c[p], &col.mc[p]);
-                for c in 0..3 {
-                    finite.add(col.mc[p][c]);
-                }
             }
+            finite.add(diagonal);
             let unit = if r == 0 { T::zero() } else { T::one() };
             m_low = max(m_low, diagonal.abs_exact() + unit);
             if let (Some(slot), Some(qv)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
                 *qv = q;
                 *slot = col;
             }
-            if r == 1 {
+            if r == 1
+                && let (Some(slot), Some(qv)) = (self.cols.get_mut(v + 1), self.q.get_mut(v + 1))
+            {
                 // `-d`: the `+d` column negated, and its `q` (every product and sum negates
-                // exactly: the same bits as computing it from `-d`).
+                // exactly: the same bits as computing it from `-d`), written in place.
+                *qv = -q;
+                slot.body = col.body;
                 for p in 0..2 {
                     for c in 0..3 {
-                        col.c[p][c] = -col.c[p][c];
-                        col.mc[p][c] = -col.mc[p][c];
+                        slot.c[p][c] = -col.c[p][c];
+                        slot.mc[p][c] = -col.mc[p][c];
                     }
-                }
-                if let (Some(slot), Some(qv)) = (self.cols.get_mut(v + 1), self.q.get_mut(v + 1)) {
-                    *qv = -q;
-                    *slot = col;
                 }
             }
         }
@@ -332,7 +334,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.finite = finite.holds();
     }
 
-    /// `true` when every entry of `q` and of the columns is finite.
+    /// `true` when every entry of `q` and of the columns is finite (and every diagonal entry
+    /// `c^T M~ c` within the format's range).
     pub(super) const fn is_finite(&self) -> bool {
         self.finite
     }
@@ -394,7 +397,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 
     /// [`Self::velocity_change`] for `z` zero outside `support` (bit `v`: `z_v` may be nonzero),
     /// the same sum in the same order over fewer columns.
-    #[inline(never)]
+    #[inline]
     fn velocity_change_on(&self, z: &[T; N], support: u32) -> [[T; 3]; B] {
         let mut dv = [[T::zero(); 3]; B];
         let impulses = 3 * self.k.min(N / 4);
@@ -526,8 +529,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 
     /// The complementary solution of the basis `mask` (bit `v`: `z_v` basic) in the bodies'
-    /// coordinates, verified within `tolerance` (module docs), written into `z` and `w`; returns
-    /// `v+` and the basis answered, or why there is none.
+    /// coordinates, verified within `tolerance` (module docs), written into `z` (and `w`, when
+    /// given: the stepper's paths need only `z`); returns `v+` and the basis answered, or why there
+    /// is none.
     ///
     /// # Errors
     /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
@@ -540,7 +544,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         mask: u32,
         tolerance: T,
         z: &mut [T; N],
-        w: &mut [T; N],
+        mut w: Option<&mut [T; N]>,
     ) -> Result<Answer<T, B>, Declined> {
         let k = self.k.min(N / 4);
         let rows = 4 * k;
@@ -552,7 +556,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let cap = UNKNOWNS.min(3 * B);
         // The unknowns: the variable each sets and the friction row following it at `mu` (`N`:
         // none).
-        let mut var = [0usize; UNKNOWNS];
+        let mut var = [0u8; UNKNOWNS];
         let mut follower = [N; UNKNOWNS];
         let mut m = 0usize;
         for j in 0..k {
@@ -567,7 +571,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     if m >= cap {
                         return Err(Declined::Pattern);
                     }
-                    var[m] = j;
+                    var[m] = j as u8;
                     follower[m] = f;
                     m += 1;
                 }
@@ -578,7 +582,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                     if m >= cap {
                         return Err(Declined::Pattern);
                     }
-                    var[m] = v;
+                    var[m] = v as u8;
                     m += 1;
                 }
             }
@@ -586,39 +590,47 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let m = m.min(UNKNOWNS);
         // H^T M~ G y = -q_H ([`Self::form_column`]).
         let symmetric = follower.iter().all(|&f| f == N);
-        let mut y = [T::zero(); UNKNOWNS];
-        let mut a;
-        if symmetric && m == UNKNOWNS {
+        let tiny = T::of(N as f64) * T::EPS * self.m_low;
+        let (solved, mut y) = if symmetric && m == UNKNOWNS {
             // Every unknown, none with a follower (the 3-block stack's every step): the lower
             // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
             // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
             // reading it).
-            a = core::array::from_fn(|r| {
-                let row = &self.cols[var[r].min(N - 1)];
+            let mut a = core::array::from_fn(|r| {
+                let row = &self.cols[usize::from(var[r]).min(N - 1)];
                 core::array::from_fn(|l| {
-                    if l <= r { row.dot_scaled(&self.cols[var[l].min(N - 1)]) } else { T::zero() }
+                    if l <= r {
+                        row.dot_scaled(&self.cols[usize::from(var[l]).min(N - 1)])
+                    } else {
+                        T::zero()
+                    }
                 })
             });
-            for l in 0..UNKNOWNS {
-                y[l] = -self.q[var[l].min(N - 1)];
-            }
+            let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
+            (solve_symmetric(&mut a, &mut y, m, tiny), y)
         } else if !symmetric && m == 4 {
-            a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
-            // Four unknowns with followers (block-on-block's sliding steps): written out too.
+            // Four unknowns with followers (block-on-block's sliding steps): written out in a
+            // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
+            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
             for l in [0, 1, 2, 3] {
-                self.form_column(&mut a, &mut y, (&var, &follower), l, false, 4);
+                self.form_column(&mut a, &mut rhs, (&var, &follower), l, false, 4);
             }
+            let solved = solve_four(&mut a, &mut rhs, tiny);
+            let [y0, y1, y2, y3] = rhs;
+            let zero = T::zero();
+            (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
         } else {
-            a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+            let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
+            let mut y = [T::zero(); UNKNOWNS];
             for l in 0..m {
                 self.form_column(&mut a, &mut y, (&var, &follower), l, symmetric, m);
             }
-        }
-        let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        let solved = if symmetric {
-            solve_symmetric(&mut a, &mut y, m, tiny)
-        } else {
-            solve_unknowns(&mut a, &mut y, m, tiny)
+            let solved = if symmetric {
+                solve_symmetric(&mut a, &mut y, m, tiny)
+            } else {
+                solve_leading_out_of_line(&mut a, &mut y, m, tiny)
+            };
+            (solved, y)
         };
         if !solved {
             return Err(Declined::Singular);
@@ -631,35 +643,32 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // is the one kept. A friction impulse within round-off of zero (a resting stack's zero
         // tangential load) is kept: it holds the interface's slip at zero; declining it would leave
         // the interface without friction, whose slip round-off nothing opposes (the stack creeps).
-        let mut y_max = T::zero();
+        let (mut y_max, mut mask) = (T::zero(), mask);
         for l in 0..m {
             y_max = max(y_max, y[l].abs_exact());
-        }
-        let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
-        let mut mask = mask;
-        for l in 0..m {
-            let v = var[l];
+            let v = usize::from(var[l]);
             if v >= k && y[l] < T::zero() {
                 // The other direction of the same contact (`k + 2 j` <-> `k + 2 j + 1`).
                 let other = if (v - k) & 1 == 0 { v + 1 } else { v - 1 };
                 mask ^= (1u32 << v.min(31)) | (1u32 << other.min(31));
-                var[l] = other;
+                var[l] = other as u8;
                 y[l] = -y[l];
             }
         }
+        let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
         let basic = |v: usize| (mask >> v) & 1 == 1;
         *z = [T::zero(); N];
         // `p_norm`: the largest impulse (every other impulse is zero).
         let mut p_norm = T::zero();
         for l in 0..m {
-            let normal = var[l] < k;
+            let normal = usize::from(var[l]) < k;
             if y[l] < T::zero() || (normal && y[l] > T::zero() && y[l] <= impulse_round_off) {
-                return Err(Declined::Infeasible(var[l] as u8));
+                return Err(Declined::Infeasible(var[l]));
             }
-            z[var[l].min(N - 1)] = y[l];
+            z[usize::from(var[l]).min(N - 1)] = y[l];
             p_norm = max(p_norm, y[l]);
             if follower[l] < N {
-                let friction = self.mu[var[l].min(N - 1)] * y[l];
+                let friction = self.mu[usize::from(var[l]).min(N - 1)] * y[l];
                 z[follower[l]] = friction;
                 p_norm = max(p_norm, friction);
             }
@@ -706,10 +715,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 z[sigma] = max(value, T::zero());
                 z_norm = max(z_norm, z[sigma]);
             }
-            w[n] = self.q[n] + self.cols[n].dot(&dv);
-            w[plus] = slip + z[sigma];
-            w[minus] = -slip + z[sigma];
-            w[sigma] = self.mu[j] * z[n] - z[plus] - z[minus];
+            let rows_w = [
+                self.q[n] + self.cols[n].dot(&dv),
+                slip + z[sigma],
+                -slip + z[sigma],
+                self.mu[j] * z[n] - z[plus] - z[minus],
+            ];
+            if let Some(w) = w.as_deref_mut() {
+                [w[n], w[plus], w[minus], w[sigma]] = rows_w;
+            }
             let pair = u32::from(self.pair[j]);
             let unheld = basic(n) && held.checked_shr(pair).unwrap_or(0) & 1 == 0;
             let is_pinned = basic(n) && pinned.checked_shr(pair).unwrap_or(0) & 1 == 1;
@@ -724,8 +738,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 plus
             };
             // The slot's four rows in order (written out: no loop over them).
-            let mut check = |v: usize, row: usize| {
-                let wv = w[v.min(N - 1)];
+            let mut check = |v: usize, wv: T, row: usize| {
                 finite.add(wv);
                 if basic(v) {
                     violation = max(violation, wv.abs_exact());
@@ -739,16 +752,13 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
                 Ok(())
             };
-            check(n, n)?;
-            check(plus, friction_row)?;
-            check(minus, friction_row)?;
-            check(sigma, N)?;
+            check(n, rows_w[0], n)?;
+            check(plus, rows_w[1], friction_row)?;
+            check(minus, rows_w[2], friction_row)?;
+            check(sigma, rows_w[3], N)?;
         }
-        // By index: `copy_from_slice` (a memcpy call) or a zip of the two costs 20 to 45
-        // instructions a step more on the M4F.
-        #[allow(clippy::manual_memcpy)]
-        for v in rows.min(N)..N {
-            w[v] = self.q[v];
+        if let Some(w) = w {
+            w[rows.min(N)..].copy_from_slice(&self.q[rows.min(N)..]);
         }
         let s_w = max(self.m_low * z_norm + self.q_norm, T::TINY);
         finite.add(s_w);
@@ -773,19 +783,19 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// reads).
     #[inline(always)]
     #[allow(clippy::inline_always)] // the point of it: `l` and `m` known at the call
-    fn form_column(
+    fn form_column<const D: usize>(
         &self,
-        a: &mut [[T; UNKNOWNS]; UNKNOWNS],
-        y: &mut [T; UNKNOWNS],
-        (var, follower): (&[usize; UNKNOWNS], &[usize; UNKNOWNS]),
+        a: &mut [[T; D]; D],
+        y: &mut [T; D],
+        (var, follower): (&[u8; UNKNOWNS], &[usize; UNKNOWNS]),
         l: usize,
         symmetric: bool,
         m: usize,
     ) {
-        let (l, m) = (l.min(UNKNOWNS - 1), m.min(UNKNOWNS));
-        let mut g = self.cols[var[l].min(N - 1)];
+        let (l, m) = (l.min(D - 1).min(UNKNOWNS - 1), m.min(D));
+        let mut g = self.cols[usize::from(var[l]).min(N - 1)];
         if follower[l] < N {
-            let (f, mu) = (&self.cols[follower[l]], self.mu[var[l].min(N - 1)]);
+            let (f, mu) = (&self.cols[follower[l]], self.mu[usize::from(var[l]).min(N - 1)]);
             for p in 0..2 {
                 for c in 0..3 {
                     g.mc[p][c] += mu * f.mc[p][c];
@@ -796,10 +806,10 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             a[r][l] = if r < l && follower[r] == N && follower[l] == N {
                 a[l][r]
             } else {
-                self.cols[var[r].min(N - 1)].dot_scaled(&g)
+                self.cols[usize::from(var[r]).min(N - 1)].dot_scaled(&g)
             };
         }
-        y[l] = -self.q[var[l].min(N - 1)];
+        y[l] = -self.q[usize::from(var[l]).min(N - 1)];
     }
 
     /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
@@ -861,18 +871,16 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     }
 }
 
-/// The basis' `m x m` system by [`solve_leading`], one copy out of line, and one specialised to
-/// `m = 4` (two interfaces of two corners each sliding, each `p_n` with its friction row
-/// following: block-on-block's usual step), its loops unrolled: the same operations in the same
-/// order (the same bits).
+/// The basis' `m x m` system by [`solve_leading`], one copy out of line for any `m`
+/// ([`solve_four`]: block-on-block's usual four unknowns).
 #[inline(never)]
-fn solve_unknowns<T: Real>(
+fn solve_leading_out_of_line<T: Real>(
     a: &mut [[T; UNKNOWNS]; UNKNOWNS],
     rhs: &mut [T; UNKNOWNS],
     m: usize,
     tiny: T,
 ) -> bool {
-    if m == 4 { solve_four(a, rhs, tiny) } else { solve_leading(a, rhs, m, tiny) }
+    solve_leading(a, rhs, m, tiny)
 }
 
 /// The leading `m x m` block of a symmetric system (`H = G`: no unknown has a follower, the
@@ -996,10 +1004,20 @@ fn ldl_back<T: Real>(
     rhs[i] = x;
 }
 
-/// [`solve_leading`] with four unknowns.
+/// [`solve_leading`] with four unknowns (two interfaces of two corners each sliding, each `p_n`
+/// with its friction row following: block-on-block's usual step), column by column with each
+/// index written out (its loops unrolled): the same operations in the same order (the same bits).
 #[inline(never)]
-fn solve_four<T: Real>(a: &mut [[T; UNKNOWNS]; UNKNOWNS], rhs: &mut [T; UNKNOWNS], tiny: T) -> bool {
-    solve_leading(a, rhs, 4, tiny)
+fn solve_four<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], tiny: T) -> bool {
+    eliminate_column!(a, rhs, 0, 4, 4, tiny);
+    eliminate_column!(a, rhs, 1, 4, 4, tiny);
+    eliminate_column!(a, rhs, 2, 4, 4, tiny);
+    eliminate_column!(a, rhs, 3, 4, 4, tiny);
+    back_substitute!(a, rhs, 3, 4, 4);
+    back_substitute!(a, rhs, 2, 4, 4);
+    back_substitute!(a, rhs, 1, 4, 4);
+    back_substitute!(a, rhs, 0, 4, 4);
+    true
 }
 
 #[cfg(test)]
@@ -1135,7 +1153,7 @@ mod tests {
     fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
         let tolerance = default_tolerance::<f64, N>();
         let (mut z, mut w) = ([0.0; N], [0.0; N]);
-        let answer = f.solve_basis(mask, tolerance, &mut z, &mut w);
+        let answer = f.solve_basis(mask, tolerance, &mut z, Some(&mut w));
         let direct = Lemke::<f64, N>::new()
             .solve_warm(lcp, Basis::from_z_mask(mask))
             .ok()

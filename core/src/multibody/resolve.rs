@@ -236,7 +236,7 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
         if basis == *mask {
             continue;
         }
-        if let Ok(a) = f.solve_basis(basis, tolerance, &mut found, &mut w)
+        if let Ok(a) = f.solve_basis(basis, tolerance, &mut found, Some(&mut w))
             && choice.offer(code, Answer::of(a.v_plus, &found))
         {
             best = Some((a.v_plus, a.mask));

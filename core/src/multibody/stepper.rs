@@ -479,16 +479,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             });
         }
         let tolerance = self.solver.tolerance();
-        let mut w = [T::zero(); N];
         let warm = step.warm;
-        let why = match f.solve_basis(warm.z_mask(), tolerance, z, &mut w) {
+        let why = match f.solve_basis(warm.z_mask(), tolerance, z, None) {
             Ok(a) => {
                 let basis = Basis::from_z_mask(a.mask);
                 return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Warm });
             }
             Err(why) => why,
         };
-        if let Some(answer) = self.candidate(why, paths, z, &mut w) {
+        if let Some(answer) = self.candidate(why, paths, z) {
             return Ok(answer);
         }
         let k = step.k.min(N / 4);
@@ -521,14 +520,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     }
 
     /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
-    /// answers (written into `z`, `w`), or `None`.
-    fn candidate(
-        &self,
-        why: Declined,
-        paths: &mut PathCounts,
-        z: &mut [T; N],
-        w: &mut [T; N],
-    ) -> Option<Solved<T, B, N>> {
+    /// answers (written into `z`), or `None`.
+    fn candidate(&self, why: Declined, paths: &mut PathCounts, z: &mut [T; N]) -> Option<Solved<T, B, N>> {
         let step = &self.lcp;
         let f = &step.factored;
         let tolerance = self.solver.tolerance();
@@ -613,7 +606,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             };
             let Some(basis) = basis.filter(|&b| b != warm) else { continue };
             paths.candidates_tried += 1;
-            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, w) {
+            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, None) {
                 let basis = Basis::from_z_mask(a.mask);
                 return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
             }
@@ -669,11 +662,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             if pn > self.impulse_floor {
                 modes[p][c] = ContactMode::from_slip(slip(f, &v_plus), s.stick_speed);
             }
-            // On the upper body: + for its corners, - for the lower body's.
-            let sign = if c < 2 { T::one() } else { -T::one() };
+            // On the upper body: + for its corners, - for the lower body's (negated: the bits of
+            // `+-1` times it, a product by `+-1` being exact).
             let impulse = &mut impulses[p];
-            impulse[0] += sign * (pn * f.normal[0] + pf * f.tangent[0]);
-            impulse[1] += sign * (pn * f.normal[1] + pf * f.tangent[1]);
+            let mut along = [pn * f.normal[0] + pf * f.tangent[0], pn * f.normal[1] + pf * f.tangent[1]];
+            if c >= 2 {
+                along = [-along[0], -along[1]];
+            }
+            impulse[0] += along[0];
+            impulse[1] += along[1];
         }
         let mut interface_forces = [[T::zero(); 2]; P];
         for p in 0..P {
