@@ -591,7 +591,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // H^T M~ G y = -q_H ([`Self::form_column`]).
         let symmetric = follower.iter().all(|&f| f == N);
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
-        let (solved, mut y) = if symmetric && m == UNKNOWNS {
+        // The two copies specialised to a count of unknowns are left out with `compact` (the
+        // general one below does the same operations in the same order: the same bits).
+        let (solved, mut y) = if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {
             // Every unknown, none with a follower (the 3-block stack's every step): the lower
             // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
             // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
@@ -608,7 +610,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             });
             let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
             (solve_symmetric(&mut a, &mut y, m, tiny), y)
-        } else if !symmetric && m == 4 {
+        } else if !symmetric && m == 4 && !cfg!(feature = "compact") {
             // Four unknowns with followers (block-on-block's sliding steps): written out in a
             // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
             let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);

@@ -99,7 +99,7 @@ pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, 
     // Four contacts (two interfaces of two corners: block-on-block's step) with every bound a
     // constant; any other count (at most `N / 4 <= 8`) in arrays of eight.
     match f.slots() {
-        4 => flags_of::<T, B, N, 4>(f, 4),
+        4 if !cfg!(feature = "compact") => flags_of::<T, B, N, 4>(f, 4),
         k => flags_of::<T, B, N, 8>(f, k.min(8)),
     }
 }
