@@ -121,7 +121,8 @@ print(f"| host, core f32 6x6, ns per step (`host-sim report`) | {f32_6['ns_per_s
 for label, build, machine, board in cores:
     slow = timings[build]["slow"]
     print(f"| {label} ({board}): instructions per step, mean / worst | {mean_worst(slow)} |")
-for scene, title in (("block-on-block", "block-on-block"), ("stack", "the 3-block stack")):
+MULTIBODY = (("block-on-block", "block-on-block"), ("stack", "the 3-block stack"), ("disc-on-board", "disc-on-board"))
+for scene, title in MULTIBODY:
     if scene not in timings["qemu-m4f"]:
         sys.exit(f"performance.sh: out/firmware/qemu-m4f-icount.json has no {scene} run "
                  "(the M4F firmware runs the scenes of several bodies: see firmware/Cargo.toml)")
@@ -171,23 +172,24 @@ table(["core (QEMU machine)", "board it stands for", "slow: mean / worst", "fast
 print()
 print("The scenes of several bodies at their defaults (f32, stepped directly, not through the rig loop; "
       "issue targets on the M4F: block-on-block mean <= 5,000 / worst <= 25,000, the 3-block stack "
-      "<= 12,000 / <= 100,000), with the deepest the stack grew (painted RAM read back, "
+      "<= 12,000 / <= 100,000; disc-on-board has none), with the deepest the stack grew (painted RAM read back, "
       "`firmware/src/stack_peak.rs`):")
 print()
 def peak(t, s):
     return "-" if s not in t or t[s].get("stack_peak_bytes") is None else n(t[s]["stack_peak_bytes"])
-table(["core (QEMU machine)", "block-on-block: mean / worst", "stack: mean / worst",
-       "stack peak (B): slow run / block-on-block / stack"],
+table(["core (QEMU machine)"] + [f"{s}: mean / worst" for s, _ in MULTIBODY]
+      + ["stack peak (B): slow run / " + " / ".join(s for s, _ in MULTIBODY)],
       [[f"{label} (`{machine}`)"]
-       + [mean_worst(timings[build][s]) if s in timings[build] else "not run" for s in ("block-on-block", "stack")]
-       + [" / ".join(peak(timings[build], s) for s in ("slow", "block-on-block", "stack"))]
+       + [mean_worst(timings[build][s]) if s in timings[build] else "not run" for s, _ in MULTIBODY]
+       + [" / ".join(peak(timings[build], s) for s in ("slow",) + tuple(s for s, _ in MULTIBODY))]
        for label, build, machine, _ in cores])
 m4f = timings["qemu-m4f"]
 if all(m4f[s].get("stack_peak_bytes") is not None for s in ("stack", "block-on-block")):
     print()
-    print(f"The Cortex-M0 build (`microbit`: 16,384 B of RAM) runs the scenes of one body only: the 3-block "
-          f"stack needs {n(m4f['stack']['stack_peak_bytes'])} B of stack on the M4F (block-on-block "
-          f"{n(m4f['block-on-block']['stack_peak_bytes'])} B), more than its whole RAM.")
+    print(f"The Cortex-M0 build (`microbit`: 256 KiB of flash, 16,384 B of RAM) runs the scenes of one body "
+          f"only: with those of several bodies its firmware overflows the flash (by 156,512 B at 0abe64e), and "
+          f"the 3-block stack needs {n(m4f['stack']['stack_peak_bytes'])} B of stack on the M4F, more than its "
+          f"whole RAM (block-on-block {n(m4f['block-on-block']['stack_peak_bytes'])} B).")
 print()
 print("The slow run's steps by the path that answered their LCP, each path's mean / worst instructions:")
 print()
