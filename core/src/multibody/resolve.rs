@@ -466,6 +466,23 @@ mod tests {
             self.flagged += u32::from(flagged);
             self.flagged_four += u32::from(flagged && k == 4);
         }
+
+        /// Checks a run's steps, at most `max_steps`: `next` hands the stepper before a step and
+        /// takes the step (`false`: the run ended).
+        fn steps<T: Real + core::fmt::Debug, const P: usize, const N: usize>(
+            &mut self,
+            max_steps: u32,
+            mut next: impl FnMut() -> (crate::multibody::Stepper<T, 2, P, N>, bool),
+        ) {
+            for _ in 0..max_steps {
+                let (mut stepper, more) = next();
+                stepper.refill().expect("room for the contacts");
+                self.add(check_step(&stepper.lcp.factored));
+                if !more {
+                    break;
+                }
+            }
+        }
     }
 
     /// Block-on-block runs over the pull, the friction between the blocks and the top block's
@@ -484,14 +501,7 @@ mod tests {
                         ..BlockOnBlockParams::default()
                     };
                     let mut scene = BlockOnBlock::new(params).expect("valid parameters");
-                    for _ in 0..max_steps {
-                        let mut stepper = scene.stepper().clone();
-                        stepper.refill().expect("room for the contacts");
-                        sweep.add(check_step(&stepper.lcp.factored));
-                        if scene.step().is_none() {
-                            break;
-                        }
-                    }
+                    sweep.steps(max_steps, || (scene.stepper().clone(), scene.step().is_some()));
                 }
             }
         }
@@ -512,14 +522,7 @@ mod tests {
                         ..TableclothParams::default()
                     };
                     let mut scene = Tablecloth::new(params).expect("valid parameters");
-                    for _ in 0..max_steps {
-                        let mut stepper = scene.stepper().clone();
-                        stepper.refill().expect("room for the contacts");
-                        sweep.add(check_step(&stepper.lcp.factored));
-                        if scene.step().is_none() {
-                            break;
-                        }
-                    }
+                    sweep.steps(max_steps, || (scene.stepper().clone(), scene.step().is_some()));
                 }
             }
         }
