@@ -434,33 +434,21 @@ fn invalid_parameters_are_refused_by_name() {
     assert_eq!(Stack3::new(StackParams { step: 20.0, ..s }).err(), Some(ParamError::OutOfRange("step")));
 }
 
+/// The hand-built systems' step: 1 ms, `g` 9.81 m/s^2, stick below 1e-5 m/s, a 1 mm margin.
+const SETTINGS: Settings<f64> = Settings {
+    base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+    margin: 1e-3,
+};
+
 /// Two equal boxes, one exactly on the other, on a floor; `force` pulls the lower one.
 fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
     let block = Body::block(1.0, 0.2, 0.1);
     let system = System {
         bodies: [block; 2],
         table: Table::floor(),
-        pairs: [
-            Pair {
-                upper: 0,
-                lower: Support::Table,
-                mu_static: 0.5,
-                mu_kinetic: 0.5,
-                upper_shape: Shape::Box,
-            },
-            Pair {
-                upper: 1,
-                lower: Support::Body(0),
-                mu_static: 0.5,
-                mu_kinetic: 0.5,
-                upper_shape: Shape::Box,
-            },
-        ],
+        pairs: [Pair::boxed(0, Support::Table, 0.5, 0.5), Pair::boxed(1, Support::Body(0), 0.5, 0.5)],
         forces: [[force, 0.0], [0.0; 2]],
-        settings: Settings {
-            base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
-            margin: 1e-3,
-        },
+        settings: SETTINGS,
     };
     Stepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
         .expect("a valid system")
@@ -483,18 +471,9 @@ fn aligned_edges_make_one_contact_each() {
     let system = System {
         bodies: [block],
         table: Table { lo: None, hi: Some(0.05) },
-        pairs: [Pair {
-            upper: 0,
-            lower: Support::Table,
-            mu_static: 0.5,
-            mu_kinetic: 0.5,
-            upper_shape: Shape::Box,
-        }],
+        pairs: [Pair::boxed(0, Support::Table, 0.5, 0.5)],
         forces: [[0.0; 2]],
-        settings: Settings {
-            base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
-            margin: 1e-3,
-        },
+        settings: SETTINGS,
     };
     let edge = Stepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, 0.05, 0.0)]).expect("valid");
     assert_eq!(edge.frames()[0].map(|f| f.active), [true, false, false, true]);
@@ -859,10 +838,6 @@ fn a_disc_rolls_on_a_pulled_board_at_a_third_of_its_acceleration_in_f32() {
 /// diameter) differ and a body two pairs give two shapes; named by the field.
 #[test]
 fn a_disc_is_only_an_upper_body() {
-    let settings = Settings {
-        base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
-        margin: 1e-3,
-    };
     let (disc, block) = (Body::disc(1.0, 0.05), Body::block(1.0, 0.1, 0.1));
     let pair = |upper: u8, lower: Support, upper_shape: Shape| Pair {
         upper,
@@ -873,7 +848,8 @@ fn a_disc_is_only_an_upper_body() {
     };
     let states = [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)];
     let build = |bodies: [Body<f64>; 2], pairs: [Pair<f64>; 2]| {
-        let system = System { bodies, table: Table::floor(), pairs, forces: [[0.0; 2]; 2], settings };
+        let system =
+            System { bodies, table: Table::floor(), pairs, forces: [[0.0; 2]; 2], settings: SETTINGS };
         Stepper::<f64, 2, 2, 16>::new(system, states).err()
     };
     // The disc on a block on the floor: valid.
@@ -956,27 +932,9 @@ fn a_disc_s_rim_frame_on_a_tilted_board_is_the_text_s() {
             let system = System {
                 bodies: [Body::block(2.0, length, height), Body::disc(1.0, r)],
                 table: Table::floor(),
-                pairs: [
-                    Pair {
-                        upper: 0,
-                        lower: Support::Table,
-                        mu_static: 0.5,
-                        mu_kinetic: 0.5,
-                        upper_shape: Shape::Box,
-                    },
-                    Pair {
-                        upper: 1,
-                        lower: Support::Body(0),
-                        mu_static: 0.5,
-                        mu_kinetic: 0.5,
-                        upper_shape: Shape::Disc,
-                    },
-                ],
+                pairs: [Pair::boxed(0, Support::Table, 0.5, 0.5), Pair::disc(1, Support::Body(0), 0.5, 0.5)],
                 forces: [[0.0; 2]; 2],
-                settings: Settings {
-                    base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
-                    margin: 1e-3,
-                },
+                settings: SETTINGS,
             };
             let stepper = Stepper::<f64, 2, 2, 24>::new(system, [board, BodyState::at_rest(c[0], c[1], 0.7)])
                 .expect("a valid system");
@@ -1011,13 +969,7 @@ fn a_disc_pushed_on_the_table_rolls_at_two_thirds_of_f_over_m() {
         let system = System {
             bodies: [Body::disc(m, r)],
             table: Table::floor(),
-            pairs: [Pair {
-                upper: 0,
-                lower: Support::Table,
-                mu_static: mu_s,
-                mu_kinetic: mu_k,
-                upper_shape: Shape::Disc,
-            }],
+            pairs: [Pair::disc(0, Support::Table, mu_s, mu_k)],
             forces: [[force, 0.0]],
             settings: Settings {
                 base: meterstick_core::planar::Settings { step: 1e-3, gravity: g, stick_speed: 1e-5 },

@@ -1041,7 +1041,7 @@ mod tests {
     use super::Factored;
     use crate::lcp::{Basis, Lcp, Lemke, default_tolerance, verify};
     use crate::multibody::stepper::slot_rows;
-    use crate::multibody::{Pair, Settings, Shape, Stepper, Support, System, Table};
+    use crate::multibody::{Pair, Settings, Stepper, Support, System, Table};
     use crate::planar::{Body, BodyState};
 
     /// The LCP's capacity (block-on-block's).
@@ -1095,20 +1095,8 @@ mod tests {
             bodies: [Body::block(c.masses[0], w0, h0), Body::block(c.masses[1], w1, h1)],
             table: Table::floor(),
             pairs: [
-                Pair {
-                    upper: 0,
-                    lower: Support::Table,
-                    mu_static: c.mu[0],
-                    mu_kinetic: c.mu[0],
-                    upper_shape: Shape::Box,
-                },
-                Pair {
-                    upper: 1,
-                    lower: Support::Body(0),
-                    mu_static: c.mu[1],
-                    mu_kinetic: 0.5 * c.mu[1],
-                    upper_shape: Shape::Box,
-                },
+                Pair::boxed(0, Support::Table, c.mu[0], c.mu[0]),
+                Pair::boxed(1, Support::Body(0), c.mu[1], 0.5 * c.mu[1]),
             ],
             forces: [[c.force, 0.0], [0.0; 2]],
             settings: Settings {

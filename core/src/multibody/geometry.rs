@@ -71,6 +71,20 @@ pub struct Pair<T> {
     pub upper_shape: Shape,
 }
 
+impl<T> Pair<T> {
+    /// A box `upper` resting on `lower` by its corners, with the pair's friction coefficients.
+    #[must_use]
+    pub const fn boxed(upper: u8, lower: Support, mu_static: T, mu_kinetic: T) -> Self {
+        Self { upper, lower, mu_static, mu_kinetic, upper_shape: Shape::Box }
+    }
+
+    /// A disc `upper` resting on `lower` by its rim, with the pair's friction coefficients.
+    #[must_use]
+    pub const fn disc(upper: u8, lower: Support, mu_static: T, mu_kinetic: T) -> Self {
+        Self { upper, lower, mu_static, mu_kinetic, upper_shape: Shape::Disc }
+    }
+}
+
 /// The four candidate contacts of a pair, in their order (`docs/formulation.md`, "Bodies, table
 /// and order").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -394,10 +408,7 @@ fn four_frames<T: Real, const B: usize>(
     for (k, x) in [-upper.half[0], upper.half[0]].into_iter().enumerate() {
         let point = upper.world([x, -upper.half[1]]);
         let (along, gap) = top.locate(point);
-        let in_rule = match lower {
-            Some((_, p)) => along.abs_exact() <= p.half[0] && gap >= -p.half[1],
-            None => table.covers(along),
-        };
+        let in_rule = on_top(lower, table, along, gap);
         let located = Located { corner: upper_owner, face: lower, point, normal: top.normal, along, gap };
         settle(&mut frames[k], in_rule, &located, &reach);
     }
@@ -418,6 +429,19 @@ fn four_frames<T: Real, const B: usize>(
         let in_rule = along.abs_exact() < upper.half[0] && gap >= -upper.half[1];
         let located = Located { corner: lower, face: upper_owner, point, normal: bottom.normal, along, gap };
         settle(&mut frames[k], in_rule, &located, &reach);
+    }
+}
+
+/// The rule for a point of the upper body at `along`, `gap` on the lower's top face (`lower`:
+/// its owner, `None` for the table): over the face, `|s| <= w / 2` with its ends included
+/// (`lo <= s <= hi` on the table), and not past its owner's centre line, `psi >= -hgt / 2` (no
+/// limit on the table).
+#[allow(clippy::inline_always)] // in the four candidates' loop, `lower`'s variant known there
+#[inline(always)]
+fn on_top<T: Real>(lower: Owner<'_, T>, table: &Table<T>, along: T, gap: T) -> bool {
+    match lower {
+        Some((_, p)) => along.abs_exact() <= p.half[0] && gap >= -p.half[1],
+        None => table.covers(along),
     }
 }
 
@@ -525,10 +549,7 @@ pub(crate) fn rim_frames<T: Real, const B: usize>(
     let point = [disc.com[0] - radius * top.normal[0], disc.com[1] - radius * top.normal[1]];
     let (along, gap) = top.locate(point);
     (frames[0].along, frames[0].gap) = (along, gap);
-    let in_rule = match lower {
-        Some((_, p)) => along.abs_exact() <= p.half[0] && gap >= -p.half[1],
-        None => table.covers(along),
-    };
+    let in_rule = on_top(lower, table, along, gap);
     let touch = T::of(64.0) * T::EPS * (disc.height + lower.map_or(T::zero(), |(_, p)| p.height));
     let located =
         Located { corner: Some((pair.upper, disc)), face: lower, point, normal: top.normal, along, gap };

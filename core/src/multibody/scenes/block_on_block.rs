@@ -1,7 +1,7 @@
 //! [`BlockOnBlock`]: a block on a block pulled along a floor (`docs/scenes.md`, "block-on-block").
 
 use super::{FullContact, Outcome, Run, settings_of};
-use crate::multibody::{Pair, Shape, StepReport, Support, System, Table};
+use crate::multibody::{Pair, StepReport, Support, System, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -99,20 +99,8 @@ impl<T: Real> BlockOnBlock<T> {
             bodies: [p.bottom(), p.top()],
             table: Table::floor(),
             pairs: [
-                Pair {
-                    upper: 0,
-                    lower: Support::Table,
-                    mu_static: p.mu_floor,
-                    mu_kinetic: p.mu_floor,
-                    upper_shape: Shape::Box,
-                },
-                Pair {
-                    upper: 1,
-                    lower: Support::Body(0),
-                    mu_static: p.mu_static,
-                    mu_kinetic: p.mu_kinetic,
-                    upper_shape: Shape::Box,
-                },
+                Pair::boxed(0, Support::Table, p.mu_floor, p.mu_floor),
+                Pair::boxed(1, Support::Body(0), p.mu_static, p.mu_kinetic),
             ],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
             settings: settings_of!(p),

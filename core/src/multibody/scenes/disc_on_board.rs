@@ -2,7 +2,7 @@
 //! the rim-on-face contact of `docs/formulation.md`).
 
 use super::{BLOCK_ON_BLOCK_ROWS, FullContact, Outcome, Run, settings_of};
-use crate::multibody::{Pair, Shape, StepReport, Support, System, Table};
+use crate::multibody::{Pair, StepReport, Support, System, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -97,20 +97,8 @@ impl<T: Real> DiscOnBoard<T> {
             bodies: [p.board(), p.disc()],
             table: Table::floor(),
             pairs: [
-                Pair {
-                    upper: 0,
-                    lower: Support::Table,
-                    mu_static: p.mu_floor,
-                    mu_kinetic: p.mu_floor,
-                    upper_shape: Shape::Box,
-                },
-                Pair {
-                    upper: 1,
-                    lower: Support::Body(0),
-                    mu_static: p.mu_static,
-                    mu_kinetic: p.mu_kinetic,
-                    upper_shape: Shape::Disc,
-                },
+                Pair::boxed(0, Support::Table, p.mu_floor, p.mu_floor),
+                Pair::disc(1, Support::Body(0), p.mu_static, p.mu_kinetic),
             ],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
             settings: settings_of!(p),

@@ -2,7 +2,7 @@
 //! "stack").
 
 use super::{Outcome, Run, point_speed_bound, settings_of};
-use crate::multibody::{Pair, Shape, StepReport, Support, System, Table};
+use crate::multibody::{Pair, StepReport, Support, System, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -105,16 +105,9 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
         let p = params;
         let block = Body::block(p.mass, p.length, p.height);
         let (mu_static, mu_kinetic) = (p.mu_static, p.mu_kinetic);
-        let mut pairs =
-            [Pair { upper: 0, lower: Support::Table, mu_static, mu_kinetic, upper_shape: Shape::Box }; B];
+        let mut pairs = [Pair::boxed(0, Support::Table, mu_static, mu_kinetic); B];
         for (i, pair) in pairs.iter_mut().enumerate().skip(1) {
-            *pair = Pair {
-                upper: i as u8,
-                lower: Support::Body(i as u8 - 1),
-                mu_static,
-                mu_kinetic,
-                upper_shape: Shape::Box,
-            };
+            *pair = Pair::boxed(i as u8, Support::Body(i as u8 - 1), mu_static, mu_kinetic);
         }
         let system = System {
             bodies: [block; B],

@@ -1,7 +1,7 @@
 //! [`Tablecloth`]: a board pulled from under a block (`docs/scenes.md`, "tablecloth").
 
 use super::{FullContact, Outcome, Run, settings_of};
-use crate::multibody::{Pair, Shape, StepReport, Support, System, Table};
+use crate::multibody::{Pair, StepReport, Support, System, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -97,27 +97,11 @@ impl<T: Real> Tablecloth<T> {
         params.validate()?;
         let p = params;
         let half = T::of(0.5);
-        let floor = |upper| Pair {
-            upper,
-            lower: Support::Table,
-            mu_static: p.mu_floor,
-            mu_kinetic: p.mu_floor,
-            upper_shape: Shape::Box,
-        };
+        let floor = |upper| Pair::boxed(upper, Support::Table, p.mu_floor, p.mu_floor);
         let system = System {
             bodies: [p.board(), p.block()],
             table: Table::floor(),
-            pairs: [
-                floor(0),
-                Pair {
-                    upper: 1,
-                    lower: Support::Body(0),
-                    mu_static: p.mu_static,
-                    mu_kinetic: p.mu_kinetic,
-                    upper_shape: Shape::Box,
-                },
-                floor(1),
-            ],
+            pairs: [floor(0), Pair::boxed(1, Support::Body(0), p.mu_static, p.mu_kinetic), floor(1)],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
             settings: settings_of!(p),
         };
