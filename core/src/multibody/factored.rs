@@ -170,6 +170,23 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     finished_k: usize,
     /// Some slot's cone row is weighted (`mu >= MU_WEIGHTED_FROM`, [`crate::planar::cone_scale`]).
     weighted: bool,
+    /// The step's [`ContactBlocks`] of four slots, when [`Self::form_blocks`] formed them
+    /// (`blocks_formed`).
+    blocks: ContactBlocks<T>,
+    /// [`Self::form_blocks`] formed `blocks` this step.
+    blocks_formed: bool,
+}
+
+/// The normal block `N` (lower triangle: `n[i][j]`, `j <= i`) and the friction coupling `C` (by
+/// columns: `c[j][i] = C_ij`) of a step's four slots ([`Factored::contact_blocks`]), formed once
+/// for the step: a basis of sliding contacts takes its system from them (`N + C S mu`,
+/// [`Factored::solve_basis`]) and the rule's detection its test ([`super::resolve::flags`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ContactBlocks<T> {
+    /// `N_ij = c_n,i^T M~ c_n,j`, `j <= i`.
+    pub(super) n: [[T; 4]; 4],
+    /// `C_ij = c_n,i^T M~ c_+d,j` at `c[j][i]`.
+    pub(super) c: [[T; 4]; 4],
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
@@ -189,6 +206,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             columns_finite: AllFinite::new(),
             finished_k: usize::MAX,
             weighted: false,
+            blocks: ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] },
+            blocks_formed: false,
         }
     }
 
@@ -201,6 +220,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.m_low = T::one();
         self.columns_finite = AllFinite::new();
         self.weighted = false;
+        self.blocks_formed = false;
         self.q_norm = T::zero();
         // Above every row's `q` but the identity's (a step with slots has sigma rows, `q = 0`).
         self.q_min = T::one();
@@ -343,6 +363,43 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// `true` when some slot's cone row is weighted ([`Self::assemble`]).
     pub(super) const fn is_weighted(&self) -> bool {
         self.weighted
+    }
+
+    /// Forms the step's [`ContactBlocks`] when it has four slots and the basis `mask` (bit `v`:
+    /// `z_v` basic) slides at every touching slot ([`Self::only_sliding`]): the warm basis of
+    /// block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and detection
+    /// ([`super::resolve::flags`]) both read them. Any other step forms none (a resting stack's
+    /// sticking bases take their system from the columns and its detection never runs).
+    pub(super) fn form_blocks(&mut self, mask: u32) {
+        if self.slots() == 4 && self.only_sliding(mask) {
+            let ContactBlocks { n, c } = &mut self.blocks;
+            contact_blocks(&self.cols, 4, 4, n, c);
+            self.blocks_formed = true;
+        }
+    }
+
+    /// The step's [`ContactBlocks`], if [`Self::form_blocks`] formed them.
+    pub(super) const fn blocks(&self) -> Option<&ContactBlocks<T>> {
+        if self.blocks_formed { Some(&self.blocks) } else { None }
+    }
+
+    /// `true` when no slot of the basis `mask` has a basic impulse without its `sigma` basic: every
+    /// unknown of [`Self::solve_basis`] is a normal impulse with its friction row following.
+    fn only_sliding(&self, mask: u32) -> bool {
+        let k = self.slots();
+        let low = |bits: u32, from: usize, count: usize| {
+            bits.checked_shr(from as u32).unwrap_or(0) & ((1 << count) - 1)
+        };
+        // Per slot `j`: bit `j` of the normals, of either friction row, of the sigmas.
+        let normals = low(mask, 0, k);
+        let sigmas = low(mask, 3 * k, k);
+        let mut frictions = 0u32;
+        for j in 0..k {
+            if low(mask, k + 2 * j, 2) != 0 {
+                frictions |= 1 << j;
+            }
+        }
+        (normals | frictions) & !sigmas == 0
     }
 
     /// Active slots `k`.
@@ -593,7 +650,47 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
         // The two copies specialised to a count of unknowns are left out with `compact` (the
         // general one below does the same operations in the same order: the same bits).
-        let (solved, mut y) = if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {
+        let from_blocks = self.blocks().filter(|_| follower[..m].iter().all(|&f| f < N));
+        let (solved, mut y) = if let Some(blocks) = from_blocks {
+            // Every unknown a sliding slot's normal impulse (`var` its slot), its friction row
+            // following at `+-mu` (`+d`: `+`): `a_rl = N_rl + (+-mu_l) C_rl` from the step's
+            // blocks.
+            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
+            let m4 = m.min(4);
+            // Unknown `l`'s column: slot `j`'s, its friction row `+d` (`+mu`) or `-d` (`-mu`).
+            let signed = |l: usize, j: usize| {
+                let mu = self.mu[j];
+                if follower[l].wrapping_sub(self.k) & 1 == 0 { mu } else { -mu }
+            };
+            let entry = |i: usize, j: usize, signed: T| {
+                let normal = if j <= i { blocks.n[i][j] } else { blocks.n[j][i] };
+                normal + signed * blocks.c[j][i]
+            };
+            let solved = if m4 == 4 {
+                // Every slot sliding: unknown `l` is slot `l`'s (bounds constant: unrolled).
+                for l in 0..4 {
+                    let mu = signed(l, l);
+                    for r in 0..4 {
+                        a[r][l] = entry(r, l, mu);
+                    }
+                    rhs[l] = -self.q[l];
+                }
+                solve_four(&mut a, &mut rhs, tiny)
+            } else {
+                for l in 0..m4 {
+                    let j = usize::from(var[l]).min(3);
+                    let mu = signed(l, j);
+                    for r in 0..m4 {
+                        a[r][l] = entry(usize::from(var[r]).min(3), j, mu);
+                    }
+                    rhs[l] = -self.q[j];
+                }
+                solve_small(&mut a, &mut rhs, m4, tiny)
+            };
+            let [y0, y1, y2, y3] = rhs;
+            let zero = T::zero();
+            (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+        } else if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {
             // Every unknown, none with a follower (the 3-block stack's every step): the lower
             // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
             // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
@@ -814,60 +911,77 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         y[l] = -self.q[usize::from(var[l]).min(N - 1)];
     }
 
-    /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
-    /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
-    /// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
-    /// left as given. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of each
-    /// body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij` (`j <= i`)
-    /// share one comparison of the two slots' bodies (when each slot's normal and friction columns
-    /// touch the same bodies, as [`Self::set_slot`] writes them; checked once, and otherwise each
-    /// entry on its own). That is the dense sum over the bodies' `3B` coordinates,
-    /// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1`, exactly for finite columns (those of
-    /// every step solved: a non-finite one is refused first, [`Self::is_finite`]) up to a zero's
-    /// sign: a body the two columns do not share adds a signed zero (`0 x finite`) to the dense
-    /// sum, which changes no sum but a zero's sign, and a column touches at most two bodies, so at
-    /// most two non-zero terms are added, in either order the same (IEEE addition commutes). No
-    /// decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
-    /// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
-    #[inline]
-    pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
-        let k = self.slots();
-        let rows = k.min(K);
-        let col = |v: usize| &self.cols[v.min(N - 1)];
-        // Each slot's normal and friction columns touch the same bodies (as `set_slot` writes them).
-        let bodies = |v: usize| u16::from_ne_bytes(col(v).body);
-        let mut paired = true;
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // `rows` a constant in the four slots' copy: its loops unrolled
+    pub(super) fn contact_blocks<const K: usize>(
+        &self,
+        rows: usize,
+        n: &mut [[T; K]; K],
+        c: &mut [[T; K]; K],
+    ) {
+        contact_blocks(&self.cols, self.slots(), rows, n, c);
+    }
+}
+
+/// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
+/// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
+/// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
+/// left as given. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of each
+/// body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij` (`j <= i`)
+/// share one comparison of the two slots' bodies (when each slot's normal and friction columns
+/// touch the same bodies, as [`Factored::set_slot`] writes them; checked once, and otherwise each
+/// entry on its own). That is the dense sum over the bodies' `3B` coordinates,
+/// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1`, exactly for finite columns (those of
+/// every step solved: a non-finite one is refused first, [`Factored::is_finite`]) up to a zero's
+/// sign: a body the two columns do not share adds a signed zero (`0 x finite`) to the dense
+/// sum, which changes no sum but a zero's sign, and a column touches at most two bodies, so at
+/// most two non-zero terms are added, in either order the same (IEEE addition commutes). No
+/// decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
+/// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
+#[inline(always)]
+#[allow(clippy::inline_always)] // `rows` a constant in the four slots' copy: its loops unrolled
+fn contact_blocks<T: Real, const N: usize, const K: usize>(
+    cols: &[Column<T>; N],
+    k: usize,
+    rows: usize,
+    n: &mut [[T; K]; K],
+    c: &mut [[T; K]; K],
+) {
+    let rows = rows.min(k).min(K);
+    let col = |v: usize| &cols[v.min(N - 1)];
+    // Each slot's normal and friction columns touch the same bodies (as `set_slot` writes them).
+    let bodies = |v: usize| u16::from_ne_bytes(col(v).body);
+    let mut paired = true;
+    for i in 0..rows {
+        paired &= bodies(i) == bodies(k + 2 * i);
+    }
+    for j in 0..rows {
+        let (a, f) = (col(j), col(k + 2 * j));
         for i in 0..rows {
-            paired &= bodies(i) == bodies(k + 2 * i);
-        }
-        for j in 0..rows {
-            let (a, f) = (col(j), col(k + 2 * j));
-            for i in 0..rows {
-                let (u, g) = (col(i), col(k + 2 * i));
-                if j > i {
-                    // `C_ji` was written with `(j, i)`.
-                } else if paired {
-                    // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies: each
-                    // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
-                    // twice, the same).
-                    let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
-                    for p in 0..2 {
-                        for r in 0..2 {
-                            if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
-                                normal += dot3(&u.c[p], &a.mc[r]);
-                                friction_j += dot3(&u.c[p], &f.mc[r]);
-                                friction_i += dot3(&a.c[r], &g.mc[p]);
-                            }
+            let (u, g) = (col(i), col(k + 2 * i));
+            if j > i {
+                // `C_ji` was written with `(j, i)`.
+            } else if paired {
+                // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies: each
+                // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
+                // twice, the same).
+                let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
+                for p in 0..2 {
+                    for r in 0..2 {
+                        if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
+                            normal += dot3(&u.c[p], &a.mc[r]);
+                            friction_j += dot3(&u.c[p], &f.mc[r]);
+                            friction_i += dot3(&a.c[r], &g.mc[p]);
                         }
                     }
-                    n[i][j] = normal;
-                    c[j][i] = friction_j;
-                    c[i][j] = friction_i;
-                } else {
-                    n[i][j] = u.dot_scaled(a);
-                    c[j][i] = u.dot_scaled(f);
-                    c[i][j] = a.dot_scaled(g);
                 }
+                n[i][j] = normal;
+                c[j][i] = friction_j;
+                c[i][j] = friction_i;
+            } else {
+                n[i][j] = u.dot_scaled(a);
+                c[j][i] = u.dot_scaled(f);
+                c[i][j] = a.dot_scaled(g);
             }
         }
     }
@@ -1004,6 +1118,12 @@ fn ldl_back<T: Real>(
         x -= a[i][k] * rhs[k];
     }
     rhs[i] = x;
+}
+
+/// [`solve_leading`] with at most four unknowns (fewer than [`solve_four`]'s), in a `4 x 4` array.
+#[inline(never)]
+fn solve_small<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], m: usize, tiny: T) -> bool {
+    solve_leading(a, rhs, m, tiny)
 }
 
 /// [`solve_leading`] with four unknowns (two interfaces of two corners each sliding, each `p_n`

@@ -98,23 +98,42 @@ impl<T: Real, const B: usize> Detector<T, B> {
 pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, N>) -> bool {
     // Four contacts (two interfaces of two corners: block-on-block's step) with every bound a
     // constant; any other count (at most `N / 4 <= 8`) in arrays of eight.
-    match f.slots() {
-        4 if !cfg!(feature = "compact") => flags_of::<T, B, N, 4>(f, 4),
-        k => flags_of::<T, B, N, 8>(f, k.min(8)),
+    // The step's blocks when its solve formed them ([`Factored::form_blocks`]), else from the
+    // columns.
+    match (f.slots(), f.blocks()) {
+        (4, Some(blocks)) if !cfg!(feature = "compact") => coupled::<T, B, N, 4>(f, 4, &blocks.n, &blocks.c),
+        (4, None) if !cfg!(feature = "compact") => {
+            let (mut n, mut c) = ([[T::zero(); 4]; 4], [[T::zero(); 4]; 4]);
+            f.contact_blocks(4, &mut n, &mut c);
+            coupled::<T, B, N, 4>(f, 4, &n, &c)
+        }
+        (k, blocks) => {
+            let (mut n, mut c) = ([[T::zero(); 8]; 8], [[T::zero(); 8]; 8]);
+            if let Some(blocks) = blocks {
+                for i in 0..4 {
+                    n[i][..4].copy_from_slice(&blocks.n[i]);
+                    c[i][..4].copy_from_slice(&blocks.c[i]);
+                }
+            } else {
+                f.contact_blocks(k, &mut n, &mut c);
+            }
+            coupled::<T, B, N, 8>(f, k.min(8), &n, &c)
+        }
     }
 }
 
-/// [`flags`] for `k <= MOST` contacts.
+/// [`flags`] for `k <= MOST` contacts from their blocks `N` (lower triangle) and `C` (by columns,
+/// [`Factored::contact_blocks`]).
 #[allow(clippy::inline_always)] // `k` a constant in the four contacts' copy: its loops unrolled
 #[inline(always)]
-fn flags_of<T: Real, const B: usize, const N: usize, const MOST: usize>(
+fn coupled<T: Real, const B: usize, const N: usize, const MOST: usize>(
     f: &Factored<T, B, N>,
     k: usize,
+    n: &[[T; MOST]; MOST],
+    c: &[[T; MOST]; MOST],
 ) -> bool {
     let k = k.min(MOST);
     let round_off = T::of(64.0) * T::EPS;
-    let (mut n, mut c) = ([[T::zero(); MOST]; MOST], [[T::zero(); MOST]; MOST]);
-    f.contact_blocks(&mut n, &mut c);
     // `N = L D L^T` by rows.
     let mut l = [[T::zero(); MOST]; MOST];
     let mut d = [T::zero(); MOST];
@@ -438,7 +457,7 @@ mod tests {
     fn check_step<T: Real + core::fmt::Debug, const N: usize>(f: &Factored<T, 2, N>) -> (usize, bool) {
         let k = f.slots();
         let (mut n, mut c) = ([[T::zero(); 8]; 8], [[T::zero(); 8]; 8]);
-        f.contact_blocks(&mut n, &mut c);
+        f.contact_blocks(k, &mut n, &mut c);
         for i in 0..k {
             for j in 0..k {
                 if j <= i {

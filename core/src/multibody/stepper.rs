@@ -451,6 +451,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             warm |= pattern_bits(self.patterns[p][c], k, j);
         }
         out.factored.finish();
+        out.factored.form_blocks(warm);
         out.k = k;
         out.active = active;
         out.warm = Basis::from_z_mask(warm);
