@@ -652,44 +652,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // general one below does the same operations in the same order: the same bits).
         let from_blocks = self.blocks().filter(|_| follower[..m].iter().all(|&f| f < N));
         let (solved, mut y) = if let Some(blocks) = from_blocks {
-            // Every unknown a sliding slot's normal impulse (`var` its slot), its friction row
-            // following at `+-mu` (`+d`: `+`): `a_rl = N_rl + (+-mu_l) C_rl` from the step's
-            // blocks.
-            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
-            let m4 = m.min(4);
-            // Unknown `l`'s column: slot `j`'s, its friction row `+d` (`+mu`) or `-d` (`-mu`).
-            let signed = |l: usize, j: usize| {
-                let mu = self.mu[j];
-                if follower[l].wrapping_sub(self.k) & 1 == 0 { mu } else { -mu }
-            };
-            let entry = |i: usize, j: usize, signed: T| {
-                let normal = if j <= i { blocks.n[i][j] } else { blocks.n[j][i] };
-                normal + signed * blocks.c[j][i]
-            };
-            let solved = if m4 == 4 {
-                // Every slot sliding: unknown `l` is slot `l`'s (bounds constant: unrolled).
-                for l in 0..4 {
-                    let mu = signed(l, l);
-                    for r in 0..4 {
-                        a[r][l] = entry(r, l, mu);
-                    }
-                    rhs[l] = -self.q[l];
-                }
-                solve_four(&mut a, &mut rhs, tiny)
-            } else {
-                for l in 0..m4 {
-                    let j = usize::from(var[l]).min(3);
-                    let mu = signed(l, j);
-                    for r in 0..m4 {
-                        a[r][l] = entry(usize::from(var[r]).min(3), j, mu);
-                    }
-                    rhs[l] = -self.q[j];
-                }
-                solve_small(&mut a, &mut rhs, m4, tiny)
-            };
-            let [y0, y1, y2, y3] = rhs;
-            let zero = T::zero();
-            (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+            self.solve_sliding(blocks, (&var, &follower), m, tiny)
         } else if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {
             // Every unknown, none with a follower (the 3-block stack's every step): the lower
             // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
@@ -875,6 +838,58 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
+    /// [`Self::solve_basis`]'s system when every unknown is a sliding slot's normal impulse with
+    /// its friction row following ([`Self::only_sliding`]), from the step's [`ContactBlocks`]:
+    /// `a_rl = N_rl + (+-mu_l) C_rl`; whether it was regular, and the unknowns. Out of line: the
+    /// other bases' solve is compiled as without it.
+    #[inline(never)]
+    fn solve_sliding(
+        &self,
+        blocks: &ContactBlocks<T>,
+        (var, follower): (&[u8; UNKNOWNS], &[usize; UNKNOWNS]),
+        m: usize,
+        tiny: T,
+    ) -> (bool, [T; UNKNOWNS]) {
+        // Every unknown a sliding slot's normal impulse (`var` its slot), its friction row
+        // following at `+-mu` (`+d`: `+`): `a_rl = N_rl + (+-mu_l) C_rl` from the step's
+        // blocks.
+        let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
+        let m4 = m.min(4);
+        // Unknown `l`'s column: slot `j`'s, its friction row `+d` (`+mu`) or `-d` (`-mu`).
+        let signed = |l: usize, j: usize| {
+            let mu = self.mu[j];
+            if follower[l].wrapping_sub(self.k) & 1 == 0 { mu } else { -mu }
+        };
+        let entry = |i: usize, j: usize, signed: T| {
+            let normal = if j <= i { blocks.n[i][j] } else { blocks.n[j][i] };
+            normal + signed * blocks.c[j][i]
+        };
+        let solved = if m4 == 4 {
+            // Every slot sliding: unknown `l` is slot `l`'s (bounds constant: unrolled).
+            for l in 0..4 {
+                let mu = signed(l, l);
+                for r in 0..4 {
+                    a[r][l] = entry(r, l, mu);
+                }
+                rhs[l] = -self.q[l];
+            }
+            solve_four(&mut a, &mut rhs, tiny)
+        } else {
+            for l in 0..m4 {
+                let j = usize::from(var[l]).min(3);
+                let mu = signed(l, j);
+                for r in 0..m4 {
+                    a[r][l] = entry(usize::from(var[r]).min(3), j, mu);
+                }
+                rhs[l] = -self.q[j];
+            }
+            solve_small(&mut a, &mut rhs, m4, tiny)
+        };
+        let [y0, y1, y2, y3] = rhs;
+        let zero = T::zero();
+        (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+    }
+
     /// Column `l` of [`Self::solve_basis`]'s system and its right-hand side: unknown `l`'s
     /// column `G_l = c_var + mu c_follower` (the same bodies), each row's `c_r^T M~ G_l`, taken
     /// from its mirror between two unknowns without a follower when that is already formed
