@@ -170,11 +170,6 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     finished_k: usize,
     /// Some slot's cone row is weighted (`mu >= MU_WEIGHTED_FROM`, [`crate::planar::cone_scale`]).
     weighted: bool,
-    /// The step's [`ContactBlocks`] of four slots, when [`Self::form_blocks`] formed them
-    /// (`blocks_formed`).
-    blocks: ContactBlocks<T>,
-    /// [`Self::form_blocks`] formed `blocks` this step.
-    blocks_formed: bool,
 }
 
 /// The normal block `N` (lower triangle: `n[i][j]`, `j <= i`) and the friction coupling `C` (by
@@ -206,8 +201,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             columns_finite: AllFinite::new(),
             finished_k: usize::MAX,
             weighted: false,
-            blocks: ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] },
-            blocks_formed: false,
         }
     }
 
@@ -220,7 +213,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.m_low = T::one();
         self.columns_finite = AllFinite::new();
         self.weighted = false;
-        self.blocks_formed = false;
         self.q_norm = T::zero();
         // Above every row's `q` but the identity's (a step with slots has sigma rows, `q = 0`).
         self.q_min = T::one();
@@ -365,22 +357,18 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.weighted
     }
 
-    /// Forms the step's [`ContactBlocks`] when it has four slots and the basis `mask` (bit `v`:
-    /// `z_v` basic) slides at every touching slot ([`Self::only_sliding`]): the warm basis of
+    /// The step's [`ContactBlocks`] when it has four slots and the basis `mask` (bit `v`: `z_v`
+    /// basic) slides at every touching slot ([`Self::only_sliding`]): the warm basis of
     /// block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and detection
-    /// ([`super::resolve::flags`]) both read them. Any other step forms none (a resting stack's
-    /// sticking bases take their system from the columns and its detection never runs).
-    pub(super) fn form_blocks(&mut self, mask: u32) {
-        if self.slots() == 4 && self.only_sliding(mask) {
-            let ContactBlocks { n, c } = &mut self.blocks;
-            contact_blocks(&self.cols, 4, 4, n, c);
-            self.blocks_formed = true;
+    /// ([`super::resolve::flags`]) both read them. `None` for any other step (a resting stack's
+    /// sticking bases take their system from the columns, and its detection never runs).
+    pub(super) fn form_blocks(&self, mask: u32) -> Option<ContactBlocks<T>> {
+        if self.slots() != 4 || !self.only_sliding(mask) {
+            return None;
         }
-    }
-
-    /// The step's [`ContactBlocks`], if [`Self::form_blocks`] formed them.
-    pub(super) const fn blocks(&self) -> Option<&ContactBlocks<T>> {
-        if self.blocks_formed { Some(&self.blocks) } else { None }
+        let mut blocks = ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] };
+        contact_blocks(&self.cols, 4, 4, &mut blocks.n, &mut blocks.c);
+        Some(blocks)
     }
 
     /// `true` when no slot of the basis `mask` has a basic impulse without its `sigma` basic: every
@@ -588,7 +576,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// The complementary solution of the basis `mask` (bit `v`: `z_v` basic) in the bodies'
     /// coordinates, verified within `tolerance` (module docs), written into `z` (and `w`, when
     /// given: the stepper's paths need only `z`); returns `v+` and the basis answered, or why there
-    /// is none.
+    /// is none. With the step's `blocks` ([`Self::form_blocks`]), a basis whose every unknown is a
+    /// sliding slot's normal impulse takes its system from them ([`Self::solve_sliding`]).
     ///
     /// # Errors
     /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
@@ -600,6 +589,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         &self,
         mask: u32,
         tolerance: T,
+        blocks: Option<&ContactBlocks<T>>,
         z: &mut [T; N],
         mut w: Option<&mut [T; N]>,
     ) -> Result<Answer<T, B>, Declined> {
@@ -650,7 +640,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
         // The two copies specialised to a count of unknowns are left out with `compact` (the
         // general one below does the same operations in the same order: the same bits).
-        let from_blocks = self.blocks().filter(|_| follower[..m].iter().all(|&f| f < N));
+        let from_blocks = blocks.filter(|_| follower[..m].iter().all(|&f| f < N));
         let (solved, mut y) = if let Some(blocks) = from_blocks {
             self.solve_sliding(blocks, (&var, &follower), m, tiny)
         } else if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {

@@ -15,7 +15,7 @@
 //! rows outweighs their stiffness (a block tipping about a sticking corner at `mu = 2`: the
 //! Painleve-type case).
 
-use super::factored::Factored;
+use super::factored::{ContactBlocks, Factored};
 use super::geometry::Shape;
 use super::stepper::Stats;
 use super::stepper::{PATTERNS, pattern_bits};
@@ -95,12 +95,14 @@ impl<T: Real, const B: usize> Detector<T, B> {
 /// which no comparison here sees) and the same operations on them as the definition above: the
 /// same decision.
 #[inline(never)] // called only for a step not at rest: out of the resting steps' path
-pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, N>) -> bool {
+pub(super) fn flags<T: Real, const B: usize, const N: usize>(
+    f: &Factored<T, B, N>,
+    blocks: Option<&ContactBlocks<T>>,
+) -> bool {
     // Four contacts (two interfaces of two corners: block-on-block's step) with every bound a
-    // constant; any other count (at most `N / 4 <= 8`) in arrays of eight.
-    // The step's blocks when its solve formed them ([`Factored::form_blocks`]), else from the
-    // columns.
-    match (f.slots(), f.blocks()) {
+    // constant; any other count (at most `N / 4 <= 8`) in arrays of eight. The step's blocks
+    // when it formed them ([`Factored::form_blocks`]), else from the columns.
+    match (f.slots(), blocks) {
         (4, Some(blocks)) if !cfg!(feature = "compact") => coupled::<T, B, N, 4>(f, 4, &blocks.n, &blocks.c),
         (4, None) if !cfg!(feature = "compact") => {
             let (mut n, mut c) = ([[T::zero(); 4]; 4], [[T::zero(); 4]; 4]);
@@ -192,6 +194,7 @@ fn coupled<T: Real, const B: usize, const N: usize, const MOST: usize>(
 pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     detector: &Detector<T, B>,
     f: &Factored<T, B, N>,
+    blocks: Option<&ContactBlocks<T>>,
     tolerance: T,
     answer: (&mut [[T; 3]; B], &mut [T; N], &mut u32),
 ) -> Option<Resolution> {
@@ -200,10 +203,10 @@ pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     }
     let rule = detector.rule(f);
     let (v_plus, z, mask) = answer;
-    if rule.at_least_energy(v_plus) || !flags(f) {
+    if rule.at_least_energy(v_plus) || !flags(f, blocks) {
         return None;
     }
-    Some(resolve(f, rule, tolerance, v_plus, z, mask))
+    Some(resolve(f, blocks, rule, tolerance, v_plus, z, mask))
 }
 
 impl Stats {
@@ -229,6 +232,7 @@ impl Stats {
 #[inline(never)]
 pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
     f: &Factored<T, B, N>,
+    blocks: Option<&ContactBlocks<T>>,
     rule: Rule<T, B>,
     tolerance: T,
     v_plus: &mut [[T; 3]; B],
@@ -255,7 +259,7 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
         if basis == *mask {
             continue;
         }
-        if let Ok(a) = f.solve_basis(basis, tolerance, &mut found, Some(&mut w))
+        if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w))
             && choice.offer(code, Answer::of(a.v_plus, &found))
         {
             best = Some((a.v_plus, a.mask));
