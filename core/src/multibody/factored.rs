@@ -644,33 +644,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let (solved, mut y) = if let Some(blocks) = from_blocks {
             self.solve_sliding(blocks, (&var, &follower), m, tiny)
         } else if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {
-            // Every unknown, none with a follower (the 3-block stack's every step): the lower
-            // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
-            // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
-            // reading it).
-            let mut a = core::array::from_fn(|r| {
-                let row = &self.cols[usize::from(var[r]).min(N - 1)];
-                core::array::from_fn(|l| {
-                    if l <= r {
-                        row.dot_scaled(&self.cols[usize::from(var[l]).min(N - 1)])
-                    } else {
-                        T::zero()
-                    }
-                })
-            });
-            let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
-            (solve_symmetric(&mut a, &mut y, m, tiny), y)
+            self.solve_nine_symmetric(&var, tiny)
         } else if !symmetric && m == 4 && !cfg!(feature = "compact") {
-            // Four unknowns with followers (block-on-block's sliding steps): written out in a
-            // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
-            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
-            for l in [0, 1, 2, 3] {
-                self.form_column(&mut a, &mut rhs, (&var, &follower), l, false, 4);
-            }
-            let solved = solve_four(&mut a, &mut rhs, tiny);
-            let [y0, y1, y2, y3] = rhs;
-            let zero = T::zero();
-            (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+            self.solve_four_following((&var, &follower), tiny)
         } else {
             let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
             let mut y = [T::zero(); UNKNOWNS];
@@ -828,6 +804,45 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
+    /// [`Self::solve_basis`]'s system with every unknown and none with a follower (the 3-block
+    /// stack's every step), out of line: whether it was regular, and the unknowns.
+    #[inline(never)]
+    fn solve_nine_symmetric(&self, var: &[u8; UNKNOWNS], tiny: T) -> (bool, [T; UNKNOWNS]) {
+        // Every unknown, none with a follower (the 3-block stack's every step): the lower
+        // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
+        // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
+        // reading it).
+        let mut a = core::array::from_fn(|r| {
+            let row = &self.cols[usize::from(var[r]).min(N - 1)];
+            core::array::from_fn(|l| {
+                if l <= r { row.dot_scaled(&self.cols[usize::from(var[l]).min(N - 1)]) } else { T::zero() }
+            })
+        });
+        let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
+        (solve_symmetric(&mut a, &mut y, UNKNOWNS, tiny), y)
+    }
+
+    /// [`Self::solve_basis`]'s system of four unknowns with followers formed from the columns (a
+    /// sliding step without [`ContactBlocks`]), out of line: whether it was regular, and the
+    /// unknowns.
+    #[inline(never)]
+    fn solve_four_following(
+        &self,
+        (var, follower): (&[u8; UNKNOWNS], &[usize; UNKNOWNS]),
+        tiny: T,
+    ) -> (bool, [T; UNKNOWNS]) {
+        // Four unknowns with followers (block-on-block's sliding steps): written out in a
+        // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
+        let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
+        for l in [0, 1, 2, 3] {
+            self.form_column(&mut a, &mut rhs, (var, follower), l, false, 4);
+        }
+        let solved = solve_four(&mut a, &mut rhs, tiny);
+        let [y0, y1, y2, y3] = rhs;
+        let zero = T::zero();
+        (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+    }
+
     /// [`Self::solve_basis`]'s system when every unknown is a sliding slot's normal impulse with
     /// its friction row following ([`Self::only_sliding`]), from the step's [`ContactBlocks`]:
     /// `a_rl = N_rl + (+-mu_l) C_rl`; whether it was regular, and the unknowns. Out of line: the
