@@ -362,13 +362,18 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and detection
     /// ([`super::resolve::flags`]) both read them. `None` for any other step (a resting stack's
     /// sticking bases take their system from the columns, and its detection never runs).
+    #[inline]
     pub(super) fn form_blocks(&self, mask: u32) -> Option<ContactBlocks<T>> {
-        if self.slots() != 4 || !self.only_sliding(mask) {
-            return None;
-        }
+        (self.slots() == 4 && self.only_sliding(mask)).then(|| self.four_blocks())
+    }
+
+    /// [`Self::form_blocks`]' blocks of four slots, out of line (a resting stack's step never calls
+    /// it).
+    #[inline(never)]
+    fn four_blocks(&self) -> ContactBlocks<T> {
         let mut blocks = ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] };
         contact_blocks(&self.cols, 4, 4, &mut blocks.n, &mut blocks.c);
-        Some(blocks)
+        blocks
     }
 
     /// `true` when no slot of the basis `mask` has a basic impulse without its `sigma` basic: every
