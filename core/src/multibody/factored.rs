@@ -1266,6 +1266,8 @@ mod tests {
 
     #[derive(Debug, Default)]
     struct Counts {
+        /// Bases also solved with the step's blocks ([`Factored::form_blocks`]).
+        with_blocks: u32,
         accepted: u32,
         lemke_direct: u32,
         declined_where_lemke_answered: u32,
@@ -1286,9 +1288,25 @@ mod tests {
     }
 
     fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
+        check_with(f, lcp, mask, None, counts);
+        // A sliding basis of four slots again with the step's blocks (`N + C S mu`).
+        if let Some(blocks) = f.form_blocks(mask) {
+            counts.with_blocks += 1;
+            check_with(f, lcp, mask, Some(&blocks), &mut Counts::default());
+        }
+    }
+
+    /// [`check`] of one way to solve the basis: without the step's blocks, or with them.
+    fn check_with(
+        f: &Factored<f64, 2, N>,
+        lcp: &Lcp<f64, N>,
+        mask: u32,
+        blocks: Option<&super::ContactBlocks<f64>>,
+        counts: &mut Counts,
+    ) {
         let tolerance = default_tolerance::<f64, N>();
         let (mut z, mut w) = ([0.0; N], [0.0; N]);
-        let answer = f.solve_basis(mask, tolerance, &mut z, Some(&mut w));
+        let answer = f.solve_basis(mask, tolerance, blocks, &mut z, Some(&mut w));
         let direct = Lemke::<f64, N>::new()
             .solve_warm(lcp, Basis::from_z_mask(mask))
             .ok()
@@ -1428,6 +1446,7 @@ mod tests {
         }
         std::println!("{counts:?}");
         assert!(counts.lemke_direct > 500, "{counts:?}");
+        assert!(counts.with_blocks > 100, "{counts:?}");
         assert!(counts.declined_where_lemke_answered * 10 < counts.lemke_direct, "{counts:?}");
     }
 }

@@ -386,14 +386,14 @@ mod tests {
             };
             let several = found.iter().any(|d| differ(&d.v, &chosen.v));
             ambiguous += u32::from(several);
-            flagged += u32::from(flags(f));
+            flagged += u32::from(flags(f, None));
             if several {
                 // Detection: a step with several motions is flagged.
-                assert!(flags(f), "an ambiguous step not flagged");
+                assert!(flags(f, None), "an ambiguous step not flagged");
                 // Whatever solution the path answered, the rule ends on the dense choice.
                 for start in &found {
                     let (mut v, mut z, mut mask) = (start.v, start.z, start.mask);
-                    let r = resolve(f, rule, tolerance, &mut v, &mut z, &mut mask);
+                    let r = resolve(f, None, rule, tolerance, &mut v, &mut z, &mut mask);
                     assert!(r.enumerated && r.ambiguous);
                     assert_eq!(r.changed, differ(&start.v, &chosen.v));
                     assert!(!differ(&v, &chosen.v), "rule {v:?}, enumeration {:?}", chosen.v);
@@ -470,8 +470,14 @@ mod tests {
                 assert_eq!(c[j][i], f.entry(i, k + 2 * j), "C[{i}][{j}]");
             }
         }
-        let flagged = flags(f);
+        let flagged = flags(f, None);
         assert_eq!(flagged, flags_by_entries(f), "k = {k}");
+        // Four slots: the same decision from the blocks a sliding step forms once.
+        let sliding = (0..k).fold(0, |mask, j| mask | super::pattern_bits(super::PATTERNS[2], k, j));
+        if let Some(blocks) = f.form_blocks(sliding) {
+            assert_eq!(k, 4);
+            assert_eq!(flags(f, Some(&blocks)), flagged, "from the step's blocks");
+        }
         (k, flagged)
     }
 
