@@ -863,7 +863,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // Every unknown a sliding slot's normal impulse (`var` its slot), its friction row
         // following at `+-mu` (`+d`: `+`): `a_rl = N_rl + (+-mu_l) C_rl` from the step's
         // blocks.
-        let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
         let m4 = m.min(4);
         // Unknown `l`'s column: slot `j`'s, its friction row `+d` (`+mu`) or `-d` (`-mu`).
         let signed = |l: usize, j: usize| {
@@ -874,17 +873,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             let normal = if j <= i { blocks.n[i][j] } else { blocks.n[j][i] };
             normal + signed * blocks.c[j][i]
         };
-        let solved = if m4 == 4 {
-            // Every slot sliding: unknown `l` is slot `l`'s (bounds constant: unrolled).
-            for l in 0..4 {
-                let mu = signed(l, l);
-                for r in 0..4 {
-                    a[r][l] = entry(r, l, mu);
-                }
-                rhs[l] = -self.q[l];
-            }
-            solve_four(&mut a, &mut rhs, tiny)
+        let (solved, rhs) = if m4 == 4 {
+            // Every slot sliding: unknown `l` is slot `l`'s (every entry formed: no array cleared
+            // first; bounds constant: unrolled).
+            let mu: [T; 4] = core::array::from_fn(|l| signed(l, l));
+            let mut a = core::array::from_fn(|r| core::array::from_fn(|l| entry(r, l, mu[l])));
+            let mut rhs = core::array::from_fn(|l| -self.q[l]);
+            (solve_four(&mut a, &mut rhs, tiny), rhs)
         } else {
+            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
             for l in 0..m4 {
                 let j = usize::from(var[l]).min(3);
                 let mu = signed(l, j);
@@ -893,7 +890,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
                 rhs[l] = -self.q[j];
             }
-            solve_small(&mut a, &mut rhs, m4, tiny)
+            (solve_small(&mut a, &mut rhs, m4, tiny), rhs)
         };
         let [y0, y1, y2, y3] = rhs;
         let zero = T::zero();
