@@ -89,11 +89,12 @@ impl<T: Real, const B: usize> Detector<T, B> {
 /// one interface) is not looked at: it leaves the split of a force open, not the motion.
 ///
 /// The work, on every step not at rest, is that of the decision and no more: `N` (its lower
-/// triangle) and `C` from the step's factored columns ([`Factored::contact_blocks`]: each entry
-/// the product of the bodies the two columns share, no copy of a column), and the usual four
-/// contacts in a copy whose loop bounds are constants. The same entries (up to a zero's sign,
-/// which no comparison here sees) and the same operations on them as the definition above: the
-/// same decision.
+/// triangle) and `C` are the step's `blocks` when it formed them for its solve
+/// ([`Factored::form_blocks`]), else from its factored columns ([`Factored::contact_blocks`]: each
+/// entry the product of the bodies the two columns share, no copy of a column; the same entries
+/// either way), and the usual four contacts in a copy whose loop bounds are constants. The same
+/// entries (up to a zero's sign, which no comparison here sees) and the same operations on them as
+/// the definition above: the same decision.
 #[inline(never)] // called only for a step not at rest: out of the resting steps' path
 pub(super) fn flags<T: Real, const B: usize, const N: usize>(
     f: &Factored<T, B, N>,
