@@ -172,6 +172,18 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     weighted: bool,
 }
 
+/// The normal block `N` (lower triangle: `n[i][j]`, `j <= i`) and the friction coupling `C` (by
+/// columns: `c[j][i] = C_ij`) of a step's four slots ([`Factored::contact_blocks`]), formed once
+/// for the step: a basis of sliding contacts takes its system from them (`N + C S mu`,
+/// [`Factored::solve_basis`]) and the rule's detection its test ([`super::resolve::flags`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ContactBlocks<T> {
+    /// `N_ij = c_n,i^T M~ c_n,j`, `j <= i`.
+    pub(super) n: [[T; 4]; 4],
+    /// `C_ij = c_n,i^T M~ c_+d,j` at `c[j][i]`.
+    pub(super) c: [[T; 4]; 4],
+}
+
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// No contact: [`Self::reset`] it for a step.
     pub(super) fn new() -> Self {
@@ -343,6 +355,44 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// `true` when some slot's cone row is weighted ([`Self::assemble`]).
     pub(super) const fn is_weighted(&self) -> bool {
         self.weighted
+    }
+
+    /// The step's [`ContactBlocks`] when it has four slots and the basis `mask` (bit `v`: `z_v`
+    /// basic) slides at every touching slot ([`Self::only_sliding`]): the warm basis of
+    /// block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and detection
+    /// ([`super::resolve::flags`]) both read them. `None` for any other step (a resting stack's
+    /// sticking bases take their system from the columns, and its detection never runs).
+    #[inline]
+    pub(super) fn form_blocks(&self, mask: u32) -> Option<ContactBlocks<T>> {
+        (self.slots() == 4 && self.only_sliding(mask)).then(|| self.four_blocks())
+    }
+
+    /// [`Self::form_blocks`]' blocks of four slots, out of line (a resting stack's step never calls
+    /// it).
+    #[inline(never)]
+    fn four_blocks(&self) -> ContactBlocks<T> {
+        let mut blocks = ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] };
+        contact_blocks(&self.cols, 4, 4, &mut blocks.n, &mut blocks.c);
+        blocks
+    }
+
+    /// `true` when no slot of the basis `mask` has a basic impulse without its `sigma` basic: every
+    /// unknown of [`Self::solve_basis`] is a normal impulse with its friction row following.
+    fn only_sliding(&self, mask: u32) -> bool {
+        let k = self.slots();
+        let low = |bits: u32, from: usize, count: usize| {
+            bits.checked_shr(from as u32).unwrap_or(0) & ((1 << count) - 1)
+        };
+        // Per slot `j`: bit `j` of the normals, of either friction row, of the sigmas.
+        let normals = low(mask, 0, k);
+        let sigmas = low(mask, 3 * k, k);
+        let mut frictions = 0u32;
+        for j in 0..k {
+            if low(mask, k + 2 * j, 2) != 0 {
+                frictions |= 1 << j;
+            }
+        }
+        (normals | frictions) & !sigmas == 0
     }
 
     /// Active slots `k`.
@@ -531,7 +581,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// The complementary solution of the basis `mask` (bit `v`: `z_v` basic) in the bodies'
     /// coordinates, verified within `tolerance` (module docs), written into `z` (and `w`, when
     /// given: the stepper's paths need only `z`); returns `v+` and the basis answered, or why there
-    /// is none.
+    /// is none. With the step's `blocks` ([`Self::form_blocks`]), a basis whose every unknown is a
+    /// sliding slot's normal impulse takes its system from them ([`Self::solve_sliding`]).
     ///
     /// # Errors
     /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
@@ -543,6 +594,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         &self,
         mask: u32,
         tolerance: T,
+        blocks: Option<&ContactBlocks<T>>,
         z: &mut [T; N],
         mut w: Option<&mut [T; N]>,
     ) -> Result<Answer<T, B>, Declined> {
@@ -593,34 +645,13 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let tiny = T::of(N as f64) * T::EPS * self.m_low;
         // The two copies specialised to a count of unknowns are left out with `compact` (the
         // general one below does the same operations in the same order: the same bits).
-        let (solved, mut y) = if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {
-            // Every unknown, none with a follower (the 3-block stack's every step): the lower
-            // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
-            // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
-            // reading it).
-            let mut a = core::array::from_fn(|r| {
-                let row = &self.cols[usize::from(var[r]).min(N - 1)];
-                core::array::from_fn(|l| {
-                    if l <= r {
-                        row.dot_scaled(&self.cols[usize::from(var[l]).min(N - 1)])
-                    } else {
-                        T::zero()
-                    }
-                })
-            });
-            let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
-            (solve_symmetric(&mut a, &mut y, m, tiny), y)
+        let from_blocks = blocks.filter(|_| follower[..m].iter().all(|&f| f < N));
+        let (solved, mut y) = if let Some(blocks) = from_blocks {
+            self.solve_sliding(blocks, (&var, &follower), m, tiny)
+        } else if symmetric && m == UNKNOWNS && !cfg!(feature = "compact") {
+            self.solve_nine_symmetric(&var, tiny)
         } else if !symmetric && m == 4 && !cfg!(feature = "compact") {
-            // Four unknowns with followers (block-on-block's sliding steps): written out in a
-            // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
-            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
-            for l in [0, 1, 2, 3] {
-                self.form_column(&mut a, &mut rhs, (&var, &follower), l, false, 4);
-            }
-            let solved = solve_four(&mut a, &mut rhs, tiny);
-            let [y0, y1, y2, y3] = rhs;
-            let zero = T::zero();
-            (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+            self.solve_four_following((&var, &follower), tiny)
         } else {
             let mut a = [[T::zero(); UNKNOWNS]; UNKNOWNS];
             let mut y = [T::zero(); UNKNOWNS];
@@ -778,6 +809,94 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 }
 
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
+    /// [`Self::solve_basis`]'s system with every unknown and none with a follower (the 3-block
+    /// stack's every step), out of line: whether it was regular, and the unknowns.
+    #[inline(never)]
+    fn solve_nine_symmetric(&self, var: &[u8; UNKNOWNS], tiny: T) -> (bool, [T; UNKNOWNS]) {
+        // Every unknown, none with a follower (the 3-block stack's every step): the lower
+        // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
+        // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
+        // reading it).
+        let mut a = core::array::from_fn(|r| {
+            let row = &self.cols[usize::from(var[r]).min(N - 1)];
+            core::array::from_fn(|l| {
+                if l <= r { row.dot_scaled(&self.cols[usize::from(var[l]).min(N - 1)]) } else { T::zero() }
+            })
+        });
+        let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
+        (solve_symmetric(&mut a, &mut y, UNKNOWNS, tiny), y)
+    }
+
+    /// [`Self::solve_basis`]'s system of four unknowns with followers formed from the columns (a
+    /// sliding step without [`ContactBlocks`]), out of line: whether it was regular, and the
+    /// unknowns.
+    #[inline(never)]
+    fn solve_four_following(
+        &self,
+        (var, follower): (&[u8; UNKNOWNS], &[usize; UNKNOWNS]),
+        tiny: T,
+    ) -> (bool, [T; UNKNOWNS]) {
+        // Four unknowns with followers (block-on-block's sliding steps): written out in a
+        // `4 x 4` system, every entry formed (no array cleared first, no row of nine swapped).
+        let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
+        for l in [0, 1, 2, 3] {
+            self.form_column(&mut a, &mut rhs, (var, follower), l, false, 4);
+        }
+        let solved = solve_four(&mut a, &mut rhs, tiny);
+        let [y0, y1, y2, y3] = rhs;
+        let zero = T::zero();
+        (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+    }
+
+    /// [`Self::solve_basis`]'s system when every unknown is a sliding slot's normal impulse with
+    /// its friction row following ([`Self::only_sliding`]), from the step's [`ContactBlocks`]:
+    /// `a_rl = N_rl + (+-mu_l) C_rl`; whether it was regular, and the unknowns. Out of line: the
+    /// other bases' solve is compiled as without it.
+    #[inline(never)]
+    fn solve_sliding(
+        &self,
+        blocks: &ContactBlocks<T>,
+        (var, follower): (&[u8; UNKNOWNS], &[usize; UNKNOWNS]),
+        m: usize,
+        tiny: T,
+    ) -> (bool, [T; UNKNOWNS]) {
+        // Every unknown a sliding slot's normal impulse (`var` its slot), its friction row
+        // following at `+-mu` (`+d`: `+`): `a_rl = N_rl + (+-mu_l) C_rl` from the step's
+        // blocks.
+        let m4 = m.min(4);
+        // Unknown `l`'s column: slot `j`'s, its friction row `+d` (`+mu`) or `-d` (`-mu`).
+        let signed = |l: usize, j: usize| {
+            let mu = self.mu[j];
+            if follower[l].wrapping_sub(self.k) & 1 == 0 { mu } else { -mu }
+        };
+        let entry = |i: usize, j: usize, signed: T| {
+            let normal = if j <= i { blocks.n[i][j] } else { blocks.n[j][i] };
+            normal + signed * blocks.c[j][i]
+        };
+        let (solved, rhs) = if m4 == 4 {
+            // Every slot sliding: unknown `l` is slot `l`'s (every entry formed: no array cleared
+            // first; bounds constant: unrolled).
+            let mu: [T; 4] = core::array::from_fn(|l| signed(l, l));
+            let mut a = core::array::from_fn(|r| core::array::from_fn(|l| entry(r, l, mu[l])));
+            let mut rhs = core::array::from_fn(|l| -self.q[l]);
+            (solve_four(&mut a, &mut rhs, tiny), rhs)
+        } else {
+            let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
+            for l in 0..m4 {
+                let j = usize::from(var[l]).min(3);
+                let mu = signed(l, j);
+                for r in 0..m4 {
+                    a[r][l] = entry(usize::from(var[r]).min(3), j, mu);
+                }
+                rhs[l] = -self.q[j];
+            }
+            (solve_small(&mut a, &mut rhs, m4, tiny), rhs)
+        };
+        let [y0, y1, y2, y3] = rhs;
+        let zero = T::zero();
+        (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+    }
+
     /// Column `l` of [`Self::solve_basis`]'s system and its right-hand side: unknown `l`'s
     /// column `G_l = c_var + mu c_follower` (the same bodies), each row's `c_r^T M~ G_l`, taken
     /// from its mirror between two unknowns without a follower when that is already formed
@@ -814,60 +933,77 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         y[l] = -self.q[usize::from(var[l]).min(N - 1)];
     }
 
-    /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
-    /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
-    /// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
-    /// left as given. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of each
-    /// body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij` (`j <= i`)
-    /// share one comparison of the two slots' bodies (when each slot's normal and friction columns
-    /// touch the same bodies, as [`Self::set_slot`] writes them; checked once, and otherwise each
-    /// entry on its own). That is the dense sum over the bodies' `3B` coordinates,
-    /// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1`, exactly for finite columns (those of
-    /// every step solved: a non-finite one is refused first, [`Self::is_finite`]) up to a zero's
-    /// sign: a body the two columns do not share adds a signed zero (`0 x finite`) to the dense
-    /// sum, which changes no sum but a zero's sign, and a column touches at most two bodies, so at
-    /// most two non-zero terms are added, in either order the same (IEEE addition commutes). No
-    /// decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
-    /// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
-    #[inline]
-    pub(super) fn contact_blocks<const K: usize>(&self, n: &mut [[T; K]; K], c: &mut [[T; K]; K]) {
-        let k = self.slots();
-        let rows = k.min(K);
-        let col = |v: usize| &self.cols[v.min(N - 1)];
-        // Each slot's normal and friction columns touch the same bodies (as `set_slot` writes them).
-        let bodies = |v: usize| u16::from_ne_bytes(col(v).body);
-        let mut paired = true;
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // `rows` a constant in the four slots' copy: its loops unrolled
+    pub(super) fn contact_blocks<const K: usize>(
+        &self,
+        rows: usize,
+        n: &mut [[T; K]; K],
+        c: &mut [[T; K]; K],
+    ) {
+        contact_blocks(&self.cols, self.slots(), rows, n, c);
+    }
+}
+
+/// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
+/// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
+/// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
+/// left as given. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of each
+/// body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij` (`j <= i`)
+/// share one comparison of the two slots' bodies (when each slot's normal and friction columns
+/// touch the same bodies, as [`Factored::set_slot`] writes them; checked once, and otherwise each
+/// entry on its own). That is the dense sum over the bodies' `3B` coordinates,
+/// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1`, exactly for finite columns (those of
+/// every step solved: a non-finite one is refused first, [`Factored::is_finite`]) up to a zero's
+/// sign: a body the two columns do not share adds a signed zero (`0 x finite`) to the dense
+/// sum, which changes no sum but a zero's sign, and a column touches at most two bodies, so at
+/// most two non-zero terms are added, in either order the same (IEEE addition commutes). No
+/// decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
+/// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
+#[inline(always)]
+#[allow(clippy::inline_always)] // `rows` a constant in the four slots' copy: its loops unrolled
+fn contact_blocks<T: Real, const N: usize, const K: usize>(
+    cols: &[Column<T>; N],
+    k: usize,
+    rows: usize,
+    n: &mut [[T; K]; K],
+    c: &mut [[T; K]; K],
+) {
+    let rows = rows.min(k).min(K);
+    let col = |v: usize| &cols[v.min(N - 1)];
+    // Each slot's normal and friction columns touch the same bodies (as `set_slot` writes them).
+    let bodies = |v: usize| u16::from_ne_bytes(col(v).body);
+    let mut paired = true;
+    for i in 0..rows {
+        paired &= bodies(i) == bodies(k + 2 * i);
+    }
+    for j in 0..rows {
+        let (a, f) = (col(j), col(k + 2 * j));
         for i in 0..rows {
-            paired &= bodies(i) == bodies(k + 2 * i);
-        }
-        for j in 0..rows {
-            let (a, f) = (col(j), col(k + 2 * j));
-            for i in 0..rows {
-                let (u, g) = (col(i), col(k + 2 * i));
-                if j > i {
-                    // `C_ji` was written with `(j, i)`.
-                } else if paired {
-                    // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies: each
-                    // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
-                    // twice, the same).
-                    let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
-                    for p in 0..2 {
-                        for r in 0..2 {
-                            if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
-                                normal += dot3(&u.c[p], &a.mc[r]);
-                                friction_j += dot3(&u.c[p], &f.mc[r]);
-                                friction_i += dot3(&a.c[r], &g.mc[p]);
-                            }
+            let (u, g) = (col(i), col(k + 2 * i));
+            if j > i {
+                // `C_ji` was written with `(j, i)`.
+            } else if paired {
+                // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies: each
+                // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
+                // twice, the same).
+                let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
+                for p in 0..2 {
+                    for r in 0..2 {
+                        if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
+                            normal += dot3(&u.c[p], &a.mc[r]);
+                            friction_j += dot3(&u.c[p], &f.mc[r]);
+                            friction_i += dot3(&a.c[r], &g.mc[p]);
                         }
                     }
-                    n[i][j] = normal;
-                    c[j][i] = friction_j;
-                    c[i][j] = friction_i;
-                } else {
-                    n[i][j] = u.dot_scaled(a);
-                    c[j][i] = u.dot_scaled(f);
-                    c[i][j] = a.dot_scaled(g);
                 }
+                n[i][j] = normal;
+                c[j][i] = friction_j;
+                c[i][j] = friction_i;
+            } else {
+                n[i][j] = u.dot_scaled(a);
+                c[j][i] = u.dot_scaled(f);
+                c[i][j] = a.dot_scaled(g);
             }
         }
     }
@@ -1006,6 +1142,12 @@ fn ldl_back<T: Real>(
     rhs[i] = x;
 }
 
+/// [`solve_leading`] with at most four unknowns (fewer than [`solve_four`]'s), in a `4 x 4` array.
+#[inline(never)]
+fn solve_small<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], m: usize, tiny: T) -> bool {
+    solve_leading(a, rhs, m, tiny)
+}
+
 /// [`solve_leading`] with four unknowns (two interfaces of two corners each sliding, each `p_n`
 /// with its friction row following: block-on-block's usual step), column by column with each
 /// index written out (its loops unrolled): the same operations in the same order (the same bits).
@@ -1121,6 +1263,8 @@ mod tests {
 
     #[derive(Debug, Default)]
     struct Counts {
+        /// Bases also solved with the step's blocks ([`Factored::form_blocks`]).
+        with_blocks: u32,
         accepted: u32,
         lemke_direct: u32,
         declined_where_lemke_answered: u32,
@@ -1141,9 +1285,25 @@ mod tests {
     }
 
     fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
+        check_with(f, lcp, mask, None, counts);
+        // A sliding basis of four slots again with the step's blocks (`N + C S mu`).
+        if let Some(blocks) = f.form_blocks(mask) {
+            counts.with_blocks += 1;
+            check_with(f, lcp, mask, Some(&blocks), &mut Counts::default());
+        }
+    }
+
+    /// [`check`] of one way to solve the basis: without the step's blocks, or with them.
+    fn check_with(
+        f: &Factored<f64, 2, N>,
+        lcp: &Lcp<f64, N>,
+        mask: u32,
+        blocks: Option<&super::ContactBlocks<f64>>,
+        counts: &mut Counts,
+    ) {
         let tolerance = default_tolerance::<f64, N>();
         let (mut z, mut w) = ([0.0; N], [0.0; N]);
-        let answer = f.solve_basis(mask, tolerance, &mut z, Some(&mut w));
+        let answer = f.solve_basis(mask, tolerance, blocks, &mut z, Some(&mut w));
         let direct = Lemke::<f64, N>::new()
             .solve_warm(lcp, Basis::from_z_mask(mask))
             .ok()
@@ -1283,6 +1443,7 @@ mod tests {
         }
         std::println!("{counts:?}");
         assert!(counts.lemke_direct > 500, "{counts:?}");
+        assert!(counts.with_blocks > 100, "{counts:?}");
         assert!(counts.declined_where_lemke_answered * 10 < counts.lemke_direct, "{counts:?}");
     }
 }

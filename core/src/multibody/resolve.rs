@@ -15,7 +15,7 @@
 //! rows outweighs their stiffness (a block tipping about a sticking corner at `mu = 2`: the
 //! Painleve-type case).
 
-use super::factored::Factored;
+use super::factored::{ContactBlocks, Factored};
 use super::geometry::Shape;
 use super::stepper::Stats;
 use super::stepper::{PATTERNS, pattern_bits};
@@ -89,32 +89,54 @@ impl<T: Real, const B: usize> Detector<T, B> {
 /// one interface) is not looked at: it leaves the split of a force open, not the motion.
 ///
 /// The work, on every step not at rest, is that of the decision and no more: `N` (its lower
-/// triangle) and `C` from the step's factored columns ([`Factored::contact_blocks`]: each entry
-/// the product of the bodies the two columns share, no copy of a column), and the usual four
-/// contacts in a copy whose loop bounds are constants. The same entries (up to a zero's sign,
-/// which no comparison here sees) and the same operations on them as the definition above: the
-/// same decision.
+/// triangle) and `C` are the step's `blocks` when it formed them for its solve
+/// ([`Factored::form_blocks`]), else from its factored columns ([`Factored::contact_blocks`]: each
+/// entry the product of the bodies the two columns share, no copy of a column; the same entries
+/// either way), and the usual four contacts in a copy whose loop bounds are constants. The same
+/// entries (up to a zero's sign, which no comparison here sees) and the same operations on them as
+/// the definition above: the same decision.
 #[inline(never)] // called only for a step not at rest: out of the resting steps' path
-pub(super) fn flags<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, N>) -> bool {
+pub(super) fn flags<T: Real, const B: usize, const N: usize>(
+    f: &Factored<T, B, N>,
+    blocks: Option<&ContactBlocks<T>>,
+) -> bool {
     // Four contacts (two interfaces of two corners: block-on-block's step) with every bound a
-    // constant; any other count (at most `N / 4 <= 8`) in arrays of eight.
-    match f.slots() {
-        4 if !cfg!(feature = "compact") => flags_of::<T, B, N, 4>(f, 4),
-        k => flags_of::<T, B, N, 8>(f, k.min(8)),
+    // constant; any other count (at most `N / 4 <= 8`) in arrays of eight. The step's blocks
+    // when it formed them ([`Factored::form_blocks`]), else from the columns.
+    match (f.slots(), blocks) {
+        (4, Some(blocks)) if !cfg!(feature = "compact") => coupled::<T, B, N, 4>(f, 4, &blocks.n, &blocks.c),
+        (4, None) if !cfg!(feature = "compact") => {
+            let (mut n, mut c) = ([[T::zero(); 4]; 4], [[T::zero(); 4]; 4]);
+            f.contact_blocks(4, &mut n, &mut c);
+            coupled::<T, B, N, 4>(f, 4, &n, &c)
+        }
+        (k, blocks) => {
+            let (mut n, mut c) = ([[T::zero(); 8]; 8], [[T::zero(); 8]; 8]);
+            if let Some(blocks) = blocks {
+                for i in 0..4 {
+                    n[i][..4].copy_from_slice(&blocks.n[i]);
+                    c[i][..4].copy_from_slice(&blocks.c[i]);
+                }
+            } else {
+                f.contact_blocks(k, &mut n, &mut c);
+            }
+            coupled::<T, B, N, 8>(f, k.min(8), &n, &c)
+        }
     }
 }
 
-/// [`flags`] for `k <= MOST` contacts.
+/// [`flags`] for `k <= MOST` contacts from their blocks `N` (lower triangle) and `C` (by columns,
+/// [`Factored::contact_blocks`]).
 #[allow(clippy::inline_always)] // `k` a constant in the four contacts' copy: its loops unrolled
 #[inline(always)]
-fn flags_of<T: Real, const B: usize, const N: usize, const MOST: usize>(
+fn coupled<T: Real, const B: usize, const N: usize, const MOST: usize>(
     f: &Factored<T, B, N>,
     k: usize,
+    n: &[[T; MOST]; MOST],
+    c: &[[T; MOST]; MOST],
 ) -> bool {
     let k = k.min(MOST);
     let round_off = T::of(64.0) * T::EPS;
-    let (mut n, mut c) = ([[T::zero(); MOST]; MOST], [[T::zero(); MOST]; MOST]);
-    f.contact_blocks(&mut n, &mut c);
     // `N = L D L^T` by rows.
     let mut l = [[T::zero(); MOST]; MOST];
     let mut d = [T::zero(); MOST];
@@ -173,6 +195,7 @@ fn flags_of<T: Real, const B: usize, const N: usize, const MOST: usize>(
 pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     detector: &Detector<T, B>,
     f: &Factored<T, B, N>,
+    blocks: Option<&ContactBlocks<T>>,
     tolerance: T,
     answer: (&mut [[T; 3]; B], &mut [T; N], &mut u32),
 ) -> Option<Resolution> {
@@ -181,10 +204,10 @@ pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     }
     let rule = detector.rule(f);
     let (v_plus, z, mask) = answer;
-    if rule.at_least_energy(v_plus) || !flags(f) {
+    if rule.at_least_energy(v_plus) || !flags(f, blocks) {
         return None;
     }
-    Some(resolve(f, rule, tolerance, v_plus, z, mask))
+    Some(resolve(f, blocks, rule, tolerance, v_plus, z, mask))
 }
 
 impl Stats {
@@ -210,6 +233,7 @@ impl Stats {
 #[inline(never)]
 pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
     f: &Factored<T, B, N>,
+    blocks: Option<&ContactBlocks<T>>,
     rule: Rule<T, B>,
     tolerance: T,
     v_plus: &mut [[T; 3]; B],
@@ -236,7 +260,7 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
         if basis == *mask {
             continue;
         }
-        if let Ok(a) = f.solve_basis(basis, tolerance, &mut found, Some(&mut w))
+        if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w))
             && choice.offer(code, Answer::of(a.v_plus, &found))
         {
             best = Some((a.v_plus, a.mask));
@@ -363,14 +387,14 @@ mod tests {
             };
             let several = found.iter().any(|d| differ(&d.v, &chosen.v));
             ambiguous += u32::from(several);
-            flagged += u32::from(flags(f));
+            flagged += u32::from(flags(f, None));
             if several {
                 // Detection: a step with several motions is flagged.
-                assert!(flags(f), "an ambiguous step not flagged");
+                assert!(flags(f, None), "an ambiguous step not flagged");
                 // Whatever solution the path answered, the rule ends on the dense choice.
                 for start in &found {
                     let (mut v, mut z, mut mask) = (start.v, start.z, start.mask);
-                    let r = resolve(f, rule, tolerance, &mut v, &mut z, &mut mask);
+                    let r = resolve(f, None, rule, tolerance, &mut v, &mut z, &mut mask);
                     assert!(r.enumerated && r.ambiguous);
                     assert_eq!(r.changed, differ(&start.v, &chosen.v));
                     assert!(!differ(&v, &chosen.v), "rule {v:?}, enumeration {:?}", chosen.v);
@@ -438,7 +462,7 @@ mod tests {
     fn check_step<T: Real + core::fmt::Debug, const N: usize>(f: &Factored<T, 2, N>) -> (usize, bool) {
         let k = f.slots();
         let (mut n, mut c) = ([[T::zero(); 8]; 8], [[T::zero(); 8]; 8]);
-        f.contact_blocks(&mut n, &mut c);
+        f.contact_blocks(k, &mut n, &mut c);
         for i in 0..k {
             for j in 0..k {
                 if j <= i {
@@ -447,8 +471,14 @@ mod tests {
                 assert_eq!(c[j][i], f.entry(i, k + 2 * j), "C[{i}][{j}]");
             }
         }
-        let flagged = flags(f);
+        let flagged = flags(f, None);
         assert_eq!(flagged, flags_by_entries(f), "k = {k}");
+        // Four slots: the same decision from the blocks a sliding step forms once.
+        let sliding = (0..k).fold(0, |mask, j| mask | super::pattern_bits(super::PATTERNS[2], k, j));
+        if let Some(blocks) = f.form_blocks(sliding) {
+            assert_eq!(k, 4);
+            assert_eq!(flags(f, Some(&blocks)), flagged, "from the step's blocks");
+        }
         (k, flagged)
     }
 

@@ -2,7 +2,7 @@
 //! coordinates when a basis near the last one answers and by Lemke's method otherwise
 //! (`docs/formulation.md`, "Several bodies", "One step", "Solving a multibody step (the core)").
 
-use super::factored::Factored;
+use super::factored::{ContactBlocks, Factored};
 use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames, slip};
 use super::resolve::{self, Detector};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
@@ -463,7 +463,12 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// else Lemke's method on
     /// the assembled LCP from the warm basis, with its retries ([`SolvePath::Lemke`]). Every answer
     /// is verified. Writes `z`; returns `v+`, the basis and the pivots.
-    fn solve(&self, paths: &mut PathCounts, z: &mut [T; N]) -> Result<Solved<T, B, N>, StepError> {
+    fn solve(
+        &self,
+        paths: &mut PathCounts,
+        blocks: Option<&ContactBlocks<T>>,
+        z: &mut [T; N],
+    ) -> Result<Solved<T, B, N>, StepError> {
         let step = &self.lcp;
         let f = &step.factored;
         if !f.is_finite() {
@@ -480,14 +485,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         }
         let tolerance = self.solver.tolerance();
         let warm = step.warm;
-        let why = match f.solve_basis(warm.z_mask(), tolerance, z, None) {
+        let why = match f.solve_basis(warm.z_mask(), tolerance, blocks, z, None) {
             Ok(a) => {
                 let basis = Basis::from_z_mask(a.mask);
                 return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Warm });
             }
             Err(why) => why,
         };
-        if let Some(answer) = self.candidate(why, paths, z) {
+        if let Some(answer) = self.candidate(why, paths, blocks, z) {
             return Ok(answer);
         }
         let k = step.k.min(N / 4);
@@ -521,7 +526,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 
     /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
     /// answers (written into `z`), or `None`.
-    fn candidate(&self, why: Declined, paths: &mut PathCounts, z: &mut [T; N]) -> Option<Solved<T, B, N>> {
+    fn candidate(
+        &self,
+        why: Declined,
+        paths: &mut PathCounts,
+        blocks: Option<&ContactBlocks<T>>,
+        z: &mut [T; N],
+    ) -> Option<Solved<T, B, N>> {
         let step = &self.lcp;
         let f = &step.factored;
         let tolerance = self.solver.tolerance();
@@ -606,7 +617,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             };
             let Some(basis) = basis.filter(|&b| b != warm) else { continue };
             paths.candidates_tried += 1;
-            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, z, None) {
+            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
                 let basis = Basis::from_z_mask(a.mask);
                 return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
             }
@@ -627,11 +638,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let (k, active) = (self.lcp.k.min(N / 4), self.lcp.active);
         let mut z = [T::zero(); N];
         let mut paths = self.stats.paths;
-        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, &mut z)?;
+        // A sliding step's blocks, formed once for its solve and its detection.
+        let blocks = self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
+        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, blocks.as_ref(), &mut z)?;
         let mut mask = basis.z_mask();
         let tolerance = self.solver.tolerance();
+        let f = &self.lcp.factored;
         let rule =
-            resolve::apply(&self.detector, &self.lcp.factored, tolerance, (&mut v_plus, &mut z, &mut mask));
+            resolve::apply(&self.detector, f, blocks.as_ref(), tolerance, (&mut v_plus, &mut z, &mut mask));
         let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
