@@ -380,12 +380,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             }
         }
         for j in 0..k {
-            let rows = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j];
             for pattern in PATTERNS {
-                let mut basis = warm;
-                for (bit, &row) in rows.iter().enumerate() {
-                    basis.set_z_basic(row, pattern >> bit & 1 == 1);
-                }
+                let basis = with_pattern(warm, k, j, pattern);
                 if let Ok(solution) = self.solver.solve_from_basis(lcp, basis) {
                     return Ok(solution);
                 }
@@ -548,12 +544,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         // others (both sticking is singular). The failing slot first, then its pair, then the
         // other slots, then the other pairs.
         let pair_of = |j: usize| step.slots[j.min(N - 1)].0;
-        let with_slot = |mut basis: Basis<N>, j: usize, pattern: Pattern| {
-            for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
-                basis.set_z_basic(row, pattern >> bit & 1 == 1);
-            }
-            basis
-        };
+        let with_slot = |basis: Basis<N>, j: usize, pattern: Pattern| with_pattern(basis, k, j, pattern);
         let with_pair = |p: usize, pattern: Pattern| {
             let mut basis = warm;
             let mut slots = 0;
@@ -581,21 +572,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             basis
         };
         let first_pair = pair_of(first);
-        // A failing slot whose normal impulse came out negative wants to separate: its own
-        // pattern without `p_n` first (a sliding contact lifting off keeps its friction row and
-        // sigma basic: separated while the support slips past).
-        let lifting = match why {
-            Declined::Infeasible(v) if usize::from(v) < k && warm.is_z_basic(usize::from(v)) => {
-                let current = slot_rows(k, first)
-                    .iter()
-                    .enumerate()
-                    .fold(0, |acc, (bit, &row)| acc | u8::from(warm.is_z_basic(row)) << bit);
-                PATTERNS.contains(&(current & !1)).then(|| with_slot(warm, first, current & !1))
-            }
-            _ => None,
-        };
+        let lifting = self.lifted(warm, why);
         // The list, as one index (no iterator adapters: no panic path): the sliding one (one solve,
-        // and the first step of a push needs it), the lifting one, the failing slot's 8, its
+        // and the first step of a push needs it), the lifting chain, the failing slot's 8, its
         // pair's 8, the other slots' 8 each, the other pairs' 8 each.
         let slots = k.max(1);
         let others = 18 + 8 * (slots - 1);
@@ -603,7 +582,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let basis = if n == 0 {
                 Some(sliding)
             } else if n == 1 {
-                lifting
+                if let Some(answer) = self.lifting_chain(lifting, paths, blocks, z) {
+                    return Some(answer);
+                }
+                None
             } else if n < 10 {
                 Some(with_slot(warm, first, PATTERNS[(n - 2) % 8])).filter(|&b| Some(b) != lifting)
             } else if n < 18 {
@@ -620,6 +602,60 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
                 let basis = Basis::from_z_mask(a.mask);
                 return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
+            }
+        }
+        None
+    }
+
+    /// `basis` with the slot whose normal impulse came out negative (`why`) lifting off: its own
+    /// pattern without `p_n` (a sliding contact keeps its friction row and sigma basic: separated
+    /// while the support slips past; a sticking one separates and passes its pair's friction to
+    /// another of the pair's slots that touches without friction, if one does), or `None`.
+    fn lifted(&self, basis: Basis<N>, why: Declined) -> Option<Basis<N>> {
+        let k = self.lcp.k.min(N / 4);
+        let Declined::Infeasible(v) = why else { return None };
+        let j = usize::from(v);
+        if j >= k || !basis.is_z_basic(j) {
+            return None;
+        }
+        let pair_of = |i: usize| self.lcp.slots[i.min(N - 1)].0;
+        let current = slot_pattern(basis.z_mask(), k, j);
+        if PATTERNS.contains(&(current & !1)) {
+            return Some(with_pattern(basis, k, j, current & !1));
+        }
+        if current != PATTERNS[0] && current != PATTERNS[1] {
+            return None;
+        }
+        let mut lifted = with_pattern(basis, k, j, PATTERNS[5]);
+        let touching =
+            (0..k).find(|&i| pair_of(i) == pair_of(j) && slot_pattern(lifted.z_mask(), k, i) == TOUCH);
+        if let Some(i) = touching {
+            lifted = with_pattern(lifted, k, i, current);
+        }
+        Some(lifted)
+    }
+
+    /// The lifting candidate `start` ([`Self::lifted`]), and while its answer has another slot
+    /// whose normal impulse is negative, that slot lifting too: the first basis that answers.
+    /// Each lift takes one `p_n` out of the basis, so at most `k` solves (a stack tipping over its
+    /// edges lifts one corner of each interface in its first step).
+    fn lifting_chain(
+        &self,
+        start: Option<Basis<N>>,
+        paths: &mut PathCounts,
+        blocks: Option<&ContactBlocks<T>>,
+        z: &mut [T; N],
+    ) -> Option<Solved<T, B, N>> {
+        let (f, warm, tolerance) = (&self.lcp.factored, self.lcp.warm, self.solver.tolerance());
+        let mut basis = start;
+        while let Some(lifted) = basis.filter(|&b| b != warm) {
+            paths.candidates_tried += 1;
+            match f.solve_basis(lifted.z_mask(), tolerance, blocks, z, None) {
+                Ok(a) => {
+                    let basis = Basis::from_z_mask(a.mask);
+                    return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
+                }
+                Err(why) => basis = self.lifted(lifted, why),
             }
         }
         None
@@ -734,6 +770,15 @@ pub(super) fn pattern_bits(pattern: Pattern, k: usize, j: usize) -> u32 {
     let [n, plus, _, sigma] = slot_rows(k, j);
     let place = |bits: u8, v: usize| u32::from(bits).checked_shl(v as u32).unwrap_or(0);
     place(pattern & 1, n) | place(pattern >> 1 & 3, plus) | place(pattern >> 3 & 1, sigma)
+}
+
+/// `basis` with slot `j`'s variables (among `k` slots) set to `pattern`.
+#[inline]
+fn with_pattern<const N: usize>(mut basis: Basis<N>, k: usize, j: usize, pattern: Pattern) -> Basis<N> {
+    for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
+        basis.set_z_basic(row, pattern >> bit & 1 == 1);
+    }
+    basis
 }
 
 /// A step's verified answer ([`Stepper::solve`]; `z` is written into the caller's array).
