@@ -46,7 +46,7 @@ use meterstick_core::scene::{MeterStick, MeterStickParams, Outcome, Scene};
 
 #[cfg(doc)]
 use crate::Preset;
-use crate::PressDetector;
+use crate::{ModeLights, PressDetector};
 
 /// Rig constants.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,6 +114,18 @@ impl RigConfig {
         Self { min_step: min_cycles as f32 / hz, max_step: max_cycles as f32 / hz, ..self }
     }
 
+    /// Whether the board's timer ticks a step of `step` seconds in real time
+    /// ([`Self::min_step`] ..= [`Self::max_step`]; a NaN is refused).
+    ///
+    /// # Errors
+    /// [`Unperformable::Step`].
+    #[inline]
+    pub fn check_step(&self, step: f32) -> Result<(), Unperformable> {
+        // Negated: a NaN is refused too.
+        let ticks = step >= self.min_step && step <= self.max_step;
+        if ticks { Ok(()) } else { Err(Unperformable::Step) }
+    }
+
     /// Whether the rig can perform `params` (already valid for the core): see
     /// [`Unperformable`].
     ///
@@ -122,11 +134,7 @@ impl RigConfig {
     #[inline]
     #[allow(clippy::cast_precision_loss)]
     pub fn check(&self, params: &MeterStickParams<f32>) -> Result<(), Unperformable> {
-        // Negated: a NaN is refused too.
-        let ticks = params.step >= self.min_step && params.step <= self.max_step;
-        if !ticks {
-            return Err(Unperformable::Step);
-        }
+        self.check_step(params.step)?;
         if params.finger2_velocity != 0.0 {
             return Err(Unperformable::Finger2Moves);
         }
@@ -143,17 +151,6 @@ impl RigConfig {
         }
         Ok(())
     }
-}
-
-/// One finger's three mode lights.
-#[derive(Debug)]
-pub struct ModeLights<P> {
-    /// On while the finger sticks.
-    pub sticking: P,
-    /// On while it slides.
-    pub sliding: P,
-    /// On while it does not touch the rod.
-    pub separated: P,
 }
 
 /// The rig's pins: `B` an input (the start button), `P` outputs.
@@ -224,14 +221,6 @@ pub enum RigError<E> {
     Unperformable(Unperformable),
     /// A pin operation failed.
     Pin(E),
-}
-
-fn light<P: OutputPin>(lights: &mut ModeLights<P>, mode: ContactMode) -> &mut P {
-    match mode {
-        ContactMode::Sticking => &mut lights.sticking,
-        ContactMode::Sliding(_) => &mut lights.sliding,
-        ContactMode::Separated => &mut lights.separated,
-    }
 }
 
 impl<B, P, D, PinError, const N: usize, const E: usize> Rig<B, P, D, N, E>
@@ -428,10 +417,10 @@ where
             Some(_) => Some(ContactMode::Separated),
         };
         if let Some(old) = self.lit[0].take() {
-            light(&mut self.pins.lights[0], old).set_low().map_err(RigError::Pin)?;
+            self.pins.lights[0].pin(old).set_low().map_err(RigError::Pin)?;
         }
         if let Some(new) = mode {
-            light(&mut self.pins.lights[0], new).set_high().map_err(RigError::Pin)?;
+            self.pins.lights[0].pin(new).set_high().map_err(RigError::Pin)?;
             self.lit[0] = Some(new);
         }
         Ok(())
@@ -503,7 +492,7 @@ where
     fn lights_off(&mut self) -> Result<(), RigError<PinError>> {
         for (lit, lights) in self.lit.iter_mut().zip(&mut self.pins.lights) {
             if let Some(m) = lit.take() {
-                light(lights, m).set_low().map_err(RigError::Pin)?;
+                lights.pin(m).set_low().map_err(RigError::Pin)?;
             }
         }
         Ok(())
@@ -518,24 +507,9 @@ where
             if old != Some(new) {
                 log_info!("rig: t={=f32} finger {=usize} -> {=str}", self.scene.time(), i + 1, new.name());
             }
-            if old.map(light_index) == Some(light_index(new)) {
-                self.lit[i] = Some(new);
-                continue;
-            }
-            if let Some(m) = old {
-                light(&mut self.pins.lights[i], m).set_low().map_err(RigError::Pin)?;
-            }
-            light(&mut self.pins.lights[i], new).set_high().map_err(RigError::Pin)?;
+            self.pins.lights[i].switch(old, new).map_err(RigError::Pin)?;
             self.lit[i] = Some(new);
         }
         Ok(())
-    }
-}
-
-const fn light_index(m: ContactMode) -> u8 {
-    match m {
-        ContactMode::Sticking => 0,
-        ContactMode::Sliding(_) => 1,
-        ContactMode::Separated => 2,
     }
 }

@@ -1,0 +1,64 @@
+//! [`InterfaceMode`]: what an interface between two resting bodies (or a body and the table) is
+//! doing, from its four candidate contacts' modes, and the lights that show it.
+
+use meterstick_core::planar::{ContactMode, Direction};
+
+use crate::lights::{SEPARATED, SLIDING, STICKING};
+
+/// An interface's mode after a step, from its candidates' ([`Self::of`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum InterfaceMode {
+    /// At least two candidates touch (a face resting on a face: both ends of the overlap), none
+    /// slides. Light: sticking.
+    Sticking,
+    /// A touching candidate slides (the first sliding candidate's direction). Light: sliding.
+    Sliding(Direction),
+    /// Exactly one candidate touches and sticks: the interface has opened and the upper body
+    /// pivots about that corner (a stack that falls over the table's edge tips this way, every
+    /// interface at once). Lights: sticking and separated together.
+    Tipping,
+    /// No candidate touches. Light: separated.
+    Separated,
+}
+
+impl InterfaceMode {
+    /// The interface's mode from its candidates' modes (see each variant).
+    #[must_use]
+    pub fn of(candidates: [ContactMode; 4]) -> Self {
+        let mut touching = 0u8;
+        for m in candidates {
+            match m {
+                ContactMode::Sliding(d) => return Self::Sliding(d),
+                ContactMode::Sticking => touching += 1,
+                ContactMode::Separated => {}
+            }
+        }
+        match touching {
+            0 => Self::Separated,
+            1 => Self::Tipping,
+            _ => Self::Sticking,
+        }
+    }
+
+    /// A short stable name: `sticking`, `sliding+`, `sliding-`, `tipping`, `separated`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Sticking => "sticking",
+            Self::Sliding(d) => ContactMode::Sliding(d).name(),
+            Self::Tipping => "tipping",
+            Self::Separated => "separated",
+        }
+    }
+
+    /// The set of lights that shows it ([`crate::ModeLights`]).
+    pub(crate) const fn lights(self) -> u8 {
+        match self {
+            Self::Sticking => STICKING,
+            Self::Sliding(_) => SLIDING,
+            Self::Tipping => STICKING | SEPARATED,
+            Self::Separated => SEPARATED,
+        }
+    }
+}
