@@ -41,13 +41,14 @@
 //! outcome do; [`MultibodyRig::reset`] loads a parameter set (a rejected set leaves the rig as it
 //! was), turns every light off and returns to [`MultibodyRigState::WaitingForStart`]; after a
 //! reset the start button must be released (debounced) before a press starts a run again.
-//! [`MultibodyRig::tick_with`] hands each step's report to the caller. There is no host link
+//! [`MultibodyRig::tick_with`] hands each step's report to the caller. [`MultibodyRig::indicate`]
+//! shows a small number on interface 0's lights while waiting (the board's selected set). There is no host link
 //! (`crate::session` drives the meter-stick rig only).
 
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::Stack3;
 use meterstick_core::multibody::{StepError, StepReport};
-use meterstick_core::planar::{BodyState, ContactMode};
+use meterstick_core::planar::{BodyState, ContactMode, Direction};
 use meterstick_core::scene::Outcome;
 
 #[cfg(doc)]
@@ -260,6 +261,31 @@ where
         // debounced release, then a debounced press.
         self.start_press.spend_press();
         log_info!("multibody rig: reset");
+        Ok(())
+    }
+
+    /// While waiting: lights interface 0's light number `index` (0 sticking, 1 sliding,
+    /// 2 separated; e.g. the board's selected parameter set), or none. The run's first modes
+    /// replace it at the start. Ignored in other states.
+    ///
+    /// # Errors
+    /// A pin error.
+    pub fn indicate(&mut self, index: Option<u8>) -> Result<(), RigError<PinError>> {
+        if self.state != MultibodyRigState::WaitingForStart {
+            return Ok(());
+        }
+        let mode = match index {
+            None => None,
+            Some(0) => Some(InterfaceMode::Sticking),
+            Some(1) => Some(InterfaceMode::Sliding(Direction::Plus)),
+            Some(_) => Some(InterfaceMode::Separated),
+        };
+        let (Some(lit), Some(lights)) = (self.lit.first_mut(), self.pins.lights.first_mut()) else {
+            return Ok(());
+        };
+        let old = lit.map_or(0, InterfaceMode::lights);
+        lights.show(old, mode.map_or(0, InterfaceMode::lights)).map_err(RigError::Pin)?;
+        *lit = mode;
         Ok(())
     }
 

@@ -297,6 +297,27 @@ fn a_reset_needs_the_button_released_before_a_press_starts() {
     mocks.done();
 }
 
+/// While waiting, a small number shows on interface 0's lights; the start replaces it with the
+/// modes, and in other states it is ignored.
+#[test]
+fn indicate_shows_a_number_on_the_first_interface_while_waiting() {
+    let mut e = Expect::<3>::new();
+    e.show([[false, true, false], [false; 3], [false; 3]]);
+    e.show([[false, false, true], [false; 3], [false; 3]]);
+    e.show([[true, false, false]; 3]);
+    let mocks = e.mocks();
+    let mut rig = StackRig::new(StackParams::default(), CONFIG, mocks.pins()).unwrap();
+    rig.indicate(Some(1)).unwrap();
+    rig.indicate(Some(1)).unwrap();
+    assert_eq!(rig.shown()[0], Some(InterfaceMode::Sliding(Direction::Plus)));
+    rig.indicate(Some(2)).unwrap();
+    assert!(rig.start().unwrap());
+    rig.indicate(Some(0)).unwrap();
+    assert_eq!(rig.shown(), &[Some(InterfaceMode::Sticking); 3], "ignored while running");
+    drop(rig);
+    mocks.done();
+}
+
 #[test]
 fn invalid_parameters_are_refused_before_any_pin_is_touched() {
     let ok = StackParams::<f32>::default();
