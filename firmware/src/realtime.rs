@@ -28,7 +28,7 @@ use crate::systick;
 pub const STEP_HZ: u32 = 1_000;
 /// Button samples (ticks) that must agree before a press counts (the rig's start button while
 /// waiting, and both buttons here).
-const DEBOUNCE_TICKS: u16 = 20;
+pub const DEBOUNCE_TICKS: u16 = 20;
 /// The shortest SysTick period (cycles) a step may take: below it the loop could not even
 /// wait for the wrap. The longest is SysTick's 24-bit range ([`systick::MASK`]). The rig
 /// refuses steps outside them ([`RigConfig::ticked_by`]), so a tick is always one step.
@@ -88,7 +88,7 @@ impl DelayNs for CycleDelay {
 /// SysTick period (cycles) for a step of `h` seconds on a `sysclk_hz` core clock. The rig accepts
 /// only steps of [`MIN_PERIOD`] ..= [`systick::MASK`] cycles (its [`RigConfig`]); the clamp only
 /// absorbs the last cycle of rounding at the ends of that range.
-fn period_of(h: f32, sysclk_hz: u32) -> u32 {
+pub fn period_of(h: f32, sysclk_hz: u32) -> u32 {
     let cycles = h * sysclk_hz as f32;
     // A valid `h` is positive; the cast saturates (and maps NaN to 0), the clamp bounds it.
     #[allow(clippy::cast_sign_loss)]
@@ -104,6 +104,16 @@ pub trait LinkPort: meterstick_rig::session::Port {
     fn poll(&mut self) {}
 }
 
+/// The rig's constants on this loop: the default carriage, the buttons debounced over
+/// [`DEBOUNCE_TICKS`], the steps SysTick can tick at `sysclk_hz`.
+pub fn config(sysclk_hz: u32) -> RigConfig {
+    RigConfig { debounce_ticks: DEBOUNCE_TICKS, ..RigConfig::default_rig() }.ticked_by(
+        sysclk_hz,
+        MIN_PERIOD,
+        systick::MASK,
+    )
+}
+
 /// The rig with `pins` and the slow preset at h = 1 ms, its start button debounced over
 /// [`DEBOUNCE_TICKS`], and the steps SysTick can tick at `sysclk_hz`; `None` if it cannot start
 /// (logged).
@@ -114,12 +124,7 @@ where
 {
     let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
     let delay = CycleDelay::new(sysclk_hz);
-    let config = RigConfig { debounce_ticks: DEBOUNCE_TICKS, ..RigConfig::default_rig() }.ticked_by(
-        sysclk_hz,
-        MIN_PERIOD,
-        systick::MASK,
-    );
-    let rig = Rig::<_, _, _, 6>::new(params, config, pins, delay);
+    let rig = Rig::<_, _, _, 6>::new(params, config(sysclk_hz), pins, delay);
     #[cfg(feature = "log")]
     if let Err(e) = &rig {
         defmt::error!("rig not started: {}", e);
@@ -255,7 +260,7 @@ impl Buttons {
 /// The real-time margin: the worst tick and the ticks that overran their period.
 #[cfg(feature = "log")]
 #[derive(Default)]
-struct Margin {
+pub struct Margin {
     worst: u32,
     overruns: u32,
     ticks: u32,
@@ -265,7 +270,7 @@ struct Margin {
 impl Margin {
     /// Records a tick that took `used` cycles (`overran`: SysTick wrapped during it), and logs
     /// the margin once a second (at h = 1 ms).
-    fn record(&mut self, used: u32, overran: bool, period: u32) {
+    pub fn record(&mut self, used: u32, overran: bool, period: u32) {
         self.worst = self.worst.max(used);
         self.overruns += u32::from(overran);
         self.ticks += 1;
