@@ -55,6 +55,10 @@ impl<P: OutputPin> ModeLights<P> {
     /// Shows the set of lights `new` where `old` was shown: the lights in `old` only off, then
     /// those in `new` only on; the others are not touched.
     pub(crate) fn show(&mut self, old: u8, new: u8) -> Result<(), P::Error> {
+        // Most ticks change nothing: out at once.
+        if old == new {
+            return Ok(());
+        }
         let (off, on) = (old & !new, new & !old);
         if off & STICKING != 0 {
             self.sticking.set_low()?;
