@@ -184,6 +184,30 @@ fn the_stack_beyond_the_critical_overhang_falls_and_its_interfaces_leave_stickin
     assert_eq!(shown, [[true, false, true]; 3], "every interface ends tipping");
 }
 
+/// The headless stack rig (what QEMU runs): its pins count each light's rises.
+#[test]
+fn the_headless_stack_rig_falls_with_each_interface_tipping_once() {
+    let params = StackParams::<f32> { overhang: 1.02, ..StackParams::default() };
+    let mut rig = StackRig::headless(params, CONFIG).unwrap();
+    let mut ticks = 0;
+    let state = loop {
+        let s = rig.tick().unwrap();
+        ticks += 1;
+        if !matches!(s, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) || ticks > 1_000 {
+            break s;
+        }
+    };
+    assert_eq!(state, MultibodyRigState::Finished(Outcome::Fell));
+    assert_eq!(ticks, 1 + 200, "the press, then 200 steps");
+    let pins = rig.release();
+    assert_eq!(pins.fault.rises(), 0);
+    for (i, l) in pins.lights.iter().enumerate() {
+        // Sticking at the start; from the first step on one corner: the separated light joins.
+        let rises = [l.sticking.rises(), l.sliding.rises(), l.separated.rises()];
+        assert_eq!(rises, [1, 0, 1], "interface {i}");
+    }
+}
+
 #[test]
 fn interface_modes_follow_the_candidates() {
     use ContactMode::{Separated as X, Sliding, Sticking as S};
