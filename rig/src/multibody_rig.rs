@@ -34,7 +34,7 @@
 //! Parameters: [`MultibodyRig::new`] and [`MultibodyRig::reset`] accept only a set the core
 //! validates ([`RigScene::build`]: the stack's `Stack::new`) whose step the board's timer ticks in
 //! real time ([`RigConfig::check_step`]); anything else is [`RigError::Params`] or
-//! [`RigError::Unperformable`] before any pin is touched. Of [`RigConfig`] only the button's and
+//! [`RigError::Unperformable`] ([`crate::Unperformable::Step`]) before any pin is touched. Of [`RigConfig`] only the button's and
 //! the step's fields apply (the carriage's are the meter-stick rig's).
 //!
 //! Runs on demand: [`MultibodyRig::start`] and [`MultibodyRig::stop`] do what the button and the
@@ -42,8 +42,8 @@
 //! was), turns every light off and returns to [`MultibodyRigState::WaitingForStart`]; after a
 //! reset the start button must be released (debounced) before a press starts a run again.
 //! [`MultibodyRig::tick_with`] hands each step's report to the caller. [`MultibodyRig::indicate`]
-//! shows a small number on interface 0's lights while waiting (the board's selected set). There is no host link
-//! (`crate::session` drives the meter-stick rig only).
+//! shows a small number on interface 0's lights while waiting (the board's selected set). There
+//! is no host link ([`crate::session`] drives the meter-stick rig only).
 
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::Stack3;
@@ -51,8 +51,6 @@ use meterstick_core::multibody::{StepError, StepReport};
 use meterstick_core::planar::{BodyState, ContactMode, Direction};
 use meterstick_core::scene::Outcome;
 
-#[cfg(doc)]
-use crate::Unperformable;
 use crate::{InterfaceMode, ModeLights, PressDetector, RigConfig, RigError, RigScene};
 
 /// The pins of a rig of `I` interfaces: `B` an input (the start button), `P` outputs.
