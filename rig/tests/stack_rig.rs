@@ -507,3 +507,26 @@ fn a_failed_or_non_finite_step_is_a_fault_with_the_lights_off_and_no_panic() {
         mocks.done();
     }
 }
+
+/// The catalogue's stack, held for its 10 s on headless pins: each interface's sticking light
+/// rises once at the start and no other light ever does (the lights do not flicker at rest).
+#[test]
+fn the_held_stack_lights_each_interface_sticking_once_and_nothing_else() {
+    let mut rig = StackRig::headless(StackParams::<f32>::default(), CONFIG).unwrap();
+    let mut ticks = 0;
+    let state = loop {
+        let s = rig.tick().unwrap();
+        ticks += 1;
+        if !matches!(s, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) || ticks > 20_000 {
+            break s;
+        }
+    };
+    assert_eq!(state, MultibodyRigState::Finished(Outcome::Held));
+    assert_eq!(ticks, 1 + 10_000, "the press, then 10 s of 1 ms steps");
+    let pins = rig.release();
+    assert_eq!(pins.fault.rises(), 0);
+    for (i, l) in pins.lights.iter().enumerate() {
+        let rises = [l.sticking.rises(), l.sliding.rises(), l.separated.rises()];
+        assert_eq!(rises, [1, 0, 0], "interface {i}");
+    }
+}
