@@ -1,7 +1,7 @@
 //! The stack rig's real-time loop (`rig-stack`, on the Black Pill): one [`StackRig::tick`] per
 //! SysTick period `h` (the scene's step, 1 ms) on the core clock, the buttons between runs and
-//! the real-time margin, as [`crate::realtime`] runs the meter-stick rig (its period, its
-//! constants and its margin are the ones used here). No host link.
+//! the real-time margin, on [`crate::realtime`]'s clock ([`Ticker`]), start button between runs
+//! ([`RestartButton`]) and constants, as the meter-stick rig runs. No host link.
 //!
 //! Buttons (debounced, [`DEBOUNCE_TICKS`] ticks): a press of the start button starts a run (the
 //! rig debounces it while waiting); once the run has ended, a press resets it (all lights off)
@@ -17,10 +17,7 @@ use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::StackParams;
 use meterstick_rig::{MultibodyRigPins, MultibodyRigState, PressDetector, RigError, StackRig};
 
-#[cfg(feature = "log")]
-use crate::realtime::Margin;
-use crate::realtime::{DEBOUNCE_TICKS, config, period_of};
-use crate::systick;
+use crate::realtime::{DEBOUNCE_TICKS, RestartButton, Ticker, config, period_of};
 
 /// The overhangs the preset button selects (the scale `s` of the harmonic overhangs,
 /// `StackParams::overhang`); the first at boot. The blocks on the table must be stacked to the
@@ -48,39 +45,21 @@ where
 
 /// Runs the stack rig in real time on SysTick at `sysclk_hz` (the core clock), forever.
 /// `preset_pressed` reads the preset button (`true`: pressed).
-pub fn run<B, P>(
-    mut rig: StackRig<B, P>,
-    mut preset_pressed: impl FnMut() -> bool,
-    mut syst: SYST,
-    sysclk_hz: u32,
-) -> !
+pub fn run<B, P>(mut rig: StackRig<B, P>, mut preset_pressed: impl FnMut() -> bool, syst: SYST, sysclk_hz: u32) -> !
 where
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
 {
     // Every selectable set has the catalogue's step: one period for good.
-    let period = period_of(rig.params().step, sysclk_hz);
-    systick::start(&mut syst, period - 1);
-    #[cfg(feature = "log")]
-    let mut margin = Margin::default();
+    let mut ticker = Ticker::start(syst, period_of(rig.params().step, sysclk_hz));
     let mut buttons = Buttons {
         selected: 0,
         preset_press: PressDetector::new(DEBOUNCE_TICKS),
-        start_press: PressDetector::new(DEBOUNCE_TICKS),
+        restart: RestartButton::new(),
     };
-    // The previous tick overran its period (see `realtime::run`).
-    let mut late = false;
     loop {
-        while !late && !syst.has_wrapped() {}
-        let start = systick::now();
-        let state = rig.tick();
-        let end = systick::now();
-        late = syst.has_wrapped();
-        let used = systick::elapsed(start, end).saturating_add(if late { period } else { 0 });
-        #[cfg(feature = "log")]
-        margin.record(used, late, period);
-        #[cfg(not(feature = "log"))]
-        let _ = used;
+        while !ticker.due() {}
+        let (state, _) = ticker.time(|| rig.tick());
         let state = match state {
             Ok(s) => s,
             // `Params` and `Unperformable` only come from `new` and `reset`; pins on this HAL
@@ -98,7 +77,7 @@ struct Buttons {
     /// The selected entry of [`OVERHANGS`].
     selected: u8,
     preset_press: PressDetector,
-    start_press: PressDetector,
+    restart: RestartButton,
 }
 
 impl Buttons {
@@ -117,12 +96,8 @@ impl Buttons {
                 let _ = rig.indicate(Some(next));
             }
         }
-        // Until the run has ended, the press that starts (or started) it is spent (as in
-        // `realtime`): one still held when the run ends is that press, not the next one.
         let ended = matches!(state, MultibodyRigState::Finished(_) | MultibodyRigState::Fault(_));
-        if !ended {
-            self.start_press.spend_press();
-        } else if self.start_press.sample(rig.start_pressed().unwrap_or(false)) {
+        if self.restart.sample(ended, || rig.start_pressed().unwrap_or(false)) {
             let _ = rig.reset(*rig.params());
             let _ = rig.indicate(Some(self.selected));
         }
