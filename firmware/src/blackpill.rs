@@ -31,9 +31,9 @@
 //! `link`, the host may do all of this and more (`meterstick-link` commands; see
 //! `meterstick_rig::session`); the USB device is serviced while the loop waits for the next tick.
 
+use meterstick_rig::ModeLights;
 #[cfg(feature = "rig-stack")]
 use meterstick_rig::MultibodyRigPins;
-use meterstick_rig::ModeLights;
 #[cfg(not(feature = "rig-stack"))]
 use meterstick_rig::RigPins;
 use stm32f4xx_hal::gpio::{AnyPin, Input, Output, PA0};

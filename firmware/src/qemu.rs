@@ -24,9 +24,9 @@ use meterstick_core::scene::{
 };
 #[cfg(feature = "qemu-multibody")]
 use meterstick_core::scene::{MultibodyVisitor, Precision};
-use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 #[cfg(feature = "qemu-multibody")]
 use meterstick_rig::{InterfaceMode, MultibodyRigState, StackRig};
+use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 
 use crate::{stack_peak, systick};
 
@@ -361,9 +361,20 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         checksum.value()
     );
     for (i, mode) in modes.iter().enumerate() {
-        defmt::println!("{=str} interface={=usize} shown={=str}", name, i, mode.map_or("off", InterfaceMode::name));
+        defmt::println!(
+            "{=str} interface={=usize} shown={=str}",
+            name,
+            i,
+            mode.map_or("off", InterfaceMode::name)
+        );
     }
-    defmt::println!("{=str} rig systicks={=u64} worst_step_systicks={=u32} steps={=u32}", name, ticks, worst, steps);
+    defmt::println!(
+        "{=str} rig systicks={=u64} worst_step_systicks={=u32} steps={=u32}",
+        name,
+        ticks,
+        worst,
+        steps
+    );
     let faulted = rig.release().fault.rises() > 0;
     i32::from(outcome != expected || modes != [Some(shown); 3] || faulted)
 }

@@ -45,7 +45,12 @@ where
 
 /// Runs the stack rig in real time on SysTick at `sysclk_hz` (the core clock), forever.
 /// `preset_pressed` reads the preset button (`true`: pressed).
-pub fn run<B, P>(mut rig: StackRig<B, P>, mut preset_pressed: impl FnMut() -> bool, syst: SYST, sysclk_hz: u32) -> !
+pub fn run<B, P>(
+    mut rig: StackRig<B, P>,
+    mut preset_pressed: impl FnMut() -> bool,
+    syst: SYST,
+    sysclk_hz: u32,
+) -> !
 where
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
