@@ -5,18 +5,21 @@ use meterstick_core::planar::{ContactMode, Direction};
 
 use crate::lights::{SEPARATED, SLIDING, STICKING};
 
-/// An interface's mode after a step, from its candidates' ([`Self::of`]).
+/// An interface's mode after a step, from its candidates' ([`Self::of`]). A candidate *touches*
+/// when it carries a normal impulse ([`ContactMode::is_touching`]: sticking or sliding); one that
+/// carries none is separated, whatever its gap.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum InterfaceMode {
-    /// At least two candidates touch (a face resting on a face: both ends of the overlap), none
-    /// slides. Light: sticking.
+    /// At least two candidates touch (a face resting on a face: both ends of the overlap carry
+    /// load), none slides. Light: sticking.
     Sticking,
     /// A touching candidate slides (the first sliding candidate's direction). Light: sliding.
     Sliding(Direction),
-    /// Exactly one candidate touches and sticks: the interface has opened and the upper body
-    /// pivots about that corner (a stack that falls over the table's edge tips this way, every
-    /// interface at once). Lights: sticking and separated together.
+    /// Exactly one candidate touches, and sticks: the interface's whole load is on that corner,
+    /// so the upper body pivots about it, its other end lifting (a stack beyond the critical
+    /// overhang falls this way, every interface at once). Lights: sticking and separated
+    /// together.
     Tipping,
     /// No candidate touches. Light: separated.
     Separated,

@@ -25,8 +25,9 @@
 //! the table and block 1, pair `p` blocks `p` and `p + 1`, counted from the bottom), showing its
 //! [`InterfaceMode`] from its four candidate contacts: *sliding* when any slides, *sticking* when
 //! at least two touch (a block resting flat), *tipping* (the sticking and the separated lights
-//! together) when one touches (the interface has opened and the block above pivots about that
-//! corner: how a stack falls over the table's edge), *separated* when none touches. An interface
+//! together) when one touches (all the load on one corner: the block above pivots about it, how a
+//! stack falls over the table's edge), *separated* when none touches; a contact touches when it
+//! carries a normal impulse. An interface
 //! is shown from the start of a run to its end; pins are driven only when their state changes.
 //! Logging (start, interface mode changes, outcome, faults) goes to `defmt` with the `defmt`
 //! feature and compiles to nothing without it.
@@ -34,8 +35,9 @@
 //! Parameters: [`MultibodyRig::new`] and [`MultibodyRig::reset`] accept only a set the core
 //! validates ([`RigScene::build`]: the stack's `Stack::new`) whose step the board's timer ticks in
 //! real time ([`RigConfig::check_step`]); anything else is [`RigError::Params`] or
-//! [`RigError::Unperformable`] ([`crate::Unperformable::Step`]) before any pin is touched. Of [`RigConfig`] only the button's and
-//! the step's fields apply (the carriage's are the meter-stick rig's).
+//! [`RigError::Unperformable`] ([`crate::Unperformable::Step`]) before any pin is touched. Of
+//! [`RigConfig`] only the button's and the step's fields apply (the carriage's are the meter-stick
+//! rig's).
 //!
 //! Runs on demand: [`MultibodyRig::start`] and [`MultibodyRig::stop`] do what the button and the
 //! outcome do; [`MultibodyRig::reset`] loads a parameter set (a rejected set leaves the rig as it
