@@ -3,7 +3,7 @@
 
 use meterstick_core::planar::{ContactMode, Direction};
 
-use crate::lights::{SEPARATED, SLIDING, STICKING};
+use crate::lights::{SEPARATED, SLIDING, STICKING, Shown};
 
 /// An interface's mode after a step, from its candidates' ([`Self::of`]). A candidate *touches*
 /// when it carries a normal impulse ([`ContactMode::is_touching`]: sticking or sliding); one that
@@ -54,14 +54,25 @@ impl InterfaceMode {
             Self::Separated => "separated",
         }
     }
+}
 
-    /// The set of lights that shows it ([`crate::ModeLights`]).
-    pub(crate) const fn lights(self) -> u8 {
+impl Shown for InterfaceMode {
+    #[inline]
+    fn lights(self) -> u8 {
         match self {
             Self::Sticking => STICKING,
             Self::Sliding(_) => SLIDING,
             Self::Tipping => STICKING | SEPARATED,
             Self::Separated => SEPARATED,
+        }
+    }
+
+    #[inline]
+    fn number(index: u8) -> Self {
+        match index {
+            0 => Self::Sticking,
+            1 => Self::Sliding(Direction::Plus),
+            _ => Self::Separated,
         }
     }
 }

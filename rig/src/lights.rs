@@ -3,12 +3,14 @@
 //! on), an interface's on the rig of several bodies ([`crate::MultibodyRig`]: one, or sticking
 //! and separated together while the interface tips, [`crate::InterfaceMode::Tipping`]).
 //!
-//! What is shown is a set of lights ([`STICKING`], [`SLIDING`], [`SEPARATED`] as bits); a change
-//! turns the lights that leave the set off first, then those that join it on, and touches no
-//! other pin (a slide that changes direction keeps the sliding light on untouched).
+//! What is shown is a set of lights ([`STICKING`], [`SLIDING`], [`SEPARATED`] as bits) of a mode
+//! ([`Shown`]); a change turns the lights that leave the set off first, then those that join it
+//! on, and touches no other pin (a slide that changes direction keeps the sliding light on
+//! untouched). Both rigs light their modes ([`ModeLights::show_mode`]), turn them off
+//! ([`all_off`]) and show the waiting number ([`indicate`]) here.
 
 use embedded_hal::digital::OutputPin;
-use meterstick_core::planar::ContactMode;
+use meterstick_core::planar::{ContactMode, Direction};
 
 /// One contact's three mode lights.
 #[derive(Debug)]
@@ -28,28 +30,54 @@ pub(crate) const SLIDING: u8 = 2;
 /// The separated light in a set of lights.
 pub(crate) const SEPARATED: u8 = 4;
 
-/// The light a contact's mode shows on (either sliding direction: the sliding light).
-pub(crate) const fn light_of(mode: ContactMode) -> u8 {
-    match mode {
-        ContactMode::Sticking => STICKING,
-        ContactMode::Sliding(_) => SLIDING,
-        ContactMode::Separated => SEPARATED,
+/// A mode a [`ModeLights`] shows: a contact's ([`ContactMode`], the meter-stick rig's fingers) or
+/// an interface's ([`crate::InterfaceMode`]).
+pub(crate) trait Shown: Copy + PartialEq {
+    /// The set of lights that shows it.
+    fn lights(self) -> u8;
+    /// The mode that shows the small number `index` while a rig waits (0 sticking, 1 sliding,
+    /// 2 and above separated: one light each).
+    fn number(index: u8) -> Self;
+}
+
+impl Shown for ContactMode {
+    #[inline]
+    fn lights(self) -> u8 {
+        match self {
+            Self::Sticking => STICKING,
+            Self::Sliding(_) => SLIDING,
+            Self::Separated => SEPARATED,
+        }
+    }
+
+    #[inline]
+    fn number(index: u8) -> Self {
+        match index {
+            0 => Self::Sticking,
+            1 => Self::Sliding(Direction::Plus),
+            _ => Self::Separated,
+        }
     }
 }
 
 impl<P: OutputPin> ModeLights<P> {
-    /// The pin of `mode`'s light.
-    pub(crate) fn pin(&mut self, mode: ContactMode) -> &mut P {
-        match mode {
-            ContactMode::Sticking => &mut self.sticking,
-            ContactMode::Sliding(_) => &mut self.sliding,
-            ContactMode::Separated => &mut self.separated,
-        }
+    /// Drives all three lights low (a rig's start, before anything is shown).
+    pub(crate) fn all_low(&mut self) -> Result<(), P::Error> {
+        self.sticking.set_low()?;
+        self.sliding.set_low()?;
+        self.separated.set_low()
     }
 
-    /// Shows `new` where `old` (or nothing) was shown, one light each ([`Self::show`]).
-    pub(crate) fn switch(&mut self, old: Option<ContactMode>, new: ContactMode) -> Result<(), P::Error> {
-        self.show(old.map_or(0, light_of), light_of(new))
+    /// Shows `new` (nothing: all three off) where `*lit` is shown ([`Self::show`]), and records
+    /// it in `lit`.
+    pub(crate) fn show_mode<M: Shown>(
+        &mut self,
+        lit: &mut Option<M>,
+        new: Option<M>,
+    ) -> Result<(), P::Error> {
+        self.show(lit.map_or(0, M::lights), new.map_or(0, M::lights))?;
+        *lit = new;
+        Ok(())
     }
 
     /// Shows the set of lights `new` where `old` was shown: the lights in `old` only off, then
@@ -79,5 +107,28 @@ impl<P: OutputPin> ModeLights<P> {
             self.separated.set_high()?;
         }
         Ok(())
+    }
+}
+
+/// Turns every light of `lights` off (those `lit` records as shown), `lit` all `None`.
+pub(crate) fn all_off<P: OutputPin, M: Shown, const I: usize>(
+    lights: &mut [ModeLights<P>; I],
+    lit: &mut [Option<M>; I],
+) -> Result<(), P::Error> {
+    for (l, shown) in lights.iter_mut().zip(lit) {
+        l.show_mode(shown, None)?;
+    }
+    Ok(())
+}
+
+/// A rig's waiting number: `index` (or nothing) on the first of `lights` ([`Shown::number`]).
+pub(crate) fn indicate<P: OutputPin, M: Shown, const I: usize>(
+    lights: &mut [ModeLights<P>; I],
+    lit: &mut [Option<M>; I],
+    index: Option<u8>,
+) -> Result<(), P::Error> {
+    match (lights.first_mut(), lit.first_mut()) {
+        (Some(l), Some(shown)) => l.show_mode(shown, index.map(M::number)),
+        _ => Ok(()),
     }
 }

@@ -50,10 +50,11 @@
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::Stack3;
 use meterstick_core::multibody::{StepError, StepReport};
-use meterstick_core::planar::{BodyState, ContactMode, Direction};
+use meterstick_core::planar::{BodyState, ContactMode};
 use meterstick_core::scene::Outcome;
 
-use crate::{InterfaceMode, ModeLights, PressDetector, RigConfig, RigError, RigScene};
+use crate::lights::{self, ModeLights};
+use crate::{InterfaceMode, PressDetector, RigConfig, RigError, RigScene};
 
 /// The pins of a rig of `I` interfaces: `B` an input (the start button), `P` outputs.
 #[derive(Debug)]
@@ -131,9 +132,7 @@ where
         let p = &mut rig.pins;
         p.fault.set_low().map_err(RigError::Pin)?;
         for l in &mut p.lights {
-            l.sticking.set_low().map_err(RigError::Pin)?;
-            l.sliding.set_low().map_err(RigError::Pin)?;
-            l.separated.set_low().map_err(RigError::Pin)?;
+            l.all_low().map_err(RigError::Pin)?;
         }
         Ok(rig)
     }
@@ -274,19 +273,7 @@ where
         if self.state != MultibodyRigState::WaitingForStart {
             return Ok(());
         }
-        let mode = match index {
-            None => None,
-            Some(0) => Some(InterfaceMode::Sticking),
-            Some(1) => Some(InterfaceMode::Sliding(Direction::Plus)),
-            Some(_) => Some(InterfaceMode::Separated),
-        };
-        let (Some(lit), Some(lights)) = (self.lit.first_mut(), self.pins.lights.first_mut()) else {
-            return Ok(());
-        };
-        let old = lit.map_or(0, InterfaceMode::lights);
-        lights.show(old, mode.map_or(0, InterfaceMode::lights)).map_err(RigError::Pin)?;
-        *lit = mode;
-        Ok(())
+        lights::indicate(&mut self.pins.lights, &mut self.lit, index).map_err(RigError::Pin)
     }
 
     fn advance(
@@ -326,12 +313,7 @@ where
     }
 
     fn lights_off(&mut self) -> Result<(), RigError<PinError>> {
-        for (lit, lights) in self.lit.iter_mut().zip(&mut self.pins.lights) {
-            if let Some(m) = lit.take() {
-                lights.show(m.lights(), 0).map_err(RigError::Pin)?;
-            }
-        }
-        Ok(())
+        lights::all_off(&mut self.pins.lights, &mut self.lit).map_err(RigError::Pin)
     }
 
     /// Lights each interface's mode (turning its previous light off first); pins that keep
@@ -349,8 +331,7 @@ where
                     new.name()
                 );
             }
-            lights.show(old.map_or(0, InterfaceMode::lights), new.lights()).map_err(RigError::Pin)?;
-            *lit = Some(new);
+            lights.show_mode(lit, Some(new)).map_err(RigError::Pin)?;
         }
         Ok(())
     }
