@@ -247,7 +247,9 @@ impl Ticker {
     }
 
     /// Runs `tick`, timed: its result and the cycles it took (an overrun counted a period
-    /// longer), recorded in the margin with `log`.
+    /// longer), recorded in the margin with `log`. SysTick's flag holds one wrap: a tick of
+    /// several periods (the stack rig's first falling step) is counted as an overrun, but read as
+    /// less than two periods.
     #[inline]
     pub fn time<T>(&mut self, tick: impl FnOnce() -> T) -> (T, u32) {
         let start = systick::now();
