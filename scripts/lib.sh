@@ -59,7 +59,8 @@ build_firmware() {
 # the tests); rig-*: the demo rig on the STM32F411 Black Pill, with and without defmt logging
 # (`log`) and the 8x8 fallback (the 6x6-only builds link no 8x8 code); *-link: with the host link
 # (`meterstick-link`: QEMU's UART, the Black Pill's USB CDC), the QEMU ones run by the end-to-end
-# test; *-uart: the Black Pill's link on USART2. qemu-m33: the Cortex-M33F (the Pico 2's core) on
+# test; *-uart: the Black Pill's link on USART2; rig-m4f-stack*: the Black Pill running the rig of
+# the 3-block stack (`rig-stack`, no host link), with and without `log`. qemu-m33: the Cortex-M33F (the Pico 2's core) on
 # QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on a Pico
 # (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`, and with
 # the host link on UART0; pico-nolog-builtins and pico-link-builtins: the Pico's arithmetic from
@@ -84,6 +85,8 @@ FIRMWARE_BUILDS=(
   "qemu-m0-link thumbv6m-none-eabi qemu-microbit,fallback,link nopanic"
   "rig-m4f-link thumbv7em-none-eabihf board-blackpill,log,fallback,link clippy"
   "rig-m4f-6x6-nolog-uart thumbv7em-none-eabihf board-blackpill,uart-link clippy,nopanic"
+  "rig-m4f-stack thumbv7em-none-eabihf board-blackpill,rig-stack,log,fallback clippy"
+  "rig-m4f-stack-nolog thumbv7em-none-eabihf board-blackpill,rig-stack,fallback clippy,nopanic"
   "qemu-m33 thumbv8m.main-none-eabihf qemu-mps2-an505,fallback clippy,nopanic"
   "pico2 thumbv8m.main-none-eabihf board-pico2,log,fallback clippy,uf2"
   "pico2-nolog thumbv8m.main-none-eabihf board-pico2,fallback nopanic,uf2"

@@ -183,6 +183,18 @@ table(["core (QEMU machine)"] + [f"{s}: mean / worst" for s, _ in MULTIBODY]
        + [mean_worst(timings[build][s]) if s in timings[build] else "not run" for s, _ in MULTIBODY]
        + [" / ".join(peak(timings[build], s) for s in ("slow",) + tuple(s for s, _ in MULTIBODY))]
        for label, build, machine, _ in cores])
+STACK_RIG = (("stack-rig-held", "held"), ("stack-rig-fell", "falls"))
+print()
+print("The 3-block stack through the stack rig (`meterstick_rig::StackRig` on headless pins, "
+      "`firmware/src/qemu.rs`; 200 steps each): the catalogue's stack for 0.2 s (it holds) and at "
+      "overhang 1.02 (it falls; its first step, leaving rest, is the worst):")
+print()
+table(["core (QEMU machine)"] + [f"{s} ({what}): mean / worst" for s, what in STACK_RIG]
+      + ["stack peak (B): " + " / ".join(s for s, _ in STACK_RIG)],
+      [[f"{label} (`{machine}`)"]
+       + [mean_worst(timings[build][s]) if s in timings[build] else "not run" for s, _ in STACK_RIG]
+       + [" / ".join(peak(timings[build], s) for s, _ in STACK_RIG)]
+       for label, build, machine, _ in cores])
 m4f = timings["qemu-m4f"]
 if all(m4f[s].get("stack_peak_bytes") is not None for s in ("stack", "block-on-block")):
     print()

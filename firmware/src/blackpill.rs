@@ -11,6 +11,19 @@
 //! | host link (`link`): USB D- / D+ | PA11 / PA12 | the board's USB-C port, USB CDC (a serial port on the host) |
 //! | host link (`uart-link`): USART2 TX / RX | PA2 / PA3 | 921,600 baud 8N1, 3.3 V, to a USB-serial adapter |
 //!
+//! With `rig-stack` the board runs the rig of the 3-block stack (`meterstick_rig::StackRig`,
+//! [`crate::realtime_stack`]) instead: no stepper, a light set per interface, the same buttons
+//! and fault light; the first two light sets on the meter-stick rig's finger light pins.
+//!
+//! | signal (`rig-stack`) | pin | notes |
+//! |---|---|---|
+//! | start button | PA0 (on-board KEY) | active low, as above |
+//! | preset button | PA1 | active low: each press toggles the overhang, 0.98 / 1.02 |
+//! | table / block 1 lights: sticking / sliding / separated | PB12 / PB13 / PB14 | active high (finger 1's) |
+//! | block 1 / block 2 lights: sticking / sliding / separated | PB15 / PA8 / PA9 | active high (finger 2's) |
+//! | block 2 / block 3 lights: sticking / sliding / separated | PB6 / PB7 / PB8 | active high |
+//! | fault light | PA10 | active high |
+//!
 //! Clocks: the board's 25 MHz crystal; 100 MHz core, or 96 MHz with the USB link (USB needs an
 //! exact 48 MHz from the same PLL, which 100 MHz excludes). The loop is [`crate::realtime`]'s,
 //! shared with the Picos: one scene step per SysTick period `h` (1 ms by default), the real-time
@@ -18,7 +31,11 @@
 //! `link`, the host may do all of this and more (`meterstick-link` commands; see
 //! `meterstick_rig::session`); the USB device is serviced while the loop waits for the next tick.
 
-use meterstick_rig::{ModeLights, RigPins};
+use meterstick_rig::ModeLights;
+#[cfg(feature = "rig-stack")]
+use meterstick_rig::MultibodyRigPins;
+#[cfg(not(feature = "rig-stack"))]
+use meterstick_rig::RigPins;
 use stm32f4xx_hal::gpio::{AnyPin, Input, Output, PA0};
 use stm32f4xx_hal::pac;
 use stm32f4xx_hal::prelude::*;
@@ -27,7 +44,11 @@ use stm32f4xx_hal::rcc::Config;
 #[cfg(feature = "log")]
 use defmt_rtt as _;
 
-use crate::realtime::{self, halt};
+#[cfg(not(feature = "rig-stack"))]
+use crate::realtime;
+use crate::realtime::halt;
+#[cfg(feature = "rig-stack")]
+use crate::realtime_stack;
 
 /// Core clock (Hz).
 #[cfg(not(all(feature = "link", not(feature = "uart-link"))))]
@@ -38,6 +59,7 @@ const SYSCLK_HZ: u32 = 96_000_000;
 
 type Out = AnyPin<Output>;
 
+#[cfg(not(feature = "rig-stack"))]
 pub fn main() -> ! {
     let (Some(dp), Some(cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else { halt() };
     #[cfg(not(all(feature = "link", not(feature = "uart-link"))))]
@@ -84,6 +106,39 @@ pub fn main() -> ! {
         #[cfg(feature = "link")]
         port,
     )
+}
+
+/// The stack rig (`rig-stack`): the pins of the second table above, no host link.
+#[cfg(feature = "rig-stack")]
+pub fn main() -> ! {
+    let (Some(dp), Some(cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else { halt() };
+    let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()));
+    let gpioa = dp.GPIOA.split(&mut rcc);
+    let gpiob = dp.GPIOB.split(&mut rcc);
+    let preset_button = gpioa.pa1.into_pull_up_input();
+    let pins: MultibodyRigPins<PA0<Input>, Out, 3> = MultibodyRigPins {
+        start: gpioa.pa0.into_pull_up_input(),
+        lights: [
+            ModeLights {
+                sticking: gpiob.pb12.into_push_pull_output().erase(),
+                sliding: gpiob.pb13.into_push_pull_output().erase(),
+                separated: gpiob.pb14.into_push_pull_output().erase(),
+            },
+            ModeLights {
+                sticking: gpiob.pb15.into_push_pull_output().erase(),
+                sliding: gpioa.pa8.into_push_pull_output().erase(),
+                separated: gpioa.pa9.into_push_pull_output().erase(),
+            },
+            ModeLights {
+                sticking: gpiob.pb6.into_push_pull_output().erase(),
+                sliding: gpiob.pb7.into_push_pull_output().erase(),
+                separated: gpiob.pb8.into_push_pull_output().erase(),
+            },
+        ],
+        fault: gpioa.pa10.into_push_pull_output().erase(),
+    };
+    let Some(rig) = realtime_stack::new_rig(pins, SYSCLK_HZ) else { halt() };
+    realtime_stack::run(rig, || preset_button.is_low(), cp.SYST, SYSCLK_HZ)
 }
 
 /// The host link on USART2 (`uart-link`): PA2 TX, PA3 RX, 921,600 baud 8N1, polled.

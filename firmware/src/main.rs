@@ -8,7 +8,9 @@
 //!   (`scripts/firmware-report.sh`).
 //! * `board-blackpill` ([`blackpill`]): the tabletop rig on an STM32F411CEU6 "Black Pill"
 //!   (stm32f4xx-hal): one scene step per SysTick period h = 1 ms, stepper STEP/DIR, mode and
-//!   fault lights, start and preset buttons; defmt over RTT with the `log` feature.
+//!   fault lights, start and preset buttons; defmt over RTT with the `log` feature. With
+//!   `rig-stack`, the rig of the 3-block stack instead ([`realtime_stack`]): a light set per
+//!   interface, no stepper, no host link.
 //! * `board-pico2` / `board-pico` ([`pico`]): the same rig on a Raspberry Pi Pico 2 (RP2350,
 //!   rp235x-hal) or Pico (RP2040, rp2040-hal), flashed from a `.uf2` file without a probe.
 //!
@@ -57,6 +59,10 @@ compile_error!(
 );
 #[cfg(all(feature = "uart-link", not(feature = "board-blackpill")))]
 compile_error!("uart-link is the Black Pill's (the Picos' `link` is on a UART already)");
+#[cfg(all(feature = "rig-stack", not(feature = "board-blackpill")))]
+compile_error!("rig-stack is a Black Pill build (board-blackpill)");
+#[cfg(all(feature = "rig-stack", feature = "link"))]
+compile_error!("the stack rig has no host link: build rig-stack without link or uart-link");
 #[cfg(all(feature = "builtins-float", not(feature = "board-pico")))]
 compile_error!("builtins-float is the Pico's (RP2040) choice");
 
@@ -69,7 +75,11 @@ mod qemu;
 #[cfg(all(feature = "qemu", feature = "link"))]
 mod qemu_link;
 #[cfg(any(feature = "board-blackpill", feature = "board-pico2", feature = "board-pico"))]
+// The stack rig uses its period, constants and margin, not the meter-stick rig's loop.
+#[cfg_attr(feature = "rig-stack", allow(dead_code))]
 mod realtime;
+#[cfg(feature = "rig-stack")]
+mod realtime_stack;
 #[cfg(feature = "qemu")]
 mod semihosting_log;
 #[cfg(soft_float)]

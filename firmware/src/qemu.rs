@@ -8,19 +8,24 @@
 //! see firmware/Cargo.toml) also block-on-block, the 3-block stack and disc-on-board at their defaults
 //! in f32 through the registry (`SceneParams::build_multibody`): outcome, steps, the checksum of every
 //! step's states of all bodies in body order (`StepReport::add_to`) and the SysTick ticks of their
-//! steps. Exit status: 0 when the LCP was solved and every scene ended as physics says (balanced,
-//! fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc rolled).
+//! steps; then the stack through the stack rig (`StackRig`, headless), held for 0.2 s at the
+//! default overhang and falling at 1.02: outcome, checksum, each interface's lights at the end and
+//! the ticks. Exit status: 0 when the LCP was solved and every scene ended as physics says
+//! (balanced, fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc
+//! rolled; the stack rig held with every interface sticking and fell with every one tipping).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
 #[cfg(feature = "qemu-multibody")]
-use meterstick_core::multibody::scenes::MultibodyScene;
+use meterstick_core::multibody::scenes::{MultibodyScene, StackParams};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::scene::{
     LcpLayout, MeterStickParams, Outcome, Scene, SceneKind, SceneParams, SceneVisitor,
 };
 #[cfg(feature = "qemu-multibody")]
 use meterstick_core::scene::{MultibodyVisitor, Precision};
+#[cfg(feature = "qemu-multibody")]
+use meterstick_rig::{InterfaceMode, MultibodyRigState, StackRig};
 use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
 
 use crate::{stack_peak, systick};
@@ -298,6 +303,102 @@ fn check_multibody_scenes() -> i32 {
     failures
 }
 
+/// Runs the 3-block stack through the stack rig (`StackRig` on headless pins, the start button
+/// pressed on the first tick), timing each tick that stepped, and prints its outcome, steps and
+/// the checksum of every step's states of all bodies (as the plain runs), each interface's mode
+/// at the end, then its ticks (`<name> rig ..`, for `host-sim qemu --icount`); counts 1 unless
+/// it ended in `expected` with every interface showing `shown` and the fault light never on.
+/// Not inlined, so that the rig's frame is its own.
+#[cfg(feature = "qemu-multibody")]
+#[inline(never)]
+fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown: InterfaceMode) -> i32 {
+    let mut rig = match StackRig::headless(params, CONFIG) {
+        Ok(rig) => rig,
+        Err(e) => {
+            defmt::println!("{=str}: rig not started: {}", name, e);
+            return 1;
+        }
+    };
+    let mut checksum = Checksum::new();
+    let (mut steps, mut ticks, mut worst) = (0u32, 0u64, 0u32);
+    let state = loop {
+        let t0 = systick::now();
+        let result = rig.tick();
+        let used = systick::elapsed(t0, systick::now());
+        let state = match result {
+            Ok(s) => s,
+            Err(e) => {
+                defmt::println!("{=str}: pin error {}", name, e);
+                return 1;
+            }
+        };
+        if rig.scene().stats().steps > steps {
+            steps = rig.scene().stats().steps;
+            ticks += u64::from(used);
+            worst = worst.max(used);
+            for body in rig.scene().states() {
+                checksum.add(body);
+            }
+        }
+        if !matches!(state, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) {
+            break state;
+        }
+    };
+    let modes = *rig.shown();
+    let outcome = match state {
+        MultibodyRigState::Finished(o) => o,
+        other => {
+            defmt::println!("{=str} rig stopped: {}", name, other);
+            return 1;
+        }
+    };
+    defmt::println!(
+        "{=str} outcome={} t={=f32} steps={=u32} checksum={=u32:08x}",
+        name,
+        outcome,
+        rig.scene().time(),
+        steps,
+        checksum.value()
+    );
+    for (i, mode) in modes.iter().enumerate() {
+        defmt::println!(
+            "{=str} interface={=usize} shown={=str}",
+            name,
+            i,
+            mode.map_or("off", InterfaceMode::name)
+        );
+    }
+    defmt::println!(
+        "{=str} rig systicks={=u64} worst_step_systicks={=u32} steps={=u32}",
+        name,
+        ticks,
+        worst,
+        steps
+    );
+    let faulted = rig.release().fault.rises() > 0;
+    i32::from(outcome != expected || modes != [Some(shown); 3] || faulted)
+}
+
+/// The stack rig, kept short: the catalogue's stack for 0.2 s (it holds, every interface
+/// sticking), and at overhang 1.02 (it falls in 0.2 s, every block tipping over an edge); the
+/// number that ended otherwise. Not inlined: `main`'s frame is held under every scene.
+#[cfg(feature = "qemu-multibody")]
+#[inline(never)]
+fn check_stack_rig() -> i32 {
+    let held = StackParams { max_time: 0.2, ..StackParams::default() };
+    let fell = StackParams { overhang: 1.02, ..StackParams::default() };
+    let mut failures = 0;
+    for (name, params, expected, shown) in [
+        ("stack-rig-held", held, Outcome::Held, InterfaceMode::Sticking),
+        ("stack-rig-fell", fell, Outcome::Fell, InterfaceMode::Tipping),
+    ] {
+        stack_peak::paint();
+        failures += run_stack_rig(name, params, expected, shown);
+        print_stack_peak(name);
+    }
+    failures
+}
+
 pub fn main() -> ! {
     defmt::println!("meterstick-firmware {} core {}", env!("CARGO_PKG_VERSION"), meterstick_core::VERSION);
     let Some(mut cp) = cortex_m::Peripherals::take() else {
@@ -339,6 +440,7 @@ pub fn main() -> ! {
     #[cfg(feature = "qemu-multibody")]
     {
         failures += check_multibody_scenes();
+        failures += check_stack_rig();
     }
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)

@@ -6,7 +6,9 @@
 //! wrap runs one tick, i.e. one scene step in real time. The time a tick took is read from
 //! SysTick: the worst is logged (with `log`) once a second as the real-time margin, and sent to
 //! the host (with `link`) in `Report::Margin`; a tick that overran its period is counted. The
-//! link's port is serviced while the loop waits for the next tick.
+//! link's port is serviced while the loop waits for the next tick. The clock ([`Ticker`]) and
+//! the start button between runs ([`RestartButton`]) are also the stack rig's
+//! (`crate::realtime_stack`, `rig-stack`).
 //!
 //! Buttons (debounced, [`DEBOUNCE_TICKS`] ticks): a press of the start button starts a run (the
 //! rig debounces it while waiting); once the run has ended, a press resets it (the carriage
@@ -28,7 +30,7 @@ use crate::systick;
 pub const STEP_HZ: u32 = 1_000;
 /// Button samples (ticks) that must agree before a press counts (the rig's start button while
 /// waiting, and both buttons here).
-const DEBOUNCE_TICKS: u16 = 20;
+pub const DEBOUNCE_TICKS: u16 = 20;
 /// The shortest SysTick period (cycles) a step may take: below it the loop could not even
 /// wait for the wrap. The longest is SysTick's 24-bit range ([`systick::MASK`]). The rig
 /// refuses steps outside them ([`RigConfig::ticked_by`]), so a tick is always one step.
@@ -88,7 +90,7 @@ impl DelayNs for CycleDelay {
 /// SysTick period (cycles) for a step of `h` seconds on a `sysclk_hz` core clock. The rig accepts
 /// only steps of [`MIN_PERIOD`] ..= [`systick::MASK`] cycles (its [`RigConfig`]); the clamp only
 /// absorbs the last cycle of rounding at the ends of that range.
-fn period_of(h: f32, sysclk_hz: u32) -> u32 {
+pub fn period_of(h: f32, sysclk_hz: u32) -> u32 {
     let cycles = h * sysclk_hz as f32;
     // A valid `h` is positive; the cast saturates (and maps NaN to 0), the clamp bounds it.
     #[allow(clippy::cast_sign_loss)]
@@ -104,6 +106,16 @@ pub trait LinkPort: meterstick_rig::session::Port {
     fn poll(&mut self) {}
 }
 
+/// The rig's constants on this loop: the default carriage, the buttons debounced over
+/// [`DEBOUNCE_TICKS`], the steps SysTick can tick at `sysclk_hz`.
+pub fn config(sysclk_hz: u32) -> RigConfig {
+    RigConfig { debounce_ticks: DEBOUNCE_TICKS, ..RigConfig::default_rig() }.ticked_by(
+        sysclk_hz,
+        MIN_PERIOD,
+        systick::MASK,
+    )
+}
+
 /// The rig with `pins` and the slow preset at h = 1 ms, its start button debounced over
 /// [`DEBOUNCE_TICKS`], and the steps SysTick can tick at `sysclk_hz`; `None` if it cannot start
 /// (logged).
@@ -114,12 +126,7 @@ where
 {
     let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
     let delay = CycleDelay::new(sysclk_hz);
-    let config = RigConfig { debounce_ticks: DEBOUNCE_TICKS, ..RigConfig::default_rig() }.ticked_by(
-        sysclk_hz,
-        MIN_PERIOD,
-        systick::MASK,
-    );
-    let rig = Rig::<_, _, _, 6>::new(params, config, pins, delay);
+    let rig = Rig::<_, _, _, 6>::new(params, config(sysclk_hz), pins, delay);
     #[cfg(feature = "log")]
     if let Err(e) = &rig {
         defmt::error!("rig not started: {}", e);
@@ -132,7 +139,7 @@ where
 pub fn run<B, P>(
     mut rig: Rig<B, P, CycleDelay, 6>,
     mut preset_pressed: impl FnMut() -> bool,
-    mut syst: SYST,
+    syst: SYST,
     sysclk_hz: u32,
     #[cfg(feature = "link")] mut port: impl LinkPort,
 ) -> !
@@ -147,22 +154,16 @@ where
         session.boot(&rig);
         session
     };
-    let mut period = period_of(rig.params().step, sysclk_hz);
-    systick::start(&mut syst, period - 1);
+    let mut ticker = Ticker::start(syst, period_of(rig.params().step, sysclk_hz));
     #[cfg(feature = "link")]
-    session.set_period(period);
-    #[cfg(feature = "log")]
-    let mut margin = Margin::default();
+    session.set_period(ticker.period());
     let mut buttons = Buttons {
         preset: Preset::Slow,
         preset_press: PressDetector::new(DEBOUNCE_TICKS),
-        start_press: PressDetector::new(DEBOUNCE_TICKS),
+        restart: RestartButton::new(),
     };
-    // The previous tick overran its period: the wrap that starts this one has happened (and
-    // reading it cleared the flag), so this tick starts at once.
-    let mut late = false;
     loop {
-        while !late && !syst.has_wrapped() {
+        while !ticker.due() {
             #[cfg(feature = "link")]
             port.poll();
         }
@@ -170,20 +171,10 @@ where
         if let Err(RigError::Pin(never)) = session.poll(&mut port, &mut rig) {
             match never {}
         }
-        let start = systick::now();
         #[cfg(feature = "link")]
-        let state = rig.tick_with(|r| session.record(r));
+        let (state, used) = ticker.time(|| rig.tick_with(|r| session.record(r)));
         #[cfg(not(feature = "link"))]
-        let state = rig.tick();
-        let end = systick::now();
-        // SysTick wrapped during the tick: it overran, and the counter's difference is only its
-        // excess over one period (a tick of 1.2 periods read as 0.2). A wrap in the few cycles
-        // between the two reads counts the tick a period longer: an overrun reported, never one
-        // missed.
-        late = syst.has_wrapped();
-        let used = systick::elapsed(start, end).saturating_add(if late { period } else { 0 });
-        #[cfg(feature = "log")]
-        margin.record(used, late, period);
+        let (state, used) = ticker.time(|| rig.tick());
         #[cfg(feature = "link")]
         {
             session.end_tick(&rig, used);
@@ -201,11 +192,102 @@ where
         buttons.between_runs(&mut rig, state, preset_pressed());
         // A new `h` (from the host or a preset): a new tick period.
         let want = period_of(rig.params().step, sysclk_hz);
-        if want != period && !matches!(state, RigState::Running) {
-            period = want;
-            systick::start(&mut syst, period - 1);
+        if want != ticker.period() && !matches!(state, RigState::Running) {
+            ticker.set_period(want);
             #[cfg(feature = "link")]
-            session.set_period(period);
+            session.set_period(want);
+        }
+    }
+}
+
+/// SysTick as the loop's clock (every board binding's, the meter-stick rig's [`run`] and the
+/// stack rig's `realtime_stack::run`): it wraps every period, each wrap starts one tick; the
+/// time a tick took is read from SysTick, and (with `log`) the real-time margin recorded.
+pub struct Ticker {
+    syst: SYST,
+    period: u32,
+    /// The previous tick overran its period: the wrap that starts the next one has happened (and
+    /// reading it cleared the flag), so the next tick starts at once.
+    late: bool,
+    #[cfg(feature = "log")]
+    margin: Margin,
+}
+
+impl Ticker {
+    /// SysTick started on a period of `period` cycles ([`period_of`]: at least [`MIN_PERIOD`];
+    /// 0 would be SysTick's longest, [`systick::MASK`] + 1).
+    pub fn start(mut syst: SYST, period: u32) -> Self {
+        systick::start(&mut syst, period.wrapping_sub(1));
+        Self {
+            syst,
+            period,
+            late: false,
+            #[cfg(feature = "log")]
+            margin: Margin::default(),
+        }
+    }
+
+    /// The period (cycles).
+    #[inline]
+    pub const fn period(&self) -> u32 {
+        self.period
+    }
+
+    /// SysTick restarted on a period of `period` cycles (between runs; as [`Self::start`]).
+    pub fn set_period(&mut self, period: u32) {
+        self.period = period;
+        systick::start(&mut self.syst, period.wrapping_sub(1));
+    }
+
+    /// Whether the next tick is due: SysTick has wrapped since the last poll, or at once after a
+    /// tick that overran. The loop polls it while waiting (servicing a port meanwhile).
+    #[inline]
+    pub fn due(&mut self) -> bool {
+        self.late || self.syst.has_wrapped()
+    }
+
+    /// Runs `tick`, timed: its result and the cycles it took (an overrun counted a period
+    /// longer), recorded in the margin with `log`. SysTick's flag holds one wrap: a tick of
+    /// several periods (the stack rig's first falling step) is counted as an overrun, but read as
+    /// less than two periods.
+    #[inline]
+    pub fn time<T>(&mut self, tick: impl FnOnce() -> T) -> (T, u32) {
+        let start = systick::now();
+        let result = tick();
+        let end = systick::now();
+        // SysTick wrapped during the tick: it overran, and the counter's difference is only its
+        // excess over one period (a tick of 1.2 periods read as 0.2). A wrap in the few cycles
+        // between the two reads counts the tick a period longer: an overrun reported, never one
+        // missed.
+        self.late = self.syst.has_wrapped();
+        let used = systick::elapsed(start, end).saturating_add(if self.late { self.period } else { 0 });
+        #[cfg(feature = "log")]
+        self.margin.record(used, self.late, self.period);
+        (result, used)
+    }
+}
+
+/// The start button between runs, on every rig: until the run has ended, the press that starts
+/// (or started) it is spent, so that one still held when the run ends is that press, not the next
+/// one (which must follow a release): taken as a new press, it would reset a run that faulted in its
+/// first step while the button was still down.
+pub struct RestartButton(PressDetector);
+
+impl RestartButton {
+    /// Debounced over [`DEBOUNCE_TICKS`].
+    pub const fn new() -> Self {
+        Self(PressDetector::new(DEBOUNCE_TICKS))
+    }
+
+    /// One sample per tick: `ended` whether the run has ended (finished or faulted), `pressed`
+    /// reads the start button; `true` on the tick a new press asks to reset the ended run.
+    #[inline]
+    pub fn sample(&mut self, ended: bool, pressed: impl FnOnce() -> bool) -> bool {
+        if ended {
+            self.0.sample(pressed())
+        } else {
+            self.0.spend_press();
+            false
         }
     }
 }
@@ -215,7 +297,7 @@ where
 struct Buttons {
     preset: Preset,
     preset_press: PressDetector,
-    start_press: PressDetector,
+    restart: RestartButton,
 }
 
 impl Buttons {
@@ -239,14 +321,8 @@ impl Buttons {
                 }
             }
         }
-        // Until the run has ended, the press that starts (or started) it is spent: one still held
-        // when the run ends is that press, not the next one (which must follow a release). Taken
-        // as a new press, it reset a run that had faulted in its first step while the button was
-        // still down (the emulated Pico found it).
         let ended = matches!(state, RigState::Finished(_) | RigState::Fault(_));
-        if !ended {
-            self.start_press.spend_press();
-        } else if self.start_press.sample(rig.start_pressed().unwrap_or(false)) {
+        if self.restart.sample(ended, || rig.start_pressed().unwrap_or(false)) {
             let _ = rig.reset(*rig.params());
         }
     }

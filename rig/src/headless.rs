@@ -6,7 +6,7 @@ use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 use meterstick_core::scene::MeterStickParams;
 
-use crate::{ModeLights, Rig, RigConfig, RigError, RigPins};
+use crate::{ModeLights, MultibodyRig, MultibodyRigPins, Rig, RigConfig, RigError, RigPins, RigScene};
 
 /// A headless pin, for running the rig without hardware (QEMU, host tests): as an output it
 /// counts its rising edges; as an input it reads low, i.e. a pressed active-low button.
@@ -67,18 +67,36 @@ impl<D: DelayNs, const N: usize, const E: usize> Rig<HeadlessPin, HeadlessPin, D
         config: RigConfig,
         delay: D,
     ) -> Result<Self, RigError<Infallible>> {
-        let lights = || ModeLights {
-            sticking: HeadlessPin::default(),
-            sliding: HeadlessPin::default(),
-            separated: HeadlessPin::default(),
-        };
         let pins = RigPins {
             start: HeadlessPin::default(),
             step: HeadlessPin::default(),
             dir: HeadlessPin::default(),
-            lights: [lights(), lights()],
+            lights: [headless_lights(), headless_lights()],
             fault: HeadlessPin::default(),
         };
         Self::new(params, config, pins, delay)
+    }
+}
+
+impl<S: RigScene<B, P>, const B: usize, const P: usize> MultibodyRig<HeadlessPin, HeadlessPin, S, B, P> {
+    /// A rig of several bodies on [`HeadlessPin`]s (the start button reads pressed).
+    ///
+    /// # Errors
+    /// Invalid parameters, or a step outside the config's range.
+    pub fn headless(params: S::Params, config: RigConfig) -> Result<Self, RigError<Infallible>> {
+        let pins = MultibodyRigPins {
+            start: HeadlessPin::default(),
+            lights: core::array::from_fn(|_| headless_lights()),
+            fault: HeadlessPin::default(),
+        };
+        Self::new(params, config, pins)
+    }
+}
+
+fn headless_lights() -> ModeLights<HeadlessPin> {
+    ModeLights {
+        sticking: HeadlessPin::default(),
+        sliding: HeadlessPin::default(),
+        separated: HeadlessPin::default(),
     }
 }

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::MultibodyScene;
+use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams};
 use meterstick_core::planar::Checksum;
 use meterstick_core::scene::{
     Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams,
@@ -173,6 +173,40 @@ fn check_multibody_scenes(run: &FirmwareRun) {
     }
 }
 
+/// The stack rig (firmware/src/qemu.rs, `qemu-multibody`: `StackRig` on headless pins): held for
+/// 0.2 s at the default overhang with every interface sticking, falling at 1.02 with every one
+/// tipping; outcome, steps and checksum equal to the host's f32 run of the same stack (the rig
+/// steps the scene and nothing else), and a timing line for every step.
+fn check_stack_rig(run: &FirmwareRun) {
+    for (name, params, expected, shown) in [
+        (
+            "stack-rig-held",
+            StackParams { max_time: 0.2, ..StackParams::default() },
+            Outcome::Held,
+            "sticking",
+        ),
+        (
+            "stack-rig-fell",
+            StackParams { overhang: 1.02, ..StackParams::default() },
+            Outcome::Fell,
+            "tipping",
+        ),
+    ] {
+        let (outcome, steps, sum) = HostMultibody.visit(Stack3::<f32>::new(params).unwrap());
+        assert_eq!(outcome, expected, "{name} on the host");
+        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("rig line");
+        assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
+        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+        assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
+        for i in 0..3 {
+            let want = format!("{name} interface={i} shown={shown}");
+            assert!(run.lines.contains(&want), "no line {want:?}");
+        }
+        let timing = run.lines.iter().find(|l| l.starts_with(&format!("{name} rig "))).expect("timing line");
+        assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
+    }
+}
+
 #[test]
 #[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
 fn cortex_m4f_on_mps2_an386() {
@@ -180,6 +214,7 @@ fn cortex_m4f_on_mps2_an386() {
     check_common(&run);
     check_other_scenes(&run);
     check_multibody_scenes(&run);
+    check_stack_rig(&run);
 }
 
 /// The Cortex-M33 with FPU (the Raspberry Pi Pico 2's core, `thumbv8m.main-none-eabihf`) on
@@ -191,6 +226,7 @@ fn cortex_m33_on_mps2_an505() {
     check_common(&run);
     check_other_scenes(&run);
     check_multibody_scenes(&run);
+    check_stack_rig(&run);
 }
 
 #[test]

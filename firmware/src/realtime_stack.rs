@@ -1,0 +1,110 @@
+//! The stack rig's real-time loop (`rig-stack`, on the Black Pill): one [`StackRig::tick`] per
+//! SysTick period `h` (the scene's step, 1 ms) on the core clock, the buttons between runs and
+//! the real-time margin, on [`crate::realtime`]'s clock ([`Ticker`]), start button between runs
+//! ([`RestartButton`]) and constants, as the meter-stick rig runs. No host link.
+//!
+//! Buttons (debounced, [`DEBOUNCE_TICKS`] ticks): a press of the start button starts a run (the
+//! rig debounces it while waiting); once the run has ended, a press resets it (all lights off)
+//! and the next press starts it again. While no run is in progress, the preset button toggles
+//! the overhang between [`OVERHANGS`] (0.98, the catalogue's stack, which the model holds; 1.02,
+//! beyond the critical 1, which it sees fall), shown on the table interface's lights (sticking:
+//! the first, sliding: the second) until the start.
+
+use core::convert::Infallible;
+
+use cortex_m::peripheral::SYST;
+use embedded_hal::digital::{InputPin, OutputPin};
+use meterstick_core::multibody::scenes::StackParams;
+use meterstick_rig::{MultibodyRigPins, MultibodyRigState, PressDetector, RigError, StackRig};
+
+use crate::realtime::{DEBOUNCE_TICKS, RestartButton, Ticker, config, period_of};
+
+/// The overhangs the preset button selects (the scale `s` of the harmonic overhangs,
+/// `StackParams::overhang`); the first at boot. The blocks on the table must be stacked to the
+/// selected one.
+pub const OVERHANGS: [f32; 2] = [0.98, 1.02];
+
+/// The stack of three at the catalogue's defaults (h = 1 ms) and the first of [`OVERHANGS`],
+/// with `pins`, its start button debounced over [`DEBOUNCE_TICKS`] and the steps SysTick can tick
+/// at `sysclk_hz`; the selection shown. `None` if it cannot start (logged).
+pub fn new_rig<B, P>(pins: MultibodyRigPins<B, P, 3>, sysclk_hz: u32) -> Option<StackRig<B, P>>
+where
+    B: InputPin<Error = Infallible>,
+    P: OutputPin<Error = Infallible>,
+{
+    let params = StackParams { overhang: OVERHANGS[0], ..StackParams::default() };
+    let rig = StackRig::new(params, config(sysclk_hz), pins);
+    #[cfg(feature = "log")]
+    if let Err(e) = &rig {
+        defmt::error!("stack rig not started: {}", e);
+    }
+    let mut rig = rig.ok()?;
+    let _ = rig.indicate(Some(0));
+    Some(rig)
+}
+
+/// Runs the stack rig in real time on SysTick at `sysclk_hz` (the core clock), forever.
+/// `preset_pressed` reads the preset button (`true`: pressed).
+pub fn run<B, P>(
+    mut rig: StackRig<B, P>,
+    mut preset_pressed: impl FnMut() -> bool,
+    syst: SYST,
+    sysclk_hz: u32,
+) -> !
+where
+    B: InputPin<Error = Infallible>,
+    P: OutputPin<Error = Infallible>,
+{
+    // Every selectable set has the catalogue's step: one period for good.
+    let mut ticker = Ticker::start(syst, period_of(rig.params().step, sysclk_hz));
+    let mut buttons = Buttons {
+        selected: 0,
+        preset_press: PressDetector::new(DEBOUNCE_TICKS),
+        restart: RestartButton::new(),
+    };
+    loop {
+        while !ticker.due() {}
+        let (state, _) = ticker.time(|| rig.tick());
+        let state = match state {
+            Ok(s) => s,
+            // `Params` and `Unperformable` only come from `new` and `reset`; pins on this HAL
+            // cannot fail.
+            Err(RigError::Params(_) | RigError::Unperformable(_)) => continue,
+            Err(RigError::Pin(never)) => match never {},
+        };
+        buttons.between_runs(&mut rig, state, preset_pressed());
+    }
+}
+
+/// The buttons between runs: the preset button toggles the overhang (shown on the table
+/// interface's lights), the start button resets a finished run (the next press starts it).
+struct Buttons {
+    /// The selected entry of [`OVERHANGS`].
+    selected: u8,
+    preset_press: PressDetector,
+    restart: RestartButton,
+}
+
+impl Buttons {
+    fn between_runs<B, P>(&mut self, rig: &mut StackRig<B, P>, state: MultibodyRigState, preset_pressed: bool)
+    where
+        B: InputPin<Error = Infallible>,
+        P: OutputPin<Error = Infallible>,
+    {
+        // Pins on this HAL cannot fail (`Infallible`); both overhangs are valid for the core.
+        if self.preset_press.sample(preset_pressed) && !matches!(state, MultibodyRigState::Running) {
+            let next = (self.selected + 1) % OVERHANGS.len() as u8;
+            if let Some(&overhang) = OVERHANGS.get(usize::from(next))
+                && rig.reset(StackParams { overhang, ..*rig.params() }).is_ok()
+            {
+                self.selected = next;
+                let _ = rig.indicate(Some(next));
+            }
+        }
+        let ended = matches!(state, MultibodyRigState::Finished(_) | MultibodyRigState::Fault(_));
+        if self.restart.sample(ended, || rig.start_pressed().unwrap_or(false)) {
+            let _ = rig.reset(*rig.params());
+            let _ = rig.indicate(Some(self.selected));
+        }
+    }
+}
