@@ -170,6 +170,11 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     finished_k: usize,
     /// Some slot's cone row is weighted (`mu >= MU_WEIGHTED_FROM`, [`crate::planar::cone_scale`]).
     weighted: bool,
+    /// The step's [`ContactBlocks`], when [`Self::form_blocks`] formed them (`blocks_formed`; kept
+    /// here, written in place: no array cleared or copied for them).
+    blocks: ContactBlocks<T>,
+    /// [`Self::form_blocks`] formed `blocks` for this step's columns (cleared by [`Self::reset`]).
+    blocks_formed: bool,
 }
 
 /// The normal block `N` (lower triangle: `n[i][j]`, `j <= i`) and the friction coupling `C` (by
@@ -201,6 +206,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             columns_finite: AllFinite::new(),
             finished_k: usize::MAX,
             weighted: false,
+            blocks: ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] },
+            blocks_formed: false,
         }
     }
 
@@ -213,6 +220,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.m_low = T::one();
         self.columns_finite = AllFinite::new();
         self.weighted = false;
+        self.blocks_formed = false;
         self.q_norm = T::zero();
         // Above every row's `q` but the identity's (a step with slots has sigma rows, `q = 0`).
         self.q_min = T::one();
@@ -357,23 +365,29 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.weighted
     }
 
-    /// The step's [`ContactBlocks`] when it has four slots and the basis `mask` (bit `v`: `z_v`
-    /// basic) slides at every touching slot ([`Self::only_sliding`]): the warm basis of
-    /// block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and detection
-    /// ([`super::resolve::flags`]) both read them. `None` for any other step (a resting stack's
-    /// sticking bases take their system from the columns, and its detection never runs).
+    /// Forms the step's [`ContactBlocks`] ([`Self::blocks`]) when it has four slots and the basis
+    /// `mask` (bit `v`: `z_v` basic) slides at every touching slot ([`Self::only_sliding`]): the
+    /// warm basis of block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and
+    /// detection ([`super::resolve::flags`]) both read them. Any other step has none (a resting
+    /// stack's sticking bases take their system from the columns, and its detection never runs).
     #[inline]
-    pub(super) fn form_blocks(&self, mask: u32) -> Option<ContactBlocks<T>> {
-        (self.slots() == 4 && self.only_sliding(mask)).then(|| self.four_blocks())
+    pub(super) fn form_blocks(&mut self, mask: u32) {
+        self.blocks_formed = self.slots() == 4 && self.only_sliding(mask);
+        if self.blocks_formed {
+            self.four_blocks();
+        }
     }
 
-    /// [`Self::form_blocks`]' blocks of four slots, out of line (a resting stack's step never calls
-    /// it).
+    /// The [`ContactBlocks`] [`Self::form_blocks`] formed for this step's columns, if it did.
+    pub(super) const fn blocks(&self) -> Option<&ContactBlocks<T>> {
+        if self.blocks_formed { Some(&self.blocks) } else { None }
+    }
+
+    /// [`Self::form_blocks`]' blocks of four slots, in place (every entry but `N`'s unread upper
+    /// triangle written), out of line (a resting stack's step never calls it).
     #[inline(never)]
-    fn four_blocks(&self) -> ContactBlocks<T> {
-        let mut blocks = ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] };
-        contact_blocks(&self.cols, 4, 4, &mut blocks.n, &mut blocks.c);
-        blocks
+    fn four_blocks(&mut self) {
+        contact_blocks(&self.cols, 4, 4, &mut self.blocks.n, &mut self.blocks.c);
     }
 
     /// `true` when no slot of the basis `mask` has a basic impulse without its `sigma` basic: every
@@ -1287,9 +1301,11 @@ mod tests {
     fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
         check_with(f, lcp, mask, None, counts);
         // A sliding basis of four slots again with the step's blocks (`N + C S mu`).
-        if let Some(blocks) = f.form_blocks(mask) {
+        let mut formed = *f;
+        formed.form_blocks(mask);
+        if let Some(blocks) = formed.blocks() {
             counts.with_blocks += 1;
-            check_with(f, lcp, mask, Some(&blocks), &mut Counts::default());
+            check_with(f, lcp, mask, Some(blocks), &mut Counts::default());
         }
     }
 

@@ -474,10 +474,12 @@ mod tests {
         let flagged = flags(f, None);
         assert_eq!(flagged, flags_by_entries(f), "k = {k}");
         // Four slots: the same decision from the blocks a sliding step forms once.
-        let sliding = (0..k).fold(0, |mask, j| mask | super::pattern_bits(super::PATTERNS[2], k, j));
-        if let Some(blocks) = f.form_blocks(sliding) {
+        let sliding = (0..k).fold(0, |mask, j| mask | super::pattern_bits(PATTERNS[2], k, j));
+        let mut formed = *f;
+        formed.form_blocks(sliding);
+        if let Some(blocks) = formed.blocks() {
             assert_eq!(k, 4);
-            assert_eq!(flags(f, Some(&blocks)), flagged, "from the step's blocks");
+            assert_eq!(flags(f, Some(blocks)), flagged, "from the step's blocks");
         }
         (k, flagged)
     }

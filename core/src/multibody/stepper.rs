@@ -639,13 +639,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut z = [T::zero(); N];
         let mut paths = self.stats.paths;
         // A sliding step's blocks, formed once for its solve and its detection.
-        let blocks = self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
-        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, blocks.as_ref(), &mut z)?;
+        self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
+        let blocks = self.lcp.factored.blocks();
+        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, blocks, &mut z)?;
         let mut mask = basis.z_mask();
         let tolerance = self.solver.tolerance();
         let f = &self.lcp.factored;
-        let rule =
-            resolve::apply(&self.detector, f, blocks.as_ref(), tolerance, (&mut v_plus, &mut z, &mut mask));
+        let rule = resolve::apply(&self.detector, f, blocks, tolerance, (&mut v_plus, &mut z, &mut mask));
         let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
