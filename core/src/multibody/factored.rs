@@ -514,6 +514,34 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         row >= N || !self.within_round_off(row, wv, scale.get_or_insert_with(|| self.round_off_scale(z)))
     }
 
+    /// [`Self::solve_basis`]'s check of row `v` (`basic`: `z_v` basic) at `w_v = wv`: its
+    /// finiteness, its violation (`|w_v|` for a basic row; else `-w_v`, a negative one declined
+    /// beyond row `row`'s round-off, [`Self::beyond_round_off`], unless `row` is `N + 1`: held to
+    /// the residual).
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // a few instructions a row, in the solve's per-slot loop
+    fn check_row(
+        &self,
+        (v, basic): (usize, bool),
+        wv: T,
+        row: usize,
+        (finite, violation, scale): (&mut AllFinite<T>, &mut T, &mut Option<RoundOffScale<T, B>>),
+        z: &[T; N],
+    ) -> Result<(), Declined> {
+        finite.add(wv);
+        if basic {
+            *violation = max(*violation, wv.abs_exact());
+        } else if row == N + 1 {
+            *violation = max(*violation, -wv);
+        } else {
+            if wv < T::zero() && self.beyond_round_off(row, wv, scale, z) {
+                return Err(Declined::Infeasible(v as u8));
+            }
+            *violation = max(*violation, -wv);
+        }
+        Ok(())
+    }
+
     /// The scale of [`Self::within_round_off`] for the impulses in `z`: the non-zero impulses `t`
     /// and `sum_v |M~ c_v| |z_v|` per body. Computed at a basis answer's first negative `w` (a
     /// resting contact's round-off), not for every answer.
@@ -761,6 +789,20 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
                 z[sigma] = max(value, T::zero());
                 z_norm = max(z_norm, z[sigma]);
+                if value >= T::zero() && w.is_none() {
+                    // `z_sigma = value` (not NaN): the slot's friction and cone rows hold exactly,
+                    // as their checks below would conclude. The basic friction row's `w` is
+                    // `slip - slip = 0`, the other's `2 z_sigma >= 0`, and `w_sigma = mu p_n - mu
+                    // p_n - 0 = 0` (`p_f = mu p_n`, the same product; with no basic `p_n`, `0`): no
+                    // violation, nothing infeasible; their finiteness is `2 z_sigma`'s and the
+                    // impulses' (a non-finite `p_f` makes `dv`, and so the normal row's `w`, or
+                    // `s_w` non-finite). Only the normal row is checked.
+                    let wn = self.q[n] + self.cols[n].dot(&dv);
+                    finite.add(value + value);
+                    let checks = (&mut finite, &mut violation, &mut scale);
+                    self.check_row((n, basic(n)), wn, n, checks, z)?;
+                    continue;
+                }
             }
             let rows_w = [
                 self.q[n] + self.cols[n].dot(&dv),
@@ -786,18 +828,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             };
             // The slot's four rows in order (written out: no loop over them).
             let mut check = |v: usize, wv: T, row: usize| {
-                finite.add(wv);
-                if basic(v) {
-                    violation = max(violation, wv.abs_exact());
-                } else if row == N + 1 {
-                    violation = max(violation, -wv);
-                } else {
-                    if wv < T::zero() && self.beyond_round_off(row, wv, &mut scale, z) {
-                        return Err(Declined::Infeasible(v as u8));
-                    }
-                    violation = max(violation, -wv);
-                }
-                Ok(())
+                self.check_row((v, basic(v)), wv, row, (&mut finite, &mut violation, &mut scale), z)
             };
             check(n, rows_w[0], n)?;
             check(plus, rows_w[1], friction_row)?;
@@ -1320,6 +1351,22 @@ mod tests {
         let tolerance = default_tolerance::<f64, N>();
         let (mut z, mut w) = ([0.0; N], [0.0; N]);
         let answer = f.solve_basis(mask, tolerance, blocks, &mut z, Some(&mut w));
+        // Without `w` (the stepper's paths: a sliding slot's exact rows not checked one by one)
+        // the same decision and the same bits.
+        let mut z_alone = [0.0; N];
+        let alone = f.solve_basis(mask, tolerance, blocks, &mut z_alone, None);
+        match (&answer, &alone) {
+            (Ok(a), Ok(b)) => {
+                assert_eq!((a.v_plus, a.mask), (b.v_plus, b.mask), "basis {mask:#x} without w");
+                assert_eq!(z.map(f64::to_bits), z_alone.map(f64::to_bits), "basis {mask:#x} without w");
+            }
+            (Err(a), Err(b)) => assert_eq!(a, b, "basis {mask:#x} without w"),
+            _ => assert_eq!(
+                answer.is_ok(),
+                alone.is_ok(),
+                "basis {mask:#x}: {answer:?} with w, {alone:?} without"
+            ),
+        }
         let direct = Lemke::<f64, N>::new()
             .solve_warm(lcp, Basis::from_z_mask(mask))
             .ok()
