@@ -626,13 +626,34 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// is none. With the step's `blocks` ([`Self::form_blocks`]), a basis whose every unknown is a
     /// sliding slot's normal impulse takes its system from them ([`Self::solve_sliding`]).
     ///
+    /// `z` must be zero on entry (only the answer's nonzero entries are written); a declined basis
+    /// leaves it zero again, so that the next basis may be solved into the same array.
+    ///
     /// # Errors
     /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
     /// basic without exactly one friction row, more unknowns than it holds), a singular system,
     /// an infeasible basis, an answer that fails verification.
-    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
     #[inline(never)]
     pub(super) fn solve_basis(
+        &self,
+        mask: u32,
+        tolerance: T,
+        blocks: Option<&ContactBlocks<T>>,
+        z: &mut [T; N],
+        w: Option<&mut [T; N]>,
+    ) -> Result<Answer<T, B>, Declined> {
+        let answer = self.solve_zeroed(mask, tolerance, blocks, z, w);
+        if answer.is_err() {
+            *z = [T::zero(); N];
+        }
+        answer
+    }
+
+    /// [`Self::solve_basis`] into `z` zero on entry, left as written when declined.
+    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // its one call: `solve_basis`'s body
+    fn solve_zeroed(
         &self,
         mask: u32,
         tolerance: T,
@@ -732,7 +753,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
         let basic = |v: usize| (mask >> v) & 1 == 1;
-        *z = [T::zero(); N];
         // `p_norm`: the largest impulse (every other impulse is zero).
         let mut p_norm = T::zero();
         for l in 0..m {
@@ -1373,6 +1393,8 @@ mod tests {
             .filter(|s| s.warm_start_used && s.pivots == 0 && s.basis.z_mask() == mask);
         counts.lemke_direct += u32::from(direct.is_some());
         let Ok(answer) = answer else {
+            // A declined basis leaves `z` zero (the next one is solved into it).
+            assert!(z.iter().chain(&z_alone).all(|&v| v.to_bits() == 0), "basis {mask:#x}: z left {z:?}");
             counts.declined_where_lemke_answered += u32::from(direct.is_some());
             return;
         };

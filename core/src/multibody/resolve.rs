@@ -260,11 +260,13 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
         if basis == *mask {
             continue;
         }
-        if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w))
-            && choice.offer(code, Answer::of(a.v_plus, &found))
-        {
-            best = Some((a.v_plus, a.mask));
-            best_z = found;
+        if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w)) {
+            if choice.offer(code, Answer::of(a.v_plus, &found)) {
+                best = Some((a.v_plus, a.mask));
+                best_z = found;
+            }
+            // The next basis is solved into a zero `z` (a declined one leaves it zero).
+            found = [T::zero(); N];
         }
     }
     if choice.chosen().is_some()

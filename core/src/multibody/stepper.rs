@@ -462,7 +462,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// ([`SolvePath::Warm`]); else the bases of [`Self::candidate`] ([`SolvePath::Candidate`]);
     /// else Lemke's method on
     /// the assembled LCP from the warm basis, with its retries ([`SolvePath::Lemke`]). Every answer
-    /// is verified. Writes `z`; returns `v+`, the basis and the pivots.
+    /// is verified. Writes `z` (zero on entry, as [`Factored::solve_basis`] wants it: the step's own
+    /// array); returns `v+`, the basis and the pivots.
     fn solve(
         &self,
         paths: &mut PathCounts,
