@@ -668,7 +668,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
-        for (j, &(p, c)) in self.lcp.slots[..k].iter().enumerate() {
+        for j in 0..k {
+            let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
