@@ -170,6 +170,11 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     finished_k: usize,
     /// Some slot's cone row is weighted (`mu >= MU_WEIGHTED_FROM`, [`crate::planar::cone_scale`]).
     weighted: bool,
+    /// The step's [`ContactBlocks`], when [`Self::form_blocks`] formed them (`blocks_formed`; kept
+    /// here, written in place: no array cleared or copied for them).
+    blocks: ContactBlocks<T>,
+    /// [`Self::form_blocks`] formed `blocks` for this step's columns (cleared by [`Self::reset`]).
+    blocks_formed: bool,
 }
 
 /// The normal block `N` (lower triangle: `n[i][j]`, `j <= i`) and the friction coupling `C` (by
@@ -201,6 +206,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             columns_finite: AllFinite::new(),
             finished_k: usize::MAX,
             weighted: false,
+            blocks: ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] },
+            blocks_formed: false,
         }
     }
 
@@ -213,6 +220,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.m_low = T::one();
         self.columns_finite = AllFinite::new();
         self.weighted = false;
+        self.blocks_formed = false;
         self.q_norm = T::zero();
         // Above every row's `q` but the identity's (a step with slots has sigma rows, `q = 0`).
         self.q_min = T::one();
@@ -357,23 +365,29 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.weighted
     }
 
-    /// The step's [`ContactBlocks`] when it has four slots and the basis `mask` (bit `v`: `z_v`
-    /// basic) slides at every touching slot ([`Self::only_sliding`]): the warm basis of
-    /// block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and detection
-    /// ([`super::resolve::flags`]) both read them. `None` for any other step (a resting stack's
-    /// sticking bases take their system from the columns, and its detection never runs).
+    /// Forms the step's [`ContactBlocks`] ([`Self::blocks`]) when it has four slots and the basis
+    /// `mask` (bit `v`: `z_v` basic) slides at every touching slot ([`Self::only_sliding`]): the
+    /// warm basis of block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and
+    /// detection ([`super::resolve::flags`]) both read them. Any other step has none (a resting
+    /// stack's sticking bases take their system from the columns, and its detection never runs).
     #[inline]
-    pub(super) fn form_blocks(&self, mask: u32) -> Option<ContactBlocks<T>> {
-        (self.slots() == 4 && self.only_sliding(mask)).then(|| self.four_blocks())
+    pub(super) fn form_blocks(&mut self, mask: u32) {
+        self.blocks_formed = self.slots() == 4 && self.only_sliding(mask);
+        if self.blocks_formed {
+            self.four_blocks();
+        }
     }
 
-    /// [`Self::form_blocks`]' blocks of four slots, out of line (a resting stack's step never calls
-    /// it).
+    /// The [`ContactBlocks`] [`Self::form_blocks`] formed for this step's columns, if it did.
+    pub(super) const fn blocks(&self) -> Option<&ContactBlocks<T>> {
+        if self.blocks_formed { Some(&self.blocks) } else { None }
+    }
+
+    /// [`Self::form_blocks`]' blocks of four slots, in place (every entry but `N`'s unread upper
+    /// triangle written), out of line (a resting stack's step never calls it).
     #[inline(never)]
-    fn four_blocks(&self) -> ContactBlocks<T> {
-        let mut blocks = ContactBlocks { n: [[T::zero(); 4]; 4], c: [[T::zero(); 4]; 4] };
-        contact_blocks(&self.cols, 4, 4, &mut blocks.n, &mut blocks.c);
-        blocks
+    fn four_blocks(&mut self) {
+        contact_blocks(&self.cols, 4, 4, &mut self.blocks.n, &mut self.blocks.c);
     }
 
     /// `true` when no slot of the basis `mask` has a basic impulse without its `sigma` basic: every
@@ -500,6 +514,34 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         row >= N || !self.within_round_off(row, wv, scale.get_or_insert_with(|| self.round_off_scale(z)))
     }
 
+    /// [`Self::solve_basis`]'s check of row `v` (`basic`: `z_v` basic) at `w_v = wv`: its
+    /// finiteness, its violation (`|w_v|` for a basic row; else `-w_v`, a negative one declined
+    /// beyond row `row`'s round-off, [`Self::beyond_round_off`], unless `row` is `N + 1`: held to
+    /// the residual).
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // a few instructions a row, in the solve's per-slot loop
+    fn check_row(
+        &self,
+        (v, basic): (usize, bool),
+        wv: T,
+        row: usize,
+        (finite, violation, scale): (&mut AllFinite<T>, &mut T, &mut Option<RoundOffScale<T, B>>),
+        z: &[T; N],
+    ) -> Result<(), Declined> {
+        finite.add(wv);
+        if basic {
+            *violation = max(*violation, wv.abs_exact());
+        } else if row == N + 1 {
+            *violation = max(*violation, -wv);
+        } else {
+            if wv < T::zero() && self.beyond_round_off(row, wv, scale, z) {
+                return Err(Declined::Infeasible(v as u8));
+            }
+            *violation = max(*violation, -wv);
+        }
+        Ok(())
+    }
+
     /// The scale of [`Self::within_round_off`] for the impulses in `z`: the non-zero impulses `t`
     /// and `sum_v |M~ c_v| |z_v|` per body. Computed at a basis answer's first negative `w` (a
     /// resting contact's round-off), not for every answer.
@@ -584,13 +626,34 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// is none. With the step's `blocks` ([`Self::form_blocks`]), a basis whose every unknown is a
     /// sliding slot's normal impulse takes its system from them ([`Self::solve_sliding`]).
     ///
+    /// `z` must be zero on entry (only the answer's nonzero entries are written); a declined basis
+    /// leaves it zero again, so that the next basis may be solved into the same array.
+    ///
     /// # Errors
     /// [`Declined`]: a pattern this path does not take (an identity row's variable basic, `sigma`
     /// basic without exactly one friction row, more unknowns than it holds), a singular system,
     /// an infeasible basis, an answer that fails verification.
-    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
     #[inline(never)]
     pub(super) fn solve_basis(
+        &self,
+        mask: u32,
+        tolerance: T,
+        blocks: Option<&ContactBlocks<T>>,
+        z: &mut [T; N],
+        w: Option<&mut [T; N]>,
+    ) -> Result<Answer<T, B>, Declined> {
+        let answer = self.solve_zeroed(mask, tolerance, blocks, z, w);
+        if answer.is_err() {
+            *z = [T::zero(); N];
+        }
+        answer
+    }
+
+    /// [`Self::solve_basis`] into `z` zero on entry, left as written when declined.
+    #[allow(clippy::too_many_lines)] // the module docs' elimination, solve and checks, in order
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // its one call: `solve_basis`'s body
+    fn solve_zeroed(
         &self,
         mask: u32,
         tolerance: T,
@@ -690,7 +753,6 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
         let basic = |v: usize| (mask >> v) & 1 == 1;
-        *z = [T::zero(); N];
         // `p_norm`: the largest impulse (every other impulse is zero).
         let mut p_norm = T::zero();
         for l in 0..m {
@@ -747,6 +809,20 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 }
                 z[sigma] = max(value, T::zero());
                 z_norm = max(z_norm, z[sigma]);
+                if value >= T::zero() && w.is_none() {
+                    // `z_sigma = value` (not NaN): the slot's friction and cone rows hold exactly,
+                    // as their checks below would conclude. The basic friction row's `w` is
+                    // `slip - slip = 0`, the other's `2 z_sigma >= 0`, and `w_sigma = mu p_n - mu
+                    // p_n - 0 = 0` (`p_f = mu p_n`, the same product; with no basic `p_n`, `0`): no
+                    // violation, nothing infeasible; their finiteness is `2 z_sigma`'s and the
+                    // impulses' (a non-finite `p_f` makes `dv`, and so the normal row's `w`, or
+                    // `s_w` non-finite). Only the normal row is checked.
+                    let wn = self.q[n] + self.cols[n].dot(&dv);
+                    finite.add(value + value);
+                    let checks = (&mut finite, &mut violation, &mut scale);
+                    self.check_row((n, basic(n)), wn, n, checks, z)?;
+                    continue;
+                }
             }
             let rows_w = [
                 self.q[n] + self.cols[n].dot(&dv),
@@ -772,18 +848,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             };
             // The slot's four rows in order (written out: no loop over them).
             let mut check = |v: usize, wv: T, row: usize| {
-                finite.add(wv);
-                if basic(v) {
-                    violation = max(violation, wv.abs_exact());
-                } else if row == N + 1 {
-                    violation = max(violation, -wv);
-                } else {
-                    if wv < T::zero() && self.beyond_round_off(row, wv, &mut scale, z) {
-                        return Err(Declined::Infeasible(v as u8));
-                    }
-                    violation = max(violation, -wv);
-                }
-                Ok(())
+                self.check_row((v, basic(v)), wv, row, (&mut finite, &mut violation, &mut scale), z)
             };
             check(n, rows_w[0], n)?;
             check(plus, rows_w[1], friction_row)?;
@@ -1287,9 +1352,11 @@ mod tests {
     fn check(f: &Factored<f64, 2, N>, lcp: &Lcp<f64, N>, mask: u32, counts: &mut Counts) {
         check_with(f, lcp, mask, None, counts);
         // A sliding basis of four slots again with the step's blocks (`N + C S mu`).
-        if let Some(blocks) = f.form_blocks(mask) {
+        let mut formed = *f;
+        formed.form_blocks(mask);
+        if let Some(blocks) = formed.blocks() {
             counts.with_blocks += 1;
-            check_with(f, lcp, mask, Some(&blocks), &mut Counts::default());
+            check_with(f, lcp, mask, Some(blocks), &mut Counts::default());
         }
     }
 
@@ -1304,12 +1371,30 @@ mod tests {
         let tolerance = default_tolerance::<f64, N>();
         let (mut z, mut w) = ([0.0; N], [0.0; N]);
         let answer = f.solve_basis(mask, tolerance, blocks, &mut z, Some(&mut w));
+        // Without `w` (the stepper's paths: a sliding slot's exact rows not checked one by one)
+        // the same decision and the same bits.
+        let mut z_alone = [0.0; N];
+        let alone = f.solve_basis(mask, tolerance, blocks, &mut z_alone, None);
+        match (&answer, &alone) {
+            (Ok(a), Ok(b)) => {
+                assert_eq!((a.v_plus, a.mask), (b.v_plus, b.mask), "basis {mask:#x} without w");
+                assert_eq!(z.map(f64::to_bits), z_alone.map(f64::to_bits), "basis {mask:#x} without w");
+            }
+            (Err(a), Err(b)) => assert_eq!(a, b, "basis {mask:#x} without w"),
+            _ => assert_eq!(
+                answer.is_ok(),
+                alone.is_ok(),
+                "basis {mask:#x}: {answer:?} with w, {alone:?} without"
+            ),
+        }
         let direct = Lemke::<f64, N>::new()
             .solve_warm(lcp, Basis::from_z_mask(mask))
             .ok()
             .filter(|s| s.warm_start_used && s.pivots == 0 && s.basis.z_mask() == mask);
         counts.lemke_direct += u32::from(direct.is_some());
         let Ok(answer) = answer else {
+            // A declined basis leaves `z` zero (the next one is solved into it).
+            assert!(z.iter().chain(&z_alone).all(|&v| v.to_bits() == 0), "basis {mask:#x}: z left {z:?}");
             counts.declined_where_lemke_answered += u32::from(direct.is_some());
             return;
         };

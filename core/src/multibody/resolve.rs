@@ -260,11 +260,13 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
         if basis == *mask {
             continue;
         }
-        if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w))
-            && choice.offer(code, Answer::of(a.v_plus, &found))
-        {
-            best = Some((a.v_plus, a.mask));
-            best_z = found;
+        if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w)) {
+            if choice.offer(code, Answer::of(a.v_plus, &found)) {
+                best = Some((a.v_plus, a.mask));
+                best_z = found;
+            }
+            // The next basis is solved into a zero `z` (a declined one leaves it zero).
+            found = [T::zero(); N];
         }
     }
     if choice.chosen().is_some()
@@ -475,9 +477,11 @@ mod tests {
         assert_eq!(flagged, flags_by_entries(f), "k = {k}");
         // Four slots: the same decision from the blocks a sliding step forms once.
         let sliding = (0..k).fold(0, |mask, j| mask | super::pattern_bits(PATTERNS[2], k, j));
-        if let Some(blocks) = f.form_blocks(sliding) {
+        let mut formed = *f;
+        formed.form_blocks(sliding);
+        if let Some(blocks) = formed.blocks() {
             assert_eq!(k, 4);
-            assert_eq!(flags(f, Some(&blocks)), flagged, "from the step's blocks");
+            assert_eq!(flags(f, Some(blocks)), flagged, "from the step's blocks");
         }
         (k, flagged)
     }

@@ -458,7 +458,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// ([`SolvePath::Warm`]); else the bases of [`Self::candidate`] ([`SolvePath::Candidate`]);
     /// else Lemke's method on
     /// the assembled LCP from the warm basis, with its retries ([`SolvePath::Lemke`]). Every answer
-    /// is verified. Writes `z`; returns `v+`, the basis and the pivots.
+    /// is verified. Writes `z` (zero on entry, as [`Factored::solve_basis`] wants it: the step's own
+    /// array); returns `v+`, the basis and the pivots.
     fn solve(
         &self,
         paths: &mut PathCounts,
@@ -675,13 +676,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut z = [T::zero(); N];
         let mut paths = self.stats.paths;
         // A sliding step's blocks, formed once for its solve and its detection.
-        let blocks = self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
-        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, blocks.as_ref(), &mut z)?;
+        self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
+        let blocks = self.lcp.factored.blocks();
+        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, blocks, &mut z)?;
         let mut mask = basis.z_mask();
         let tolerance = self.solver.tolerance();
         let f = &self.lcp.factored;
-        let rule =
-            resolve::apply(&self.detector, f, blocks.as_ref(), tolerance, (&mut v_plus, &mut z, &mut mask));
+        let rule = resolve::apply(&self.detector, f, blocks, tolerance, (&mut v_plus, &mut z, &mut mask));
         let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
@@ -703,7 +704,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
-        for (j, &(p, c)) in self.lcp.slots[..k].iter().enumerate() {
+        for j in 0..k {
+            let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
