@@ -387,7 +387,18 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// triangle written), out of line (a resting stack's step never calls it).
     #[inline(never)]
     fn four_blocks(&mut self) {
-        contact_blocks(&self.cols, 4, 4, &mut self.blocks.n, &mut self.blocks.c);
+        if cfg!(feature = "compact") {
+            // The detection's copy for up to eight slots (the same entries in the same order),
+            // not one more for four.
+            let (mut n, mut c) = ([[T::zero(); 8]; 8], [[T::zero(); 8]; 8]);
+            self.contact_blocks_of_eight(&mut n, &mut c);
+            for i in 0..4 {
+                self.blocks.n[i].copy_from_slice(&n[i][..4]);
+                self.blocks.c[i].copy_from_slice(&c[i][..4]);
+            }
+        } else {
+            contact_blocks(&self.cols, 4, 4, &mut self.blocks.n, &mut self.blocks.c);
+        }
     }
 
     /// `true` when no slot of the basis `mask` has a basic impulse without its `sigma` basic: every
@@ -938,28 +949,32 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             let normal = if j <= i { blocks.n[i][j] } else { blocks.n[j][i] };
             normal + signed * blocks.c[j][i]
         };
-        let (solved, rhs) = if m4 == 4 {
+        if m4 == 4 && !cfg!(feature = "compact") {
             // Every slot sliding: unknown `l` is slot `l`'s (every entry formed: no array cleared
-            // first; bounds constant: unrolled).
+            // first; bounds constant: unrolled). Left out with `compact`: the loop below forms the
+            // same entries and `solve_leading` does `solve_four`'s operations in the same order.
             let mu: [T; 4] = core::array::from_fn(|l| signed(l, l));
             let mut a = core::array::from_fn(|r| core::array::from_fn(|l| entry(r, l, mu[l])));
             let mut rhs = core::array::from_fn(|l| -self.q[l]);
-            (solve_four(&mut a, &mut rhs, tiny), rhs)
+            let solved = solve_four(&mut a, &mut rhs, tiny);
+            let [y0, y1, y2, y3] = rhs;
+            let zero = T::zero();
+            return (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero]);
+        }
+        // Fewer unknowns: in a `4 x 4` array; with `compact` in the general solve's arrays (its one
+        // copy of the elimination: the same operations).
+        if cfg!(feature = "compact") {
+            let (mut a, mut y) = ([[T::zero(); UNKNOWNS]; UNKNOWNS], [T::zero(); UNKNOWNS]);
+            form_sliding(m4, (var, &signed, &entry), &self.q, (&mut a, &mut y));
+            (solve_leading_out_of_line(&mut a, &mut y, m4, tiny), y)
         } else {
             let (mut a, mut rhs) = ([[T::zero(); 4]; 4], [T::zero(); 4]);
-            for l in 0..m4 {
-                let j = usize::from(var[l]).min(3);
-                let mu = signed(l, j);
-                for r in 0..m4 {
-                    a[r][l] = entry(usize::from(var[r]).min(3), j, mu);
-                }
-                rhs[l] = -self.q[j];
-            }
-            (solve_small(&mut a, &mut rhs, m4, tiny), rhs)
-        };
-        let [y0, y1, y2, y3] = rhs;
-        let zero = T::zero();
-        (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+            form_sliding(m4, (var, &signed, &entry), &self.q, (&mut a, &mut rhs));
+            let solved = solve_small(&mut a, &mut rhs, m4, tiny);
+            let [y0, y1, y2, y3] = rhs;
+            let zero = T::zero();
+            (solved, [y0, y1, y2, y3, zero, zero, zero, zero, zero])
+        }
     }
 
     /// Column `l` of [`Self::solve_basis`]'s system and its right-hand side: unknown `l`'s
@@ -1007,6 +1022,13 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         c: &mut [[T; K]; K],
     ) {
         contact_blocks(&self.cols, self.slots(), rows, n, c);
+    }
+
+    /// [`Self::contact_blocks`] of every slot (at most eight) in arrays of eight, one copy out of
+    /// line: the detection's for any count, and with `compact` the sliding step's blocks too.
+    #[inline(never)]
+    pub(super) fn contact_blocks_of_eight(&self, n: &mut [[T; 8]; 8], c: &mut [[T; 8]; 8]) {
+        contact_blocks(&self.cols, self.slots(), 8, n, c);
     }
 }
 
@@ -1207,7 +1229,25 @@ fn ldl_back<T: Real>(
     rhs[i] = x;
 }
 
-/// [`solve_leading`] with at most four unknowns (fewer than [`solve_four`]'s), in a `4 x 4` array.
+/// [`Factored::solve_sliding`]'s system of `m4 < 4` unknowns into `a` and `y`: unknown `l` slot
+/// `var[l]`'s, its column's entries `entry(row's slot, slot, signed(l, slot))`.
+fn form_sliding<T: Real, const D: usize>(
+    m4: usize,
+    (var, signed, entry): (&[u8; UNKNOWNS], impl Fn(usize, usize) -> T, impl Fn(usize, usize, T) -> T),
+    q: &[T],
+    (a, y): (&mut [[T; D]; D], &mut [T; D]),
+) {
+    for l in 0..m4.min(D) {
+        let j = usize::from(var[l]).min(3);
+        let mu = signed(l, j);
+        for r in 0..m4.min(D) {
+            a[r][l] = entry(usize::from(var[r]).min(3), j, mu);
+        }
+        y[l] = -q.get(j).copied().unwrap_or(T::zero());
+    }
+}
+
+/// [`solve_leading`] with fewer than four unknowns in a `4 x 4` array (left out with `compact`).
 #[inline(never)]
 fn solve_small<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], m: usize, tiny: T) -> bool {
     solve_leading(a, rhs, m, tiny)

@@ -118,7 +118,7 @@ pub(super) fn flags<T: Real, const B: usize, const N: usize>(
                     c[i][..4].copy_from_slice(&blocks.c[i]);
                 }
             } else {
-                f.contact_blocks(k, &mut n, &mut c);
+                f.contact_blocks_of_eight(&mut n, &mut c);
             }
             coupled::<T, B, N, 8>(f, k.min(8), &n, &c)
         }
