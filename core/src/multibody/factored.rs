@@ -368,8 +368,10 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// Forms the step's [`ContactBlocks`] ([`Self::blocks`]) when it has four slots and the basis
     /// `mask` (bit `v`: `z_v` basic) slides at every touching slot ([`Self::only_sliding`]): the
     /// warm basis of block-on-block's sliding steps, whose system ([`Self::solve_basis`]) and
-    /// detection ([`super::resolve::flags`]) both read them. Any other step has none (a resting
-    /// stack's sticking bases take their system from the columns, and its detection never runs).
+    /// detection ([`super::resolve::flags`]) both read them, as do the step's candidates whose every
+    /// unknown is a normal impulse with its friction row following. Any other step has none: its
+    /// bases take their system from the columns and its detection forms its own blocks (a resting
+    /// stack's sticking bases; its detection does not run at rest).
     #[inline]
     pub(super) fn form_blocks(&mut self, mask: u32) {
         self.blocks_formed = self.slots() == 4 && self.only_sliding(mask);
