@@ -656,7 +656,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         w: Option<&mut [T; N]>,
     ) -> Result<Answer<T, B>, Declined> {
         let answer = self.solve_zeroed(mask, tolerance, blocks, z, w);
-        if answer.is_err() {
+        // A pattern or a singular system is declined before any entry of `z` is written: only a
+        // later decline has one to clear.
+        if let Err(Declined::Infeasible(_) | Declined::Unverified) = answer {
             *z = [T::zero(); N];
         }
         answer
