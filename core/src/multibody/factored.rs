@@ -53,7 +53,13 @@ pub(super) struct Answer<T, const B: usize> {
     /// The basis answered (the one given, a sticking contact's friction turned to the direction
     /// its impulse takes).
     pub(super) mask: u32,
+    /// Each slot's `c_+d^T v+` as the checks formed it, `q_+d + c_+d^T dv` (the negated slip of
+    /// its corner, `super::geometry::slip`), for the first [`MOST_SLOTS`] slots.
+    pub(super) along: [T; MOST_SLOTS],
 }
+
+/// The most slots a step has (`N <= 32` rows, four a slot).
+pub(super) const MOST_SLOTS: usize = 8;
 
 /// An unused body entry of a [`Column`] (beyond any `B`: no lookup finds it).
 const NO_BODY: u8 = u8::MAX;
@@ -144,6 +150,8 @@ struct RoundOffScale<T, const B: usize> {
 pub(super) struct Factored<T, const B: usize, const N: usize> {
     /// Active slots `k` (`4 k <= N`).
     k: usize,
+    /// The `-d` variables `k + 2 j + 1` as bits ([`Self::column`]).
+    minus: u32,
     /// Each impulse variable's column (`v < 3 k`).
     cols: [Column<T>; N],
     /// `q`.
@@ -194,6 +202,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     pub(super) fn new() -> Self {
         Self {
             k: 0,
+            minus: 0,
             cols: [Column::zero(); N],
             q: [T::zero(); N],
             mu: [T::zero(); N],
@@ -216,6 +225,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// slots accumulate start over.
     pub(super) fn reset(&mut self, k: usize, v_free: [[T; 3]; B]) {
         self.k = k.min(N / 4);
+        // Bits `k + 1, k + 3, .., 3 k - 1` (`3 k <= 24` for any `N` a `u32` basis holds).
+        let k = self.k.min(8);
+        self.minus = (0x5555_u32 & ((1u32 << (2 * k)) - 1)) << (k + 1);
         self.v_free = v_free;
         self.m_low = T::one();
         self.columns_finite = AllFinite::new();
@@ -293,18 +305,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 *slot = col;
             }
             if r == 1
-                && let (Some(slot), Some(qv)) = (self.cols.get_mut(v + 1), self.q.get_mut(v + 1))
+                && let Some(qv) = self.q.get_mut(v + 1)
             {
-                // `-d`: the `+d` column negated, and its `q` (every product and sum negates
-                // exactly: the same bits as computing it from `-d`), written in place.
+                // `-d`'s `q`, the `+d` one negated (every product and sum negates exactly: the
+                // same bits as computing it from `-d`); its column is the `+d` one read negated
+                // ([`Self::column`]).
                 *qv = -q;
-                slot.body = col.body;
-                for p in 0..2 {
-                    for c in 0..3 {
-                        slot.c[p][c] = -col.c[p][c];
-                        slot.mc[p][c] = -col.mc[p][c];
-                    }
-                }
             }
         }
         // The sigma row's `|mu| + 2` (its entries `mu`, `-1`, `-1`); from `mu >= MU_WEIGHTED_FROM`
@@ -427,10 +433,20 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         if self.k < N / 4 { self.k } else { N / 4 }
     }
 
+    /// Variable `v`'s column as stored, and whether it is read negated: a `-d` column is its
+    /// slot's `+d` column negated, and only that one is stored ([`Self::set_slot`]).
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // an index and a flag, at every read of a column
+    fn column(&self, v: usize) -> (&Column<T>, bool) {
+        let minus = self.minus.checked_shr(v as u32).unwrap_or(0) & 1;
+        (&self.cols[(v - minus as usize).min(N - 1)], minus == 1)
+    }
+
     /// `c_r^T M~ c_c`: the entry of `J M~ J^T` in row `r` and column `c` (`r, c < 3 k`).
     #[cfg(test)] // the tests' entry-by-entry reference of `contact_blocks`
     pub(super) fn entry(&self, r: usize, c: usize) -> T {
-        self.cols[r.min(N - 1)].dot_scaled(&self.cols[c.min(N - 1)])
+        let ((row, minus_r), (col, minus_c)) = (self.column(r), self.column(c));
+        negated_if(row.dot_scaled(col), minus_r ^ minus_c)
     }
 
     /// Slot `j`'s friction coefficient this step.
@@ -482,10 +498,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         while bits != 0 {
             let v = bits.trailing_zeros() as usize;
             bits &= bits - 1;
-            if let (Some(&zv), Some(col)) = (z.get(v), self.cols.get(v))
+            if let Some(&zv) = z.get(v)
                 && zv != T::zero()
             {
-                col.add_scaled_to(zv, &mut dv);
+                // A `-d` column's `M~ c z` as `M~ c_+d (-z)`: the same product.
+                let (col, minus) = self.column(v);
+                col.add_scaled_to(if minus { -zv } else { zv }, &mut dv);
             }
         }
         dv
@@ -508,7 +526,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let v = v.min(N - 1);
         -wv <= T::of_count(scale.terms + 8)
             * T::EPS
-            * (self.q[v].abs_exact() + self.cols[v].dot_abs(&scale.sums))
+            * (self.q[v].abs_exact() + self.column(v).0.dot_abs(&scale.sums))
     }
 
     /// `true` when the negative `wv` of a row whose round-off may excuse it is beyond that round-off
@@ -564,7 +582,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for v in 0..(3 * self.k.min(N / 4)).min(N) {
             let magnitude = z[v].abs_exact();
             if magnitude != T::zero() {
-                let col = &self.cols[v];
+                let col = self.column(v).0;
                 scale.terms += 1;
                 for p in 0..2 {
                     if let Some(a) = scale.sums.get_mut(usize::from(col.body[p])) {
@@ -601,7 +619,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let rows = (3 * k).min(N);
         for i in 0..rows {
             for j in i..rows {
-                let e = self.cols[i].dot_scaled(&self.cols[j]);
+                let ((row, minus_i), (col, minus_j)) = (self.column(i), self.column(j));
+                let e = negated_if(row.dot_scaled(col), minus_i ^ minus_j);
                 for entry in [(i, j), (j, i)] {
                     if let Some(x) = a.get_mut(entry) {
                         *x = e;
@@ -814,9 +833,13 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let mut z_norm = p_norm;
         let mut finite = AllFinite::new();
         let mut scale = None;
+        let mut along = [T::zero(); MOST_SLOTS];
         for j in 0..k.min(N / 4) {
             let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j].map(|v| v.min(N - 1));
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
+            if let Some(a) = along.get_mut(j) {
+                *a = slip;
+            }
             if basic(sigma) {
                 let value = if basic(plus) { -slip } else { slip };
                 if value < T::zero() && self.beyond_round_off(plus, value, &mut scale, z) {
@@ -884,7 +907,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 v_plus[b][c] += dv[b][c];
             }
         }
-        Ok(Answer { v_plus, mask })
+        Ok(Answer { v_plus, mask, along })
     }
 }
 
@@ -897,14 +920,27 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // triangle formed in place, `c_r^T M~ c_l` as [`Self::form_column`] forms it (no
         // array cleared first); the upper triangle zero (`solve_symmetric` writes it before
         // reading it).
+        //
+        // A `-d` unknown is solved for as its `+d` one (`S A S y = b` as `A' (S y) = S b`, `S` the
+        // signs, `A'` the system of the stored columns: every entry and step of the elimination
+        // negates exactly with its sign, the pivots are the same), its answer negated.
+        let cols: [_; UNKNOWNS] = core::array::from_fn(|l| self.column(usize::from(var[l])));
         let mut a = core::array::from_fn(|r| {
-            let row = &self.cols[usize::from(var[r]).min(N - 1)];
-            core::array::from_fn(|l| {
-                if l <= r { row.dot_scaled(&self.cols[usize::from(var[l]).min(N - 1)]) } else { T::zero() }
-            })
+            let row = cols[r].0;
+            core::array::from_fn(|l| if l <= r { row.dot_scaled(cols[l].0) } else { T::zero() })
         });
-        let mut y = core::array::from_fn(|l| -self.q[usize::from(var[l]).min(N - 1)]);
-        (solve_symmetric(&mut a, &mut y, UNKNOWNS, tiny), y)
+        // `S b`: `-q` of the stored column (a `-d` row's `q` is its `+d` one's negated).
+        let mut y = core::array::from_fn(|l| {
+            let v = usize::from(var[l]);
+            -self.q[if cols[l].1 { v - 1 } else { v }.min(N - 1)]
+        });
+        let solved = solve_symmetric(&mut a, &mut y, UNKNOWNS, tiny);
+        for l in 0..UNKNOWNS {
+            if cols[l].1 {
+                y[l] = -y[l];
+            }
+        }
+        (solved, y)
     }
 
     /// [`Self::solve_basis`]'s system of four unknowns with followers formed from the columns (a
@@ -998,12 +1034,18 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         m: usize,
     ) {
         let (l, m) = (l.min(D - 1).min(UNKNOWNS - 1), m.min(D));
-        let mut g = self.cols[usize::from(var[l]).min(N - 1)];
+        let (g, minus_l) = self.column(usize::from(var[l]));
+        let mut g = *g;
         if follower[l] < N {
-            let (f, mu) = (&self.cols[follower[l]], self.mu[usize::from(var[l]).min(N - 1)]);
+            // `+ mu c_-d` as `- mu c_+d` (`x + mu (-y)` is `x - mu y`: the same bits).
+            let ((f, minus_f), mu) = (self.column(follower[l]), self.mu[usize::from(var[l]).min(N - 1)]);
             for p in 0..2 {
                 for c in 0..3 {
-                    g.mc[p][c] += mu * f.mc[p][c];
+                    if minus_f {
+                        g.mc[p][c] -= mu * f.mc[p][c];
+                    } else {
+                        g.mc[p][c] += mu * f.mc[p][c];
+                    }
                 }
             }
         }
@@ -1011,7 +1053,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             a[r][l] = if r < l && follower[r] == N && follower[l] == N {
                 a[l][r]
             } else {
-                self.cols[usize::from(var[r]).min(N - 1)].dot_scaled(&g)
+                let (row, minus_r) = self.column(usize::from(var[r]));
+                negated_if(row.dot_scaled(&g), minus_r ^ minus_l)
             };
         }
         y[l] = -self.q[usize::from(var[l]).min(N - 1)];
@@ -1098,6 +1141,16 @@ fn contact_blocks<T: Real, const N: usize, const K: usize>(
             }
         }
     }
+}
+
+/// `x`, or `0 - x` when `negate`: what a sum from zero gives for a column read negated
+/// ([`Factored::column`]). A [`Column`]'s sums start from `+0`, so `x` is never `-0`, and with one
+/// column negated every term negates exactly: the sum is `-x`, or `+0` when `x` is zero, which is
+/// `0 - x` in both cases (the same bits as summing with the negated column).
+#[inline(always)]
+#[allow(clippy::inline_always)] // one subtraction at each entry read negated
+fn negated_if<T: Real>(x: T, negate: bool) -> T {
+    if negate { T::zero() - x } else { x }
 }
 
 /// The basis' `m x m` system by [`solve_leading`], one copy out of line for any `m`

@@ -2,7 +2,7 @@
 //! coordinates when a basis near the last one answers and by Lemke's method otherwise
 //! (`docs/formulation.md`, "Several bodies", "One step", "Solving a multibody step (the core)").
 
-use super::factored::{ContactBlocks, Factored};
+use super::factored::{ContactBlocks, Factored, MOST_SLOTS};
 use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames, slip};
 use super::resolve::{self, Detector};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
@@ -478,6 +478,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 basis: Basis::all_w(),
                 pivots: 0,
                 path: SolvePath::Free,
+                along: None,
             });
         }
         let tolerance = self.solver.tolerance();
@@ -485,7 +486,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let why = match f.solve_basis(warm.z_mask(), tolerance, blocks, z, None) {
             Ok(a) => {
                 let basis = Basis::from_z_mask(a.mask);
-                return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Warm });
+                let along = Some(a.along);
+                return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Warm, along });
             }
             Err(why) => why,
         };
@@ -518,6 +520,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             basis: solution.basis,
             pivots: solution.pivots,
             path: SolvePath::Lemke,
+            along: None,
         })
     }
 
@@ -602,7 +605,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             paths.candidates_tried += 1;
             if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
                 let basis = Basis::from_z_mask(a.mask);
-                return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
+                let along = Some(a.along);
+                return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate, along });
             }
         }
         None
@@ -654,7 +658,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             match f.solve_basis(lifted.z_mask(), tolerance, blocks, z, None) {
                 Ok(a) => {
                     let basis = Basis::from_z_mask(a.mask);
-                    return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate });
+                    let along = Some(a.along);
+                return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate, along });
                 }
                 Err(why) => basis = self.lifted(lifted, why),
             }
@@ -678,11 +683,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         // A sliding step's blocks, formed once for its solve and its detection.
         self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
         let blocks = self.lcp.factored.blocks();
-        let Solved { mut v_plus, basis, pivots, path } = self.solve(&mut paths, blocks, &mut z)?;
+        let Solved { mut v_plus, basis, pivots, path, along } = self.solve(&mut paths, blocks, &mut z)?;
         let mut mask = basis.z_mask();
         let tolerance = self.solver.tolerance();
         let f = &self.lcp.factored;
         let rule = resolve::apply(&self.detector, f, blocks, tolerance, (&mut v_plus, &mut z, &mut mask));
+        // The slips the basis solve formed, unless the rule took another answer.
+        let along = along.filter(|_| rule.is_none_or(|r| !r.changed));
         let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
@@ -712,7 +719,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             patterns[p][c] = slot_pattern(mask, k, j);
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
-                modes[p][c] = ContactMode::from_slip(slip(f, &v_plus), s.stick_speed);
+                // `-c_+d^T v+` as the solve formed it, else from the frame.
+                let slip = along.and_then(|a| a.get(j).map(|&a| -a)).unwrap_or_else(|| slip(f, &v_plus));
+                modes[p][c] = ContactMode::from_slip(slip, s.stick_speed);
             }
             // On the upper body: + for its corners, - for the lower body's (negated: the bits of
             // `+-1` times it, a product by `+-1` being exact).
@@ -793,6 +802,9 @@ struct Solved<T, const B: usize, const N: usize> {
     pivots: u32,
     /// The path that answered.
     path: SolvePath,
+    /// Each slot's `c_+d^T v+` as a basis solve formed it ([`super::factored::Answer`]), `None`
+    /// from Lemke's method or with no impulse.
+    along: Option<[T; MOST_SLOTS]>,
 }
 
 /// One step's LCP in factored form with its slots and warm basis ([`Stepper::refill`]).
