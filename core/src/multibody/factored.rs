@@ -61,34 +61,31 @@ pub(super) struct Answer<T, const B: usize> {
 /// The most slots a step has (`N <= 32` rows, four a slot).
 pub(super) const MOST_SLOTS: usize = 8;
 
-/// An unused body entry of a [`Column`] (beyond any `B`: no lookup finds it).
-const NO_BODY: u8 = u8::MAX;
-
-/// The column of one impulse variable: its (one or two) bodies' entries of `c_v` and of `M~ c_v`.
+/// The column of one impulse variable, dense in the bodies' `3B` coordinates: `c_v` and `M~ c_v`,
+/// zero in the columns of a body the contact does not touch (a contact touches one body or two).
+/// Every sum below runs over all `B` bodies; a body the column does not touch adds a signed zero
+/// (`0 x finite`), which changes no sum but a zero's sign, and at most two terms are not zero, so
+/// their order does not matter either (IEEE addition commutes): the sums of the terms of the
+/// touched bodies only, as exactly.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Column<T> {
-    /// The bodies ([`NO_BODY`] for an unused entry: a contact on the table touches one body).
-    body: [u8; 2],
+pub(super) struct Column<T, const B: usize> {
     /// `c_v` per body.
-    c: [[T; 3]; 2],
+    c: [[T; 3]; B],
     /// `M~ c_v` per body.
-    mc: [[T; 3]; 2],
+    mc: [[T; 3]; B],
 }
 
-impl<T: Real> Column<T> {
+impl<T: Real, const B: usize> Column<T, B> {
     fn zero() -> Self {
-        let zero3 = [T::zero(); 3];
-        Self { body: [NO_BODY; 2], c: [zero3; 2], mc: [zero3; 2] }
+        Self { c: [[T::zero(); 3]; B], mc: [[T::zero(); 3]; B] }
     }
 
     /// `c^T v` for velocities (or velocity changes) `v` in `3B` coordinates.
     #[inline]
-    fn dot<const B: usize>(&self, v: &[[T; 3]; B]) -> T {
+    fn dot(&self, v: &[[T; 3]; B]) -> T {
         let mut sum = T::zero();
-        for p in 0..2 {
-            if let Some(u) = v.get(usize::from(self.body[p])) {
-                sum += dot3(&self.c[p], u);
-            }
+        for b in 0..B {
+            sum += dot3(&self.c[b], &v[b]);
         }
         sum
     }
@@ -98,24 +95,18 @@ impl<T: Real> Column<T> {
     #[inline]
     fn dot_scaled(&self, g: &Self) -> T {
         let mut sum = T::zero();
-        for p in 0..2 {
-            for r in 0..2 {
-                if self.body[p] == g.body[r] && self.body[p] != NO_BODY {
-                    sum += dot3(&self.c[p], &g.mc[r]);
-                }
-            }
+        for b in 0..B {
+            sum += dot3(&self.c[b], &g.mc[b]);
         }
         sum
     }
 
     /// `dv += M~ c z`.
     #[inline]
-    fn add_scaled_to<const B: usize>(&self, z: T, dv: &mut [[T; 3]; B]) {
-        for p in 0..2 {
-            if let Some(u) = dv.get_mut(usize::from(self.body[p])) {
-                for c in 0..3 {
-                    u[c] += self.mc[p][c] * z;
-                }
+    fn add_scaled_to(&self, z: T, dv: &mut [[T; 3]; B]) {
+        for b in 0..B {
+            for c in 0..3 {
+                dv[b][c] += self.mc[b][c] * z;
             }
         }
     }
@@ -123,13 +114,11 @@ impl<T: Real> Column<T> {
     /// `|c|^T a` for per-body magnitudes `a >= 0`: this row's share of a round-off bound
     /// ([`Factored::within_round_off`]).
     #[inline]
-    fn dot_abs<const B: usize>(&self, a: &[[T; 3]; B]) -> T {
+    fn dot_abs(&self, a: &[[T; 3]; B]) -> T {
         let mut sum = T::zero();
-        for p in 0..2 {
-            if let Some(u) = a.get(usize::from(self.body[p])) {
-                for c in 0..3 {
-                    sum += self.c[p][c].abs_exact() * u[c];
-                }
+        for b in 0..B {
+            for c in 0..3 {
+                sum += self.c[b][c].abs_exact() * a[b][c];
             }
         }
         sum
@@ -153,7 +142,7 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     /// The `-d` variables `k + 2 j + 1` as bits ([`Self::column`]).
     minus: u32,
     /// Each impulse variable's column (`v < 3 k`).
-    cols: [Column<T>; N],
+    cols: [Column<T, B>; N],
     /// `q`.
     q: [T; N],
     /// Each slot's friction coefficient this step.
@@ -265,22 +254,23 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let (mut q_norm, mut q_min) = (self.q_norm, self.q_min);
         for (r, row) in rows.iter().enumerate() {
             let v = if r == 0 { j } else { k + 2 * j };
-            // The corner's owner's entries first, the face's owner's second (an unused one has no
-            // body: a contact on the table touches one body); `q = c^T v~` summed as `Column::dot`
+            // Each body's entries: the corner's owner's, the face's owner's or zero (a contact on
+            // the table touches one body); `q = c^T v~` summed over the bodies as `Column::dot`
             // sums it.
-            let mut col = Column::zero();
-            let mut q = T::zero();
-            for (p, entry) in [row.corner, row.face].into_iter().enumerate() {
-                if let Some((b, c)) = entry {
-                    let m = inverse_mass.get(usize::from(b)).copied().unwrap_or([T::zero(); 3]);
-                    col.body[p] = b;
-                    col.c[p] = c;
-                    col.mc[p] = [c[0] * m[0], c[1] * m[1], c[2] * m[2]];
-                    if let Some(u) = self.v_free.get(usize::from(b)) {
-                        q += dot3(&c, u);
-                    }
-                }
-            }
+            let of = |b: usize| match (row.corner, row.face) {
+                (Some((a, c)), _) if usize::from(a) == b => c,
+                (_, Some((f, c))) if usize::from(f) == b => c,
+                _ => [T::zero(); 3],
+            };
+            let c: [[T; 3]; B] = core::array::from_fn(of);
+            let col = Column {
+                c,
+                mc: core::array::from_fn(|b| {
+                    let m = &inverse_mass[b];
+                    [c[b][0] * m[0], c[b][1] * m[1], c[b][2] * m[2]]
+                }),
+            };
+            let mut q = col.dot(&self.v_free);
             if r == 0 {
                 q += bias;
             }
@@ -293,10 +283,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             // its finiteness stands for the column's: a non-finite entry of `M~ c` (or of `c`,
             // `M~` being finite) makes its product with `c`, and so the sum, infinite or NaN
             // (`0 x inf` is NaN), and a diagonal beyond the format's range is refused with them.
-            let mut diagonal = T::zero();
-            for p in 0..2 {
-                diagonal += dot3(&col.c[p], &col.mc[p]);
-            }
+            let diagonal = col.dot_scaled(&col);
             finite.add(diagonal);
             let unit = if r == 0 { T::zero() } else { T::one() };
             m_low = max(m_low, diagonal.abs_exact() + unit);
@@ -437,7 +424,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// slot's `+d` column negated, and only that one is stored ([`Self::set_slot`]).
     #[inline(always)]
     #[allow(clippy::inline_always)] // an index and a flag, at every read of a column
-    fn column(&self, v: usize) -> (&Column<T>, bool) {
+    fn column(&self, v: usize) -> (&Column<T, B>, bool) {
         let minus = self.minus.checked_shr(v as u32).unwrap_or(0) & 1;
         (&self.cols[(v - minus as usize).min(N - 1)], minus == 1)
     }
@@ -584,11 +571,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             if magnitude != T::zero() {
                 let col = self.column(v).0;
                 scale.terms += 1;
-                for p in 0..2 {
-                    if let Some(a) = scale.sums.get_mut(usize::from(col.body[p])) {
-                        for c in 0..3 {
-                            a[c] += col.mc[p][c].abs_exact() * magnitude;
-                        }
+                for b in 0..B {
+                    for c in 0..3 {
+                        scale.sums[b][c] += col.mc[b][c].abs_exact() * magnitude;
                     }
                 }
             }
@@ -1039,12 +1024,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         if follower[l] < N {
             // `+ mu c_-d` as `- mu c_+d` (`x + mu (-y)` is `x - mu y`: the same bits).
             let ((f, minus_f), mu) = (self.column(follower[l]), self.mu[usize::from(var[l]).min(N - 1)]);
-            for p in 0..2 {
+            for b in 0..B {
                 for c in 0..3 {
                     if minus_f {
-                        g.mc[p][c] -= mu * f.mc[p][c];
+                        g.mc[b][c] -= mu * f.mc[b][c];
                     } else {
-                        g.mc[p][c] += mu * f.mc[p][c];
+                        g.mc[b][c] += mu * f.mc[b][c];
                     }
                 }
             }
@@ -1082,22 +1067,14 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 /// The active slots' normal block `N_ij = c_n,i^T M~ c_n,j` (its lower triangle `j <= i`
 /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
 /// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
-/// left as given. Each entry is [`Column::dot_scaled`] of the two columns (the `dot3` of each
-/// body both touch, summed), straight from the columns; `N_ij`, `C_ji` and `C_ij` (`j <= i`)
-/// share one comparison of the two slots' bodies (when each slot's normal and friction columns
-/// touch the same bodies, as [`Factored::set_slot`] writes them; checked once, and otherwise each
-/// entry on its own). That is the dense sum over the bodies' `3B` coordinates,
-/// `dot3(c_i[0], (M~ c_j)[0]) + ...` up to body `B - 1`, exactly for finite columns (those of
-/// every step solved: a non-finite one is refused first, [`Factored::is_finite`]) up to a zero's
-/// sign: a body the two columns do not share adds a signed zero (`0 x finite`) to the dense
-/// sum, which changes no sum but a zero's sign, and a column touches at most two bodies, so at
-/// most two non-zero terms are added, in either order the same (IEEE addition commutes). No
-/// decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
+/// left as given. Each entry is [`Column::dot_scaled`] of the two columns, straight from the
+/// columns (`N_ij`, `C_ji` and `C_ij` for `j <= i` together: the two slots' columns read once).
+/// No decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
 /// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
 #[inline(always)]
 #[allow(clippy::inline_always)] // `rows` a constant in the four slots' copy: its loops unrolled
-fn contact_blocks<T: Real, const N: usize, const K: usize>(
-    cols: &[Column<T>; N],
+fn contact_blocks<T: Real, const B: usize, const N: usize, const K: usize>(
+    cols: &[Column<T, B>; N],
     k: usize,
     rows: usize,
     n: &mut [[T; K]; K],
@@ -1105,40 +1082,13 @@ fn contact_blocks<T: Real, const N: usize, const K: usize>(
 ) {
     let rows = rows.min(k).min(K);
     let col = |v: usize| &cols[v.min(N - 1)];
-    // Each slot's normal and friction columns touch the same bodies (as `set_slot` writes them).
-    let bodies = |v: usize| u16::from_ne_bytes(col(v).body);
-    let mut paired = true;
-    for i in 0..rows {
-        paired &= bodies(i) == bodies(k + 2 * i);
-    }
     for j in 0..rows {
         let (a, f) = (col(j), col(k + 2 * j));
-        for i in 0..rows {
+        for i in j..rows {
             let (u, g) = (col(i), col(k + 2 * i));
-            if j > i {
-                // `C_ji` was written with `(j, i)`.
-            } else if paired {
-                // `N_ij`, `C_ji` and `C_ij` from one comparison of the two slots' bodies: each
-                // `dot_scaled`'s sum, its at most two terms in either order the same (`C_ii`
-                // twice, the same).
-                let (mut normal, mut friction_j, mut friction_i) = (T::zero(), T::zero(), T::zero());
-                for p in 0..2 {
-                    for r in 0..2 {
-                        if u.body[p] == a.body[r] && u.body[p] != NO_BODY {
-                            normal += dot3(&u.c[p], &a.mc[r]);
-                            friction_j += dot3(&u.c[p], &f.mc[r]);
-                            friction_i += dot3(&a.c[r], &g.mc[p]);
-                        }
-                    }
-                }
-                n[i][j] = normal;
-                c[j][i] = friction_j;
-                c[i][j] = friction_i;
-            } else {
-                n[i][j] = u.dot_scaled(a);
-                c[j][i] = u.dot_scaled(f);
-                c[i][j] = a.dot_scaled(g);
-            }
+            n[i][j] = u.dot_scaled(a);
+            c[j][i] = u.dot_scaled(f);
+            c[i][j] = a.dot_scaled(g);
         }
     }
 }
