@@ -689,7 +689,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let f = &self.lcp.factored;
         let rule = resolve::apply(&self.detector, f, blocks, tolerance, (&mut v_plus, &mut z, &mut mask));
         // The slips the basis solve formed, unless the rule took another answer.
-        let along = along.filter(|_| rule.is_none_or(|r| !r.changed));
+        let (along, from_solve) = match along {
+            Some(along) if rule.is_none_or(|r| !r.changed) => (along, true),
+            _ => ([T::zero(); MOST_SLOTS], false),
+        };
         let m_ref = self.system.bodies[0].mass;
         // q+ = q + h V+, compensated sums.
         let mut states = self.states;
@@ -720,7 +723,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
                 // `-c_+d^T v+` as the solve formed it, else from the frame.
-                let slip = along.and_then(|a| a.get(j).map(|&a| -a)).unwrap_or_else(|| slip(f, &v_plus));
+                let slip = if from_solve { -along[j.min(MOST_SLOTS - 1)] } else { slip(f, &v_plus) };
                 modes[p][c] = ContactMode::from_slip(slip, s.stick_speed);
             }
             // On the upper body: + for its corners, - for the lower body's (negated: the bits of
