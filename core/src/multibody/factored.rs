@@ -470,27 +470,28 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
     }
 
-    /// `dv = M~ J^T p` for the impulses in `z` (eq. 16), summed on its own.
+    /// `dv = M~ J^T p` for the impulses in `z` (eq. 16), summed on its own: `M~ c_v z_v` over the
+    /// impulses `v` in order (the normals, then each slot's `+d` and `-d`), each non-zero one
+    /// added.
     pub(super) fn velocity_change(&self, z: &[T; N]) -> [[T; 3]; B] {
-        self.velocity_change_on(z, u32::MAX)
-    }
-
-    /// [`Self::velocity_change`] for `z` zero outside `support` (bit `v`: `z_v` may be nonzero),
-    /// the same sum in the same order over fewer columns.
-    #[inline]
-    fn velocity_change_on(&self, z: &[T; N], support: u32) -> [[T; 3]; B] {
+        let k = self.k.min(N / 4);
         let mut dv = [[T::zero(); 3]; B];
-        let impulses = 3 * self.k.min(N / 4);
-        let mut bits = support & 1u32.checked_shl(impulses as u32).map_or(u32::MAX, |b| b - 1);
-        while bits != 0 {
-            let v = bits.trailing_zeros() as usize;
-            bits &= bits - 1;
-            if let Some(&zv) = z.get(v)
-                && zv != T::zero()
-            {
-                // A `-d` column's `M~ c z` as `M~ c_+d (-z)`: the same product.
-                let (col, minus) = self.column(v);
-                col.add_scaled_to(if minus { -zv } else { zv }, &mut dv);
+        for j in 0..k {
+            let zn = z[j];
+            if zn != T::zero() {
+                self.cols[j].add_scaled_to(zn, &mut dv);
+            }
+        }
+        for j in 0..k {
+            // Slot `j`'s `+d` column once for both directions (`-d`'s `M~ c z` as
+            // `M~ c_+d (-z)`: the same product).
+            let (plus, minus) = (z[(k + 2 * j).min(N - 1)], z[(k + 2 * j + 1).min(N - 1)]);
+            let col = &self.cols[(k + 2 * j).min(N - 1)];
+            if plus != T::zero() {
+                col.add_scaled_to(plus, &mut dv);
+            }
+            if minus != T::zero() {
+                col.add_scaled_to(-minus, &mut dv);
             }
         }
         dv
@@ -787,7 +788,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 p_norm = max(p_norm, friction);
             }
         }
-        let dv = self.velocity_change_on(z, mask);
+        let dv = self.velocity_change(z);
         // The pairs with a basic friction impulse (`held`): a touching contact of any other pair
         // holds its slip to `>= 0` in both directions exactly (zero), not within round-off. (Within
         // a pair every corner's slip is the one relative slip of the two bodies along their face,
