@@ -227,9 +227,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.q_min = T::one();
     }
 
-    /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d` (each
-    /// entry the corner's owner and the face's owner, [`super::JacobianRow`]; the `-d` column is
-    /// the `+d` one negated), its normal row's bias `c0` and its `mu`; `inverse_mass` is `M~`'s
+    /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d`, dense
+    /// in the bodies' `3B` coordinates ([`super::JacobianRow::dense`]; the `-d` column is the `+d`
+    /// one negated, [`Self::column`]), its normal row's bias `c0` and its `mu`; `inverse_mass` is `M~`'s
     /// diagonal per body. Accumulates [`Self::finish`]'s scales (`||A||`'s lower bound, `||q||`,
     /// `min q`) and finiteness while the slot's values are at hand.
     #[allow(clippy::too_many_arguments)] // a slot's data, as the stepper has them
@@ -239,7 +239,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         &mut self,
         j: usize,
         pair: u8,
-        rows: [super::JacobianRow<T>; 2],
+        rows: [[[T; 3]; B]; 2],
         bias: T,
         mu: T,
         inverse_mass: &[[T; 3]; B],
@@ -254,20 +254,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let (mut q_norm, mut q_min) = (self.q_norm, self.q_min);
         for (r, row) in rows.iter().enumerate() {
             let v = if r == 0 { j } else { k + 2 * j };
-            // Each body's entries: the corner's owner's, the face's owner's or zero (a contact on
-            // the table touches one body); `q = c^T v~` summed over the bodies as `Column::dot`
-            // sums it.
-            let of = |b: usize| match (row.corner, row.face) {
-                (Some((a, c)), _) if usize::from(a) == b => c,
-                (_, Some((f, c))) if usize::from(f) == b => c,
-                _ => [T::zero(); 3],
-            };
-            let c: [[T; 3]; B] = core::array::from_fn(of);
             let col = Column {
-                c,
+                c: *row,
                 mc: core::array::from_fn(|b| {
                     let m = &inverse_mass[b];
-                    [c[b][0] * m[0], c[b][1] * m[1], c[b][2] * m[2]]
+                    [row[b][0] * m[0], row[b][1] * m[1], row[b][2] * m[2]]
                 }),
             };
             let mut q = col.dot(&self.v_free);

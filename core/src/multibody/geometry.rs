@@ -183,6 +183,25 @@ impl<T: Real> CornerFrame<T> {
     }
 }
 
+impl<T: Real> CornerFrame<T> {
+    /// [`Self::row`] dense in the bodies' `3B` coordinates, [`JacobianRow::dense`] of it (the
+    /// same entries): each body's three entries selected by its index, zero for a body the
+    /// contact does not touch.
+    #[inline]
+    pub(crate) fn dense_row<const B: usize>(&self, t: [T; 2]) -> [[T; 3]; B] {
+        let (corner, face) = (self.corner.map(usize::from), self.face.map(usize::from));
+        core::array::from_fn(|b| {
+            if corner == Some(b) {
+                [t[0], t[1], cross(self.lever_corner, t)]
+            } else if face == Some(b) {
+                [-t[0], -t[1], -cross(self.lever_face, t)]
+            } else {
+                [T::zero(); 3]
+            }
+        })
+    }
+}
+
 /// A row of the contact Jacobian in `3B` coordinates, stored by its (at most two) bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JacobianRow<T> {

@@ -439,7 +439,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             out.factored.set_slot(
                 j,
                 p as u8,
-                [f.row(f.normal), f.row(d)],
+                [f.dense_row(f.normal), f.dense_row(d)],
                 normal_bias(f.gap, h, s.gravity, f.gap_round_off),
                 mu,
                 &self.inverse_mass,
