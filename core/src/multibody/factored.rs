@@ -1074,13 +1074,15 @@ fn contact_blocks<T: Real, const B: usize, const N: usize, const K: usize>(
 ) {
     let rows = rows.min(k).min(K);
     let col = |v: usize| &cols[v.min(N - 1)];
+    // Column `j`'s normal and friction `M~ c` against every slot's normal `c`.
     for j in 0..rows {
         let (a, f) = (col(j), col(k + 2 * j));
-        for i in j..rows {
-            let (u, g) = (col(i), col(k + 2 * i));
-            n[i][j] = u.dot_scaled(a);
+        for i in 0..rows {
+            let u = col(i);
+            if i >= j {
+                n[i][j] = u.dot_scaled(a);
+            }
             c[j][i] = u.dot_scaled(f);
-            c[i][j] = a.dot_scaled(g);
         }
     }
 }
