@@ -278,6 +278,12 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             finite.add(diagonal);
             let unit = if r == 0 { T::zero() } else { T::one() };
             m_low = max(m_low, diagonal.abs_exact() + unit);
+            if r == 0
+                && let Some(n) = self.blocks.n.get_mut(j)
+            {
+                // `N_jj` of [`Self::form_blocks`]' blocks (the same sum), at hand.
+                n[j.min(3)] = diagonal;
+            }
             if let (Some(slot), Some(qv)) = (self.cols.get_mut(v), self.q.get_mut(v)) {
                 *qv = q;
                 *slot = col;
@@ -383,7 +389,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 self.blocks.c[i].copy_from_slice(&c[i][..4]);
             }
         } else {
-            contact_blocks(&self.cols, 4, 4, &mut self.blocks.n, &mut self.blocks.c);
+            contact_blocks(&self.cols, 4, (4, true), &mut self.blocks.n, &mut self.blocks.c);
         }
     }
 
@@ -1045,14 +1051,14 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         n: &mut [[T; K]; K],
         c: &mut [[T; K]; K],
     ) {
-        contact_blocks(&self.cols, self.slots(), rows, n, c);
+        contact_blocks(&self.cols, self.slots(), (rows, false), n, c);
     }
 
     /// [`Self::contact_blocks`] of every slot (at most eight) in arrays of eight, one copy out of
     /// line: the detection's for any count, and with `compact` the sliding step's blocks too.
     #[inline(never)]
     pub(super) fn contact_blocks_of_eight(&self, n: &mut [[T; 8]; 8], c: &mut [[T; 8]; 8]) {
-        contact_blocks(&self.cols, self.slots(), 8, n, c);
+        contact_blocks(&self.cols, self.slots(), (8, false), n, c);
     }
 }
 
@@ -1068,7 +1074,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 fn contact_blocks<T: Real, const B: usize, const N: usize, const K: usize>(
     cols: &[Column<T, B>; N],
     k: usize,
-    rows: usize,
+    (rows, diagonal_formed): (usize, bool),
     n: &mut [[T; K]; K],
     c: &mut [[T; K]; K],
 ) {
@@ -1079,7 +1085,7 @@ fn contact_blocks<T: Real, const B: usize, const N: usize, const K: usize>(
         let (a, f) = (col(j), col(k + 2 * j));
         for i in 0..rows {
             let u = col(i);
-            if i >= j {
+            if i > j || (i == j && !diagonal_formed) {
                 n[i][j] = u.dot_scaled(a);
             }
             c[j][i] = u.dot_scaled(f);
