@@ -714,12 +714,16 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
+        // Each slot's pattern ([`slot_pattern`]) from the normals', frictions' and sigmas' bits,
+        // shifted out slot by slot.
+        let (mut normals, mut frictions, mut sigmas) = (mask, mask >> k.min(8), mask >> (3 * k.min(8)));
         for j in 0..k {
             let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
-            patterns[p][c] = slot_pattern(mask, k, j);
+            patterns[p][c] = (normals & 1 | (frictions & 3) << 1 | (sigmas & 1) << 3) as Pattern;
+            (normals, frictions, sigmas) = (normals >> 1, frictions >> 2, sigmas >> 1);
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
                 // `-c_+d^T v+` as the solve formed it, else from the frame.
