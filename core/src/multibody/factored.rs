@@ -1263,7 +1263,8 @@ fn solve_small<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], m: usize, tiny: T
 /// [`solve_leading`] with four unknowns (two interfaces of two corners each sliding, each `p_n`
 /// with its friction row following: block-on-block's usual step), column by column with each
 /// index written out (its loops unrolled): the same operations in the same order (the same bits).
-#[inline(never)]
+#[inline(always)]
+#[allow(clippy::inline_always)] // in the sliding solve: its system kept where it was formed
 fn solve_four<T: Real>(a: &mut [[T; 4]; 4], rhs: &mut [T; 4], tiny: T) -> bool {
     eliminate_column!(a, rhs, 0, 4, 4, tiny);
     eliminate_column!(a, rhs, 1, 4, 4, tiny);
