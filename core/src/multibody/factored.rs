@@ -157,6 +157,9 @@ pub(super) struct Factored<T, const B: usize, const N: usize> {
     q_norm: T,
     /// `min_v q_v`.
     q_min: T,
+    /// `max |q_v|` over the friction rows ([`Self::set_slot`]; [`Self::finish`] closes `q_norm` and
+    /// `q_min` over it).
+    q_friction: T,
     /// Every entry of `q` and every diagonal entry `A_vv` is finite (and so every entry of `c` and
     /// `M~ c`, [`Self::set_slot`]).
     finite: bool,
@@ -200,6 +203,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             m_low: T::one(),
             q_norm: T::zero(),
             q_min: T::zero(),
+            q_friction: T::zero(),
             finite: true,
             columns_finite: AllFinite::new(),
             finished_k: usize::MAX,
@@ -223,6 +227,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.weighted = false;
         self.blocks_formed = false;
         self.q_norm = T::zero();
+        self.q_friction = T::zero();
         // Above every row's `q` but the identity's (a step with slots has sigma rows, `q = 0`).
         self.q_min = T::one();
     }
@@ -251,7 +256,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // `finish`'s scale and finiteness of the columns, accumulated here (each slot's normal and
         // `+d` columns: the `-d` one is the `+d` one negated, the same diagonal, finite with it).
         let (mut m_low, mut finite) = (self.m_low, self.columns_finite);
-        let (mut q_norm, mut q_min) = (self.q_norm, self.q_min);
+        let (mut q_norm, mut q_min, mut q_friction) = (self.q_norm, self.q_min, self.q_friction);
         for (r, row) in rows.iter().enumerate() {
             let v = if r == 0 { j } else { k + 2 * j };
             let col = Column {
@@ -268,8 +273,14 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
             // `q`'s finiteness and scales (the `-d` row's `-q`: as finite, as large, and the
             // smaller of the two is `-|q|`).
             finite.add(q);
-            q_norm = max(q_norm, q.abs_exact());
-            q_min = min(q_min, if r == 0 { q } else { -q.abs_exact() });
+            // A friction row's `|q|` counts in `||q||` as `q_norm`'s, in `min q` as `-||q_f||`
+            // ([`Self::finish`]): the `+d` row's `q` and the `-d` row's `-q`.
+            if r == 0 {
+                q_norm = max(q_norm, q.abs_exact());
+                q_min = min(q_min, q);
+            } else {
+                q_friction = max(q_friction, q.abs_exact());
+            }
             // `A_vv = c^T M~ c` (the two bodies differ: `dot_scaled` of the column with itself);
             // its finiteness stands for the column's: a non-finite entry of `M~ c` (or of `c`,
             // `M~` being finite) makes its product with `c`, and so the sum, infinite or NaN
@@ -310,6 +321,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         self.columns_finite = finite;
         self.q_norm = q_norm;
         self.q_min = q_min;
+        self.q_friction = q_friction;
         if let (Some(m), Some(g)) = (self.mu.get_mut(j), self.pair.get_mut(j)) {
             *m = mu;
             *g = pair;
@@ -330,7 +342,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let (m_low, finite) = (self.m_low, self.columns_finite);
         // `q`'s scales over the impulse rows (`set_slot`'s), the sigma rows' (`q = 0`) and the
         // identity's (`q = 1`) when there are any.
-        let (mut q_norm, mut q_min) = (self.q_norm, self.q_min);
+        let (mut q_norm, mut q_min) = (max(self.q_norm, self.q_friction), min(self.q_min, -self.q_friction));
         if k > 0 {
             q_min = min(q_min, T::zero());
         }
