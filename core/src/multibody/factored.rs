@@ -782,15 +782,15 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         let impulse_round_off = T::of(N as f64) * T::EPS * y_max;
         let basic = |v: usize| (mask >> v) & 1 == 1;
-        // `p_norm`: the largest impulse (every other impulse is zero).
-        let mut p_norm = T::zero();
+        // `p_norm`: the largest impulse (every other impulse is zero): the largest unknown (each
+        // `|y_l|`, checked `>= 0` below) or a follower.
+        let mut p_norm = y_max;
         for l in 0..m {
             let normal = usize::from(var[l]) < k;
             if y[l] < T::zero() || (normal && y[l] > T::zero() && y[l] <= impulse_round_off) {
                 return Err(Declined::Infeasible(var[l]));
             }
             z[usize::from(var[l]).min(N - 1)] = y[l];
-            p_norm = max(p_norm, y[l]);
             if follower[l] < N {
                 let friction = self.mu[usize::from(var[l]).min(N - 1)] * y[l];
                 z[follower[l]] = friction;
