@@ -81,7 +81,8 @@ impl<T: Real, const B: usize> Column<T, B> {
     }
 
     /// `c^T v` for velocities (or velocity changes) `v` in `3B` coordinates.
-    #[inline]
+    #[cfg_attr(not(feature = "compact"), inline)]
+    #[cfg_attr(feature = "compact", inline(never))] // the page's module: one copy
     fn dot(&self, v: &[[T; 3]; B]) -> T {
         let mut sum = T::zero();
         for b in 0..B {
@@ -92,7 +93,8 @@ impl<T: Real, const B: usize> Column<T, B> {
 
     /// `c^T (M~ g)` for the column `g` (`g`'s `M~ c`): the entry of `J M~ J^T` in this row and
     /// `g`'s column.
-    #[inline]
+    #[cfg_attr(not(feature = "compact"), inline)]
+    #[cfg_attr(feature = "compact", inline(never))] // the page's module: one copy
     fn dot_scaled(&self, g: &Self) -> T {
         let mut sum = T::zero();
         for b in 0..B {
@@ -102,7 +104,8 @@ impl<T: Real, const B: usize> Column<T, B> {
     }
 
     /// `dv += M~ c z`.
-    #[inline]
+    #[cfg_attr(not(feature = "compact"), inline)]
+    #[cfg_attr(feature = "compact", inline(never))] // the page's module: one copy
     fn add_scaled_to(&self, z: T, dv: &mut [[T; 3]; B]) {
         for b in 0..B {
             for c in 0..3 {
