@@ -491,9 +491,25 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             }
             Err(why) => why,
         };
+        self.unwarmed(why, paths, blocks, z)
+    }
+
+    /// [`Self::solve`] after the warm basis declined (`why`): the candidates, then Lemke's method.
+    /// Out of line and cold: a warm step (most steps) does not reach it.
+    #[cold]
+    #[inline(never)]
+    fn unwarmed(
+        &self,
+        why: Declined,
+        paths: &mut PathCounts,
+        blocks: Option<&ContactBlocks<T>>,
+        z: &mut [T; N],
+    ) -> Result<Solved<T, B, N>, StepError> {
         if let Some(answer) = self.candidate(why, paths, blocks, z) {
             return Ok(answer);
         }
+        let (step, warm) = (&self.lcp, self.lcp.warm);
+        let f = &step.factored;
         let k = step.k.min(N / 4);
         // The weighted cone rows first (`docs/formulation.md`, "Extreme friction: the cone rows
         // weighted"; the same solutions), with their retries; when none answers, the model's own
