@@ -472,7 +472,6 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             return Err(StepError::Solver(LcpError::NonFiniteInput));
         }
         if f.is_free() {
-            *z = [T::zero(); N];
             return Ok(Solved {
                 v_plus: *f.v_free(),
                 basis: Basis::all_w(),
