@@ -573,6 +573,25 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         Ok(())
     }
 
+    /// [`Self::solve_basis`]'s pairs of the basis `mask` with a basic friction impulse (`held`) and
+    /// of those the pairs whose basic friction sticks (`pinned`), as bits by pair.
+    #[inline(never)]
+    fn held_and_pinned(&self, mask: u32) -> (u32, u32) {
+        let k = self.k.min(N / 4);
+        let basic = |v: usize| mask.checked_shr(v as u32).unwrap_or(0) & 1 == 1;
+        let (mut held, mut pinned) = (0u32, 0u32);
+        for j in 0..k {
+            if basic(k + 2 * j) || basic(k + 2 * j + 1) {
+                let bit = 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
+                held |= bit;
+                if !basic(3 * k + j) {
+                    pinned |= bit;
+                }
+            }
+        }
+        (held, pinned)
+    }
+
     /// The scale of [`Self::within_round_off`] for the impulses in `z`: the non-zero impulses `t`
     /// and `sum_v |M~ c_v| |z_v|` per body. Computed at a basis answer's first negative `w` (a
     /// resting contact's round-off), not for every answer.
@@ -809,17 +828,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // friction sticks (`pinned`: its row, basic, holds the slip at zero): another touching
         // corner's friction rows carry that row's `w` (the same slip) and are held to the
         // verification residual as it is; where it slides at its cone's edge the slip is its
-        // `sigma >= 0`, and another corner's rows are held to their own round-off.
-        let (mut held, mut pinned) = (0u32, 0u32);
-        for j in 0..k.min(N / 4) {
-            if basic(k + 2 * j) || basic(k + 2 * j + 1) {
-                let bit = 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
-                held |= bit;
-                if !basic(3 * k + j) {
-                    pinned |= bit;
-                }
-            }
-        }
+        // `sigma >= 0`, and another corner's rows are held to their own round-off. Formed at the
+        // first slot that reads them (a slot at its cone's edge does not).
+        let mut pairs = None;
         // Slot by slot: each basic sigma from its friction row, `w` in factored form, feasibility
         // outside the basis (a negative velocity row or sigma within its own row's round-off,
         // [`Self::within_round_off`], its scale computed at the first negative one) and the
@@ -870,6 +881,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
                 [w[n], w[plus], w[minus], w[sigma]] = rows_w;
             }
             let pair = u32::from(self.pair[j]);
+            let (held, pinned) = *pairs.get_or_insert_with(|| self.held_and_pinned(mask));
             let unheld = basic(n) && held.checked_shr(pair).unwrap_or(0) & 1 == 0;
             let is_pinned = basic(n) && pinned.checked_shr(pair).unwrap_or(0) & 1 == 1;
             // The row whose round-off may excuse a negative `w` (`N`: none, `w >= 0` exactly; `N +
