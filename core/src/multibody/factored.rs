@@ -6,16 +6,17 @@
 //! With `k` active candidates the variables are laid out as the stepper's LCP
 //! ([`super::Stepper`]): `p_n` of slot `j` at `j`, `p_+d` at `k + 2 j`, `p_-d` at `k + 2 j + 1`,
 //! `sigma` at `3 k + j`; rows `4 k .. N` are the identity's (`q = 1`). Impulse variable `v` has
-//! the Jacobian column `c_v` (one or two bodies' three entries: a contact on the table touches one
-//! body, one between two bodies both), `M~ c_v` (per unit reference mass) and `q_v = c_v^T v~ +
-//! c0_v`, so that
+//! the Jacobian column `c_v`, dense in the bodies' `3B` coordinates (zero at a body the contact
+//! does not touch: a contact on the table touches one body, one between two bodies both), `M~ c_v`
+//! (per unit reference mass) and `q_v = c_v^T v~ + c0_v`; a slot's `-d` column is its `+d` column
+//! negated and is not stored ([`Factored::column`]), so that
 //!
 //! ```text
 //! w_v     = q_v + c_v^T dv (+ sigma_j for a friction row of slot j),   dv = sum_v M~ c_v p_v
 //! w_sigma = mu_j p_n,j - p_+d,j - p_-d,j
 //! ```
 //!
-//! Nothing here forms the `N x N` matrix; a row costs one or two 3-vector dot products.
+//! Nothing here forms the `N x N` matrix; a row costs `B` 3-vector dot products.
 //!
 //! # The solution of a basis
 //! Per slot the eliminations of the single body's form: `sigma` basic with one friction row `f`
@@ -237,9 +238,10 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 
     /// Slot `j` of pair `pair`: its three impulse columns from its Jacobian rows `n` and `+d`, dense
     /// in the bodies' `3B` coordinates ([`super::JacobianRow::dense`]; the `-d` column is the `+d`
-    /// one negated, [`Self::column`]), its normal row's bias `c0` and its `mu`; `inverse_mass` is `M~`'s
-    /// diagonal per body. Accumulates [`Self::finish`]'s scales (`||A||`'s lower bound, `||q||`,
-    /// `min q`) and finiteness while the slot's values are at hand.
+    /// one negated, [`Self::column`]), its normal row's bias `c0` and its `mu`; `inverse_mass` is
+    /// `M~`'s diagonal per body. Accumulates [`Self::finish`]'s scales (`||A||`'s lower bound,
+    /// `||q||`, `min q`) and finiteness while the slot's values are at hand, and writes the normal
+    /// row's diagonal as `N_jj` of [`Self::form_blocks`]' blocks (`j < 4`).
     #[allow(clippy::too_many_arguments)] // a slot's data, as the stepper has them
     #[inline(always)]
     #[allow(clippy::inline_always)] // one call per slot in the refill: its rows built in place there
@@ -1093,7 +1095,8 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
 /// only: `N` is symmetric) into `n[i][j]` and their friction coupling `C_ij = c_n,i^T M~
 /// c_+d,j` by columns into `c[j][i]`, for the first `min(k, K)` slots; every other entry is
 /// left as given. Each entry is [`Column::dot_scaled`] of the two columns, straight from the
-/// columns (`N_ij`, `C_ji` and `C_ij` for `j <= i` together: the two slots' columns read once).
+/// columns, slot `j`'s normal and friction `M~ c` against every slot's normal `c` in turn; with
+/// `diagonal_formed`, `N`'s diagonal is left as [`Factored::set_slot`] wrote it (the same sums).
 /// No decision made from these blocks reads a zero's sign: [`super::resolve::flags`] adds,
 /// subtracts, multiplies, divides by its pivots (each `> 0`), takes magnitudes and compares.
 #[inline(always)]

@@ -621,7 +621,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
                 let basis = Basis::from_z_mask(a.mask);
                 let along = Some(a.along);
-                return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate, along });
+                return Some(Solved {
+                    v_plus: a.v_plus,
+                    basis,
+                    pivots: 0,
+                    path: SolvePath::Candidate,
+                    along,
+                });
             }
         }
         None
@@ -674,7 +680,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 Ok(a) => {
                     let basis = Basis::from_z_mask(a.mask);
                     let along = Some(a.along);
-                return Some(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Candidate, along });
+                    return Some(Solved {
+                        v_plus: a.v_plus,
+                        basis,
+                        pivots: 0,
+                        path: SolvePath::Candidate,
+                        along,
+                    });
                 }
                 Err(why) => basis = self.lifted(lifted, why),
             }
