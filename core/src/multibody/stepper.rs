@@ -2,7 +2,7 @@
 //! coordinates when a basis near the last one answers and by Lemke's method otherwise
 //! (`docs/formulation.md`, "Several bodies", "One step", "Solving a multibody step (the core)").
 
-use super::factored::{ContactBlocks, Factored, MOST_SLOTS};
+use super::factored::{Answer, ContactBlocks, Factored, MOST_SLOTS};
 use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames, slip};
 use super::resolve::{self, Detector};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
@@ -483,11 +483,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         let tolerance = self.solver.tolerance();
         let warm = step.warm;
         let why = match f.solve_basis(warm.z_mask(), tolerance, blocks, z, None) {
-            Ok(a) => {
-                let basis = Basis::from_z_mask(a.mask);
-                let along = Some(a.along);
-                return Ok(Solved { v_plus: a.v_plus, basis, pivots: 0, path: SolvePath::Warm, along });
-            }
+            Ok(a) => return Ok(Solved::of(a, SolvePath::Warm)),
             Err(why) => why,
         };
         self.unwarmed(why, paths, blocks, z)
@@ -619,15 +615,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let Some(basis) = basis.filter(|&b| b != warm) else { continue };
             paths.candidates_tried += 1;
             if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
-                let basis = Basis::from_z_mask(a.mask);
-                let along = Some(a.along);
-                return Some(Solved {
-                    v_plus: a.v_plus,
-                    basis,
-                    pivots: 0,
-                    path: SolvePath::Candidate,
-                    along,
-                });
+                return Some(Solved::of(a, SolvePath::Candidate));
             }
         }
         None
@@ -677,17 +665,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         while let Some(lifted) = basis.filter(|&b| b != warm) {
             paths.candidates_tried += 1;
             match f.solve_basis(lifted.z_mask(), tolerance, blocks, z, None) {
-                Ok(a) => {
-                    let basis = Basis::from_z_mask(a.mask);
-                    let along = Some(a.along);
-                    return Some(Solved {
-                        v_plus: a.v_plus,
-                        basis,
-                        pivots: 0,
-                        path: SolvePath::Candidate,
-                        along,
-                    });
-                }
+                Ok(a) => return Some(Solved::of(a, SolvePath::Candidate)),
                 Err(why) => basis = self.lifted(lifted, why),
             }
         }
@@ -839,6 +817,14 @@ struct Solved<T, const B: usize, const N: usize> {
     /// Each slot's `c_+d^T v+` as a basis solve formed it ([`super::factored::Answer`]), `None`
     /// from Lemke's method or with no impulse.
     along: Option<[T; MOST_SLOTS]>,
+}
+
+impl<T: Copy, const B: usize, const N: usize> Solved<T, B, N> {
+    /// A basis solve's answer `a`, reached by `path` (no pivot).
+    #[inline]
+    fn of(a: Answer<T, B>, path: SolvePath) -> Self {
+        Self { v_plus: a.v_plus, basis: Basis::from_z_mask(a.mask), pivots: 0, path, along: Some(a.along) }
+    }
 }
 
 /// One step's LCP in factored form with its slots and warm basis ([`Stepper::refill`]).
