@@ -1550,6 +1550,77 @@ mod tests {
         }
     }
 
+    /// The impulse block of the assembled LCP against `J M~ J^T` formed here, dense, from the
+    /// frames' public Jacobian rows (`CornerFrame::row` of `n`, `+d` and `-d`, `JacobianRow::dense`)
+    /// and the bodies' masses, and `q` of the friction rows against `J v~`: the columns as the
+    /// factored form keeps them (dense, the `-d` one read negated) are the model's.
+    fn check_jacobian(c: &Case) {
+        let Some(mut stepper) = stepper(c) else { return };
+        let bodies = stepper.system().bodies;
+        let m_ref = bodies[0].mass;
+        let inverse_mass = bodies.map(|b| [m_ref / b.mass, m_ref / b.mass, m_ref / b.inertia]);
+        for _ in 0..5 {
+            if stepper.refill().is_err() {
+                return;
+            }
+            let (step, frames) = (stepper.lcp, *stepper.frames());
+            let k = step.k;
+            let lcp = step.factored.assemble(false);
+            // Row `v`'s dense Jacobian row: slot `j`'s `n` at `j`, `+d` at `k + 2 j`, `-d` after.
+            let mut rows = Vec::new();
+            for v in 0..3 * k {
+                let j = step.factored.slot_of(v);
+                let (p, corner) = step.slots[j];
+                let f = &frames[p][corner];
+                let t = if v < k {
+                    f.normal
+                } else if (v - k) % 2 == 0 {
+                    f.tangent
+                } else {
+                    [-f.tangent[0], -f.tangent[1]]
+                };
+                rows.push(f.row(t).dense::<2>());
+            }
+            let v_free = *step.factored.v_free();
+            for r in 0..3 * k {
+                for col in 0..3 * k {
+                    let mut dense = 0.0;
+                    for b in 0..2 {
+                        for e in 0..3 {
+                            dense += rows[r][b][e] * inverse_mass[b][e] * rows[col][b][e];
+                        }
+                    }
+                    let got = lcp.m[(r, col)];
+                    assert!(
+                        (got - dense).abs() <= 1e-12 * (1.0 + dense.abs()),
+                        "A[{r}][{col}] = {got}, J M~ J^T = {dense}"
+                    );
+                }
+                if r >= k {
+                    let mut q = 0.0;
+                    for b in 0..2 {
+                        for e in 0..3 {
+                            q += rows[r][b][e] * v_free[b][e];
+                        }
+                    }
+                    let got = lcp.q[r];
+                    assert!((got - q).abs() <= 1e-12 * (1.0 + q.abs()), "q[{r}] = {got}, J v~ = {q}");
+                }
+            }
+            if stepper.step().is_err() {
+                return;
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(100))]
+        #[test]
+        fn the_assembled_lcp_is_the_frames_jacobian_product(c in case()) {
+            check_jacobian(&c);
+        }
+    }
+
     /// At `mu >= 64` the weighted assembly ([`Factored::assemble`] with `weighted`) is the same
     /// LCP: on random two-box steps with `mu` up to `1e4`, every answer Lemke's method gives the
     /// weighted rows verifies on the model's rows, whose `w` is the weighted one's with each cone
