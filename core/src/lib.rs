@@ -26,6 +26,7 @@
 #[allow(unused_macros)]
 mod fmt;
 pub mod lcp;
+mod load;
 pub mod multibody;
 mod params;
 pub mod planar;

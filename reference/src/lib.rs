@@ -55,6 +55,7 @@
 
 pub mod enumerate;
 mod geometry;
+mod load;
 pub mod multibody;
 mod other_scenes;
 mod scenes;

@@ -38,6 +38,7 @@
 use super::Mode;
 use super::enumerate::{Lcp, MAX_ENUMERATED, enumerate};
 use super::geometry::{Body, Frame, dot, wrench};
+use super::load::{Law, Touching, least_norm};
 
 /// What every step of a scene shares.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -196,6 +197,41 @@ pub(super) fn solve(
         normal[i] = z[slot];
         friction[i] = z[k + 2 * slot] - z[k + 2 * slot + 1];
     }
+    // The load, where the contacts leave it open: the least 2-norm with this motion
+    // (docs/formulation.md, "The load: the least norm"; `load.rs`). A contact touches when it
+    // carries load or its normal velocity is within the velocity tolerance of zero, and sticks
+    // when its slip is within it too.
+    let tolerance = 1e-9 * speed_scale;
+    let mut touching: Vec<(usize, Touching)> = Vec::new();
+    for (slot, &i) in active.iter().enumerate() {
+        let f = &frames[i];
+        let normal_velocity = dot3(columns[slot], v_plus) - dot(f.normal, support_velocity[i])
+            + model.recovery(f.gap, round_off);
+        if z[slot] <= model.impulse_floor() && normal_velocity > tolerance {
+            continue;
+        }
+        let slip = dot(f.tangent, support_velocity[i]) - dot3(columns[k + 2 * slot], v_plus);
+        let law =
+            if slip.abs() <= tolerance { Law::Sticking { mu: mu[i] } } else { Law::Sliding { f: slip.signum() * mu[i] } };
+        touching.push((i, Touching { normal: columns[slot], tangent: columns[k + 2 * slot], law }));
+    }
+    let unknowns: usize = touching.iter().map(|(_, t)| if matches!(t.law, Law::Sticking { .. }) { 2 } else { 1 }).sum();
+    if unknowns > 3 || (touching.len() >= 3 && unknowns == 3) {
+        let mut r = [0.0; 3];
+        for (i, t) in &touching {
+            for c in 0..3 {
+                r[c] += t.normal[c] * normal[*i] + t.tangent[c] * friction[*i];
+            }
+        }
+        let scale = z.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let contacts: Vec<Touching> = touching.iter().map(|(_, t)| *t).collect();
+        let Some(load) = least_norm(&contacts, r, scale) else {
+            return Err(format!("no load within the contacts' laws gives the chosen motion (t = {v_plus:?})"));
+        };
+        for ((i, _), x) in touching.iter().zip(load) {
+            (normal[*i], friction[*i]) = (x[0], x[1]);
+        }
+    }
     Ok(StepResult { velocity: v_plus, normal, friction, ambiguous })
 }
 
@@ -295,10 +331,13 @@ mod tests {
         let total: f64 = result.normal.iter().sum();
         let torque: f64 = result.normal.iter().zip([-0.4, 0.1, 0.3]).map(|(n, x)| n * x).sum();
         assert!((total - gh).abs() < 1e-14 && torque.abs() < 1e-14, "{result:?}");
-        // The chosen vertex of the solution set leaves one tip unloaded: it counts as separated.
+        // The load of least norm: affine in the tips' positions, `N_i = a + b x_i`; with the
+        // tips' positions summing to 0 under the centre of mass, `b = 0`: a third each, all sticking.
+        for n in &result.normal {
+            assert!((n - gh / 3.0).abs() < 1e-15, "{result:?}");
+        }
         let modes = modes_after(&model, &frames, &u, &result);
-        assert_eq!(modes.iter().filter(|&&m| m == Mode::Sticking).count(), 2, "{modes:?}");
-        assert!(modes.iter().all(|&m| m == Mode::Sticking || m == Mode::Separated), "{modes:?}");
+        assert_eq!(modes, vec![Mode::Sticking; 3]);
     }
 
     #[test]

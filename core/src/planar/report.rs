@@ -156,4 +156,7 @@ pub struct RunStats {
     /// Of those, steps where the rule's choice moves the body differently from the answer the
     /// solver's path reached first.
     pub rule_changed_answer: u64,
+    /// Steps whose load the contacts left open, decided by the least 2-norm
+    /// (`docs/formulation.md`, "The load: the least norm").
+    pub load_decided_steps: u64,
 }

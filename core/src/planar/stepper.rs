@@ -31,6 +31,8 @@ use super::report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
 use super::resolve::{Detector, resolve, solve_by_rule};
 use super::strategy::{SolvePath, Solved, solve};
 use crate::lcp::{Basis, LcpError, Lemke};
+#[cfg(feature = "fallback")]
+use crate::load::{Carry, LoadContact, LoadPath, least_norm};
 use crate::params::ParamError;
 use crate::real::{Real, max, min, zero_if_finite};
 use crate::rule::Resolution;
@@ -119,6 +121,8 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     solver: Lemke<T, N>,
     /// Which steps may have several answers, for the rule (`docs/formulation.md`, "One answer").
     detector: Detector,
+    /// The basis of the last step whose load needed the least-norm LCP (`crate::load`).
+    load_basis: Basis<LOAD_ROWS>,
     stats: RunStats,
 }
 
@@ -207,6 +211,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             plan: PlanCache::<K>::default(),
             solver: Lemke::new(),
             detector: Detector::new(&model.contacts, body.inverse_mass_per_unit_mass(), body.half_extents()),
+            load_basis: Basis::all_w(),
             stats: RunStats::default(),
         };
         stepper.update_frames(&supports);
@@ -573,12 +578,36 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
 
         // Impulses (z is per unit mass) and modes after the step.
-        let (normal, friction, pn) = if full_layout_used {
+        #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
+        let (mut normal, mut friction, mut pn) = if full_layout_used {
             impulses(&self.full, &z_full, self.mass)
         } else {
             impulses(&self.layout, &z, self.mass)
         };
         let impulse_floor = self.impulse_floor;
+        // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
+        // norm"): more unknowns than the body's three coordinates (two sticking contacts, or
+        // three touching ones on a model that may have several answers).
+        #[cfg(feature = "fallback")]
+        {
+            let normal_rows: [T; K] = core::array::from_fn(|i| {
+                let rows: &[T] = if full_layout_used { &w_full } else { &w };
+                rows.get(i).copied().unwrap_or(T::zero())
+            });
+            let velocity_tolerance = max(T::of(1e-9), T::of(256.0) * T::EPS) * (speed + s.gravity * h);
+            let mut unknowns = 0;
+            for i in 0..K {
+                if self.frames[i].active && (pn[i] > impulse_floor || normal_rows[i] <= velocity_tolerance) {
+                    unknowns += if slips[i].abs_exact() <= velocity_tolerance { 2 } else { 1 };
+                }
+            }
+            if unknowns > 3 || (RULE && unknowns == 3 && K >= 3) {
+                self.decide_load(&mu, &normal_rows, &slips, velocity_tolerance, &mut normal, &mut friction)?;
+                for i in 0..K {
+                    pn[i] = normal[i] / self.mass;
+                }
+            }
+        }
         let mut contacts = [ContactReport {
             mode: ContactMode::Separated,
             previous_mode: ContactMode::Separated,
@@ -618,6 +647,57 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             residual,
             round_off_limited,
         })
+    }
+
+    /// The load of least 2-norm with this step's motion (`crate::load`), in place of the path's
+    /// `normal` and `friction` impulses: a contact touches when it carries load or its normal row
+    /// `normal_rows` (its normal velocity) is within `tolerance` of zero, and sticks when its slip
+    /// is within it too. More than [`LOAD_CONTACTS`] touching contacts keep the path's load.
+    #[cfg(feature = "fallback")]
+    #[cold]
+    #[inline(never)]
+    fn decide_load(
+        &mut self,
+        mu: &[T; K],
+        normal_rows: &[T; K],
+        slips: &[T; K],
+        tolerance: T,
+        normal: &mut [T; K],
+        friction: &mut [T; K],
+    ) -> Result<(), StepError> {
+        let off = LoadContact { normal: [T::zero(); 3], tangent: [T::zero(); 3], carry: Carry::Nothing };
+        let mut contacts = [off; LOAD_CONTACTS];
+        let mut path = [[T::zero(); 2]; LOAD_CONTACTS];
+        let mut which = [usize::MAX; LOAD_CONTACTS];
+        let mut count = 0;
+        for i in 0..K {
+            let f = &self.frames[i];
+            if !f.active || (normal[i] <= self.impulse_floor * self.mass && normal_rows[i] > tolerance) {
+                continue;
+            }
+            let Some(slot) = contacts.get_mut(count) else {
+                return Ok(()); // more touching contacts than the load's problem holds
+            };
+            let carry = if slips[i].abs_exact() <= tolerance {
+                Carry::Sticking { mu: mu[i] }
+            } else {
+                Carry::Sliding { friction_per_normal: sign_of(slips[i]) * mu[i] }
+            };
+            *slot = LoadContact { normal: f.wn, tangent: f.wt, carry };
+            path[count] = [normal[i], friction[i]];
+            which[count] = i;
+            count += 1;
+        }
+        let (load, how) = least_norm(&contacts, &path, &mut self.load_basis).map_err(StepError::Solver)?;
+        if how != LoadPath::Determinate {
+            self.stats.load_decided_steps += 1;
+            for (c, &i) in which.iter().enumerate().take(count) {
+                if let (Some(n), Some(fr), Some(x)) = (normal.get_mut(i), friction.get_mut(i), load.get(c)) {
+                    (*n, *fr) = (x[0], x[1]);
+                }
+            }
+        }
+        Ok(())
     }
 
     /// `true` when this layout may answer with `z`, `w` and `v+ = v`: always in the full layout;
@@ -685,6 +765,17 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
         None
     }
+}
+
+/// At most this many touching contacts enter the load's least-norm problem (`crate::load`).
+const LOAD_CONTACTS: usize = 4;
+/// Its LCP's rows: three per contact.
+const LOAD_ROWS: usize = 3 * LOAD_CONTACTS;
+
+/// `+1` for a positive `x`, else `-1`.
+#[cfg(feature = "fallback")]
+fn sign_of<T: Real>(x: T) -> T {
+    if x > T::zero() { T::one() } else { -T::one() }
 }
 
 /// A step's velocity scale `V`: the fastest support's speed plus the body's (`|vx| + |vy| +

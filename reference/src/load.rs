@@ -1,0 +1,187 @@
+//! The load where rigid contact leaves it open (docs/formulation.md, "The load: the least norm"),
+//! by exhaustive enumeration of active sets: the core's own method (an LCP of the least-norm
+//! problem's optimality conditions, solved by Lemke's method) is not used here.
+//!
+//! With the step's motion fixed, the touching contacts may carry any load `x = (x_n, x_f)` per
+//! contact with the same momentum change, `sum_c x_n W_n,c + x_f W_d,c = r`, within their laws: a
+//! sticking contact `x_n >= 0`, `|x_f| <= mu x_n`; a sliding one `x_n >= 0`, `x_f = f x_n` (`f`
+//! the signed coefficient against its slip). The answer is the load of least `||x||_2`.
+//!
+//! The problem is strictly convex, so its minimiser is unique, and it is the minimiser of `||x||`
+//! over the equalities and the inequalities binding at it, taken as equalities. So every subset of
+//! the inequalities is tried as equalities: each gives the least-norm solution of a linear system
+//! (rows chosen independent by Gaussian elimination with partial pivoting, then the normal
+//! equations `G G^T y = g`, `x = G^T y`), and among those that satisfy every inequality the one of
+//! least norm is the answer (any feasible point has a norm at least the minimiser's).
+
+/// What a touching contact may carry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Law {
+    /// `x_n >= 0`, `|x_f| <= mu x_n`.
+    Sticking { mu: f64 },
+    /// `x_n >= 0`, `x_f = f x_n`.
+    Sliding { f: f64 },
+}
+
+/// A touching contact: its normal and friction columns in the body's coordinates, its law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Touching {
+    pub normal: [f64; 3],
+    pub tangent: [f64; 3],
+    pub law: Law,
+}
+
+/// The least-norm load over `contacts` with the momentum change `r`, `(x_n, x_f)` per contact;
+/// `None` when no subset gives a feasible point (the motion is not reachable within the laws).
+pub(crate) fn least_norm(contacts: &[Touching], r: [f64; 3], scale: f64) -> Option<Vec<[f64; 2]>> {
+    let n = 2 * contacts.len();
+    if n == 0 {
+        return Some(Vec::new());
+    }
+    let mut equalities: Vec<(Vec<f64>, f64)> = (0..3)
+        .map(|k| {
+            let row = contacts.iter().flat_map(|c| [c.normal[k], c.tangent[k]]).collect();
+            (row, r[k])
+        })
+        .collect();
+    let mut inequalities: Vec<Vec<f64>> = Vec::new();
+    for (i, c) in contacts.iter().enumerate() {
+        let unit = |a: f64, b: f64| {
+            let mut row = vec![0.0; n];
+            row[2 * i] = a;
+            row[2 * i + 1] = b;
+            row
+        };
+        inequalities.push(unit(1.0, 0.0));
+        match c.law {
+            Law::Sticking { mu } => {
+                inequalities.push(unit(mu, -1.0));
+                inequalities.push(unit(mu, 1.0));
+            }
+            Law::Sliding { f } => equalities.push((unit(-f, 1.0), 0.0)),
+        }
+    }
+    let tolerance = 1e-12 * scale.max(f64::MIN_POSITIVE);
+    let mut best: Option<(f64, Vec<f64>)> = None;
+    for subset in 0u32..(1 << inequalities.len()) {
+        let mut rows: Vec<(Vec<f64>, f64)> = equalities.clone();
+        for (j, a) in inequalities.iter().enumerate() {
+            if subset >> j & 1 == 1 {
+                rows.push((a.clone(), 0.0));
+            }
+        }
+        let Some(x) = min_norm_solution(&rows, tolerance) else { continue };
+        let feasible = inequalities.iter().all(|a| dot(a, &x) >= -tolerance);
+        let norm = dot(&x, &x);
+        if feasible && best.as_ref().is_none_or(|(b, _)| norm < *b) {
+            best = Some((norm, x));
+        }
+    }
+    best.map(|(_, x)| x.chunks(2).map(|p| [p[0], p[1]]).collect())
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// The least-norm `x` with `row . x = value` for every `(row, value)`, `None` when the rows are
+/// inconsistent beyond `tolerance`.
+fn min_norm_solution(rows: &[(Vec<f64>, f64)], tolerance: f64) -> Option<Vec<f64>> {
+    let n = rows.first()?.0.len();
+    // Independent rows: reduce each against the echelon rows kept so far (Gaussian elimination
+    // with partial pivoting by column); keep it when something of it is left.
+    let mut echelon: Vec<(Vec<f64>, usize)> = Vec::new();
+    let mut kept: Vec<usize> = Vec::new();
+    for (i, (row, _)) in rows.iter().enumerate() {
+        let size = row.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let mut rest = row.clone();
+        for (e, pivot) in &echelon {
+            let k = rest[*pivot] / e[*pivot];
+            for (r, x) in rest.iter_mut().zip(e) {
+                *r -= k * x;
+            }
+        }
+        let (pivot, largest) =
+            rest.iter().enumerate().fold((0, 0.0_f64), |b, (j, x)| if x.abs() > b.1 { (j, x.abs()) } else { b });
+        if largest > 1e-10 * size {
+            echelon.push((rest, pivot));
+            kept.push(i);
+        }
+    }
+    // Normal equations of the kept rows, solved by Gaussian elimination with partial pivoting.
+    let m = kept.len();
+    let mut a: Vec<Vec<f64>> = kept
+        .iter()
+        .map(|&i| {
+            let mut line: Vec<f64> = kept.iter().map(|&j| dot(&rows[i].0, &rows[j].0)).collect();
+            line.push(rows[i].1);
+            line
+        })
+        .collect();
+    for col in 0..m {
+        let pivot = (col..m).max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))?;
+        a.swap(col, pivot);
+        if a[col][col] == 0.0 {
+            return None;
+        }
+        for r in 0..m {
+            if r != col {
+                let k = a[r][col] / a[col][col];
+                for c in col..=m {
+                    a[r][c] -= k * a[col][c];
+                }
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for (r, &i) in kept.iter().enumerate() {
+        let y = a[r][m] / a[r][r];
+        for (xc, gc) in x.iter_mut().zip(&rows[i].0) {
+            *xc += y * gc;
+        }
+    }
+    rows.iter().all(|(row, value)| (dot(row, &x) - value).abs() <= tolerance).then_some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    fn rod(xs: &[f64]) -> Vec<Touching> {
+        xs.iter()
+            .map(|&x| Touching {
+                normal: [0.0, 1.0, x],
+                tangent: [1.0, 0.0, 0.0025],
+                law: Law::Sticking { mu: 0.6 },
+            })
+            .collect()
+    }
+
+    #[test]
+    fn three_fingers_carry_an_affine_split_and_a_puller_nothing() {
+        // Centre of mass at 0 between fingers -0.45, -0.05, 0.3: N = a + b x, all positive.
+        let xs = [-0.45, -0.05, 0.3];
+        let x = least_norm(&rod(&xs), [0.0, 1.0, 0.0], 1.0).unwrap();
+        let (s1, s2) = (xs.iter().sum::<f64>(), xs.iter().map(|x| x * x).sum::<f64>());
+        let b = -s1 / (3.0 * s2 - s1 * s1);
+        let a = (1.0 - b * s1) / 3.0;
+        for (p, xi) in x.iter().zip(xs) {
+            assert!((p[0] - (a + b * xi)).abs() < 1e-13 && p[1].abs() < 1e-13, "{x:?}");
+        }
+        // Fingers -0.4, -0.3, 0.02: the affine split would pull at -0.4, which carries nothing.
+        let x = least_norm(&rod(&[-0.4, -0.3, 0.02]), [0.0, 1.0, 0.0], 1.0).unwrap();
+        let expected = [0.0, 0.02 / 0.32, 0.3 / 0.32];
+        for (p, e) in x.iter().zip(expected) {
+            assert!((p[0] - e).abs() < 1e-13, "{x:?}");
+        }
+    }
+
+    #[test]
+    fn a_load_outside_the_laws_is_none() {
+        // A sideways push larger than friction can hold on one sticking finger.
+        let one = rod(&[0.0]);
+        assert!(least_norm(&one, [1.0, 1.0, 0.0025], 1.0).is_none());
+    }
+}
