@@ -43,7 +43,7 @@
 //! 3. **LCP**: [`Lemke`], warm-started from the previous such step's basis (a rest state keeps
 //!    its basis: no pivot), verified as every LCP answer is.
 //!
-//! `C` contacts, `D` coordinates (3 per planar body), `L = 3 C` rows of the LCP (checked at compile
+//! `C` contacts, `B` bodies (`3B` coordinates), `L = 3 C` rows of the LCP (checked at compile
 //! time). No heap; failure is an [`LcpError`].
 
 use crate::lcp::{Basis, Lcp, LcpError, Lemke};
@@ -70,11 +70,11 @@ pub(crate) enum Carry<T> {
 
 /// One contact as the load sees it: its impulses' columns and what it may carry.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct LoadContact<T, const D: usize> {
-    /// The normal impulse's column in the bodies' coordinates.
-    pub normal: [T; D],
+pub(crate) struct LoadContact<T, const B: usize> {
+    /// The normal impulse's column in the bodies' coordinates `(x, y, theta)` per body.
+    pub normal: [[T; 3]; B],
     /// The friction impulse's column (along the contact's `+d`).
-    pub tangent: [T; D],
+    pub tangent: [[T; 3]; B],
     /// What the contact may carry at the step's motion.
     pub carry: Carry<T>,
 }
@@ -214,20 +214,22 @@ fn inequality<T: Real, const C: usize>(carry: &[Carry<T>; C], row: usize) -> Opt
 /// # Errors
 /// The least-norm LCP's [`LcpError`] (it has a solution whenever `path` is a load the contacts
 /// may carry: an error means round-off broke that).
-pub(crate) fn least_norm<T: Real, const C: usize, const D: usize, const L: usize>(
-    contacts: &[LoadContact<T, D>; C],
+pub(crate) fn least_norm<T: Real, const C: usize, const B: usize, const L: usize>(
+    contacts: &[LoadContact<T, B>; C],
     path: &Unknowns<T, C>,
     warm: &mut Basis<L>,
 ) -> Result<(Unknowns<T, C>, LoadPath), LcpError> {
     const { assert!(L == 3 * C, "the least-norm LCP has three rows per contact") };
     let carry = contacts.map(|c| c.carry);
     let mut space = RowSpace::<T, C>::new(&carry);
-    for k in 0..D {
-        let mut row = [[T::zero(); 2]; C];
-        for (r, contact) in row.iter_mut().zip(contacts) {
-            *r = [contact.normal[k], contact.tangent[k]];
+    for b in 0..B {
+        for k in 0..3 {
+            let mut row = [[T::zero(); 2]; C];
+            for (r, contact) in row.iter_mut().zip(contacts) {
+                *r = [contact.normal[b][k], contact.tangent[b][k]];
+            }
+            space.offer(row);
         }
-        space.offer(row);
     }
     for (c, contact) in contacts.iter().enumerate() {
         if let Carry::Sliding { friction_per_normal } = contact.carry {
@@ -291,10 +293,10 @@ mod tests {
     /// A level rod of thickness `t` on point fingers at `xs` (coordinates `(x, y, theta)`, the
     /// centre of mass at the origin): normal `(0, 1, x)`, friction along `+x` `(1, 0, t / 2)`
     /// (the contact point `t/2` below the centre: `r x d = -(-t/2) * 1`).
-    fn rod<const C: usize>(xs: [f64; C], carry: [Carry<f64>; C]) -> [LoadContact<f64, 3>; C] {
+    fn rod<const C: usize>(xs: [f64; C], carry: [Carry<f64>; C]) -> [LoadContact<f64, 1>; C] {
         core::array::from_fn(|c| LoadContact {
-            normal: [0.0, 1.0, xs[c]],
-            tangent: [1.0, 0.0, 0.0025],
+            normal: [[0.0, 1.0, xs[c]]],
+            tangent: [[1.0, 0.0, 0.0025]],
             carry: carry[c],
         })
     }

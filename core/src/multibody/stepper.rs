@@ -9,7 +9,9 @@ use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
 use crate::planar::{Body, BodyState, Checksum, ContactMode, Declined, PathCounts, SolvePath};
-use crate::real::Real;
+use crate::real::{Real, max};
+#[cfg(feature = "fallback")]
+use crate::load::{Carry, LoadContact, LoadPath, least_norm};
 
 /// The scalars of a step: one body's ([`crate::planar::Settings`]: time step, gravity, stick
 /// threshold) and the activity rule's margin.
@@ -88,8 +90,12 @@ pub struct StepReport<T, const B: usize, const P: usize> {
     /// Each body's state after the step.
     pub states: [BodyState<T>; B],
     /// Each pair's summed contact force on its upper body over the step (N, world):
-    /// `(1/h) sum +-(p_n n + p_f d)`. One corner's share is never reported (it is not decided).
+    /// `(1/h) sum +-(p_n n + p_f d)`.
     pub interface_forces: [[T; 2]; P],
+    /// Each candidate's normal and friction force over the step (N, along its normal and its
+    /// `+d`; zero when not active): where the contacts leave the split open, the least-norm load
+    /// (`docs/formulation.md`, "The load: the least norm").
+    pub corner_loads: [[[T; 2]; 4]; P],
     /// Each candidate's mode after the step.
     pub modes: [[ContactMode; 4]; P],
     /// Active candidates this step (the LCP has `4` rows for each).
@@ -149,6 +155,9 @@ pub struct Stats {
     /// Of those, steps where the rule's choice moves the bodies differently from the answer the
     /// solver's path reached first.
     pub rule_changed_answer: u64,
+    /// Steps whose load the contacts left open, decided by the least 2-norm
+    /// (`docs/formulation.md`, "The load: the least norm").
+    pub load_decided_steps: u64,
 }
 
 /// The basic variables of one candidate's slot: bit 0 `p_n`, 1 `p_+d`, 2 `p_-d`, 3 `sigma`.
@@ -200,8 +209,13 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     pub(super) lcp: StepLcp<T, B, N>,
     /// The rule's metric and reaches (`docs/formulation.md`, "One answer: the rule").
     detector: Detector<T, B>,
+    /// The basis of the last step whose load needed the least-norm LCP (`crate::load`).
+    load_basis: Basis<LOAD_ROWS>,
     stats: Stats,
 }
+
+/// The least-norm load's LCP rows: three per slot (`crate::load`).
+const LOAD_ROWS: usize = 3 * MOST_SLOTS;
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
     const SIZE_CHECK: () = assert!(
@@ -270,6 +284,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 warm: Basis::all_w(),
             },
             detector: Detector::new(&system.bodies, &shapes, &inverse_mass),
+            load_basis: Basis::all_w(),
             stats: Stats::default(),
         };
         stepper.update_frames();
@@ -672,6 +687,87 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         None
     }
 
+    /// `true` when the load of the step's answer may be open: a pair with two sticking corners
+    /// carrying load (their friction columns are the same: the split between them is free), or
+    /// more unknowns (two per sticking slot, one per sliding one) than the bodies' `3B`
+    /// coordinates.
+    #[cfg(feature = "fallback")]
+    fn load_open(&self, slots: usize, loads: &[[T; 2]; MOST_SLOTS], slips: &[T; MOST_SLOTS], stick_speed: T) -> bool {
+        let mut unknowns = 0;
+        let mut sticking_pair = usize::MAX;
+        for j in 0..slots {
+            if loads[j][0] <= self.impulse_floor {
+                continue;
+            }
+            if slips[j].abs_exact() > stick_speed {
+                unknowns += 1;
+                continue;
+            }
+            unknowns += 2;
+            let p = self.lcp.slots[j].0;
+            if p == sticking_pair {
+                return true;
+            }
+            sticking_pair = p;
+        }
+        unknowns > 3 * B
+    }
+
+    /// The load of least 2-norm with this step's motion `v_plus` (`crate::load`), in place of
+    /// `loads` (and the slips of the slots it loads): a slot touches when it carries load or its
+    /// normal velocity `c_n^T v+ + bias` is within the rule's velocity tolerance of zero, and
+    /// sticks when its slip is within it too.
+    #[cfg(feature = "fallback")]
+    #[cold]
+    #[inline(never)]
+    fn decide_load(
+        &mut self,
+        slots: usize,
+        v_plus: &[[T; 3]; B],
+        loads: &mut [[T; 2]; MOST_SLOTS],
+        slips: &mut [T; MOST_SLOTS],
+    ) -> Result<(), StepError> {
+        let s = self.system.settings.base;
+        let mut speed = s.gravity * s.step;
+        for v in self.lcp.factored.v_free() {
+            speed = max(speed, v[0].abs_exact() + v[1].abs_exact());
+        }
+        let tolerance = max(T::of(1e-9), T::of(256.0) * T::EPS) * speed;
+        let off = LoadContact { normal: [[T::zero(); 3]; B], tangent: [[T::zero(); 3]; B], carry: Carry::Nothing };
+        let mut contacts = [off; MOST_SLOTS];
+        for j in 0..slots {
+            let (p, c) = self.lcp.slots[j];
+            let (p, c) = (p.min(P - 1), c.min(3));
+            let f = &self.frames[p][c];
+            let normal = f.dense_row::<B>(f.normal);
+            let mut normal_velocity = normal_bias(f.gap, s.step, s.gravity, f.gap_round_off);
+            for (row, v) in normal.iter().zip(v_plus) {
+                normal_velocity += row[0] * v[0] + row[1] * v[1] + row[2] * v[2];
+            }
+            if loads[j][0] <= self.impulse_floor && normal_velocity > tolerance {
+                continue;
+            }
+            let slip = slip(f, v_plus);
+            let pair = &self.system.pairs[p];
+            let mu = if self.modes[p][c].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
+            let carry = if slip.abs_exact() <= tolerance {
+                Carry::Sticking { mu }
+            } else {
+                Carry::Sliding { friction_per_normal: if slip > T::zero() { mu } else { -mu } }
+            };
+            contacts[j] = LoadContact { normal, tangent: f.dense_row::<B>(f.tangent), carry };
+            if loads[j][0] <= self.impulse_floor {
+                slips[j] = slip;
+            }
+        }
+        let (load, how) = least_norm(&contacts, loads, &mut self.load_basis).map_err(StepError::Solver)?;
+        if how != LoadPath::Determinate {
+            self.stats.load_decided_steps += 1;
+            *loads = load;
+        }
+        Ok(())
+    }
+
     /// Advances one step: the active candidates' LCP (per unit reference mass) in factored form,
     /// solved by the paths of `docs/formulation.md` ("Solving a multibody step") and verified;
     /// `V+ = v~ + M~ J^T z`, `q+ = q + h V+` (compensated sums), modes after the step.
@@ -715,26 +811,44 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 return Err(StepError::NonFinite);
             }
         }
+        // Each slot's load `(p_n, p_f)` and, where it carries load, its slip.
+        let slots = k.min(MOST_SLOTS);
+        let mut loads = [[T::zero(); 2]; MOST_SLOTS];
+        let mut slips = [T::zero(); MOST_SLOTS];
+        for j in 0..slots {
+            let rows = slot_rows(k, j);
+            loads[j] = [z[rows[0]], z[rows[1]] - z[rows[2]]];
+            if loads[j][0] > self.impulse_floor {
+                let (p, c) = self.lcp.slots[j];
+                // `-c_+d^T v+` as the solve formed it, else from the frame.
+                slips[j] = if from_solve { -along[j] } else { slip(&self.frames[p.min(P - 1)][c.min(3)], &v_plus) };
+            }
+        }
+        // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
+        // norm"): two sticking corners of one pair, or more unknowns than the bodies' coordinates.
+        #[cfg(feature = "fallback")]
+        if self.load_open(slots, &loads, &slips, s.stick_speed) {
+            self.decide_load(slots, &v_plus, &mut loads, &mut slips)?;
+        }
         // Modes after the step, interface forces, the next warm patterns.
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
+        let mut corner_loads = [[[T::zero(); 2]; 4]; P];
         // Each slot's pattern ([`slot_pattern`]) from the normals', frictions' and sigmas' bits,
         // shifted out slot by slot.
         let (mut normals, mut frictions, mut sigmas) = (mask, mask >> k.min(8), mask >> (3 * k.min(8)));
-        for j in 0..k {
+        for j in 0..slots {
             let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
-            let rows = slot_rows(k, j);
             patterns[p][c] = (normals & 1 | (frictions & 3) << 1 | (sigmas & 1) << 3) as Pattern;
             (normals, frictions, sigmas) = (normals >> 1, frictions >> 2, sigmas >> 1);
-            let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
+            let [pn, pf] = loads[j];
             if pn > self.impulse_floor {
-                // `-c_+d^T v+` as the solve formed it, else from the frame.
-                let slip = if from_solve { -along[j.min(MOST_SLOTS - 1)] } else { slip(f, &v_plus) };
-                modes[p][c] = ContactMode::from_slip(slip, s.stick_speed);
+                modes[p][c] = ContactMode::from_slip(slips[j], s.stick_speed);
             }
+            corner_loads[p][c] = [pn * m_ref / h, pf * m_ref / h];
             // On the upper body: + for its corners, - for the lower body's (negated: the bits of
             // `+-1` times it, a product by `+-1` being exact).
             let impulse = &mut impulses[p];
@@ -766,7 +880,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         if path == SolvePath::Warm {
             st.warm_direct += 1;
         }
-        Ok(StepReport { time: self.time(), states, interface_forces, modes, active, pivots })
+        Ok(StepReport { time: self.time(), states, interface_forces, corner_loads, modes, active, pivots })
     }
 }
 

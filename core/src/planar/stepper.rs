@@ -665,7 +665,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         normal: &mut [T; K],
         friction: &mut [T; K],
     ) -> Result<(), StepError> {
-        let off = LoadContact { normal: [T::zero(); 3], tangent: [T::zero(); 3], carry: Carry::Nothing };
+        let off = LoadContact { normal: [[T::zero(); 3]], tangent: [[T::zero(); 3]], carry: Carry::Nothing };
         let mut contacts = [off; LOAD_CONTACTS];
         let mut path = [[T::zero(); 2]; LOAD_CONTACTS];
         let mut which = [usize::MAX; LOAD_CONTACTS];
@@ -683,7 +683,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             } else {
                 Carry::Sliding { friction_per_normal: sign_of(slips[i]) * mu[i] }
             };
-            *slot = LoadContact { normal: f.wn, tangent: f.wt, carry };
+            *slot = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
             path[count] = [normal[i], friction[i]];
             which[count] = i;
             count += 1;
