@@ -26,6 +26,7 @@
 #[allow(unused_macros)]
 mod fmt;
 pub mod lcp;
+#[cfg(feature = "fallback")]
 mod load;
 pub mod multibody;
 mod params;

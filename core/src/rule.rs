@@ -41,7 +41,9 @@ pub struct Rule<T, const B: usize> {
     /// Two velocities whose coordinate (times its reach) differ by more than this move the
     /// bodies differently: `max(1e-9, 256 eps) S`.
     velocity_tolerance: T,
-    /// Energies within this of each other tie: `max(1e-12, 256 eps) S^2`.
+    /// Energies within this of each other tie: `max(1e-12, (256 eps)^2) S^2`, the energy of a
+    /// velocity within the velocity tolerance of rest (in f32, `256 eps S^2` let a rod slip at
+    /// `1e-3 S` count as at rest).
     energy_tie: T,
     /// Sums within this fraction of each other tie: `max(1e-12, 256 eps)`.
     sum_tie: T,
@@ -50,8 +52,8 @@ pub struct Rule<T, const B: usize> {
 impl<T: Real, const B: usize> Rule<T, B> {
     /// The rule for a step whose speed scale is `speed` (`S`: the fastest support's speed and the
     /// bodies' free velocities, each coordinate times its `reach`), with the energy's `metric`.
-    /// The reference's tolerances (`1e-9 S`, `1e-12 S^2`, `1e-12`) where the scalar carries them,
-    /// `256 eps` of the same scales where it does not (f32).
+    /// The reference's tolerances (`1e-9 S`, `1e-12 S^2`, `1e-12`) where the scalar carries them;
+    /// in f32 `256 eps S`, `(256 eps S)^2` and `256 eps`.
     #[must_use]
     pub fn new(metric: [[T; 3]; B], reach: [[T; 3]; B], speed: T) -> Self {
         let round_off = T::of(256.0) * T::EPS;
@@ -61,9 +63,17 @@ impl<T: Real, const B: usize> Rule<T, B> {
             metric,
             reach,
             velocity_tolerance: relative(1e-9) * speed,
-            energy_tie: relative(1e-12) * speed * speed,
+            energy_tie: max(T::of(1e-12), round_off * round_off) * speed * speed,
             sum_tie: relative(1e-12),
         }
+    }
+
+    /// Two velocities whose coordinates (times their reach) differ by more than this move the
+    /// bodies differently: `max(1e-9, 256 eps) S`.
+    #[must_use]
+    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    pub(crate) const fn velocity_tolerance(&self) -> T {
+        self.velocity_tolerance
     }
 
     /// The kinetic energy of `velocity` in the rule's metric.

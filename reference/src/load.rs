@@ -8,11 +8,13 @@
 //! the signed coefficient against its slip). The answer is the load of least `||x||_2`.
 //!
 //! The problem is strictly convex, so its minimiser is unique, and it is the minimiser of `||x||`
-//! over the equalities and the inequalities binding at it, taken as equalities. So every subset of
-//! the inequalities is tried as equalities: each gives the least-norm solution of a linear system
-//! (rows chosen independent by Gaussian elimination with partial pivoting, then the normal
-//! equations `G G^T y = g`, `x = G^T y`), and among those that satisfy every inequality the one of
-//! least norm is the answer (any feasible point has a norm at least the minimiser's).
+//! over the equalities and the inequalities binding at it, taken as equalities. So subsets of the
+//! inequalities are tried as equalities, the smallest first: each gives the least-norm solution of
+//! a linear system (rows chosen independent by Gaussian elimination with partial pivoting, then the
+//! normal equations `G G^T y = g`, `x = G^T y`, `y` the multipliers), and the first that satisfies
+//! every inequality with a non-negative multiplier on each binding one (the Karush-Kuhn-Tucker
+//! conditions, which one point satisfies) is the answer. A resting body's load usually binds
+//! nothing: one solve.
 
 /// What a touching contact may carry.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -23,22 +25,64 @@ pub(crate) enum Law {
     Sliding { f: f64 },
 }
 
-/// A touching contact: its normal and friction columns in the body's coordinates, its law.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A touching contact: its normal and friction columns in the bodies' coordinates (`3B` long),
+/// its law.
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Touching {
-    pub normal: [f64; 3],
-    pub tangent: [f64; 3],
+    pub normal: Vec<f64>,
+    pub tangent: Vec<f64>,
     pub law: Law,
 }
 
 /// The least-norm load over `contacts` with the momentum change `r`, `(x_n, x_f)` per contact;
-/// `None` when no subset gives a feasible point (the motion is not reachable within the laws).
-pub(crate) fn least_norm(contacts: &[Touching], r: [f64; 3], scale: f64) -> Option<Vec<[f64; 2]>> {
+/// `None` when the equalities alone decide the load (the step's LCP answer is then the only one)
+/// or no subset gives a feasible point (the motion is not reachable within the laws).
+pub(crate) fn least_norm(contacts: &[Touching], r: &[f64], scale: f64) -> Option<Vec<[f64; 2]>> {
     let n = 2 * contacts.len();
     if n == 0 {
         return Some(Vec::new());
     }
-    let mut equalities: Vec<(Vec<f64>, f64)> = (0..3)
+    let (equalities, inequalities) = rows(contacts, r);
+    let tolerance = 1e-12 * scale.max(f64::MIN_POSITIVE);
+    if rank(&equalities) == n {
+        return None; // determinate: the LCP's answer is the only load
+    }
+    // Subsets by their size: the first whose equality-constrained minimiser satisfies every
+    // inequality with non-negative multipliers on its binding ones is the minimiser (the
+    // Karush-Kuhn-Tucker conditions of a strictly convex problem: one point satisfies them).
+    let m = inequalities.len();
+    let mut subsets: Vec<u32> = (0u32..(1 << m)).collect();
+    subsets.sort_by_key(|s| s.count_ones());
+    for subset in subsets {
+        let mut rows: Vec<(Vec<f64>, f64)> = equalities.clone();
+        for (j, a) in inequalities.iter().enumerate() {
+            if subset >> j & 1 == 1 {
+                rows.push((a.clone(), 0.0));
+            }
+        }
+        let Some((x, multipliers)) = min_norm_solution(&rows, tolerance) else { continue };
+        let feasible = inequalities.iter().all(|a| dot(a, &x) >= -tolerance);
+        let binding_hold = multipliers.iter().all(|&(row, y)| row < equalities.len() || y >= -tolerance);
+        if feasible && binding_hold {
+            return Some(x.chunks(2).map(|p| [p[0], p[1]]).collect());
+        }
+    }
+    None
+}
+
+/// `true` when the contacts' equalities alone decide the load (their rank is the number of
+/// unknowns): the step's LCP answer is then the only load.
+pub(crate) fn determinate(contacts: &[Touching]) -> bool {
+    let coordinates = contacts.first().map_or(0, |c| c.normal.len());
+    rank(&rows(contacts, &vec![0.0; coordinates]).0) == 2 * contacts.len()
+}
+
+/// The equalities `(row, value)` (the momentum change `r`, each sliding contact's friction law)
+/// and the inequality rows (`x_n >= 0`, the sticking contacts' cone) over the unknowns
+/// `(x_n, x_f)` per contact.
+fn rows(contacts: &[Touching], r: &[f64]) -> (Vec<(Vec<f64>, f64)>, Vec<Vec<f64>>) {
+    let n = 2 * contacts.len();
+    let mut equalities: Vec<(Vec<f64>, f64)> = (0..r.len())
         .map(|k| {
             let row = contacts.iter().flat_map(|c| [c.normal[k], c.tangent[k]]).collect();
             (row, r[k])
@@ -61,35 +105,17 @@ pub(crate) fn least_norm(contacts: &[Touching], r: [f64; 3], scale: f64) -> Opti
             Law::Sliding { f } => equalities.push((unit(-f, 1.0), 0.0)),
         }
     }
-    let tolerance = 1e-12 * scale.max(f64::MIN_POSITIVE);
-    let mut best: Option<(f64, Vec<f64>)> = None;
-    for subset in 0u32..(1 << inequalities.len()) {
-        let mut rows: Vec<(Vec<f64>, f64)> = equalities.clone();
-        for (j, a) in inequalities.iter().enumerate() {
-            if subset >> j & 1 == 1 {
-                rows.push((a.clone(), 0.0));
-            }
-        }
-        let Some(x) = min_norm_solution(&rows, tolerance) else { continue };
-        let feasible = inequalities.iter().all(|a| dot(a, &x) >= -tolerance);
-        let norm = dot(&x, &x);
-        if feasible && best.as_ref().is_none_or(|(b, _)| norm < *b) {
-            best = Some((norm, x));
-        }
-    }
-    best.map(|(_, x)| x.chunks(2).map(|p| [p[0], p[1]]).collect())
+    (equalities, inequalities)
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// The least-norm `x` with `row . x = value` for every `(row, value)`, `None` when the rows are
-/// inconsistent beyond `tolerance`.
-fn min_norm_solution(rows: &[(Vec<f64>, f64)], tolerance: f64) -> Option<Vec<f64>> {
-    let n = rows.first()?.0.len();
-    // Independent rows: reduce each against the echelon rows kept so far (Gaussian elimination
-    // with partial pivoting by column); keep it when something of it is left.
+/// The indices of a largest set of independent rows: each row reduced against the echelon rows
+/// kept so far (Gaussian elimination with partial pivoting by column), kept when something of it
+/// is left beyond round-off of its own size.
+fn independent(rows: &[(Vec<f64>, f64)]) -> Vec<usize> {
     let mut echelon: Vec<(Vec<f64>, usize)> = Vec::new();
     let mut kept: Vec<usize> = Vec::new();
     for (i, (row, _)) in rows.iter().enumerate() {
@@ -101,13 +127,30 @@ fn min_norm_solution(rows: &[(Vec<f64>, f64)], tolerance: f64) -> Option<Vec<f64
                 *r -= k * x;
             }
         }
-        let (pivot, largest) =
-            rest.iter().enumerate().fold((0, 0.0_f64), |b, (j, x)| if x.abs() > b.1 { (j, x.abs()) } else { b });
+        let (pivot, largest) = rest
+            .iter()
+            .enumerate()
+            .fold((0, 0.0_f64), |b, (j, x)| if x.abs() > b.1 { (j, x.abs()) } else { b });
         if largest > 1e-10 * size {
             echelon.push((rest, pivot));
             kept.push(i);
         }
     }
+    kept
+}
+
+/// The rank of the rows.
+fn rank(rows: &[(Vec<f64>, f64)]) -> usize {
+    independent(rows).len()
+}
+
+/// The least-norm `x` with `row . x = value` for every `(row, value)`, with the multiplier `y`
+/// of each row kept (`x = sum y_row row`; a row dependent on earlier ones has none); `None` when
+/// the rows are inconsistent beyond `tolerance`.
+#[allow(clippy::type_complexity)]
+fn min_norm_solution(rows: &[(Vec<f64>, f64)], tolerance: f64) -> Option<(Vec<f64>, Vec<(usize, f64)>)> {
+    let n = rows.first()?.0.len();
+    let kept = independent(rows);
     // Normal equations of the kept rows, solved by Gaussian elimination with partial pivoting.
     let m = kept.len();
     let mut a: Vec<Vec<f64>> = kept
@@ -134,13 +177,15 @@ fn min_norm_solution(rows: &[(Vec<f64>, f64)], tolerance: f64) -> Option<Vec<f64
         }
     }
     let mut x = vec![0.0; n];
+    let mut multipliers = Vec::with_capacity(m);
     for (r, &i) in kept.iter().enumerate() {
         let y = a[r][m] / a[r][r];
+        multipliers.push((i, y));
         for (xc, gc) in x.iter_mut().zip(&rows[i].0) {
             *xc += y * gc;
         }
     }
-    rows.iter().all(|(row, value)| (dot(row, &x) - value).abs() <= tolerance).then_some(x)
+    rows.iter().all(|(row, value)| (dot(row, &x) - value).abs() <= tolerance).then_some((x, multipliers))
 }
 
 #[cfg(test)]
@@ -152,8 +197,8 @@ mod tests {
     fn rod(xs: &[f64]) -> Vec<Touching> {
         xs.iter()
             .map(|&x| Touching {
-                normal: [0.0, 1.0, x],
-                tangent: [1.0, 0.0, 0.0025],
+                normal: vec![0.0, 1.0, x],
+                tangent: vec![1.0, 0.0, 0.0025],
                 law: Law::Sticking { mu: 0.6 },
             })
             .collect()
@@ -163,7 +208,7 @@ mod tests {
     fn three_fingers_carry_an_affine_split_and_a_puller_nothing() {
         // Centre of mass at 0 between fingers -0.45, -0.05, 0.3: N = a + b x, all positive.
         let xs = [-0.45, -0.05, 0.3];
-        let x = least_norm(&rod(&xs), [0.0, 1.0, 0.0], 1.0).unwrap();
+        let x = least_norm(&rod(&xs), &[0.0, 1.0, 0.0], 1.0).unwrap();
         let (s1, s2) = (xs.iter().sum::<f64>(), xs.iter().map(|x| x * x).sum::<f64>());
         let b = -s1 / (3.0 * s2 - s1 * s1);
         let a = (1.0 - b * s1) / 3.0;
@@ -171,7 +216,7 @@ mod tests {
             assert!((p[0] - (a + b * xi)).abs() < 1e-13 && p[1].abs() < 1e-13, "{x:?}");
         }
         // Fingers -0.4, -0.3, 0.02: the affine split would pull at -0.4, which carries nothing.
-        let x = least_norm(&rod(&[-0.4, -0.3, 0.02]), [0.0, 1.0, 0.0], 1.0).unwrap();
+        let x = least_norm(&rod(&[-0.4, -0.3, 0.02]), &[0.0, 1.0, 0.0], 1.0).unwrap();
         let expected = [0.0, 0.02 / 0.32, 0.3 / 0.32];
         for (p, e) in x.iter().zip(expected) {
             assert!((p[0] - e).abs() < 1e-13, "{x:?}");
@@ -180,8 +225,10 @@ mod tests {
 
     #[test]
     fn a_load_outside_the_laws_is_none() {
-        // A sideways push larger than friction can hold on one sticking finger.
-        let one = rod(&[0.0]);
-        assert!(least_norm(&one, [1.0, 1.0, 0.0025], 1.0).is_none());
+        // A sideways push larger than friction can hold on two sticking fingers.
+        let two = rod(&[-0.1, 0.1]);
+        assert!(!determinate(&two));
+        assert!(least_norm(&two, &[1.0, 1.0, 0.0025], 1.0).is_none());
+        assert!(least_norm(&two, &[0.5, 1.0, 0.00125], 1.0).is_some());
     }
 }

@@ -38,7 +38,7 @@
 use super::Mode;
 use super::enumerate::{Lcp, MAX_ENUMERATED, enumerate};
 use super::geometry::{Body, Frame, dot, wrench};
-use super::load::{Law, Touching, least_norm};
+use super::load::{Law, Touching, determinate, least_norm};
 
 /// What every step of a scene shares.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -211,11 +211,18 @@ pub(super) fn solve(
             continue;
         }
         let slip = dot(f.tangent, support_velocity[i]) - dot3(columns[k + 2 * slot], v_plus);
-        let law =
-            if slip.abs() <= tolerance { Law::Sticking { mu: mu[i] } } else { Law::Sliding { f: slip.signum() * mu[i] } };
-        touching.push((i, Touching { normal: columns[slot], tangent: columns[k + 2 * slot], law }));
+        let law = if slip.abs() <= tolerance {
+            Law::Sticking { mu: mu[i] }
+        } else {
+            Law::Sliding { f: slip.signum() * mu[i] }
+        };
+        touching.push((
+            i,
+            Touching { normal: columns[slot].to_vec(), tangent: columns[k + 2 * slot].to_vec(), law },
+        ));
     }
-    let unknowns: usize = touching.iter().map(|(_, t)| if matches!(t.law, Law::Sticking { .. }) { 2 } else { 1 }).sum();
+    let unknowns: usize =
+        touching.iter().map(|(_, t)| if matches!(t.law, Law::Sticking { .. }) { 2 } else { 1 }).sum();
     if unknowns > 3 || (touching.len() >= 3 && unknowns == 3) {
         let mut r = [0.0; 3];
         for (i, t) in &touching {
@@ -224,12 +231,15 @@ pub(super) fn solve(
             }
         }
         let scale = z.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-        let contacts: Vec<Touching> = touching.iter().map(|(_, t)| *t).collect();
-        let Some(load) = least_norm(&contacts, r, scale) else {
-            return Err(format!("no load within the contacts' laws gives the chosen motion (t = {v_plus:?})"));
-        };
-        for ((i, _), x) in touching.iter().zip(load) {
-            (normal[*i], friction[*i]) = (x[0], x[1]);
+        let contacts: Vec<Touching> = touching.iter().map(|(_, t)| t.clone()).collect();
+        match least_norm(&contacts, &r, scale) {
+            Some(load) => {
+                for ((i, _), x) in touching.iter().zip(load) {
+                    (normal[*i], friction[*i]) = (x[0], x[1]);
+                }
+            }
+            None if determinate(&contacts) => {}
+            None => return Err(format!("no load within the contacts' laws gives the motion {v_plus:?}")),
         }
     }
     Ok(StepResult { velocity: v_plus, normal, friction, ambiguous })

@@ -6,12 +6,12 @@ use super::factored::{Answer, ContactBlocks, Factored, MOST_SLOTS};
 use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames, slip};
 use super::resolve::{self, Detector};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
+#[cfg(feature = "fallback")]
+use crate::load::{Carry, LoadContact, LoadPath, least_norm};
 use crate::params::ParamError;
 use crate::planar::assemble::normal_bias;
 use crate::planar::{Body, BodyState, Checksum, ContactMode, Declined, PathCounts, SolvePath};
-use crate::real::{Real, max};
-#[cfg(feature = "fallback")]
-use crate::load::{Carry, LoadContact, LoadPath, least_norm};
+use crate::real::Real;
 
 /// The scalars of a step: one body's ([`crate::planar::Settings`]: time step, gravity, stick
 /// threshold) and the activity rule's margin.
@@ -210,10 +210,12 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     /// The rule's metric and reaches (`docs/formulation.md`, "One answer: the rule").
     detector: Detector<T, B>,
     /// The basis of the last step whose load needed the least-norm LCP (`crate::load`).
+    #[cfg(feature = "fallback")]
     load_basis: Basis<LOAD_ROWS>,
     stats: Stats,
 }
 
+#[cfg(feature = "fallback")]
 /// The least-norm load's LCP rows: three per slot (`crate::load`).
 const LOAD_ROWS: usize = 3 * MOST_SLOTS;
 
@@ -284,6 +286,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 warm: Basis::all_w(),
             },
             detector: Detector::new(&system.bodies, &shapes, &inverse_mass),
+            #[cfg(feature = "fallback")]
             load_basis: Basis::all_w(),
             stats: Stats::default(),
         };
@@ -692,7 +695,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// more unknowns (two per sticking slot, one per sliding one) than the bodies' `3B`
     /// coordinates.
     #[cfg(feature = "fallback")]
-    fn load_open(&self, slots: usize, loads: &[[T; 2]; MOST_SLOTS], slips: &[T; MOST_SLOTS], stick_speed: T) -> bool {
+    fn load_open(
+        &self,
+        slots: usize,
+        loads: &[[T; 2]; MOST_SLOTS],
+        slips: &[T; MOST_SLOTS],
+        stick_speed: T,
+    ) -> bool {
         let mut unknowns = 0;
         let mut sticking_pair = usize::MAX;
         for j in 0..slots {
@@ -715,7 +724,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 
     /// The load of least 2-norm with this step's motion `v_plus` (`crate::load`), in place of
     /// `loads` (and the slips of the slots it loads): a slot touches when it carries load or its
-    /// normal velocity `c_n^T v+ + bias` is within the rule's velocity tolerance of zero, and
+    /// normal velocity `c_n^T v+ + bias` is within the rule's velocity tolerance (`max(1e-9, 256
+    /// eps) S`, `S` the rule's speed scale) of zero, and
     /// sticks when its slip is within it too.
     #[cfg(feature = "fallback")]
     #[cold]
@@ -728,12 +738,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         slips: &mut [T; MOST_SLOTS],
     ) -> Result<(), StepError> {
         let s = self.system.settings.base;
-        let mut speed = s.gravity * s.step;
-        for v in self.lcp.factored.v_free() {
-            speed = max(speed, v[0].abs_exact() + v[1].abs_exact());
-        }
-        let tolerance = max(T::of(1e-9), T::of(256.0) * T::EPS) * speed;
-        let off = LoadContact { normal: [[T::zero(); 3]; B], tangent: [[T::zero(); 3]; B], carry: Carry::Nothing };
+        let tolerance = self.detector.rule(&self.lcp.factored).velocity_tolerance();
+        let off =
+            LoadContact { normal: [[T::zero(); 3]; B], tangent: [[T::zero(); 3]; B], carry: Carry::Nothing };
         let mut contacts = [off; MOST_SLOTS];
         for j in 0..slots {
             let (p, c) = self.lcp.slots[j];
@@ -821,7 +828,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             if loads[j][0] > self.impulse_floor {
                 let (p, c) = self.lcp.slots[j];
                 // `-c_+d^T v+` as the solve formed it, else from the frame.
-                slips[j] = if from_solve { -along[j] } else { slip(&self.frames[p.min(P - 1)][c.min(3)], &v_plus) };
+                slips[j] =
+                    if from_solve { -along[j] } else { slip(&self.frames[p.min(P - 1)][c.min(3)], &v_plus) };
             }
         }
         // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least

@@ -122,6 +122,7 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     /// Which steps may have several answers, for the rule (`docs/formulation.md`, "One answer").
     detector: Detector,
     /// The basis of the last step whose load needed the least-norm LCP (`crate::load`).
+    #[cfg(feature = "fallback")]
     load_basis: Basis<LOAD_ROWS>,
     stats: RunStats,
 }
@@ -211,6 +212,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             plan: PlanCache::<K>::default(),
             solver: Lemke::new(),
             detector: Detector::new(&model.contacts, body.inverse_mass_per_unit_mass(), body.half_extents()),
+            #[cfg(feature = "fallback")]
             load_basis: Basis::all_w(),
             stats: RunStats::default(),
         };
@@ -586,23 +588,21 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         };
         let impulse_floor = self.impulse_floor;
         // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
-        // norm"): more unknowns than the body's three coordinates (two sticking contacts, or
-        // three touching ones on a model that may have several answers).
+        // norm"): on a model of three or more contacts, every step looks; on one of two, a step
+        // whose contacts both carry load and stick (four unknowns in three coordinates).
         #[cfg(feature = "fallback")]
         {
-            let normal_rows: [T; K] = core::array::from_fn(|i| {
-                let rows: &[T] = if full_layout_used { &w_full } else { &w };
-                rows.get(i).copied().unwrap_or(T::zero())
-            });
-            let velocity_tolerance = max(T::of(1e-9), T::of(256.0) * T::EPS) * (speed + s.gravity * h);
             let mut unknowns = 0;
             for i in 0..K {
-                if self.frames[i].active && (pn[i] > impulse_floor || normal_rows[i] <= velocity_tolerance) {
-                    unknowns += if slips[i].abs_exact() <= velocity_tolerance { 2 } else { 1 };
+                if pn[i] > impulse_floor {
+                    unknowns += if slips[i].abs_exact() <= s.stick_speed { 2 } else { 1 };
                 }
             }
-            if unknowns > 3 || (RULE && unknowns == 3 && K >= 3) {
-                self.decide_load(&mu, &normal_rows, &slips, velocity_tolerance, &mut normal, &mut friction)?;
+            if (RULE && K >= 3) || unknowns > 3 {
+                let rows: &[T] = if full_layout_used { &w_full } else { &w };
+                let tolerance = Detector::rule(&inputs, self.size).velocity_tolerance();
+                let mu = inputs.mu;
+                self.decide_load(&mu, tolerance, rows, &slips, &mut normal, &mut friction)?;
                 for i in 0..K {
                     pn[i] = normal[i] / self.mass;
                 }
@@ -651,17 +651,18 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
 
     /// The load of least 2-norm with this step's motion (`crate::load`), in place of the path's
     /// `normal` and `friction` impulses: a contact touches when it carries load or its normal row
-    /// `normal_rows` (its normal velocity) is within `tolerance` of zero, and sticks when its slip
-    /// is within it too. More than [`LOAD_CONTACTS`] touching contacts keep the path's load.
+    /// in `w` (its normal velocity) is within `tolerance` (the rule's velocity tolerance) of
+    /// zero, and sticks when its slip is within it too; `mu` the step's coefficients. More than [`LOAD_CONTACTS`] touching contacts keep the
+    /// path's load.
     #[cfg(feature = "fallback")]
     #[cold]
     #[inline(never)]
     fn decide_load(
         &mut self,
         mu: &[T; K],
-        normal_rows: &[T; K],
-        slips: &[T; K],
         tolerance: T,
+        w: &[T],
+        slips: &[T; K],
         normal: &mut [T; K],
         friction: &mut [T; K],
     ) -> Result<(), StepError> {
@@ -672,16 +673,18 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let mut count = 0;
         for i in 0..K {
             let f = &self.frames[i];
-            if !f.active || (normal[i] <= self.impulse_floor * self.mass && normal_rows[i] > tolerance) {
+            let normal_velocity = w.get(i).copied().unwrap_or(T::zero());
+            if !f.active || (normal[i] <= self.impulse_floor * self.mass && normal_velocity > tolerance) {
                 continue;
             }
             let Some(slot) = contacts.get_mut(count) else {
                 return Ok(()); // more touching contacts than the load's problem holds
             };
+            let mu = mu[i];
             let carry = if slips[i].abs_exact() <= tolerance {
-                Carry::Sticking { mu: mu[i] }
+                Carry::Sticking { mu }
             } else {
-                Carry::Sliding { friction_per_normal: sign_of(slips[i]) * mu[i] }
+                Carry::Sliding { friction_per_normal: if slips[i] > T::zero() { mu } else { -mu } }
             };
             *slot = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
             path[count] = [normal[i], friction[i]];
@@ -767,16 +770,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     }
 }
 
+#[cfg(feature = "fallback")]
 /// At most this many touching contacts enter the load's least-norm problem (`crate::load`).
 const LOAD_CONTACTS: usize = 4;
 /// Its LCP's rows: three per contact.
-const LOAD_ROWS: usize = 3 * LOAD_CONTACTS;
-
-/// `+1` for a positive `x`, else `-1`.
 #[cfg(feature = "fallback")]
-fn sign_of<T: Real>(x: T) -> T {
-    if x > T::zero() { T::one() } else { -T::one() }
-}
+const LOAD_ROWS: usize = 3 * LOAD_CONTACTS;
 
 /// A step's velocity scale `V`: the fastest support's speed plus the body's (`|vx| + |vy| +
 /// |omega| size`), the size of the slips in its LCP.

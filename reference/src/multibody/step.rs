@@ -44,6 +44,7 @@ use super::geometry::{Frame, dot};
 use super::lcp::{Basis, lemke, solve_basis, verify};
 use super::system::{State, System, slip_mode};
 use crate::Mode;
+use crate::load::{Law, Touching, determinate, least_norm};
 
 /// Rounds of the descent over neighbouring bases.
 const DESCENT_ROUNDS: usize = 8;
@@ -388,8 +389,64 @@ pub(super) fn solve(
         patterns[i] = slot_patterns[slot];
     }
     let v_plus = &pool[chosen].velocity;
+    least_norm_load(system, lcp, v_plus, 1e-9 * speed_scale, &mut normal, &mut friction)?;
     let velocity = (0..bodies).map(|i| [v_plus[3 * i], v_plus[3 * i + 1], v_plus[3 * i + 2]]).collect();
     Ok(StepResult { velocity, normal, friction, patterns, ambiguous, solutions: pool.len(), rows: n })
+}
+
+/// The load, where the contacts leave it open (docs/formulation.md, "The load: the least norm";
+/// `reference/src/load.rs`): the least 2-norm of the candidates' `normal` and `friction` impulses
+/// with the motion `v_plus`. A slot touches when it carries load or its normal velocity is within
+/// `tolerance` of zero, and sticks when its slip is within it too.
+///
+/// # Errors
+/// No load within the contacts' laws gives the motion.
+fn least_norm_load(
+    system: &System,
+    lcp: &StepLcp,
+    v_plus: &[f64],
+    tolerance: f64,
+    normal: &mut [f64],
+    friction: &mut [f64],
+) -> Result<(), String> {
+    let k = lcp.active.len();
+    let n = 4 * k;
+    let mut touching: Vec<(usize, Touching)> = Vec::new();
+    for (slot, &i) in lcp.active.iter().enumerate() {
+        let normal_row = &lcp.rows[slot];
+        let normal_velocity = lcp.offset[slot] + dot_n(normal_row, v_plus) - dot_n(normal_row, &lcp.free);
+        if normal[i] <= system.impulse_floor() && normal_velocity > tolerance {
+            continue;
+        }
+        let tangent_row = &lcp.rows[k + 2 * slot];
+        let slip = -dot_n(tangent_row, v_plus);
+        let mu = lcp.matrix[(3 * k + slot) * n + slot];
+        let law = if slip.abs() <= tolerance {
+            Law::Sticking { mu }
+        } else {
+            Law::Sliding { f: slip.signum() * mu }
+        };
+        touching.push((i, Touching { normal: normal_row.clone(), tangent: tangent_row.clone(), law }));
+    }
+    let contacts: Vec<Touching> = touching.iter().map(|(_, t)| t.clone()).collect();
+    if contacts.len() < 2 || determinate(&contacts) {
+        return Ok(());
+    }
+    let mut r = vec![0.0; v_plus.len()];
+    let mut scale: f64 = 0.0;
+    for (i, t) in &touching {
+        scale = scale.max(normal[*i].abs()).max(friction[*i].abs());
+        for c in 0..r.len() {
+            r[c] += t.normal[c] * normal[*i] + t.tangent[c] * friction[*i];
+        }
+    }
+    let Some(load) = least_norm(&contacts, &r, scale) else {
+        return Err(format!("no load within the contacts' laws gives the motion {v_plus:?}"));
+    };
+    for ((i, _), x) in touching.iter().zip(load) {
+        (normal[*i], friction[*i]) = (x[0], x[1]);
+    }
+    Ok(())
 }
 
 /// Each candidate's mode after a step: separated when inactive or its normal impulse is at most
