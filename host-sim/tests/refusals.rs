@@ -82,6 +82,37 @@ fn report_refuses_its_horizon_and_figures_before_running() {
     assert!(!out.exists(), "a refusal writes nothing");
 }
 
+/// The scenes of several bodies refuse what their stepper refuses (`multibody::Stepper::new`: a
+/// negative step moved the blocks up, a negative mass or `mu_k > mu_s` was stepped, a zero mass
+/// failed at the first step; `StackParams` took 1 to 4 blocks) in the words of the flag typed,
+/// before any run: `host-sim run` writes nothing.
+#[test]
+fn several_bodies_refuse_their_steppers_bad_input_by_flag() {
+    let out = temp("multibody");
+    let o = out.to_str().unwrap();
+    for (args, words) in [
+        (&["--scene", "block-on-block", "--h", "-0.001"][..], "--h -0.001 s: must be greater than 0"),
+        (&["--scene", "tablecloth", "--h", "nan"][..], "--h NaN s: not a finite number"),
+        (&["--scene", "stack", "--mass", "-1"][..], "--mass -1 kg: must be greater than 0"),
+        (&["--scene", "block-on-block", "--mass2", "0"][..], "--mass2 0 kg: must be greater than 0"),
+        (&["--scene", "tablecloth", "--mu-s", "-0.1"][..], "--mu-s -0.1: must not be negative"),
+        (&["--scene", "block-on-block", "--mu-k", "-0.1"][..], "--mu-k -0.1: must not be negative"),
+        (&["--scene", "disc-on-board", "--mu-k", "0.7"][..], "--mu-k 0.7 must not exceed --mu-s 0.5"),
+        (&["--scene", "stack", "--blocks", "1"][..], "--blocks 1: out of range (2 or 3)"),
+        (&["--scene", "stack", "--blocks", "4"][..], "--blocks 4: out of range (2 or 3)"),
+    ] {
+        let run: Vec<&str> = ["run"].iter().chain(args).chain(&["--out", o]).copied().collect();
+        let (code, err) = refused(&run);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(words), "{args:?}: {err}");
+        assert!(!out.exists(), "{args:?}: a refusal writes nothing");
+        let scene: Vec<&str> = ["scene"].iter().chain(args).copied().collect();
+        let (code, err) = refused(&scene);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(words), "{args:?}: {err}");
+    }
+}
+
 /// A duration the user never typed is explained: the meter stick's default follows the fingers'
 /// travel time, which a slow `--speed` makes long.
 #[test]

@@ -440,9 +440,14 @@ const SETTINGS: Settings<f64> = Settings {
     margin: 1e-3,
 };
 
-/// Two equal boxes, one exactly on the other, on a floor; `force` pulls the lower one.
+/// Two equal boxes of 1 kg, one exactly on the other, on a floor; `force` pulls the lower one.
 fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
-    let block = Body::block(1.0, 0.2, 0.1);
+    aligned_pair_of(1.0, force).expect("a valid system")
+}
+
+/// [`aligned_pair`] with boxes of `mass`.
+fn aligned_pair_of<const N: usize>(mass: f64, force: f64) -> Result<Stepper<f64, 2, 2, N>, ParamError> {
+    let block = Body::block(mass, 0.2, 0.1);
     let system = System {
         bodies: [block; 2],
         table: Table::floor(),
@@ -451,7 +456,6 @@ fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
         settings: SETTINGS,
     };
     Stepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
-        .expect("a valid system")
 }
 
 /// The activity rule (`docs/formulation.md`, "The corner-on-face contact"): the upper box's
@@ -480,14 +484,16 @@ fn aligned_edges_make_one_contact_each() {
 }
 
 /// Failure is a typed error and leaves the state as it was: more active contacts than the LCP
-/// holds; a non-finite force.
+/// holds; a force whose velocity change `h F / m` overflows. A non-finite force is refused before
+/// any step.
 #[test]
 fn a_failed_step_is_a_typed_error() {
     let mut small = aligned_pair::<12>(0.0);
     let before = *small.states();
     assert_eq!(small.step().err(), Some(StepError::TooManyContacts(4)));
     assert_eq!(*small.states(), before);
-    let mut broken = aligned_pair::<16>(f64::NAN);
+    assert_eq!(aligned_pair_of::<16>(1.0, f64::NAN).err(), Some(ParamError::NonFinite("forces")));
+    let mut broken = aligned_pair_of::<16>(1e-6, f64::MAX).expect("finite");
     assert_eq!(broken.step().err(), Some(StepError::Solver(LcpError::NonFiniteInput)));
     assert_eq!(*broken.states(), before);
     // The same system with room for its four contacts steps, the pull held by the floor.

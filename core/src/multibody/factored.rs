@@ -24,14 +24,16 @@
 //! `c_n + mu c_f`, held by its normal row, `sigma = -(q_f + c_f^T dv)` afterwards (without a basic
 //! `p_n`, only `sigma`); `sigma` not basic: each basic `p_n`, `p_f` is an unknown held by its own
 //! row; any other pattern is declined. At most `min(3 B, UNKNOWNS)` unknowns (more rows than the
-//! bodies' degrees of freedom make the system singular): `H^T M~ G y = -q_H` by elimination with
-//! partial pivoting ([`solve_leading`]), then `z`, `dv`, `w` in factored form and the single body's
-//! acceptance rules with its round-off floors: impulses `>= 0` exactly and not within `N eps` of the
-//! largest, velocity rows and `sigma`s `>= 0` within each row's own round-off
-//! ([`Factored::within_round_off`]), cone rows `>= 0` exactly, finite, and the verification
-//! residual ([`crate::lcp::verify`]) held to a scale no larger than Lemke's (`||A||_inf` replaced by
-//! `max_v (|A_vv| + the row's unit entries)`, a lower bound). A singular system (both corners of
-//! one interface sticking: four rows of rank three) is declined.
+//! bodies' degrees of freedom make the system singular): `H^T M~ G y = -q_H`, by `L D L^T`
+//! without pivoting when it is symmetric (no unknown has a follower: `G^T M~ G`,
+//! [`solve_symmetric`]), else by elimination with partial pivoting ([`solve_leading`]); then `z`,
+//! `dv`, `w` in factored form and the single body's acceptance rules with its round-off floors:
+//! impulses `>= 0` exactly and not within `N eps` of the largest, velocity rows and `sigma`s
+//! `>= 0` within each row's own round-off ([`Factored::within_round_off`]), cone rows `>= 0`
+//! exactly, finite, and the verification residual ([`crate::lcp::verify`]) held to a scale no
+//! larger than Lemke's (`||A||_inf` replaced by `max_v (|A_vv| + the row's unit entries)`, a lower
+//! bound). A singular system (both corners of one interface sticking: four rows of rank three) is
+//! declined.
 
 use nalgebra::{SMatrix, SVector};
 
@@ -196,6 +198,9 @@ pub(super) struct ContactBlocks<T> {
 impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
     /// No contact: [`Self::reset`] it for a step.
     pub(super) fn new() -> Self {
+        // Every variable's index (`< N`) is a bit of a `u32` basis mask and fits the `u8` of a
+        // [`Declined::Infeasible`] and of an unknown's variable: their narrowings are exact.
+        const { assert!(N >= 4 && N <= 32, "Factored<T, B, N> needs 4 <= N <= 32") };
         Self {
             k: 0,
             minus: 0,

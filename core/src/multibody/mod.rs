@@ -14,7 +14,11 @@
 //! * [`scenes`]: block-on-block, the tablecloth and the stack, returning the one
 //!   [`crate::scene::Outcome`].
 //!
-//! A single-body scene compiles none of this: nothing outside this module refers to it.
+//! A build that steps only single-body scenes links none of this: the steppers and scenes are
+//! generic, compiled where something names them (the registry's rows of several bodies, behind the
+//! `scenes-multibody` feature; a driver or firmware that builds a scene). The rest of the core names
+//! one type of this module unconditionally: [`StepError`], in
+//! [`crate::scene::Outcome::MultibodyFailed`].
 
 mod factored;
 mod geometry;

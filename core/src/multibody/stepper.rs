@@ -8,8 +8,9 @@ use super::resolve::{self, Detector};
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, Lemke, verify};
 #[cfg(feature = "fallback")]
 use crate::load::{Carry, LoadContact, LoadPath, least_norm};
-use crate::params::ParamError;
+use crate::params::{Check, ParamError, check_fields};
 use crate::planar::assemble::normal_bias;
+use crate::planar::check_friction;
 use crate::planar::{Body, BodyState, Checksum, ContactMode, Declined, PathCounts, SolvePath};
 use crate::real::Real;
 
@@ -220,43 +221,38 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
 const LOAD_ROWS: usize = 3 * MOST_SLOTS;
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
+    /// `P <= 32`: the pairs' bit sets are `u32` (`Factored::held_and_pinned`), and a pair's
+    /// index narrows to the `u8` a slot keeps exactly.
     const SIZE_CHECK: () = assert!(
-        B > 0 && B < 255 && P > 0 && N >= 4 && N <= 32,
-        "Stepper needs 0 < B < 255, P > 0, 4 <= N <= 32"
+        B > 0 && B < 255 && P > 0 && P <= 32 && N >= 4 && N <= 32,
+        "Stepper needs 0 < B < 255, 0 < P <= 32, 4 <= N <= 32"
     );
 
     /// A stepper at `states` (every body at rest: the modes before the first step are sticking
     /// for an active touching candidate, separated otherwise).
     ///
     /// # Errors
-    /// [`ParamError::NonFiniteState`] for a non-finite state, [`ParamError::OutOfRange`]`("pairs")`
-    /// for a pair naming a body that does not exist, resting on itself or on a disc,
-    /// [`ParamError::OutOfRange`]`("upper_shape")` for a disc whose width and height differ or a
-    /// body the pairs give two shapes.
+    /// The first of, in this order:
+    /// * a body's `width`, `height`, `mass` or `inertia` not finite ([`ParamError::NonFinite`]) or
+    ///   not positive ([`ParamError::NotPositive`]), or its `mass / inertia` not finite
+    ///   ([`ParamError::InertiaOutOfRange`]);
+    /// * the settings' `step` not finite or not positive, `gravity`, `stick_speed` or `margin`
+    ///   not finite or negative ([`ParamError::Negative`]);
+    /// * a pair's `mu_static` or `mu_kinetic` not finite or negative, or
+    ///   [`ParamError::KineticAboveStatic`];
+    /// * [`ParamError::OutOfRange`]`("upper_shape")` for a disc whose width and height differ or a
+    ///   body the pairs give two shapes, [`ParamError::OutOfRange`]`("pairs")` for a pair naming a
+    ///   body that does not exist, resting on itself or on a disc;
+    /// * [`ParamError::NonFinite`]`("table")` for a table end that is not finite,
+    ///   [`ParamError::OutOfRange`]`("table")` for `lo > hi`;
+    /// * [`ParamError::NonFinite`]`("forces")` for an external force that is not finite;
+    /// * [`ParamError::NonFiniteState`] for a non-finite state;
+    /// * [`ParamError::OutOfRange`]`("mass")` for a body whose mass or inertia per body 0's mass
+    ///   (the LCP's unit) is not a positive finite number in `T`.
     pub fn new(system: System<T, B, P>, states: [BodyState<T>; B]) -> Result<Self, ParamError> {
         let () = Self::SIZE_CHECK;
-        if !states.iter().all(BodyState::is_finite) {
-            return Err(ParamError::NonFiniteState);
-        }
+        validate(&system, &states)?;
         let shapes = system.shapes();
-        for (body, shape) in system.bodies.iter().zip(&shapes) {
-            if *shape == Shape::Disc && body.width != body.height {
-                return Err(ParamError::OutOfRange("upper_shape"));
-            }
-        }
-        for pair in &system.pairs {
-            let bad_lower = match pair.lower {
-                // A body that does not exist has no shape: refused as a disc is.
-                super::Support::Body(s) => s == pair.upper || shapes.get(usize::from(s)) != Some(&Shape::Box),
-                super::Support::Table => false,
-            };
-            if shapes.get(usize::from(pair.upper)).is_some_and(|shape| *shape != pair.upper_shape) {
-                return Err(ParamError::OutOfRange("upper_shape"));
-            }
-            if usize::from(pair.upper) >= B || bad_lower {
-                return Err(ParamError::OutOfRange("pairs"));
-            }
-        }
         let m_ref = system.bodies[0].mass;
         let mut m_min = m_ref;
         let mut inverse_mass = [[T::zero(); 3]; B];
@@ -265,6 +261,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             if body.mass < m_min {
                 m_min = body.mass;
             }
+        }
+        // Each body's `M~` (per body 0's mass) in `T`'s range: a mass ratio whose quotient
+        // overflows or underflows is refused here rather than stepped.
+        if !inverse_mass.iter().flatten().all(|&m| m.finite() && m > T::zero()) {
+            return Err(ParamError::OutOfRange("mass"));
         }
         let s = system.settings.base;
         let mut stepper = Self {
@@ -456,6 +457,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let mu = if self.modes[p][c].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
             out.factored.set_slot(
                 j,
+                // `p < P <= 32` ([`Self::SIZE_CHECK`]): exact.
                 p as u8,
                 [f.dense_row(f.normal), f.dense_row(d)],
                 normal_bias(f.gap, h, s.gravity, f.gap_round_off),
@@ -892,6 +894,61 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     }
 }
 
+/// The set-up checks of [`Stepper::new`] (its `# Errors`, in that order) but the mass ratios:
+/// each body as [`crate::planar::Stepper`]'s body is checked, and its height positive too (a box
+/// or a disc); the settings as its settings, and the margin; each pair's friction as a contact's;
+/// the pairs' bodies and shapes; the table's ends; the forces; the states.
+fn validate<T: Real, const B: usize, const P: usize>(
+    system: &System<T, B, P>,
+    states: &[BodyState<T>; B],
+) -> Result<(), ParamError> {
+    for body in &system.bodies {
+        check_fields(&body.fields())?;
+        check_fields(&[("height", body.height, Check::Positive)])?;
+        body.check_inertia("mass", "width")?;
+    }
+    let [step, gravity, stick_speed] = system.settings.base.fields();
+    check_fields(&[step, gravity, stick_speed, ("margin", system.settings.margin, Check::NonNegative)])?;
+    for pair in &system.pairs {
+        check_friction(pair.mu_static, pair.mu_kinetic)?;
+    }
+    let shapes = system.shapes();
+    for (body, shape) in system.bodies.iter().zip(&shapes) {
+        if *shape == Shape::Disc && body.width != body.height {
+            return Err(ParamError::OutOfRange("upper_shape"));
+        }
+    }
+    for pair in &system.pairs {
+        let bad_lower = match pair.lower {
+            // A body that does not exist has no shape: refused as a disc is.
+            super::Support::Body(s) => s == pair.upper || shapes.get(usize::from(s)) != Some(&Shape::Box),
+            super::Support::Table => false,
+        };
+        if shapes.get(usize::from(pair.upper)).is_some_and(|shape| *shape != pair.upper_shape) {
+            return Err(ParamError::OutOfRange("upper_shape"));
+        }
+        if usize::from(pair.upper) >= B || bad_lower {
+            return Err(ParamError::OutOfRange("pairs"));
+        }
+    }
+    let Table { lo, hi } = system.table;
+    if !lo.into_iter().chain(hi).all(Real::finite) {
+        return Err(ParamError::NonFinite("table"));
+    }
+    if let (Some(lo), Some(hi)) = (lo, hi)
+        && lo > hi
+    {
+        return Err(ParamError::OutOfRange("table"));
+    }
+    if !system.forces.iter().flatten().all(|f| f.finite()) {
+        return Err(ParamError::NonFinite("forces"));
+    }
+    if !states.iter().all(BodyState::is_finite) {
+        return Err(ParamError::NonFiniteState);
+    }
+    Ok(())
+}
+
 /// Slot `j`'s variables among `k` slots: `p_n`, `p_+d`, `p_-d`, `sigma` (the bits of a
 /// [`Pattern`] in order).
 #[inline]
@@ -962,4 +1019,143 @@ pub(super) struct StepLcp<T, const B: usize, const N: usize> {
     pub(super) active: u8,
     /// The last step's patterns as a basis.
     pub(super) warm: Basis<N>,
+}
+
+#[cfg(test)]
+#[allow(clippy::expect_used)] // a test's setup may fail loudly
+mod tests {
+    //! [`Stepper::new`] refuses a system it cannot step, each by its [`ParamError`], before any
+    //! step: every field of its contract broken once, the rest valid.
+
+    use super::*;
+    use crate::multibody::Support;
+
+    /// Two boxes, one on the other, on a floor, pulled: the valid system every case breaks once.
+    fn pulled_pair() -> (System<f64, 2, 2>, [BodyState<f64>; 2]) {
+        let block = Body::block(1.0, 0.2, 0.1);
+        let system = System {
+            bodies: [block; 2],
+            table: Table::floor(),
+            pairs: [Pair::boxed(0, Support::Table, 0.5, 0.4), Pair::boxed(1, Support::Body(0), 0.5, 0.4)],
+            forces: [[5.0, 0.0], [0.0; 2]],
+            settings: Settings {
+                base: crate::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+                margin: 1e-3,
+            },
+        };
+        (system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
+    }
+
+    /// `pulled_pair` changed by `change`: `Stepper::new`'s error, `None` when it builds.
+    fn refusal(change: impl FnOnce(&mut System<f64, 2, 2>, &mut [BodyState<f64>; 2])) -> Option<ParamError> {
+        let (mut system, mut states) = pulled_pair();
+        change(&mut system, &mut states);
+        Stepper::<f64, 2, 2, 24>::new(system, states).err()
+    }
+
+    #[test]
+    fn the_valid_system_builds_and_steps() {
+        assert_eq!(refusal(|_, _| {}), None);
+        let (system, states) = pulled_pair();
+        let mut stepper = Stepper::<f64, 2, 2, 24>::new(system, states).expect("valid");
+        assert!(stepper.step().is_ok());
+    }
+
+    #[test]
+    fn a_body_without_a_positive_finite_mass_inertia_or_size_is_refused() {
+        assert_eq!(refusal(|s, _| s.bodies[1].mass = -1.0), Some(ParamError::NotPositive("mass")));
+        assert_eq!(refusal(|s, _| s.bodies[0].mass = 0.0), Some(ParamError::NotPositive("mass")));
+        assert_eq!(refusal(|s, _| s.bodies[1].mass = f64::NAN), Some(ParamError::NonFinite("mass")));
+        assert_eq!(refusal(|s, _| s.bodies[1].inertia = 0.0), Some(ParamError::NotPositive("inertia")));
+        assert_eq!(
+            refusal(|s, _| s.bodies[0].inertia = f64::INFINITY),
+            Some(ParamError::NonFinite("inertia"))
+        );
+        assert_eq!(refusal(|s, _| s.bodies[1].width = -0.2), Some(ParamError::NotPositive("width")));
+        // A planar body's height may be 0 (a rod as a line); a box's may not.
+        assert_eq!(refusal(|s, _| s.bodies[1].height = 0.0), Some(ParamError::NotPositive("height")));
+        assert_eq!(
+            refusal(|s, _| s.bodies[1].inertia = 1e-310),
+            Some(ParamError::InertiaOutOfRange { mass: "mass", size: "width" })
+        );
+    }
+
+    /// `M~` is per body 0's mass: a ratio whose quotient leaves `T`'s range is refused.
+    #[test]
+    fn masses_whose_ratio_leaves_the_range_are_refused() {
+        let ratio = |s: &mut System<f64, 2, 2>, _: &mut _| {
+            s.bodies[0] = Body::block(1e300, 0.2, 0.1);
+            s.bodies[1] = Body::block(1e-20, 0.2, 0.1);
+        };
+        assert_eq!(refusal(ratio), Some(ParamError::OutOfRange("mass")));
+    }
+
+    #[test]
+    fn a_step_that_is_not_positive_and_finite_is_refused() {
+        assert_eq!(refusal(|s, _| s.settings.base.step = -1e-3), Some(ParamError::NotPositive("step")));
+        assert_eq!(refusal(|s, _| s.settings.base.step = 0.0), Some(ParamError::NotPositive("step")));
+        assert_eq!(refusal(|s, _| s.settings.base.step = f64::NAN), Some(ParamError::NonFinite("step")));
+        assert_eq!(refusal(|s, _| s.settings.base.gravity = -9.81), Some(ParamError::Negative("gravity")));
+        assert_eq!(
+            refusal(|s, _| s.settings.base.stick_speed = -1.0),
+            Some(ParamError::Negative("stick_speed"))
+        );
+        assert_eq!(refusal(|s, _| s.settings.margin = -1e-3), Some(ParamError::Negative("margin")));
+        assert_eq!(refusal(|s, _| s.settings.margin = f64::INFINITY), Some(ParamError::NonFinite("margin")));
+    }
+
+    #[test]
+    fn friction_outside_zero_to_mu_static_is_refused() {
+        assert_eq!(refusal(|s, _| s.pairs[1].mu_kinetic = 0.6), Some(ParamError::KineticAboveStatic));
+        assert_eq!(refusal(|s, _| s.pairs[0].mu_static = -0.1), Some(ParamError::Negative("mu_static")));
+        assert_eq!(refusal(|s, _| s.pairs[1].mu_kinetic = -0.1), Some(ParamError::Negative("mu_kinetic")));
+        assert_eq!(refusal(|s, _| s.pairs[1].mu_static = f64::NAN), Some(ParamError::NonFinite("mu_static")));
+        // Frictionless and `mu_k = mu_s` are valid.
+        assert_eq!(refusal(|s, _| s.pairs[1] = Pair::boxed(1, Support::Body(0), 0.0, 0.0)), None);
+        assert_eq!(refusal(|s, _| s.pairs[1].mu_kinetic = 0.5), None);
+    }
+
+    #[test]
+    fn a_table_forces_or_states_that_are_not_finite_are_refused() {
+        assert_eq!(refusal(|s, _| s.table.hi = Some(f64::NAN)), Some(ParamError::NonFinite("table")));
+        assert_eq!(
+            refusal(|s, _| s.table = Table { lo: Some(0.5), hi: Some(-0.5) }),
+            Some(ParamError::OutOfRange("table"))
+        );
+        assert_eq!(refusal(|s, _| s.table = Table { lo: Some(-0.5), hi: Some(0.5) }), None);
+        assert_eq!(refusal(|s, _| s.forces[1][1] = f64::INFINITY), Some(ParamError::NonFinite("forces")));
+        assert_eq!(refusal(|_, st| st[1].omega = f64::NAN), Some(ParamError::NonFiniteState));
+    }
+
+    #[test]
+    fn pairs_naming_no_body_are_refused() {
+        assert_eq!(refusal(|s, _| s.pairs[1].upper = 2), Some(ParamError::OutOfRange("pairs")));
+        assert_eq!(
+            refusal(|s, _| s.pairs[1].lower = Support::Body(1)),
+            Some(ParamError::OutOfRange("pairs"))
+        );
+    }
+
+    /// The step's checks are the constructor's: `f32` refuses the same way.
+    #[test]
+    fn f32_refuses_as_f64() {
+        let (system, states) = pulled_pair();
+        let mut system = System {
+            bodies: system.bodies.map(|b| Body::block(b.mass as f32, b.width as f32, b.height as f32)),
+            table: Table::floor(),
+            pairs: system.pairs.map(|p| Pair::boxed(p.upper, p.lower, 0.5_f32, 0.4)),
+            forces: [[5.0, 0.0], [0.0; 2]],
+            settings: Settings {
+                base: crate::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+                margin: 1e-3,
+            },
+        };
+        let states = states.map(|s| BodyState::at_rest(s.x as f32, s.y as f32, 0.0));
+        assert!(Stepper::<f32, 2, 2, 24>::new(system, states).is_ok());
+        system.settings.base.step = -1e-3;
+        assert_eq!(
+            Stepper::<f32, 2, 2, 24>::new(system, states).err(),
+            Some(ParamError::NotPositive("step"))
+        );
+    }
 }

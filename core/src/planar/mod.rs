@@ -69,6 +69,7 @@ pub use events::{EventLog, SwitchEvent};
 pub use factored::{BasisAnswer, Declined, FactoredLcp};
 pub(crate) use factored::{MU_WEIGHTED_FROM, cone_scale};
 pub use layout::{Direction, Layout, Tangents, Variable};
+pub(crate) use model::check_friction;
 pub use model::{Model, Settings};
 pub use report::{
     ContactReport, FRICTION_ROUND_OFF_LIMIT, ROUND_OFF_LIMIT, RunStats, StepReport,

@@ -4,7 +4,7 @@
 
 use super::body::{Body, BodyState};
 use super::contact::{Contact, Feature, Support};
-use crate::params::ParamError;
+use crate::params::{Check, ParamError, check_fields};
 use crate::real::Real;
 
 /// The stepper's numbers, besides the body and its contacts.
@@ -30,31 +30,55 @@ pub struct Model<T, const K: usize> {
     pub settings: Settings<T>,
 }
 
+impl<T: Real> Body<T> {
+    /// The body's fields as [`validate`] checks them ([`check_fields`]): `width`, `mass` and
+    /// `inertia` positive, `height` not negative (a rod may be a line).
+    pub(crate) fn fields(&self) -> [(&'static str, T, Check); 4] {
+        [
+            ("width", self.width, Check::Positive),
+            ("height", self.height, Check::NonNegative),
+            ("mass", self.mass, Check::Positive),
+            ("inertia", self.inertia, Check::Positive),
+        ]
+    }
+}
+
+impl<T: Real> Settings<T> {
+    /// The settings' fields as [`validate`] checks them ([`check_fields`]): `step` positive,
+    /// `gravity` and `stick_speed` not negative.
+    pub(crate) fn fields(&self) -> [(&'static str, T, Check); 3] {
+        [
+            ("step", self.step, Check::Positive),
+            ("gravity", self.gravity, Check::NonNegative),
+            ("stick_speed", self.stick_speed, Check::NonNegative),
+        ]
+    }
+}
+
+/// A contact's friction coefficients: both finite and not negative, `mu_kinetic <= mu_static`.
+///
+/// # Errors
+/// [`ParamError::NonFinite`] or [`ParamError::Negative`] naming `mu_static` or `mu_kinetic`,
+/// [`ParamError::KineticAboveStatic`].
+pub(crate) fn check_friction<T: Real>(mu_static: T, mu_kinetic: T) -> Result<(), ParamError> {
+    check_fields(&[
+        ("mu_static", mu_static, Check::NonNegative),
+        ("mu_kinetic", mu_kinetic, Check::NonNegative),
+    ])?;
+    if mu_kinetic > mu_static { Err(ParamError::KineticAboveStatic) } else { Ok(()) }
+}
+
 /// The set-up checks of [`super::Stepper::new`].
 pub(crate) fn validate<T: Real, const K: usize>(
     model: &Model<T, K>,
     start: &BodyState<T>,
     supports: &[Support<T>; K],
 ) -> Result<(), ParamError> {
-    use crate::params::{Check, check_fields};
-    let (b, s) = (&model.body, &model.settings);
-    check_fields(&[
-        ("width", b.width, Check::Positive),
-        ("height", b.height, Check::NonNegative),
-        ("mass", b.mass, Check::Positive),
-        ("inertia", b.inertia, Check::Positive),
-        ("step", s.step, Check::Positive),
-        ("gravity", s.gravity, Check::NonNegative),
-        ("stick_speed", s.stick_speed, Check::NonNegative),
-    ])?;
+    let ([width, height, mass, inertia], [step, gravity, stick_speed]) =
+        (model.body.fields(), model.settings.fields());
+    check_fields(&[width, height, mass, inertia, step, gravity, stick_speed])?;
     for (i, c) in model.contacts.iter().enumerate() {
-        check_fields(&[
-            ("mu_static", c.mu_static, Check::NonNegative),
-            ("mu_kinetic", c.mu_kinetic, Check::NonNegative),
-        ])?;
-        if c.mu_kinetic > c.mu_static {
-            return Err(ParamError::KineticAboveStatic);
-        }
+        check_friction(c.mu_static, c.mu_kinetic)?;
         if let Feature::Point(p) = c.feature
             && !(p[0].finite() && p[1].finite())
         {

@@ -29,7 +29,7 @@ pub use core_run::run_core;
 pub use csv::{csv_header, write_csv, write_events_csv};
 pub use record::{MAX_RECORDED_STEPS, Record, Recorder, check_recorded_steps, check_total_recorded_steps};
 pub use reference_run::run_reference;
-pub use run::{run, run_k, run_watched};
+pub use run::{UnrecordedContacts, run, run_k, run_watched};
 
 /// One contact after a step.
 #[derive(Debug, Clone, Copy, PartialEq)]

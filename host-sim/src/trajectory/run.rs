@@ -7,7 +7,7 @@ use super::core_run::core_run;
 use super::reference_run::run_reference;
 use super::{Record, Trajectory};
 use crate::progress;
-use crate::scenes::{Implementation, SceneParams};
+use crate::scenes::{Implementation, SceneKind, SceneParams};
 
 /// Runs `spec` (a scene with two contacts) in `implementation` to its outcome and records it.
 ///
@@ -18,26 +18,54 @@ pub fn run(spec: &SceneParams, implementation: Implementation, record: Record) -
 }
 
 /// Calls `$body` with the const `$k` set to the number of contacts of scene `$kind` (1, 2 or 3):
-/// the commands that record a scene are generic over its contacts.
+/// the commands that record a scene of one body are generic over its contacts. Any other count (a
+/// scene of several bodies has none, [`SceneKind::contacts`] 0: the commands run those through
+/// [`crate::multibody`] before they get here) returns [`UnrecordedContacts`] from the enclosing
+/// function, whose error type takes an `anyhow::Error`.
+///
+/// [`SceneKind::contacts`]: meterstick_core::scene::SceneKind::contacts
 #[macro_export]
 macro_rules! with_contacts {
-    ($kind:expr, $k:ident => $body:expr) => {
-        match $kind.contacts() {
+    ($kind:expr, $k:ident => $body:expr) => {{
+        let kind = $kind;
+        match kind.contacts() {
             1 => {
                 const $k: usize = 1;
+                $body
+            }
+            2 => {
+                const $k: usize = 2;
                 $body
             }
             3 => {
                 const $k: usize = 3;
                 $body
             }
-            _ => {
-                const $k: usize = 2;
-                $body
+            contacts => {
+                return Err($crate::trajectory::UnrecordedContacts { kind, contacts }.into());
             }
         }
-    };
+    }};
 }
+
+/// A scene whose number of contacts no recording of one body is compiled for ([`with_contacts!`]):
+/// 1, 2 and 3 are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct UnrecordedContacts {
+    /// The scene.
+    pub kind: SceneKind,
+    /// Its [`SceneKind::contacts`](meterstick_core::scene::SceneKind::contacts).
+    pub contacts: usize,
+}
+
+impl std::fmt::Display for UnrecordedContacts {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let Self { kind, contacts } = self;
+        write!(f, "scene {kind} has {contacts} contacts: a run of one body records 1, 2 or 3")
+    }
+}
+
+impl std::error::Error for UnrecordedContacts {}
 
 /// Runs `spec`, a scene with `K` contacts, in `implementation` to its outcome and records it.
 ///
@@ -81,4 +109,33 @@ fn run_inner<const K: usize>(
     }?;
     progress::check()?;
     Ok(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The contacts of a scene through [`with_contacts!`], or its error.
+    fn contacts_of(kind: SceneKind) -> anyhow::Result<usize> {
+        Ok(crate::with_contacts!(kind, K => K))
+    }
+
+    /// Each scene of one body reaches its own count; a scene of several bodies is the typed error,
+    /// never the two-contact branch.
+    #[test]
+    fn with_contacts_matches_the_counts_that_exist() {
+        for kind in SceneKind::ALL {
+            let result = contacts_of(kind);
+            if kind.is_multibody() {
+                let error = result.err();
+                assert_eq!(
+                    error.as_ref().and_then(anyhow::Error::downcast_ref::<UnrecordedContacts>),
+                    Some(&UnrecordedContacts { kind, contacts: 0 }),
+                    "{kind}"
+                );
+            } else {
+                assert_eq!(result.ok(), Some(kind.contacts()), "{kind}");
+            }
+        }
+    }
 }

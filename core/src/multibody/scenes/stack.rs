@@ -41,19 +41,21 @@ params! {
 }
 
 impl<T: Real> StackParams<T> {
-    /// The validity rules of `docs/scenes.md`, "stack", for `blocks` blocks.
+    /// The validity rules of `docs/scenes.md`, "stack", for `blocks` blocks (2 or 3: the stacks
+    /// built, [`Stack2`] and [`Stack3`]).
     ///
     /// # Errors
-    /// The first broken rule, naming its field.
+    /// The first broken rule, naming its field: [`ParamError::OutOfRange`]`("blocks")` for other
+    /// than 2 or 3 blocks.
     pub fn validate(&self, blocks: usize) -> Result<(), ParamError> {
         self.check_fields()?;
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
-        if !(1..=4).contains(&blocks) {
+        let Some(blocks) = u32::try_from(blocks).ok().filter(|b| (2..=3).contains(b)) else {
             return Err(ParamError::OutOfRange("blocks"));
-        }
-        if self.overhang >= T::of(2.0) * T::of_count(blocks as u32) {
+        };
+        if self.overhang >= T::of(2.0) * T::of_count(blocks) {
             return Err(ParamError::OutOfRange("overhang"));
         }
         check_step_within(self.step, self.max_time)?;
@@ -61,17 +63,17 @@ impl<T: Real> StackParams<T> {
     }
 
     /// Each body's start (body 0 at the bottom): `R_k = s (L/2) (1/k + ... + 1/B)` for the `k`-th
-    /// from the top, centre `(R_k - L/2, (i + 1/2) hb)` for body `i = B - k`.
-    fn start<const B: usize>(&self) -> [BodyState<T>; B] {
+    /// from the top, centre `(R_k - L/2, (i + 1/2) hb)` for body `i = B - k`; `blocks` is `B`.
+    fn start<const B: usize>(&self, blocks: u8) -> [BodyState<T>; B] {
         let half = T::of(0.5);
         let mut states = [BodyState::at_rest(T::zero(), T::zero(), T::zero()); B];
         // Body i is the k-th from the top, k = B - i: upward from the bottom, R_k adds s L / (2k).
         let mut right = T::zero();
-        for (i, state) in states.iter_mut().enumerate() {
-            right += self.overhang * half * self.length / T::of_count((B - i) as u32);
+        for (i, state) in (0..blocks).zip(states.iter_mut()) {
+            right += self.overhang * half * self.length / T::of_count(u32::from(blocks - i));
             *state = BodyState::at_rest(
                 right - half * self.length,
-                (T::of_count(i as u32) + half) * self.height,
+                (T::of_count(u32::from(i)) + half) * self.height,
                 T::zero(),
             );
         }
@@ -102,12 +104,14 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
     /// As [`StackParams::validate`].
     pub fn new(params: StackParams<T>) -> Result<Self, ParamError> {
         params.validate(B)?;
+        // 2 or 3 (validated).
+        let blocks = u8::try_from(B).map_err(|_| ParamError::OutOfRange("blocks"))?;
         let p = params;
         let block = Body::block(p.mass, p.length, p.height);
         let (mu_static, mu_kinetic) = (p.mu_static, p.mu_kinetic);
         let mut pairs = [Pair::boxed(0, Support::Table, mu_static, mu_kinetic); B];
-        for (i, pair) in pairs.iter_mut().enumerate().skip(1) {
-            *pair = Pair::boxed(i as u8, Support::Body(i as u8 - 1), mu_static, mu_kinetic);
+        for (upper, pair) in (1..blocks).zip(pairs.iter_mut().skip(1)) {
+            *pair = Pair::boxed(upper, Support::Body(upper - 1), mu_static, mu_kinetic);
         }
         let system = System {
             bodies: [block; B],
@@ -116,7 +120,7 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
             forces: [[T::zero(); 2]; B],
             settings: settings_of!(p),
         };
-        let states = p.start::<B>();
+        let states = p.start::<B>(blocks);
         let mut start_y = [T::zero(); B];
         for i in 0..B {
             start_y[i] = states[i].y;
@@ -154,5 +158,46 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
     #[must_use]
     pub const fn max_speed(&self) -> T {
         self.max_speed
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::expect_used)] // a test's setup may fail loudly
+mod tests {
+    use super::*;
+
+    /// Only the stacks built (2 and 3 blocks) pass; any other count is refused by name.
+    #[test]
+    fn the_stack_takes_two_or_three_blocks() {
+        let p = StackParams::<f64>::default();
+        for (blocks, expected) in [
+            (0, Err(ParamError::OutOfRange("blocks"))),
+            (1, Err(ParamError::OutOfRange("blocks"))),
+            (2, Ok(())),
+            (3, Ok(())),
+            (4, Err(ParamError::OutOfRange("blocks"))),
+            (usize::MAX, Err(ParamError::OutOfRange("blocks"))),
+            // 2^32 + 2 is not 2.
+            (
+                usize::try_from(u64::from(u32::MAX) + 3).unwrap_or(usize::MAX),
+                Err(ParamError::OutOfRange("blocks")),
+            ),
+        ] {
+            assert_eq!(p.validate(blocks), expected, "{blocks}");
+        }
+        assert_eq!(Stack::<f64, 4, 32>::new(p).err(), Some(ParamError::OutOfRange("blocks")));
+        assert_eq!(Stack::<f64, 1, 8>::new(p).err(), Some(ParamError::OutOfRange("blocks")));
+        assert!(Stack2::<f64>::new(p).is_ok() && Stack3::<f64>::new(p).is_ok());
+    }
+
+    /// The pairs stack each block on the one below, block 0 on the table.
+    #[test]
+    fn each_block_rests_on_the_one_below() {
+        let stack = Stack3::<f64>::new(StackParams::default()).expect("valid");
+        let pairs = stack.stepper().system().pairs;
+        assert_eq!(
+            pairs.map(|p| (p.upper, p.lower)),
+            [(0, Support::Table), (1, Support::Body(0)), (2, Support::Body(1)),]
+        );
     }
 }
