@@ -43,8 +43,9 @@
 //! 3. **LCP**: [`Lemke`], warm-started from the previous such step's basis (a rest state keeps
 //!    its basis: no pivot), verified as every LCP answer is.
 //!
-//! `C` contacts, `B` bodies (`3B` coordinates), `L = 3 C` rows of the LCP (checked at compile
-//! time). No heap; failure is an [`LcpError`].
+//! `C` contacts, `B` bodies (`3B` coordinates), `L >= 3 C` rows of the LCP (checked at compile
+//! time; rows past `3 C` are decoupled, `w = 1`, so that a caller can share a solver size it
+//! already has, e.g. the planar full layout's `4 K`). No heap; failure is an [`LcpError`].
 
 use crate::lcp::{Basis, Lcp, LcpError, Lemke};
 use crate::real::{Real, max};
@@ -191,7 +192,7 @@ impl<T: Real, const C: usize> RowSpace<T, C> {
 
 /// The rows of `A`: row `3c` is `x_n >= 0`, `3c + 1` is `mu x_n - x_f >= 0`, `3c + 2` is
 /// `mu x_n + x_f >= 0`, for a sticking contact; a sliding one has only `x_n >= 0`. `None`: a row
-/// that does not constrain this step.
+/// that does not constrain this step (and every row past `3C`).
 fn inequality<T: Real, const C: usize>(carry: &[Carry<T>; C], row: usize) -> Option<Unknowns<T, C>> {
     let c = row / 3;
     let mut a = [[T::zero(); 2]; C];
@@ -219,7 +220,7 @@ pub(crate) fn least_norm<T: Real, const C: usize, const B: usize, const L: usize
     path: &Unknowns<T, C>,
     warm: &mut Basis<L>,
 ) -> Result<(Unknowns<T, C>, LoadPath), LcpError> {
-    const { assert!(L == 3 * C, "the least-norm LCP has three rows per contact") };
+    const { assert!(L >= 3 * C, "the least-norm LCP has three rows per contact") };
     let carry = contacts.map(|c| c.carry);
     let mut space = RowSpace::<T, C>::new(&carry);
     for b in 0..B {

@@ -121,9 +121,10 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     solver: Lemke<T, N>,
     /// Which steps may have several answers, for the rule (`docs/formulation.md`, "One answer").
     detector: Detector,
-    /// The basis of the last step whose load needed the least-norm LCP (`crate::load`).
+    /// The basis of the last step whose load needed the least-norm LCP (`crate::load`; its
+    /// `3K` rows in the full layout's size, whose solver the fallback has already).
     #[cfg(feature = "fallback")]
-    load_basis: Basis<LOAD_ROWS>,
+    load_basis: Basis<NF>,
     stats: RunStats,
 }
 
@@ -652,8 +653,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// The load of least 2-norm with this step's motion (`crate::load`), in place of the path's
     /// `normal` and `friction` impulses: a contact touches when it carries load or its normal row
     /// in `w` (its normal velocity) is within `tolerance` (the rule's velocity tolerance) of
-    /// zero, and sticks when its slip is within it too; `mu` the step's coefficients. More than [`LOAD_CONTACTS`] touching contacts keep the
-    /// path's load.
+    /// zero, and sticks when its slip is within it too; `mu` the step's coefficients.
     #[cfg(feature = "fallback")]
     #[cold]
     #[inline(never)]
@@ -666,38 +666,28 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         normal: &mut [T; K],
         friction: &mut [T; K],
     ) -> Result<(), StepError> {
-        let off = LoadContact { normal: [[T::zero(); 3]], tangent: [[T::zero(); 3]], carry: Carry::Nothing };
-        let mut contacts = [off; LOAD_CONTACTS];
-        let mut path = [[T::zero(); 2]; LOAD_CONTACTS];
-        let mut which = [usize::MAX; LOAD_CONTACTS];
-        let mut count = 0;
+        let mut contacts =
+            [LoadContact { normal: [[T::zero(); 3]], tangent: [[T::zero(); 3]], carry: Carry::Nothing }; K];
+        let mut path = [[T::zero(); 2]; K];
         for i in 0..K {
             let f = &self.frames[i];
             let normal_velocity = w.get(i).copied().unwrap_or(T::zero());
             if !f.active || (normal[i] <= self.impulse_floor * self.mass && normal_velocity > tolerance) {
                 continue;
             }
-            let Some(slot) = contacts.get_mut(count) else {
-                return Ok(()); // more touching contacts than the load's problem holds
-            };
-            let mu = mu[i];
             let carry = if slips[i].abs_exact() <= tolerance {
-                Carry::Sticking { mu }
+                Carry::Sticking { mu: mu[i] }
             } else {
-                Carry::Sliding { friction_per_normal: if slips[i] > T::zero() { mu } else { -mu } }
+                Carry::Sliding { friction_per_normal: if slips[i] > T::zero() { mu[i] } else { -mu[i] } }
             };
-            *slot = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
-            path[count] = [normal[i], friction[i]];
-            which[count] = i;
-            count += 1;
+            contacts[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
+            path[i] = [normal[i], friction[i]];
         }
         let (load, how) = least_norm(&contacts, &path, &mut self.load_basis).map_err(StepError::Solver)?;
         if how != LoadPath::Determinate {
             self.stats.load_decided_steps += 1;
-            for (c, &i) in which.iter().enumerate().take(count) {
-                if let (Some(n), Some(fr), Some(x)) = (normal.get_mut(i), friction.get_mut(i), load.get(c)) {
-                    (*n, *fr) = (x[0], x[1]);
-                }
+            for i in 0..K {
+                (normal[i], friction[i]) = (load[i][0], load[i][1]);
             }
         }
         Ok(())
@@ -769,13 +759,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         None
     }
 }
-
-#[cfg(feature = "fallback")]
-/// At most this many touching contacts enter the load's least-norm problem (`crate::load`).
-const LOAD_CONTACTS: usize = 4;
-/// Its LCP's rows: three per contact.
-#[cfg(feature = "fallback")]
-const LOAD_ROWS: usize = 3 * LOAD_CONTACTS;
 
 /// A step's velocity scale `V`: the fastest support's speed plus the body's (`|vx| + |vy| +
 /// |omega| size`), the size of the slips in its LCP.
