@@ -83,6 +83,11 @@ enum Held {
     Many(AnyMultibody),
 }
 
+/// The most steps a run goes on after its outcome ([`Sim::step_past_rows`]): 30 s at the
+/// default step of 1 ms, so that nothing runs forever (the page stops sooner, when the bodies
+/// rest or leave its view).
+pub const MAX_PAST_STEPS: u32 = 30_000;
+
 /// One run.
 #[derive(Debug, Clone)]
 pub struct Sim {
@@ -91,6 +96,9 @@ pub struct Sim {
     kind: SceneKind,
     checksum: Checksum,
     start: [f64; MAX_ROW],
+    /// After the outcome, a copy of the scene that goes on (the judged run stays as it ended:
+    /// outcome, checksum, time, counters and measured quantities), and its steps so far.
+    past: Option<(Held, u32)>,
 }
 
 impl Sim {
@@ -123,7 +131,7 @@ impl Sim {
             #[cfg(not(any(feature = "k1", feature = "k2", feature = "k3")))]
             return Err(ParamError::OutOfRange("scene"));
         };
-        Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start })
+        Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start, past: None })
     }
 
     /// The scene.
@@ -147,11 +155,34 @@ impl Sim {
     /// Steps until the run ends or `rows` is full, writing one row per step into `rows`
     /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
-        match &mut self.scene {
+        Self::held_rows(&mut self.scene, &mut self.checksum, rows, false)
+    }
+
+    /// After the outcome, steps a copy of the scene on past it (the core's `step_past`: the bodies
+    /// go on, the stack tumbles off the table), writing rows as [`Self::step_rows`] does; the run
+    /// itself stays as judged (its outcome, checksum, time, counters, measured quantities). At
+    /// most [`MAX_PAST_STEPS`] in all; returns the steps taken (0 before the outcome, once the
+    /// copy's step failed or the bound is reached).
+    pub fn step_past_rows(&mut self, rows: &mut [f64]) -> usize {
+        if self.outcome().is_none() {
+            return 0;
+        }
+        let len = self.row_len();
+        let (scene, taken) = self.past.get_or_insert_with(|| (self.scene.clone(), 0));
+        let room = (MAX_PAST_STEPS - *taken) as usize * len;
+        let end = room.min(rows.len());
+        let rows = &mut rows[..end];
+        let n = Self::held_rows(scene, &mut Checksum::new(), rows, true);
+        *taken += n as u32;
+        n
+    }
+
+    fn held_rows(scene: &mut Held, checksum: &mut Checksum, rows: &mut [f64], past: bool) -> usize {
+        match scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.visit_mut(StepRows { checksum: &mut self.checksum, rows }),
+            Held::One(s) => s.visit_mut(StepRows { checksum, rows, past }),
             #[cfg(feature = "mb")]
-            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum: &mut self.checksum, rows }),
+            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum, rows, past }),
         }
     }
 
@@ -299,6 +330,8 @@ impl MultibodyVisitor for BodiesStartRow<'_> {
 struct BodiesStepRows<'a> {
     checksum: &'a mut Checksum,
     rows: &'a mut [f64],
+    /// Past the outcome (the core's `step_past`).
+    past: bool,
 }
 
 #[cfg(feature = "mb")]
@@ -310,7 +343,7 @@ impl MultibodyVisitor for BodiesStepRows<'_> {
     ) -> usize {
         let mut taken = 0;
         for row in self.rows.chunks_exact_mut(BODIES_ROW) {
-            let Some(report) = scene.step() else { break };
+            let Some(report) = (if self.past { scene.step_past() } else { scene.step() }) else { break };
             for s in &report.states {
                 self.checksum.add(s);
             }
@@ -351,12 +384,14 @@ impl SceneVisitor for StartRow<'_> {
 struct StepRows<'a> {
     checksum: &'a mut Checksum,
     rows: &'a mut [f64],
+    /// Past the outcome (the core's `step_past`).
+    past: bool,
 }
 
 impl SceneVisitor for StepRows<'_> {
     type Output = usize;
     fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> usize {
-        step_rows(&mut scene, self.checksum, self.rows)
+        step_rows(&mut scene, self.checksum, self.rows, self.past)
     }
 }
 
@@ -407,10 +442,11 @@ fn step_rows<T: Real, S: Scene<T, K>, const K: usize>(
     scene: &mut S,
     checksum: &mut Checksum,
     rows: &mut [f64],
+    past: bool,
 ) -> usize {
     let mut taken = 0;
     for row in rows.chunks_exact_mut(row_len(K)) {
-        let Some(report) = scene.step() else { break };
+        let Some(report) = (if past { scene.step_past() } else { scene.step() }) else { break };
         checksum.add(&report.state);
         write_row(&*scene, &report, row);
         taken += 1;

@@ -13,6 +13,15 @@ pub trait Scene<T: Real, const K: usize> {
     /// Advances one step; `None` once the run has an outcome (a failed step ends the run with
     /// [`Outcome::Failed`]).
     fn step(&mut self) -> Option<StepReport<T, K>>;
+    /// Advances one step whatever the judge decided: after the outcome the body goes on (a front
+    /// end shows the rod fall off the fingers after `Fell`), the outcome staying the one decided (a
+    /// step's own judgement is dropped); `None` when the step fails (or for a scene that does not
+    /// go on, the default). Not the run's path: [`Self::step`] is, and the events and measured
+    /// quantities go on here too, so a driver that reports the judged run keeps a copy of it. Each
+    /// call is one step; the caller bounds how many it takes.
+    fn step_past(&mut self) -> Option<StepReport<T, K>> {
+        None
+    }
     /// The outcome, once the run has ended.
     fn outcome(&self) -> Option<Outcome>;
     /// The body's state now.
@@ -56,6 +65,9 @@ impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
     fn step(&mut self) -> Option<StepReport<T, K>> {
         (**self).step()
     }
+    fn step_past(&mut self) -> Option<StepReport<T, K>> {
+        (**self).step_past()
+    }
     fn outcome(&self) -> Option<Outcome> {
         (**self).outcome()
     }
@@ -92,6 +104,14 @@ macro_rules! impl_scene {
         impl<T: Real, const N: usize, const E: usize> $crate::scene::Scene<T, $k> for $scene<T, N, E> {
             fn step(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
                 self.advance()
+            }
+            fn step_past(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
+                let judged = self.outcome.take();
+                let report = self.advance();
+                if judged.is_some() {
+                    self.outcome = judged;
+                }
+                report
             }
             fn outcome(&self) -> Option<$crate::scene::Outcome> {
                 self.outcome

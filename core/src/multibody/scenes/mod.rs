@@ -34,6 +34,15 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     const ROWS: usize;
     /// Advances one step; `None` once the run has an outcome.
     fn step(&mut self) -> Option<StepReport<T, B, P>>;
+    /// Advances one step whatever the judge decided: after the outcome the bodies go on (a front
+    /// end shows the stack tumble off the table after `Fell`), the outcome staying the one decided
+    /// (a step's own judgement is dropped); `None` when the step fails (or for a scene that does
+    /// not go on, the default). Not the run's path: [`Self::step`] is, and what it measures goes on
+    /// here too, so a driver that reports the judged run keeps a copy of it. Each call is one step;
+    /// the caller bounds how many it takes.
+    fn step_past(&mut self) -> Option<StepReport<T, B, P>> {
+        None
+    }
     /// The outcome, once the run has ended.
     fn outcome(&self) -> Option<Outcome>;
     /// Every body's state (body 0 the lowest).
@@ -134,6 +143,14 @@ macro_rules! multibody_scene {
             const ROWS: usize = $rows;
             fn step(&mut self) -> Option<StepReport<T, $b, $p>> {
                 <$scene>::step(self)
+            }
+            fn step_past(&mut self) -> Option<StepReport<T, $b, $p>> {
+                let judged = self.run.outcome.take();
+                let report = <$scene>::step(self);
+                if judged.is_some() {
+                    self.run.outcome = judged;
+                }
+                report
             }
             fn outcome(&self) -> Option<Outcome> {
                 <$scene>::outcome(self)
