@@ -227,10 +227,10 @@ pub extern "C" fn ms_step(n: u32) -> u32 {
     })
 }
 
-/// After the outcome, steps a copy of the run on past it (the bodies go on: the stack tumbles off
-/// the table) up to `n` times (at most the trace buffer's rows), one row per step in the trace
-/// buffer as [`ms_step`] writes them; the run stays as judged (outcome, checksum, time, counters,
-/// measured quantities). Returns the steps taken: 0 before the outcome, when a step fails or after
+/// After the outcome, steps the run on past it (the bodies go on: the stack tumbles off the
+/// table) up to `n` times (at most the trace buffer's rows), one row per step in the trace
+/// buffer as [`ms_step`] writes them; the run is reported as judged (outcome, checksum, time,
+/// counters, measured quantities). Returns the steps taken: 0 before the outcome, when a step fails or after
 /// `sim::MAX_PAST_STEPS` in all.
 #[unsafe(no_mangle)]
 #[must_use]

@@ -96,9 +96,21 @@ pub struct Sim {
     kind: SceneKind,
     checksum: Checksum,
     start: [f64; MAX_ROW],
-    /// After the outcome, a copy of the scene that goes on (the judged run stays as it ended:
-    /// outcome, checksum, time, counters and measured quantities), and its steps so far.
-    past: Option<(Held, u32)>,
+    /// Once the run goes on past its outcome: the run as judged (what the accessors report).
+    past: Option<Judged>,
+}
+
+/// A run as its judge left it (outcome, time, counters, measured quantities), kept while the
+/// scene goes on past its outcome ([`Sim::step_past_rows`]); the checksum stays the judged run's
+/// (the steps past the outcome are not added to it).
+#[derive(Debug, Clone, Copy)]
+struct Judged {
+    outcome: Outcome,
+    time: f64,
+    stats: RunStats,
+    measured: [f64; MAX_MEASURES],
+    /// Steps taken past the outcome.
+    steps: u32,
 }
 
 impl Sim {
@@ -155,40 +167,67 @@ impl Sim {
     /// Steps until the run ends or `rows` is full, writing one row per step into `rows`
     /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
-        Self::held_rows(&mut self.scene, &mut self.checksum, rows, false)
-    }
-
-    /// After the outcome, steps a copy of the scene on past it (the core's `step_past`: the bodies
-    /// go on, the stack tumbles off the table), writing rows as [`Self::step_rows`] does; the run
-    /// itself stays as judged (its outcome, checksum, time, counters, measured quantities). At
-    /// most [`MAX_PAST_STEPS`] in all; returns the steps taken (0 before the outcome, once the
-    /// copy's step failed or the bound is reached).
-    pub fn step_past_rows(&mut self, rows: &mut [f64]) -> usize {
-        if self.outcome().is_none() {
+        if self.past.is_some() {
             return 0;
         }
+        Self::held_rows(&mut self.scene, &mut self.checksum, rows)
+    }
+
+    /// After the outcome, steps the scene on past it (the core's `go_on` before each step: the
+    /// bodies go on, the stack tumbles off the table), writing rows as [`Self::step_rows`] does;
+    /// the run is reported as judged from then on (its outcome, checksum, time, counters, measured
+    /// quantities: [`Judged`]). At most [`MAX_PAST_STEPS`] in all; returns the steps taken (0
+    /// before the outcome, once a step failed or the bound is reached).
+    pub fn step_past_rows(&mut self, rows: &mut [f64]) -> usize {
+        let judged = match self.past {
+            Some(j) => j,
+            None => {
+                let Some(outcome) = self.outcome() else { return 0 };
+                let j = Judged { outcome, time: self.time(), stats: self.stats(), measured: self.measured(), steps: 0 };
+                self.past = Some(j);
+                j
+            }
+        };
         let len = self.row_len();
-        let (scene, taken) = self.past.get_or_insert_with(|| (self.scene.clone(), 0));
-        let room = (MAX_PAST_STEPS - *taken) as usize * len;
-        let end = room.min(rows.len());
-        let rows = &mut rows[..end];
-        let n = Self::held_rows(scene, &mut Checksum::new(), rows, true);
-        *taken += n as u32;
+        let end = ((MAX_PAST_STEPS - judged.steps) as usize * len).min(rows.len());
+        let mut n = 0;
+        // One row at a time through the run's own stepping (one copy of the step in the module):
+        // the outcome taken before each step.
+        for row in rows[..end].chunks_exact_mut(len) {
+            match &mut self.scene {
+                #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+                Held::One(s) => s.visit_mut(GoOn),
+                #[cfg(feature = "mb")]
+                Held::Many(s) => s.visit_mut(GoOn),
+            }
+            if Self::held_rows(&mut self.scene, &mut Checksum::new(), row) == 0 {
+                break;
+            }
+            n += 1;
+        }
+        if let Some(j) = &mut self.past {
+            j.steps += n as u32;
+        }
         n
     }
 
-    fn held_rows(scene: &mut Held, checksum: &mut Checksum, rows: &mut [f64], past: bool) -> usize {
+    /// Steps `scene` into `rows` (one place: the run and the steps past its outcome share it).
+    #[inline(never)]
+    fn held_rows(scene: &mut Held, checksum: &mut Checksum, rows: &mut [f64]) -> usize {
         match scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.visit_mut(StepRows { checksum, rows, past }),
+            Held::One(s) => s.visit_mut(StepRows { checksum, rows }),
             #[cfg(feature = "mb")]
-            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum, rows, past }),
+            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum, rows }),
         }
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
     /// benchmark); returns the steps taken.
     pub fn run(&mut self, max: u64) -> u64 {
+        if self.past.is_some() {
+            return 0;
+        }
         match &mut self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.visit_mut(Run { checksum: &mut self.checksum, max }),
@@ -200,6 +239,9 @@ impl Sim {
     /// The outcome, once the run has ended.
     #[must_use]
     pub fn outcome(&self) -> Option<Outcome> {
+        if let Some(j) = &self.past {
+            return Some(j.outcome);
+        }
         match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.outcome(),
@@ -217,6 +259,9 @@ impl Sim {
     /// Simulated time (s).
     #[must_use]
     pub fn time(&self) -> f64 {
+        if let Some(j) = &self.past {
+            return j.time;
+        }
         match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.time(),
@@ -229,6 +274,9 @@ impl Sim {
     /// several bodies has steps, pivots, the most in a step and its warm starts (the rest 0).
     #[must_use]
     pub fn stats(&self) -> RunStats {
+        if let Some(j) = &self.past {
+            return j.stats;
+        }
         match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => *s.stats(),
@@ -250,6 +298,9 @@ impl Sim {
     /// the scene (`summary.json`'s keys, [`Scene::measured`]); NaN where there is none (yet).
     #[must_use]
     pub fn measured(&self) -> [f64; MAX_MEASURES] {
+        if let Some(j) = &self.past {
+            return j.measured;
+        }
         let m = match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.measured(),
@@ -330,8 +381,25 @@ impl MultibodyVisitor for BodiesStartRow<'_> {
 struct BodiesStepRows<'a> {
     checksum: &'a mut Checksum,
     rows: &'a mut [f64],
-    /// Past the outcome (the core's `step_past`).
-    past: bool,
+}
+
+/// Takes a scene's outcome so that its next step is taken (the core's `go_on`): a copy of the run
+/// goes on past its outcome.
+struct GoOn;
+
+impl SceneVisitor for GoOn {
+    type Output = ();
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) {
+        let _ = scene.go_on();
+    }
+}
+
+#[cfg(feature = "mb")]
+impl MultibodyVisitor for GoOn {
+    type Output = ();
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, mut scene: S) {
+        let _ = scene.go_on();
+    }
 }
 
 #[cfg(feature = "mb")]
@@ -343,7 +411,7 @@ impl MultibodyVisitor for BodiesStepRows<'_> {
     ) -> usize {
         let mut taken = 0;
         for row in self.rows.chunks_exact_mut(BODIES_ROW) {
-            let Some(report) = (if self.past { scene.step_past() } else { scene.step() }) else { break };
+            let Some(report) = scene.step() else { break };
             for s in &report.states {
                 self.checksum.add(s);
             }
@@ -384,14 +452,12 @@ impl SceneVisitor for StartRow<'_> {
 struct StepRows<'a> {
     checksum: &'a mut Checksum,
     rows: &'a mut [f64],
-    /// Past the outcome (the core's `step_past`).
-    past: bool,
 }
 
 impl SceneVisitor for StepRows<'_> {
     type Output = usize;
     fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> usize {
-        step_rows(&mut scene, self.checksum, self.rows, self.past)
+        step_rows(&mut scene, self.checksum, self.rows)
     }
 }
 
@@ -442,11 +508,10 @@ fn step_rows<T: Real, S: Scene<T, K>, const K: usize>(
     scene: &mut S,
     checksum: &mut Checksum,
     rows: &mut [f64],
-    past: bool,
 ) -> usize {
     let mut taken = 0;
     for row in rows.chunks_exact_mut(row_len(K)) {
-        let Some(report) = (if past { scene.step_past() } else { scene.step() }) else { break };
+        let Some(report) = scene.step() else { break };
         checksum.add(&report.state);
         write_row(&*scene, &report, row);
         taken += 1;

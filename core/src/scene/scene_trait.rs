@@ -13,13 +13,13 @@ pub trait Scene<T: Real, const K: usize> {
     /// Advances one step; `None` once the run has an outcome (a failed step ends the run with
     /// [`Outcome::Failed`]).
     fn step(&mut self) -> Option<StepReport<T, K>>;
-    /// Advances one step whatever the judge decided: after the outcome the body goes on (a front
-    /// end shows the rod fall off the fingers after `Fell`), the outcome staying the one decided (a
-    /// step's own judgement is dropped); `None` when the step fails (or for a scene that does not
-    /// go on, the default). Not the run's path: [`Self::step`] is, and the events and measured
-    /// quantities go on here too, so a driver that reports the judged run keeps a copy of it. Each
-    /// call is one step; the caller bounds how many it takes.
-    fn step_past(&mut self) -> Option<StepReport<T, K>> {
+    /// Lets a run that has its outcome go on: takes the outcome (and returns it), so that the next
+    /// [`Self::step`] is taken and judged afresh. A front end that shows the body go on after the
+    /// outcome (the rod falling off the fingers after `Fell`) calls it before each such step on a
+    /// copy of the judged run, whose outcome it keeps; events and measured quantities go on too.
+    /// It bounds the steps it takes. `None` (and nothing done) before the outcome, or for a scene
+    /// that does not go on (the default).
+    fn go_on(&mut self) -> Option<Outcome> {
         None
     }
     /// The outcome, once the run has ended.
@@ -65,8 +65,8 @@ impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
     fn step(&mut self) -> Option<StepReport<T, K>> {
         (**self).step()
     }
-    fn step_past(&mut self) -> Option<StepReport<T, K>> {
-        (**self).step_past()
+    fn go_on(&mut self) -> Option<Outcome> {
+        (**self).go_on()
     }
     fn outcome(&self) -> Option<Outcome> {
         (**self).outcome()
@@ -105,13 +105,8 @@ macro_rules! impl_scene {
             fn step(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
                 self.advance()
             }
-            fn step_past(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
-                let judged = self.outcome.take();
-                let report = self.advance();
-                if judged.is_some() {
-                    self.outcome = judged;
-                }
-                report
+            fn go_on(&mut self) -> Option<$crate::scene::Outcome> {
+                self.outcome.take()
             }
             fn outcome(&self) -> Option<$crate::scene::Outcome> {
                 self.outcome

@@ -34,13 +34,13 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     const ROWS: usize;
     /// Advances one step; `None` once the run has an outcome.
     fn step(&mut self) -> Option<StepReport<T, B, P>>;
-    /// Advances one step whatever the judge decided: after the outcome the bodies go on (a front
-    /// end shows the stack tumble off the table after `Fell`), the outcome staying the one decided
-    /// (a step's own judgement is dropped); `None` when the step fails (or for a scene that does
-    /// not go on, the default). Not the run's path: [`Self::step`] is, and what it measures goes on
-    /// here too, so a driver that reports the judged run keeps a copy of it. Each call is one step;
-    /// the caller bounds how many it takes.
-    fn step_past(&mut self) -> Option<StepReport<T, B, P>> {
+    /// Lets a run that has its outcome go on: takes the outcome (and returns it), so that the next
+    /// [`Self::step`] is taken and judged afresh. A front end that shows the bodies go on after
+    /// the outcome (the stack tumbling off the table after `Fell`) calls it before each such step
+    /// on a copy of the judged run, whose outcome it keeps; what the scene measures goes on too.
+    /// It bounds the steps it takes. `None` (and nothing done) before the outcome, or for a scene
+    /// that does not go on (the default).
+    fn go_on(&mut self) -> Option<Outcome> {
         None
     }
     /// The outcome, once the run has ended.
@@ -144,13 +144,8 @@ macro_rules! multibody_scene {
             fn step(&mut self) -> Option<StepReport<T, $b, $p>> {
                 <$scene>::step(self)
             }
-            fn step_past(&mut self) -> Option<StepReport<T, $b, $p>> {
-                let judged = self.run.outcome.take();
-                let report = <$scene>::step(self);
-                if judged.is_some() {
-                    self.run.outcome = judged;
-                }
-                report
+            fn go_on(&mut self) -> Option<Outcome> {
+                self.run.outcome.take()
             }
             fn outcome(&self) -> Option<Outcome> {
                 <$scene>::outcome(self)
