@@ -586,9 +586,16 @@ fn check_pulled_block_in_view(b: &Browser, base: &str) {
     // At the end, past the outcome: the pulled block's box within the drawing's extent now.
     let row = b.js("return window.meterstick.shownRow()");
     let at = |i: usize| row[i].as_f64().unwrap();
-    assert!(box_inside(at(1), at(2), at(3), &view["sizes"][0], &view["extent"]), "the pulled block: {row} {view}");
+    assert!(
+        box_inside(at(1), at(2), at(3), &view["sizes"][0], &view["extent"]),
+        "the pulled block: {row} {view}"
+    );
     let shot = b.screenshot("block-on-block-30N", None);
-    println!("block-on-block at 30 N: {outcome} {checksum}; the pulled block in the drawing in every frame (least room {:.0} px; {})", view["worst"].as_f64().unwrap(), shot.display());
+    println!(
+        "block-on-block at 30 N: {outcome} {checksum}; the pulled block in the drawing in every frame (least room {:.0} px; {})",
+        view["worst"].as_f64().unwrap(),
+        shot.display()
+    );
 }
 
 /// The stack past its balance (overhang 1.02) goes on after `Fell`: its top block ends more than a
@@ -597,16 +604,26 @@ fn check_pulled_block_in_view(b: &Browser, base: &str) {
 fn check_stack_goes_on_falling(b: &Browser, base: &str) {
     let query = "scene=stack&overhang=1.02&autorun=1&rate=max";
     check_bodies(b, base, "stack-1.02", query);
-    b.wait("the fall after the outcome", "return document.body.dataset.after === 'done'", Duration::from_secs(60));
+    b.wait(
+        "the fall after the outcome",
+        "return document.body.dataset.after === 'done'",
+        Duration::from_secs(60),
+    );
     let (outcome, checksum) = host_scene(query);
     assert_eq!((b.text("outcome"), b.text("checksum")), (outcome.clone(), checksum.clone()), "as judged");
     let start = b.js("return window.meterstick.trace().y[0]").as_f64().unwrap();
     let end = b.js("return window.meterstick.shownRow()");
     let top = end[8].as_f64().unwrap();
     let height = b.js("return window.meterstick.view().sizes[2][1]").as_f64().unwrap();
-    assert!(start - top > height, "the top block from y = {start} to {top}: not a block's height ({height}) lower");
+    assert!(
+        start - top > height,
+        "the top block from y = {start} to {top}: not a block's height ({height}) lower"
+    );
     let shot = b.screenshot("stack-1.02-after", None);
-    println!("stack at overhang 1.02: {outcome} {checksum}, then the top block from y = {start:.3} to {top:.3} m ({})", shot.display());
+    println!(
+        "stack at overhang 1.02: {outcome} {checksum}, then the top block from y = {start:.3} to {top:.3} m ({})",
+        shot.display()
+    );
 
     // The CSV: offered (the button), and parsed: a header, rows of numbers, t from 0, the judged
     // rows (after_outcome 0) ending at the outcome's row.
@@ -614,7 +631,10 @@ fn check_stack_goes_on_falling(b: &Browser, base: &str) {
     let csv = b.js("return window.meterstick.csv()");
     let mut lines = csv.as_str().unwrap().lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header, ["t", "x1", "y1", "theta1", "x2", "y2", "theta2", "x3", "y3", "theta3", "after_outcome"]);
+    assert_eq!(
+        header,
+        ["t", "x1", "y1", "theta1", "x2", "y2", "theta2", "x3", "y3", "theta3", "after_outcome"]
+    );
     let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
     assert!(rows.iter().all(|r| r.len() == header.len()));
     assert_eq!(rows[0][0], 0.0);
@@ -629,7 +649,10 @@ fn check_stack_goes_on_falling(b: &Browser, base: &str) {
     b.wait("the outcome", "return document.getElementById('outcome').textContent", Duration::from_secs(60));
     let csv = b.js("return window.meterstick.csv()");
     let header = csv.as_str().unwrap().lines().next().unwrap().to_owned();
-    assert_eq!(header, "t,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,mode1,mode2,pn1,pn2,pf1,pf2,along1,along2,after_outcome");
+    assert_eq!(
+        header,
+        "t,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,mode1,mode2,pn1,pn2,pf1,pf2,along1,along2,after_outcome"
+    );
 }
 
 /// Two runs side by side (`b.<flag>`): the tablecloth at 10 N and 20 N, each as host-sim runs it;
@@ -642,14 +665,26 @@ fn check_comparison(b: &Browser, base: &str) {
     assert_eq!((b.text("outcome"), b.text("checksum")), a, "run A");
     assert_eq!((b.text("outcome-b"), b.text("checksum-b")), bb, "run B");
     let moved = |id: &str| {
-        let v: Value = serde_json::from_str(b.js(&format!("return document.getElementById('{id}').dataset.values")).as_str().unwrap()).unwrap();
+        let v: Value = serde_json::from_str(
+            b.js(&format!("return document.getElementById('{id}').dataset.values")).as_str().unwrap(),
+        )
+        .unwrap();
         v["block_displacement_m"].as_f64().unwrap()
     };
     let (ma, mb) = (moved("measured"), moved("measured-b"));
     assert!(mb < ma, "20 N moves the block less than 10 N: {mb} vs {ma}");
     assert!(b.js("return location.search").as_str().unwrap().contains("b.force=20"), "the URL keeps run B");
     let shot = b.screenshot("tablecloth-10-vs-20", None);
-    println!("comparison: tablecloth 10 N {} {} ({:.2} cm), 20 N {} {} ({:.2} cm) ({})", a.0, a.1, 100.0 * ma, bb.0, bb.1, 100.0 * mb, shot.display());
+    println!(
+        "comparison: tablecloth 10 N {} {} ({:.2} cm), 20 N {} {} ({:.2} cm) ({})",
+        a.0,
+        a.1,
+        100.0 * ma,
+        bb.0,
+        bb.1,
+        100.0 * mb,
+        shot.display()
+    );
 }
 
 /// The scene selector: choosing the cylinder loads its module and its flags, and the run it makes

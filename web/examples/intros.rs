@@ -7,9 +7,7 @@
 fn main() {
     let intros: serde_json::Map<String, serde_json::Value> = meterstick_catalogue::INTRODUCTIONS
         .iter()
-        .map(|i| {
-            (i.kind.name().to_owned(), serde_json::json!({ "heading": i.heading, "intro": i.intro }))
-        })
+        .map(|i| (i.kind.name().to_owned(), serde_json::json!({ "heading": i.heading, "intro": i.intro })))
         .collect();
     println!("{}", serde_json::Value::Object(intros));
 }

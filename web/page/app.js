@@ -591,7 +591,7 @@ function render(full) {
     ? (S.rate === 'max' ? `${(S.speedWindow.rate / 1e3).toFixed(0)}k steps/s` : `${S.rate}x`) : '';
   const title = src.kind === 'replay'
     ? `replay ${src.run.name}: ${src.run.summary.core.implementation} (reference dashed)`
-    : `${S.main.scene(src.scene).title}, ${src.precision} ${lcpText(src.trace.k, src.lcpSize)}`;
+    : S.other ? `run A: ${runLabel(src)}` : `${S.main.scene(src.scene).title}, ${src.precision} ${lcpText(src.trace.k, src.lcpSize)}`;
   view.draw(tr.last, {
     title, time: tr.time, steps: tr.n - 1, outcome: src.ended ? src.outcome : null,
     reference: src.referenceRow ? src.referenceRow() : null, rate: rateText, moving: moving(tr),

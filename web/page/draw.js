@@ -130,13 +130,16 @@ export class SceneView {
     return { left: c.x0 - c.cx / c.k, right: c.x0 + (c.w - c.cx) / c.k, bottom: c.y0 - (c.h - c.cy) / c.k, top: c.y0 + c.cy / c.k };
   }
 
-  /// Each body's bounding box in a row: [[left, right, bottom, top]] (m); a body's box is that of
-  /// its circumscribed circle (any angle).
+  /// Each body's bounding box in a row: [[left, right, bottom, top]] (m): a box's turned with it,
+  /// a disc's; a scene of one body, its circumscribed circle's.
   boxes(row) {
     if (this.shapes) {
       return this.shapes.sizes.map(([bw, bh], b) => {
-        const x = row[1 + 3 * b]; const y = row[2 + 3 * b]; const r = Math.hypot(bw, bh) / 2;
-        return [x - r, x + r, y - r, y + r];
+        const x = row[1 + 3 * b]; const y = row[2 + 3 * b]; const t = row[3 + 3 * b];
+        const c = Math.abs(Math.cos(t)); const s = Math.abs(Math.sin(t));
+        const ex = this.shapes.round[b] ? bw / 2 : (bw * c + bh * s) / 2;
+        const ey = this.shapes.round[b] ? bw / 2 : (bw * s + bh * c) / 2;
+        return [x - ex, x + ex, y - ey, y + ey];
       });
     }
     const [bw, bh] = bodySize(this.scene, this.params);
@@ -153,32 +156,53 @@ export class SceneView {
     return m * this.camera.k;
   }
 
-  /// `false` once a body of `row` has left the view: out of the drawing, or (a scene of several
-  /// bodies, whose view follows them) farther than the view can follow (4x its first scale).
+  /// `false` once a body of `row` has left the view: its centre out of the drawing, or (a scene of
+  /// several bodies, whose view follows them) farther from the others than the view can follow, or
+  /// into the table or floor where the scene has no contact for it (block-on-block's top block
+  /// has none with the floor: it would fall through).
   inView(row) {
+    if (this.shapes && this.camera && !this.camera.lost) this.track(row);
     if (this.camera && this.camera.lost) return false;
     const e = this.extent();
     if (!e) return true;
+    if (this.shapes) {
+      // A corner (a disc's lowest point) more than 2 mm into the table, over the table.
+      const [lo, hi] = this.shapes.table;
+      const over = (x) => (lo === null || x >= lo) && (hi === null || x <= hi);
+      const sunk = this.shapes.sizes.some(([bw, bh], i) => {
+        const x = row[1 + 3 * i]; const y = row[2 + 3 * i]; const t = row[3 + 3 * i];
+        if (this.shapes.round[i]) return y - bw / 2 < -2e-3 && over(x);
+        const c = Math.cos(t); const s = Math.sin(t);
+        return [[-1, -1], [1, -1], [1, 1], [-1, 1]].some(([u, v]) => {
+          const cx = x + (u * bw * c - v * bh * s) / 2; const cy = y + (u * bw * s + v * bh * c) / 2;
+          return cy < -2e-3 && over(cx);
+        });
+      });
+      if (sunk) return false;
+    }
     // A body whose centre is out of the drawing has left it.
     return this.boxes(row).every(([l, r, b, t]) => (l + r) / 2 > e.left && (l + r) / 2 < e.right && (b + t) / 2 > e.bottom && (b + t) / 2 < e.top);
   }
 
   /// Keeps every body of a scene of several bodies in the drawing: the view pans with them, and
-  /// zooms out when they spread or fall (never back in during a run), down to a quarter of its
-  /// first scale; past that the bodies have left the view (`camera.lost`).
+  /// zooms out when they spread or rise (never back in during a run), down to half its first
+  /// scale; past that the bodies have left the view (`camera.lost`). A body falling off the
+  /// table leaves the drawing at the bottom (the table's top stays where it is on the drawing).
   track(row) {
     const cam = this.camera;
     const m = 14 / cam.k; // room at the edge (m)
     const boxes = this.boxes(row);
+    // The pull's arrow and its label ahead of the lowest body.
+    const f = this.params.force;
+    if (f > 0) boxes[0][1] += (40 + 110 * (f / (f + 10)) + 50) / cam.k;
     const l = Math.min(...boxes.map((x) => x[0])); const r = Math.max(...boxes.map((x) => x[1]));
-    const b = Math.min(...boxes.map((x) => x[2])); const t = Math.max(...boxes.map((x) => x[3]));
+    const t = Math.max(...boxes.map((x) => x[3]));
     // Zoom out (the table's top stays at its height on the drawing) so that the bodies fit.
     let k = cam.k;
     k = Math.min(k, (cam.w - 28) / Math.max(r - l, 1e-9));
     if (t > 0) k = Math.min(k, (cam.cy - 14) / t);
-    if (b < 0) k = Math.min(k, (cam.h - cam.cy - 14) / -b);
     if (k < cam.k) {
-      if (k < cam.k0 / 4) { cam.lost = true; return; }
+      if (k < cam.k0 / 2) { cam.lost = true; return; }
       cam.k = k * 0.9; // a little more, so that the zoom does not creep
     }
     const half = cam.w / (2 * cam.k);
@@ -383,7 +407,7 @@ export class SceneView {
         g.globalAlpha = 1; g.strokeStyle = color; g.lineWidth = 2; g.stroke();
         // A moving finger: its velocity as an arrow in the finger, below the tip.
         const v = this.moving ? this.moving[i] : 0;
-        if (v) driveArrow(g, (left + right) / 2, top + 56, Math.sign(v) * 60, `${plainSpeed(Math.abs(v))} m/s`);
+        if (v) driveArrow(g, (left + right) / 2, Math.min(h - 24, top + 0.36 * h), Math.sign(v) * 60, `${plainSpeed(Math.abs(v))} m/s`);
       }
     } else if (ON_SLOPE.includes(this.scene)) {
       const a = p.angle; const far = 1e3;

@@ -183,7 +183,13 @@ impl Sim {
             Some(j) => j,
             None => {
                 let Some(outcome) = self.outcome() else { return 0 };
-                let j = Judged { outcome, time: self.time(), stats: self.stats(), measured: self.measured(), steps: 0 };
+                let j = Judged {
+                    outcome,
+                    time: self.time(),
+                    stats: self.stats(),
+                    measured: self.measured(),
+                    steps: 0,
+                };
                 self.past = Some(j);
                 j
             }
