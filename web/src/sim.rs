@@ -179,23 +179,20 @@ impl Sim {
     /// quantities: [`Judged`]). At most [`MAX_PAST_STEPS`] in all; returns the steps taken (0
     /// before the outcome, once a step failed or the bound is reached).
     pub fn step_past_rows(&mut self, rows: &mut [f64]) -> usize {
-        let judged = match self.past {
-            Some(j) => j,
-            None => {
-                let Some(outcome) = self.outcome() else { return 0 };
-                let j = Judged {
-                    outcome,
-                    time: self.time(),
-                    stats: self.stats(),
-                    measured: self.measured(),
-                    steps: 0,
-                };
-                self.past = Some(j);
-                j
-            }
-        };
+        if self.past.is_none() {
+            let Some(outcome) = self.outcome() else { return 0 };
+            let judged = Judged {
+                outcome,
+                time: self.time(),
+                stats: self.stats(),
+                measured: self.measured(),
+                steps: 0,
+            };
+            self.past = Some(judged);
+        }
+        let past_steps = self.past.map_or(0, |j| j.steps);
         let len = self.row_len();
-        let end = ((MAX_PAST_STEPS - judged.steps) as usize * len).min(rows.len());
+        let end = ((MAX_PAST_STEPS - past_steps) as usize * len).min(rows.len());
         let mut n = 0;
         // One row at a time through the run's own stepping (one copy of the step in the module):
         // the outcome taken before each step.
