@@ -7,6 +7,8 @@
 //!
 //! * [`SCENES`] ([`Catalogued::info`]): each scene's title, contact names, the outcomes it can end
 //!   in ([`OutcomeKind`], the one list of outcomes) and what its summary measures;
+//! * [`INTRODUCTIONS`]: each scene's heading and one-paragraph introduction for a class (apart from
+//!   [`SCENES`], so that a front end that does not show them links none of their text);
 //! * [`FLAGS`]: each parameter flag once (name, unit, help), with the core field it sets in each
 //!   scene it applies to; defaults are read from the core's `Default`, the checks are the core's
 //!   `validate` ([`SceneInfo::ranges`] words a range the core checks beyond a sign);
@@ -16,8 +18,9 @@
 //! and the physics checks ([`ParamError`]) are the core's; this crate is for the front ends only
 //! (the firmware does not depend on it). No heap, no feature: data and a few lookups.
 //!
-//! **Adding a scene**: its [`SceneInfo`] in [`SCENES`] and its field in each [`FLAGS`] entry it
-//! uses (or a new flag), besides the core's part (`core/src/scene/kind.rs`).
+//! **Adding a scene**: its [`SceneInfo`] in [`SCENES`], its [`Introduction`] in [`INTRODUCTIONS`]
+//! and its field in each [`FLAGS`] entry it uses (or a new flag), besides the core's part
+//! (`core/src/scene/kind.rs`).
 #![no_std]
 
 #[cfg(test)]

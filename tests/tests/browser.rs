@@ -686,6 +686,20 @@ fn check_comparison(b: &Browser, base: &str) {
         100.0 * mb,
         shot.display()
     );
+    // The stack at overhang 0.98 holds, at 1.02 falls.
+    b.goto(&format!("{base}?scene=stack&overhang=0.98&b.overhang=1.02&autorun=1&rate=max"));
+    b.wait(
+        "both outcomes",
+        "return document.getElementById('outcome').textContent && document.getElementById('outcome-b').textContent",
+        Duration::from_secs(60),
+    );
+    let a = host_scene("scene=stack&overhang=0.98");
+    let bb = host_scene("scene=stack&overhang=1.02");
+    assert_eq!((b.text("outcome"), b.text("checksum")), a, "run A");
+    assert_eq!((b.text("outcome-b"), b.text("checksum-b")), bb, "run B");
+    assert_eq!((a.0.as_str(), bb.0.as_str()), ("Held", "Fell"));
+    let shot = b.screenshot("stack-0.98-vs-1.02", None);
+    println!("comparison: stack 0.98 {} {}, 1.02 {} {} ({})", a.0, a.1, bb.0, bb.1, shot.display());
 }
 
 /// The scene selector: choosing the cylinder loads its module and its flags, and the run it makes
