@@ -115,8 +115,8 @@ builds_tagged() {
 # debug info, in a target directory of its own so that the host builds are not invalidated), once
 # per number of contacts (cargo features k2, k1, k3) and once for the scenes of several bodies
 # (feature mb), copied to web/page/pkg/: meterstick_web.wasm (the two-contact scenes, which the
-# page loads first), meterstick_web_k1.wasm, meterstick_web_k3.wasm and meterstick_web_mb.wasm
-# (generated, git-ignored). Prints the first module's path.
+# page loads first), meterstick_web_k1.wasm, meterstick_web_k3.wasm and meterstick_web_mb.wasm,
+# and the scenes' headings and introductions, intros.json (generated, git-ignored). Prints the first module's path.
 WEB_TARGET_DIR="$ROOT/target/web/$MS_CROSS_MODE"
 WEB_WASM="$ROOT/web/page/pkg/meterstick_web.wasm"
 WEB_MODULES=("$WEB_WASM" "${WEB_WASM%.wasm}_k1.wasm" "${WEB_WASM%.wasm}_k3.wasm" "${WEB_WASM%.wasm}_mb.wasm")
@@ -146,5 +146,9 @@ build_web() {
     (cd "$ROOT" && cross_cargo "${args[@]}" --features "$feature" >&2) || { echo "build_web: the build failed" >&2; return 1; }
     cp "$WEB_TARGET_DIR/wasm32-unknown-unknown/release/meterstick_web.wasm" "$out" || return 1
   done
+  # Each scene's heading and introduction (the catalogue's INTRODUCTIONS), which the modules do
+  # not carry (their size budget): pkg/intros.json, written on the host.
+  (cd "$ROOT" && $HOST_CARGO run --locked -q -p meterstick-web --example intros) >"$(dirname "$WEB_WASM")/intros.json" \
+    || { echo "build_web: intros.json failed" >&2; return 1; }
   echo "$WEB_WASM"
 }

@@ -14,7 +14,7 @@ use clap::{Arg, ArgAction, ArgMatches, Command};
 use meterstick_core::ParamError;
 use serde::Serialize;
 
-pub use meterstick_catalogue::{Catalogued, FLAGS, Flag, MAX_STEPS, flag_of};
+pub use meterstick_catalogue::{Catalogued, FLAGS, Flag, INTRODUCTIONS, Introduction, MAX_STEPS, flag_of};
 use meterstick_catalogue::{Refusal, Short};
 pub use meterstick_core::scene::{LcpLayout, Precision, SceneKind};
 

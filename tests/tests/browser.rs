@@ -29,7 +29,7 @@ use std::time::{Duration, Instant};
 use meterstick_host_sim::commands::{run as run_command, scene};
 use meterstick_host_sim::lcp_io::Precision;
 use meterstick_host_sim::multibody;
-use meterstick_host_sim::scenes::{Catalogued as _, FLAGS, LcpLayout, SceneArgs, SceneKind};
+use meterstick_host_sim::scenes::{Catalogued as _, FLAGS, INTRODUCTIONS, LcpLayout, SceneArgs, SceneKind};
 use meterstick_host_sim::serve::{Replay, ServeArgs, Server};
 use meterstick_host_sim::trajectory::{Record, run_k};
 use meterstick_host_sim::with_contacts;
@@ -283,7 +283,9 @@ fn scene_args(query: &str) -> SceneArgs {
             "precision" => args.precision = if value == "f64" { Precision::F64 } else { Precision::F32 },
             // The page's key names the two-contact size of the layout (6 reduced, 8 full).
             "lcp-size" => args.layout = if value == "8" { LcpLayout::Full } else { LcpLayout::Reduced },
-            "autorun" | "rate" => {}
+            "autorun" | "rate" | "after" => {}
+            // Run B's flags (the comparison): not run A's.
+            b if b.starts_with("b.") => {}
             flag => {
                 let f = FLAGS.iter().find(|f| f.long == flag).unwrap_or_else(|| panic!("no flag {flag}"));
                 args.given.push((f, vec![value.parse().unwrap()]));
@@ -428,6 +430,10 @@ fn the_page_in_chromium() {
         "scene=disc-on-board&force=40&duration=0.2&precision=f64&autorun=1&rate=max",
     );
     check_scene_selector(&b, &base);
+    check_intros(&b, &base);
+    check_pulled_block_in_view(&b, &base);
+    check_stack_goes_on_falling(&b, &base);
+    check_comparison(&b, &base);
 
     check_controls(&b, &base, &slow);
     check_map(&b, &base);
@@ -533,6 +539,167 @@ fn check_bodies(b: &Browser, base: &str, name: &str, query: &str) {
         host.last.q.len(),
         b.text("measured")
     );
+}
+
+/// Each scene is headed and introduced as the catalogue's `INTRODUCTIONS` say (from
+/// `pkg/intros.json`, which `build_web` writes from them).
+fn check_intros(b: &Browser, base: &str) {
+    for intro in &INTRODUCTIONS {
+        let name = intro.kind.name();
+        b.goto(&format!("{base}?scene={name}"));
+        b.wait(
+            "the scene's heading",
+            &format!(
+                "return document.body.dataset.state === 'ready' && document.getElementById('heading').textContent === {}",
+                json!(intro.heading)
+            ),
+            Duration::from_secs(30),
+        );
+        assert_eq!(b.text("intro"), intro.intro, "{name}: the introduction");
+        assert_eq!(b.js("return document.title"), json!(format!("meterstick: {}", intro.heading)), "{name}");
+    }
+    println!("headings and introductions: the catalogue's, for {} scenes", INTRODUCTIONS.len());
+}
+
+/// A body's box ([x, y] centre, [w, h] size, angle) inside a drawing's extent: every corner.
+fn box_inside(x: f64, y: f64, theta: f64, size: &Value, extent: &Value) -> bool {
+    let (w, h) = (size[0].as_f64().unwrap(), size[1].as_f64().unwrap());
+    let e = |k: &str| extent[k].as_f64().unwrap();
+    [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].iter().all(|(sx, sy)| {
+        let (dx, dy) = (sx * w / 2.0, sy * h / 2.0);
+        let cx = x + dx * theta.cos() - dy * theta.sin();
+        let cy = y + dx * theta.sin() + dy * theta.cos();
+        cx >= e("left") && cx <= e("right") && cy >= e("bottom") && cy <= e("top")
+    })
+}
+
+/// Block-on-block pulled at 30 N, played in real time and on past its outcome: the view follows,
+/// so the pulled block is inside the drawing in every frame, and at the end.
+fn check_pulled_block_in_view(b: &Browser, base: &str) {
+    let query = "scene=block-on-block&force=30&autorun=1";
+    b.goto(&format!("{base}?{query}"));
+    b.wait("the run and after", "return document.body.dataset.after === 'done'", Duration::from_secs(60));
+    let (outcome, checksum) = host_scene(query);
+    assert_eq!((b.text("outcome"), b.text("checksum")), (outcome.clone(), checksum.clone()), "{query}");
+    let view = b.js("return window.meterstick.view()");
+    assert!(view["worst"].as_f64().unwrap() >= 0.0, "a body left the drawing: {view}");
+    // At the end, past the outcome: the pulled block's box within the drawing's extent now.
+    let row = b.js("return window.meterstick.shownRow()");
+    let at = |i: usize| row[i].as_f64().unwrap();
+    assert!(
+        box_inside(at(1), at(2), at(3), &view["sizes"][0], &view["extent"]),
+        "the pulled block: {row} {view}"
+    );
+    let shot = b.screenshot("block-on-block-30N", None);
+    println!(
+        "block-on-block at 30 N: {outcome} {checksum}; the pulled block in the drawing in every frame (least room {:.0} px; {})",
+        view["worst"].as_f64().unwrap(),
+        shot.display()
+    );
+}
+
+/// The stack past its balance (overhang 1.02) goes on after `Fell`: its top block ends more than a
+/// block's height below its start, the outcome and the checksum staying the judged run's; its
+/// CSV is offered and parses, the judged rows up to the outcome.
+#[allow(clippy::float_cmp)] // exact: the CSV's numbers are the rows' own (JavaScript's shortest round trip)
+fn check_stack_goes_on_falling(b: &Browser, base: &str) {
+    let query = "scene=stack&overhang=1.02&autorun=1&rate=max";
+    check_bodies(b, base, "stack-1.02", query);
+    b.wait(
+        "the fall after the outcome",
+        "return document.body.dataset.after === 'done'",
+        Duration::from_secs(60),
+    );
+    let (outcome, checksum) = host_scene(query);
+    assert_eq!((b.text("outcome"), b.text("checksum")), (outcome.clone(), checksum.clone()), "as judged");
+    let start = b.js("return window.meterstick.trace().y[0]").as_f64().unwrap();
+    let end = b.js("return window.meterstick.shownRow()");
+    let top = end[8].as_f64().unwrap();
+    let height = b.js("return window.meterstick.view().sizes[2][1]").as_f64().unwrap();
+    assert!(
+        start - top > height,
+        "the top block from y = {start} to {top}: not a block's height ({height}) lower"
+    );
+    let shot = b.screenshot("stack-1.02-after", None);
+    println!(
+        "stack at overhang 1.02: {outcome} {checksum}, then the top block from y = {start:.3} to {top:.3} m ({})",
+        shot.display()
+    );
+
+    // The CSV: offered (the button), and parsed: a header, rows of numbers, t from 0, the judged
+    // rows (after_outcome 0) ending at the outcome's row.
+    assert_eq!(b.js("return document.getElementById('csv').disabled"), json!(false), "the CSV is offered");
+    let csv = b.js("return window.meterstick.csv()");
+    let mut lines = csv.as_str().unwrap().lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(
+        header,
+        ["t", "x1", "y1", "theta1", "x2", "y2", "theta2", "x3", "y3", "theta3", "after_outcome"]
+    );
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    assert!(rows.iter().all(|r| r.len() == header.len()));
+    assert_eq!(rows[0][0], 0.0);
+    let judged: Vec<&Vec<f64>> = rows.iter().filter(|r| r[10] == 0.0).collect();
+    let last = b.js("return window.meterstick.lastRow()");
+    let last: Vec<f64> = last.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert_eq!(judged.last().unwrap()[..10], last[..10], "the last judged row is the outcome's");
+    assert!(rows.len() > judged.len(), "rows after the outcome");
+    println!("    CSV: {} rows, {} up to the outcome", rows.len(), judged.len());
+    // A scene of one body: core.csv's columns, the contacts' impulses among them.
+    b.goto(&format!("{base}?scene=meter-stick&speed=1&x1=-0.35&autorun=1&rate=max"));
+    b.wait("the outcome", "return document.getElementById('outcome').textContent", Duration::from_secs(60));
+    let csv = b.js("return window.meterstick.csv()");
+    let header = csv.as_str().unwrap().lines().next().unwrap().to_owned();
+    assert_eq!(
+        header,
+        "t,x,y,theta,vx,vy,omega,support1_x,support1_y,support2_x,support2_y,mode1,mode2,pn1,pn2,pf1,pf2,along1,along2,after_outcome"
+    );
+}
+
+/// Two runs side by side (`b.<flag>`): the tablecloth at 10 N and 20 N, each as host-sim runs it;
+/// the harder pull moves the block less.
+fn check_comparison(b: &Browser, base: &str) {
+    b.goto(&format!("{base}?scene=tablecloth&force=10&b.force=20&autorun=1&rate=max"));
+    b.wait("both outcomes", "return document.getElementById('outcome').textContent && document.getElementById('outcome-b').textContent", Duration::from_secs(60));
+    let a = host_scene("scene=tablecloth&force=10");
+    let bb = host_scene("scene=tablecloth&force=20");
+    assert_eq!((b.text("outcome"), b.text("checksum")), a, "run A");
+    assert_eq!((b.text("outcome-b"), b.text("checksum-b")), bb, "run B");
+    let moved = |id: &str| {
+        let v: Value = serde_json::from_str(
+            b.js(&format!("return document.getElementById('{id}').dataset.values")).as_str().unwrap(),
+        )
+        .unwrap();
+        v["block_displacement_m"].as_f64().unwrap()
+    };
+    let (ma, mb) = (moved("measured"), moved("measured-b"));
+    assert!(mb < ma, "20 N moves the block less than 10 N: {mb} vs {ma}");
+    assert!(b.js("return location.search").as_str().unwrap().contains("b.force=20"), "the URL keeps run B");
+    let shot = b.screenshot("tablecloth-10-vs-20", None);
+    println!(
+        "comparison: tablecloth 10 N {} {} ({:.2} cm), 20 N {} {} ({:.2} cm) ({})",
+        a.0,
+        a.1,
+        100.0 * ma,
+        bb.0,
+        bb.1,
+        100.0 * mb,
+        shot.display()
+    );
+    // The stack at overhang 0.98 holds, at 1.02 falls.
+    b.goto(&format!("{base}?scene=stack&overhang=0.98&b.overhang=1.02&autorun=1&rate=max"));
+    b.wait(
+        "both outcomes",
+        "return document.getElementById('outcome').textContent && document.getElementById('outcome-b').textContent",
+        Duration::from_secs(60),
+    );
+    let a = host_scene("scene=stack&overhang=0.98");
+    let bb = host_scene("scene=stack&overhang=1.02");
+    assert_eq!((b.text("outcome"), b.text("checksum")), a, "run A");
+    assert_eq!((b.text("outcome-b"), b.text("checksum-b")), bb, "run B");
+    assert_eq!((a.0.as_str(), bb.0.as_str()), ("Held", "Fell"));
+    let shot = b.screenshot("stack-0.98-vs-1.02", None);
+    println!("comparison: stack 0.98 {} {}, 1.02 {} {} ({})", a.0, a.1, bb.0, bb.1, shot.display());
 }
 
 /// The scene selector: choosing the cylinder loads its module and its flags, and the run it makes

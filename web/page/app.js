@@ -14,8 +14,14 @@ import { COL, MODE_NAMES, Trace } from './trace.js';
 
 const $ = (id) => document.getElementById(id);
 
-/// Query keys that are not scene flags.
-const PAGE_KEYS = ['scene', 'precision', 'lcp-size', 'autorun', 'rate', 'replay', 'map', 'bench'];
+/// Query keys that are not scene flags (and `b.<flag>`: run B's flags, the comparison).
+const PAGE_KEYS = ['scene', 'precision', 'lcp-size', 'autorun', 'rate', 'replay', 'map', 'bench', 'after'];
+
+/// A run goes on past its outcome (`after=0`: it stops there) until its bodies rest (every point
+/// slower than REST_SPEED m/s for REST_TIME s), leave the view, or AFTER_SECONDS s have passed.
+const AFTER_SECONDS = 5;
+const REST_SPEED = 1e-3;
+const REST_TIME = 0.2;
 
 /// A measured quantity (summary.json's key) in words.
 const MEASURE_WORDS = {
@@ -73,9 +79,16 @@ const S = {
   lastPlot: 0,
   shownEvents: -1,
   speedWindow: { t: 0, steps: 0, rate: 0 },
+  // Run B (the comparison: the same scene, run A's flags with `compare`'s changed), its cores.
+  other: null,
+  compare: [],
+  coresB: new Map(),
+  goOn: true,
+  intros: null,
 };
 
 const view = new SceneView($('scene'));
+const viewB = new SceneView($('scene-b'));
 const map = new OutcomeMap({
   canvas: $('map'), status: $('map-status'), time: $('map-time'), cell: $('map-cell'),
   onLoad: ({ speed, muK }) => {
@@ -115,10 +128,45 @@ function coreFor(scene) {
   return S.cores.get(k);
 }
 
-/// Makes `scene` the form's scene, with the core that runs it.
+/// A second instance of the module that runs `scene`, for run B (made once per module).
+function coreBFor(scene) {
+  const k = S.main.contacts(scene);
+  if (!S.coresB.has(k)) {
+    const module = S.main.desc.holds.includes(k) ? Promise.resolve(S.module) : compileCore(moduleUrl(k));
+    const loading = module.then(instantiateCore);
+    loading.catch(() => S.coresB.delete(k));
+    S.coresB.set(k, loading);
+  }
+  return S.coresB.get(k);
+}
+
+/// Makes `scene` the form's scene, with the core that runs it (and run B's, when comparing).
 async function selectScene(scene) {
   S.core = await coreFor(scene);
+  S.coreB = S.compare.length ? await coreBFor(scene) : null;
   buildForm(scene);
+  showIntro(scene);
+}
+
+/// The scene's heading and introduction (the catalogue's, from pkg/intros.json; the title when
+/// that is missing).
+function showIntro(scene) {
+  const intro = S.intros && S.intros[scene];
+  $('heading').textContent = intro ? intro.heading : S.main.scene(scene).title;
+  $('intro').textContent = intro ? intro.intro : '';
+  document.title = `meterstick: ${$('heading').textContent}`;
+}
+
+/// Run B's flags as the compare field and the URL write them ("force=20 mu-k=0.3"): [[flag, text]],
+/// or {message}.
+function parseCompare(text) {
+  const pairs = [];
+  for (const part of text.split(/[\s&,]+/).filter(Boolean)) {
+    const [key, value] = part.split('=');
+    if (value === undefined || value.trim() === '') return { message: `compare: ${JSON.stringify(part)} is not flag=value` };
+    pairs.push([key.replace(/^b\./, ''), value]);
+  }
+  return { pairs };
 }
 
 // --- the form ---------------------------------------------------------------------------------
@@ -204,22 +252,41 @@ function writeUrl() {
   if ($('precision').value !== 'f32') q.set('precision', $('precision').value);
   if ($('lcp-size').value !== '6') q.set('lcp-size', $('lcp-size').value);
   if (S.rate !== '1') q.set('rate', S.rate);
+  if (!S.goOn) q.set('after', '0');
+  for (const [long, value] of S.compare) q.set(`b.${long}`, value);
   history.replaceState(null, '', `?${q.toString()}`);
 }
 
 // --- runs -----------------------------------------------------------------------------------------
 
-/// A live run of the core.
-function liveSource(params) {
-  const core = S.core;
+/// The fastest point's speed between two rows (m/s; a body's turning counted at 0.1 m from its
+/// centre): from the velocities of a scene of one body, from the motion over the step for several.
+function rowSpeed(trace, prev, rows, at, h) {
+  if (trace.bodies === 0) return Math.hypot(rows[at + COL.vx], rows[at + COL.vy]) + 0.1 * Math.abs(rows[at + COL.omega]);
+  let v = 0;
+  for (let b = 0; b < trace.bodies; b += 1) {
+    const i = 1 + 3 * b;
+    v = Math.max(v, (Math.hypot(rows[at + i] - prev[i], rows[at + i + 1] - prev[i + 1]) + 0.1 * Math.abs(rows[at + i + 2] - prev[i + 2])) / h);
+  }
+  return v;
+}
+
+/// A live run of `core` (made by core.create), drawn in `sceneView`. `ended` once the judge has
+/// decided (outcome, checksum, counters and measured quantities as decided); then, `going` past
+/// the outcome (the core's ms_step_past) until its bodies rest or leave the view; `done` when
+/// nothing more is to be stepped.
+function liveSource(core, params, sceneView) {
   const shapes = core.shapes();
-  const trace = new Trace(core.contacts(S.scene), shapes ? shapes.sizes.length : 0);
+  const scene = core.current.name;
+  const trace = new Trace(core.contacts(scene), shapes ? shapes.sizes.length : 0);
   trace.push(core.startRow());
   return {
-    kind: 'live', scene: S.scene, params, trace, shapes, ended: false, outcome: null,
+    kind: 'live', scene, params, trace, shapes, view: sceneView, ended: false, outcome: null,
+    going: false, done: false, judgedRow: null, judgedN: 0, restFor: 0,
     precision: $('precision').value, lcpSize: $('lcp-size').value,
     advance(n) {
-      if (this.ended) return 0;
+      if (this.done) return 0;
+      if (this.ended) return this.goOn(n);
       const rows = core.step(n);
       const taken = rows.length / trace.row;
       for (let k = 0; k < taken; k += 1) trace.push(rows, k * trace.row);
@@ -230,8 +297,31 @@ function liveSource(params) {
         this.checksum = core.checksum();
         this.stats = core.stats();
         this.measured = core.measured();
+        this.judgedRow = trace.last.slice();
+        this.judgedN = trace.n;
+        trace.judged = trace.whole;
+        this.going = S.goOn;
+        this.done = !this.going;
       }
       return taken;
+    },
+    /// Past the outcome: steps on until the bodies rest, leave the view or AFTER_SECONDS pass.
+    goOn(n) {
+      const rows = core.stepPast(n);
+      const taken = rows.length / trace.row;
+      const h = params.step;
+      let k = 0;
+      for (; k < taken && this.going; k += 1) {
+        const slow = rowSpeed(trace, trace.last, rows, k * trace.row, h) < REST_SPEED;
+        trace.push(rows, k * trace.row);
+        this.restFor = slow ? this.restFor + h : 0;
+        if (this.restFor >= REST_TIME || trace.time - this.judgedRow[0] >= AFTER_SECONDS || !this.view.inView(trace.last)) {
+          this.going = false;
+        }
+      }
+      if (taken === 0) this.going = false;
+      this.done = !this.going;
+      return k;
     },
   };
 }
@@ -251,6 +341,7 @@ function replaySource(run) {
       }
       if (this.cursor >= run.core.n) {
         this.ended = true;
+        this.done = true;
         const c = run.summary.core;
         this.outcome = { name: c.outcome, text: c.outcome_detail ? `${c.outcome} (${c.outcome_detail})` : c.outcome };
       }
@@ -272,6 +363,10 @@ function clearResult(status) {
   $('measured').textContent = '-';
   delete $('measured').dataset.values;
   $('eq21').replaceChildren();
+  for (const id of ['outcome-b', 'checksum-b', 'measured-b']) $(id).textContent = '';
+  $('outcome-b').removeAttribute('data-outcome');
+  $('csv').disabled = true;
+  document.body.dataset.after = '';
   S.shownEvents = -1;
 }
 
@@ -305,9 +400,30 @@ function makeRun() {
     const v = made.params[flag.fields[S.scene]];
     S.inputs.get(flag.long).placeholder = plain(toFlagUnit(flag, v));
   }
-  S.source = liveSource(made.params);
+  S.source = liveSource(S.core, made.params, view);
+  S.other = null;
   S.simTarget = 0;
   view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
+  if (S.compare.length && S.coreB) {
+    // Run B: run A's flags with the comparison's changed, in a second instance of the module.
+    const given = new Map(parsed.given);
+    for (const [long, text] of S.compare) {
+      const v = parseNumber(text);
+      if (v.message !== undefined) { showError(`b.${long}: ${v.message}`); setState('error'); S.source = null; return false; }
+      given.set(long, v.value);
+    }
+    const madeB = S.coreB.create(S.scene, [...given], $('precision').value, $('lcp-size').value);
+    if (!madeB.ok) {
+      showError(`run B: ${madeB.message}`);
+      S.source = null; clearResult('not run: invalid parameters'); drawEmpty(); setState('error');
+      return false;
+    }
+    S.other = liveSource(S.coreB, madeB.params, viewB);
+    viewB.setScene(S.scene, madeB.params, S.other.trace.last, S.other.trace.k, S.other.shapes);
+  }
+  document.body.classList.toggle('comparing', Boolean(S.other));
+  $('run-a-label').textContent = S.other ? `Run A: ${runLabel(S.source)}` : '';
+  $('run-b-label').textContent = S.other ? `Run B: ${runLabel(S.other)}` : '';
   if (S.scene === 'meter-stick') {
     map.setCurrent({ speed: made.params.finger1_velocity, ratio: made.params.mu_kinetic / made.params.mu_static });
   }
@@ -319,9 +435,46 @@ function makeRun() {
   return true;
 }
 
+/// A run's flags that differ from run B's or A's: what the comparison changed ("force 20 N").
+function runLabel(src) {
+  const changed = S.compare.map(([long]) => {
+    const flag = S.core.desc.flags.find((f) => f.long === long);
+    if (!flag || !(S.scene in flag.fields)) return long;
+    return `${long} ${plain(toFlagUnit(flag, src.params[flag.fields[S.scene]]))}${flag.unit ? ` ${flag.unit}` : ''}`;
+  });
+  return changed.join(', ');
+}
+
+/// The runs shown: A, and B when comparing.
+function runs() {
+  return S.source ? [S.source, ...(S.other ? [S.other] : [])] : [];
+}
+
+/// Shows the outcomes of the runs the judge has decided; once all have, the result (the state
+/// 'ended'); once nothing is left to step (the runs went on past their outcomes), pauses.
+function settle() {
+  const all = runs();
+  const b = S.other;
+  if (b && b.ended && !b.shown) {
+    b.shown = true;
+    $('outcome-b').textContent = b.outcome.text;
+    $('outcome-b').dataset.outcome = b.outcome.name;
+    $('checksum-b').textContent = b.checksum;
+    $('measured-b').textContent = measuredText(b.measured, b.scene);
+    $('measured-b').dataset.values = JSON.stringify(b.measured);
+  }
+  if (all.every((r) => r.ended) && !S.source.shown) {
+    S.source.shown = true;
+    finish();
+  }
+  const going = all.some((r) => r.ended && !r.done);
+  if (all.every((r) => r.ended)) document.body.dataset.after = going ? 'going' : 'done';
+  if (all.every((r) => r.done)) { pause(); render(true); return true; }
+  return false;
+}
+
 function finish() {
   const src = S.source;
-  pause();
   const out = $('outcome');
   out.textContent = src.outcome.text;
   out.dataset.outcome = src.outcome.name;
@@ -334,6 +487,7 @@ function finish() {
       + (src.trace.bodies > 0 ? '' : `, ${s.fullLayout.toLocaleString('en')} steps needed the ${lcpText(k, '8')} form`);
     $('measured').textContent = measuredText(src.measured, src.scene);
     $('measured').dataset.values = JSON.stringify(src.measured);
+    $('csv').disabled = false;
   } else {
     $('checksum').textContent = 'replay: see host-sim scene';
     const c = src.run.summary.core; const r = src.run.summary.reference;
@@ -344,6 +498,7 @@ function finish() {
     $('measured').textContent = measuredText(values, src.scene);
   }
   setState('ended');
+  if (src.going) $('status').textContent = 'going on after the outcome';
   render(true);
 }
 
@@ -352,57 +507,62 @@ function finish() {
 function play() {
   const src = S.source;
   if (!src) return;
-  if (src.ended) {
+  if (runs().every((r) => r.done)) {
     if (src.kind === 'live') { if (!makeRun()) return; } else { startReplay(src.run); }
   }
   S.playing = true;
-  S.simTarget = S.source.trace.time;
+  S.simTarget = Math.min(...runs().map((r) => r.trace.time));
   S.lastFrame = performance.now();
   S.speedWindow = { t: performance.now(), steps: S.source.trace.n, rate: 0 };
   $('play').textContent = 'Pause';
-  $('status').textContent = 'running';
-  setState('running');
+  $('status').textContent = S.source.ended ? 'going on after the outcome' : 'running';
+  if (!S.source.ended) setState('running');
   requestAnimationFrame(tick);
 }
 
 function pause() {
   S.playing = false;
   $('play').textContent = 'Play';
-  if (S.source && !S.source.ended) $('status').textContent = 'paused';
+  if (S.source && !S.source.done) $('status').textContent = 'paused';
 }
 
 function stepOnce() {
-  const src = S.source;
-  if (!src || src.ended) return;
+  const all = runs();
+  if (!all.length || all.every((r) => r.done)) return;
   pause();
-  src.advance(1);
-  if (src.ended) finish(); else render(true);
+  for (const r of all) r.advance(1);
+  if (!settle()) render(true);
 }
 
 function tick(now) {
   if (!S.playing) return;
-  const src = S.source;
+  const all = runs();
   const dt = Math.min(0.1, Math.max(0, (now - S.lastFrame) / 1000));
   S.lastFrame = now;
   const t0 = performance.now();
+  const active = () => all.filter((r) => !r.done);
   if (S.rate === 'max') {
-    do { src.advance(2048); } while (!src.ended && performance.now() - t0 < 14);
+    do { for (const r of active()) r.advance(2048); } while (active().length && !all.every((r) => r.ended) && performance.now() - t0 < 14);
   } else {
     S.simTarget += dt * Number(S.rate);
-    let want = Math.floor((S.simTarget - src.trace.time) / src.params.step + 1e-6);
-    while (want > 0 && !src.ended && performance.now() - t0 < 30) {
-      const k = src.advance(Math.min(want, 2048));
-      if (k === 0) break;
-      want -= k;
+    for (const r of active()) {
+      let want = Math.floor((S.simTarget - r.trace.time) / r.params.step + 1e-6);
+      while (want > 0 && !r.done && performance.now() - t0 < 30) {
+        const k = r.advance(Math.min(want, 2048));
+        if (k === 0) break;
+        want -= k;
+      }
     }
-    if (want > 0) S.simTarget = src.trace.time; // the machine cannot keep up: do not fall behind
+    // The machine cannot keep up: do not fall behind.
+    const behind = active().map((r) => r.trace.time);
+    if (behind.length && Math.min(...behind) < S.simTarget - 0.05) S.simTarget = Math.min(...behind);
   }
   const w = S.speedWindow;
   if (now - w.t > 500) {
-    w.rate = ((src.trace.n - w.steps) / (now - w.t)) * 1000;
-    w.t = now; w.steps = src.trace.n;
+    w.rate = ((S.source.trace.n - w.steps) / (now - w.t)) * 1000;
+    w.t = now; w.steps = S.source.trace.n;
   }
-  if (src.ended) finish(); else { render(false); requestAnimationFrame(tick); }
+  if (!settle()) { render(false); requestAnimationFrame(tick); }
 }
 
 // --- drawing ------------------------------------------------------------------------------------------
@@ -431,11 +591,18 @@ function render(full) {
     ? (S.rate === 'max' ? `${(S.speedWindow.rate / 1e3).toFixed(0)}k steps/s` : `${S.rate}x`) : '';
   const title = src.kind === 'replay'
     ? `replay ${src.run.name}: ${src.run.summary.core.implementation} (reference dashed)`
-    : `${S.main.scene(src.scene).title}, ${src.precision} ${lcpText(src.trace.k, src.lcpSize)}`;
+    : S.other ? `run A: ${runLabel(src)}` : `${S.main.scene(src.scene).title}, ${src.precision} ${lcpText(src.trace.k, src.lcpSize)}`;
   view.draw(tr.last, {
     title, time: tr.time, steps: tr.n - 1, outcome: src.ended ? src.outcome : null,
-    reference: src.referenceRow ? src.referenceRow() : null, rate: rateText,
+    reference: src.referenceRow ? src.referenceRow() : null, rate: rateText, moving: moving(tr),
   });
+  if (S.other) {
+    const b = S.other; const bt = b.trace;
+    viewB.draw(bt.last, {
+      title: `run B: ${runLabel(b)}`, time: bt.time, steps: bt.n - 1, outcome: b.ended ? b.outcome : null,
+      reference: null, rate: rateText, moving: moving(bt),
+    });
+  }
   $('clock').textContent = `t = ${tr.time.toFixed(3)} s`;
   const now = performance.now();
   if (!full && now - S.lastPlot < (S.rate === 'max' ? 150 : 50)) return;
@@ -444,13 +611,27 @@ function render(full) {
   if (tr.events.length !== S.shownEvents) showSwitches(src);
 }
 
+/// Each support's velocity over the last step (m/s; 0 when it did not move): the moving fingers.
+function moving(tr) {
+  if (tr.k === 0 || tr.n < 2) return undefined;
+  const dt = tr.cols.t[tr.n - 1] - tr.cols.t[tr.n - 2];
+  return Array.from({ length: tr.k }, (_, i) => {
+    const c = tr.cols[`s${i + 1}x`];
+    const v = (c[tr.n - 1] - c[tr.n - 2]) / dt;
+    return Math.abs(v) > 1e-9 ? v : 0;
+  });
+}
+
 function drawPlots(src) {
-  const tr = src.trace; const ref = src.reference;
+  const tr = src.trace;
+  // A replay's reference, or run B: dashed on the same time axis.
+  const ref = src.reference || (S.other ? S.other.trace : null);
+  const markers = Boolean(src.reference);
   const tMax = src.kind === 'replay'
-    ? src.run.core.rows[(src.run.core.n - 1) * tr.row] : niceCeil(Math.max(tr.time, 10 * src.params.step));
+    ? src.run.core.rows[(src.run.core.n - 1) * tr.row] : niceCeil(Math.max(tr.time, ref ? ref.time : 0, 10 * src.params.step));
   const c = tr.cols;
   const series = (key, color, width, scale = 1) => [
-    ...(ref ? [{ t: ref.cols.t, y: scaled(ref.cols[key], ref.n, scale), n: ref.n, color, width: 1.5, dash: [6, 4], markers: true }] : []),
+    ...(ref ? [{ t: ref.cols.t, y: scaled(ref.cols[key], ref.n, scale), n: ref.n, color, width: markers ? 1.5 : 2.5, dash: [6, 4], markers }] : []),
     { t: c.t, y: scaled(c[key], tr.n, scale), n: tr.n, color, width },
   ];
   const ticks = tr.events.map((e) => ({ t: e.t, color: [COLORS.separated, COLORS.stick, COLORS.slide, COLORS.slide][e.mode] }));
@@ -506,6 +687,8 @@ let replayRuns = null;
 function startReplay(run) {
   pause();
   S.source = replaySource(run);
+  S.other = null;
+  document.body.classList.remove('comparing');
   S.simTarget = 0;
   clearResult('replay: press Play');
   $('error').textContent = '';
@@ -575,6 +758,21 @@ function bench() {
 
 // --- start ----------------------------------------------------------------------------------------------
 
+/// Offers the shown run's rows (and run B's) as CSV files.
+function downloadCsv() {
+  for (const [src, suffix] of [[S.source, ''], [S.other, '-b']]) {
+    if (!src || src.kind !== 'live') continue;
+    const blob = new Blob([src.trace.csv()], { type: 'text/csv' });
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(blob);
+    a.download = `${src.scene}${suffix}.csv`;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+  }
+}
+
 function isTyping(target) {
   return target instanceof HTMLInputElement || target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement
     || target instanceof HTMLButtonElement || target === $('map') || target.isContentEditable;
@@ -593,6 +791,8 @@ function wire() {
   });
   $('scene-select').addEventListener('change', async () => {
     const scene = $('scene-select').value;
+    // Run B's changes are the last scene's flags.
+    S.compare = []; $('compare').value = '';
     try {
       await selectScene(scene);
     } catch (e) {
@@ -606,6 +806,15 @@ function wire() {
   $('lcp-size').addEventListener('change', () => makeRun());
   $('params').addEventListener('submit', (e) => { e.preventDefault(); makeRun(); });
   $('map-run').addEventListener('click', computeMap);
+  $('csv').addEventListener('click', downloadCsv);
+  $('after').addEventListener('change', () => { S.goOn = $('after').checked; writeUrl(); });
+  $('compare').addEventListener('change', async () => {
+    const parsed = parseCompare($('compare').value);
+    if (parsed.message) { showError(parsed.message); return; }
+    S.compare = parsed.pairs;
+    S.coreB = S.compare.length ? await coreBFor(S.scene) : null;
+    makeRun();
+  });
   $('bench-run').addEventListener('click', bench);
   $('replay-load').addEventListener('click', () => loadReplay($('replay-select').value));
   $('replay-leave').addEventListener('click', leaveReplay);
@@ -634,6 +843,13 @@ async function readUrl(q) {
   }
   for (const [key, value] of q) {
     if (PAGE_KEYS.includes(key)) continue;
+    if (key.startsWith('b.')) {
+      // Run B's flag: one of the scene's.
+      const long = key.slice(2);
+      if (S.inputs.has(long)) S.compare.push([long, value]);
+      else problems.push(`${key}: run B's flags are the scene's (${[...S.inputs.keys()].join(', ')})`);
+      continue;
+    }
     const input = S.inputs.get(key);
     if (input) { input.value = value; continue; }
     const flag = S.core.desc.flags.find((f) => f.long === key);
@@ -653,6 +869,14 @@ async function readUrl(q) {
   if (size !== null) {
     if (['6', '8'].includes(size)) $('lcp-size').value = size;
     else problems.push(`lcp-size ${JSON.stringify(size)}: 6 or 8`);
+  }
+  if (S.compare.length) {
+    S.coreB = await coreBFor(S.scene);
+    $('compare').value = S.compare.map(([long, value]) => `${long}=${value}`).join(' ');
+  }
+  const after = q.get('after');
+  if (after !== null) {
+    if (['0', '1'].includes(after)) { S.goOn = after === '1'; $('after').checked = S.goOn; } else problems.push(`after ${JSON.stringify(after)}: 0 or 1`);
   }
   const rate = q.get('rate');
   if (rate !== null) {
@@ -681,6 +905,12 @@ async function main() {
     return;
   }
   $('version').textContent = `meterstick-web ${S.core.desc.version}.`;
+  try {
+    const response = await fetch(new URL('./pkg/intros.json', import.meta.url));
+    if (response.ok) S.intros = await response.json();
+  } catch (e) {
+    S.intros = null; // the headings fall back to the scenes' titles
+  }
   const q = new URLSearchParams(location.search);
   let problems;
   try {
@@ -726,13 +956,32 @@ window.meterstick = {
     const tr = S.source && S.source.trace;
     if (!tr) return null;
     // A scene of several bodies keeps no velocities (x, y, theta: the top body's).
-    const pick = (k) => (tr.cols[k] ? Array.from(tr.cols[k].subarray(0, tr.n)) : []);
+    // The judged run (the rows up to the outcome; not those after it).
+    const n = S.source.judgedN || tr.n;
+    const pick = (k) => (tr.cols[k] ? Array.from(tr.cols[k].subarray(0, n)) : []);
     return { t: pick('t'), x: pick('x'), y: pick('y'), theta: pick('theta'), vx: pick('vx'), vy: pick('vy'), omega: pick('omega') };
   },
   /// The shown run's last row (a scene of several bodies: t, then each body's x, y, theta).
   lastRow() {
-    const tr = S.source && S.source.trace;
-    return tr ? Array.from(tr.last) : null;
+    const src = S.source;
+    if (!src) return null;
+    return Array.from(src.judgedRow || src.trace.last);
+  },
+  /// The row shown last (past the outcome when the run went on), of run A or run B (`b`).
+  shownRow(b = false) {
+    const src = b ? S.other : S.source;
+    return src ? Array.from(src.trace.last) : null;
+  },
+  /// The drawing of run A (or B): its extent (m) and the least room between a body and its edge
+  /// over every frame drawn (px; negative: a body was out of the drawing), the bodies' sizes.
+  view(b = false) {
+    const v = b ? viewB : view;
+    return { extent: v.extent(), worst: v.worst, sizes: v.shapes ? v.shapes.sizes : null };
+  },
+  /// The CSV the download button offers (run A, or B).
+  csv(b = false) {
+    const src = b ? S.other : S.source;
+    return src && src.kind === 'live' ? src.trace.csv() : null;
   },
   /// The shown scene's contacts, as the description names them, and the last row's length.
   contacts() {

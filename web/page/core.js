@@ -116,6 +116,13 @@ export class Core {
     return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), taken * this.current.row);
   }
 
+  /// After the outcome, steps a copy of the run on past it (the bodies go on; the run stays as
+  /// judged); returns the rows written (a view, valid until the next call; none once it stops).
+  stepPast(n) {
+    const taken = this.x.ms_step_past(n);
+    return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), taken * this.current.row);
+  }
+
   /// Steps up to max times without rows; returns the steps taken.
   run(max) {
     return this.x.ms_run(max);

@@ -12,7 +12,7 @@ export const COLORS = {
   normal: '#0072b2', friction: '#cc79a7', weight: '#555',
   finger1: '#0072b2', finger2: '#d55e00', finger3: '#56b4e9', com: '#111',
   balanced: '#009e73', fell: '#d55e00', unfinished: '#999', failed: '#000',
-  wood: '#f0d9a0', ground: '#cfcac0',
+  wood: '#f0d9a0', ground: '#cfcac0', drive: '#111',
 };
 const MODE_COLORS = [COLORS.separated, COLORS.stick, COLORS.slide, COLORS.slide];
 /// Each contact's colour in the plots and the fingers (contact 1 first).
@@ -49,6 +49,18 @@ function arrow(g, x0, y0, dx, dy, color, width) {
   g.lineTo(x0 + dx - ux * head - uy * head * 0.45, y0 + dy - uy * head + ux * head * 0.45);
   g.lineTo(x0 + dx - ux * head + uy * head * 0.45, y0 + dy - uy * head - ux * head * 0.45);
   g.closePath(); g.fill();
+}
+
+/// A drive (an applied force, a support's motion): a thick arrow with its label at the tail.
+function driveArrow(g, x0, y0, dx, label) {
+  arrow(g, x0, y0, dx, 0, COLORS.drive, 5);
+  g.font = '600 16px system-ui, "DejaVu Sans", sans-serif';
+  g.textBaseline = 'bottom'; g.textAlign = dx >= 0 ? 'left' : 'right';
+  const tw = g.measureText(label).width;
+  g.fillStyle = 'rgba(255,255,255,0.85)';
+  g.fillRect(dx >= 0 ? x0 - 2 : x0 - tw - 2, y0 - 26, tw + 4, 20);
+  g.fillStyle = COLORS.drive; g.fillText(label, x0, y0 - 7);
+  g.textAlign = 'left';
 }
 
 function hatch(g, x, y, w, h) {
@@ -106,6 +118,96 @@ export class SceneView {
     this.params = params;
     this.start = start;
     this.camera = null;
+    // The drawing's worst frame so far: the least room (px) between a body and the drawing's
+    // edge (negative: a body was out of the drawing); the browser test reads it.
+    this.worst = Infinity;
+  }
+
+  /// The drawing's extent in the scene's coordinates (m): {left, right, bottom, top}.
+  extent() {
+    const c = this.camera;
+    if (!c) return null;
+    return { left: c.x0 - c.cx / c.k, right: c.x0 + (c.w - c.cx) / c.k, bottom: c.y0 - (c.h - c.cy) / c.k, top: c.y0 + c.cy / c.k };
+  }
+
+  /// Each body's bounding box in a row: [[left, right, bottom, top]] (m): a box's turned with it,
+  /// a disc's; a scene of one body, its circumscribed circle's.
+  boxes(row) {
+    if (this.shapes) {
+      return this.shapes.sizes.map(([bw, bh], b) => {
+        const x = row[1 + 3 * b]; const y = row[2 + 3 * b]; const t = row[3 + 3 * b];
+        const c = Math.abs(Math.cos(t)); const s = Math.abs(Math.sin(t));
+        const ex = this.shapes.round[b] ? bw / 2 : (bw * c + bh * s) / 2;
+        const ey = this.shapes.round[b] ? bw / 2 : (bw * s + bh * c) / 2;
+        return [x - ex, x + ex, y - ey, y + ey];
+      });
+    }
+    const [bw, bh] = bodySize(this.scene, this.params);
+    const r = Math.hypot(bw, bh) / 2;
+    return [[row[COL.x] - r, row[COL.x] + r, row[COL.y] - r, row[COL.y] + r]];
+  }
+
+  /// The least room (px) between a body of `row` and the drawing's edge (negative: out of it).
+  room(row) {
+    const e = this.extent();
+    if (!e) return Infinity;
+    let m = Infinity;
+    for (const [l, r, b, t] of this.boxes(row)) m = Math.min(m, l - e.left, e.right - r, b - e.bottom, e.top - t);
+    return m * this.camera.k;
+  }
+
+  /// `false` once a body of `row` has left the view: its centre out of the drawing, or (a scene of
+  /// several bodies, whose view follows them) farther from the others than the view can follow, or
+  /// into the table or floor where the scene has no contact for it (block-on-block's top block
+  /// has none with the floor: it would fall through).
+  inView(row) {
+    if (this.shapes && this.camera && !this.camera.lost) this.track(row);
+    if (this.camera && this.camera.lost) return false;
+    const e = this.extent();
+    if (!e) return true;
+    if (this.shapes) {
+      // A corner (a disc's lowest point) more than 2 mm into the table, over the table.
+      const [lo, hi] = this.shapes.table;
+      const over = (x) => (lo === null || x >= lo) && (hi === null || x <= hi);
+      const sunk = this.shapes.sizes.some(([bw, bh], i) => {
+        const x = row[1 + 3 * i]; const y = row[2 + 3 * i]; const t = row[3 + 3 * i];
+        if (this.shapes.round[i]) return y - bw / 2 < -2e-3 && over(x);
+        const c = Math.cos(t); const s = Math.sin(t);
+        return [[-1, -1], [1, -1], [1, 1], [-1, 1]].some(([u, v]) => {
+          const cx = x + (u * bw * c - v * bh * s) / 2; const cy = y + (u * bw * s + v * bh * c) / 2;
+          return cy < -2e-3 && over(cx);
+        });
+      });
+      if (sunk) return false;
+    }
+    // A body whose centre is out of the drawing has left it.
+    return this.boxes(row).every(([l, r, b, t]) => (l + r) / 2 > e.left && (l + r) / 2 < e.right && (b + t) / 2 > e.bottom && (b + t) / 2 < e.top);
+  }
+
+  /// Keeps every body of a scene of several bodies in the drawing: the view pans with them, and
+  /// zooms out when they spread or rise (never back in during a run), down to half its first
+  /// scale; past that the bodies have left the view (`camera.lost`). A body falling off the
+  /// table leaves the drawing at the bottom (the table's top stays where it is on the drawing).
+  track(row) {
+    const cam = this.camera;
+    const m = 14 / cam.k; // room at the edge (m)
+    const boxes = this.boxes(row);
+    // The pull's arrow and its label ahead of the lowest body.
+    const f = this.params.force;
+    if (f > 0) boxes[0][1] += (40 + 110 * (f / (f + 10)) + 50) / cam.k;
+    const l = Math.min(...boxes.map((x) => x[0])); const r = Math.max(...boxes.map((x) => x[1]));
+    const t = Math.max(...boxes.map((x) => x[3]));
+    // Zoom out (the table's top stays at its height on the drawing) so that the bodies fit.
+    let k = cam.k;
+    k = Math.min(k, (cam.w - 28) / Math.max(r - l, 1e-9));
+    if (t > 0) k = Math.min(k, (cam.cy - 14) / t);
+    if (k < cam.k) {
+      if (k < cam.k0 / 2) { cam.lost = true; return; }
+      cam.k = k * 0.9; // a little more, so that the zoom does not creep
+    }
+    const half = cam.w / (2 * cam.k);
+    if (l - m < cam.x0 - half) cam.x0 = l - m + half;
+    if (r + m > cam.x0 + half) cam.x0 = r + m - half;
   }
 
   camera0(w, h) {
@@ -157,7 +259,7 @@ export class SceneView {
     for (const end of this.shapes.table) if (end !== null) { left = Math.min(left, end); right = Math.max(right, end); }
     const span = right - left;
     const k = Math.min(w / (1.6 * span), (0.6 * h) / Math.max(top, 1e-3));
-    return { k, x0: (left + right) / 2 + 0.15 * span, y0: 0, cx: w / 2, cy: h * 0.8, follow: false };
+    return { k, k0: k, x0: (left + right) / 2 + 0.15 * span, y0: 0, cx: w / 2, cy: h * 0.8, follow: false };
   }
 
   /// Draws a row of a scene of several bodies: the table (hatched, with its edge), each body a box
@@ -218,15 +320,26 @@ export class SceneView {
       g.restore();
       comSymbol(g, X(x), Y(y), 7);
     });
+    // The pull on the lowest body (block-on-block, the tablecloth, disc-on-board: along +x at its
+    // centre of mass), from its leading face.
+    const force = this.params.force;
+    if (force > 0) {
+      const [bw] = this.shapes.sizes[0];
+      driveArrow(g, X(row[1] + bw / 2), Y(row[2]), 40 + 110 * (force / (force + 10)), `F = ${force} N`);
+    }
     this.drawOverlay(g, w, h, cam, info);
   }
 
-  /// Draws the row; `info` = {title, time, steps, outcome: {name} | null, reference: row | null, rate}.
+  /// Draws the row; `info` = {title, time, steps, outcome: {name} | null, reference: row | null, rate,
+  /// moving: each support's velocity (m/s, 0 at rest) | undefined}.
   draw(row, info) {
+    this.moving = info.moving;
     const { g, w, h } = fitCanvas(this.canvas, this.aspect);
-    if (!this.camera || this.camera.w !== w) this.camera = { ...this.camera0(w, h), w };
+    if (!this.camera || this.camera.w !== w) this.camera = { ...this.camera0(w, h), w, h };
     if (this.shapes) {
+      if (!this.camera.lost) this.track(row);
       this.drawBodies(g, w, h, row, info);
+      if (!this.camera.lost) this.worst = Math.min(this.worst, this.room(row));
       return;
     }
     const cam = this.camera;
@@ -292,6 +405,9 @@ export class SceneView {
         g.lineTo(right - r, top); g.quadraticCurveTo(right, top, right, top + r); g.lineTo(right, h);
         g.closePath(); g.fill();
         g.globalAlpha = 1; g.strokeStyle = color; g.lineWidth = 2; g.stroke();
+        // A moving finger: its velocity as an arrow in the finger, below the tip.
+        const v = this.moving ? this.moving[i] : 0;
+        if (v) driveArrow(g, (left + right) / 2, Math.min(h - 24, top + 0.36 * h), Math.sign(v) * 60, `${plainSpeed(Math.abs(v))} m/s`);
       }
     } else if (ON_SLOPE.includes(this.scene)) {
       const a = p.angle; const far = 1e3;
@@ -380,7 +496,7 @@ export class SceneView {
     g.fillText(info.title, 14, 42);
     g.fillText(`step ${info.steps}${info.rate ? ` · ${info.rate}` : ''}`, 14, 64);
     // Legend.
-    const items = this.shapes ? [['com', COLORS.com, 'centre of mass']] : [
+    const items = this.shapes ? [['com', COLORS.com, 'centre of mass'], ...(this.params.force > 0 ? [['line', COLORS.drive, 'pull']] : [])] : [
       ['circle', COLORS.stick, 'sticking'], ['circle', COLORS.slide, 'sliding'], ['ring', COLORS.separated, 'separated'],
       ['line', COLORS.normal, 'normal force'], ['line', COLORS.friction, 'friction'], ['com', COLORS.com, 'centre of mass'],
     ];
@@ -424,6 +540,11 @@ export class SceneView {
       g.textAlign = 'left';
     }
   }
+}
+
+/// A speed as typed (0.1, not 0.09999999999999999).
+function plainSpeed(v) {
+  return String(Number(v.toPrecision(3)));
 }
 
 /// Rounds a span to 1, 2 or 5 times a power of ten for tick spacing.

@@ -30,6 +30,9 @@ const isSliding = (m) => m === 2 || m === 3;
 /// Numbers per row of a scene of several bodies: t, then each of up to 3 bodies' x, y, theta.
 export const BODIES_ROW = 10;
 
+/// The most numbers a trace keeps of whole rows for its CSV (32 MB); the plots' columns go on.
+const MAX_KEPT = 1 << 22;
+
 export class Trace {
   /// An empty trace of a scene with k contacts, or of `bodies` bodies (k = 0): rows of t and each
   /// body's x, y, theta (body 0 the lowest), kept as b<i>x, b<i>y, b<i>theta (1-based; x, y and
@@ -51,6 +54,26 @@ export class Trace {
     this.cols = Object.fromEntries(this.kept.map(([name]) => [name, new Float64Array(this.cap)]));
     this.last = new Float64Array(this.row);
     this.events = [];
+    // Every whole row (for the CSV), up to MAX_KEPT numbers; `judged`: the rows up to the
+    // outcome (the rows after it went on past the outcome), null while the run goes on.
+    this.rows = new Float64Array(64 * this.row);
+    this.whole = 0;
+    this.judged = null;
+  }
+
+  /// The CSV of the rows kept: core.csv's columns (a scene of several bodies: t and each body's
+  /// x, y, theta), and `after_outcome` (1 for a row past the outcome).
+  csv() {
+    const names = this.bodies > 0
+      ? ['t', ...Array.from({ length: this.bodies }, (_, b) => [`x${b + 1}`, `y${b + 1}`, `theta${b + 1}`]).flat()]
+      : columns(this.k);
+    const width = this.bodies > 0 ? 1 + 3 * this.bodies : this.row;
+    const lines = [[...names, 'after_outcome'].join(',')];
+    for (let i = 0; i < this.whole; i += 1) {
+      const r = this.rows.subarray(i * this.row, i * this.row + width);
+      lines.push(`${Array.from(r, String).join(',')},${this.judged !== null && i >= this.judged ? 1 : 0}`);
+    }
+    return `${lines.join('\n')}\n`;
   }
 
   /// Appends the row at rows[offset .. offset + this.row].
@@ -64,6 +87,15 @@ export class Trace {
       }
     }
     for (const [name, c] of this.kept) this.cols[name][this.n] = rows[offset + c];
+    if ((this.whole + 1) * this.row <= MAX_KEPT) {
+      if ((this.whole + 1) * this.row > this.rows.length) {
+        const grown = new Float64Array(Math.min(MAX_KEPT, 2 * this.rows.length));
+        grown.set(this.rows);
+        this.rows = grown;
+      }
+      for (let c = 0; c < this.row; c += 1) this.rows[this.whole * this.row + c] = rows[offset + c];
+      this.whole += 1;
+    }
     if (this.n > 0) this.findSwitches(rows, offset);
     this.last.set(rows.subarray ? rows.subarray(offset, offset + this.row) : rows.slice(offset, offset + this.row));
     this.n += 1;

@@ -227,6 +227,23 @@ pub extern "C" fn ms_step(n: u32) -> u32 {
     })
 }
 
+/// After the outcome, steps the run on past it (the bodies go on: the stack tumbles off the
+/// table) up to `n` times (at most the trace buffer's rows), one row per step in the trace
+/// buffer as [`ms_step`] writes them; the run is reported as judged (outcome, checksum, time,
+/// counters, measured quantities). Returns the steps taken: 0 before the outcome, when a step fails or after
+/// `sim::MAX_PAST_STEPS` in all.
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_step_past(n: u32) -> u32 {
+    store::with(|s, _, trace| {
+        let rows = (n as usize).min(TRACE_ROWS);
+        s.session.sim_mut().map_or(0, |sim| {
+            let len = sim.row_len();
+            sim.step_past_rows(&mut trace[..rows * len]) as u32
+        })
+    })
+}
+
 /// Steps the run up to `max` times without rows (the outcome map, the benchmark); returns the
 /// steps taken.
 #[unsafe(no_mangle)]
@@ -413,6 +430,12 @@ mod tests {
         assert_eq!(ms_outcome_text(), 4);
         assert_eq!(text(), "Fell");
         let checksum = ms_checksum();
+        // Past the outcome the rod goes on falling; the run stays as judged.
+        let (t, y) = (ms_time(), trace_row(0, 19)[2]);
+        assert_eq!(ms_step_past(300), 300);
+        let after = trace_row(299, 19);
+        assert!(after[0] > t && after[2] < y, "{after:?}");
+        assert_eq!((ms_outcome(), ms_checksum(), ms_time(), ms_stat(0)), (1, checksum, t, f64::from(steps)));
         // The same run without rows: the same checksum.
         assert_eq!(ms_create(32, 6), 0);
         assert_eq!(ms_run(1e9), f64::from(steps));

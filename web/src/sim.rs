@@ -83,6 +83,11 @@ enum Held {
     Many(AnyMultibody),
 }
 
+/// The most steps a run goes on after its outcome ([`Sim::step_past_rows`]): 30 s at the
+/// default step of 1 ms, so that nothing runs forever (the page stops sooner, when the bodies
+/// rest or leave its view).
+pub const MAX_PAST_STEPS: u32 = 30_000;
+
 /// One run.
 #[derive(Debug, Clone)]
 pub struct Sim {
@@ -91,6 +96,21 @@ pub struct Sim {
     kind: SceneKind,
     checksum: Checksum,
     start: [f64; MAX_ROW],
+    /// Once the run goes on past its outcome: the run as judged (what the accessors report).
+    past: Option<Judged>,
+}
+
+/// A run as its judge left it (outcome, time, counters, measured quantities), kept while the
+/// scene goes on past its outcome ([`Sim::step_past_rows`]); the checksum stays the judged run's
+/// (the steps past the outcome are not added to it).
+#[derive(Debug, Clone, Copy)]
+struct Judged {
+    outcome: Outcome,
+    time: f64,
+    stats: RunStats,
+    measured: [f64; MAX_MEASURES],
+    /// Steps taken past the outcome.
+    steps: u32,
 }
 
 impl Sim {
@@ -123,7 +143,7 @@ impl Sim {
             #[cfg(not(any(feature = "k1", feature = "k2", feature = "k3")))]
             return Err(ParamError::OutOfRange("scene"));
         };
-        Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start })
+        Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start, past: None })
     }
 
     /// The scene.
@@ -147,17 +167,70 @@ impl Sim {
     /// Steps until the run ends or `rows` is full, writing one row per step into `rows`
     /// ([`Self::row_len`] numbers each); returns the steps taken (0 once the run has ended).
     pub fn step_rows(&mut self, rows: &mut [f64]) -> usize {
-        match &mut self.scene {
+        if self.past.is_some() {
+            return 0;
+        }
+        Self::held_rows(&mut self.scene, &mut self.checksum, rows)
+    }
+
+    /// After the outcome, steps the scene on past it (the core's `go_on` before each step: the
+    /// bodies go on, the stack tumbles off the table), writing rows as [`Self::step_rows`] does;
+    /// the run is reported as judged from then on (its outcome, checksum, time, counters, measured
+    /// quantities: [`Judged`]). At most [`MAX_PAST_STEPS`] in all; returns the steps taken (0
+    /// before the outcome, once a step failed or the bound is reached).
+    pub fn step_past_rows(&mut self, rows: &mut [f64]) -> usize {
+        if self.past.is_none() {
+            let Some(outcome) = self.outcome() else { return 0 };
+            let judged = Judged {
+                outcome,
+                time: self.time(),
+                stats: self.stats(),
+                measured: self.measured(),
+                steps: 0,
+            };
+            self.past = Some(judged);
+        }
+        let past_steps = self.past.map_or(0, |j| j.steps);
+        let len = self.row_len();
+        let end = ((MAX_PAST_STEPS - past_steps) as usize * len).min(rows.len());
+        let mut n = 0;
+        // One row at a time through the run's own stepping (one copy of the step in the module):
+        // the outcome taken before each step.
+        for row in rows[..end].chunks_exact_mut(len) {
+            match &mut self.scene {
+                #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
+                Held::One(s) => s.visit_mut(GoOn),
+                #[cfg(feature = "mb")]
+                Held::Many(s) => s.visit_mut(GoOn),
+            }
+            if Self::held_rows(&mut self.scene, &mut Checksum::new(), row) == 0 {
+                break;
+            }
+            n += 1;
+        }
+        if let Some(j) = &mut self.past {
+            j.steps += n as u32;
+        }
+        n
+    }
+
+    /// Steps `scene` into `rows` (one place: the run and the steps past its outcome share it).
+    #[inline(never)]
+    fn held_rows(scene: &mut Held, checksum: &mut Checksum, rows: &mut [f64]) -> usize {
+        match scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.visit_mut(StepRows { checksum: &mut self.checksum, rows }),
+            Held::One(s) => s.visit_mut(StepRows { checksum, rows }),
             #[cfg(feature = "mb")]
-            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum: &mut self.checksum, rows }),
+            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum, rows }),
         }
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
     /// benchmark); returns the steps taken.
     pub fn run(&mut self, max: u64) -> u64 {
+        if self.past.is_some() {
+            return 0;
+        }
         match &mut self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.visit_mut(Run { checksum: &mut self.checksum, max }),
@@ -169,6 +242,9 @@ impl Sim {
     /// The outcome, once the run has ended.
     #[must_use]
     pub fn outcome(&self) -> Option<Outcome> {
+        if let Some(j) = &self.past {
+            return Some(j.outcome);
+        }
         match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.outcome(),
@@ -186,6 +262,9 @@ impl Sim {
     /// Simulated time (s).
     #[must_use]
     pub fn time(&self) -> f64 {
+        if let Some(j) = &self.past {
+            return j.time;
+        }
         match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.time(),
@@ -198,6 +277,9 @@ impl Sim {
     /// several bodies has steps, pivots, the most in a step and its warm starts (the rest 0).
     #[must_use]
     pub fn stats(&self) -> RunStats {
+        if let Some(j) = &self.past {
+            return j.stats;
+        }
         match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => *s.stats(),
@@ -219,6 +301,9 @@ impl Sim {
     /// the scene (`summary.json`'s keys, [`Scene::measured`]); NaN where there is none (yet).
     #[must_use]
     pub fn measured(&self) -> [f64; MAX_MEASURES] {
+        if let Some(j) = &self.past {
+            return j.measured;
+        }
         let m = match &self.scene {
             #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
             Held::One(s) => s.measured(),
@@ -299,6 +384,25 @@ impl MultibodyVisitor for BodiesStartRow<'_> {
 struct BodiesStepRows<'a> {
     checksum: &'a mut Checksum,
     rows: &'a mut [f64],
+}
+
+/// Takes a scene's outcome so that its next step is taken (the core's `go_on`): a copy of the run
+/// goes on past its outcome.
+struct GoOn;
+
+impl SceneVisitor for GoOn {
+    type Output = ();
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) {
+        let _ = scene.go_on();
+    }
+}
+
+#[cfg(feature = "mb")]
+impl MultibodyVisitor for GoOn {
+    type Output = ();
+    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, mut scene: S) {
+        let _ = scene.go_on();
+    }
 }
 
 #[cfg(feature = "mb")]

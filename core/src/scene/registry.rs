@@ -454,6 +454,9 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Size
     fn step(&mut self) -> Option<crate::multibody::StepReport<T, B, P>> {
         (**self).step()
     }
+    fn go_on(&mut self) -> Option<Outcome> {
+        (**self).go_on()
+    }
     fn outcome(&self) -> Option<Outcome> {
         (**self).outcome()
     }

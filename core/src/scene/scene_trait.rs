@@ -13,6 +13,15 @@ pub trait Scene<T: Real, const K: usize> {
     /// Advances one step; `None` once the run has an outcome (a failed step ends the run with
     /// [`Outcome::Failed`]).
     fn step(&mut self) -> Option<StepReport<T, K>>;
+    /// Lets a run that has its outcome go on: takes the outcome (and returns it), so that the next
+    /// [`Self::step`] is taken and judged afresh. A front end that shows the body go on after the
+    /// outcome (the rod falling off the fingers after `Fell`) calls it before each such step on a
+    /// copy of the judged run, whose outcome it keeps; events and measured quantities go on too.
+    /// It bounds the steps it takes. `None` (and nothing done) before the outcome, or for a scene
+    /// that does not go on (the default).
+    fn go_on(&mut self) -> Option<Outcome> {
+        None
+    }
     /// The outcome, once the run has ended.
     fn outcome(&self) -> Option<Outcome>;
     /// The body's state now.
@@ -56,6 +65,9 @@ impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
     fn step(&mut self) -> Option<StepReport<T, K>> {
         (**self).step()
     }
+    fn go_on(&mut self) -> Option<Outcome> {
+        (**self).go_on()
+    }
     fn outcome(&self) -> Option<Outcome> {
         (**self).outcome()
     }
@@ -92,6 +104,9 @@ macro_rules! impl_scene {
         impl<T: Real, const N: usize, const E: usize> $crate::scene::Scene<T, $k> for $scene<T, N, E> {
             fn step(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
                 self.advance()
+            }
+            fn go_on(&mut self) -> Option<$crate::scene::Outcome> {
+                self.outcome.take()
             }
             fn outcome(&self) -> Option<$crate::scene::Outcome> {
                 self.outcome

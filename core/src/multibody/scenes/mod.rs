@@ -34,6 +34,15 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     const ROWS: usize;
     /// Advances one step; `None` once the run has an outcome.
     fn step(&mut self) -> Option<StepReport<T, B, P>>;
+    /// Lets a run that has its outcome go on: takes the outcome (and returns it), so that the next
+    /// [`Self::step`] is taken and judged afresh. A front end that shows the bodies go on after
+    /// the outcome (the stack tumbling off the table after `Fell`) calls it before each such step
+    /// on a copy of the judged run, whose outcome it keeps; what the scene measures goes on too.
+    /// It bounds the steps it takes. `None` (and nothing done) before the outcome, or for a scene
+    /// that does not go on (the default).
+    fn go_on(&mut self) -> Option<Outcome> {
+        None
+    }
     /// The outcome, once the run has ended.
     fn outcome(&self) -> Option<Outcome>;
     /// Every body's state (body 0 the lowest).
@@ -134,6 +143,9 @@ macro_rules! multibody_scene {
             const ROWS: usize = $rows;
             fn step(&mut self) -> Option<StepReport<T, $b, $p>> {
                 <$scene>::step(self)
+            }
+            fn go_on(&mut self) -> Option<Outcome> {
+                self.run.outcome.take()
             }
             fn outcome(&self) -> Option<Outcome> {
                 <$scene>::outcome(self)
