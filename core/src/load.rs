@@ -43,9 +43,10 @@
 //! 3. **LCP**: [`Lemke`], warm-started from the previous such step's basis (a rest state keeps
 //!    its basis: no pivot), verified as every LCP answer is.
 //!
-//! `C` contacts, `B` bodies (`3B` coordinates), `L >= 3 C` rows of the LCP (checked at compile
-//! time; rows past `3 C` are decoupled, `w = 1`, so that a caller can share a solver size it
-//! already has, e.g. the planar full layout's `4 K`). No heap; failure is an [`LcpError`].
+//! `C` contacts, `B` bodies (`3B` coordinates), `L` rows of the LCP: three per contact that may
+//! carry (contact `c` at rows `3c..3c + 3`, so each must have `3c + 2 < L`), the others decoupled
+//! (`w = 1`), so that a caller shares a solver size it already has (the planar full layout's
+//! `4K`, the multibody stepper's `N` with at most `N / 4` slots). No heap; failure is an [`LcpError`].
 
 use crate::lcp::{Basis, Lcp, LcpError, Lemke};
 use crate::real::{Real, max};
@@ -214,14 +215,19 @@ fn inequality<T: Real, const C: usize>(carry: &[Carry<T>; C], row: usize) -> Opt
 ///
 /// # Errors
 /// The least-norm LCP's [`LcpError`] (it has a solution whenever `path` is a load the contacts
-/// may carry: an error means round-off broke that).
+/// may carry: an error means round-off broke that); [`LcpError::NonFiniteInput`] for a contact
+/// that may carry beyond the LCP's rows (a caller's error, not a step's).
+#[inline(never)] // one copy per size, shared by every stepper of it
 pub(crate) fn least_norm<T: Real, const C: usize, const B: usize, const L: usize>(
     contacts: &[LoadContact<T, B>; C],
     path: &Unknowns<T, C>,
     warm: &mut Basis<L>,
 ) -> Result<(Unknowns<T, C>, LoadPath), LcpError> {
-    const { assert!(L >= 3 * C, "the least-norm LCP has three rows per contact") };
     let carry = contacts.map(|c| c.carry);
+    // A contact whose rows would fall past the LCP's `L` cannot be constrained: none may carry.
+    if carry.iter().enumerate().any(|(c, k)| 3 * c + 2 >= L && !matches!(k, Carry::Nothing)) {
+        return Err(LcpError::NonFiniteInput);
+    }
     let mut space = RowSpace::<T, C>::new(&carry);
     for b in 0..B {
         for k in 0..3 {
@@ -276,7 +282,7 @@ pub(crate) fn least_norm<T: Real, const C: usize, const B: usize, const L: usize
             m[(j, i)] = e;
         }
     }
-    let solution = Lemke::<T, L>::new().solve_warm(&Lcp::new(m, q), *warm)?;
+    let solution = Lemke::<T, L>::new().solve_from_basis(&Lcp::new(m, q), *warm)?;
     *warm = solution.basis;
     let mut x = x0;
     for (i, a) in projected.iter().enumerate() {

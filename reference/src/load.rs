@@ -185,7 +185,13 @@ fn min_norm_solution(rows: &[(Vec<f64>, f64)], tolerance: f64) -> Option<(Vec<f6
             *xc += y * gc;
         }
     }
-    rows.iter().all(|(row, value)| (dot(row, &x) - value).abs() <= tolerance).then_some((x, multipliers))
+    // Consistent within round-off of the terms each row sums (a row dropped as dependent within
+    // its elimination's 1e-10 still holds to that), or within `tolerance`.
+    let consistent = |(row, value): &(Vec<f64>, f64)| {
+        let size: f64 = row.iter().zip(&x).map(|(a, b)| (a * b).abs()).sum::<f64>() + value.abs();
+        (dot(row, &x) - value).abs() <= tolerance.max(1e-9 * size)
+    };
+    rows.iter().all(consistent).then_some((x, multipliers))
 }
 
 #[cfg(test)]

@@ -5,12 +5,17 @@
 //! the reduced and the full layout) and in the independent reference, on fixed and random finger
 //! placements; on four fingers (a scene built from the core's public API); and on runs with a
 //! moving finger, where the load decides each finger's friction limit: the core follows the
-//! reference within 1e-9 m (f64) and 1e-5 m (f32) on many starts.
+//! reference within 1e-9 m (f64) and 1e-5 m (f32) on many starts. Several bodies: a held
+//! block-on-block's floor friction shared equally by its two corners, an aligned stack's corners
+//! equal.
 
+use meterstick_core::multibody::scenes::{
+    BlockOnBlock, BlockOnBlockParams, MultibodyScene, Stack, StackParams,
+};
 use meterstick_core::planar::{
     Body, BodyState, Contact, ContactMode, Feature, Layout, Model, Settings, Stepper, Support,
 };
-use meterstick_core::scene::ThreeFingersParams;
+use meterstick_core::scene::{Outcome, ThreeFingersParams};
 use meterstick_host_sim::lcp_io::Precision;
 use meterstick_host_sim::scenes::{Implementation, LcpLayout, SceneParams};
 use meterstick_host_sim::trajectory::{Record, Trajectory, run_k};
@@ -193,7 +198,8 @@ fn a_moving_finger_under_three_follows_the_reference_on_many_starts() {
             ..ThreeFingersParams::default()
         });
         let stop = (x2 - width - x1) / v;
-        let reference = run_k::<3>(&spec, Implementation::Reference, Record::All).expect("the reference runs");
+        let reference =
+            run_k::<3>(&spec, Implementation::Reference, Record::All).expect("the reference runs");
         for (implementation, tolerance) in implementations().into_iter().skip(1) {
             let what = format!("{implementation}, fingers {x1:.3} {x2:.3} {x3:.3} at {v:.3} m/s");
             let core = run_k::<3>(&spec, implementation, Record::All).expect(&what);
@@ -208,7 +214,10 @@ fn a_moving_finger_under_three_follows_the_reference_on_many_starts() {
             }
             let after = if tolerance < 1e-6 { tolerance } else { 1e-4 };
             println!("{what}: {moving:.1e} m while finger 1 moves, {whole:.1e} m over the run");
-            assert!(moving < tolerance && whole < after, "{what}: {moving:e} m, {whole:e} m from the reference");
+            assert!(
+                moving < tolerance && whole < after,
+                "{what}: {moving:e} m, {whole:e} m from the reference"
+            );
             // Every loaded finger reads sticking or sliding, never separated.
             for row in &core.rows[1..] {
                 for c in &row.contacts {
@@ -218,4 +227,94 @@ fn a_moving_finger_under_three_follows_the_reference_on_many_starts() {
             }
         }
     }
+}
+
+/// Each pair's touching candidates' `(normal, friction)` forces (N) after the last step of `run`.
+fn last_corner_loads<T: meterstick_core::Real, const B: usize, const P: usize>(
+    scene: &mut impl MultibodyScene<T, B, P>,
+) -> (Outcome, Vec<Vec<[f64; 2]>>) {
+    let mut last = Vec::new();
+    let outcome = scene.run(|r| {
+        last = r
+            .corner_loads
+            .iter()
+            .zip(&r.modes)
+            .map(|(loads, modes)| {
+                loads
+                    .iter()
+                    .zip(modes)
+                    .filter(|(_, m)| **m != ContactMode::Separated)
+                    .map(|(l, _)| l.map(|x| x.as_f64()))
+                    .collect()
+            })
+            .collect();
+    });
+    (outcome, last)
+}
+
+fn relative_tolerance<T: meterstick_core::Real>() -> f64 {
+    if T::BYTES == 8 { 1e-9 } else { 1e-4 }
+}
+
+/// Block-on-block pulled below the floor's static limit: held, the floor's friction `F` shared
+/// equally by the lower block's two corners (their friction columns are the same: rigid contact
+/// leaves the split open, the least norm halves it), the top block's two corners carrying half its
+/// weight each and no friction.
+fn block_on_block_shares_the_floors_friction<T: meterstick_core::Real>() {
+    let d = BlockOnBlockParams::<f64> { force: 3.0, max_time: 0.05, ..BlockOnBlockParams::default() };
+    let mut scene = BlockOnBlock::<T>::new(d.cast::<T>()).expect("valid parameters");
+    let (outcome, pairs) = last_corner_loads(&mut scene);
+    assert_eq!(outcome, Outcome::Held, "{}", T::NAME);
+    let tol = relative_tolerance::<T>();
+    let g = d.gravity;
+    let (floor, top): (Vec<[f64; 2]>, Vec<[f64; 2]>) = (pairs[0].clone(), pairs[1].clone());
+    assert_eq!((floor.len(), top.len()), (2, 2), "{} touching corners: {pairs:?}", T::NAME);
+    for corner in &floor {
+        assert!(
+            (corner[1].abs() - d.force / 2.0).abs() < tol * d.force,
+            "{} floor corners {floor:?}",
+            T::NAME
+        );
+    }
+    let weight = d.top_mass * g;
+    for corner in &top {
+        assert!((corner[0] - weight / 2.0).abs() < tol * weight, "{} top corners {top:?}", T::NAME);
+        assert!(corner[1].abs() < tol * weight, "{} top corners {top:?}", T::NAME);
+    }
+    let carried: f64 = floor.iter().map(|c| c[0]).sum();
+    let total = (d.top_mass + d.bottom_mass) * g;
+    assert!((carried - total).abs() < tol * total, "{} floor corners {floor:?}", T::NAME);
+}
+
+#[test]
+fn a_held_block_on_block_shares_the_floors_friction_equally() {
+    block_on_block_shares_the_floors_friction::<f64>();
+    block_on_block_shares_the_floors_friction::<f32>();
+}
+
+/// Three aligned blocks at rest: each interface's two edges (one contact each) carry half the
+/// weight above them, the table half of all three.
+fn aligned_stack_corners<T: meterstick_core::Real>() {
+    let d = StackParams::<f64> { overhang: 0.0, max_time: 0.05, ..StackParams::default() };
+    let mut scene = Stack::<T, 3, 32>::new(d.cast::<T>()).expect("valid parameters");
+    let (outcome, pairs) = last_corner_loads(&mut scene);
+    assert_eq!(outcome, Outcome::Held, "{}", T::NAME);
+    let tol = relative_tolerance::<T>();
+    for (i, corners) in pairs.iter().enumerate() {
+        let half = (3 - i) as f64 * d.mass * d.gravity / 2.0;
+        assert_eq!(corners.len(), 2, "{} pair {i}: {corners:?}", T::NAME);
+        for c in corners {
+            assert!(
+                (c[0] - half).abs() < tol * half && c[1].abs() < tol * half,
+                "{} pair {i}: {corners:?}",
+                T::NAME
+            );
+        }
+    }
+}
+
+#[test]
+fn an_aligned_stack_rests_on_equal_corners() {
+    aligned_stack_corners::<f64>();
+    aligned_stack_corners::<f32>();
 }

@@ -210,15 +210,12 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     pub(super) lcp: StepLcp<T, B, N>,
     /// The rule's metric and reaches (`docs/formulation.md`, "One answer: the rule").
     detector: Detector<T, B>,
-    /// The basis of the last step whose load needed the least-norm LCP (`crate::load`).
+    /// The basis of the last step whose load needed the least-norm LCP (`crate::load`; its rows
+    /// in this stepper's LCP size, three per slot).
     #[cfg(feature = "fallback")]
-    load_basis: Basis<LOAD_ROWS>,
+    load_basis: Basis<N>,
     stats: Stats,
 }
-
-#[cfg(feature = "fallback")]
-/// The least-norm load's LCP rows: three per slot (`crate::load`).
-const LOAD_ROWS: usize = 3 * MOST_SLOTS;
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
     /// `P <= 32`: the pairs' bit sets are `u32` (`Factored::held_and_pinned`), and a pair's
