@@ -4,9 +4,9 @@
 //! With three supports under a rigid rod the normal forces are statically indeterminate (only
 //! their sum and moment are fixed), so each step's LCP has a family of solutions, and since friction
 //! is `mu` times the normal force, different splits drag the rod differently: rigid contact with
-//! friction does not decide this motion. The stepper returns one verified solution (a vertex of the
-//! family; here at first the middle finger carries the rod alone and finger 1 slides under it
-//! without dragging). Real fingers are compliant and split the load by their stiffness.
+//! friction does not decide this motion. The stepper takes the motion of least kinetic energy and the
+//! load of least 2-norm with it: the split that equally stiff fingers give, `N_i = a + b x_i` at
+//! rest (`docs/formulation.md`, "The load: the least norm").
 //!
 //! `cargo run -p meterstick-core --example three_fingers` (CONTRIBUTING.md, "Adding a scene").
 #![allow(clippy::print_stdout)]

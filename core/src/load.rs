@@ -50,7 +50,6 @@
 
 use crate::lcp::{Basis, Lcp, LcpError, Lemke};
 use crate::real::{Real, max};
-use nalgebra::{SMatrix, SVector};
 
 /// How a contact may carry load at the step's motion.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -264,8 +263,7 @@ pub(crate) fn least_norm<T: Real, const C: usize, const B: usize, const L: usize
         return Ok((x0, LoadPath::Projection));
     }
     let mut projected = [[[T::zero(); 2]; C]; L];
-    let mut m = SMatrix::<T, L, L>::zeros();
-    let mut q = SVector::<T, L>::zeros();
+    let mut q = [T::zero(); L];
     for i in 0..L {
         match inequality(&carry, i) {
             Some(a) => {
@@ -275,14 +273,13 @@ pub(crate) fn least_norm<T: Real, const C: usize, const B: usize, const L: usize
             None => q[i] = T::one(),
         }
     }
-    for i in 0..L {
-        for j in 0..=i {
-            let e = dot(&projected[i], &projected[j]);
-            m[(i, j)] = e;
-            m[(j, i)] = e;
+    let mut m = [[T::zero(); L]; L];
+    for (i, row) in m.iter_mut().enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            *entry = dot(&projected[i], &projected[j]);
         }
     }
-    let solution = Lemke::<T, L>::new().solve_from_basis(&Lcp::new(m, q), *warm)?;
+    let solution = Lemke::<T, L>::new().solve_from_basis(&Lcp::from_rows(&m, &q), *warm)?;
     *warm = solution.basis;
     let mut x = x0;
     for (i, a) in projected.iter().enumerate() {

@@ -185,12 +185,13 @@ pub(super) const PATTERNS: [Pattern; 8] = [0b0011, 0b0101, 0b1011, 0b1101, 0b000
 /// solutions. A singular basis (both corners sticking) is declined by the factored solve; the
 /// regular one in which one corner carries the interface's friction and the other only its
 /// normal is what the first step's guess, the candidates and Lemke's method (with its
-/// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it. What is
-/// reported is what every solution shares: velocities, positions and per pair the summed
-/// interface force ([`StepReport::interface_forces`]); no corner's share. Where solutions move
-/// the bodies differently (the model's "ambiguous" steps), this stepper takes the reference's rule,
-/// the least kinetic energy after the step (`docs/formulation.md`, "Several bodies: the rule";
-/// `resolve.rs`).
+/// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it (it is the
+/// next step's warm basis). What is reported is the load of least 2-norm with the step's motion
+/// (`docs/formulation.md`, "The load: the least norm"; each corner's share in
+/// [`StepReport::corner_loads`], their sum per pair in [`StepReport::interface_forces`]). Where
+/// solutions move the bodies differently (the model's "ambiguous" steps), this stepper takes the
+/// reference's rule, the least kinetic energy after the step (`docs/formulation.md`, "Several
+/// bodies: the rule"; `resolve.rs`).
 #[derive(Debug, Clone)]
 pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     system: System<T, B, P>,
@@ -701,6 +702,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         slips: &[T; MOST_SLOTS],
         stick_speed: T,
     ) -> bool {
+        // Every index below is in range: said so (no panic path).
+        let slots = slots.min(MOST_SLOTS).min(N);
         let mut unknowns = 0;
         let mut sticking_pair = usize::MAX;
         for j in 0..slots {
@@ -738,6 +741,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     ) -> Result<(), StepError> {
         let s = self.system.settings.base;
         let tolerance = self.detector.rule(&self.lcp.factored).velocity_tolerance();
+        // Every index below is in range: said so (no panic path).
+        let slots = slots.min(MOST_SLOTS).min(N);
         let off =
             LoadContact { normal: [[T::zero(); 3]; B], tangent: [[T::zero(); 3]; B], carry: Carry::Nothing };
         let mut contacts = [off; MOST_SLOTS];

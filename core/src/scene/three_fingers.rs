@@ -6,7 +6,9 @@
 //! With three supports under a rigid rod the normal forces are statically indeterminate (only
 //! their sum and moment are fixed), so each step's LCP has a family of solutions, and since friction
 //! is `mu` times the normal force, different splits drag the rod differently: rigid contact with
-//! friction does not decide this motion. The stepper returns one verified solution.
+//! friction does not decide this motion. The stepper takes the motion of least kinetic energy and,
+//! with it, the load of least 2-norm (`docs/formulation.md`, "The load: the least norm"): at rest
+//! the split equally stiff fingers give, `N_i = a + b x_i`.
 //!
 //! **Sizes.** `N = 9`: finger 1 keeps `+d`, fingers 2 and 3 keep `-d`, checked every step against
 //! the full layout (12); `N = 12` is the full form.
