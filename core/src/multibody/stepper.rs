@@ -13,6 +13,8 @@ use crate::planar::assemble::normal_bias;
 use crate::planar::check_friction;
 use crate::planar::{Body, BodyState, Checksum, ContactMode, Declined, PathCounts, SolvePath};
 use crate::real::Real;
+#[cfg(feature = "fallback")]
+use crate::real::max;
 
 /// The scalars of a step: one body's ([`crate::planar::Settings`]: time step, gravity, stick
 /// threshold) and the activity rule's margin.
@@ -215,6 +217,9 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     /// in this stepper's LCP size, three per slot).
     #[cfg(feature = "fallback")]
     load_basis: Basis<N>,
+    /// The last load the rule decided, for a rest state to keep.
+    #[cfg(feature = "fallback")]
+    load_memory: LoadMemory<T>,
     stats: Stats,
 }
 
@@ -287,6 +292,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             detector: Detector::new(&system.bodies, &shapes, &inverse_mass),
             #[cfg(feature = "fallback")]
             load_basis: Basis::all_w(),
+            #[cfg(feature = "fallback")]
+            load_memory: LoadMemory::none(),
             stats: Stats::default(),
         };
         stepper.update_frames();
@@ -690,91 +697,114 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         None
     }
 
-    /// `true` when the load of the step's answer may be open: a pair with two sticking corners
-    /// carrying load (their friction columns are the same: the split between them is free), or
-    /// more unknowns (two per sticking slot, one per sliding one) than the bodies' `3B`
-    /// coordinates.
-    #[cfg(feature = "fallback")]
-    fn load_open(
-        &self,
-        slots: usize,
-        loads: &[[T; 2]; MOST_SLOTS],
-        slips: &[T; MOST_SLOTS],
-        stick_speed: T,
-    ) -> bool {
-        // Every index below is in range: said so (no panic path).
-        let slots = slots.min(MOST_SLOTS).min(N);
-        let mut unknowns = 0;
-        let mut sticking_pair = usize::MAX;
-        for j in 0..slots {
-            if loads[j][0] <= self.impulse_floor {
-                continue;
-            }
-            if slips[j].abs_exact() > stick_speed {
-                unknowns += 1;
-                continue;
-            }
-            unknowns += 2;
-            let p = self.lcp.slots[j].0;
-            if p == sticking_pair {
-                return true;
-            }
-            sticking_pair = p;
-        }
-        unknowns > 3 * B
-    }
-
-    /// The load of least 2-norm with this step's motion `v_plus` (`crate::load`), in place of
-    /// `loads` (and the slips of the slots it loads): a slot touches when it carries load or its
-    /// normal velocity `c_n^T v+ + bias` is within the rule's velocity tolerance (`max(1e-9, 256
-    /// eps) S`, `S` the rule's speed scale) of zero, and
-    /// sticks when its slip is within it too.
+    /// The load of least 2-norm with this step's motion `v_plus` (`crate::load`) in place of the
+    /// answer `z`'s: each slot's mode, its pair's summed impulse and its corner's load rewritten
+    /// (`report`). A slot touches when it carries load or its normal velocity `c_n^T v+ + bias` is
+    /// within the rule's velocity tolerance (`max(1e-9, 256 eps) S`, `S` the rule's speed scale)
+    /// of zero, and sticks when its slip is within it too. A rest state (the answer at the least
+    /// energy, the same slots with the same modes before the step, the answer's load the same
+    /// within round-off as the step before) keeps the load decided then: not solved again.
     #[cfg(feature = "fallback")]
     #[cold]
     #[inline(never)]
+    #[allow(clippy::type_complexity)]
     fn decide_load(
         &mut self,
-        slots: usize,
+        k: usize,
+        z: &[T; N],
         v_plus: &[[T; 3]; B],
-        loads: &mut [[T; 2]; MOST_SLOTS],
-        slips: &mut [T; MOST_SLOTS],
+        report: (&mut [[ContactMode; 4]; P], &mut [[T; 2]; P], &mut [[[T; 2]; 4]; P]),
     ) -> Result<(), StepError> {
+        let (modes, impulses, corner_loads) = report;
         let s = self.system.settings.base;
-        let tolerance = self.detector.rule(&self.lcp.factored).velocity_tolerance();
+        let rule = self.detector.rule(&self.lcp.factored);
         // Every index below is in range: said so (no panic path).
-        let slots = slots.min(MOST_SLOTS).min(N);
-        let off =
-            LoadContact { normal: [[T::zero(); 3]; B], tangent: [[T::zero(); 3]; B], carry: Carry::Nothing };
-        let mut contacts = [off; MOST_SLOTS];
+        let slots = k.min(MOST_SLOTS).min(N / 4);
+        let mut path = [[T::zero(); 2]; MOST_SLOTS];
+        let mut before = [ContactMode::Separated; MOST_SLOTS];
+        let mut scale = T::zero();
+        for j in 0..slots {
+            let rows = slot_rows(k, j);
+            path[j] = [z[rows[0]], z[rows[1]] - z[rows[2]]];
+            scale = max(scale, max(path[j][0].abs_exact(), path[j][1].abs_exact()));
+            let (p, c) = self.lcp.slots[j];
+            before[j] = self.modes[p.min(P - 1)][c.min(3)];
+        }
+        // A rest state keeps the load decided the step before: the answer at the least energy, the
+        // same slots with the same modes before the step, the answer's load the same within
+        // round-off.
+        let round_off = T::of(64.0 * N as f64) * T::EPS * scale;
+        let memory = &self.load_memory;
+        let kept = rule.at_least_energy(v_plus)
+            && (0..MOST_SLOTS).all(|j| {
+                j >= slots
+                    || (memory.slots[j] == self.lcp.slots[j]
+                        && memory.before[j] == before[j]
+                        && (path[j][0] - memory.path[j][0]).abs_exact() <= round_off
+                        && (path[j][1] - memory.path[j][1]).abs_exact() <= round_off)
+            })
+            && memory.count == slots;
+        let (load, after) = if kept {
+            (memory.load, memory.after)
+        } else {
+            let tolerance = rule.velocity_tolerance();
+            let off =
+                LoadContact { normal: [[T::zero(); 3]; B], tangent: [[T::zero(); 3]; B], carry: Carry::Nothing };
+            let mut contacts = [off; MOST_SLOTS];
+            let mut slips = [T::zero(); MOST_SLOTS];
+            for j in 0..slots {
+                let (p, c) = self.lcp.slots[j];
+                let (p, c) = (p.min(P - 1), c.min(3));
+                let f = &self.frames[p][c];
+                let normal = f.dense_row::<B>(f.normal);
+                let mut normal_velocity = normal_bias(f.gap, s.step, s.gravity, f.gap_round_off);
+                for (row, v) in normal.iter().zip(v_plus) {
+                    normal_velocity += row[0] * v[0] + row[1] * v[1] + row[2] * v[2];
+                }
+                slips[j] = slip(f, v_plus);
+                if path[j][0] <= self.impulse_floor && normal_velocity > tolerance {
+                    continue;
+                }
+                let pair = &self.system.pairs[p];
+                let mu = if before[j].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
+                let carry = if slips[j].abs_exact() <= tolerance {
+                    Carry::Sticking { mu }
+                } else {
+                    Carry::Sliding { friction_per_normal: if slips[j] > T::zero() { mu } else { -mu } }
+                };
+                contacts[j] = LoadContact { normal, tangent: f.dense_row::<B>(f.tangent), carry };
+            }
+            let (load, how) = least_norm(&contacts, &path, &mut self.load_basis).map_err(StepError::Solver)?;
+            if how == LoadPath::Determinate {
+                return Ok(());
+            }
+            let mut after = [ContactMode::Separated; MOST_SLOTS];
+            for j in 0..slots {
+                if load[j][0] > self.impulse_floor {
+                    after[j] = ContactMode::from_slip(slips[j], s.stick_speed);
+                }
+            }
+            (load, after)
+        };
+        self.stats.load_decided_steps += 1;
+        let mut remembered = [(usize::MAX, usize::MAX); MOST_SLOTS];
+        for (r, &slot) in remembered.iter_mut().zip(&self.lcp.slots).take(slots) {
+            *r = slot;
+        }
+        self.load_memory = LoadMemory { slots: remembered, count: slots, before, path, load, after };
+        // The report again, from the load.
+        *impulses = [[T::zero(); 2]; P];
+        let per_second = self.system.bodies[0].mass / s.step;
         for j in 0..slots {
             let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
-            let normal = f.dense_row::<B>(f.normal);
-            let mut normal_velocity = normal_bias(f.gap, s.step, s.gravity, f.gap_round_off);
-            for (row, v) in normal.iter().zip(v_plus) {
-                normal_velocity += row[0] * v[0] + row[1] * v[1] + row[2] * v[2];
-            }
-            if loads[j][0] <= self.impulse_floor && normal_velocity > tolerance {
-                continue;
-            }
-            let slip = slip(f, v_plus);
-            let pair = &self.system.pairs[p];
-            let mu = if self.modes[p][c].is_sliding() { pair.mu_kinetic } else { pair.mu_static };
-            let carry = if slip.abs_exact() <= tolerance {
-                Carry::Sticking { mu }
-            } else {
-                Carry::Sliding { friction_per_normal: if slip > T::zero() { mu } else { -mu } }
-            };
-            contacts[j] = LoadContact { normal, tangent: f.dense_row::<B>(f.tangent), carry };
-            if loads[j][0] <= self.impulse_floor {
-                slips[j] = slip;
-            }
-        }
-        let (load, how) = least_norm(&contacts, loads, &mut self.load_basis).map_err(StepError::Solver)?;
-        if how != LoadPath::Determinate {
-            self.stats.load_decided_steps += 1;
-            *loads = load;
+            let [pn, pf] = load[j];
+            modes[p][c] = after[j];
+            corner_loads[p][c] = [pn * per_second, pf * per_second];
+            let sign = if c >= 2 { -T::one() } else { T::one() };
+            impulses[p][0] += sign * (pn * f.normal[0] + pf * f.tangent[0]);
+            impulses[p][1] += sign * (pn * f.normal[1] + pf * f.tangent[1]);
         }
         Ok(())
     }
@@ -822,45 +852,43 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 return Err(StepError::NonFinite);
             }
         }
-        // Each slot's load `(p_n, p_f)` and, where it carries load, its slip.
-        let slots = k.min(MOST_SLOTS);
-        let mut loads = [[T::zero(); 2]; MOST_SLOTS];
-        let mut slips = [T::zero(); MOST_SLOTS];
-        for j in 0..slots {
-            let rows = slot_rows(k, j);
-            loads[j] = [z[rows[0]], z[rows[1]] - z[rows[2]]];
-            if loads[j][0] > self.impulse_floor {
-                let (p, c) = self.lcp.slots[j];
-                // `-c_+d^T v+` as the solve formed it, else from the frame.
-                slips[j] =
-                    if from_solve { -along[j] } else { slip(&self.frames[p.min(P - 1)][c.min(3)], &v_plus) };
-            }
-        }
-        // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
-        // norm"): two sticking corners of one pair, or more unknowns than the bodies' coordinates.
-        #[cfg(feature = "fallback")]
-        if self.load_open(slots, &loads, &slips, s.stick_speed) {
-            self.decide_load(slots, &v_plus, &mut loads, &mut slips)?;
-        }
-        // Modes after the step, interface forces, the next warm patterns.
+        // Modes after the step, interface forces, each corner's load, the next warm patterns.
         let mut modes = [[ContactMode::Separated; 4]; P];
         let mut patterns = [[0; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
         let mut corner_loads = [[[T::zero(); 2]; 4]; P];
+        let per_second = m_ref / h;
+        // Whether the load may be open (`docs/formulation.md`, "The load: the least norm"): two
+        // sticking corners of one pair carrying load, or more unknowns (two per sticking slot,
+        // one per sliding one) than the bodies' `3B` coordinates.
+        #[cfg(feature = "fallback")]
+        let (mut open, mut unknowns, mut sticking_pair) = (false, 0, usize::MAX);
         // Each slot's pattern ([`slot_pattern`]) from the normals', frictions' and sigmas' bits,
         // shifted out slot by slot.
         let (mut normals, mut frictions, mut sigmas) = (mask, mask >> k.min(8), mask >> (3 * k.min(8)));
-        for j in 0..slots {
+        for j in 0..k {
             let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
+            let rows = slot_rows(k, j);
             patterns[p][c] = (normals & 1 | (frictions & 3) << 1 | (sigmas & 1) << 3) as Pattern;
             (normals, frictions, sigmas) = (normals >> 1, frictions >> 2, sigmas >> 1);
-            let [pn, pf] = loads[j];
+            let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
-                modes[p][c] = ContactMode::from_slip(slips[j], s.stick_speed);
+                // `-c_+d^T v+` as the solve formed it, else from the frame.
+                let slip = if from_solve { -along[j.min(MOST_SLOTS - 1)] } else { slip(f, &v_plus) };
+                let mode = ContactMode::from_slip(slip, s.stick_speed);
+                modes[p][c] = mode;
+                #[cfg(feature = "fallback")]
+                if mode == ContactMode::Sticking {
+                    unknowns += 2;
+                    open |= sticking_pair == p;
+                    sticking_pair = p;
+                } else {
+                    unknowns += 1;
+                }
             }
-            corner_loads[p][c] = [pn * m_ref / h, pf * m_ref / h];
+            corner_loads[p][c] = [pn * per_second, pf * per_second];
             // On the upper body: + for its corners, - for the lower body's (negated: the bits of
             // `+-1` times it, a product by `+-1` being exact).
             let impulse = &mut impulses[p];
@@ -870,6 +898,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             }
             impulse[0] += along[0];
             impulse[1] += along[1];
+        }
+        #[cfg(feature = "fallback")]
+        if open || unknowns > 3 * B {
+            self.decide_load(k, &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;
         }
         let mut interface_forces = [[T::zero(); 2]; P];
         for p in 0..P {
@@ -949,6 +981,34 @@ fn validate<T: Real, const B: usize, const P: usize>(
         return Err(ParamError::NonFiniteState);
     }
     Ok(())
+}
+
+/// The last load the rule decided ([`Stepper::decide_load`]): its slots and their modes before
+/// the step, the path's load, the decided one and the modes it gave.
+#[cfg(feature = "fallback")]
+#[derive(Debug, Clone, Copy)]
+struct LoadMemory<T> {
+    slots: [(usize, usize); MOST_SLOTS],
+    count: usize,
+    before: [ContactMode; MOST_SLOTS],
+    path: [[T; 2]; MOST_SLOTS],
+    load: [[T; 2]; MOST_SLOTS],
+    after: [ContactMode; MOST_SLOTS],
+}
+
+#[cfg(feature = "fallback")]
+impl<T: Real> LoadMemory<T> {
+    /// No load decided yet: matches no step.
+    fn none() -> Self {
+        Self {
+            slots: [(usize::MAX, usize::MAX); MOST_SLOTS],
+            count: usize::MAX,
+            before: [ContactMode::Separated; MOST_SLOTS],
+            path: [[T::zero(); 2]; MOST_SLOTS],
+            load: [[T::zero(); 2]; MOST_SLOTS],
+            after: [ContactMode::Separated; MOST_SLOTS],
+        }
+    }
 }
 
 /// Slot `j`'s variables among `k` slots: `p_n`, `p_+d`, `p_-d`, `sigma` (the bits of a

@@ -157,12 +157,22 @@ impl Detector {
     /// into a speed, and the speed scale `S`, the fastest support's speed and the free velocity's
     /// (`omega` times `D/2`), as the reference's.
     pub(crate) fn rule<T: Real, const K: usize>(inputs: &StepInputs<'_, T, K>, size: T) -> Rule<T, 1> {
-        let m_inv = &inputs.m_inv;
+        Self::rule_of(&inputs.m_inv, &inputs.v_free, &inputs.support_velocity, size)
+    }
+
+    /// [`Self::rule`] from its parts: `diag(M^-1)` per unit mass, the free velocity and the
+    /// supports' velocities over the step.
+    pub(crate) fn rule_of<T: Real, const K: usize>(
+        m_inv: &[T; 3],
+        v_free: &[T; 3],
+        support_velocity: &[[T; 2]; K],
+        size: T,
+    ) -> Rule<T, 1> {
         let metric = [T::one() / m_inv[0], T::one() / m_inv[1], T::one() / m_inv[2]];
         let reach = [T::one(), T::one(), size * T::of(0.5)];
-        let v = &inputs.v_free;
+        let v = v_free;
         let mut speed = max(max(v[0].abs_exact(), v[1].abs_exact()), reach[2] * v[2].abs_exact());
-        for u in &inputs.support_velocity {
+        for u in support_velocity {
             speed = max(speed, max(u[0].abs_exact(), u[1].abs_exact()));
         }
         Rule::new([metric], [reach], speed)

@@ -581,34 +581,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
 
         // Impulses (z is per unit mass) and modes after the step.
-        #[cfg_attr(not(feature = "fallback"), allow(unused_mut))]
-        let (mut normal, mut friction, mut pn) = if full_layout_used {
+        let (normal, friction, pn) = if full_layout_used {
             impulses(&self.full, &z_full, self.mass)
         } else {
             impulses(&self.layout, &z, self.mass)
         };
         let impulse_floor = self.impulse_floor;
-        // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
-        // norm"): on a model of three or more contacts, every step looks; on one of two, a step
-        // whose contacts both carry load and stick (four unknowns in three coordinates).
-        #[cfg(feature = "fallback")]
-        {
-            let mut unknowns = 0;
-            for i in 0..K {
-                if pn[i] > impulse_floor {
-                    unknowns += if slips[i].abs_exact() <= s.stick_speed { 2 } else { 1 };
-                }
-            }
-            if (RULE && K >= 3) || unknowns > 3 {
-                let rows: &[T] = if full_layout_used { &w_full } else { &w };
-                let tolerance = Detector::rule(&inputs, self.size).velocity_tolerance();
-                let mu = inputs.mu;
-                self.decide_load(&mu, tolerance, rows, &slips, &mut normal, &mut friction)?;
-                for i in 0..K {
-                    pn[i] = normal[i] / self.mass;
-                }
-            }
-        }
         let mut contacts = [ContactReport {
             mode: ContactMode::Separated,
             previous_mode: ContactMode::Separated,
@@ -632,6 +610,14 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             };
             self.modes[i] = mode;
         }
+        // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
+        // norm"): on a model of three or more contacts every step looks; on one of two, a step
+        // whose contacts both carry load and stick (four unknowns in three coordinates).
+        #[cfg(feature = "fallback")]
+        if (RULE && K >= 3) || (K == 2 && contacts.iter().all(|c| c.mode == ContactMode::Sticking)) {
+            let rows: &[T] = if full_layout_used { &w_full } else { &w };
+            self.decide_load(&support_velocity, rows, &slips, &mut contacts)?;
+        }
         self.state = state;
         self.carry = carry;
         self.time = time;
@@ -651,43 +637,54 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     }
 
     /// The load of least 2-norm with this step's motion (`crate::load`), in place of the path's
-    /// `normal` and `friction` impulses: a contact touches when it carries load or its normal row
-    /// in `w` (its normal velocity) is within `tolerance` (the rule's velocity tolerance) of
-    /// zero, and sticks when its slip is within it too; `mu` the step's coefficients.
+    /// impulses and modes in `contacts` (and the modes kept for the next step): a contact touches
+    /// when it carries load or its normal row in `w` (its normal velocity) is within the rule's
+    /// velocity tolerance of zero, and sticks when its `slips` is within it too. Called before the
+    /// state is advanced (the rule's speed scale is from the step's free velocity).
     #[cfg(feature = "fallback")]
     #[cold]
     #[inline(never)]
     fn decide_load(
         &mut self,
-        mu: &[T; K],
-        tolerance: T,
+        support_velocity: &[[T; 2]; K],
         w: &[T],
         slips: &[T; K],
-        normal: &mut [T; K],
-        friction: &mut [T; K],
+        contacts: &mut [ContactReport<T>; K],
     ) -> Result<(), StepError> {
-        let mut contacts =
+        let v_free =
+            [self.state.vx, self.state.vy - self.settings.step * self.settings.gravity, self.state.omega];
+        let tolerance =
+            Detector::rule_of(&self.m_inv, &v_free, support_velocity, self.size).velocity_tolerance();
+        let mut loads =
             [LoadContact { normal: [[T::zero(); 3]], tangent: [[T::zero(); 3]], carry: Carry::Nothing }; K];
         let mut path = [[T::zero(); 2]; K];
         for i in 0..K {
-            let f = &self.frames[i];
+            let (f, c, report) = (&self.frames[i], &self.contacts[i], &contacts[i]);
+            path[i] = [report.normal_impulse, report.friction_impulse];
             let normal_velocity = w.get(i).copied().unwrap_or(T::zero());
-            if !f.active || (normal[i] <= self.impulse_floor * self.mass && normal_velocity > tolerance) {
+            if !f.active || (report.mode == ContactMode::Separated && normal_velocity > tolerance) {
                 continue;
             }
+            let mu = if report.previous_mode.is_sliding() { c.mu_kinetic } else { c.mu_static };
             let carry = if slips[i].abs_exact() <= tolerance {
-                Carry::Sticking { mu: mu[i] }
+                Carry::Sticking { mu }
             } else {
-                Carry::Sliding { friction_per_normal: if slips[i] > T::zero() { mu[i] } else { -mu[i] } }
+                Carry::Sliding { friction_per_normal: if slips[i] > T::zero() { mu } else { -mu } }
             };
-            contacts[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
-            path[i] = [normal[i], friction[i]];
+            loads[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
         }
-        let (load, how) = least_norm(&contacts, &path, &mut self.load_basis).map_err(StepError::Solver)?;
+        let (load, how) = least_norm(&loads, &path, &mut self.load_basis).map_err(StepError::Solver)?;
         if how != LoadPath::Determinate {
             self.stats.load_decided_steps += 1;
             for i in 0..K {
-                (normal[i], friction[i]) = (load[i][0], load[i][1]);
+                let report = &mut contacts[i];
+                (report.normal_impulse, report.friction_impulse) = (load[i][0], load[i][1]);
+                report.mode = if self.frames[i].active && load[i][0] > self.impulse_floor * self.mass {
+                    ContactMode::from_slip(slips[i], self.settings.stick_speed)
+                } else {
+                    ContactMode::Separated
+                };
+                self.modes[i] = report.mode;
             }
         }
         Ok(())
