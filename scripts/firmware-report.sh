@@ -32,7 +32,9 @@ done
   echo "Instructions per step (slow scene v = 0.1 m/s and fast v = 5 m/s, x1 = -0.35 m, f32 6x6 with the 8x8"
   echo "fallback, through the rig loop; on the M4F and M33F also block-on-block and the 3-block stack at their"
   echo "defaults, f32, stepped directly, and the stack through the stack rig (stack-rig-held: 0.2 s at the default"
-  echo "overhang; stack-rig-fell: overhang 1.02); QEMU -icount shift=0, SysTick ticks converted with the calibration loop;"
+  echo "overhang; stack-rig-fell: overhang 1.02), and the tablecloth at mu = 2 (tablecloth-mu2) with its steps the rule"
+  echo "flagged as possibly having several motions timed apart (tablecloth-mu2-flagged: the worst flagged multibody step);"
+  echo "QEMU -icount shift=0, SysTick ticks converted with the calibration loop;"
   echo "stack peak: the deepest the stack grew in the scene, painted and read back, firmware/src/stack_peak.rs):"
   echo
   echo "| core (QEMU machine) | scene | steps | instructions/step (mean) | worst step (instructions) | stack peak (B) |"

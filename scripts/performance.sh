@@ -128,6 +128,10 @@ for scene, title in MULTIBODY:
                  "(the M4F firmware runs the scenes of several bodies: see firmware/Cargo.toml)")
     print(f"| Cortex-M4F, {title} (f32, defaults): instructions per step, mean / worst | "
           f"{mean_worst(timings['qemu-m4f'][scene])} |")
+if "tablecloth-mu2-flagged" in timings["qemu-m4f"]:
+    print("| Cortex-M4F, the tablecloth at `mu = 2` (f32): its "
+          f"{n(timings['qemu-m4f']['tablecloth-mu2-flagged']['steps'])} flagged steps, instructions per step, "
+          f"mean / worst | {mean_worst(timings['qemu-m4f']['tablecloth-mu2-flagged'])} |")
 flash, ram = flash_ram("rig-m4f-6x6-nolog")
 print(f"| flash / static RAM of `rig-m4f-6x6-nolog` (the smallest rig build) | {n(flash)} B / {n(ram)} B |")
 flash, ram = flash_ram("rig-m4f-link")

@@ -96,6 +96,13 @@ impl<T: Real, const B: usize> Rule<T, B> {
         self.energy(velocity) <= self.energy_tie
     }
 
+    /// `true` when `velocity`'s energy is below `energy` beyond the tie (a descent's step).
+    #[must_use]
+    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    pub(crate) fn lowers(&self, velocity: &[[T; 3]; B], energy: T) -> bool {
+        self.energy(velocity) < energy - self.energy_tie
+    }
+
     /// `true` when `a` and `b` move the bodies differently: a coordinate (times its reach)
     /// differs by more than the velocity tolerance.
     #[must_use]

@@ -8,16 +8,18 @@
 //! see firmware/Cargo.toml) also block-on-block, the 3-block stack and disc-on-board at their defaults
 //! in f32 through the registry (`SceneParams::build_multibody`): outcome, steps, the checksum of every
 //! step's states of all bodies in body order (`StepReport::add_to`) and the SysTick ticks of their
-//! steps; then the stack through the stack rig (`StackRig`, headless), held for 0.2 s at the
+//! steps, and so the tablecloth at `mu = 2` with the ticks of its steps the rule flagged apart
+//! (`tablecloth-mu2-flagged`: the rule's search, `docs/formulation.md`, "Several bodies: the
+//! rule"); then the stack through the stack rig (`StackRig`, headless), held for 0.2 s at the
 //! default overhang and falling at 1.02: outcome, checksum, each interface's lights at the end and
 //! the ticks. Exit status: 0 when the LCP was solved and every scene ended as physics says
 //! (balanced, fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc
-//! rolled; the stack rig held with every interface sticking and fell with every one tipping).
+//! rolled, the tablecloth stayed; the stack rig held with every interface sticking and fell with every one tipping).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
 #[cfg(feature = "qemu-multibody")]
-use meterstick_core::multibody::scenes::{MultibodyScene, StackParams};
+use meterstick_core::multibody::scenes::{MultibodyScene, StackParams, TableclothParams};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::scene::{
     LcpLayout, MeterStickParams, Outcome, Scene, SceneKind, SceneParams, SceneVisitor,
@@ -239,6 +241,9 @@ fn check_other_scenes() -> i32 {
 struct CheckMultibody {
     name: &'static str,
     expected: Outcome,
+    /// Also time the steps the rule flagged (`Stats::rule_checked_steps`) apart and print them
+    /// as a scene of their own, `<name>-flagged timing ..`.
+    flagged: bool,
 }
 
 #[cfg(feature = "qemu-multibody")]
@@ -250,7 +255,9 @@ impl MultibodyVisitor for CheckMultibody {
     fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, mut scene: S) -> i32 {
         let mut checksum = Checksum::new();
         let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
+        let (mut flagged, mut flagged_ticks, mut flagged_worst) = (0u64, 0u64, 0u32);
         loop {
+            let checked = scene.stats().rule_checked_steps;
             let t0 = systick::now();
             let report = scene.step();
             let used = systick::elapsed(t0, systick::now());
@@ -258,6 +265,11 @@ impl MultibodyVisitor for CheckMultibody {
             steps += 1;
             ticks += u64::from(used);
             worst = worst.max(used);
+            if scene.stats().rule_checked_steps > checked {
+                flagged += 1;
+                flagged_ticks += u64::from(used);
+                flagged_worst = flagged_worst.max(used);
+            }
             report.add_to(&mut checksum);
         }
         let outcome = scene.outcome().unwrap_or(Outcome::Unfinished);
@@ -279,6 +291,15 @@ impl MultibodyVisitor for CheckMultibody {
             worst,
             steps
         );
+        if self.flagged {
+            defmt::println!(
+                "{=str}-flagged timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
+                self.name,
+                flagged_ticks,
+                flagged_worst,
+                flagged
+            );
+        }
         i32::from(outcome != self.expected)
     }
 }
@@ -289,7 +310,7 @@ impl MultibodyVisitor for CheckMultibody {
 fn check_multibody_scenes() -> i32 {
     let mut failures = 0;
     for kind in [SceneKind::BlockOnBlock, SceneKind::Stack, SceneKind::DiscOnBoard] {
-        let check = CheckMultibody { name: kind.name(), expected: expected(kind) };
+        let check = CheckMultibody { name: kind.name(), expected: expected(kind), flagged: false };
         stack_peak::paint();
         failures += match SceneParams::defaults(kind).build_multibody(Precision::F32, check) {
             Ok(failed) => failed,
@@ -300,6 +321,24 @@ fn check_multibody_scenes() -> i32 {
         };
         print_stack_peak(kind.name());
     }
+    // The tablecloth at `mu = 2`, whose steps the rule flags (the block tipping about its corner
+    // on the board): its flagged steps timed apart (`tablecloth-mu2-flagged`).
+    let name = "tablecloth-mu2";
+    let params = SceneParams::Tablecloth(TableclothParams {
+        mu_static: 2.0,
+        mu_kinetic: 2.0,
+        ..TableclothParams::default()
+    });
+    let check = CheckMultibody { name, expected: Outcome::Stayed, flagged: true };
+    stack_peak::paint();
+    failures += match params.build_multibody(Precision::F32, check) {
+        Ok(failed) => failed,
+        Err(e) => {
+            defmt::println!("{=str}: {}", name, e);
+            1
+        }
+    };
+    print_stack_peak(name);
     failures
 }
 

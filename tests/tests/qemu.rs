@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams};
+use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams, TableclothParams};
 use meterstick_core::planar::Checksum;
 use meterstick_core::scene::{
     Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams,
@@ -149,8 +149,8 @@ impl MultibodyVisitor for HostMultibody {
     }
 }
 
-/// Block-on-block, the 3-block stack and disc-on-board at their defaults (firmware/src/qemu.rs,
-/// `qemu-multibody`):
+/// Block-on-block, the 3-block stack and disc-on-board at their defaults, and the tablecloth at
+/// `mu = 2` (firmware/src/qemu.rs, `qemu-multibody`):
 /// the outcome physics says (`docs/scenes.md`), and outcome, steps and checksum equal to the
 /// host's f32 run (bit-identical IEEE f32 arithmetic); a timing line for every step.
 fn check_multibody_scenes(run: &FirmwareRun) {
@@ -171,6 +171,20 @@ fn check_multibody_scenes(run: &FirmwareRun) {
             run.lines.iter().find(|l| l.starts_with(&format!("{name} timing "))).expect("timing line");
         assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
     }
+    // The tablecloth at `mu = 2`, whose flagged steps are timed apart.
+    let params =
+        SceneParams::Tablecloth(TableclothParams { mu_static: 2.0, mu_kinetic: 2.0, ..Default::default() });
+    let (outcome, steps, sum) = params.build_multibody(Precision::F32, HostMultibody).unwrap();
+    assert_eq!(outcome, Outcome::Stayed, "tablecloth-mu2 on the host");
+    let line = run.lines.iter().find(|l| l.starts_with("tablecloth-mu2 outcome=")).expect("scene line");
+    assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+    assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
+    let flagged = run
+        .lines
+        .iter()
+        .find(|l| l.starts_with("tablecloth-mu2-flagged timing "))
+        .expect("flagged timing line");
+    assert!(!flagged.ends_with(" steps=0"), "{flagged}: no step flagged");
 }
 
 /// The stack rig (firmware/src/qemu.rs, `qemu-multibody`: `StackRig` on headless pins): held for

@@ -578,15 +578,9 @@ impl<T: Real, const N: usize> Lemke<T, N> {
                     });
                 }
             }
-            if let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) {
-                eliminations = elim;
-                match tab.run(self.max_pivots) {
-                    Ok(pivots) => match self.finish(lcp, &scales, &tab, pivots, elim, true, false) {
-                        Ok(sol) => return Ok(sol),
-                        Err(e) => spent = e.pivots(),
-                    },
-                    Err(e) => spent = e.pivots(),
-                }
+            match self.run_from_tableau(lcp, &scales, warm, scale) {
+                Ok(sol) => return Ok(sol),
+                Err((pivots, elim)) => (spent, eliminations) = (pivots, elim),
             }
         }
         let mut tab = Tableau::cold(lcp);
@@ -626,6 +620,43 @@ impl<T: Real, const N: usize> Lemke<T, N> {
             Err(LcpError::Ray { pivots }) => Err(LcpError::Ray { pivots: spent + pivots }),
             Err(LcpError::MaxPivots { pivots }) => Err(LcpError::MaxPivots { pivots: spent + pivots }),
             Err(e) => Err(e),
+        }
+    }
+
+    /// [`Self::solve_from_basis`] without the cold start and its regularised retry: Lemke's method
+    /// from `warm`'s tableau only, its answer verified. For a caller that has already run the cold
+    /// start on `lcp` and tries several bases near its answer (the multibody stepper's retries):
+    /// each such basis costs one run from its tableau, not the same cold run again. `None` when
+    /// `warm` is the trivial basis (its tableau is the cold start's), the data are not finite, the
+    /// basis is singular or the run fails or does not verify.
+    #[inline(never)] // its tableau in a frame of its own, not in its caller's
+    pub(crate) fn solve_from_tableau(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Option<LcpSolution<T, N>> {
+        let scales = lcp.scales()?;
+        if warm == Basis::all_w() {
+            return None;
+        }
+        self.run_from_tableau(lcp, &scales, warm, max(scales.m_norm, T::TINY)).ok()
+    }
+
+    /// Lemke's method from the tableau of `warm` (not the trivial basis), its answer verified; on
+    /// failure the pivots spent and the eliminations that set the tableau up (none when `warm` is
+    /// singular). Inlined: in [`Self::solve_warm_inner`] its tableau shares the frame of the cold
+    /// start's (a call would stack the two frames).
+    #[allow(clippy::inline_always)] // one frame for the warm and the cold tableaux
+    #[inline(always)]
+    fn run_from_tableau(
+        &self,
+        lcp: &Lcp<T, N>,
+        scales: &Scales<T>,
+        warm: Basis<N>,
+        scale: T,
+    ) -> Result<LcpSolution<T, N>, (u32, u32)> {
+        let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) else { return Err((0, 0)) };
+        match tab.run(self.max_pivots) {
+            Ok(pivots) => {
+                self.finish(lcp, scales, &tab, pivots, elim, true, false).map_err(|e| (e.pivots(), elim))
+            }
+            Err(e) => Err((e.pivots(), elim)),
         }
     }
 

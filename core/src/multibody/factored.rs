@@ -455,6 +455,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         negated_if(row.dot_scaled(col), minus_r ^ minus_c)
     }
 
+    /// Slot `j`'s pair.
+    pub(super) fn pair(&self, j: usize) -> u8 {
+        self.pair[j.min(N - 1)]
+    }
+
     /// Slot `j`'s friction coefficient this step.
     pub(super) fn mu(&self, j: usize) -> T {
         self.mu[j.min(N - 1)]

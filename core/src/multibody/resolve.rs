@@ -1,9 +1,10 @@
 //! The rule of [`crate::rule`] on a multibody step (`docs/formulation.md`, "One answer: the
 //! rule"): which steps may have several answers that move the bodies differently ([`Detector`]),
-//! and on those every solution the factored form reaches over the active contacts' patterns, the
-//! rule's choice kept ([`resolve`]). The single body's one-contact test and its threshold
-//! (`core/src/planar/resolve.rs`) for each contact with the others' normals held ([`flags`]), in
-//! the bodies' `3B` coordinates; the at-rest shortcut and the enumeration as for one body.
+//! and on those the verified solutions a descent over neighbouring bases reaches from the path's
+//! answer, the rule's choice kept ([`resolve`], the reference's search). The single body's
+//! one-contact test and its threshold (`core/src/planar/resolve.rs`) for each contact with the
+//! others' normals held ([`flags`]), in the bodies' `3B` coordinates; the at-rest shortcut as for
+//! one body.
 //!
 //! The bodies' velocities after a step are `v~ + M~ J^T z`; two solutions move the bodies
 //! differently only where the contacts do not decide `z`'s effect on them. Two sticking corners of
@@ -18,17 +19,17 @@
 use super::factored::{ContactBlocks, Factored};
 use super::geometry::Shape;
 use super::stepper::Stats;
-use super::stepper::{PATTERNS, pattern_bits};
+use super::stepper::{PATTERNS, pattern_bits, slot_pattern};
 use crate::planar::Body;
 use crate::planar::resolve::COUPLING;
 use crate::real::{Real, max};
 use crate::rule::{Answer, Choice, Resolution, Rule};
 
-/// At most this many active contacts are enumerated (`ENUMERATED.len()^4 = 2401` bases, the
-/// worst step's work); a flagged step with more keeps its path's answer.
+/// At most this many active contacts are searched ([`resolve`]); a flagged step with more keeps
+/// its path's answer.
 pub(super) const MAX_CONTACTS: usize = 4;
 
-/// The patterns a contact takes in the enumeration: the stepper's [`PATTERNS`] without sticking
+/// The patterns a contact takes in the descent: the stepper's [`PATTERNS`] without sticking
 /// along `-d` (the factored solve turns a sticking contact's negative `p_+d` into `p_-d` itself: the
 /// same solution).
 const ENUMERATED: [u8; 7] =
@@ -222,13 +223,63 @@ impl Stats {
     }
 }
 
-/// Applies `rule` to the flagged step `f` whose path answered `v_plus`, `z` with the basis `mask`:
-/// every verified solution of the bases of the active contacts' [`ENUMERATED`] patterns (contact by
-/// contact, the first the fastest digit; `7^k` for `k <= MAX_CONTACTS`) is offered to the rule after
-/// the path's answer. When the rule takes another, `v_plus`, `z` and `mask` become it. No heap:
-/// two `z` arrays on the stack. The cost of a flagged step with four active contacts: 2,400 basis
-/// solves, 0.3 to 0.4 ms on the host; on a Cortex-M4F, at about 2,000 instructions a solve, some 5
-/// million instructions (50 ms at 100 MHz): such a step does not fit a 1 kHz real-time tick.
+/// Rounds of the descent ([`resolve`]): the reference's (`reference/src/multibody/step.rs`,
+/// `DESCENT_ROUNDS`).
+pub(super) const ROUNDS: usize = 8;
+
+/// The basis solves of [`resolve`] at worst on a step of `k <= MAX_CONTACTS` slots of which
+/// `pairs_of_slots` pairs of slots belong to one pair of bodies: [`ROUNDS`] rounds of `7 k`
+/// single changes and (once widened) `7 x 7` changes of each such pair of slots, and never more
+/// than the `7^k` bases of the patterns (no basis is solved twice).
+#[must_use]
+pub(super) const fn most_solves(k: usize, pairs_of_slots: usize) -> usize {
+    let n = ENUMERATED.len();
+    let rounds = ROUNDS * (n * k + n * n * pairs_of_slots);
+    let mut all = 1;
+    let mut j = 0;
+    while j < k {
+        all *= n;
+        j += 1;
+    }
+    if rounds < all { rounds } else { all }
+}
+
+/// Every slot's bit in [`changed_slots`].
+const ALL_SLOTS: u32 = (1 << MAX_CONTACTS) - 1;
+
+/// The slots (bits, among `k <= MAX_CONTACTS`) in which the bases `a` and `b` differ, each with
+/// `a`'s pattern one of [`ENUMERATED`]'s (bit `MAX_CONTACTS`: some slot's is not).
+fn changed_slots(a: u32, b: u32, k: usize) -> u32 {
+    let mut changed = 0;
+    for j in 0..k.min(MAX_CONTACTS) {
+        if pattern_bits(0b1111, k, j) & (a ^ b) != 0 {
+            changed |= 1 << j;
+            if !ENUMERATED.contains(&slot_pattern(a, k, j)) {
+                changed |= 1 << MAX_CONTACTS;
+            }
+        }
+    }
+    changed
+}
+
+/// Applies `rule` to the flagged step `f` whose path answered `v_plus`, `z` with the basis `mask`
+/// (at most [`MAX_CONTACTS`] active slots): a descent over neighbouring bases, as the reference's
+/// (`docs/formulation.md`, "Several bodies: the rule", 3). From the path's basis (the centre),
+/// each slot's pattern replaced in turn by each of [`ENUMERATED`]'s, every verified solution
+/// offered to the rule after the path's answer; while a round lowers the energy beyond the rule's
+/// tie, again from the rule's choice, at most [`ROUNDS`] rounds. When a round lowers nothing but
+/// the solutions offered move the bodies differently, the search is widened once: each two slots
+/// of one pair changed together too (an interface that starts or stops sliding changes both its
+/// corners), again while that lowers the energy. A basis that an earlier round solved (one slot,
+/// or once widened two slots of one pair, away from that round's centre) is not solved again.
+/// When the rule takes another answer, `v_plus`, `z` and `mask` become it. No heap: two `z`
+/// arrays and the rounds' centres on the stack.
+///
+/// **Cost** (a contract): at most [`most_solves`]`(k, pairs)` basis solves, `pairs` the pairs of
+/// slots that share a pair of bodies: on two interfaces of two corners (block-on-block, the
+/// tablecloth) `8 (28 + 2 x 49) = 1,008` at worst, where every basis of the patterns is `7^4 =
+/// 2,401`; a flagged step with one motion stops after its first round (at most `7 k`, 28 solves),
+/// an ambiguous one widens once (at most `2 x 49` more a round).
 #[cold] // only flagged steps come here: out of the stepper's determinate path
 #[inline(never)]
 pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
@@ -248,33 +299,92 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
     let mut best: Option<([[T; 3]; B], u32)> = None;
     let mut best_z = [T::zero(); N];
     let (mut found, mut w) = ([T::zero(); N], [T::zero(); N]);
-    let count = ENUMERATED.len().pow(k as u32);
-    for code in 0..count {
-        let mut basis = 0u32;
-        let mut digits = code;
-        for j in 0..k {
-            let pattern = ENUMERATED[digits % ENUMERATED.len()];
-            digits /= ENUMERATED.len();
-            basis |= pattern_bits(pattern, k, j);
-        }
-        if basis == *mask {
-            continue;
-        }
-        if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w)) {
-            if choice.offer(code, Answer::of(a.v_plus, &found)) {
-                best = Some((a.v_plus, a.mask));
-                best_z = found;
+    let same_pair = |a: u32, b: u32| f.pair(a as usize) == f.pair(b as usize);
+    // Each round's centre and whether it was widened: a round solved the bases one slot (or,
+    // widened, two slots of one pair) away from its centre, each changed slot to one of
+    // [`ENUMERATED`]'s patterns.
+    let mut centres = [(0u32, false); ROUNDS];
+    let (mut centre, mut centre_v) = (*mask, *v_plus);
+    let mut widened = false;
+    let (mut offers, mut solves) = (0usize, 0usize);
+    for round in 0..ROUNDS {
+        centres[round] = (centre, widened);
+        let energy = rule.energy(&centre_v);
+        let earlier = &centres[..round];
+        let mut try_basis = |basis: u32| {
+            let solved_before = basis == centre
+                || earlier.iter().any(|&(c, wide)| {
+                    let changed = changed_slots(basis, c, k);
+                    changed.count_ones() <= 1
+                        || wide && changed.count_ones() == 2 && changed >> MAX_CONTACTS == 0 && {
+                            let a = changed.trailing_zeros();
+                            same_pair(a, (changed & (changed - 1)).trailing_zeros())
+                        }
+                });
+            if solved_before {
+                return;
             }
-            // The next basis is solved into a zero `z` (a declined one leaves it zero).
-            found = [T::zero(); N];
+            solves += 1;
+            if let Ok(a) = f.solve_basis(basis, tolerance, blocks, &mut found, Some(&mut w)) {
+                if choice.offer(offers, Answer::of(a.v_plus, &found)) {
+                    best = Some((a.v_plus, a.mask));
+                    best_z = found;
+                }
+                offers += 1;
+                // The next basis is solved into a zero `z` (a declined one leaves it zero).
+                found = [T::zero(); N];
+            }
+        };
+        for j in 0..k {
+            let clear = !pattern_bits(0b1111, k, j);
+            for pattern in ENUMERATED {
+                try_basis(centre & clear | pattern_bits(pattern, k, j));
+            }
+        }
+        if widened {
+            for a in 0..k {
+                for b in a + 1..k {
+                    if !same_pair(a as u32, b as u32) {
+                        continue;
+                    }
+                    let clear = !(pattern_bits(0b1111, k, a) | pattern_bits(0b1111, k, b));
+                    for first in ENUMERATED {
+                        for second in ENUMERATED {
+                            let basis =
+                                centre & clear | pattern_bits(first, k, a) | pattern_bits(second, k, b);
+                            // Both slots changed: one alone is a single change, made above.
+                            if changed_slots(basis, centre, k) & ALL_SLOTS == 1 << a | 1 << b {
+                                try_basis(basis);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        match best {
+            Some((v, m)) if rule.lowers(&v, energy) => (centre, centre_v) = (m, v),
+            _ if !widened && choice.ambiguous() => widened = true,
+            _ => break,
         }
     }
+    debug_assert!(solves <= most_solves(k, pairs_of_slots(f, k)), "{solves} solves");
     if choice.chosen().is_some()
         && let Some((v, m)) = best
     {
         (*v_plus, *z, *mask) = (v, best_z, m);
     }
     choice.resolution()
+}
+
+/// The pairs of `f`'s first `k` slots that belong to one pair of bodies.
+fn pairs_of_slots<T: Real, const B: usize, const N: usize>(f: &Factored<T, B, N>, k: usize) -> usize {
+    let mut pairs = 0;
+    for a in 0..k {
+        for b in a + 1..k {
+            pairs += usize::from(f.pair(a) == f.pair(b));
+        }
+    }
+    pairs
 }
 
 #[cfg(test)]

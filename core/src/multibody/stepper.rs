@@ -151,7 +151,8 @@ pub struct Stats {
     /// Steps the rule looked at (`docs/formulation.md`, "One answer: the rule"): not at rest and
     /// flagged as possibly having several answers that move the bodies differently.
     pub rule_checked_steps: u64,
-    /// Of those, steps whose solutions were enumerated (at most four active contacts).
+    /// Of those, steps whose solutions were searched (at most four active contacts: the descent
+    /// of `docs/formulation.md`, "Several bodies: the rule").
     pub rule_enumerated_steps: u64,
     /// Of those, steps whose LCP had solutions that move the bodies differently.
     pub ambiguous_steps: u64,
@@ -365,19 +366,28 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     }
 
     /// The retries after a failed solve (a ray, the pivot cap, an answer that failed
-    /// verification). The friction LCP is not copositive-plus, so Lemke's method may end in a ray
-    /// although a solution exists: the `sigma` of a contact without normal impulse is unbounded
-    /// above (its column touches only its friction rows), a ray of the solution set; and a long
-    /// pivot sequence in f32 can lose the precision its answer is verified to.
+    /// verification) of `lcp` from the warm basis `warm`, which has run Lemke's method from
+    /// `warm`'s tableau, then from the cold start and its regularised retry
+    /// ([`Lemke::solve_from_basis`]). The friction LCP is not copositive-plus, so Lemke's method
+    /// may end in a ray although a solution exists: the `sigma` of a contact without normal
+    /// impulse is unbounded above (its column touches only its friction rows), a ray of the
+    /// solution set; and a long pivot sequence in f32 can lose the precision its answer is
+    /// verified to.
     ///
-    /// 1. Each cone row's `q` is opened by `sqrt(eps) ||q||_inf`; the basis Lemke's method ends on
-    ///    there is solved on the exact problem (its direct solve, verified), or the opened answer
-    ///    counts if it verifies against the exact problem (`docs/formulation.md`, "Solving a
-    ///    multibody step", 2).
+    /// 1. Each cone row's `q` is opened by `sqrt(eps) ||q||_inf` and Lemke's method run cold there
+    ///    (with its regularised retry: another LCP, so another run); the basis it ends on is run
+    ///    from its tableau on the exact problem (verified), or the opened answer counts if it
+    ///    verifies against the exact problem (`docs/formulation.md`, "Solving a multibody step",
+    ///    4).
     /// 2. The warm basis with one active contact's pattern replaced by each of [`PATTERNS`] (the
     ///    eight of the reference's descent: sticking, sliding either way; touching without
-    ///    friction; separated; separated while slipping either way), each solved directly and then
-    ///    by Lemke's method from its tableau.
+    ///    friction; separated; separated while slipping either way), each by Lemke's method from
+    ///    its tableau only.
+    ///
+    /// **Cost** (a contract): no run is made twice. Bases whose run has been made on `lcp` are
+    /// skipped: `warm` itself (one pattern replaced by its own), the trivial basis (its tableau is
+    /// the cold start's) and the opened answer's. So at most two cold runs (the opened LCP's and
+    /// its regularised retry) and `1 + 8 k` runs from a tableau, each within the pivot cap.
     ///
     /// Every answer is verified against the exact problem; the first error is the step's when none
     /// answers.
@@ -395,18 +405,27 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         for j in 3 * k..4 * k {
             opened.q[j] += delta;
         }
+        // The bases whose run from the tableau (or, for the trivial one, the cold run) is made.
+        let made = [warm, Basis::all_w()];
+        let mut near_basis = None;
         if let Ok(near) = self.solver.solve(&opened) {
-            if let Ok(exact) = self.solver.solve_from_basis(lcp, near.basis) {
+            if !made.contains(&near.basis)
+                && let Some(exact) = self.solver.solve_from_tableau(lcp, near.basis)
+            {
                 return Ok(exact);
             }
             if verify(lcp, &near.z, self.solver.tolerance()).passed() {
                 return Ok(LcpSolution { w: lcp.w_of(&near.z), warm_start_used: false, ..near });
             }
+            near_basis = Some(near.basis);
         }
         for j in 0..k {
             for pattern in PATTERNS {
                 let basis = with_pattern(warm, k, j, pattern);
-                if let Ok(solution) = self.solver.solve_from_basis(lcp, basis) {
+                if made.contains(&basis) || Some(basis) == near_basis {
+                    continue;
+                }
+                if let Some(solution) = self.solver.solve_from_tableau(lcp, basis) {
                     return Ok(solution);
                 }
             }
@@ -478,7 +497,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         Ok(())
     }
 
-    /// Solves the step's LCP (`docs/formulation.md`, "Solving a multibody step (the core)"): `z = 0`
+    /// Solves the step's LCP (`docs/formulation.md`, "Solving a multibody step (the core)", and its
+    /// worst case of a step, a contract: no solve or Lemke run made twice): `z = 0`
     /// when `q >= 0` ([`SolvePath::Free`]); else the warm basis in factored form
     /// ([`SolvePath::Warm`]); else the bases of [`Self::candidate`] ([`SolvePath::Candidate`]);
     /// else Lemke's method on
@@ -515,7 +535,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     }
 
     /// [`Self::solve`] after the warm basis declined (`why`): the candidates, then Lemke's method.
-    /// Out of line and cold: a warm step (most steps) does not reach it.
+    /// Out of line and cold: a warm step (most steps) does not reach it. Lemke's method, per
+    /// assembled LCP (at most two: the weighted cone rows, then the model's): one run from the warm
+    /// basis' tableau, one cold run and its regularised retry, then [`Self::retry`]'s (two cold
+    /// runs, at most `1 + 8 k` from a tableau).
     #[cold]
     #[inline(never)]
     fn unwarmed(
@@ -562,6 +585,12 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 
     /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
     /// answers (written into `z`), or `None`.
+    ///
+    /// **Cost** (a contract): at most `1 + k + 8 k + 8 P` factored solves (the sliding basis, the
+    /// lifting chain's `k`, the failing slot's and its pair's 8, the other slots' and pairs' 8
+    /// each), none of one basis twice: a basis equal to the warm one, to one solved out of the
+    /// list's order (the sliding one, the chain's) or to one of the failing pair's is skipped, and
+    /// so is a pair's basis that changes one slot only (that slot's eight solve it).
     fn candidate(
         &self,
         why: Declined,
@@ -613,6 +642,22 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         };
         let first_pair = pair_of(first);
         let lifting = self.lifted(warm, why);
+        // The warm basis, the bases solved out of the list's order (the sliding one, the lifting
+        // chain's) and the failing pair's: a later basis equal to one of them is not solved again.
+        let mut made = [warm; 2 + MOST_SLOTS + 8];
+        let mut count = 1;
+        // The sliding basis and why it declined, when it did: the chain goes on from it unsolved.
+        let mut declined = None;
+        // The slots (bits) in which `basis` differs from the warm one.
+        let changed = |basis: Basis<N>| {
+            let (diff, mut slots) = (basis.z_mask() ^ warm.z_mask(), 0u32);
+            for j in 0..k {
+                if slot_pattern(diff, k, j) != 0 {
+                    slots |= 1 << j;
+                }
+            }
+            slots
+        };
         // The list, as one index (no iterator adapters: no panic path): the sliding one (one solve,
         // and the first step of a push needs it), the lifting chain, the failing slot's 8, its
         // pair's 8, the other slots' 8 each, the other pairs' 8 each.
@@ -622,25 +667,43 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let basis = if n == 0 {
                 Some(sliding)
             } else if n == 1 {
-                if let Some(answer) = self.lifting_chain(lifting, paths, blocks, z) {
+                let chain = (&mut made[..], &mut count, declined);
+                if let Some(answer) = self.lifting_chain(lifting, paths, blocks, z, chain) {
                     return Some(answer);
                 }
                 None
             } else if n < 10 {
-                Some(with_slot(warm, first, PATTERNS[(n - 2) % 8])).filter(|&b| Some(b) != lifting)
+                Some(with_slot(warm, first, PATTERNS[(n - 2) % 8]))
             } else if n < 18 {
+                // One slot changed: the failing slot's, solved above, or another's, solved below
+                // (and skipped there).
                 with_pair(first_pair, PATTERNS[(n - 2) % 8])
+                    .filter(|&b| changed(b).count_ones() > 1 || changed(b) & 1 << first == 0)
             } else if n < others {
                 let m = n - 18;
                 Some(with_slot(warm, (first + 1 + m / 8) % slots, PATTERNS[m % 8]))
             } else {
+                // One slot changed: solved above, as that slot's pattern.
                 let m = n - others;
-                (m / 8 != first_pair).then(|| with_pair(m / 8, PATTERNS[m % 8])).flatten()
+                (m / 8 != first_pair)
+                    .then(|| with_pair(m / 8, PATTERNS[m % 8]))
+                    .flatten()
+                    .filter(|&b| changed(b).count_ones() > 1)
             };
-            let Some(basis) = basis.filter(|&b| b != warm) else { continue };
+            let Some(basis) = basis.filter(|b| !made[..count.min(made.len())].contains(b)) else {
+                continue;
+            };
             paths.candidates_tried += 1;
-            if let Ok(a) = f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
-                return Some(Solved::of(a, SolvePath::Candidate));
+            match f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
+                Ok(a) => return Some(Solved::of(a, SolvePath::Candidate)),
+                Err(why) if n == 0 => declined = Some((basis, why)),
+                Err(_) => {}
+            }
+            if (n == 0 || (10..18).contains(&n))
+                && let Some(slot) = made.get_mut(count)
+            {
+                *slot = basis;
+                count += 1;
             }
         }
         None
@@ -678,20 +741,33 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// whose normal impulse is negative, that slot lifting too: the first basis that answers.
     /// Each lift takes one `p_n` out of the basis, so at most `k` solves (a stack tipping over its
     /// edges lifts one corner of each interface in its first step).
+    ///
+    /// `made` holds the first `count` bases solved so far (the warm one first), and adds each the
+    /// chain solves (as many as it holds); `declined` a basis solved before and why it declined,
+    /// which the chain goes on from without solving it again.
     fn lifting_chain(
         &self,
         start: Option<Basis<N>>,
         paths: &mut PathCounts,
         blocks: Option<&ContactBlocks<T>>,
         z: &mut [T; N],
+        (made, count, declined): (&mut [Basis<N>], &mut usize, Option<(Basis<N>, Declined)>),
     ) -> Option<Solved<T, B, N>> {
         let (f, warm, tolerance) = (&self.lcp.factored, self.lcp.warm, self.solver.tolerance());
         let mut basis = start;
         while let Some(lifted) = basis.filter(|&b| b != warm) {
+            if let Some((known, why)) = declined.filter(|&(known, _)| known == lifted) {
+                basis = self.lifted(known, why);
+                continue;
+            }
             paths.candidates_tried += 1;
             match f.solve_basis(lifted.z_mask(), tolerance, blocks, z, None) {
                 Ok(a) => return Some(Solved::of(a, SolvePath::Candidate)),
                 Err(why) => basis = self.lifted(lifted, why),
+            }
+            if let Some(slot) = made.get_mut(*count) {
+                *slot = lifted;
+                *count += 1;
             }
         }
         None
@@ -1021,7 +1097,7 @@ pub(super) const fn slot_rows(k: usize, j: usize) -> [usize; 4] {
 /// Slot `j`'s [`Pattern`] (among `k` slots) in the basis mask `mask` (bit `v`: `z_v` basic): the
 /// bits of its rows `p_n`, `p_+d` and `p_-d` (adjacent), `sigma`.
 #[inline]
-fn slot_pattern(mask: u32, k: usize, j: usize) -> Pattern {
+pub(super) fn slot_pattern(mask: u32, k: usize, j: usize) -> Pattern {
     let [n, plus, _, sigma] = slot_rows(k, j);
     let bits = |v: usize, width: u32| mask.checked_shr(v as u32).unwrap_or(0) & ((1 << width) - 1);
     (bits(n, 1) | bits(plus, 2) << 1 | bits(sigma, 1) << 3) as Pattern
