@@ -975,6 +975,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             impulse[0] += along[0];
             impulse[1] += along[1];
         }
+        // The load, where it may be open: in place of the answer's, before the frames move on.
         #[cfg(feature = "fallback")]
         if open || unknowns > 3 * B {
             self.decide_load(k, &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;

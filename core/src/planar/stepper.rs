@@ -328,7 +328,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         #[cfg(feature = "host-tuned")]
         return self.step_with_rule::<true>(supports);
         #[cfg(not(feature = "host-tuned"))]
-        if cfg!(feature = "fallback") && self.detector.possible() {
+        if cfg!(feature = "fallback") && (self.detector.possible() || self.both_stuck()) {
             self.step_flagging(supports)
         } else {
             self.step_with_rule::<false>(supports)
@@ -341,6 +341,16 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     #[inline(never)]
     fn step_flagging(&mut self, supports: &[Support<T>; K]) -> Result<StepReport<T, K>, StepError> {
         self.step_with_rule::<true>(supports)
+    }
+
+    /// `true` for a model of two contacts both sticking after the last step: its next step may
+    /// end with both loaded and sticking, four unknowns in three coordinates, whose load the rule
+    /// decides (`docs/formulation.md`, "The load: the least norm"); it takes the rule's copy of the
+    /// step, so that the other steps' copy has none of that code.
+    #[cfg(not(feature = "host-tuned"))]
+    #[inline]
+    fn both_stuck(&self) -> bool {
+        K == 2 && self.modes.iter().all(|m| *m == ContactMode::Sticking)
     }
 
     /// [`Self::step`], with the rule's detection when `RULE` (`docs/formulation.md`, "One answer:
@@ -612,9 +622,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
         // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
         // norm"): on a model of three or more contacts every step looks; on one of two, a step
-        // whose contacts both carry load and stick (four unknowns in three coordinates).
+        // whose contacts both carry load and stick (four unknowns in three coordinates), in the
+        // rule's copy of the step (without `host-tuned`, taken after a step that left both
+        // sticking: `Self::both_stuck`).
         #[cfg(feature = "fallback")]
-        if (RULE && K >= 3) || (K == 2 && contacts.iter().all(|c| c.mode == ContactMode::Sticking)) {
+        if RULE && (K >= 3 || (K == 2 && contacts.iter().all(|c| c.mode == ContactMode::Sticking))) {
             let rows: &[T] = if full_layout_used { &w_full } else { &w };
             self.decide_load(&support_velocity, rows, &slips, &mut contacts)?;
         }
