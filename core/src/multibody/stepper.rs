@@ -221,6 +221,10 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     /// The last load the rule decided, for a rest state to keep.
     #[cfg(feature = "fallback")]
     load_memory: LoadMemory<T>,
+    /// The last step's load was open: the next step takes the copy that decides it
+    /// ([`Self::step_loading`]; the first step does).
+    #[cfg(feature = "fallback")]
+    load_next: bool,
     stats: Stats,
 }
 
@@ -295,6 +299,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             load_basis: Basis::all_w(),
             #[cfg(feature = "fallback")]
             load_memory: LoadMemory::none(),
+            #[cfg(feature = "fallback")]
+            load_next: true,
             stats: Stats::default(),
         };
         stepper.update_frames();
@@ -824,8 +830,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             (memory.load, memory.after)
         } else {
             let tolerance = rule.velocity_tolerance();
-            let off =
-                LoadContact { normal: [[T::zero(); 3]; B], tangent: [[T::zero(); 3]; B], carry: Carry::Nothing };
+            let off = LoadContact {
+                normal: [[T::zero(); 3]; B],
+                tangent: [[T::zero(); 3]; B],
+                carry: Carry::Nothing,
+            };
             let mut contacts = [off; MOST_SLOTS];
             let mut slips = [T::zero(); MOST_SLOTS];
             for j in 0..slots {
@@ -850,7 +859,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 };
                 contacts[j] = LoadContact { normal, tangent: f.dense_row::<B>(f.tangent), carry };
             }
-            let (load, how) = least_norm(&contacts, &path, &mut self.load_basis).map_err(StepError::Solver)?;
+            let (load, how) =
+                least_norm(&contacts, &path, &mut self.load_basis).map_err(StepError::Solver)?;
             if how == LoadPath::Determinate {
                 return Ok(());
             }
@@ -892,6 +902,25 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
     pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+        #[cfg(feature = "fallback")]
+        if self.load_next {
+            return self.step_loading();
+        }
+        self.step_with::<false>()
+    }
+
+    /// [`Self::step`] after a step whose load was open (`docs/formulation.md`, "The load: the least
+    /// norm"): out of line, so that the other steps' copy has none of the load's code.
+    #[cfg(feature = "fallback")]
+    #[inline(never)]
+    fn step_loading(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+        self.step_with::<true>()
+    }
+
+    /// [`Self::step`], deciding the load where it is open when `LOAD`.
+    #[inline(always)]
+    #[allow(clippy::inline_always)] // into `step` and `step_loading`: two copies, as said there
+    fn step_with<const LOAD: bool>(&mut self) -> Result<StepReport<T, B, P>, StepError> {
         let s = self.system.settings.base;
         let h = s.step;
         self.refill()?;
@@ -977,8 +1006,11 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         }
         // The load, where it may be open: in place of the answer's, before the frames move on.
         #[cfg(feature = "fallback")]
-        if open || unknowns > 3 * B {
-            self.decide_load(k, &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;
+        {
+            self.load_next = open || unknowns > 3 * B;
+            if LOAD && self.load_next {
+                self.decide_load(k, &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;
+            }
         }
         let mut interface_forces = [[T::zero(); 2]; P];
         for p in 0..P {

@@ -125,6 +125,9 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     /// `3K` rows in the full layout's size, whose solver the fallback has already).
     #[cfg(feature = "fallback")]
     load_basis: Basis<NF>,
+    /// The last load the rule decided, for a rest state to keep.
+    #[cfg(feature = "fallback")]
+    load_memory: PlanarLoadMemory<T, K>,
     stats: RunStats,
 }
 
@@ -215,6 +218,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             detector: Detector::new(&model.contacts, body.inverse_mass_per_unit_mass(), body.half_extents()),
             #[cfg(feature = "fallback")]
             load_basis: Basis::all_w(),
+            #[cfg(feature = "fallback")]
+            load_memory: PlanarLoadMemory {
+                kinds: [Carry::Nothing; K],
+                path: [[T::zero(); 2]; K],
+                load: [[T::zero(); 2]; K],
+            },
             stats: RunStats::default(),
         };
         stepper.update_frames(&supports);
@@ -628,7 +637,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         #[cfg(feature = "fallback")]
         if RULE && (K >= 3 || (K == 2 && contacts.iter().all(|c| c.mode == ContactMode::Sticking))) {
             let rows: &[T] = if full_layout_used { &w_full } else { &w };
-            self.decide_load(&support_velocity, rows, &slips, &mut contacts)?;
+            let v_plus = [state.vx, state.vy, state.omega];
+            self.decide_load(&support_velocity, &v_plus, rows, &slips, &mut contacts)?;
         }
         self.state = state;
         self.carry = carry;
@@ -659,14 +669,15 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     fn decide_load(
         &mut self,
         support_velocity: &[[T; 2]; K],
+        v_plus: &[T; 3],
         w: &[T],
         slips: &[T; K],
         contacts: &mut [ContactReport<T>; K],
     ) -> Result<(), StepError> {
         let v_free =
             [self.state.vx, self.state.vy - self.settings.step * self.settings.gravity, self.state.omega];
-        let tolerance =
-            Detector::rule_of(&self.m_inv, &v_free, support_velocity, self.size).velocity_tolerance();
+        let rule = Detector::rule_of(&self.m_inv, &v_free, support_velocity, self.size);
+        let tolerance = rule.velocity_tolerance();
         let mut loads =
             [LoadContact { normal: [[T::zero(); 3]], tangent: [[T::zero(); 3]], carry: Carry::Nothing }; K];
         let mut path = [[T::zero(); 2]; K];
@@ -685,8 +696,27 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             };
             loads[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
         }
-        let (load, how) = least_norm(&loads, &path, &mut self.load_basis).map_err(StepError::Solver)?;
+        // A rest state keeps the load decided the step before: the answer at the least energy,
+        // the same contacts carrying the same way, its load the same within round-off.
+        let kinds = loads.map(|l| l.carry);
+        let mut scale = T::zero();
+        for p in &path {
+            scale = max(scale, max(p[0].abs_exact(), p[1].abs_exact()));
+        }
+        let round_off = T::of(64.0 * NF as f64) * T::EPS * scale;
+        let memory = &self.load_memory;
+        let kept = rule.at_least_energy(&[*v_plus])
+            && memory.kinds == kinds
+            && path.iter().zip(&memory.path).all(|(a, b)| {
+                (a[0] - b[0]).abs_exact() <= round_off && (a[1] - b[1]).abs_exact() <= round_off
+            });
+        let (load, how) = if kept {
+            (memory.load, LoadPath::Projection)
+        } else {
+            least_norm(&loads, &path, &mut self.load_basis).map_err(StepError::Solver)?
+        };
         if how != LoadPath::Determinate {
+            self.load_memory = PlanarLoadMemory { kinds, path, load };
             self.stats.load_decided_steps += 1;
             for i in 0..K {
                 let report = &mut contacts[i];
@@ -767,6 +797,16 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
         None
     }
+}
+
+/// The last load the rule decided ([`Stepper::decide_load`]): what each contact could carry, the
+/// path's load and the decided one (a rest state keeps it).
+#[cfg(feature = "fallback")]
+#[derive(Debug, Clone, Copy)]
+struct PlanarLoadMemory<T, const K: usize> {
+    kinds: [Carry<T>; K],
+    path: [[T; 2]; K],
+    load: [[T; 2]; K],
 }
 
 /// A step's velocity scale `V`: the fastest support's speed plus the body's (`|vx| + |vy| +
