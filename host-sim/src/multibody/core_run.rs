@@ -10,11 +10,14 @@ use super::{BodiesCounters, BodiesRow, BodiesRun};
 use crate::progress::{self, CHECK_EVERY_STEPS};
 use crate::trajectory::{Measured, RunOutcome};
 
-fn row_of<T: Real>(t: T, states: &[BodyState<T>]) -> BodiesRow {
+/// A row of `states` at `t`, with each pair's interface force and candidates' loads.
+fn row_of<T: Real>(t: T, states: &[BodyState<T>], forces: &[[T; 2]], loads: &[[[T; 2]; 4]]) -> BodiesRow {
     BodiesRow {
         t: t.as_f64(),
         q: states.iter().map(|s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]).collect(),
         v: states.iter().map(|s| [s.vx.as_f64(), s.vy.as_f64(), s.omega.as_f64()]).collect(),
+        interface_forces: forces.iter().map(|f| f.map(Real::as_f64)).collect(),
+        corner_loads: loads.iter().map(|pair| pair.map(|c| c.map(Real::as_f64))).collect(),
     }
 }
 
@@ -32,15 +35,18 @@ impl MultibodyVisitor for CoreRun<'_> {
         self,
         mut scene: S,
     ) -> Self::Output {
-        let start = row_of(scene.time(), scene.states());
-        let mut rows = if self.record { vec![start.clone()] } else { Vec::new() };
+        // The last step's interface forces and loads (the start's: zero).
+        let (mut forces, mut loads) = ([[T::zero(); 2]; P], [[[T::zero(); 2]; 4]; P]);
+        let start = row_of(scene.time(), scene.states(), &forces, &loads);
+        let mut rows = if self.record { vec![start] } else { Vec::new() };
         let mut steps = 0_u64;
         let mut checksum = Checksum::new();
         while let Some(report) = scene.step() {
             steps += 1;
             report.add_to(&mut checksum);
+            (forces, loads) = (report.interface_forces, report.corner_loads);
             if self.record {
-                rows.push(row_of(report.time, &report.states));
+                rows.push(row_of(report.time, &report.states, &forces, &loads));
             }
             if steps.is_multiple_of(CHECK_EVERY_STEPS) {
                 progress::check()?;
@@ -56,7 +62,7 @@ impl MultibodyVisitor for CoreRun<'_> {
             steps,
             end_time: scene.time().as_f64(),
             rows,
-            last: row_of(scene.time(), scene.states()),
+            last: row_of(scene.time(), scene.states(), &forces, &loads),
             outcome: RunOutcome::from(scene.outcome().unwrap_or(Outcome::Unfinished)),
             measured: Measured::of(self.kind, scene.measured().map(|m| m.map(Real::as_f64))),
             counters: BodiesCounters {

@@ -41,6 +41,16 @@ pub struct BodiesRow {
     pub q: Vec<[f64; 3]>,
     /// Each body's `(vx, vy, omega)`.
     pub v: Vec<[f64; 3]>,
+    /// Each pair's summed contact force on its upper body over the step, world `(x, y)` (N; row 0:
+    /// zero).
+    pub interface_forces: Vec<[f64; 2]>,
+    /// Each pair's four candidate contacts' normal and friction force over the step (N, along
+    /// each candidate's normal and its `+d`; zero when not in the step's LCP): the upper body's
+    /// lower-left and lower-right corners on the lower one, then the lower body's upper-left and
+    /// upper-right corners (the table's ends) on the upper one; where rigid contact leaves the
+    /// split open, the least-norm load (`docs/formulation.md`, "The load: the least norm"). Row
+    /// 0: zero.
+    pub corner_loads: Vec<[[f64; 2]; 4]>,
 }
 
 /// A run's solver counters (zero where an implementation has no such thing).

@@ -89,7 +89,13 @@ pub fn to_reference(spec: &SceneParams) -> Option<reference::Spec> {
 }
 
 fn reference_row(r: &reference::Row) -> BodiesRow {
-    BodiesRow { t: r.t, q: r.q.clone(), v: r.v.clone() }
+    BodiesRow {
+        t: r.t,
+        q: r.q.clone(),
+        v: r.v.clone(),
+        interface_forces: r.interface_forces.clone(),
+        corner_loads: r.corner_loads.clone(),
+    }
 }
 
 /// Runs `spec` in the independent reference to its outcome, keeping every step when `record`.
@@ -129,7 +135,13 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
         steps: r.steps,
         end_time: r.end_time,
         rows: r.rows.iter().map(reference_row).collect(),
-        last: BodiesRow { t: r.end_time, q: r.q.clone(), v: r.v.clone() },
+        last: BodiesRow {
+            t: r.end_time,
+            q: r.q.clone(),
+            v: r.v.clone(),
+            interface_forces: r.interface_forces.clone(),
+            corner_loads: r.corner_loads.clone(),
+        },
         outcome,
         measured: Measured::of(kind, measures),
         counters: BodiesCounters {

@@ -139,6 +139,11 @@ pub struct BodiesImplementation {
     pub wall_time_s: f64,
     /// Host ns per step (recording included).
     pub ns_per_step: f64,
+    /// Each pair's summed contact force on its upper body over the last step, world `(x, y)` (N).
+    pub interface_forces_n: Vec<[f64; 2]>,
+    /// Each pair's four candidates' `[normal, friction]` force over the last step (N;
+    /// [`BodiesRow::corner_loads`]).
+    pub corner_loads_n: Vec<[[f64; 2]; 4]>,
 }
 
 impl BodiesImplementation {
@@ -153,6 +158,8 @@ impl BodiesImplementation {
             counters: run.counters,
             wall_time_s: wall_s,
             ns_per_step: 1e9 * wall_s / run.steps.max(1) as f64,
+            interface_forces_n: run.last.interface_forces.clone(),
+            corner_loads_n: run.last.corner_loads.clone(),
         }
     }
 }
