@@ -1,6 +1,6 @@
 //! The scene catalogue's words: what the front ends (`host-sim`'s command line, the browser page)
 //! say of the core's scenes, written once. `host-sim`'s clap arguments and `--help`
-//! (`host-sim/src/scenes.rs`) and the page's controls and URL contract (`web/src/`, through
+//! (`host-sim/src/scenes/args.rs`) and the page's controls and URL contract (`web/src/`, through
 //! `ms_describe`) are generated from it, and both word a refusal with [`Worded`], so a page URL
 //! `?scene=meter-stick&speed=0.1&x1=-0.35` and `host-sim scene --speed 0.1 --x1 -0.35` describe the
 //! same run and are refused alike.

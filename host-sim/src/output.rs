@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::Context as _;
 use serde::Serialize;
 
-use crate::scenes::SceneParams;
+use meterstick_core::scene::SceneParams;
 
 /// `x` in short scientific notation for tables and text (`1.23e-5`; `0` for zero, `n/a` for a
 /// quantity that does not exist, NaN or infinite).

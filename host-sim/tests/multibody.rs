@@ -22,7 +22,9 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 }
 
 /// `host-sim run --scene <scene> <args> --precision f64`: its `summary.json`, after checking the
-/// core and the reference ended alike and the trajectory files hold every step of every body.
+/// core and the reference ended alike, the trajectory files hold every step of every body and of
+/// every pair (its interface force and four candidates' loads), and the summary the last step's
+/// loads.
 fn run(scene: &str, name: &str, args: &[&str]) -> serde_json::Value {
     let out = temp_dir(name);
     let mut all = vec!["run", "--scene", scene, "--precision", "f64", "--out", out.to_str().unwrap()];
@@ -35,12 +37,21 @@ fn run(scene: &str, name: &str, args: &[&str]) -> serde_json::Value {
     assert_eq!(s["scene"], scene);
     assert_eq!(s["core"]["outcome"], s["reference"]["outcome"], "{all:?}: {stdout}");
     let bodies = s["parameters"]["blocks"].as_f64().map_or(2, |b| b as usize);
+    // Each body on the one below; the tablecloth's block also on the floor.
+    let pairs = if scene == "tablecloth" { 3 } else { bodies };
     for file in ["core.csv", "reference.csv"] {
         let text = std::fs::read_to_string(dir.join(file)).unwrap();
         let mut lines = text.lines();
-        assert_eq!(lines.next().unwrap().split(',').count(), 1 + 6 * bodies, "{file}");
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        assert_eq!(header.len(), 1 + 6 * bodies + (2 + 4 * 2) * pairs, "{file}");
+        assert_eq!(
+            header[1 + 6 * bodies..][..4],
+            ["pair0_fx", "pair0_fy", "pair0_c0_normal", "pair0_c0_friction"]
+        );
         let who = if file == "core.csv" { "core" } else { "reference" };
         assert_eq!(lines.count() as u64, s[who]["steps"].as_u64().unwrap() + 1, "{file}");
+        assert_eq!(s[who]["interface_forces_n"].as_array().unwrap().len(), pairs, "{who}");
+        assert_eq!(s[who]["corner_loads_n"].as_array().unwrap().len(), pairs, "{who}");
     }
     std::fs::remove_dir_all(&out).unwrap();
     s
@@ -318,6 +329,54 @@ fn friction_beyond_f32_is_warned_about_on_several_bodies() {
     assert_eq!(code, 0, "{err}");
     assert!(stdout.lines().any(|l| l.starts_with(&format!("stack: {warning}"))), "{stdout}");
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// Block-on-block at zero pull: the top block rests flat and centred on the bottom one, the bottom
+/// one flat on the floor. Each resting face's two corners carry equal normal loads (the least-norm
+/// split of the interface's load, `docs/formulation.md`, "The load: the least norm") that sum to
+/// the interface's normal force, each pair's weight above it, in every step of the core (f64) and of
+/// the reference; the other two candidates (the lower body's corners, outside the upper one's face,
+/// or the floor's ends, which it has not) carry nothing.
+#[test]
+fn a_centred_resting_box_loads_both_corners_alike() {
+    use meterstick_host_sim::multibody::{run_core, run_reference};
+    use meterstick_host_sim::scenes::{Precision, SceneKind, SceneParams};
+    let mut spec = SceneParams::defaults(SceneKind::BlockOnBlock);
+    assert!(spec.set("force", 0.0));
+    let mass = |field: &str| spec.get(field).unwrap();
+    let g = spec.get("gravity").unwrap();
+    // Pair 0: the bottom block on the floor (both blocks' weight); pair 1: the top on the bottom.
+    let weights = [(mass("bottom_mass") + mass("top_mass")) * g, mass("top_mass") * g];
+    let close = |a: f64, b: f64, rel: f64| (a - b).abs() <= rel * a.abs().max(b.abs());
+    for run in [run_core(&spec, Precision::F64, true, None).unwrap(), run_reference(&spec, true).unwrap()] {
+        assert_eq!(run.outcome.class.to_string(), "Held", "{}", run.label);
+        assert_eq!(run.rows.len() as u64, run.steps + 1, "{}", run.label);
+        for row in run.rows.iter().skip(1).chain([&run.last]) {
+            assert_eq!(row.corner_loads.len(), 2, "{}", run.label);
+            for (p, (loads, force)) in row.corner_loads.iter().zip(&row.interface_forces).enumerate() {
+                let at = format!("{} t = {} pair {p}: loads {loads:?}, force {force:?}", run.label, row.t);
+                let [left, right] = [loads[0][0], loads[1][0]];
+                assert!(left > 0.0 && close(left, right, 1e-9), "{at}");
+                assert!(close(left + right, force[1], 1e-9), "{at}");
+                assert!(close(force[1], weights[p], 1e-6), "{at}");
+                assert_eq!([loads[2], loads[3]], [[0.0; 2]; 2], "{at}");
+            }
+        }
+    }
+    // The stack at its defaults (the bottom block over the table's edge, candidate 3): the core's
+    // and the reference's loads of each candidate agree, candidate by candidate.
+    let mut stack = SceneParams::defaults(SceneKind::Stack);
+    assert!(stack.set("max_time", 0.05));
+    let (core, reference) =
+        (run_core(&stack, Precision::F64, true, None).unwrap(), run_reference(&stack, true).unwrap());
+    let weight = stack.get("mass").unwrap() * stack.get("gravity").unwrap();
+    for (c, r) in core.rows.iter().zip(&reference.rows).skip(1) {
+        for (p, (a, b)) in c.corner_loads.iter().zip(&r.corner_loads).enumerate() {
+            let worst =
+                a.as_flattened().iter().zip(b.as_flattened()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+            assert!(worst <= 1e-6 * weight, "t = {} pair {p}: core {a:?}, reference {b:?}", c.t);
+        }
+    }
 }
 
 /// `host-sim run` draws each body's positions, velocities and angle, core beside reference.

@@ -119,7 +119,7 @@ fn stress_run<const N: usize>(spec: &SceneParams, dy: f64) -> Option<(Run, Run)>
         }),
         SceneParams::Incline(p) => both(&|| Incline::<f32, N, 0>::new(p.cast()).ok()),
         SceneParams::Ladder(p) => both(&|| Ladder::<f32, N, 0>::new(p.cast()).ok()),
-        _ => None, // the stress grid's scenes are the three above (`host-sim/src/stress/cases.rs`)
+        _ => None, // the stress grid's scenes are the three above (`host-sim/src/stress/cases/one_body.rs`)
     }
 }
 

@@ -217,13 +217,10 @@ fn support_points<T: Real, S: Scene<T, K>, const K: usize>(scene: &S) -> Vec<[f6
     scene.supports().iter().map(|s| s.position().map(Real::as_f64)).collect()
 }
 
-/// Runs `case` in `precision` and `layout`, measuring as it goes; samples the state every
-/// `stride` steps.
+/// Runs `case`, a scene of one body, in `precision` and `layout`, measuring as it goes; samples
+/// the state every `stride` steps (a scene of several bodies: [`super::bodies::measure`]).
 #[must_use]
 pub fn measure(case: &Case, precision: Precision, layout: LcpLayout, stride: u64) -> Metrics {
-    if case.spec.kind().is_multibody() {
-        return super::bodies::measure(case, precision, stride);
-    }
     case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(Metrics::invalid)
 }
 

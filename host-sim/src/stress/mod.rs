@@ -23,7 +23,7 @@ use rayon::prelude::*;
 
 use self::cases::Case;
 use self::judge::{Verdict, judge};
-use self::metrics::{Metrics, measure};
+use self::metrics::Metrics;
 use crate::progress::bar as progress;
 use crate::scenes::{Implementation, LcpLayout, Precision};
 
@@ -53,7 +53,13 @@ pub fn run_case(case: &Case, config: Implementation) -> Metrics {
         Implementation::Core(precision, layout) => (precision, layout),
         Implementation::Reference => (Precision::F64, LcpLayout::Full),
     };
-    let run = std::panic::catch_unwind(|| measure(case, precision, layout, stride));
+    let run = std::panic::catch_unwind(|| {
+        if case.spec.kind().is_multibody() {
+            bodies::measure(case, precision, stride)
+        } else {
+            metrics::measure(case, precision, layout, stride)
+        }
+    });
     run.unwrap_or_default()
 }
 

@@ -78,6 +78,12 @@ pub struct Row {
     pub v: Vec<[f64; 3]>,
     /// Each pair's summed contact force on its upper body over the step, world, N (row 0: zero).
     pub interface_forces: Vec<[f64; 2]>,
+    /// Each pair's four candidate contacts' normal and friction force over the step (N, along
+    /// the candidate's normal and its `+d`; zero for a candidate not in the step's LCP or that
+    /// the pair lacks), in the candidates' order (`geometry.rs`: the upper body's lower-left and
+    /// lower-right corners, then the lower body's upper-left and upper-right corners, the table's
+    /// `lo` and `hi` ends; a disc's rim the first). Row 0: zero.
+    pub corner_loads: Vec<[[f64; 2]; 4]>,
     /// Whether the step's verified solutions moved the bodies differently.
     pub ambiguous: bool,
 }
@@ -100,6 +106,8 @@ pub struct Run {
     /// Each pair's summed contact force on its upper body over the last step, world, N (the
     /// model decides the sum, not one corner's share).
     pub interface_forces: Vec<[f64; 2]>,
+    /// Each pair's candidates' normal and friction force over the last step, N ([`Row::corner_loads`]).
+    pub corner_loads: Vec<[[f64; 2]; 4]>,
     /// Block-on-block: the bottom block's acceleration along `x` while both are in full contact;
     /// tablecloth: the board's (docs/scenes.md, "Measured"); disc-on-board: the board's while the
     /// board and the disc touch, m/s^2.

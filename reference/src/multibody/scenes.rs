@@ -683,6 +683,7 @@ impl Loop {
                 q: Vec::new(),
                 v: Vec::new(),
                 interface_forces: Vec::new(),
+                corner_loads: Vec::new(),
                 lower_acceleration: None,
                 upper_acceleration: None,
                 block_displacement: None,
@@ -711,6 +712,7 @@ impl Loop {
             q: state.q.clone(),
             v: state.v.clone(),
             interface_forces: vec![[0.0; 2]; system.pairs.len()],
+            corner_loads: vec![[[0.0; 2]; 4]; system.pairs.len()],
             ambiguous: false,
         });
         let outcome = loop {
@@ -743,7 +745,10 @@ impl Loop {
             self.run.max_speed = self.run.max_speed.max(v[0].hypot(v[1]) + b.reach() * v[2].abs());
         }
         let mut forces = vec![[0.0; 2]; system.pairs.len()];
+        let mut loads = vec![[[0.0; 2]; 4]; system.pairs.len()];
+        let candidates = candidate_indices(system, &stepped.frames);
         for (i, f) in stepped.frames.iter().enumerate() {
+            loads[f.pair][candidates[i]] = [r.normal[i] / system.step, r.friction[i] / system.step];
             let on_corner = [
                 f.normal[0] * r.normal[i] + f.tangent[0] * r.friction[i],
                 f.normal[1] * r.normal[i] + f.tangent[1] * r.friction[i],
@@ -764,11 +769,38 @@ impl Loop {
                 q: state.q.clone(),
                 v: state.v.clone(),
                 interface_forces: forces.clone(),
+                corner_loads: loads.clone(),
                 ambiguous: r.ambiguous,
             });
         }
         self.run.interface_forces = forces;
+        self.run.corner_loads = loads;
     }
+}
+
+/// Each frame's place among its pair's four candidates (the module documentation of
+/// `geometry.rs`): the upper body's corners 0 and 1 (a disc's rim 0), the lower body's 2 and 3 (a
+/// table without a `lo` end has only its `hi` end, 3).
+fn candidate_indices(system: &System, frames: &[super::geometry::Frame]) -> Vec<usize> {
+    let mut seen = vec![[0_usize; 2]; system.pairs.len()];
+    frames
+        .iter()
+        .map(|f| {
+            let pair = &system.pairs[f.pair];
+            let seen = &mut seen[f.pair];
+            if f.corner_body == Some(pair.upper) {
+                seen[0] += 1;
+                seen[0] - 1
+            } else {
+                let first = match pair.lower {
+                    Lower::Table if !system.table.lo.is_finite() => 3,
+                    _ => 2,
+                };
+                seen[1] += 1;
+                first + seen[1] - 1
+            }
+        })
+        .collect()
 }
 
 /// The candidates of pair `p` whose corner is the upper body's (its lower corners on the lower

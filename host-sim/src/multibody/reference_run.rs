@@ -1,0 +1,154 @@
+//! A scene of several bodies run in the independent reference (`meterstick_reference::multibody`).
+
+use meterstick_core::scene::{OutcomeKind, SceneKind, SceneParams};
+
+use super::{BodiesCounters, BodiesRow, BodiesRun};
+use crate::progress;
+use crate::reference::Sample;
+use crate::reference::multibody as reference;
+use crate::trajectory::{Measured, RunOutcome};
+
+/// The same scene for the independent reference (its own parameter types: data only).
+#[must_use]
+pub fn to_reference(spec: &SceneParams) -> Option<reference::Spec> {
+    Some(match *spec {
+        SceneParams::BlockOnBlock(p) => reference::Spec::BlockOnBlock(reference::BlockOnBlock {
+            top_mass: p.top_mass,
+            top_width: p.top_width,
+            top_height: p.top_height,
+            bottom_mass: p.bottom_mass,
+            bottom_width: p.bottom_width,
+            bottom_height: p.bottom_height,
+            force: p.force,
+            mu_static: p.mu_static,
+            mu_kinetic: p.mu_kinetic,
+            mu_floor: p.mu_floor,
+            gravity: p.gravity,
+            step: p.step,
+            stick_speed: p.stick_speed,
+            tilt_limit: p.tilt_limit,
+            contact_margin: p.contact_margin,
+            max_time: p.max_time,
+        }),
+        SceneParams::Tablecloth(p) => reference::Spec::Tablecloth(reference::Tablecloth {
+            board_mass: p.board_mass,
+            board_length: p.board_length,
+            board_thickness: p.board_thickness,
+            block_mass: p.block_mass,
+            block_width: p.block_width,
+            block_height: p.block_height,
+            offset: p.offset,
+            force: p.force,
+            mu_static: p.mu_static,
+            mu_kinetic: p.mu_kinetic,
+            mu_floor: p.mu_floor,
+            gravity: p.gravity,
+            step: p.step,
+            stick_speed: p.stick_speed,
+            contact_margin: p.contact_margin,
+            max_time: p.max_time,
+        }),
+        SceneParams::Stack(s) => {
+            let p = s.params;
+            reference::Spec::Stack(reference::Stack {
+                blocks: s.block_count()?,
+                length: p.length,
+                height: p.height,
+                mass: p.mass,
+                mu_static: p.mu_static,
+                mu_kinetic: p.mu_kinetic,
+                overhang: p.overhang,
+                gravity: p.gravity,
+                step: p.step,
+                stick_speed: p.stick_speed,
+                tilt_limit: p.tilt_limit,
+                drop_limit: p.drop_limit,
+                contact_margin: p.contact_margin,
+                max_time: p.max_time,
+            })
+        }
+        SceneParams::DiscOnBoard(p) => reference::Spec::DiscOnBoard(reference::DiscOnBoard {
+            board_mass: p.board_mass,
+            board_length: p.board_length,
+            board_height: p.board_height,
+            disc_mass: p.disc_mass,
+            disc_radius: p.disc_radius,
+            offset: p.offset,
+            force: p.force,
+            mu_static: p.mu_static,
+            mu_kinetic: p.mu_kinetic,
+            mu_floor: p.mu_floor,
+            gravity: p.gravity,
+            step: p.step,
+            stick_speed: p.stick_speed,
+            contact_margin: p.contact_margin,
+            max_time: p.max_time,
+        }),
+        _ => return None,
+    })
+}
+
+fn reference_row(r: &reference::Row) -> BodiesRow {
+    BodiesRow {
+        t: r.t,
+        q: r.q.clone(),
+        v: r.v.clone(),
+        interface_forces: r.interface_forces.clone(),
+        corner_loads: r.corner_loads.clone(),
+    }
+}
+
+/// Runs `spec` in the independent reference to its outcome, keeping every step when `record`.
+///
+/// # Errors
+/// A scene the reference does not have, or its refusal of the parameters.
+pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesRun> {
+    let kind = spec.kind();
+    let Some(r_spec) = to_reference(spec) else {
+        anyhow::bail!("scene {kind} has no multibody reference");
+    };
+    progress::check()?;
+    let sample = if record { Sample::All } else { Sample::None };
+    let r = reference::run(&r_spec, sample).map_err(|e| anyhow::anyhow!("reference: {e}"))?;
+    progress::check()?;
+    let outcome = match r.outcome {
+        reference::Outcome::Held => RunOutcome::of(OutcomeKind::Held),
+        reference::Outcome::Rode => RunOutcome::of(OutcomeKind::Rode),
+        reference::Outcome::Rolled => RunOutcome::of(OutcomeKind::Rolled),
+        reference::Outcome::Slid => RunOutcome::of(OutcomeKind::Slid),
+        reference::Outcome::Tipped => RunOutcome::of(OutcomeKind::Tipped),
+        reference::Outcome::Stayed => RunOutcome::of(OutcomeKind::Stayed),
+        reference::Outcome::Fell => RunOutcome::of(OutcomeKind::Fell),
+        reference::Outcome::Unfinished => RunOutcome::of(OutcomeKind::Unfinished),
+        reference::Outcome::Failed(why) => RunOutcome { class: OutcomeKind::Failed, detail: Some(why) },
+    };
+    let measures = match kind {
+        SceneKind::BlockOnBlock | SceneKind::DiscOnBoard => {
+            [r.lower_acceleration, r.upper_acceleration, None]
+        }
+        SceneKind::Tablecloth => [r.block_displacement, None, None],
+        _ => [Some(r.max_speed), None, None],
+    };
+    Ok(BodiesRun {
+        label: "reference f64".into(),
+        scene: kind,
+        steps: r.steps,
+        end_time: r.end_time,
+        rows: r.rows.iter().map(reference_row).collect(),
+        last: BodiesRow {
+            t: r.end_time,
+            q: r.q.clone(),
+            v: r.v.clone(),
+            interface_forces: r.interface_forces.clone(),
+            corner_loads: r.corner_loads.clone(),
+        },
+        outcome,
+        measured: Measured::of(kind, measures),
+        counters: BodiesCounters {
+            lcp_rows: r.max_rows,
+            ambiguous_steps: r.ambiguous_steps,
+            ..BodiesCounters::default()
+        },
+        checksum: None,
+    })
+}
