@@ -51,9 +51,7 @@ pub(crate) fn least_norm(contacts: &[Touching], r: &[f64], scale: f64) -> Option
     // inequality with non-negative multipliers on its binding ones is the minimiser (the
     // Karush-Kuhn-Tucker conditions of a strictly convex problem: one point satisfies them).
     let m = inequalities.len();
-    let mut subsets: Vec<u32> = (0u32..(1 << m)).collect();
-    subsets.sort_by_key(|s| s.count_ones());
-    for subset in subsets {
+    for subset in subsets_by_size(m) {
         let mut rows: Vec<(Vec<f64>, f64)> = equalities.clone();
         for (j, a) in inequalities.iter().enumerate() {
             if subset >> j & 1 == 1 {
@@ -70,6 +68,28 @@ pub(crate) fn least_norm(contacts: &[Touching], r: &[f64], scale: f64) -> Option
     None
 }
 
+/// Rows with their values: `row . x = value`.
+type Equalities = Vec<(Vec<f64>, f64)>;
+
+/// Every subset of `m < 64` items as a bit set, the smaller first (Gosper's hack within a size):
+/// the first few sizes are all a load usually needs, and none is made before it is asked for.
+fn subsets_by_size(m: usize) -> impl Iterator<Item = u64> {
+    let full: u64 = if m >= 64 { u64::MAX } else { (1u64 << m) - 1 };
+    (0..=m).flat_map(move |size| {
+        let first: u64 = if size == 0 { 0 } else { (1u64 << size) - 1 };
+        std::iter::successors(Some(first), move |&set| {
+            if set == 0 {
+                return None;
+            }
+            let low = set & set.wrapping_neg();
+            let ripple = set + low;
+            let next = (((ripple ^ set) >> 2) / low) | ripple;
+            (next <= full && next.count_ones() as usize == size).then_some(next)
+        })
+        .take_while(move |&set| set <= full)
+    })
+}
+
 /// `true` when the contacts' equalities alone decide the load (their rank is the number of
 /// unknowns): the step's LCP answer is then the only load.
 pub(crate) fn determinate(contacts: &[Touching]) -> bool {
@@ -80,7 +100,7 @@ pub(crate) fn determinate(contacts: &[Touching]) -> bool {
 /// The equalities `(row, value)` (the momentum change `r`, each sliding contact's friction law)
 /// and the inequality rows (`x_n >= 0`, the sticking contacts' cone) over the unknowns
 /// `(x_n, x_f)` per contact.
-fn rows(contacts: &[Touching], r: &[f64]) -> (Vec<(Vec<f64>, f64)>, Vec<Vec<f64>>) {
+fn rows(contacts: &[Touching], r: &[f64]) -> (Equalities, Vec<Vec<f64>>) {
     let n = 2 * contacts.len();
     let mut equalities: Vec<(Vec<f64>, f64)> = (0..r.len())
         .map(|k| {
@@ -226,6 +246,19 @@ mod tests {
         let expected = [0.0, 0.02 / 0.32, 0.3 / 0.32];
         for (p, e) in x.iter().zip(expected) {
             assert!((p[0] - e).abs() < 1e-13, "{x:?}");
+        }
+    }
+
+    #[test]
+    fn subsets_come_by_size_each_once() {
+        for m in 0..=10 {
+            let all: Vec<u64> = subsets_by_size(m).collect();
+            assert_eq!(all.len(), 1 << m, "m = {m}");
+            assert!(all.windows(2).all(|w| w[0].count_ones() <= w[1].count_ones()), "m = {m}");
+            let mut sorted = all.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            assert_eq!(sorted.len(), 1 << m, "m = {m}");
         }
     }
 

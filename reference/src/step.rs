@@ -197,52 +197,87 @@ pub(super) fn solve(
         normal[i] = z[slot];
         friction[i] = z[k + 2 * slot] - z[k + 2 * slot + 1];
     }
-    // The load, where the contacts leave it open: the least 2-norm with this motion
-    // (docs/formulation.md, "The load: the least norm"; `load.rs`). A contact touches when it
-    // carries load or its normal velocity is within the velocity tolerance of zero, and sticks
-    // when its slip is within it too.
-    let tolerance = 1e-9 * speed_scale;
-    let mut touching: Vec<(usize, Touching)> = Vec::new();
-    for (slot, &i) in active.iter().enumerate() {
-        let f = &frames[i];
-        let normal_velocity = dot3(columns[slot], v_plus) - dot(f.normal, support_velocity[i])
-            + model.recovery(f.gap, round_off);
-        if z[slot] <= model.impulse_floor() && normal_velocity > tolerance {
-            continue;
-        }
-        let slip = dot(f.tangent, support_velocity[i]) - dot3(columns[k + 2 * slot], v_plus);
-        let law = if slip.abs() <= tolerance {
-            Law::Sticking { mu: mu[i] }
-        } else {
-            Law::Sliding { f: slip.signum() * mu[i] }
-        };
-        touching.push((
-            i,
-            Touching { normal: columns[slot].to_vec(), tangent: columns[k + 2 * slot].to_vec(), law },
-        ));
-    }
-    let unknowns: usize =
-        touching.iter().map(|(_, t)| if matches!(t.law, Law::Sticking { .. }) { 2 } else { 1 }).sum();
-    if unknowns > 3 || (touching.len() >= 3 && unknowns == 3) {
-        let mut r = [0.0; 3];
-        for (i, t) in &touching {
-            for c in 0..3 {
-                r[c] += t.normal[c] * normal[*i] + t.tangent[c] * friction[*i];
+    let load = Load { model, frames, support_velocity, mu, columns: &columns, tolerance: 1e-9 * speed_scale };
+    load.least_norm(&active, z, v_plus, round_off, &mut normal, &mut friction)?;
+    Ok(StepResult { velocity: v_plus, normal, friction, ambiguous })
+}
+
+/// What the load's rule reads of a step (docs/formulation.md, "The load: the least norm").
+struct Load<'a> {
+    model: &'a Model,
+    frames: &'a [Frame],
+    support_velocity: &'a [[f64; 2]],
+    mu: &'a [f64],
+    /// The impulse columns: normal of slot `s` at `s`, `+d` at `k + 2 s`, `-d` at `k + 2 s + 1`.
+    columns: &'a [[f64; 3]],
+    /// The velocity tolerance, `1e-9 S`.
+    tolerance: f64,
+}
+
+impl Load<'_> {
+    /// The load, where the contacts leave it open: the least 2-norm with the motion `v_plus` of the
+    /// answer `z` over the `active` contacts (`load.rs`), in place of `normal` and `friction`. A
+    /// contact touches when it carries load or its normal velocity is within the tolerance of
+    /// zero, and sticks when its slip is within it too.
+    fn least_norm(
+        &self,
+        active: &[usize],
+        z: &[f64],
+        v_plus: [f64; 3],
+        round_off: f64,
+        normal: &mut [f64],
+        friction: &mut [f64],
+    ) -> Result<(), String> {
+        let (model, frames, support_velocity, mu, columns) =
+            (self.model, self.frames, self.support_velocity, self.mu, self.columns);
+        let k = active.len();
+        let tolerance = self.tolerance;
+        // The load, where the contacts leave it open: the least 2-norm with this motion
+        // (docs/formulation.md, "The load: the least norm"; `load.rs`). A contact touches when it
+        // carries load or its normal velocity is within the velocity tolerance of zero, and sticks
+        // when its slip is within it too.
+        let mut touching: Vec<(usize, Touching)> = Vec::new();
+        for (slot, &i) in active.iter().enumerate() {
+            let f = &frames[i];
+            let normal_velocity = dot3(columns[slot], v_plus) - dot(f.normal, support_velocity[i])
+                + model.recovery(f.gap, round_off);
+            if z[slot] <= model.impulse_floor() && normal_velocity > tolerance {
+                continue;
             }
+            let slip = dot(f.tangent, support_velocity[i]) - dot3(columns[k + 2 * slot], v_plus);
+            let law = if slip.abs() <= tolerance {
+                Law::Sticking { mu: mu[i] }
+            } else {
+                Law::Sliding { f: slip.signum() * mu[i] }
+            };
+            touching.push((
+                i,
+                Touching { normal: columns[slot].to_vec(), tangent: columns[k + 2 * slot].to_vec(), law },
+            ));
         }
-        let scale = z.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-        let contacts: Vec<Touching> = touching.iter().map(|(_, t)| t.clone()).collect();
-        match least_norm(&contacts, &r, scale) {
-            Some(load) => {
-                for ((i, _), x) in touching.iter().zip(load) {
-                    (normal[*i], friction[*i]) = (x[0], x[1]);
+        let unknowns: usize =
+            touching.iter().map(|(_, t)| if matches!(t.law, Law::Sticking { .. }) { 2 } else { 1 }).sum();
+        if unknowns > 3 || (touching.len() >= 3 && unknowns == 3) {
+            let mut r = [0.0; 3];
+            for (i, t) in &touching {
+                for c in 0..3 {
+                    r[c] += t.normal[c] * normal[*i] + t.tangent[c] * friction[*i];
                 }
             }
-            None if determinate(&contacts) => {}
-            None => return Err(format!("no load within the contacts' laws gives the motion {v_plus:?}")),
+            let scale = z.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            let contacts: Vec<Touching> = touching.iter().map(|(_, t)| t.clone()).collect();
+            match least_norm(&contacts, &r, scale) {
+                Some(load) => {
+                    for ((i, _), x) in touching.iter().zip(load) {
+                        (normal[*i], friction[*i]) = (x[0], x[1]);
+                    }
+                }
+                None if determinate(&contacts) => {}
+                None => return Err(format!("no load within the contacts' laws gives the motion {v_plus:?}")),
+            }
         }
+        Ok(())
     }
-    Ok(StepResult { velocity: v_plus, normal, friction, ambiguous })
 }
 
 /// `a . b` in three dimensions.

@@ -427,6 +427,7 @@ impl MultibodyScene<f32, 1, 1> for Failing {
             time: self.steps as f32 * 1e-3,
             states,
             interface_forces: [[0.0; 2]],
+            corner_loads: [[[0.0; 2]; 4]],
             modes: self.modes,
             active: 2,
             pivots: 0,

@@ -304,13 +304,17 @@ fn host_scene(query: &str) -> (String, String) {
 }
 
 /// The first step at which the page's trajectory differs from the host's (for the report).
+#[allow(clippy::type_complexity)] // a closure for `?` in the macro's refusal
 fn first_difference(b: &Browser, query: &str) -> String {
     let args = scene_args(query);
     let spec = args.specs(None).unwrap()[0].1;
-    let host: Vec<(f64, [f64; 6])> = with_contacts!(spec.kind(), K => {
-        let t = run_k::<K>(&spec, args.implementation(), Record::All).unwrap();
-        t.rows.iter().map(|r| (r.t, [r.q[0], r.q[1], r.q[2], r.v[0], r.v[1], r.v[2]])).collect()
-    });
+    let rows = || -> Result<Vec<(f64, [f64; 6])>, Box<dyn std::error::Error + Send + Sync>> {
+        Ok(with_contacts!(spec.kind(), K => {
+            let t = run_k::<K>(&spec, args.implementation(), Record::All)?;
+            t.rows.iter().map(|r| (r.t, [r.q[0], r.q[1], r.q[2], r.v[0], r.v[1], r.v[2]])).collect()
+        }))
+    };
+    let host = rows().unwrap();
     let page = b.js("return window.meterstick.trace()");
     let f32_run = args.precision == Precision::F32;
     let same = |a: f64, b: f64| {
@@ -471,9 +475,12 @@ fn check_scene(b: &Browser, base: &str, name: &str, query: &str, expected: &str)
     assert!(fetched.as_str().unwrap().contains(&module), "{name}: {module} not fetched: {fetched}");
     let spec = args.specs(None).unwrap()[0].1;
     let implementation = args.implementation();
-    let host = with_contacts!(kind, K => {
-        serde_json::to_value(run_k::<K>(&spec, implementation, Record::Nothing).unwrap().measured).unwrap()
-    });
+    let measured = || -> Result<Value, Box<dyn std::error::Error + Send + Sync>> {
+        Ok(
+            with_contacts!(kind, K => serde_json::to_value(run_k::<K>(&spec, implementation, Record::Nothing)?.measured)?),
+        )
+    };
+    let host = measured().unwrap();
     let values = b.js("return document.getElementById('measured').dataset.values");
     let page: Value = serde_json::from_str(values.as_str().unwrap()).unwrap();
     for key in info.measures {

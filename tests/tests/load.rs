@@ -9,6 +9,13 @@
 //! block-on-block's floor friction shared equally by its two corners, an aligned stack's corners
 //! equal.
 
+#![allow(
+    clippy::expect_used,
+    clippy::unwrap_used,
+    clippy::cast_precision_loss,
+    clippy::cast_possible_truncation
+)]
+
 use meterstick_core::multibody::scenes::{
     BlockOnBlock, BlockOnBlockParams, MultibodyScene, Stack, StackParams,
 };
@@ -244,7 +251,7 @@ fn last_corner_loads<T: meterstick_core::Real, const B: usize, const P: usize>(
                     .iter()
                     .zip(modes)
                     .filter(|(_, m)| **m != ContactMode::Separated)
-                    .map(|(l, _)| l.map(|x| x.as_f64()))
+                    .map(|(l, _)| l.map(meterstick_core::Real::as_f64))
                     .collect()
             })
             .collect();

@@ -111,10 +111,7 @@ fn parameters_outcome_and_checksum_match_host_sim_scene() {
         );
         assert!(text.contains(&format!("checksum {:08x}", sim.checksum())), "{kind:?} {given:?}\n{text}");
         // The measured quantities, named by the catalogue as `summary.json` names them.
-        let summary = meterstick_host_sim::with_contacts!(kind, K => {
-            let host = run_k::<K>(&spec, implementation, Record::Nothing).unwrap();
-            serde_json::to_value(host.measured).unwrap()
-        });
+        let summary = measured_by_host_sim(*kind, &spec, implementation);
         let measured = sim.measured();
         let names = kind.info().measures;
         for (name, ours) in names.iter().zip(measured) {
@@ -213,4 +210,20 @@ fn a_run_of_several_bodies_gives_its_shapes() {
     );
     assert_eq!([0_u32, 1, 2].map(|b| ms_body_round(b)), [0, 1, 0], "the board a box, the disc round");
     assert!(ms_table_end(0).is_nan() && ms_table_end(1).is_nan(), "a floor without ends");
+}
+
+/// `host-sim`'s measured quantities of `spec` as `summary.json` names them (a scene of one body:
+/// the page's are compared with the recorded run's).
+fn measured_by_host_sim(
+    kind: SceneKind,
+    spec: &meterstick_host_sim::scenes::SceneParams,
+    implementation: meterstick_host_sim::scenes::Implementation,
+) -> serde_json::Value {
+    let run = || -> Result<serde_json::Value, Box<dyn std::error::Error + Send + Sync>> {
+        Ok(meterstick_host_sim::with_contacts!(kind, K => {
+            let host = run_k::<K>(spec, implementation, Record::Nothing)?;
+            serde_json::to_value(host.measured)?
+        }))
+    };
+    run().unwrap_or_else(|e| panic!("{kind:?}: {e}"))
 }

@@ -292,7 +292,9 @@ fn an_indeterminate_interface_moves_the_same_from_every_start() {
         answers.len(),
         distinct
     );
-    assert!(answers.len() >= 3 && distinct >= 1, "{splits:?}");
+    // Every start reaches a vertex of its own, and the load's rule (docs/formulation.md, "The
+    // load: the least norm") takes the one split of least norm from each: the same.
+    assert!(answers.len() >= 3 && distinct == 0, "{splits:?}");
     let total = |r: &step::StepResult| {
         top.iter().map(|&i| (r.normal[i], r.friction[i])).fold((0.0, 0.0), |s, x| (s.0 + x.0, s.1 + x.1))
     };
