@@ -176,7 +176,7 @@ impl Sim {
     /// After the outcome, steps the scene on past it (the core's `go_on` before each step: the
     /// bodies go on, the stack tumbles off the table), writing rows as [`Self::step_rows`] does;
     /// the run is reported as judged from then on (its outcome, checksum, time, counters, measured
-    /// quantities: [`Judged`]). At most [`MAX_PAST_STEPS`] in all; returns the steps taken (0
+    /// quantities: the judged run). At most [`MAX_PAST_STEPS`] in all; returns the steps taken (0
     /// before the outcome, once a step failed or the bound is reached).
     pub fn step_past_rows(&mut self, rows: &mut [f64]) -> usize {
         if self.past.is_none() {
