@@ -1335,7 +1335,7 @@ mod tests {
 
     use super::Factored;
     use crate::lcp::{Basis, Lcp, Lemke, default_tolerance, verify};
-    use crate::multibody::stepper::slot_rows;
+    use crate::multibody::slots::slot_rows;
     use crate::multibody::{Pair, Settings, Stepper, Support, System, Table};
     use crate::planar::{Body, BodyState};
 
@@ -1533,7 +1533,7 @@ mod tests {
             }
             for base in bases.clone() {
                 for j in 0..step.k {
-                    for pattern in super::super::stepper::PATTERNS {
+                    for pattern in super::super::slots::PATTERNS {
                         let mut mask = base;
                         for (bit, row) in slot_rows(step.k, j).into_iter().enumerate() {
                             mask = (mask & !(1 << row)) | (u32::from(pattern >> bit & 1) << row);

@@ -24,6 +24,7 @@ mod factored;
 mod geometry;
 mod resolve;
 pub mod scenes;
+mod slots;
 mod stepper;
 
 pub use geometry::{Candidate, CornerFrame, JacobianRow, Pair, Shape, Support, Table};

@@ -18,8 +18,7 @@
 
 use super::factored::{ContactBlocks, Factored};
 use super::geometry::Shape;
-use super::stepper::Stats;
-use super::stepper::{PATTERNS, pattern_bits, slot_pattern};
+use super::slots::{PATTERNS, pattern_bits, slot_pattern};
 use crate::planar::Body;
 use crate::planar::resolve::COUPLING;
 use crate::real::{Real, max};
@@ -211,18 +210,6 @@ pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     Some(resolve(f, blocks, rule, tolerance, v_plus, z, mask))
 }
 
-impl Stats {
-    /// Counts what the rule did on a step ([`apply`]'s answer).
-    pub(super) fn count_rule(&mut self, rule: Option<Resolution>) {
-        if let Some(r) = rule {
-            self.rule_checked_steps += 1;
-            self.rule_enumerated_steps += u64::from(r.enumerated);
-            self.ambiguous_steps += u64::from(r.ambiguous);
-            self.rule_changed_answer += u64::from(r.changed);
-        }
-    }
-}
-
 /// Rounds of the descent ([`resolve`]): the reference's (`reference/src/multibody/step.rs`,
 /// `DESCENT_ROUNDS`).
 pub(super) const ROUNDS: usize = 8;
@@ -407,7 +394,7 @@ mod tests {
     use crate::multibody::scenes::{
         BlockOnBlock, BlockOnBlockParams, TABLECLOTH_ROWS, Tablecloth, TableclothParams,
     };
-    use crate::multibody::stepper::{PATTERNS, slot_rows};
+    use crate::multibody::slots::{PATTERNS, slot_rows};
     use crate::planar::resolve::COUPLING;
     use crate::real::Real;
 
