@@ -1631,6 +1631,24 @@ mod tests {
         }
     }
 
+    /// CI's proptest run of 2026-12-05 (shrunk; the first width at its range's floor): a flagged
+    /// step whose descent solved more bases than `resolve::most_solves` allowed.
+    #[test]
+    fn a_tilted_top_box_on_a_spinning_bottom_one() {
+        for w0 in [0.2, 0.3, 0.5, 0.8, 0.99] {
+            check_jacobian(&Case {
+                sizes: [w0, 0.281_381_491_210_669_85, 0.605_362_854_958_095_3, 0.05],
+                masses: [0.1, 0.01],
+                offset: 0.0,
+                thetas: [0.0, -0.348_030_532_855_178_6],
+                gaps: [0.0, 0.0],
+                velocities: [[2.478_597_370_397_151, 0.0, 0.493_284_978_654_677_7], [0.0; 3]],
+                mu: [3.676_288_658_912_953, 0.0],
+                force: 0.0,
+            });
+        }
+    }
+
     /// At `mu >= 64` the weighted assembly ([`Factored::assemble`] with `weighted`) is the same
     /// LCP: on random two-box steps with `mu` up to `1e4`, every answer Lemke's method gives the
     /// weighted rows verifies on the model's rows, whose `w` is the weighted one's with each cone
