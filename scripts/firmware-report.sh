@@ -34,6 +34,8 @@ done
   echo "defaults, f32, stepped directly, and the stack through the stack rig (stack-rig-held: 0.2 s at the default"
   echo "overhang; stack-rig-fell: overhang 1.02), and the tablecloth at mu = 2 (tablecloth-mu2) with its steps the rule"
   echo "flagged as possibly having several motions timed apart (tablecloth-mu2-flagged: the worst flagged multibody step);"
+  echo "the slow scene's steps whose load the contacts decide (slow-determinate) and those whose load the rule decides"
+  echo "(slow-decided: the rod at rest on two sticking fingers, docs/formulation.md, \"The load: the least norm\") apart;"
   echo "QEMU -icount shift=0, SysTick ticks converted with the calibration loop;"
   echo "stack peak: the deepest the stack grew in the scene, painted and read back, firmware/src/stack_peak.rs):"
   echo

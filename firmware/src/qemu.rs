@@ -4,7 +4,8 @@
 //! directly through the scene registry (`SceneParams::build_in`, the reduced layout: incline and
 //! ladder 6x6, three fingers 9x9, cylinder and Painlevé's rod 3x3), all in f32, and prints for each its switch events, its outcome, statistics and the
 //! trajectory checksum (`meterstick_core::planar::Checksum`), then the SysTick ticks the rig's
-//! steps took and a calibration of ticks against instructions. With `qemu-multibody` (M4F and M33F;
+//! steps took (and, in a scene where the load rule decided some, those steps' and the others' apart:
+//! `slow-decided`, `slow-determinate`) and a calibration of ticks against instructions. With `qemu-multibody` (M4F and M33F;
 //! see firmware/Cargo.toml) also block-on-block, the 3-block stack and disc-on-board at their defaults
 //! in f32 through the registry (`SceneParams::build_multibody`): outcome, steps, the checksum of every
 //! step's states of all bodies in body order (`StepReport::add_to`) and the SysTick ticks of their
@@ -91,12 +92,15 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
         }
     };
     let mut checksum = Checksum::new();
-    let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
-    // Per solve path (`SolvePath::ALL`'s order): steps, ticks, worst step. A step is counted under
-    // the last path it needed (a step that fell back to the full layout may use two).
-    let mut by_path = [(0u64, 0u64, 0u32); 4];
+    let (mut steps, mut all) = (0u64, Tally::default());
+    // Per solve path (`SolvePath::ALL`'s order). A step is counted under the last path it needed
+    // (a step that fell back to the full layout may use two).
+    let mut by_path = [Tally::default(); 4];
+    // Steps whose load the rule decided (`docs/formulation.md`, "The load: the least norm") and
+    // the others, whose load the contacts decide.
+    let (mut decided, mut determinate) = (Tally::default(), Tally::default());
     let state = loop {
-        let before = rig.scene().stats().paths;
+        let before = *rig.scene().stats();
         let t0 = systick::now();
         let result = rig.tick();
         let t1 = systick::now();
@@ -110,15 +114,18 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
         if rig.scene().stats().steps > steps {
             steps = rig.scene().stats().steps;
             let used = systick::elapsed(t0, t1);
-            ticks += u64::from(used);
-            worst = worst.max(used);
+            all.add(used);
             checksum.add(rig.scene().state());
             let after = rig.scene().stats().paths;
-            let path = SolvePath::ALL.iter().rposition(|&p| after.of(p) > before.of(p)).unwrap_or(0);
+            let path =
+                SolvePath::ALL.iter().rposition(|&p| after.of(p) > before.paths.of(p)).unwrap_or(0);
             if let Some(slot) = by_path.get_mut(path) {
-                slot.0 += 1;
-                slot.1 += u64::from(used);
-                slot.2 = slot.2.max(used);
+                slot.add(used);
+            }
+            if rig.scene().stats().load_decided_steps > before.load_decided_steps {
+                decided.add(used);
+            } else {
+                determinate.add(used);
             }
         }
         if !matches!(state, RigState::WaitingForStart | RigState::Running) {
@@ -145,26 +152,54 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
         st.reduced_check_fired,
         checksum.value()
     );
-    for (path, (n, t, w)) in SolvePath::ALL.iter().zip(by_path) {
+    for (path, t) in SolvePath::ALL.iter().zip(by_path) {
         defmt::println!(
             "{=str} path={=str} steps={=u64} systicks={=u64} worst_step_systicks={=u32}",
             name,
             path.name(),
-            n,
-            t,
-            w
+            t.steps,
+            t.ticks,
+            t.worst
         );
+    }
+    if decided.steps > 0 {
+        for (kind, t) in [("determinate", determinate), ("decided", decided)] {
+            defmt::println!(
+                "{=str}-{=str} timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
+                name,
+                kind,
+                t.ticks,
+                t.worst,
+                t.steps
+            );
+        }
     }
     let (pins, _) = rig.release();
     defmt::println!(
         "{=str} rig pulses={=u32} systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
         name,
         pins.step.rises(),
-        ticks,
-        worst,
+        all.ticks,
+        all.worst,
         steps
     );
     Some(outcome)
+}
+
+/// Steps timed, their SysTick ticks and the worst step's.
+#[derive(Clone, Copy, Default)]
+struct Tally {
+    steps: u64,
+    ticks: u64,
+    worst: u32,
+}
+
+impl Tally {
+    fn add(&mut self, used: u32) {
+        self.steps += 1;
+        self.ticks += u64::from(used);
+        self.worst = self.worst.max(used);
+    }
 }
 
 /// Prints the deepest the stack grew since the last [`stack_peak::paint`] (`<name> stack
