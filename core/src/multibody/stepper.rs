@@ -818,7 +818,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             })
             && memory.count == slots;
         let (load, after) = if kept {
-            (memory.load, memory.after)
+            // The memory stays but for the path, which the next step's is compared with.
+            let (load, after) = (memory.load, memory.after);
+            self.load_memory.path = path;
+            (load, after)
         } else {
             let tolerance = rule.velocity_tolerance();
             let off = LoadContact {
@@ -861,14 +864,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                     after[j] = ContactMode::from_slip(slips[j], s.stick_speed);
                 }
             }
+            let mut remembered = [(usize::MAX, usize::MAX); MOST_SLOTS];
+            for (r, &slot) in remembered.iter_mut().zip(&self.lcp.slots).take(slots) {
+                *r = slot;
+            }
+            self.load_memory = LoadMemory { slots: remembered, count: slots, before, path, load, after };
             (load, after)
         };
         self.stats.load_decided_steps += 1;
-        let mut remembered = [(usize::MAX, usize::MAX); MOST_SLOTS];
-        for (r, &slot) in remembered.iter_mut().zip(&self.lcp.slots).take(slots) {
-            *r = slot;
-        }
-        self.load_memory = LoadMemory { slots: remembered, count: slots, before, path, load, after };
         // The report again, from the load.
         *impulses = [[T::zero(); 2]; P];
         let per_second = self.system.bodies[0].mass / s.step;
