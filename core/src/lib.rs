@@ -11,6 +11,8 @@
 //!   fixes the LCP size at compile time, supports a scene moves.
 //! * [`scene`]: the meter stick (6x6 or 8x8), a block on an incline, a ladder.
 //! * [`Real`]: the scalar trait (`f32` on a microcontroller, `f64` on a host).
+//! * `spatial` (feature `spatial`): a body with six degrees of freedom on a plane, with isotropic
+//!   friction.
 //! * [`soft_float`]: `f32` multiplication on the bits for cores without an FPU (the firmware's
 //!   Cortex-M0 builds install it as `__aeabi_fmul`).
 //!
@@ -35,6 +37,8 @@ mod real;
 pub mod rule;
 pub mod scene;
 pub mod soft_float;
+#[cfg(feature = "spatial")]
+pub mod spatial;
 
 pub use params::{Check, ParamError, check_fields};
 pub use real::Real;
