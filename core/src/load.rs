@@ -206,31 +206,6 @@ fn inequality<T: Real, const C: usize>(carry: &[Carry<T>; C], row: usize) -> Opt
     Some(a)
 }
 
-/// `true` when `load` gives the momentum change `path` gives within `round_off` of each impulse:
-/// `|(W (path - load))_k| <= round_off sum_c (|W_n,k| + |W_f,k|)` for every coordinate `k` of
-/// every body, `W` the columns of `contacts`. A rest state's decided load passes it on the next
-/// step when its contacts carry the same way ([`Carry`]): the load is then the least-norm one of
-/// the same set, within round-off, and is kept, not solved again; the path's own split of an
-/// indeterminate load, which may wander from step to step, does not enter.
-pub(crate) fn same_momentum<T: Real, const C: usize, const B: usize>(
-    contacts: &[LoadContact<T, B>; C],
-    path: &Unknowns<T, C>,
-    load: &Unknowns<T, C>,
-    round_off: T,
-) -> bool {
-    (0..B).all(|b| {
-        (0..3).all(|k| {
-            let (mut change, mut size) = (T::zero(), T::zero());
-            for ((contact, p), l) in contacts.iter().zip(path).zip(load) {
-                let (n, t) = (contact.normal[b][k], contact.tangent[b][k]);
-                change += n * (p[0] - l[0]) + t * (p[1] - l[1]);
-                size += n.abs_exact() + t.abs_exact();
-            }
-            change.abs_exact() <= round_off * size
-        })
-    })
-}
-
 /// The load of least 2-norm that gives the same momentum change as `path` (`(x_n, x_f)` per
 /// contact), among the loads `contacts` may carry ("The load where rigid contact leaves it open",
 /// above). `warm` is the basis of the last step that needed the LCP; it receives this step's.
@@ -339,24 +314,6 @@ mod tests {
         let b = -w * sx / (n * sxx - sx * sx);
         let a = (w - b * sx) / n;
         xs.map(|x| a + b * x)
-    }
-
-    /// Two sticking fingers under a rod: a path that moves friction from one finger to the other
-    /// (`f1 + f2` the same) gives the same momentum change as the kept load; one that moves normal
-    /// load between them (the moment changes) or adds friction does not, down to a change just
-    /// beyond the round-off allowed.
-    #[test]
-    fn the_same_momentum_is_the_wrench_not_the_split() {
-        let contacts = rod([-0.35, 0.4], [Carry::Sticking { mu: 0.6 }; 2]);
-        let kept = [[0.4, 0.0], [0.6, 0.0]];
-        let round_off = 1e-12;
-        assert!(same_momentum(&contacts, &[[0.4, 0.05], [0.6, -0.05]], &kept, round_off));
-        assert!(same_momentum(&contacts, &kept, &kept, 0.0));
-        // Normal load moved from finger 2 to finger 1: same vertical impulse, another moment.
-        assert!(!same_momentum(&contacts, &[[0.4 + 1e-9, 0.0], [0.6 - 1e-9, 0.0]], &kept, round_off));
-        assert!(same_momentum(&contacts, &[[0.4 + 1e-13, 0.0], [0.6 - 1e-13, 0.0]], &kept, round_off));
-        // Friction added on one finger only: a net horizontal impulse.
-        assert!(!same_momentum(&contacts, &[[0.4, 1e-9], [0.6, 0.0]], &kept, round_off));
     }
 
     #[test]

@@ -32,7 +32,7 @@ use super::resolve::{Detector, resolve, solve_by_rule};
 use super::strategy::{SolvePath, Solved, solve};
 use crate::lcp::{Basis, LcpError, Lemke};
 #[cfg(feature = "fallback")]
-use crate::load::{Carry, LoadContact, LoadPath, least_norm, same_momentum};
+use crate::load::{Carry, LoadContact, LoadPath, least_norm};
 use crate::params::ParamError;
 use crate::real::{Real, max, min, zero_if_finite};
 use crate::rule::Resolution;
@@ -219,7 +219,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             #[cfg(feature = "fallback")]
             load_basis: Basis::all_w(),
             #[cfg(feature = "fallback")]
-            load_memory: PlanarLoadMemory { kinds: [Carry::Nothing; K], load: [[T::zero(); 2]; K] },
+            load_memory: PlanarLoadMemory {
+                kinds: [Carry::Nothing; K],
+                path: [[T::zero(); 2]; K],
+                load: [[T::zero(); 2]; K],
+            },
             stats: RunStats::default(),
         };
         stepper.update_frames(&supports);
@@ -693,8 +697,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             loads[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
         }
         // A rest state keeps the load decided the step before: the answer at the least energy,
-        // the same contacts carrying the same way, that load giving the path's momentum change
-        // within round-off (`crate::load::same_momentum`).
+        // the same contacts carrying the same way, its load the same within round-off.
         let kinds = loads.map(|l| l.carry);
         let mut scale = T::zero();
         for p in &path {
@@ -704,14 +707,16 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let memory = &self.load_memory;
         let kept = rule.at_least_energy(&[*v_plus])
             && memory.kinds == kinds
-            && same_momentum(&loads, &path, &memory.load, round_off);
+            && path.iter().zip(&memory.path).all(|(a, b)| {
+                (a[0] - b[0]).abs_exact() <= round_off && (a[1] - b[1]).abs_exact() <= round_off
+            });
         let (load, how) = if kept {
             (memory.load, LoadPath::Projection)
         } else {
             least_norm(&loads, &path, &mut self.load_basis).map_err(StepError::Solver)?
         };
         if how != LoadPath::Determinate {
-            self.load_memory = PlanarLoadMemory { kinds, load };
+            self.load_memory = PlanarLoadMemory { kinds, path, load };
             self.stats.load_decided_steps += 1;
             for i in 0..K {
                 let report = &mut contacts[i];
@@ -794,12 +799,13 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     }
 }
 
-/// The last load the rule decided ([`Stepper::decide_load`]): what each contact could carry and
-/// the decided load (a rest state keeps it).
+/// The last load the rule decided ([`Stepper::decide_load`]): what each contact could carry, the
+/// path's load and the decided one (a rest state keeps it).
 #[cfg(feature = "fallback")]
 #[derive(Debug, Clone, Copy)]
 struct PlanarLoadMemory<T, const K: usize> {
     kinds: [Carry<T>; K],
+    path: [[T; 2]; K],
     load: [[T; 2]; K],
 }
 
