@@ -9,7 +9,7 @@ use meterstick_core::multibody::scenes::MultibodyScene;
 use meterstick_core::planar::{Checksum, ContactMode};
 use meterstick_core::scene::{
     BodyShape, LcpLayout, MultibodyView, MultibodyVisitor, Outcome, PlanarView, Pose, Precision, Scene,
-    SceneKind, SceneParams, SceneView, SceneVisitor, Thing, Velocity,
+    SceneKind, SceneParams, SceneView, SceneVisitor, Thing, Velocity, ViewVisitor,
 };
 
 /// At most this many steps of a run (each catalogue scene's default ends before).
@@ -64,6 +64,17 @@ fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
         measured: view.measured().iter().map(|m| m.map(bits)).collect(),
         step_count: view.summary().steps,
         checksum: view.checksum(),
+    }
+}
+
+/// Traces any scene the registry builds as a view ([`SceneParams::build_view`]).
+struct Traced;
+
+impl ViewVisitor for Traced {
+    type Output = Trace;
+
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Trace {
+        trace_view(view)
     }
 }
 
@@ -160,10 +171,18 @@ fn every_catalogue_scene_runs_through_the_view_as_itself() {
                 }
             };
             let (own, viewed) = (traces(false), traces(true));
-            for (own, viewed) in own.iter().zip(&viewed) {
+            // The registry's one entry for either engine, `build_view` (a scene of several bodies
+            // has one layout).
+            let built: Vec<Trace> = LcpLayout::ALL[..own.len()]
+                .iter()
+                .map(|&layout| params.build_view::<64, _>(precision, layout, Traced).unwrap())
+                .collect();
+            assert_eq!(own.len(), if kind.is_multibody() { 1 } else { 2 }, "{kind}");
+            for ((own, viewed), built) in own.iter().zip(&viewed).zip(&built) {
                 assert!(own.outcome.is_some() && !own.steps.is_empty(), "{kind} {precision:?} ran");
                 assert_eq!(own.step_count, own.steps.len() as u64, "{kind} {precision:?}");
                 assert_eq!(viewed, own, "{kind} {precision:?}");
+                assert_eq!(built, own, "{kind} {precision:?}, built as a view");
             }
         }
     }

@@ -15,14 +15,19 @@
 //! * [`ContactView`]: a contact between two [`Thing`]s, its point, normal, gap, mode and
 //!   impulses;
 //! * [`RunSummary`]: the counters every engine keeps.
+//!
+//! [`crate::scene::SceneParams::build_view`] builds any catalogue scene and hands it to a
+//! [`ViewVisitor`] as a `&mut dyn SceneView<T>`.
 
 mod body;
+mod build;
 mod contact;
 mod multibody;
 mod planar;
 mod summary;
 
 pub use body::{BodyShape, BodyView, Pose, Velocity};
+pub use build::ViewVisitor;
 pub use contact::{ContactView, Thing};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
