@@ -8,8 +8,8 @@ use meterstick_core::Real;
 use meterstick_core::multibody::scenes::MultibodyScene;
 use meterstick_core::planar::{Checksum, ContactMode};
 use meterstick_core::scene::{
-    BodyShape, LcpLayout, MultibodyView, MultibodyVisitor, Outcome, PlanarView, Pose, Precision, Scene,
-    SceneKind, SceneParams, SceneView, SceneVisitor, Thing, Velocity, ViewVisitor,
+    BodyShape, Force, LcpLayout, MultibodyView, MultibodyVisitor, Outcome, PlanarView, Pose, Precision,
+    Scene, SceneKind, SceneParams, SceneView, SceneVisitor, Thing, Velocity, ViewVisitor,
 };
 
 /// At most this many steps of a run (each catalogue scene's default ends before).
@@ -24,6 +24,8 @@ struct Trace {
     measured: Vec<Option<u64>>,
     step_count: u64,
     checksum: u32,
+    /// Each switch event the scene keeps: time, contact, mode.
+    events: Vec<(u64, usize, u64)>,
 }
 
 fn bits<T: Real>(v: T) -> u64 {
@@ -64,6 +66,10 @@ fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
         measured: view.measured().iter().map(|m| m.map(bits)).collect(),
         step_count: view.summary().steps,
         checksum: view.checksum(),
+        events: (0..view.event_count())
+            .map(|i| view.event(i).unwrap())
+            .map(|e| (bits(e.time), e.contact, mode_code(e.mode)))
+            .collect(),
     }
 }
 
@@ -107,6 +113,11 @@ impl SceneVisitor for Planar {
             measured: scene.measured().iter().map(|m| m.map(bits)).collect(),
             step_count: scene.stats().steps,
             checksum: checksum.value(),
+            events: scene
+                .events()
+                .iter()
+                .map(|e| (bits(e.time), usize::from(e.contact), mode_code(e.mode)))
+                .collect(),
         }
     }
 }
@@ -147,6 +158,7 @@ impl MultibodyVisitor for Bodies {
             measured: scene.measured().iter().map(|m| m.map(bits)).collect(),
             step_count: u64::from(scene.stats().steps),
             checksum: checksum.value(),
+            events: Vec::new(),
         }
     }
 }
@@ -155,6 +167,7 @@ impl MultibodyVisitor for Bodies {
 /// through the view as by its own interface, bit for bit, to its outcome.
 #[test]
 fn every_catalogue_scene_runs_through_the_view_as_itself() {
+    let mut events = 0;
     for kind in SceneKind::ALL {
         let params = SceneParams::defaults(kind);
         for precision in Precision::ALL {
@@ -183,9 +196,11 @@ fn every_catalogue_scene_runs_through_the_view_as_itself() {
                 assert_eq!(own.step_count, own.steps.len() as u64, "{kind} {precision:?}");
                 assert_eq!(viewed, own, "{kind} {precision:?}");
                 assert_eq!(built, own, "{kind} {precision:?}, built as a view");
+                events += own.events.len();
             }
         }
     }
+    assert!(events > 0, "the scenes of one body switch modes");
 }
 
 /// Block-on-block without the pull stays at rest: through the view, the bottom block's two lower
@@ -241,6 +256,21 @@ fn block_on_block_at_rest_shows_its_four_corners_carrying_the_weights() {
     }
     assert_eq!(view.summary().steps, 10);
     assert!(view.outcome().is_none());
+    let zero = Force::Planar { fx: 0.0, fy: 0.0, torque: 0.0 };
+    assert_eq!((view.body(0).unwrap().force, view.body(1).unwrap().force), (zero, zero));
+}
+
+/// Block-on-block's pull is the bottom block's applied force, the top block has none.
+#[test]
+fn block_on_block_shows_its_pull_on_the_bottom_block() {
+    let SceneParams::BlockOnBlock(bb) = SceneParams::defaults(SceneKind::BlockOnBlock) else {
+        panic!("block-on-block")
+    };
+    let view = MultibodyView::new(meterstick_core::multibody::scenes::BlockOnBlock::<f64>::new(bb).unwrap());
+    let view: &dyn SceneView<f64> = &view;
+    assert!(bb.force > 0.0);
+    assert_eq!(view.body(0).unwrap().force, Force::Planar { fx: bb.force, fy: 0.0, torque: 0.0 });
+    assert_eq!(view.body(1).unwrap().force, Force::Planar { fx: 0.0, fy: 0.0, torque: 0.0 });
 }
 
 /// The meter stick at its start, through the view: one body, the rod, on two fingers, each a

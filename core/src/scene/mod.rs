@@ -52,6 +52,6 @@ pub use registry::{LcpLayout, Precision, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};
 pub use view::{
-    BodyShape, BodyView, ContactView, MultibodyView, PlanarView, Pose, RunSummary, SceneView, Thing,
-    Velocity, ViewVisitor,
+    BodyShape, BodyView, ContactView, EventView, Force, MultibodyView, PlanarView, Pose, RunSummary,
+    SceneView, Thing, Velocity, ViewVisitor,
 };

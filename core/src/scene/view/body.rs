@@ -50,7 +50,24 @@ pub enum Velocity<T> {
     },
 }
 
-/// One body now: its shape, pose and velocity.
+/// The force applied to a body besides its weight and its contacts, in the dimension the body
+/// moves in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Force<T> {
+    /// In the plane: `(fx, fy)` at the centre of mass (N, world) and a torque about it (N m,
+    /// counter-clockwise).
+    Planar {
+        /// Along world `x` (N).
+        fx: T,
+        /// Along world `y` (N).
+        fy: T,
+        /// About the centre of mass (N m, counter-clockwise).
+        torque: T,
+    },
+}
+
+/// One body now: its shape, pose and velocity, and the force applied to it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyView<T> {
     /// Its outline.
@@ -59,16 +76,24 @@ pub struct BodyView<T> {
     pub pose: Pose<T>,
     /// How it moves.
     pub velocity: Velocity<T>,
+    /// The force applied to it besides its weight and its contacts (a pull).
+    pub force: Force<T>,
 }
 
 impl<T: Copy> BodyView<T> {
-    /// A planar body of `shape` in `state`.
+    /// A planar body of `shape` in `state`, pulled by `force` `[fx, fy]` at its centre of mass.
     #[must_use]
-    pub const fn planar(shape: BodyShape<T>, state: &crate::planar::BodyState<T>) -> Self {
+    pub const fn planar(
+        shape: BodyShape<T>,
+        state: &crate::planar::BodyState<T>,
+        [fx, fy]: [T; 2],
+        torque: T,
+    ) -> Self {
         Self {
             shape,
             pose: Pose::Planar { x: state.x, y: state.y, theta: state.theta },
             velocity: Velocity::Planar { vx: state.vx, vy: state.vy, omega: state.omega },
+            force: Force::Planar { fx, fy, torque },
         }
     }
 }

@@ -10,10 +10,11 @@
 //!
 //! What the view gives are small `Copy` records:
 //!
-//! * [`BodyView`]: a body's [`BodyShape`], [`Pose`] and [`Velocity`] (each an enum of the
-//!   dimension it is in: a spatial body is another variant, not another method);
+//! * [`BodyView`]: a body's [`BodyShape`], [`Pose`], [`Velocity`] and applied [`Force`] (each an
+//!   enum of the dimension it is in: a spatial body is another variant, not another method);
 //! * [`ContactView`]: a contact between two [`Thing`]s, its point, normal, gap, mode and
 //!   impulses;
+//! * [`EventView`]: a contact's switch of mode, as the scene keeps them;
 //! * [`RunSummary`]: the counters every engine keeps.
 //!
 //! [`crate::scene::SceneParams::build_view`] builds any catalogue scene and hands it to a
@@ -22,13 +23,15 @@
 mod body;
 mod build;
 mod contact;
+mod event;
 mod multibody;
 mod planar;
 mod summary;
 
-pub use body::{BodyShape, BodyView, Pose, Velocity};
+pub use body::{BodyShape, BodyView, Force, Pose, Velocity};
 pub use build::ViewVisitor;
 pub use contact::{ContactView, Thing};
+pub use event::EventView;
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use summary::RunSummary;
@@ -64,6 +67,11 @@ pub trait SceneView<T: Real> {
     fn contact_count(&self) -> usize;
     /// Contact `i`: its geometry now and its impulses over the last step (zero before the first).
     fn contact(&self, i: usize) -> Option<ContactView<T>>;
+    /// The number of switch events the scene keeps ([`super::Scene::events`]; a scene of several
+    /// bodies keeps none).
+    fn event_count(&self) -> usize;
+    /// Switch event `i`, oldest first.
+    fn event(&self, i: usize) -> Option<EventView<T>>;
     /// What the scene measures, in the order of its catalogue entry's `measures`; `None` where a
     /// quantity has no value (yet).
     fn measured(&self) -> [Option<T>; MAX_MEASURES];

@@ -1,6 +1,6 @@
 //! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
 
-use super::{BodyShape, BodyView, ContactView, RunSummary, SceneView, Thing};
+use super::{BodyShape, BodyView, ContactView, EventView, RunSummary, SceneView, Thing};
 use crate::multibody::scenes::MultibodyScene;
 use crate::multibody::{Shape, Support};
 use crate::planar::Checksum;
@@ -84,7 +84,7 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             Shape::Box => BodyShape::Box { width: body.width, height: body.height },
             Shape::Disc => BodyShape::Disc { radius: body.width * T::of(0.5) },
         };
-        Some(BodyView::planar(shape, self.scene.states().get(i)?))
+        Some(BodyView::planar(shape, self.scene.states().get(i)?, *system.forces.get(i)?, T::zero()))
     }
 
     fn contact_count(&self) -> usize {
@@ -109,6 +109,14 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             normal_impulse: normal * h,
             friction_impulse: friction * h,
         })
+    }
+
+    fn event_count(&self) -> usize {
+        0
+    }
+
+    fn event(&self, _: usize) -> Option<EventView<T>> {
+        None
     }
 
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {

@@ -1,6 +1,6 @@
 //! [`PlanarView`]: a scene of one body ([`Scene`]) seen as a [`SceneView`].
 
-use super::{BodyView, ContactView, RunSummary, SceneView, Thing};
+use super::{BodyView, ContactView, EventView, RunSummary, SceneView, Thing};
 use crate::planar::{Checksum, ContactMode, ContactReport};
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome, Scene};
@@ -73,7 +73,8 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
     }
 
     fn body(&self, i: usize) -> Option<BodyView<T>> {
-        (i == 0).then(|| BodyView::planar(self.scene.shape(), self.scene.state()))
+        let zero = T::zero();
+        (i == 0).then(|| BodyView::planar(self.scene.shape(), self.scene.state(), [zero; 2], zero))
     }
 
     fn contact_count(&self) -> usize {
@@ -95,6 +96,15 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
             normal_impulse: last.normal_impulse,
             friction_impulse: last.friction_impulse,
         })
+    }
+
+    fn event_count(&self) -> usize {
+        self.scene.events().len()
+    }
+
+    fn event(&self, i: usize) -> Option<EventView<T>> {
+        let e = self.scene.events().get(i)?;
+        Some(EventView { time: e.time, contact: usize::from(e.contact), mode: e.mode })
     }
 
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {
