@@ -1,7 +1,9 @@
 //! [`ViewVisitor`] and [`SceneParams::build_view`]: any catalogue scene, of any engine, built and
 //! handed to a driver as a `&mut dyn SceneView<T>`.
 
-use super::{MultibodyView, PlanarView, SceneView};
+#[cfg(feature = "scenes-multibody")]
+use super::MultibodyView;
+use super::{PlanarView, SceneView};
 #[cfg(feature = "scenes-multibody")]
 use crate::multibody::scenes::MultibodyScene;
 use crate::params::ParamError;
