@@ -6,10 +6,10 @@
 
 use meterstick_core::Real;
 use meterstick_core::multibody::scenes::MultibodyScene;
-use meterstick_core::planar::{Checksum, ContactMode};
+use meterstick_core::planar::{Checksum, ContactMode, Support};
 use meterstick_core::scene::{
     BodyShape, Force, LcpLayout, MultibodyView, MultibodyVisitor, Outcome, PlanarView, Pose, Precision,
-    Scene, SceneKind, SceneParams, SceneView, SceneVisitor, Thing, Velocity, ViewVisitor,
+    Scene, SceneKind, SceneParams, SceneView, SceneVisitor, SupportView, Thing, Velocity, ViewVisitor,
 };
 
 /// At most this many steps of a run (each catalogue scene's default ends before).
@@ -42,6 +42,20 @@ fn mode_code(mode: ContactMode) -> u64 {
     }
 }
 
+/// A support's position and velocity (a table: its ends, NaN for none), as bits.
+fn support_bits<T: Real>(support: SupportView<T>) -> Vec<u64> {
+    match support {
+        SupportView::Point { position, velocity } => {
+            [position, velocity].concat().into_iter().map(bits).collect()
+        }
+        SupportView::Line { position, normal, velocity } => {
+            [position, normal, velocity].concat().into_iter().map(bits).collect()
+        }
+        SupportView::Table { lo, hi } => [lo, hi].map(|e| e.map_or(f64::NAN.to_bits(), bits)).to_vec(),
+        _ => panic!("a support of the engines today"),
+    }
+}
+
 /// The trace of `view` driven to its outcome through the view alone.
 fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
     let mut steps = Vec::new();
@@ -57,9 +71,13 @@ fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
             let c = view.contact(i).unwrap();
             row.extend([mode_code(c.mode), bits(c.normal_impulse), bits(c.friction_impulse)]);
         }
+        for i in 0..view.support_count() {
+            row.extend(support_bits(view.support(i).unwrap()));
+        }
         steps.push(row);
     }
     assert!(view.body(view.body_count()).is_none() && view.contact(view.contact_count()).is_none());
+    assert!(view.support(view.support_count()).is_none() && view.event(view.event_count()).is_none());
     Trace {
         steps,
         outcome: view.outcome(),
@@ -104,6 +122,17 @@ impl SceneVisitor for Planar {
             let mut row: Vec<u64> = r.state.to_array().map(bits).to_vec();
             for c in &r.contacts {
                 row.extend([mode_code(c.mode), bits(c.normal_impulse), bits(c.friction_impulse)]);
+            }
+            for support in scene.supports() {
+                row.extend(
+                    match *support {
+                        Support::Point { position, velocity } => [position, velocity].concat(),
+                        Support::Line { position, normal, velocity } => [position, normal, velocity].concat(),
+                        _ => panic!("a support of the scenes today"),
+                    }
+                    .into_iter()
+                    .map(bits),
+                );
             }
             steps.push(row);
         }
@@ -150,6 +179,8 @@ impl MultibodyVisitor for Bodies {
                     row.extend([mode_code(*mode), bits(*n * h), bits(*f * h)]);
                 }
             }
+            let table = scene.system().table;
+            row.extend([table.lo, table.hi].map(|e| e.map_or(f64::NAN.to_bits(), bits)));
             steps.push(row);
         }
         Trace {
@@ -297,4 +328,49 @@ fn the_meter_stick_shows_its_rod_on_two_fingers() {
     }
     let weight = ms.rod_mass * ms.gravity * ms.step;
     assert!((sum - weight).abs() <= 1e-6 * weight, "{sum} against m g h = {weight}");
+    assert_eq!(view.support_count(), 2);
+    let h = ms.step;
+    assert_eq!(
+        view.support(1),
+        Some(SupportView::Point {
+            position: [ms.finger2_x, ms.finger2_y],
+            velocity: [ms.finger2_velocity, 0.0]
+        })
+    );
+    let Some(SupportView::Point { position, velocity }) = view.support(0) else { panic!("finger 1 a point") };
+    #[allow(clippy::float_cmp)] // copied from the parameters, not computed: exactly equal
+    {
+        assert_eq!(velocity, [ms.finger1_velocity, 0.0]);
+    }
+    assert!(
+        (position[0] - (ms.finger1_x + ms.finger1_velocity * h)).abs() < 1e-12,
+        "moved one step: {position:?}"
+    );
+}
+
+/// The stack's table ends at its edge, `x = 0`; block-on-block's floor has no ends.
+#[test]
+fn the_table_is_the_multibody_scenes_support() {
+    for (kind, hi) in [(SceneKind::Stack, Some(0.0)), (SceneKind::BlockOnBlock, None)] {
+        let table =
+            SceneParams::defaults(kind).build_view::<0, _>(Precision::F64, LcpLayout::Full, Table).unwrap();
+        assert_eq!(table, (1, Some(SupportView::Table { lo: None, hi })), "{kind}");
+    }
+}
+
+/// A scene's supports: how many, and the first as f64.
+struct Table;
+
+impl ViewVisitor for Table {
+    type Output = (usize, Option<SupportView<f64>>);
+
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Self::Output {
+        let first = view.support(0).map(|s| match s {
+            SupportView::Table { lo, hi } => {
+                SupportView::Table { lo: lo.map(Real::as_f64), hi: hi.map(Real::as_f64) }
+            }
+            _ => panic!("a table"),
+        });
+        (view.support_count(), first)
+    }
 }

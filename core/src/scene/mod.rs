@@ -53,5 +53,5 @@ pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};
 pub use view::{
     BodyShape, BodyView, ContactView, EventView, Force, MultibodyView, PlanarView, Pose, RunSummary,
-    SceneView, Thing, Velocity, ViewVisitor,
+    SceneView, SupportView, Thing, Velocity, ViewVisitor,
 };

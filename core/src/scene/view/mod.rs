@@ -14,6 +14,7 @@
 //!   enum of the dimension it is in: a spatial body is another variant, not another method);
 //! * [`ContactView`]: a contact between two [`Thing`]s, its point, normal, gap, mode and
 //!   impulses;
+//! * [`SupportView`]: a support, moving or fixed, or the table;
 //! * [`EventView`]: a contact's switch of mode, as the scene keeps them;
 //! * [`RunSummary`]: the counters every engine keeps.
 //!
@@ -27,6 +28,7 @@ mod event;
 mod multibody;
 mod planar;
 mod summary;
+mod support;
 
 pub use body::{BodyShape, BodyView, Force, Pose, Velocity};
 pub use build::ViewVisitor;
@@ -35,6 +37,7 @@ pub use event::EventView;
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use summary::RunSummary;
+pub use support::SupportView;
 
 use super::kind::MAX_MEASURES;
 use super::outcome::Outcome;
@@ -67,6 +70,11 @@ pub trait SceneView<T: Real> {
     fn contact_count(&self) -> usize;
     /// Contact `i`: its geometry now and its impulses over the last step (zero before the first).
     fn contact(&self, i: usize) -> Option<ContactView<T>>;
+    /// The number of supports (a scene of one body: one per contact, [`Thing::Support`]'s index;
+    /// a scene of several bodies: its table, [`Thing::Table`]).
+    fn support_count(&self) -> usize;
+    /// Support `i` where the last step left it (before the first: where it starts).
+    fn support(&self, i: usize) -> Option<SupportView<T>>;
     /// The number of switch events the scene keeps ([`super::Scene::events`]; a scene of several
     /// bodies keeps none).
     fn event_count(&self) -> usize;

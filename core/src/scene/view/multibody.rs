@@ -1,6 +1,6 @@
 //! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
 
-use super::{BodyShape, BodyView, ContactView, EventView, RunSummary, SceneView, Thing};
+use super::{BodyShape, BodyView, ContactView, EventView, RunSummary, SceneView, SupportView, Thing};
 use crate::multibody::scenes::MultibodyScene;
 use crate::multibody::{Shape, Support};
 use crate::planar::Checksum;
@@ -109,6 +109,15 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             normal_impulse: normal * h,
             friction_impulse: friction * h,
         })
+    }
+
+    fn support_count(&self) -> usize {
+        1
+    }
+
+    fn support(&self, i: usize) -> Option<SupportView<T>> {
+        let table = self.scene.system().table;
+        (i == 0).then_some(SupportView::Table { lo: table.lo, hi: table.hi })
     }
 
     fn event_count(&self) -> usize {

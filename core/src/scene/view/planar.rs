@@ -1,7 +1,7 @@
 //! [`PlanarView`]: a scene of one body ([`Scene`]) seen as a [`SceneView`].
 
-use super::{BodyView, ContactView, EventView, RunSummary, SceneView, Thing};
-use crate::planar::{Checksum, ContactMode, ContactReport};
+use super::{BodyView, ContactView, EventView, RunSummary, SceneView, SupportView, Thing};
+use crate::planar::{Checksum, ContactMode, ContactReport, Support};
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome, Scene};
 
@@ -95,6 +95,17 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
             mode: self.scene.modes().get(i).copied().unwrap_or(ContactMode::Separated),
             normal_impulse: last.normal_impulse,
             friction_impulse: last.friction_impulse,
+        })
+    }
+
+    fn support_count(&self) -> usize {
+        K
+    }
+
+    fn support(&self, i: usize) -> Option<SupportView<T>> {
+        Some(match *self.scene.supports().get(i)? {
+            Support::Point { position, velocity } => SupportView::Point { position, velocity },
+            Support::Line { position, normal, velocity } => SupportView::Line { position, normal, velocity },
         })
     }
 
