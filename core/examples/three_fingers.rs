@@ -16,7 +16,7 @@ use meterstick_core::planar::{
     Body, BodyState, Contact, ContactFrame, ContactMode, EventLog, Feature, Layout, Model, RunStats,
     Settings, StepReport, Stepper, Support, SwitchEvent, Tangents,
 };
-use meterstick_core::scene::{Outcome, Scene};
+use meterstick_core::scene::{BodyShape, Outcome, Scene};
 
 /// Finger 1 drags the rod toward `+x` (`+d`); fingers 2 and 3 hold it back (`-d`): 3 + 3 + 3
 /// variables, checked against the full layout (3 + 6 + 3) after every step.
@@ -84,6 +84,9 @@ impl Scene<f64, 3> for ThreeFingers {
     }
     fn outcome(&self) -> Option<Outcome> {
         self.outcome
+    }
+    fn shape(&self) -> BodyShape<f64> {
+        BodyShape::Box { width: 1.0, height: 0.005 }
     }
     fn state(&self) -> &BodyState<f64> {
         self.stepper.state()

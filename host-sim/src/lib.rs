@@ -10,7 +10,8 @@
 //! **The libraries** they are written over, each named for what it is: the scenes and their flags
 //! ([`scenes`]); one recorded run of a scene in the core or the independent f64 reference
 //! ([`mod@reference`]) ([`trajectory`]: its types, the rows kept, the core's run, the reference's
-//! run, the eq. 21 switches and deviations, the CSVs); what the commands write ([`output`]) and
+//! run, the eq. 21 switches and deviations, the CSVs); a run of any scene in the core, of either
+//! engine, through its one scene interface ([`view_run`]); what the commands write ([`output`]) and
 //! draw ([`plot`]); the outcome over two parameters ([`map`]); the error against run time over
 //! `h` ([`sweep`]); where f32 holds ([`envelope`]); the stress grid ([`stress`]); the rig over
 //! its link ([`monitor`]: parameters, recording, comparison); firmware under QEMU ([`qemu`]); the
@@ -36,6 +37,7 @@ pub mod serve;
 pub mod stress;
 pub mod sweep;
 pub mod trajectory;
+pub mod view_run;
 
 /// This crate's version.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

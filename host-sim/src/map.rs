@@ -172,16 +172,18 @@ fn outcome_at(
     let spec = apply_axes(base, axes, (x, y))?;
     spec.validate(implementation.precision())
         .map_err(|e| anyhow::anyhow!("at ({x:?}, {y:?}): {}", flag_error(&spec, e)))?;
-    if spec.kind().is_multibody() {
-        let run = match implementation {
-            Implementation::Core(precision, _) => crate::multibody::run_core(&spec, precision, false, None)?,
-            Implementation::Reference => crate::multibody::run_reference(&spec, false)?,
-        };
-        return Ok(run.outcome.class);
-    }
-    Ok(
-        crate::with_contacts!(spec.kind(), K => run_k::<K>(&spec, implementation, Record::Nothing)?.outcome.class),
-    )
+    Ok(match implementation {
+        Implementation::Core(precision, layout) => {
+            crate::view_run::run_view(&spec, precision, layout)?.outcome.class
+        }
+        Implementation::Reference if spec.kind().is_multibody() => {
+            crate::multibody::run_reference(&spec, false)?.outcome.class
+        }
+        Implementation::Reference => crate::with_contacts!(
+            spec.kind(),
+            K => run_k::<K>(&spec, implementation, Record::Nothing)?.outcome.class
+        ),
+    })
 }
 
 /// The law's outcome at `(x, y)` (`docs/scenes.md`; [`crate::multibody::law`]): `None` for a scene

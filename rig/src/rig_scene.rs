@@ -1,10 +1,9 @@
 //! [`RigScene`]: what the rig of several bodies ([`crate::MultibodyRig`]) needs of its scene
-//! beyond the core's [`MultibodyScene`]: to be built, and validated, from its parameters, the step
-//! those ask for, and the contacts' modes before the first step.
+//! beyond the core's [`MultibodyScene`]: to be built, and validated, from its parameters, and the
+//! step those ask for.
 
 use meterstick_core::ParamError;
 use meterstick_core::multibody::scenes::{MultibodyScene, Stack, StackParams};
-use meterstick_core::planar::ContactMode;
 
 /// A scene of several bodies in f32 (`B` bodies, `P` resting pairs, each with four candidate
 /// contacts) that a [`crate::MultibodyRig`] can show.
@@ -20,9 +19,6 @@ pub trait RigScene<const B: usize, const P: usize>: MultibodyScene<f32, B, P> + 
 
     /// The time step `params` ask for (s): the rig ticks one step per timer period.
     fn step_of(params: &Self::Params) -> f32;
-
-    /// Each pair's candidates' modes now (before the first step: from the start).
-    fn modes(&self) -> &[[ContactMode; 4]; P];
 }
 
 /// The stack of `B` blocks over a table's edge (`docs/scenes.md`, "stack"): pair 0 the table and
@@ -38,10 +34,5 @@ impl<const B: usize, const N: usize> RigScene<B, B> for Stack<f32, B, N> {
     #[inline]
     fn step_of(params: &StackParams<f32>) -> f32 {
         params.step
-    }
-
-    #[inline]
-    fn modes(&self) -> &[[ContactMode; 4]; B] {
-        self.stepper().modes()
     }
 }

@@ -8,8 +8,10 @@
 use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
 use meterstick_core::ParamError;
 use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams};
-use meterstick_core::multibody::{Stats, StepError, StepReport};
-use meterstick_core::planar::{BodyState, ContactMode, Direction};
+use meterstick_core::multibody::{
+    CornerFrame, Pair, Settings, Stats, StepError, StepReport, Support, System, Table,
+};
+use meterstick_core::planar::{Body, BodyState, ContactMode, Direction};
 use meterstick_core::scene::{MAX_MEASURES, Outcome};
 use meterstick_rig::{
     InterfaceMode, ModeLights, MultibodyRig, MultibodyRigPins, MultibodyRigState, RigConfig, RigError,
@@ -388,6 +390,8 @@ struct Failing {
     steps: u32,
     outcome: Option<Outcome>,
     states: [BodyState<f32>; 1],
+    system: System<f32, 1, 1>,
+    frames: [[CornerFrame<f32>; 4]; 1],
     modes: [[ContactMode; 4]; 1],
     stats: Stats,
 }
@@ -439,6 +443,15 @@ impl MultibodyScene<f32, 1, 1> for Failing {
     fn states(&self) -> &[BodyState<f32>; 1] {
         &self.states
     }
+    fn system(&self) -> &System<f32, 1, 1> {
+        &self.system
+    }
+    fn frames(&self) -> &[[CornerFrame<f32>; 4]; 1] {
+        &self.frames
+    }
+    fn modes(&self) -> &[[ContactMode; 4]; 1] {
+        &self.modes
+    }
     fn time(&self) -> f32 {
         self.steps as f32 * 1e-3
     }
@@ -463,15 +476,36 @@ impl RigScene<1, 1> for Failing {
             steps: 0,
             outcome: None,
             states: [BodyState::at_rest(0.0, 0.025, 0.0)],
+            system: System {
+                bodies: [Body::block(1.0, 0.1, 0.05)],
+                table: Table::floor(),
+                pairs: [Pair::boxed(0, Support::Table, 0.5, 0.4)],
+                forces: [[0.0; 2]],
+                settings: Settings {
+                    base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
+                    margin: 1e-3,
+                },
+            },
+            frames: [[CornerFrame {
+                active: false,
+                corner: None,
+                face: None,
+                gap: 0.0,
+                along: 0.0,
+                point: [0.0; 2],
+                normal: [0.0, 1.0],
+                tangent: [1.0, 0.0],
+                lever_corner: [0.0; 2],
+                lever_face: [0.0; 2],
+                gap_round_off: 0.0,
+                touch: 0.0,
+            }; 4]],
             modes: [[s, x, x, s]],
             stats: Stats::default(),
         })
     }
     fn step_of(_: &FailAt) -> f32 {
         1e-3
-    }
-    fn modes(&self) -> &[[ContactMode; 4]; 1] {
-        &self.modes
     }
 }
 

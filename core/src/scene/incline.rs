@@ -205,4 +205,4 @@ impl<T: Real, const N: usize, const E: usize> Incline<T, N, E> {
     }
 }
 
-impl_scene!(Incline, 2);
+impl_scene!(Incline, 2, |p| crate::scene::BodyShape::Box { width: p.width, height: p.height });

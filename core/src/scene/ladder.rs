@@ -214,4 +214,4 @@ impl<T: Real, const N: usize, const E: usize> Ladder<T, N, E> {
     }
 }
 
-impl_scene!(Ladder, 2);
+impl_scene!(Ladder, 2, |p| crate::scene::BodyShape::Box { width: p.length, height: p.thickness });

@@ -19,6 +19,9 @@
 //! All implement [`Scene`] and run to an [`Outcome`]; parameters are validated first ([`crate::ParamError`]); a step that
 //! fails ends the run with [`Outcome::Failed`] and the state before it. A scene of your own is about
 //! a hundred lines on [`crate::planar::Stepper`]: see `core/examples/three_fingers.rs`.
+//!
+//! [`SceneView`] is one interface over the scenes of every engine, for a driver that names none
+//! ([`PlanarView`] over a [`Scene`], [`MultibodyView`] over a scene of several bodies).
 
 mod cylinder;
 mod incline;
@@ -30,6 +33,7 @@ mod painleve;
 mod registry;
 mod scene_trait;
 mod three_fingers;
+mod view;
 
 pub use cylinder::{Cylinder, CylinderParams};
 pub use incline::{Incline, InclineParams};
@@ -47,3 +51,7 @@ pub use registry::{AnyScene, SceneIn};
 pub use registry::{LcpLayout, Precision, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};
+pub use view::{
+    BodyShape, BodyView, ContactView, EventView, Force, MultibodyView, PlanarView, Pose, RunSummary,
+    SceneView, SupportView, Thing, Velocity, ViewVisitor,
+};

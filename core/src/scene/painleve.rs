@@ -217,7 +217,7 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
     }
 }
 
-impl_scene!(Painleve, 1);
+impl_scene!(Painleve, 1, |p| crate::scene::BodyShape::Box { width: p.length, height: p.thickness });
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

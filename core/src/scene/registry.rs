@@ -463,6 +463,15 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Size
     fn states(&self) -> &[crate::planar::BodyState<T>; B] {
         (**self).states()
     }
+    fn system(&self) -> &crate::multibody::System<T, B, P> {
+        (**self).system()
+    }
+    fn frames(&self) -> &[[crate::multibody::CornerFrame<T>; 4]; P] {
+        (**self).frames()
+    }
+    fn modes(&self) -> &[[crate::planar::ContactMode; 4]; P] {
+        (**self).modes()
+    }
     fn time(&self) -> T {
         (**self).time()
     }

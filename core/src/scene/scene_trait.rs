@@ -2,6 +2,7 @@
 
 use super::kind::MAX_MEASURES;
 use super::outcome::Outcome;
+use super::view::BodyShape;
 use crate::planar::{BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support, SwitchEvent};
 use crate::real::Real;
 
@@ -24,6 +25,8 @@ pub trait Scene<T: Real, const K: usize> {
     }
     /// The outcome, once the run has ended.
     fn outcome(&self) -> Option<Outcome>;
+    /// The body's outline.
+    fn shape(&self) -> BodyShape<T>;
     /// The body's state now.
     fn state(&self) -> &BodyState<T>;
     /// Simulated time (s).
@@ -71,6 +74,9 @@ impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
     fn outcome(&self) -> Option<Outcome> {
         (**self).outcome()
     }
+    fn shape(&self) -> BodyShape<T> {
+        (**self).shape()
+    }
     fn state(&self) -> &BodyState<T> {
         (**self).state()
     }
@@ -97,10 +103,11 @@ impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
     }
 }
 
-/// Implements [`Scene`] for a scene struct with a `stepper` field, an `outcome` field and an
-/// inherent `advance` method (its step).
+/// Implements [`Scene`] for a scene struct with a `stepper` field, an `outcome` field, a `params`
+/// field and an inherent `advance` method (its step); `|p| shape` gives its outline from its
+/// parameters.
 macro_rules! impl_scene {
-    ($scene:ident, $k:literal) => {
+    ($scene:ident, $k:literal, |$p:ident| $shape:expr) => {
         impl<T: Real, const N: usize, const E: usize> $crate::scene::Scene<T, $k> for $scene<T, N, E> {
             fn step(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
                 self.advance()
@@ -110,6 +117,10 @@ macro_rules! impl_scene {
             }
             fn outcome(&self) -> Option<$crate::scene::Outcome> {
                 self.outcome
+            }
+            fn shape(&self) -> $crate::scene::BodyShape<T> {
+                let $p = &self.params;
+                $shape
             }
             fn state(&self) -> &$crate::planar::BodyState<T> {
                 self.stepper.state()

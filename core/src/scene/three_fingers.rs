@@ -220,7 +220,10 @@ impl<T: Real, const N: usize, const E: usize> ThreeFingers<T, N, E> {
     }
 }
 
-impl_scene!(ThreeFingers, 3);
+impl_scene!(ThreeFingers, 3, |p| crate::scene::BodyShape::Box {
+    width: p.rod_length,
+    height: p.rod_thickness
+});
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

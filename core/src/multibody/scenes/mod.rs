@@ -7,7 +7,9 @@
 //! one body (its `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact);
 //! each has
 //! `step()` and `run()` of its own returning [`super::StepReport`] (every body's state, each
-//! pair's interface force), and [`MultibodyScene`], what a driver asks of any of them.
+//! pair's interface force), and [`MultibodyScene`], what a driver asks of any of them;
+//! [`crate::scene::MultibodyView`] shows any of them as a [`crate::scene::SceneView`], the one
+//! interface of every engine's scenes.
 
 mod block_on_block;
 mod disc_on_board;
@@ -19,9 +21,9 @@ pub use disc_on_board::{DiscOnBoard, DiscOnBoardParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
-use super::{Stats, StepReport, Stepper, System};
+use super::{CornerFrame, Stats, StepReport, Stepper, System};
 use crate::params::ParamError;
-use crate::planar::BodyState;
+use crate::planar::{BodyState, ContactMode};
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome};
 
@@ -47,6 +49,12 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     fn outcome(&self) -> Option<Outcome>;
     /// Every body's state (body 0 the lowest).
     fn states(&self) -> &[BodyState<T>; B];
+    /// The system stepped: the bodies, the table, the pairs, the forces, the step's scalars.
+    fn system(&self) -> &System<T, B, P>;
+    /// Each pair's candidates' geometry now ([`super::Stepper::frames`]).
+    fn frames(&self) -> &[[CornerFrame<T>; 4]; P];
+    /// Each pair's candidates' modes after the last step ([`super::Stepper::modes`]).
+    fn modes(&self) -> &[[ContactMode; 4]; P];
     /// Simulated time (s).
     fn time(&self) -> T;
     /// The stepper's counters.
@@ -152,6 +160,15 @@ macro_rules! multibody_scene {
             }
             fn states(&self) -> &[BodyState<T>; $b] {
                 self.stepper().states()
+            }
+            fn system(&self) -> &System<T, $b, $p> {
+                self.stepper().system()
+            }
+            fn frames(&self) -> &[[CornerFrame<T>; 4]; $p] {
+                self.stepper().frames()
+            }
+            fn modes(&self) -> &[[ContactMode; 4]; $p] {
+                self.stepper().modes()
             }
             fn time(&self) -> T {
                 self.stepper().time()

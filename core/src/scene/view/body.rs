@@ -1,0 +1,99 @@
+//! [`BodyView`]: one body of a scene as a driver draws and records it.
+
+/// A body's outline, in its own frame, centred on its centre of mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum BodyShape<T> {
+    /// A box `width` along the body's `x` by `height` along its `y` (m); a rod is a thin box.
+    Box {
+        /// Extent along the body's `x` (m).
+        width: T,
+        /// Extent along the body's `y` (m).
+        height: T,
+    },
+    /// A disc of `radius` (m).
+    Disc {
+        /// The radius (m).
+        radius: T,
+    },
+}
+
+/// Where a body is: its centre of mass and its orientation, in the dimension the body moves in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Pose<T> {
+    /// In the plane: `(x, y)` of the centre of mass (m) and the angle `theta` (rad,
+    /// counter-clockwise).
+    Planar {
+        /// `x` of the centre of mass (m).
+        x: T,
+        /// `y` of the centre of mass (m).
+        y: T,
+        /// Angle (rad, counter-clockwise).
+        theta: T,
+    },
+}
+
+/// How a body moves: its centre of mass's velocity and its angular velocity, in the dimension the
+/// body moves in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Velocity<T> {
+    /// In the plane: `(vx, vy)` (m/s) and `omega` (rad/s, counter-clockwise).
+    Planar {
+        /// `dx/dt` (m/s).
+        vx: T,
+        /// `dy/dt` (m/s).
+        vy: T,
+        /// `d theta / dt` (rad/s).
+        omega: T,
+    },
+}
+
+/// The force applied to a body besides its weight and its contacts, in the dimension the body
+/// moves in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Force<T> {
+    /// In the plane: `(fx, fy)` at the centre of mass (N, world) and a torque about it (N m,
+    /// counter-clockwise).
+    Planar {
+        /// Along world `x` (N).
+        fx: T,
+        /// Along world `y` (N).
+        fy: T,
+        /// About the centre of mass (N m, counter-clockwise).
+        torque: T,
+    },
+}
+
+/// One body now: its shape, pose and velocity, and the force applied to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyView<T> {
+    /// Its outline.
+    pub shape: BodyShape<T>,
+    /// Where it is.
+    pub pose: Pose<T>,
+    /// How it moves.
+    pub velocity: Velocity<T>,
+    /// The force applied to it besides its weight and its contacts (a pull).
+    pub force: Force<T>,
+}
+
+impl<T: Copy> BodyView<T> {
+    /// A planar body of `shape` in `state`, pulled by `force` `[fx, fy]` at its centre of mass.
+    #[must_use]
+    pub const fn planar(
+        shape: BodyShape<T>,
+        state: &crate::planar::BodyState<T>,
+        [fx, fy]: [T; 2],
+        torque: T,
+    ) -> Self {
+        Self {
+            shape,
+            pose: Pose::Planar { x: state.x, y: state.y, theta: state.theta },
+            velocity: Velocity::Planar { vx: state.vx, vy: state.vy, omega: state.omega },
+            force: Force::Planar { fx, fy, torque },
+        }
+    }
+}

@@ -1,0 +1,45 @@
+//! [`ContactView`]: one contact of a scene, between two [`Thing`]s.
+
+use crate::planar::ContactMode;
+
+/// What a contact is between: a body of the scene, one of a scene's supports, or the table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Thing {
+    /// The body of this index ([`super::SceneView::body`]).
+    Body(u8),
+    /// A support a scene of one body moves or holds (a finger, the floor, the wall, the plane),
+    /// by its contact's index.
+    Support(u8),
+    /// The fixed table of a scene of several bodies.
+    Table,
+}
+
+/// One contact: what touches what, where, and what passed between them over the last step.
+///
+/// The normal impulse acts on `between[0]` along `normal` and on `between[1]` against it; the
+/// friction impulse on `between[0]` along `tangent`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactView<T> {
+    /// The two things in contact: the one the impulses are given on first.
+    pub between: [Thing; 2],
+    /// `true` when the contact enters the next step (a support that can act; a candidate the
+    /// activity rule keeps). The geometry of an inactive candidate of a scene of several bodies is
+    /// that of when it was last computed.
+    pub active: bool,
+    /// The contact point, world (m): the point of `between[0]` that touches.
+    pub point: [T; 2],
+    /// The unit normal, world, on `between[0]`.
+    pub normal: [T; 2],
+    /// The unit tangent, world: the normal turned clockwise, `(n_y, -n_x)`, the direction of
+    /// positive friction impulse.
+    pub tangent: [T; 2],
+    /// The gap (m, positive when apart, negative when penetrating).
+    pub gap: T,
+    /// The mode after the last step (before the first: from the start).
+    pub mode: ContactMode,
+    /// Normal impulse over the last step (N s; zero before the first).
+    pub normal_impulse: T,
+    /// Friction impulse over the last step along `tangent` (N s; zero before the first).
+    pub friction_impulse: T,
+}

@@ -1,0 +1,91 @@
+//! [`SceneView`]: one interface over every scene of every engine, object-safe, so a front end can
+//! drive, record and draw any scene through `&mut dyn SceneView<T>` without naming its engine, its
+//! number of bodies or its number of contacts.
+//!
+//! A scene of one body ([`super::Scene`]) is seen through [`PlanarView`], a scene of several
+//! bodies ([`crate::multibody::scenes::MultibodyScene`]) through [`MultibodyView`]. Each wraps
+//! the scene it is given and keeps what the scene's own interface hands out only once, with each
+//! step: the last step's contact impulses and the trajectory checksum. Stepping through the view
+//! steps the scene itself: the trajectory is the scene's, bit for bit.
+//!
+//! What the view gives are small `Copy` records:
+//!
+//! * [`BodyView`]: a body's [`BodyShape`], [`Pose`], [`Velocity`] and applied [`Force`] (each an
+//!   enum of the dimension it is in: a spatial body is another variant, not another method);
+//! * [`ContactView`]: a contact between two [`Thing`]s, its point, normal, gap, mode and
+//!   impulses;
+//! * [`SupportView`]: a support, moving or fixed, or the table;
+//! * [`EventView`]: a contact's switch of mode, as the scene keeps them;
+//! * [`RunSummary`]: the counters every engine keeps.
+//!
+//! [`crate::scene::SceneParams::build_view`] builds any catalogue scene and hands it to a
+//! [`ViewVisitor`] as a `&mut dyn SceneView<T>`.
+
+mod body;
+mod build;
+mod contact;
+mod event;
+mod multibody;
+mod planar;
+mod summary;
+mod support;
+
+pub use body::{BodyShape, BodyView, Force, Pose, Velocity};
+pub use build::ViewVisitor;
+pub use contact::{ContactView, Thing};
+pub use event::EventView;
+pub use multibody::MultibodyView;
+pub use planar::PlanarView;
+pub use summary::RunSummary;
+pub use support::SupportView;
+
+use super::kind::MAX_MEASURES;
+use super::outcome::Outcome;
+use crate::real::Real;
+
+/// What a driver asks of any scene, in scalar `T`: step it, read its bodies and contacts, its
+/// time, outcome, measured quantities, counters and trajectory checksum.
+///
+/// Indices run over a fixed list for the scene: [`Self::body`] from `0` to
+/// [`Self::body_count`], [`Self::contact`] from `0` to [`Self::contact_count`]; past the end
+/// they give `None`. Every contact the scene's engine considers is listed, touching or not (a
+/// separated one has mode [`crate::planar::ContactMode::Separated`] and no impulse).
+pub trait SceneView<T: Real> {
+    /// Advances one step; `false` once the run has an outcome (and nothing is done).
+    fn step(&mut self) -> bool;
+    /// Lets a run that has its outcome go on (the scene's own `go_on`): takes the outcome and
+    /// returns it, so that the next [`Self::step`] is taken. `None` (and nothing done) before the
+    /// outcome, or for a scene that does not go on.
+    fn go_on(&mut self) -> Option<Outcome>;
+    /// The outcome, once the run has ended.
+    fn outcome(&self) -> Option<Outcome>;
+    /// Simulated time (s).
+    fn time(&self) -> T;
+    /// The number of bodies the scene moves.
+    fn body_count(&self) -> usize;
+    /// Body `i` now (body 0 the lowest of a scene of several bodies).
+    fn body(&self, i: usize) -> Option<BodyView<T>>;
+    /// The number of contacts (a scene of one body: its supports; of several: four candidates per
+    /// resting pair).
+    fn contact_count(&self) -> usize;
+    /// Contact `i`: its geometry now and its impulses over the last step (zero before the first).
+    fn contact(&self, i: usize) -> Option<ContactView<T>>;
+    /// The number of supports (a scene of one body: one per contact, [`Thing::Support`]'s index;
+    /// a scene of several bodies: its table, [`Thing::Table`]).
+    fn support_count(&self) -> usize;
+    /// Support `i` where the last step left it (before the first: where it starts).
+    fn support(&self, i: usize) -> Option<SupportView<T>>;
+    /// The number of switch events the scene keeps ([`super::Scene::events`]; a scene of several
+    /// bodies keeps none).
+    fn event_count(&self) -> usize;
+    /// Switch event `i`, oldest first.
+    fn event(&self, i: usize) -> Option<EventView<T>>;
+    /// What the scene measures, in the order of its catalogue entry's `measures`; `None` where a
+    /// quantity has no value (yet).
+    fn measured(&self) -> [Option<T>; MAX_MEASURES];
+    /// The engine's counters, as far as every engine keeps them.
+    fn summary(&self) -> RunSummary;
+    /// The trajectory checksum ([`crate::planar::Checksum`]) over every body's state, in body
+    /// order, after every step taken through this view: the fingerprint the firmware prints.
+    fn checksum(&self) -> u32;
+}

@@ -1,0 +1,154 @@
+//! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
+
+use super::{BodyShape, BodyView, ContactView, EventView, RunSummary, SceneView, SupportView, Thing};
+use crate::multibody::scenes::MultibodyScene;
+use crate::multibody::{Shape, Support};
+use crate::planar::Checksum;
+use crate::real::Real;
+use crate::scene::{MAX_MEASURES, Outcome};
+
+/// A scene of `B` bodies and `P` resting pairs, `S`, seen as a [`SceneView`]: it owns the scene
+/// (or a `&mut` to it) and keeps the last step's corner loads and the checksum of the steps taken
+/// through it. Its contacts are the pairs' candidates, four per pair in the pair's candidate order
+/// ([`crate::multibody::Candidate`]): contact `4 p + c` is candidate `c` of pair `p`.
+#[derive(Debug, Clone)]
+pub struct MultibodyView<T: Real, const B: usize, const P: usize, S> {
+    scene: S,
+    loads: [[[T; 2]; 4]; P],
+    checksum: Checksum,
+}
+
+impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> MultibodyView<T, B, P, S> {
+    /// Sees `scene` from where it is (no loads yet, an empty checksum).
+    pub fn new(scene: S) -> Self {
+        Self { scene, loads: [[[T::zero(); 2]; 4]; P], checksum: Checksum::new() }
+    }
+
+    /// The scene.
+    pub const fn scene(&self) -> &S {
+        &self.scene
+    }
+
+    /// The scene, to step or read by its own interface (steps taken so are not in
+    /// [`SceneView::checksum`] and leave [`SceneView::contact`]'s impulses as they were).
+    pub const fn scene_mut(&mut self) -> &mut S {
+        &mut self.scene
+    }
+
+    /// The scene back.
+    pub fn into_scene(self) -> S {
+        self.scene
+    }
+}
+
+/// The thing a pair's upper body rests on.
+const fn thing_of(support: Support) -> Thing {
+    match support {
+        Support::Body(b) => Thing::Body(b),
+        Support::Table => Thing::Table,
+    }
+}
+
+impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneView<T>
+    for MultibodyView<T, B, P, S>
+{
+    fn step(&mut self) -> bool {
+        let Some(report) = self.scene.step() else {
+            return false;
+        };
+        report.add_to(&mut self.checksum);
+        self.loads = report.corner_loads;
+        true
+    }
+
+    fn go_on(&mut self) -> Option<Outcome> {
+        self.scene.go_on()
+    }
+
+    fn outcome(&self) -> Option<Outcome> {
+        self.scene.outcome()
+    }
+
+    fn time(&self) -> T {
+        self.scene.time()
+    }
+
+    fn body_count(&self) -> usize {
+        B
+    }
+
+    fn body(&self, i: usize) -> Option<BodyView<T>> {
+        let system = self.scene.system();
+        let body = system.bodies.get(i)?;
+        let shape = match system.shapes().get(i)? {
+            Shape::Box => BodyShape::Box { width: body.width, height: body.height },
+            Shape::Disc => BodyShape::Disc { radius: body.width * T::of(0.5) },
+        };
+        Some(BodyView::planar(shape, self.scene.states().get(i)?, *system.forces.get(i)?, T::zero()))
+    }
+
+    fn contact_count(&self) -> usize {
+        4 * P
+    }
+
+    fn contact(&self, i: usize) -> Option<ContactView<T>> {
+        let (p, c) = (i / 4, i % 4);
+        let pair = self.scene.system().pairs.get(p)?;
+        let frame = self.scene.frames().get(p)?.get(c)?;
+        let [normal, friction] = *self.loads.get(p)?.get(c)?;
+        let h = self.scene.system().settings.base.step;
+        let (upper, lower) = (Thing::Body(pair.upper), thing_of(pair.lower));
+        Some(ContactView {
+            between: if c < 2 { [upper, lower] } else { [lower, upper] },
+            active: frame.active,
+            point: frame.point,
+            normal: frame.normal,
+            tangent: frame.tangent,
+            gap: frame.gap,
+            mode: *self.scene.modes().get(p)?.get(c)?,
+            normal_impulse: normal * h,
+            friction_impulse: friction * h,
+        })
+    }
+
+    fn support_count(&self) -> usize {
+        1
+    }
+
+    fn support(&self, i: usize) -> Option<SupportView<T>> {
+        let table = self.scene.system().table;
+        (i == 0).then_some(SupportView::Table { lo: table.lo, hi: table.hi })
+    }
+
+    fn event_count(&self) -> usize {
+        0
+    }
+
+    fn event(&self, _: usize) -> Option<EventView<T>> {
+        None
+    }
+
+    fn measured(&self) -> [Option<T>; MAX_MEASURES] {
+        self.scene.measured()
+    }
+
+    fn summary(&self) -> RunSummary {
+        let s = self.scene.stats();
+        RunSummary {
+            steps: u64::from(s.steps),
+            pivots: s.pivots,
+            max_pivots: s.max_pivots,
+            warm_starts: u64::from(s.warm_direct),
+            paths: s.paths,
+            rule_checked_steps: s.rule_checked_steps,
+            rule_enumerated_steps: s.rule_enumerated_steps,
+            ambiguous_steps: s.ambiguous_steps,
+            rule_changed_answer: s.rule_changed_answer,
+            load_decided_steps: s.load_decided_steps,
+        }
+    }
+
+    fn checksum(&self) -> u32 {
+        self.checksum.value()
+    }
+}
