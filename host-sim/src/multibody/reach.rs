@@ -151,11 +151,12 @@ impl fmt::Display for BodiesWarning {
             ),
             Self::LightOnHeavy { precision, upper, lower, ratio, lowest } => write!(
                 f,
-                "warning: {}: below the lowest {} was measured to follow f64 at ({}; docs/host-sim.md, \"Where f32 \
-                 holds: several bodies\"); use --precision f64 or masses closer together",
+                "warning: {}: below {}, the lowest ratio {} was measured to follow f64 at (docs/host-sim.md, \
+                 \"Where f32 holds: several bodies\"): the step may fail or tip; use --precision f64 or masses \
+                 closer together",
                 masses(upper, lower, *ratio),
-                precision.name(),
                 crate::output::sci(*lowest),
+                precision.name(),
             ),
         }
     }
@@ -279,6 +280,23 @@ mod tests {
                 assert_eq!(w.is_empty(), follows, "h = {h} at 1e{exponent}: {w:?}");
                 assert!(w.iter().all(|w| matches!(w, BodiesWarning::HeavyOnLight { .. })), "{w:?}");
             }
+        }
+    }
+
+    /// The edges depend on the ratio alone: block-on-block riding at 1e3 kg on 1e9 kg departs and is
+    /// warned as 1 kg on 1e6 kg is, at 1e2 kg on 1e7 kg it holds unwarned; 10 kg on 1e-3 kg departs
+    /// and is warned as 1e4 kg on 1 kg is.
+    #[test]
+    fn the_edges_depend_on_the_ratio_alone() {
+        let reach = &F32_MASS_RATIO_REACH[0];
+        for (m, big_m, follows) in [(1e3, 1e9, false), (1e2, 1e7, true), (10.0, 1e-3, false)] {
+            let mut spec = SceneParams::defaults(reach.scene);
+            let g = spec.get("gravity").unwrap();
+            let force = reach.bands[0].1 * (m + big_m) * g;
+            assert!(spec.set(reach.upper, m) && spec.set(reach.lower, big_m) && spec.set("force", force));
+            let same = outcome(&spec, Precision::F32) == outcome(&spec, Precision::F64);
+            assert_eq!(same, follows, "{m} kg on {big_m} kg");
+            assert_eq!(warnings(&spec, Precision::F32).is_empty(), follows, "{m} kg on {big_m} kg");
         }
     }
 
