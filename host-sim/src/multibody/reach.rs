@@ -8,7 +8,8 @@
 //! riding reads `Slid`. A light body on a heavy one: the heavy body's rows of the LCP are `m / M`
 //! of the light one's and its factored solve judges them on the light one's scale, so the step
 //! fails or tips. The first is `eps (m / M) g h` against the stick speed (stated, and measured to
-//! move with `h`); the second the ratio against the measured table.
+//! move with `h` and the stick speed); the second, and a heavy body's beyond what any stick speed
+//! was measured to follow, the ratio against the measured table.
 
 use std::fmt;
 
@@ -41,13 +42,18 @@ pub struct MassRatioReach {
     pub departs_below: f64,
     /// The lowest above `highest` measured, where a band departs.
     pub departs_above: f64,
+    /// The highest `log10(upper / lower)` where every band holds at a stick speed of 1e-3 m/s (so
+    /// far from [`BodiesWarning::HeavyOnLight`]'s edge that another limit shows, at any `h`).
+    pub highest_any: f64,
+    /// Half a decade above it, where a band departs there.
+    pub departs_any_above: f64,
 }
 
 impl MassRatioReach {
-    /// The reach's ratios, `10^lowest` and `10^highest`.
+    /// The measured reach at any `h` and stick speed, `10^lowest` and `10^highest_any`.
     #[must_use]
     pub fn ratios(&self) -> (f64, f64) {
-        (10f64.powf(self.lowest), 10f64.powf(self.highest))
+        (10f64.powf(self.lowest), 10f64.powf(self.highest_any))
     }
 }
 
@@ -65,6 +71,8 @@ pub const F32_MASS_RATIO_REACH: [MassRatioReach; 3] = [
         highest: 3.5,
         departs_below: -5.5,
         departs_above: 4.0,
+        highest_any: 5.0,
+        departs_any_above: 5.5,
     },
     MassRatioReach {
         scene: SceneKind::Tablecloth,
@@ -75,6 +83,8 @@ pub const F32_MASS_RATIO_REACH: [MassRatioReach; 3] = [
         highest: 3.5,
         departs_below: -5.5,
         departs_above: 4.0,
+        highest_any: 5.0,
+        departs_any_above: 5.5,
     },
     MassRatioReach {
         scene: SceneKind::DiscOnBoard,
@@ -85,6 +95,8 @@ pub const F32_MASS_RATIO_REACH: [MassRatioReach; 3] = [
         highest: 4.0,
         departs_below: -6.0,
         departs_above: 5.0,
+        highest_any: 5.5,
+        departs_any_above: 6.0,
     },
 ];
 
@@ -110,9 +122,10 @@ pub enum BodiesWarning {
         /// The stick speed it exceeds (m/s).
         stick_speed_m_s: f64,
     },
-    /// A light body on a heavy one, below [`F32_MASS_RATIO_REACH`]'s measured lowest ratio: the
-    /// step fails or tips where f64 does not.
-    LightOnHeavy {
+    /// The ratio is outside [`F32_MASS_RATIO_REACH`]'s measured reach at any `h` and stick speed
+    /// (a light body on a heavy one below its lowest ratio, a heavy one on a light one above its
+    /// `highest_any`): the step fails or tips where f64 does not.
+    OutsideMeasured {
         /// The run's precision.
         precision: Precision,
         /// The upper body's mass flag and value (kg).
@@ -121,8 +134,8 @@ pub enum BodiesWarning {
         lower: (String, f64),
         /// `upper / lower`.
         ratio: f64,
-        /// The lowest ratio measured to follow f64.
-        lowest: f64,
+        /// The measured reach, `upper / lower` from and to.
+        reach: (f64, f64),
     },
 }
 
@@ -149,13 +162,14 @@ impl fmt::Display for BodiesWarning {
                 crate::output::sci(*round_off_m_s),
                 short_number(*stick_speed_m_s),
             ),
-            Self::LightOnHeavy { precision, upper, lower, ratio, lowest } => write!(
+            Self::OutsideMeasured { precision, upper, lower, ratio, reach } => write!(
                 f,
-                "warning: {}: below {}, the lowest ratio {} was measured to follow f64 at (docs/host-sim.md, \
+                "warning: {}: outside {} .. {}, the ratios {} was measured to follow f64 at (docs/host-sim.md, \
                  \"Where f32 holds: several bodies\"): the step may fail or tip; use --precision f64 or masses \
                  closer together",
                 masses(upper, lower, *ratio),
-                crate::output::sci(*lowest),
+                crate::output::sci(reach.0),
+                crate::output::sci(reach.1),
                 precision.name(),
             ),
         }
@@ -164,42 +178,47 @@ impl fmt::Display for BodiesWarning {
 
 /// The warnings a run of `spec` in `precision` gets (none in f64, none for scenes without a
 /// measured reach): [`BodiesWarning::HeavyOnLight`] where `eps (m / M) g h` exceeds the stick
-/// speed, [`BodiesWarning::LightOnHeavy`] below [`F32_MASS_RATIO_REACH`]'s lowest ratio.
+/// speed, [`BodiesWarning::OutsideMeasured`] outside [`F32_MASS_RATIO_REACH`]'s reach at any `h`.
 #[must_use]
 pub fn warnings(spec: &SceneParams, precision: Precision) -> Vec<BodiesWarning> {
     if precision != Precision::F32 {
         return Vec::new();
     }
     let eps = f64::from(f32::EPSILON);
-    F32_MASS_RATIO_REACH
-        .iter()
-        .filter(|r| r.scene == spec.kind())
-        .filter_map(|r| {
-            let (m, big_m) = (spec.get(r.upper)?, spec.get(r.lower)?);
-            let (g, h, stick) = (spec.get("gravity")?, spec.get("step")?, spec.get("stick_speed")?);
-            let ratio = m / big_m;
-            let flag = |field: &str| {
-                flag_of(r.scene, field).map_or_else(|| field.to_string(), |f| format!("--{}", f.long))
-            };
-            let (upper, lower) = ((flag(r.upper), m), (flag(r.lower), big_m));
-            let round_off = eps * ratio * g.abs() * h;
-            // In decades, a rounding's worth of slack: the edge itself was measured.
-            if ratio.log10() < r.lowest - 1e-9 {
-                Some(BodiesWarning::LightOnHeavy { precision, upper, lower, ratio, lowest: r.ratios().0 })
-            } else if round_off > stick {
-                Some(BodiesWarning::HeavyOnLight {
-                    precision,
-                    upper,
-                    lower,
-                    ratio,
-                    round_off_m_s: round_off,
-                    stick_speed_m_s: stick,
-                })
-            } else {
-                None
-            }
-        })
-        .collect()
+    let mut out = Vec::new();
+    for r in F32_MASS_RATIO_REACH.iter().filter(|r| r.scene == spec.kind()) {
+        let (Some(m), Some(big_m), Some(g), Some(h), Some(stick)) = (
+            spec.get(r.upper),
+            spec.get(r.lower),
+            spec.get("gravity"),
+            spec.get("step"),
+            spec.get("stick_speed"),
+        ) else {
+            continue;
+        };
+        let ratio = m / big_m;
+        let flag = |field: &str| {
+            flag_of(r.scene, field).map_or_else(|| field.to_string(), |f| format!("--{}", f.long))
+        };
+        let (upper, lower) = ((flag(r.upper), m), (flag(r.lower), big_m));
+        let round_off = eps * ratio * g.abs() * h;
+        if round_off > stick {
+            out.push(BodiesWarning::HeavyOnLight {
+                precision,
+                upper: upper.clone(),
+                lower: lower.clone(),
+                ratio,
+                round_off_m_s: round_off,
+                stick_speed_m_s: stick,
+            });
+        }
+        // In decades, a rounding's worth of slack: the edges themselves were measured.
+        let decades = ratio.log10();
+        if decades < r.lowest - 1e-9 || decades > r.highest_any + 1e-9 {
+            out.push(BodiesWarning::OutsideMeasured { precision, upper, lower, ratio, reach: r.ratios() });
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -283,6 +302,32 @@ mod tests {
         }
     }
 
+    /// Far from the round-off edge (stick speed 1e-3 m/s) another limit shows: every band holds
+    /// unwarned at `highest_any` and some band departs, warned, half a decade above.
+    #[test]
+    fn beyond_the_round_off_edge_the_measured_cap_warns() {
+        for reach in &F32_MASS_RATIO_REACH {
+            for (exponent, follows) in [(reach.highest_any, true), (reach.departs_any_above, false)] {
+                let specs: Vec<SceneParams> = reach
+                    .bands
+                    .iter()
+                    .map(|&(_, k)| {
+                        let mut spec = spec_at(reach, exponent, k);
+                        assert!(spec.set("stick_speed", 1e-3));
+                        spec
+                    })
+                    .collect();
+                let all_same =
+                    specs.iter().all(|spec| outcome(spec, Precision::F32) == outcome(spec, Precision::F64));
+                assert_eq!(all_same, follows, "{} at 1e{exponent}", reach.scene);
+                for spec in &specs {
+                    let w = warnings(spec, Precision::F32);
+                    assert_eq!(w.is_empty(), follows, "{} at 1e{exponent}: {w:?}", reach.scene);
+                }
+            }
+        }
+    }
+
     /// The edges depend on the ratio alone: block-on-block riding at 1e3 kg on 1e9 kg departs and is
     /// warned as 1 kg on 1e6 kg is, at 1e2 kg on 1e7 kg it holds unwarned; 10 kg on 1e-3 kg departs
     /// and is warned as 1e4 kg on 1 kg is.
@@ -312,9 +357,11 @@ mod tests {
         }
         let mut spec = SceneParams::defaults(SceneKind::BlockOnBlock);
         assert!(spec.set("top_mass", 1e6) && spec.set("bottom_mass", 1.0));
+        // Both causes: the round-off, and beyond what was measured at any stick speed.
         let w = warnings(&spec, Precision::F32);
         assert!(
-            matches!(w[..], [BodiesWarning::HeavyOnLight { ratio, .. }] if (ratio - 1e6).abs() < 1e-6),
+            matches!(w[..], [BodiesWarning::HeavyOnLight { ratio, .. }, BodiesWarning::OutsideMeasured { .. }]
+                if (ratio - 1e6).abs() < 1e-6),
             "{w:?}"
         );
         let text = w[0].to_string();
@@ -324,9 +371,9 @@ mod tests {
         );
         assert!(spec.set("top_mass", 1.0) && spec.set("bottom_mass", 1e6));
         let w = warnings(&spec, Precision::F32);
-        assert!(matches!(w[..], [BodiesWarning::LightOnHeavy { .. }]), "{w:?}");
+        assert!(matches!(w[..], [BodiesWarning::OutsideMeasured { .. }]), "{w:?}");
         assert!(
-            w[0].to_string().starts_with("warning: --mass 1 on --mass2 1000000: mass ratio 1.00e-6: below")
+            w[0].to_string().starts_with("warning: --mass 1 on --mass2 1000000: mass ratio 1.00e-6: outside")
         );
     }
 }
