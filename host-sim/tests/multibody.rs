@@ -331,6 +331,52 @@ fn friction_beyond_f32_is_warned_about_on_several_bodies() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
+/// A 1e6 kg top block on a 1 kg one in f32, pulled where they ride together, is beyond f32's
+/// measured reach (`docs/host-sim.md`, "Where f32 holds: several bodies"): `scene` prints a warning
+/// naming the two mass flags as typed and the ratio, `run` prints it and `summary.json` carries it by
+/// cause; the defaults, and f64, get none.
+#[test]
+fn a_mass_ratio_beyond_f32s_reach_is_named() {
+    let force = format!("{}", 0.45 * (1e6 + 1.0) * G);
+    let beyond = ["--scene", "block-on-block", "--mass", "1e6", "--mass2", "1", "--force", &force];
+    let warning =
+        "warning: --mass 1000000 on --mass2 1: mass ratio 1.00e6: the light body's velocity resolved in f32";
+    let (code, stdout, err) = host_sim(&[&["scene"], &beyond[..]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.lines().any(|l| l.starts_with(warning)), "{stdout}");
+    for args in [
+        &["scene", "--scene", "block-on-block"][..],
+        &[&["scene"], &beyond[..], &["--precision", "f64"]].concat(),
+    ] {
+        let (code, stdout, err) = host_sim(args);
+        assert_eq!(code, 0, "{err}");
+        assert!(!stdout.contains("warning"), "{args:?}: {stdout}");
+    }
+    let out = temp_dir("mass-ratio-warning");
+    let (code, stdout, err) = host_sim(&[&["run", "--out", out.to_str().unwrap()], &beyond[..]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.lines().any(|l| l.starts_with(&format!("block-on-block: {warning}"))), "{stdout}");
+    let s: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out.join("block-on-block").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    let w = &s["warnings"][0];
+    assert_eq!(w["cause"], "heavy_on_light", "{s}");
+    assert_eq!(w["upper"], serde_json::json!(["--mass", 1e6]), "{s}");
+    assert_eq!(w["lower"], serde_json::json!(["--mass2", 1.0]), "{s}");
+    assert_eq!(w["ratio"], 1e6, "{s}");
+    std::fs::remove_dir_all(&out).unwrap();
+    let out = temp_dir("mass-ratio-default");
+    let (code, _, err) = host_sim(&["run", "--scene", "block-on-block", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let s: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out.join("block-on-block").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(s["warnings"], serde_json::json!([]), "{s}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
 /// Block-on-block at zero pull: the top block rests flat and centred on the bottom one, the bottom
 /// one flat on the floor. Each resting face's two corners carry equal normal loads (the least-norm
 /// split of the interface's load, `docs/formulation.md`, "The load: the least norm") that sum to

@@ -5,11 +5,13 @@
 //! [`BodiesRun`] (every body's state after every step, the outcome, what the scene measures, the
 //! solver's counters); the laws of `docs/scenes.md` ([`law`]); what `host-sim scene` prints
 //! ([`summarise`]) and `host-sim run` writes ([`run_all`]: the trajectories as CSV, the plots, the
-//! summaries, the deviation between two runs). `host-sim map` drives them too (`host-sim stress`
+//! summaries, the deviation between two runs); f32's measured reach over mass ratio and the typed
+//! warning a run beyond it gets ([`warnings`]). `host-sim map` drives them too (`host-sim stress`
 //! through `crate::stress::bodies`).
 //!
 //! * `core_run.rs`, `reference_run.rs`: one run in each implementation.
 //! * `law.rs`: the laws.
+//! * `reach.rs`: where f32 follows f64 over mass ratio, and the warning beyond it.
 //! * `report.rs`: `scene`'s text, `run`'s summaries and text.
 //! * `csv.rs`, `plots.rs`: `run`'s files.
 
@@ -17,6 +19,7 @@ mod core_run;
 mod csv;
 mod law;
 mod plots;
+mod reach;
 mod reference_run;
 mod report;
 
@@ -27,6 +30,7 @@ use crate::trajectory::{Measured, RunOutcome};
 
 pub use core_run::run_core;
 pub use law::{Law, disc_on_board_law, law};
+pub use reach::{BodiesWarning, F32_MASS_RATIO_REACH, MassRatioReach, warnings};
 pub use reference_run::{run_reference, to_reference};
 pub use report::{
     BodiesComparison, BodiesImplementation, BodiesSummary, LawSummary, max_deviation, run_all, summarise,

@@ -6,7 +6,9 @@ use serde::Serialize;
 
 use super::csv::write_trajectory;
 use super::plots::write_plots;
-use super::{BodiesCounters, BodiesRow, BodiesRun, Law, law, run_core, run_reference};
+use super::{
+    BodiesCounters, BodiesRow, BodiesRun, BodiesWarning, Law, law, run_core, run_reference, warnings,
+};
 use crate::progress;
 use crate::trajectory::Measured;
 
@@ -112,6 +114,9 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
     if let Some(warning) = crate::scenes::friction_warning(spec, precision) {
         let _ = writeln!(out, "{warning}");
     }
+    for warning in warnings(spec, precision) {
+        let _ = writeln!(out, "{warning}");
+    }
     if let Some(sum) = run.checksum {
         let _ = writeln!(out, "checksum {sum:08x}");
     }
@@ -205,6 +210,8 @@ pub struct BodiesSummary {
     pub comparison: BodiesComparison,
     /// What `docs/scenes.md`'s laws say.
     pub law: Option<LawSummary>,
+    /// What the core's run is warned of, by cause ([`super::warnings`]; empty when nothing).
+    pub warnings: Vec<BodiesWarning>,
 }
 
 /// `host-sim run` for scenes of several bodies: each in the core (`precision`) beside the
@@ -251,6 +258,7 @@ pub fn run_all(
                 lower_acceleration_m_s2: l.lower_acceleration,
                 upper_acceleration_m_s2: l.upper_acceleration,
             }),
+            warnings: warnings(spec, precision),
         };
         let dir = out.join(name);
         crate::output::create_dir(&dir)?;
@@ -274,6 +282,9 @@ pub fn run_all(
             let _ = writeln!(text, "{name}: law {predicted} ({})", law.text);
         }
         if let Some(warning) = crate::scenes::friction_warning(spec, precision) {
+            let _ = writeln!(text, "{name}: {warning}");
+        }
+        for warning in &summary.warnings {
             let _ = writeln!(text, "{name}: {warning}");
         }
         let _ = writeln!(
