@@ -41,11 +41,16 @@ fn fingers(x1: f64, v1: f64) -> [Support<f64>; 3] {
     ]
 }
 
+/// The rod: 0.2 kg, 1 m long, 5 mm thick.
+fn rod() -> Body<f64> {
+    Body::rod(0.2, 1.0, 0.005)
+}
+
 impl ThreeFingers {
     fn new() -> Result<Self, ParamError> {
         let finger = Contact { feature: Feature::LowerFace, mu_static: 0.6, mu_kinetic: 0.4 };
         let model = Model {
-            body: Body::rod(0.2, 1.0, 0.005),
+            body: rod(),
             contacts: [finger; 3],
             settings: Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
         };
@@ -87,6 +92,9 @@ impl Scene<f64, 3> for ThreeFingers {
     }
     fn shape(&self) -> BodyShape<f64> {
         BodyShape::Box { width: 1.0, height: 0.005 }
+    }
+    fn body(&self) -> Body<f64> {
+        rod()
     }
     fn state(&self) -> &BodyState<f64> {
         self.stepper.state()

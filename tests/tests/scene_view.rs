@@ -374,3 +374,73 @@ impl ViewVisitor for Table {
         (view.support_count(), first)
     }
 }
+
+/// Every catalogue scene's bodies, through the view, have the masses and inertias of the
+/// catalogue's parameters (`docs/scenes.md`): a rod's `m L^2 / 12`, a box's `m (w^2 + h^2) / 12`,
+/// a disc's `m r^2 / 2`, the cylinder's `k m r^2`; in f64 exactly (the same expression as the
+/// scene's), in f32 to the scalar's round-off.
+#[test]
+fn every_body_has_its_catalogue_mass_and_inertia() {
+    for kind in SceneKind::ALL {
+        let params = SceneParams::defaults(kind);
+        let want = mass_and_inertia(&params);
+        assert!(!want.is_empty(), "{kind}");
+        for precision in Precision::ALL {
+            let got = params.build_view::<0, _>(precision, LcpLayout::Full, Masses).unwrap();
+            assert_eq!(got.len(), want.len(), "{kind} {precision:?}");
+            for (b, (&(m, j), &(gm, gj, eps))) in want.iter().zip(&got).enumerate() {
+                if precision == Precision::F64 {
+                    assert_eq!((gm.to_bits(), gj.to_bits()), (m.to_bits(), j.to_bits()), "{kind} body {b}");
+                } else {
+                    assert!((gm - m).abs() <= 4.0 * eps * m, "{kind} body {b}: mass {gm} against {m}");
+                    assert!((gj - j).abs() <= 8.0 * eps * j, "{kind} body {b}: inertia {gj} against {j}");
+                }
+            }
+        }
+    }
+}
+
+/// Each body's `(mass, inertia)` from a scene's parameters, body 0 the lowest.
+fn mass_and_inertia(params: &SceneParams) -> Vec<(f64, f64)> {
+    let rod = |m: f64, l: f64| (m, m * l * l / 12.0);
+    let block = |m: f64, w: f64, h: f64| (m, m * (w * w + h * h) / 12.0);
+    match params {
+        SceneParams::MeterStick(p) => vec![rod(p.rod_mass, p.rod_length)],
+        SceneParams::ThreeFingers(p) => vec![rod(p.rod_mass, p.rod_length)],
+        SceneParams::Incline(p) => vec![block(p.mass, p.width, p.height)],
+        SceneParams::Ladder(p) => vec![rod(p.mass, p.length)],
+        SceneParams::Painleve(p) => vec![rod(p.mass, p.length)],
+        SceneParams::Cylinder(p) => vec![(p.mass, p.inertia_factor * p.mass * p.radius * p.radius)],
+        SceneParams::BlockOnBlock(p) => vec![
+            block(p.bottom_mass, p.bottom_width, p.bottom_height),
+            block(p.top_mass, p.top_width, p.top_height),
+        ],
+        SceneParams::Tablecloth(p) => vec![
+            block(p.board_mass, p.board_length, p.board_thickness),
+            block(p.block_mass, p.block_width, p.block_height),
+        ],
+        SceneParams::Stack(s) => {
+            vec![block(s.params.mass, s.params.length, s.params.height); s.block_count().unwrap()]
+        }
+        SceneParams::DiscOnBoard(p) => vec![
+            block(p.board_mass, p.board_length, p.board_height),
+            (p.disc_mass, p.disc_mass * p.disc_radius * p.disc_radius / 2.0),
+        ],
+    }
+}
+
+/// Each body's mass and inertia through the view, as f64, with the scalar's epsilon.
+struct Masses;
+
+impl ViewVisitor for Masses {
+    type Output = Vec<(f64, f64, f64)>;
+
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Self::Output {
+        (0..view.body_count())
+            .map(|i| {
+                let b = view.body(i).unwrap();
+                (b.mass.as_f64(), b.inertia.as_f64(), T::EPS.as_f64())
+            })
+            .collect()
+    }
+}

@@ -210,7 +210,7 @@ impl<T: Real, const N: usize, const E: usize> Cylinder<T, N, E> {
     }
 }
 
-impl_scene!(Cylinder, 1, |p| crate::scene::BodyShape::Disc { radius: p.radius });
+impl_scene!(Cylinder, 1, |p| crate::scene::BodyShape::Disc { radius: p.radius }, |p| p.body());
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

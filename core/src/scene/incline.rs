@@ -205,4 +205,6 @@ impl<T: Real, const N: usize, const E: usize> Incline<T, N, E> {
     }
 }
 
-impl_scene!(Incline, 2, |p| crate::scene::BodyShape::Box { width: p.width, height: p.height });
+impl_scene!(Incline, 2, |p| crate::scene::BodyShape::Box { width: p.width, height: p.height }, |p| {
+    Body::block(p.mass, p.width, p.height)
+});

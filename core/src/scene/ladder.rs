@@ -214,4 +214,6 @@ impl<T: Real, const N: usize, const E: usize> Ladder<T, N, E> {
     }
 }
 
-impl_scene!(Ladder, 2, |p| crate::scene::BodyShape::Box { width: p.length, height: p.thickness });
+impl_scene!(Ladder, 2, |p| crate::scene::BodyShape::Box { width: p.length, height: p.thickness }, |p| {
+    Body::rod(p.mass, p.length, p.thickness)
+});

@@ -385,4 +385,9 @@ impl<T: Real, const N: usize, const E: usize> MeterStick<T, N, E> {
     }
 }
 
-impl_scene!(MeterStick, 2, |p| crate::scene::BodyShape::Box { width: p.rod_length, height: p.rod_thickness });
+impl_scene!(
+    MeterStick,
+    2,
+    |p| crate::scene::BodyShape::Box { width: p.rod_length, height: p.rod_thickness },
+    |p| Body::rod(p.rod_mass, p.rod_length, p.rod_thickness)
+);

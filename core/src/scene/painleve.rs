@@ -217,7 +217,9 @@ impl<T: Real, const N: usize, const E: usize> Painleve<T, N, E> {
     }
 }
 
-impl_scene!(Painleve, 1, |p| crate::scene::BodyShape::Box { width: p.length, height: p.thickness });
+impl_scene!(Painleve, 1, |p| crate::scene::BodyShape::Box { width: p.length, height: p.thickness }, |p| {
+    Body::rod(p.mass, p.length, p.thickness)
+});
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

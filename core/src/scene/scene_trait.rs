@@ -3,7 +3,7 @@
 use super::kind::MAX_MEASURES;
 use super::outcome::Outcome;
 use super::view::BodyShape;
-use crate::planar::{BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support, SwitchEvent};
+use crate::planar::{Body, BodyState, ContactFrame, ContactMode, RunStats, StepReport, Support, SwitchEvent};
 use crate::real::Real;
 
 /// A scene: one body on `K` supports the scene moves, stepped to an [`Outcome`].
@@ -27,6 +27,9 @@ pub trait Scene<T: Real, const K: usize> {
     fn outcome(&self) -> Option<Outcome>;
     /// The body's outline.
     fn shape(&self) -> BodyShape<T>;
+    /// The body the scene moves: its extent, mass (kg) and moment of inertia about its centre of
+    /// mass (kg m^2), as the scene's stepper holds them.
+    fn body(&self) -> Body<T>;
     /// The body's state now.
     fn state(&self) -> &BodyState<T>;
     /// Simulated time (s).
@@ -77,6 +80,9 @@ impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
     fn shape(&self) -> BodyShape<T> {
         (**self).shape()
     }
+    fn body(&self) -> Body<T> {
+        (**self).body()
+    }
     fn state(&self) -> &BodyState<T> {
         (**self).state()
     }
@@ -105,9 +111,9 @@ impl<T: Real, const K: usize, S: Scene<T, K> + ?Sized> Scene<T, K> for &mut S {
 
 /// Implements [`Scene`] for a scene struct with a `stepper` field, an `outcome` field, a `params`
 /// field and an inherent `advance` method (its step); `|p| shape` gives its outline from its
-/// parameters.
+/// parameters, `|p| body` its body (the one its stepper was given).
 macro_rules! impl_scene {
-    ($scene:ident, $k:literal, |$p:ident| $shape:expr) => {
+    ($scene:ident, $k:literal, |$p:ident| $shape:expr, |$q:ident| $body:expr) => {
         impl<T: Real, const N: usize, const E: usize> $crate::scene::Scene<T, $k> for $scene<T, N, E> {
             fn step(&mut self) -> Option<$crate::planar::StepReport<T, $k>> {
                 self.advance()
@@ -121,6 +127,10 @@ macro_rules! impl_scene {
             fn shape(&self) -> $crate::scene::BodyShape<T> {
                 let $p = &self.params;
                 $shape
+            }
+            fn body(&self) -> $crate::planar::Body<T> {
+                let $q = &self.params;
+                $body
             }
             fn state(&self) -> &$crate::planar::BodyState<T> {
                 self.stepper.state()

@@ -220,10 +220,12 @@ impl<T: Real, const N: usize, const E: usize> ThreeFingers<T, N, E> {
     }
 }
 
-impl_scene!(ThreeFingers, 3, |p| crate::scene::BodyShape::Box {
-    width: p.rod_length,
-    height: p.rod_thickness
-});
+impl_scene!(
+    ThreeFingers,
+    3,
+    |p| crate::scene::BodyShape::Box { width: p.rod_length, height: p.rod_thickness },
+    |p| Body::rod(p.rod_mass, p.rod_length, p.rod_thickness)
+);
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

@@ -23,47 +23,45 @@ use std::time::Instant;
 
 use meterstick_core::Real;
 use meterstick_core::multibody::scenes::MultibodyScene;
-use meterstick_core::scene::{MultibodyVisitor, Outcome, SceneParams};
+use meterstick_core::scene::{
+    BodyShape, Force, LcpLayout, MultibodyVisitor, Outcome, SceneParams, SceneView, ViewVisitor,
+};
 
 use super::cases::{Case, Claim};
 use super::metrics::Metrics;
 use crate::scenes::Precision;
 
-/// Each body's `(mass, width, height, inertia)` (body 0 the lowest; a box's inertia
-/// `m (w^2 + h^2) / 12`, a disc's `m r^2 / 2`) and the pull on body 0 (N, along `x`).
+/// Each body's `(mass, width, height, inertia)` (body 0 the lowest; a disc's width and height its
+/// diameter) and the pull on body 0 (N, along `x`), as the scene's f64 build holds them, read
+/// through its [`SceneView`] (no figure here names a scene); none for a scene the core refuses.
 #[must_use]
 pub fn bodies_of(spec: &SceneParams) -> (Vec<(f64, f64, f64, f64)>, f64) {
-    let block = |m: f64, w: f64, h: f64| (m, w, h, m * (w * w + h * h) / 12.0);
-    match spec {
-        SceneParams::BlockOnBlock(p) => (
-            vec![
-                block(p.bottom_mass, p.bottom_width, p.bottom_height),
-                block(p.top_mass, p.top_width, p.top_height),
-            ],
-            p.force,
-        ),
-        SceneParams::Tablecloth(p) => (
-            vec![
-                block(p.board_mass, p.board_length, p.board_thickness),
-                block(p.block_mass, p.block_width, p.block_height),
-            ],
-            p.force,
-        ),
-        SceneParams::Stack(s) => {
-            let p = s.params;
-            (vec![block(p.mass, p.length, p.height); s.block_count().unwrap_or(0)], 0.0)
-        }
-        SceneParams::DiscOnBoard(p) => {
-            let (m, r) = (p.disc_mass, p.disc_radius);
-            (
-                vec![
-                    block(p.board_mass, p.board_length, p.board_height),
-                    (m, 2.0 * r, 2.0 * r, m * r * r / 2.0),
-                ],
-                p.force,
-            )
-        }
-        _ => (Vec::new(), 0.0),
+    spec.build_view::<0, _>(Precision::F64, LcpLayout::Full, Figures).unwrap_or_default()
+}
+
+/// [`bodies_of`] as a visitor of the core's views.
+struct Figures;
+
+impl ViewVisitor for Figures {
+    type Output = (Vec<(f64, f64, f64, f64)>, f64);
+
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Self::Output {
+        let bodies = (0..view.body_count())
+            .filter_map(|i| view.body(i))
+            .map(|b| {
+                let (w, h) = match b.shape {
+                    BodyShape::Box { width, height } => (width.as_f64(), height.as_f64()),
+                    BodyShape::Disc { radius } => ((radius + radius).as_f64(), (radius + radius).as_f64()),
+                    _ => (f64::NAN, f64::NAN),
+                };
+                (b.mass.as_f64(), w, h, b.inertia.as_f64())
+            })
+            .collect();
+        let pull = match view.body(0).map(|b| b.force) {
+            Some(Force::Planar { fx, .. }) => fx.as_f64(),
+            _ => 0.0,
+        };
+        (bodies, pull)
     }
 }
 
@@ -180,5 +178,39 @@ impl MultibodyVisitor for Measure<'_> {
         m.outcome = Some(scene.outcome().unwrap_or(Outcome::Unfinished).into());
         m.wall_s = started.elapsed().as_secs_f64();
         m
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::panic)]
+mod tests {
+    use super::*;
+    use meterstick_core::scene::SceneKind;
+
+    /// Each figure as its bits (the view's f64 figures are the parameters' exactly).
+    fn bits(bodies: &[(f64, f64, f64, f64)], pull: f64) -> (Vec<[u64; 4]>, u64) {
+        let b = bodies.iter().map(|&(m, w, h, j)| [m, w, h, j].map(f64::to_bits)).collect();
+        (b, pull.to_bits())
+    }
+
+    /// Block-on-block's blocks and pull, and disc-on-board's board and disc, read through the view,
+    /// are the parameters' figures: a box's `m (w^2 + h^2) / 12`, a disc's diameter and `m r^2 / 2`.
+    #[test]
+    fn bodies_of_reads_the_parameters_figures_through_the_view() {
+        let block = |m: f64, w: f64, h: f64| (m, w, h, m * (w * w + h * h) / 12.0);
+        let SceneParams::BlockOnBlock(p) = SceneParams::defaults(SceneKind::BlockOnBlock) else { panic!() };
+        let (bodies, pull) = bodies_of(&SceneParams::BlockOnBlock(p));
+        let want = [
+            block(p.bottom_mass, p.bottom_width, p.bottom_height),
+            block(p.top_mass, p.top_width, p.top_height),
+        ];
+        assert!(p.force > 0.0);
+        assert_eq!(bits(&bodies, pull), bits(&want, p.force));
+        let SceneParams::DiscOnBoard(p) = SceneParams::defaults(SceneKind::DiscOnBoard) else { panic!() };
+        let (bodies, pull) = bodies_of(&SceneParams::DiscOnBoard(p));
+        let (m, r) = (p.disc_mass, p.disc_radius);
+        let want =
+            [block(p.board_mass, p.board_length, p.board_height), (m, 2.0 * r, 2.0 * r, m * r * r / 2.0)];
+        assert_eq!(bits(&bodies, pull), bits(&want, p.force));
     }
 }

@@ -90,47 +90,42 @@ impl Metrics {
 /// `eps` gives a normal impulse a horizontal part).
 pub const STILL_TOLERANCE: f64 = 64.0;
 
-/// The body's mass, inertia, size and the scene's characteristic speed (a support's, or the
-/// body's at the start).
+/// The body's mass, inertia, size (its larger extent) and the scene's characteristic speed (a
+/// support's, or the body's at the start): the first three as the scene's f64 build holds them,
+/// read through its view ([`super::bodies::bodies_of`]); all NaN for a scene of several bodies
+/// (`super::bodies` measures them), which fails any bound they enter.
 #[must_use]
 pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
-    match spec {
-        SceneParams::MeterStick(p) => (
-            p.rod_mass,
-            p.rod_mass * p.rod_length * p.rod_length / 12.0,
-            p.rod_length,
-            p.finger1_velocity.abs().max(p.finger2_velocity.abs()),
-        ),
-        SceneParams::ThreeFingers(p) => (
-            p.rod_mass,
-            p.rod_mass * p.rod_length * p.rod_length / 12.0,
-            p.rod_length,
-            p.finger1_velocity.abs(),
-        ),
-        SceneParams::Incline(p) => {
-            (p.mass, p.mass * (p.width * p.width + p.height * p.height) / 12.0, p.width.max(p.height), 0.0)
-        }
-        SceneParams::Ladder(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, 0.0),
-        SceneParams::Cylinder(p) => {
-            (p.mass, p.inertia_factor * p.mass * p.radius * p.radius, 2.0 * p.radius, 0.0)
-        }
-        SceneParams::Painleve(p) => (p.mass, p.mass * p.length * p.length / 12.0, p.length, p.speed.abs()),
-        // One body's figures do not describe a scene of several bodies (`super::bodies` measures
-        // them); NaN fails any bound it enters.
+    let speed = match spec {
+        SceneParams::MeterStick(p) => p.finger1_velocity.abs().max(p.finger2_velocity.abs()),
+        SceneParams::ThreeFingers(p) => p.finger1_velocity.abs(),
+        SceneParams::Painleve(p) => p.speed.abs(),
+        SceneParams::Incline(_) | SceneParams::Ladder(_) | SceneParams::Cylinder(_) => 0.0,
         SceneParams::BlockOnBlock(_)
         | SceneParams::Tablecloth(_)
         | SceneParams::Stack(_)
-        | SceneParams::DiscOnBoard(_) => (f64::NAN, f64::NAN, f64::NAN, f64::NAN),
+        | SceneParams::DiscOnBoard(_) => f64::NAN,
+    };
+    match super::bodies::bodies_of(spec).0.as_slice() {
+        &[(m, w, h, j)] if !speed.is_nan() => (m, j, w.max(h), speed),
+        _ => (f64::NAN, f64::NAN, f64::NAN, f64::NAN),
     }
 }
 
 /// The penetration bound of one step: what the step started with, the second-order terms of the
 /// step's geometry (`h^2` times `|omega| (|u| + |v|)` for the contact point's turning,
 /// `size omega^2 / 2` for the arc, `g` for gravity within the step), and round-off of the
-/// coordinates (`64 eps (size + |x| + |y|)`).
+/// coordinates (`64 eps (size + |x| + |y|)`); `body` is [`body_of`]'s.
 #[must_use]
-pub fn penetration_bound(spec: &SceneParams, eps: f64, pen_before: f64, s: &[f64; 6], u: f64) -> f64 {
-    let (_, _, size, _) = body_of(spec);
+pub fn penetration_bound(
+    body: (f64, f64, f64, f64),
+    spec: &SceneParams,
+    eps: f64,
+    pen_before: f64,
+    s: &[f64; 6],
+    u: f64,
+) -> f64 {
+    let (_, _, size, _) = body;
     let h = spec.step();
     let g = spec.get("gravity").unwrap_or(0.0);
     let omega = s[5].abs();
@@ -143,19 +138,26 @@ pub fn penetration_bound(spec: &SceneParams, eps: f64, pen_before: f64, s: &[f64
 /// Round-off allowance of the run's energy balance: `4096 N eps` of the energy scale
 /// `m (g (size + |y|) + V^2 + |v|^2 + (size omega)^2)` at the step (`V` the characteristic support
 /// speed), `N` the LCP size (the verification tolerance is `256 N eps`, and each of `N`
-/// complementarity products contributes up to it times the impulse and velocity scales).
+/// complementarity products contributes up to it times the impulse and velocity scales); `body` is
+/// [`body_of`]'s.
 #[must_use]
-pub fn energy_tolerance(spec: &SceneParams, eps: f64, n: usize, s: &[f64; 6]) -> f64 {
-    let (m, _, size, v_f) = body_of(spec);
+pub fn energy_tolerance(
+    body: (f64, f64, f64, f64),
+    spec: &SceneParams,
+    eps: f64,
+    n: usize,
+    s: &[f64; 6],
+) -> f64 {
+    let (m, _, size, v_f) = body;
     let g = spec.get("gravity").unwrap_or(0.0);
     let v2 = s[3] * s[3] + s[4] * s[4] + (size * s[5]).powi(2);
     4096.0 * n as f64 * eps * m * (g * (size + s[1].abs()) + v_f * v_f + v2)
 }
 
-/// The body's energy.
+/// The body's energy; `body` is [`body_of`]'s.
 #[must_use]
-pub fn energy(spec: &SceneParams, s: &[f64; 6]) -> f64 {
-    let (m, j, _, _) = body_of(spec);
+pub fn energy(body: (f64, f64, f64, f64), spec: &SceneParams, s: &[f64; 6]) -> f64 {
+    let (m, j, _, _) = body;
     let g = spec.get("gravity").unwrap_or(0.0);
     0.5 * m * (s[3] * s[3] + s[4] * s[4]) + 0.5 * j * s[5] * s[5] + m * g * s[1]
 }
@@ -286,7 +288,8 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
 ) -> Metrics {
     let started = Instant::now();
     let spec = &case.spec;
-    let (m_body, _, size, _) = body_of(spec);
+    let body = body_of(spec);
+    let (m_body, _, size, _) = body;
     let eps = T::EPS.as_f64();
     let g = spec.get("gravity").unwrap_or(0.0);
     let mut m = Metrics { eps, still_scale: size, ..Metrics::default() };
@@ -295,7 +298,7 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
     let mut supports = support_points(scene);
     let mut pen = penetrations(spec, &s, &supports);
     let pen0 = pen.iter().fold(0.0, |a: f64, &p| a.max(p));
-    let e0 = energy(spec, &s);
+    let e0 = energy(body, spec, &s);
     let mut e_before = e0;
     let mut work = 0.0;
     m.trace.push([s[0], s[1], s[2]]);
@@ -310,18 +313,18 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
         let step_work = support_work(spec, &r, &supports, &supports_after, s[2]);
         let u = supports.iter().zip(&supports_after).fold(0.0, |a: f64, (b, c)| a.max((c[0] - b[0]).abs()))
             / spec.step();
-        let e_after = energy(spec, &after);
+        let e_after = energy(body, spec, &after);
         if e_after.is_finite() {
             m.step_energy_gain = m.step_energy_gain.max(e_after - e_before - step_work);
             work += step_work;
             let gain = e_after - e0 - work;
             m.energy_gain = m.energy_gain.max(gain);
-            let allowance = m_body * g * pen0 + energy_tolerance(spec, eps, N, &after);
+            let allowance = m_body * g * pen0 + energy_tolerance(body, spec, eps, N, &after);
             m.energy_ratio = m.energy_ratio.max(gain / allowance);
         }
         let pen_after = penetrations(spec, &after, &supports_after);
         for (&before, &after) in pen.iter().zip(&pen_after) {
-            let bound = penetration_bound(spec, eps, before, &s, u);
+            let bound = penetration_bound(body, spec, eps, before, &s, u);
             m.penetration = m.penetration.max(after);
             m.penetration_ratio = m.penetration_ratio.max(after / bound);
         }
@@ -353,4 +356,27 @@ fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
     m.outcome = Some(scene.outcome().unwrap_or(Outcome::Unfinished).into());
     m.wall_s = started.elapsed().as_secs_f64();
     m
+}
+
+#[cfg(test)]
+#[allow(clippy::panic)]
+mod tests {
+    use super::*;
+    use meterstick_core::scene::SceneKind;
+
+    /// The meter stick's figures, read through the view: the rod's mass, `m L^2 / 12`, its length,
+    /// the faster finger's speed; the cylinder's `k m r^2` and diameter; NaN for several bodies.
+    #[test]
+    fn body_of_reads_the_parameters_figures_through_the_view() {
+        let SceneParams::MeterStick(p) = SceneParams::defaults(SceneKind::MeterStick) else { panic!() };
+        let want = (p.rod_mass, p.rod_mass * p.rod_length * p.rod_length / 12.0, p.rod_length);
+        let (m, j, size, speed) = body_of(&SceneParams::MeterStick(p));
+        assert_eq!([m, j, size].map(f64::to_bits), [want.0, want.1, want.2].map(f64::to_bits));
+        assert_eq!(speed.to_bits(), p.finger1_velocity.abs().max(p.finger2_velocity.abs()).to_bits());
+        let SceneParams::Cylinder(c) = SceneParams::defaults(SceneKind::Cylinder) else { panic!() };
+        let (m, j, size, _) = body_of(&SceneParams::Cylinder(c));
+        let want = [c.mass, c.inertia_factor * c.mass * c.radius * c.radius, 2.0 * c.radius];
+        assert_eq!([m, j, size].map(f64::to_bits), want.map(f64::to_bits));
+        assert!(body_of(&SceneParams::defaults(SceneKind::BlockOnBlock)).0.is_nan());
+    }
 }

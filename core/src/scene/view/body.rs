@@ -67,11 +67,16 @@ pub enum Force<T> {
     },
 }
 
-/// One body now: its shape, pose and velocity, and the force applied to it.
+/// One body now: its shape, mass and inertia, pose and velocity, and the force applied to it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyView<T> {
     /// Its outline.
     pub shape: BodyShape<T>,
+    /// Its mass `m` (kg), as its engine moves it.
+    pub mass: T,
+    /// Its moment of inertia about its centre of mass `J` (kg m^2; a planar body's about the axis
+    /// normal to the plane), as its engine moves it.
+    pub inertia: T,
     /// Where it is.
     pub pose: Pose<T>,
     /// How it moves.
@@ -81,16 +86,19 @@ pub struct BodyView<T> {
 }
 
 impl<T: Copy> BodyView<T> {
-    /// A planar body of `shape` in `state`, pulled by `force` `[fx, fy]` at its centre of mass.
+    /// A planar `body` of `shape` in `state`, pulled by `force` `[fx, fy]` at its centre of mass.
     #[must_use]
     pub const fn planar(
         shape: BodyShape<T>,
+        body: &crate::planar::Body<T>,
         state: &crate::planar::BodyState<T>,
         [fx, fy]: [T; 2],
         torque: T,
     ) -> Self {
         Self {
             shape,
+            mass: body.mass,
+            inertia: body.inertia,
             pose: Pose::Planar { x: state.x, y: state.y, theta: state.theta },
             velocity: Velocity::Planar { vx: state.vx, vy: state.vy, omega: state.omega },
             force: Force::Planar { fx, fy, torque },

@@ -84,7 +84,7 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             Shape::Box => BodyShape::Box { width: body.width, height: body.height },
             Shape::Disc => BodyShape::Disc { radius: body.width * T::of(0.5) },
         };
-        Some(BodyView::planar(shape, self.scene.states().get(i)?, *system.forces.get(i)?, T::zero()))
+        Some(BodyView::planar(shape, body, self.scene.states().get(i)?, *system.forces.get(i)?, T::zero()))
     }
 
     fn contact_count(&self) -> usize {

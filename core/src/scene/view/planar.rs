@@ -74,7 +74,9 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
 
     fn body(&self, i: usize) -> Option<BodyView<T>> {
         let zero = T::zero();
-        (i == 0).then(|| BodyView::planar(self.scene.shape(), self.scene.state(), [zero; 2], zero))
+        (i == 0).then(|| {
+            BodyView::planar(self.scene.shape(), &self.scene.body(), self.scene.state(), [zero; 2], zero)
+        })
     }
 
     fn contact_count(&self) -> usize {
