@@ -92,7 +92,7 @@ pub const STILL_TOLERANCE: f64 = 64.0;
 
 /// The body's mass, inertia, size (its larger extent) and the scene's characteristic speed (a
 /// support's, or the body's at the start): the first three as the scene's f64 build holds them,
-/// read through its view ([`super::bodies::bodies_of`]); all NaN for a scene of several bodies
+/// read through its view ([`super::figures::bodies_of`]); all NaN for a scene of several bodies
 /// (`super::bodies` measures them), which fails any bound they enter.
 #[must_use]
 pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
@@ -106,7 +106,7 @@ pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
         | SceneParams::Stack(_)
         | SceneParams::DiscOnBoard(_) => f64::NAN,
     };
-    match super::bodies::bodies_of(spec).0.as_slice() {
+    match super::figures::bodies_of(spec).0.as_slice() {
         &[(m, w, h, j)] if !speed.is_nan() => (m, j, w.max(h), speed),
         _ => (f64::NAN, f64::NAN, f64::NAN, f64::NAN),
     }

@@ -11,6 +11,7 @@
 
 pub mod bodies;
 pub mod cases;
+pub mod figures;
 pub mod judge;
 pub mod metrics;
 pub mod output;
