@@ -55,6 +55,23 @@ for s in timing["scenes"]:
 PY
   done
   echo
+  echo "Stack: the deepest each run grew (painted and read back, firmware/src/stack_peak.rs, timed or not) against"
+  echo "the RAM the stack may grow into (the stack top less the static data); headroom = room - peak:"
+  echo
+  echo "| core (QEMU machine) | run | stack peak (B) | room (B) | headroom (B) |"
+  echo "|---|---|---|---|---|"
+  for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0" "qemu-m33 mps2-an505 Cortex-M33F"; do
+    set -- $m
+    python3 - "out/firmware/$1-icount.json" "$3 ($2)" <<'PY'
+import json, sys
+timing = json.load(open(sys.argv[1]))["timing"]
+room = timing["stack_room_bytes"]
+for p in timing["stack_peaks"]:
+    cells = (f"{room:,}", f"{room - p['peak_bytes']:,}") if room is not None else ("-", "-")
+    print(f"| {sys.argv[2]} | {p['scene']} | {p['peak_bytes']:,} | {cells[0]} | {cells[1]} |")
+PY
+  done
+  echo
   echo "Steps by the path that answered their LCP (docs/formulation.md, \"Solving a step\"; a step is counted"
   echo "under the last path it needed), with each path's mean and worst step (instructions, slow scene):"
   echo

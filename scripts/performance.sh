@@ -206,6 +206,22 @@ if all(m4f[s].get("stack_peak_bytes") is not None for s in ("stack", "block-on-b
           f"only: with those of several bodies its firmware overflows the flash (by 156,512 B at 0abe64e), and "
           f"the 3-block stack needs {n(m4f['stack']['stack_peak_bytes'])} B of stack on the M4F, more than its "
           f"whole RAM (block-on-block {n(m4f['block-on-block']['stack_peak_bytes'])} B).")
+def stack_rows(build):
+    with open(f"out/firmware/{build}-icount.json") as f:
+        t = json.load(f)["timing"]
+    return t["stack_room_bytes"], {p["scene"]: p["peak_bytes"] for p in t["stack_peaks"]}
+ONE_BODY = ("slow", "fast", "incline", "ladder", "three-fingers", "cylinder", "painleve")
+print()
+print("The scenes of one body: the deepest each run's stack grew against the RAM the stack may grow into "
+      "(the stack top less the static data), `peak / room` in bytes, f32; the other scenes at their defaults "
+      "in the reduced layout with `N = 16`:")
+print()
+stacks = {build: stack_rows(build) for _, build, _, _ in cores}
+table(["core (QEMU machine)"] + list(ONE_BODY),
+      [[f"{label} (`{machine}`)"]
+       + [f"{n(stacks[build][1][s])} / {n(stacks[build][0])}" if s in stacks[build][1] and stacks[build][0]
+          else "-" for s in ONE_BODY]
+       for label, build, machine, _ in cores])
 print()
 print("The slow run's steps by the path that answered their LCP, each path's mean / worst instructions:")
 print()

@@ -257,6 +257,7 @@ fn check_other_scenes() -> i32 {
             continue;
         }
         let check = CheckPlain { name: kind.name(), expected: expected(kind) };
+        stack_peak::paint();
         failures += match SceneParams::defaults(kind).build_in::<f32, 16, _>(LcpLayout::Reduced, check) {
             Ok(failed) => failed,
             Err(e) => {
@@ -264,6 +265,7 @@ fn check_other_scenes() -> i32 {
                 1
             }
         };
+        print_stack_peak(kind.name());
     }
     failures
 }
@@ -485,6 +487,7 @@ pub fn main() -> ! {
     cortex_m::asm::delay(n);
     let ticks = systick::elapsed(t0, systick::now());
     defmt::println!("calibration instructions={=u32} systicks={=u32}", 2 * (n + 1), ticks);
+    defmt::println!("ram stack_room_bytes={=u32}", stack_peak::room_bytes());
 
     let mut failures = 0i32;
     // Kostreva's cycling example in f32: z = (1/3, 1/3, 1/3).

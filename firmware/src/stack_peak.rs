@@ -35,6 +35,13 @@ pub fn paint() {
     }
 }
 
+/// The RAM the stack may grow into, in bytes: the stack top (`_stack_start`) less the end of the
+/// static data (`_stack_end`). A run's [`peak_bytes`] beyond it has overflowed.
+#[must_use]
+pub fn room_bytes() -> u32 {
+    (addr_of!(_stack_start) as usize - addr_of!(_stack_end) as usize) as u32
+}
+
 /// The deepest the stack reached since [`paint`], in bytes below the stack top.
 #[must_use]
 #[inline(never)]

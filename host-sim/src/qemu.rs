@@ -241,6 +241,21 @@ pub struct Timing {
     /// Each scene timed step by step: through the rig loop (`<scene> rig ..`) or driven directly
     /// (`<scene> timing ..`, the scenes of several bodies).
     pub scenes: Vec<SceneTiming>,
+    /// The RAM the stack may grow into (`ram stack_room_bytes=..`: the stack top less the end of
+    /// the static data); `None` when the firmware does not print it.
+    pub stack_room_bytes: Option<u64>,
+    /// Every run whose stack the firmware painted (`<scene> stack peak_bytes=..`), timed or not, in
+    /// the order it printed them.
+    pub stack_peaks: Vec<StackPeak>,
+}
+
+/// The deepest the stack grew in one run (`firmware/src/stack_peak.rs`).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct StackPeak {
+    /// The firmware's name for the run.
+    pub scene: String,
+    /// Bytes below the stack top.
+    pub peak_bytes: u64,
 }
 
 /// One scene's steps.
@@ -337,7 +352,22 @@ pub fn timing(lines: &[String]) -> anyhow::Result<Option<Timing>> {
                 .transpose()?,
         });
     }
-    Ok(Some(Timing { instructions_per_tick: per_tick, scenes }))
+    let mut stack_peaks = Vec::new();
+    for line in lines {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if let [scene, "stack", _] = words[..] {
+            stack_peaks.push(StackPeak {
+                scene: scene.to_owned(),
+                peak_bytes: number(line, &fields(line, 2), "peak_bytes")?,
+            });
+        }
+    }
+    let stack_room_bytes = lines
+        .iter()
+        .find(|l| l.starts_with("ram "))
+        .map(|l| number(l, &fields(l, 1), "stack_room_bytes"))
+        .transpose()?;
+    Ok(Some(Timing { instructions_per_tick: per_tick, scenes, stack_room_bytes, stack_peaks }))
 }
 
 #[cfg(test)]
@@ -356,6 +386,8 @@ mod timing_tests {
             "stack outcome=Held t=10 steps=10000 pivots=0 max_active=3 checksum=0badcafe",
             "stack timing systicks=1000000 worst_step_systicks=900 steps=10000",
             "stack stack peak_bytes=6144",
+            "ram stack_room_bytes=16368",
+            "three-fingers stack peak_bytes=15412",
         ]
         .map(String::from)
         .to_vec();
@@ -376,6 +408,10 @@ mod timing_tests {
         assert!((m.worst_instructions - 900.0 * per).abs() < 1e-9);
         assert!(m.paths.is_empty());
         assert_eq!((s.stack_peak_bytes, m.stack_peak_bytes), (None, Some(6144)));
+        // Every painted run, timed or not, and the room the stack has.
+        let peaks: Vec<_> = t.stack_peaks.iter().map(|p| (p.scene.as_str(), p.peak_bytes)).collect();
+        assert_eq!(peaks, [("stack", 6144), ("three-fingers", 15_412)]);
+        assert_eq!(t.stack_room_bytes, Some(16_368));
         let bad = vec!["calibration instructions=2000002 systicks=0".to_owned()];
         assert!(timing(&bad).is_err());
         let garbled = vec!["calibration instructions=x systicks=5".to_owned()];
