@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_precision_loss, clippy::print_stdout)]
 
 use meterstick_core::Real;
-use meterstick_core::spatial::{Body, Mode, Plane, Settings, Shape, State, Stepper, about, identity};
+use meterstick_core::spatial::{Body, Mode, OneContact, Plane, Settings, Shape, State, about, identity};
 
 const G: f64 = 9.81;
 
@@ -41,9 +41,9 @@ fn billiard<T: Real>(tolerance: f64) {
         state.velocity = v0.map(T::of);
         state.angular_velocity = spin.map(T::of);
         let settings = Settings { step: T::of(h), ..Settings::default() };
-        let mut ball = Stepper::new(
+        let mut ball = OneContact::new(
             Body::sphere(T::of(mass), T::of(radius)),
-            Shape::Sphere { radius: T::of(radius) },
+            [Shape::Sphere { radius: T::of(radius) }],
             Plane::table(T::zero(), T::of(mu)),
             settings,
             state,
@@ -59,13 +59,13 @@ fn billiard<T: Real>(tolerance: f64) {
         let mut rolled = None;
         for _ in 0..(t_roll / h) as usize + 50 {
             let r = ball.step().unwrap();
-            assert!(r.contact.directions == 1, "spin {spin:?}: {:?}", r.contact);
-            if r.contact.mode == Mode::Sliding {
+            assert!(r.contacts[0].directions == 1, "spin {spin:?}: {:?}", r.contacts[0]);
+            if r.contacts[0].mode == Mode::Sliding {
                 // The slip keeps the direction it started with.
-                let s = f64s(r.contact.slip);
+                let s = f64s(r.contacts[0].slip);
                 let across = (s[0] * u0[1] - s[1] * u0[0]) / u0_speed;
                 assert!(across.abs() <= tolerance * u0_speed, "spin {spin:?}: slip {s:?} turned from {u0:?}");
-            } else if rolled.is_none() && r.contact.mode == Mode::Sticking {
+            } else if rolled.is_none() && r.contacts[0].mode == Mode::Sticking {
                 rolled = Some(r.time.as_f64());
             }
         }
@@ -104,9 +104,9 @@ fn puck_on_table<T: Real>(heading: f64, speed: f64, mu: f64, h: f64) -> (f64, f6
     let (s, c) = heading.sin_cos();
     let mut state = at_rest_on::<T>([0.0, 0.0, 0.0]);
     state.velocity = [T::of(speed * c), T::of(speed * s), T::zero()];
-    let mut puck = Stepper::new(
+    let mut puck = OneContact::new(
         Body::cuboid(T::of(0.17), T::of(0.0762), T::of(0.0762), T::of(0.0254)),
-        Shape::Point { offset: [T::zero(); 3] },
+        [Shape::Point { offset: [T::zero(); 3] }],
         Plane::table(T::zero(), T::of(mu)),
         Settings { step: T::of(h), ..Settings::default() },
         state,
@@ -114,11 +114,11 @@ fn puck_on_table<T: Real>(heading: f64, speed: f64, mu: f64, h: f64) -> (f64, f6
     .unwrap();
     for _ in 0..100_000 {
         let r = puck.step().unwrap();
-        if r.contact.mode == Mode::Sticking {
+        if r.contacts[0].mode == Mode::Sticking {
             break;
         }
     }
-    assert_eq!(puck.mode(), Mode::Sticking, "the puck stops");
+    assert_eq!(puck.modes()[0], Mode::Sticking, "the puck stops");
     let p = f64s(puck.state().position);
     (p[0] * c + p[1] * s, -p[0] * s + p[1] * c)
 }
@@ -156,9 +156,9 @@ fn half_speed<T: Real>(h: f64, seconds: f64) -> (f64, f64) {
     let plane = Plane::incline(T::of(angle), T::of(angle.tan()));
     let mut state = at_rest_on::<T>([0.0, 0.0, 0.0]);
     state.velocity = [T::of(v0), T::zero(), T::zero()];
-    let mut puck = Stepper::new(
+    let mut puck = OneContact::new(
         Body::cuboid(T::of(0.17), T::of(0.0762), T::of(0.0762), T::of(0.0254)),
-        Shape::Point { offset: [T::zero(); 3] },
+        [Shape::Point { offset: [T::zero(); 3] }],
         plane,
         Settings { step: T::of(h), ..Settings::default() },
         state,
@@ -170,7 +170,7 @@ fn half_speed<T: Real>(h: f64, seconds: f64) -> (f64, f64) {
     let mut speed = v0;
     for _ in 0..(seconds / h) as usize {
         let r = puck.step().unwrap();
-        assert_eq!(r.contact.mode, Mode::Sliding);
+        assert_eq!(r.contacts[0].mode, Mode::Sliding);
         let v = f64s(r.state.velocity);
         speed = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
         let cos_phi = (v[0] * fall[0] + v[1] * fall[1] + v[2] * fall[2]) / speed;
@@ -204,9 +204,9 @@ fn free_spin<T: Real>() -> (f64, f64) {
     state.orientation = about(&[T::of(0.6), T::zero(), T::of(0.8)], T::of(0.4));
     state.angular_velocity = [T::of(0.3), T::of(-0.2), T::of(10.0)];
     let settings = Settings { gravity: [T::zero(); 3], ..Settings::default() };
-    let mut stepper = Stepper::new(
+    let mut stepper = OneContact::new(
         body,
-        Shape::Point { offset: [T::zero(); 3] },
+        [Shape::Point { offset: [T::zero(); 3] }],
         Plane::table(T::of(-100.0), T::zero()),
         settings,
         state,
@@ -244,9 +244,9 @@ fn corner<T: Real>(tolerance: f64) -> u32 {
     let mut state = at_rest_on::<T>([0.0, 0.0, 0.1]);
     state.velocity = [T::of(0.8), T::of(0.3), T::zero()];
     state.angular_velocity = [T::of(1.0), T::of(-2.0), T::of(3.0)];
-    let mut corner = Stepper::new(
+    let mut corner = OneContact::new(
         Body::cuboid(T::of(1.0), T::of(0.1), T::of(0.06), T::of(0.2)),
-        Shape::Point { offset: offset.map(T::of) },
+        [Shape::Point { offset: offset.map(T::of) }],
         Plane::table(T::zero(), T::of(mu)),
         Settings { step: T::of(h), ..Settings::default() },
         state,
@@ -255,7 +255,7 @@ fn corner<T: Real>(tolerance: f64) -> u32 {
     let mut turned = 0;
     for _ in 0..400 {
         let r = corner.step().unwrap();
-        let c = r.contact;
+        let c = r.contacts[0];
         if c.directions > 1 {
             turned += 1;
         }
@@ -290,23 +290,23 @@ fn bad_input_is_refused_by_name() {
     let ok = || {
         (
             Body::sphere(1.0, 0.1),
-            Shape::Sphere { radius: 0.1 },
+            [Shape::Sphere { radius: 0.1 }],
             Plane::table(0.0, 0.3),
             Settings::default(),
             at_rest_on::<f64>([0.0, 0.0, 0.1]),
         )
     };
     let (b, s, p, st, x) = ok();
-    assert!(Stepper::new(b, s, p, st, x).is_ok());
-    let field = |r: Result<Stepper<f64>, meterstick_core::ParamError>| r.err().and_then(|e| e.field());
-    assert_eq!(field(Stepper::new(Body::sphere(-1.0, 0.1), s, p, st, x)), Some("mass"));
-    assert_eq!(field(Stepper::new(b, Shape::Sphere { radius: 0.0 }, p, st, x)), Some("radius"));
-    assert_eq!(field(Stepper::new(b, s, Plane { normal: [0.0, 0.0, 2.0], ..p }, st, x)), Some("normal"));
-    assert_eq!(field(Stepper::new(b, s, Plane { mu_kinetic: -0.1, ..p }, st, x)), Some("mu_kinetic"));
-    assert_eq!(field(Stepper::new(b, s, p, Settings { step: 0.0, ..st }, x)), Some("step"));
+    assert!(OneContact::new(b, s, p, st, x).is_ok());
+    let field = |r: Result<OneContact<f64>, meterstick_core::ParamError>| r.err().and_then(|e| e.field());
+    assert_eq!(field(OneContact::new(Body::sphere(-1.0, 0.1), s, p, st, x)), Some("mass"));
+    assert_eq!(field(OneContact::new(b, [Shape::Sphere { radius: 0.0 }], p, st, x)), Some("radius"));
+    assert_eq!(field(OneContact::new(b, s, Plane { normal: [0.0, 0.0, 2.0], ..p }, st, x)), Some("normal"));
+    assert_eq!(field(OneContact::new(b, s, Plane { mu_kinetic: -0.1, ..p }, st, x)), Some("mu_kinetic"));
+    assert_eq!(field(OneContact::new(b, s, p, Settings { step: 0.0, ..st }, x)), Some("step"));
     assert_eq!(
-        field(Stepper::new(Body { mass: 1.0, inertia: [1.0, 1.0, 3.0] }, s, p, st, x)),
+        field(OneContact::new(Body { mass: 1.0, inertia: [1.0, 1.0, 3.0] }, s, p, st, x)),
         Some("inertia")
     );
-    assert!(Stepper::new(b, s, Plane { mu_kinetic: 0.5, ..p }, st, x).is_err());
+    assert!(OneContact::new(b, s, Plane { mu_kinetic: 0.5, ..p }, st, x).is_err());
 }

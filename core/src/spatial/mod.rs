@@ -1,5 +1,6 @@
-//! Three dimensions: a rigid body with six degrees of freedom on a plane, with **isotropic**
-//! Coulomb friction (feature `spatial`; a planar build compiles none of it). World axes: `z` up.
+//! Three dimensions: a rigid body with six degrees of freedom touching a plane at up to eight
+//! points, with **isotropic** Coulomb friction (feature `spatial`; a planar build compiles none of
+//! it). World axes: `z` up.
 //!
 //! # The step
 //!
@@ -8,16 +9,17 @@
 //! unit quaternion `q`, moving at `v` and `omega` (world axes). Over a step `h`:
 //!
 //! 1. The free velocities: `v~ = v + h g`, `omega~ = omega` (no torque but the contact's).
-//! 2. The contact (a point at `r` from the centre of mass, on a plane of unit normal `n`, within
-//!    the margin): its velocity `u~ = v~ + omega~ x r`, its normal row `u_n = n . u~ + b` (`b`
-//!    the gap's bias, as the planar model's `normal_bias`) and its slip `u_t`, the rest of `u~`.
-//!    Per unit mass, an impulse `p` changes the point's velocity by `W p`, `e . W f = e . f + m (r
-//!    x e) . I_w^-1 (r x f)`.
+//! 2. Each contact `i` (a point at `r_i` from the centre of mass, on a plane of unit normal `n`,
+//!    within the margin): its velocity `u~ = v~ + omega~ x r_i`, its normal row `u_n = n . u~ + b`
+//!    (`b` the gap's bias, as the planar model's `normal_bias`) and its slip `u_t`, the rest of
+//!    `u~`. Per unit mass, an impulse `p` at contact `j` changes contact `i`'s velocity by `W_ij
+//!    p`, `e . W_ij f = e . f + m (r_i x e) . I_w^-1 (r_j x f)`.
 //! 3. **Friction along the slip.** Coulomb's law in space: `|p_t| <= mu p_n`, and a sliding
 //!    contact's friction opposes its slip, `p_t = -mu p_n s / |s|` (`s` the slip after the step).
-//!    A polyhedral cone (`k` fixed directions) bends a sliding body's path toward them; here the
-//!    contact keeps one friction line `d`, chosen along the slip, and the paper's LCP in the
-//!    unknowns `(p_n, p_+d, p_-d, sigma)`:
+//!    A polyhedral cone (`k` fixed directions) bends a sliding body's path toward them; here each
+//!    contact keeps one friction line `d`, chosen along its slip, and the paper's LCP in the
+//!    unknowns `(p_n, p_+d, p_-d, sigma)` of every contact in turn (`N = 4 K`), one contact's
+//!    block (the blocks between contacts are the same with `W_ij`, and zero in `sigma`):
 //!
 //!    ```text
 //!    w = [ W_nn  W_nd  -W_nd  0 ] z + [ u_n  ]     z >= 0, w >= 0, z . w = 0
@@ -26,15 +28,24 @@
 //!        [ mu    -1     -1    0 ]     [ 0    ]
 //!    ```
 //!
-//!    solved by Lemke's method and verified ([`crate::lcp`]). The answer holds when the slip after
-//!    the step has no component across `d` (within `256 eps` of the step's velocity scale): its
-//!    friction then lies on the slip's line, opposing it (the LCP's complementarity) or stopping it.
-//!    Otherwise `d` turns to the new slip (a saturated contact) or to the tangential impulse that
-//!    would stop the slip (a sticking one) and the LCP is solved again, at most
-//!    [`MAX_DIRECTIONS`] times ([`StepError::ConeNotConverged`]). Where the contact's tangential
-//!    response is isotropic and uncoupled from its normal (a sphere; a point under the centre of
-//!    mass) the first direction, the free slip's, holds: one LCP a step. Every answer is checked
-//!    against the circular cone ([`ContactReport::cone_residual`], in units of `mu p_n`).
+//!    solved by Lemke's method and verified ([`crate::lcp`]). The answer holds when every loaded
+//!    contact's slip after the step has no component across its `d` (within `256 eps` of the
+//!    step's velocity scale): its friction then lies on the slip's line, opposing it (the LCP's
+//!    complementarity) or stopping it. Otherwise the lines turn together by one step of Newton's
+//!    method on those conditions, the normal impulses held: a sliding contact's line by an angle
+//!    (turning it turns its friction and the direction its condition is read in), a sticking
+//!    one's toward the tangential impulse that stops its slip, the slips moving by `W` of the
+//!    friction changes (a linear system of at most `2 K` unknowns); the LCP is solved again, at
+//!    most [`MAX_DIRECTIONS`] times ([`StepError::ConeNotConverged`]). Where every contact's
+//!    tangential response is isotropic and uncoupled from its normal (a sphere; a point under the
+//!    centre of mass) the first lines, the free slips', hold: one LCP a step; a tripod spinning
+//!    as it slides needs two to four. Every answer is checked against the circular cone
+//!    ([`ContactReport::cone_residual`], in units of `mu p_n`, or the LCP's own verification scale
+//!    where the cone is far smaller than it: a light load at the edge of sticking).
+//!
+//!    **The load.** Up to three points (not in a line) carry a load the step decides. Four or more
+//!    points of a flat base leave it open, and the LCP answers with one of its vertices: the rule
+//!    of `docs/formulation.md` ("The load: the least norm") is not yet the spatial core's.
 //! 4. `v+ = v~ + p`, `omega+ = omega~ + m I_w^-1 (r x p)`, `x+ = x + h v+`. **The gyroscopic
 //!    term**: between the impulses no torque acts, so the angular momentum `L = I_w(q) omega+`
 //!    (world axes) is the body's all through the step, and its angular velocity at any
@@ -57,16 +68,21 @@
 //! - A puck launched horizontally across an incline with `mu = tan(angle)` tends to half its
 //!   launch speed.
 //! - A free box tumbling at 10 rad/s keeps its angular momentum and its energy over 1e5 steps.
+//! - A tripod sliding without turning carries the loads its balance of forces and moments gives
+//!   (`tests/tests/spatial_contacts.rs`); spinning as it slides, it stops sliding and spinning in
+//!   the same step (Farkas, Bartels, Unger & Wolf, PRL 90, 248302 (2003)), and the same launch
+//!   turned about the vertical ends turned.
 //!
-//! Scope: one body, one point of contact on one plane. Several contacts (a disc's base, a rod
-//! on two fingers, a stack) and the front ends are to come (`CHANGELOG.md`).
+//! Scope: one body on one plane. Moving supports (fingers), several bodies and the front ends
+//! are to come (`CHANGELOG.md`).
 
 mod algebra;
 mod body;
+mod friction;
 mod stepper;
 
 pub use algebra::{Quaternion, Vector, about, identity, rotate};
 pub use body::{Body, State};
 pub use stepper::{
-    ContactReport, MAX_DIRECTIONS, Mode, Plane, Settings, Shape, StepError, StepReport, Stepper,
+    ContactReport, MAX_DIRECTIONS, Mode, OneContact, Plane, Settings, Shape, StepError, StepReport, Stepper,
 };

@@ -1,10 +1,11 @@
-//! One body with six degrees of freedom on a plane, one point of contact: the step of
-//! `super`'s module docs.
+//! One body with six degrees of freedom on a plane, touching it at up to `K` points: the step of
+//! `super`'s module docs (the contacts' impulses: `super::friction`).
 
-use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, rotate, scale, sub};
+use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
+use super::friction::{Contacts, Touch};
 use crate::ParamError;
-use crate::lcp::{Basis, Lcp, LcpError, Lemke};
+use crate::lcp::{Basis, LcpError, Lemke};
 use crate::planar::assemble::normal_bias;
 use crate::real::{Real, max};
 
@@ -126,7 +127,7 @@ pub struct ContactReport<T> {
 
 impl<T: Real> ContactReport<T> {
     /// No contact: separated, nothing carried.
-    fn separated() -> Self {
+    pub(super) fn separated() -> Self {
         Self {
             mode: Mode::Separated,
             normal_impulse: T::zero(),
@@ -138,19 +139,16 @@ impl<T: Real> ContactReport<T> {
     }
 }
 
-/// A contact's report and the body's velocity and angular velocity after its impulse.
-type Contacted<T> = (ContactReport<T>, Vector<T>, Vector<T>);
-
 /// One step's result.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct StepReport<T> {
+pub struct StepReport<T, const K: usize> {
     /// Time at the end of the step, s.
     pub time: T,
     /// The body after the step.
     pub state: State<T>,
-    /// Its contact.
-    pub contact: ContactReport<T>,
+    /// Its contacts, in the order [`Stepper::new`] was given their shapes.
+    pub contacts: [ContactReport<T>; K],
 }
 
 /// Why a step failed; the state is then unchanged.
@@ -171,22 +169,28 @@ pub enum StepError {
     NonFinite,
 }
 
-/// A body on a plane, stepped as `super`'s module docs say.
+/// A body on a plane touching it at up to `K` points (`N = 4 K`, the LCP's size: one friction
+/// line per contact), stepped as `super`'s module docs say.
 #[derive(Debug, Clone)]
-pub struct Stepper<T: Real> {
+pub struct Stepper<T: Real, const K: usize, const N: usize> {
     body: Body<T>,
-    shape: Shape<T>,
+    shapes: [Shape<T>; K],
     plane: Plane<T>,
     settings: Settings<T>,
     state: State<T>,
-    mode: Mode,
+    modes: [Mode; K],
     steps: u64,
-    solver: Lemke<T, 4>,
-    basis: Basis<4>,
+    solver: Lemke<T, N>,
+    basis: Basis<N>,
 }
 
-impl<T: Real> Stepper<T> {
-    /// A stepper for `body` of `shape` on `plane`, starting at `state`.
+/// A body touching the plane at one point (a sphere, a puck).
+pub type OneContact<T> = Stepper<T, 1, 4>;
+
+impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
+    /// A stepper for `body` touching `plane` at the points `shapes` name, starting at `state`.
+    ///
+    /// `N` must be `4 K` and `K` from 1 to 8 (checked at compile time).
     ///
     /// # Errors
     /// [`ParamError`] naming what is refused: the body ([`Body::validate`]), a radius that is not
@@ -196,19 +200,24 @@ impl<T: Real> Stepper<T> {
     /// finite and positive, non-finite gravity (`gravity`), a state that is not finite.
     pub fn new(
         body: Body<T>,
-        shape: Shape<T>,
+        shapes: [Shape<T>; K],
         plane: Plane<T>,
         settings: Settings<T>,
         state: State<T>,
     ) -> Result<Self, ParamError> {
+        const { assert!(K >= 1 && K <= 8 && N == 4 * K, "Stepper<T, K, N> needs 1 <= K <= 8 and N = 4 K") };
         body.validate()?;
-        match shape {
-            Shape::Sphere { radius } if !radius.finite() => return Err(ParamError::NonFinite("radius")),
-            Shape::Sphere { radius } if radius <= T::zero() => return Err(ParamError::NotPositive("radius")),
-            Shape::Point { offset } if !super::algebra::finite(&offset) => {
-                return Err(ParamError::NonFinite("offset"));
+        for shape in shapes {
+            match shape {
+                Shape::Sphere { radius } if !radius.finite() => return Err(ParamError::NonFinite("radius")),
+                Shape::Sphere { radius } if radius <= T::zero() => {
+                    return Err(ParamError::NotPositive("radius"));
+                }
+                Shape::Point { offset } if !super::algebra::finite(&offset) => {
+                    return Err(ParamError::NonFinite("offset"));
+                }
+                _ => {}
             }
-            _ => {}
         }
         if !super::algebra::finite(&plane.point) {
             return Err(ParamError::NonFinite("point"));
@@ -247,11 +256,11 @@ impl<T: Real> Stepper<T> {
         let state = State { orientation: super::algebra::normalized(&state.orientation), ..state };
         Ok(Self {
             body,
-            shape,
+            shapes,
             plane,
             settings,
             state,
-            mode: Mode::Separated,
+            modes: [Mode::Separated; K],
             steps: 0,
             solver: Lemke::new(),
             basis: Basis::all_w(),
@@ -270,10 +279,10 @@ impl<T: Real> Stepper<T> {
         &self.body
     }
 
-    /// The contact's mode after the last step.
+    /// Each contact's mode after the last step.
     #[must_use]
-    pub const fn mode(&self) -> Mode {
-        self.mode
+    pub const fn modes(&self) -> &[Mode; K] {
+        &self.modes
     }
 
     /// Simulated time, s.
@@ -282,37 +291,55 @@ impl<T: Real> Stepper<T> {
         T::of_count(u32::try_from(self.steps).unwrap_or(u32::MAX)) * self.settings.step
     }
 
-    /// The contact point's offset from the centre of mass, world axes, at `state`.
-    fn arm(&self, state: &State<T>) -> Vector<T> {
-        match self.shape {
+    /// A contact point's offset from the centre of mass, world axes, at `state`.
+    fn arm(&self, shape: &Shape<T>, state: &State<T>) -> Vector<T> {
+        match *shape {
             Shape::Sphere { radius } => scale(-radius, &self.plane.normal),
             Shape::Point { offset } => rotate(&state.orientation, &offset),
         }
-    }
-
-    /// `e . W f` per unit mass: the contact point's velocity change along `e` for a unit impulse
-    /// per unit mass along `f`, `e . f + m (r x e) . I_w^-1 (r x f)`.
-    fn delassus(&self, r: &Vector<T>, e: &Vector<T>, f: &Vector<T>) -> T {
-        let turn = inverse_inertia_times(&self.body, &self.state.orientation, &cross(r, f));
-        dot(e, f) + self.body.mass * dot(&cross(r, e), &turn)
     }
 
     /// Advances one step of `h`.
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    pub fn step(&mut self) -> Result<StepReport<T>, StepError> {
+    pub fn step(&mut self) -> Result<StepReport<T, K>, StepError> {
         let s = self.settings;
-        let h = s.step;
-        let st = self.state;
+        let (h, st, n) = (s.step, self.state, self.plane.normal);
         let v_free = advanced(&st.velocity, h, &s.gravity);
         let w_free = st.angular_velocity;
-        let r = self.arm(&st);
-        let gap = dot(&self.plane.normal, &sub(&add(&st.position, &r), &self.plane.point));
-        let (contact, v, w) = if gap <= s.margin {
-            self.contact(gap, &r, &v_free, &w_free)?
+        let position_size = st.position.iter().fold(T::zero(), |a, x| a + x.abs_exact());
+        let mut speed = T::zero();
+        let touches = core::array::from_fn(|i| {
+            let r = self.arm(&self.shapes[i], &st);
+            let gap = dot(&n, &sub(&add(&st.position, &r), &self.plane.point));
+            let round_off = T::of(4.0) * T::EPS * (position_size + norm(&r));
+            let u_free = add(&v_free, &cross(&w_free, &r));
+            speed = max(speed, norm(&u_free));
+            let mu =
+                if self.modes[i] == Mode::Sliding { self.plane.mu_kinetic } else { self.plane.mu_static };
+            Touch {
+                active: gap <= s.margin,
+                arm: r,
+                normal_free: dot(&n, &u_free) + normal_bias(gap, h, norm(&s.gravity), round_off),
+                slip_free: sub(&u_free, &scale(dot(&n, &u_free), &n)),
+                mu,
+            }
+        });
+        let (contacts, v, w) = if touches.iter().any(|c: &Touch<T>| c.active) {
+            let contacts = Contacts {
+                body: &self.body,
+                orientation: &st.orientation,
+                normal: n,
+                touches,
+                // The step's velocity scale: the round-off of slips and of the cone's conditions.
+                slip_tolerance: T::of(256.0) * T::EPS * (speed + norm(&s.gravity) * h + T::TINY),
+                floor: T::of(64.0) * T::EPS * norm(&s.gravity) * h,
+                stick_speed: s.stick_speed,
+            };
+            contacts.solve(&self.solver, &mut self.basis, &v_free, &w_free)?
         } else {
-            (ContactReport::separated(), v_free, w_free)
+            ([ContactReport::separated(); K], v_free, w_free)
         };
         // A body whose moments are equal (a sphere) has `I_w = I` at every orientation: its
         // angular velocity is its momentum's, unchanged, with no round-off of the turns.
@@ -332,136 +359,8 @@ impl<T: Real> Stepper<T> {
             return Err(StepError::NonFinite);
         }
         self.state = state;
-        self.mode = contact.mode;
+        self.modes = contacts.map(|c| c.mode);
         self.steps += 1;
-        Ok(StepReport { time: self.time(), state, contact })
-    }
-
-    /// The contact within the margin at `gap`, arm `r`: its impulse by the LCPs of friction lines
-    /// turned to the slip (module docs, 3), checked against the circular cone; the report and the
-    /// velocities after it.
-    fn contact(
-        &mut self,
-        gap: T,
-        r: &Vector<T>,
-        v_free: &Vector<T>,
-        w_free: &Vector<T>,
-    ) -> Result<Contacted<T>, StepError> {
-        let (s, st, n) = (self.settings, self.state, self.plane.normal);
-        let size = norm(r);
-        let round_off =
-            T::of(4.0) * T::EPS * (st.position.iter().fold(T::zero(), |a, x| a + x.abs_exact()) + size);
-        let bias = normal_bias(gap, s.step, norm(&s.gravity), round_off);
-        let u_free = add(v_free, &cross(w_free, r));
-        let un = dot(&n, &u_free) + bias;
-        let ut = sub(&u_free, &scale(dot(&n, &u_free), &n));
-        let mu = if self.mode == Mode::Sliding { self.plane.mu_kinetic } else { self.plane.mu_static };
-        // The step's velocity scale: the round-off of slips and of the cone's conditions.
-        let slip_tolerance = T::of(256.0) * T::EPS * (norm(&u_free) + norm(&s.gravity) * s.step + T::TINY);
-        // The friction line `d = (e1 + t e2) / |e1 + t e2|` in the plane: `e1` the free slip's
-        // direction (or any), `t` what the tries move.
-        let e1 = direction(&ut).unwrap_or_else(|| perpendicular(&n));
-        let e2 = cross(&n, &e1);
-        let (mut t, mut previous): (T, Option<(T, T)>) = (T::zero(), None);
-        let mut d = e1;
-        for tries in 1..=MAX_DIRECTIONS {
-            let (wnn, wnd, wdd) =
-                (self.delassus(r, &n, &n), self.delassus(r, &n, &d), self.delassus(r, &d, &d));
-            let ud = dot(&d, &ut);
-            let (o, one) = (T::zero(), T::one());
-            let lcp = Lcp::from_rows(
-                &[[wnn, wnd, -wnd, o], [wnd, wdd, -wdd, one], [-wnd, -wdd, wdd, one], [mu, -one, -one, o]],
-                &[un, ud, -ud, o],
-            );
-            let sol = self.solver.solve_warm(&lcp, self.basis).map_err(StepError::Solver)?;
-            self.basis = sol.basis;
-            let (pn, pt) = (sol.z[0], sol.z[1] - sol.z[2]);
-            let p = add(&scale(pn, &n), &scale(pt, &d));
-            let v = add(v_free, &p);
-            let turn = inverse_inertia_times(&self.body, &st.orientation, &cross(r, &p));
-            let w = add(w_free, &scale(self.body.mass, &turn));
-            let u = add(&v, &cross(&w, r));
-            let slip = sub(&u, &scale(dot(&n, &u), &n));
-            let across = cross(&n, &d);
-            let off = dot(&slip, &across);
-            if off.abs_exact() <= slip_tolerance {
-                let report = self.report(pn, &scale(pt, &d), &slip, mu, slip_tolerance, tries)?;
-                return Ok((report, v, w));
-            }
-            // Turn the line: a saturated contact's toward the slip (friction opposes it), by the
-            // secant on the slip across the line once two tries are known (the plain turn to
-            // the slip converges only linearly where the response is coupled); a sticking one's
-            // to the tangential impulse that stops the slip with this normal one.
-            let saturated = pt.abs_exact() >= mu * pn * (one - T::of(1e-3));
-            let target = if saturated {
-                slip
-            } else {
-                let (wda, waa, wna) = (
-                    self.delassus(r, &d, &across),
-                    self.delassus(r, &across, &across),
-                    self.delassus(r, &n, &across),
-                );
-                let (ra, rb) = (-(ud + wnd * pn), -(dot(&across, &ut) + wna * pn));
-                let det = wdd * waa - wda * wda;
-                let (qd, qa) = ((ra * waa - rb * wda) / det, (rb * wdd - ra * wda) / det);
-                add(&scale(qd, &d), &scale(qa, &across))
-            };
-            let along = dot(&target, &e1);
-            let next = match previous {
-                Some((t0, off0)) if saturated && off != off0 => t - off * (t - t0) / (off - off0),
-                _ if along.abs_exact() > T::zero() => dot(&target, &e2) / along,
-                _ => t,
-            };
-            previous = Some((t, off));
-            t = next;
-            d = direction(&add(&e1, &scale(t, &e2))).unwrap_or(d);
-        }
-        Err(StepError::ConeNotConverged)
-    }
-
-    /// The report of a contact whose impulse per unit mass is `pn` along the normal and `pt` in
-    /// the plane, slipping at `slip` after the step, held to the circular cone's conditions (every
-    /// LCP answer is verified already; this checks the cone the LCP's line stood for).
-    fn report(
-        &self,
-        pn: T,
-        pt: &Vector<T>,
-        slip: &Vector<T>,
-        mu: T,
-        slip_tolerance: T,
-        tries: u32,
-    ) -> Result<ContactReport<T>, StepError> {
-        let s = self.settings;
-        let limit = mu * pn;
-        let (slip_speed, friction) = (norm(slip), norm(pt));
-        let residual = if pn <= T::zero() {
-            T::zero()
-        } else if limit <= T::zero() {
-            friction / pn
-        } else if slip_speed > slip_tolerance {
-            norm(&add(pt, &scale(limit / slip_speed, slip))) / limit
-        } else {
-            max(friction - limit, T::zero()) / limit
-        };
-        if residual > T::of(4096.0) * T::EPS || !residual.finite() {
-            return Err(StepError::ConeUnverified { residual: residual.as_f32() });
-        }
-        let floor = T::of(64.0) * T::EPS * norm(&s.gravity) * s.step;
-        let mode = if pn <= floor {
-            Mode::Separated
-        } else if slip_speed <= s.stick_speed {
-            Mode::Sticking
-        } else {
-            Mode::Sliding
-        };
-        let m = self.body.mass;
-        Ok(ContactReport {
-            mode,
-            normal_impulse: pn * m,
-            friction_impulse: scale(m, pt),
-            slip: *slip,
-            directions: tries,
-            cone_residual: residual,
-        })
+        Ok(StepReport { time: self.time(), state, contacts })
     }
 }

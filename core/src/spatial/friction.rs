@@ -1,0 +1,328 @@
+//! The impulses of one step's contacts: one friction line per contact, every line turned to its
+//! contact's slip until each slip runs along its line, then each answer held to the circular
+//! cone (`super`'s module docs, 3).
+
+use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
+use super::body::{Body, inverse_inertia_times};
+use super::stepper::{ContactReport, MAX_DIRECTIONS, Mode, StepError};
+use crate::lcp::{Basis, Lcp, Lemke};
+use crate::real::{Real, max, min};
+
+/// What the solve needs of one contact, per unit mass.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Touch<T> {
+    /// Whether it is within the margin (and enters the LCP).
+    pub active: bool,
+    /// The contact point's offset from the centre of mass, world axes.
+    pub arm: Vector<T>,
+    /// Its free normal velocity with the gap's bias: the normal row's `q`.
+    pub normal_free: T,
+    /// Its free slip: the free velocity's part in the plane.
+    pub slip_free: Vector<T>,
+    /// Its friction coefficient this step.
+    pub mu: T,
+}
+
+/// One contact's friction line: a unit vector `d` in the plane; friction acts along `+d` or
+/// `-d`.
+#[derive(Debug, Clone, Copy)]
+struct Line<T> {
+    d: Vector<T>,
+}
+
+/// The bodies' velocities after the step's impulses and each contact's report.
+pub(super) type Solved<T, const K: usize> = ([ContactReport<T>; K], Vector<T>, Vector<T>);
+
+/// The contacts of a body on a plane of unit normal `n`, in the unknowns `(p_n, p_+d, p_-d,
+/// sigma)` of each contact in turn (`N = 4 K`).
+pub(super) struct Contacts<'a, T: Real, const K: usize> {
+    pub body: &'a Body<T>,
+    pub orientation: &'a super::algebra::Quaternion<T>,
+    pub normal: Vector<T>,
+    pub touches: [Touch<T>; K],
+    /// The round-off of the step's velocities: slips within it count as zero.
+    pub slip_tolerance: T,
+    /// Normal impulses per unit mass at or below it read separated.
+    pub floor: T,
+    /// The stick speed, m/s.
+    pub stick_speed: T,
+}
+
+impl<T: Real, const K: usize> Contacts<'_, T, K> {
+    /// `e . W f` per unit mass between a unit impulse along `f` at arm `rf` and the velocity
+    /// along `e` of the point at arm `re`: `e . f + m (re x e) . I_w^-1 (rf x f)`.
+    fn delassus(&self, re: &Vector<T>, e: &Vector<T>, rf: &Vector<T>, f: &Vector<T>) -> T {
+        let turn = inverse_inertia_times(self.body, self.orientation, &cross(rf, f));
+        dot(e, f) + self.body.mass * dot(&cross(re, e), &turn)
+    }
+
+    /// Solves the step: the LCP of every contact's line, warm-started from `basis` (which it
+    /// leaves at the last answer's), the lines turned until every active contact's slip runs
+    /// along its line, each answer checked against the circular cone.
+    ///
+    /// # Errors
+    /// [`StepError::Solver`], [`StepError::ConeNotConverged`], [`StepError::ConeUnverified`].
+    pub fn solve<const N: usize>(
+        &self,
+        solver: &Lemke<T, N>,
+        basis: &mut Basis<N>,
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> Result<Solved<T, K>, StepError> {
+        let n = self.normal;
+        let zero = [T::zero(); 3];
+        let mut lines =
+            self.touches.map(|c| Line { d: direction(&c.slip_free).unwrap_or_else(|| perpendicular(&n)) });
+        for tries in 1..=MAX_DIRECTIONS {
+            let lcp = self.lcp::<N>(&lines);
+            let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
+            *basis = sol.basis;
+            let (mut push, mut twist) = (zero, zero);
+            let mut impulses = [(T::zero(), T::zero()); K];
+            for (i, (c, line)) in self.touches.iter().zip(&lines).enumerate() {
+                if c.active {
+                    let (pn, pt) = (sol.z[4 * i], sol.z[4 * i + 1] - sol.z[4 * i + 2]);
+                    let p = add(&scale(pn, &n), &scale(pt, &line.d));
+                    push = add(&push, &p);
+                    twist = add(&twist, &cross(&c.arm, &p));
+                    impulses[i] = (pn, pt);
+                }
+            }
+            let v = add(v_free, &push);
+            let w = add(
+                w_free,
+                &scale(self.body.mass, &inverse_inertia_times(self.body, self.orientation, &twist)),
+            );
+            let slip = |c: &Touch<T>| {
+                let u = add(&v, &cross(&w, &c.arm));
+                sub(&u, &scale(dot(&n, &u), &n))
+            };
+            let held: [bool; K] = core::array::from_fn(|i| {
+                let c = &self.touches[i];
+                // An unloaded contact carries no friction on any line.
+                !c.active
+                    || impulses[i].0 <= T::zero()
+                    || dot(&slip(c), &cross(&n, &lines[i].d)).abs_exact() <= self.slip_tolerance
+            });
+            if held.iter().all(|&h| h) {
+                // The LCP's verification scale, `||M|| ||z|| + ||q||`, times its tolerance: what
+                // a cone's condition may miss by in absolute terms.
+                let z_norm = sol.z.iter().fold(T::zero(), |a, z| max(a, z.abs_exact()));
+                let bound = T::of(4.0) * solver.tolerance() * (lcp.m_norm_inf() * z_norm + lcp.q_norm_inf());
+                let mut reports = [ContactReport::separated(); K];
+                for (i, c) in self.touches.iter().enumerate() {
+                    if c.active {
+                        let (pn, pt) = impulses[i];
+                        reports[i] =
+                            self.report(pn, &scale(pt, &lines[i].d), &slip(c), c.mu, tries, bound)?;
+                    }
+                }
+                return Ok((reports, v, w));
+            }
+            let slips: [Vector<T>; K] = core::array::from_fn(|i| slip(&self.touches[i]));
+            self.turn::<N>(&mut lines, &impulses, &slips);
+        }
+        Err(StepError::ConeNotConverged)
+    }
+
+    /// The LCP of the contacts' lines: per contact the rows of `p_n`, `p_+d`, `p_-d` and
+    /// `sigma`; a contact beyond the margin's rows `w = z + 1` (its impulse zero).
+    fn lcp<const N: usize>(&self, lines: &[Line<T>; K]) -> Lcp<T, N> {
+        let (n, o, one) = (self.normal, T::zero(), T::one());
+        let mut m = [[o; N]; N];
+        let mut q = [o; N];
+        for (i, (ci, li)) in self.touches.iter().zip(lines).enumerate() {
+            let b = 4 * i;
+            if !ci.active {
+                for k in b..b + 4 {
+                    m[k][k] = one;
+                    q[k] = one;
+                }
+                continue;
+            }
+            for (j, (cj, lj)) in self.touches.iter().zip(lines).enumerate() {
+                if !cj.active {
+                    continue;
+                }
+                let c = 4 * j;
+                let (ri, rj, di, dj) = (&ci.arm, &cj.arm, &li.d, &lj.d);
+                let (wnn, wnd) = (self.delassus(ri, &n, rj, &n), self.delassus(ri, &n, rj, dj));
+                let (wdn, wdd) = (self.delassus(ri, di, rj, &n), self.delassus(ri, di, rj, dj));
+                m[b][c] = wnn;
+                m[b][c + 1] = wnd;
+                m[b][c + 2] = -wnd;
+                m[b + 1][c] = wdn;
+                m[b + 1][c + 1] = wdd;
+                m[b + 1][c + 2] = -wdd;
+                m[b + 2][c] = -wdn;
+                m[b + 2][c + 1] = -wdd;
+                m[b + 2][c + 2] = wdd;
+            }
+            m[b + 1][b + 3] = one;
+            m[b + 2][b + 3] = one;
+            m[b + 3][b] = ci.mu;
+            m[b + 3][b + 1] = -one;
+            m[b + 3][b + 2] = -one;
+            let ud = dot(&li.d, &ci.slip_free);
+            q[b] = ci.normal_free;
+            q[b + 1] = ud;
+            q[b + 2] = -ud;
+        }
+        Lcp::from_rows(&m, &q)
+    }
+
+    /// Turns the lines (module docs, 3) by one step of Newton's method on every loaded contact's
+    /// slip, the normal impulses held. A sliding (saturated) contact `j` turns its line by
+    /// `dtheta_j` about `n`, which moves its friction `p_j d_j` by `p_j dtheta_j a_j` (`a = n x
+    /// d`) and its condition, the slip across its line `a_j . s_j`, by `-dtheta_j (d_j . s_j)`
+    /// besides; a sticking one changes its friction by `(dq_d, dq_a)` along `(d, a)`, toward the
+    /// impulse that stops its slip (both components of its slip its conditions). The slips move by
+    /// the Delassus operator `W` of the friction changes; the linear system over all of them (at
+    /// most `2 K` unknowns) is solved once and each line set to its new friction's direction.
+    fn turn<const N: usize>(&self, lines: &mut [Line<T>; K], impulses: &[(T, T); K], slips: &[Vector<T>; K]) {
+        let n = self.normal;
+        let (zero, one) = (T::zero(), T::one());
+        let loaded: [bool; K] = core::array::from_fn(|i| self.touches[i].active && impulses[i].0 > zero);
+        let saturated: [bool; K] = core::array::from_fn(|i| {
+            let (c, (pn, pt)) = (&self.touches[i], impulses[i]);
+            loaded[i] && pt.abs_exact() >= c.mu * pn * (one - T::of(1e-3))
+        });
+        let across: [Vector<T>; K] = core::array::from_fn(|i| cross(&n, &lines[i].d));
+        // Unknown `2 i` and `2 i + 1` of contact `i`: `(dtheta, -)` sliding, `(dq_d, dq_a)`
+        // sticking; an unknown no contact uses has the row `x = 0`. `N = 4 K >= 2 K`.
+        // The friction change per unit of unknown `2 j + k`: its direction and size.
+        let effect = |j: usize, k: usize| -> Vector<T> {
+            match (saturated[j], k) {
+                (true, 0) => scale(impulses[j].1, &across[j]),
+                (false, 0) => lines[j].d,
+                (false, _) => across[j],
+                (true, _) => [zero; 3],
+            }
+        };
+        let mut jac = [[zero; N]; N];
+        let mut rhs = [zero; N];
+        for row in 0..N {
+            jac[row][row] = one;
+        }
+        for i in (0..K).filter(|&i| loaded[i]) {
+            let ri = &self.touches[i].arm;
+            // Contact i's conditions: sliding, the slip across its line; sticking, its slip along
+            // `d` and across.
+            let conditions: [(usize, Vector<T>); 2] = [(2 * i, across[i]), (2 * i + 1, lines[i].d)];
+            let rows = if saturated[i] { 1 } else { 2 };
+            for &(row, e) in conditions.iter().take(rows) {
+                jac[row][row] = zero;
+                rhs[row] = -dot(&e, &slips[i]);
+                if saturated[i] {
+                    jac[row][row] = -dot(&lines[i].d, &slips[i]);
+                }
+                for j in (0..K).filter(|&j| loaded[j]) {
+                    for k in 0..(if saturated[j] { 1 } else { 2 }) {
+                        let f = effect(j, k);
+                        let w = self.delassus(ri, &e, &self.touches[j].arm, &f);
+                        jac[row][2 * j + k] += w;
+                    }
+                }
+            }
+        }
+        let x = solved(jac, rhs);
+        for i in (0..K).filter(|&i| loaded[i]) {
+            let (d, a) = (lines[i].d, across[i]);
+            let next = if saturated[i] {
+                // A turn of more than a right angle is no longer a correction: keep the sign.
+                let angle = max(min(x[2 * i], T::of(1.5)), T::of(-1.5));
+                let (sin, cos) = angle.sin_cos_portable();
+                add(&scale(cos, &d), &scale(sin, &a))
+            } else {
+                add(&scale(impulses[i].1 + x[2 * i], &d), &scale(x[2 * i + 1], &a))
+            };
+            lines[i].d = direction(&next).unwrap_or(d);
+        }
+    }
+
+    /// The report of a contact whose impulse per unit mass is `pn` along the normal and `pt` in
+    /// the plane, slipping at `slip` after the step, held to the circular cone's conditions (every
+    /// LCP answer is verified already; this checks the cone the LCP's line stood for). `bound`:
+    /// the LCP's verification scale, in impulse per unit mass.
+    fn report(
+        &self,
+        pn: T,
+        pt: &Vector<T>,
+        slip: &Vector<T>,
+        mu: T,
+        tries: u32,
+        bound: T,
+    ) -> Result<ContactReport<T>, StepError> {
+        let limit = mu * pn;
+        let (slip_speed, friction) = (norm(slip), norm(pt));
+        let residual = if pn <= T::zero() {
+            T::zero()
+        } else if limit <= T::zero() {
+            friction / pn
+        } else if slip_speed > max(self.slip_tolerance, self.stick_speed) {
+            // Sliding: the cone's edge against the slip. A slip within the stick speed reads
+            // sticking (in f32 its direction can be round-off's): the cone alone holds it.
+            norm(&add(pt, &scale(limit / slip_speed, slip))) / limit
+        } else {
+            max(friction - limit, T::zero()) / limit
+        };
+        // Held to `4096 eps` of the cone, or, for a cone far smaller than the LCP's own scale (a
+        // light load at the edge of sticking), to the LCP's verification on that scale.
+        if !residual.finite() || (residual > T::of(4096.0) * T::EPS && residual * limit > bound) {
+            return Err(StepError::ConeUnverified { residual: residual.as_f32() });
+        }
+        let mode = if pn <= self.floor {
+            Mode::Separated
+        } else if slip_speed <= self.stick_speed {
+            Mode::Sticking
+        } else {
+            Mode::Sliding
+        };
+        let m = self.body.mass;
+        Ok(ContactReport {
+            mode,
+            normal_impulse: pn * m,
+            friction_impulse: scale(m, pt),
+            slip: *slip,
+            directions: tries,
+            cone_residual: residual,
+        })
+    }
+}
+
+/// `x` with `m x = b`, by Gaussian elimination with partial pivoting; a pivot of zero leaves its
+/// unknown zero (a contact whose turn the system does not decide keeps its line).
+fn solved<T: Real, const K: usize>(mut m: [[T; K]; K], mut b: [T; K]) -> [T; K] {
+    for col in 0..K {
+        let mut pivot = col;
+        for row in col + 1..K {
+            if m[row][col].abs_exact() > m[pivot][col].abs_exact() {
+                pivot = row;
+            }
+        }
+        m.swap(col, pivot);
+        b.swap(col, pivot);
+        let p = m[col][col];
+        if p == T::zero() {
+            continue;
+        }
+        for row in col + 1..K {
+            let f = m[row][col] / p;
+            for k in col..K {
+                m[row][k] -= f * m[col][k];
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = [T::zero(); K];
+    for col in (0..K).rev() {
+        let mut sum = b[col];
+        for k in col + 1..K {
+            sum -= m[col][k] * x[k];
+        }
+        if m[col][col] != T::zero() {
+            x[col] = sum / m[col][col];
+        }
+    }
+    x
+}
