@@ -1,7 +1,8 @@
 //! The engine-neutral view of a scene (`meterstick_core::scene::SceneView`): every catalogue
 //! scene driven through `&mut dyn SceneView<T>` runs as the concrete scene does, bit for bit
-//! (every body's state and every contact's impulses and mode after every step, the outcome, the
-//! measures, the counters, the checksum), and the view's contacts of a known state are right.
+//! (every body's state, every contact's impulses and mode and the solve's pivots and residual after
+//! every step, the outcome, the measures, the counters, the LCP's capacity, the checksum), and the
+//! view's contacts of a known state are right.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use meterstick_core::Real;
@@ -26,6 +27,13 @@ struct Trace {
     checksum: u32,
     /// Each switch event the scene keeps: time, contact, mode.
     events: Vec<(u64, usize, u64)>,
+    /// The rows of the largest LCP a step may solve.
+    lcp_capacity: usize,
+}
+
+/// A step's pivots and residual (`u64::MAX`: none reported), as a trace records them.
+fn solve_bits<T: Real>(pivots: u32, residual: Option<T>) -> [u64; 2] {
+    [u64::from(pivots), residual.map_or(u64::MAX, bits)]
 }
 
 fn bits<T: Real>(v: T) -> u64 {
@@ -58,6 +66,7 @@ fn support_bits<T: Real>(support: SupportView<T>) -> Vec<u64> {
 
 /// The trace of `view` driven to its outcome through the view alone.
 fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
+    assert!(view.last_step().is_none(), "no solve before the first step");
     let mut steps = Vec::new();
     while steps.len() < MOST_STEPS && view.step() {
         let mut row = Vec::new();
@@ -74,6 +83,8 @@ fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
         for i in 0..view.support_count() {
             row.extend(support_bits(view.support(i).unwrap()));
         }
+        let solve = view.last_step().unwrap();
+        row.extend(solve_bits(solve.pivots, solve.residual));
         steps.push(row);
     }
     assert!(view.body(view.body_count()).is_none() && view.contact(view.contact_count()).is_none());
@@ -88,6 +99,7 @@ fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
             .map(|i| view.event(i).unwrap())
             .map(|e| (bits(e.time), e.contact, mode_code(e.mode)))
             .collect(),
+        lcp_capacity: view.lcp_capacity(),
     }
 }
 
@@ -134,6 +146,7 @@ impl SceneVisitor for Planar {
                     .map(bits),
                 );
             }
+            row.extend(solve_bits(r.pivots, Some(r.residual)));
             steps.push(row);
         }
         Trace {
@@ -147,6 +160,7 @@ impl SceneVisitor for Planar {
                 .iter()
                 .map(|e| (bits(e.time), usize::from(e.contact), mode_code(e.mode)))
                 .collect(),
+            lcp_capacity: LcpLayout::Full.size(K),
         }
     }
 }
@@ -181,6 +195,7 @@ impl MultibodyVisitor for Bodies {
             }
             let table = scene.system().table;
             row.extend([table.lo, table.hi].map(|e| e.map_or(f64::NAN.to_bits(), bits)));
+            row.extend(solve_bits::<T>(r.pivots, None));
             steps.push(row);
         }
         Trace {
@@ -190,6 +205,7 @@ impl MultibodyVisitor for Bodies {
             step_count: u64::from(scene.stats().steps),
             checksum: checksum.value(),
             events: Vec::new(),
+            lcp_capacity: S::ROWS,
         }
     }
 }

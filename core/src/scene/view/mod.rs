@@ -16,7 +16,8 @@
 //!   impulses;
 //! * [`SupportView`]: a support, moving or fixed, or the table;
 //! * [`EventView`]: a contact's switch of mode, as the scene keeps them;
-//! * [`RunSummary`]: the counters every engine keeps.
+//! * [`RunSummary`]: the counters every engine keeps;
+//! * [`StepStats`]: what the last step's solve took.
 //!
 //! [`crate::scene::SceneParams::build_view`] builds any catalogue scene and hands it to a
 //! [`ViewVisitor`] as a `&mut dyn SceneView<T>`.
@@ -27,6 +28,7 @@ mod contact;
 mod event;
 mod multibody;
 mod planar;
+mod step;
 mod summary;
 mod support;
 
@@ -36,6 +38,7 @@ pub use contact::{ContactView, Thing};
 pub use event::EventView;
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
+pub use step::StepStats;
 pub use summary::RunSummary;
 pub use support::SupportView;
 
@@ -85,6 +88,12 @@ pub trait SceneView<T: Real> {
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
     /// The engine's counters, as far as every engine keeps them.
     fn summary(&self) -> RunSummary;
+    /// What the last step taken through this view solved (`None` before the first).
+    fn last_step(&self) -> Option<StepStats<T>>;
+    /// The rows of the largest LCP a step of the scene may solve (a scene of one body on `K`
+    /// contacts: the full layout's `4 K`, which the reduced one falls back to; of several bodies:
+    /// its full form's capacity).
+    fn lcp_capacity(&self) -> usize;
     /// The trajectory checksum ([`crate::planar::Checksum`]) over every body's state, in body
     /// order, after every step taken through this view: the fingerprint the firmware prints.
     fn checksum(&self) -> u32;

@@ -1,6 +1,8 @@
 //! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
 
-use super::{BodyShape, BodyView, ContactView, EventView, RunSummary, SceneView, SupportView, Thing};
+use super::{
+    BodyShape, BodyView, ContactView, EventView, RunSummary, SceneView, StepStats, SupportView, Thing,
+};
 use crate::multibody::scenes::MultibodyScene;
 use crate::multibody::{Shape, Support};
 use crate::planar::Checksum;
@@ -8,20 +10,21 @@ use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome};
 
 /// A scene of `B` bodies and `P` resting pairs, `S`, seen as a [`SceneView`]: it owns the scene
-/// (or a `&mut` to it) and keeps the last step's corner loads and the checksum of the steps taken
-/// through it. Its contacts are the pairs' candidates, four per pair in the pair's candidate order
+/// (or a `&mut` to it) and keeps the last step's corner loads and pivots, and the checksum of the
+/// steps taken through it. Its contacts are the pairs' candidates, four per pair in the pair's candidate order
 /// ([`crate::multibody::Candidate`]): contact `4 p + c` is candidate `c` of pair `p`.
 #[derive(Debug, Clone)]
 pub struct MultibodyView<T: Real, const B: usize, const P: usize, S> {
     scene: S,
     loads: [[[T; 2]; 4]; P],
+    pivots: Option<u32>,
     checksum: Checksum,
 }
 
 impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> MultibodyView<T, B, P, S> {
     /// Sees `scene` from where it is (no loads yet, an empty checksum).
     pub fn new(scene: S) -> Self {
-        Self { scene, loads: [[[T::zero(); 2]; 4]; P], checksum: Checksum::new() }
+        Self { scene, loads: [[[T::zero(); 2]; 4]; P], pivots: None, checksum: Checksum::new() }
     }
 
     /// The scene.
@@ -58,6 +61,7 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
         };
         report.add_to(&mut self.checksum);
         self.loads = report.corner_loads;
+        self.pivots = Some(report.pivots);
         true
     }
 
@@ -146,6 +150,14 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             rule_changed_answer: s.rule_changed_answer,
             load_decided_steps: s.load_decided_steps,
         }
+    }
+
+    fn last_step(&self) -> Option<StepStats<T>> {
+        self.pivots.map(|pivots| StepStats { pivots, residual: None })
+    }
+
+    fn lcp_capacity(&self) -> usize {
+        S::ROWS
     }
 
     fn checksum(&self) -> u32 {
