@@ -17,7 +17,9 @@
 //! * [`SupportView`]: a support, moving or fixed, or the table;
 //! * [`EventView`]: a contact's switch of mode, as the scene keeps them;
 //! * [`RunSummary`]: the counters every engine keeps;
-//! * [`StepStats`]: what the last step's solve took.
+//! * [`StepStats`]: what the last step's solve took;
+//! * [`StepFigure`]: a quantity of the last step an engine reports beyond these, named by what it
+//!   is ([`FigureName`]).
 //!
 //! [`crate::scene::SceneParams::build_view`] builds any catalogue scene and hands it to a
 //! [`ViewVisitor`] as a `&mut dyn SceneView<T>`.
@@ -26,6 +28,7 @@ mod body;
 mod build;
 mod contact;
 mod event;
+mod figure;
 mod multibody;
 mod planar;
 mod step;
@@ -36,6 +39,7 @@ pub use body::{BodyShape, BodyView, Force, Pose, Velocity};
 pub use build::ViewVisitor;
 pub use contact::{ContactView, Thing};
 pub use event::EventView;
+pub use figure::{Axis, FigureName, LoadPart, StepFigure};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use step::StepStats;
@@ -94,6 +98,11 @@ pub trait SceneView<T: Real> {
     /// contacts: the full layout's `4 K`, which the reduced one falls back to; of several bodies:
     /// its full form's capacity).
     fn lcp_capacity(&self) -> usize;
+    /// The number of figures the engine reports of each step beyond the records above (a scene of
+    /// one body: none; of several: each pair's force and candidates' loads).
+    fn figure_count(&self) -> usize;
+    /// Figure `i` of the last step (before the first: zero), in the same order after every step.
+    fn figure(&self, i: usize) -> Option<StepFigure<T>>;
     /// The trajectory checksum ([`crate::planar::Checksum`]) over every body's state, in body
     /// order, after every step taken through this view: the fingerprint the firmware prints.
     fn checksum(&self) -> u32;

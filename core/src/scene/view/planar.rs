@@ -1,6 +1,8 @@
 //! [`PlanarView`]: a scene of one body ([`Scene`]) seen as a [`SceneView`].
 
-use super::{BodyView, ContactView, EventView, RunSummary, SceneView, StepStats, SupportView, Thing};
+use super::{
+    BodyView, ContactView, EventView, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing,
+};
 use crate::planar::{Checksum, ContactMode, ContactReport, Support};
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome, Scene};
@@ -139,6 +141,7 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
             ambiguous_steps: s.ambiguous_steps,
             rule_changed_answer: s.rule_changed_answer,
             load_decided_steps: s.load_decided_steps,
+            most_lcp_contacts: None,
         }
     }
 
@@ -148,6 +151,14 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
 
     fn lcp_capacity(&self) -> usize {
         crate::scene::LcpLayout::Full.size(K)
+    }
+
+    fn figure_count(&self) -> usize {
+        0
+    }
+
+    fn figure(&self, _: usize) -> Option<StepFigure<T>> {
+        None
     }
 
     fn checksum(&self) -> u32 {
