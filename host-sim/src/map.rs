@@ -176,14 +176,20 @@ fn outcome_at(
         Implementation::Core(precision, layout) => {
             crate::view_run::run_view(&spec, precision, layout)?.outcome.class
         }
-        Implementation::Reference if spec.kind().is_multibody() => {
-            crate::multibody::run_reference(&spec, false)?.outcome.class
-        }
-        Implementation::Reference => crate::with_contacts!(
-            spec.kind(),
-            K => run_k::<K>(&spec, implementation, Record::Nothing)?.outcome.class
-        ),
+        Implementation::Reference => reference_outcome(&spec)?,
     })
+}
+
+/// The independent f64 reference's outcome of `spec`: its run of one body where it has the scene
+/// as one ([`crate::scenes::ParamsExt::to_reference`]), else its run of several bodies.
+fn reference_outcome(spec: &SceneParams) -> anyhow::Result<OutcomeKind> {
+    if spec.to_reference().is_none() {
+        return Ok(crate::multibody::run_reference(spec, false)?.outcome.class);
+    }
+    Ok(crate::with_contacts!(
+        spec.kind(),
+        K => run_k::<K>(spec, Implementation::Reference, Record::Nothing)?.outcome.class
+    ))
 }
 
 /// The law's outcome at `(x, y)` (`docs/scenes.md`; [`crate::multibody::law`]): `None` for a scene

@@ -1,11 +1,12 @@
 //! The engine-neutral view of a scene (`meterstick_core::scene::SceneView`): every catalogue
 //! scene driven through `&mut dyn SceneView<T>` runs as the concrete scene does, bit for bit
-//! (every body's state and every contact's impulses and mode after every step, the outcome, the
-//! measures, the counters, the checksum), and the view's contacts of a known state are right.
+//! (every body's state, every contact's impulses and mode and the solve's pivots and residual after
+//! every step, its figures, the outcome, the measures, the counters, the LCP's capacity, the
+//! checksum), and the view's contacts of a known state are right.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::MultibodyScene;
+use meterstick_core::multibody::scenes::{BlockOnBlock, BlockOnBlockParams, MultibodyScene};
 use meterstick_core::planar::{Checksum, ContactMode, Support};
 use meterstick_core::scene::{
     BodyShape, Force, LcpLayout, MultibodyView, MultibodyVisitor, Outcome, PlanarView, Pose, Precision,
@@ -26,6 +27,15 @@ struct Trace {
     checksum: u32,
     /// Each switch event the scene keeps: time, contact, mode.
     events: Vec<(u64, usize, u64)>,
+    /// The rows of the largest LCP a step may solve.
+    lcp_capacity: usize,
+    /// The most contacts one step's LCP held, where the engine counts them.
+    most_lcp_contacts: Option<u8>,
+}
+
+/// A step's pivots and residual (`u64::MAX`: none reported), as a trace records them.
+fn solve_bits<T: Real>(pivots: u32, residual: Option<T>) -> [u64; 2] {
+    [u64::from(pivots), residual.map_or(u64::MAX, bits)]
 }
 
 fn bits<T: Real>(v: T) -> u64 {
@@ -58,6 +68,7 @@ fn support_bits<T: Real>(support: SupportView<T>) -> Vec<u64> {
 
 /// The trace of `view` driven to its outcome through the view alone.
 fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
+    assert!(view.last_step().is_none(), "no solve before the first step");
     let mut steps = Vec::new();
     while steps.len() < MOST_STEPS && view.step() {
         let mut row = Vec::new();
@@ -74,6 +85,9 @@ fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
         for i in 0..view.support_count() {
             row.extend(support_bits(view.support(i).unwrap()));
         }
+        let solve = view.last_step().unwrap();
+        row.extend(solve_bits(solve.pivots, solve.residual));
+        row.extend((0..view.figure_count()).map(|i| bits(view.figure(i).unwrap().value)));
         steps.push(row);
     }
     assert!(view.body(view.body_count()).is_none() && view.contact(view.contact_count()).is_none());
@@ -88,6 +102,8 @@ fn trace_view<T: Real>(view: &mut dyn SceneView<T>) -> Trace {
             .map(|i| view.event(i).unwrap())
             .map(|e| (bits(e.time), e.contact, mode_code(e.mode)))
             .collect(),
+        lcp_capacity: view.lcp_capacity(),
+        most_lcp_contacts: view.summary().most_lcp_contacts,
     }
 }
 
@@ -134,6 +150,7 @@ impl SceneVisitor for Planar {
                     .map(bits),
                 );
             }
+            row.extend(solve_bits(r.pivots, Some(r.residual)));
             steps.push(row);
         }
         Trace {
@@ -147,6 +164,8 @@ impl SceneVisitor for Planar {
                 .iter()
                 .map(|e| (bits(e.time), usize::from(e.contact), mode_code(e.mode)))
                 .collect(),
+            lcp_capacity: LcpLayout::Full.size(K),
+            most_lcp_contacts: None,
         }
     }
 }
@@ -181,6 +200,10 @@ impl MultibodyVisitor for Bodies {
             }
             let table = scene.system().table;
             row.extend([table.lo, table.hi].map(|e| e.map_or(f64::NAN.to_bits(), bits)));
+            row.extend(solve_bits::<T>(r.pivots, None));
+            for (force, loads) in r.interface_forces.iter().zip(&r.corner_loads) {
+                row.extend(force.iter().chain(loads.as_flattened()).map(|&v| bits(v)));
+            }
             steps.push(row);
         }
         Trace {
@@ -190,6 +213,8 @@ impl MultibodyVisitor for Bodies {
             step_count: u64::from(scene.stats().steps),
             checksum: checksum.value(),
             events: Vec::new(),
+            lcp_capacity: S::ROWS,
+            most_lcp_contacts: Some(scene.stats().max_active),
         }
     }
 }
@@ -244,8 +269,7 @@ fn block_on_block_at_rest_shows_its_four_corners_carrying_the_weights() {
     assert!(p.set("force", 0.0));
     let SceneParams::BlockOnBlock(bb) = p else { panic!("block-on-block") };
     let (g, h) = (bb.gravity, bb.step);
-    let mut view =
-        MultibodyView::new(meterstick_core::multibody::scenes::BlockOnBlock::<f64>::new(bb).unwrap());
+    let mut view = MultibodyView::new(BlockOnBlock::<f64>::new(bb).unwrap());
     let view: &mut dyn SceneView<f64> = &mut view;
     assert_eq!((view.body_count(), view.contact_count()), (2, 8));
     assert_eq!(
@@ -294,14 +318,39 @@ fn block_on_block_at_rest_shows_its_four_corners_carrying_the_weights() {
 /// Block-on-block's pull is the bottom block's applied force, the top block has none.
 #[test]
 fn block_on_block_shows_its_pull_on_the_bottom_block() {
-    let SceneParams::BlockOnBlock(bb) = SceneParams::defaults(SceneKind::BlockOnBlock) else {
-        panic!("block-on-block")
-    };
-    let view = MultibodyView::new(meterstick_core::multibody::scenes::BlockOnBlock::<f64>::new(bb).unwrap());
+    let (bb, view) = block_on_block();
     let view: &dyn SceneView<f64> = &view;
     assert!(bb.force > 0.0);
     assert_eq!(view.body(0).unwrap().force, Force::Planar { fx: bb.force, fy: 0.0, torque: 0.0 });
     assert_eq!(view.body(1).unwrap().force, Force::Planar { fx: 0.0, fy: 0.0, torque: 0.0 });
+}
+
+/// Block-on-block's defaults, and its f64 scene at its start seen through a [`MultibodyView`].
+fn block_on_block() -> (BlockOnBlockParams<f64>, MultibodyView<f64, 2, 2, BlockOnBlock<f64>>) {
+    let SceneParams::BlockOnBlock(bb) = SceneParams::defaults(SceneKind::BlockOnBlock) else {
+        panic!("block-on-block")
+    };
+    (bb, MultibodyView::new(BlockOnBlock::<f64>::new(bb).unwrap()))
+}
+
+/// Block-on-block's figures, named as the columns of `host-sim run`'s CSV, zero before the first
+/// step: each pair's interface force, then its four candidates' normal and friction loads.
+#[test]
+fn block_on_block_names_its_figures_pair_by_pair() {
+    let (_, view) = block_on_block();
+    let view: &dyn SceneView<f64> = &view;
+    let names: Vec<String> =
+        (0..view.figure_count()).map(|i| view.figure(i).unwrap().name.to_string()).collect();
+    let mut want = Vec::new();
+    for p in 0..2 {
+        want.extend([format!("pair{p}_fx"), format!("pair{p}_fy")]);
+        for c in 0..4 {
+            want.extend([format!("pair{p}_c{c}_normal"), format!("pair{p}_c{c}_friction")]);
+        }
+    }
+    assert_eq!(names, want);
+    assert!((0..view.figure_count()).all(|i| view.figure(i).unwrap().value == 0.0));
+    assert!(view.figure(view.figure_count()).is_none());
 }
 
 /// The meter stick at its start, through the view: one body, the rod, on two fingers, each a

@@ -129,6 +129,14 @@ impl SceneKind {
         }
     }
 
+    /// `true` for a scene whose LCP layout a driver chooses ([`super::LcpLayout`]: reduced or
+    /// full, [`SceneParams::build_view`]'s `layout`); `false` for one that solves its one form
+    /// (a scene of several bodies: the full form, sized by its candidate contacts).
+    #[must_use]
+    pub const fn has_layout_choice(self) -> bool {
+        !self.is_multibody()
+    }
+
     /// The scene's number (its index in [`Self::ALL`]).
     #[must_use]
     pub const fn index(self) -> usize {

@@ -52,6 +52,7 @@ pub use registry::{LcpLayout, Precision, SceneVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};
 pub use view::{
-    BodyShape, BodyView, ContactView, EventView, Force, MultibodyView, PlanarView, Pose, RunSummary,
-    SceneView, SupportView, Thing, Velocity, ViewVisitor,
+    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, Force, LoadPart, MultibodyView,
+    PlanarView, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing, Velocity,
+    ViewVisitor,
 };

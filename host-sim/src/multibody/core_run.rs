@@ -1,52 +1,80 @@
-//! A scene of several bodies run in the core, through the registry.
+//! A scene of several bodies run in the core, through the core's one scene interface
+//! ([`SceneView`], built by [`SceneParams::build_view`]).
 
 use indicatif::ProgressBar;
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::MultibodyScene;
-use meterstick_core::planar::{BodyState, Checksum};
-use meterstick_core::scene::{MultibodyVisitor, Outcome, Precision, SceneKind, SceneParams};
+use meterstick_core::scene::{
+    Axis, FigureName, LcpLayout, LoadPart, Outcome, Pose, Precision, SceneKind, SceneParams, SceneView,
+    Velocity, ViewVisitor,
+};
 
 use super::{BodiesCounters, BodiesRow, BodiesRun};
 use crate::progress::{self, CHECK_EVERY_STEPS};
 use crate::trajectory::{Measured, RunOutcome};
 
-/// A row of `states` at `t`, with each pair's interface force and candidates' loads.
-fn row_of<T: Real>(t: T, states: &[BodyState<T>], forces: &[[T; 2]], loads: &[[[T; 2]; 4]]) -> BodiesRow {
-    BodiesRow {
-        t: t.as_f64(),
-        q: states.iter().map(|s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]).collect(),
-        v: states.iter().map(|s| [s.vx.as_f64(), s.vy.as_f64(), s.omega.as_f64()]).collect(),
-        interface_forces: forces.iter().map(|f| f.map(Real::as_f64)).collect(),
-        corner_loads: loads.iter().map(|pair| pair.map(|c| c.map(Real::as_f64))).collect(),
+/// The view's bodies and figures now as a row: each body's state, each pair's interface force
+/// and candidates' loads (the view's [`FigureName::PairForce`] and [`FigureName::CandidateLoad`]).
+fn row_of<T: Real>(view: &dyn SceneView<T>) -> BodiesRow {
+    let mut row = BodiesRow {
+        t: view.time().as_f64(),
+        q: Vec::new(),
+        v: Vec::new(),
+        interface_forces: Vec::new(),
+        corner_loads: Vec::new(),
+    };
+    for b in (0..view.body_count()).filter_map(|i| view.body(i)) {
+        let (q, v) = match (b.pose, b.velocity) {
+            (Pose::Planar { x, y, theta }, Velocity::Planar { vx, vy, omega }) => {
+                ([x, y, theta].map(Real::as_f64), [vx, vy, omega].map(Real::as_f64))
+            }
+            _ => ([f64::NAN; 3], [f64::NAN; 3]),
+        };
+        row.q.push(q);
+        row.v.push(v);
     }
+    for figure in (0..view.figure_count()).filter_map(|i| view.figure(i)) {
+        let value = figure.value.as_f64();
+        match figure.name {
+            FigureName::PairForce { pair, axis } => {
+                let pair = usize::from(pair);
+                if row.interface_forces.len() <= pair {
+                    row.interface_forces.resize(pair + 1, [0.0; 2]);
+                }
+                row.interface_forces[pair][usize::from(axis == Axis::Y)] = value;
+            }
+            FigureName::CandidateLoad { pair, candidate, part } => {
+                let pair = usize::from(pair);
+                if row.corner_loads.len() <= pair {
+                    row.corner_loads.resize(pair + 1, [[0.0; 2]; 4]);
+                }
+                if let Some(load) = row.corner_loads[pair].get_mut(usize::from(candidate)) {
+                    load[usize::from(part == LoadPart::Friction)] = value;
+                }
+            }
+            _ => {}
+        }
+    }
+    row
 }
 
-/// The core's run, through the registry.
+/// The core's run, through the view.
 struct CoreRun<'a> {
     kind: SceneKind,
     record: bool,
     bar: Option<&'a ProgressBar>,
 }
 
-impl MultibodyVisitor for CoreRun<'_> {
+impl ViewVisitor for CoreRun<'_> {
     type Output = anyhow::Result<BodiesRun>;
 
-    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
-        self,
-        mut scene: S,
-    ) -> Self::Output {
-        // The last step's interface forces and loads (the start's: zero).
-        let (mut forces, mut loads) = ([[T::zero(); 2]; P], [[[T::zero(); 2]; 4]; P]);
-        let start = row_of(scene.time(), scene.states(), &forces, &loads);
-        let mut rows = if self.record { vec![start] } else { Vec::new() };
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Self::Output {
+        // The start's interface forces and loads are zero (no step yet).
+        let mut rows = if self.record { vec![row_of(view)] } else { Vec::new() };
         let mut steps = 0_u64;
-        let mut checksum = Checksum::new();
-        while let Some(report) = scene.step() {
+        while view.step() {
             steps += 1;
-            report.add_to(&mut checksum);
-            (forces, loads) = (report.interface_forces, report.corner_loads);
             if self.record {
-                rows.push(row_of(report.time, &report.states, &forces, &loads));
+                rows.push(row_of(view));
             }
             if steps.is_multiple_of(CHECK_EVERY_STEPS) {
                 progress::check()?;
@@ -55,28 +83,28 @@ impl MultibodyVisitor for CoreRun<'_> {
                 }
             }
         }
-        let stats = scene.stats();
+        let summary = view.summary();
         Ok(BodiesRun {
             label: format!("core {}", T::NAME),
             scene: self.kind,
             steps,
-            end_time: scene.time().as_f64(),
+            end_time: view.time().as_f64(),
             rows,
-            last: row_of(scene.time(), scene.states(), &forces, &loads),
-            outcome: RunOutcome::from(scene.outcome().unwrap_or(Outcome::Unfinished)),
-            measured: Measured::of(self.kind, scene.measured().map(|m| m.map(Real::as_f64))),
+            last: row_of(view),
+            outcome: RunOutcome::from(view.outcome().unwrap_or(Outcome::Unfinished)),
+            measured: Measured::of(self.kind, view.measured().map(|m| m.map(Real::as_f64))),
             counters: BodiesCounters {
-                pivots: stats.pivots,
-                max_pivots: stats.max_pivots,
-                warm_direct: stats.warm_direct,
-                max_active: stats.max_active,
-                lcp_rows: S::ROWS,
-                ambiguous_steps: stats.ambiguous_steps,
-                rule_checked_steps: stats.rule_checked_steps,
-                rule_enumerated_steps: stats.rule_enumerated_steps,
-                rule_changed_answer: stats.rule_changed_answer,
+                pivots: summary.pivots,
+                max_pivots: summary.max_pivots,
+                warm_direct: u32::try_from(summary.warm_starts).unwrap_or(u32::MAX),
+                max_active: summary.most_lcp_contacts.unwrap_or(0),
+                lcp_rows: view.lcp_capacity(),
+                ambiguous_steps: summary.ambiguous_steps,
+                rule_checked_steps: summary.rule_checked_steps,
+                rule_enumerated_steps: summary.rule_enumerated_steps,
+                rule_changed_answer: summary.rule_changed_answer,
             },
-            checksum: Some(checksum.value()),
+            checksum: Some(view.checksum()),
         })
     }
 }
@@ -94,7 +122,7 @@ pub fn run_core(
 ) -> anyhow::Result<BodiesRun> {
     progress::check()?;
     let run = spec
-        .build_multibody(precision, CoreRun { kind: spec.kind(), record, bar })
+        .build_view::<0, _>(precision, LcpLayout::Full, CoreRun { kind: spec.kind(), record, bar })
         .map_err(|e| anyhow::anyhow!("{}", crate::scenes::flag_error(spec, e)))??;
     progress::check()?;
     Ok(run)

@@ -1,7 +1,7 @@
 //! The scenes of several bodies (`docs/scenes.md`, "Scenes of several bodies"; [`SceneKind::is_multibody`])
-//! in `host-sim`: a run in the core ([`run_core`], through the registry's
-//! [`SceneParams::build_multibody`](meterstick_core::scene::SceneParams::build_multibody)) or in the
-//! independent reference ([`run_reference`], `meterstick_reference::multibody::run`), recorded as a
+//! in `host-sim`: a run in the core ([`run_core`], through the core's one scene interface,
+//! [`SceneView`](meterstick_core::scene::SceneView), its pair forces and loads the view's figures) or
+//! in the independent reference ([`run_reference`], `meterstick_reference::multibody::run`), recorded as a
 //! [`BodiesRun`] (every body's state after every step, the outcome, what the scene measures, the
 //! solver's counters); the laws of `docs/scenes.md` ([`law`]); what `host-sim scene` prints
 //! ([`summarise`]) and `host-sim run` writes ([`run_all`]: the trajectories as CSV, the plots, the

@@ -181,7 +181,7 @@ impl SceneArgs {
     /// the user's words).
     pub fn specs(&self, default_list: Option<(&str, &[f64])>) -> anyhow::Result<Vec<(String, SceneParams)>> {
         let kind = self.kind();
-        if kind.is_multibody() && self.layout_given {
+        if !kind.has_layout_choice() && self.layout_given {
             bail!(
                 "--layout does not apply to --scene {kind}: a scene of several bodies solves the full form, \
                  sized by its active contacts"

@@ -1,6 +1,6 @@
-//! What one stress run of a scene of several bodies measures, in f64, from the core's
-//! [`meterstick_core::multibody::StepReport`] after every step (the counterpart of
-//! [`super::metrics::measure`], which is shaped for one body):
+//! What one stress run of a scene of several bodies measures, in f64, from what the core's
+//! [`SceneView`] gives after every step (each body's pose and velocity, the step's pivots, the LCP's
+//! capacity; the counterpart of [`super::metrics::measure`], which is shaped for one body):
 //!
 //! * **Energy** `E = sum_b m_b (vx^2 + vy^2) / 2 + J_b omega^2 / 2 + m_b g y_b` against the work of
 //!   the scene's pull, `W = sum F . (x+ - x)` (the pull acts at the bottom block's or the board's
@@ -22,8 +22,9 @@
 use std::time::Instant;
 
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::MultibodyScene;
-use meterstick_core::scene::{MultibodyVisitor, Outcome, SceneParams};
+use meterstick_core::scene::{
+    BodyView, LcpLayout, Outcome, Pose, SceneParams, SceneView, Velocity, ViewVisitor,
+};
 
 use super::cases::{Case, Claim};
 use super::figures::bodies_of;
@@ -48,7 +49,24 @@ pub fn acceleration_tolerance(law: f64, g: f64) -> f64 {
 /// centres every `stride` steps (body 0's `(x, y, theta)` in the trace, the deviation's input).
 #[must_use]
 pub fn measure(case: &Case, precision: Precision, stride: u64) -> Metrics {
-    case.spec.build_multibody(precision, Measure { case, stride }).unwrap_or_else(Metrics::invalid)
+    case.spec
+        .build_view::<0, _>(precision, LcpLayout::Full, Measure { case, stride })
+        .unwrap_or_else(Metrics::invalid)
+}
+
+/// A body's `(x, y, theta, vx, vy, omega)` in f64 (NaN for a body that does not move in the plane).
+fn state_of<T: Real>(b: Option<BodyView<T>>) -> [f64; 6] {
+    match b.map(|b| (b.pose, b.velocity)) {
+        Some((Pose::Planar { x, y, theta }, Velocity::Planar { vx, vy, omega })) => {
+            [x, y, theta, vx, vy, omega].map(Real::as_f64)
+        }
+        _ => [f64::NAN; 6],
+    }
+}
+
+/// Every body's [`state_of`], body 0 first.
+fn states<T: Real>(view: &dyn SceneView<T>) -> Vec<[f64; 6]> {
+    (0..view.body_count()).map(|i| state_of(view.body(i))).collect()
 }
 
 struct Measure<'a> {
@@ -56,22 +74,17 @@ struct Measure<'a> {
     stride: u64,
 }
 
-impl MultibodyVisitor for Measure<'_> {
+impl ViewVisitor for Measure<'_> {
     type Output = Metrics;
 
-    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
-        self,
-        mut scene: S,
-    ) -> Metrics {
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Metrics {
         let started = Instant::now();
         let spec = &self.case.spec;
         let (bodies, force) = bodies_of(spec);
         let g = spec.get("gravity").unwrap_or(0.0);
         let eps = T::EPS.as_f64();
         let size = size_of(spec);
-        let state = |s: &[meterstick_core::planar::BodyState<T>; B]| -> Vec<[f64; 6]> {
-            s.iter().map(|b| b.to_array().map(Real::as_f64)).collect()
-        };
+        let rows = view.lcp_capacity();
         let energy = |s: &[[f64; 6]]| -> f64 {
             s.iter()
                 .zip(&bodies)
@@ -90,7 +103,7 @@ impl MultibodyVisitor for Measure<'_> {
                 .sum::<f64>()
                 + force.abs() * size
         };
-        let s0 = state(scene.states());
+        let s0 = states(view);
         let extent = s0.iter().fold(0.0, |a: f64, s| a.max(s[0].abs() + s[1].abs()));
         let mut m = Metrics { eps, still_scale: size + extent, ..Metrics::default() };
         let mut s = s0.clone();
@@ -99,10 +112,10 @@ impl MultibodyVisitor for Measure<'_> {
         let mut work = 0.0;
         m.trace.push([s[0][0], s[0][1], s[0][2]]);
         let mut steps = 0_u64;
-        while let Some(r) = scene.step() {
+        while view.step() {
             steps += 1;
-            m.max_pivots = m.max_pivots.max(r.pivots);
-            let after = state(&r.states);
+            m.max_pivots = m.max_pivots.max(view.last_step().map_or(0, |r| r.pivots));
+            let after = states(view);
             let step_work = force * (after[0][0] - s[0][0]);
             let e_after = energy(&after);
             if e_after.is_finite() {
@@ -110,7 +123,7 @@ impl MultibodyVisitor for Measure<'_> {
                 work += step_work;
                 let gain = e_after - e0 - work;
                 m.energy_gain = m.energy_gain.max(gain);
-                m.energy_ratio = m.energy_ratio.max(gain / (4096.0 * S::ROWS as f64 * eps * scale(&after)));
+                m.energy_ratio = m.energy_ratio.max(gain / (4096.0 * rows as f64 * eps * scale(&after)));
             }
             if self.case.claim == Claim::BodyStill {
                 for (a, b) in after.iter().zip(&s0) {
@@ -125,7 +138,7 @@ impl MultibodyVisitor for Measure<'_> {
             }
         }
         if self.case.claim == Claim::LawAccelerations {
-            let measured = scene.measured();
+            let measured = view.measured();
             let law = crate::multibody::law(spec);
             let laws = [law.and_then(|l| l.lower_acceleration), law.and_then(|l| l.upper_acceleration)];
             // A missing measure (or law) is NaN, which fails the judge's `<= 1`.
@@ -137,10 +150,9 @@ impl MultibodyVisitor for Measure<'_> {
                     _ => f64::NAN,
                 });
         }
-        let stats = scene.stats();
         m.steps = steps;
-        m.mean_pivots = stats.pivots as f64 / steps.max(1) as f64;
-        m.outcome = Some(scene.outcome().unwrap_or(Outcome::Unfinished).into());
+        m.mean_pivots = view.summary().pivots as f64 / steps.max(1) as f64;
+        m.outcome = Some(view.outcome().unwrap_or(Outcome::Unfinished).into());
         m.wall_s = started.elapsed().as_secs_f64();
         m
     }

@@ -16,7 +16,10 @@
 //!   impulses;
 //! * [`SupportView`]: a support, moving or fixed, or the table;
 //! * [`EventView`]: a contact's switch of mode, as the scene keeps them;
-//! * [`RunSummary`]: the counters every engine keeps.
+//! * [`RunSummary`]: the counters every engine keeps;
+//! * [`StepStats`]: what the last step's solve took;
+//! * [`StepFigure`]: a quantity of the last step an engine reports beyond these, named by what it
+//!   is ([`FigureName`]).
 //!
 //! [`crate::scene::SceneParams::build_view`] builds any catalogue scene and hands it to a
 //! [`ViewVisitor`] as a `&mut dyn SceneView<T>`.
@@ -25,8 +28,10 @@ mod body;
 mod build;
 mod contact;
 mod event;
+mod figure;
 mod multibody;
 mod planar;
+mod step;
 mod summary;
 mod support;
 
@@ -34,8 +39,10 @@ pub use body::{BodyShape, BodyView, Force, Pose, Velocity};
 pub use build::ViewVisitor;
 pub use contact::{ContactView, Thing};
 pub use event::EventView;
+pub use figure::{Axis, FigureName, LoadPart, StepFigure};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
+pub use step::StepStats;
 pub use summary::RunSummary;
 pub use support::SupportView;
 
@@ -85,6 +92,17 @@ pub trait SceneView<T: Real> {
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
     /// The engine's counters, as far as every engine keeps them.
     fn summary(&self) -> RunSummary;
+    /// What the last step taken through this view solved (`None` before the first).
+    fn last_step(&self) -> Option<StepStats<T>>;
+    /// The rows of the largest LCP a step of the scene may solve (a scene of one body on `K`
+    /// contacts: the full layout's `4 K`, which the reduced one falls back to; of several bodies:
+    /// its full form's capacity).
+    fn lcp_capacity(&self) -> usize;
+    /// The number of figures the engine reports of each step beyond the records above (a scene of
+    /// one body: none; of several: each pair's force and candidates' loads).
+    fn figure_count(&self) -> usize;
+    /// Figure `i` of the last step (before the first: zero), in the same order after every step.
+    fn figure(&self, i: usize) -> Option<StepFigure<T>>;
     /// The trajectory checksum ([`crate::planar::Checksum`]) over every body's state, in body
     /// order, after every step taken through this view: the fingerprint the firmware prints.
     fn checksum(&self) -> u32;

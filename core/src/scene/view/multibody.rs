@@ -1,6 +1,9 @@
 //! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
 
-use super::{BodyShape, BodyView, ContactView, EventView, RunSummary, SceneView, SupportView, Thing};
+use super::{
+    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, LoadPart, RunSummary, SceneView,
+    StepFigure, StepStats, SupportView, Thing,
+};
 use crate::multibody::scenes::MultibodyScene;
 use crate::multibody::{Shape, Support};
 use crate::planar::Checksum;
@@ -8,20 +11,29 @@ use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome};
 
 /// A scene of `B` bodies and `P` resting pairs, `S`, seen as a [`SceneView`]: it owns the scene
-/// (or a `&mut` to it) and keeps the last step's corner loads and the checksum of the steps taken
-/// through it. Its contacts are the pairs' candidates, four per pair in the pair's candidate order
+/// (or a `&mut` to it) and keeps the last step's interface forces, corner loads and pivots, and the
+/// checksum of the steps taken through it. Its figures ([`SceneView::figure`]) are, pair by pair,
+/// the pair's interface force `x`, `y`, then its four candidates' normal and friction loads. Its contacts are the pairs' candidates, four per pair in the pair's candidate order
 /// ([`crate::multibody::Candidate`]): contact `4 p + c` is candidate `c` of pair `p`.
 #[derive(Debug, Clone)]
 pub struct MultibodyView<T: Real, const B: usize, const P: usize, S> {
     scene: S,
+    forces: [[T; 2]; P],
     loads: [[[T; 2]; 4]; P],
+    pivots: Option<u32>,
     checksum: Checksum,
 }
 
 impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> MultibodyView<T, B, P, S> {
     /// Sees `scene` from where it is (no loads yet, an empty checksum).
     pub fn new(scene: S) -> Self {
-        Self { scene, loads: [[[T::zero(); 2]; 4]; P], checksum: Checksum::new() }
+        Self {
+            scene,
+            forces: [[T::zero(); 2]; P],
+            loads: [[[T::zero(); 2]; 4]; P],
+            pivots: None,
+            checksum: Checksum::new(),
+        }
     }
 
     /// The scene.
@@ -41,6 +53,9 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> Multib
     }
 }
 
+/// A pair's figures: its interface force's two components, its four candidates' two loads each.
+const FIGURES_PER_PAIR: usize = 2 + 4 * 2;
+
 /// The thing a pair's upper body rests on.
 const fn thing_of(support: Support) -> Thing {
     match support {
@@ -57,7 +72,9 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             return false;
         };
         report.add_to(&mut self.checksum);
+        self.forces = report.interface_forces;
         self.loads = report.corner_loads;
+        self.pivots = Some(report.pivots);
         true
     }
 
@@ -145,7 +162,34 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             ambiguous_steps: s.ambiguous_steps,
             rule_changed_answer: s.rule_changed_answer,
             load_decided_steps: s.load_decided_steps,
+            most_lcp_contacts: Some(s.max_active),
         }
+    }
+
+    fn last_step(&self) -> Option<StepStats<T>> {
+        self.pivots.map(|pivots| StepStats { pivots, residual: None })
+    }
+
+    fn lcp_capacity(&self) -> usize {
+        S::ROWS
+    }
+
+    fn figure_count(&self) -> usize {
+        FIGURES_PER_PAIR * P
+    }
+
+    fn figure(&self, i: usize) -> Option<StepFigure<T>> {
+        let (p, k) = (i / FIGURES_PER_PAIR, i % FIGURES_PER_PAIR);
+        let pair = u8::try_from(p).ok()?;
+        if let Some(&value) = self.forces.get(p)?.get(k) {
+            let axis = if k == 0 { Axis::X } else { Axis::Y };
+            return Some(StepFigure { name: FigureName::PairForce { pair, axis }, value });
+        }
+        let (c, part) = ((k - 2) / 2, (k - 2) % 2);
+        let value = *self.loads.get(p)?.get(c)?.get(part)?;
+        let part = if part == 0 { LoadPart::Normal } else { LoadPart::Friction };
+        let name = FigureName::CandidateLoad { pair, candidate: u8::try_from(c).ok()?, part };
+        Some(StepFigure { name, value })
     }
 
     fn checksum(&self) -> u32 {

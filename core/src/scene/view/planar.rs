@@ -1,17 +1,20 @@
 //! [`PlanarView`]: a scene of one body ([`Scene`]) seen as a [`SceneView`].
 
-use super::{BodyView, ContactView, EventView, RunSummary, SceneView, SupportView, Thing};
+use super::{
+    BodyView, ContactView, EventView, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing,
+};
 use crate::planar::{Checksum, ContactMode, ContactReport, Support};
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome, Scene};
 
 /// A scene of one body on `K` supports, `S`, seen as a [`SceneView`]: it owns the scene (or a
-/// `&mut` to it) and keeps the last step's contact reports and the checksum of the steps taken
-/// through it.
+/// `&mut` to it) and keeps the last step's contact reports and solve, and the checksum of the steps
+/// taken through it.
 #[derive(Debug, Clone)]
 pub struct PlanarView<T: Real, const K: usize, S> {
     scene: S,
     last: [ContactReport<T>; K],
+    solve: Option<StepStats<T>>,
     checksum: Checksum,
 }
 
@@ -26,7 +29,7 @@ impl<T: Real, const K: usize, S: Scene<T, K>> PlanarView<T, K, S> {
             friction_impulse: T::zero(),
             along: T::zero(),
         });
-        Self { scene, last, checksum: Checksum::new() }
+        Self { scene, last, solve: None, checksum: Checksum::new() }
     }
 
     /// The scene.
@@ -53,6 +56,7 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
         };
         self.checksum.add(&report.state);
         self.last = report.contacts;
+        self.solve = Some(StepStats { pivots: report.pivots, residual: Some(report.residual) });
         true
     }
 
@@ -137,7 +141,24 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
             ambiguous_steps: s.ambiguous_steps,
             rule_changed_answer: s.rule_changed_answer,
             load_decided_steps: s.load_decided_steps,
+            most_lcp_contacts: None,
         }
+    }
+
+    fn last_step(&self) -> Option<StepStats<T>> {
+        self.solve
+    }
+
+    fn lcp_capacity(&self) -> usize {
+        crate::scene::LcpLayout::Full.size(K)
+    }
+
+    fn figure_count(&self) -> usize {
+        0
+    }
+
+    fn figure(&self, _: usize) -> Option<StepFigure<T>> {
+        None
     }
 
     fn checksum(&self) -> u32 {

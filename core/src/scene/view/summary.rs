@@ -25,4 +25,7 @@ pub struct RunSummary {
     pub rule_changed_answer: u64,
     /// Steps whose load the contacts left open, decided by the least 2-norm.
     pub load_decided_steps: u64,
+    /// The most contacts one step's LCP held; `None` for an engine whose every step's LCP holds all
+    /// its contacts (a scene of one body).
+    pub most_lcp_contacts: Option<u8>,
 }
