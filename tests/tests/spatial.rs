@@ -5,7 +5,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_precision_loss, clippy::print_stdout)]
 
 use meterstick_core::Real;
-use meterstick_core::spatial::{Body, Mode, OneContact, Plane, Settings, Shape, State, about, identity};
+use meterstick_core::spatial::{
+    Body, FrictionCone, Mode, OneContact, Plane, Settings, Shape, State, Stepper, about, identity,
+};
 
 const G: f64 = 9.81;
 
@@ -304,9 +306,71 @@ fn bad_input_is_refused_by_name() {
     assert_eq!(field(OneContact::new(b, s, Plane { normal: [0.0, 0.0, 2.0], ..p }, st, x)), Some("normal"));
     assert_eq!(field(OneContact::new(b, s, Plane { mu_kinetic: -0.1, ..p }, st, x)), Some("mu_kinetic"));
     assert_eq!(field(OneContact::new(b, s, p, Settings { step: 0.0, ..st }, x)), Some("step"));
+    // A pyramid of 2 directions, or one the LCP's `N = 4` cannot hold (4 directions need 6).
+    for directions in [2, 4] {
+        let cone = Settings { friction: FrictionCone::Pyramid { directions }, ..st };
+        assert_eq!(field(OneContact::new(b, s, p, cone, x)), Some("friction_directions"));
+    }
     assert_eq!(
         field(OneContact::new(Body { mass: 1.0, inertia: [1.0, 1.0, 3.0] }, s, p, st, x)),
         Some("inertia")
     );
     assert!(OneContact::new(b, s, Plane { mu_kinetic: 0.5, ..p }, st, x).is_err());
+}
+
+/// The baseline (`FrictionCone::Pyramid`): a puck launched across a level table in 16 headings
+/// with `k` fixed friction directions. Returns the spread of its stopping distance along its
+/// heading over the closed form `v^2 / (2 mu g)` (max - min) and the largest angle (rad) between
+/// its heading and where it ended.
+fn pyramid_spread<T: Real>(cone: FrictionCone) -> (f64, f64) {
+    let (speed, mu, h) = (1.5, 0.3, 1e-3);
+    let law = speed * speed / (2.0 * mu * G);
+    let (mut lo, mut hi, mut bend) = (f64::INFINITY, 0.0_f64, 0.0_f64);
+    for k in 0..16 {
+        // 23.7 degrees apart: no multiple of a pyramid's angle, so each heading meets the edges
+        // at another angle.
+        let heading = f64::from(k) * 23.7_f64.to_radians() + 0.1;
+        let (s, c) = heading.sin_cos();
+        let mut state = at_rest_on::<T>([0.0, 0.0, 0.0]);
+        state.velocity = [T::of(speed * c), T::of(speed * s), T::zero()];
+        let mut puck = Stepper::<T, 1, 18>::new(
+            Body::cuboid(T::of(0.17), T::of(0.0762), T::of(0.0762), T::of(0.0254)),
+            [Shape::Point { offset: [T::zero(); 3] }],
+            Plane::table(T::zero(), T::of(mu)),
+            Settings { step: T::of(h), friction: cone, ..Settings::default() },
+            state,
+        )
+        .unwrap();
+        for _ in 0..100_000 {
+            if puck.step().unwrap().contacts[0].mode == Mode::Sticking {
+                break;
+            }
+        }
+        let p = f64s(puck.state().position);
+        let (along, across) = (p[0] * c + p[1] * s, -p[0] * s + p[1] * c);
+        lo = lo.min(along / law);
+        hi = hi.max(along / law);
+        bend = bend.max(across.atan2(along).abs());
+    }
+    (hi - lo, bend)
+}
+
+#[test]
+fn a_pyramid_of_fixed_directions_bends_the_puck_and_the_circle_does_not() {
+    let (spread, bend) = pyramid_spread::<f64>(FrictionCone::Circular);
+    println!("circular: spread {spread:.1e} of the law, bend {bend:.1e} rad");
+    assert!(spread < 1e-9 && bend < 1e-9, "circular: {spread:e}, {bend:e}");
+    let mut last = f64::INFINITY;
+    for directions in [4, 8, 16] {
+        let (spread, bend) = pyramid_spread::<f64>(FrictionCone::Pyramid { directions });
+        println!(
+            "pyramid of {directions}: spread {spread:.2e} of the law, bend up to {:.2} deg",
+            bend.to_degrees()
+        );
+        // The baseline is anisotropic (what the test measures), less so with more directions.
+        assert!(spread > 1e-3 && bend > 1e-3 && bend < last, "{directions}: {spread:e}, {bend:e}");
+        last = bend;
+    }
+    let (spread, bend) = pyramid_spread::<f32>(FrictionCone::Pyramid { directions: 8 });
+    assert!(spread > 1e-3 && bend > 1e-3, "f32, 8: {spread:e}, {bend:e}");
 }

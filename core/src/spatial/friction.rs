@@ -114,7 +114,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                     if c.active {
                         let (pn, pt) = impulses[i];
                         reports[i] =
-                            self.report(pn, &scale(pt, &lines[i].d), &slip(c), c.mu, tries, bound)?;
+                            self.report(pn, &scale(pt, &lines[i].d), &slip(c), c.mu, (tries, bound, true))?;
                     }
                 }
                 return Ok((reports, v, w));
@@ -123,6 +123,91 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             self.turn::<N>(&mut lines, &impulses, &slips);
         }
         Err(StepError::ConeNotConverged)
+    }
+
+    /// Solves the step with each contact's friction in a pyramid of `k` directions fixed in the
+    /// plane ([`super::FrictionCone::Pyramid`]): one LCP (Stewart & Trinkle's), per contact the
+    /// unknowns `(p_n, beta_1 .. beta_k, lambda)` and the rows `w_n = W_nn p_n + W_nd beta + u_n`,
+    /// `w_l = W_ln p_n + W_ld beta + lambda + d_l . u_t`, `w_lambda = mu p_n - sum beta`.
+    ///
+    /// # Errors
+    /// [`StepError::Solver`], [`StepError::ConeUnverified`] (a friction beyond `mu p_n`).
+    pub fn solve_pyramid<const N: usize>(
+        &self,
+        solver: &Lemke<T, N>,
+        basis: &mut Basis<N>,
+        k: usize,
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> Result<Solved<T, K>, StepError> {
+        let n = self.normal;
+        let (o, one) = (T::zero(), T::one());
+        let t1 = perpendicular(&n);
+        let t2 = cross(&n, &t1);
+        let edge = |l: usize| {
+            let angle = T::of(core::f64::consts::TAU) * T::of_count(u32::try_from(l).unwrap_or(0))
+                / T::of_count(u32::try_from(k).unwrap_or(1));
+            let (sin, cos) = angle.sin_cos_portable();
+            add(&scale(cos, &t1), &scale(sin, &t2))
+        };
+        let size = k + 2;
+        let mut m = [[o; N]; N];
+        let mut q = [o; N];
+        for (i, ci) in self.touches.iter().enumerate() {
+            let b = size * i;
+            if !ci.active {
+                for row in b..b + size {
+                    m[row][row] = one;
+                    q[row] = one;
+                }
+                continue;
+            }
+            // Row `a` of contact i reads the velocity along `ea` (the normal, then each edge).
+            for a in 0..=k {
+                let ea = if a == 0 { n } else { edge(a - 1) };
+                for (j, cj) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
+                    for c in 0..=k {
+                        let fc = if c == 0 { n } else { edge(c - 1) };
+                        m[b + a][size * j + c] = self.delassus(&ci.arm, &ea, &cj.arm, &fc);
+                    }
+                }
+                if a > 0 {
+                    m[b + a][b + k + 1] = one;
+                    m[b + k + 1][b + a] = -one;
+                    q[b + a] = dot(&ea, &ci.slip_free);
+                }
+            }
+            m[b + k + 1][b] = ci.mu;
+            q[b] = ci.normal_free;
+        }
+        pad(&mut m, &mut q, size * K);
+        let lcp = Lcp::from_rows(&m, &q);
+        let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
+        *basis = sol.basis;
+        let zero = [o; 3];
+        let (mut push, mut twist) = (zero, zero);
+        let mut impulses = [(o, zero); K];
+        for (i, c) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
+            let pn = sol.z[size * i];
+            let pt = (0..k).fold(zero, |a, l| add(&a, &scale(sol.z[size * i + 1 + l], &edge(l))));
+            let p = add(&scale(pn, &n), &pt);
+            push = add(&push, &p);
+            twist = add(&twist, &cross(&c.arm, &p));
+            impulses[i] = (pn, pt);
+        }
+        let v = add(v_free, &push);
+        let w =
+            add(w_free, &scale(self.body.mass, &inverse_inertia_times(self.body, self.orientation, &twist)));
+        let z_norm = sol.z.iter().fold(o, |a, z| max(a, z.abs_exact()));
+        let bound = T::of(4.0) * solver.tolerance() * (lcp.m_norm_inf() * z_norm + lcp.q_norm_inf());
+        let mut reports = [ContactReport::separated(); K];
+        for (i, c) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
+            let u = add(&v, &cross(&w, &c.arm));
+            let slip = sub(&u, &scale(dot(&n, &u), &n));
+            let (pn, pt) = impulses[i];
+            reports[i] = self.report(pn, &pt, &slip, c.mu, (1, bound, false))?;
+        }
+        Ok((reports, v, w))
     }
 
     /// The LCP of the contacts' lines: per contact the rows of `p_n`, `p_+d`, `p_-d` and
@@ -168,6 +253,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             q[b + 1] = ud;
             q[b + 2] = -ud;
         }
+        pad(&mut m, &mut q, 4 * K);
         Lcp::from_rows(&m, &q)
     }
 
@@ -242,16 +328,16 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
 
     /// The report of a contact whose impulse per unit mass is `pn` along the normal and `pt` in
     /// the plane, slipping at `slip` after the step, held to the circular cone's conditions (every
-    /// LCP answer is verified already; this checks the cone the LCP's line stood for). `bound`:
-    /// the LCP's verification scale, in impulse per unit mass.
+    /// LCP answer is verified already; this checks the cone the LCP's line stood for). Then: the
+    /// tries it took, `bound` (the LCP's verification scale, in impulse per unit mass), and
+    /// whether the friction must oppose the slip (not a pyramid's).
     fn report(
         &self,
         pn: T,
         pt: &Vector<T>,
         slip: &Vector<T>,
         mu: T,
-        tries: u32,
-        bound: T,
+        (tries, bound, against_slip): (u32, T, bool),
     ) -> Result<ContactReport<T>, StepError> {
         let limit = mu * pn;
         let (slip_speed, friction) = (norm(slip), norm(pt));
@@ -268,7 +354,11 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         };
         // Held to `4096 eps` of the cone, or, for a cone far smaller than the LCP's own scale (a
         // light load at the edge of sticking), to the LCP's verification on that scale.
-        if !residual.finite() || (residual > T::of(4096.0) * T::EPS && residual * limit > bound) {
+        // A pyramid's friction need not oppose the slip (`against_slip` false): only its bound,
+        // `|p_t| <= mu p_n`, is a failure; its residual against the circle is reported.
+        let excess =
+            if against_slip { residual } else { max(friction - limit, T::zero()) / max(limit, T::TINY) };
+        if !residual.finite() || (excess > T::of(4096.0) * T::EPS && excess * limit > bound) {
             return Err(StepError::ConeUnverified { residual: residual.as_f32() });
         }
         let mode = if pn <= self.floor {
@@ -325,4 +415,12 @@ fn solved<T: Real, const K: usize>(mut m: [[T; K]; K], mut b: [T; K]) -> [T; K] 
         }
     }
     x
+}
+
+/// Rows `from..N` of an LCP no contact uses: `w = z + 1` (their `z` zero).
+fn pad<T: Real, const N: usize>(m: &mut [[T; N]; N], q: &mut [T; N], from: usize) {
+    for row in from..N {
+        m[row][row] = T::one();
+        q[row] = T::one();
+    }
 }

@@ -43,6 +43,11 @@
 //!    ([`ContactReport::cone_residual`], in units of `mu p_n`, or the LCP's own verification scale
 //!    where the cone is far smaller than it: a light load at the edge of sticking).
 //!
+//!    **The baseline** ([`FrictionCone::Pyramid`]): the pyramid of LCP engines, `k` directions
+//!    fixed in the plane, one LCP a step (Stewart & Trinkle). Its friction points at the pyramid's
+//!    nearest edge, not against the slip; its circular residual is reported, only `|p_t| <= mu
+//!    p_n` is a failure.
+//!
 //!    **The load.** Up to three points (not in a line) carry a load the step decides. Four or more
 //!    points of a flat base leave it open, and the LCP answers with one of its vertices: the rule
 //!    of `docs/formulation.md` ("The load: the least norm") is not yet the spatial core's.
@@ -84,5 +89,6 @@ mod stepper;
 pub use algebra::{Quaternion, Vector, about, identity, rotate};
 pub use body::{Body, State};
 pub use stepper::{
-    ContactReport, MAX_DIRECTIONS, Mode, OneContact, Plane, Settings, Shape, StepError, StepReport, Stepper,
+    ContactReport, FrictionCone, MAX_DIRECTIONS, Mode, OneContact, Plane, Settings, Shape, StepError,
+    StepReport, Stepper,
 };

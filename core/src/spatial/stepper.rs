@@ -80,6 +80,25 @@ pub enum Mode {
     Sliding,
 }
 
+/// How a contact's friction cone is taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum FrictionCone {
+    /// Coulomb's circular cone: one friction line per contact, turned to its slip (module docs,
+    /// 3). The default.
+    #[default]
+    Circular,
+    /// The baseline of LCP engines (Stewart & Trinkle): a pyramid of this many friction directions
+    /// fixed in the plane (the first along the plane's `perpendicular` of its normal, the others
+    /// evenly turned about it), one LCP a step, no turn. A sliding body's friction then points at
+    /// the pyramid's nearest edge, not against its slip: its path bends toward those directions.
+    /// From 3 to 16; the LCP needs `N >= K (directions + 2)`.
+    Pyramid {
+        /// The directions (3 to 16).
+        directions: u8,
+    },
+}
+
 /// The step's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -92,6 +111,8 @@ pub struct Settings<T> {
     pub stick_speed: T,
     /// Gap within which the contact enters the step's LCP, m. Default `1e-3`.
     pub margin: T,
+    /// The friction cone. Default [`FrictionCone::Circular`].
+    pub friction: FrictionCone,
 }
 
 impl<T: Real> Default for Settings<T> {
@@ -101,6 +122,7 @@ impl<T: Real> Default for Settings<T> {
             gravity: [T::zero(), T::zero(), T::of(-9.81)],
             stick_speed: T::of(1e-5),
             margin: T::of(1e-3),
+            friction: FrictionCone::Circular,
         }
     }
 }
@@ -190,14 +212,16 @@ pub type OneContact<T> = Stepper<T, 1, 4>;
 impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
     /// A stepper for `body` touching `plane` at the points `shapes` name, starting at `state`.
     ///
-    /// `N` must be `4 K` and `K` from 1 to 8 (checked at compile time).
+    /// `K` from 1 to 8 and `N` from `4 K` to 32 (checked at compile time); a pyramid of `k`
+    /// directions needs `N >= K (k + 2)`.
     ///
     /// # Errors
     /// [`ParamError`] naming what is refused: the body ([`Body::validate`]), a radius that is not
     /// finite and positive (`radius`), an offset that is not finite (`offset`), a plane whose
     /// normal is not a unit vector (`normal`) or whose point is not finite (`point`), `mu_kinetic
     /// < 0` (`mu_kinetic`) or `mu_kinetic > mu_static`, a step, stick speed or margin that is not
-    /// finite and positive, non-finite gravity (`gravity`), a state that is not finite.
+    /// finite and positive, non-finite gravity (`gravity`), a state that is not finite, a pyramid
+    /// of fewer than 3 or more than 16 directions or more than `N` holds (`friction_directions`).
     pub fn new(
         body: Body<T>,
         shapes: [Shape<T>; K],
@@ -205,7 +229,12 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
         settings: Settings<T>,
         state: State<T>,
     ) -> Result<Self, ParamError> {
-        const { assert!(K >= 1 && K <= 8 && N == 4 * K, "Stepper<T, K, N> needs 1 <= K <= 8 and N = 4 K") };
+        const {
+            assert!(
+                K >= 1 && K <= 8 && N >= 4 * K && N <= 32,
+                "Stepper<T, K, N> needs 1 <= K <= 8, 4 K <= N <= 32"
+            );
+        };
         body.validate()?;
         for shape in shapes {
             match shape {
@@ -246,6 +275,11 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
             if value <= T::zero() {
                 return Err(ParamError::NotPositive(name));
             }
+        }
+        if matches!(settings.friction, FrictionCone::Pyramid { directions }
+            if !(3..=16).contains(&directions) || K * (usize::from(directions) + 2) > N)
+        {
+            return Err(ParamError::OutOfRange("friction_directions"));
         }
         if !super::algebra::finite(&settings.gravity) {
             return Err(ParamError::NonFinite("gravity"));
@@ -337,7 +371,16 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
                 floor: T::of(64.0) * T::EPS * norm(&s.gravity) * h,
                 stick_speed: s.stick_speed,
             };
-            contacts.solve(&self.solver, &mut self.basis, &v_free, &w_free)?
+            match s.friction {
+                FrictionCone::Circular => contacts.solve(&self.solver, &mut self.basis, &v_free, &w_free)?,
+                FrictionCone::Pyramid { directions } => contacts.solve_pyramid(
+                    &self.solver,
+                    &mut self.basis,
+                    usize::from(directions),
+                    &v_free,
+                    &w_free,
+                )?,
+            }
         } else {
             ([ContactReport::separated(); K], v_free, w_free)
         };
