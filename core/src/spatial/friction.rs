@@ -315,10 +315,11 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         for i in (0..K).filter(|&i| loaded[i]) {
             let (d, a) = (lines[i].d, across[i]);
             let next = if saturated[i] {
-                // A turn of more than a right angle is no longer a correction: keep the sign.
-                let angle = max(min(x[2 * i], T::of(1.5)), T::of(-1.5));
-                let (sin, cos) = angle.sin_cos_portable();
-                add(&scale(cos, &d), &scale(sin, &a))
+                // The turn by `dtheta` to first order, `d + dtheta a` (normalised below): Newton's
+                // step needs no more, and no sine. A turn of more than a right angle is no longer
+                // a correction: it is held to `tan` of 1.5 rad.
+                let angle = max(min(x[2 * i], T::of(14.0)), T::of(-14.0));
+                add(&d, &scale(angle, &a))
             } else {
                 add(&scale(impulses[i].1 + x[2 * i], &d), &scale(x[2 * i + 1], &a))
             };
