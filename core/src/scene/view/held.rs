@@ -20,6 +20,8 @@ use super::{SceneView, ViewVisitor};
 use crate::multibody::scenes::{BlockOnBlock, DiscOnBoard, Stack2, Stack3, Tablecloth};
 use crate::params::ParamError;
 use crate::real::Real;
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+use crate::scene::SceneIn;
 #[cfg(feature = "scenes-k3")]
 use crate::scene::ThreeFingers;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
@@ -108,7 +110,7 @@ impl<A: Seen<f32>, B: Seen<f64>> InPrecision<A, B> {
 /// [`PlanarIn`] of the registry's table: each row's scene through its [`PlanarView`].
 macro_rules! planar_in {
     ($(#[$built:meta] $variant:ident: $scene:ident<$k:literal, $n:literal> = $params:ident, $layout:ident, $hand:ident;)*) => {
-        /// Any scene of one body in scalar `T`, keeping `E` switch events (as `SceneIn`), seen
+        /// Any scene of one body in scalar `T`, keeping `E` switch events ([`SceneIn`]), seen
         /// through its [`PlanarView`].
         #[derive(Debug, Clone)]
         #[allow(clippy::large_enum_variant)] // one scene per run, held in place: no heap
@@ -117,17 +119,11 @@ macro_rules! planar_in {
         }
 
         impl<T: Real, const E: usize> PlanarIn<T, E> {
-            /// The scene of `params` in `layout` (each built in its view's place: no copy of the
-            /// scene).
-            fn new(params: &SceneParams, layout: LcpLayout) -> Result<Self, ParamError> {
-                Ok(match (*params, layout) {
-                    $(#[$built] (SceneParams::$params(p), LcpLayout::$layout) => {
-                        Self::$variant(PlanarView::new($scene::new(p.cast())?))
-                    })*
-                    // A scene this build leaves out (features `scenes-k1`..`scenes-k3`).
-                    #[allow(unreachable_patterns)]
-                    _ => return Err(ParamError::OutOfRange("scene")),
-                })
+            /// `scene` seen through its view.
+            fn of(scene: SceneIn<T, E>) -> Self {
+                match scene {
+                    $(#[$built] SceneIn::$variant(s) => Self::$variant(PlanarView::new(s)),)*
+                }
             }
         }
 
@@ -160,8 +156,8 @@ pub struct PlanarViews<const E: usize>(InPrecision<PlanarIn<f32, E>, PlanarIn<f6
 impl<const E: usize> HeldView for PlanarViews<E> {
     fn new(params: &SceneParams, precision: Precision, layout: LcpLayout) -> Result<Self, ParamError> {
         Ok(Self(match precision {
-            Precision::F32 => InPrecision::F32(PlanarIn::new(params, layout)?),
-            Precision::F64 => InPrecision::F64(PlanarIn::new(params, layout)?),
+            Precision::F32 => InPrecision::F32(PlanarIn::of(SceneIn::new(params, layout)?)),
+            Precision::F64 => InPrecision::F64(PlanarIn::of(SceneIn::new(params, layout)?)),
         }))
     }
 
