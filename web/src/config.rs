@@ -32,16 +32,61 @@ pub const fn layout_of_page_size(n: u32) -> Option<LcpLayout> {
 /// A scene with its parameters in the core's units (SI, radians), f64 as given: the catalogue's.
 pub use meterstick_core::scene::SceneParams;
 
-/// `true` when this module holds the scenes of `kind`'s contact count (cargo features `k1`, `k2`,
-/// `k3`: the page's first module has the two-contact scenes and loads the others' on demand), or
-/// `kind` is a scene of several bodies and this module has them (feature `mb`).
+/// A page module: the wasm file that runs a scene (`scripts/lib.sh` `build_web` builds each with
+/// its cargo feature; the page loads [`Self::Two`] first and another when a scene of it is chosen).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Module {
+    /// `meterstick_web_k1.wasm` (feature `k1`): the scenes of one contact.
+    One,
+    /// `meterstick_web.wasm` (feature `k2`): the scenes of two contacts.
+    Two,
+    /// `meterstick_web_k3.wasm` (feature `k3`): the scenes of three contacts.
+    Three,
+    /// `meterstick_web_mb.wasm` (feature `mb`): the scenes whose contacts come and go, none
+    /// counted (the scenes of several bodies).
+    Bodies,
+}
+
+impl Module {
+    /// The module that runs `kind`, by the contacts the catalogue counts for it (the page's
+    /// `moduleUrl`, `web/page/core.js`).
+    #[must_use]
+    pub const fn of(kind: SceneKind) -> Self {
+        match kind.contacts() {
+            0 => Self::Bodies,
+            1 => Self::One,
+            2 => Self::Two,
+            _ => Self::Three,
+        }
+    }
+
+    /// Its file in `web/page/pkg/`.
+    #[must_use]
+    pub const fn file(self) -> &'static str {
+        match self {
+            Self::One => "meterstick_web_k1.wasm",
+            Self::Two => "meterstick_web.wasm",
+            Self::Three => "meterstick_web_k3.wasm",
+            Self::Bodies => "meterstick_web_mb.wasm",
+        }
+    }
+
+    /// `true` when this build runs its scenes (its cargo feature; the host build has them all).
+    #[must_use]
+    pub const fn built(self) -> bool {
+        match self {
+            Self::One => cfg!(feature = "k1"),
+            Self::Two => cfg!(feature = "k2"),
+            Self::Three => cfg!(feature = "k3"),
+            Self::Bodies => cfg!(feature = "mb"),
+        }
+    }
+}
+
+/// `true` when this build runs `kind` (its [`Module`]).
 #[must_use]
 pub const fn holds(kind: SceneKind) -> bool {
-    if kind.is_multibody() {
-        return cfg!(feature = "mb");
-    }
-    let k = kind.contacts();
-    (k == 1 && cfg!(feature = "k1")) || (k == 2 && cfg!(feature = "k2")) || (k == 3 && cfg!(feature = "k3"))
+    Module::of(kind).built()
 }
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.

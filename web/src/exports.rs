@@ -1,7 +1,7 @@
 //! The page's API: plain `extern "C"` functions over one [`Session`] per wasm instance, with
 //! numbers for arguments and results and two buffers in linear memory that the page reads (the
 //! text buffer: JSON descriptions, refusals, outcomes; the trace buffer: one row of f64 per step,
-//! as many as the scene's row has, [`crate::sim::row_len`]). `docs/page.md` lists them; `web/page/core.js` is their one caller.
+//! as many as the scene's row has, [`crate::sim::Rows`]). `docs/page.md` lists them; `web/page/core.js` is their one caller.
 //!
 //! Return conventions: counts as `u32` (or `f64` where they may exceed 2^32), codes as `i32`
 //! (`-1`: none or a bad argument), a text's length in bytes as `u32` (read from [`ms_text_ptr`]).
@@ -325,8 +325,8 @@ pub extern "C" fn ms_measured(i: u32) -> f64 {
     })
 }
 
-/// A scene of several bodies' body `i` (0 the lowest): its width (`axis` 0) or height (`axis` 1)
-/// in m; NaN past its bodies, for another axis, for a scene of one body or without a run.
+/// Body `i` (0 the lowest of a scene of several bodies): its width (`axis` 0) or height (`axis`
+/// 1) in m (a disc's diameter for both); NaN past its bodies, for another axis or without a run.
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_body_size(i: u32, axis: u32) -> f64 {
@@ -336,17 +336,17 @@ pub extern "C" fn ms_body_size(i: u32, axis: u32) -> f64 {
     })
 }
 
-/// A scene of several bodies' body `i` (0 the lowest): 1 when it is round (a disc, drawn with a
-/// spoke so that its turning shows), 0 for a box, past its bodies, for a scene of one body or
-/// without a run.
+/// Body `i` (0 the lowest of a scene of several bodies): 1 when it is round (a disc, drawn with a
+/// spoke so that its turning shows), 0 for a box, past its bodies or without a run.
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_body_round(i: u32) -> u32 {
     store::with(|s, _, _| u32::from(s.session.sim().is_some_and(|sim| sim.body_round(i as usize))))
 }
 
-/// A scene of several bodies' table: its left (`end` 0) or right (`end` 1) end in m (the top
-/// face is `y = 0`); NaN for an end it does not have (a floor has none), or without such a run.
+/// The table the scene's bodies rest on (a scene of several bodies): its left (`end` 0) or right
+/// (`end` 1) end in m (the top face is `y = 0`); NaN for an end it does not have (a floor has
+/// none), or without such a run.
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_table_end(end: u32) -> f64 {

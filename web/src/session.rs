@@ -5,9 +5,9 @@ use core::fmt::Write as _;
 
 use meterstick_core::scene::Outcome;
 
-use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Precision, SceneParams, holds};
+use crate::config::{Config, ConfigError, LcpLayout, MAX_STEPS, Module, Precision, SceneParams, holds};
 use crate::flags::{Catalogued as _, FLAGS, SceneKind};
-use crate::sim::{BODIES_ROW, MAX_CONTACTS, MODES, OUTCOMES, Sim, row_len};
+use crate::sim::{MAX_CONTACTS, MODES, OUTCOMES, Rows, Sim};
 use crate::text::{Text, json_num, json_str};
 
 /// Rows one `ms_step` call may write (the trace buffer holds this many).
@@ -22,7 +22,7 @@ pub enum CreateError {
     Config(ConfigError),
     /// The parameters passed validation but the core still refused them.
     Core(meterstick_core::ParamError),
-    /// The scene is in the module of another contact count ([`crate::config::holds`]).
+    /// The scene runs in another module ([`crate::config::holds`]).
     OtherModule(SceneKind),
 }
 
@@ -105,12 +105,8 @@ impl core::fmt::Display for CreateError {
         match self {
             Self::Config(e) => write!(f, "{e}"),
             Self::Core(e) => write!(f, "{e}"),
-            Self::OtherModule(kind) if kind.is_multibody() => {
-                write!(f, "scene {kind} runs in meterstick_web_mb.wasm, not in this module")
-            }
             Self::OtherModule(kind) => {
-                let k = kind.contacts();
-                write!(f, "scene {kind} runs in meterstick_web_k{k}.wasm, not in this module")
+                write!(f, "scene {kind} runs in {}, not in this module", Module::of(*kind).file())
             }
         }
     }
@@ -118,8 +114,8 @@ impl core::fmt::Display for CreateError {
 
 /// Writes the description the page builds its controls from, as JSON: each scene of the
 /// catalogue, in its order, with its name, title, core fields and defaults, contacts (named; a row
-/// has [`row_len`] numbers for them; a scene of several bodies has `"contacts":[]`, `"bodies":true`
-/// and rows of [`BODIES_ROW`]: time and each body's `x, y, theta`), measured quantities
+/// has [`crate::sim::row_len`] numbers for them; a scene of several bodies has `"contacts":[]`, `"bodies":true`
+/// and rows of [`crate::sim::BODIES_ROW`]: time ([`Rows`]) and each body's `x, y, theta`), measured quantities
 /// (`summary.json`'s keys) and the outcomes it can end in; each flag's name, unit, help and field
 /// per scene; the mode and outcome names; the limits; `holds`, the contact counts of the scenes
 /// this module runs (0: the scenes of several bodies).
@@ -153,11 +149,11 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         }
         out.write_char(']')?;
         list(out, "contacts", &mut info.contact_names.iter().copied())?;
-        if kind.is_multibody() {
-            write!(out, ",\"bodies\":true,\"row\":{BODIES_ROW}")?;
-        } else {
-            write!(out, ",\"row\":{}", row_len(kind.contacts()))?;
+        let rows = Rows::of(kind);
+        if rows == Rows::Bodies {
+            out.write_str(",\"bodies\":true")?;
         }
+        write!(out, ",\"row\":{}", rows.width())?;
         list(out, "measures", &mut info.measures.iter().copied())?;
         list(out, "ends", &mut info.outcomes.iter().map(|o| o.name()))?;
         list(out, "main_flags", &mut info.main_flags.iter().copied())?;
@@ -215,8 +211,7 @@ mod tests {
             assert!(holds(kind), "{kind}");
             s.configure(kind);
             assert!(s.create(Precision::F32, LcpLayout::Reduced).is_ok(), "{kind}");
-            let row = if kind.is_multibody() { BODIES_ROW } else { row_len(kind.contacts()) };
-            assert_eq!(s.sim().map(Sim::row_len), Some(row), "{kind}");
+            assert_eq!(s.sim().map(Sim::row_len), Some(Rows::of(kind).width()), "{kind}");
         }
         let e = CreateError::OtherModule(SceneKind::Cylinder);
         assert_eq!(

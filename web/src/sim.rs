@@ -1,27 +1,31 @@
-//! One run of a scene in the core, as the page drives it: [`Sim`] holds any scene of the catalogue
-//! in the precision and layout asked for (the core's `AnyScene`), steps it, writes one row of numbers per step for the
-//! animation and the plots (the columns of `host-sim run`'s `core.csv` for the scene's `K`
-//! contacts, [`row_len`], so a live run and a replayed one are read alike), and keeps the
-//! trajectory checksum (`planar::Checksum`, as the firmware and `host-sim scene` print it).
-
-// A module built with some of the scene features leaves the others' helpers unused.
-#![cfg_attr(
-    not(all(feature = "k1", feature = "k2", feature = "k3", feature = "mb")),
-    allow(dead_code, unused_imports, unused_mut, unused_variables)
-)]
+//! One run of a scene in the core, as the page drives it: [`Sim`] holds any scene this module
+//! runs, built and seen through the core's `SceneView` (a `HeldView`, [`Held`]), steps it, writes
+//! one row of numbers per step for the animation and the plots ([`Rows`]: for a scene with a fixed
+//! list of contacts the columns of `host-sim run`'s `core.csv`, so a live run and a replayed one
+//! are read alike), and reports the view's trajectory checksum (`planar::Checksum`, as the firmware
+//! and `host-sim scene` print it).
 
 use meterstick_core::ParamError;
 use meterstick_core::Real;
-#[cfg(feature = "mb")]
-use meterstick_core::multibody::scenes::MultibodyScene;
-use meterstick_core::planar::{Checksum, ContactMode, Direction, RunStats, StepReport};
-#[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-use meterstick_core::scene::AnyScene;
-#[cfg(feature = "mb")]
-use meterstick_core::scene::{AnyMultibody, MultibodyVisitor};
-use meterstick_core::scene::{Outcome, OutcomeKind, Scene, SceneKind, SceneVisitor};
+use meterstick_core::planar::{ContactMode, Direction};
+use meterstick_core::scene::{
+    BodyShape, HeldView, Outcome, OutcomeKind, Pose, RunSummary, SceneKind, SceneView, SupportView, Velocity,
+    ViewReader, ViewVisitor,
+};
 
 use crate::config::{LcpLayout, Precision, SceneParams, holds};
+
+/// The holder of the scenes this build runs: the host build (every feature) holds any scene, a
+/// page module (`scripts/lib.sh` `build_web`) the scenes of its engine only, so that it links no
+/// other engine's steppers.
+#[cfg(all(any(feature = "k1", feature = "k2", feature = "k3"), feature = "mb"))]
+pub type Held = meterstick_core::scene::AnyView<0>;
+/// The holder of the scenes this build runs: a module of scenes of one body.
+#[cfg(all(any(feature = "k1", feature = "k2", feature = "k3"), not(feature = "mb")))]
+pub type Held = meterstick_core::scene::PlanarViews<0>;
+/// The holder of the scenes this build runs: the module of the scenes of several bodies.
+#[cfg(not(any(feature = "k1", feature = "k2", feature = "k3")))]
+pub type Held = meterstick_core::scene::MultibodyViews;
 
 /// The most contacts a scene of the catalogue has (three fingers).
 pub const MAX_CONTACTS: usize = 3;
@@ -71,16 +75,82 @@ pub const fn outcome_code(o: Outcome) -> u8 {
     o.kind().code()
 }
 
-/// A scene of one body or of several, held in place.
-#[derive(Debug, Clone)]
-#[allow(clippy::large_enum_variant)] // one scene per run, held in place: there is no heap on wasm
-enum Held {
-    /// A scene of one body (`E = 0`: the page finds switch events in the rows).
-    #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-    One(AnyScene<0>),
-    /// A scene of several bodies.
-    #[cfg(feature = "mb")]
-    Many(AnyMultibody),
+/// What each row of a scene holds: its length and columns, from the scene's contacts as the
+/// catalogue counts them ([`SceneKind::contacts`]), the numbers from its view.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rows {
+    /// A scene of one body on a fixed list of `k` contacts: time, the body's `x, y, theta, vx,
+    /// vy, omega`, then each contact's support point, mode, normal impulse, friction impulse and
+    /// coordinate along it ([`row_len`], `host-sim`'s `core.csv`).
+    Contacts(usize),
+    /// A scene whose contacts come and go (none counted): time, then each body's `x, y, theta`
+    /// ([`BODIES_ROW`]; NaN past its bodies), as `host-sim`'s trajectory of bodies.
+    Bodies,
+}
+
+impl Rows {
+    /// The rows of `kind`.
+    #[must_use]
+    pub const fn of(kind: SceneKind) -> Self {
+        match kind.contacts() {
+            0 => Self::Bodies,
+            k => Self::Contacts(k),
+        }
+    }
+
+    /// Numbers per row.
+    #[must_use]
+    pub const fn width(self) -> usize {
+        match self {
+            Self::Contacts(k) => row_len(k),
+            Self::Bodies => BODIES_ROW,
+        }
+    }
+
+    /// Writes `view`'s row as it is now into `row` ([`Self::width`] numbers): the contacts' impulses
+    /// and coordinates over its last step (zero before the first).
+    fn write<T: Real>(self, view: &dyn SceneView<T>, row: &mut [f64]) {
+        row[0] = view.time().as_f64();
+        match self {
+            Self::Contacts(k) => {
+                let Some((q, v)) = view.body(0).and_then(|b| planar(&b)) else { return };
+                for (slot, x) in row[1..7].iter_mut().zip(q.into_iter().chain(v)) {
+                    *slot = x.as_f64();
+                }
+                let group = |g: usize, i: usize| 7 + 2 * k + g * k + i;
+                for i in 0..k {
+                    let Some(c) = view.contact(i) else { continue };
+                    // Where the support touches the body: the contact point moved back by the gap
+                    // along the normal (a finger's tip; the foot of a corner on a line; the rim's
+                    // point on the slope), in f64 from the body's position as `host-sim` writes it.
+                    let (r, n, gap) = (c.lever.map(Real::as_f64), c.normal.map(Real::as_f64), c.gap.as_f64());
+                    row[7 + 2 * i] = q[0].as_f64() + r[0] - gap * n[0];
+                    row[8 + 2 * i] = q[1].as_f64() + r[1] - gap * n[1];
+                    row[group(0, i)] = f64::from(mode_code(c.mode));
+                    row[group(1, i)] = c.normal_impulse.as_f64();
+                    row[group(2, i)] = c.friction_impulse.as_f64();
+                    row[group(3, i)] = c.along.as_f64();
+                }
+            }
+            Self::Bodies => {
+                for (b, slot) in row[1..BODIES_ROW].chunks_exact_mut(3).enumerate() {
+                    let q = view
+                        .body(b)
+                        .and_then(|b| planar(&b))
+                        .map_or([f64::NAN; 3], |(q, _)| q.map(Real::as_f64));
+                    slot.copy_from_slice(&q);
+                }
+            }
+        }
+    }
+}
+
+/// A body's `[x, y, theta]` and `[vx, vy, omega]` in the plane (`None` for a body in another
+/// dimension).
+fn planar<T: Real>(body: &meterstick_core::scene::BodyView<T>) -> Option<([T; 3], [T; 3])> {
+    let Pose::Planar { x, y, theta } = body.pose else { return None };
+    let Velocity::Planar { vx, vy, omega } = body.velocity else { return None };
+    Some(([x, y, theta], [vx, vy, omega]))
 }
 
 /// The most steps a run goes on after its outcome ([`Sim::step_past_rows`]): 30 s at the
@@ -91,24 +161,31 @@ pub const MAX_PAST_STEPS: u32 = 30_000;
 /// One run.
 #[derive(Debug, Clone)]
 pub struct Sim {
-    /// The scene, from the core's registry.
-    scene: Held,
+    /// The scene, built and seen through its view.
+    view: Held,
     kind: SceneKind,
-    checksum: Checksum,
+    rows: Rows,
     start: [f64; MAX_ROW],
     /// Once the run goes on past its outcome: the run as judged (what the accessors report).
     past: Option<Judged>,
 }
 
-/// A run as its judge left it (outcome, time, counters, measured quantities), kept while the
-/// scene goes on past its outcome ([`Sim::step_past_rows`]); the checksum stays the judged run's
-/// (the steps past the outcome are not added to it).
+/// What the accessors report of a run: its outcome, time, counters, measured quantities (NaN
+/// where there is none) and checksum.
+#[derive(Debug, Clone, Copy)]
+struct Status {
+    outcome: Option<Outcome>,
+    time: f64,
+    summary: RunSummary,
+    measured: [f64; MAX_MEASURES],
+    checksum: u32,
+}
+
+/// A run as its judge left it, kept while the scene goes on past its outcome
+/// ([`Sim::step_past_rows`]): the steps past the outcome are not in what it reports.
 #[derive(Debug, Clone, Copy)]
 struct Judged {
-    outcome: Outcome,
-    time: f64,
-    stats: RunStats,
-    measured: [f64; MAX_MEASURES],
+    status: Status,
     /// Steps taken past the outcome.
     steps: u32,
 }
@@ -117,33 +194,18 @@ impl Sim {
     /// The scene of `spec` in `precision` and `layout`, at its start at `t = 0`.
     ///
     /// # Errors
-    /// The core's complaint about the parameters (in its precision).
+    /// The core's complaint about the parameters (in its precision); `OutOfRange("scene")` for a
+    /// scene of another module.
     pub fn new(spec: &SceneParams, precision: Precision, layout: LcpLayout) -> Result<Self, ParamError> {
-        // A scene of another module (the page loads the module of the scene's contacts).
+        // A scene of another module (the page loads the module that runs it).
         if !holds(spec.kind()) {
             return Err(ParamError::OutOfRange("scene"));
         }
+        let view = Held::new(spec, precision, layout)?;
+        let rows = Rows::of(spec.kind());
         let mut start = [0.0; MAX_ROW];
-        let scene = if spec.kind().is_multibody() {
-            #[cfg(feature = "mb")]
-            {
-                let mut scene = AnyMultibody::new(spec, precision)?;
-                scene.visit_mut(BodiesStartRow(&mut start));
-                Held::Many(scene)
-            }
-            #[cfg(not(feature = "mb"))]
-            return Err(ParamError::OutOfRange("scene"));
-        } else {
-            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            {
-                let mut scene = AnyScene::new(spec, precision, layout)?;
-                scene.visit_mut(StartRow(&mut start));
-                Held::One(scene)
-            }
-            #[cfg(not(any(feature = "k1", feature = "k2", feature = "k3")))]
-            return Err(ParamError::OutOfRange("scene"));
-        };
-        Ok(Self { scene, kind: spec.kind(), checksum: Checksum::new(), start, past: None })
+        view.read(RowNow { rows, row: &mut start[..rows.width()] });
+        Ok(Self { view, kind: spec.kind(), rows, start, past: None })
     }
 
     /// The scene.
@@ -152,10 +214,10 @@ impl Sim {
         self.kind
     }
 
-    /// Numbers per row of this run ([`row_len`] of its contacts).
+    /// Numbers per row of this run ([`Rows::width`]).
     #[must_use]
     pub const fn row_len(&self) -> usize {
-        if self.kind.is_multibody() { BODIES_ROW } else { row_len(self.kind.contacts()) }
+        self.rows.width()
     }
 
     /// The row of the state at `t = 0` (the contacts' initial modes; no impulses).
@@ -170,7 +232,7 @@ impl Sim {
         if self.past.is_some() {
             return 0;
         }
-        Self::held_rows(&mut self.scene, &mut self.checksum, rows)
+        self.view.visit_mut(StepRows { rows: self.rows, out: rows, go_on: false })
     }
 
     /// After the outcome, steps the scene on past it (the core's `go_on` before each step: the
@@ -180,49 +242,18 @@ impl Sim {
     /// before the outcome, once a step failed or the bound is reached).
     pub fn step_past_rows(&mut self, rows: &mut [f64]) -> usize {
         if self.past.is_none() {
-            let Some(outcome) = self.outcome() else { return 0 };
-            let judged = Judged {
-                outcome,
-                time: self.time(),
-                stats: self.stats(),
-                measured: self.measured(),
-                steps: 0,
-            };
-            self.past = Some(judged);
+            let status = self.status();
+            if status.outcome.is_none() {
+                return 0;
+            }
+            self.past = Some(Judged { status, steps: 0 });
         }
-        let past_steps = self.past.map_or(0, |j| j.steps);
+        let Some(judged) = self.past else { return 0 };
         let len = self.row_len();
-        let end = ((MAX_PAST_STEPS - past_steps) as usize * len).min(rows.len());
-        let mut n = 0;
-        // One row at a time through the run's own stepping (one copy of the step in the module):
-        // the outcome taken before each step.
-        for row in rows[..end].chunks_exact_mut(len) {
-            match &mut self.scene {
-                #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-                Held::One(s) => s.visit_mut(GoOn),
-                #[cfg(feature = "mb")]
-                Held::Many(s) => s.visit_mut(GoOn),
-            }
-            if Self::held_rows(&mut self.scene, &mut Checksum::new(), row) == 0 {
-                break;
-            }
-            n += 1;
-        }
-        if let Some(j) = &mut self.past {
-            j.steps += n as u32;
-        }
+        let end = ((MAX_PAST_STEPS - judged.steps) as usize * len).min(rows.len());
+        let n = self.view.visit_mut(StepRows { rows: self.rows, out: &mut rows[..end], go_on: true });
+        self.past = Some(Judged { steps: judged.steps + n as u32, ..judged });
         n
-    }
-
-    /// Steps `scene` into `rows` (one place: the run and the steps past its outcome share it).
-    #[inline(never)]
-    fn held_rows(scene: &mut Held, checksum: &mut Checksum, rows: &mut [f64]) -> usize {
-        match scene {
-            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.visit_mut(StepRows { checksum, rows }),
-            #[cfg(feature = "mb")]
-            Held::Many(s) => s.visit_mut(BodiesStepRows { checksum, rows }),
-        }
     }
 
     /// Steps until the run ends or `max` steps were taken, without rows (the outcome map, the
@@ -231,306 +262,169 @@ impl Sim {
         if self.past.is_some() {
             return 0;
         }
-        match &mut self.scene {
-            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.visit_mut(Run { checksum: &mut self.checksum, max }),
-            #[cfg(feature = "mb")]
-            Held::Many(s) => s.visit_mut(Run { checksum: &mut self.checksum, max }),
-        }
+        self.view.visit_mut(Run(max))
+    }
+
+    /// The run as reported: as judged once it goes on past its outcome, else as it is.
+    fn status(&self) -> Status {
+        self.past.map_or_else(|| self.view.read(Now), |j| j.status)
     }
 
     /// The outcome, once the run has ended.
     #[must_use]
     pub fn outcome(&self) -> Option<Outcome> {
-        if let Some(j) = &self.past {
-            return Some(j.outcome);
-        }
-        match &self.scene {
-            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.outcome(),
-            #[cfg(feature = "mb")]
-            Held::Many(s) => s.outcome(),
-        }
+        self.status().outcome
     }
 
-    /// The trajectory checksum so far (FNV-1a over the state's bits after every step).
+    /// The trajectory checksum so far (FNV-1a over the bodies' states after every step).
     #[must_use]
-    pub const fn checksum(&self) -> u32 {
-        self.checksum.value()
+    pub fn checksum(&self) -> u32 {
+        self.status().checksum
     }
 
     /// Simulated time (s).
     #[must_use]
     pub fn time(&self) -> f64 {
-        if let Some(j) = &self.past {
-            return j.time;
-        }
-        match &self.scene {
-            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.time(),
-            #[cfg(feature = "mb")]
-            Held::Many(s) => s.time(),
-        }
+        self.status().time
     }
 
-    /// The stepper's counters (steps, pivots, warm starts, full-layout fallbacks, ...); a scene of
-    /// several bodies has steps, pivots, the most in a step and its warm starts (the rest 0).
+    /// The engine's counters (steps, pivots, warm starts, reduced layouts' fallbacks, ...: those
+    /// an engine does not keep are 0).
     #[must_use]
-    pub fn stats(&self) -> RunStats {
-        if let Some(j) = &self.past {
-            return j.stats;
-        }
-        match &self.scene {
-            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => *s.stats(),
-            #[cfg(feature = "mb")]
-            Held::Many(s) => {
-                let st = s.stats();
-                RunStats {
-                    steps: u64::from(st.steps),
-                    pivots: st.pivots,
-                    max_pivots: st.max_pivots,
-                    warm_starts: u64::from(st.warm_direct),
-                    ..RunStats::default()
-                }
-            }
-        }
+    pub fn stats(&self) -> RunSummary {
+        self.status().summary
     }
 
     /// The scene's measured quantities so far, in the order of the catalogue's `measures` for
-    /// the scene (`summary.json`'s keys, [`Scene::measured`]); NaN where there is none (yet).
+    /// the scene (`summary.json`'s keys); NaN where there is none (yet).
     #[must_use]
     pub fn measured(&self) -> [f64; MAX_MEASURES] {
-        if let Some(j) = &self.past {
-            return j.measured;
-        }
-        let m = match &self.scene {
-            #[cfg(any(feature = "k1", feature = "k2", feature = "k3"))]
-            Held::One(s) => s.measured(),
-            #[cfg(feature = "mb")]
-            Held::Many(s) => s.measured(),
-        };
-        m.map(|v| v.unwrap_or(f64::NAN))
+        self.status().measured
     }
 
-    /// A scene of several bodies' body `i`'s `[width, height]` (m); `None` past its bodies or for
-    /// a scene of one body.
+    /// Body `i`'s outline: `[width, height]` of a box, the diameter twice for a disc (m); `None`
+    /// past its bodies.
     #[must_use]
     pub fn body_size(&self, i: usize) -> Option<[f64; 2]> {
-        match &self.scene {
-            #[cfg(feature = "mb")]
-            Held::Many(s) => s.sizes().get(i).copied().flatten(),
-            #[allow(unreachable_patterns)]
+        match self.view.read(ShapeOf(i))? {
+            BodyShape::Box { width, height } => Some([width, height]),
+            BodyShape::Disc { radius } => Some([2.0 * radius; 2]),
             _ => None,
         }
     }
 
-    /// `true` when a scene of several bodies' body `i` is round (a disc whose rim rests on a face:
-    /// [`meterstick_core::multibody::Shape::Disc`]); `false` for a box, past its bodies or for a
-    /// scene of one body.
+    /// `true` when body `i` is round (a disc, drawn with a spoke so that its turning shows);
+    /// `false` for a box or past its bodies.
     #[must_use]
     pub fn body_round(&self, i: usize) -> bool {
-        match &self.scene {
-            #[cfg(feature = "mb")]
-            Held::Many(s) => {
-                s.shapes().get(i).copied().flatten() == Some(meterstick_core::multibody::Shape::Disc)
-            }
-            #[allow(unreachable_patterns)]
-            _ => {
-                let _ = i;
-                false
-            }
-        }
+        matches!(self.view.read(ShapeOf(i)), Some(BodyShape::Disc { .. }))
     }
 
-    /// A scene of several bodies' table ends `[lo, hi]` (m; `None` for an infinite end, and both
-    /// for a scene of one body).
+    /// The ends `[lo, hi]` of the table the scene's bodies rest on (m; `None` for an infinite end,
+    /// and both for a scene without a table).
     #[must_use]
     pub fn table(&self) -> [Option<f64>; 2] {
-        match &self.scene {
-            #[cfg(feature = "mb")]
-            Held::Many(s) => s.table(),
-            #[allow(unreachable_patterns)]
-            _ => [None, None],
-        }
+        self.view.read(Table)
     }
 }
 
-/// A scene of several bodies' row: `time`, then every body's `x, y, theta` ([`BODIES_ROW`]; NaN
-/// past its bodies).
-fn bodies_row<T: Real>(time: T, states: &[meterstick_core::planar::BodyState<T>], row: &mut [f64]) {
-    row[0] = time.as_f64();
-    for (b, slot) in row[1..BODIES_ROW].chunks_exact_mut(3).enumerate() {
-        let q = states.get(b).map_or([f64::NAN; 3], |s| [s.x.as_f64(), s.y.as_f64(), s.theta.as_f64()]);
-        slot.copy_from_slice(&q);
-    }
+/// A view's row as it is now ([`Rows::write`]).
+struct RowNow<'a> {
+    rows: Rows,
+    row: &'a mut [f64],
 }
 
-/// The start row of a scene of several bodies, as a visitor of the core's registry.
-#[cfg(feature = "mb")]
-struct BodiesStartRow<'a>(&'a mut [f64; MAX_ROW]);
-
-#[cfg(feature = "mb")]
-impl MultibodyVisitor for BodiesStartRow<'_> {
+impl ViewReader for RowNow<'_> {
     type Output = ();
-    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, scene: S) {
-        bodies_row(scene.time(), scene.states(), &mut self.0[..]);
+    fn read<T: Real>(self, view: &dyn SceneView<T>) {
+        self.rows.write(view, self.row);
     }
 }
 
-/// Steps a scene of several bodies into rows of [`BODIES_ROW`], adding every body's state to
-/// the checksum.
-#[cfg(feature = "mb")]
-struct BodiesStepRows<'a> {
-    checksum: &'a mut Checksum,
-    rows: &'a mut [f64],
-}
-
-/// Takes a scene's outcome so that its next step is taken (the core's `go_on`): a copy of the run
-/// goes on past its outcome.
-struct GoOn;
-
-impl SceneVisitor for GoOn {
-    type Output = ();
-    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) {
-        let _ = scene.go_on();
-    }
-}
-
-#[cfg(feature = "mb")]
-impl MultibodyVisitor for GoOn {
-    type Output = ();
-    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, mut scene: S) {
-        let _ = scene.go_on();
-    }
-}
-
-#[cfg(feature = "mb")]
-impl MultibodyVisitor for BodiesStepRows<'_> {
-    type Output = usize;
-    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
-        self,
-        mut scene: S,
-    ) -> usize {
-        let mut taken = 0;
-        for row in self.rows.chunks_exact_mut(BODIES_ROW) {
-            let Some(report) = scene.step() else { break };
-            for s in &report.states {
-                self.checksum.add(s);
-            }
-            bodies_row(report.time, &report.states, row);
-            taken += 1;
-        }
-        taken
-    }
-}
-
-#[cfg(feature = "mb")]
-impl MultibodyVisitor for Run<'_> {
-    type Output = u64;
-    fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(self, mut scene: S) -> u64 {
-        let mut taken = 0;
-        while taken < self.max {
-            let Some(report) = scene.step() else { break };
-            for s in &report.states {
-                self.checksum.add(s);
-            }
-            taken += 1;
-        }
-        taken
-    }
-}
-
-/// [`start_row`] as a visitor of the core's registry.
-struct StartRow<'a>(&'a mut [f64; MAX_ROW]);
-
-impl SceneVisitor for StartRow<'_> {
-    type Output = ();
-    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, scene: S) {
-        start_row(&scene, self.0);
-    }
-}
-
-/// [`step_rows`] as a visitor of the core's registry.
+/// Steps until the run ends or `out` is full, one row per step ([`Rows::write`]); first takes the
+/// outcome before each step when it goes on past it (the core's `go_on`).
 struct StepRows<'a> {
-    checksum: &'a mut Checksum,
-    rows: &'a mut [f64],
+    rows: Rows,
+    out: &'a mut [f64],
+    go_on: bool,
 }
 
-impl SceneVisitor for StepRows<'_> {
+impl ViewVisitor for StepRows<'_> {
     type Output = usize;
-    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> usize {
-        step_rows(&mut scene, self.checksum, self.rows)
-    }
-}
-
-/// Steps until the run ends or `max` steps were taken, adding each state to the checksum.
-struct Run<'a> {
-    checksum: &'a mut Checksum,
-    max: u64,
-}
-
-impl SceneVisitor for Run<'_> {
-    type Output = u64;
-    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> u64 {
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> usize {
         let mut taken = 0;
-        while taken < self.max {
-            let Some(report) = scene.step() else { break };
-            self.checksum.add(&report.state);
+        for row in self.out.chunks_exact_mut(self.rows.width()) {
+            if self.go_on {
+                let _ = view.go_on();
+            }
+            if !view.step() {
+                break;
+            }
+            self.rows.write(&*view, row);
             taken += 1;
         }
         taken
     }
 }
 
-/// The state's columns and where each support touches the body: the contact point moved back by
-/// the gap along the normal (a finger's tip; the foot of a corner on a line; the rim's point on
-/// the slope), as `host-sim` writes it.
-fn state_columns<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, row: &mut [f64]) {
-    let s = scene.state();
-    row[0] = scene.time().as_f64();
-    for (slot, v) in row[1..7].iter_mut().zip(s.to_array()) {
-        *slot = v.as_f64();
-    }
-    for (k, f) in scene.frames().iter().enumerate() {
-        let (r, n, gap) = (f.r.map(Real::as_f64), f.normal().map(Real::as_f64), f.gap.as_f64());
-        row[7 + 2 * k] = s.x.as_f64() + r[0] - gap * n[0];
-        row[8 + 2 * k] = s.y.as_f64() + r[1] - gap * n[1];
+/// Steps until the run ends or its number of steps were taken.
+struct Run(u64);
+
+impl ViewVisitor for Run {
+    type Output = u64;
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> u64 {
+        let mut taken = 0;
+        while taken < self.0 && view.step() {
+            taken += 1;
+        }
+        taken
     }
 }
 
-fn start_row<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, row: &mut [f64]) {
-    state_columns(scene, row);
-    for (k, m) in scene.modes().into_iter().enumerate() {
-        row[7 + 2 * K + k] = f64::from(mode_code(m));
+/// The run as it is now ([`Status`]).
+struct Now;
+
+impl ViewReader for Now {
+    type Output = Status;
+    fn read<T: Real>(self, view: &dyn SceneView<T>) -> Status {
+        Status {
+            outcome: view.outcome(),
+            time: view.time().as_f64(),
+            summary: view.summary(),
+            measured: view.measured().map(|v| v.map_or(f64::NAN, Real::as_f64)),
+            checksum: view.checksum(),
+        }
     }
 }
 
-/// Steps `scene` into `rows` ([`row_len`] of `K` numbers each; the length known to the compiler).
-fn step_rows<T: Real, S: Scene<T, K>, const K: usize>(
-    scene: &mut S,
-    checksum: &mut Checksum,
-    rows: &mut [f64],
-) -> usize {
-    let mut taken = 0;
-    for row in rows.chunks_exact_mut(row_len(K)) {
-        let Some(report) = scene.step() else { break };
-        checksum.add(&report.state);
-        write_row(&*scene, &report, row);
-        taken += 1;
+/// Body `i`'s outline, in f64.
+struct ShapeOf(usize);
+
+impl ViewReader for ShapeOf {
+    type Output = Option<BodyShape<f64>>;
+    fn read<T: Real>(self, view: &dyn SceneView<T>) -> Option<BodyShape<f64>> {
+        match view.body(self.0)?.shape {
+            BodyShape::Box { width, height } => {
+                Some(BodyShape::Box { width: width.as_f64(), height: height.as_f64() })
+            }
+            BodyShape::Disc { radius } => Some(BodyShape::Disc { radius: radius.as_f64() }),
+            _ => None,
+        }
     }
-    taken
 }
 
-fn write_row<T: Real, S: Scene<T, K>, const K: usize>(scene: &S, report: &StepReport<T, K>, row: &mut [f64]) {
-    state_columns(scene, row);
-    row[0] = report.time.as_f64();
-    let group = |g: usize, k: usize| 7 + 2 * K + g * K + k;
-    for (k, c) in report.contacts.iter().enumerate() {
-        row[group(0, k)] = f64::from(mode_code(c.mode));
-        row[group(1, k)] = c.normal_impulse.as_f64();
-        row[group(2, k)] = c.friction_impulse.as_f64();
-        row[group(3, k)] = c.along.as_f64();
+/// The ends of the first table among the scene's supports.
+struct Table;
+
+impl ViewReader for Table {
+    type Output = [Option<f64>; 2];
+    fn read<T: Real>(self, view: &dyn SceneView<T>) -> [Option<f64>; 2] {
+        (0..view.support_count())
+            .find_map(|i| match view.support(i)? {
+                SupportView::Table { lo, hi } => Some([lo.map(Real::as_f64), hi.map(Real::as_f64)]),
+                _ => None,
+            })
+            .unwrap_or([None, None])
     }
 }
 

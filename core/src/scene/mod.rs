@@ -44,15 +44,24 @@ pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
 pub use outcome::{Outcome, OutcomeKind};
 pub use painleve::{Jam, Painleve, PainleveParams};
-#[cfg(feature = "scenes-multibody")]
-pub use registry::{AnyMultibody, MAX_BODIES, MultibodyVisitor};
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use registry::{AnyScene, SceneIn};
 pub use registry::{LcpLayout, Precision, SceneVisitor};
+#[cfg(feature = "scenes-multibody")]
+pub use registry::{MAX_BODIES, MultibodyVisitor};
 pub use scene_trait::Scene;
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};
+#[cfg(all(
+    any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"),
+    feature = "scenes-multibody"
+))]
+pub use view::AnyView;
+#[cfg(feature = "scenes-multibody")]
+pub use view::MultibodyViews;
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+pub use view::PlanarViews;
 pub use view::{
-    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, Force, LoadPart, MultibodyView,
-    PlanarView, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing, Velocity,
+    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, Force, HeldView, LoadPart, MultibodyView,
+    PlanarView, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing, Velocity, ViewReader,
     ViewVisitor,
 };

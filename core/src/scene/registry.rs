@@ -2,11 +2,11 @@
 //! parameters, a [`Precision`] and an [`LcpLayout`] into the concrete scene (`MeterStick<f32, 6>`,
 //! `ThreeFingers<f64, 12>`, ...) and hands it to a [`SceneVisitor`], whose one generic method
 //! drives any of them; [`AnyScene`] holds any of them in place for a driver that keeps a run between
-//! calls (the browser page). The scenes x layouts are one table here (`registry!`); a driver
+//! calls (the browser page). The scenes x layouts are one table here (`scene_table!`); a driver
 //! (`host-sim`'s run, scene, stress and map commands, the page) names no scene type and no LCP
 //! size.
 //!
-//! **Adding a scene**: its two rows in the `registry!` table (besides its kind and parameters,
+//! **Adding a scene**: its two rows in the `scene_table!` table (besides its kind and parameters,
 //! `kind.rs`).
 
 #[cfg(feature = "scenes-k3")]
@@ -243,9 +243,7 @@ macro_rules! hand {
 }
 
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
-/// The registry's table, one row per scene and layout: `#[cfg(the feature that builds it)]
-/// variant: Scene<K contacts, N> =
-/// SceneParams variant, layout, visitor method`.
+/// [`SceneIn`] and [`SceneParams::build_in`] of the registry's table (`scene_table!`).
 macro_rules! registry {
     ($(#[$built:meta] $variant:ident: $scene:ident<$k:literal, $n:literal> = $params:ident, $layout:ident, $hand:ident;)*) => {
         /// Any catalogue scene in scalar `T` and either layout, keeping `E` switch events, held in
@@ -348,33 +346,46 @@ macro_rules! registry {
     };
 }
 
+/// The registry's table, one row per scene and layout, handed to the macro `$then`: `#[cfg(the
+/// feature that builds it)] variant: Scene<K contacts, N> = SceneParams variant, layout, visitor
+/// method`. `registry!` makes [`SceneIn`] and [`SceneParams::build_in`] of it, the views' holder
+/// (`view/held.rs`) its scenes seen as views.
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
-registry! {
-    #[cfg(feature = "scenes-k2")]
-    MeterStickReduced: MeterStick<2, 6> = MeterStick, Reduced, visit_meter_stick;
-    #[cfg(feature = "scenes-k2")]
-    MeterStickFull: MeterStick<2, 8> = MeterStick, Full, visit_meter_stick;
-    #[cfg(feature = "scenes-k2")]
-    InclineReduced: Incline<2, 6> = Incline, Reduced, visit;
-    #[cfg(feature = "scenes-k2")]
-    InclineFull: Incline<2, 8> = Incline, Full, visit;
-    #[cfg(feature = "scenes-k2")]
-    LadderReduced: Ladder<2, 6> = Ladder, Reduced, visit;
-    #[cfg(feature = "scenes-k2")]
-    LadderFull: Ladder<2, 8> = Ladder, Full, visit;
-    #[cfg(feature = "scenes-k3")]
-    ThreeFingersReduced: ThreeFingers<3, 9> = ThreeFingers, Reduced, visit;
-    #[cfg(feature = "scenes-k3")]
-    ThreeFingersFull: ThreeFingers<3, 12> = ThreeFingers, Full, visit;
-    #[cfg(feature = "scenes-k1")]
-    CylinderReduced: Cylinder<1, 3> = Cylinder, Reduced, visit;
-    #[cfg(feature = "scenes-k1")]
-    CylinderFull: Cylinder<1, 4> = Cylinder, Full, visit;
-    #[cfg(feature = "scenes-k1")]
-    PainleveReduced: Painleve<1, 3> = Painleve, Reduced, visit;
-    #[cfg(feature = "scenes-k1")]
-    PainleveFull: Painleve<1, 4> = Painleve, Full, visit;
+macro_rules! scene_table {
+    ($then:ident) => {
+        $then! {
+            #[cfg(feature = "scenes-k2")]
+            MeterStickReduced: MeterStick<2, 6> = MeterStick, Reduced, visit_meter_stick;
+            #[cfg(feature = "scenes-k2")]
+            MeterStickFull: MeterStick<2, 8> = MeterStick, Full, visit_meter_stick;
+            #[cfg(feature = "scenes-k2")]
+            InclineReduced: Incline<2, 6> = Incline, Reduced, visit;
+            #[cfg(feature = "scenes-k2")]
+            InclineFull: Incline<2, 8> = Incline, Full, visit;
+            #[cfg(feature = "scenes-k2")]
+            LadderReduced: Ladder<2, 6> = Ladder, Reduced, visit;
+            #[cfg(feature = "scenes-k2")]
+            LadderFull: Ladder<2, 8> = Ladder, Full, visit;
+            #[cfg(feature = "scenes-k3")]
+            ThreeFingersReduced: ThreeFingers<3, 9> = ThreeFingers, Reduced, visit;
+            #[cfg(feature = "scenes-k3")]
+            ThreeFingersFull: ThreeFingers<3, 12> = ThreeFingers, Full, visit;
+            #[cfg(feature = "scenes-k1")]
+            CylinderReduced: Cylinder<1, 3> = Cylinder, Reduced, visit;
+            #[cfg(feature = "scenes-k1")]
+            CylinderFull: Cylinder<1, 4> = Cylinder, Full, visit;
+            #[cfg(feature = "scenes-k1")]
+            PainleveReduced: Painleve<1, 3> = Painleve, Reduced, visit;
+            #[cfg(feature = "scenes-k1")]
+            PainleveFull: Painleve<1, 4> = Painleve, Full, visit;
+        }
+    };
 }
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+pub(super) use scene_table;
+
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+scene_table!(registry);
 
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 /// Any catalogue scene in any precision and layout ([`SceneIn`] in f32 or f64), held in place:
@@ -487,149 +498,6 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Size
 #[cfg(feature = "scenes-multibody")]
 pub const MAX_BODIES: usize = 3;
 
-#[cfg(feature = "scenes-multibody")]
-/// Any scene of several bodies in either precision, held in place ([`SceneParams::build_multibody`]'s
-/// scenes, kept between calls: the browser page steps a frame at a time).
-#[derive(Debug, Clone)]
-#[allow(clippy::large_enum_variant)] // one scene per run, held in place: there is no heap on wasm
-pub enum AnyMultibody {
-    /// Block-on-block in f32.
-    BlockOnBlockF32(BlockOnBlock<f32>),
-    /// Block-on-block in f64.
-    BlockOnBlockF64(BlockOnBlock<f64>),
-    /// The tablecloth in f32.
-    TableclothF32(Tablecloth<f32>),
-    /// The tablecloth in f64.
-    TableclothF64(Tablecloth<f64>),
-    /// The stack of two in f32.
-    Stack2F32(Stack2<f32>),
-    /// The stack of two in f64.
-    Stack2F64(Stack2<f64>),
-    /// The stack of three in f32.
-    Stack3F32(Stack3<f32>),
-    /// The stack of three in f64.
-    Stack3F64(Stack3<f64>),
-    /// Disc-on-board in f32.
-    DiscOnBoardF32(DiscOnBoard<f32>),
-    /// Disc-on-board in f64.
-    DiscOnBoardF64(DiscOnBoard<f64>),
-}
-
-#[cfg(feature = "scenes-multibody")]
-/// `$body` with `$s` bound to the held scene, whichever it is.
-macro_rules! each_multibody {
-    ($held:expr, $s:ident => $body:expr) => {
-        match $held {
-            AnyMultibody::BlockOnBlockF32($s) => $body,
-            AnyMultibody::BlockOnBlockF64($s) => $body,
-            AnyMultibody::TableclothF32($s) => $body,
-            AnyMultibody::TableclothF64($s) => $body,
-            AnyMultibody::Stack2F32($s) => $body,
-            AnyMultibody::Stack2F64($s) => $body,
-            AnyMultibody::Stack3F32($s) => $body,
-            AnyMultibody::Stack3F64($s) => $body,
-            AnyMultibody::DiscOnBoardF32($s) => $body,
-            AnyMultibody::DiscOnBoardF64($s) => $body,
-        }
-    };
-}
-
-#[cfg(feature = "scenes-multibody")]
-impl AnyMultibody {
-    /// The scene of `params` in `precision`, at its start.
-    ///
-    /// # Errors
-    /// As [`SceneParams::build_multibody`].
-    pub fn new(params: &SceneParams, precision: Precision) -> Result<Self, ParamError> {
-        use Precision::{F32, F64};
-        Ok(match (*params, precision) {
-            (SceneParams::BlockOnBlock(p), F32) => Self::BlockOnBlockF32(BlockOnBlock::new(p.cast())?),
-            (SceneParams::BlockOnBlock(p), F64) => Self::BlockOnBlockF64(BlockOnBlock::new(p.cast())?),
-            (SceneParams::Tablecloth(p), F32) => Self::TableclothF32(Tablecloth::new(p.cast())?),
-            (SceneParams::Tablecloth(p), F64) => Self::TableclothF64(Tablecloth::new(p.cast())?),
-            (SceneParams::DiscOnBoard(p), F32) => Self::DiscOnBoardF32(DiscOnBoard::new(p.cast())?),
-            (SceneParams::DiscOnBoard(p), F64) => Self::DiscOnBoardF64(DiscOnBoard::new(p.cast())?),
-            (SceneParams::Stack(s), precision) => match (s.block_count(), precision) {
-                (Some(2), F32) => Self::Stack2F32(Stack2::new(s.params.cast())?),
-                (Some(2), F64) => Self::Stack2F64(Stack2::new(s.params.cast())?),
-                (Some(3), F32) => Self::Stack3F32(Stack3::new(s.params.cast())?),
-                (Some(3), F64) => Self::Stack3F64(Stack3::new(s.params.cast())?),
-                _ => return Err(ParamError::OutOfRange("blocks")),
-            },
-            _ => return Err(ParamError::OutOfRange("scene")),
-        })
-    }
-
-    /// Hands the scene, in place, to `visitor`.
-    pub fn visit_mut<V: MultibodyVisitor>(&mut self, visitor: V) -> V::Output {
-        each_multibody!(self, s => visitor.visit(s))
-    }
-
-    /// The outcome, once the run has ended.
-    #[must_use]
-    pub fn outcome(&self) -> Option<Outcome> {
-        each_multibody!(self, s => s.outcome())
-    }
-
-    /// Simulated time (s).
-    #[must_use]
-    pub fn time(&self) -> f64 {
-        each_multibody!(self, s => s.stepper().time().as_f64())
-    }
-
-    /// What the scene measures, in f64.
-    #[must_use]
-    pub fn measured(&self) -> [Option<f64>; MAX_MEASURES] {
-        each_multibody!(self, s => MultibodyScene::measured(s).map(|v| v.map(Real::as_f64)))
-    }
-
-    /// The stepper's counters.
-    #[must_use]
-    pub fn stats(&self) -> &crate::multibody::Stats {
-        each_multibody!(self, s => s.stepper().stats())
-    }
-
-    /// The number of bodies (body 0 the lowest).
-    #[must_use]
-    pub fn bodies(&self) -> usize {
-        each_multibody!(self, s => s.stepper().states().len())
-    }
-
-    /// Each body's `[width, height]` (m), `None` past [`Self::bodies`].
-    #[must_use]
-    pub fn sizes(&self) -> [Option<[f64; 2]>; MAX_BODIES] {
-        let mut out = [None; MAX_BODIES];
-        each_multibody!(self, s => {
-            for (o, b) in out.iter_mut().zip(&s.stepper().system().bodies) {
-                *o = Some([b.width.as_f64(), b.height.as_f64()]);
-            }
-        });
-        out
-    }
-
-    /// Each body's shape ([`crate::multibody::Shape`]: a disc is a pair's upper body whose rim
-    /// rests on a face), `None` past [`Self::bodies`].
-    #[must_use]
-    pub fn shapes(&self) -> [Option<crate::multibody::Shape>; MAX_BODIES] {
-        let mut out = [None; MAX_BODIES];
-        each_multibody!(self, s => {
-            for (o, shape) in out.iter_mut().zip(s.stepper().system().shapes()) {
-                *o = Some(shape);
-            }
-        });
-        out
-    }
-
-    /// The table's ends `[lo, hi]` (m), `None` for an infinite end.
-    #[must_use]
-    pub fn table(&self) -> [Option<f64>; 2] {
-        each_multibody!(self, s => {
-            let t = s.stepper().system().table;
-            [t.lo.map(Real::as_f64), t.hi.map(Real::as_f64)]
-        })
-    }
-}
-
 #[cfg(all(test, feature = "scenes"))]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -697,63 +565,6 @@ mod tests {
         assert_eq!(build(SceneKind::DiscOnBoard, None, Precision::F32), Ok(("f32", 2, 2, 24)));
         assert_eq!(build(SceneKind::Stack, Some(4.0), Precision::F64), Err(ParamError::OutOfRange("blocks")));
         assert_eq!(build(SceneKind::Incline, None, Precision::F64), Err(ParamError::OutOfRange("scene")));
-    }
-
-    /// Steps a scene of several bodies `0` times (0: none), giving the steps taken and every
-    /// body's `x` in f64.
-    #[cfg(feature = "scenes-multibody")]
-    struct BodySteps(usize);
-
-    #[cfg(feature = "scenes-multibody")]
-    impl MultibodyVisitor for BodySteps {
-        type Output = (usize, [f64; MAX_BODIES]);
-        fn visit<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>>(
-            self,
-            mut scene: S,
-        ) -> Self::Output {
-            let taken = (0..self.0).take_while(|_| scene.step().is_some()).count();
-            let mut x = [f64::NAN; MAX_BODIES];
-            for (x, s) in x.iter_mut().zip(scene.states()) {
-                *x = s.x.as_f64();
-            }
-            (taken, x)
-        }
-    }
-
-    /// Held in place ([`AnyMultibody`]) and visited step by step, a scene of several bodies runs
-    /// as built and handed over whole; it gives its bodies' sizes and its table.
-    #[cfg(feature = "scenes-multibody")]
-    #[test]
-    fn a_held_multibody_scene_runs_as_built() {
-        for kind in SceneKind::ALL.into_iter().filter(|k| k.is_multibody()) {
-            for precision in Precision::ALL {
-                let params = SceneParams::defaults(kind);
-                let whole = params.build_multibody(precision, BodySteps(300)).unwrap();
-                let mut held = AnyMultibody::new(&params, precision).unwrap();
-                let (a, b) = (held.visit_mut(BodySteps(100)), held.visit_mut(BodySteps(200)));
-                let x = held.visit_mut(BodySteps(0)).1;
-                assert_eq!((a.0 + b.0, x.map(f64::to_bits)), (whole.0, whole.1.map(f64::to_bits)), "{kind}");
-                assert_eq!(held.stats().steps as usize, whole.0, "{kind}");
-                assert_eq!(held.sizes().iter().flatten().count(), held.bodies(), "{kind}");
-                assert_eq!(held.shapes().iter().flatten().count(), held.bodies(), "{kind}");
-            }
-        }
-        let stack = AnyMultibody::new(&SceneParams::defaults(SceneKind::Stack), Precision::F32).unwrap();
-        assert_eq!(
-            (stack.bodies(), stack.table()),
-            (3, [None, Some(0.0)]),
-            "three blocks, the table's edge at 0"
-        );
-        let disc = AnyMultibody::new(&SceneParams::defaults(SceneKind::DiscOnBoard), Precision::F64).unwrap();
-        assert_eq!(
-            disc.shapes(),
-            [Some(crate::multibody::Shape::Box), Some(crate::multibody::Shape::Disc), None],
-            "the board a box, the disc round"
-        );
-        assert_eq!(
-            AnyMultibody::new(&SceneParams::defaults(SceneKind::Incline), Precision::F32).err(),
-            Some(ParamError::OutOfRange("scene"))
-        );
     }
 
     /// Every scene is built in the precision and layout asked for, with its catalogue's contacts

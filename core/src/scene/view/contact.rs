@@ -29,6 +29,10 @@ pub struct ContactView<T> {
     pub active: bool,
     /// The contact point, world (m): the point of `between[0]` that touches.
     pub point: [T; 2],
+    /// `point` from `between[0]`'s centre of mass (m, world), as the engine keeps it (the body's
+    /// position plus this is `point` before rounding: a driver that adds them in another scalar
+    /// gets that scalar's sum).
+    pub lever: [T; 2],
     /// The unit normal, world, on `between[0]`.
     pub normal: [T; 2],
     /// The unit tangent, world: the normal turned clockwise, `(n_y, -n_x)`, the direction of
@@ -42,4 +46,9 @@ pub struct ContactView<T> {
     pub normal_impulse: T,
     /// Friction impulse over the last step along `tangent` (N s; zero before the first).
     pub friction_impulse: T,
+    /// Where along the other thing the contact is (m): a scene of one body, the coordinate along
+    /// the tangent at which the last step's impulses acted ([`crate::planar::ContactReport::along`];
+    /// zero before the first step); a scene of several bodies, the corner's coordinate along the
+    /// face from its centre now ([`crate::multibody::CornerFrame::along`]).
+    pub along: T,
 }

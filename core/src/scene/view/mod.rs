@@ -22,13 +22,16 @@
 //!   is ([`FigureName`]).
 //!
 //! [`crate::scene::SceneParams::build_view`] builds any catalogue scene and hands it to a
-//! [`ViewVisitor`] as a `&mut dyn SceneView<T>`.
+//! [`ViewVisitor`] as a `&mut dyn SceneView<T>`; a [`HeldView`] (`held.rs`: [`AnyView`] and the
+//! holders of each engine's scenes) keeps one built between calls and hands it to a
+//! [`ViewVisitor`] or a [`ViewReader`].
 
 mod body;
 mod build;
 mod contact;
 mod event;
 mod figure;
+mod held;
 mod multibody;
 mod planar;
 mod step;
@@ -40,6 +43,16 @@ pub use build::ViewVisitor;
 pub use contact::{ContactView, Thing};
 pub use event::EventView;
 pub use figure::{Axis, FigureName, LoadPart, StepFigure};
+#[cfg(all(
+    any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"),
+    feature = "scenes-multibody"
+))]
+pub use held::AnyView;
+#[cfg(feature = "scenes-multibody")]
+pub use held::MultibodyViews;
+#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
+pub use held::PlanarViews;
+pub use held::{HeldView, ViewReader};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use step::StepStats;

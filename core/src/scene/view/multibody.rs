@@ -119,12 +119,14 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             between: if c < 2 { [upper, lower] } else { [lower, upper] },
             active: frame.active,
             point: frame.point,
+            lever: frame.lever_corner,
             normal: frame.normal,
             tangent: frame.tangent,
             gap: frame.gap,
             mode: *self.scene.modes().get(p)?.get(c)?,
             normal_impulse: normal * h,
             friction_impulse: friction * h,
+            along: frame.along,
         })
     }
 
@@ -156,6 +158,8 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
             pivots: s.pivots,
             max_pivots: s.max_pivots,
             warm_starts: u64::from(s.warm_direct),
+            reduced_check_fired: 0,
+            regularized_solves: 0,
             paths: s.paths,
             rule_checked_steps: s.rule_checked_steps,
             rule_enumerated_steps: s.rule_enumerated_steps,

@@ -12,6 +12,12 @@ pub struct RunSummary {
     pub max_pivots: u32,
     /// Steps the warm-start basis answered.
     pub warm_starts: u64,
+    /// Steps where a reduced LCP layout's dropped friction direction was needed (0 for an engine
+    /// that solves the full form only).
+    pub reduced_check_fired: u64,
+    /// Solves answered by the solver's regularised retry after a round-off ray
+    /// ([`crate::lcp::LcpSolution::regularized`]; 0 for an engine that does not count them).
+    pub regularized_solves: u64,
     /// How many solves each path answered.
     pub paths: crate::planar::PathCounts,
     /// Steps the one-answer rule looked at (`docs/formulation.md`, "One answer: the rule").
