@@ -84,11 +84,10 @@
 mod algebra;
 mod body;
 mod friction;
+mod report;
 mod stepper;
 
 pub use algebra::{Quaternion, Vector, about, identity, rotate};
 pub use body::{Body, State};
-pub use stepper::{
-    ContactReport, FrictionCone, MAX_DIRECTIONS, Mode, OneContact, Plane, Settings, Shape, StepError,
-    StepReport, Stepper,
-};
+pub use report::{ContactReport, MAX_DIRECTIONS, Mode, StepError, StepReport};
+pub use stepper::{FrictionCone, OneContact, Plane, Settings, Shape, Stepper};

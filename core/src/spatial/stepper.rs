@@ -4,15 +4,11 @@
 use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
 use super::friction::{Contacts, Touch};
+use super::report::{ContactReport, Mode, StepError, StepReport};
 use crate::ParamError;
-use crate::lcp::{Basis, LcpError, Lemke};
+use crate::lcp::{Basis, Lemke};
 use crate::planar::assemble::normal_bias;
 use crate::real::{Real, max};
-
-/// The most friction directions a step tries before it gives up ([`StepError::ConeNotConverged`]):
-/// a contact whose tangential response is isotropic and uncoupled from its normal (a sphere, a
-/// point under the centre of mass) needs one.
-pub const MAX_DIRECTIONS: u32 = 16;
 
 /// A plane the body rests on or slides over: a table, an incline. Fixed in the world.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,18 +64,6 @@ pub enum Shape<T> {
     },
 }
 
-/// The contact's mode after a step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Mode {
-    /// No normal impulse.
-    Separated,
-    /// A normal impulse and a slip of at most the stick speed.
-    Sticking,
-    /// A normal impulse and a slip beyond it; friction opposes the slip.
-    Sliding,
-}
-
 /// How a contact's friction cone is taken.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -125,70 +109,6 @@ impl<T: Real> Default for Settings<T> {
             friction: FrictionCone::Circular,
         }
     }
-}
-
-/// The contact after a step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ContactReport<T> {
-    /// Its mode.
-    pub mode: Mode,
-    /// Normal impulse, N s.
-    pub normal_impulse: T,
-    /// Friction impulse on the body, N s, world axes (in the plane).
-    pub friction_impulse: Vector<T>,
-    /// The contact point's velocity along the plane after the step, m/s, world axes.
-    pub slip: Vector<T>,
-    /// The friction directions the step tried (1 when the first, along the free slip, held).
-    pub directions: u32,
-    /// The circular cone's residual of the answer: `|p_t + mu p_n s^|` over `mu p_n` when
-    /// sliding (`s^` the slip's direction), `(|p_t| - mu p_n)+` over `mu p_n` when sticking; 0
-    /// when separated.
-    pub cone_residual: T,
-}
-
-impl<T: Real> ContactReport<T> {
-    /// No contact: separated, nothing carried.
-    pub(super) fn separated() -> Self {
-        Self {
-            mode: Mode::Separated,
-            normal_impulse: T::zero(),
-            friction_impulse: [T::zero(); 3],
-            slip: [T::zero(); 3],
-            directions: 0,
-            cone_residual: T::zero(),
-        }
-    }
-}
-
-/// One step's result.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct StepReport<T, const K: usize> {
-    /// Time at the end of the step, s.
-    pub time: T,
-    /// The body after the step.
-    pub state: State<T>,
-    /// Its contacts, in the order [`Stepper::new`] was given their shapes.
-    pub contacts: [ContactReport<T>; K],
-}
-
-/// Why a step failed; the state is then unchanged.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum StepError {
-    /// The contact's LCP had no verified answer.
-    Solver(LcpError),
-    /// The friction direction and the slip did not agree within [`MAX_DIRECTIONS`] tries.
-    ConeNotConverged,
-    /// The answer broke the circular cone's conditions beyond round-off (the residual, as
-    /// [`ContactReport::cone_residual`]).
-    ConeUnverified {
-        /// The residual.
-        residual: f32,
-    },
-    /// The state after the step would not be finite.
-    NonFinite,
 }
 
 /// A body on a plane touching it at up to `K` points (`N = 4 K`, the LCP's size: one friction
