@@ -1,9 +1,9 @@
 //! The basis solve's small dense systems ([`super::Factored::solve_basis`]): `H^T M~ G y = -q_H`
 //! of at most [`UNKNOWNS`] unknowns. Symmetric (no unknown has a follower: `G^T M~ G`, symmetric
 //! positive semidefinite) by `L D L^T` without pivoting ([`solve_symmetric`]); otherwise by
-//! Gaussian elimination with partial pivoting ([`solve_leading`], the crate's one copy of it), in
-//! copies specialised to a count of unknowns (block-on-block's four sliding contacts,
-//! [`solve_four`]) or one out of line for any count. A pivot not above `tiny` is a singular
+//! Gaussian elimination with partial pivoting ([`solve_leading`]), in copies specialised to a
+//! count of unknowns (block-on-block's four sliding contacts, [`solve_four`]) or one out of line
+//! for any count. A pivot not above `tiny` is a singular
 //! system (both corners of one interface sticking: four rows of rank three).
 
 use super::UNKNOWNS;
