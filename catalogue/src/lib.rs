@@ -661,8 +661,8 @@ pub const FLAGS: &[Flag] = &[
         help: "After the fingers meet, the rod must stay on them this long to balance (>= 0)",
         fields: &[(M, "hold_time"), (F, "hold_time")],
     },
-    // The scenes of several bodies' own flags, last: the page, which does not run those scenes
-    // yet, lists the flags before them with their numbers unchanged.
+    // The scenes of several bodies' own flags, last: a build without the feature `multibody` lists
+    // the flags before them with their numbers unchanged.
     #[cfg(feature = "multibody")]
     Flag {
         long: "mass2",

@@ -1,8 +1,10 @@
-//! Gaussian elimination with partial pivoting on a small dense system: the crate's one
-//! elimination. Lemke's warm start solves a basis' principal block `M_aa z_a = -q_a` with it
-//! ([`super::Lemke::solve_warm`]), and the planar stepper the at most `3 x 3` system of a basis'
-//! unknowns in the body's coordinates, `H^T M^-1 G y = -q_H` (`crate::planar::FactoredLcp`;
-//! `docs/formulation.md`, "Solving a step").
+//! Gaussian elimination with partial pivoting on a small dense system. Lemke's warm start solves a
+//! basis' principal block `M_aa z_a = -q_a` with it ([`super::Lemke::solve_warm`]), the planar
+//! stepper the at most `3 x 3` system of a basis' unknowns in the body's coordinates,
+//! `H^T M^-1 G y = -q_H` (`crate::planar::FactoredLcp`; `docs/formulation.md`, "Solving a step"),
+//! and the multibody stepper that system in the bodies' `3B` coordinates when it is not symmetric
+//! (a symmetric one goes by `L D L^T`: `core/src/multibody/factored/systems.rs`;
+//! `docs/formulation.md`, "Solving a multibody step (the core)").
 
 use crate::real::Real;
 

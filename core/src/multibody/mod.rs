@@ -17,8 +17,9 @@
 //! A build that steps only single-body scenes links none of this: the steppers and scenes are
 //! generic, compiled where something names them (the registry's rows of several bodies, behind the
 //! `scenes-multibody` feature; a driver or firmware that builds a scene). The rest of the core names
-//! one type of this module unconditionally: [`StepError`], in
-//! [`crate::scene::Outcome::MultibodyFailed`].
+//! some of it unconditionally: [`StepError`], in [`crate::scene::Outcome::MultibodyFailed`], and
+//! the view of a scene of several bodies, [`crate::scene::MultibodyView`], generic over its scene
+//! ([`scenes::MultibodyScene`], [`Shape`], [`Support`]).
 
 mod factored;
 mod geometry;
