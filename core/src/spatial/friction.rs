@@ -56,6 +56,25 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         dot(e, f) + self.body.mass * dot(&cross(re, e), &turn)
     }
 
+    /// The body's velocity and angular velocity after each active contact's impulse `p` (per unit
+    /// mass, world axes): `v~ + sum p`, `omega~ + m I_w^-1 sum r x p`.
+    fn moved(&self, p: &[Vector<T>; K], v_free: &Vector<T>, w_free: &Vector<T>) -> (Vector<T>, Vector<T>) {
+        let (mut push, mut twist) = ([T::zero(); 3], [T::zero(); 3]);
+        for (c, p) in self.touches.iter().zip(p).filter(|(c, _)| c.active) {
+            push = add(&push, p);
+            twist = add(&twist, &cross(&c.arm, p));
+        }
+        let turn = inverse_inertia_times(self.body, self.orientation, &twist);
+        (add(v_free, &push), add(w_free, &scale(self.body.mass, &turn)))
+    }
+
+    /// Contact `c`'s slip at velocity `v` and angular velocity `w`: its point's velocity in the
+    /// plane.
+    fn slip(&self, v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
+        let u = add(v, &cross(w, &c.arm));
+        sub(&u, &scale(dot(&self.normal, &u), &self.normal))
+    }
+
     /// Solves the step: the LCP of every contact's line, warm-started from `basis` (which it
     /// leaves at the last answer's), the lines turned until every active contact's slip runs
     /// along its line, each answer checked against the circular cone.
@@ -77,26 +96,17 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             let lcp = self.lcp::<N>(&lines);
             let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
             *basis = sol.basis;
-            let (mut push, mut twist) = (zero, zero);
             let mut impulses = [(T::zero(), T::zero()); K];
+            let mut full = [zero; K];
             for (i, (c, line)) in self.touches.iter().zip(&lines).enumerate() {
                 if c.active {
                     let (pn, pt) = (sol.z[4 * i], sol.z[4 * i + 1] - sol.z[4 * i + 2]);
-                    let p = add(&scale(pn, &n), &scale(pt, &line.d));
-                    push = add(&push, &p);
-                    twist = add(&twist, &cross(&c.arm, &p));
+                    full[i] = add(&scale(pn, &n), &scale(pt, &line.d));
                     impulses[i] = (pn, pt);
                 }
             }
-            let v = add(v_free, &push);
-            let w = add(
-                w_free,
-                &scale(self.body.mass, &inverse_inertia_times(self.body, self.orientation, &twist)),
-            );
-            let slip = |c: &Touch<T>| {
-                let u = add(&v, &cross(&w, &c.arm));
-                sub(&u, &scale(dot(&n, &u), &n))
-            };
+            let (v, w) = self.moved(&full, v_free, w_free);
+            let slip = |c: &Touch<T>| self.slip(&v, &w, c);
             let held: [bool; K] = core::array::from_fn(|i| {
                 let c = &self.touches[i];
                 // An unloaded contact carries no friction on any line.
@@ -107,8 +117,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             if held.iter().all(|&h| h) {
                 // The LCP's verification scale, `||M|| ||z|| + ||q||`, times its tolerance: what
                 // a cone's condition may miss by in absolute terms.
-                let z_norm = sol.z.iter().fold(T::zero(), |a, z| max(a, z.abs_exact()));
-                let bound = T::of(4.0) * solver.tolerance() * (lcp.m_norm_inf() * z_norm + lcp.q_norm_inf());
+                let bound = verification_bound(solver, &lcp, &sol.z);
                 let mut reports = [ContactReport::separated(); K];
                 for (i, c) in self.touches.iter().enumerate() {
                     if c.active {
@@ -185,27 +194,20 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
         *basis = sol.basis;
         let zero = [o; 3];
-        let (mut push, mut twist) = (zero, zero);
         let mut impulses = [(o, zero); K];
-        for (i, c) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
+        let mut full = [zero; K];
+        for (i, _) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
             let pn = sol.z[size * i];
             let pt = (0..k).fold(zero, |a, l| add(&a, &scale(sol.z[size * i + 1 + l], &edge(l))));
-            let p = add(&scale(pn, &n), &pt);
-            push = add(&push, &p);
-            twist = add(&twist, &cross(&c.arm, &p));
+            full[i] = add(&scale(pn, &n), &pt);
             impulses[i] = (pn, pt);
         }
-        let v = add(v_free, &push);
-        let w =
-            add(w_free, &scale(self.body.mass, &inverse_inertia_times(self.body, self.orientation, &twist)));
-        let z_norm = sol.z.iter().fold(o, |a, z| max(a, z.abs_exact()));
-        let bound = T::of(4.0) * solver.tolerance() * (lcp.m_norm_inf() * z_norm + lcp.q_norm_inf());
+        let (v, w) = self.moved(&full, v_free, w_free);
+        let bound = verification_bound(solver, &lcp, &sol.z);
         let mut reports = [ContactReport::separated(); K];
         for (i, c) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
-            let u = add(&v, &cross(&w, &c.arm));
-            let slip = sub(&u, &scale(dot(&n, &u), &n));
             let (pn, pt) = impulses[i];
-            reports[i] = self.report(pn, &pt, &slip, c.mu, (1, bound, false))?;
+            reports[i] = self.report(pn, &pt, &self.slip(&v, &w, c), c.mu, (1, bound, false))?;
         }
         Ok((reports, v, w))
     }
@@ -424,4 +426,15 @@ fn pad<T: Real, const N: usize>(m: &mut [[T; N]; N], q: &mut [T; N], from: usize
         m[row][row] = T::one();
         q[row] = T::one();
     }
+}
+
+/// What a cone's condition may miss by, in impulse per unit mass: the LCP's verification
+/// tolerance times its scale `||M|| ||z|| + ||q||` (`crate::lcp::verify`), four times over.
+fn verification_bound<T: Real, const N: usize>(
+    solver: &Lemke<T, N>,
+    lcp: &Lcp<T, N>,
+    z: &nalgebra::SVector<T, N>,
+) -> T {
+    let z_norm = z.iter().fold(T::zero(), |a, z| max(a, z.abs_exact()));
+    T::of(4.0) * solver.tolerance() * (lcp.m_norm_inf() * z_norm + lcp.q_norm_inf())
 }
