@@ -129,6 +129,7 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
     let zero = vec![0.0; start.len()];
     run.rows.push(row(0.0, q, v, &start, &start, &initial, [&zero, &zero]));
     let mut modes = initial;
+    let mut slipping_unloaded = vec![false; modes.len()];
     let mut steps = 0_u64;
     let outcome = loop {
         // A stop requested (`crate::request_stop`, a host's Ctrl-C): the run stops here and the
@@ -137,11 +138,14 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
             break Outcome::Failed(format!("interrupted at t = {}", steps as f64 * h));
         }
         let u = scene.support_velocity(steps);
+        // A contact the last load left touching, slipping and unloaded slides on: `mu_k`.
         let mu: Vec<f64> = modes
             .iter()
             .zip(&friction)
-            .map(|(m, &(mu_s, mu_k))| match m {
+            .zip(&slipping_unloaded)
+            .map(|((m, &(mu_s, mu_k)), &unloaded)| match m {
                 Mode::SlidingPositive | Mode::SlidingNegative => mu_k,
+                Mode::Separated if unloaded => mu_k,
                 Mode::Sticking | Mode::Separated => mu_s,
             })
             .collect();
@@ -188,6 +192,7 @@ pub(super) fn simulate(scene: &mut impl Scene, sample: &Sample) -> Run {
             friction: &impulses[1],
         });
         modes = after;
+        slipping_unloaded.clone_from(&result.slipping_unloaded);
         start = end;
         if let Some(outcome) = judged {
             break outcome;

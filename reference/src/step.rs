@@ -93,6 +93,10 @@ pub(super) struct StepResult {
     pub friction: Vec<f64>,
     /// Whether solutions with different motions existed.
     pub ambiguous: bool,
+    /// Each contact the load left touching and slipping but carrying nothing, on a body of three
+    /// or more contacts: it takes `mu_k` next step, as a sliding contact does
+    /// (docs/formulation.md, "The load: the least norm").
+    pub slipping_unloaded: Vec<bool>,
 }
 
 /// Solves one step from velocity `v` with the contacts' geometry at the step's start, the
@@ -198,8 +202,8 @@ pub(super) fn solve(
         friction[i] = z[k + 2 * slot] - z[k + 2 * slot + 1];
     }
     let load = Load { model, frames, support_velocity, mu, columns: &columns, tolerance: 1e-9 * speed_scale };
-    load.least_norm(&active, z, v_plus, round_off, &mut normal, &mut friction)?;
-    Ok(StepResult { velocity: v_plus, normal, friction, ambiguous })
+    let slipping_unloaded = load.least_norm(&active, z, v_plus, round_off, &mut normal, &mut friction)?;
+    Ok(StepResult { velocity: v_plus, normal, friction, ambiguous, slipping_unloaded })
 }
 
 /// What the load's rule reads of a step (docs/formulation.md, "The load: the least norm").
@@ -218,7 +222,8 @@ impl Load<'_> {
     /// The load, where the contacts leave it open: the least 2-norm with the motion `v_plus` of the
     /// answer `z` over the `active` contacts (`load.rs`), in place of `normal` and `friction`. A
     /// contact touches when it carries load or its normal velocity is within the tolerance of
-    /// zero, and sticks when its slip is within it too.
+    /// zero, and sticks when its slip is within it too. Returns, for three or more contacts, each
+    /// contact left touching and slipping (beyond the stick speed) with no load.
     fn least_norm(
         &self,
         active: &[usize],
@@ -227,7 +232,7 @@ impl Load<'_> {
         round_off: f64,
         normal: &mut [f64],
         friction: &mut [f64],
-    ) -> Result<(), String> {
+    ) -> Result<Vec<bool>, String> {
         let (model, frames, support_velocity, mu, columns) =
             (self.model, self.frames, self.support_velocity, self.mu, self.columns);
         let k = active.len();
@@ -237,6 +242,7 @@ impl Load<'_> {
         // carries load or its normal velocity is within the velocity tolerance of zero, and sticks
         // when its slip is within it too.
         let mut touching: Vec<(usize, Touching)> = Vec::new();
+        let mut slipping = vec![false; frames.len()];
         for (slot, &i) in active.iter().enumerate() {
             let f = &frames[i];
             let normal_velocity = dot3(columns[slot], v_plus) - dot(f.normal, support_velocity[i])
@@ -245,6 +251,7 @@ impl Load<'_> {
                 continue;
             }
             let slip = dot(f.tangent, support_velocity[i]) - dot3(columns[k + 2 * slot], v_plus);
+            slipping[i] = frames.len() >= 3 && slip.abs() > model.stick_speed;
             let law = if slip.abs() <= tolerance {
                 Law::Sticking { mu: mu[i] }
             } else {
@@ -276,7 +283,8 @@ impl Load<'_> {
                 None => return Err(format!("no load within the contacts' laws gives the motion {v_plus:?}")),
             }
         }
-        Ok(())
+        let floor = model.impulse_floor();
+        Ok(slipping.iter().zip(normal.iter()).map(|(&slips, &n)| slips && n <= floor).collect())
     }
 }
 

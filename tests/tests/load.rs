@@ -179,11 +179,11 @@ fn a_rod_on_four_fingers_carries_the_elastic_split() {
 /// With finger 1 moving, the load decides each finger's friction (`mu` times it) and, through the
 /// modes, the next step's coefficient: before the rule the core and the reference took different
 /// vertices and parted by millimetres on starts other than the default (1.3e-4 m in f64 on the
-/// fourth start below). Whole runs to the outcome: f64 within 1e-9 m of the reference; f32 within
-/// 1e-5 m while finger 1 moves and within 1e-4 m to the end. After finger 1 stops, the rod can
-/// slide on over three fingers whose loads are determinate only by a finger's `mu_s` after it read
-/// separated: the modes chatter (in the reference too) and each step's vertex turns on round-off,
-/// which f32 resolves differently (4.5e-5 m on that start; docs/formulation.md, "The load").
+/// fourth start below). Whole runs to the outcome, within 1e-9 m of the reference in f64 and
+/// 1e-5 m in f32, the rod sliding on over the fingers after finger 1 stops included: a finger the
+/// load leaves unloaded while the rod slips over it takes `mu_k` next step, as a sliding one does
+/// (with `mu_s` the least energy loaded it at once and the load flipped from finger to finger every
+/// step; f32 parted by 4.5e-5 m on the eighth start; docs/formulation.md, "The load").
 #[test]
 fn a_moving_finger_under_three_follows_the_reference_on_many_starts() {
     let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
@@ -219,12 +219,45 @@ fn a_moving_finger_under_three_follows_the_reference_on_many_starts() {
                     moving = moving.max(d);
                 }
             }
-            let after = if tolerance < 1e-6 { tolerance } else { 1e-4 };
             println!("{what}: {moving:.1e} m while finger 1 moves, {whole:.1e} m over the run");
             assert!(
-                moving < tolerance && whole < after,
-                "{what}: {moving:e} m, {whole:e} m from the reference"
+                whole < tolerance,
+                "{what}: {moving:e} m while finger 1 moves, {whole:e} m from the reference"
             );
+            // The lights: no finger's mode leaves and comes back on the next step but at most once
+            // (the step after finger 1 stops, whose contact still takes `mu_s`); the core's modes
+            // are the reference's at every step (f32: but at most one, whose slip sits at the stick
+            // speed within f32's round-off) and its loads within `tolerance` of the weight's
+            // impulse in f64.
+            for (run, name) in [(&core, "core"), (&reference, "reference")] {
+                let blinks = run
+                    .rows
+                    .windows(3)
+                    .filter(|w| {
+                        (0..3).any(|c| {
+                            w[0].contacts[c].mode == w[2].contacts[c].mode
+                                && w[1].contacts[c].mode != w[0].contacts[c].mode
+                        })
+                    })
+                    .count();
+                assert!(blinks <= 1, "{what}: the {name}'s lights blink on {blinks} steps");
+            }
+            let (mut modes_differ, mut load_gap) = (0, 0.0_f64);
+            for (a, b) in core.rows.iter().zip(&reference.rows) {
+                for (x, y) in a.contacts.iter().zip(&b.contacts) {
+                    modes_differ += usize::from(x.mode != y.mode);
+                    load_gap = load_gap.max((x.normal_impulse - y.normal_impulse).abs() / (MASS * G * H));
+                }
+            }
+            println!("  modes apart on {modes_differ} steps; loads apart by {load_gap:.1e} of m g h");
+            if tolerance < 1e-6 {
+                assert!(
+                    modes_differ == 0 && load_gap < tolerance,
+                    "{what}: {modes_differ} modes, loads {load_gap:e}"
+                );
+            } else {
+                assert!(modes_differ <= 1, "{what}: modes apart on {modes_differ} steps");
+            }
             // Every loaded finger reads sticking or sliding, never separated.
             for row in &core.rows[1..] {
                 for c in &row.contacts {

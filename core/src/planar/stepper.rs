@@ -128,6 +128,11 @@ pub struct Stepper<T: Real, const K: usize, const N: usize, const NF: usize = N>
     /// The last load the rule decided, for a rest state to keep.
     #[cfg(feature = "fallback")]
     load_memory: PlanarLoadMemory<T, K>,
+    /// The contacts the last step's load left touching and slipping but carrying nothing (a model
+    /// of three or more contacts, whose every step's load the rule decides): they take `mu_k`
+    /// next step, as a sliding contact does (`docs/formulation.md`, "The load: the least norm").
+    #[cfg(feature = "fallback")]
+    slipping_unloaded: [bool; K],
     stats: RunStats,
 }
 
@@ -221,9 +226,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             #[cfg(feature = "fallback")]
             load_memory: PlanarLoadMemory {
                 kinds: [Carry::Nothing; K],
+                columns: [[[T::zero(); 3]; 2]; K],
                 path: [[T::zero(); 2]; K],
                 load: [[T::zero(); 2]; K],
             },
+            #[cfg(feature = "fallback")]
+            slipping_unloaded: [false; K],
             stats: RunStats::default(),
         };
         stepper.update_frames(&supports);
@@ -362,6 +370,19 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         K == 2 && self.modes.iter().all(|m| *m == ContactMode::Sticking)
     }
 
+    /// `true` when contact `i` was left touching and slipping but carrying nothing by the last
+    /// step's load ([`Self::decide_load`], three or more contacts).
+    #[inline]
+    fn slips_unloaded(&self, i: usize) -> bool {
+        #[cfg(feature = "fallback")]
+        return K >= 3 && self.slipping_unloaded[i];
+        #[cfg(not(feature = "fallback"))]
+        {
+            let _ = i;
+            false
+        }
+    }
+
     /// [`Self::step`], with the rule's detection when `RULE` (`docs/formulation.md`, "One answer:
     /// the rule").
     #[allow(clippy::too_many_lines)] // the paper's step in order: assemble, solve, check, integrate, classify
@@ -391,7 +412,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             // velocity is ([`LcpError::NonFiniteInput`]), with no branch of its own.
             let (p, u) = (supports[i].position(), supports[i].velocity());
             support_velocity[i] = [u[0] + zero_if_finite(p[0]), u[1] + zero_if_finite(p[1])];
-            mu[i] = if self.modes[i].is_sliding() { c.mu_kinetic } else { c.mu_static };
+            mu[i] = if self.modes[i].is_sliding() || (RULE && self.slips_unloaded(i)) {
+                c.mu_kinetic
+            } else {
+                c.mu_static
+            };
         }
         let v_free = [self.state.vx, self.state.vy - h * s.gravity, self.state.omega];
         // The round-off of a gap (`normal_bias`): a few eps of the positions it comes from.
@@ -638,7 +663,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         if RULE && (K >= 3 || (K == 2 && contacts.iter().all(|c| c.mode == ContactMode::Sticking))) {
             let rows: &[T] = if full_layout_used { &w_full } else { &w };
             let v_plus = [state.vx, state.vy, state.omega];
-            self.decide_load(&support_velocity, &v_plus, rows, &slips, &mut contacts)?;
+            self.decide_load(&support_velocity, &mu, &v_plus, rows, &slips, &mut contacts)?;
         }
         self.state = state;
         self.carry = carry;
@@ -669,6 +694,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     fn decide_load(
         &mut self,
         support_velocity: &[[T; 2]; K],
+        mu: &[T; K],
         v_plus: &[T; 3],
         w: &[T],
         slips: &[T; K],
@@ -682,13 +708,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             [LoadContact { normal: [[T::zero(); 3]], tangent: [[T::zero(); 3]], carry: Carry::Nothing }; K];
         let mut path = [[T::zero(); 2]; K];
         for i in 0..K {
-            let (f, c, report) = (&self.frames[i], &self.contacts[i], &contacts[i]);
+            let (f, report, mu) = (&self.frames[i], &contacts[i], mu[i]);
             path[i] = [report.normal_impulse, report.friction_impulse];
             let normal_velocity = w.get(i).copied().unwrap_or(T::zero());
             if !f.active || (report.mode == ContactMode::Separated && normal_velocity > tolerance) {
                 continue;
             }
-            let mu = if report.previous_mode.is_sliding() { c.mu_kinetic } else { c.mu_static };
             let carry = if slips[i].abs_exact() <= tolerance {
                 Carry::Sticking { mu }
             } else {
@@ -697,8 +722,13 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             loads[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
         }
         // A rest state keeps the load decided the step before: the answer at the least energy,
-        // the same contacts carrying the same way, its load the same within round-off.
+        // the same contacts carrying the same way at the same places (a finger sliding under a
+        // resting rod moves its split), its load the same within round-off.
         let kinds = loads.map(|l| l.carry);
+        let columns = loads.map(|l| [l.normal[0], l.tangent[0]]);
+        // The columns' own round-off (`r x n`, `|r| <= size`): a support that moves by more, over
+        // the steps since the load was decided, moves the split.
+        let reach = T::of(16.0) * T::EPS * (T::one() + self.size);
         let mut scale = T::zero();
         for p in &path {
             scale = max(scale, max(p[0].abs_exact(), p[1].abs_exact()));
@@ -707,6 +737,12 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let memory = &self.load_memory;
         let kept = rule.at_least_energy(&[*v_plus])
             && memory.kinds == kinds
+            && columns
+                .iter()
+                .flatten()
+                .flatten()
+                .zip(memory.columns.iter().flatten().flatten())
+                .all(|(a, b)| (*a - *b).abs_exact() <= reach)
             && path.iter().zip(&memory.path).all(|(a, b)| {
                 (a[0] - b[0]).abs_exact() <= round_off && (a[1] - b[1]).abs_exact() <= round_off
             });
@@ -716,7 +752,9 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             least_norm(&loads, &path, &mut self.load_basis).map_err(StepError::Solver)?
         };
         if how != LoadPath::Determinate {
-            self.load_memory = PlanarLoadMemory { kinds, path, load };
+            if !kept {
+                self.load_memory = PlanarLoadMemory { kinds, columns, path, load };
+            }
             self.stats.load_decided_steps += 1;
             for i in 0..K {
                 let report = &mut contacts[i];
@@ -728,6 +766,16 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
                 };
                 self.modes[i] = report.mode;
             }
+        }
+        // A contact the load leaves touching but unloaded while the body slips over it reads
+        // separated (no force), but its next step's coefficient is the sliding one: `mu_s` would
+        // make the rule's least energy load it at once, and the load would flip from finger to
+        // finger every step (a rod sliding over three fingers).
+        for i in 0..K {
+            self.slipping_unloaded[i] = K >= 3
+                && !matches!(kinds[i], Carry::Nothing)
+                && contacts[i].mode == ContactMode::Separated
+                && slips[i].abs_exact() > self.settings.stick_speed;
         }
         Ok(())
     }
@@ -805,6 +853,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
 #[derive(Debug, Clone, Copy)]
 struct PlanarLoadMemory<T, const K: usize> {
     kinds: [Carry<T>; K],
+    /// Each contact's normal and friction columns.
+    columns: [[[T; 3]; 2]; K],
     path: [[T; 2]; K],
     load: [[T; 2]; K],
 }
