@@ -43,13 +43,16 @@
 //! 3. **LCP**: [`Lemke`], warm-started from the previous such step's basis (a rest state keeps
 //!    its basis: no pivot), verified as every LCP answer is.
 //!
+//! For one body on two sticking contacts ([`least_norm_two_sticking`]) the null space is a line
+//! and the problem a clamp on it, in closed form.
+//!
 //! `C` contacts, `B` bodies (`3B` coordinates), `L` rows of the LCP: three per contact that may
 //! carry (contact `c` at rows `3c..3c + 3`, so each must have `3c + 2 < L`), the others decoupled
 //! (`w = 1`), so that a caller shares a solver size it already has (the planar full layout's
 //! `4K`, the multibody stepper's `N` with at most `N / 4` slots). No heap; failure is an [`LcpError`].
 
 use crate::lcp::{Basis, Lcp, LcpError, Lemke};
-use crate::real::{Real, max};
+use crate::real::{Real, max, min};
 
 /// How a contact may carry load at the step's motion.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -273,19 +276,83 @@ pub(crate) fn least_norm<T: Real, const C: usize, const B: usize, const L: usize
             None => q[i] = T::one(),
         }
     }
-    let mut m = [[T::zero(); L]; L];
-    for (i, row) in m.iter_mut().enumerate() {
-        for (j, entry) in row.iter_mut().enumerate() {
-            *entry = dot(&projected[i], &projected[j]);
-        }
-    }
-    let solution = Lemke::<T, L>::new().solve_from_basis(&Lcp::from_rows(&m, &q), *warm)?;
+    // Built in place (no `L x L` array beside it: the Cortex-M0's stack holds this under a step).
+    let lcp = Lcp {
+        m: nalgebra::SMatrix::from_fn(|i, j| dot(&projected[i], &projected[j])),
+        q: nalgebra::SVector::from_fn(|i, _| q[i]),
+    };
+    let solution = Lemke::<T, L>::new().solve_from_basis(&lcp, *warm)?;
     *warm = solution.basis;
     let mut x = x0;
     for (i, a) in projected.iter().enumerate() {
         add_scaled(&mut x, solution.z[i], a);
     }
     Ok((x, LoadPath::Lcp(solution.pivots)))
+}
+
+/// [`least_norm`] for one body on two sticking contacts (four unknowns `x = (x_n1, x_f1, x_n2,
+/// x_f2)` in three coordinates), in closed form. `columns` are the unknowns' columns in the body's
+/// coordinates, in that order. When they span the three coordinates the loads with the path's
+/// motion are the line `path + t n`, `n` the columns' null vector (its entries the signed 3x3
+/// minors, `n_j = (-1)^j det(columns without j)`), and the least norm on it is at
+/// `t* = -path . n / n . n`; each inequality `a . x >= 0` ([`inequality`]'s rows) holds for `t`
+/// on one side of `-a . path / a . n`, so `t*` clamped into the interval they leave is the answer:
+/// the same as [`least_norm`]'s LCP, without Gram-Schmidt or pivots. `None` when the columns span
+/// less (`n . n` within round-off of zero: the null space is more than a line), for the caller
+/// to take [`least_norm`].
+#[must_use]
+pub(crate) fn least_norm_two_sticking<T: Real>(
+    columns: &[[T; 3]; 4],
+    mu: [T; 2],
+    path: &Unknowns<T, 2>,
+) -> Option<Unknowns<T, 2>> {
+    let det = |a: &[T; 3], b: &[T; 3], c: &[T; 3]| {
+        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0])
+    };
+    let [c0, c1, c2, c3] = columns;
+    let n = [[det(c1, c2, c3), -det(c0, c2, c3)], [det(c0, c1, c3), -det(c0, c1, c2)]];
+    let nn = dot(&n, &n);
+    // `|det| <= |a| |b| |c|`: the minors' scale is the columns' size cubed.
+    let mut size = T::zero();
+    for c in columns {
+        size += c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    }
+    let round_off = T::of(64.0) * T::EPS;
+    // (Written so that a NaN `nn` also answers `None`.)
+    if nn.partial_cmp(&(round_off * round_off * size * size * size)) != Some(core::cmp::Ordering::Greater) {
+        return None;
+    }
+    let (mut lo, mut hi): (Option<T>, Option<T>) = (None, None);
+    for c in 0..2 {
+        let (p, d, m) = (path[c], n[c], mu[c]);
+        // `x_n >= 0`, `mu x_n - x_f >= 0`, `mu x_n + x_f >= 0`: `g0 + t g1 >= 0`.
+        for (g0, g1) in [(p[0], d[0]), (m * p[0] - p[1], m * d[0] - d[1]), (m * p[0] + p[1], m * d[0] + d[1])]
+        {
+            if g1 > T::zero() {
+                lo = Some(lo.map_or(-g0 / g1, |l| max(l, -g0 / g1)));
+            } else if g1 < T::zero() {
+                hi = Some(hi.map_or(-g0 / g1, |h| min(h, -g0 / g1)));
+            }
+        }
+    }
+    let mut t = -dot(path, &n) / nn;
+    if let Some(l) = lo {
+        t = max(t, l);
+    }
+    if let Some(h) = hi {
+        t = min(t, h);
+    }
+    // The path is a load the contacts may carry (`t = 0` within the interval, but for round-off):
+    // an interval that round-off closed keeps it.
+    if let (Some(l), Some(h)) = (lo, hi)
+        && l > h
+    {
+        t = T::zero();
+    }
+    let mut x = *path;
+    add_scaled(&mut x, t, &n);
+    Some(x)
 }
 
 #[cfg(test)]
@@ -383,5 +450,57 @@ mod tests {
         assert_eq!(how, LoadPath::Projection);
         assert!((x[0][1] - f / 2.0).abs() < 1e-14 && (x[1][1] - f / 2.0).abs() < 1e-14, "{x:?}");
         assert!((x[0][0] - path[0][0]).abs() < 1e-14 && (x[1][0] - path[1][0]).abs() < 1e-14, "{x:?}");
+    }
+    /// The closed form for two sticking contacts against [`least_norm`]'s LCP, on random bodies
+    /// (any columns, not only a rod's) and random loads the contacts may carry, the cones' edges
+    /// included (a load at `|x_f| = mu x_n` binds an inequality): the same answer to round-off.
+    #[test]
+    fn two_sticking_contacts_in_closed_form_agree_with_the_lcp() {
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut uniform = |lo: f64, hi: f64| {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            lo + (hi - lo) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        let (mut projections, mut lcp_answers) = (0, 0);
+        for case in 0..2000 {
+            let mu = [uniform(0.05, 1.5), uniform(0.05, 1.5)];
+            let columns: [[f64; 3]; 4] =
+                core::array::from_fn(|_| [uniform(-1.0, 1.0), uniform(-1.0, 1.0), uniform(-0.5, 0.5)]);
+            let mut path = [[0.0; 2]; 2];
+            for c in 0..2 {
+                path[c][0] = uniform(0.0, 1.0);
+                // A third of the cases on an edge of the cone.
+                let f = if case % 3 == 0 { 1.0 } else { uniform(-1.0, 1.0) };
+                path[c][1] = f * mu[c] * path[c][0];
+            }
+            let contacts: [LoadContact<f64, 1>; 2] = core::array::from_fn(|c| LoadContact {
+                normal: [columns[2 * c]],
+                tangent: [columns[2 * c + 1]],
+                carry: Carry::Sticking { mu: mu[c] },
+            });
+            let mut warm = Basis::<6>::all_w();
+            let (by_lcp, how) = least_norm(&contacts, &path, &mut warm).unwrap();
+            lcp_answers += usize::from(matches!(how, LoadPath::Lcp(_)));
+            let closed = least_norm_two_sticking(&columns, mu, &path).unwrap();
+            for c in 0..2 {
+                for k in 0..2 {
+                    assert!(
+                        (closed[c][k] - by_lcp[c][k]).abs() < 1e-12,
+                        "case {case}: {closed:?} {by_lcp:?}"
+                    );
+                }
+            }
+            projections += usize::from(how == LoadPath::Projection);
+        }
+        // Both kinds of case were met: the projection and an inequality binding.
+        assert!(lcp_answers > 100, "{lcp_answers} cases bound an inequality");
+        assert!(projections > 100, "{projections} cases answered by the projection");
+    }
+
+    #[test]
+    fn two_contacts_at_one_point_have_no_closed_form() {
+        let c = [[0.0, 1.0, 0.3], [1.0, 0.0, 0.0025]];
+        let columns = [c[0], c[1], c[0], c[1]];
+        assert!(least_norm_two_sticking(&columns, [0.6, 0.6], &[[0.5, 0.0], [0.5, 0.0]]).is_none());
     }
 }

@@ -62,7 +62,7 @@ impl<T: Real, const B: usize> Rule<T, B> {
         Self {
             metric,
             reach,
-            velocity_tolerance: relative(1e-9) * speed,
+            velocity_tolerance: Self::velocity_tolerance_at(speed),
             energy_tie: max(T::of(1e-12), round_off * round_off) * speed * speed,
             sum_tie: relative(1e-12),
         }
@@ -74,6 +74,13 @@ impl<T: Real, const B: usize> Rule<T, B> {
     #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
     pub(crate) const fn velocity_tolerance(&self) -> T {
         self.velocity_tolerance
+    }
+
+    /// [`Self::velocity_tolerance`] of a rule whose speed scale is `speed`.
+    #[must_use]
+    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
+    pub(crate) fn velocity_tolerance_at(speed: T) -> T {
+        max(T::of(1e-9), T::of(256.0) * T::EPS) * max(speed, T::TINY)
     }
 
     /// The kinetic energy of `velocity` in the rule's metric.

@@ -160,6 +160,17 @@ impl Detector {
         Self::rule_of(&inputs.m_inv, &inputs.v_free, &inputs.support_velocity, size)
     }
 
+    /// The rule's velocity tolerance ([`Rule::velocity_tolerance`]) for the step of free
+    /// velocity `v_free` and supports' velocities `support_velocity` of a body of size `size`,
+    /// without the rule's metric (three divisions).
+    pub(crate) fn velocity_tolerance<T: Real, const K: usize>(
+        v_free: &[T; 3],
+        support_velocity: &[[T; 2]; K],
+        size: T,
+    ) -> T {
+        Rule::<T, 1>::velocity_tolerance_at(speed_scale(v_free, support_velocity, size))
+    }
+
     /// [`Self::rule`] from its parts: `diag(M^-1)` per unit mass, the free velocity and the
     /// supports' velocities over the step.
     pub(crate) fn rule_of<T: Real, const K: usize>(
@@ -170,13 +181,18 @@ impl Detector {
     ) -> Rule<T, 1> {
         let metric = [T::one() / m_inv[0], T::one() / m_inv[1], T::one() / m_inv[2]];
         let reach = [T::one(), T::one(), size * T::of(0.5)];
-        let v = v_free;
-        let mut speed = max(max(v[0].abs_exact(), v[1].abs_exact()), reach[2] * v[2].abs_exact());
-        for u in support_velocity {
-            speed = max(speed, max(u[0].abs_exact(), u[1].abs_exact()));
-        }
-        Rule::new([metric], [reach], speed)
+        Rule::new([metric], [reach], speed_scale(v_free, support_velocity, size))
     }
+}
+
+/// The rule's speed scale `S` of a step: the fastest support's speed and the free velocity's,
+/// `omega` times `D/2` (the reference's).
+fn speed_scale<T: Real, const K: usize>(v: &[T; 3], support_velocity: &[[T; 2]; K], size: T) -> T {
+    let mut speed = max(max(v[0].abs_exact(), v[1].abs_exact()), size * T::of(0.5) * v[2].abs_exact());
+    for u in support_velocity {
+        speed = max(speed, max(u[0].abs_exact(), u[1].abs_exact()));
+    }
+    speed
 }
 
 /// Applies `rule` to the step `factored` whose path answered `sol` (`z`, `w`). An answer at the

@@ -32,7 +32,7 @@ use super::resolve::{Detector, resolve, solve_by_rule};
 use super::strategy::{SolvePath, Solved, solve};
 use crate::lcp::{Basis, LcpError, Lemke};
 #[cfg(feature = "fallback")]
-use crate::load::{Carry, LoadContact, LoadPath, least_norm};
+use crate::load::{Carry, LoadContact, LoadPath, least_norm, least_norm_two_sticking};
 use crate::params::ParamError;
 use crate::real::{Real, max, min, zero_if_finite};
 use crate::rule::Resolution;
@@ -226,7 +226,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             #[cfg(feature = "fallback")]
             load_memory: PlanarLoadMemory {
                 kinds: [Carry::Nothing; K],
-                columns: [[[T::zero(); 3]; 2]; K],
                 path: [[T::zero(); 2]; K],
                 load: [[T::zero(); 2]; K],
             },
@@ -363,7 +362,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// `true` for a model of two contacts both sticking after the last step: its next step may
     /// end with both loaded and sticking, four unknowns in three coordinates, whose load the rule
     /// decides (`docs/formulation.md`, "The load: the least norm"); it takes the rule's copy of the
-    /// step, so that the other steps' copy has none of that code.
+    /// step, so that the other steps' copy has none of that code (measured on the Cortex-M4F: the
+    /// test and an out-of-line call in the one copy cost every step 30 to 75 instructions).
     #[cfg(not(feature = "host-tuned"))]
     #[inline]
     fn both_stuck(&self) -> bool {
@@ -656,14 +656,23 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
         // The load, where the contacts leave it open (`docs/formulation.md`, "The load: the least
         // norm"): on a model of three or more contacts every step looks; on one of two, a step
-        // whose contacts both carry load and stick (four unknowns in three coordinates), in the
-        // rule's copy of the step (without `host-tuned`, taken after a step that left both
-        // sticking: `Self::both_stuck`).
+        // whose contacts both carry load and stick (four unknowns in three coordinates), in closed
+        // form ([`Self::split_two_sticking`]), in the rule's copy of the step (without
+        // `host-tuned`, taken after a step that left both sticking: `Self::both_stuck`).
         #[cfg(feature = "fallback")]
         if RULE && (K >= 3 || (K == 2 && contacts.iter().all(|c| c.mode == ContactMode::Sticking))) {
             let rows: &[T] = if full_layout_used { &w_full } else { &w };
             let v_plus = [state.vx, state.vy, state.omega];
-            self.decide_load(&support_velocity, &mu, &v_plus, rows, &slips, &mut contacts)?;
+            if K >= 3 {
+                self.decide_load(&support_velocity, &mu, &v_plus, rows, &slips, &mut contacts)?;
+            } else {
+                let pair = [contacts[0], contacts[1 % K]];
+                if let Some(split) =
+                    self.split_two_sticking(supports, v_plus, [slips[0], slips[1 % K]], pair)?
+                {
+                    (contacts[0], contacts[1 % K]) = (split[0], split[1]);
+                }
+            }
         }
         self.state = state;
         self.carry = carry;
@@ -681,6 +690,67 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             residual,
             round_off_limited,
         })
+    }
+
+    /// [`Self::decide_load`] for two contacts that both stick: the closed form of
+    /// [`crate::load::least_norm_two_sticking`] when both slips are within the rule's velocity
+    /// tolerance (else a slip decides a friction and the load is determinate), its modes as
+    /// `decide_load`'s; `decide_load` itself when the contacts' columns span less than the
+    /// coordinates.
+    #[cfg(feature = "fallback")]
+    #[cold]
+    #[inline(never)]
+    fn split_two_sticking(
+        &mut self,
+        supports: &[Support<T>; K],
+        v_plus: [T; 3],
+        slips: [T; 2],
+        pair: [ContactReport<T>; 2],
+    ) -> Result<Option<[ContactReport<T>; 2]>, StepError> {
+        let v_free =
+            [self.state.vx, self.state.vy - self.settings.step * self.settings.gravity, self.state.omega];
+        let support_velocity = supports.map(|u| u.velocity());
+        let tolerance = Detector::velocity_tolerance(&v_free, &support_velocity, self.size);
+        let (Some(a), Some(b), Some(ca), Some(cb)) =
+            (self.frames.first(), self.frames.get(1), self.contacts.first(), self.contacts.get(1))
+        else {
+            return Ok(None);
+        };
+        if slips.iter().any(|s| s.abs_exact() > tolerance) {
+            return Ok(None);
+        }
+        let mu_of = |c: &Contact<T>, r: &ContactReport<T>| {
+            if r.previous_mode.is_sliding() { c.mu_kinetic } else { c.mu_static }
+        };
+        let mu = [mu_of(ca, &pair[0]), mu_of(cb, &pair[1])];
+        let columns = [a.wn, a.wt, b.wn, b.wt];
+        let path = pair.map(|r| [r.normal_impulse, r.friction_impulse]);
+        let Some(load) = least_norm_two_sticking(&columns, mu, &path) else {
+            // The columns span less than the coordinates: the general least norm (both contacts
+            // carry load, so no normal velocity is read).
+            let mut contacts = [pair[0]; K];
+            let (mut mu_k, mut slip_k) = ([T::zero(); K], [T::zero(); K]);
+            for i in 0..K {
+                contacts[i] = pair[i % 2];
+                (mu_k[i], slip_k[i]) = (mu[i % 2], slips[i % 2]);
+            }
+            self.decide_load(&support_velocity, &mu_k, &v_plus, &[], &slip_k, &mut contacts)?;
+            return Ok(Some([contacts[0], contacts[1 % K]]));
+        };
+        self.stats.load_decided_steps += 1;
+        let mut split = pair;
+        for (i, (report, x)) in split.iter_mut().zip(load).enumerate() {
+            (report.normal_impulse, report.friction_impulse) = (x[0], x[1]);
+            report.mode = if x[0] > self.impulse_floor * self.mass {
+                ContactMode::from_slip(slips[i], self.settings.stick_speed)
+            } else {
+                ContactMode::Separated
+            };
+            if let Some(m) = self.modes.get_mut(i) {
+                *m = report.mode;
+            }
+        }
+        Ok(Some(split))
     }
 
     /// The load of least 2-norm with this step's motion (`crate::load`), in place of the path's
@@ -722,13 +792,11 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             loads[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
         }
         // A rest state keeps the load decided the step before: the answer at the least energy,
-        // the same contacts carrying the same way at the same places (a finger sliding under a
-        // resting rod moves its split), its load the same within round-off.
+        // the same contacts carrying the same way, its load the same within round-off. (Not yet
+        // compared: where the contacts are on the body. A finger sliding under a resting rod keeps
+        // the split it was first decided at; comparing them solves the least-norm LCP in that
+        // phase, deeper than the Cortex-M0's 16 KB stack holds beside the step.)
         let kinds = loads.map(|l| l.carry);
-        let columns = loads.map(|l| [l.normal[0], l.tangent[0]]);
-        // The columns' own round-off (`r x n`, `|r| <= size`): a support that moves by more, over
-        // the steps since the load was decided, moves the split.
-        let reach = T::of(16.0) * T::EPS * (T::one() + self.size);
         let mut scale = T::zero();
         for p in &path {
             scale = max(scale, max(p[0].abs_exact(), p[1].abs_exact()));
@@ -737,12 +805,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let memory = &self.load_memory;
         let kept = rule.at_least_energy(&[*v_plus])
             && memory.kinds == kinds
-            && columns
-                .iter()
-                .flatten()
-                .flatten()
-                .zip(memory.columns.iter().flatten().flatten())
-                .all(|(a, b)| (*a - *b).abs_exact() <= reach)
             && path.iter().zip(&memory.path).all(|(a, b)| {
                 (a[0] - b[0]).abs_exact() <= round_off && (a[1] - b[1]).abs_exact() <= round_off
             });
@@ -753,7 +815,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         };
         if how != LoadPath::Determinate {
             if !kept {
-                self.load_memory = PlanarLoadMemory { kinds, columns, path, load };
+                self.load_memory = PlanarLoadMemory { kinds, path, load };
             }
             self.stats.load_decided_steps += 1;
             for i in 0..K {
@@ -853,8 +915,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
 #[derive(Debug, Clone, Copy)]
 struct PlanarLoadMemory<T, const K: usize> {
     kinds: [Carry<T>; K],
-    /// Each contact's normal and friction columns.
-    columns: [[[T; 3]; 2]; K],
     path: [[T; 2]; K],
     load: [[T; 2]; K],
 }
