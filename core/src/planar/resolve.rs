@@ -163,6 +163,7 @@ impl Detector {
     /// The rule's velocity tolerance ([`Rule::velocity_tolerance`]) for the step of free
     /// velocity `v_free` and supports' velocities `support_velocity` of a body of size `size`,
     /// without the rule's metric (three divisions).
+    #[cfg_attr(not(feature = "fallback"), allow(dead_code))]
     pub(crate) fn velocity_tolerance<T: Real, const K: usize>(
         v_free: &[T; 3],
         support_velocity: &[[T; 2]; K],

@@ -226,6 +226,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             #[cfg(feature = "fallback")]
             load_memory: PlanarLoadMemory {
                 kinds: [Carry::Nothing; K],
+                levers: [[T::zero(); 2]; K],
                 path: [[T::zero(); 2]; K],
                 load: [[T::zero(); 2]; K],
             },
@@ -792,11 +793,13 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             loads[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
         }
         // A rest state keeps the load decided the step before: the answer at the least energy,
-        // the same contacts carrying the same way, its load the same within round-off. (Not yet
-        // compared: where the contacts are on the body. A finger sliding under a resting rod keeps
-        // the split it was first decided at; comparing them solves the least-norm LCP in that
-        // phase, deeper than the Cortex-M0's 16 KB stack holds beside the step.)
+        // the same contacts carrying the same way at the same places on the body (a finger sliding
+        // under a resting rod moves its split), its load the same within round-off.
         let kinds = loads.map(|l| l.carry);
+        let levers = loads.map(|l| [l.normal[0][2], l.tangent[0][2]]);
+        // The arms' own round-off (`|r| <= size`): a contact that moves on the body by more, over
+        // the steps since the load was decided, moves the split (at rest the body does not turn).
+        let reach = T::of(16.0) * T::EPS * (T::one() + self.size);
         let mut scale = T::zero();
         for p in &path {
             scale = max(scale, max(p[0].abs_exact(), p[1].abs_exact()));
@@ -805,6 +808,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         let memory = &self.load_memory;
         let kept = rule.at_least_energy(&[*v_plus])
             && memory.kinds == kinds
+            && levers
+                .iter()
+                .zip(&memory.levers)
+                .all(|(a, b)| (a[0] - b[0]).abs_exact() <= reach && (a[1] - b[1]).abs_exact() <= reach)
             && path.iter().zip(&memory.path).all(|(a, b)| {
                 (a[0] - b[0]).abs_exact() <= round_off && (a[1] - b[1]).abs_exact() <= round_off
             });
@@ -815,7 +822,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         };
         if how != LoadPath::Determinate {
             if !kept {
-                self.load_memory = PlanarLoadMemory { kinds, path, load };
+                self.load_memory = PlanarLoadMemory { kinds, levers, path, load };
             }
             self.stats.load_decided_steps += 1;
             for i in 0..K {
@@ -915,6 +922,8 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
 #[derive(Debug, Clone, Copy)]
 struct PlanarLoadMemory<T, const K: usize> {
     kinds: [Carry<T>; K],
+    /// Each contact's torque arms `r x n`, `r x d` (where the contact is on the body).
+    levers: [[T; 2]; K],
     path: [[T; 2]; K],
     load: [[T; 2]; K],
 }
