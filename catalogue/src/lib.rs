@@ -178,6 +178,26 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
             ("step", "0 < h <= duration"),
         ],
     },
+    #[cfg(feature = "spatial")]
+    SceneInfo {
+        kind: SceneKind::Puck,
+        title: "A puck launched across a table or an incline: friction against its slip, whichever way it heads",
+        contact_names: &["its face"],
+        main_flags: &["speed", "heading", "angle", "mu-s", "mu-k", "h"],
+        outcomes: &[OutcomeKind::Stopped, OutcomeKind::Slid],
+        measures: &["final_speed_m_s", "displacement_m", "displacement_heading_deg"],
+        ranges: &[("angle", "0 <= angle < 90"), ("step", "0 < h <= duration")],
+    },
+    #[cfg(feature = "spatial")]
+    SceneInfo {
+        kind: SceneKind::Billiard,
+        title: "A billiard ball struck with spin: it slides on a line or a parabola, then rolls",
+        contact_names: &["the table"],
+        main_flags: &["speed", "spin-x", "spin-y", "spin-z", "mu-s", "mu-k", "h"],
+        outcomes: &[OutcomeKind::Rolled, OutcomeKind::Unfinished],
+        measures: &["rolling_time_s", "rolling_velocity_x_m_s", "rolling_velocity_y_m_s"],
+        ranges: &[("step", "0 < h <= duration")],
+    },
 ];
 
 /// A scene's heading and one-paragraph introduction, for a teacher: what the scene shows and what
@@ -300,6 +320,30 @@ pub const INTRODUCTIONS: [Introduction; SceneKind::ALL.len()] = [
                 harder (A > 3 mu_s g) it slides. Look for the spoke turning and the two measured \
                 accelerations, a third of one another while it rolls.",
     },
+    #[cfg(feature = "spatial")]
+    Introduction {
+        kind: SceneKind::Puck,
+        heading: "A puck on a table or an incline",
+        intro: "A puck is launched across a level table or an inclined plane. Coulomb's friction opposes \
+                the puck's slip, whatever direction it has: on a level table it slides straight along \
+                its heading and stops after v^2 / (2 mu g), the same distance in every direction. Across \
+                an incline with mu = tan(angle), friction and the slope's pull cancel along the slope: \
+                the path bends down the slope and the speed tends to exactly half the launch speed. \
+                Look for the path and the final speed, and turn the heading: the distance does not \
+                change (simulators that approximate the friction cone by a pyramid bend the path \
+                toward their axes).",
+    },
+    #[cfg(feature = "spatial")]
+    Introduction {
+        kind: SceneKind::Billiard,
+        heading: "A billiard ball struck with spin",
+        intro: "A ball is struck along the table with spin. Its contact point slips, and friction against \
+                the slip slows the ball and turns its spin until the slip stops: from then on it rolls. \
+                The slip keeps its direction, so a ball with side spin curves on a parabola. It rolls \
+                from t = 2 |u0| / (7 mu g) at v = (5 v0 + 2 R omega0 x z) / 7, whatever its mass; the \
+                spin about the vertical stays, since a point of contact has no friction against it. \
+                Look for the moment it starts rolling and the rolling velocity.",
+    },
 ];
 
 /// The catalogue's entry of a scene.
@@ -353,6 +397,8 @@ impl Flag {
     }
 }
 
+#[cfg(feature = "spatial")]
+use SceneKind::{Billiard as BI, Puck as PK};
 #[cfg(feature = "multibody")]
 use SceneKind::{BlockOnBlock as BB, DiscOnBoard as DB, Stack as ST, Tablecloth as TC};
 use SceneKind::{
@@ -365,8 +411,16 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "speed",
         unit: "m/s",
-        help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's velocity along x at the start (negative: its lower end slides away from under it)",
-        fields: &[(M, "finger1_velocity"), (F, "finger1_velocity"), (P, "speed")],
+        help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's velocity along x at the start (negative: its lower end slides away from under it); puck: the launch speed (>= 0); billiard: the ball's speed along +x (>= 0)",
+        fields: &[
+            (M, "finger1_velocity"),
+            (F, "finger1_velocity"),
+            (P, "speed"),
+            #[cfg(feature = "spatial")]
+            (PK, "speed"),
+            #[cfg(feature = "spatial")]
+            (BI, "speed"),
+        ],
     },
     Flag {
         long: "speed2",
@@ -418,6 +472,10 @@ pub const FLAGS: &[Flag] = &[
             (ST, "mu_static"),
             #[cfg(feature = "multibody")]
             (DB, "mu_static"),
+            #[cfg(feature = "spatial")]
+            (PK, "mu_static"),
+            #[cfg(feature = "spatial")]
+            (BI, "mu_static"),
         ],
     },
     Flag {
@@ -438,6 +496,10 @@ pub const FLAGS: &[Flag] = &[
             (ST, "mu_kinetic"),
             #[cfg(feature = "multibody")]
             (DB, "mu_kinetic"),
+            #[cfg(feature = "spatial")]
+            (PK, "mu_kinetic"),
+            #[cfg(feature = "spatial")]
+            (BI, "mu_kinetic"),
         ],
     },
     Flag {
@@ -463,8 +525,15 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "angle",
         unit: "deg",
-        help: "Slope angle (incline, cylinder: 0 <= a < 90) or start angle from the floor (ladder, painleve: 0 < a < 90)",
-        fields: &[(I, "angle"), (L, "angle"), (C, "angle"), (P, "angle")],
+        help: "Slope angle (incline, cylinder, puck: 0 <= a < 90; puck: about x, 0 a level table) or start angle from the floor (ladder, painleve: 0 < a < 90)",
+        fields: &[
+            (I, "angle"),
+            (L, "angle"),
+            (C, "angle"),
+            (P, "angle"),
+            #[cfg(feature = "spatial")]
+            (PK, "angle"),
+        ],
     },
     Flag {
         long: "mass",
@@ -485,6 +554,10 @@ pub const FLAGS: &[Flag] = &[
             (ST, "mass"),
             #[cfg(feature = "multibody")]
             (DB, "disc_mass"),
+            #[cfg(feature = "spatial")]
+            (PK, "mass"),
+            #[cfg(feature = "spatial")]
+            (BI, "mass"),
         ],
     },
     Flag {
@@ -504,7 +577,14 @@ pub const FLAGS: &[Flag] = &[
         long: "thickness",
         unit: "m",
         help: "Rod thickness (> 0, less than its length)",
-        fields: &[(M, "rod_thickness"), (L, "thickness"), (F, "rod_thickness"), (P, "thickness")],
+        fields: &[
+            (M, "rod_thickness"),
+            (L, "thickness"),
+            (F, "rod_thickness"),
+            (P, "thickness"),
+            #[cfg(feature = "spatial")]
+            (PK, "thickness"),
+        ],
     },
     Flag {
         long: "width",
@@ -540,6 +620,10 @@ pub const FLAGS: &[Flag] = &[
             (C, "radius"),
             #[cfg(feature = "multibody")]
             (DB, "disc_radius"),
+            #[cfg(feature = "spatial")]
+            (PK, "radius"),
+            #[cfg(feature = "spatial")]
+            (BI, "radius"),
         ],
     },
     Flag {
@@ -567,6 +651,10 @@ pub const FLAGS: &[Flag] = &[
             (ST, "gravity"),
             #[cfg(feature = "multibody")]
             (DB, "gravity"),
+            #[cfg(feature = "spatial")]
+            (PK, "gravity"),
+            #[cfg(feature = "spatial")]
+            (BI, "gravity"),
         ],
     },
     Flag {
@@ -588,6 +676,10 @@ pub const FLAGS: &[Flag] = &[
             (ST, "step"),
             #[cfg(feature = "multibody")]
             (DB, "step"),
+            #[cfg(feature = "spatial")]
+            (PK, "step"),
+            #[cfg(feature = "spatial")]
+            (BI, "step"),
         ],
     },
     Flag {
@@ -609,6 +701,10 @@ pub const FLAGS: &[Flag] = &[
             (ST, "max_time"),
             #[cfg(feature = "multibody")]
             (DB, "max_time"),
+            #[cfg(feature = "spatial")]
+            (PK, "max_time"),
+            #[cfg(feature = "spatial")]
+            (BI, "max_time"),
         ],
     },
     Flag {
@@ -630,6 +726,10 @@ pub const FLAGS: &[Flag] = &[
             (ST, "stick_speed"),
             #[cfg(feature = "multibody")]
             (DB, "stick_speed"),
+            #[cfg(feature = "spatial")]
+            (PK, "stick_speed"),
+            #[cfg(feature = "spatial")]
+            (BI, "stick_speed"),
         ],
     },
     Flag {
@@ -732,6 +832,34 @@ pub const FLAGS: &[Flag] = &[
             (ST, "contact_margin"),
             (DB, "contact_margin"),
         ],
+    }, // The scenes in three dimensions' own flags, last.
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "heading",
+        unit: "deg",
+        help: "The launch's heading from +x (across the slope) toward down the slope; on a level table counter-clockwise from +x",
+        fields: &[(PK, "heading")],
+    },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "spin-x",
+        unit: "rad/s",
+        help: "Spin about the world's x at the start",
+        fields: &[(BI, "spin_x")],
+    },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "spin-y",
+        unit: "rad/s",
+        help: "Spin about the world's y at the start (negative: topspin, positive: backspin)",
+        fields: &[(BI, "spin_y")],
+    },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "spin-z",
+        unit: "rad/s",
+        help: "Spin about the vertical at the start (side spin; a point contact has no friction against it)",
+        fields: &[(BI, "spin_z")],
     },
 ];
 
@@ -982,6 +1110,7 @@ impl fmt::Write for Buf {
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
+    use std::format;
     use std::string::ToString;
 
     use super::*;
@@ -991,7 +1120,10 @@ mod tests {
         for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
             assert_eq!(kind.info().kind, kind);
             assert_eq!(kind.index(), i);
-            assert_eq!(kind.info().contact_names.len(), kind.contacts(), "{kind}");
+            // A scene in three dimensions is not a planar `Scene` (`contacts` 0): its names are its
+            // view's contacts'.
+            let contacts = if kind.is_spatial() { 1 } else { kind.contacts() };
+            assert_eq!(kind.info().contact_names.len(), contacts, "{kind}");
             for long in kind.info().main_flags {
                 let flag = FLAGS.iter().find(|f| f.long == *long);
                 assert!(flag.is_some_and(|f| f.field(kind).is_some()), "{kind}: main flag --{long}");
@@ -1007,8 +1139,9 @@ mod tests {
             assert_eq!(intro.kind, kind);
             assert!(!intro.heading.is_empty() && intro.intro.len() > 200, "{kind}");
         }
-        // The flags of the scenes of several bodies alone come last (the page lists those before).
-        let page_flag = |f: &Flag| f.fields.iter().any(|(k, _)| !k.is_multibody());
+        // The flags of the scenes of several bodies or in three dimensions alone come last (the
+        // page lists those before).
+        let page_flag = |f: &Flag| f.fields.iter().any(|(k, _)| !k.is_multibody() && !k.is_spatial());
         let first_other = FLAGS.iter().position(|f| !page_flag(f)).unwrap_or(FLAGS.len());
         assert!(
             FLAGS[first_other..].iter().all(|f| !page_flag(f)),
@@ -1051,9 +1184,12 @@ mod tests {
         #[cfg(feature = "multibody")]
         multibody_refusals();
         let r = Refusal::NotApplicable { kind: SceneKind::MeterStick, flag: flag_index("angle").unwrap() };
+        let also = if cfg!(feature = "spatial") { ", puck" } else { "" };
         assert_eq!(
             r.worded("--").to_string(),
-            "--angle does not apply to --scene meter-stick (it is a parameter of incline, ladder, cylinder, painleve)"
+            format!(
+                "--angle does not apply to --scene meter-stick (it is a parameter of incline, ladder, cylinder, painleve{also})"
+            )
         );
     }
 

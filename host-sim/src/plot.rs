@@ -257,7 +257,7 @@ pub fn relative<const K: usize>(path: &Path, title: &str, runs: &[&Trajectory<K>
 pub const fn outcome_color(class: crate::trajectory::OutcomeKind) -> RGBColor {
     use crate::trajectory::OutcomeKind as O;
     match class {
-        O::Balanced | O::Held | O::Rolled | O::Stayed => RGBColor(44, 160, 44),
+        O::Balanced | O::Held | O::Rolled | O::Stayed | O::Stopped => RGBColor(44, 160, 44),
         O::Rode => RGBColor(31, 119, 180),
         O::Fell | O::Tipped | O::Jammed => RGBColor(214, 39, 40),
         O::Slid => RGBColor(255, 127, 14),

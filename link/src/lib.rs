@@ -68,7 +68,7 @@
 //!
 //! ## Versions
 //!
-//! [`PROTOCOL_VERSION`] (now 5) is sent by the rig in [`Report::Hello`]. It changes with any
+//! [`PROTOCOL_VERSION`] (now 6) is sent by the rig in [`Report::Hello`]. It changes with any
 //! change a peer could see: a field added, removed, reordered or retyped, a variant added,
 //! or a meaning changed. postcard is not self-describing, so the host must compare it and
 //! refuse (or warn about) a rig with another version rather than guess. Two things never
@@ -301,7 +301,7 @@ pub use wire::{
 
 /// The protocol version, sent in [`Report::Hello`]. Bumped on every change a peer could
 /// see (see the crate docs, "Versions").
-pub const PROTOCOL_VERSION: u16 = 5;
+pub const PROTOCOL_VERSION: u16 = 6;
 
 /// The largest postcard message of this protocol version, in bytes: a [`Report::Telemetry`]
 /// (tag 1, `step` up to a 5-byte varint, 13 `f32`, 2 modes).

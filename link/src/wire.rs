@@ -217,6 +217,8 @@ pub enum OutcomeCode {
     /// The board came out from under the block, which came to rest behind it (the tablecloth).
     /// Since version 5.
     Stayed,
+    /// A sliding body came to rest (the puck). Since version 6.
+    Stopped,
 }
 
 /// The rig's run state ([`Report::State`]).

@@ -2,7 +2,7 @@
 //! (`meterstick_rig::session::outcome_code`), read back by the host
 //! (`meterstick_host_sim::monitor::outcome_of`), is the outcome the core ended in. Until link
 //! protocol 5 a cylinder's `Rolled` and Painlevé's `Jammed` arrived as `Unfinished`; the scenes of
-//! several bodies' `Rode` and `Stayed` are in version 5 too.
+//! several bodies' `Rode` and `Stayed` are in version 5 too, the puck's `Stopped` in version 6.
 
 use meterstick_core::multibody::StepError as MultibodyStepError;
 use meterstick_core::planar::StepError;
@@ -26,6 +26,7 @@ const fn outcome_of_kind(kind: OutcomeKind) -> Outcome {
         OutcomeKind::Failed => Outcome::Failed(StepError::NonFinite),
         OutcomeKind::Rode => Outcome::Rode,
         OutcomeKind::Stayed => Outcome::Stayed,
+        OutcomeKind::Stopped => Outcome::Stopped,
     }
 }
 

@@ -86,7 +86,15 @@ impl Module {
 /// `true` when this build runs `kind` (its [`Module`]).
 #[must_use]
 pub const fn holds(kind: SceneKind) -> bool {
-    Module::of(kind).built()
+    on_page(kind) && Module::of(kind).built()
+}
+
+/// `true` for a scene the page offers: every scene but those in three dimensions, which no page
+/// module runs yet (they reach this crate only where a host build of the whole workspace names
+/// them: the page's own builds leave them out).
+#[must_use]
+pub const fn on_page(kind: SceneKind) -> bool {
+    !kind.is_spatial()
 }
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.

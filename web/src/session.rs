@@ -134,7 +134,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
     out.write_str("{\"version\":")?;
     json_str(out, crate::VERSION)?;
     out.write_str(",\"scenes\":[")?;
-    for (i, kind) in SceneKind::ALL.into_iter().enumerate() {
+    for (i, kind) in SceneKind::ALL.into_iter().filter(|k| crate::config::on_page(*k)).enumerate() {
         let info = kind.info();
         out.write_str(if i > 0 { ",{\"name\":" } else { "{\"name\":" })?;
         json_str(out, kind.name())?;
@@ -168,7 +168,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         out.write_str(",\"help\":")?;
         json_str(out, flag.help)?;
         out.write_str(",\"fields\":{")?;
-        for (j, (kind, field)) in flag.fields.iter().enumerate() {
+        for (j, (kind, field)) in flag.fields.iter().filter(|(k, _)| crate::config::on_page(*k)).enumerate() {
             out.write_str(if j > 0 { "," } else { "" })?;
             json_str(out, kind.name())?;
             out.write_char(':')?;
@@ -207,7 +207,7 @@ mod tests {
     #[test]
     fn the_host_build_runs_every_scene_and_a_module_words_what_it_does_not_hold() {
         let mut s = Session::new();
-        for kind in SceneKind::ALL {
+        for kind in SceneKind::ALL.into_iter().filter(|k| crate::config::on_page(*k)) {
             assert!(holds(kind), "{kind}");
             s.configure(kind);
             assert!(s.create(Precision::F32, LcpLayout::Reduced).is_ok(), "{kind}");

@@ -25,6 +25,8 @@ use super::{
 use crate::multibody::scenes::{BlockOnBlockParams, DiscOnBoardParams, StackParams, TableclothParams};
 use crate::params::ParamError;
 use crate::real::Real;
+#[cfg(feature = "scenes-spatial")]
+use crate::scene::spatial::{BilliardParams, PuckParams};
 
 /// A scene of the catalogue (`docs/scenes.md`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -54,32 +56,47 @@ pub enum SceneKind {
     /// A disc on a board pulled along a floor: it rolls or slides (several bodies).
     #[cfg(feature = "scenes-multibody")]
     DiscOnBoard,
+    /// A puck launched across a table or an incline (three dimensions, [`crate::spatial`]).
+    #[cfg(feature = "scenes-spatial")]
+    Puck,
+    /// A billiard ball struck with spin: it slides, then rolls (three dimensions).
+    #[cfg(feature = "scenes-spatial")]
+    Billiard,
 }
+
+/// The number of scenes this build names ([`SceneKind::ALL`]).
+const SCENE_COUNT: usize = 6
+    + if cfg!(feature = "scenes-multibody") { 4 } else { 0 }
+    + if cfg!(feature = "scenes-spatial") { 2 } else { 0 };
 
 /// The most quantities a scene measures ([`super::Scene::measured`]; `meterstick-catalogue` names
 /// them).
 pub const MAX_MEASURES: usize = 3;
 
 impl SceneKind {
-    /// Every scene, in the order of their numbers ([`Self::from_index`]).
-    /// The scenes of several bodies come last (feature `scenes-multibody`).
-    #[cfg(feature = "scenes-multibody")]
-    pub const ALL: [Self; 10] = [
+    /// Every scene, in the order of their numbers ([`Self::from_index`]): the scenes of one body,
+    /// then those of several bodies (feature `scenes-multibody`), then those in three dimensions
+    /// (feature `scenes-spatial`).
+    pub const ALL: [Self; SCENE_COUNT] = [
         Self::MeterStick,
         Self::Incline,
         Self::Ladder,
         Self::ThreeFingers,
         Self::Cylinder,
         Self::Painleve,
+        #[cfg(feature = "scenes-multibody")]
         Self::BlockOnBlock,
+        #[cfg(feature = "scenes-multibody")]
         Self::Tablecloth,
+        #[cfg(feature = "scenes-multibody")]
         Self::Stack,
+        #[cfg(feature = "scenes-multibody")]
         Self::DiscOnBoard,
+        #[cfg(feature = "scenes-spatial")]
+        Self::Puck,
+        #[cfg(feature = "scenes-spatial")]
+        Self::Billiard,
     ];
-    /// Every scene, in the order of their numbers ([`Self::from_index`]).
-    #[cfg(not(feature = "scenes-multibody"))]
-    pub const ALL: [Self; 6] =
-        [Self::MeterStick, Self::Incline, Self::Ladder, Self::ThreeFingers, Self::Cylinder, Self::Painleve];
 
     /// The scene's name on the command line and in the page's URL, e.g. `meter-stick`.
     #[must_use]
@@ -99,11 +116,16 @@ impl SceneKind {
             Self::Stack => "stack",
             #[cfg(feature = "scenes-multibody")]
             Self::DiscOnBoard => "disc-on-board",
+            #[cfg(feature = "scenes-spatial")]
+            Self::Puck => "puck",
+            #[cfg(feature = "scenes-spatial")]
+            Self::Billiard => "billiard",
         }
     }
 
     /// Its contacts (`K` of its [`super::Scene`]); 0 for a scene of several bodies, whose
-    /// candidate contacts come and go ([`Self::is_multibody`]).
+    /// candidate contacts come and go ([`Self::is_multibody`]), and for a scene in three
+    /// dimensions ([`Self::is_spatial`]), which is not a [`super::Scene`].
     #[must_use]
     pub const fn contacts(self) -> usize {
         match self {
@@ -112,6 +134,21 @@ impl SceneKind {
             Self::Cylinder | Self::Painleve => 1,
             #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock | Self::Tablecloth | Self::Stack | Self::DiscOnBoard => 0,
+            #[cfg(feature = "scenes-spatial")]
+            Self::Puck | Self::Billiard => 0,
+        }
+    }
+
+    /// `true` for a scene in three dimensions ([`super::spatial`], feature `scenes-spatial`): it
+    /// is built by [`SceneParams::build_view`] only, and has no LCP layout to choose.
+    #[must_use]
+    pub const fn is_spatial(self) -> bool {
+        #[cfg(feature = "scenes-spatial")]
+        return matches!(self, Self::Puck | Self::Billiard);
+        #[cfg(not(feature = "scenes-spatial"))]
+        {
+            let _ = self;
+            false
         }
     }
 
@@ -131,10 +168,11 @@ impl SceneKind {
 
     /// `true` for a scene whose LCP layout a driver chooses ([`super::LcpLayout`]: reduced or
     /// full, [`SceneParams::build_view`]'s `layout`); `false` for one that solves its one form
-    /// (a scene of several bodies: the full form, sized by its candidate contacts).
+    /// (a scene of several bodies: the full form, sized by its candidate contacts; a scene in
+    /// three dimensions: one friction line a contact).
     #[must_use]
     pub const fn has_layout_choice(self) -> bool {
-        !self.is_multibody()
+        !self.is_multibody() && !self.is_spatial()
     }
 
     /// The scene's number (its index in [`Self::ALL`]).
@@ -173,6 +211,10 @@ impl SceneKind {
             Self::Stack => &STACK_FIELDS,
             #[cfg(feature = "scenes-multibody")]
             Self::DiscOnBoard => DiscOnBoardParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-spatial")]
+            Self::Puck => PuckParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-spatial")]
+            Self::Billiard => BilliardParams::<f64>::NAMES,
         }
     }
 }
@@ -284,6 +326,12 @@ pub enum SceneParams {
     /// Disc-on-board.
     #[cfg(feature = "scenes-multibody")]
     DiscOnBoard(DiscOnBoardParams<f64>),
+    /// The puck.
+    #[cfg(feature = "scenes-spatial")]
+    Puck(PuckParams<f64>),
+    /// The billiard ball.
+    #[cfg(feature = "scenes-spatial")]
+    Billiard(BilliardParams<f64>),
 }
 
 impl SceneParams {
@@ -305,6 +353,10 @@ impl SceneParams {
             SceneKind::Stack => Self::Stack(StackSetup::default()),
             #[cfg(feature = "scenes-multibody")]
             SceneKind::DiscOnBoard => Self::DiscOnBoard(DiscOnBoardParams::default()),
+            #[cfg(feature = "scenes-spatial")]
+            SceneKind::Puck => Self::Puck(PuckParams::default()),
+            #[cfg(feature = "scenes-spatial")]
+            SceneKind::Billiard => Self::Billiard(BilliardParams::default()),
         }
     }
 
@@ -326,6 +378,10 @@ impl SceneParams {
             Self::Stack(_) => SceneKind::Stack,
             #[cfg(feature = "scenes-multibody")]
             Self::DiscOnBoard(_) => SceneKind::DiscOnBoard,
+            #[cfg(feature = "scenes-spatial")]
+            Self::Puck(_) => SceneKind::Puck,
+            #[cfg(feature = "scenes-spatial")]
+            Self::Billiard(_) => SceneKind::Billiard,
         }
     }
 
@@ -347,6 +403,10 @@ impl SceneParams {
             Self::Stack(p) => p.get(field),
             #[cfg(feature = "scenes-multibody")]
             Self::DiscOnBoard(p) => p.get(field),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Puck(p) => p.get(field),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Billiard(p) => p.get(field),
         }
     }
 
@@ -367,6 +427,10 @@ impl SceneParams {
             Self::Stack(p) => p.set(field, value),
             #[cfg(feature = "scenes-multibody")]
             Self::DiscOnBoard(p) => p.set(field, value),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Puck(p) => p.set(field, value),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Billiard(p) => p.set(field, value),
         }
     }
 
@@ -423,6 +487,16 @@ impl SceneParams {
             Self::Stack(p) => p.validate_as::<T>(),
             #[cfg(feature = "scenes-multibody")]
             Self::DiscOnBoard(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            #[cfg(feature = "scenes-spatial")]
+            Self::Puck(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            #[cfg(feature = "scenes-spatial")]
+            Self::Billiard(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }

@@ -21,7 +21,8 @@
 //! a hundred lines on [`crate::planar::Stepper`]: see `core/examples/three_fingers.rs`.
 //!
 //! [`SceneView`] is one interface over the scenes of every engine, for a driver that names none
-//! ([`PlanarView`] over a [`Scene`], [`MultibodyView`] over a scene of several bodies).
+//! ([`PlanarView`] over a [`Scene`], [`MultibodyView`] over a scene of several bodies,
+//! `spatial::SpatialView` over a scene in three dimensions: [`spatial`], feature `scenes-spatial`).
 
 mod cylinder;
 mod incline;
@@ -32,6 +33,8 @@ mod outcome;
 mod painleve;
 mod registry;
 mod scene_trait;
+#[cfg(feature = "scenes-spatial")]
+pub mod spatial;
 mod three_fingers;
 mod view;
 

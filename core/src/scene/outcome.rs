@@ -37,6 +37,12 @@ pub enum Outcome {
     /// A step of a scene of several bodies failed ([`crate::multibody::StepError`]; the state is
     /// that before it). Its kind is [`OutcomeKind::Failed`].
     MultibodyFailed(crate::multibody::StepError),
+    /// Puck: the sliding body came to rest (its contact sticks).
+    Stopped,
+    /// A step of a scene in three dimensions failed ([`crate::spatial::StepError`]; the state is
+    /// that before it). Its kind is [`OutcomeKind::Failed`].
+    #[cfg(feature = "spatial")]
+    SpatialFailed(crate::spatial::StepError),
 }
 
 /// An [`Outcome`] without its cause: the one list of outcomes every driver names and numbers
@@ -61,17 +67,19 @@ pub enum OutcomeKind {
     Jammed,
     /// See [`Outcome::Unfinished`].
     Unfinished,
-    /// See [`Outcome::Failed`] and [`Outcome::MultibodyFailed`].
+    /// See [`Outcome::Failed`], [`Outcome::MultibodyFailed`] and `Outcome::SpatialFailed`.
     Failed,
     /// See [`Outcome::Rode`].
     Rode,
     /// See [`Outcome::Stayed`].
     Stayed,
+    /// See [`Outcome::Stopped`].
+    Stopped,
 }
 
 impl OutcomeKind {
     /// Every outcome, in the order of their codes ([`Self::code`]).
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 12] = [
         Self::Balanced,
         Self::Fell,
         Self::Held,
@@ -83,10 +91,11 @@ impl OutcomeKind {
         Self::Failed,
         Self::Rode,
         Self::Stayed,
+        Self::Stopped,
     ];
 
     /// A short stable name: `Balanced`, `Fell`, `Held`, `Slid`, `Tipped`, `Rolled`, `Jammed`,
-    /// `Unfinished`, `Failed`, `Rode`, `Stayed`.
+    /// `Unfinished`, `Failed`, `Rode`, `Stayed`, `Stopped`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -101,6 +110,7 @@ impl OutcomeKind {
             Self::Failed => "Failed",
             Self::Rode => "Rode",
             Self::Stayed => "Stayed",
+            Self::Stopped => "Stopped",
         }
     }
 
@@ -145,6 +155,9 @@ impl Outcome {
             Self::Failed(_) | Self::MultibodyFailed(_) => OutcomeKind::Failed,
             Self::Rode => OutcomeKind::Rode,
             Self::Stayed => OutcomeKind::Stayed,
+            Self::Stopped => OutcomeKind::Stopped,
+            #[cfg(feature = "spatial")]
+            Self::SpatialFailed(_) => OutcomeKind::Failed,
         }
     }
 
@@ -157,7 +170,12 @@ impl Outcome {
     /// `true` for an outcome of the physics (not a failed step).
     #[must_use]
     pub const fn is_physical(&self) -> bool {
-        !matches!(self, Self::Failed(_) | Self::MultibodyFailed(_))
+        match self {
+            Self::Failed(_) | Self::MultibodyFailed(_) => false,
+            #[cfg(feature = "spatial")]
+            Self::SpatialFailed(_) => false,
+            _ => true,
+        }
     }
 }
 
@@ -173,11 +191,20 @@ impl From<crate::multibody::StepError> for Outcome {
     }
 }
 
+#[cfg(feature = "spatial")]
+impl From<crate::spatial::StepError> for Outcome {
+    fn from(e: crate::spatial::StepError) -> Self {
+        Self::SpatialFailed(e)
+    }
+}
+
 impl core::fmt::Display for Outcome {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Self::Failed(e) => write!(f, "Failed ({e})"),
             Self::MultibodyFailed(e) => write!(f, "Failed ({e})"),
+            #[cfg(feature = "spatial")]
+            Self::SpatialFailed(e) => write!(f, "Failed ({e})"),
             other => f.write_str(other.name()),
         }
     }

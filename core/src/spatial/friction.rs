@@ -85,6 +85,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         &self,
         solver: &Lemke<T, N>,
         basis: &mut Basis<N>,
+        pivots: &mut u32,
         v_free: &Vector<T>,
         w_free: &Vector<T>,
     ) -> Result<Solved<T, K>, StepError> {
@@ -96,6 +97,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             let lcp = self.lcp::<N>(&lines);
             let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
             *basis = sol.basis;
+            *pivots = pivots.saturating_add(sol.pivots);
             let mut impulses = [(T::zero(), T::zero()); K];
             let mut full = [zero; K];
             for (i, (c, line)) in self.touches.iter().zip(&lines).enumerate() {
@@ -145,6 +147,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         &self,
         solver: &Lemke<T, N>,
         basis: &mut Basis<N>,
+        pivots: &mut u32,
         k: usize,
         v_free: &Vector<T>,
         w_free: &Vector<T>,
@@ -193,6 +196,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let lcp = Lcp::from_rows(&m, &q);
         let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
         *basis = sol.basis;
+        *pivots = pivots.saturating_add(sol.pivots);
         let zero = [o; 3];
         let mut impulses = [(o, zero); K];
         let mut full = [zero; K];

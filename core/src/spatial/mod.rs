@@ -87,7 +87,7 @@ mod friction;
 mod report;
 mod stepper;
 
-pub use algebra::{Quaternion, Vector, about, identity, rotate};
+pub use algebra::{Quaternion, Vector, about, dot, identity, norm, perpendicular, rotate};
 pub use body::{Body, State};
 pub use report::{ContactReport, MAX_DIRECTIONS, Mode, StepError, StepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, Settings, Shape, Stepper};

@@ -67,6 +67,8 @@ pub struct StepReport<T, const K: usize> {
     pub state: State<T>,
     /// Its contacts, in the order [`super::Stepper::new`] was given their shapes.
     pub contacts: [ContactReport<T>; K],
+    /// Lemke pivots of the step's solves (every friction line it tried).
+    pub pivots: u32,
 }
 
 /// Why a step failed; the state is then unchanged.
@@ -85,4 +87,19 @@ pub enum StepError {
     },
     /// The state after the step would not be finite.
     NonFinite,
+}
+
+impl core::fmt::Display for StepError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Solver(e) => write!(f, "the contact's LCP: {e}"),
+            Self::ConeNotConverged => {
+                write!(f, "the friction direction did not meet the slip in {MAX_DIRECTIONS} tries")
+            }
+            Self::ConeUnverified { residual } => {
+                write!(f, "the answer is outside Coulomb's circular cone by {residual:e} of mu p_n")
+            }
+            Self::NonFinite => f.write_str("the state after the step is not finite"),
+        }
+    }
 }

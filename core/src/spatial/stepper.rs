@@ -239,6 +239,32 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
         &self.modes
     }
 
+    /// The plane.
+    #[must_use]
+    pub const fn plane(&self) -> &Plane<T> {
+        &self.plane
+    }
+
+    /// The step's settings.
+    #[must_use]
+    pub const fn settings(&self) -> &Settings<T> {
+        &self.settings
+    }
+
+    /// Contact `i`'s point from the centre of mass now, world axes (m); `None` past `K`.
+    #[must_use]
+    pub fn lever(&self, i: usize) -> Option<Vector<T>> {
+        self.shapes.get(i).map(|shape| self.arm(shape, &self.state))
+    }
+
+    /// Contact `i`'s gap now: its point's height over the plane along the plane's normal (m,
+    /// negative when it has sunk in); `None` past `K`.
+    #[must_use]
+    pub fn gap(&self, i: usize) -> Option<T> {
+        let r = self.lever(i)?;
+        Some(dot(&self.plane.normal, &sub(&add(&self.state.position, &r), &self.plane.point)))
+    }
+
     /// Simulated time, s.
     #[must_use]
     pub fn time(&self) -> T {
@@ -280,6 +306,7 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
                 mu,
             }
         });
+        let mut pivots = 0;
         let (contacts, v, w) = if touches.iter().any(|c: &Touch<T>| c.active) {
             let contacts = Contacts {
                 body: &self.body,
@@ -292,10 +319,13 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
                 stick_speed: s.stick_speed,
             };
             match s.friction {
-                FrictionCone::Circular => contacts.solve(&self.solver, &mut self.basis, &v_free, &w_free)?,
+                FrictionCone::Circular => {
+                    contacts.solve(&self.solver, &mut self.basis, &mut pivots, &v_free, &w_free)?
+                }
                 FrictionCone::Pyramid { directions } => contacts.solve_pyramid(
                     &self.solver,
                     &mut self.basis,
+                    &mut pivots,
                     usize::from(directions),
                     &v_free,
                     &w_free,
@@ -324,6 +354,6 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
         self.state = state;
         self.modes = contacts.map(|c| c.mode);
         self.steps += 1;
-        Ok(StepReport { time: self.time(), state, contacts })
+        Ok(StepReport { time: self.time(), state, contacts, pivots })
     }
 }

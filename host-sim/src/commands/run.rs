@@ -146,7 +146,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<String> {
     // The paper's speeds are the meter stick's (three-fingers has a `--speed` too, and one run).
     let paper = (args.scene.kind() == SceneKind::MeterStick).then_some(("speed", &PAPER_SPEEDS[..]));
     let specs = args.scene.specs(paper)?;
-    if args.scene.kind().is_multibody() {
+    if crate::multibody::runs(args.scene.kind()) {
         for (_, spec) in &specs {
             check_recorded_steps(spec)?;
         }

@@ -25,7 +25,7 @@ pub fn run(cmd: &SceneCmdArgs) -> anyhow::Result<String> {
     let [(_, spec)] = specs.as_slice() else {
         anyhow::bail!("host-sim scene runs one scene: give each flag one value (host-sim run takes lists)");
     };
-    if spec.kind().is_multibody() {
+    if crate::multibody::runs(spec.kind()) {
         return crate::multibody::summarise(spec, cmd.scene.precision);
     }
     crate::with_contacts!(spec.kind(), K => summarise::<K>(cmd, spec))

@@ -76,6 +76,7 @@ pub fn outcome_of(o: OutcomeCode) -> RunOutcome {
         OutcomeCode::Jammed => RunOutcome::of(OutcomeKind::Jammed),
         OutcomeCode::Rode => RunOutcome::of(OutcomeKind::Rode),
         OutcomeCode::Stayed => RunOutcome::of(OutcomeKind::Stayed),
+        OutcomeCode::Stopped => RunOutcome::of(OutcomeKind::Stopped),
         OutcomeCode::Unfinished => RunOutcome::of(OutcomeKind::Unfinished),
         other => RunOutcome { class: OutcomeKind::Failed, detail: Some(format!("{other:?}")) },
     }

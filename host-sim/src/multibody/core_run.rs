@@ -3,12 +3,13 @@
 
 use indicatif::ProgressBar;
 use meterstick_core::Real;
+use meterstick_core::planar::ContactMode;
 use meterstick_core::scene::{
     Axis, FigureName, LcpLayout, LoadPart, Outcome, Pose, Precision, SceneKind, SceneParams, SceneView,
     Velocity, ViewVisitor,
 };
 
-use super::{BodiesCounters, BodiesRow, BodiesRun};
+use super::{BodiesCounters, BodiesRow, BodiesRun, ContactRow, SpatialBody};
 use crate::progress::{self, CHECK_EVERY_STEPS};
 use crate::trajectory::{Measured, RunOutcome};
 
@@ -21,16 +22,44 @@ fn row_of<T: Real>(view: &dyn SceneView<T>) -> BodiesRow {
         v: Vec::new(),
         interface_forces: Vec::new(),
         corner_loads: Vec::new(),
+        spatial: Vec::new(),
+        contacts: Vec::new(),
     };
+    let f64s = |v: [T; 3]| v.map(Real::as_f64);
     for b in (0..view.body_count()).filter_map(|i| view.body(i)) {
-        let (q, v) = match (b.pose, b.velocity) {
+        match (b.pose, b.velocity) {
             (Pose::Planar { x, y, theta }, Velocity::Planar { vx, vy, omega }) => {
-                ([x, y, theta].map(Real::as_f64), [vx, vy, omega].map(Real::as_f64))
+                row.q.push(f64s([x, y, theta]));
+                row.v.push(f64s([vx, vy, omega]));
             }
-            _ => ([f64::NAN; 3], [f64::NAN; 3]),
-        };
-        row.q.push(q);
-        row.v.push(v);
+            (Pose::Spatial { position, orientation }, Velocity::Spatial { linear, angular }) => {
+                row.spatial.push(SpatialBody {
+                    position: f64s(position),
+                    orientation: orientation.map(Real::as_f64),
+                    velocity: f64s(linear),
+                    angular: f64s(angular),
+                });
+            }
+            _ => {
+                row.q.push([f64::NAN; 3]);
+                row.v.push([f64::NAN; 3]);
+            }
+        }
+    }
+    if !row.spatial.is_empty() {
+        for c in (0..view.contact_count()).filter_map(|i| view.contact(i)) {
+            let friction = c.friction_impulse.as_f64();
+            row.contacts.push(ContactRow {
+                mode: match c.mode {
+                    ContactMode::Separated => 0,
+                    ContactMode::Sticking => 1,
+                    ContactMode::Sliding(_) => 2,
+                },
+                point: f64s(c.point),
+                normal_impulse: c.normal_impulse.as_f64(),
+                friction_impulse: f64s(c.tangent).map(|t| t * friction),
+            });
+        }
     }
     for figure in (0..view.figure_count()).filter_map(|i| view.figure(i)) {
         let value = figure.value.as_f64();

@@ -1,7 +1,11 @@
-//! What `docs/scenes.md`'s laws say of the scenes of several bodies.
+//! What `docs/scenes.md`'s laws say of the scenes of several bodies and of those in three
+//! dimensions.
 
 use meterstick_core::multibody::scenes::DiscOnBoardParams;
-use meterstick_core::scene::{OutcomeKind, SceneParams};
+use meterstick_core::scene::spatial::{BilliardParams, PuckParams};
+use meterstick_core::scene::{OutcomeKind, SceneKind, SceneParams};
+
+use crate::trajectory::Measured;
 
 /// What `docs/scenes.md`'s laws say of a scene of several bodies: the outcome, and the
 /// accelerations where the law gives them.
@@ -13,6 +17,8 @@ pub struct Law {
     pub lower_acceleration: Option<f64>,
     /// The upper body's (m/s^2).
     pub upper_acceleration: Option<f64>,
+    /// The scene's measured quantities where the law gives them (a scene in three dimensions).
+    pub measured: Measured,
     /// The law in words, with its thresholds.
     pub text: &'static str,
 }
@@ -48,6 +54,7 @@ pub fn law(spec: &SceneParams) -> Option<Law> {
                 outcome: Some(outcome),
                 lower_acceleration: Some(a_bottom),
                 upper_acceleration: Some(a_top),
+                measured: Measured::default(),
                 text: "Held iff F <= mu_floor (M + m) g; Rode iff F <= (mu_s + mu_floor) (M + m) g, at \
                        F / (M + m) - mu_floor g (Tipped when that exceeds g w / h); else Slid: a_top = mu_k g",
             }
@@ -60,6 +67,7 @@ pub fn law(spec: &SceneParams) -> Option<Law> {
                 outcome: Some(outcome),
                 lower_acceleration: Some(a_board),
                 upper_acceleration: Some(a_block),
+                measured: Measured::default(),
                 text: "Held iff F <= mu_floor (m + m_b) g; Rode iff F <= (mu_s + mu_floor) (m + m_b) g; \
                        else the board comes out and the block Stayed, moved less the harder the pull",
             }
@@ -74,9 +82,12 @@ pub fn law(spec: &SceneParams) -> Option<Law> {
             },
             lower_acceleration: None,
             upper_acceleration: None,
+            measured: Measured::default(),
             text: "Held iff the overhang scale s < 1 (every block's load inside the edge below it), Fell above",
         },
         SceneParams::DiscOnBoard(p) => disc_on_board_law(&p),
+        SceneParams::Puck(p) => puck_law(&p),
+        SceneParams::Billiard(p) => billiard_law(&p),
         _ => return None,
     })
 }
@@ -108,8 +119,69 @@ pub fn disc_on_board_law(p: &DiscOnBoardParams<f64>) -> Law {
         outcome: Some(outcome),
         lower_acceleration: Some(a_board),
         upper_acceleration: Some(a_disc),
+        measured: Measured::default(),
         text: "Held iff F <= mu_floor (M + m) g; else Rolled at A = (F - mu_floor (M + m) g) / (M + m / 3), \
                a_disc = A / 3, iff A <= 3 mu_s g; else Slid: a_disc = mu_k g; Unfinished once the rim's point \
                passes an end of the board",
+    }
+}
+
+/// The puck's law (`docs/scenes.md`, "puck"): on the slope `tan(alpha)` against `mu_k`: below it
+/// the puck stops (and `mu_s >= mu_k` holds it), above it it slides on; at it, launched across the
+/// slope, its speed tends to half the launch speed (it slides on). On a level table it stops after
+/// `v^2 / (2 mu_k g)` along its heading, at `v / (mu_k g)` (the first step's `mu_s` aside).
+/// Stopping later than `max_time`, it ends `Slid`.
+#[must_use]
+pub fn puck_law(p: &PuckParams<f64>) -> Law {
+    let (v, g, mu) = (p.speed, p.gravity, p.mu_kinetic);
+    let slope = p.angle.tan();
+    let level = p.angle == 0.0;
+    let (outcome, measured) = if v == 0.0 {
+        // At rest from the start: it stays iff static friction holds it on the slope.
+        (if slope <= p.mu_static { OutcomeKind::Stopped } else { OutcomeKind::Slid }, [None; 3])
+    } else if level && mu * g > 0.0 {
+        let stops = v / (mu * g) <= p.max_time;
+        let heading = p.heading.to_degrees();
+        let heading = heading - 360.0 * ((heading + 180.0) / 360.0).floor();
+        let law = [Some(0.0), Some(v * v / (2.0 * mu * g)), Some(heading)];
+        (if stops { OutcomeKind::Stopped } else { OutcomeKind::Slid }, if stops { law } else { [None; 3] })
+    } else if slope < mu {
+        (OutcomeKind::Stopped, [None; 3])
+    } else {
+        // At `mu_k = tan(alpha)` (to round-off), launched across the slope.
+        let half =
+            ((slope - mu).abs() <= 1e-12 * slope && p.heading.abs() <= f64::EPSILON).then_some(v / 2.0);
+        (OutcomeKind::Slid, [half, None, None])
+    };
+    Law {
+        outcome: Some(outcome),
+        lower_acceleration: None,
+        upper_acceleration: None,
+        measured: Measured::of(SceneKind::Puck, measured),
+        text: "level table: Stopped after v^2 / (2 mu_k g) along its heading; incline: Stopped iff tan(angle) < mu_k, \
+               else Slid (at mu_k = tan(angle), launched across the slope, tending to half the launch speed)",
+    }
+}
+
+/// The billiard ball's law (`docs/scenes.md`, "billiard"): its slip `u0 = (v0 - R spin_y, R
+/// spin_x)` shrinks along its own direction at `7 mu_k g / 2`; it rolls from `2 |u0| / (7 mu_k g)`
+/// at `(5 v0 + 2 R omega0 x z) / 7` (the first step's `mu_s` aside); later than `max_time`, the run
+/// ends `Unfinished`.
+#[must_use]
+pub fn billiard_law(p: &BilliardParams<f64>) -> Law {
+    let (r, g, mu) = (p.radius, p.gravity, p.mu_kinetic);
+    let slip = (p.speed - r * p.spin_y).hypot(r * p.spin_x);
+    let t = if slip == 0.0 { 0.0 } else { 2.0 * slip / (7.0 * mu * g) };
+    let rolls = t.is_finite() && t <= p.max_time;
+    let v = [(5.0 * p.speed + 2.0 * r * p.spin_y) / 7.0, -2.0 * r * p.spin_x / 7.0];
+    Law {
+        outcome: Some(if rolls { OutcomeKind::Rolled } else { OutcomeKind::Unfinished }),
+        lower_acceleration: None,
+        upper_acceleration: None,
+        measured: Measured::of(
+            SceneKind::Billiard,
+            if rolls { [Some(t), Some(v[0]), Some(v[1])] } else { [None; 3] },
+        ),
+        text: "Rolled at t = 2 |u0| / (7 mu_k g), u0 = (v0 - R spin_y, R spin_x), at v = (5 v0 + 2 R omega0 x z) / 7",
     }
 }

@@ -32,6 +32,13 @@ pub use core_run::run_core;
 pub use law::{Law, disc_on_board_law, law};
 pub use reach::{BodiesWarning, F32_MASS_RATIO_REACH, MassRatioReach, warnings};
 pub use reference_run::{run_reference, to_reference};
+
+/// `true` for a scene this module runs: of several bodies, or in three dimensions (every scene
+/// but those of one planar body, which `crate::trajectory` runs).
+#[must_use]
+pub const fn runs(kind: SceneKind) -> bool {
+    kind.is_multibody() || kind.is_spatial()
+}
 pub use report::{
     BodiesComparison, BodiesImplementation, BodiesSummary, LawSummary, max_deviation, run_all, summarise,
 };
@@ -55,6 +62,37 @@ pub struct BodiesRow {
     /// split open, the least-norm load (`docs/formulation.md`, "The load: the least norm"). Row
     /// 0: zero.
     pub corner_loads: Vec<[[f64; 2]; 4]>,
+    /// Each body in three dimensions (a scene in three dimensions' bodies: `q` and `v` then hold
+    /// none).
+    pub spatial: Vec<SpatialBody>,
+    /// A scene in three dimensions' contacts, each over the step (none for a planar scene).
+    pub contacts: Vec<ContactRow>,
+}
+
+/// A body in three dimensions after a step (world axes, `z` up).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpatialBody {
+    /// Its centre of mass (m).
+    pub position: [f64; 3],
+    /// Its orientation, the unit quaternion `[w, x, y, z]`.
+    pub orientation: [f64; 4],
+    /// Its centre of mass's velocity (m/s).
+    pub velocity: [f64; 3],
+    /// Its angular velocity (rad/s).
+    pub angular: [f64; 3],
+}
+
+/// A contact of a scene in three dimensions over a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRow {
+    /// Its mode after the step: 0 separated, 1 sticking, 2 sliding.
+    pub mode: u8,
+    /// Its point (m, world).
+    pub point: [f64; 3],
+    /// The normal impulse (N s).
+    pub normal_impulse: f64,
+    /// The friction impulse on the body (N s, world).
+    pub friction_impulse: [f64; 3],
 }
 
 /// A run's solver counters (zero where an implementation has no such thing).

@@ -95,6 +95,8 @@ fn reference_row(r: &reference::Row) -> BodiesRow {
         v: r.v.clone(),
         interface_forces: r.interface_forces.clone(),
         corner_loads: r.corner_loads.clone(),
+        spatial: Vec::new(),
+        contacts: Vec::new(),
     }
 }
 
@@ -141,6 +143,8 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
             v: r.v.clone(),
             interface_forces: r.interface_forces.clone(),
             corner_loads: r.corner_loads.clone(),
+            spatial: Vec::new(),
+            contacts: Vec::new(),
         },
         outcome,
         measured: Measured::of(kind, measures),

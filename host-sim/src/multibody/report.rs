@@ -23,6 +23,20 @@ pub fn max_deviation(a: &BodiesRun, b: &BodiesRun) -> (f64, f64) {
             worst.0 = worst.0.max((x[0] - y[0]).hypot(x[1] - y[1]));
             worst.1 = worst.1.max((x[2] - y[2]).abs());
         }
+        for (x, y) in p.spatial.iter().zip(&q.spatial) {
+            let d = (0..3).map(|i| (x.position[i] - y.position[i]).powi(2)).sum::<f64>().sqrt();
+            // The angle of the turn from one orientation to the other: the chord between the unit
+            // quaternions (the nearer of q2 and -q2) is 2 sin(angle / 4), exact for small angles.
+            let sign = if (0..4).map(|i| x.orientation[i] * y.orientation[i]).sum::<f64>() < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            let chord =
+                (0..4).map(|i| (x.orientation[i] - sign * y.orientation[i]).powi(2)).sum::<f64>().sqrt();
+            worst.0 = worst.0.max(d);
+            worst.1 = worst.1.max(4.0 * (chord / 2.0).min(1.0).asin());
+        }
     };
     for (p, q) in a.rows.iter().zip(&b.rows) {
         compare(p, q);
@@ -68,6 +82,20 @@ fn measured_text(spec: &SceneParams, m: &Measured, law: Option<&Law>) -> String 
             of(lower),
             of(upper)
         ),
+        SceneKind::Puck | SceneKind::Billiard => {
+            let keys = meterstick_catalogue::SCENES[spec.kind().index()].measures;
+            let ours = m.values(spec.kind());
+            let theirs = law.map(|l| l.measured.values(spec.kind()));
+            keys.iter()
+                .enumerate()
+                .map(|(i, key)| {
+                    let predicted =
+                        theirs.and_then(|t| t[i]).map_or_else(String::new, |v| format!(" (law {v:.6})"));
+                    format!("{key} {}{predicted}", of(ours[i]))
+                })
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
         _ => format!(
             "largest point speed {} m/s",
             m.max_speed_m_s.map_or_else(|| "-".to_string(), |v| format!("{v:.3e}"))
@@ -97,18 +125,21 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
     }
     let _ = writeln!(out, "{}", measured_text(spec, &run.measured, law.as_ref()));
     let c = &run.counters;
+    let contacts = if spec.kind().is_multibody() {
+        format!("most active contacts {} (LCP of {} rows, the full form)", c.max_active, c.lcp_rows)
+    } else {
+        format!("LCP of {} rows (one friction line a contact, turned to its slip)", c.lcp_rows)
+    };
     let _ = writeln!(
         out,
-        "steps {}, pivots {} (mean {:.4}/step, max {}), warm basis solved {} steps directly, most active contacts {} (LCP of {} rows, the full form)",
+        "steps {}, pivots {} (mean {:.4}/step, max {}), warm basis solved {} steps directly, {contacts}",
         run.steps,
         c.pivots,
         c.pivots as f64 / run.steps.max(1) as f64,
         c.max_pivots,
         c.warm_direct,
-        c.max_active,
-        c.lcp_rows
     );
-    if run.checksum.is_some() {
+    if run.checksum.is_some() && spec.kind().is_multibody() {
         let _ = writeln!(out, "{}", rule_text(c));
     }
     if let Some(warning) = crate::scenes::friction_warning(spec, precision) {
@@ -191,6 +222,8 @@ pub struct LawSummary {
     pub lower_acceleration_m_s2: Option<f64>,
     /// The upper body's (m/s^2).
     pub upper_acceleration_m_s2: Option<f64>,
+    /// The scene's measured quantities where the law gives them (a scene in three dimensions).
+    pub measured: Measured,
 }
 
 /// One run of a scene of several bodies, core and reference: its `summary.json`.
@@ -257,6 +290,7 @@ pub fn run_all(
                 outcome: l.outcome,
                 lower_acceleration_m_s2: l.lower_acceleration,
                 upper_acceleration_m_s2: l.upper_acceleration,
+                measured: l.measured,
             }),
             warnings: warnings(spec, precision),
         };
@@ -303,8 +337,9 @@ pub fn run_all(
     crate::output::write_json(&out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;
     let _ = writeln!(
         text,
-        "files in {} (each run: core.csv, reference.csv, positions.svg, velocities.svg, angles.svg, summary.json)",
-        out.display()
+        "files in {} (each run: core.csv, reference.csv, positions.svg, velocities.svg, {}, summary.json)",
+        out.display(),
+        if specs.iter().any(|(_, s)| s.kind().is_spatial()) { "path.svg" } else { "angles.svg" }
     );
     Ok(text)
 }

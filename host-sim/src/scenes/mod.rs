@@ -140,9 +140,12 @@ impl ParamsExt for SceneParams {
                 stick_speed: p.stick_speed,
                 max_time: p.max_time,
             }),
-            Self::BlockOnBlock(_) | Self::Tablecloth(_) | Self::Stack(_) | Self::DiscOnBoard(_) => {
-                return None;
-            }
+            Self::BlockOnBlock(_)
+            | Self::Tablecloth(_)
+            | Self::Stack(_)
+            | Self::DiscOnBoard(_)
+            | Self::Puck(_)
+            | Self::Billiard(_) => return None,
         })
     }
 }

@@ -104,7 +104,9 @@ pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
         SceneParams::BlockOnBlock(_)
         | SceneParams::Tablecloth(_)
         | SceneParams::Stack(_)
-        | SceneParams::DiscOnBoard(_) => f64::NAN,
+        | SceneParams::DiscOnBoard(_)
+        | SceneParams::Puck(_)
+        | SceneParams::Billiard(_) => f64::NAN,
     };
     match super::figures::bodies_of(spec).0.as_slice() {
         &[(m, w, h, j)] if !speed.is_nan() => (m, j, w.max(h), speed),
@@ -202,11 +204,14 @@ pub fn penetrations(spec: &SceneParams, s: &[f64; 6], supports: &[[f64; 2]]) -> 
         }
         // The lower end, body point (-L/2, 0), against the floor y = 0.
         SceneParams::Painleve(p) => vec![(-world([-p.length / 2.0, 0.0])[1]).max(0.0)],
-        // Not for several bodies (`super::bodies`): NaN fails any bound.
+        // Not for several bodies (`super::bodies`) nor in three dimensions (not stressed yet): NaN
+        // fails any bound.
         SceneParams::BlockOnBlock(_)
         | SceneParams::Tablecloth(_)
         | SceneParams::Stack(_)
-        | SceneParams::DiscOnBoard(_) => vec![f64::NAN],
+        | SceneParams::DiscOnBoard(_)
+        | SceneParams::Puck(_)
+        | SceneParams::Billiard(_) => vec![f64::NAN],
     }
 }
 

@@ -155,6 +155,25 @@ pub struct Measured {
     /// for other scenes).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_speed_m_s: Option<f64>,
+    /// Puck: its speed at the end (m/s; absent for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub final_speed_m_s: Option<f64>,
+    /// Puck: how far it ended from its start (m; absent for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub displacement_m: Option<f64>,
+    /// Puck: the heading of its displacement, from `x` toward down the slope (degrees; absent
+    /// for other scenes and before it moved).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub displacement_heading_deg: Option<f64>,
+    /// Billiard: when it started rolling (s; absent for other scenes and before it rolled).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rolling_time_s: Option<f64>,
+    /// Billiard: its velocity along `x` then (m/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rolling_velocity_x_m_s: Option<f64>,
+    /// Billiard: its velocity along `y` then (m/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rolling_velocity_y_m_s: Option<f64>,
 }
 
 impl Measured {
@@ -182,8 +201,38 @@ impl Measured {
             }
             SceneKind::Tablecloth => m.block_displacement_m = a,
             SceneKind::Stack => m.max_speed_m_s = a,
+            SceneKind::Puck => (m.final_speed_m_s, m.displacement_m, m.displacement_heading_deg) = (a, b, c),
+            SceneKind::Billiard => {
+                (m.rolling_time_s, m.rolling_velocity_x_m_s, m.rolling_velocity_y_m_s) = (a, b, c);
+            }
         }
         m
+    }
+
+    /// The values [`Self::of`] was given for a scene of `kind`, in the order of its catalogue
+    /// entry's `measures`.
+    #[must_use]
+    pub fn values(&self, kind: SceneKind) -> [Option<f64>; MAX_MEASURES] {
+        let m = self;
+        match kind {
+            SceneKind::MeterStick => [m.meeting.map(|x| x.time_s), m.meeting.map(|x| x.com_offset_m), None],
+            SceneKind::Incline => [m.acceleration_m_s2, None, None],
+            SceneKind::Ladder => [m.wall_release_height_m, m.wall_release_ratio, None],
+            SceneKind::ThreeFingers => [None; MAX_MEASURES],
+            SceneKind::Cylinder => [m.acceleration_m_s2, m.angular_acceleration_rad_s2, None],
+            SceneKind::Painleve => [
+                m.jam.map(|j| j.time_s),
+                m.jam.map(|j| j.normal_impulse_n_s),
+                m.jam.map(|j| j.friction_impulse_n_s),
+            ],
+            SceneKind::BlockOnBlock | SceneKind::DiscOnBoard => {
+                [m.acceleration_m_s2, m.top_acceleration_m_s2, None]
+            }
+            SceneKind::Tablecloth => [m.block_displacement_m, None, None],
+            SceneKind::Stack => [m.max_speed_m_s, None, None],
+            SceneKind::Puck => [m.final_speed_m_s, m.displacement_m, m.displacement_heading_deg],
+            SceneKind::Billiard => [m.rolling_time_s, m.rolling_velocity_x_m_s, m.rolling_velocity_y_m_s],
+        }
     }
 }
 

@@ -59,6 +59,7 @@ pub const fn outcome_code(o: Outcome) -> OutcomeCode {
         OutcomeKind::Unfinished => OutcomeCode::Unfinished,
         OutcomeKind::Rode => OutcomeCode::Rode,
         OutcomeKind::Stayed => OutcomeCode::Stayed,
+        OutcomeKind::Stopped => OutcomeCode::Stopped,
         // `Outcome::Failed` returned above; a failed step of several bodies other than a
         // non-finite state is the solver's (its LCP or more contacts than it holds).
         OutcomeKind::Failed => OutcomeCode::SolverFailed,

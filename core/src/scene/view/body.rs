@@ -16,6 +16,21 @@ pub enum BodyShape<T> {
         /// The radius (m).
         radius: T,
     },
+    /// A ball of `radius` (m), in three dimensions.
+    #[cfg(feature = "spatial")]
+    Ball {
+        /// The radius (m).
+        radius: T,
+    },
+    /// A flat cylinder (a puck, a curling stone) of `radius` about the body's `z` axis and
+    /// `thickness` along it (m), in three dimensions.
+    #[cfg(feature = "spatial")]
+    Puck {
+        /// The radius (m).
+        radius: T,
+        /// The thickness (m).
+        thickness: T,
+    },
 }
 
 /// Where a body is: its centre of mass and its orientation, in the dimension the body moves in.
@@ -32,6 +47,15 @@ pub enum Pose<T> {
         /// Angle (rad, counter-clockwise).
         theta: T,
     },
+    /// In three dimensions: the centre of mass (m, world, `z` up) and the body's orientation, the
+    /// unit quaternion `[w, x, y, z]` that turns its frame into the world's.
+    #[cfg(feature = "spatial")]
+    Spatial {
+        /// The centre of mass (m).
+        position: [T; 3],
+        /// The orientation `[w, x, y, z]`.
+        orientation: [T; 4],
+    },
 }
 
 /// How a body moves: its centre of mass's velocity and its angular velocity, in the dimension the
@@ -47,6 +71,15 @@ pub enum Velocity<T> {
         vy: T,
         /// `d theta / dt` (rad/s).
         omega: T,
+    },
+    /// In three dimensions: the centre of mass's velocity (m/s) and the angular velocity (rad/s),
+    /// world axes.
+    #[cfg(feature = "spatial")]
+    Spatial {
+        /// The centre of mass's velocity (m/s).
+        linear: [T; 3],
+        /// The angular velocity (rad/s).
+        angular: [T; 3],
     },
 }
 
@@ -65,6 +98,15 @@ pub enum Force<T> {
         /// About the centre of mass (N m, counter-clockwise).
         torque: T,
     },
+    /// In three dimensions: a force at the centre of mass (N) and a torque about it (N m), world
+    /// axes.
+    #[cfg(feature = "spatial")]
+    Spatial {
+        /// The force (N).
+        force: [T; 3],
+        /// The torque (N m).
+        torque: [T; 3],
+    },
 }
 
 /// One body now: its shape, mass and inertia, pose and velocity, and the force applied to it.
@@ -75,7 +117,8 @@ pub struct BodyView<T> {
     /// Its mass `m` (kg), as its engine moves it.
     pub mass: T,
     /// Its moment of inertia about its centre of mass `J` (kg m^2; a planar body's about the axis
-    /// normal to the plane), as its engine moves it.
+    /// normal to the plane, a body in three dimensions' least principal moment), as its engine
+    /// moves it.
     pub inertia: T,
     /// Where it is.
     pub pose: Pose<T>,

@@ -48,7 +48,8 @@ impl<V: ViewVisitor> MultibodyVisitor for Viewing<V> {
 impl SceneParams {
     /// The scene in `precision`, keeping `E` switch events, handed to `visitor` as a
     /// [`SceneView`]: a scene of one body in `layout` ([`Self::build`]), a scene of several bodies
-    /// in its one layout ([`Self::build_multibody`], `layout` unused).
+    /// in its one layout ([`Self::build_multibody`], `layout` unused), a scene in three
+    /// dimensions through its [`crate::scene::spatial::SpatialView`] (`layout` unused).
     ///
     /// # Errors
     /// As [`Self::build`] or [`Self::build_multibody`]: the core's first complaint about the
@@ -59,6 +60,13 @@ impl SceneParams {
         layout: LcpLayout,
         visitor: V,
     ) -> Result<V::Output, ParamError> {
+        #[cfg(feature = "scenes-spatial")]
+        if self.kind().is_spatial() {
+            return match precision {
+                Precision::F32 => self.build_spatial::<f32, V>(visitor),
+                Precision::F64 => self.build_spatial::<f64, V>(visitor),
+            };
+        }
         if self.kind().is_multibody() {
             #[cfg(feature = "scenes-multibody")]
             return self.build_multibody(precision, Viewing(visitor));
@@ -66,5 +74,19 @@ impl SceneParams {
             return Err(ParamError::OutOfRange("scene"));
         }
         self.build::<E, _>(precision, layout, Viewing(visitor))
+    }
+}
+
+#[cfg(feature = "scenes-spatial")]
+impl SceneParams {
+    /// A scene in three dimensions in `T`, checked in f64 and `T` first.
+    fn build_spatial<T: Real, V: ViewVisitor>(&self, visitor: V) -> Result<V::Output, ParamError> {
+        use crate::scene::spatial::{Billiard, Puck, SpatialView};
+        self.validate_as::<T>()?;
+        match self {
+            Self::Puck(p) => Ok(visitor.visit(&mut SpatialView::new(Puck::new(p.cast::<T>())?))),
+            Self::Billiard(p) => Ok(visitor.visit(&mut SpatialView::new(Billiard::new(p.cast::<T>())?))),
+            _ => Err(ParamError::OutOfRange("scene")),
+        }
     }
 }

@@ -18,7 +18,9 @@ pub enum Thing {
 /// One contact: what touches what, where, and what passed between them over the last step.
 ///
 /// The normal impulse acts on `between[0]` along `normal` and on `between[1]` against it; the
-/// friction impulse on `between[0]` along `tangent`.
+/// friction impulse on `between[0]` along `tangent`. Vectors are world `(x, y, z)`: a contact in
+/// the plane has `z = 0` (the plane's `z` points out of it, toward the viewer), one in three
+/// dimensions (`z` up) all three.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactView<T> {
     /// The two things in contact: the one the impulses are given on first.
@@ -28,27 +30,30 @@ pub struct ContactView<T> {
     /// that of when it was last computed.
     pub active: bool,
     /// The contact point, world (m): the point of `between[0]` that touches.
-    pub point: [T; 2],
+    pub point: [T; 3],
     /// `point` from `between[0]`'s centre of mass (m, world), as the engine keeps it (the body's
     /// position plus this is `point` before rounding: a driver that adds them in another scalar
     /// gets that scalar's sum).
-    pub lever: [T; 2],
+    pub lever: [T; 3],
     /// The unit normal, world, on `between[0]`.
-    pub normal: [T; 2],
-    /// The unit tangent, world: the normal turned clockwise, `(n_y, -n_x)`, the direction of
-    /// positive friction impulse.
-    pub tangent: [T; 2],
+    pub normal: [T; 3],
+    /// The unit tangent, world, the direction of positive friction impulse: in the plane the
+    /// normal turned clockwise, `(n_y, -n_x, 0)`; in three dimensions the friction impulse's
+    /// direction (where there is none, the slip's; where neither, a fixed direction in the plane).
+    pub tangent: [T; 3],
     /// The gap (m, positive when apart, negative when penetrating).
     pub gap: T,
     /// The mode after the last step (before the first: from the start).
     pub mode: ContactMode,
     /// Normal impulse over the last step (N s; zero before the first).
     pub normal_impulse: T,
-    /// Friction impulse over the last step along `tangent` (N s; zero before the first).
+    /// Friction impulse over the last step along `tangent` (N s; zero before the first; in three
+    /// dimensions its magnitude).
     pub friction_impulse: T,
     /// Where along the other thing the contact is (m): a scene of one body, the coordinate along
     /// the tangent at which the last step's impulses acted ([`crate::planar::ContactReport::along`];
     /// zero before the first step); a scene of several bodies, the corner's coordinate along the
-    /// face from its centre now ([`crate::multibody::CornerFrame::along`]).
+    /// face from its centre now ([`crate::multibody::CornerFrame::along`]); a scene in three
+    /// dimensions, zero.
     pub along: T,
 }

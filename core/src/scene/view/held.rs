@@ -310,9 +310,10 @@ mod tests {
         fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Self::Output {
             let taken = (0..self.0).take_while(|_| view.step()).count();
             let x = core::array::from_fn(|i| {
-                view.body(i).map_or(0, |b| {
-                    let Pose::Planar { x, .. } = b.pose;
-                    x.as_f64().to_bits()
+                view.body(i).map_or(0, |b| match b.pose {
+                    Pose::Planar { x, .. } => x.as_f64().to_bits(),
+                    #[cfg(feature = "spatial")]
+                    Pose::Spatial { position, .. } => position[0].as_f64().to_bits(),
                 })
             });
             (taken, x, view.checksum())
@@ -331,6 +332,12 @@ mod tests {
                         BodyShape::Box { width: width.as_f64(), height: height.as_f64() }
                     }
                     BodyShape::Disc { radius } => BodyShape::Disc { radius: radius.as_f64() },
+                    #[cfg(feature = "spatial")]
+                    BodyShape::Ball { radius } => BodyShape::Ball { radius: radius.as_f64() },
+                    #[cfg(feature = "spatial")]
+                    BodyShape::Puck { radius, thickness } => {
+                        BodyShape::Puck { radius: radius.as_f64(), thickness: thickness.as_f64() }
+                    }
                 })
             });
             let table = match view.support(0) {
@@ -345,7 +352,8 @@ mod tests {
     /// ([`SceneParams::build_view`]): the same steps, bodies and checksum.
     #[test]
     fn a_held_scene_runs_as_built() {
-        for kind in SceneKind::ALL {
+        // No holder holds a scene in three dimensions yet (the page does not run them).
+        for kind in SceneKind::ALL.into_iter().filter(|k| !k.is_spatial()) {
             for precision in Precision::ALL {
                 let params = SceneParams::defaults(kind);
                 let whole = params.build_view::<0, _>(precision, LcpLayout::Reduced, Steps(300)).unwrap();

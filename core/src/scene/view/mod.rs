@@ -60,6 +60,11 @@ pub use summary::RunSummary;
 pub use support::SupportView;
 
 use super::kind::MAX_MEASURES;
+
+/// A planar vector `(x, y)` as world `(x, y, 0)`: the plane's vectors in [`ContactView`].
+pub(crate) fn in_space<T: Real>([x, y]: [T; 2]) -> [T; 3] {
+    [x, y, T::zero()]
+}
 use super::outcome::Outcome;
 use crate::real::Real;
 

@@ -22,6 +22,15 @@ pub enum SupportView<T> {
         /// Its velocity.
         velocity: [T; 2],
     },
+    /// A plane in three dimensions (a table, an incline) through `point` with unit `normal`
+    /// toward the body (world, `z` up), fixed.
+    #[cfg(feature = "spatial")]
+    Plane {
+        /// A point of the plane.
+        point: [T; 3],
+        /// Its unit normal, toward the body.
+        normal: [T; 3],
+    },
     /// The fixed table: its top face is the line `y = 0` over `lo <= x <= hi`, an end that is
     /// `None` infinite.
     Table {
