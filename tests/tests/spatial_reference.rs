@@ -3,7 +3,7 @@
 //! solved by cases) on the scenes `puck` and `billiard` of docs/scenes.md: the same launches
 //! stepped side by side in f64, positions within 1e-9 m, velocities within 1e-9 m/s and modes
 //! equal at every step. The worst differences are printed (`-- --nocapture`).
-#![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::float_cmp)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::print_stdout, clippy::float_cmp)]
 
 use meterstick_core::spatial::{Body, Mode, OneContact, Plane, Settings, Shape, State, about};
 use meterstick_reference::spatial::{self as reference, Billiard, Puck, SpatialRun};
