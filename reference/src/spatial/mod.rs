@@ -38,6 +38,10 @@
 //! [`run_puck`] and [`run_billiard`] validate them and step to the outcome (`scenes.rs`),
 //! keeping every step's [`Row`] (row 0 the start). A run longer than [`MAX_STEPS`] steps is
 //! refused ([`Error::TooManySteps`]): a full trajectory costs about 160 bytes a step.
+//!
+//! [`OnePoint`] opens the same step for a point fixed in the body off its centre of mass (a box's
+//! corner), where `W` couples the normal and the slip and the sliding case takes the root search:
+//! `tests/tests/spatial_reference.rs` steps it beside the core.
 
 mod algebra;
 mod contact;
@@ -47,7 +51,7 @@ mod step;
 mod tests;
 
 pub use contact::ContactError;
-pub use scenes::{BILLIARD_QUANTITIES, Billiard, PUCK_QUANTITIES, Puck, run_billiard, run_puck};
+pub use scenes::{BILLIARD_QUANTITIES, Billiard, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_puck};
 
 /// The most steps a run may take (`ceil(max_time / h)`): `10^7`.
 pub const MAX_STEPS: u64 = 10_000_000;

@@ -349,3 +349,63 @@ pub fn run_billiard(b: &Billiard) -> Result<SpatialRun, Error> {
     };
     Ok(SpatialRun { outcome, measured, steps, trajectory })
 }
+
+/// A body touching a fixed plane at one point fixed in it (a box's corner, off its centre of
+/// mass): the scenes' step opened for checks beyond them, where `W` couples the normal and the
+/// slip and the contact's sliding case takes the root search (`contact.rs`). Not validated:
+/// the caller passes a body (positive moments), a unit normal and `0 <= mu_k <= mu_s`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OnePoint {
+    /// kg.
+    pub mass: f64,
+    /// Principal moments about the body's axes, kg m^2.
+    pub moments: [f64; 3],
+    /// The contact point's offset from the centre of mass, body axes, m.
+    pub offset: [f64; 3],
+    /// A point of the plane, m.
+    pub point: [f64; 3],
+    /// The plane's unit normal, toward the body.
+    pub normal: [f64; 3],
+    /// `mu_s`.
+    pub mu_s: f64,
+    /// `mu_k`.
+    pub mu_k: f64,
+    /// Gravity, m/s^2, world axes.
+    pub gravity: [f64; 3],
+    /// `h`, s.
+    pub h: f64,
+    /// m/s.
+    pub stick_speed: f64,
+}
+
+impl OnePoint {
+    /// One step from `row` (its state, and its mode as the mode before the step): the row after
+    /// it, `t` advanced by `h`.
+    ///
+    /// # Errors
+    /// The contact's solve failing.
+    pub fn step(&self, row: &Row) -> Result<Row, super::ContactError> {
+        let world = World {
+            body: Rigid { mass: self.mass, moments: self.moments },
+            toucher: Toucher::Point { offset: self.offset },
+            ground: Ground { point: self.point, normal: self.normal, mu_s: self.mu_s, mu_k: self.mu_k },
+            gravity: self.gravity,
+            h: self.h,
+            stick_speed: self.stick_speed,
+        };
+        let start =
+            Kinematics { x: row.position, q: row.orientation, v: row.velocity, omega: row.angular_velocity };
+        let next = world.step(&start, row.mode)?;
+        let s = next.state;
+        Ok(Row {
+            t: row.t + self.h,
+            position: s.x,
+            orientation: s.q,
+            velocity: s.v,
+            angular_velocity: s.omega,
+            mode: next.mode,
+            normal_impulse: next.normal_impulse,
+            friction_impulse: next.friction_impulse,
+        })
+    }
+}
