@@ -52,6 +52,16 @@
 //! each scene's parameters (defaults as docs/scenes.md, angles in radians); [`run`] validates them
 //! and steps the scene to its outcome (`simulate.rs` the loop; `scenes.rs` and `other_scenes.rs`
 //! the start states, support motions, outcome rules and measurements).
+//!
+//! # Three dimensions ([`spatial`])
+//!
+//! The first spatial scenes, `puck` and `billiard` (docs/scenes.md, "Scenes in three
+//! dimensions"), on docs/formulation.md's "Three dimensions": one body with six degrees of freedom
+//! touching a plane at one point, Coulomb's circular cone. Where the core solves each step as an
+//! LCP over one friction line turned to the slip, [`spatial`] solves the one contact exactly by
+//! cases (separated; sticking, `W p = -u` by `L D L^T`; sliding, in closed form for an isotropic
+//! uncoupled Delassus matrix and otherwise by a safeguarded Newton search over the slip's angle
+//! that asserts a unique answer), with its own vector, matrix and quaternion algebra.
 
 pub mod enumerate;
 mod geometry;
@@ -60,6 +70,7 @@ pub mod multibody;
 mod other_scenes;
 mod scenes;
 mod simulate;
+pub mod spatial;
 mod step;
 #[cfg(test)]
 mod tests;
