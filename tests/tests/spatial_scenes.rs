@@ -226,7 +226,7 @@ fn the_view_runs_the_stepper_s_trajectory() {
         },
         State {
             position: [0.0; 3],
-            orientation: about(&[1.0, 0.0, 0.0], p.angle),
+            orientation: about(&[1.0, 0.0, 0.0], -p.angle),
             velocity: [p.speed * ch, p.speed * sh * c, -p.speed * sh * s],
             angular_velocity: [0.0; 3],
         },

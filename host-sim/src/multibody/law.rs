@@ -130,7 +130,8 @@ pub fn disc_on_board_law(p: &DiscOnBoardParams<f64>) -> Law {
 /// the puck stops (and `mu_s >= mu_k` holds it), above it it slides on; at it, launched across the
 /// slope, its speed tends to half the launch speed (it slides on). On a level table it stops after
 /// `v^2 / (2 mu_k g)` along its heading, at `v / (mu_k g)` (the first step's `mu_s` aside).
-/// Stopping later than `max_time`, it ends `Slid`.
+/// Stopping later than `max_time`, it ends `Slid`; on a slope where it stops by a time the law
+/// bounds but not within `max_time`, the law does not decide (`None`).
 #[must_use]
 pub fn puck_law(p: &PuckParams<f64>) -> Law {
     let (v, g, mu) = (p.speed, p.gravity, p.mu_kinetic);
@@ -146,7 +147,12 @@ pub fn puck_law(p: &PuckParams<f64>) -> Law {
         let law = [Some(0.0), Some(v * v / (2.0 * mu * g)), Some(heading)];
         (if stops { OutcomeKind::Stopped } else { OutcomeKind::Slid }, if stops { law } else { [None; 3] })
     } else if slope < mu {
-        (OutcomeKind::Stopped, [None; 3])
+        // Friction outweighs the slope's pull along any heading: the speed falls at least at
+        // `g (mu_k cos(alpha) - sin(alpha))`, so it has stopped by `v` over that; past
+        // `max_time` the law does not say which comes first.
+        let (s, c) = p.angle.sin_cos();
+        let by = v / (g * (mu * c - s));
+        (if by <= p.max_time { OutcomeKind::Stopped } else { OutcomeKind::Unfinished }, [None; 3])
     } else {
         // At `mu_k = tan(alpha)` (to round-off), launched across the slope.
         let half =
@@ -154,7 +160,8 @@ pub fn puck_law(p: &PuckParams<f64>) -> Law {
         (OutcomeKind::Slid, [half, None, None])
     };
     Law {
-        outcome: Some(outcome),
+        // `Unfinished` above stands for "not decided by max_time": no outcome.
+        outcome: (outcome != OutcomeKind::Unfinished).then_some(outcome),
         lower_acceleration: None,
         upper_acceleration: None,
         measured: Measured::of(SceneKind::Puck, measured),

@@ -2,7 +2,7 @@
 
 use meterstick_core::scene::{OutcomeKind, SceneKind, SceneParams};
 
-use super::{BodiesCounters, BodiesRow, BodiesRun};
+use super::{BodiesCounters, BodiesRow, BodiesRun, ContactRow, SpatialBody};
 use crate::progress;
 use crate::reference::Sample;
 use crate::reference::multibody as reference;
@@ -106,6 +106,9 @@ fn reference_row(r: &reference::Row) -> BodiesRow {
 /// A scene the reference does not have, or its refusal of the parameters.
 pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesRun> {
     let kind = spec.kind();
+    if kind.is_spatial() {
+        return run_spatial_reference(spec, record);
+    }
     let Some(r_spec) = to_reference(spec) else {
         anyhow::bail!("scene {kind} has no multibody reference");
     };
@@ -153,6 +156,96 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
             ambiguous_steps: r.ambiguous_steps,
             ..BodiesCounters::default()
         },
+        checksum: None,
+    })
+}
+
+/// A scene in three dimensions in the independent reference (`meterstick_reference::spatial`).
+fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesRun> {
+    use crate::reference::spatial as r;
+    let keep = if record { r::Keep::All } else { r::Keep::StartAndEnd };
+    progress::check()?;
+    let run = match *spec {
+        SceneParams::Puck(p) => r::run_puck_keeping(
+            &r::Puck {
+                radius: p.radius,
+                thickness: p.thickness,
+                mass: p.mass,
+                g: p.gravity,
+                angle: p.angle,
+                heading: p.heading,
+                speed: p.speed,
+                mu_s: p.mu_static,
+                mu_k: p.mu_kinetic,
+                h: p.step,
+                stick_speed: p.stick_speed,
+                max_time: p.max_time,
+            },
+            keep,
+        ),
+        SceneParams::Billiard(p) => r::run_billiard_keeping(
+            &r::Billiard {
+                radius: p.radius,
+                mass: p.mass,
+                g: p.gravity,
+                speed: p.speed,
+                spin: [p.spin_x, p.spin_y, p.spin_z],
+                mu_s: p.mu_static,
+                mu_k: p.mu_kinetic,
+                h: p.step,
+                stick_speed: p.stick_speed,
+                max_time: p.max_time,
+            },
+            keep,
+        ),
+        _ => anyhow::bail!("scene {} has no reference in three dimensions", spec.kind()),
+    }
+    .map_err(|e| anyhow::anyhow!("reference: {e}"))?;
+    progress::check()?;
+    let row = |x: &r::Row| BodiesRow {
+        t: x.t,
+        q: Vec::new(),
+        v: Vec::new(),
+        interface_forces: Vec::new(),
+        corner_loads: Vec::new(),
+        spatial: vec![SpatialBody {
+            position: x.position,
+            orientation: x.orientation,
+            velocity: x.velocity,
+            angular: x.angular_velocity,
+        }],
+        contacts: vec![ContactRow {
+            mode: match x.mode {
+                r::Mode::Separated => 0,
+                r::Mode::Sticking => 1,
+                r::Mode::Sliding => 2,
+            },
+            // The contact point: the puck's centre, the ball's lowest point.
+            point: match *spec {
+                SceneParams::Billiard(p) => [x.position[0], x.position[1], x.position[2] - p.radius],
+                _ => x.position,
+            },
+            normal_impulse: x.normal_impulse,
+            friction_impulse: x.friction_impulse,
+        }],
+    };
+    let outcome = RunOutcome::of(match run.outcome {
+        r::Outcome::Stopped => OutcomeKind::Stopped,
+        r::Outcome::Slid => OutcomeKind::Slid,
+        r::Outcome::Rolled => OutcomeKind::Rolled,
+        r::Outcome::Unfinished => OutcomeKind::Unfinished,
+    });
+    let last = run.trajectory.last().map(row).ok_or_else(|| anyhow::anyhow!("reference: no row"))?;
+    Ok(BodiesRun {
+        label: "reference f64".into(),
+        scene: spec.kind(),
+        steps: run.steps,
+        end_time: last.t,
+        rows: if record { run.trajectory.iter().map(row).collect() } else { Vec::new() },
+        last,
+        outcome,
+        measured: Measured::of(spec.kind(), run.measured),
+        counters: BodiesCounters { lcp_rows: 0, ..BodiesCounters::default() },
         checksum: None,
     })
 }

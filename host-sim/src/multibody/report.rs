@@ -326,12 +326,14 @@ pub fn run_all(
             "{name}: core vs reference: max position deviation {dev_q:.3e} m, max angle deviation {dev_angle:.3e} rad{}",
             if summary.comparison.same_outcome { "" } else { "  OUTCOMES DIFFER" }
         );
-        let _ = writeln!(
-            text,
-            "{name}: the reference found {} steps whose LCP has solutions that move the bodies differently; both take the least kinetic energy after the step (docs/formulation.md, \"One answer: the rule\")",
-            reference.counters.ambiguous_steps
-        );
-        let _ = writeln!(text, "{name}: {}", rule_text(&core.counters));
+        if spec.kind().is_multibody() {
+            let _ = writeln!(
+                text,
+                "{name}: the reference found {} steps whose LCP has solutions that move the bodies differently; both take the least kinetic energy after the step (docs/formulation.md, \"One answer: the rule\")",
+                reference.counters.ambiguous_steps
+            );
+            let _ = writeln!(text, "{name}: {}", rule_text(&core.counters));
+        }
         summaries.push(summary);
     }
     crate::output::write_json(&out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;

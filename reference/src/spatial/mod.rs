@@ -51,7 +51,10 @@ mod step;
 mod tests;
 
 pub use contact::ContactError;
-pub use scenes::{BILLIARD_QUANTITIES, Billiard, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_puck};
+pub use scenes::{
+    BILLIARD_QUANTITIES, Billiard, Keep, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_billiard_keeping,
+    run_puck, run_puck_keeping,
+};
 
 /// The most steps a run may take (`ceil(max_time / h)`): `10^7`.
 pub const MAX_STEPS: u64 = 10_000_000;

@@ -273,6 +273,7 @@ fn simulate(
     start: Kinematics,
     max_time: f64,
     (stopped, timeout): (Outcome, Outcome),
+    keep: Keep,
 ) -> Result<(Outcome, u64, Vec<Row>), Error> {
     let h = world.h;
     let needed = (max_time / h).ceil();
@@ -289,7 +290,7 @@ fn simulate(
         normal_impulse,
         friction_impulse,
     };
-    let mut rows = Vec::with_capacity(needed as usize + 1);
+    let mut rows = Vec::with_capacity(if keep == Keep::All { needed as usize + 1 } else { 2 });
     rows.push(row(0.0, &start, Mode::Separated, 0.0, ZERO));
     let (mut state, mut mode) = (start, Mode::Separated);
     let mut steps = 0_u64;
@@ -301,7 +302,11 @@ fn simulate(
             return Err(Error::NonFinite { step: steps });
         }
         let t = steps as f64 * h;
-        rows.push(row(t, &s, next.mode, next.normal_impulse, next.friction_impulse));
+        let kept = row(t, &s, next.mode, next.normal_impulse, next.friction_impulse);
+        match (keep, rows.get_mut(1)) {
+            (Keep::StartAndEnd, Some(last)) => *last = kept,
+            _ => rows.push(kept),
+        }
         state = s;
         mode = next.mode;
         if mode == Mode::Sticking {
@@ -313,20 +318,48 @@ fn simulate(
     }
 }
 
-/// Validates `p` and runs the puck to its outcome (docs/scenes.md, "puck").
+/// Which rows a run keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Keep {
+    /// Every step's: `steps + 1` rows.
+    All,
+    /// The start's and the last step's (two rows; one when no step was taken): a run of any
+    /// length in a fixed memory.
+    StartAndEnd,
+}
+
+/// Validates `p` and runs the puck to its outcome (docs/scenes.md, "puck"), keeping every row.
+///
+/// # Errors
+/// As [`run_puck_keeping`].
+pub fn run_puck(p: &Puck) -> Result<SpatialRun, Error> {
+    run_puck_keeping(p, Keep::All)
+}
+
+/// Validates `b` and runs the ball to its outcome (docs/scenes.md, "billiard"), keeping every row.
+///
+/// # Errors
+/// As [`run_billiard_keeping`].
+pub fn run_billiard(b: &Billiard) -> Result<SpatialRun, Error> {
+    run_billiard_keeping(b, Keep::All)
+}
+
+/// Validates `p` and runs the puck to its outcome (docs/scenes.md, "puck"), keeping `keep`.
 ///
 /// # Errors
 /// [`Error::Invalid`], [`Error::TooManySteps`], or a step's failure.
-pub fn run_puck(p: &Puck) -> Result<SpatialRun, Error> {
+pub fn run_puck_keeping(p: &Puck, keep: Keep) -> Result<SpatialRun, Error> {
     p.validate()?;
     let start = p.start();
     let (outcome, steps, trajectory) =
-        simulate(&p.world(), start, p.max_time, (Outcome::Stopped, Outcome::Slid))?;
+        simulate(&p.world(), start, p.max_time, (Outcome::Stopped, Outcome::Slid), keep)?;
     let end = trajectory.last().map_or(start.x, |r| r.position);
     let v_end = trajectory.last().map_or(start.v, |r| r.velocity);
     let moved = minus(end, start.x);
     let displacement = length(moved);
-    let heading = (displacement > 0.0).then(|| dot(moved, p.down()).atan2(moved[0]).to_degrees());
+    // Moved less than a sticking contact creeps in one step: no heading (docs/scenes.md).
+    let heading =
+        (displacement > p.stick_speed * p.h).then(|| dot(moved, p.down()).atan2(moved[0]).to_degrees());
     Ok(SpatialRun {
         outcome,
         measured: [Some(length(v_end)), Some(displacement), heading],
@@ -335,14 +368,14 @@ pub fn run_puck(p: &Puck) -> Result<SpatialRun, Error> {
     })
 }
 
-/// Validates `b` and runs the billiard ball to its outcome (docs/scenes.md, "billiard").
+/// Validates `b` and runs the billiard ball to its outcome (docs/scenes.md, "billiard"), keeping `keep`.
 ///
 /// # Errors
 /// [`Error::Invalid`], [`Error::TooManySteps`], or a step's failure.
-pub fn run_billiard(b: &Billiard) -> Result<SpatialRun, Error> {
+pub fn run_billiard_keeping(b: &Billiard, keep: Keep) -> Result<SpatialRun, Error> {
     b.validate()?;
     let (outcome, steps, trajectory) =
-        simulate(&b.world(), b.start(), b.max_time, (Outcome::Rolled, Outcome::Unfinished))?;
+        simulate(&b.world(), b.start(), b.max_time, (Outcome::Rolled, Outcome::Unfinished), keep)?;
     let measured = match (outcome, trajectory.last()) {
         (Outcome::Rolled, Some(r)) => [Some(r.t), Some(r.velocity[0]), Some(r.velocity[1])],
         _ => [None; 3],

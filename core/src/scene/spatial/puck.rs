@@ -110,7 +110,8 @@ impl<T: Real> Puck<T> {
         };
         let state = State {
             position: [T::zero(); 3],
-            orientation: about(&[T::one(), T::zero(), T::zero()], params.angle),
+            // Its axis along the plane's normal (0, sin, cos): a turn by -alpha about x.
+            orientation: about(&[T::one(), T::zero(), T::zero()], -params.angle),
             velocity,
             angular_velocity: [T::zero(); 3],
         };
@@ -153,14 +154,16 @@ impl<T: Real> SpatialScene<T> for Puck<T> {
         &self.run
     }
 
-    /// `final_speed_m_s`, `displacement_m`, `displacement_heading_deg` (none before it moves).
+    /// `final_speed_m_s`, `displacement_m`, `displacement_heading_deg` (none while it has moved
+    /// less than `stick_speed h`).
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {
         let state = self.run.stepper.state();
         let speed = crate::spatial::norm(&state.velocity);
         let moved = state.position;
         let displacement = crate::spatial::norm(&moved);
         let (e_x, e_down) = self.params.plane_axes();
-        let heading = (displacement > T::zero()).then(|| {
+        // Moved less than a sticking contact creeps in one step: no heading (round-off's).
+        let heading = (displacement > self.params.stick_speed * self.params.step).then(|| {
             let across = crate::spatial::dot(&moved, &e_x).as_f64();
             let down = crate::spatial::dot(&moved, &e_down).as_f64();
             T::of(libm::atan2(down, across).to_degrees())

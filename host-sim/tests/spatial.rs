@@ -1,0 +1,136 @@
+//! The `host-sim` binary on the scenes in three dimensions (`docs/scenes.md`, "Scenes in three
+//! dimensions"): `run` writes each body's position, quaternion and Euler angles and the contact,
+//! and the core follows the independent reference; the billiard ball rolls at the law's velocity;
+//! `map` puts the puck's stop-or-slide boundary where `tan(angle) = mu_k` does; `scene` prints the
+//! checksum; a flag out of range or of another scene is refused by name before any work.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+mod common;
+use common::host_sim_within;
+
+fn host_sim(args: &[&str]) -> (i32, String, String) {
+    host_sim_within(args, &[], 300)
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("meterstick-spatial-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// `host-sim run --scene <scene> --precision f64 <args>`: its `summary.json`, after checking
+/// that the core and the reference end alike within 1e-9 m and 1e-9 rad at every step, and that
+/// both CSV files hold every step of the body and its contact.
+fn run(scene: &str, args: &[&str]) -> serde_json::Value {
+    let out = temp_dir(scene);
+    let mut all = vec!["run", "--scene", scene, "--precision", "f64", "--out", out.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let (code, stdout, err) = host_sim(&all);
+    assert_eq!(code, 0, "{all:?}: {err}");
+    let dir = out.join(scene);
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["core"]["outcome"], s["reference"]["outcome"], "{all:?}: {stdout}");
+    assert_eq!(s["core"]["steps"], s["reference"]["steps"], "{all:?}");
+    let c = &s["comparison"];
+    assert!(c["max_position_deviation_m"].as_f64().unwrap() < 1e-9, "{all:?}: {c}");
+    assert!(c["max_angle_deviation_rad"].as_f64().unwrap() < 1e-9, "{all:?}: {c}");
+    for file in ["core.csv", "reference.csv"] {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        assert_eq!(header.len(), 1 + 16 + 8, "{file}: {header:?}");
+        assert_eq!(header[4..11], ["qw0", "qx0", "qy0", "qz0", "roll0", "pitch0", "yaw0"], "{file}");
+        assert_eq!(header[17..19], ["c0_mode", "c0_x"], "{file}");
+        assert_eq!(lines.count() as u64, s["core"]["steps"].as_u64().unwrap() + 1, "{file}");
+    }
+    for plot in ["positions.svg", "velocities.svg", "path.svg"] {
+        assert!(std::fs::metadata(dir.join(plot)).unwrap().len() > 1000, "{plot}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+    s
+}
+
+#[test]
+fn the_puck_follows_the_reference_and_stops_where_the_law_says() {
+    for heading in ["0", "-70", "135"] {
+        let s = run("puck", &["--heading", heading]);
+        assert_eq!(s["core"]["outcome"], "Stopped", "{heading}");
+    }
+    // On a level table the stopping distance is the law's to within a step's travel, h v.
+    let s = run("puck", &["--angle", "0", "--speed", "1.2", "--heading", "33"]);
+    let d = s["core"]["measured"]["displacement_m"].as_f64().unwrap();
+    let law = s["law"]["measured"]["displacement_m"].as_f64().unwrap();
+    assert!((d - law).abs() <= 1e-3 * 1.2, "{d} m against {law} m");
+    let heading = s["core"]["measured"]["displacement_heading_deg"].as_f64().unwrap();
+    assert!((heading - 33.0).abs() < 1e-9, "{heading}");
+}
+
+#[test]
+fn the_billiard_ball_follows_the_reference_and_rolls_at_the_law_s_velocity() {
+    for spin in [["0", "0", "0"], ["40", "30", "25"], ["-90", "10", "-60"]] {
+        let s = run("billiard", &["--spin-x", spin[0], "--spin-y", spin[1], "--spin-z", spin[2]]);
+        assert_eq!(s["core"]["outcome"], "Rolled", "{spin:?}");
+        for key in ["rolling_velocity_x_m_s", "rolling_velocity_y_m_s"] {
+            let (got, law) =
+                (s["core"]["measured"][key].as_f64().unwrap(), s["law"]["measured"][key].as_f64().unwrap());
+            assert!((got - law).abs() < 1e-12 * 2.0, "{spin:?} {key}: {got} against {law}");
+        }
+        let (t, law) = (
+            s["core"]["measured"]["rolling_time_s"].as_f64().unwrap(),
+            s["law"]["measured"]["rolling_time_s"].as_f64().unwrap(),
+        );
+        assert!(t >= law - 1e-12 && t <= law + 1e-3 + 1e-12, "{spin:?}: rolls at {t} s, law {law} s");
+    }
+}
+
+#[test]
+fn the_puck_s_map_puts_its_boundary_where_the_law_does() {
+    let out = temp_dir("map");
+    let (code, stdout, err) = host_sim(&[
+        "map",
+        "--scene",
+        "puck",
+        "--x-axis",
+        "angle",
+        "--x-range",
+        "0,40",
+        "--x-cells",
+        "40",
+        "--y-axis",
+        "mu-ratio",
+        "--y-cells",
+        "20",
+        "--mu-s",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let law = &s["law_disagreements"];
+    assert!(law["cells_compared"].as_u64().unwrap() > 500, "{stdout}");
+    assert_eq!(law["disagree"], 0, "{stdout}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn scene_prints_the_checksum_and_bad_flags_are_refused_by_name() {
+    let (code, stdout, err) = host_sim(&["scene", "--scene", "billiard", "--spin-y", "80"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("outcome Rolled") && stdout.contains("checksum "), "{stdout}");
+    for (args, words) in [
+        (
+            &["scene", "--scene", "puck", "--angle", "90"][..],
+            "--angle 90 deg: out of range (0 <= angle < 90)",
+        ),
+        (&["scene", "--scene", "puck", "--spin-x", "3"][..], "--spin-x does not apply to --scene puck"),
+        (&["scene", "--scene", "billiard", "--mu-k", "0.3"][..], "--mu-k"),
+        (&["scene", "--scene", "billiard", "--radius", "-1"][..], "--radius"),
+    ] {
+        let (code, _, err) = host_sim(args);
+        assert_ne!(code, 0, "{args:?}");
+        assert!(err.contains(words), "{args:?}: {err}");
+    }
+}
