@@ -26,17 +26,25 @@ impl Checksum {
 
     /// Adds one state.
     pub fn add<T: Real>(&mut self, state: &BodyState<T>) {
-        self.add_values(&state.to_array());
+        for v in state.to_array() {
+            self.add_value(v);
+        }
     }
 
-    /// Adds `values` in order, each by its `T::BYTES` little-endian bytes (a body in three
-    /// dimensions: its position, orientation, velocity and angular velocity).
+    /// Adds `values` in order (a body in three dimensions: its position, orientation, velocity
+    /// and angular velocity).
     pub fn add_values<T: Real>(&mut self, values: &[T]) {
-        for v in values {
-            for byte in v.to_le_bytes_u64().iter().take(T::BYTES) {
-                self.0 ^= u32::from(*byte);
-                self.0 = self.0.wrapping_mul(0x0100_0193);
-            }
+        for &v in values {
+            self.add_value(v);
+        }
+    }
+
+    /// Adds one value, its `T::BYTES` little-endian bytes.
+    #[inline]
+    fn add_value<T: Real>(&mut self, v: T) {
+        for byte in v.to_le_bytes_u64().iter().take(T::BYTES) {
+            self.0 ^= u32::from(*byte);
+            self.0 = self.0.wrapping_mul(0x0100_0193);
         }
     }
 

@@ -66,5 +66,5 @@ pub use view::PlanarViews;
 pub use view::{
     Axis, BodyShape, BodyView, ContactView, EventView, FigureName, Force, HeldView, LoadPart, MultibodyView,
     PlanarView, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing, Velocity, ViewReader,
-    ViewVisitor,
+    ViewVector, ViewVisitor,
 };

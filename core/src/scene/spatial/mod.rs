@@ -15,7 +15,7 @@ pub use puck::{Puck, PuckParams};
 pub use view::SpatialView;
 
 use crate::real::Real;
-use crate::scene::view::BodyShape;
+use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
 use crate::spatial::{OneContact, StepReport};
 

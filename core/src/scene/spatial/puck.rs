@@ -3,7 +3,7 @@
 use super::{Run, SpatialScene};
 use crate::params::{ParamError, check_step_within, params};
 use crate::real::Real;
-use crate::scene::view::BodyShape;
+use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
 use crate::spatial::{
     Body, FrictionCone, Mode, OneContact, Plane, Settings, Shape, State, StepReport, Vector, about,

@@ -3,11 +3,10 @@
 use super::SpatialScene;
 use crate::planar::{Checksum, ContactMode, Direction};
 use crate::real::Real;
-use crate::scene::view::{
-    BodyView, ContactView, EventView, Force, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView,
-    Thing, Velocity,
+use crate::scene::{
+    BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunSummary, SceneView, StepFigure,
+    StepStats, SupportView, Thing, Velocity,
 };
-use crate::scene::{MAX_MEASURES, Outcome};
 use crate::spatial::{ContactReport, Mode, norm};
 
 /// A scene in three dimensions seen as a [`SceneView`]: it owns the scene and keeps the last

@@ -1,5 +1,6 @@
 //! [`ContactView`]: one contact of a scene, between two [`Thing`]s.
 
+use super::ViewVector;
 use crate::planar::ContactMode;
 
 /// What a contact is between: a body of the scene, one of a scene's supports, or the table.
@@ -18,9 +19,9 @@ pub enum Thing {
 /// One contact: what touches what, where, and what passed between them over the last step.
 ///
 /// The normal impulse acts on `between[0]` along `normal` and on `between[1]` against it; the
-/// friction impulse on `between[0]` along `tangent`. Vectors are world `(x, y, z)`: a contact in
-/// the plane has `z = 0` (the plane's `z` points out of it, toward the viewer), one in three
-/// dimensions (`z` up) all three.
+/// friction impulse on `between[0]` along `tangent`. Vectors are world [`ViewVector`]s: `(x, y)`
+/// in a planar build; `(x, y, z)` with three dimensions (feature `spatial`), where a contact in
+/// the plane has `z = 0` (the plane's `z` points out of it, toward the viewer).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactView<T> {
     /// The two things in contact: the one the impulses are given on first.
@@ -30,17 +31,17 @@ pub struct ContactView<T> {
     /// that of when it was last computed.
     pub active: bool,
     /// The contact point, world (m): the point of `between[0]` that touches.
-    pub point: [T; 3],
+    pub point: ViewVector<T>,
     /// `point` from `between[0]`'s centre of mass (m, world), as the engine keeps it (the body's
     /// position plus this is `point` before rounding: a driver that adds them in another scalar
     /// gets that scalar's sum).
-    pub lever: [T; 3],
+    pub lever: ViewVector<T>,
     /// The unit normal, world, on `between[0]`.
-    pub normal: [T; 3],
+    pub normal: ViewVector<T>,
     /// The unit tangent, world, the direction of positive friction impulse: in the plane the
-    /// normal turned clockwise, `(n_y, -n_x, 0)`; in three dimensions the friction impulse's
+    /// normal turned clockwise, `(n_y, -n_x)`; in three dimensions the friction impulse's
     /// direction (where there is none, the slip's; where neither, a fixed direction in the plane).
-    pub tangent: [T; 3],
+    pub tangent: ViewVector<T>,
     /// The gap (m, positive when apart, negative when penetrating).
     pub gap: T,
     /// The mode after the last step (before the first: from the start).

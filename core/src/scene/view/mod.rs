@@ -61,9 +61,17 @@ pub use support::SupportView;
 
 use super::kind::MAX_MEASURES;
 
-/// A planar vector `(x, y)` as world `(x, y, 0)`: the plane's vectors in [`ContactView`].
-pub(crate) fn in_space<T: Real>([x, y]: [T; 2]) -> [T; 3] {
-    [x, y, T::zero()]
+/// The components of a view's world vectors ([`ViewVector`]): `(x, y, z)` in a build with three
+/// dimensions (feature `spatial`), `(x, y)` in a planar build, which carries no `z`.
+pub const DIMENSIONS: usize = if cfg!(feature = "spatial") { 3 } else { 2 };
+
+/// A world vector as the view gives it ([`ContactView`]): [`DIMENSIONS`] components, `z = 0` for
+/// a scene in the plane.
+pub type ViewVector<T> = [T; DIMENSIONS];
+
+/// A planar vector `(x, y)` as a [`ViewVector`] (`(x, y, 0)` with three dimensions).
+pub(crate) fn in_space<T: Real>(xy: [T; 2]) -> ViewVector<T> {
+    core::array::from_fn(|i| xy.get(i).copied().unwrap_or_else(T::zero))
 }
 use super::outcome::Outcome;
 use crate::real::Real;
