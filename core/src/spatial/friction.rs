@@ -359,13 +359,16 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     ) -> Result<ContactReport<T>, StepError> {
         let limit = mu * pn;
         let (slip_speed, friction) = (norm(slip), norm(pt));
+        // A slip within the stick speed reads sticking (in f32 its direction can be round-off's):
+        // the cone alone holds it.
+        let sliding =
+            pn > T::zero() && limit > T::zero() && slip_speed > max(self.slip_tolerance, self.stick_speed);
         let residual = if pn <= T::zero() {
             T::zero()
         } else if limit <= T::zero() {
             friction / pn
-        } else if slip_speed > max(self.slip_tolerance, self.stick_speed) {
-            // Sliding: the cone's edge against the slip. A slip within the stick speed reads
-            // sticking (in f32 its direction can be round-off's): the cone alone holds it.
+        } else if sliding {
+            // Sliding: the cone's edge against the slip.
             norm(&add(pt, &scale(limit / slip_speed, slip))) / limit
         } else {
             max(friction - limit, T::zero()) / limit
@@ -374,8 +377,19 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         // light load at the edge of sticking), to the LCP's verification on that scale.
         // A pyramid's friction need not oppose the slip (`against_slip` false): only its bound,
         // `|p_t| <= mu p_n`, is a failure; its residual against the circle is reported.
-        let excess =
-            if against_slip { residual } else { max(friction - limit, T::zero()) / max(limit, T::TINY) };
+        // A sliding contact's slip is known to the step's round-off, `slip_tolerance` (the
+        // solve's own test of it), so its direction to `slip_tolerance / |s|`: its friction is
+        // held to `-mu p_n` along the slip, and across it to `mu p_n` times that angle besides.
+        let excess = if !against_slip {
+            max(friction - limit, T::zero()) / max(limit, T::TINY)
+        } else if sliding {
+            let along = dot(pt, slip) / slip_speed;
+            let across = norm(&sub(pt, &scale(along / slip_speed, slip)));
+            let angle = self.slip_tolerance / slip_speed;
+            max((along + limit).abs_exact(), max(across - limit * angle, T::zero())) / limit
+        } else {
+            residual
+        };
         if !residual.finite() || (excess > T::of(4096.0) * T::EPS && excess * limit > bound) {
             return Err(StepError::ConeUnverified { residual: residual.as_f32() });
         }
