@@ -209,8 +209,12 @@ struct Tries {
 fn corner(velocity: [f64; 3], spin: [f64; 3], mu: f64) -> (Worst, Tries) {
     let (mass, sides, offset, h) = (1.0, [0.1, 0.06, 0.2], [0.05, 0.03, -0.1], 1e-3);
     let body = Body::cuboid(mass, sides[0], sides[1], sides[2]);
-    let state =
-        State { position: [0.0, 0.0, 0.1], orientation: [1.0, 0.0, 0.0, 0.0], velocity, angular_velocity: spin };
+    let state = State {
+        position: [0.0, 0.0, 0.1],
+        orientation: [1.0, 0.0, 0.0, 0.0],
+        velocity,
+        angular_velocity: spin,
+    };
     let core = OneContact::new(
         body,
         [Shape::Point { offset }],
@@ -313,7 +317,10 @@ fn an_off_centre_corner_agrees_with_the_reference() {
             per_step(&t),
             t.most
         );
-        assert!(t.failed.is_none(), "corner, v {velocity:?}, omega {spin:?}, mu {mu}: the core failed: {t:?}");
+        assert!(
+            t.failed.is_none(),
+            "corner, v {velocity:?}, omega {spin:?}, mu {mu}: the core failed: {t:?}"
+        );
         worst = worst.max(w);
     }
     println!("corner, all launches: {worst:?}");
