@@ -264,13 +264,17 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     }
 
     /// Turns the lines (module docs, 3) by one step of Newton's method on every loaded contact's
-    /// slip, the normal impulses held. A sliding (saturated) contact `j` turns its line by
-    /// `dtheta_j` about `n`, which moves its friction `p_j d_j` by `p_j dtheta_j a_j` (`a = n x
-    /// d`) and its condition, the slip across its line `a_j . s_j`, by `-dtheta_j (d_j . s_j)`
-    /// besides; a sticking one changes its friction by `(dq_d, dq_a)` along `(d, a)`, toward the
-    /// impulse that stops its slip (both components of its slip its conditions). The slips move by
-    /// the Delassus operator `W` of the friction changes; the linear system over all of them (at
-    /// most `2 K` unknowns) is solved once and each line set to its new friction's direction.
+    /// conditions, the LCP's modes held. A loaded contact's normal row stays closed (`n . u = 0`)
+    /// and its normal impulse moves by `dp_n`: with the point off the centre of mass `W` couples
+    /// the normal and the slip, so every friction change moves the normal impulses and they move
+    /// the slips. A sliding (saturated) contact `j` turns its line by `dtheta_j` about `n`, which
+    /// moves its friction `p_j d_j` by `p_j dtheta_j a_j` (`a = n x d`; `p_j / p_n,j dp_n,j d_j`
+    /// with its normal impulse, the friction staying on the cone's edge) and its condition, the
+    /// slip across its line `a_j . s_j`, by `-dtheta_j (d_j . s_j)` besides; a sticking one
+    /// changes its friction by `(dq_d, dq_a)` along `(d, a)`, toward the impulse that stops its
+    /// slip (both components of its slip its conditions). The velocities move by the Delassus
+    /// operator `W` of the impulses' changes; the linear system over all of them (at most `3 K`
+    /// unknowns) is solved once and each line set to its new friction's direction.
     fn turn<const N: usize>(&self, lines: &mut [Line<T>; K], impulses: &[(T, T); K], slips: &[Vector<T>; K]) {
         let n = self.normal;
         let (zero, one) = (T::zero(), T::one());
@@ -280,17 +284,21 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             loaded[i] && pt.abs_exact() >= c.mu * pn * (one - T::of(1e-3))
         });
         let across: [Vector<T>; K] = core::array::from_fn(|i| cross(&n, &lines[i].d));
-        // Unknown `2 i` and `2 i + 1` of contact `i`: `(dtheta, -)` sliding, `(dq_d, dq_a)`
-        // sticking; an unknown no contact uses has the row `x = 0`. `N = 4 K >= 2 K`.
-        // The friction change per unit of unknown `2 j + k`: its direction and size.
+        // Unknowns `3 i`, `3 i + 1`, `3 i + 2` of contact `i`: `(dp_n, dtheta, -)` sliding,
+        // `(dp_n, dq_d, dq_a)` sticking; an unknown no contact uses has the row `x = 0`.
+        // `N = 4 K >= 3 K`. The impulse's change per unit of unknown `3 j + k`.
         let effect = |j: usize, k: usize| -> Vector<T> {
+            let (pn, pt) = impulses[j];
             match (saturated[j], k) {
-                (true, 0) => scale(impulses[j].1, &across[j]),
-                (false, 0) => lines[j].d,
+                (true, 0) => add(&n, &scale(pt / pn, &lines[j].d)),
+                (false, 0) => n,
+                (true, 1) => scale(pt, &across[j]),
+                (false, 1) => lines[j].d,
                 (false, _) => across[j],
                 (true, _) => [zero; 3],
             }
         };
+        let used = |j: usize| if saturated[j] { 2 } else { 3 };
         let mut jac = [[zero; N]; N];
         let mut rhs = [zero; N];
         for row in 0..N {
@@ -298,21 +306,24 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         }
         for i in (0..K).filter(|&i| loaded[i]) {
             let ri = &self.touches[i].arm;
-            // Contact i's conditions: sliding, the slip across its line; sticking, its slip along
-            // `d` and across.
-            let conditions: [(usize, Vector<T>); 2] = [(2 * i, across[i]), (2 * i + 1, lines[i].d)];
-            let rows = if saturated[i] { 1 } else { 2 };
-            for &(row, e) in conditions.iter().take(rows) {
+            // Contact i's conditions: its normal row (closed at the LCP's answer: no residual);
+            // sliding, the slip across its line; sticking, its slip across and along `d`.
+            let conditions: [(usize, Vector<T>, T); 3] = [
+                (3 * i, n, zero),
+                (3 * i + 1, across[i], -dot(&across[i], &slips[i])),
+                (3 * i + 2, lines[i].d, -dot(&lines[i].d, &slips[i])),
+            ];
+            for &(row, e, r) in conditions.iter().take(used(i)) {
                 jac[row][row] = zero;
-                rhs[row] = -dot(&e, &slips[i]);
-                if saturated[i] {
+                rhs[row] = r;
+                if saturated[i] && row == 3 * i + 1 {
                     jac[row][row] = -dot(&lines[i].d, &slips[i]);
                 }
                 for j in (0..K).filter(|&j| loaded[j]) {
-                    for k in 0..(if saturated[j] { 1 } else { 2 }) {
+                    for k in 0..used(j) {
                         let f = effect(j, k);
                         let w = self.delassus(ri, &e, &self.touches[j].arm, &f);
-                        jac[row][2 * j + k] += w;
+                        jac[row][3 * j + k] += w;
                     }
                 }
             }
@@ -324,10 +335,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 // The turn by `dtheta` to first order, `d + dtheta a` (normalised below): Newton's
                 // step needs no more, and no sine. A turn of more than a right angle is no longer
                 // a correction: it is held to `tan` of 1.5 rad.
-                let angle = max(min(x[2 * i], T::of(14.0)), T::of(-14.0));
+                let angle = max(min(x[3 * i + 1], T::of(14.0)), T::of(-14.0));
                 add(&d, &scale(angle, &a))
             } else {
-                add(&scale(impulses[i].1 + x[2 * i], &d), &scale(x[2 * i + 1], &a))
+                add(&scale(impulses[i].1 + x[3 * i + 1], &d), &scale(x[3 * i + 2], &a))
             };
             lines[i].d = direction(&next).unwrap_or(d);
         }
@@ -348,13 +359,16 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     ) -> Result<ContactReport<T>, StepError> {
         let limit = mu * pn;
         let (slip_speed, friction) = (norm(slip), norm(pt));
+        // A slip within the stick speed reads sticking (in f32 its direction can be round-off's):
+        // the cone alone holds it.
+        let sliding =
+            pn > T::zero() && limit > T::zero() && slip_speed > max(self.slip_tolerance, self.stick_speed);
         let residual = if pn <= T::zero() {
             T::zero()
         } else if limit <= T::zero() {
             friction / pn
-        } else if slip_speed > max(self.slip_tolerance, self.stick_speed) {
-            // Sliding: the cone's edge against the slip. A slip within the stick speed reads
-            // sticking (in f32 its direction can be round-off's): the cone alone holds it.
+        } else if sliding {
+            // Sliding: the cone's edge against the slip.
             norm(&add(pt, &scale(limit / slip_speed, slip))) / limit
         } else {
             max(friction - limit, T::zero()) / limit
@@ -363,8 +377,19 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         // light load at the edge of sticking), to the LCP's verification on that scale.
         // A pyramid's friction need not oppose the slip (`against_slip` false): only its bound,
         // `|p_t| <= mu p_n`, is a failure; its residual against the circle is reported.
-        let excess =
-            if against_slip { residual } else { max(friction - limit, T::zero()) / max(limit, T::TINY) };
+        // A sliding contact's slip is known to the step's round-off, `slip_tolerance` (the
+        // solve's own test of it), so its direction to `slip_tolerance / |s|`: its friction is
+        // held to `-mu p_n` along the slip, and across it to `mu p_n` times that angle besides.
+        let excess = if !against_slip {
+            max(friction - limit, T::zero()) / max(limit, T::TINY)
+        } else if sliding {
+            let along = dot(pt, slip) / slip_speed;
+            let across = norm(&sub(pt, &scale(along / slip_speed, slip)));
+            let angle = self.slip_tolerance / slip_speed;
+            max((along + limit).abs_exact(), max(across - limit * angle, T::zero())) / limit
+        } else {
+            residual
+        };
         if !residual.finite() || (excess > T::of(4096.0) * T::EPS && excess * limit > bound) {
             return Err(StepError::ConeUnverified { residual: residual.as_f32() });
         }

@@ -32,16 +32,22 @@
 //!    contact's slip after the step has no component across its `d` (within `256 eps` of the
 //!    step's velocity scale): its friction then lies on the slip's line, opposing it (the LCP's
 //!    complementarity) or stopping it. Otherwise the lines turn together by one step of Newton's
-//!    method on those conditions, the normal impulses held: a sliding contact's line by an angle
-//!    (turning it turns its friction and the direction its condition is read in), a sticking
-//!    one's toward the tangential impulse that stops its slip, the slips moving by `W` of the
-//!    friction changes (a linear system of at most `2 K` unknowns); the LCP is solved again, at
-//!    most [`MAX_DIRECTIONS`] times ([`StepError::ConeNotConverged`]). Where every contact's
-//!    tangential response is isotropic and uncoupled from its normal (a sphere; a point under the
-//!    centre of mass) the first lines, the free slips', hold: one LCP a step; a tripod spinning
-//!    as it slides needs two to four. Every answer is checked against the circular cone
-//!    ([`ContactReport::cone_residual`], in units of `mu p_n`, or the LCP's own verification scale
-//!    where the cone is far smaller than it: a light load at the edge of sticking).
+//!    method on those conditions, the LCP's modes held: each loaded contact's normal row stays
+//!    closed and its normal impulse moves with the friction (`W` couples the two off the centre of
+//!    mass), a sliding contact's line turns by an angle (turning it turns its friction and the
+//!    direction its condition is read in; its friction's size follows its normal impulse), a
+//!    sticking one's friction moves toward the tangential impulse that stops its slip, the
+//!    velocities moving by `W` of the impulses' changes (a linear system of at most `3 K`
+//!    unknowns); the LCP is solved again, at most [`MAX_DIRECTIONS`] times
+//!    ([`StepError::ConeNotConverged`]). Where every contact's tangential response is isotropic
+//!    and uncoupled from its normal (a sphere; a point under the centre of mass) the first lines,
+//!    the free slips', hold: one LCP a step; a lone sticking contact's conditions are linear,
+//!    one turn meets them; a box's corner sliding and spinning needs two to six, a tripod two to four.
+//!    Every answer is checked against the circular cone ([`ContactReport::cone_residual`], in
+//!    units of `mu p_n`, or the LCP's own verification scale where the cone is far smaller than
+//!    it: a light load at the edge of sticking). A sliding slip `s` is known to the step's
+//!    velocity round-off (the `256 eps` above), its direction to that over `|s|`: across the slip
+//!    the friction is held to `mu p_n` times that angle besides.
 //!
 //!    **The baseline** ([`FrictionCone::Pyramid`]): the pyramid of LCP engines, `k` directions
 //!    fixed in the plane, one LCP a step (Stewart & Trinkle). Its friction points at the pyramid's
