@@ -56,7 +56,7 @@ pub enum SceneKind {
     /// A disc on a board pulled along a floor: it rolls or slides (several bodies).
     #[cfg(feature = "scenes-multibody")]
     DiscOnBoard,
-    /// A puck launched across a table or an incline (three dimensions, [`crate::spatial`]).
+    /// A puck launched across a table or an incline (three dimensions, `crate::spatial`).
     #[cfg(feature = "scenes-spatial")]
     Puck,
     /// A billiard ball struck with spin: it slides, then rolls (three dimensions).
@@ -139,7 +139,7 @@ impl SceneKind {
         }
     }
 
-    /// `true` for a scene in three dimensions ([`super::spatial`], feature `scenes-spatial`): it
+    /// `true` for a scene in three dimensions (`super::spatial`, feature `scenes-spatial`): it
     /// is built by [`SceneParams::build_view`] only, and has no LCP layout to choose.
     #[must_use]
     pub const fn is_spatial(self) -> bool {

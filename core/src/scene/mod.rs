@@ -22,7 +22,7 @@
 //!
 //! [`SceneView`] is one interface over the scenes of every engine, for a driver that names none
 //! ([`PlanarView`] over a [`Scene`], [`MultibodyView`] over a scene of several bodies,
-//! `spatial::SpatialView` over a scene in three dimensions: [`spatial`], feature `scenes-spatial`).
+//! `spatial::SpatialView` over a scene in three dimensions: `spatial`, feature `scenes-spatial`).
 
 mod cylinder;
 mod incline;
@@ -64,7 +64,7 @@ pub use view::MultibodyViews;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use view::PlanarViews;
 pub use view::{
-    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, Force, HeldView, LoadPart, MultibodyView,
-    PlanarView, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing, Velocity, ViewReader,
-    ViewVector, ViewVisitor,
+    Axis, BodyShape, BodyView, ContactView, DIMENSIONS, EventView, FigureName, Force, HeldView, LoadPart,
+    MultibodyView, PlanarView, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing,
+    Velocity, ViewReader, ViewVector, ViewVisitor,
 };

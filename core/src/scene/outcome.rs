@@ -39,7 +39,7 @@ pub enum Outcome {
     MultibodyFailed(crate::multibody::StepError),
     /// Puck: the sliding body came to rest (its contact sticks).
     Stopped,
-    /// A step of a scene in three dimensions failed ([`crate::spatial::StepError`]; the state is
+    /// A step of a scene in three dimensions failed (`crate::spatial::StepError`; the state is
     /// that before it). Its kind is [`OutcomeKind::Failed`].
     #[cfg(feature = "spatial")]
     SpatialFailed(crate::spatial::StepError),

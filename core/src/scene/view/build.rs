@@ -49,7 +49,7 @@ impl SceneParams {
     /// The scene in `precision`, keeping `E` switch events, handed to `visitor` as a
     /// [`SceneView`]: a scene of one body in `layout` ([`Self::build`]), a scene of several bodies
     /// in its one layout ([`Self::build_multibody`], `layout` unused), a scene in three
-    /// dimensions through its [`crate::scene::spatial::SpatialView`] (`layout` unused).
+    /// dimensions through its `crate::scene::spatial::SpatialView` (`layout` unused).
     ///
     /// # Errors
     /// As [`Self::build`] or [`Self::build_multibody`]: the core's first complaint about the
