@@ -551,7 +551,9 @@ fn check_bodies(b: &Browser, base: &str, name: &str, query: &str) {
 /// Each scene is headed and introduced as the catalogue's `INTRODUCTIONS` say (from
 /// `pkg/intros.json`, which `build_web` writes from them).
 fn check_intros(b: &Browser, base: &str) {
-    for intro in &INTRODUCTIONS {
+    // The page runs no scene in three dimensions yet (`web::config::on_page`).
+    let on_page: Vec<_> = INTRODUCTIONS.iter().filter(|i| !i.kind.is_spatial()).collect();
+    for intro in &on_page {
         let name = intro.kind.name();
         b.goto(&format!("{base}?scene={name}"));
         b.wait(
@@ -565,7 +567,7 @@ fn check_intros(b: &Browser, base: &str) {
         assert_eq!(b.text("intro"), intro.intro, "{name}: the introduction");
         assert_eq!(b.js("return document.title"), json!(format!("meterstick: {}", intro.heading)), "{name}");
     }
-    println!("headings and introductions: the catalogue's, for {} scenes", INTRODUCTIONS.len());
+    println!("headings and introductions: the catalogue's, for {} scenes", on_page.len());
 }
 
 /// A body's box ([x, y] centre, [w, h] size, angle) inside a drawing's extent: every corner.
@@ -715,8 +717,12 @@ fn check_scene_selector(b: &Browser, base: &str) {
     b.goto(&format!("{base}?scene=meter-stick&rate=max"));
     b.wait("the page", "return document.body.dataset.state === 'ready'", Duration::from_secs(30));
     let options = b.js("return [...document.getElementById('scene-select').options].map((o) => o.value)");
-    let names: Vec<&str> = SceneKind::ALL.iter().map(|k| k.name()).collect();
-    assert_eq!(options, json!(names), "the selector lists the catalogue's scenes");
+    let names: Vec<&str> = SceneKind::ALL.iter().filter(|k| !k.is_spatial()).map(|k| k.name()).collect();
+    assert_eq!(
+        options,
+        json!(names),
+        "the selector lists the catalogue's scenes (none in three dimensions yet)"
+    );
     let fetched = || b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
     assert!(
         !fetched().as_str().unwrap().contains("meterstick_web_k1.wasm"),
