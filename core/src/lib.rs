@@ -37,11 +37,15 @@ mod real;
 pub mod rule;
 pub mod scene;
 pub mod soft_float;
+mod run_stats;
+mod step_error;
 #[cfg(feature = "spatial")]
 pub mod spatial;
 
 pub use params::{Check, ParamError, check_fields};
 pub use real::Real;
+pub use run_stats::RunStats;
+pub use step_error::StepError;
 
 /// The `nalgebra` this crate is built with (its `SMatrix`/`SVector` appear in the API).
 pub use nalgebra;

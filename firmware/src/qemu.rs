@@ -316,9 +316,9 @@ impl MultibodyVisitor for CheckMultibody {
             self.name,
             outcome,
             scene.time().as_f64() as f32,
-            u64::from(st.steps),
+            st.steps,
             st.pivots,
-            st.max_active,
+            st.most_lcp_contacts.unwrap_or(0),
             checksum.value()
         );
         defmt::println!(
@@ -396,7 +396,7 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         }
     };
     let mut checksum = Checksum::new();
-    let (mut steps, mut ticks, mut worst) = (0u32, 0u64, 0u32);
+    let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
     let state = loop {
         let t0 = systick::now();
         let result = rig.tick();
@@ -429,7 +429,7 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         }
     };
     defmt::println!(
-        "{=str} outcome={} t={=f32} steps={=u32} checksum={=u32:08x}",
+        "{=str} outcome={} t={=f32} steps={=u64} checksum={=u32:08x}",
         name,
         outcome,
         rig.scene().time(),
@@ -445,7 +445,7 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         );
     }
     defmt::println!(
-        "{=str} rig systicks={=u64} worst_step_systicks={=u32} steps={=u32}",
+        "{=str} rig systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
         name,
         ticks,
         worst,

@@ -296,7 +296,7 @@ where
 
     fn finish(&mut self, outcome: Outcome) -> Result<(), RigError<PinError>> {
         match outcome {
-            Outcome::MultibodyFailed(e) => self.fault(e),
+            Outcome::Failed(e) => self.fault(e),
             o => {
                 log_info!("multibody rig: outcome {} at t={=f32}", o, self.scene.time());
                 self.state = MultibodyRigState::Finished(o);

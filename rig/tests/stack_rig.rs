@@ -9,7 +9,7 @@ use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
 use meterstick_core::ParamError;
 use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams};
 use meterstick_core::multibody::{
-    CornerFrame, Pair, Settings, Stats, StepError, StepReport, Support, System, Table,
+    CornerFrame, Pair, Settings, RunStats, StepError, StepReport, Support, System, Table,
 };
 use meterstick_core::planar::{Body, BodyState, ContactMode, Direction};
 use meterstick_core::scene::{MAX_MEASURES, Outcome};
@@ -393,7 +393,7 @@ struct Failing {
     system: System<f32, 1, 1>,
     frames: [[CornerFrame<f32>; 4]; 1],
     modes: [[ContactMode; 4]; 1],
-    stats: Stats,
+    stats: RunStats,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -404,7 +404,7 @@ struct FailAt {
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Failure {
-    /// The step fails in the core (`Outcome::MultibodyFailed`).
+    /// The step fails in the core (`Outcome::Failed`).
     Solver,
     /// The step reports a NaN state without failing.
     NonFiniteState,
@@ -421,7 +421,7 @@ impl MultibodyScene<f32, 1, 1> for Failing {
         if self.steps == self.params.step {
             match self.params.failure {
                 Failure::Solver => {
-                    self.outcome = Some(Outcome::MultibodyFailed(StepError::TooManyContacts(9)));
+                    self.outcome = Some(Outcome::Failed(StepError::TooManyContacts(9)));
                     return None;
                 }
                 Failure::NonFiniteState => states[0].vy = f32::NAN,
@@ -455,7 +455,7 @@ impl MultibodyScene<f32, 1, 1> for Failing {
     fn time(&self) -> f32 {
         self.steps as f32 * 1e-3
     }
-    fn stats(&self) -> &Stats {
+    fn stats(&self) -> &RunStats {
         &self.stats
     }
     fn measured(&self) -> [Option<f32>; MAX_MEASURES] {
@@ -501,7 +501,7 @@ impl RigScene<1, 1> for Failing {
                 touch: 0.0,
             }; 4]],
             modes: [[s, x, x, s]],
-            stats: Stats::default(),
+            stats: RunStats::default(),
         })
     }
     fn step_of(_: &FailAt) -> f32 {

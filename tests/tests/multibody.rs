@@ -20,7 +20,7 @@ use meterstick_reference::multibody as reference;
 #[derive(Debug)]
 struct Measured {
     outcome: Outcome,
-    steps: u32,
+    steps: u64,
     /// `[lower, upper]` accelerations in full contact (m/s^2).
     accelerations: Option<[f64; 2]>,
     /// The largest `|vx|` of any body over the run (m/s).

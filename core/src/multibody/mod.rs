@@ -17,8 +17,7 @@
 //! A build that steps only single-body scenes links none of this: the steppers and scenes are
 //! generic, compiled where something names them (the registry's rows of several bodies, behind the
 //! `scenes-multibody` feature; a driver or firmware that builds a scene). The rest of the core names
-//! some of it unconditionally: [`StepError`], in [`crate::scene::Outcome::MultibodyFailed`], and
-//! the view of a scene of several bodies, [`crate::scene::MultibodyView`], generic over its scene
+//! some of it unconditionally: the view of a scene of several bodies, [`crate::scene::MultibodyView`], generic over its scene
 //! ([`scenes::MultibodyScene`], [`Shape`], [`Support`]).
 
 mod factored;
@@ -29,4 +28,6 @@ mod slots;
 mod stepper;
 
 pub use geometry::{Candidate, CornerFrame, JacobianRow, Pair, Shape, Support, Table};
-pub use stepper::{Settings, Stats, StepError, StepReport, Stepper, System};
+pub use crate::StepError;
+pub use stepper::{Settings, StepReport, Stepper, System};
+pub use crate::RunStats;

@@ -72,8 +72,9 @@ pub use layout::{Direction, Layout, Tangents, Variable};
 pub(crate) use model::check_friction;
 pub use model::{Model, Settings};
 pub use report::{
-    ContactReport, FRICTION_ROUND_OFF_LIMIT, ROUND_OFF_LIMIT, RunStats, StepReport,
-    friction_beyond_precision, friction_limit,
+    ContactReport, FRICTION_ROUND_OFF_LIMIT, ROUND_OFF_LIMIT, StepReport, friction_beyond_precision,
+    friction_limit,
 };
-pub use stepper::{StepError, Stepper};
+pub use crate::{RunStats, StepError};
+pub use stepper::Stepper;
 pub use strategy::{PathCounts, SolvePath};

@@ -27,52 +27,18 @@ use super::factored::{FactoredLcp, PlanCache};
 use super::inputs::sign;
 use super::layout::{Direction, Layout, Variable};
 use super::model::{Model, Settings, validate};
-use super::report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
+use super::report::{ContactReport, ROUND_OFF_LIMIT, StepReport};
+use crate::RunStats;
 use super::resolve::{Detector, resolve, solve_by_rule};
 use super::strategy::{SolvePath, Solved, solve};
-use crate::lcp::{Basis, LcpError, Lemke};
+use crate::lcp::{Basis, Lemke};
 #[cfg(feature = "fallback")]
 use crate::load::{Carry, LoadContact, LoadPath, least_norm, least_norm_two_sticking};
+use crate::StepError;
 use crate::params::ParamError;
-use crate::real::{Real, max, min, zero_if_finite};
+use crate::real::{Real, compensated_add, max, min, zero_if_finite};
 use crate::rule::Resolution;
 
-/// Why a step failed. The state is that before the step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[non_exhaustive]
-pub enum StepError {
-    /// The step's LCP could not be solved.
-    Solver(LcpError),
-    /// The state after the step would not be finite.
-    NonFinite,
-    /// A reduced layout's dropped direction was needed and the `fallback` feature is off.
-    ReducedModelLeftRange,
-    /// A support cannot carry its contact's feature (the contact's index).
-    SupportMismatch(u8),
-    /// A line's normal is not a unit vector ([`Support::is_well_formed`]; the contact's index).
-    /// (A support whose position or velocity is not finite fails the step with
-    /// [`LcpError::NonFiniteInput`].)
-    MalformedSupport(u8),
-}
-
-impl core::fmt::Display for StepError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::Solver(e) => write!(f, "solver: {e}"),
-            Self::NonFinite => f.write_str("the state became non-finite"),
-            Self::ReducedModelLeftRange => {
-                f.write_str("the reduced friction model left its range (no fallback compiled in)")
-            }
-            Self::SupportMismatch(i) => write!(f, "the support of contact {i} cannot carry its feature"),
-            Self::MalformedSupport(i) => {
-                write!(f, "the line supporting contact {i} has a normal that is not a unit vector")
-            }
-        }
-    }
-}
-
-impl core::error::Error for StepError {}
 
 /// One rigid body against `K` supports; each step solves the `N`-variable LCP of a [`Layout`],
 /// and, when that layout is reduced, falls back to the `NF`-variable full layout (`NF = N`: no
@@ -410,7 +376,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             // The position enters as `p - p`, exactly 0 when it is finite and NaN when not: a
             // non-finite position (which only the next step's frames would read, and then as an
             // inactive contact) makes this step's data non-finite, refused as a non-finite
-            // velocity is ([`LcpError::NonFiniteInput`]), with no branch of its own.
+            // velocity is (`LcpError::NonFiniteInput`), with no branch of its own.
             let (p, u) = (supports[i].position(), supports[i].velocity());
             support_velocity[i] = [u[0] + zero_if_finite(p[0]), u[1] + zero_if_finite(p[1])];
             mu[i] = if self.modes[i].is_sliding() || (RULE && self.slips_unloaded(i)) {
@@ -597,10 +563,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         state.vy = v_plus[1];
         state.omega = v_plus[2];
         for (k, coordinate) in [&mut state.x, &mut state.y, &mut state.theta].into_iter().enumerate() {
-            let increment = h * v_plus[k] - carry[k];
-            let sum = *coordinate + increment;
-            carry[k] = (sum - *coordinate) - increment;
-            *coordinate = sum;
+            compensated_add(coordinate, &mut carry[k], h * v_plus[k]);
         }
         if !state.is_finite() {
             return Err(StepError::NonFinite);
@@ -615,14 +578,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             self.stats.round_off_limited += 1;
         }
         if flagged {
-            self.stats.rule_checked_steps += 1;
-            self.stats.rule_enumerated_steps += u64::from(rule.enumerated);
-            self.stats.ambiguous_steps += u64::from(rule.ambiguous);
-            self.stats.rule_changed_answer += u64::from(rule.changed);
+            self.stats.count_rule(rule);
         }
         if pivots > 0 {
-            self.stats.pivots += u64::from(pivots);
-            self.stats.max_pivots = self.stats.max_pivots.max(pivots);
+            self.stats.count_pivots(pivots);
         }
 
         // Impulses (z is per unit mass) and modes after the step.

@@ -501,7 +501,7 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Size
     fn time(&self) -> T {
         (**self).time()
     }
-    fn stats(&self) -> &crate::multibody::Stats {
+    fn stats(&self) -> &RunStats {
         (**self).stats()
     }
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {

@@ -4,7 +4,8 @@
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::{Body, inverse_inertia_times};
-use super::report::{ContactReport, MAX_DIRECTIONS, Mode, StepError};
+use super::report::{ContactReport, MAX_DIRECTIONS, Mode};
+use crate::StepError;
 use crate::lcp::{Basis, Lcp, Lemke};
 use crate::real::{Real, max, min};
 

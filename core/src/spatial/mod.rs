@@ -96,5 +96,6 @@ mod stepper;
 
 pub use algebra::{Quaternion, Vector, about, dot, identity, norm, perpendicular, rotate};
 pub use body::{Body, State};
-pub use report::{ContactReport, MAX_DIRECTIONS, Mode, StepError, StepReport};
+pub use crate::StepError;
+pub use report::{ContactReport, MAX_DIRECTIONS, Mode, StepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, Settings, Shape, Stepper};

@@ -3,7 +3,6 @@
 
 use super::algebra::Vector;
 use super::body::State;
-use crate::lcp::LcpError;
 use crate::real::Real;
 
 /// The most friction directions a step tries before it gives up ([`StepError::ConeNotConverged`]):
@@ -71,35 +70,3 @@ pub struct StepReport<T, const K: usize> {
     pub pivots: u32,
 }
 
-/// Why a step failed; the state is then unchanged.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum StepError {
-    /// The contact's LCP had no verified answer.
-    Solver(LcpError),
-    /// The friction direction and the slip did not agree within [`MAX_DIRECTIONS`] tries.
-    ConeNotConverged,
-    /// The answer broke the circular cone's conditions beyond round-off (the residual, as
-    /// [`ContactReport::cone_residual`]).
-    ConeUnverified {
-        /// The residual.
-        residual: f32,
-    },
-    /// The state after the step would not be finite.
-    NonFinite,
-}
-
-impl core::fmt::Display for StepError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::Solver(e) => write!(f, "the contact's LCP: {e}"),
-            Self::ConeNotConverged => {
-                write!(f, "the friction direction did not meet the slip in {MAX_DIRECTIONS} tries")
-            }
-            Self::ConeUnverified { residual } => {
-                write!(f, "the answer is outside Coulomb's circular cone by {residual:e} of mu p_n")
-            }
-            Self::NonFinite => f.write_str("the state after the step is not finite"),
-        }
-    }
-}

@@ -4,7 +4,8 @@
 use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
 use super::friction::{Contacts, Touch};
-use super::report::{ContactReport, Mode, StepError, StepReport};
+use super::report::{ContactReport, Mode, StepReport};
+use crate::StepError;
 use crate::ParamError;
 use crate::lcp::{Basis, Lemke};
 use crate::planar::assemble::normal_bias;

@@ -3,7 +3,7 @@
 //! and measures.
 //!
 //! Their outcomes are the one list's, [`Outcome`] (`crate::scene::Outcome`; a failed step is
-//! [`Outcome::MultibodyFailed`]). They do not implement `crate::scene::Scene`, which is shaped for
+//! [`Outcome::Failed`]). They do not implement `crate::scene::Scene`, which is shaped for
 //! one body (its `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact);
 //! each has
 //! `step()` and `run()` of its own returning [`super::StepReport`] (every body's state, each
@@ -21,7 +21,8 @@ pub use disc_on_board::{DiscOnBoard, DiscOnBoardParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
-use super::{CornerFrame, Stats, StepReport, Stepper, System};
+use super::{CornerFrame, StepReport, Stepper, System};
+use crate::RunStats;
 use crate::params::ParamError;
 use crate::planar::{BodyState, ContactMode};
 use crate::real::Real;
@@ -58,7 +59,7 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     /// Simulated time (s).
     fn time(&self) -> T;
     /// The stepper's counters.
-    fn stats(&self) -> &Stats;
+    fn stats(&self) -> &RunStats;
     /// What the scene measures so far, in the order the catalogue names them (`docs/scenes.md`,
     /// each scene's "Measured"): block-on-block `[a_bottom, a_top]`, the tablecloth the block's
     /// displacement, the stack its largest point speed, disc-on-board `[a_board, a_disc]`.
@@ -92,7 +93,7 @@ impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Par
     }
 
     /// One step, unless the run has its outcome; a step that fails ends the run
-    /// ([`Outcome::MultibodyFailed`]; the state is that before the step).
+    /// ([`Outcome::Failed`]; the state is that before the step).
     fn advance(&mut self) -> Option<StepReport<T, B, P>> {
         if self.outcome.is_some() {
             return None;
@@ -100,7 +101,7 @@ impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Par
         match self.stepper.step() {
             Ok(report) => Some(report),
             Err(e) => {
-                self.outcome = Some(Outcome::MultibodyFailed(e));
+                self.outcome = Some(Outcome::Failed(e));
                 None
             }
         }
@@ -173,7 +174,7 @@ macro_rules! multibody_scene {
             fn time(&self) -> T {
                 self.stepper().time()
             }
-            fn stats(&self) -> &Stats {
+            fn stats(&self) -> &RunStats {
                 self.stepper().stats()
             }
             fn measured(&self) -> [Option<T>; MAX_MEASURES] {

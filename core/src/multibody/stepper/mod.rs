@@ -8,7 +8,7 @@
 //! * `step.rs`: the step ([`Stepper::step`]) and the load where it is open;
 //! * `solve.rs`: the step's LCP in factored form and the solve's paths;
 //! * `candidates.rs`: the bases next to the warm one, tried after it declined;
-//! * `report.rs`: [`StepReport`] and [`Stats`];
+//! * `report.rs`: [`StepReport`];
 //! * `tests.rs`: the constructor's refusals.
 //!
 //! The rule's enumeration and decision is `resolve.rs`, beside this module.
@@ -21,7 +21,7 @@ mod step;
 #[allow(clippy::expect_used)] // a test's setup may fail loudly
 mod tests;
 
-pub use report::{Stats, StepReport};
+pub use report::StepReport;
 
 use super::factored::Factored;
 #[cfg(feature = "fallback")]
@@ -29,7 +29,8 @@ use super::factored::MOST_SLOTS;
 use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames};
 use super::resolve::Detector;
 use super::slots::Pattern;
-use crate::lcp::{Basis, LcpError, Lemke};
+use crate::RunStats;
+use crate::lcp::{Basis, Lemke};
 use crate::params::{Check, ParamError, check_fields};
 use crate::planar::check_friction;
 use crate::planar::{Body, BodyState, ContactMode};
@@ -79,29 +80,6 @@ impl<T, const B: usize, const P: usize> System<T, B, P> {
     }
 }
 
-/// Why a step failed. The state is then that before the step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum StepError {
-    /// The step's LCP could not be solved (or its answer not verified).
-    Solver(LcpError),
-    /// The state after the step would not be finite.
-    NonFinite,
-    /// More candidates are active than the LCP's capacity `N / 4` holds (the count).
-    TooManyContacts(u8),
-}
-
-impl core::fmt::Display for StepError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::Solver(e) => write!(f, "solver: {e}"),
-            Self::NonFinite => f.write_str("the state became non-finite"),
-            Self::TooManyContacts(k) => write!(f, "{k} contacts are active, more than the LCP holds"),
-        }
-    }
-}
-
-impl core::error::Error for StepError {}
 
 /// Steps a [`System`] of `B` bodies and `P` pairs (`4 P` candidate contacts) with an LCP of
 /// capacity `N` rows (at most `N / 4` active contacts; `N <= 32`, Lemke's limit).
@@ -136,7 +114,6 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     patterns: [[Pattern; 4]; P],
     /// `64 eps g h m_min / m_ref`: a normal impulse per unit reference mass at most this is none.
     impulse_floor: T,
-    steps: u32,
     solver: Lemke<T, N>,
     /// The step's LCP in factored form, refilled each step ([`Self::refill`]).
     pub(super) lcp: StepLcp<T, B, N>,
@@ -153,7 +130,7 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     /// ([`Self::step_loading`]; the first step does).
     #[cfg(feature = "fallback")]
     load_next: bool,
-    stats: Stats,
+    stats: RunStats,
 }
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
@@ -213,7 +190,6 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             modes: [[ContactMode::Separated; 4]; P],
             patterns: [[0; 4]; P],
             impulse_floor: T::of(64.0) * T::EPS * s.gravity * s.step * m_min / m_ref,
-            steps: 0,
             solver: Lemke::new(),
             lcp: StepLcp {
                 factored: Factored::new(),
@@ -229,7 +205,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             load_memory: LoadMemory::none(),
             #[cfg(feature = "fallback")]
             load_next: true,
-            stats: Stats::default(),
+            stats: RunStats::default(),
         };
         stepper.update_frames();
         for p in 0..P {
@@ -275,14 +251,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 
     /// The run's counters.
     #[must_use]
-    pub const fn stats(&self) -> &Stats {
+    pub const fn stats(&self) -> &RunStats {
         &self.stats
     }
 
     /// Time now, `n h` after `n` steps (s).
     #[must_use]
     pub fn time(&self) -> T {
-        T::of_count(self.steps) * self.system.settings.base.step
+        T::of_count(u32::try_from(self.stats.steps).unwrap_or(u32::MAX)) * self.system.settings.base.step
     }
 
     fn update_frames(&mut self) {

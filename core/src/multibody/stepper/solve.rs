@@ -4,7 +4,8 @@
 //! factored form, the candidates (`candidates.rs`), Lemke's method on the assembled LCP from the
 //! warm basis and its retries ([`Stepper::retry`]); every answer verified.
 
-use super::{StepError, Stepper};
+use super::Stepper;
+use crate::StepError;
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, verify};
 use crate::multibody::factored::{Answer, ContactBlocks, MOST_SLOTS};
 use crate::multibody::slots::{PATTERNS, pattern_bits, with_pattern};

@@ -8,7 +8,8 @@
 use super::LoadMemory;
 use super::report::StepReport;
 use super::solve::Solved;
-use super::{StepError, Stepper};
+use super::Stepper;
+use crate::StepError;
 #[cfg(feature = "fallback")]
 use crate::load::{Carry, LoadContact, LoadPath, least_norm};
 use crate::multibody::factored::MOST_SLOTS;
@@ -18,7 +19,7 @@ use crate::multibody::slots::{Pattern, slot_rows};
 #[cfg(feature = "fallback")]
 use crate::planar::assemble::normal_bias;
 use crate::planar::{ContactMode, SolvePath};
-use crate::real::Real;
+use crate::real::{Real, compensated_add};
 #[cfg(feature = "fallback")]
 use crate::real::max;
 
@@ -195,10 +196,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let st = &mut states[i];
             [st.vx, st.vy, st.omega] = v_plus[i];
             for (c, coordinate) in [&mut st.x, &mut st.y, &mut st.theta].into_iter().enumerate() {
-                let increment = h * v_plus[i][c] - carry[i][c];
-                let sum = *coordinate + increment;
-                carry[i][c] = (sum - *coordinate) - increment;
-                *coordinate = sum;
+                compensated_add(coordinate, &mut carry[i][c], h * v_plus[i][c]);
             }
             if !st.is_finite() {
                 return Err(StepError::NonFinite);
@@ -267,18 +265,18 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         self.carry = carry;
         self.modes = modes;
         self.patterns = patterns;
-        self.steps += 1;
+        self.stats.steps += 1;
         self.update_frames();
         let st = &mut self.stats;
         paths.count(path);
         st.paths = paths;
-        st.count_rule(rule);
-        st.steps += 1;
-        st.pivots += u64::from(pivots);
-        st.max_pivots = st.max_pivots.max(pivots);
-        st.max_active = st.max_active.max(active);
+        if let Some(rule) = rule {
+            st.count_rule(rule);
+        }
+        st.count_pivots(pivots);
+        st.most_lcp_contacts = Some(st.most_lcp_contacts.unwrap_or(0).max(active));
         if path == SolvePath::Warm {
-            st.warm_direct += 1;
+            st.warm_starts += 1;
         }
         Ok(StepReport { time: self.time(), states, interface_forces, corner_loads, modes, active, pivots })
     }

@@ -4,7 +4,7 @@ use super::SpatialScene;
 use crate::planar::{Checksum, ContactMode, Direction};
 use crate::real::Real;
 use crate::scene::{
-    BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunSummary, SceneView, StepFigure,
+    BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepFigure,
     StepStats, SupportView, Thing, Velocity,
 };
 use crate::spatial::{ContactReport, Mode, norm};
@@ -146,14 +146,14 @@ impl<T: Real, S: SpatialScene<T>> SceneView<T> for SpatialView<T, S> {
         self.scene.measured()
     }
 
-    fn summary(&self) -> RunSummary {
+    fn summary(&self) -> RunStats {
         let run = self.scene.run();
-        RunSummary {
+        RunStats {
             steps: run.steps(),
             pivots: run.pivots(),
             max_pivots: run.max_pivots(),
             warm_starts: run.warm_starts(),
-            ..RunSummary::default()
+            ..RunStats::default()
         }
     }
 
