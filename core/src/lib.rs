@@ -35,12 +35,12 @@ mod params;
 pub mod planar;
 mod real;
 pub mod rule;
+mod run_stats;
 pub mod scene;
 pub mod soft_float;
-mod run_stats;
-mod step_error;
 #[cfg(feature = "spatial")]
 pub mod spatial;
+mod step_error;
 
 pub use params::{Check, ParamError, check_fields};
 pub use real::Real;

@@ -3,7 +3,7 @@
 use crate::planar::PathCounts;
 
 /// Counters over a run, kept by every engine's stepper ([`crate::planar::Stepper::stats`],
-/// [`crate::multibody::Stepper::stats`]) and shown by every scene's view
+/// [`crate::multibody::SystemStepper::stats`]) and shown by every scene's view
 /// ([`crate::scene::SceneView::summary`]). A counter an engine has no use for stays 0 (or `None`);
 /// each field says which.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

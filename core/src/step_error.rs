@@ -7,8 +7,8 @@ use crate::lcp::LcpError;
 ///
 /// Each engine returns the causes it can meet: one body against supports
 /// ([`crate::planar::Stepper`]) all but [`Self::TooManyContacts`] and the cone's; several bodies
-/// ([`crate::multibody::Stepper`]) [`Self::Solver`], [`Self::NonFinite`] and
-/// [`Self::TooManyContacts`]; three dimensions (`crate::spatial::Stepper`, feature `spatial`)
+/// ([`crate::multibody::SystemStepper`]) [`Self::Solver`], [`Self::NonFinite`] and
+/// [`Self::TooManyContacts`]; three dimensions (`crate::spatial::SpatialStepper`, feature `spatial`)
 /// [`Self::Solver`], [`Self::NonFinite`] and the cone's two.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -33,7 +33,7 @@ pub enum StepError {
     #[cfg(feature = "spatial")]
     ConeNotConverged,
     /// Three dimensions: the answer broke the circular cone's conditions beyond round-off (the
-    /// residual, as `crate::spatial::ContactReport::cone_residual`).
+    /// residual, as `crate::spatial::SpatialContactReport::cone_residual`).
     #[cfg(feature = "spatial")]
     ConeUnverified {
         /// The residual.

@@ -61,10 +61,7 @@ fn failed_steps_keep_their_cause() {
         outcome_code(Outcome::Failed(StepError::ReducedModelLeftRange)),
         OutcomeCode::ReducedModelLeftRange
     );
-    assert_eq!(
-        outcome_code(Outcome::Failed(StepError::TooManyContacts(7))),
-        OutcomeCode::SolverFailed
-    );
+    assert_eq!(outcome_code(Outcome::Failed(StepError::TooManyContacts(7))), OutcomeCode::SolverFailed);
     let failed = outcome_of(OutcomeCode::SolverFailed);
     assert_eq!(failed.class, OutcomeKind::Failed);
     assert!(failed.detail.is_some(), "a failed run read back without its cause");

@@ -62,6 +62,7 @@ mod report;
 
 mod stepper;
 
+pub use crate::{RunStats, StepError};
 pub use body::{Body, BodyState};
 pub use checksum::Checksum;
 pub use contact::{Contact, ContactFrame, ContactMode, Feature, Pose, Support};
@@ -75,6 +76,5 @@ pub use report::{
     ContactReport, FRICTION_ROUND_OFF_LIMIT, ROUND_OFF_LIMIT, StepReport, friction_beyond_precision,
     friction_limit,
 };
-pub use crate::{RunStats, StepError};
 pub use stepper::Stepper;
 pub use strategy::{PathCounts, SolvePath};

@@ -28,17 +28,16 @@ use super::inputs::sign;
 use super::layout::{Direction, Layout, Variable};
 use super::model::{Model, Settings, validate};
 use super::report::{ContactReport, ROUND_OFF_LIMIT, StepReport};
-use crate::RunStats;
 use super::resolve::{Detector, resolve, solve_by_rule};
 use super::strategy::{SolvePath, Solved, solve};
+use crate::RunStats;
+use crate::StepError;
 use crate::lcp::{Basis, Lemke};
 #[cfg(feature = "fallback")]
 use crate::load::{Carry, LoadContact, LoadPath, least_norm, least_norm_two_sticking};
-use crate::StepError;
 use crate::params::ParamError;
 use crate::real::{Real, compensated_add, max, min, zero_if_finite};
 use crate::rule::Resolution;
-
 
 /// One rigid body against `K` supports; each step solves the `N`-variable LCP of a [`Layout`],
 /// and, when that layout is reduced, falls back to the `NF`-variable full layout (`NF = N`: no

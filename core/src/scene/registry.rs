@@ -477,7 +477,7 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Size
     for &mut S
 {
     const ROWS: usize = S::ROWS;
-    fn step(&mut self) -> Option<crate::multibody::StepReport<T, B, P>> {
+    fn step(&mut self) -> Option<crate::multibody::SystemStepReport<T, B, P>> {
         (**self).step()
     }
     fn go_on(&mut self) -> Option<Outcome> {

@@ -25,7 +25,7 @@ pub enum Mode {
 /// The contact after a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ContactReport<T> {
+pub struct SpatialContactReport<T> {
     /// Its mode.
     pub mode: Mode,
     /// Normal impulse, N s.
@@ -42,7 +42,7 @@ pub struct ContactReport<T> {
     pub cone_residual: T,
 }
 
-impl<T: Real> ContactReport<T> {
+impl<T: Real> SpatialContactReport<T> {
     /// No contact: separated, nothing carried.
     pub(super) fn separated() -> Self {
         Self {
@@ -59,14 +59,13 @@ impl<T: Real> ContactReport<T> {
 /// One step's result.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct StepReport<T, const K: usize> {
+pub struct SpatialStepReport<T, const K: usize> {
     /// Time at the end of the step, s.
     pub time: T,
     /// The body after the step.
     pub state: State<T>,
-    /// Its contacts, in the order [`super::Stepper::new`] was given their shapes.
-    pub contacts: [ContactReport<T>; K],
+    /// Its contacts, in the order [`super::SpatialStepper::new`] was given their shapes.
+    pub contacts: [SpatialContactReport<T>; K],
     /// Lemke pivots of the step's solves (every friction line it tried).
     pub pivots: u32,
 }
-

@@ -4,7 +4,7 @@
 //!
 //! # The factored form
 //! With `k` active candidates the variables are laid out as the stepper's LCP
-//! ([`super::Stepper`]): `p_n` of slot `j` at `j`, `p_+d` at `k + 2 j`, `p_-d` at `k + 2 j + 1`,
+//! ([`super::SystemStepper`]): `p_n` of slot `j` at `j`, `p_+d` at `k + 2 j`, `p_-d` at `k + 2 j + 1`,
 //! `sigma` at `3 k + j`; rows `4 k .. N` are the identity's (`q = 1`). Impulse variable `v` has
 //! the Jacobian column `c_v`, dense in the bodies' `3B` coordinates (zero at a body the contact
 //! does not touch: a contact on the table touches one body, one between two bodies both), `M~ c_v`

@@ -4,9 +4,9 @@
 //!
 //! Their outcomes are the one list's, [`Outcome`] (`crate::scene::Outcome`; a failed step is
 //! [`Outcome::Failed`]). They do not implement `crate::scene::Scene`, which is shaped for
-//! one body (its `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact);
+//! one body (its `crate::planar::StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact);
 //! each has
-//! `step()` and `run()` of its own returning [`super::StepReport`] (every body's state, each
+//! `step()` and `run()` of its own returning [`super::SystemStepReport`] (every body's state, each
 //! pair's interface force), and [`MultibodyScene`], what a driver asks of any of them;
 //! [`crate::scene::MultibodyView`] shows any of them as a [`crate::scene::SceneView`], the one
 //! interface of every engine's scenes.
@@ -21,7 +21,7 @@ pub use disc_on_board::{DiscOnBoard, DiscOnBoardParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
-use super::{CornerFrame, StepReport, Stepper, System};
+use super::{CornerFrame, System, SystemStepReport, SystemStepper};
 use crate::RunStats;
 use crate::params::ParamError;
 use crate::planar::{BodyState, ContactMode};
@@ -36,7 +36,7 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     /// The LCP's capacity in rows (4 per active candidate contact).
     const ROWS: usize;
     /// Advances one step; `None` once the run has an outcome.
-    fn step(&mut self) -> Option<StepReport<T, B, P>>;
+    fn step(&mut self) -> Option<SystemStepReport<T, B, P>>;
     /// Lets a run that has its outcome go on: takes the outcome (and returns it), so that the next
     /// [`Self::step`] is taken and judged afresh. A front end that shows the bodies go on after
     /// the outcome (the stack tumbling off the table after `Fell`) calls it before each such step
@@ -52,9 +52,9 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     fn states(&self) -> &[BodyState<T>; B];
     /// The system stepped: the bodies, the table, the pairs, the forces, the step's scalars.
     fn system(&self) -> &System<T, B, P>;
-    /// Each pair's candidates' geometry now ([`super::Stepper::frames`]).
+    /// Each pair's candidates' geometry now ([`super::SystemStepper::frames`]).
     fn frames(&self) -> &[[CornerFrame<T>; 4]; P];
-    /// Each pair's candidates' modes after the last step ([`super::Stepper::modes`]).
+    /// Each pair's candidates' modes after the last step ([`super::SystemStepper::modes`]).
     fn modes(&self) -> &[[ContactMode; 4]; P];
     /// Simulated time (s).
     fn time(&self) -> T;
@@ -66,7 +66,7 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
 
     /// Runs until an outcome, calling `observe` after every step.
-    fn run(&mut self, mut observe: impl FnMut(&StepReport<T, B, P>)) -> Outcome
+    fn run(&mut self, mut observe: impl FnMut(&SystemStepReport<T, B, P>)) -> Outcome
     where
         Self: Sized,
     {
@@ -82,19 +82,19 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
 #[derive(Debug, Clone)]
 struct Run<T: Real, Params, const B: usize, const P: usize, const N: usize> {
     params: Params,
-    stepper: Stepper<T, B, P, N>,
+    stepper: SystemStepper<T, B, P, N>,
     outcome: Option<Outcome>,
 }
 
 impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Params, B, P, N> {
     /// The scene's parameters (validated by the caller), its system and its bodies' start.
     fn new(params: Params, system: System<T, B, P>, states: [BodyState<T>; B]) -> Result<Self, ParamError> {
-        Ok(Self { params, stepper: Stepper::new(system, states)?, outcome: None })
+        Ok(Self { params, stepper: SystemStepper::new(system, states)?, outcome: None })
     }
 
     /// One step, unless the run has its outcome; a step that fails ends the run
     /// ([`Outcome::Failed`]; the state is that before the step).
-    fn advance(&mut self) -> Option<StepReport<T, B, P>> {
+    fn advance(&mut self) -> Option<SystemStepReport<T, B, P>> {
         if self.outcome.is_some() {
             return None;
         }
@@ -112,7 +112,7 @@ impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Par
 /// `contact_margin`).
 macro_rules! settings_of {
     ($p:expr) => {
-        $crate::multibody::Settings {
+        $crate::multibody::SystemSettings {
             base: $crate::planar::Settings {
                 step: $p.step,
                 gravity: $p.gravity,
@@ -137,7 +137,7 @@ macro_rules! multibody_scene {
 
             /// The stepper (states, frames, modes, counters).
             #[must_use]
-            pub const fn stepper(&self) -> &Stepper<T, $b, $p, $rows> {
+            pub const fn stepper(&self) -> &SystemStepper<T, $b, $p, $rows> {
                 &self.run.stepper
             }
 
@@ -150,7 +150,7 @@ macro_rules! multibody_scene {
 
         impl<$($generics)*> MultibodyScene<T, $b, $p> for $scene {
             const ROWS: usize = $rows;
-            fn step(&mut self) -> Option<StepReport<T, $b, $p>> {
+            fn step(&mut self) -> Option<SystemStepReport<T, $b, $p>> {
                 <$scene>::step(self)
             }
             fn go_on(&mut self) -> Option<Outcome> {

@@ -1,4 +1,4 @@
-//! What a step reports ([`StepReport`]: the states, interface forces, corner loads and modes).
+//! What a step reports ([`SystemStepReport`]: the states, interface forces, corner loads and modes).
 
 use crate::planar::{BodyState, Checksum, ContactMode};
 use crate::real::Real;
@@ -6,7 +6,7 @@ use crate::real::Real;
 /// What one step did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[must_use]
-pub struct StepReport<T, const B: usize, const P: usize> {
+pub struct SystemStepReport<T, const B: usize, const P: usize> {
     /// Time at the step's end (s).
     pub time: T,
     /// Each body's state after the step.
@@ -26,7 +26,7 @@ pub struct StepReport<T, const B: usize, const P: usize> {
     pub pivots: u32,
 }
 
-impl<T, const B: usize, const P: usize> StepReport<T, B, P> {
+impl<T, const B: usize, const P: usize> SystemStepReport<T, B, P> {
     /// `true` when a contact of pair `p` was sliding after the step.
     #[must_use]
     pub fn pair_slid(&self, p: usize) -> bool {
@@ -42,7 +42,7 @@ impl<T, const B: usize, const P: usize> StepReport<T, B, P> {
     }
 }
 
-impl<T: Real, const B: usize, const P: usize> StepReport<T, B, P> {
+impl<T: Real, const B: usize, const P: usize> SystemStepReport<T, B, P> {
     /// Adds every body's state after the step, in body order, to a trajectory checksum: over a
     /// run, the fingerprint the firmware prints and the host compares bit for bit.
     pub fn add_to(&self, checksum: &mut Checksum) {

@@ -1,14 +1,14 @@
-//! The step itself ([`Stepper::step`]): refill, solve, the rule (`resolve.rs`), `V+ = v~ + M~
+//! The step itself ([`SystemStepper::step`]): refill, solve, the rule (`resolve.rs`), `V+ = v~ + M~
 //! J^T z` and `q+ = q + h V+` (compensated sums), the modes after the step, each pair's interface
 //! force and corner loads, the next warm patterns; where the load is open, the load of least
-//! 2-norm with the step's motion in place of the answer's ([`Stepper::decide_load`];
+//! 2-norm with the step's motion in place of the answer's ([`SystemStepper::decide_load`];
 //! `docs/formulation.md`, "The load: the least norm").
 
 #[cfg(feature = "fallback")]
 use super::LoadMemory;
-use super::report::StepReport;
+use super::SystemStepper;
+use super::report::SystemStepReport;
 use super::solve::Solved;
-use super::Stepper;
 use crate::StepError;
 #[cfg(feature = "fallback")]
 use crate::load::{Carry, LoadContact, LoadPath, least_norm};
@@ -19,11 +19,11 @@ use crate::multibody::slots::{Pattern, slot_rows};
 #[cfg(feature = "fallback")]
 use crate::planar::assemble::normal_bias;
 use crate::planar::{ContactMode, SolvePath};
-use crate::real::{Real, compensated_add};
 #[cfg(feature = "fallback")]
 use crate::real::max;
+use crate::real::{Real, compensated_add};
 
-impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
+impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The load of least 2-norm with this step's motion `v_plus` (`crate::load`) in place of the
     /// answer `z`'s: each slot's mode, its pair's summed impulse and its corner's load rewritten
     /// (`report`). A slot touches when it carries load or its normal velocity `c_n^T v+ + bias` is
@@ -149,7 +149,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    pub fn step(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         #[cfg(feature = "fallback")]
         if self.load_next {
             return self.step_loading();
@@ -161,14 +161,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// norm"): out of line, so that the other steps' copy has none of the load's code.
     #[cfg(feature = "fallback")]
     #[inline(never)]
-    fn step_loading(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    fn step_loading(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         self.step_with::<true>()
     }
 
     /// [`Self::step`], deciding the load where it is open when `LOAD`.
     #[inline(always)]
     #[allow(clippy::inline_always)] // into `step` and `step_loading`: two copies, as said there
-    fn step_with<const LOAD: bool>(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    fn step_with<const LOAD: bool>(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         let s = self.system.settings.base;
         let h = s.step;
         self.refill()?;
@@ -278,6 +278,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         if path == SolvePath::Warm {
             st.warm_starts += 1;
         }
-        Ok(StepReport { time: self.time(), states, interface_forces, corner_loads, modes, active, pivots })
+        Ok(SystemStepReport {
+            time: self.time(),
+            states,
+            interface_forces,
+            corner_loads,
+            modes,
+            active,
+            pivots,
+        })
     }
 }

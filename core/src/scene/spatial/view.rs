@@ -7,7 +7,7 @@ use crate::scene::{
     BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepFigure,
     StepStats, SupportView, Thing, Velocity,
 };
-use crate::spatial::{ContactReport, Mode, norm};
+use crate::spatial::{Mode, SpatialContactReport, norm};
 
 /// A scene in three dimensions seen as a [`SceneView`]: it owns the scene and keeps the last
 /// step's contact report and pivots, and the checksum of the steps taken through it (each step's
@@ -15,7 +15,7 @@ use crate::spatial::{ContactReport, Mode, norm};
 #[derive(Debug, Clone)]
 pub struct SpatialView<T: Real, S> {
     scene: S,
-    last: Option<ContactReport<T>>,
+    last: Option<SpatialContactReport<T>>,
     solve: Option<StepStats<T>>,
     checksum: Checksum,
 }

@@ -37,6 +37,7 @@ mod planar;
 mod step;
 mod support;
 
+pub use crate::RunStats;
 pub use body::{BodyShape, BodyView, Force, Pose, Velocity};
 pub use build::ViewVisitor;
 pub use contact::{ContactView, Thing};
@@ -55,7 +56,6 @@ pub use held::{HeldView, ViewReader};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use step::StepStats;
-pub use crate::RunStats;
 pub use support::SupportView;
 
 use super::kind::MAX_MEASURES;

@@ -1,11 +1,11 @@
 //! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
 
 use super::{
-    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, LoadPart, RunStats, SceneView,
-    StepFigure, StepStats, SupportView, Thing,
+    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, LoadPart, RunStats, SceneView, StepFigure,
+    StepStats, SupportView, Thing,
 };
 use crate::multibody::scenes::MultibodyScene;
-use crate::multibody::{Shape, Support};
+use crate::multibody::{RestsOn, Shape};
 use crate::planar::Checksum;
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome};
@@ -57,10 +57,10 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> Multib
 const FIGURES_PER_PAIR: usize = 2 + 4 * 2;
 
 /// The thing a pair's upper body rests on.
-const fn thing_of(support: Support) -> Thing {
+const fn thing_of(support: RestsOn) -> Thing {
     match support {
-        Support::Body(b) => Thing::Body(b),
-        Support::Table => Thing::Table,
+        RestsOn::Body(b) => Thing::Body(b),
+        RestsOn::Table => Thing::Table,
     }
 }
 
