@@ -499,6 +499,14 @@ pub const FLAGS: &[Flag] = &[
         help: "Spin about the vertical at the start (side spin; a point contact has no friction against it)",
         fields: &[(BI, "spin_z")],
     },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "friction-directions",
+        unit: "",
+        help: "0 (the default): Coulomb's circular cone; 3 to 16: the pyramid of that many friction directions \
+               that LCP engines use instead (a sliding body's path bends toward them)",
+        fields: &[(PK, "friction_directions"), (BI, "friction_directions")],
+    },
 ];
 
 /// The number of flags.

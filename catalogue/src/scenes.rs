@@ -158,7 +158,11 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
         main_flags: &["speed", "heading", "angle", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Stopped, OutcomeKind::Slid],
         measures: &["final_speed_m_s", "displacement_m", "displacement_heading_deg"],
-        ranges: &[("angle", "0 <= angle < 90"), ("step", "0 < h <= duration")],
+        ranges: &[
+            ("angle", "0 <= angle < 90"),
+            ("step", "0 < h <= duration"),
+            ("friction_directions", "0, or a whole number from 3 to 16"),
+        ],
     },
     #[cfg(feature = "spatial")]
     SceneInfo {
@@ -168,7 +172,10 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
         main_flags: &["speed", "spin-x", "spin-y", "spin-z", "mu-s", "mu-k", "h"],
         outcomes: &[OutcomeKind::Rolled, OutcomeKind::Unfinished],
         measures: &["rolling_time_s", "rolling_velocity_x_m_s", "rolling_velocity_y_m_s"],
-        ranges: &[("step", "0 < h <= duration")],
+        ranges: &[
+            ("step", "0 < h <= duration"),
+            ("friction_directions", "0, or a whole number from 3 to 16"),
+        ],
     },
 ];
 

@@ -59,6 +59,24 @@ impl RunStats {
         self.rule_changed_answer += u64::from(rule.changed);
     }
 
+    /// Counts a step of several bodies: what the rule did (`None`: it did not look), its pivots,
+    /// whether the warm basis answered, and its `active` candidate contacts.
+    #[inline]
+    pub(crate) fn count_answer(
+        &mut self,
+        rule: Option<crate::rule::Resolution>,
+        pivots: u32,
+        warm: bool,
+        active: u8,
+    ) {
+        if let Some(rule) = rule {
+            self.count_rule(rule);
+        }
+        self.count_pivots(pivots);
+        self.warm_starts += u64::from(warm);
+        self.most_lcp_contacts = Some(self.most_lcp_contacts.unwrap_or(0).max(active));
+    }
+
     /// Counts a step's pivots.
     #[inline]
     pub(crate) fn count_pivots(&mut self, pivots: u32) {

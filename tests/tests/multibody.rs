@@ -352,7 +352,7 @@ fn block_on_block_matches_the_reference() {
     let core = block_on_block::<f64>(BlockOnBlockParams::default());
     assert_eq!(r.outcome, reference::Outcome::Slid);
     assert_eq!(core.outcome, Outcome::Slid);
-    assert_eq!(u64::from(core.steps), r.steps);
+    assert_eq!(core.steps, r.steps);
     assert_positions_near("block-on-block", &core.q, &r.q, REFERENCE_TOLERANCE);
     let [a_bottom, a_top] = core.accelerations.expect("measured");
     let (ra_bottom, ra_top) =
@@ -370,7 +370,7 @@ fn tablecloth_matches_the_reference() {
     let (core, displacement) = tablecloth::<f64>(TableclothParams::default());
     assert_eq!(r.outcome, reference::Outcome::Stayed);
     assert_eq!(core.outcome, Outcome::Stayed);
-    assert_eq!(u64::from(core.steps), r.steps);
+    assert_eq!(core.steps, r.steps);
     assert_positions_near("tablecloth", &core.q, &r.q, REFERENCE_TOLERANCE);
     assert!((displacement - r.block_displacement.expect("measured")).abs() < REFERENCE_TOLERANCE);
     let (f32_run, f32_displacement) = tablecloth::<f32>(TableclothParams::default());
@@ -535,7 +535,7 @@ fn stack_slides_with_its_kinetic_coefficient_as_the_reference() {
             ..reference::Stack::default()
         }));
         assert_eq!((outcome, r.outcome), (Outcome::Fell, reference::Outcome::Fell), "mu_k {mu_kinetic}");
-        assert_eq!(u64::from(scene.stepper().stats().steps), r.steps, "mu_k {mu_kinetic}");
+        assert_eq!(scene.stepper().stats().steps, r.steps, "mu_k {mu_kinetic}");
         assert_positions_near("stack", &positions(scene.stepper().states()), &r.q, REFERENCE_TOLERANCE);
         steps.push(r.steps);
     }
@@ -703,7 +703,7 @@ fn extreme_friction_in_f32() {
             ..reference::Stack::default()
         }));
         assert_eq!((outcome, r.outcome), (Outcome::Fell, reference::Outcome::Fell), "mu {mu}");
-        assert_eq!(u64::from(scene.stepper().stats().steps), r.steps, "mu {mu}");
+        assert_eq!(scene.stepper().stats().steps, r.steps, "mu {mu}");
         assert_positions_near("stack f32", &positions(scene.stepper().states()), &r.q, 1e-5);
         assert!(gain <= 1e-5, "mu {mu}: energy rose {gain} J above the start's");
     }
@@ -731,7 +731,7 @@ fn frictionless_stack_falls_as_the_reference_in_f64() {
         ..reference::Stack::default()
     }));
     assert_eq!((outcome, r.outcome), (Outcome::Fell, reference::Outcome::Fell));
-    assert_eq!(u64::from(scene.stepper().stats().steps), r.steps);
+    assert_eq!(scene.stepper().stats().steps, r.steps);
     assert_positions_near("stack", &positions(scene.stepper().states()), &r.q, REFERENCE_TOLERANCE);
 }
 

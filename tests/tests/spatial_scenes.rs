@@ -135,6 +135,62 @@ fn a_puck_stops_at_the_same_distance_in_every_heading() {
     puck_is_isotropic(Precision::F32, 1e-5);
 }
 
+/// The pyramid baseline (`friction_directions` 3..16, the cone of LCP engines) is the scene's
+/// choice too: its puck's path bends toward the pyramid's directions, less with more of them, where
+/// the circular cone's keeps its heading. The worst turn of the ended heading over 16 launch
+/// headings on a level table, in f64.
+#[test]
+fn the_pyramid_baseline_bends_the_puck_s_path_and_the_circular_cone_does_not() {
+    let worst_turn = |directions: f64| {
+        let mut worst = 0.0_f64;
+        for k in 0..16 {
+            let heading = -180.0 + 22.5 * f64::from(k) + 10.0;
+            let p = puck(&[
+                ("angle", 0.0),
+                ("heading", heading.to_radians()),
+                ("speed", 1.5),
+                ("mu_static", 0.3),
+                ("mu_kinetic", 0.3),
+                ("friction_directions", directions),
+            ]);
+            let ran = run(&p, Precision::F64);
+            assert_eq!(ran.outcome, Some(Outcome::Stopped), "{directions} directions, {heading} deg");
+            let [_, Some(_), Some(ended)] = ran.measured else { panic!("{ran:?}") };
+            worst = worst.max(((ended - heading + 180.0).rem_euclid(360.0) - 180.0).abs());
+        }
+        worst
+    };
+    let circular = worst_turn(0.0);
+    let pyramid = [4.0, 8.0, 16.0].map(worst_turn);
+    println!(
+        "worst turn of the ended heading: circular {circular:.2e} deg, pyramid 4/8/16 {pyramid:.3?} deg"
+    );
+    assert!(circular <= 1e-9 * 360.0, "the circular cone turned the path by {circular} deg");
+    assert!(pyramid[0] > 1.0, "4 directions turned the path by only {} deg", pyramid[0]);
+    assert!(pyramid[0] > pyramid[1] && pyramid[1] > pyramid[2], "{pyramid:?}");
+    assert!(pyramid[2] > 1e3 * circular.max(1e-12), "16 directions are not the circle: {pyramid:?}");
+}
+
+/// The view's LCP is the cone's: 4 rows for the circular cone, 18 (16 directions and 2) for a
+/// pyramid.
+#[test]
+fn the_scene_s_lcp_is_sized_by_its_cone() {
+    struct Capacity;
+    impl ViewVisitor for Capacity {
+        type Output = usize;
+        fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> usize {
+            view.lcp_capacity()
+        }
+    }
+    for kind in [SceneKind::Puck, SceneKind::Billiard] {
+        for (directions, rows) in [(0.0, 4), (3.0, 18), (16.0, 18)] {
+            let mut p = SceneParams::defaults(kind);
+            assert!(p.set("friction_directions", directions));
+            assert_eq!(p.build_view::<0, _>(Precision::F32, LcpLayout::Full, Capacity).unwrap(), rows);
+        }
+    }
+}
+
 /// Across an incline with `mu = tan(alpha)` the invariant `|v| (1 + cos psi)` holds to first order
 /// in `h`, and the speed tends to half the launch speed.
 #[test]
@@ -232,7 +288,7 @@ fn the_view_runs_the_stepper_s_trajectory() {
         },
     )
     .unwrap();
-    let mut scene = Puck::new(p).unwrap();
+    let mut scene = Puck::<f64>::new(p).unwrap();
     let mut steps = 0;
     while let Some(report) = scene.step() {
         let want = direct.step().unwrap();
@@ -258,7 +314,7 @@ fn the_view_runs_the_stepper_s_trajectory() {
             assert_eq!(a, b, "{kind} {precision:?}");
         }
     }
-    let ball = Billiard::new(BilliardParams::<f32>::default()).unwrap();
+    let ball = Billiard::<f32>::new(BilliardParams::<f32>::default()).unwrap();
     assert_eq!(ball.outcome(), None);
 }
 
@@ -273,6 +329,10 @@ fn bad_parameters_are_refused_by_name() {
         (SceneKind::Puck, "heading", f64::NAN, ParamError::NonFinite("heading")),
         (SceneKind::Puck, "stick_speed", 0.0, ParamError::NotPositive("stick_speed")),
         (SceneKind::Puck, "step", 6.0, ParamError::OutOfRange("step")),
+        (SceneKind::Puck, "friction_directions", 2.0, ParamError::OutOfRange("friction_directions")),
+        (SceneKind::Puck, "friction_directions", 17.0, ParamError::OutOfRange("friction_directions")),
+        (SceneKind::Billiard, "friction_directions", 4.5, ParamError::OutOfRange("friction_directions")),
+        (SceneKind::Billiard, "friction_directions", -1.0, ParamError::Negative("friction_directions")),
         (SceneKind::Billiard, "radius", 0.0, ParamError::NotPositive("radius")),
         (SceneKind::Billiard, "spin_x", f64::INFINITY, ParamError::NonFinite("spin_x")),
         (

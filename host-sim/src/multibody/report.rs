@@ -128,7 +128,12 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
     let contacts = if spec.kind().is_multibody() {
         format!("most active contacts {} (LCP of {} rows, the full form)", c.max_active, c.lcp_rows)
     } else {
-        format!("LCP of {} rows (one friction line a contact, turned to its slip)", c.lcp_rows)
+        match spec.get("friction_directions") {
+            Some(d) if d > 0.0 => {
+                format!("LCP of {} rows (the pyramid of {d} friction directions, the baseline)", c.lcp_rows)
+            }
+            _ => format!("LCP of {} rows (one friction line a contact, turned to its slip)", c.lcp_rows),
+        }
     };
     let _ = writeln!(
         out,
@@ -326,6 +331,12 @@ pub fn run_all(
             "{name}: core vs reference: max position deviation {dev_q:.3e} m, max angle deviation {dev_angle:.3e} rad{}",
             if summary.comparison.same_outcome { "" } else { "  OUTCOMES DIFFER" }
         );
+        if let Some(d) = spec.get("friction_directions").filter(|&d| d > 0.0) {
+            let _ = writeln!(
+                text,
+                "{name}: the core ran the pyramid of {d} friction directions, the reference Coulomb's circular cone: the deviation is the pyramid's error"
+            );
+        }
         if spec.kind().is_multibody() {
             let _ = writeln!(
                 text,

@@ -267,17 +267,9 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         self.patterns = patterns;
         self.stats.steps += 1;
         self.update_frames();
-        let st = &mut self.stats;
         paths.count(path);
-        st.paths = paths;
-        if let Some(rule) = rule {
-            st.count_rule(rule);
-        }
-        st.count_pivots(pivots);
-        st.most_lcp_contacts = Some(st.most_lcp_contacts.unwrap_or(0).max(active));
-        if path == SolvePath::Warm {
-            st.warm_starts += 1;
-        }
+        self.stats.paths = paths;
+        self.stats.count_answer(rule, pivots, path == SolvePath::Warm, active);
         Ok(SystemStepReport {
             time: self.time(),
             states,

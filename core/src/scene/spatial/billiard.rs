@@ -1,14 +1,13 @@
 //! [`Billiard`]: a billiard ball struck with spin, sliding until it rolls (`docs/scenes.md`,
 //! "billiard").
 
-use super::{Run, SpatialScene};
+use super::{CIRCULAR_ROWS, Run, SpatialScene, friction_cone};
 use crate::params::{ParamError, check_step_within, params};
 use crate::real::Real;
 use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
 use crate::spatial::{
-    Body, FrictionCone, Mode, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepReport, State,
-    identity,
+    Body, Mode, Plane, SpatialSettings, SpatialShape, SpatialStepReport, SpatialStepper, State, identity,
 };
 
 params! {
@@ -36,6 +35,9 @@ params! {
         step: 1e-3, Positive;
         /// A loaded contact whose slip is at most this sticks (m/s, > 0). 1e-5.
         stick_speed: 1e-5, Positive;
+        /// The friction cone: 0 Coulomb's circular cone; else the pyramid of this many directions
+        /// (3 to 16), the baseline of LCP engines. 0.
+        friction_directions: 0.0, NonNegative;
         /// The run ends at this simulated time (s, > 0). 5.
         max_time: 5.0, Positive;
     }
@@ -50,6 +52,7 @@ impl<T: Real> BilliardParams<T> {
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
         check_step_within(self.step, self.max_time)?;
+        friction_cone(self.friction_directions)?;
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
@@ -61,18 +64,19 @@ impl<T: Real> BilliardParams<T> {
 
 /// The billiard scene, as `docs/scenes.md` defines it.
 #[derive(Debug, Clone)]
-pub struct Billiard<T: Real> {
+pub struct Billiard<T: Real, const N: usize = CIRCULAR_ROWS> {
     params: BilliardParams<T>,
-    run: Run<T>,
+    run: Run<T, N>,
     /// When it rolled and its velocity then.
     rolled: Option<(T, [T; 3])>,
 }
 
-impl<T: Real> Billiard<T> {
+impl<T: Real, const N: usize> Billiard<T, N> {
     /// The ball at its start.
     ///
     /// # Errors
-    /// [`BilliardParams::validate`]'s, or the stepper's ([`OneContact::new`]).
+    /// [`BilliardParams::validate`]'s, or the stepper's ([`SpatialStepper::new`]: a pyramid needs
+    /// `N >=` [`super::PYRAMID_ROWS`]).
     pub fn new(params: BilliardParams<T>) -> Result<Self, ParamError> {
         params.validate()?;
         let mut plane = Plane::table(T::zero(), params.mu_static);
@@ -81,7 +85,7 @@ impl<T: Real> Billiard<T> {
             step: params.step,
             gravity: [T::zero(), T::zero(), -params.gravity],
             stick_speed: params.stick_speed,
-            friction: FrictionCone::Circular,
+            friction: friction_cone(params.friction_directions)?,
             ..SpatialSettings::default()
         };
         let state = State {
@@ -90,7 +94,7 @@ impl<T: Real> Billiard<T> {
             velocity: [params.speed, T::zero(), T::zero()],
             angular_velocity: [params.spin_x, params.spin_y, params.spin_z],
         };
-        let stepper = OneContact::new(
+        let stepper = SpatialStepper::new(
             Body::sphere(params.mass, params.radius),
             [SpatialShape::Sphere { radius: params.radius }],
             plane,
@@ -107,7 +111,7 @@ impl<T: Real> Billiard<T> {
     }
 }
 
-impl<T: Real> SpatialScene<T> for Billiard<T> {
+impl<T: Real, const N: usize> SpatialScene<T, N> for Billiard<T, N> {
     fn step(&mut self) -> Option<SpatialStepReport<T, 1>> {
         let rolled = &mut self.rolled;
         self.run.advance(
@@ -135,7 +139,7 @@ impl<T: Real> SpatialScene<T> for Billiard<T> {
         BodyShape::Ball { radius: self.params.radius }
     }
 
-    fn run(&self) -> &Run<T> {
+    fn run(&self) -> &Run<T, N> {
         &self.run
     }
 

@@ -1,7 +1,8 @@
 //! The scenes in three dimensions (`docs/scenes.md`, "Scenes in three dimensions"; feature
 //! `scenes-spatial`): [`Puck`] and [`Billiard`], one body touching a plane at one point, stepped by
-//! [`crate::spatial::OneContact`] with Coulomb's circular cone, and seen by the front ends through
-//! [`SpatialView`] like every other scene.
+//! [`crate::spatial::OneContact`] with Coulomb's circular cone (or, with `friction_directions`
+//! set, a stepper of [`PYRAMID_ROWS`] rows with the pyramid of LCP engines, the baseline), and seen
+//! by the front ends through [`SpatialView`] like every other scene.
 //!
 //! Each scene is a [`Run`] (the stepper, the outcome, the counters) and its own rules: its start
 //! from its parameters, the outcome it judges after each step, what it measures.
@@ -14,13 +15,43 @@ pub use billiard::{Billiard, BilliardParams};
 pub use puck::{Puck, PuckParams};
 pub use view::SpatialView;
 
+use crate::RunStats;
+use crate::params::ParamError;
 use crate::real::Real;
 use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
-use crate::spatial::{OneContact, SpatialStepReport};
+use crate::spatial::{FrictionCone, SpatialStepReport, SpatialStepper};
 
-/// A scene in three dimensions, as [`SpatialView`] drives it.
-pub trait SpatialScene<T: Real> {
+/// The rows of a scene's LCP with Coulomb's circular cone: one contact, one friction line.
+pub const CIRCULAR_ROWS: usize = 4;
+
+/// The rows of a scene's LCP with the pyramid baseline: one contact of at most 16 friction
+/// directions (`directions + 2` rows).
+pub const PYRAMID_ROWS: usize = 18;
+
+/// A scene's friction cone from its `friction_directions` parameter: 0 Coulomb's circular cone,
+/// else the pyramid of that many directions (a whole number from 3 to 16).
+///
+/// # Errors
+/// [`ParamError::OutOfRange`]`("friction_directions")` for any other value.
+pub fn friction_cone<T: Real>(directions: T) -> Result<FrictionCone, ParamError> {
+    let d = directions.as_f64();
+    if d == 0.0 {
+        return Ok(FrictionCone::Circular);
+    }
+    // A whole number: exactly its floor.
+    #[allow(clippy::float_cmp)]
+    if (3.0..=16.0).contains(&d) && d == libm::floor(d) {
+        // A whole number from 3 to 16: exact as a u8.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        return Ok(FrictionCone::Pyramid { directions: d as u8 });
+    }
+    Err(ParamError::OutOfRange("friction_directions"))
+}
+
+/// A scene in three dimensions, as [`SpatialView`] drives it; its LCP has `N` rows
+/// ([`CIRCULAR_ROWS`] or [`PYRAMID_ROWS`]).
+pub trait SpatialScene<T: Real, const N: usize = CIRCULAR_ROWS> {
     /// Advances one step and judges it; `None` once the run has an outcome (nothing done).
     fn step(&mut self) -> Option<SpatialStepReport<T, 1>>;
     /// Takes the outcome so that the run goes on ([`crate::scene::SceneView::go_on`]); `None`
@@ -31,57 +62,36 @@ pub trait SpatialScene<T: Real> {
     /// The body's outline.
     fn shape(&self) -> BodyShape<T>;
     /// The run: its stepper and counters.
-    fn run(&self) -> &Run<T>;
+    fn run(&self) -> &Run<T, N>;
     /// What the scene measures, in its catalogue entry's order.
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
 }
 
-/// One body on a plane at one point, stepped to an outcome: the part every scene in three
-/// dimensions shares.
+/// One body on a plane at one point, stepped to an outcome by an LCP of `N` rows: the part every
+/// scene in three dimensions shares.
 #[derive(Debug, Clone)]
-pub struct Run<T: Real> {
-    stepper: OneContact<T>,
+pub struct Run<T: Real, const N: usize = CIRCULAR_ROWS> {
+    stepper: SpatialStepper<T, 1, N>,
     max_time: T,
     outcome: Option<Outcome>,
-    steps: u64,
-    pivots: u64,
-    max_pivots: u32,
-    warm_starts: u64,
+    stats: RunStats,
 }
 
-impl<T: Real> Run<T> {
-    const fn new(stepper: OneContact<T>, max_time: T) -> Self {
-        Self { stepper, max_time, outcome: None, steps: 0, pivots: 0, max_pivots: 0, warm_starts: 0 }
+impl<T: Real, const N: usize> Run<T, N> {
+    fn new(stepper: SpatialStepper<T, 1, N>, max_time: T) -> Self {
+        Self { stepper, max_time, outcome: None, stats: RunStats::default() }
     }
 
     /// The stepper.
     #[must_use]
-    pub const fn stepper(&self) -> &OneContact<T> {
+    pub const fn stepper(&self) -> &SpatialStepper<T, 1, N> {
         &self.stepper
     }
 
-    /// Steps taken.
+    /// The run's counters: steps, pivots, the steps the warm basis answered without a pivot.
     #[must_use]
-    pub const fn steps(&self) -> u64 {
-        self.steps
-    }
-
-    /// Lemke pivots over the run.
-    #[must_use]
-    pub const fn pivots(&self) -> u64 {
-        self.pivots
-    }
-
-    /// The most pivots of one step.
-    #[must_use]
-    pub const fn max_pivots(&self) -> u32 {
-        self.max_pivots
-    }
-
-    /// Steps the warm basis answered without a pivot.
-    #[must_use]
-    pub const fn warm_starts(&self) -> u64 {
-        self.warm_starts
+    pub const fn stats(&self) -> &RunStats {
+        &self.stats
     }
 
     /// One step, judged by `judge` (the scene's rule on the step's report), then by the time
@@ -100,11 +110,10 @@ impl<T: Real> Run<T> {
                 None
             }
             Ok(report) => {
-                self.steps += 1;
-                self.pivots += u64::from(report.pivots);
-                self.max_pivots = self.max_pivots.max(report.pivots);
+                self.stats.steps += 1;
+                self.stats.count_pivots(report.pivots);
                 if report.pivots == 0 {
-                    self.warm_starts += 1;
+                    self.stats.warm_starts += 1;
                 }
                 self.outcome = judge(&report).or((report.time >= self.max_time).then_some(at_limit));
                 Some(report)

@@ -1,13 +1,12 @@
 //! [`Puck`]: a puck launched across a level table or an incline (`docs/scenes.md`, "puck").
 
-use super::{Run, SpatialScene};
+use super::{CIRCULAR_ROWS, Run, SpatialScene, friction_cone};
 use crate::params::{ParamError, check_step_within, params};
 use crate::real::Real;
 use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
 use crate::spatial::{
-    Body, FrictionCone, Mode, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepReport, State,
-    Vector, about,
+    Body, Mode, Plane, SpatialSettings, SpatialShape, SpatialStepReport, SpatialStepper, State, Vector, about,
 };
 
 params! {
@@ -37,6 +36,9 @@ params! {
         step: 1e-3, Positive;
         /// A loaded contact whose slip is at most this sticks (m/s, > 0). 1e-5.
         stick_speed: 1e-5, Positive;
+        /// The friction cone: 0 Coulomb's circular cone; else the pyramid of this many directions
+        /// (3 to 16), the baseline of LCP engines. 0.
+        friction_directions: 0.0, NonNegative;
         /// The run ends at this simulated time (s, > 0). 5.
         max_time: 5.0, Positive;
     }
@@ -52,6 +54,7 @@ impl<T: Real> PuckParams<T> {
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
         check_step_within(self.step, self.max_time)?;
+        friction_cone(self.friction_directions)?;
         if self.mu_kinetic > self.mu_static {
             return Err(ParamError::KineticAboveStatic);
         }
@@ -80,16 +83,17 @@ impl<T: Real> PuckParams<T> {
 
 /// The puck scene, as `docs/scenes.md` defines it.
 #[derive(Debug, Clone)]
-pub struct Puck<T: Real> {
+pub struct Puck<T: Real, const N: usize = CIRCULAR_ROWS> {
     params: PuckParams<T>,
-    run: Run<T>,
+    run: Run<T, N>,
 }
 
-impl<T: Real> Puck<T> {
+impl<T: Real, const N: usize> Puck<T, N> {
     /// The puck at its start.
     ///
     /// # Errors
-    /// [`PuckParams::validate`]'s, or the stepper's ([`OneContact::new`]).
+    /// [`PuckParams::validate`]'s, or the stepper's ([`SpatialStepper::new`]: a pyramid needs
+    /// `N >=` [`super::PYRAMID_ROWS`]).
     pub fn new(params: PuckParams<T>) -> Result<Self, ParamError> {
         params.validate()?;
         let (s, c) = params.angle.sin_cos_portable();
@@ -106,7 +110,7 @@ impl<T: Real> Puck<T> {
             step: params.step,
             gravity: [T::zero(), T::zero(), -params.gravity],
             stick_speed: params.stick_speed,
-            friction: FrictionCone::Circular,
+            friction: friction_cone(params.friction_directions)?,
             ..SpatialSettings::default()
         };
         let state = State {
@@ -116,7 +120,7 @@ impl<T: Real> Puck<T> {
             velocity,
             angular_velocity: [T::zero(); 3],
         };
-        let stepper = OneContact::new(
+        let stepper = SpatialStepper::new(
             params.body(),
             [SpatialShape::Point { offset: [T::zero(); 3] }],
             plane,
@@ -133,7 +137,7 @@ impl<T: Real> Puck<T> {
     }
 }
 
-impl<T: Real> SpatialScene<T> for Puck<T> {
+impl<T: Real, const N: usize> SpatialScene<T, N> for Puck<T, N> {
     fn step(&mut self) -> Option<SpatialStepReport<T, 1>> {
         self.run
             .advance(|r| (r.contacts[0].mode == Mode::Sticking).then_some(Outcome::Stopped), Outcome::Slid)
@@ -151,7 +155,7 @@ impl<T: Real> SpatialScene<T> for Puck<T> {
         BodyShape::Puck { radius: self.params.radius, thickness: self.params.thickness }
     }
 
-    fn run(&self) -> &Run<T> {
+    fn run(&self) -> &Run<T, N> {
         &self.run
     }
 

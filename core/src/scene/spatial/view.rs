@@ -1,6 +1,6 @@
 //! [`SpatialView`]: a scene in three dimensions ([`SpatialScene`]) seen as a [`SceneView`].
 
-use super::SpatialScene;
+use super::{CIRCULAR_ROWS, SpatialScene};
 use crate::planar::{Checksum, ContactMode, Direction};
 use crate::real::Real;
 use crate::scene::{
@@ -13,14 +13,14 @@ use crate::spatial::{Mode, SpatialContactReport, norm};
 /// step's contact report and pivots, and the checksum of the steps taken through it (each step's
 /// position, orientation `[w, x, y, z]`, velocity and angular velocity, in that order).
 #[derive(Debug, Clone)]
-pub struct SpatialView<T: Real, S> {
+pub struct SpatialView<T: Real, S, const N: usize = CIRCULAR_ROWS> {
     scene: S,
     last: Option<SpatialContactReport<T>>,
     solve: Option<StepStats<T>>,
     checksum: Checksum,
 }
 
-impl<T: Real, S: SpatialScene<T>> SpatialView<T, S> {
+impl<T: Real, const N: usize, S: SpatialScene<T, N>> SpatialView<T, S, N> {
     /// Sees `scene` from where it is (no impulses yet, an empty checksum).
     pub const fn new(scene: S) -> Self {
         Self { scene, last: None, solve: None, checksum: Checksum::new() }
@@ -42,7 +42,7 @@ const fn mode_of(mode: Mode) -> ContactMode {
     }
 }
 
-impl<T: Real, S: SpatialScene<T>> SceneView<T> for SpatialView<T, S> {
+impl<T: Real, const N: usize, S: SpatialScene<T, N>> SceneView<T> for SpatialView<T, S, N> {
     fn step(&mut self) -> bool {
         let Some(report) = self.scene.step() else {
             return false;
@@ -147,14 +147,7 @@ impl<T: Real, S: SpatialScene<T>> SceneView<T> for SpatialView<T, S> {
     }
 
     fn summary(&self) -> RunStats {
-        let run = self.scene.run();
-        RunStats {
-            steps: run.steps(),
-            pivots: run.pivots(),
-            max_pivots: run.max_pivots(),
-            warm_starts: run.warm_starts(),
-            ..RunStats::default()
-        }
+        *self.scene.run().stats()
     }
 
     fn last_step(&self) -> Option<StepStats<T>> {
@@ -162,7 +155,7 @@ impl<T: Real, S: SpatialScene<T>> SceneView<T> for SpatialView<T, S> {
     }
 
     fn lcp_capacity(&self) -> usize {
-        4
+        N
     }
 
     fn figure_count(&self) -> usize {

@@ -81,11 +81,24 @@ impl SceneParams {
 impl SceneParams {
     /// A scene in three dimensions in `T`, checked in f64 and `T` first.
     fn build_spatial<T: Real, V: ViewVisitor>(&self, visitor: V) -> Result<V::Output, ParamError> {
-        use crate::scene::spatial::{Billiard, Puck, SpatialView};
+        use crate::scene::spatial::{Billiard, CIRCULAR_ROWS, PYRAMID_ROWS, Puck, SpatialView};
         self.validate_as::<T>()?;
+        // Coulomb's circular cone in an LCP of its own size; the pyramid baseline in one that
+        // holds 16 directions.
+        let circular = |directions: f64| directions == 0.0;
         match self {
-            Self::Puck(p) => Ok(visitor.visit(&mut SpatialView::new(Puck::new(p.cast::<T>())?))),
-            Self::Billiard(p) => Ok(visitor.visit(&mut SpatialView::new(Billiard::new(p.cast::<T>())?))),
+            Self::Puck(p) if circular(p.friction_directions) => {
+                Ok(visitor.visit(&mut SpatialView::new(Puck::<T, CIRCULAR_ROWS>::new(p.cast::<T>())?)))
+            }
+            Self::Puck(p) => {
+                Ok(visitor.visit(&mut SpatialView::new(Puck::<T, PYRAMID_ROWS>::new(p.cast::<T>())?)))
+            }
+            Self::Billiard(p) if circular(p.friction_directions) => {
+                Ok(visitor.visit(&mut SpatialView::new(Billiard::<T, CIRCULAR_ROWS>::new(p.cast::<T>())?)))
+            }
+            Self::Billiard(p) => {
+                Ok(visitor.visit(&mut SpatialView::new(Billiard::<T, PYRAMID_ROWS>::new(p.cast::<T>())?)))
+            }
             _ => Err(ParamError::OutOfRange("scene")),
         }
     }
