@@ -177,11 +177,18 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         // A sliding step's blocks, formed once for its solve and its detection.
         self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
         let blocks = self.lcp.factored.blocks();
-        let Solved { mut v_plus, basis, pivots, path, along } = self.solve(&mut paths, blocks, &mut z)?;
+        let Solved { mut v_plus, basis, pivots, path, along, rule } =
+            self.solve(&mut paths, blocks, &mut z)?;
         let mut mask = basis.z_mask();
         let tolerance = self.solver.tolerance();
         let f = &self.lcp.factored;
-        let rule = resolve::apply(&self.detector, f, blocks, tolerance, (&mut v_plus, &mut z, &mut mask));
+        // The rule on a warm answer (the other paths applied it: `Stepper::solve`).
+        let rule = match rule {
+            Some(rule) => rule,
+            None => {
+                resolve::apply(&self.detector, f, blocks, tolerance, None, (&mut v_plus, &mut z, &mut mask))
+            }
+        };
         // The slips the basis solve formed, unless the rule took another answer.
         let (along, from_solve) = match along {
             Some(along) if rule.is_none_or(|r| !r.changed) => (along, true),
