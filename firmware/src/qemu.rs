@@ -20,7 +20,9 @@
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
 #[cfg(feature = "qemu-multibody")]
-use meterstick_core::multibody::scenes::{MultibodyScene, StackParams, TableclothParams};
+use meterstick_core::multibody::StepError;
+#[cfg(feature = "qemu-multibody")]
+use meterstick_core::multibody::scenes::{BlockOnBlockParams, MultibodyScene, StackParams, TableclothParams};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::scene::{
     LcpLayout, MeterStickParams, Outcome, Scene, SceneKind, SceneParams, SceneVisitor,
@@ -117,8 +119,7 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
             all.add(used);
             checksum.add(rig.scene().state());
             let after = rig.scene().stats().paths;
-            let path =
-                SolvePath::ALL.iter().rposition(|&p| after.of(p) > before.paths.of(p)).unwrap_or(0);
+            let path = SolvePath::ALL.iter().rposition(|&p| after.of(p) > before.paths.of(p)).unwrap_or(0);
             if let Some(slot) = by_path.get_mut(path) {
                 slot.add(used);
             }
@@ -293,15 +294,32 @@ impl MultibodyVisitor for CheckMultibody {
         let mut checksum = Checksum::new();
         let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
         let (mut flagged, mut flagged_ticks, mut flagged_worst) = (0u64, 0u64, 0u32);
+        // Per solve path (`SolvePath::ALL`'s order), and the step that failed (every path tried,
+        // `StepError`), if one did.
+        let (mut by_path, mut failed) = ([Tally::default(); 4], Tally::default());
         loop {
             let checked = scene.stats().rule_checked_steps;
+            let before = scene.stats().paths;
             let t0 = systick::now();
             let report = scene.step();
             let used = systick::elapsed(t0, systick::now());
-            let Some(report) = report else { break };
+            let Some(report) = report else {
+                if matches!(scene.outcome(), Some(Outcome::MultibodyFailed(_))) {
+                    failed.add(used);
+                }
+                break;
+            };
             steps += 1;
             ticks += u64::from(used);
             worst = worst.max(used);
+            let after = scene.stats().paths;
+            if let Some(slot) = SolvePath::ALL
+                .iter()
+                .rposition(|&p| after.of(p) > before.of(p))
+                .and_then(|path| by_path.get_mut(path))
+            {
+                slot.add(used);
+            }
             if scene.stats().rule_checked_steps > checked {
                 flagged += 1;
                 flagged_ticks += u64::from(used);
@@ -337,8 +355,39 @@ impl MultibodyVisitor for CheckMultibody {
                 flagged
             );
         }
-        i32::from(outcome != self.expected)
+        print_paths(self.name, &by_path, failed);
+        // A run meant to fail ends in some failure (its error printed above).
+        let wrong = match self.expected {
+            Outcome::MultibodyFailed(_) => !matches!(outcome, Outcome::MultibodyFailed(_)),
+            expected => outcome != expected,
+        };
+        i32::from(wrong)
     }
+}
+
+/// Prints a run's steps by the path that answered them (`<name> path=<path> steps=.. systicks=..
+/// worst_step_systicks=..`, `SolvePath::ALL`'s order, as the rig's scenes print theirs), then the
+/// step that failed (`path=failed`: every path tried, the step's `StepError`), for `host-sim qemu
+/// --icount`.
+#[cfg(feature = "qemu-multibody")]
+fn print_paths(name: &str, by_path: &[Tally; 4], failed: Tally) {
+    for (path, t) in SolvePath::ALL.iter().zip(by_path) {
+        defmt::println!(
+            "{=str} path={=str} steps={=u64} systicks={=u64} worst_step_systicks={=u32}",
+            name,
+            path.name(),
+            t.steps,
+            t.ticks,
+            t.worst
+        );
+    }
+    defmt::println!(
+        "{=str} path=failed steps={=u64} systicks={=u64} worst_step_systicks={=u32}",
+        name,
+        failed.steps,
+        failed.ticks,
+        failed.worst
+    );
 }
 
 /// Block-on-block, the stack (3 blocks) and disc-on-board (on block-on-block's stepper) at their
@@ -376,6 +425,38 @@ fn check_multibody_scenes() -> i32 {
         }
     };
     print_stack_peak(name);
+    failures += check_failing_steps();
+    failures
+}
+
+/// Runs that fail, to time a step that tries every path and returns `StepError` (its ticks under
+/// `path=failed`): each must end in `Outcome::MultibodyFailed`.
+#[cfg(feature = "qemu-multibody")]
+#[inline(never)]
+fn check_failing_steps() -> i32 {
+    let failing = [(
+        "failing-heavy-top",
+        SceneParams::BlockOnBlock(BlockOnBlockParams {
+            top_mass: 1e6,
+            bottom_mass: 1.0,
+            force: 0.45 * (1e6 + 1.0) * 9.81,
+            ..BlockOnBlockParams::default()
+        }),
+    )];
+    let mut failures = 0;
+    for (name, params) in failing {
+        let expected = Outcome::MultibodyFailed(StepError::NonFinite);
+        let check = CheckMultibody { name, expected, flagged: false };
+        stack_peak::paint();
+        failures += match params.build_multibody(Precision::F32, check) {
+            Ok(failed) => failed,
+            Err(e) => {
+                defmt::println!("{=str}: {}", name, e);
+                1
+            }
+        };
+        print_stack_peak(name);
+    }
     failures
 }
 
@@ -397,7 +478,9 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
     };
     let mut checksum = Checksum::new();
     let (mut steps, mut ticks, mut worst) = (0u32, 0u64, 0u32);
+    let mut by_path = [Tally::default(); 4];
     let state = loop {
+        let before = rig.scene().stats().paths;
         let t0 = systick::now();
         let result = rig.tick();
         let used = systick::elapsed(t0, systick::now());
@@ -414,6 +497,14 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
             worst = worst.max(used);
             for body in rig.scene().states() {
                 checksum.add(body);
+            }
+            let after = rig.scene().stats().paths;
+            if let Some(slot) = SolvePath::ALL
+                .iter()
+                .rposition(|&p| after.of(p) > before.of(p))
+                .and_then(|path| by_path.get_mut(path))
+            {
+                slot.add(used);
             }
         }
         if !matches!(state, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) {
@@ -451,6 +542,8 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         worst,
         steps
     );
+    // A failed step stops the rig (`Fault`, counted a failure above): none here.
+    print_paths(name, &by_path, Tally::default());
     let faulted = rig.release().fault.rises() > 0;
     i32::from(outcome != expected || modes != [Some(shown); 3] || faulted)
 }
