@@ -174,6 +174,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 pivots: 0,
                 path: SolvePath::Free,
                 along: None,
+                ruled: false,
                 rule: None,
             });
         }
@@ -220,7 +221,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             answer,
         );
         solved.basis = Basis::from_z_mask(mask);
-        solved.rule = Some(rule);
+        (solved.ruled, solved.rule) = (true, rule);
         Ok(solved)
     }
 
@@ -259,6 +260,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             pivots: solution.pivots,
             path: SolvePath::Lemke,
             along: None,
+            ruled: false,
             rule: None,
         })
     }
@@ -277,10 +279,12 @@ pub(super) struct Solved<T, const B: usize, const N: usize> {
     /// Each slot's `c_+d^T v+` as a basis solve formed it ([`Answer`]), `None`
     /// from Lemke's method or with no impulse.
     pub(super) along: Option<[T; MOST_SLOTS]>,
-    /// What the rule did, when the path applied it (`Some`: the candidates' and Lemke's method's
-    /// answers, where the bases declined before are known and not solved again); `None`: the
-    /// stepper applies it (a warm answer).
-    pub(super) rule: Option<Option<Resolution>>,
+    /// Whether the path applied the rule (the candidates' and Lemke's method's answers, where the
+    /// bases declined before are known and not solved again), and what it did; else the stepper
+    /// applies it (a warm or free answer).
+    pub(super) ruled: bool,
+    /// What the rule did, when `ruled`.
+    pub(super) rule: Option<Resolution>,
 }
 
 impl<T: Copy, const B: usize, const N: usize> Solved<T, B, N> {
@@ -293,6 +297,7 @@ impl<T: Copy, const B: usize, const N: usize> Solved<T, B, N> {
             pivots: 0,
             path,
             along: Some(a.along),
+            ruled: false,
             rule: None,
         }
     }
