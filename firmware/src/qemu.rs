@@ -13,9 +13,13 @@
 //! (`tablecloth-mu2-flagged`: the rule's search, `docs/formulation.md`, "Several bodies: the
 //! rule"); then the stack through the stack rig (`StackRig`, headless), held for 0.2 s at the
 //! default overhang and falling at 1.02: outcome, checksum, each interface's lights at the end and
-//! the ticks. Exit status: 0 when the LCP was solved and every scene ended as physics says
+//! the ticks; each of these runs' ticks by the path that answered each step (`<name> path=..`) and
+//! of a step that failed (`path=failed`); then two block-on-block runs whose step fails in f32
+//! (`failing-heavy-top`, `failing-light-top`), timed the same way. Exit status: 0 when the LCP was
+//! solved and every scene ended as physics says
 //! (balanced, fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc
-//! rolled, the tablecloth stayed; the stack rig held with every interface sticking and fell with every one tipping).
+//! rolled, the tablecloth stayed; the stack rig held with every interface sticking and fell with
+//! every one tipping; the failing runs failed).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
