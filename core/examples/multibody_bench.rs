@@ -8,19 +8,19 @@
 use std::time::Instant;
 
 use meterstick_core::Real;
-use meterstick_core::multibody::Stats;
+use meterstick_core::RunStats;
 use meterstick_core::multibody::scenes::{
     BlockOnBlock, BlockOnBlockParams, MultibodyScene as _, Stack3, StackParams,
 };
 
 /// Runs `run` `repeats` times; the best of the repeats' ns/step and the last run's counters.
-fn best(repeats: u32, mut run: impl FnMut() -> Stats) -> (f64, Stats) {
+fn best(repeats: u32, mut run: impl FnMut() -> RunStats) -> (f64, RunStats) {
     let mut best = f64::INFINITY;
-    let mut stats = Stats::default();
+    let mut stats = RunStats::default();
     for _ in 0..repeats {
         let start = Instant::now();
         stats = run();
-        let ns = start.elapsed().as_secs_f64() * 1e9 / f64::from(stats.steps.max(1));
+        let ns = start.elapsed().as_secs_f64() * 1e9 / stats.steps.max(1) as f64;
         best = best.min(ns);
     }
     (best, stats)

@@ -35,13 +35,17 @@ mod params;
 pub mod planar;
 mod real;
 pub mod rule;
+mod run_stats;
 pub mod scene;
 pub mod soft_float;
 #[cfg(feature = "spatial")]
 pub mod spatial;
+mod step_error;
 
 pub use params::{Check, ParamError, check_fields};
 pub use real::Real;
+pub use run_stats::RunStats;
+pub use step_error::StepError;
 
 /// The `nalgebra` this crate is built with (its `SMatrix`/`SVector` appear in the API).
 pub use nalgebra;

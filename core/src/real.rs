@@ -287,6 +287,17 @@ impl<T: Real> FiniteBits<T> {
 }
 
 /// `max(a, b)` for partially ordered scalars (NaN-free inputs).
+/// `q += dq` with Kahan's compensated summation (eq. 14's `q+ = q + h v+`, every engine):
+/// `carry` holds what the last sums lost and is subtracted from this one, so that a `1e-7` m
+/// increment on a 1 m coordinate is not rounded away step after step.
+#[inline(always)]
+pub(crate) fn compensated_add<T: Real>(q: &mut T, carry: &mut T, dq: T) {
+    let increment = dq - *carry;
+    let sum = *q + increment;
+    *carry = (sum - *q) - increment;
+    *q = sum;
+}
+
 #[inline]
 pub(crate) fn max<T: Real>(a: T, b: T) -> T {
     if a > b { a } else { b }

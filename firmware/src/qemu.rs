@@ -308,7 +308,7 @@ impl MultibodyVisitor for CheckMultibody {
             let report = scene.step();
             let used = systick::elapsed(t0, systick::now());
             let Some(report) = report else {
-                if matches!(scene.outcome(), Some(Outcome::MultibodyFailed(_))) {
+                if matches!(scene.outcome(), Some(Outcome::Failed(_))) {
                     failed.add(used);
                 }
                 break;
@@ -338,9 +338,9 @@ impl MultibodyVisitor for CheckMultibody {
             self.name,
             outcome,
             scene.time().as_f64() as f32,
-            u64::from(st.steps),
+            st.steps,
             st.pivots,
-            st.max_active,
+            st.most_lcp_contacts.unwrap_or(0),
             checksum.value()
         );
         defmt::println!(
@@ -362,7 +362,7 @@ impl MultibodyVisitor for CheckMultibody {
         print_paths(self.name, &by_path, failed);
         // A run meant to fail ends in some failure (its error printed above).
         let wrong = match self.expected {
-            Outcome::MultibodyFailed(_) => !matches!(outcome, Outcome::MultibodyFailed(_)),
+            Outcome::Failed(_) => !matches!(outcome, Outcome::Failed(_)),
             expected => outcome != expected,
         };
         i32::from(wrong)
@@ -434,7 +434,7 @@ fn check_multibody_scenes() -> i32 {
 }
 
 /// Runs that fail, to time a step that tries every path and returns `StepError` (its ticks under
-/// `path=failed`): each must end in `Outcome::MultibodyFailed`.
+/// `path=failed`): each must end in `Outcome::Failed`.
 #[cfg(feature = "qemu-multibody")]
 #[inline(never)]
 fn check_failing_steps() -> i32 {
@@ -465,7 +465,7 @@ fn check_failing_steps() -> i32 {
     ];
     let mut failures = 0;
     for (name, params) in failing {
-        let expected = Outcome::MultibodyFailed(StepError::NonFinite);
+        let expected = Outcome::Failed(StepError::NonFinite);
         let check = CheckMultibody { name, expected, flagged: false };
         stack_peak::paint();
         failures += match params.build_multibody(Precision::F32, check) {
@@ -497,7 +497,7 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         }
     };
     let mut checksum = Checksum::new();
-    let (mut steps, mut ticks, mut worst) = (0u32, 0u64, 0u32);
+    let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
     let mut by_path = [Tally::default(); 4];
     let state = loop {
         let before = rig.scene().stats().paths;
@@ -540,7 +540,7 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         }
     };
     defmt::println!(
-        "{=str} outcome={} t={=f32} steps={=u32} checksum={=u32:08x}",
+        "{=str} outcome={} t={=f32} steps={=u64} checksum={=u32:08x}",
         name,
         outcome,
         rig.scene().time(),
@@ -556,7 +556,7 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         );
     }
     defmt::println!(
-        "{=str} rig systicks={=u64} worst_step_systicks={=u32} steps={=u32}",
+        "{=str} rig systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
         name,
         ticks,
         worst,

@@ -221,7 +221,7 @@ pub fn decode_defmt(elf: &[u8], raw: &[u8]) -> anyhow::Result<Vec<String>> {
 /// What a firmware run printed and how it ended, with its timing read into numbers
 /// (`host-sim qemu --json`; `scripts/firmware-report.sh` reads it).
 #[derive(Debug, Clone, serde::Serialize)]
-pub struct RunSummary {
+pub struct RunStats {
     /// Semihosting exit status (`None` when QEMU was killed or ended by a signal).
     pub exit_code: Option<i32>,
     /// `true` when the run hit the timeout and was killed.

@@ -82,7 +82,7 @@ fn report_refuses_its_horizon_and_figures_before_running() {
     assert!(!out.exists(), "a refusal writes nothing");
 }
 
-/// The scenes of several bodies refuse what their stepper refuses (`multibody::Stepper::new`: a
+/// The scenes of several bodies refuse what their stepper refuses (`multibody::SystemStepper::new`: a
 /// negative step moved the blocks up, a negative mass or `mu_k > mu_s` was stepped, a zero mass
 /// failed at the first step; `StackParams` took 1 to 4 blocks) in the words of the flag typed,
 /// before any run: `host-sim run` writes nothing.

@@ -49,7 +49,7 @@
 
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::Stack3;
-use meterstick_core::multibody::{StepError, StepReport};
+use meterstick_core::multibody::{StepError, SystemStepReport};
 use meterstick_core::planar::{BodyState, ContactMode};
 use meterstick_core::scene::Outcome;
 
@@ -191,7 +191,7 @@ where
     /// A pin error.
     pub fn tick_with(
         &mut self,
-        observe: impl FnOnce(&StepReport<f32, BODIES, PAIRS>),
+        observe: impl FnOnce(&SystemStepReport<f32, BODIES, PAIRS>),
     ) -> Result<MultibodyRigState, RigError<PinError>> {
         match self.state {
             MultibodyRigState::WaitingForStart => self.wait_for_start()?,
@@ -278,7 +278,7 @@ where
 
     fn advance(
         &mut self,
-        observe: impl FnOnce(&StepReport<f32, BODIES, PAIRS>),
+        observe: impl FnOnce(&SystemStepReport<f32, BODIES, PAIRS>),
     ) -> Result<(), RigError<PinError>> {
         let Some(report) = self.scene.step() else {
             return self.finish(self.scene.outcome().unwrap_or(Outcome::Unfinished));
@@ -296,7 +296,7 @@ where
 
     fn finish(&mut self, outcome: Outcome) -> Result<(), RigError<PinError>> {
         match outcome {
-            Outcome::MultibodyFailed(e) => self.fault(e),
+            Outcome::Failed(e) => self.fault(e),
             o => {
                 log_info!("multibody rig: outcome {} at t={=f32}", o, self.scene.time());
                 self.state = MultibodyRigState::Finished(o);

@@ -9,7 +9,7 @@ use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
 use meterstick_core::ParamError;
 use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams};
 use meterstick_core::multibody::{
-    CornerFrame, Pair, Settings, Stats, StepError, StepReport, Support, System, Table,
+    CornerFrame, Pair, RestsOn, RunStats, StepError, System, SystemSettings, SystemStepReport, Table,
 };
 use meterstick_core::planar::{Body, BodyState, ContactMode, Direction};
 use meterstick_core::scene::{MAX_MEASURES, Outcome};
@@ -393,7 +393,7 @@ struct Failing {
     system: System<f32, 1, 1>,
     frames: [[CornerFrame<f32>; 4]; 1],
     modes: [[ContactMode; 4]; 1],
-    stats: Stats,
+    stats: RunStats,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -404,7 +404,7 @@ struct FailAt {
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Failure {
-    /// The step fails in the core (`Outcome::MultibodyFailed`).
+    /// The step fails in the core (`Outcome::Failed`).
     Solver,
     /// The step reports a NaN state without failing.
     NonFiniteState,
@@ -412,7 +412,7 @@ enum Failure {
 
 impl MultibodyScene<f32, 1, 1> for Failing {
     const ROWS: usize = 8;
-    fn step(&mut self) -> Option<StepReport<f32, 1, 1>> {
+    fn step(&mut self) -> Option<SystemStepReport<f32, 1, 1>> {
         if self.outcome.is_some() {
             return None;
         }
@@ -421,13 +421,13 @@ impl MultibodyScene<f32, 1, 1> for Failing {
         if self.steps == self.params.step {
             match self.params.failure {
                 Failure::Solver => {
-                    self.outcome = Some(Outcome::MultibodyFailed(StepError::TooManyContacts(9)));
+                    self.outcome = Some(Outcome::Failed(StepError::TooManyContacts(9)));
                     return None;
                 }
                 Failure::NonFiniteState => states[0].vy = f32::NAN,
             }
         }
-        Some(StepReport {
+        Some(SystemStepReport {
             time: self.steps as f32 * 1e-3,
             states,
             interface_forces: [[0.0; 2]],
@@ -455,7 +455,7 @@ impl MultibodyScene<f32, 1, 1> for Failing {
     fn time(&self) -> f32 {
         self.steps as f32 * 1e-3
     }
-    fn stats(&self) -> &Stats {
+    fn stats(&self) -> &RunStats {
         &self.stats
     }
     fn measured(&self) -> [Option<f32>; MAX_MEASURES] {
@@ -479,9 +479,9 @@ impl RigScene<1, 1> for Failing {
             system: System {
                 bodies: [Body::block(1.0, 0.1, 0.05)],
                 table: Table::floor(),
-                pairs: [Pair::boxed(0, Support::Table, 0.5, 0.4)],
+                pairs: [Pair::boxed(0, RestsOn::Table, 0.5, 0.4)],
                 forces: [[0.0; 2]],
-                settings: Settings {
+                settings: SystemSettings {
                     base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
                     margin: 1e-3,
                 },
@@ -501,7 +501,7 @@ impl RigScene<1, 1> for Failing {
                 touch: 0.0,
             }; 4]],
             modes: [[s, x, x, s]],
-            stats: Stats::default(),
+            stats: RunStats::default(),
         })
     }
     fn step_of(_: &FailAt) -> f32 {

@@ -24,7 +24,7 @@ use std::fmt::Write as _;
 use std::time::Instant;
 
 use meterstick_core::Real;
-use meterstick_core::multibody::Stats;
+use meterstick_core::RunStats;
 use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack3, StackParams};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use rapier2d::prelude::*;
@@ -136,7 +136,7 @@ struct StackEnd {
     time: f64,
     ns_per_step: f64,
     /// The core's solver counters (`None` for rapier).
-    stats: Option<Stats>,
+    stats: Option<RunStats>,
 }
 
 fn stack_params<T: Real>(overhang: f64) -> StackParams<T> {
@@ -152,7 +152,7 @@ fn core_stack_run<T: Real>(overhang: f64) -> StackEnd {
     StackEnd {
         outcome,
         time: s.stepper().time().as_f64(),
-        ns_per_step: ns / f64::from(stats.steps),
+        ns_per_step: ns / stats.steps as f64,
         stats: Some(stats),
     }
 }
@@ -227,9 +227,9 @@ fn stack_line(text: &mut String, name: &str, repeats: usize, run: impl Fn(f64) -
             text,
             "    (s = {TIMED_OVERHANG}: warm basis solved {:.0}% of steps without a pivot, {:.2} pivots/step, \
              at most {} active contacts)",
-            100.0 * f64::from(st.warm_direct) / f64::from(st.steps),
-            st.pivots as f64 / f64::from(st.steps),
-            st.max_active
+            100.0 * st.warm_starts as f64 / st.steps as f64,
+            st.pivots as f64 / st.steps as f64,
+            st.most_lcp_contacts.unwrap_or(0)
         )
         .unwrap();
     }

@@ -4,8 +4,7 @@
 //! protocol 5 a cylinder's `Rolled` and Painlevé's `Jammed` arrived as `Unfinished`; the scenes of
 //! several bodies' `Rode` and `Stayed` are in version 5 too, the puck's `Stopped` in version 6.
 
-use meterstick_core::multibody::StepError as MultibodyStepError;
-use meterstick_core::planar::StepError;
+use meterstick_core::StepError;
 use meterstick_core::scene::{Outcome, OutcomeKind};
 use meterstick_host_sim::monitor::outcome_of;
 use meterstick_link::OutcomeCode;
@@ -62,11 +61,7 @@ fn failed_steps_keep_their_cause() {
         outcome_code(Outcome::Failed(StepError::ReducedModelLeftRange)),
         OutcomeCode::ReducedModelLeftRange
     );
-    assert_eq!(outcome_code(Outcome::MultibodyFailed(MultibodyStepError::NonFinite)), OutcomeCode::NonFinite);
-    assert_eq!(
-        outcome_code(Outcome::MultibodyFailed(MultibodyStepError::TooManyContacts(7))),
-        OutcomeCode::SolverFailed
-    );
+    assert_eq!(outcome_code(Outcome::Failed(StepError::TooManyContacts(7))), OutcomeCode::SolverFailed);
     let failed = outcome_of(OutcomeCode::SolverFailed);
     assert_eq!(failed.class, OutcomeKind::Failed);
     assert!(failed.detail.is_some(), "a failed run read back without its cause");

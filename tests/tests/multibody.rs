@@ -9,7 +9,7 @@ use meterstick_core::multibody::scenes::{
     Stack3, StackParams, Tablecloth, TableclothParams,
 };
 use meterstick_core::multibody::{
-    Pair, Settings, Shape, StepError, StepReport, Stepper, Support, System, Table,
+    Pair, RestsOn, Shape, StepError, System, SystemSettings, SystemStepReport, SystemStepper, Table,
 };
 use meterstick_core::planar::{Body, BodyState, ContactMode, PathCounts};
 use meterstick_core::scene::Outcome;
@@ -20,7 +20,7 @@ use meterstick_reference::multibody as reference;
 #[derive(Debug)]
 struct Measured {
     outcome: Outcome,
-    steps: u32,
+    steps: u64,
     /// `[lower, upper]` accelerations in full contact (m/s^2).
     accelerations: Option<[f64; 2]>,
     /// The largest `|vx|` of any body over the run (m/s).
@@ -31,13 +31,13 @@ struct Measured {
     forces: Vec<[f64; 2]>,
 }
 
-fn max_vx<T: Real, const B: usize, const P: usize>(report: &StepReport<T, B, P>, max: &mut f64) {
+fn max_vx<T: Real, const B: usize, const P: usize>(report: &SystemStepReport<T, B, P>, max: &mut f64) {
     for s in &report.states {
         *max = max.max(s.vx.as_f64().abs());
     }
 }
 
-fn forces<T: Real, const B: usize, const P: usize>(report: &StepReport<T, B, P>) -> Vec<[f64; 2]> {
+fn forces<T: Real, const B: usize, const P: usize>(report: &SystemStepReport<T, B, P>) -> Vec<[f64; 2]> {
     report.interface_forces.iter().map(|f| [f[0].as_f64(), f[1].as_f64()]).collect()
 }
 
@@ -435,27 +435,27 @@ fn invalid_parameters_are_refused_by_name() {
 }
 
 /// The hand-built systems' step: 1 ms, `g` 9.81 m/s^2, stick below 1e-5 m/s, a 1 mm margin.
-const SETTINGS: Settings<f64> = Settings {
+const SETTINGS: SystemSettings<f64> = SystemSettings {
     base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
     margin: 1e-3,
 };
 
 /// Two equal boxes of 1 kg, one exactly on the other, on a floor; `force` pulls the lower one.
-fn aligned_pair<const N: usize>(force: f64) -> Stepper<f64, 2, 2, N> {
+fn aligned_pair<const N: usize>(force: f64) -> SystemStepper<f64, 2, 2, N> {
     aligned_pair_of(1.0, force).expect("a valid system")
 }
 
 /// [`aligned_pair`] with boxes of `mass`.
-fn aligned_pair_of<const N: usize>(mass: f64, force: f64) -> Result<Stepper<f64, 2, 2, N>, ParamError> {
+fn aligned_pair_of<const N: usize>(mass: f64, force: f64) -> Result<SystemStepper<f64, 2, 2, N>, ParamError> {
     let block = Body::block(mass, 0.2, 0.1);
     let system = System {
         bodies: [block; 2],
         table: Table::floor(),
-        pairs: [Pair::boxed(0, Support::Table, 0.5, 0.5), Pair::boxed(1, Support::Body(0), 0.5, 0.5)],
+        pairs: [Pair::boxed(0, RestsOn::Table, 0.5, 0.5), Pair::boxed(1, RestsOn::Body(0), 0.5, 0.5)],
         forces: [[force, 0.0], [0.0; 2]],
         settings: SETTINGS,
     };
-    Stepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
+    SystemStepper::new(system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
 }
 
 /// The activity rule (`docs/formulation.md`, "The corner-on-face contact"): the upper box's
@@ -475,11 +475,12 @@ fn aligned_edges_make_one_contact_each() {
     let system = System {
         bodies: [block],
         table: Table { lo: None, hi: Some(0.05) },
-        pairs: [Pair::boxed(0, Support::Table, 0.5, 0.5)],
+        pairs: [Pair::boxed(0, RestsOn::Table, 0.5, 0.5)],
         forces: [[0.0; 2]],
         settings: SETTINGS,
     };
-    let edge = Stepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, 0.05, 0.0)]).expect("valid");
+    let edge =
+        SystemStepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, 0.05, 0.0)]).expect("valid");
     assert_eq!(edge.frames()[0].map(|f| f.active), [true, false, false, true]);
 }
 
@@ -865,7 +866,7 @@ fn a_disc_rolls_on_a_pulled_board_at_a_third_of_its_acceleration_in_f32() {
 #[test]
 fn a_disc_is_only_an_upper_body() {
     let (disc, block) = (Body::disc(1.0, 0.05), Body::block(1.0, 0.1, 0.1));
-    let pair = |upper: u8, lower: Support, upper_shape: Shape| Pair {
+    let pair = |upper: u8, lower: RestsOn, upper_shape: Shape| Pair {
         upper,
         lower,
         mu_static: 0.5,
@@ -876,13 +877,13 @@ fn a_disc_is_only_an_upper_body() {
     let build = |bodies: [Body<f64>; 2], pairs: [Pair<f64>; 2]| {
         let system =
             System { bodies, table: Table::floor(), pairs, forces: [[0.0; 2]; 2], settings: SETTINGS };
-        Stepper::<f64, 2, 2, 16>::new(system, states).err()
+        SystemStepper::<f64, 2, 2, 16>::new(system, states).err()
     };
     // The disc on a block on the floor: valid.
-    let valid = [pair(0, Support::Table, Shape::Box), pair(1, Support::Body(0), Shape::Disc)];
+    let valid = [pair(0, RestsOn::Table, Shape::Box), pair(1, RestsOn::Body(0), Shape::Disc)];
     assert_eq!(build([block, disc], valid), None);
     // A block on a disc.
-    let on_disc = [pair(0, Support::Table, Shape::Disc), pair(1, Support::Body(0), Shape::Box)];
+    let on_disc = [pair(0, RestsOn::Table, Shape::Disc), pair(1, RestsOn::Body(0), Shape::Box)];
     assert_eq!(build([disc, block], on_disc), Some(ParamError::OutOfRange("pairs")));
     // A disc 0.2 m wide and 0.1 m high.
     assert_eq!(
@@ -890,7 +891,7 @@ fn a_disc_is_only_an_upper_body() {
         Some(ParamError::OutOfRange("upper_shape"))
     );
     // Body 1 a disc on body 0 and a box on the table.
-    let both = [pair(1, Support::Table, Shape::Box), pair(1, Support::Body(0), Shape::Disc)];
+    let both = [pair(1, RestsOn::Table, Shape::Box), pair(1, RestsOn::Body(0), Shape::Disc)];
     assert_eq!(build([block, disc], both), Some(ParamError::OutOfRange("upper_shape")));
 }
 
@@ -958,12 +959,13 @@ fn a_disc_s_rim_frame_on_a_tilted_board_is_the_text_s() {
             let system = System {
                 bodies: [Body::block(2.0, length, height), Body::disc(1.0, r)],
                 table: Table::floor(),
-                pairs: [Pair::boxed(0, Support::Table, 0.5, 0.5), Pair::disc(1, Support::Body(0), 0.5, 0.5)],
+                pairs: [Pair::boxed(0, RestsOn::Table, 0.5, 0.5), Pair::disc(1, RestsOn::Body(0), 0.5, 0.5)],
                 forces: [[0.0; 2]; 2],
                 settings: SETTINGS,
             };
-            let stepper = Stepper::<f64, 2, 2, 24>::new(system, [board, BodyState::at_rest(c[0], c[1], 0.7)])
-                .expect("a valid system");
+            let stepper =
+                SystemStepper::<f64, 2, 2, 24>::new(system, [board, BodyState::at_rest(c[0], c[1], 0.7)])
+                    .expect("a valid system");
             let f = stepper.frames()[1][0];
             let case = format!("theta {theta}, s {s}, psi {psi}: {f:?}");
             let near = |a: f64, b: f64| (a - b).abs() < 1e-14;
@@ -972,7 +974,7 @@ fn a_disc_s_rim_frame_on_a_tilted_board_is_the_text_s() {
             assert_eq!(f.active, s.abs() <= length / 2.0 && psi <= 1e-3, "{case}");
             assert!(stepper.frames()[1][1..].iter().all(|f| !f.active), "{case}");
             if !f.active {
-                // An inactive frame's other fields are not this step's (`Stepper::frames`).
+                // An inactive frame's other fields are not this step's (`SystemStepper::frames`).
                 continue;
             }
             assert!(near(f.point[0], point[0]) && near(f.point[1], point[1]), "{case}");
@@ -995,15 +997,15 @@ fn a_disc_pushed_on_the_table_rolls_at_two_thirds_of_f_over_m() {
         let system = System {
             bodies: [Body::disc(m, r)],
             table: Table::floor(),
-            pairs: [Pair::disc(0, Support::Table, mu_s, mu_k)],
+            pairs: [Pair::disc(0, RestsOn::Table, mu_s, mu_k)],
             forces: [[force, 0.0]],
-            settings: Settings {
+            settings: SystemSettings {
                 base: meterstick_core::planar::Settings { step: 1e-3, gravity: g, stick_speed: 1e-5 },
                 margin: 1e-3,
             },
         };
-        let mut stepper =
-            Stepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, r, 0.0)]).expect("a valid system");
+        let mut stepper = SystemStepper::<f64, 1, 1, 8>::new(system, [BodyState::at_rest(0.0, r, 0.0)])
+            .expect("a valid system");
         let (mut v10, mut rim) = (0.0, 0.0f64);
         for n in 1..=200 {
             let st = stepper.step().expect("a step").states[0];

@@ -214,8 +214,8 @@ fn check_multibody_scenes(run: &FirmwareRun) {
             ..Default::default()
         });
         let (outcome, host_steps, _) = params.build_multibody(Precision::F32, HostMultibody).unwrap();
-        assert!(matches!(outcome, Outcome::MultibodyFailed(_)), "{name} on the host: {outcome:?}");
-        assert!(line.starts_with(&format!("{name} outcome=MultibodyFailed(")), "{line}");
+        assert!(matches!(outcome, Outcome::Failed(_)), "{name} on the host: {outcome:?}");
+        assert!(line.starts_with(&format!("{name} outcome=Failed(")), "{line}");
         assert_eq!((answered, count("failed")), (host_steps, 1), "{line}: host took {host_steps} steps");
     }
 }

@@ -187,11 +187,12 @@ impl MultibodyVisitor for Bodies {
             return trace_view(&mut MultibodyView::new(scene));
         }
         let h = scene.system().settings.base.step;
-        let (mut steps, mut checksum) = (Vec::new(), Checksum::new());
+        let (mut steps, mut checksum, mut most_active) = (Vec::new(), Checksum::new(), 0u8);
         while steps.len() < MOST_STEPS
             && let Some(r) = scene.step()
         {
             r.add_to(&mut checksum);
+            most_active = most_active.max(r.active);
             let mut row: Vec<u64> = r.states.iter().flat_map(|s| s.to_array().map(bits)).collect();
             for (modes, loads) in r.modes.iter().zip(&r.corner_loads) {
                 for (mode, [n, f]) in modes.iter().zip(loads) {
@@ -210,11 +211,11 @@ impl MultibodyVisitor for Bodies {
             steps,
             outcome: scene.outcome(),
             measured: scene.measured().iter().map(|m| m.map(bits)).collect(),
-            step_count: u64::from(scene.stats().steps),
+            step_count: scene.stats().steps,
             checksum: checksum.value(),
             events: Vec::new(),
             lcp_capacity: S::ROWS,
-            most_lcp_contacts: Some(scene.stats().max_active),
+            most_lcp_contacts: Some(most_active),
         }
     }
 }

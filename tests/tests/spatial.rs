@@ -6,7 +6,8 @@
 
 use meterstick_core::Real;
 use meterstick_core::spatial::{
-    Body, FrictionCone, Mode, OneContact, Plane, Settings, Shape, State, Stepper, about, identity,
+    Body, FrictionCone, Mode, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper, State, about,
+    identity,
 };
 
 const G: f64 = 9.81;
@@ -42,10 +43,10 @@ fn billiard<T: Real>(tolerance: f64) {
         let mut state = at_rest_on::<T>([0.0, 0.0, radius]);
         state.velocity = v0.map(T::of);
         state.angular_velocity = spin.map(T::of);
-        let settings = Settings { step: T::of(h), ..Settings::default() };
+        let settings = SpatialSettings { step: T::of(h), ..SpatialSettings::default() };
         let mut ball = OneContact::new(
             Body::sphere(T::of(mass), T::of(radius)),
-            [Shape::Sphere { radius: T::of(radius) }],
+            [SpatialShape::Sphere { radius: T::of(radius) }],
             Plane::table(T::zero(), T::of(mu)),
             settings,
             state,
@@ -108,9 +109,9 @@ fn puck_on_table<T: Real>(heading: f64, speed: f64, mu: f64, h: f64) -> (f64, f6
     state.velocity = [T::of(speed * c), T::of(speed * s), T::zero()];
     let mut puck = OneContact::new(
         Body::cuboid(T::of(0.17), T::of(0.0762), T::of(0.0762), T::of(0.0254)),
-        [Shape::Point { offset: [T::zero(); 3] }],
+        [SpatialShape::Point { offset: [T::zero(); 3] }],
         Plane::table(T::zero(), T::of(mu)),
-        Settings { step: T::of(h), ..Settings::default() },
+        SpatialSettings { step: T::of(h), ..SpatialSettings::default() },
         state,
     )
     .unwrap();
@@ -160,9 +161,9 @@ fn half_speed<T: Real>(h: f64, seconds: f64) -> (f64, f64) {
     state.velocity = [T::of(v0), T::zero(), T::zero()];
     let mut puck = OneContact::new(
         Body::cuboid(T::of(0.17), T::of(0.0762), T::of(0.0762), T::of(0.0254)),
-        [Shape::Point { offset: [T::zero(); 3] }],
+        [SpatialShape::Point { offset: [T::zero(); 3] }],
         plane,
-        Settings { step: T::of(h), ..Settings::default() },
+        SpatialSettings { step: T::of(h), ..SpatialSettings::default() },
         state,
     )
     .unwrap();
@@ -205,10 +206,10 @@ fn free_spin<T: Real>() -> (f64, f64) {
     let mut state = at_rest_on::<T>([0.0, 0.0, 10.0]);
     state.orientation = about(&[T::of(0.6), T::zero(), T::of(0.8)], T::of(0.4));
     state.angular_velocity = [T::of(0.3), T::of(-0.2), T::of(10.0)];
-    let settings = Settings { gravity: [T::zero(); 3], ..Settings::default() };
+    let settings = SpatialSettings { gravity: [T::zero(); 3], ..SpatialSettings::default() };
     let mut stepper = OneContact::new(
         body,
-        [Shape::Point { offset: [T::zero(); 3] }],
+        [SpatialShape::Point { offset: [T::zero(); 3] }],
         Plane::table(T::of(-100.0), T::zero()),
         settings,
         state,
@@ -248,9 +249,9 @@ fn corner<T: Real>(tolerance: f64) -> u32 {
     state.angular_velocity = [T::of(1.0), T::of(-2.0), T::of(3.0)];
     let mut corner = OneContact::new(
         Body::cuboid(T::of(1.0), T::of(0.1), T::of(0.06), T::of(0.2)),
-        [Shape::Point { offset: offset.map(T::of) }],
+        [SpatialShape::Point { offset: offset.map(T::of) }],
         Plane::table(T::zero(), T::of(mu)),
-        Settings { step: T::of(h), ..Settings::default() },
+        SpatialSettings { step: T::of(h), ..SpatialSettings::default() },
         state,
     )
     .unwrap();
@@ -292,9 +293,9 @@ fn bad_input_is_refused_by_name() {
     let ok = || {
         (
             Body::sphere(1.0, 0.1),
-            [Shape::Sphere { radius: 0.1 }],
+            [SpatialShape::Sphere { radius: 0.1 }],
             Plane::table(0.0, 0.3),
-            Settings::default(),
+            SpatialSettings::default(),
             at_rest_on::<f64>([0.0, 0.0, 0.1]),
         )
     };
@@ -302,13 +303,13 @@ fn bad_input_is_refused_by_name() {
     assert!(OneContact::new(b, s, p, st, x).is_ok());
     let field = |r: Result<OneContact<f64>, meterstick_core::ParamError>| r.err().and_then(|e| e.field());
     assert_eq!(field(OneContact::new(Body::sphere(-1.0, 0.1), s, p, st, x)), Some("mass"));
-    assert_eq!(field(OneContact::new(b, [Shape::Sphere { radius: 0.0 }], p, st, x)), Some("radius"));
+    assert_eq!(field(OneContact::new(b, [SpatialShape::Sphere { radius: 0.0 }], p, st, x)), Some("radius"));
     assert_eq!(field(OneContact::new(b, s, Plane { normal: [0.0, 0.0, 2.0], ..p }, st, x)), Some("normal"));
     assert_eq!(field(OneContact::new(b, s, Plane { mu_kinetic: -0.1, ..p }, st, x)), Some("mu_kinetic"));
-    assert_eq!(field(OneContact::new(b, s, p, Settings { step: 0.0, ..st }, x)), Some("step"));
+    assert_eq!(field(OneContact::new(b, s, p, SpatialSettings { step: 0.0, ..st }, x)), Some("step"));
     // A pyramid of 2 directions, or one the LCP's `N = 4` cannot hold (4 directions need 6).
     for directions in [2, 4] {
-        let cone = Settings { friction: FrictionCone::Pyramid { directions }, ..st };
+        let cone = SpatialSettings { friction: FrictionCone::Pyramid { directions }, ..st };
         assert_eq!(field(OneContact::new(b, s, p, cone, x)), Some("friction_directions"));
     }
     assert_eq!(
@@ -333,11 +334,11 @@ fn pyramid_spread<T: Real>(cone: FrictionCone) -> (f64, f64) {
         let (s, c) = heading.sin_cos();
         let mut state = at_rest_on::<T>([0.0, 0.0, 0.0]);
         state.velocity = [T::of(speed * c), T::of(speed * s), T::zero()];
-        let mut puck = Stepper::<T, 1, 18>::new(
+        let mut puck = SpatialStepper::<T, 1, 18>::new(
             Body::cuboid(T::of(0.17), T::of(0.0762), T::of(0.0762), T::of(0.0254)),
-            [Shape::Point { offset: [T::zero(); 3] }],
+            [SpatialShape::Point { offset: [T::zero(); 3] }],
             Plane::table(T::zero(), T::of(mu)),
-            Settings { step: T::of(h), friction: cone, ..Settings::default() },
+            SpatialSettings { step: T::of(h), friction: cone, ..SpatialSettings::default() },
             state,
         )
         .unwrap();

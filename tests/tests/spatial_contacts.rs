@@ -1,4 +1,4 @@
-//! The spatial core with several contacts (`meterstick_core::spatial::Stepper<T, K, 4 K>`), each
+//! The spatial core with several contacts (`meterstick_core::spatial::SpatialStepper<T, K, 4 K>`), each
 //! with its own friction line turned to its own slip, against what is independent of the code:
 //! - a tripod (three feet on a level table) sliding without turning carries the loads that the
 //!   balance of its forces and moments gives (three equations, three feet: determinate), its
@@ -11,7 +11,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_precision_loss, clippy::print_stdout)]
 
 use meterstick_core::Real;
-use meterstick_core::spatial::{Body, Mode, Plane, Settings, Shape, State, Stepper, about, rotate};
+use meterstick_core::spatial::{
+    Body, Mode, Plane, SpatialSettings, SpatialShape, SpatialStepper, State, about, rotate,
+};
 
 const G: f64 = 9.81;
 /// The tripod's feet: at radius `R` from its axis, 120 degrees apart.
@@ -21,10 +23,10 @@ const MASS: f64 = 2.0;
 /// A tripod: a ring-like body of `MASS` with three feet at radius `R` a height `height` below its
 /// centre of mass, heading `heading` (rad) about the vertical, launched along its heading at
 /// `speed` and spinning at `spin` about the vertical, on a table of `mu`.
-fn tripod<T: Real>(height: f64, heading: f64, speed: f64, spin: f64, mu: f64) -> Stepper<T, 3, 12> {
-    let feet: [Shape<T>; 3] = core::array::from_fn(|i| {
+fn tripod<T: Real>(height: f64, heading: f64, speed: f64, spin: f64, mu: f64) -> SpatialStepper<T, 3, 12> {
+    let feet: [SpatialShape<T>; 3] = core::array::from_fn(|i| {
         let a = f64::from(u8::try_from(i).unwrap()) * 120.0_f64.to_radians();
-        Shape::Point { offset: [T::of(R * a.cos()), T::of(R * a.sin()), T::of(-height)] }
+        SpatialShape::Point { offset: [T::of(R * a.cos()), T::of(R * a.sin()), T::of(-height)] }
     });
     let (s, c) = heading.sin_cos();
     let state = State {
@@ -38,7 +40,8 @@ fn tripod<T: Real>(height: f64, heading: f64, speed: f64, spin: f64, mu: f64) ->
         mass: T::of(MASS),
         inertia: [T::of(0.5 * MASS * R * R), T::of(0.5 * MASS * R * R), T::of(MASS * R * R)],
     };
-    Stepper::new(body, feet, Plane::table(T::zero(), T::of(mu)), Settings::default(), state).unwrap()
+    SpatialStepper::new(body, feet, Plane::table(T::zero(), T::of(mu)), SpatialSettings::default(), state)
+        .unwrap()
 }
 
 /// The loads of three feet at `(x_i, y_i)` under a body of weight `w` whose friction `mu w`

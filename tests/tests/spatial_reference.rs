@@ -5,7 +5,7 @@
 //! equal at every step. The worst differences are printed (`-- --nocapture`).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::print_stdout, clippy::float_cmp)]
 
-use meterstick_core::spatial::{Body, Mode, OneContact, Plane, Settings, Shape, State, about};
+use meterstick_core::spatial::{Body, Mode, OneContact, Plane, SpatialSettings, SpatialShape, State, about};
 use meterstick_reference::spatial::{self as reference, Billiard, Puck, SpatialRun};
 
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -111,9 +111,14 @@ fn puck(label: &str, p: &Puck) -> Worst {
         velocity: [p.speed * c, p.speed * s * down[1], p.speed * s * down[2]],
         angular_velocity: [0.0; 3],
     };
-    let settings =
-        Settings { step: p.h, gravity: [0.0, 0.0, -p.g], stick_speed: p.stick_speed, ..Settings::default() };
-    let core = OneContact::new(body, [Shape::Point { offset: [0.0; 3] }], plane, settings, state).unwrap();
+    let settings = SpatialSettings {
+        step: p.h,
+        gravity: [0.0, 0.0, -p.g],
+        stick_speed: p.stick_speed,
+        ..SpatialSettings::default()
+    };
+    let core =
+        OneContact::new(body, [SpatialShape::Point { offset: [0.0; 3] }], plane, settings, state).unwrap();
     compare(label, core, &run)
 }
 
@@ -126,11 +131,15 @@ fn billiard(label: &str, b: &Billiard) -> Worst {
         velocity: [b.speed, 0.0, 0.0],
         angular_velocity: b.spin,
     };
-    let settings =
-        Settings { step: b.h, gravity: [0.0, 0.0, -b.g], stick_speed: b.stick_speed, ..Settings::default() };
+    let settings = SpatialSettings {
+        step: b.h,
+        gravity: [0.0, 0.0, -b.g],
+        stick_speed: b.stick_speed,
+        ..SpatialSettings::default()
+    };
     let core = OneContact::new(
         Body::sphere(b.mass, b.radius),
-        [Shape::Sphere { radius: b.radius }],
+        [SpatialShape::Sphere { radius: b.radius }],
         plane,
         settings,
         state,
@@ -217,9 +226,9 @@ fn corner(velocity: [f64; 3], spin: [f64; 3], mu: f64) -> (Worst, Tries) {
     };
     let core = OneContact::new(
         body,
-        [Shape::Point { offset }],
+        [SpatialShape::Point { offset }],
         Plane::table(0.0, mu),
-        Settings { step: h, ..Settings::default() },
+        SpatialSettings { step: h, ..SpatialSettings::default() },
         state,
     )
     .unwrap();

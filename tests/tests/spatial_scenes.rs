@@ -11,7 +11,7 @@ use meterstick_core::scene::{
     LcpLayout, Outcome, OutcomeKind, Pose, Precision, SceneKind, SceneParams, SceneView, Velocity,
     ViewVisitor,
 };
-use meterstick_core::spatial::{Body, Mode, OneContact, Plane, Settings, Shape, State, about};
+use meterstick_core::spatial::{Body, Mode, OneContact, Plane, SpatialSettings, SpatialShape, State, about};
 use meterstick_core::{ParamError, Real};
 
 /// A run through the view: its outcome, measures, steps, checksum and final position and velocity.
@@ -216,13 +216,13 @@ fn the_view_runs_the_stepper_s_trajectory() {
     let across = m * (3.0 * p.radius * p.radius + p.thickness * p.thickness) / 12.0;
     let mut direct = OneContact::new(
         Body { mass: m, inertia: [across, across, m * p.radius * p.radius * 0.5] },
-        [Shape::Point { offset: [0.0; 3] }],
+        [SpatialShape::Point { offset: [0.0; 3] }],
         Plane { point: [0.0; 3], normal: [0.0, s, c], mu_static: p.mu_static, mu_kinetic: p.mu_kinetic },
-        Settings {
+        SpatialSettings {
             step: p.step,
             gravity: [0.0, 0.0, -p.gravity],
             stick_speed: p.stick_speed,
-            ..Settings::default()
+            ..SpatialSettings::default()
         },
         State {
             position: [0.0; 3],

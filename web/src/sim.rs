@@ -9,7 +9,7 @@ use meterstick_core::ParamError;
 use meterstick_core::Real;
 use meterstick_core::planar::{ContactMode, Direction};
 use meterstick_core::scene::{
-    BodyShape, HeldView, Outcome, OutcomeKind, Pose, RunSummary, SceneKind, SceneView, SupportView, Velocity,
+    BodyShape, HeldView, Outcome, OutcomeKind, Pose, RunStats, SceneKind, SceneView, SupportView, Velocity,
     ViewReader, ViewVisitor,
 };
 
@@ -176,7 +176,7 @@ pub struct Sim {
 struct Status {
     outcome: Option<Outcome>,
     time: f64,
-    summary: RunSummary,
+    summary: RunStats,
     measured: [f64; MAX_MEASURES],
     checksum: u32,
 }
@@ -291,7 +291,7 @@ impl Sim {
     /// The engine's counters (steps, pivots, warm starts, reduced layouts' fallbacks, ...: those
     /// an engine does not keep are 0).
     #[must_use]
-    pub fn stats(&self) -> RunSummary {
+    pub fn stats(&self) -> RunStats {
         self.status().summary
     }
 

@@ -32,7 +32,7 @@ impl<T: Real> Table<T> {
 /// What the upper body of a [`Pair`] rests on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Support {
+pub enum RestsOn {
     /// The body of this index.
     Body(u8),
     /// The table.
@@ -61,7 +61,7 @@ pub struct Pair<T> {
     /// The resting body's index.
     pub upper: u8,
     /// What it rests on.
-    pub lower: Support,
+    pub lower: RestsOn,
     /// Static friction coefficient (used while a contact sticks or is separated).
     pub mu_static: T,
     /// Kinetic friction coefficient (used while a contact slides).
@@ -74,13 +74,13 @@ pub struct Pair<T> {
 impl<T> Pair<T> {
     /// A box `upper` resting on `lower` by its corners, with the pair's friction coefficients.
     #[must_use]
-    pub const fn boxed(upper: u8, lower: Support, mu_static: T, mu_kinetic: T) -> Self {
+    pub const fn boxed(upper: u8, lower: RestsOn, mu_static: T, mu_kinetic: T) -> Self {
         Self { upper, lower, mu_static, mu_kinetic, upper_shape: Shape::Box }
     }
 
     /// A disc `upper` resting on `lower` by its rim, with the pair's friction coefficients.
     #[must_use]
-    pub const fn disc(upper: u8, lower: Support, mu_static: T, mu_kinetic: T) -> Self {
+    pub const fn disc(upper: u8, lower: RestsOn, mu_static: T, mu_kinetic: T) -> Self {
         Self { upper, lower, mu_static, mu_kinetic, upper_shape: Shape::Disc }
     }
 }
@@ -249,7 +249,7 @@ fn dot<T: Real>(a: [T; 2], b: [T; 2]) -> T {
 /// A body's pose at a step's start and its terms of a contact's round-off: centre, `R(theta)` as
 /// `(cos, sin)`, half extents, `|x| + |y| + size` and `size + |y|`.
 #[derive(Clone, Copy)]
-pub(crate) struct Pose<T> {
+pub(crate) struct PoseTerms<T> {
     com: [T; 2],
     cos: T,
     sin: T,
@@ -260,7 +260,7 @@ pub(crate) struct Pose<T> {
     height: T,
 }
 
-impl<T: Real> Pose<T> {
+impl<T: Real> PoseTerms<T> {
     fn of(body: &Body<T>, state: &BodyState<T>) -> Self {
         let (sin, cos) = state.theta.sin_cos_portable();
         let size = body.size();
@@ -301,7 +301,7 @@ struct Face<T> {
 
 impl<T: Real> Face<T> {
     /// A body's top face.
-    fn top(p: &Pose<T>) -> Self {
+    fn top(p: &PoseTerms<T>) -> Self {
         Self {
             centre: p.world([T::zero(), p.half[1]]),
             tangent: p.rotate([T::one(), T::zero()]),
@@ -310,7 +310,7 @@ impl<T: Real> Face<T> {
     }
 
     /// A body's lower face.
-    fn bottom(p: &Pose<T>) -> Self {
+    fn bottom(p: &PoseTerms<T>) -> Self {
         Self {
             centre: p.world([T::zero(), -p.half[1]]),
             tangent: p.rotate([T::one(), T::zero()]),
@@ -332,7 +332,7 @@ impl<T: Real> Face<T> {
 }
 
 /// The owner of a candidate's corner or face: the body's index and pose, `None` for the table.
-type Owner<'a, T> = Option<(u8, &'a Pose<T>)>;
+type Owner<'a, T> = Option<(u8, &'a PoseTerms<T>)>;
 
 /// What the four candidates of a pair share: the states (for the approach), the settings' `margin`
 /// and step `h`, and the touching threshold.
@@ -358,13 +358,18 @@ struct Located<'a, T> {
 pub(crate) fn poses<T: Real, const B: usize>(
     bodies: &[Body<T>; B],
     states: &[BodyState<T>; B],
-) -> [Pose<T>; B] {
+) -> [PoseTerms<T>; B] {
     let zero = [T::zero(); 2];
-    let mut poses =
-        [Pose { com: zero, cos: T::one(), sin: T::zero(), half: zero, extent: T::zero(), height: T::zero() };
-            B];
+    let mut poses = [PoseTerms {
+        com: zero,
+        cos: T::one(),
+        sin: T::zero(),
+        half: zero,
+        extent: T::zero(),
+        height: T::zero(),
+    }; B];
     for ((pose, body), state) in poses.iter_mut().zip(bodies).zip(states) {
-        *pose = Pose::of(body, state);
+        *pose = PoseTerms::of(body, state);
     }
     poses
 }
@@ -378,27 +383,27 @@ pub(crate) fn poses<T: Real, const B: usize>(
 pub(crate) fn pair_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
     states: &[BodyState<T>; B],
-    poses: &[Pose<T>; B],
+    poses: &[PoseTerms<T>; B],
     table: &Table<T>,
     margin: T,
     h: T,
     frames: &mut [CornerFrame<T>; 4],
 ) {
-    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact.
+    // A pair naming a body that does not exist (`SystemStepper::new` refuses it) has no contact.
     let Some(upper) = poses.get(usize::from(pair.upper)) else {
         *frames = [CornerFrame::inactive(); 4];
         return;
     };
     // Each support in a copy of its own (the table's missing corners and limits known there).
     match pair.lower {
-        Support::Body(s) => {
+        RestsOn::Body(s) => {
             let Some(p) = poses.get(usize::from(s)) else {
                 *frames = [CornerFrame::inactive(); 4];
                 return;
             };
             four_frames((pair.upper, upper), Some((s, p)), table, states, margin, h, frames);
         }
-        Support::Table => four_frames((pair.upper, upper), None, table, states, margin, h, frames),
+        RestsOn::Table => four_frames((pair.upper, upper), None, table, states, margin, h, frames),
     }
 }
 
@@ -406,7 +411,7 @@ pub(crate) fn pair_frames<T: Real, const B: usize>(
 #[allow(clippy::inline_always)] // twice in `pair_frames`, `lower`'s variant known in each
 #[inline(always)]
 fn four_frames<T: Real, const B: usize>(
-    (upper_index, upper): (u8, &Pose<T>),
+    (upper_index, upper): (u8, &PoseTerms<T>),
     lower: Owner<'_, T>,
     table: &Table<T>,
     states: &[BodyState<T>; B],
@@ -545,16 +550,16 @@ pub(crate) fn slip<T: Real, const B: usize>(frame: &CornerFrame<T>, v: &[[T; 3];
 pub(crate) fn rim_frames<T: Real, const B: usize>(
     pair: &Pair<T>,
     states: &[BodyState<T>; B],
-    poses: &[Pose<T>; B],
+    poses: &[PoseTerms<T>; B],
     table: &Table<T>,
     margin: T,
     h: T,
     frames: &mut [CornerFrame<T>; 4],
 ) {
-    // A pair naming a body that does not exist (`Stepper::new` refuses it) has no contact.
+    // A pair naming a body that does not exist (`SystemStepper::new` refuses it) has no contact.
     let lower = match pair.lower {
-        Support::Body(s) => poses.get(usize::from(s)).map(|p| Some((s, p))),
-        Support::Table => Some(None),
+        RestsOn::Body(s) => poses.get(usize::from(s)).map(|p| Some((s, p))),
+        RestsOn::Table => Some(None),
     };
     let (Some(disc), Some(lower)) = (poses.get(usize::from(pair.upper)), lower) else {
         *frames = [CornerFrame::inactive(); 4];

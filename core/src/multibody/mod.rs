@@ -7,8 +7,8 @@
 //!
 //! * [`System`]: `B` bodies ([`crate::planar::Body`], each of a [`Shape`]), the [`Table`], `P`
 //!   resting [`Pair`]s (each with four candidate contacts, [`Candidate`]; a disc's pair one),
-//!   external forces and [`Settings`].
-//! * [`Stepper`]: the step (activity rule, the LCP per unit reference mass in factored form, the
+//!   external forces and [`SystemSettings`].
+//! * [`SystemStepper`]: the step (activity rule, the LCP per unit reference mass in factored form, the
 //!   paths free, warm, candidate and Lemke, each answer verified, compensated integration, contact
 //!   modes), each pair's summed interface force.
 //! * [`scenes`]: block-on-block, the tablecloth and the stack, returning the one
@@ -17,9 +17,8 @@
 //! A build that steps only single-body scenes links none of this: the steppers and scenes are
 //! generic, compiled where something names them (the registry's rows of several bodies, behind the
 //! `scenes-multibody` feature; a driver or firmware that builds a scene). The rest of the core names
-//! some of it unconditionally: [`StepError`], in [`crate::scene::Outcome::MultibodyFailed`], and
-//! the view of a scene of several bodies, [`crate::scene::MultibodyView`], generic over its scene
-//! ([`scenes::MultibodyScene`], [`Shape`], [`Support`]).
+//! some of it unconditionally: the view of a scene of several bodies, [`crate::scene::MultibodyView`], generic over its scene
+//! ([`scenes::MultibodyScene`], [`Shape`], [`RestsOn`]).
 
 mod factored;
 mod geometry;
@@ -28,5 +27,7 @@ pub mod scenes;
 mod slots;
 mod stepper;
 
-pub use geometry::{Candidate, CornerFrame, JacobianRow, Pair, Shape, Support, Table};
-pub use stepper::{Settings, Stats, StepError, StepReport, Stepper, System};
+pub use crate::RunStats;
+pub use crate::StepError;
+pub use geometry::{Candidate, CornerFrame, JacobianRow, Pair, RestsOn, Shape, Table};
+pub use stepper::{System, SystemSettings, SystemStepReport, SystemStepper};

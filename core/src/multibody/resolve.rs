@@ -1,5 +1,5 @@
 //! The rule of [`crate::rule`] on a multibody step (`docs/formulation.md`, "One answer: the
-//! rule"): which steps may have several answers that move the bodies differently ([`Detector`]),
+//! rule"): which steps may have several answers that move the bodies differently ([`SystemDetector`]),
 //! and on those the verified solutions a descent over neighbouring bases reaches from the path's
 //! answer, the rule's choice kept ([`resolve`], the reference's search). The single body's
 //! one-contact test and its threshold (`core/src/planar/resolve.rs`) for each contact with the
@@ -36,7 +36,7 @@ const ENUMERATED: [u8; 7] =
 
 /// The rule's data of a system of `B` bodies: the energy's metric, each coordinate's reach.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Detector<T, const B: usize> {
+pub(super) struct SystemDetector<T, const B: usize> {
     /// `1 / diag(M~) / sum_i (m_i / m_ref)`: the reference's energy `sum_i (m_i |v_i|^2 + J_i
     /// omega_i^2) / m_ref` divided by the bodies' mass in units of `m_ref`, so that the rule's tie
     /// `1e-12 S^2` is the reference's `1e-12 S^2 sum_i m_i / m_ref`.
@@ -45,7 +45,7 @@ pub(super) struct Detector<T, const B: usize> {
     reach: [[T; 3]; B],
 }
 
-impl<T: Real, const B: usize> Detector<T, B> {
+impl<T: Real, const B: usize> SystemDetector<T, B> {
     /// The rule's data of `bodies` of `shapes` whose `M~ = m_ref M^-1` has the diagonal
     /// `inverse_mass`: a box's reach half its diagonal, a disc's its radius.
     pub(super) fn new(bodies: &[Body<T>; B], shapes: &[Shape; B], inverse_mass: &[[T; 3]; B]) -> Self {
@@ -84,7 +84,7 @@ impl<T: Real, const B: usize> Detector<T, B> {
 /// row sum of `|N^-1 C|` reaches [`COUPLING`]. Row `i` of `N^-1 C` is row `i` of the Schur
 /// complement of the others' normals in `C` divided by the one in `N` (the block inverse): the
 /// single body's one-contact test `mu |W_n^T M^-1 W_d| >= W_n^T M^-1 W_n`
-/// (`core/src/planar/resolve.rs`, `Detector::flags`) for each contact as the others leave it, and
+/// (`core/src/planar/resolve.rs`, `SystemDetector::flags`) for each contact as the others leave it, and
 /// exactly that test for `k = 1`. The friction block's own singularity (two sticking corners of
 /// one interface) is not looked at: it leaves the split of a force open, not the motion.
 ///
@@ -193,7 +193,7 @@ fn coupled<T: Real, const B: usize, const N: usize, const MOST: usize>(
 /// rule's code is linked), as for one body: such a build keeps the path's answer.
 #[inline]
 pub(super) fn apply<T: Real, const B: usize, const N: usize>(
-    detector: &Detector<T, B>,
+    detector: &SystemDetector<T, B>,
     f: &Factored<T, B, N>,
     blocks: Option<&ContactBlocks<T>>,
     tolerance: T,
@@ -426,7 +426,7 @@ mod tests {
 
     use nalgebra::{SMatrix, SVector};
 
-    use super::{Detector, flags, resolve};
+    use super::{SystemDetector, flags, resolve};
     use crate::lcp::{default_tolerance, verify};
     use crate::multibody::factored::Factored;
     use crate::multibody::scenes::{
@@ -461,7 +461,7 @@ mod tests {
             let bodies = stepper.system().bodies;
             let m_ref = bodies[0].mass;
             let inverse_mass = bodies.map(|b| [m_ref / b.mass, m_ref / b.mass, m_ref / b.inertia]);
-            let rule = Detector::new(&bodies, &[super::Shape::Box; 2], &inverse_mass).rule(f);
+            let rule = SystemDetector::new(&bodies, &[super::Shape::Box; 2], &inverse_mass).rule(f);
             let lcp = f.assemble(false);
             let tolerance = default_tolerance::<f64, N>();
             // The dense enumeration: 8^k bases.
@@ -641,7 +641,7 @@ mod tests {
         fn steps<T: Real + core::fmt::Debug, const P: usize, const N: usize>(
             &mut self,
             max_steps: u32,
-            mut next: impl FnMut() -> (crate::multibody::Stepper<T, 2, P, N>, bool),
+            mut next: impl FnMut() -> (crate::multibody::SystemStepper<T, 2, P, N>, bool),
         ) {
             for _ in 0..max_steps {
                 let (mut stepper, more) = next();

@@ -241,9 +241,9 @@ fn with_pattern<const K: usize, const N: usize>(
 
 /// Patterns per contact that [`pattern_basis`] numbers: off, touching, and sticking, sliding and
 /// skidding along each direction.
-pub(crate) const PATTERNS: usize = 8;
+pub(crate) const PATTERN_COUNT: usize = 8;
 
-/// `basis` with contact `i` set to its pattern number `slot` (`slot < PATTERNS`: off, touching,
+/// `basis` with contact `i` set to its pattern number `slot` (`slot < PATTERN_COUNT`: off, touching,
 /// sticking `+d`, sticking `-d`, sliding `+d`, sliding `-d`, skidding `+d`, skidding `-d`);
 /// `None` when the slot's direction is not kept. The rule's enumeration of a step's solutions
 /// ([`super::resolve`]) walks these.

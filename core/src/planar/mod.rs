@@ -62,6 +62,7 @@ mod report;
 
 mod stepper;
 
+pub use crate::{RunStats, StepError};
 pub use body::{Body, BodyState};
 pub use checksum::Checksum;
 pub use contact::{Contact, ContactFrame, ContactMode, Feature, Pose, Support};
@@ -72,8 +73,8 @@ pub use layout::{Direction, Layout, Tangents, Variable};
 pub(crate) use model::check_friction;
 pub use model::{Model, Settings};
 pub use report::{
-    ContactReport, FRICTION_ROUND_OFF_LIMIT, ROUND_OFF_LIMIT, RunStats, StepReport,
-    friction_beyond_precision, friction_limit,
+    ContactReport, FRICTION_ROUND_OFF_LIMIT, ROUND_OFF_LIMIT, StepReport, friction_beyond_precision,
+    friction_limit,
 };
-pub use stepper::{StepError, Stepper};
+pub use stepper::Stepper;
 pub use strategy::{PathCounts, SolvePath};

@@ -5,7 +5,7 @@
 
 use super::body::BodyState;
 use super::contact::ContactMode;
-use super::strategy::{PathCounts, SolvePath};
+use super::strategy::SolvePath;
 use crate::real::Real;
 
 /// One contact's part of a [`StepReport`].
@@ -121,42 +121,4 @@ impl<T: Real, const K: usize> StepReport<T, K> {
     pub fn switches(&self) -> impl Iterator<Item = (usize, ContactMode)> + '_ {
         self.contacts.iter().enumerate().filter(|(_, c)| c.switched()).map(|(i, c)| (i, c.mode))
     }
-}
-
-/// Counters over a run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RunStats {
-    /// Steps taken.
-    pub steps: u64,
-    /// Complementary pivots, summed.
-    pub pivots: u64,
-    /// Most pivots in one step.
-    pub max_pivots: u32,
-    /// Steps whose answer came from the warm-start basis.
-    pub warm_starts: u64,
-    /// Steps where a reduced layout's dropped direction was needed.
-    pub reduced_check_fired: u64,
-    /// Solves answered by the solver's regularised retry after a round-off ray
-    /// ([`crate::lcp::LcpSolution::regularized`]).
-    pub regularized_solves: u64,
-    /// Steps whose impulses were resolved only to more than [`ROUND_OFF_LIMIT`] of their size
-    /// ([`StepReport::round_off_limited`]).
-    pub round_off_limited: u64,
-    /// Solves per path.
-    pub paths: PathCounts,
-    /// Steps the rule looked at (`docs/formulation.md`, "One answer: the rule"): flagged as
-    /// possibly having several answers, their solutions enumerated.
-    pub rule_checked_steps: u64,
-    /// Of those, steps whose solutions were enumerated: the solver's answer was not at rest
-    /// (an answer of zero kinetic energy is the rule's choice as it is).
-    pub rule_enumerated_steps: u64,
-    /// Of those, steps whose LCP had solutions that move the body differently.
-    pub ambiguous_steps: u64,
-    /// Of those, steps where the rule's choice moves the body differently from the answer the
-    /// solver's path reached first.
-    pub rule_changed_answer: u64,
-    /// Steps whose load the contacts left open, decided by the least 2-norm
-    /// (`docs/formulation.md`, "The load: the least norm").
-    pub load_decided_steps: u64,
 }

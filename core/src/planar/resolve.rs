@@ -10,7 +10,7 @@
 //! model once whether either can happen at all (a meter stick on two tips at `mu = 0.6` never
 //! gets past that one test), and then per step from the step's frames.
 
-use super::candidates::{PATTERNS, pattern_basis};
+use super::candidates::{PATTERN_COUNT, pattern_basis};
 use super::contact::{Contact, Feature};
 use super::factored::FactoredLcp;
 use super::inputs::{StepInputs, dot3};
@@ -31,7 +31,7 @@ pub(crate) const COUPLING: f64 = 1.0;
 /// 2), the meter stick's ambiguous steps at `mu = 1000` at 18 times it and more.
 const COUPLING_SEVERAL: f64 = 2.0;
 
-/// At most this many active contacts are enumerated (`PATTERNS^4` bases); a step with more keeps
+/// At most this many active contacts are enumerated (`PATTERN_COUNT^4` bases); a step with more keeps
 /// its path's answer.
 const MAX_CONTACTS: usize = 4;
 
@@ -292,7 +292,7 @@ pub(crate) struct BasisSolution<T, const N: usize> {
 }
 
 /// Calls `found` with every verified solution of `factored` over the bases of the active
-/// contacts' patterns ([`pattern_basis`], `PATTERNS^k` for `k <= MAX_CONTACTS` active contacts,
+/// contacts' patterns ([`pattern_basis`], `PATTERN_COUNT^k` for `k <= MAX_CONTACTS` active contacts,
 /// the others off), in a fixed order (contact by contact, the first the fastest digit), except
 /// the basis `skip`; with the basis' number. Nothing for more than `MAX_CONTACTS` active contacts.
 fn each_solution<T: Real, const K: usize, const N: usize>(
@@ -317,15 +317,15 @@ fn each_solution<T: Real, const K: usize, const N: usize>(
         v_plus: [T::zero(); 3],
         residual: T::zero(),
     };
-    'bases: for code in 0..PATTERNS.saturating_pow(count as u32) {
+    'bases: for code in 0..PATTERN_COUNT.saturating_pow(count as u32) {
         let mut basis = Basis::<N>::all_w();
         let mut digits = code;
         for &i in active.iter().take(count) {
-            match pattern_basis(factored.tangents(), basis, i, digits % PATTERNS) {
+            match pattern_basis(factored.tangents(), basis, i, digits % PATTERN_COUNT) {
                 Some(b) => basis = b,
                 None => continue 'bases,
             }
-            digits /= PATTERNS;
+            digits /= PATTERN_COUNT;
         }
         if skip == Some(basis) {
             continue;

@@ -11,8 +11,12 @@
 //! `contacts` 0; appended last, after the page's scenes; each behind the feature
 //! `scenes-multibody`, as its catalogue entry is behind the catalogue's `multibody`), its arm in
 //! [`SceneParams::build_multibody`], its catalogue entry (its own flags after the page's), and in
-//! `host-sim/src/multibody.rs` its reference and law (`Measured::of` in
-//! `host-sim/src/trajectory/mod.rs` for its measures).
+//! `host-sim/src/multibody/` its reference and law (`Measured::of` in
+//! `host-sim/src/trajectory/mod.rs` for its measures). A scene in three dimensions: its module in
+//! `core/src/scene/spatial/` implementing `SpatialScene` (its view is `SpatialView`), its variants
+//! here (`is_spatial` true, `contacts` 0; each behind the feature `scenes-spatial`, as its
+//! catalogue entry is behind the catalogue's `spatial`), its arm in `build_spatial`
+//! (`view/build.rs`), and in `host-sim/src/multibody/` its reference run and law.
 //!
 //! [`MultibodyScene`]: crate::multibody::scenes::MultibodyScene
 

@@ -65,6 +65,6 @@ pub use view::MultibodyViews;
 pub use view::PlanarViews;
 pub use view::{
     Axis, BodyShape, BodyView, ContactView, DIMENSIONS, EventView, FigureName, Force, HeldView, LoadPart,
-    MultibodyView, PlanarView, Pose, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing,
+    MultibodyView, PlanarView, Pose, RunStats, SceneView, StepFigure, StepStats, SupportView, Thing,
     Velocity, ViewReader, ViewVector, ViewVisitor,
 };

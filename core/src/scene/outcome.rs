@@ -1,6 +1,6 @@
 //! [`Outcome`]: how a scene's run ended.
 
-use crate::planar::StepError;
+use crate::StepError;
 
 /// How a run ended. Each scene uses the variants its rules name (`docs/scenes.md`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,22 +27,15 @@ pub enum Outcome {
     Jammed,
     /// The time limit passed with no other outcome.
     Unfinished,
-    /// A step failed (the state is that before it).
+    /// A step failed, in any engine (the state is that before it).
     Failed(StepError),
     /// Block-on-block, tablecloth: the lower body slid on the floor with the upper one riding on
     /// it, never sliding.
     Rode,
     /// Tablecloth: the board came out from under the block, which came to rest behind it.
     Stayed,
-    /// A step of a scene of several bodies failed ([`crate::multibody::StepError`]; the state is
-    /// that before it). Its kind is [`OutcomeKind::Failed`].
-    MultibodyFailed(crate::multibody::StepError),
     /// Puck: the sliding body came to rest (its contact sticks).
     Stopped,
-    /// A step of a scene in three dimensions failed (`crate::spatial::StepError`; the state is
-    /// that before it). Its kind is [`OutcomeKind::Failed`].
-    #[cfg(feature = "spatial")]
-    SpatialFailed(crate::spatial::StepError),
 }
 
 /// An [`Outcome`] without its cause: the one list of outcomes every driver names and numbers
@@ -67,7 +60,7 @@ pub enum OutcomeKind {
     Jammed,
     /// See [`Outcome::Unfinished`].
     Unfinished,
-    /// See [`Outcome::Failed`], [`Outcome::MultibodyFailed`] and `Outcome::SpatialFailed`.
+    /// See [`Outcome::Failed`].
     Failed,
     /// See [`Outcome::Rode`].
     Rode,
@@ -152,12 +145,10 @@ impl Outcome {
             Self::Rolled => OutcomeKind::Rolled,
             Self::Jammed => OutcomeKind::Jammed,
             Self::Unfinished => OutcomeKind::Unfinished,
-            Self::Failed(_) | Self::MultibodyFailed(_) => OutcomeKind::Failed,
+            Self::Failed(_) => OutcomeKind::Failed,
             Self::Rode => OutcomeKind::Rode,
             Self::Stayed => OutcomeKind::Stayed,
             Self::Stopped => OutcomeKind::Stopped,
-            #[cfg(feature = "spatial")]
-            Self::SpatialFailed(_) => OutcomeKind::Failed,
         }
     }
 
@@ -170,12 +161,7 @@ impl Outcome {
     /// `true` for an outcome of the physics (not a failed step).
     #[must_use]
     pub const fn is_physical(&self) -> bool {
-        match self {
-            Self::Failed(_) | Self::MultibodyFailed(_) => false,
-            #[cfg(feature = "spatial")]
-            Self::SpatialFailed(_) => false,
-            _ => true,
-        }
+        !matches!(self, Self::Failed(_))
     }
 }
 
@@ -185,26 +171,10 @@ impl From<StepError> for Outcome {
     }
 }
 
-impl From<crate::multibody::StepError> for Outcome {
-    fn from(e: crate::multibody::StepError) -> Self {
-        Self::MultibodyFailed(e)
-    }
-}
-
-#[cfg(feature = "spatial")]
-impl From<crate::spatial::StepError> for Outcome {
-    fn from(e: crate::spatial::StepError) -> Self {
-        Self::SpatialFailed(e)
-    }
-}
-
 impl core::fmt::Display for Outcome {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Self::Failed(e) => write!(f, "Failed ({e})"),
-            Self::MultibodyFailed(e) => write!(f, "Failed ({e})"),
-            #[cfg(feature = "spatial")]
-            Self::SpatialFailed(e) => write!(f, "Failed ({e})"),
             other => f.write_str(other.name()),
         }
     }

@@ -477,7 +477,7 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Size
     for &mut S
 {
     const ROWS: usize = S::ROWS;
-    fn step(&mut self) -> Option<crate::multibody::StepReport<T, B, P>> {
+    fn step(&mut self) -> Option<crate::multibody::SystemStepReport<T, B, P>> {
         (**self).step()
     }
     fn go_on(&mut self) -> Option<Outcome> {
@@ -501,7 +501,7 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P> + ?Size
     fn time(&self) -> T {
         (**self).time()
     }
-    fn stats(&self) -> &crate::multibody::Stats {
+    fn stats(&self) -> &RunStats {
         (**self).stats()
     }
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {

@@ -4,7 +4,8 @@
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::{Body, inverse_inertia_times};
-use super::report::{ContactReport, MAX_DIRECTIONS, Mode, StepError};
+use super::report::{MAX_DIRECTIONS, Mode, SpatialContactReport};
+use crate::StepError;
 use crate::lcp::{Basis, Lcp, Lemke};
 use crate::real::{Real, max, min};
 
@@ -31,7 +32,7 @@ struct Line<T> {
 }
 
 /// The bodies' velocities after the step's impulses and each contact's report.
-pub(super) type Solved<T, const K: usize> = ([ContactReport<T>; K], Vector<T>, Vector<T>);
+pub(super) type Solved<T, const K: usize> = ([SpatialContactReport<T>; K], Vector<T>, Vector<T>);
 
 /// The contacts of a body on a plane of unit normal `n`, in the unknowns `(p_n, p_+d, p_-d,
 /// sigma)` of each contact in turn (`N = 4 K`).
@@ -120,7 +121,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 // The LCP's verification scale, `||M|| ||z|| + ||q||`, times its tolerance: what
                 // a cone's condition may miss by in absolute terms.
                 let bound = verification_bound(solver, &lcp, &sol.z);
-                let mut reports = [ContactReport::separated(); K];
+                let mut reports = [SpatialContactReport::separated(); K];
                 for (i, c) in self.touches.iter().enumerate() {
                     if c.active {
                         let (pn, pt) = impulses[i];
@@ -208,7 +209,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         }
         let (v, w) = self.moved(&full, v_free, w_free);
         let bound = verification_bound(solver, &lcp, &sol.z);
-        let mut reports = [ContactReport::separated(); K];
+        let mut reports = [SpatialContactReport::separated(); K];
         for (i, c) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
             let (pn, pt) = impulses[i];
             reports[i] = self.report(pn, &pt, &self.slip(&v, &w, c), c.mu, (1, bound, false))?;
@@ -356,7 +357,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         slip: &Vector<T>,
         mu: T,
         (tries, bound, against_slip): (u32, T, bool),
-    ) -> Result<ContactReport<T>, StepError> {
+    ) -> Result<SpatialContactReport<T>, StepError> {
         let limit = mu * pn;
         let (slip_speed, friction) = (norm(slip), norm(pt));
         // A slip within the stick speed reads sticking (in f32 its direction can be round-off's):
@@ -401,7 +402,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             Mode::Sliding
         };
         let m = self.body.mass;
-        Ok(ContactReport {
+        Ok(SpatialContactReport {
             mode,
             normal_impulse: pn * m,
             friction_impulse: scale(m, pt),

@@ -43,7 +43,7 @@
 //!    and uncoupled from its normal (a sphere; a point under the centre of mass) the first lines,
 //!    the free slips', hold: one LCP a step; a lone sticking contact's conditions are linear,
 //!    one turn meets them; a box's corner sliding and spinning needs two to six, a tripod two to four.
-//!    Every answer is checked against the circular cone ([`ContactReport::cone_residual`], in
+//!    Every answer is checked against the circular cone ([`SpatialContactReport::cone_residual`], in
 //!    units of `mu p_n`, or the LCP's own verification scale where the cone is far smaller than
 //!    it: a light load at the edge of sticking). A sliding slip `s` is known to the step's
 //!    velocity round-off (the `256 eps` above), its direction to that over `|s|`: across the slip
@@ -94,7 +94,8 @@ mod friction;
 mod report;
 mod stepper;
 
+pub use crate::StepError;
 pub use algebra::{Quaternion, Vector, about, dot, identity, norm, perpendicular, rotate};
 pub use body::{Body, State};
-pub use report::{ContactReport, MAX_DIRECTIONS, Mode, StepError, StepReport};
-pub use stepper::{FrictionCone, OneContact, Plane, Settings, Shape, Stepper};
+pub use report::{MAX_DIRECTIONS, Mode, SpatialContactReport, SpatialStepReport};
+pub use stepper::{FrictionCone, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper};

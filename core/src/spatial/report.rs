@@ -3,7 +3,6 @@
 
 use super::algebra::Vector;
 use super::body::State;
-use crate::lcp::LcpError;
 use crate::real::Real;
 
 /// The most friction directions a step tries before it gives up ([`StepError::ConeNotConverged`]):
@@ -26,7 +25,7 @@ pub enum Mode {
 /// The contact after a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ContactReport<T> {
+pub struct SpatialContactReport<T> {
     /// Its mode.
     pub mode: Mode,
     /// Normal impulse, N s.
@@ -43,7 +42,7 @@ pub struct ContactReport<T> {
     pub cone_residual: T,
 }
 
-impl<T: Real> ContactReport<T> {
+impl<T: Real> SpatialContactReport<T> {
     /// No contact: separated, nothing carried.
     pub(super) fn separated() -> Self {
         Self {
@@ -60,46 +59,13 @@ impl<T: Real> ContactReport<T> {
 /// One step's result.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct StepReport<T, const K: usize> {
+pub struct SpatialStepReport<T, const K: usize> {
     /// Time at the end of the step, s.
     pub time: T,
     /// The body after the step.
     pub state: State<T>,
-    /// Its contacts, in the order [`super::Stepper::new`] was given their shapes.
-    pub contacts: [ContactReport<T>; K],
+    /// Its contacts, in the order [`super::SpatialStepper::new`] was given their shapes.
+    pub contacts: [SpatialContactReport<T>; K],
     /// Lemke pivots of the step's solves (every friction line it tried).
     pub pivots: u32,
-}
-
-/// Why a step failed; the state is then unchanged.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum StepError {
-    /// The contact's LCP had no verified answer.
-    Solver(LcpError),
-    /// The friction direction and the slip did not agree within [`MAX_DIRECTIONS`] tries.
-    ConeNotConverged,
-    /// The answer broke the circular cone's conditions beyond round-off (the residual, as
-    /// [`ContactReport::cone_residual`]).
-    ConeUnverified {
-        /// The residual.
-        residual: f32,
-    },
-    /// The state after the step would not be finite.
-    NonFinite,
-}
-
-impl core::fmt::Display for StepError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::Solver(e) => write!(f, "the contact's LCP: {e}"),
-            Self::ConeNotConverged => {
-                write!(f, "the friction direction did not meet the slip in {MAX_DIRECTIONS} tries")
-            }
-            Self::ConeUnverified { residual } => {
-                write!(f, "the answer is outside Coulomb's circular cone by {residual:e} of mu p_n")
-            }
-            Self::NonFinite => f.write_str("the state after the step is not finite"),
-        }
-    }
 }

@@ -4,8 +4,9 @@
 use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
 use super::friction::{Contacts, Touch};
-use super::report::{ContactReport, Mode, StepError, StepReport};
+use super::report::{Mode, SpatialContactReport, SpatialStepReport};
 use crate::ParamError;
+use crate::StepError;
 use crate::lcp::{Basis, Lemke};
 use crate::planar::assemble::normal_bias;
 use crate::real::{Real, max};
@@ -49,7 +50,7 @@ impl<T: Real> Plane<T> {
 /// Which point of the body touches the plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Shape<T> {
+pub enum SpatialShape<T> {
     /// A sphere of this radius about the centre of mass: it touches at `-radius` along the
     /// plane's normal, wherever it has turned.
     Sphere {
@@ -86,7 +87,7 @@ pub enum FrictionCone {
 /// The step's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Settings<T> {
+pub struct SpatialSettings<T> {
     /// Time step `h`, s. Default `1e-3`.
     pub step: T,
     /// Gravity, m/s^2, world axes. Default `(0, 0, -9.81)`.
@@ -99,7 +100,7 @@ pub struct Settings<T> {
     pub friction: FrictionCone,
 }
 
-impl<T: Real> Default for Settings<T> {
+impl<T: Real> Default for SpatialSettings<T> {
     fn default() -> Self {
         Self {
             step: T::of(1e-3),
@@ -114,11 +115,11 @@ impl<T: Real> Default for Settings<T> {
 /// A body on a plane touching it at up to `K` points (`N = 4 K`, the LCP's size: one friction
 /// line per contact), stepped as `super`'s module docs say.
 #[derive(Debug, Clone)]
-pub struct Stepper<T: Real, const K: usize, const N: usize> {
+pub struct SpatialStepper<T: Real, const K: usize, const N: usize> {
     body: Body<T>,
-    shapes: [Shape<T>; K],
+    shapes: [SpatialShape<T>; K],
     plane: Plane<T>,
-    settings: Settings<T>,
+    settings: SpatialSettings<T>,
     state: State<T>,
     modes: [Mode; K],
     steps: u64,
@@ -127,9 +128,9 @@ pub struct Stepper<T: Real, const K: usize, const N: usize> {
 }
 
 /// A body touching the plane at one point (a sphere, a puck).
-pub type OneContact<T> = Stepper<T, 1, 4>;
+pub type OneContact<T> = SpatialStepper<T, 1, 4>;
 
-impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
+impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
     /// A stepper for `body` touching `plane` at the points `shapes` name, starting at `state`.
     ///
     /// `K` from 1 to 8 and `N` from `4 K` to 32 (checked at compile time); a pyramid of `k`
@@ -144,25 +145,27 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
     /// of fewer than 3 or more than 16 directions or more than `N` holds (`friction_directions`).
     pub fn new(
         body: Body<T>,
-        shapes: [Shape<T>; K],
+        shapes: [SpatialShape<T>; K],
         plane: Plane<T>,
-        settings: Settings<T>,
+        settings: SpatialSettings<T>,
         state: State<T>,
     ) -> Result<Self, ParamError> {
         const {
             assert!(
                 K >= 1 && K <= 8 && N >= 4 * K && N <= 32,
-                "Stepper<T, K, N> needs 1 <= K <= 8, 4 K <= N <= 32"
+                "SpatialStepper<T, K, N> needs 1 <= K <= 8, 4 K <= N <= 32"
             );
         };
         body.validate()?;
         for shape in shapes {
             match shape {
-                Shape::Sphere { radius } if !radius.finite() => return Err(ParamError::NonFinite("radius")),
-                Shape::Sphere { radius } if radius <= T::zero() => {
+                SpatialShape::Sphere { radius } if !radius.finite() => {
+                    return Err(ParamError::NonFinite("radius"));
+                }
+                SpatialShape::Sphere { radius } if radius <= T::zero() => {
                     return Err(ParamError::NotPositive("radius"));
                 }
-                Shape::Point { offset } if !super::algebra::finite(&offset) => {
+                SpatialShape::Point { offset } if !super::algebra::finite(&offset) => {
                     return Err(ParamError::NonFinite("offset"));
                 }
                 _ => {}
@@ -247,7 +250,7 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
 
     /// The step's settings.
     #[must_use]
-    pub const fn settings(&self) -> &Settings<T> {
+    pub const fn settings(&self) -> &SpatialSettings<T> {
         &self.settings
     }
 
@@ -272,10 +275,10 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
     }
 
     /// A contact point's offset from the centre of mass, world axes, at `state`.
-    fn arm(&self, shape: &Shape<T>, state: &State<T>) -> Vector<T> {
+    fn arm(&self, shape: &SpatialShape<T>, state: &State<T>) -> Vector<T> {
         match *shape {
-            Shape::Sphere { radius } => scale(-radius, &self.plane.normal),
-            Shape::Point { offset } => rotate(&state.orientation, &offset),
+            SpatialShape::Sphere { radius } => scale(-radius, &self.plane.normal),
+            SpatialShape::Point { offset } => rotate(&state.orientation, &offset),
         }
     }
 
@@ -283,7 +286,7 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    pub fn step(&mut self) -> Result<StepReport<T, K>, StepError> {
+    pub fn step(&mut self) -> Result<SpatialStepReport<T, K>, StepError> {
         let s = self.settings;
         let (h, st, n) = (s.step, self.state, self.plane.normal);
         let v_free = advanced(&st.velocity, h, &s.gravity);
@@ -332,7 +335,7 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
                 )?,
             }
         } else {
-            ([ContactReport::separated(); K], v_free, w_free)
+            ([SpatialContactReport::separated(); K], v_free, w_free)
         };
         // A body whose moments are equal (a sphere) has `I_w = I` at every orientation: its
         // angular velocity is its momentum's, unchanged, with no round-off of the turns.
@@ -354,6 +357,6 @@ impl<T: Real, const K: usize, const N: usize> Stepper<T, K, N> {
         self.state = state;
         self.modes = contacts.map(|c| c.mode);
         self.steps += 1;
-        Ok(StepReport { time: self.time(), state, contacts, pivots })
+        Ok(SpatialStepReport { time: self.time(), state, contacts, pivots })
     }
 }

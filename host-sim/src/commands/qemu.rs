@@ -36,7 +36,7 @@ pub fn run(args: &QemuArgs) -> anyhow::Result<ExitCode> {
     let QemuArgs { elf, machine, timeout_s, icount, json } = args;
     let run = qemu::run(elf, *machine, Duration::from_secs(*timeout_s), *icount)?;
     if *json {
-        let summary = qemu::RunSummary {
+        let summary = qemu::RunStats {
             exit_code: run.exit_code,
             timed_out: run.timed_out,
             timing: qemu::timing(&run.lines)?,

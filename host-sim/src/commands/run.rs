@@ -43,7 +43,7 @@ pub struct RunArgs {
     pub out: PathBuf,
 }
 
-/// One implementation's part of a [`RunSummary`]'s scene.
+/// One implementation's part of a [`RunStats`]'s scene.
 #[derive(Debug, Clone, Serialize)]
 pub struct ImplementationSummary {
     /// Who computed it.
@@ -112,7 +112,7 @@ pub struct Comparison {
 
 /// One run of a scene, core and reference: `summary.json`.
 #[derive(Debug, Clone, Serialize)]
-pub struct RunSummary {
+pub struct RunStats {
     /// The run's folder name.
     pub name: String,
     /// Which scene.
@@ -252,7 +252,7 @@ fn run_all<const K: usize>(args: &RunArgs, specs: &[(String, SceneParams)]) -> a
                 compared_steps: core.rows.len().min(reference.rows.len()).saturating_sub(1),
             }
         });
-        let summary = RunSummary {
+        let summary = RunStats {
             name: name.clone(),
             scene: spec.kind(),
             parameters: parameters_json(spec),
@@ -352,7 +352,7 @@ fn measured_text(m: &Measured) -> String {
     "-".into()
 }
 
-fn terminal_summary(runs: &[RunSummary], out: &Path) -> String {
+fn terminal_summary(runs: &[RunStats], out: &Path) -> String {
     let mut s = String::new();
     // The runs' names set the first column's width (`three-fingers` is longer than `slow`).
     let w = runs.iter().map(|r| r.name.len()).max().unwrap_or(0).max(9);

@@ -143,7 +143,7 @@ pub struct BodiesRun {
     /// Solver counters.
     pub counters: BodiesCounters,
     /// The trajectory checksum over every step's states of all bodies in body order
-    /// ([`meterstick_core::multibody::StepReport::add_to`]: the firmware's fingerprint; the core's
+    /// ([`meterstick_core::multibody::SystemStepReport::add_to`]: the firmware's fingerprint; the core's
     /// runs only).
     pub checksum: Option<u32>,
 }

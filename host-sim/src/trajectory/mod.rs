@@ -108,7 +108,6 @@ impl From<Outcome> for RunOutcome {
     fn from(o: Outcome) -> Self {
         match o {
             Outcome::Failed(e) => Self { class: OutcomeKind::Failed, detail: Some(e.to_string()) },
-            Outcome::MultibodyFailed(e) => Self { class: OutcomeKind::Failed, detail: Some(e.to_string()) },
             other => Self::of(other.kind()),
         }
     }

@@ -1,8 +1,8 @@
 //! The core's and the rig's values as the link names them, and back (the presets).
 
 use meterstick_core::ParamError;
-use meterstick_core::multibody::StepError as MultibodyStepError;
-use meterstick_core::planar::{ContactMode, Direction, StepError};
+use meterstick_core::StepError;
+use meterstick_core::planar::{ContactMode, Direction};
 use meterstick_core::scene::{Outcome, OutcomeKind};
 use meterstick_link::{ErrorCode, Mode, OutcomeCode, ParamId, RejectReason, RigState};
 
@@ -43,10 +43,8 @@ const fn step_error_code(e: StepError) -> OutcomeCode {
 #[inline]
 #[must_use]
 pub const fn outcome_code(o: Outcome) -> OutcomeCode {
-    match o {
-        Outcome::Failed(e) => return step_error_code(e),
-        Outcome::MultibodyFailed(MultibodyStepError::NonFinite) => return OutcomeCode::NonFinite,
-        _ => {}
+    if let Outcome::Failed(e) = o {
+        return step_error_code(e);
     }
     match o.kind() {
         OutcomeKind::Balanced => OutcomeCode::Balanced,
@@ -60,8 +58,7 @@ pub const fn outcome_code(o: Outcome) -> OutcomeCode {
         OutcomeKind::Rode => OutcomeCode::Rode,
         OutcomeKind::Stayed => OutcomeCode::Stayed,
         OutcomeKind::Stopped => OutcomeCode::Stopped,
-        // `Outcome::Failed` returned above; a failed step of several bodies other than a
-        // non-finite state is the solver's (its LCP or more contacts than it holds).
+        // `Outcome::Failed` returned above.
         OutcomeKind::Failed => OutcomeCode::SolverFailed,
     }
 }

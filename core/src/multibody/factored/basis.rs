@@ -8,6 +8,7 @@
 
 use super::systems::{form_sliding, solve_four, solve_leading_out_of_line, solve_small, solve_symmetric};
 use super::{Answer, ContactBlocks, Factored, MOST_SLOTS, UNKNOWNS, negated_if};
+use crate::multibody::slots::slot_rows;
 use crate::planar::Declined;
 use crate::real::{AllFinite, Real, max};
 
@@ -93,10 +94,11 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let basic = |v: usize| mask.checked_shr(v as u32).unwrap_or(0) & 1 == 1;
         let (mut held, mut pinned) = (0u32, 0u32);
         for j in 0..k {
-            if basic(k + 2 * j) || basic(k + 2 * j + 1) {
+            let [_, plus, minus, sigma] = slot_rows(k, j);
+            if basic(plus) || basic(minus) {
                 let bit = 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
                 held |= bit;
-                if !basic(3 * k + j) {
+                if !basic(sigma) {
                     pinned |= bit;
                 }
             }
@@ -182,7 +184,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let mut follower = [N; UNKNOWNS];
         let mut m = 0usize;
         for j in 0..k {
-            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let [_, plus, minus, sigma] = slot_rows(k, j);
             let frictions = usize::from(basic(plus)) + usize::from(basic(minus));
             if basic(sigma) {
                 if frictions != 1 {
@@ -300,7 +302,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let mut scale = None;
         let mut along = [T::zero(); MOST_SLOTS];
         for j in 0..k.min(N / 4) {
-            let [n, plus, minus, sigma] = [j, k + 2 * j, k + 2 * j + 1, 3 * k + j].map(|v| v.min(N - 1));
+            let [n, plus, minus, sigma] = slot_rows(k, j).map(|v| v.min(N - 1));
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
             if let Some(a) = along.get_mut(j) {
                 *a = slip;

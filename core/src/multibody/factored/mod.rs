@@ -4,7 +4,7 @@
 //!
 //! # The factored form
 //! With `k` active candidates the variables are laid out as the stepper's LCP
-//! ([`super::Stepper`]): `p_n` of slot `j` at `j`, `p_+d` at `k + 2 j`, `p_-d` at `k + 2 j + 1`,
+//! ([`super::SystemStepper`]): `p_n` of slot `j` at `j`, `p_+d` at `k + 2 j`, `p_-d` at `k + 2 j + 1`,
 //! `sigma` at `3 k + j`; rows `4 k .. N` are the identity's (`q = 1`). Impulse variable `v` has
 //! the Jacobian column `c_v`, dense in the bodies' `3B` coordinates (zero at a body the contact
 //! does not touch: a contact on the table touches one body, one between two bodies both), `M~ c_v`
@@ -53,6 +53,7 @@ mod tests;
 use nalgebra::{SMatrix, SVector};
 
 use crate::lcp::Lcp;
+use crate::multibody::slots::slot_rows;
 use crate::planar::inputs::dot3;
 use crate::planar::{MU_WEIGHTED_FROM, cone_scale};
 use crate::real::{AllFinite, Real, max, min};
@@ -272,8 +273,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // `+d` columns: the `-d` one is the `+d` one negated, the same diagonal, finite with it).
         let (mut m_low, mut finite) = (self.m_low, self.columns_finite);
         let (mut q_norm, mut q_min, mut q_friction) = (self.q_norm, self.q_min, self.q_friction);
+        let [normal, plus, ..] = slot_rows(k, j);
         for (r, row) in rows.iter().enumerate() {
-            let v = if r == 0 { j } else { k + 2 * j };
+            let v = if r == 0 { normal } else { plus };
             let col = Column {
                 c: *row,
                 mc: core::array::from_fn(|b| {
@@ -432,7 +434,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let sigmas = low(mask, 3 * k, k);
         let mut frictions = 0u32;
         for j in 0..k {
-            if low(mask, k + 2 * j, 2) != 0 {
+            if low(mask, slot_rows(k, j)[1], 2) != 0 {
                 frictions |= 1 << j;
             }
         }
@@ -514,8 +516,9 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for j in 0..k {
             // Slot `j`'s `+d` column once for both directions (`-d`'s `M~ c z` as
             // `M~ c_+d (-z)`: the same product).
-            let (plus, minus) = (z[(k + 2 * j).min(N - 1)], z[(k + 2 * j + 1).min(N - 1)]);
-            let col = &self.cols[(k + 2 * j).min(N - 1)];
+            let [_, plus, minus, _] = slot_rows(k, j).map(|v| v.min(N - 1));
+            let col = &self.cols[plus];
+            let (plus, minus) = (z[plus], z[minus]);
             if plus != T::zero() {
                 col.add_scaled_to(plus, &mut dv);
             }
@@ -560,7 +563,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         let from = T::of(MU_WEIGHTED_FROM);
         for j in 0..k {
-            let (plus, minus, sigma) = (k + 2 * j, k + 2 * j + 1, 3 * k + j);
+            let [_, plus, minus, sigma] = slot_rows(k, j);
             let mu = self.mu[j.min(N - 1)];
             let s = if weighted && mu >= from { cone_scale(mu) } else { T::one() };
             let cone = [
@@ -622,7 +625,8 @@ fn contact_blocks<T: Real, const B: usize, const N: usize, const K: usize>(
     let col = |v: usize| &cols[v.min(N - 1)];
     // Column `j`'s normal and friction `M~ c` against every slot's normal `c`.
     for j in 0..rows {
-        let (a, f) = (col(j), col(k + 2 * j));
+        let [normal, plus, ..] = slot_rows(k, j);
+        let (a, f) = (col(normal), col(plus));
         for i in 0..rows {
             let u = col(i);
             if i > j || (i == j && !diagonal_formed) {

@@ -14,7 +14,7 @@ use proptest::strategy::ValueTree as _;
 use super::Factored;
 use crate::lcp::{Basis, Lcp, Lemke, default_tolerance, verify};
 use crate::multibody::slots::slot_rows;
-use crate::multibody::{Pair, Settings, Stepper, Support, System, Table};
+use crate::multibody::{Pair, RestsOn, System, SystemSettings, SystemStepper, Table};
 use crate::planar::{Body, BodyState};
 
 /// The LCP's capacity (block-on-block's).
@@ -59,7 +59,7 @@ fn case() -> impl Strategy<Value = Case> {
         })
 }
 
-fn stepper(c: &Case) -> Option<Stepper<f64, 2, 2, N>> {
+fn stepper(c: &Case) -> Option<SystemStepper<f64, 2, 2, N>> {
     let [w0, h0, w1, h1] = c.sizes;
     let lowest = |w: f64, h: f64, t: f64| 0.5 * (h * t.cos() + w * t.sin().abs());
     let y0 = lowest(w0, h0, c.thetas[0]) + c.gaps[0];
@@ -68,11 +68,11 @@ fn stepper(c: &Case) -> Option<Stepper<f64, 2, 2, N>> {
         bodies: [Body::block(c.masses[0], w0, h0), Body::block(c.masses[1], w1, h1)],
         table: Table::floor(),
         pairs: [
-            Pair::boxed(0, Support::Table, c.mu[0], c.mu[0]),
-            Pair::boxed(1, Support::Body(0), c.mu[1], 0.5 * c.mu[1]),
+            Pair::boxed(0, RestsOn::Table, c.mu[0], c.mu[0]),
+            Pair::boxed(1, RestsOn::Body(0), c.mu[1], 0.5 * c.mu[1]),
         ],
         forces: [[c.force, 0.0], [0.0; 2]],
-        settings: Settings {
+        settings: SystemSettings {
             base: crate::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-4 },
             margin: 1e-3,
         },
@@ -83,7 +83,7 @@ fn stepper(c: &Case) -> Option<Stepper<f64, 2, 2, N>> {
         state(0.0, y0, c.thetas[0], c.velocities[0]),
         state(c.offset * w0, y1, c.thetas[1], c.velocities[1]),
     ];
-    Stepper::new(system, states).ok()
+    SystemStepper::new(system, states).ok()
 }
 
 #[derive(Debug, Default)]

@@ -1,7 +1,7 @@
 //! [`BlockOnBlock`]: a block on a block pulled along a floor (`docs/scenes.md`, "block-on-block").
 
 use super::{FullContact, Outcome, Run, settings_of};
-use crate::multibody::{Pair, StepReport, Support, System, Table};
+use crate::multibody::{Pair, RestsOn, System, SystemStepReport, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -99,8 +99,8 @@ impl<T: Real> BlockOnBlock<T> {
             bodies: [p.bottom(), p.top()],
             table: Table::floor(),
             pairs: [
-                Pair::boxed(0, Support::Table, p.mu_floor, p.mu_floor),
-                Pair::boxed(1, Support::Body(0), p.mu_static, p.mu_kinetic),
+                Pair::boxed(0, RestsOn::Table, p.mu_floor, p.mu_floor),
+                Pair::boxed(1, RestsOn::Body(0), p.mu_static, p.mu_kinetic),
             ],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
             settings: settings_of!(p),
@@ -117,7 +117,7 @@ impl<T: Real> BlockOnBlock<T> {
     }
 
     /// Advances one step; `None` once the run has an outcome.
-    pub fn step(&mut self) -> Option<StepReport<T, 2, 2>> {
+    pub fn step(&mut self) -> Option<SystemStepReport<T, 2, 2>> {
         let report = self.run.advance()?;
         for p in 0..2 {
             self.slid[p] |= report.pair_slid(p);

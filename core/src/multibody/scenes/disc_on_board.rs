@@ -2,7 +2,7 @@
 //! the rim-on-face contact of `docs/formulation.md`).
 
 use super::{BLOCK_ON_BLOCK_ROWS, FullContact, Outcome, Run, settings_of};
-use crate::multibody::{Pair, StepReport, Support, System, Table};
+use crate::multibody::{Pair, RestsOn, System, SystemStepReport, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -97,8 +97,8 @@ impl<T: Real> DiscOnBoard<T> {
             bodies: [p.board(), p.disc()],
             table: Table::floor(),
             pairs: [
-                Pair::boxed(0, Support::Table, p.mu_floor, p.mu_floor),
-                Pair::disc(1, Support::Body(0), p.mu_static, p.mu_kinetic),
+                Pair::boxed(0, RestsOn::Table, p.mu_floor, p.mu_floor),
+                Pair::disc(1, RestsOn::Body(0), p.mu_static, p.mu_kinetic),
             ],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
             settings: settings_of!(p),
@@ -118,7 +118,7 @@ impl<T: Real> DiscOnBoard<T> {
     /// point is beyond an end of the board (the rim-on-face contact has no edge: off the board the
     /// disc would fall, which the scene does not model); at `max_time` `Slid` once the disc slid on
     /// the board, else `Rolled` once the board slid on the floor, else `Held`.
-    pub fn step(&mut self) -> Option<StepReport<T, 2, 2>> {
+    pub fn step(&mut self) -> Option<SystemStepReport<T, 2, 2>> {
         let report = self.run.advance()?;
         for p in 0..2 {
             self.slid[p] |= report.pair_slid(p);

@@ -3,10 +3,10 @@
 //! and measures.
 //!
 //! Their outcomes are the one list's, [`Outcome`] (`crate::scene::Outcome`; a failed step is
-//! [`Outcome::MultibodyFailed`]). They do not implement `crate::scene::Scene`, which is shaped for
-//! one body (its `StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact);
+//! [`Outcome::Failed`]). They do not implement `crate::scene::Scene`, which is shaped for
+//! one body (its `crate::planar::StepReport<T, K>` carries one `BodyState`, its `frames` one support per contact);
 //! each has
-//! `step()` and `run()` of its own returning [`super::StepReport`] (every body's state, each
+//! `step()` and `run()` of its own returning [`super::SystemStepReport`] (every body's state, each
 //! pair's interface force), and [`MultibodyScene`], what a driver asks of any of them;
 //! [`crate::scene::MultibodyView`] shows any of them as a [`crate::scene::SceneView`], the one
 //! interface of every engine's scenes.
@@ -21,7 +21,8 @@ pub use disc_on_board::{DiscOnBoard, DiscOnBoardParams};
 pub use stack::{Stack, Stack2, Stack3, StackParams};
 pub use tablecloth::{TABLECLOTH_ROWS, Tablecloth, TableclothParams};
 
-use super::{CornerFrame, Stats, StepReport, Stepper, System};
+use super::{CornerFrame, System, SystemStepReport, SystemStepper};
+use crate::RunStats;
 use crate::params::ParamError;
 use crate::planar::{BodyState, ContactMode};
 use crate::real::Real;
@@ -35,7 +36,7 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     /// The LCP's capacity in rows (4 per active candidate contact).
     const ROWS: usize;
     /// Advances one step; `None` once the run has an outcome.
-    fn step(&mut self) -> Option<StepReport<T, B, P>>;
+    fn step(&mut self) -> Option<SystemStepReport<T, B, P>>;
     /// Lets a run that has its outcome go on: takes the outcome (and returns it), so that the next
     /// [`Self::step`] is taken and judged afresh. A front end that shows the bodies go on after
     /// the outcome (the stack tumbling off the table after `Fell`) calls it before each such step
@@ -51,21 +52,21 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
     fn states(&self) -> &[BodyState<T>; B];
     /// The system stepped: the bodies, the table, the pairs, the forces, the step's scalars.
     fn system(&self) -> &System<T, B, P>;
-    /// Each pair's candidates' geometry now ([`super::Stepper::frames`]).
+    /// Each pair's candidates' geometry now ([`super::SystemStepper::frames`]).
     fn frames(&self) -> &[[CornerFrame<T>; 4]; P];
-    /// Each pair's candidates' modes after the last step ([`super::Stepper::modes`]).
+    /// Each pair's candidates' modes after the last step ([`super::SystemStepper::modes`]).
     fn modes(&self) -> &[[ContactMode; 4]; P];
     /// Simulated time (s).
     fn time(&self) -> T;
     /// The stepper's counters.
-    fn stats(&self) -> &Stats;
+    fn stats(&self) -> &RunStats;
     /// What the scene measures so far, in the order the catalogue names them (`docs/scenes.md`,
     /// each scene's "Measured"): block-on-block `[a_bottom, a_top]`, the tablecloth the block's
     /// displacement, the stack its largest point speed, disc-on-board `[a_board, a_disc]`.
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
 
     /// Runs until an outcome, calling `observe` after every step.
-    fn run(&mut self, mut observe: impl FnMut(&StepReport<T, B, P>)) -> Outcome
+    fn run(&mut self, mut observe: impl FnMut(&SystemStepReport<T, B, P>)) -> Outcome
     where
         Self: Sized,
     {
@@ -81,26 +82,26 @@ pub trait MultibodyScene<T: Real, const B: usize, const P: usize> {
 #[derive(Debug, Clone)]
 struct Run<T: Real, Params, const B: usize, const P: usize, const N: usize> {
     params: Params,
-    stepper: Stepper<T, B, P, N>,
+    stepper: SystemStepper<T, B, P, N>,
     outcome: Option<Outcome>,
 }
 
 impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Params, B, P, N> {
     /// The scene's parameters (validated by the caller), its system and its bodies' start.
     fn new(params: Params, system: System<T, B, P>, states: [BodyState<T>; B]) -> Result<Self, ParamError> {
-        Ok(Self { params, stepper: Stepper::new(system, states)?, outcome: None })
+        Ok(Self { params, stepper: SystemStepper::new(system, states)?, outcome: None })
     }
 
     /// One step, unless the run has its outcome; a step that fails ends the run
-    /// ([`Outcome::MultibodyFailed`]; the state is that before the step).
-    fn advance(&mut self) -> Option<StepReport<T, B, P>> {
+    /// ([`Outcome::Failed`]; the state is that before the step).
+    fn advance(&mut self) -> Option<SystemStepReport<T, B, P>> {
         if self.outcome.is_some() {
             return None;
         }
         match self.stepper.step() {
             Ok(report) => Some(report),
             Err(e) => {
-                self.outcome = Some(Outcome::MultibodyFailed(e));
+                self.outcome = Some(Outcome::Failed(e));
                 None
             }
         }
@@ -111,7 +112,7 @@ impl<T: Real, Params, const B: usize, const P: usize, const N: usize> Run<T, Par
 /// `contact_margin`).
 macro_rules! settings_of {
     ($p:expr) => {
-        $crate::multibody::Settings {
+        $crate::multibody::SystemSettings {
             base: $crate::planar::Settings {
                 step: $p.step,
                 gravity: $p.gravity,
@@ -136,7 +137,7 @@ macro_rules! multibody_scene {
 
             /// The stepper (states, frames, modes, counters).
             #[must_use]
-            pub const fn stepper(&self) -> &Stepper<T, $b, $p, $rows> {
+            pub const fn stepper(&self) -> &SystemStepper<T, $b, $p, $rows> {
                 &self.run.stepper
             }
 
@@ -149,7 +150,7 @@ macro_rules! multibody_scene {
 
         impl<$($generics)*> MultibodyScene<T, $b, $p> for $scene {
             const ROWS: usize = $rows;
-            fn step(&mut self) -> Option<StepReport<T, $b, $p>> {
+            fn step(&mut self) -> Option<SystemStepReport<T, $b, $p>> {
                 <$scene>::step(self)
             }
             fn go_on(&mut self) -> Option<Outcome> {
@@ -173,7 +174,7 @@ macro_rules! multibody_scene {
             fn time(&self) -> T {
                 self.stepper().time()
             }
-            fn stats(&self) -> &Stats {
+            fn stats(&self) -> &RunStats {
                 self.stepper().stats()
             }
             fn measured(&self) -> [Option<T>; MAX_MEASURES] {

@@ -2,7 +2,7 @@
 //! "stack").
 
 use super::{Outcome, Run, point_speed_bound, settings_of};
-use crate::multibody::{Pair, StepReport, Support, System, Table};
+use crate::multibody::{Pair, RestsOn, System, SystemStepReport, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -109,9 +109,9 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
         let p = params;
         let block = Body::block(p.mass, p.length, p.height);
         let (mu_static, mu_kinetic) = (p.mu_static, p.mu_kinetic);
-        let mut pairs = [Pair::boxed(0, Support::Table, mu_static, mu_kinetic); B];
+        let mut pairs = [Pair::boxed(0, RestsOn::Table, mu_static, mu_kinetic); B];
         for (upper, pair) in (1..blocks).zip(pairs.iter_mut().skip(1)) {
-            *pair = Pair::boxed(upper, Support::Body(upper - 1), mu_static, mu_kinetic);
+            *pair = Pair::boxed(upper, RestsOn::Body(upper - 1), mu_static, mu_kinetic);
         }
         let system = System {
             bodies: [block; B],
@@ -134,7 +134,7 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
     }
 
     /// Advances one step; `None` once the run has an outcome.
-    pub fn step(&mut self) -> Option<StepReport<T, B, B>> {
+    pub fn step(&mut self) -> Option<SystemStepReport<T, B, B>> {
         let report = self.run.advance()?;
         let p = &self.run.params;
         let mut fell = false;
@@ -197,7 +197,7 @@ mod tests {
         let pairs = stack.stepper().system().pairs;
         assert_eq!(
             pairs.map(|p| (p.upper, p.lower)),
-            [(0, Support::Table), (1, Support::Body(0)), (2, Support::Body(1)),]
+            [(0, RestsOn::Table), (1, RestsOn::Body(0)), (2, RestsOn::Body(1)),]
         );
     }
 }

@@ -1,7 +1,7 @@
 //! [`Tablecloth`]: a board pulled from under a block (`docs/scenes.md`, "tablecloth").
 
 use super::{FullContact, Outcome, Run, settings_of};
-use crate::multibody::{Pair, StepReport, Support, System, Table};
+use crate::multibody::{Pair, RestsOn, System, SystemStepReport, Table};
 use crate::params::{ParamError, check_step_within, params};
 use crate::planar::{Body, BodyState};
 use crate::real::Real;
@@ -97,11 +97,11 @@ impl<T: Real> Tablecloth<T> {
         params.validate()?;
         let p = params;
         let half = T::of(0.5);
-        let floor = |upper| Pair::boxed(upper, Support::Table, p.mu_floor, p.mu_floor);
+        let floor = |upper| Pair::boxed(upper, RestsOn::Table, p.mu_floor, p.mu_floor);
         let system = System {
             bodies: [p.board(), p.block()],
             table: Table::floor(),
-            pairs: [floor(0), Pair::boxed(1, Support::Body(0), p.mu_static, p.mu_kinetic), floor(1)],
+            pairs: [floor(0), Pair::boxed(1, RestsOn::Body(0), p.mu_static, p.mu_kinetic), floor(1)],
             forces: [[p.force, T::zero()], [T::zero(); 2]],
             settings: settings_of!(p),
         };
@@ -119,7 +119,7 @@ impl<T: Real> Tablecloth<T> {
     }
 
     /// Advances one step; `None` once the run has an outcome.
-    pub fn step(&mut self) -> Option<StepReport<T, 2, 3>> {
+    pub fn step(&mut self) -> Option<SystemStepReport<T, 2, 3>> {
         let report = self.run.advance()?;
         for p in 0..3 {
             self.slid[p] |= report.pair_slid(p);

@@ -1,11 +1,11 @@
-//! The candidates after the warm basis declined ([`Stepper::candidate`]): the bases next to the
+//! The candidates after the warm basis declined ([`SystemStepper::candidate`]): the bases next to the
 //! warm one, each solved in factored form ([`crate::multibody::factored::Factored::solve_basis`]),
 //! the first that answers taken. The basis in which every touching slot slides against its free
-//! slip; the lifting chain ([`Stepper::lifting_chain`]: the slot whose normal impulse came out
+//! slip; the lifting chain ([`SystemStepper::lifting_chain`]: the slot whose normal impulse came out
 //! negative lifts off, then the next); the failing slot's eight patterns ([`PATTERNS`], the
 //! reference's descent), its pair's, every other slot's and pair's. None is solved twice.
 
-use super::Stepper;
+use super::SystemStepper;
 use super::solve::Solved;
 use crate::lcp::Basis;
 use crate::multibody::factored::{ContactBlocks, MOST_SLOTS};
@@ -14,7 +14,7 @@ use crate::multibody::slots::{PATTERNS, Pattern, TOUCH, slot_pattern, slot_rows,
 use crate::planar::{Declined, PathCounts, SolvePath};
 use crate::real::Real;
 
-impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
+impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
     /// answers (written into `z`), or `None`; each that declines added to `declined` (for the
     /// rule, which does not solve it again).

@@ -1,14 +1,14 @@
-//! [`Stepper`]: `B` boxes on each other and on a table, one LCP per step, solved in the bodies'
+//! [`SystemStepper`]: `B` boxes on each other and on a table, one LCP per step, solved in the bodies'
 //! coordinates when a basis near the last one answers and by Lemke's method otherwise
 //! (`docs/formulation.md`, "Several bodies", "One step", "Solving a multibody step (the core)").
 //!
 //! # The files
-//! * this one: the public types ([`System`], [`Settings`], [`StepError`], [`Stepper`]), the
-//!   constructor and its checks ([`Stepper::new`]), the candidates' frames;
-//! * `step.rs`: the step ([`Stepper::step`]) and the load where it is open;
+//! * this one: the public types ([`System`], [`SystemSettings`], [`StepError`], [`SystemStepper`]), the
+//!   constructor and its checks ([`SystemStepper::new`]), the candidates' frames;
+//! * `step.rs`: the step ([`SystemStepper::step`]) and the load where it is open;
 //! * `solve.rs`: the step's LCP in factored form and the solve's paths;
 //! * `candidates.rs`: the bases next to the warm one, tried after it declined;
-//! * `report.rs`: [`StepReport`] and [`Stats`];
+//! * `report.rs`: [`SystemStepReport`];
 //! * `tests.rs`: the constructor's refusals.
 //!
 //! The rule's enumeration and decision is `resolve.rs`, beside this module.
@@ -21,15 +21,16 @@ mod step;
 #[allow(clippy::expect_used)] // a test's setup may fail loudly
 mod tests;
 
-pub use report::{Stats, StepReport};
+pub use report::SystemStepReport;
 
 use super::factored::Factored;
 #[cfg(feature = "fallback")]
 use super::factored::MOST_SLOTS;
 use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames};
-use super::resolve::Detector;
+use super::resolve::SystemDetector;
 use super::slots::Pattern;
-use crate::lcp::{Basis, LcpError, Lemke};
+use crate::RunStats;
+use crate::lcp::{Basis, Lemke};
 use crate::params::{Check, ParamError, check_fields};
 use crate::planar::check_friction;
 use crate::planar::{Body, BodyState, ContactMode};
@@ -39,7 +40,7 @@ use crate::real::Real;
 /// threshold) and the activity rule's margin.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Settings<T> {
+pub struct SystemSettings<T> {
     /// Time step `h` (s), gravity `g` (m/s^2, along world `-y`), and the slip (m/s) at or below
     /// which a contact sticks.
     pub base: crate::planar::Settings<T>,
@@ -61,12 +62,12 @@ pub struct System<T, const B: usize, const P: usize> {
     /// The external force on each body at its centre of mass (N, world), besides its weight.
     pub forces: [[T; 2]; B],
     /// The step's scalars.
-    pub settings: Settings<T>,
+    pub settings: SystemSettings<T>,
 }
 
 impl<T, const B: usize, const P: usize> System<T, B, P> {
     /// Each body's shape: a disc when a pair says its upper body is one
-    /// ([`Pair::upper_shape`]), else a box ([`Stepper::new`] refuses pairs that disagree).
+    /// ([`Pair::upper_shape`]), else a box ([`SystemStepper::new`] refuses pairs that disagree).
     #[must_use]
     pub fn shapes(&self) -> [Shape; B] {
         let mut shapes = [Shape::Box; B];
@@ -78,30 +79,6 @@ impl<T, const B: usize, const P: usize> System<T, B, P> {
         shapes
     }
 }
-
-/// Why a step failed. The state is then that before the step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum StepError {
-    /// The step's LCP could not be solved (or its answer not verified).
-    Solver(LcpError),
-    /// The state after the step would not be finite.
-    NonFinite,
-    /// More candidates are active than the LCP's capacity `N / 4` holds (the count).
-    TooManyContacts(u8),
-}
-
-impl core::fmt::Display for StepError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::Solver(e) => write!(f, "solver: {e}"),
-            Self::NonFinite => f.write_str("the state became non-finite"),
-            Self::TooManyContacts(k) => write!(f, "{k} contacts are active, more than the LCP holds"),
-        }
-    }
-}
-
-impl core::error::Error for StepError {}
 
 /// Steps a [`System`] of `B` bodies and `P` pairs (`4 P` candidate contacts) with an LCP of
 /// capacity `N` rows (at most `N / 4` active contacts; `N <= 32`, Lemke's limit).
@@ -119,12 +96,12 @@ impl core::error::Error for StepError {}
 /// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it (it is the
 /// next step's warm basis). What is reported is the load of least 2-norm with the step's motion
 /// (`docs/formulation.md`, "The load: the least norm"; each corner's share in
-/// [`StepReport::corner_loads`], their sum per pair in [`StepReport::interface_forces`]). Where
+/// [`SystemStepReport::corner_loads`], their sum per pair in [`SystemStepReport::interface_forces`]). Where
 /// solutions move the bodies differently (the model's "ambiguous" steps), this stepper takes the
 /// reference's rule, the least kinetic energy after the step (`docs/formulation.md`, "Several
 /// bodies: the rule"; `resolve.rs`).
 #[derive(Debug, Clone)]
-pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
+pub struct SystemStepper<T: Real, const B: usize, const P: usize, const N: usize> {
     system: System<T, B, P>,
     /// `m_ref diag(M^-1)` per body (`m_ref` body 0's mass).
     inverse_mass: [[T; 3]; B],
@@ -136,12 +113,11 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     patterns: [[Pattern; 4]; P],
     /// `64 eps g h m_min / m_ref`: a normal impulse per unit reference mass at most this is none.
     impulse_floor: T,
-    steps: u32,
     solver: Lemke<T, N>,
     /// The step's LCP in factored form, refilled each step ([`Self::refill`]).
     pub(super) lcp: StepLcp<T, B, N>,
     /// The rule's metric and reaches (`docs/formulation.md`, "One answer: the rule").
-    detector: Detector<T, B>,
+    detector: SystemDetector<T, B>,
     /// The basis of the last step whose load needed the least-norm LCP (`crate::load`; its rows
     /// in this stepper's LCP size, three per slot).
     #[cfg(feature = "fallback")]
@@ -153,15 +129,15 @@ pub struct Stepper<T: Real, const B: usize, const P: usize, const N: usize> {
     /// ([`Self::step_loading`]; the first step does).
     #[cfg(feature = "fallback")]
     load_next: bool,
-    stats: Stats,
+    stats: RunStats,
 }
 
-impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
+impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// `P <= 32`: the pairs' bit sets are `u32` (`Factored::held_and_pinned`), and a pair's
     /// index narrows to the `u8` a slot keeps exactly.
     const SIZE_CHECK: () = assert!(
         B > 0 && B < 255 && P > 0 && P <= 32 && N >= 4 && N <= 32,
-        "Stepper needs 0 < B < 255, 0 < P <= 32, 4 <= N <= 32"
+        "SystemStepper needs 0 < B < 255, 0 < P <= 32, 4 <= N <= 32"
     );
 
     /// A stepper at `states` (every body at rest: the modes before the first step are sticking
@@ -213,7 +189,6 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             modes: [[ContactMode::Separated; 4]; P],
             patterns: [[0; 4]; P],
             impulse_floor: T::of(64.0) * T::EPS * s.gravity * s.step * m_min / m_ref,
-            steps: 0,
             solver: Lemke::new(),
             lcp: StepLcp {
                 factored: Factored::new(),
@@ -222,14 +197,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
                 active: 0,
                 warm: Basis::all_w(),
             },
-            detector: Detector::new(&system.bodies, &shapes, &inverse_mass),
+            detector: SystemDetector::new(&system.bodies, &shapes, &inverse_mass),
             #[cfg(feature = "fallback")]
             load_basis: Basis::all_w(),
             #[cfg(feature = "fallback")]
             load_memory: LoadMemory::none(),
             #[cfg(feature = "fallback")]
             load_next: true,
-            stats: Stats::default(),
+            stats: RunStats::default(),
         };
         stepper.update_frames();
         for p in 0..P {
@@ -275,14 +250,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
 
     /// The run's counters.
     #[must_use]
-    pub const fn stats(&self) -> &Stats {
+    pub const fn stats(&self) -> &RunStats {
         &self.stats
     }
 
     /// Time now, `n h` after `n` steps (s).
     #[must_use]
     pub fn time(&self) -> T {
-        T::of_count(self.steps) * self.system.settings.base.step
+        T::of_count(u32::try_from(self.stats.steps).unwrap_or(u32::MAX)) * self.system.settings.base.step
     }
 
     fn update_frames(&mut self) {
@@ -300,7 +275,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     }
 }
 
-/// The set-up checks of [`Stepper::new`] (its `# Errors`, in that order) but the mass ratios:
+/// The set-up checks of [`SystemStepper::new`] (its `# Errors`, in that order) but the mass ratios:
 /// each body as [`crate::planar::Stepper`]'s body is checked, and its height positive too (a box
 /// or a disc); the settings as its settings, and the margin; each pair's friction as a contact's;
 /// the pairs' bodies and shapes; the table's ends; the forces; the states.
@@ -327,8 +302,8 @@ fn validate<T: Real, const B: usize, const P: usize>(
     for pair in &system.pairs {
         let bad_lower = match pair.lower {
             // A body that does not exist has no shape: refused as a disc is.
-            super::Support::Body(s) => s == pair.upper || shapes.get(usize::from(s)) != Some(&Shape::Box),
-            super::Support::Table => false,
+            super::RestsOn::Body(s) => s == pair.upper || shapes.get(usize::from(s)) != Some(&Shape::Box),
+            super::RestsOn::Table => false,
         };
         if shapes.get(usize::from(pair.upper)).is_some_and(|shape| *shape != pair.upper_shape) {
             return Err(ParamError::OutOfRange("upper_shape"));
@@ -355,7 +330,7 @@ fn validate<T: Real, const B: usize, const P: usize>(
     Ok(())
 }
 
-/// The last load the rule decided ([`Stepper::decide_load`]): its slots and their modes before
+/// The last load the rule decided ([`SystemStepper::decide_load`]): its slots and their modes before
 /// the step, the path's load, the decided one and the modes it gave.
 #[cfg(feature = "fallback")]
 #[derive(Debug, Clone, Copy)]
@@ -383,7 +358,7 @@ impl<T: Real> LoadMemory<T> {
     }
 }
 
-/// One step's LCP in factored form with its slots and warm basis ([`Stepper::refill`]).
+/// One step's LCP in factored form with its slots and warm basis ([`SystemStepper::refill`]).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct StepLcp<T, const B: usize, const N: usize> {
     /// The factored rows.

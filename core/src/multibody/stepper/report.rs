@@ -1,14 +1,12 @@
-//! What a step reports ([`StepReport`]: the states, interface forces, corner loads and modes) and
-//! a run's counters ([`Stats`]).
+//! What a step reports ([`SystemStepReport`]: the states, interface forces, corner loads and modes).
 
-use crate::planar::{BodyState, Checksum, ContactMode, PathCounts};
+use crate::planar::{BodyState, Checksum, ContactMode};
 use crate::real::Real;
-use crate::rule::Resolution;
 
 /// What one step did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[must_use]
-pub struct StepReport<T, const B: usize, const P: usize> {
+pub struct SystemStepReport<T, const B: usize, const P: usize> {
     /// Time at the step's end (s).
     pub time: T,
     /// Each body's state after the step.
@@ -28,7 +26,7 @@ pub struct StepReport<T, const B: usize, const P: usize> {
     pub pivots: u32,
 }
 
-impl<T, const B: usize, const P: usize> StepReport<T, B, P> {
+impl<T, const B: usize, const P: usize> SystemStepReport<T, B, P> {
     /// `true` when a contact of pair `p` was sliding after the step.
     #[must_use]
     pub fn pair_slid(&self, p: usize) -> bool {
@@ -44,55 +42,12 @@ impl<T, const B: usize, const P: usize> StepReport<T, B, P> {
     }
 }
 
-impl<T: Real, const B: usize, const P: usize> StepReport<T, B, P> {
+impl<T: Real, const B: usize, const P: usize> SystemStepReport<T, B, P> {
     /// Adds every body's state after the step, in body order, to a trajectory checksum: over a
     /// run, the fingerprint the firmware prints and the host compares bit for bit.
     pub fn add_to(&self, checksum: &mut Checksum) {
         for state in &self.states {
             checksum.add(state);
-        }
-    }
-}
-
-/// Counters of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Stats {
-    /// Steps taken.
-    pub steps: u32,
-    /// Steps the warm basis answered ([`crate::planar::SolvePath::Warm`]).
-    pub warm_direct: u32,
-    /// Lemke pivots over the run.
-    pub pivots: u64,
-    /// The most pivots of one step.
-    pub max_pivots: u32,
-    /// The most active candidates of one step.
-    pub max_active: u8,
-    /// How many steps each path answered (`docs/formulation.md`, "Solving a multibody step").
-    pub paths: PathCounts,
-    /// Steps the rule looked at (`docs/formulation.md`, "One answer: the rule"): not at rest and
-    /// flagged as possibly having several answers that move the bodies differently.
-    pub rule_checked_steps: u64,
-    /// Of those, steps whose solutions were searched (at most four active contacts: the descent
-    /// of `docs/formulation.md`, "Several bodies: the rule").
-    pub rule_enumerated_steps: u64,
-    /// Of those, steps whose LCP had solutions that move the bodies differently.
-    pub ambiguous_steps: u64,
-    /// Of those, steps where the rule's choice moves the bodies differently from the answer the
-    /// solver's path reached first.
-    pub rule_changed_answer: u64,
-    /// Steps whose load the contacts left open, decided by the least 2-norm
-    /// (`docs/formulation.md`, "The load: the least norm").
-    pub load_decided_steps: u64,
-}
-
-impl Stats {
-    /// Counts what the rule did on a step ([`crate::multibody::resolve::apply`]'s answer).
-    pub(super) fn count_rule(&mut self, rule: Option<Resolution>) {
-        if let Some(r) = rule {
-            self.rule_checked_steps += 1;
-            self.rule_enumerated_steps += u64::from(r.enumerated);
-            self.ambiguous_steps += u64::from(r.ambiguous);
-            self.rule_changed_answer += u64::from(r.changed);
         }
     }
 }

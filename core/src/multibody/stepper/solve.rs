@@ -1,10 +1,11 @@
 //! The step's LCP and its solution (`docs/formulation.md`, "Solving a multibody step (the
-//! core)"): [`Stepper::refill`] writes the active candidates' rows in factored form and the warm
-//! basis; [`Stepper::solve`] takes the paths in order, `z = 0` when `q >= 0`, the warm basis in
+//! core)"): [`SystemStepper::refill`] writes the active candidates' rows in factored form and the warm
+//! basis; [`SystemStepper::solve`] takes the paths in order, `z = 0` when `q >= 0`, the warm basis in
 //! factored form, the candidates (`candidates.rs`), Lemke's method on the assembled LCP from the
-//! warm basis and its retries ([`Stepper::retry`]); every answer verified.
+//! warm basis and its retries ([`SystemStepper::retry`]); every answer verified.
 
-use super::{StepError, Stepper};
+use super::SystemStepper;
+use crate::StepError;
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, verify};
 use crate::multibody::factored::{Answer, ContactBlocks, MOST_SLOTS};
 use crate::multibody::resolve::{self, DeclinedBases};
@@ -14,7 +15,7 @@ use crate::planar::{Declined, PathCounts, SolvePath};
 use crate::real::Real;
 use crate::rule::Resolution;
 
-impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
+impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The retries after a failed solve (a ray, the pivot cap, an answer that failed
     /// verification) of `lcp` from the warm basis `warm`, which has run Lemke's method from
     /// `warm`'s tableau, then from the cold start and its regularised retry
@@ -208,7 +209,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             Some(answer) => answer,
             None => self.lemke(z)?,
         };
-        // The rule here, where the bases declined are known (`Stepper::step` applies it to a warm
+        // The rule here, where the bases declined are known (`SystemStepper::step` applies it to a warm
         // answer).
         let mut mask = solved.basis.z_mask();
         let answer = (&mut solved.v_plus, z, &mut mask);
@@ -266,7 +267,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     }
 }
 
-/// A step's verified answer ([`Stepper::solve`]; `z` is written into the caller's array).
+/// A step's verified answer ([`SystemStepper::solve`]; `z` is written into the caller's array).
 pub(super) struct Solved<T, const B: usize, const N: usize> {
     /// `v+ = v~ + M~ J^T z`.
     pub(super) v_plus: [[T; 3]; B],

@@ -1,14 +1,15 @@
-//! The step itself ([`Stepper::step`]): refill, solve, the rule (`resolve.rs`), `V+ = v~ + M~
+//! The step itself ([`SystemStepper::step`]): refill, solve, the rule (`resolve.rs`), `V+ = v~ + M~
 //! J^T z` and `q+ = q + h V+` (compensated sums), the modes after the step, each pair's interface
 //! force and corner loads, the next warm patterns; where the load is open, the load of least
-//! 2-norm with the step's motion in place of the answer's ([`Stepper::decide_load`];
+//! 2-norm with the step's motion in place of the answer's ([`SystemStepper::decide_load`];
 //! `docs/formulation.md`, "The load: the least norm").
 
 #[cfg(feature = "fallback")]
 use super::LoadMemory;
-use super::report::StepReport;
+use super::SystemStepper;
+use super::report::SystemStepReport;
 use super::solve::Solved;
-use super::{StepError, Stepper};
+use crate::StepError;
 #[cfg(feature = "fallback")]
 use crate::load::{Carry, LoadContact, LoadPath, least_norm};
 use crate::multibody::factored::MOST_SLOTS;
@@ -18,11 +19,11 @@ use crate::multibody::slots::{Pattern, slot_rows};
 #[cfg(feature = "fallback")]
 use crate::planar::assemble::normal_bias;
 use crate::planar::{ContactMode, SolvePath};
-use crate::real::Real;
 #[cfg(feature = "fallback")]
 use crate::real::max;
+use crate::real::{Real, compensated_add};
 
-impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N> {
+impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The load of least 2-norm with this step's motion `v_plus` (`crate::load`) in place of the
     /// answer `z`'s: each slot's mode, its pair's summed impulse and its corner's load rewritten
     /// (`report`). A slot touches when it carries load or its normal velocity `c_n^T v+ + bias` is
@@ -148,7 +149,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged.
-    pub fn step(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    pub fn step(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         #[cfg(feature = "fallback")]
         if self.load_next {
             return self.step_loading();
@@ -160,7 +161,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     /// norm"): out of line, so that the other steps' copy has none of the load's code.
     #[cfg(feature = "fallback")]
     #[inline(never)]
-    fn step_loading(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    fn step_loading(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         self.step_with::<true>()
     }
 
@@ -168,7 +169,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     #[inline(always)]
     #[allow(clippy::inline_always)] // into `step` and `step_loading`: two copies, as said there
     #[allow(clippy::too_many_lines)] // the step in order: solve, rule, states, modes, load, counters
-    fn step_with<const LOAD: bool>(&mut self) -> Result<StepReport<T, B, P>, StepError> {
+    fn step_with<const LOAD: bool>(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         let s = self.system.settings.base;
         let h = s.step;
         self.refill()?;
@@ -182,7 +183,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             self.solve(&mut paths, blocks, &mut z)?;
         let mut mask = basis.z_mask();
         let (tolerance, f) = (self.solver.tolerance(), &self.lcp.factored);
-        // The rule on a warm or free answer (the other paths applied it: `Stepper::solve`).
+        // The rule on a warm or free answer (the other paths applied it: `SystemStepper::solve`).
         if !ruled {
             rule =
                 resolve::apply(&self.detector, f, blocks, tolerance, None, (&mut v_plus, &mut z, &mut mask));
@@ -200,10 +201,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let st = &mut states[i];
             [st.vx, st.vy, st.omega] = v_plus[i];
             for (c, coordinate) in [&mut st.x, &mut st.y, &mut st.theta].into_iter().enumerate() {
-                let increment = h * v_plus[i][c] - carry[i][c];
-                let sum = *coordinate + increment;
-                carry[i][c] = (sum - *coordinate) - increment;
-                *coordinate = sum;
+                compensated_add(coordinate, &mut carry[i][c], h * v_plus[i][c]);
             }
             if !st.is_finite() {
                 return Err(StepError::NonFinite);
@@ -272,19 +270,27 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         self.carry = carry;
         self.modes = modes;
         self.patterns = patterns;
-        self.steps += 1;
+        self.stats.steps += 1;
         self.update_frames();
         let st = &mut self.stats;
         paths.count(path);
         st.paths = paths;
-        st.count_rule(rule);
-        st.steps += 1;
-        st.pivots += u64::from(pivots);
-        st.max_pivots = st.max_pivots.max(pivots);
-        st.max_active = st.max_active.max(active);
-        if path == SolvePath::Warm {
-            st.warm_direct += 1;
+        if let Some(rule) = rule {
+            st.count_rule(rule);
         }
-        Ok(StepReport { time: self.time(), states, interface_forces, corner_loads, modes, active, pivots })
+        st.count_pivots(pivots);
+        st.most_lcp_contacts = Some(st.most_lcp_contacts.unwrap_or(0).max(active));
+        if path == SolvePath::Warm {
+            st.warm_starts += 1;
+        }
+        Ok(SystemStepReport {
+            time: self.time(),
+            states,
+            interface_forces,
+            corner_loads,
+            modes,
+            active,
+            pivots,
+        })
     }
 }

@@ -1,8 +1,8 @@
-//! [`Stepper::new`] refuses a system it cannot step, each by its [`ParamError`], before any
+//! [`SystemStepper::new`] refuses a system it cannot step, each by its [`ParamError`], before any
 //! step: every field of its contract broken once, the rest valid.
 
 use super::*;
-use crate::multibody::Support;
+use crate::multibody::RestsOn;
 
 /// Two boxes, one on the other, on a floor, pulled: the valid system every case breaks once.
 fn pulled_pair() -> (System<f64, 2, 2>, [BodyState<f64>; 2]) {
@@ -10,9 +10,9 @@ fn pulled_pair() -> (System<f64, 2, 2>, [BodyState<f64>; 2]) {
     let system = System {
         bodies: [block; 2],
         table: Table::floor(),
-        pairs: [Pair::boxed(0, Support::Table, 0.5, 0.4), Pair::boxed(1, Support::Body(0), 0.5, 0.4)],
+        pairs: [Pair::boxed(0, RestsOn::Table, 0.5, 0.4), Pair::boxed(1, RestsOn::Body(0), 0.5, 0.4)],
         forces: [[5.0, 0.0], [0.0; 2]],
-        settings: Settings {
+        settings: SystemSettings {
             base: crate::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
             margin: 1e-3,
         },
@@ -20,18 +20,18 @@ fn pulled_pair() -> (System<f64, 2, 2>, [BodyState<f64>; 2]) {
     (system, [BodyState::at_rest(0.0, 0.05, 0.0), BodyState::at_rest(0.0, 0.15, 0.0)])
 }
 
-/// `pulled_pair` changed by `change`: `Stepper::new`'s error, `None` when it builds.
+/// `pulled_pair` changed by `change`: `SystemStepper::new`'s error, `None` when it builds.
 fn refusal(change: impl FnOnce(&mut System<f64, 2, 2>, &mut [BodyState<f64>; 2])) -> Option<ParamError> {
     let (mut system, mut states) = pulled_pair();
     change(&mut system, &mut states);
-    Stepper::<f64, 2, 2, 24>::new(system, states).err()
+    SystemStepper::<f64, 2, 2, 24>::new(system, states).err()
 }
 
 #[test]
 fn the_valid_system_builds_and_steps() {
     assert_eq!(refusal(|_, _| {}), None);
     let (system, states) = pulled_pair();
-    let mut stepper = Stepper::<f64, 2, 2, 24>::new(system, states).expect("valid");
+    let mut stepper = SystemStepper::<f64, 2, 2, 24>::new(system, states).expect("valid");
     assert!(stepper.step().is_ok());
 }
 
@@ -79,7 +79,7 @@ fn friction_outside_zero_to_mu_static_is_refused() {
     assert_eq!(refusal(|s, _| s.pairs[1].mu_kinetic = -0.1), Some(ParamError::Negative("mu_kinetic")));
     assert_eq!(refusal(|s, _| s.pairs[1].mu_static = f64::NAN), Some(ParamError::NonFinite("mu_static")));
     // Frictionless and `mu_k = mu_s` are valid.
-    assert_eq!(refusal(|s, _| s.pairs[1] = Pair::boxed(1, Support::Body(0), 0.0, 0.0)), None);
+    assert_eq!(refusal(|s, _| s.pairs[1] = Pair::boxed(1, RestsOn::Body(0), 0.0, 0.0)), None);
     assert_eq!(refusal(|s, _| s.pairs[1].mu_kinetic = 0.5), None);
 }
 
@@ -98,7 +98,7 @@ fn a_table_forces_or_states_that_are_not_finite_are_refused() {
 #[test]
 fn pairs_naming_no_body_are_refused() {
     assert_eq!(refusal(|s, _| s.pairs[1].upper = 2), Some(ParamError::OutOfRange("pairs")));
-    assert_eq!(refusal(|s, _| s.pairs[1].lower = Support::Body(1)), Some(ParamError::OutOfRange("pairs")));
+    assert_eq!(refusal(|s, _| s.pairs[1].lower = RestsOn::Body(1)), Some(ParamError::OutOfRange("pairs")));
 }
 
 /// The step's checks are the constructor's: `f32` refuses the same way.
@@ -110,13 +110,16 @@ fn f32_refuses_as_f64() {
         table: Table::floor(),
         pairs: system.pairs.map(|p| Pair::boxed(p.upper, p.lower, 0.5_f32, 0.4)),
         forces: [[5.0, 0.0], [0.0; 2]],
-        settings: Settings {
+        settings: SystemSettings {
             base: crate::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
             margin: 1e-3,
         },
     };
     let states = states.map(|s| BodyState::at_rest(s.x as f32, s.y as f32, 0.0));
-    assert!(Stepper::<f32, 2, 2, 24>::new(system, states).is_ok());
+    assert!(SystemStepper::<f32, 2, 2, 24>::new(system, states).is_ok());
     system.settings.base.step = -1e-3;
-    assert_eq!(Stepper::<f32, 2, 2, 24>::new(system, states).err(), Some(ParamError::NotPositive("step")));
+    assert_eq!(
+        SystemStepper::<f32, 2, 2, 24>::new(system, states).err(),
+        Some(ParamError::NotPositive("step"))
+    );
 }

@@ -7,7 +7,8 @@ use crate::real::Real;
 use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
 use crate::spatial::{
-    Body, FrictionCone, Mode, OneContact, Plane, Settings, Shape, State, StepReport, identity,
+    Body, FrictionCone, Mode, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepReport, State,
+    identity,
 };
 
 params! {
@@ -76,12 +77,12 @@ impl<T: Real> Billiard<T> {
         params.validate()?;
         let mut plane = Plane::table(T::zero(), params.mu_static);
         plane.mu_kinetic = params.mu_kinetic;
-        let settings = Settings {
+        let settings = SpatialSettings {
             step: params.step,
             gravity: [T::zero(), T::zero(), -params.gravity],
             stick_speed: params.stick_speed,
             friction: FrictionCone::Circular,
-            ..Settings::default()
+            ..SpatialSettings::default()
         };
         let state = State {
             position: [T::zero(), T::zero(), params.radius],
@@ -91,7 +92,7 @@ impl<T: Real> Billiard<T> {
         };
         let stepper = OneContact::new(
             Body::sphere(params.mass, params.radius),
-            [Shape::Sphere { radius: params.radius }],
+            [SpatialShape::Sphere { radius: params.radius }],
             plane,
             settings,
             state,
@@ -107,7 +108,7 @@ impl<T: Real> Billiard<T> {
 }
 
 impl<T: Real> SpatialScene<T> for Billiard<T> {
-    fn step(&mut self) -> Option<StepReport<T, 1>> {
+    fn step(&mut self) -> Option<SpatialStepReport<T, 1>> {
         let rolled = &mut self.rolled;
         self.run.advance(
             |r| {

@@ -17,12 +17,12 @@ pub use view::SpatialView;
 use crate::real::Real;
 use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
-use crate::spatial::{OneContact, StepReport};
+use crate::spatial::{OneContact, SpatialStepReport};
 
 /// A scene in three dimensions, as [`SpatialView`] drives it.
 pub trait SpatialScene<T: Real> {
     /// Advances one step and judges it; `None` once the run has an outcome (nothing done).
-    fn step(&mut self) -> Option<StepReport<T, 1>>;
+    fn step(&mut self) -> Option<SpatialStepReport<T, 1>>;
     /// Takes the outcome so that the run goes on ([`crate::scene::SceneView::go_on`]); `None`
     /// before it.
     fn go_on(&mut self) -> Option<Outcome>;
@@ -88,9 +88,9 @@ impl<T: Real> Run<T> {
     /// limit (`at_limit`); a failed step ends the run with its error.
     fn advance(
         &mut self,
-        judge: impl FnOnce(&StepReport<T, 1>) -> Option<Outcome>,
+        judge: impl FnOnce(&SpatialStepReport<T, 1>) -> Option<Outcome>,
         at_limit: Outcome,
-    ) -> Option<StepReport<T, 1>> {
+    ) -> Option<SpatialStepReport<T, 1>> {
         if self.outcome.is_some() {
             return None;
         }

@@ -6,7 +6,8 @@ use crate::real::Real;
 use crate::scene::BodyShape;
 use crate::scene::{MAX_MEASURES, Outcome};
 use crate::spatial::{
-    Body, FrictionCone, Mode, OneContact, Plane, Settings, Shape, State, StepReport, Vector, about,
+    Body, FrictionCone, Mode, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepReport, State,
+    Vector, about,
 };
 
 params! {
@@ -101,12 +102,12 @@ impl<T: Real> Puck<T> {
             mu_static: params.mu_static,
             mu_kinetic: params.mu_kinetic,
         };
-        let settings = Settings {
+        let settings = SpatialSettings {
             step: params.step,
             gravity: [T::zero(), T::zero(), -params.gravity],
             stick_speed: params.stick_speed,
             friction: FrictionCone::Circular,
-            ..Settings::default()
+            ..SpatialSettings::default()
         };
         let state = State {
             position: [T::zero(); 3],
@@ -117,7 +118,7 @@ impl<T: Real> Puck<T> {
         };
         let stepper = OneContact::new(
             params.body(),
-            [Shape::Point { offset: [T::zero(); 3] }],
+            [SpatialShape::Point { offset: [T::zero(); 3] }],
             plane,
             settings,
             state,
@@ -133,7 +134,7 @@ impl<T: Real> Puck<T> {
 }
 
 impl<T: Real> SpatialScene<T> for Puck<T> {
-    fn step(&mut self) -> Option<StepReport<T, 1>> {
+    fn step(&mut self) -> Option<SpatialStepReport<T, 1>> {
         self.run
             .advance(|r| (r.contacts[0].mode == Mode::Sticking).then_some(Outcome::Stopped), Outcome::Slid)
     }

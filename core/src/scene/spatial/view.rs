@@ -4,10 +4,10 @@ use super::SpatialScene;
 use crate::planar::{Checksum, ContactMode, Direction};
 use crate::real::Real;
 use crate::scene::{
-    BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunSummary, SceneView, StepFigure,
+    BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepFigure,
     StepStats, SupportView, Thing, Velocity,
 };
-use crate::spatial::{ContactReport, Mode, norm};
+use crate::spatial::{Mode, SpatialContactReport, norm};
 
 /// A scene in three dimensions seen as a [`SceneView`]: it owns the scene and keeps the last
 /// step's contact report and pivots, and the checksum of the steps taken through it (each step's
@@ -15,7 +15,7 @@ use crate::spatial::{ContactReport, Mode, norm};
 #[derive(Debug, Clone)]
 pub struct SpatialView<T: Real, S> {
     scene: S,
-    last: Option<ContactReport<T>>,
+    last: Option<SpatialContactReport<T>>,
     solve: Option<StepStats<T>>,
     checksum: Checksum,
 }
@@ -146,14 +146,14 @@ impl<T: Real, S: SpatialScene<T>> SceneView<T> for SpatialView<T, S> {
         self.scene.measured()
     }
 
-    fn summary(&self) -> RunSummary {
+    fn summary(&self) -> RunStats {
         let run = self.scene.run();
-        RunSummary {
+        RunStats {
             steps: run.steps(),
             pivots: run.pivots(),
             max_pivots: run.max_pivots(),
             warm_starts: run.warm_starts(),
-            ..RunSummary::default()
+            ..RunStats::default()
         }
     }
 

@@ -16,7 +16,7 @@
 //!   impulses;
 //! * [`SupportView`]: a support, moving or fixed, or the table;
 //! * [`EventView`]: a contact's switch of mode, as the scene keeps them;
-//! * [`RunSummary`]: the counters every engine keeps;
+//! * [`RunStats`]: the counters every engine keeps;
 //! * [`StepStats`]: what the last step's solve took;
 //! * [`StepFigure`]: a quantity of the last step an engine reports beyond these, named by what it
 //!   is ([`FigureName`]).
@@ -35,9 +35,9 @@ mod held;
 mod multibody;
 mod planar;
 mod step;
-mod summary;
 mod support;
 
+pub use crate::RunStats;
 pub use body::{BodyShape, BodyView, Force, Pose, Velocity};
 pub use build::ViewVisitor;
 pub use contact::{ContactView, Thing};
@@ -56,7 +56,6 @@ pub use held::{HeldView, ViewReader};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use step::StepStats;
-pub use summary::RunSummary;
 pub use support::SupportView;
 
 use super::kind::MAX_MEASURES;
@@ -117,7 +116,7 @@ pub trait SceneView<T: Real> {
     /// quantity has no value (yet).
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
     /// The engine's counters, as far as every engine keeps them.
-    fn summary(&self) -> RunSummary;
+    fn summary(&self) -> RunStats;
     /// What the last step taken through this view solved (`None` before the first).
     fn last_step(&self) -> Option<StepStats<T>>;
     /// The rows of the largest LCP a step of the scene may solve (a scene of one body on `K`

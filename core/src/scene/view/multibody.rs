@@ -1,11 +1,11 @@
 //! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
 
 use super::{
-    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, LoadPart, RunSummary, SceneView,
-    StepFigure, StepStats, SupportView, Thing,
+    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, LoadPart, RunStats, SceneView, StepFigure,
+    StepStats, SupportView, Thing,
 };
 use crate::multibody::scenes::MultibodyScene;
-use crate::multibody::{Shape, Support};
+use crate::multibody::{RestsOn, Shape};
 use crate::planar::Checksum;
 use crate::real::Real;
 use crate::scene::{MAX_MEASURES, Outcome};
@@ -57,10 +57,10 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> Multib
 const FIGURES_PER_PAIR: usize = 2 + 4 * 2;
 
 /// The thing a pair's upper body rests on.
-const fn thing_of(support: Support) -> Thing {
+const fn thing_of(support: RestsOn) -> Thing {
     match support {
-        Support::Body(b) => Thing::Body(b),
-        Support::Table => Thing::Table,
+        RestsOn::Body(b) => Thing::Body(b),
+        RestsOn::Table => Thing::Table,
     }
 }
 
@@ -151,23 +151,8 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
         self.scene.measured()
     }
 
-    fn summary(&self) -> RunSummary {
-        let s = self.scene.stats();
-        RunSummary {
-            steps: u64::from(s.steps),
-            pivots: s.pivots,
-            max_pivots: s.max_pivots,
-            warm_starts: u64::from(s.warm_direct),
-            reduced_check_fired: 0,
-            regularized_solves: 0,
-            paths: s.paths,
-            rule_checked_steps: s.rule_checked_steps,
-            rule_enumerated_steps: s.rule_enumerated_steps,
-            ambiguous_steps: s.ambiguous_steps,
-            rule_changed_answer: s.rule_changed_answer,
-            load_decided_steps: s.load_decided_steps,
-            most_lcp_contacts: Some(s.max_active),
-        }
+    fn summary(&self) -> RunStats {
+        *self.scene.stats()
     }
 
     fn last_step(&self) -> Option<StepStats<T>> {

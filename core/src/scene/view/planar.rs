@@ -1,7 +1,7 @@
 //! [`PlanarView`]: a scene of one body ([`Scene`]) seen as a [`SceneView`].
 
 use super::{
-    BodyView, ContactView, EventView, RunSummary, SceneView, StepFigure, StepStats, SupportView, Thing,
+    BodyView, ContactView, EventView, RunStats, SceneView, StepFigure, StepStats, SupportView, Thing,
 };
 use crate::planar::{Checksum, ContactMode, ContactReport, Support};
 use crate::real::Real;
@@ -130,23 +130,8 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
         self.scene.measured()
     }
 
-    fn summary(&self) -> RunSummary {
-        let s = self.scene.stats();
-        RunSummary {
-            steps: s.steps,
-            pivots: s.pivots,
-            max_pivots: s.max_pivots,
-            warm_starts: s.warm_starts,
-            reduced_check_fired: s.reduced_check_fired,
-            regularized_solves: s.regularized_solves,
-            paths: s.paths,
-            rule_checked_steps: s.rule_checked_steps,
-            rule_enumerated_steps: s.rule_enumerated_steps,
-            ambiguous_steps: s.ambiguous_steps,
-            rule_changed_answer: s.rule_changed_answer,
-            load_decided_steps: s.load_decided_steps,
-            most_lcp_contacts: None,
-        }
+    fn summary(&self) -> RunStats {
+        *self.scene.stats()
     }
 
     fn last_step(&self) -> Option<StepStats<T>> {

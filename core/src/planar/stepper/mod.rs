@@ -18,6 +18,12 @@
 //! 6. each contact's mode after the step, the [`StepReport`], and the frames for the next step.
 //!
 //! A failed step leaves the state as it was and returns a [`StepError`]; nothing here panics.
+//!
+//! `load.rs`: the load where the contacts leave it open (`docs/formulation.md`, "The load: the
+//! least norm"; feature `fallback`).
+
+#[cfg(feature = "fallback")]
+mod load;
 
 use super::assemble::StepInputs;
 use super::body::BodyState;
@@ -27,52 +33,17 @@ use super::factored::{FactoredLcp, PlanCache};
 use super::inputs::sign;
 use super::layout::{Direction, Layout, Variable};
 use super::model::{Model, Settings, validate};
-use super::report::{ContactReport, ROUND_OFF_LIMIT, RunStats, StepReport};
+use super::report::{ContactReport, ROUND_OFF_LIMIT, StepReport};
 use super::resolve::{Detector, resolve, solve_by_rule};
 use super::strategy::{SolvePath, Solved, solve};
-use crate::lcp::{Basis, LcpError, Lemke};
-#[cfg(feature = "fallback")]
-use crate::load::{Carry, LoadContact, LoadPath, least_norm, least_norm_two_sticking};
+use crate::RunStats;
+use crate::StepError;
+use crate::lcp::{Basis, Lemke};
 use crate::params::ParamError;
-use crate::real::{Real, max, min, zero_if_finite};
+use crate::real::{Real, compensated_add, max, min, zero_if_finite};
 use crate::rule::Resolution;
-
-/// Why a step failed. The state is that before the step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[non_exhaustive]
-pub enum StepError {
-    /// The step's LCP could not be solved.
-    Solver(LcpError),
-    /// The state after the step would not be finite.
-    NonFinite,
-    /// A reduced layout's dropped direction was needed and the `fallback` feature is off.
-    ReducedModelLeftRange,
-    /// A support cannot carry its contact's feature (the contact's index).
-    SupportMismatch(u8),
-    /// A line's normal is not a unit vector ([`Support::is_well_formed`]; the contact's index).
-    /// (A support whose position or velocity is not finite fails the step with
-    /// [`LcpError::NonFiniteInput`].)
-    MalformedSupport(u8),
-}
-
-impl core::fmt::Display for StepError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::Solver(e) => write!(f, "solver: {e}"),
-            Self::NonFinite => f.write_str("the state became non-finite"),
-            Self::ReducedModelLeftRange => {
-                f.write_str("the reduced friction model left its range (no fallback compiled in)")
-            }
-            Self::SupportMismatch(i) => write!(f, "the support of contact {i} cannot carry its feature"),
-            Self::MalformedSupport(i) => {
-                write!(f, "the line supporting contact {i} has a normal that is not a unit vector")
-            }
-        }
-    }
-}
-
-impl core::error::Error for StepError {}
+#[cfg(feature = "fallback")]
+use load::PlanarLoadMemory;
 
 /// One rigid body against `K` supports; each step solves the `N`-variable LCP of a [`Layout`],
 /// and, when that layout is reduced, falls back to the `NF`-variable full layout (`NF = N`: no
@@ -224,12 +195,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             #[cfg(feature = "fallback")]
             load_basis: Basis::all_w(),
             #[cfg(feature = "fallback")]
-            load_memory: PlanarLoadMemory {
-                kinds: [Carry::Nothing; K],
-                levers: [[T::zero(); 2]; K],
-                path: [[T::zero(); 2]; K],
-                load: [[T::zero(); 2]; K],
-            },
+            load_memory: PlanarLoadMemory::none(),
             #[cfg(feature = "fallback")]
             slipping_unloaded: [false; K],
             stats: RunStats::default(),
@@ -410,7 +376,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             // The position enters as `p - p`, exactly 0 when it is finite and NaN when not: a
             // non-finite position (which only the next step's frames would read, and then as an
             // inactive contact) makes this step's data non-finite, refused as a non-finite
-            // velocity is ([`LcpError::NonFiniteInput`]), with no branch of its own.
+            // velocity is (`LcpError::NonFiniteInput`), with no branch of its own.
             let (p, u) = (supports[i].position(), supports[i].velocity());
             support_velocity[i] = [u[0] + zero_if_finite(p[0]), u[1] + zero_if_finite(p[1])];
             mu[i] = if self.modes[i].is_sliding() || (RULE && self.slips_unloaded(i)) {
@@ -597,10 +563,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         state.vy = v_plus[1];
         state.omega = v_plus[2];
         for (k, coordinate) in [&mut state.x, &mut state.y, &mut state.theta].into_iter().enumerate() {
-            let increment = h * v_plus[k] - carry[k];
-            let sum = *coordinate + increment;
-            carry[k] = (sum - *coordinate) - increment;
-            *coordinate = sum;
+            compensated_add(coordinate, &mut carry[k], h * v_plus[k]);
         }
         if !state.is_finite() {
             return Err(StepError::NonFinite);
@@ -615,14 +578,10 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
             self.stats.round_off_limited += 1;
         }
         if flagged {
-            self.stats.rule_checked_steps += 1;
-            self.stats.rule_enumerated_steps += u64::from(rule.enumerated);
-            self.stats.ambiguous_steps += u64::from(rule.ambiguous);
-            self.stats.rule_changed_answer += u64::from(rule.changed);
+            self.stats.count_rule(rule);
         }
         if pivots > 0 {
-            self.stats.pivots += u64::from(pivots);
-            self.stats.max_pivots = self.stats.max_pivots.max(pivots);
+            self.stats.count_pivots(pivots);
         }
 
         // Impulses (z is per unit mass) and modes after the step.
@@ -693,162 +652,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         })
     }
 
-    /// [`Self::decide_load`] for two contacts that both stick: the closed form of
-    /// [`crate::load::least_norm_two_sticking`] when both slips are within the rule's velocity
-    /// tolerance (else a slip decides a friction and the load is determinate), its modes as
-    /// `decide_load`'s; `decide_load` itself when the contacts' columns span less than the
-    /// coordinates.
-    #[cfg(feature = "fallback")]
-    #[cold]
-    #[inline(never)]
-    fn split_two_sticking(
-        &mut self,
-        supports: &[Support<T>; K],
-        v_plus: [T; 3],
-        slips: [T; 2],
-        pair: [ContactReport<T>; 2],
-    ) -> Result<Option<[ContactReport<T>; 2]>, StepError> {
-        let v_free =
-            [self.state.vx, self.state.vy - self.settings.step * self.settings.gravity, self.state.omega];
-        let support_velocity = supports.map(|u| u.velocity());
-        let tolerance = Detector::velocity_tolerance(&v_free, &support_velocity, self.size);
-        let (Some(a), Some(b), Some(ca), Some(cb)) =
-            (self.frames.first(), self.frames.get(1), self.contacts.first(), self.contacts.get(1))
-        else {
-            return Ok(None);
-        };
-        if slips.iter().any(|s| s.abs_exact() > tolerance) {
-            return Ok(None);
-        }
-        let mu_of = |c: &Contact<T>, r: &ContactReport<T>| {
-            if r.previous_mode.is_sliding() { c.mu_kinetic } else { c.mu_static }
-        };
-        let mu = [mu_of(ca, &pair[0]), mu_of(cb, &pair[1])];
-        let columns = [a.wn, a.wt, b.wn, b.wt];
-        let path = pair.map(|r| [r.normal_impulse, r.friction_impulse]);
-        let Some(load) = least_norm_two_sticking(&columns, mu, &path) else {
-            // The columns span less than the coordinates: the general least norm (both contacts
-            // carry load, so no normal velocity is read).
-            let mut contacts = [pair[0]; K];
-            let (mut mu_k, mut slip_k) = ([T::zero(); K], [T::zero(); K]);
-            for i in 0..K {
-                contacts[i] = pair[i % 2];
-                (mu_k[i], slip_k[i]) = (mu[i % 2], slips[i % 2]);
-            }
-            self.decide_load(&support_velocity, &mu_k, &v_plus, &[], &slip_k, &mut contacts)?;
-            return Ok(Some([contacts[0], contacts[1 % K]]));
-        };
-        self.stats.load_decided_steps += 1;
-        let mut split = pair;
-        for (i, (report, x)) in split.iter_mut().zip(load).enumerate() {
-            (report.normal_impulse, report.friction_impulse) = (x[0], x[1]);
-            report.mode = if x[0] > self.impulse_floor * self.mass {
-                ContactMode::from_slip(slips[i], self.settings.stick_speed)
-            } else {
-                ContactMode::Separated
-            };
-            if let Some(m) = self.modes.get_mut(i) {
-                *m = report.mode;
-            }
-        }
-        Ok(Some(split))
-    }
-
-    /// The load of least 2-norm with this step's motion (`crate::load`), in place of the path's
-    /// impulses and modes in `contacts` (and the modes kept for the next step): a contact touches
-    /// when it carries load or its normal row in `w` (its normal velocity) is within the rule's
-    /// velocity tolerance of zero, and sticks when its `slips` is within it too. Called before the
-    /// state is advanced (the rule's speed scale is from the step's free velocity).
-    #[cfg(feature = "fallback")]
-    #[cold]
-    #[inline(never)]
-    fn decide_load(
-        &mut self,
-        support_velocity: &[[T; 2]; K],
-        mu: &[T; K],
-        v_plus: &[T; 3],
-        w: &[T],
-        slips: &[T; K],
-        contacts: &mut [ContactReport<T>; K],
-    ) -> Result<(), StepError> {
-        let v_free =
-            [self.state.vx, self.state.vy - self.settings.step * self.settings.gravity, self.state.omega];
-        let rule = Detector::rule_of(&self.m_inv, &v_free, support_velocity, self.size);
-        let tolerance = rule.velocity_tolerance();
-        let mut loads =
-            [LoadContact { normal: [[T::zero(); 3]], tangent: [[T::zero(); 3]], carry: Carry::Nothing }; K];
-        let mut path = [[T::zero(); 2]; K];
-        for i in 0..K {
-            let (f, report, mu) = (&self.frames[i], &contacts[i], mu[i]);
-            path[i] = [report.normal_impulse, report.friction_impulse];
-            let normal_velocity = w.get(i).copied().unwrap_or(T::zero());
-            if !f.active || (report.mode == ContactMode::Separated && normal_velocity > tolerance) {
-                continue;
-            }
-            let carry = if slips[i].abs_exact() <= tolerance {
-                Carry::Sticking { mu }
-            } else {
-                Carry::Sliding { friction_per_normal: if slips[i] > T::zero() { mu } else { -mu } }
-            };
-            loads[i] = LoadContact { normal: [f.wn], tangent: [f.wt], carry };
-        }
-        // A rest state keeps the load decided the step before: the answer at the least energy,
-        // the same contacts carrying the same way at the same places on the body (a finger sliding
-        // under a resting rod moves its split), its load the same within round-off.
-        let kinds = loads.map(|l| l.carry);
-        let levers = loads.map(|l| [l.normal[0][2], l.tangent[0][2]]);
-        // The arms' own round-off (`|r| <= size`): a contact that moves on the body by more, over
-        // the steps since the load was decided, moves the split (at rest the body does not turn).
-        let reach = T::of(16.0) * T::EPS * (T::one() + self.size);
-        let mut scale = T::zero();
-        for p in &path {
-            scale = max(scale, max(p[0].abs_exact(), p[1].abs_exact()));
-        }
-        let round_off = T::of(64.0 * NF as f64) * T::EPS * scale;
-        let memory = &self.load_memory;
-        let kept = rule.at_least_energy(&[*v_plus])
-            && memory.kinds == kinds
-            && levers
-                .iter()
-                .zip(&memory.levers)
-                .all(|(a, b)| (a[0] - b[0]).abs_exact() <= reach && (a[1] - b[1]).abs_exact() <= reach)
-            && path.iter().zip(&memory.path).all(|(a, b)| {
-                (a[0] - b[0]).abs_exact() <= round_off && (a[1] - b[1]).abs_exact() <= round_off
-            });
-        let (load, how) = if kept {
-            (memory.load, LoadPath::Projection)
-        } else {
-            least_norm(&loads, &path, &mut self.load_basis).map_err(StepError::Solver)?
-        };
-        if how != LoadPath::Determinate {
-            if !kept {
-                self.load_memory = PlanarLoadMemory { kinds, levers, path, load };
-            }
-            self.stats.load_decided_steps += 1;
-            for i in 0..K {
-                let report = &mut contacts[i];
-                (report.normal_impulse, report.friction_impulse) = (load[i][0], load[i][1]);
-                report.mode = if self.frames[i].active && load[i][0] > self.impulse_floor * self.mass {
-                    ContactMode::from_slip(slips[i], self.settings.stick_speed)
-                } else {
-                    ContactMode::Separated
-                };
-                self.modes[i] = report.mode;
-            }
-        }
-        // A contact the load leaves touching but unloaded while the body slips over it reads
-        // separated (no force), but its next step's coefficient is the sliding one: `mu_s` would
-        // make the rule's least energy load it at once, and the load would flip from finger to
-        // finger every step (a rod sliding over three fingers).
-        for i in 0..K {
-            self.slipping_unloaded[i] = K >= 3
-                && !matches!(kinds[i], Carry::Nothing)
-                && contacts[i].mode == ContactMode::Separated
-                && slips[i].abs_exact() > self.settings.stick_speed;
-        }
-        Ok(())
-    }
-
     /// `true` when this layout may answer with `z`, `w` and `v+ = v`: always in the full layout;
     /// in a reduced one when no dropped friction direction is needed (the rule's candidates are
     /// held to the same check as the solver's answer).
@@ -914,18 +717,6 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
         }
         None
     }
-}
-
-/// The last load the rule decided ([`Stepper::decide_load`]): what each contact could carry, the
-/// path's load and the decided one (a rest state keeps it).
-#[cfg(feature = "fallback")]
-#[derive(Debug, Clone, Copy)]
-struct PlanarLoadMemory<T, const K: usize> {
-    kinds: [Carry<T>; K],
-    /// Each contact's torque arms `r x n`, `r x d` (where the contact is on the body).
-    levers: [[T; 2]; K],
-    path: [[T; 2]; K],
-    load: [[T; 2]; K],
 }
 
 /// A step's velocity scale `V`: the fastest support's speed plus the body's (`|vx| + |vy| +
