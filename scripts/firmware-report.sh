@@ -91,4 +91,28 @@ for name in ("free", "warm", "candidate", "lemke"):
 print(f"| {sys.argv[2]} | " + " | ".join(cells) + " |")
 PY
   done
+  echo
+  echo "The scenes of several bodies' steps by the path that answered their LCP (docs/formulation.md, \"Solving a"
+  echo "multibody step (the core)\"; each step under the path that answered it, the rule's search included), each"
+  echo "path's steps, mean / worst instructions, and the step that failed (every path tried, StepError; failing-*:"
+  echo "runs that end so, firmware/src/qemu.rs), timed as a worst case:"
+  echo
+  echo "| core | run | free | warm | candidate | lemke | failed |"
+  echo "|---|---|---|---|---|---|---|"
+  for m in "qemu-m4f Cortex-M4F" "qemu-m33 Cortex-M33F"; do
+    set -- $m
+    python3 - "out/firmware/$1-icount.json" "$2" <<'PY'
+import json, sys
+timing = json.load(open(sys.argv[1]))["timing"]
+for s in timing["scenes"]:
+    paths = {p["path"]: p for p in s["paths"]}
+    if "failed" not in paths:
+        continue
+    cells = []
+    for name in ("free", "warm", "candidate", "lemke", "failed"):
+        p = paths[name]
+        cells.append(f"{p['steps']:,}: {p['mean_instructions']:,.0f} / {p['worst_instructions']:,.0f}" if p["steps"] else "0")
+    print(f"| {sys.argv[2]} | {s['scene']} | " + " | ".join(cells) + " |")
+PY
+  done
 } | tee out/firmware/report.md

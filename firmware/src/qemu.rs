@@ -13,14 +13,20 @@
 //! (`tablecloth-mu2-flagged`: the rule's search, `docs/formulation.md`, "Several bodies: the
 //! rule"); then the stack through the stack rig (`StackRig`, headless), held for 0.2 s at the
 //! default overhang and falling at 1.02: outcome, checksum, each interface's lights at the end and
-//! the ticks. Exit status: 0 when the LCP was solved and every scene ended as physics says
+//! the ticks; each of these runs' ticks by the path that answered each step (`<name> path=..`) and
+//! of a step that failed (`path=failed`); then two block-on-block runs whose step fails in f32
+//! (`failing-heavy-top`, `failing-light-top`), timed the same way. Exit status: 0 when the LCP was
+//! solved and every scene ended as physics says
 //! (balanced, fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc
-//! rolled, the tablecloth stayed; the stack rig held with every interface sticking and fell with every one tipping).
+//! rolled, the tablecloth stayed; the stack rig held with every interface sticking and fell with
+//! every one tipping; the failing runs failed).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
 #[cfg(feature = "qemu-multibody")]
-use meterstick_core::multibody::scenes::{MultibodyScene, StackParams, TableclothParams};
+use meterstick_core::multibody::StepError;
+#[cfg(feature = "qemu-multibody")]
+use meterstick_core::multibody::scenes::{BlockOnBlockParams, MultibodyScene, StackParams, TableclothParams};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
 use meterstick_core::scene::{
     LcpLayout, MeterStickParams, Outcome, Scene, SceneKind, SceneParams, SceneVisitor,
@@ -117,8 +123,7 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
             all.add(used);
             checksum.add(rig.scene().state());
             let after = rig.scene().stats().paths;
-            let path =
-                SolvePath::ALL.iter().rposition(|&p| after.of(p) > before.paths.of(p)).unwrap_or(0);
+            let path = SolvePath::ALL.iter().rposition(|&p| after.of(p) > before.paths.of(p)).unwrap_or(0);
             if let Some(slot) = by_path.get_mut(path) {
                 slot.add(used);
             }
@@ -293,15 +298,32 @@ impl MultibodyVisitor for CheckMultibody {
         let mut checksum = Checksum::new();
         let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
         let (mut flagged, mut flagged_ticks, mut flagged_worst) = (0u64, 0u64, 0u32);
+        // Per solve path (`SolvePath::ALL`'s order), and the step that failed (every path tried,
+        // `StepError`), if one did.
+        let (mut by_path, mut failed) = ([Tally::default(); 4], Tally::default());
         loop {
             let checked = scene.stats().rule_checked_steps;
+            let before = scene.stats().paths;
             let t0 = systick::now();
             let report = scene.step();
             let used = systick::elapsed(t0, systick::now());
-            let Some(report) = report else { break };
+            let Some(report) = report else {
+                if matches!(scene.outcome(), Some(Outcome::Failed(_))) {
+                    failed.add(used);
+                }
+                break;
+            };
             steps += 1;
             ticks += u64::from(used);
             worst = worst.max(used);
+            let after = scene.stats().paths;
+            if let Some(slot) = SolvePath::ALL
+                .iter()
+                .rposition(|&p| after.of(p) > before.of(p))
+                .and_then(|path| by_path.get_mut(path))
+            {
+                slot.add(used);
+            }
             if scene.stats().rule_checked_steps > checked {
                 flagged += 1;
                 flagged_ticks += u64::from(used);
@@ -337,8 +359,39 @@ impl MultibodyVisitor for CheckMultibody {
                 flagged
             );
         }
-        i32::from(outcome != self.expected)
+        print_paths(self.name, &by_path, failed);
+        // A run meant to fail ends in some failure (its error printed above).
+        let wrong = match self.expected {
+            Outcome::Failed(_) => !matches!(outcome, Outcome::Failed(_)),
+            expected => outcome != expected,
+        };
+        i32::from(wrong)
     }
+}
+
+/// Prints a run's steps by the path that answered them (`<name> path=<path> steps=.. systicks=..
+/// worst_step_systicks=..`, `SolvePath::ALL`'s order, as the rig's scenes print theirs), then the
+/// step that failed (`path=failed`: every path tried, the step's `StepError`), for `host-sim qemu
+/// --icount`.
+#[cfg(feature = "qemu-multibody")]
+fn print_paths(name: &str, by_path: &[Tally; 4], failed: Tally) {
+    for (path, t) in SolvePath::ALL.iter().zip(by_path) {
+        defmt::println!(
+            "{=str} path={=str} steps={=u64} systicks={=u64} worst_step_systicks={=u32}",
+            name,
+            path.name(),
+            t.steps,
+            t.ticks,
+            t.worst
+        );
+    }
+    defmt::println!(
+        "{=str} path=failed steps={=u64} systicks={=u64} worst_step_systicks={=u32}",
+        name,
+        failed.steps,
+        failed.ticks,
+        failed.worst
+    );
 }
 
 /// Block-on-block, the stack (3 blocks) and disc-on-board (on block-on-block's stepper) at their
@@ -376,6 +429,54 @@ fn check_multibody_scenes() -> i32 {
         }
     };
     print_stack_peak(name);
+    failures += check_failing_steps();
+    failures
+}
+
+/// Runs that fail, to time a step that tries every path and returns `StepError` (its ticks under
+/// `path=failed`): each must end in `Outcome::Failed`.
+#[cfg(feature = "qemu-multibody")]
+#[inline(never)]
+fn check_failing_steps() -> i32 {
+    // Block-on-block with masses f32 does not hold apart: a 1e6 kg top block riding on a 1 kg
+    // bottom one (pulled at 0.45 (m + M) g: fails on the first step, a Lemke ray; f64 rides), and a
+    // 1 kg top block on a 1e12 kg bottom one sliding (2.9 (m + M) g: fails on the second; `m / M`
+    // far below f32's `eps`, the top block's weight lost in the sums of the bottom block's
+    // impulses; f64 slides).
+    let failing = [
+        (
+            "failing-heavy-top",
+            SceneParams::BlockOnBlock(BlockOnBlockParams {
+                top_mass: 1e6,
+                bottom_mass: 1.0,
+                force: 0.45 * (1e6 + 1.0) * 9.81,
+                ..BlockOnBlockParams::default()
+            }),
+        ),
+        (
+            "failing-light-top",
+            SceneParams::BlockOnBlock(BlockOnBlockParams {
+                top_mass: 1.0,
+                bottom_mass: 1e12,
+                force: 2.9 * (1e12 + 1.0) * 9.81,
+                ..BlockOnBlockParams::default()
+            }),
+        ),
+    ];
+    let mut failures = 0;
+    for (name, params) in failing {
+        let expected = Outcome::Failed(StepError::NonFinite);
+        let check = CheckMultibody { name, expected, flagged: false };
+        stack_peak::paint();
+        failures += match params.build_multibody(Precision::F32, check) {
+            Ok(failed) => failed,
+            Err(e) => {
+                defmt::println!("{=str}: {}", name, e);
+                1
+            }
+        };
+        print_stack_peak(name);
+    }
     failures
 }
 
@@ -397,7 +498,9 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
     };
     let mut checksum = Checksum::new();
     let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
+    let mut by_path = [Tally::default(); 4];
     let state = loop {
+        let before = rig.scene().stats().paths;
         let t0 = systick::now();
         let result = rig.tick();
         let used = systick::elapsed(t0, systick::now());
@@ -414,6 +517,14 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
             worst = worst.max(used);
             for body in rig.scene().states() {
                 checksum.add(body);
+            }
+            let after = rig.scene().stats().paths;
+            if let Some(slot) = SolvePath::ALL
+                .iter()
+                .rposition(|&p| after.of(p) > before.of(p))
+                .and_then(|path| by_path.get_mut(path))
+            {
+                slot.add(used);
             }
         }
         if !matches!(state, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) {
@@ -451,6 +562,8 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
         worst,
         steps
     );
+    // A failed step stops the rig (`Fault`, counted a failure above): none here.
+    print_paths(name, &by_path, Tally::default());
     let faulted = rig.release().fault.rises() > 0;
     i32::from(outcome != expected || modes != [Some(shown); 3] || faulted)
 }

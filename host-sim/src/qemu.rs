@@ -269,17 +269,23 @@ pub struct SceneTiming {
     pub mean_instructions: f64,
     /// The worst step's instructions.
     pub worst_instructions: f64,
-    /// The same per solve path (`SolvePath`'s names), for the steps each answered.
+    /// The same per solve path (`SolvePath`'s names), for the steps each answered, and
+    /// [`FAILED`] for the step that failed (not among `steps`) where the firmware prints it.
     pub paths: Vec<PathTiming>,
     /// The deepest the stack grew during the scene, in bytes below the stack top (the firmware
     /// paints the free RAM before it: `firmware/src/stack_peak.rs`); `None` when the line has none.
     pub stack_peak_bytes: Option<u64>,
 }
 
-/// The steps one solve path answered in a scene.
+/// [`PathTiming::path`] of the step that failed: every path tried, the step's `StepError` (the
+/// scenes of several bodies print it, `<scene> path=failed ..`; at most one a run, which it ends).
+pub const FAILED: &str = "failed";
+
+/// The steps one solve path answered in a scene (or, [`FAILED`], the step that failed).
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct PathTiming {
-    /// `free`, `warm`, `candidate` or `lemke` (`meterstick_core::planar::SolvePath::name`).
+    /// `free`, `warm`, `candidate` or `lemke` (`meterstick_core::planar::SolvePath::name`), or
+    /// [`FAILED`].
     pub path: &'static str,
     /// Steps.
     pub steps: u64,
@@ -325,13 +331,15 @@ pub fn timing(lines: &[String]) -> anyhow::Result<Option<Timing>> {
         let f = fields(line, 2);
         let steps = number(line, &f, "steps")?;
         let mut paths = Vec::new();
-        for path in SolvePath::ALL {
-            let prefix = format!("{} path={} ", words[0], path.name());
+        // The solve paths, then the step that failed after trying them all (scenes of several
+        // bodies print it, `path=failed`).
+        for path in SolvePath::ALL.map(SolvePath::name).into_iter().chain([FAILED]) {
+            let prefix = format!("{} path={path} ", words[0]);
             let Some(p) = lines.iter().find(|l| l.starts_with(&prefix)) else { continue };
             let g = fields(p, 2);
             let n = number(p, &g, "steps")?;
             paths.push(PathTiming {
-                path: path.name(),
+                path,
                 steps: n,
                 mean_instructions: (n > 0)
                     .then(|| number(p, &g, "systicks").map(|t| t as f64 * per_tick / n as f64))
@@ -417,5 +425,45 @@ mod timing_tests {
         let garbled = vec!["calibration instructions=x systicks=5".to_owned()];
         assert!(format!("{:#}", timing(&garbled).unwrap_err()).contains("instructions=x"));
         assert!(timing(&[]).unwrap().is_none());
+    }
+
+    /// A scene of several bodies prints its steps by path and the step that failed
+    /// (`firmware/src/qemu.rs`, `print_paths`): the paths' steps sum to the scene's, the failed
+    /// step is apart, and a path's worst is within the scene's.
+    #[test]
+    fn multibody_paths_and_the_failed_step() {
+        let lines: Vec<String> = [
+            "calibration instructions=2000002 systicks=50000",
+            "block-on-block timing systicks=31000 worst_step_systicks=375 steps=255",
+            "block-on-block path=free steps=0 systicks=0 worst_step_systicks=0",
+            "block-on-block path=warm steps=252 systicks=30000 worst_step_systicks=300",
+            "block-on-block path=candidate steps=3 systicks=1000 worst_step_systicks=375",
+            "block-on-block path=lemke steps=0 systicks=0 worst_step_systicks=0",
+            "block-on-block path=failed steps=0 systicks=0 worst_step_systicks=0",
+            "heavy-top timing systicks=0 worst_step_systicks=0 steps=0",
+            "heavy-top path=free steps=0 systicks=0 worst_step_systicks=0",
+            "heavy-top path=warm steps=0 systicks=0 worst_step_systicks=0",
+            "heavy-top path=candidate steps=0 systicks=0 worst_step_systicks=0",
+            "heavy-top path=lemke steps=0 systicks=0 worst_step_systicks=0",
+            "heavy-top path=failed steps=1 systicks=90000 worst_step_systicks=90000",
+        ]
+        .map(String::from)
+        .to_vec();
+        let t = timing(&lines).unwrap().unwrap();
+        let per = t.instructions_per_tick;
+        for s in &t.scenes {
+            let names: Vec<_> = s.paths.iter().map(|p| p.path).collect();
+            assert_eq!(names, ["free", "warm", "candidate", "lemke", super::FAILED], "{}", s.scene);
+            let answered: u64 = s.paths.iter().filter(|p| p.path != super::FAILED).map(|p| p.steps).sum();
+            assert_eq!(answered, s.steps, "{}", s.scene);
+            for p in s.paths.iter().filter(|p| p.path != super::FAILED) {
+                assert!(p.worst_instructions <= s.worst_instructions, "{}: {}", s.scene, p.path);
+            }
+        }
+        let failed = &t.scenes[1].paths[4];
+        assert_eq!(failed.steps, 1);
+        assert!((failed.worst_instructions - 90_000.0 * per).abs() < 1e-6);
+        assert_eq!(failed.mean_instructions, Some(failed.worst_instructions));
+        assert_eq!(t.scenes[0].paths[4].mean_instructions, None);
     }
 }

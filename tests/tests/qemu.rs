@@ -8,7 +8,9 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams, TableclothParams};
+use meterstick_core::multibody::scenes::{
+    BlockOnBlockParams, MultibodyScene, Stack3, StackParams, TableclothParams,
+};
 use meterstick_core::planar::Checksum;
 use meterstick_core::scene::{
     Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams,
@@ -185,6 +187,37 @@ fn check_multibody_scenes(run: &FirmwareRun) {
         .find(|l| l.starts_with("tablecloth-mu2-flagged timing "))
         .expect("flagged timing line");
     assert!(!flagged.ends_with(" steps=0"), "{flagged}: no step flagged");
+    // Every run's steps by path sum to its steps; the runs meant to fail fail as the host's f32 run
+    // does, at the same step, timed under `path=failed`.
+    for (name, failing) in ["block-on-block", "stack", "disc-on-board", "tablecloth-mu2"]
+        .map(|n| (n, None))
+        .into_iter()
+        .chain([("failing-heavy-top", Some((1e6, 1.0, 0.45))), ("failing-light-top", Some((1.0, 1e12, 2.9)))])
+    {
+        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
+        let count = |path: &str| -> u64 {
+            let prefix = format!("{name} path={path} steps=");
+            let l =
+                run.lines.iter().find(|l| l.starts_with(&prefix)).unwrap_or_else(|| panic!("no {prefix}"));
+            l[prefix.len()..].split(' ').next().unwrap().parse().unwrap()
+        };
+        let answered: u64 = ["free", "warm", "candidate", "lemke"].map(count).iter().sum();
+        assert!(line.contains(&format!(" steps={answered} ")), "{line}: the paths answered {answered}");
+        let Some((top, bottom, k)) = failing else {
+            assert_eq!(count("failed"), 0, "{name}");
+            continue;
+        };
+        let params = SceneParams::BlockOnBlock(BlockOnBlockParams {
+            top_mass: top,
+            bottom_mass: bottom,
+            force: k * (top + bottom) * 9.81,
+            ..Default::default()
+        });
+        let (outcome, host_steps, _) = params.build_multibody(Precision::F32, HostMultibody).unwrap();
+        assert!(matches!(outcome, Outcome::Failed(_)), "{name} on the host: {outcome:?}");
+        assert!(line.starts_with(&format!("{name} outcome=Failed(")), "{line}");
+        assert_eq!((answered, count("failed")), (host_steps, 1), "{line}: host took {host_steps} steps");
+    }
 }
 
 /// The stack rig (firmware/src/qemu.rs, `qemu-multibody`: `StackRig` on headless pins): held for

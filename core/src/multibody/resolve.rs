@@ -197,6 +197,7 @@ pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     f: &Factored<T, B, N>,
     blocks: Option<&ContactBlocks<T>>,
     tolerance: T,
+    declined: Option<&DeclinedBases>,
     answer: (&mut [[T; 3]; B], &mut [T; N], &mut u32),
 ) -> Option<Resolution> {
     if !cfg!(feature = "fallback") {
@@ -207,7 +208,46 @@ pub(super) fn apply<T: Real, const B: usize, const N: usize>(
     if rule.at_least_energy(v_plus) || !flags(f, blocks) {
         return None;
     }
-    Some(resolve(f, blocks, rule, tolerance, v_plus, z, mask))
+    Some(resolve(f, blocks, rule, tolerance, declined, v_plus, z, mask))
+}
+
+/// The bases a step's paths solved in factored form and saw declined before one answered (the
+/// warm basis, the candidates': `stepper/candidates.rs`), which [`resolve`] does not solve again
+/// (the same solve of the same basis on the same step). Kept only on a step the rule may search
+/// (`k <= MAX_CONTACTS`): there the warm basis, the sliding one, the lifting chain's `k`, the
+/// slots' `8 k` and the pairs' (at most two pairs with two slots of `k <= 4`) `2 x 8` are at most
+/// [`DECLINED`].
+#[derive(Clone, Copy)]
+pub(super) struct DeclinedBases {
+    bases: [u32; DECLINED],
+    count: usize,
+}
+
+/// [`DeclinedBases`]' room: `2 + 9 MAX_CONTACTS + 16`.
+pub(super) const DECLINED: usize = 2 + 9 * MAX_CONTACTS + 16;
+
+impl DeclinedBases {
+    /// None yet.
+    pub(super) const fn new() -> Self {
+        Self { bases: [0; DECLINED], count: 0 }
+    }
+
+    /// Adds the basis `mask`, which declined on a step of `k` slots (nothing on a step the rule
+    /// does not search, or beyond the room: the rule then solves it again, as it would anyway).
+    #[inline]
+    pub(super) fn add(&mut self, mask: u32, k: usize) {
+        if k <= MAX_CONTACTS
+            && let Some(slot) = self.bases.get_mut(self.count)
+        {
+            *slot = mask;
+            self.count += 1;
+        }
+    }
+
+    /// Whether the basis `mask` declined.
+    fn contains(&self, mask: u32) -> bool {
+        self.bases[..self.count.min(DECLINED)].contains(&mask)
+    }
 }
 
 /// Rounds of the descent ([`resolve`]): the reference's (`reference/src/multibody/step.rs`,
@@ -253,7 +293,8 @@ fn changed_slots(a: u32, b: u32, k: usize) -> u32 {
 /// the solutions offered move the bodies differently, the search is widened once: each two slots
 /// of one pair changed together too (an interface that starts or stops sliding changes both its
 /// corners), again while that lowers the energy. A basis that an earlier round solved (one slot,
-/// or once widened two slots of one pair, away from that round's centre) is not solved again.
+/// or once widened two slots of one pair, away from that round's centre) is not solved again, nor
+/// is one the step's paths solved and saw declined (`declined`).
 /// When the rule takes another answer, `v_plus`, `z` and `mask` become it. No heap: two `z`
 /// arrays and the rounds' centres on the stack.
 ///
@@ -264,11 +305,13 @@ fn changed_slots(a: u32, b: u32, k: usize) -> u32 {
 /// an ambiguous one widens once (at most `2 x 49` more a round).
 #[cold] // only flagged steps come here: out of the stepper's determinate path
 #[inline(never)]
+#[allow(clippy::too_many_arguments)] // the step's answer and what its paths solved, passed once
 pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
     f: &Factored<T, B, N>,
     blocks: Option<&ContactBlocks<T>>,
     rule: Rule<T, B>,
     tolerance: T,
+    declined: Option<&DeclinedBases>,
     v_plus: &mut [[T; 3]; B],
     z: &mut [T; N],
     mask: &mut u32,
@@ -303,7 +346,7 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
                             same_pair(a, (changed & (changed - 1)).trailing_zeros())
                         }
                 });
-            if solved_before {
+            if solved_before || declined.is_some_and(|d| d.contains(basis)) {
                 return;
             }
             solves += 1;
@@ -488,7 +531,7 @@ mod tests {
                 // Whatever solution the path answered, the rule ends on the dense choice.
                 for start in &found {
                     let (mut v, mut z, mut mask) = (start.v, start.z, start.mask);
-                    let r = resolve(f, None, rule, tolerance, &mut v, &mut z, &mut mask);
+                    let r = resolve(f, None, rule, tolerance, None, &mut v, &mut z, &mut mask);
                     assert!(r.enumerated && r.ambiguous);
                     assert_eq!(r.changed, differ(&start.v, &chosen.v));
                     assert!(!differ(&v, &chosen.v), "rule {v:?}, enumeration {:?}", chosen.v);

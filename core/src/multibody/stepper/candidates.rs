@@ -9,13 +9,15 @@ use super::SystemStepper;
 use super::solve::Solved;
 use crate::lcp::Basis;
 use crate::multibody::factored::{ContactBlocks, MOST_SLOTS};
+use crate::multibody::resolve::DeclinedBases;
 use crate::multibody::slots::{PATTERNS, Pattern, TOUCH, slot_pattern, slot_rows, with_pattern};
 use crate::planar::{Declined, PathCounts, SolvePath};
 use crate::real::Real;
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
-    /// answers (written into `z`), or `None`.
+    /// answers (written into `z`), or `None`; each that declines added to `declined` (for the
+    /// rule, which does not solve it again).
     ///
     /// **Cost** (a contract): at most `1 + k + 8 k + 8 P` factored solves (the sliding basis, the
     /// lifting chain's `k`, the failing slot's and its pair's 8, the other slots' and pairs' 8
@@ -28,6 +30,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         paths: &mut PathCounts,
         blocks: Option<&ContactBlocks<T>>,
         z: &mut [T; N],
+        declined: &mut DeclinedBases,
     ) -> Option<Solved<T, B, N>> {
         let step = &self.lcp;
         let f = &step.factored;
@@ -78,7 +81,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         let mut made = [warm; 2 + MOST_SLOTS + 8];
         let mut count = 1;
         // The sliding basis and why it declined, when it did: the chain goes on from it unsolved.
-        let mut declined = None;
+        let mut sliding_declined = None;
         // The slots (bits) in which `basis` differs from the warm one.
         let changed = |basis: Basis<N>| {
             let (diff, mut slots) = (basis.z_mask() ^ warm.z_mask(), 0u32);
@@ -98,8 +101,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             let basis = if n == 0 {
                 Some(sliding)
             } else if n == 1 {
-                let chain = (&mut made[..], &mut count, declined);
-                if let Some(answer) = self.lifting_chain(lifting, paths, blocks, z, chain) {
+                let chain = (&mut made[..], &mut count, sliding_declined);
+                if let Some(answer) = self.lifting_chain(lifting, (paths, &mut *declined), blocks, z, chain) {
                     return Some(answer);
                 }
                 None
@@ -127,8 +130,12 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             paths.candidates_tried += 1;
             match f.solve_basis(basis.z_mask(), tolerance, blocks, z, None) {
                 Ok(a) => return Some(Solved::of(a, SolvePath::Candidate)),
-                Err(why) if n == 0 => declined = Some((basis, why)),
-                Err(_) => {}
+                Err(why) => {
+                    declined.add(basis.z_mask(), k);
+                    if n == 0 {
+                        sliding_declined = Some((basis, why));
+                    }
+                }
             }
             if (n == 0 || (10..18).contains(&n))
                 && let Some(slot) = made.get_mut(count)
@@ -175,11 +182,12 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
     ///
     /// `made` holds the first `count` bases solved so far (the warm one first), and adds each the
     /// chain solves (as many as it holds); `declined` a basis solved before and why it declined,
-    /// which the chain goes on from without solving it again.
+    /// which the chain goes on from without solving it again. Each basis that declines is added
+    /// to `for_rule` (as in [`Self::candidate`]).
     fn lifting_chain(
         &self,
         start: Option<Basis<N>>,
-        paths: &mut PathCounts,
+        (paths, for_rule): (&mut PathCounts, &mut DeclinedBases),
         blocks: Option<&ContactBlocks<T>>,
         z: &mut [T; N],
         (made, count, declined): (&mut [Basis<N>], &mut usize, Option<(Basis<N>, Declined)>),
@@ -194,7 +202,10 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             paths.candidates_tried += 1;
             match f.solve_basis(lifted.z_mask(), tolerance, blocks, z, None) {
                 Ok(a) => return Some(Solved::of(a, SolvePath::Candidate)),
-                Err(why) => basis = self.lifted(lifted, why),
+                Err(why) => {
+                    for_rule.add(lifted.z_mask(), self.lcp.k);
+                    basis = self.lifted(lifted, why);
+                }
             }
             if let Some(slot) = made.get_mut(*count) {
                 *slot = lifted;

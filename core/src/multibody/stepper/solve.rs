@@ -8,10 +8,12 @@ use super::SystemStepper;
 use crate::StepError;
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, verify};
 use crate::multibody::factored::{Answer, ContactBlocks, MOST_SLOTS};
+use crate::multibody::resolve::{self, DeclinedBases};
 use crate::multibody::slots::{PATTERNS, pattern_bits, with_pattern};
 use crate::planar::assemble::normal_bias;
 use crate::planar::{Declined, PathCounts, SolvePath};
 use crate::real::Real;
+use crate::rule::Resolution;
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The retries after a failed solve (a ray, the pivot cap, an answer that failed
@@ -173,6 +175,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
                 pivots: 0,
                 path: SolvePath::Free,
                 along: None,
+                ruled: false,
+                rule: None,
             });
         }
         let tolerance = self.solver.tolerance();
@@ -198,9 +202,36 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         blocks: Option<&ContactBlocks<T>>,
         z: &mut [T; N],
     ) -> Result<Solved<T, B, N>, StepError> {
-        if let Some(answer) = self.candidate(why, paths, blocks, z) {
-            return Ok(answer);
-        }
+        // The bases solved and declined, for the rule (not solved again there): the warm one first.
+        let mut declined = DeclinedBases::new();
+        declined.add(self.lcp.warm.z_mask(), self.lcp.k);
+        let mut solved = match self.candidate(why, paths, blocks, z, &mut declined) {
+            Some(answer) => answer,
+            None => self.lemke(z)?,
+        };
+        // The rule here, where the bases declined are known (`SystemStepper::step` applies it to a warm
+        // answer).
+        let mut mask = solved.basis.z_mask();
+        let answer = (&mut solved.v_plus, z, &mut mask);
+        let rule = resolve::apply(
+            &self.detector,
+            &self.lcp.factored,
+            blocks,
+            self.solver.tolerance(),
+            Some(&declined),
+            answer,
+        );
+        solved.basis = Basis::from_z_mask(mask);
+        (solved.ruled, solved.rule) = (true, rule);
+        Ok(solved)
+    }
+
+    /// Lemke's method on the assembled LCP from the warm basis, with its retries (at most two
+    /// LCPs: the weighted cone rows, then the model's); its answer written into `z`. Inlined: its
+    /// LCPs in [`Self::unwarmed`]'s frame, as before it was a function of its own.
+    #[allow(clippy::inline_always)] // one frame for the cold path
+    #[inline(always)]
+    fn lemke(&self, z: &mut [T; N]) -> Result<Solved<T, B, N>, StepError> {
         let (step, warm) = (&self.lcp, self.lcp.warm);
         let f = &step.factored;
         let k = step.k.min(N / 4);
@@ -230,6 +261,8 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             pivots: solution.pivots,
             path: SolvePath::Lemke,
             along: None,
+            ruled: false,
+            rule: None,
         })
     }
 }
@@ -247,12 +280,26 @@ pub(super) struct Solved<T, const B: usize, const N: usize> {
     /// Each slot's `c_+d^T v+` as a basis solve formed it ([`Answer`]), `None`
     /// from Lemke's method or with no impulse.
     pub(super) along: Option<[T; MOST_SLOTS]>,
+    /// Whether the path applied the rule (the candidates' and Lemke's method's answers, where the
+    /// bases declined before are known and not solved again), and what it did; else the stepper
+    /// applies it (a warm or free answer).
+    pub(super) ruled: bool,
+    /// What the rule did, when `ruled`.
+    pub(super) rule: Option<Resolution>,
 }
 
 impl<T: Copy, const B: usize, const N: usize> Solved<T, B, N> {
     /// A basis solve's answer `a`, reached by `path` (no pivot).
     #[inline]
     pub(super) fn of(a: Answer<T, B>, path: SolvePath) -> Self {
-        Self { v_plus: a.v_plus, basis: Basis::from_z_mask(a.mask), pivots: 0, path, along: Some(a.along) }
+        Self {
+            v_plus: a.v_plus,
+            basis: Basis::from_z_mask(a.mask),
+            pivots: 0,
+            path,
+            along: Some(a.along),
+            ruled: false,
+            rule: None,
+        }
     }
 }

@@ -168,6 +168,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
     /// [`Self::step`], deciding the load where it is open when `LOAD`.
     #[inline(always)]
     #[allow(clippy::inline_always)] // into `step` and `step_loading`: two copies, as said there
+    #[allow(clippy::too_many_lines)] // the step in order: solve, rule, states, modes, load, counters
     fn step_with<const LOAD: bool>(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         let s = self.system.settings.base;
         let h = s.step;
@@ -178,11 +179,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         // A sliding step's blocks, formed once for its solve and its detection.
         self.lcp.factored.form_blocks(self.lcp.warm.z_mask());
         let blocks = self.lcp.factored.blocks();
-        let Solved { mut v_plus, basis, pivots, path, along } = self.solve(&mut paths, blocks, &mut z)?;
+        let Solved { mut v_plus, basis, pivots, path, along, ruled, mut rule } =
+            self.solve(&mut paths, blocks, &mut z)?;
         let mut mask = basis.z_mask();
-        let tolerance = self.solver.tolerance();
-        let f = &self.lcp.factored;
-        let rule = resolve::apply(&self.detector, f, blocks, tolerance, (&mut v_plus, &mut z, &mut mask));
+        let (tolerance, f) = (self.solver.tolerance(), &self.lcp.factored);
+        // The rule on a warm or free answer (the other paths applied it: `SystemStepper::solve`).
+        if !ruled {
+            rule =
+                resolve::apply(&self.detector, f, blocks, tolerance, None, (&mut v_plus, &mut z, &mut mask));
+        }
         // The slips the basis solve formed, unless the rule took another answer.
         let (along, from_solve) = match along {
             Some(along) if rule.is_none_or(|r| !r.changed) => (along, true),
