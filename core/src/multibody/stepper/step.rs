@@ -36,7 +36,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
     #[allow(clippy::type_complexity)]
     fn decide_load(
         &mut self,
-        k: usize,
+        (k, mask): (usize, u32),
         z: &[T; N],
         v_plus: &[[T; 3]; B],
         report: (&mut [[ContactMode; 4]; P], &mut [[T; 2]; P], &mut [[[T; 2]; 4]; P]),
@@ -114,7 +114,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let mut after = [ContactMode::Separated; MOST_SLOTS];
             for j in 0..slots {
                 if load[j][0] > self.impulse_floor {
-                    after[j] = ContactMode::from_slip(slips[j], s.stick_speed);
+                    // As the step's modes: `sigma` not basic, the answer's slip is zero.
+                    let sigma_basic = mask.checked_shr((3 * k + j) as u32).unwrap_or(0) & 1 == 1;
+                    after[j] = if sigma_basic {
+                        ContactMode::from_slip(slips[j], s.stick_speed)
+                    } else {
+                        ContactMode::Sticking
+                    };
                 }
             }
             let mut remembered = [(usize::MAX, usize::MAX); MOST_SLOTS];
@@ -224,12 +230,20 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
             patterns[p][c] = (normals & 1 | (frictions & 3) << 1 | (sigmas & 1) << 3) as Pattern;
+            let sigma_basic = sigmas & 1 == 1;
             (normals, frictions, sigmas) = (normals >> 1, frictions >> 2, sigmas >> 1);
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
-                // `-c_+d^T v+` as the solve formed it, else from the frame.
-                let slip = if from_solve { -along[j.min(MOST_SLOTS - 1)] } else { slip(f, &v_plus) };
-                let mode = ContactMode::from_slip(slip, s.stick_speed);
+                // `sigma` not basic: `w_+d = slip` and `w_-d = -slip`, both `>= 0`, so the answer's
+                // slip is zero (the slip formed from the bodies' velocities is that zero's
+                // round-off, which a heavy body on a light one makes larger than the stick speed).
+                // Else `-c_+d^T v+` as the solve formed it, or from the frame.
+                let mode = if !sigma_basic {
+                    ContactMode::Sticking
+                } else {
+                    let slip = if from_solve { -along[j.min(MOST_SLOTS - 1)] } else { slip(f, &v_plus) };
+                    ContactMode::from_slip(slip, s.stick_speed)
+                };
                 modes[p][c] = mode;
                 #[cfg(feature = "fallback")]
                 if mode == ContactMode::Sticking {
@@ -256,7 +270,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> Stepper<T, B, P, N
         {
             self.load_next = open || unknowns > 3 * B;
             if LOAD && self.load_next {
-                self.decide_load(k, &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;
+                self.decide_load((k, mask), &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;
             }
         }
         let mut interface_forces = [[T::zero(); 2]; P];
