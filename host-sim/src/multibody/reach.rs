@@ -18,8 +18,8 @@ use serde::Serialize;
 use crate::scenes::{flag_of, short_number};
 
 /// One scene's measured f32 reach over `upper / lower` mass ratio at its other defaults (h = 1e-3
-/// s, stick speed 1e-5 m/s; the upper edge the same at h = 1e-4 s and stick speeds 1e-6 .. 1e-3
-/// m/s): every band's f32 run ends as f64's (which is the law's) for ratios in
+/// s, stick speed 1e-5 m/s; the upper edge the same at h = 1e-4 and 1e-2 s and stick speeds 1e-6
+/// .. 1e-3 m/s): every band's f32 run ends as f64's (which is the law's) for ratios in
 /// `10^lowest ..= 10^highest`, and one band departs at `10^departs_below` and at
 /// `10^departs_above` (each mass 1 kg when the other is the ratio's, the pull `k (m + M) g` of each
 /// band).
