@@ -37,7 +37,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
     #[allow(clippy::type_complexity)]
     fn decide_load(
         &mut self,
-        k: usize,
+        (k, stuck): (usize, u32),
         z: &[T; N],
         v_plus: &[[T; 3]; B],
         report: (&mut [[ContactMode; 4]; P], &mut [[T; 2]; P], &mut [[[T; 2]; 4]; P]),
@@ -115,7 +115,13 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             let mut after = [ContactMode::Separated; MOST_SLOTS];
             for j in 0..slots {
                 if load[j][0] > self.impulse_floor {
-                    after[j] = ContactMode::from_slip(slips[j], s.stick_speed);
+                    // As the step's modes: a pair whose answer's slip is zero (`stuck`) sticks.
+                    let pair = self.lcp.slots[j].0 as u32;
+                    after[j] = if stuck.checked_shr(pair).unwrap_or(0) & 1 == 1 {
+                        ContactMode::Sticking
+                    } else {
+                        ContactMode::from_slip(slips[j], s.stick_speed)
+                    };
                 }
             }
             let mut remembered = [(usize::MAX, usize::MAX); MOST_SLOTS];
@@ -143,6 +149,34 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         Ok(())
     }
 
+    /// Every loaded corner of the pairs `stuck` (bits by pair) sticks ([`Self::step`]'s modes
+    /// after the step, `modes`); returns whether the load may be open and its unknowns, counted
+    /// again as the step counts them. Out of line and cold: only where a corner of a pair whose
+    /// answer's slip is zero read sliding (a heavy body on a light one in f32).
+    #[cold]
+    #[inline(never)]
+    fn stick_pairs(&self, k: usize, stuck: u32, modes: &mut [[ContactMode; 4]; P]) -> (bool, usize) {
+        let (mut open, mut unknowns, mut sticking_pair) = (false, 0, usize::MAX);
+        for &(p, c) in self.lcp.slots.iter().take(k) {
+            let (p, c) = (p.min(P - 1), c.min(3));
+            let mode = &mut modes[p][c];
+            if *mode == ContactMode::Separated {
+                continue;
+            }
+            if stuck.checked_shr(p as u32).unwrap_or(0) & 1 == 1 {
+                *mode = ContactMode::Sticking;
+            }
+            if *mode == ContactMode::Sticking {
+                unknowns += 2;
+                open |= sticking_pair == p;
+                sticking_pair = p;
+            } else {
+                unknowns += 1;
+            }
+        }
+        (open, unknowns)
+    }
+
     /// Advances one step: the active candidates' LCP (per unit reference mass) in factored form,
     /// solved by the paths of `docs/formulation.md` ("Solving a multibody step") and verified;
     /// `V+ = v~ + M~ J^T z`, `q+ = q + h V+` (compensated sums), modes after the step.
@@ -168,7 +202,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
     /// [`Self::step`], deciding the load where it is open when `LOAD`.
     #[inline(always)]
     #[allow(clippy::inline_always)] // into `step` and `step_loading`: two copies, as said there
-    #[allow(clippy::too_many_lines)] // the step in order: solve, rule, states, modes, load, counters
+    #[allow(clippy::too_many_lines)] // the module docs' steps in order, each slot's modes and loads in one pass
     fn step_with<const LOAD: bool>(&mut self) -> Result<SystemStepReport<T, B, P>, StepError> {
         let s = self.system.settings.base;
         let h = s.step;
@@ -221,18 +255,36 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         // Each slot's pattern ([`slot_pattern`]) from the normals', frictions' and sigmas' bits,
         // shifted out slot by slot.
         let (mut normals, mut frictions, mut sigmas) = (mask, mask >> k.min(8), mask >> (3 * k.min(8)));
+        // The pairs with a loaded slot whose `sigma` is not basic (`stuck`, bits by pair): its `w_+d
+        // = slip` and `w_-d = -slip` are both `>= 0`, so the answer's slip is zero, and every corner
+        // of one interface has the one slip of its two bodies along their face: each sticks. (The
+        // slip formed from the bodies' velocities is that zero's round-off, which a heavy body on a
+        // light one makes larger than the stick speed.) Another corner of such a pair read sliding
+        // (`sliding`) is turned after the loop ([`Self::stick_pairs`]).
+        let (mut stuck, mut sliding) = (0u32, 0u32);
         for j in 0..k {
             let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
             let rows = slot_rows(k, j);
             patterns[p][c] = (normals & 1 | (frictions & 3) << 1 | (sigmas & 1) << 3) as Pattern;
+            let sigma_basic = sigmas & 1 == 1;
             (normals, frictions, sigmas) = (normals >> 1, frictions >> 2, sigmas >> 1);
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
-                // `-c_+d^T v+` as the solve formed it, else from the frame.
-                let slip = if from_solve { -along[j.min(MOST_SLOTS - 1)] } else { slip(f, &v_plus) };
-                let mode = ContactMode::from_slip(slip, s.stick_speed);
+                // `p < P <= 32` ([`Self::SIZE_CHECK`]): the mask is the pair's own bit.
+                let bit = 1u32 << (p as u32 & 31);
+                // Else the slip `-c_+d^T v+` as the solve formed it, or from the frame.
+                let mode = if sigma_basic {
+                    let slip = if from_solve { -along[j.min(MOST_SLOTS - 1)] } else { slip(f, &v_plus) };
+                    ContactMode::from_slip(slip, s.stick_speed)
+                } else {
+                    stuck |= bit;
+                    ContactMode::Sticking
+                };
+                if mode.is_sliding() {
+                    sliding |= bit;
+                }
                 modes[p][c] = mode;
                 #[cfg(feature = "fallback")]
                 if mode == ContactMode::Sticking {
@@ -254,12 +306,20 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             impulse[0] += along[0];
             impulse[1] += along[1];
         }
+        if stuck & sliding != 0 {
+            #[cfg(feature = "fallback")]
+            {
+                (open, unknowns) = self.stick_pairs(k, stuck, &mut modes);
+            }
+            #[cfg(not(feature = "fallback"))]
+            self.stick_pairs(k, stuck, &mut modes);
+        }
         // The load, where it may be open: in place of the answer's, before the frames move on.
         #[cfg(feature = "fallback")]
         {
             self.load_next = open || unknowns > 3 * B;
             if LOAD && self.load_next {
-                self.decide_load(k, &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;
+                self.decide_load((k, stuck), &z, &v_plus, (&mut modes, &mut impulses, &mut corner_loads))?;
             }
         }
         let mut interface_forces = [[T::zero(); 2]; P];
