@@ -3,7 +3,7 @@
 use meterstick_core::scene::SceneKind;
 
 /// A scene's heading and one-paragraph introduction, for a teacher: what the scene shows and what
-/// to look for. Kept apart from [`SceneInfo`] so that a front end that does not show them (the
+/// to look for. Kept apart from [`SceneInfo`](crate::SceneInfo) so that a front end that does not show them (the
 /// page's wasm modules, which are within a size budget) does not link their text: the page reads
 /// them from `pkg/intros.json`, which `web/examples/intros.rs` writes from [`INTRODUCTIONS`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -16,7 +16,7 @@ pub struct Introduction {
     pub intro: &'static str,
 }
 
-/// Every scene's [`Introduction`], in the order of [`SCENES`].
+/// Every scene's [`Introduction`], in the order of [`SCENES`](crate::SCENES).
 pub const INTRODUCTIONS: [Introduction; SceneKind::ALL.len()] = [
     Introduction {
         kind: SceneKind::MeterStick,

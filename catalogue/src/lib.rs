@@ -14,9 +14,10 @@
 //!   `validate` ([`SceneInfo::ranges`] words a range the core checks beyond a sign);
 //! * [`Refusal`]: why a configuration was refused, in the user's words.
 //!
-//! The scenes themselves, their names, contacts and parameters ([`SceneKind`], [`SceneParams`])
-//! and the physics checks ([`ParamError`](meterstick_core::ParamError)) are the core's; this crate is for the front ends only
-//! (the firmware does not depend on it). No heap, no feature: data and a few lookups.
+//! The scenes themselves, their names, contacts and parameters
+//! ([`SceneKind`](meterstick_core::scene::SceneKind), [`SceneParams`](meterstick_core::scene::SceneParams))
+//! and the physics checks ([`ParamError`](meterstick_core::ParamError)) are the core's; this crate is
+//! for the front ends only (the firmware does not depend on it). No heap, no feature: data and a few lookups.
 //!
 //! **Adding a scene**: its [`SceneInfo`] in [`SCENES`], its [`Introduction`] in [`INTRODUCTIONS`]
 //! and its field in each [`FLAGS`] entry it uses (or a new flag), besides the core's part

@@ -13,7 +13,7 @@ pub struct SceneInfo {
     /// Each contact's name, in the scene's order (contact 1 first).
     pub contact_names: &'static [&'static str],
     /// The flags a lesson turns first (the page shows them, the others under "More parameters"):
-    /// long names from [`FLAGS`], each one that applies to this scene.
+    /// long names from [`FLAGS`](crate::FLAGS), each one that applies to this scene.
     pub main_flags: &'static [&'static str],
     /// The outcomes it can end in (besides [`OutcomeKind::Failed`], which any run can).
     pub outcomes: &'static [OutcomeKind],

@@ -5,7 +5,7 @@ use super::algebra::Vector;
 use super::body::State;
 use crate::real::Real;
 
-/// The most friction directions a step tries before it gives up ([`StepError::ConeNotConverged`]):
+/// The most friction directions a step tries before it gives up ([`crate::StepError::ConeNotConverged`]):
 /// a contact whose tangential response is isotropic and uncoupled from its normal (a sphere, a
 /// point under the centre of mass) needs one.
 pub const MAX_DIRECTIONS: u32 = 16;
