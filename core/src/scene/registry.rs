@@ -17,11 +17,16 @@ use super::{Cylinder, Painleve};
 #[cfg(feature = "scenes-k2")]
 use super::{Incline, Ladder};
 use super::{MeterStick, Scene};
+#[cfg(any(
+    feature = "scenes-k1",
+    feature = "scenes-k2",
+    feature = "scenes-k3",
+    feature = "scenes-multibody"
+))]
+use crate::RunStats;
 #[cfg(feature = "scenes-multibody")]
 use crate::multibody::scenes::{BlockOnBlock, DiscOnBoard, MultibodyScene, Stack2, Stack3, Tablecloth};
 use crate::params::ParamError;
-#[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
-use crate::planar::RunStats;
 use crate::real::Real;
 #[cfg(any(
     feature = "scenes-k1",
