@@ -12,7 +12,9 @@
 //! * [`FLAGS`]: each parameter flag once (name, unit, help), with the core field it sets in each
 //!   scene it applies to; defaults are read from the core's `Default`, the checks are the core's
 //!   `validate` ([`SceneInfo::ranges`] words a range the core checks beyond a sign);
-//! * [`Refusal`]: why a configuration was refused, in the user's words.
+//! * [`Refusal`]: why a configuration was refused, in the user's words;
+//! * [`Caution`] ([`cautions`]): what a run is told when its precision may not follow the physics
+//!   (friction beyond it; a mass ratio outside f32's measured reach), in the user's words.
 //!
 //! The scenes themselves, their names, contacts and parameters
 //! ([`SceneKind`](meterstick_core::scene::SceneKind), [`SceneParams`](meterstick_core::scene::SceneParams))
@@ -27,11 +29,13 @@
 #[cfg(test)]
 extern crate std;
 
+mod cautions;
 mod flags;
 mod intros;
 mod refusals;
 mod scenes;
 
+pub use cautions::{Caution, F32_MASS_RATIO_REACH, MassRatioReach, WordedCaution, cautions};
 pub use flags::{FLAG_COUNT, FLAGS, Flag, flag_index, flag_of};
 pub use intros::{INTRODUCTIONS, Introduction};
 pub use refusals::{MAX_STEPS, Refusal, Short, Worded};

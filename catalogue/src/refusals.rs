@@ -83,7 +83,7 @@ pub struct Worded {
 }
 
 /// A field as the user set it: `--flag value unit` (e.g. `--mu-k 0.7`, `--angle 95 deg`).
-struct Shown<'a>(&'a SceneParams, &'a str, &'static str);
+pub(crate) struct Shown<'a>(pub(crate) &'a SceneParams, pub(crate) &'a str, pub(crate) &'static str);
 
 impl fmt::Display for Shown<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

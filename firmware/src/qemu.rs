@@ -394,6 +394,25 @@ fn print_paths(name: &str, by_path: &[Tally; 4], failed: Tally) {
     );
 }
 
+/// Runs `params` in f32 through the registry with `check`, its stack's peak printed after; the
+/// failures `check` counts, 1 when the parameters are refused. Inlined into each caller, so that
+/// the peak painted and read is the run's frame as the caller's own.
+#[cfg(feature = "qemu-multibody")]
+#[inline(always)]
+#[allow(clippy::inline_always)] // the stack peak's frame, as said above
+fn run_checked(name: &str, params: SceneParams, check: CheckMultibody) -> i32 {
+    stack_peak::paint();
+    let failed = match params.build_multibody(Precision::F32, check) {
+        Ok(failed) => failed,
+        Err(e) => {
+            defmt::println!("{=str}: {}", name, e);
+            1
+        }
+    };
+    print_stack_peak(name);
+    failed
+}
+
 /// Block-on-block, the stack (3 blocks) and disc-on-board (on block-on-block's stepper) at their
 /// defaults, in f32, through the registry; the number that were refused or ended otherwise.
 #[cfg(feature = "qemu-multibody")]
@@ -401,15 +420,7 @@ fn check_multibody_scenes() -> i32 {
     let mut failures = 0;
     for kind in [SceneKind::BlockOnBlock, SceneKind::Stack, SceneKind::DiscOnBoard] {
         let check = CheckMultibody { name: kind.name(), expected: expected(kind), flagged: false };
-        stack_peak::paint();
-        failures += match SceneParams::defaults(kind).build_multibody(Precision::F32, check) {
-            Ok(failed) => failed,
-            Err(e) => {
-                defmt::println!("{=str}: {}", kind.name(), e);
-                1
-            }
-        };
-        print_stack_peak(kind.name());
+        failures += run_checked(kind.name(), SceneParams::defaults(kind), check);
     }
     // The tablecloth at `mu = 2`, whose steps the rule flags (the block tipping about its corner
     // on the board): its flagged steps timed apart (`tablecloth-mu2-flagged`).
@@ -420,15 +431,7 @@ fn check_multibody_scenes() -> i32 {
         ..TableclothParams::default()
     });
     let check = CheckMultibody { name, expected: Outcome::Stayed, flagged: true };
-    stack_peak::paint();
-    failures += match params.build_multibody(Precision::F32, check) {
-        Ok(failed) => failed,
-        Err(e) => {
-            defmt::println!("{=str}: {}", name, e);
-            1
-        }
-    };
-    print_stack_peak(name);
+    failures += run_checked(name, params, check);
     failures += check_failing_steps();
     failures
 }
@@ -467,15 +470,7 @@ fn check_failing_steps() -> i32 {
     for (name, params) in failing {
         let expected = Outcome::Failed(StepError::NonFinite);
         let check = CheckMultibody { name, expected, flagged: false };
-        stack_peak::paint();
-        failures += match params.build_multibody(Precision::F32, check) {
-            Ok(failed) => failed,
-            Err(e) => {
-                defmt::println!("{=str}: {}", name, e);
-                1
-            }
-        };
-        print_stack_peak(name);
+        failures += run_checked(name, params, check);
     }
     failures
 }

@@ -339,7 +339,7 @@ fn friction_beyond_f32_is_warned_about_on_several_bodies() {
 fn a_mass_ratio_beyond_f32s_reach_is_named() {
     let force = format!("{}", 0.45 * (1e6 + 1.0) * G);
     let beyond = ["--scene", "block-on-block", "--mass", "1e6", "--mass2", "1", "--force", &force];
-    let warning = "warning: --mass 1000000 on --mass2 1: mass ratio 1.00e6: outside 1.00e-4 .. 1.00e5";
+    let warning = "warning: --mass 1000000 kg on --mass2 1 kg: mass ratio 1.00e6: outside 1.00e-4 .. 1.00e5";
     let (code, stdout, err) = host_sim(&[&["scene"], &beyond[..]].concat());
     assert_eq!(code, 0, "{err}");
     assert!(stdout.lines().any(|l| l.starts_with(warning)), "{stdout}");

@@ -438,6 +438,7 @@ fn the_page_in_chromium() {
     check_pulled_block_in_view(&b, &base);
     check_stack_goes_on_falling(&b, &base);
     check_comparison(&b, &base);
+    check_cautions(&b, &base);
 
     check_controls(&b, &base, &slow);
     check_map(&b, &base);
@@ -709,6 +710,47 @@ fn check_comparison(b: &Browser, base: &str) {
     assert_eq!((a.0.as_str(), bb.0.as_str()), ("Held", "Fell"));
     let shot = b.screenshot("stack-0.98-vs-1.02", None);
     println!("comparison: stack 0.98 {} {}, 1.02 {} {} ({})", a.0, a.1, bb.0, bb.1, shot.display());
+}
+
+/// A run the precision may not follow is told so before it starts, in `host-sim scene`'s words
+/// (its `warning:` lines, the flags without `--`): f32 with a 1e6 kg block on a 1 kg one, and with
+/// friction beyond f32; the defaults are told nothing and show no caution.
+fn check_cautions(b: &Browser, base: &str) {
+    for query in [
+        "scene=block-on-block&mass=1000000&mass2=1&duration=0.05&autorun=1&rate=max",
+        "scene=meter-stick&mu-s=100000&mu-k=100000&duration=0.05&autorun=1&rate=max",
+    ] {
+        b.goto(&format!("{base}?{query}"));
+        b.wait(
+            "the cautions",
+            "return document.getElementById('cautions').textContent !== ''",
+            Duration::from_secs(30),
+        );
+        let text = scene::run(&scene::SceneCmdArgs { scene: scene_args(query) }).unwrap();
+        let expected: Vec<String> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("warning: "))
+            // The run's own round-off count (after the run) is host-sim's alone.
+            .filter(|l| l.contains("friction beyond what") || l.contains(": mass ratio "))
+            .map(|l| l.replace("--", ""))
+            .collect();
+        assert!(!expected.is_empty(), "host-sim warns {query}: {text}");
+        let shown = b.js("return document.getElementById('cautions').textContent");
+        let shown: Vec<String> = shown.as_str().unwrap().lines().map(String::from).collect();
+        assert_eq!(shown, expected, "{query}");
+        let visible = b.js("return getComputedStyle(document.getElementById('cautions')).display");
+        assert_ne!(visible.as_str(), Some("none"), "{query}");
+        println!("{query}: caution shown: {}", shown.join(" / "));
+    }
+    b.goto(&format!("{base}?scene=block-on-block&duration=0.05&autorun=1&rate=max"));
+    b.wait(
+        "the run",
+        "return document.getElementById('outcome').textContent !== ''",
+        Duration::from_secs(30),
+    );
+    assert_eq!(b.text("cautions"), "", "the defaults");
+    let hidden = b.js("return getComputedStyle(document.getElementById('cautions')).display");
+    assert_eq!(hidden.as_str(), Some("none"), "no caution row for the defaults");
 }
 
 /// The scene selector: choosing the cylinder loads its module and its flags, and the run it makes

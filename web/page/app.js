@@ -366,6 +366,7 @@ function clearResult(status) {
   for (const id of ['outcome-b', 'checksum-b', 'measured-b']) $(id).textContent = '';
   $('outcome-b').removeAttribute('data-outcome');
   $('csv').disabled = true;
+  $('cautions').textContent = '';
   document.body.dataset.after = '';
   S.shownEvents = -1;
 }
@@ -404,6 +405,7 @@ function makeRun() {
   S.other = null;
   S.simTarget = 0;
   view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
+  let cautionsB = [];
   if (S.compare.length && S.coreB) {
     // Run B: run A's flags with the comparison's changed, in a second instance of the module.
     const given = new Map(parsed.given);
@@ -419,8 +421,11 @@ function makeRun() {
       return false;
     }
     S.other = liveSource(S.coreB, madeB.params, viewB);
+    cautionsB = madeB.cautions.map((c) => `run B: ${c}`);
     viewB.setScene(S.scene, madeB.params, S.other.trace.last, S.other.trace.k, S.other.shapes);
   }
+  // What the precision may not follow (friction beyond it, a mass ratio outside f32's reach).
+  $('cautions').textContent = made.cautions.concat(cautionsB).join('\n');
   document.body.classList.toggle('comparing', Boolean(S.other));
   $('run-a-label').textContent = S.other ? `Run A: ${runLabel(S.source)}` : '';
   $('run-b-label').textContent = S.other ? `Run B: ${runLabel(S.other)}` : '';

@@ -65,7 +65,9 @@ export class Core {
   }
 
   /// Makes a run: `given` maps flag names to numbers (in the flag's unit). Returns
-  /// {ok: true, params} (core field -> value, SI and radians) or {ok: false, message, flag}.
+  /// {ok: true, params, cautions} (params: core field -> value, SI and radians; cautions: what the
+  /// run is told before it starts, host-sim's words without the flags' `--`) or
+  /// {ok: false, message, flag}.
   create(sceneName, given, precision, lcpSize) {
     const sceneIndex = this.desc.scenes.findIndex((s) => s.name === sceneName);
     if (sceneIndex < 0 || this.x.ms_configure(sceneIndex) !== 0) {
@@ -89,7 +91,9 @@ export class Core {
     this.current = this.scene(sceneName);
     const fields = this.current.fields;
     const params = Object.fromEntries(fields.map((name, i) => [name, this.x.ms_param(i)]));
-    return { ok: true, params };
+    const n2 = this.x.ms_cautions();
+    const cautions = n2 > 0 ? this.text(n2).split('\n') : [];
+    return { ok: true, params, cautions };
   }
 
   /// The run's bodies, for a scene of several bodies: {sizes: [[width, height]] (body 0 the

@@ -185,6 +185,23 @@ pub extern "C" fn ms_create(bits: u32, n: u32) -> i32 {
     })
 }
 
+/// Writes what the run is told before it starts ([`crate::session::Session::cautions`]: friction
+/// beyond the precision, a mass ratio outside f32's measured reach) into the text buffer, one a
+/// line, worded as `host-sim` words them but for the flags' `--`; returns its length (0: none).
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_cautions() -> u32 {
+    store::with(|s, text, _| {
+        let cautions = s.session.cautions();
+        set_text(s, text, |t| {
+            for (i, c) in cautions.enumerate() {
+                write!(t, "{}{}", if i > 0 { "\n" } else { "" }, c.worded(""))?;
+            }
+            Ok(())
+        })
+    })
+}
+
 /// The flag (index) the last refusal blames, or -1.
 #[unsafe(no_mangle)]
 #[must_use]
@@ -481,5 +498,39 @@ mod tests {
         assert_eq!(ms_create(32, 7), -1);
         assert_eq!(ms_configure(crate::flags::SceneKind::ALL.len() as u32), -1);
         assert_eq!(ms_give(FLAGS.len() as u32, 1.0), -1);
+    }
+
+    /// A run f32 does not follow is told so, as `host-sim` tells it (the catalogue's words); f64,
+    /// and the defaults, are told nothing.
+    #[cfg(feature = "mb")]
+    #[test]
+    fn cautions_reach_the_text_buffer() {
+        use crate::flags::SceneKind;
+        let bob = SceneKind::ALL.iter().position(|&k| k == SceneKind::BlockOnBlock).unwrap() as u32;
+        assert_eq!(ms_configure(bob), 0);
+        assert_eq!(ms_create(32, 8), 0);
+        assert_eq!(ms_cautions(), 0, "the defaults: {}", text());
+        assert_eq!((ms_give(flag("mass"), 1e6), ms_give(flag("mass2"), 1.0)), (0, 0));
+        assert_eq!(ms_create(32, 8), 0);
+        let n = ms_cautions();
+        assert_eq!(n as usize, text().len());
+        assert!(
+            text().starts_with("mass 1000000 kg on mass2 1 kg: mass ratio 1.00e6: outside 1.00e-4 .. 1.00e5"),
+            "{}",
+            text()
+        );
+        assert!(text().ends_with("use precision f64 or masses closer together"), "{}", text());
+        assert_eq!(ms_create(64, 8), 0);
+        assert_eq!(ms_cautions(), 0, "f64: {}", text());
+        // Friction beyond f32 and the mass ratio: two lines.
+        assert_eq!((ms_give(flag("mu-s"), 1e5), ms_give(flag("mu-k"), 1e5)), (0, 0));
+        assert_eq!(ms_create(32, 8), 0);
+        let _ = ms_cautions();
+        let lines: Vec<String> = text().lines().map(String::from).collect();
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        assert!(
+            lines[0].starts_with("mu-s 100000 and mu-k 100000: friction beyond what f32 resolves"),
+            "{lines:?}"
+        );
     }
 }

@@ -31,6 +31,7 @@ pub enum CreateError {
 pub struct Session {
     config: Config,
     spec: Option<SceneParams>,
+    precision: Precision,
     sim: Option<Sim>,
 }
 
@@ -44,7 +45,7 @@ impl Session {
     /// The meter stick with nothing given, no run.
     #[must_use]
     pub const fn new() -> Self {
-        Self { config: Config::new(SceneKind::MeterStick), spec: None, sim: None }
+        Self { config: Config::new(SceneKind::MeterStick), spec: None, precision: Precision::F32, sim: None }
     }
 
     /// Starts a new configuration of `kind` (the core's defaults); drops the run.
@@ -78,6 +79,7 @@ impl Session {
         }
         let spec = self.config.resolve(precision).map_err(CreateError::Config)?;
         self.spec = Some(spec);
+        self.precision = precision;
         self.sim = Some(Sim::new(&spec, precision, size).map_err(CreateError::Core)?);
         Ok(())
     }
@@ -86,6 +88,14 @@ impl Session {
     #[must_use]
     pub const fn spec(&self) -> Option<&SceneParams> {
         self.spec.as_ref()
+    }
+
+    /// What the run is told before it starts ([`meterstick_catalogue::cautions`]: friction beyond
+    /// the precision, a mass ratio outside f32's measured reach), as `host-sim` tells it; none
+    /// without a run.
+    pub fn cautions(&self) -> impl Iterator<Item = meterstick_catalogue::Caution> + use<> {
+        let all = self.spec.map(|spec| meterstick_catalogue::cautions(&spec, self.precision));
+        all.into_iter().flatten().flatten()
     }
 
     /// The run.

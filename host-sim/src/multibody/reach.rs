@@ -1,6 +1,7 @@
 //! Where f32 follows f64 in the scenes of several bodies: the upper body's mass over the lower
-//! one's, measured ([`F32_MASS_RATIO_REACH`], `docs/host-sim.md`, "Where f32 holds: several
-//! bodies"), and the typed warning a run beyond it gets ([`BodiesWarning`], [`warnings`]).
+//! one's, measured ([`F32_MASS_RATIO_REACH`], the catalogue's, which the page words too;
+//! `docs/host-sim.md`, "Where f32 holds: several bodies"), the typed warning a run beyond it gets
+//! in `summary.json` ([`BodiesWarning`], [`warnings`]), and the tests that run every edge again.
 //!
 //! A heavy body on a light one: the light body's velocity is the difference of impulses of the
 //! heavy one's size, resolved to `eps` of them, more than the stick speed; the step reads a
@@ -12,85 +13,15 @@
 
 use std::fmt;
 
-use meterstick_core::scene::{Precision, SceneKind, SceneParams};
+use meterstick_catalogue::{Caution, cautions};
+pub use meterstick_catalogue::{F32_MASS_RATIO_REACH, MassRatioReach};
+use meterstick_core::scene::{Precision, SceneParams};
 use serde::Serialize;
 
-use crate::scenes::{flag_of, short_number};
+use crate::scenes::flag_of;
 
-/// One scene's measured f32 reach over `upper / lower` mass ratio at its other defaults (h = 1e-3
-/// s, stick speed 1e-5 m/s; the upper edge the same at h = 1e-4 and 1e-2 s and stick speeds 1e-6
-/// .. 1e-3 m/s): every band's f32 run ends as f64's (which is the law's) for ratios in
-/// `10^lowest ..= 10^highest`, and one band departs at `10^departs_below` and at
-/// `10^departs_above` (each mass 1 kg when the other is the ratio's, the pull `k (m + M) g` of each
-/// band).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassRatioReach {
-    /// The scene.
-    pub scene: SceneKind,
-    /// The upper body's mass (the scene's field).
-    pub upper: &'static str,
-    /// The lower body's mass.
-    pub lower: &'static str,
-    /// The bands measured: a name and the pull over `(m + M) g`.
-    pub bands: &'static [(&'static str, f64)],
-    /// The lowest `log10(upper / lower)` where every band holds.
-    pub lowest: f64,
-    /// The highest.
-    pub highest: f64,
-    /// A `log10` below `lowest` (half a decade or a decade below it) where a band departs; `None`
-    /// where none was measured to (`lowest` the lowest measured).
-    pub departs_below: Option<f64>,
-    /// Half a decade above `highest`, where a band departs.
-    pub departs_above: f64,
-}
-
-impl MassRatioReach {
-    /// The measured reach, `10^lowest` and `10^highest`.
-    #[must_use]
-    pub fn ratios(&self) -> (f64, f64) {
-        (10f64.powf(self.lowest), 10f64.powf(self.highest))
-    }
-}
-
-/// f32's measured reach in each scene of two bodies of different masses (the stack's blocks all
-/// weigh the same): `docs/host-sim.md`, "Where f32 holds: several bodies", measured with
-/// `host-sim scene` over `log10(upper / lower)` from -6 to 6 in steps of one (half a step at the
-/// edges; disc-on-board down to -9); the tests in this module run every edge again.
-pub const F32_MASS_RATIO_REACH: [MassRatioReach; 3] = [
-    MassRatioReach {
-        scene: SceneKind::BlockOnBlock,
-        upper: "top_mass",
-        lower: "bottom_mass",
-        bands: &[("riding", 0.45), ("sliding", 1.0), ("pulled hard", 2.9)],
-        lowest: -4.0,
-        highest: 5.0,
-        // At 10^-4.5 the hard pull departs or not with the masses' last digit.
-        departs_below: Some(-5.0),
-        departs_above: 5.5,
-    },
-    MassRatioReach {
-        scene: SceneKind::Tablecloth,
-        upper: "block_mass",
-        lower: "board_mass",
-        bands: &[("riding", 0.55), ("pulled out", 2.9)],
-        lowest: -5.0,
-        highest: 5.0,
-        departs_below: Some(-5.5),
-        departs_above: 5.5,
-    },
-    MassRatioReach {
-        scene: SceneKind::DiscOnBoard,
-        upper: "disc_mass",
-        lower: "board_mass",
-        bands: &[("rolling", 0.4)],
-        lowest: -9.0,
-        highest: 5.5,
-        departs_below: None,
-        departs_above: 6.0,
-    },
-];
-
-/// What a run of several bodies gets told about its precision, by cause.
+/// What a run of several bodies gets told about its precision, by cause (`summary.json`'s
+/// `warnings`); worded as the page words it ([`meterstick_catalogue::Caution`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "cause", rename_all = "snake_case")]
 pub enum BodiesWarning {
@@ -108,26 +39,16 @@ pub enum BodiesWarning {
         ratio: f64,
         /// The measured reach, `upper / lower` from and to.
         reach: (f64, f64),
+        /// The caution, for its words.
+        #[serde(skip)]
+        caution: Caution,
     },
 }
 
 impl fmt::Display for BodiesWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::OutsideMeasured { precision, upper, lower, ratio, reach } => write!(
-                f,
-                "warning: {} {} on {} {}: mass ratio {}: outside {} .. {}, the ratios {} was measured to follow \
-                 f64 at (docs/host-sim.md, \"Where f32 holds: several bodies\"): the outcome may depart from \
-                 f64's; use --precision f64 or masses closer together",
-                upper.0,
-                short_number(upper.1),
-                lower.0,
-                short_number(lower.1),
-                crate::output::sci(*ratio),
-                crate::output::sci(reach.0),
-                crate::output::sci(reach.1),
-                precision.name(),
-            ),
+            Self::OutsideMeasured { caution, .. } => write!(f, "warning: {}", caution.worded("--")),
         }
     }
 }
@@ -136,26 +57,28 @@ impl fmt::Display for BodiesWarning {
 /// measured reach): [`BodiesWarning::OutsideMeasured`] outside [`F32_MASS_RATIO_REACH`]'s reach.
 #[must_use]
 pub fn warnings(spec: &SceneParams, precision: Precision) -> Vec<BodiesWarning> {
-    if precision != Precision::F32 {
-        return Vec::new();
-    }
-    let mut out = Vec::new();
-    for r in F32_MASS_RATIO_REACH.iter().filter(|r| r.scene == spec.kind()) {
-        let (Some(m), Some(big_m)) = (spec.get(r.upper), spec.get(r.lower)) else {
-            continue;
-        };
-        let ratio = m / big_m;
-        let flag = |field: &str| {
-            flag_of(r.scene, field).map_or_else(|| field.to_string(), |f| format!("--{}", f.long))
-        };
-        let (upper, lower) = ((flag(r.upper), m), (flag(r.lower), big_m));
-        // In decades, a rounding's worth of slack: the edges themselves were measured.
-        let decades = ratio.log10();
-        if decades < r.lowest - 1e-9 || decades > r.highest + 1e-9 {
-            out.push(BodiesWarning::OutsideMeasured { precision, upper, lower, ratio, reach: r.ratios() });
-        }
-    }
-    out
+    let [_, mass] = cautions(spec, precision);
+    mass.into_iter()
+        .filter_map(|caution| {
+            let Caution::MassRatioOutsideReach { params, precision, reach, ratio } = caution else {
+                return None;
+            };
+            let flag = |field: &str| {
+                let value = params.get(field).unwrap_or(f64::NAN);
+                let name = flag_of(reach.scene, field)
+                    .map_or_else(|| field.to_string(), |f| format!("--{}", f.long));
+                (name, value)
+            };
+            Some(BodiesWarning::OutsideMeasured {
+                precision,
+                upper: flag(reach.upper),
+                lower: flag(reach.lower),
+                ratio,
+                reach: reach.ratios(),
+                caution,
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -163,7 +86,7 @@ pub fn warnings(spec: &SceneParams, precision: Precision) -> Vec<BodiesWarning> 
 mod tests {
     use super::*;
     use crate::multibody::run_core;
-    use meterstick_core::scene::OutcomeKind;
+    use meterstick_core::scene::{OutcomeKind, SceneKind};
 
     /// `reach`'s scene with `upper / lower = 10^exponent` (the other 1 kg), pulled at `k (m + M) g`.
     fn spec_at(reach: &MassRatioReach, exponent: f64, k: f64) -> SceneParams {
@@ -287,7 +210,7 @@ mod tests {
         let text = w[0].to_string();
         assert!(
             text.starts_with(
-                "warning: --mass 1000000 on --mass2 1: mass ratio 1.00e6: outside 1.00e-4 .. 1.00e5"
+                "warning: --mass 1000000 kg on --mass2 1 kg: mass ratio 1.00e6: outside 1.00e-4 .. 1.00e5"
             ),
             "{text}"
         );
@@ -295,7 +218,8 @@ mod tests {
         let w = warnings(&spec, Precision::F32);
         assert!(matches!(w[..], [BodiesWarning::OutsideMeasured { .. }]), "{w:?}");
         assert!(
-            w[0].to_string().starts_with("warning: --mass 1 on --mass2 1000000: mass ratio 1.00e-6: outside")
+            w[0].to_string()
+                .starts_with("warning: --mass 1 kg on --mass2 1000000 kg: mass ratio 1.00e-6: outside")
         );
     }
 }

@@ -159,43 +159,13 @@ pub fn flag_error(spec: &SceneParams, e: ParamError) -> String {
 }
 
 /// The warning a run of `spec` in `precision` gets when a friction coefficient is beyond what the
-/// precision resolves ([`meterstick_core::planar::friction_beyond_precision`]), in the user's flags
-/// (`--mu-s 1e5 and --mu-k 1e5: friction beyond what f32 resolves ...`); `None` when none is.
+/// precision resolves ([`meterstick_catalogue::Caution::FrictionBeyondPrecision`], worded as the
+/// page words it), in the user's flags (`--mu-s 1e5 and --mu-k 1e5: friction beyond what f32
+/// resolves ...`); `None` when none is.
 #[must_use]
 pub fn friction_warning(spec: &SceneParams, precision: Precision) -> Option<String> {
-    use meterstick_core::planar::{friction_beyond_precision, friction_limit};
-    let (beyond, limit): (fn(f64) -> bool, f64) = match precision {
-        Precision::F32 => (friction_beyond_precision::<f32>, friction_limit::<f32>()),
-        Precision::F64 => (friction_beyond_precision::<f64>, friction_limit::<f64>()),
-    };
-    let eps = match precision {
-        Precision::F32 => f64::from(f32::EPSILON),
-        Precision::F64 => f64::EPSILON,
-    };
-    let beyond: Vec<(&str, f64)> =
-        spec.fields().filter(|&(f, mu)| f.starts_with("mu_") && beyond(mu)).collect();
-    let worst = beyond.iter().map(|&(_, mu)| mu).fold(0.0, f64::max);
-    let flags: Vec<String> = beyond
-        .iter()
-        .map(|&(field, mu)| {
-            flag_of(spec.kind(), field).map_or_else(
-                || format!("{field} {}", short_number(mu)),
-                |f| format!("--{} {}", f.long, short_number(mu)),
-            )
-        })
-        .collect();
-    let precision = precision.name();
-    (!flags.is_empty()).then(|| {
-        format!(
-            "warning: {}: friction beyond what {precision} resolves (mu eps = {} > 2^-9: sticking friction \
-             impulses up to mu times the normal ones cancel, and the net impulse they leave is resolved only to \
-             mu eps of itself; {precision} resolves mu up to {}); use --precision f64 or a smaller friction \
-             coefficient",
-            flags.join(" and "),
-            crate::output::sci(worst * eps),
-            short_number(limit)
-        )
-    })
+    let [friction, _] = meterstick_catalogue::cautions(spec, precision);
+    friction.map(|c| format!("warning: {}", c.worded("--")))
 }
 
 /// A number as a person typed it (the catalogue's [`Short`]): `{}` when that is short; else 9
