@@ -11,6 +11,7 @@ import { SceneView, drawPlot, COLORS, CONTACT_COLORS } from './draw.js';
 import { OutcomeMap } from './map.js';
 import { listRuns, loadRun } from './replay.js';
 import { COL, MODE_NAMES, Trace } from './trace.js';
+import { lcpText, measuredText, niceCeil, parseCompare, plain, scaled, toFlagUnit } from './words.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -22,47 +23,6 @@ const PAGE_KEYS = ['scene', 'precision', 'lcp-size', 'autorun', 'rate', 'replay'
 const AFTER_SECONDS = 5;
 const REST_SPEED = 1e-3;
 const REST_TIME = 0.2;
-
-/// A measured quantity (summary.json's key) in words.
-const MEASURE_WORDS = {
-  'meeting.time_s': (v) => `the fingers met at t = ${v.toFixed(3)} s`,
-  'meeting.com_offset_m': (v) => `the centre of mass ${(1e3 * v).toFixed(2)} mm from their midpoint`,
-  acceleration_m_s2: (v) => `acceleration down the slope ${v.toFixed(5)} m/s²`,
-  angular_acceleration_rad_s2: (v) => `angular acceleration ${v.toFixed(4)} rad/s² (counter-clockwise)`,
-  wall_release_height_m: (v) => `the top left the wall at ${v.toFixed(4)} m`,
-  wall_release_ratio: (v) => `${v.toFixed(4)} of its start height`,
-  'jam.time_s': (v) => `the end jammed at t = ${v.toFixed(4)} s`,
-  'jam.normal_impulse_n_s': (v) => `normal impulse ${v.toFixed(5)} N s`,
-  'jam.friction_impulse_n_s': (v) => `friction impulse ${v.toFixed(5)} N s`,
-  block_displacement_m: (v) => `the block moved ${(100 * v).toFixed(2)} cm`,
-  top_acceleration_m_s2: (v) => `the top block's acceleration ${v.toFixed(4)} m/s²`,
-  max_speed_m_s: (v) => `the fastest point's largest speed ${v.toFixed(4)} m/s`,
-};
-
-/// A scene's own words for a key it shares with others.
-const SCENE_MEASURE_WORDS = {
-  'block-on-block': { acceleration_m_s2: (v) => `the bottom block's acceleration ${v.toFixed(4)} m/s²` },
-  'disc-on-board': {
-    acceleration_m_s2: (v) => `the board's acceleration ${v.toFixed(4)} m/s²`,
-    top_acceleration_m_s2: (v) => `the disc centre's ${v.toFixed(4)} m/s²`,
-  },
-};
-
-/// The measured quantities ({key: value | null}) of `scene` in words; '-' when there are none.
-function measuredText(values, scene) {
-  const words = { ...MEASURE_WORDS, ...(SCENE_MEASURE_WORDS[scene] || {}) };
-  const parts = Object.entries(values).filter(([, v]) => v !== null && v !== undefined)
-    .map(([key, v]) => (words[key] ? words[key](v) : `${key} ${v}`));
-  return parts.length ? parts.join('; ') : '-';
-}
-
-/// The LCP of a scene of k contacts in the layout the form's lcp-size (6 reduced, 8 full) selects:
-/// 3k x 3k or 4k x 4k.
-function lcpText(k, size) {
-  if (k === 0) return 'full LCP'; // a scene of several bodies: sized by its candidate contacts
-  const n = (size === '8' ? 4 : 3) * k;
-  return `${n}x${n}`;
-}
 
 const S = {
   core: null,
@@ -106,15 +66,6 @@ function setState(state) {
   document.body.dataset.state = state;
 }
 
-/// A number for display: at most 12 significant digits, as typed (35, not 35.00000000000001).
-function plain(v) {
-  return String(Number(v.toPrecision(12)));
-}
-
-function toFlagUnit(flag, v) {
-  return flag.unit === 'deg' ? (v * 180) / Math.PI : v;
-}
-
 /// The core that runs `scene`: the first module, or the module of the scene's contacts (fetched
 /// and compiled once).
 function coreFor(scene) {
@@ -155,18 +106,6 @@ function showIntro(scene) {
   $('heading').textContent = intro ? intro.heading : S.main.scene(scene).title;
   $('intro').textContent = intro ? intro.intro : '';
   document.title = `meterstick: ${$('heading').textContent}`;
-}
-
-/// Run B's flags as the compare field and the URL write them ("force=20 mu-k=0.3"): [[flag, text]],
-/// or {message}.
-function parseCompare(text) {
-  const pairs = [];
-  for (const part of text.split(/[\s&,]+/).filter(Boolean)) {
-    const [key, value] = part.split('=');
-    if (value === undefined || value.trim() === '') return { message: `compare: ${JSON.stringify(part)} is not flag=value` };
-    pairs.push([key.replace(/^b\./, ''), value]);
-  }
-  return { pairs };
 }
 
 // --- the form ---------------------------------------------------------------------------------
@@ -572,13 +511,6 @@ function tick(now) {
 
 // --- drawing ------------------------------------------------------------------------------------------
 
-function niceCeil(t) {
-  if (!(t > 0)) return 1;
-  const p = 10 ** Math.floor(Math.log10(t));
-  for (const f of [1, 1.5, 2, 3, 5, 7.5, 10]) if (f * p >= t) return f * p;
-  return 10 * p;
-}
-
 function drawEmpty() {
   const g = $('scene').getContext('2d');
   g.fillStyle = '#fff'; g.fillRect(0, 0, $('scene').width, $('scene').height);
@@ -658,13 +590,6 @@ function drawPlots(src) {
   });
   drawPlot($('plot-angle'), { series: series('theta', COLORS.ink, 2.5, 180 / Math.PI), ticks, tMax, yLabel: 'angle (deg)', aspect: 0.24, minSpan: 2 });
   drawPlot($('plot-height'), { series: series('y', COLORS.ink, 2.5, 100), ticks, tMax, yLabel: 'height (cm)', aspect: 0.24, minSpan: 1 });
-}
-
-function scaled(a, n, k) {
-  if (k === 1) return a;
-  const out = new Float64Array(n);
-  for (let i = 0; i < n; i += 1) out[i] = a[i] * k;
-  return out;
 }
 
 function showSwitches(src) {

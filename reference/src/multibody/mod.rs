@@ -12,11 +12,13 @@
 //! * `step.rs`: the step's LCP and the least-kinetic-energy choice among the verified solutions
 //!   found from the previous basis, Lemke's method and a descent over neighbouring bases.
 //! * `system.rs`: the bodies, pairs and loads of a scene, and one step of its state.
-//! * `scenes.rs`: [`BlockOnBlock`], [`Tablecloth`], [`Stack`] and [`DiscOnBoard`], run to their
-//!   outcome by [`run`].
+//! * `scenes.rs`: [`BlockOnBlock`], [`Tablecloth`], [`Stack`] and [`DiscOnBoard`], their
+//!   parameters, starts and rules;
+//! * `runs.rs`: each run to its outcome by [`run`].
 
 mod geometry;
 pub mod lcp;
+mod runs;
 mod scenes;
 mod step;
 mod system;
@@ -135,19 +137,19 @@ pub fn run(spec: &Spec, sample: Sample) -> Result<Run, String> {
     match *spec {
         Spec::BlockOnBlock(p) => {
             p.validate()?;
-            Ok(scenes::run_block_on_block(&p, sample))
+            Ok(runs::run_block_on_block(&p, sample))
         }
         Spec::Tablecloth(p) => {
             p.validate()?;
-            Ok(scenes::run_tablecloth(&p, sample))
+            Ok(runs::run_tablecloth(&p, sample))
         }
         Spec::Stack(p) => {
             p.validate()?;
-            Ok(scenes::run_stack(&p, sample))
+            Ok(runs::run_stack(&p, sample))
         }
         Spec::DiscOnBoard(p) => {
             p.validate()?;
-            Ok(scenes::run_disc_on_board(&p, sample))
+            Ok(runs::run_disc_on_board(&p, sample))
         }
     }
 }
