@@ -15,6 +15,12 @@
 //! vertical normals than the bodies' `vy`, `omega`), or friction whose coupling into the normal
 //! rows outweighs their stiffness (a block tipping about a sticking corner at `mu = 2`: the
 //! Painleve-type case).
+//!
+//! The descent's neighbourhoods (one slot's patterns, two slots of one pair) are walked with the
+//! slot codec's odometer (`core/src/slot.rs`, `each_basis`), the one the planar rule enumerates
+//! every basis with. Enumerating every basis here keeps the same answers on the catalogue's runs
+//! but costs a flagged step about 24 times the descent on the M4F (`docs/formulation.md`, "One
+//! answer: the rule", 2): the descent stays.
 
 use super::factored::{ContactBlocks, Factored};
 use super::geometry::Shape;

@@ -9,6 +9,12 @@
 //! normal row `W_n^T M^-1 (W_n + mu W_d)` can change sign). The [`Detector`] decides from the
 //! model once whether either can happen at all (a meter stick on two tips at `mu = 0.6` never
 //! gets past that one test), and then per step from the step's frames.
+//!
+//! The enumeration walks the bases with the slot codec's odometer ([`each_basis`]), the one the
+//! multibody rule's descent walks its neighbourhoods with (`core/src/multibody/resolve.rs`). One
+//! body enumerates where several bodies descend: the descent on these steps moves the three-fingers
+//! reduced runs' checksums and has no answer to start from where the paths failed
+//! ([`solve_by_rule`]); `docs/formulation.md`, "One answer: the rule", 2, has the figures.
 
 use super::candidates::RULE_ORDER;
 use super::contact::{Contact, Feature};
