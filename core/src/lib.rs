@@ -37,6 +37,7 @@ mod real;
 pub mod rule;
 mod run_stats;
 pub mod scene;
+mod slot;
 pub mod soft_float;
 #[cfg(feature = "spatial")]
 pub mod spatial;

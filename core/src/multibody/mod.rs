@@ -24,7 +24,6 @@ mod factored;
 mod geometry;
 mod resolve;
 pub mod scenes;
-mod slots;
 mod stepper;
 
 pub use crate::RunStats;

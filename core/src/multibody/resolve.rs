@@ -15,14 +15,20 @@
 //! vertical normals than the bodies' `vy`, `omega`), or friction whose coupling into the normal
 //! rows outweighs their stiffness (a block tipping about a sticking corner at `mu = 2`: the
 //! Painleve-type case).
+//!
+//! The descent's neighbourhoods (one slot's patterns, two slots of one pair) are walked with the
+//! slot codec's odometer (`core/src/slot.rs`, `each_basis`), the one the planar rule enumerates
+//! every basis with. Enumerating every basis here keeps the same answers on the catalogue's runs
+//! but costs a flagged step about 24 times the descent on the M4F (`docs/formulation.md`, "One
+//! answer: the rule", 2): the descent stays.
 
 use super::factored::{ContactBlocks, Factored};
 use super::geometry::Shape;
-use super::slots::{PATTERNS, pattern_bits, slot_pattern};
 use crate::planar::Body;
 use crate::planar::resolve::COUPLING;
 use crate::real::{Real, max};
 use crate::rule::{Answer, Choice, Resolution, Rule};
+use crate::slot::{PATTERNS, Pattern, Slot, each_basis};
 
 /// At most this many active contacts are searched ([`resolve`]); a flagged step with more keeps
 /// its path's answer.
@@ -31,7 +37,7 @@ pub(super) const MAX_CONTACTS: usize = 4;
 /// The patterns a contact takes in the descent: the stepper's [`PATTERNS`] without sticking
 /// along `-d` (the factored solve turns a sticking contact's negative `p_+d` into `p_-d` itself: the
 /// same solution).
-const ENUMERATED: [u8; 7] =
+const ENUMERATED: [Pattern; 7] =
     [PATTERNS[0], PATTERNS[2], PATTERNS[3], PATTERNS[4], PATTERNS[5], PATTERNS[6], PATTERNS[7]];
 
 /// The rule's data of a system of `B` bodies: the energy's metric, each coordinate's reach.
@@ -274,9 +280,10 @@ const ALL_SLOTS: u32 = (1 << MAX_CONTACTS) - 1;
 fn changed_slots(a: u32, b: u32, k: usize) -> u32 {
     let mut changed = 0;
     for j in 0..k.min(MAX_CONTACTS) {
-        if pattern_bits(0b1111, k, j) & (a ^ b) != 0 {
+        let slot = Slot::full(k, j);
+        if slot.bits(Pattern::ALL) & (a ^ b) != 0 {
             changed |= 1 << j;
-            if !ENUMERATED.contains(&slot_pattern(a, k, j)) {
+            if !ENUMERATED.contains(&slot.read(a)) {
                 changed |= 1 << MAX_CONTACTS;
             }
         }
@@ -360,11 +367,10 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
                 found = [T::zero(); N];
             }
         };
+        // The bases one slot away ([`each_basis`] over that slot), then (widened) two slots of
+        // one pair away, the later slot the faster digit.
         for j in 0..k {
-            let clear = !pattern_bits(0b1111, k, j);
-            for pattern in ENUMERATED {
-                try_basis(centre & clear | pattern_bits(pattern, k, j));
-            }
+            each_basis(centre, &[Slot::full(k, j)], &ENUMERATED, |_, basis| try_basis(basis));
         }
         if widened {
             for a in 0..k {
@@ -372,17 +378,13 @@ pub(super) fn resolve<T: Real, const B: usize, const N: usize>(
                     if !same_pair(a as u32, b as u32) {
                         continue;
                     }
-                    let clear = !(pattern_bits(0b1111, k, a) | pattern_bits(0b1111, k, b));
-                    for first in ENUMERATED {
-                        for second in ENUMERATED {
-                            let basis =
-                                centre & clear | pattern_bits(first, k, a) | pattern_bits(second, k, b);
-                            // Both slots changed: one alone is a single change, made above.
-                            if changed_slots(basis, centre, k) & ALL_SLOTS == 1 << a | 1 << b {
-                                try_basis(basis);
-                            }
+                    let slots = [Slot::full(k, b), Slot::full(k, a)];
+                    each_basis(centre, &slots, &ENUMERATED, |_, basis| {
+                        // Both slots changed: one alone is a single change, made above.
+                        if changed_slots(basis, centre, k) & ALL_SLOTS == 1 << a | 1 << b {
+                            try_basis(basis);
                         }
-                    }
+                    });
                 }
             }
         }
@@ -432,9 +434,9 @@ mod tests {
     use crate::multibody::scenes::{
         BlockOnBlock, BlockOnBlockParams, TABLECLOTH_ROWS, Tablecloth, TableclothParams,
     };
-    use crate::multibody::slots::{PATTERNS, slot_rows};
     use crate::planar::resolve::COUPLING;
     use crate::real::Real;
+    use crate::slot::{PATTERNS, full_rows};
 
     const N: usize = TABLECLOTH_ROWS;
 
@@ -472,8 +474,8 @@ mod tests {
                 for j in 0..k {
                     let pattern = PATTERNS[digits % 8];
                     digits /= 8;
-                    for (bit, row) in slot_rows(k, j).into_iter().enumerate() {
-                        mask |= u32::from(pattern >> bit & 1) << row;
+                    for (bit, row) in full_rows(k, j).into_iter().enumerate() {
+                        mask |= u32::from(pattern.bits() >> bit & 1) << row;
                     }
                 }
                 let basic = |v: usize| (mask >> v) & 1 == 1;
@@ -611,7 +613,7 @@ mod tests {
         let flagged = flags(f, None);
         assert_eq!(flagged, flags_by_entries(f), "k = {k}");
         // Four slots: the same decision from the blocks a sliding step forms once.
-        let sliding = (0..k).fold(0, |mask, j| mask | super::pattern_bits(PATTERNS[2], k, j));
+        let sliding = (0..k).fold(0, |mask, j| mask | crate::slot::Slot::full(k, j).bits(PATTERNS[2]));
         let mut formed = *f;
         formed.form_blocks(sliding);
         if let Some(blocks) = formed.blocks() {

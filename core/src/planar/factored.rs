@@ -56,6 +56,7 @@ use super::layout::{Direction, Layout, Tangents};
 use crate::lcp::Basis;
 use crate::lcp::elimination::solve_leading;
 use crate::real::{AllFinite, Real, max, min};
+use crate::slot::Slot;
 
 /// The factored rows of one step's LCP (`docs/formulation.md`, "Solving a step"; the rows and
 /// the elimination are written out in the docs of `core/src/planar/factored.rs`).
@@ -697,8 +698,9 @@ impl<T: Real, const K: usize, const N: usize> FactoredLcp<T, K, N> {
     pub fn slips(&self, z: &[T], w: &[T]) -> [T; K] {
         let mut slips = [T::zero(); K];
         for i in 0..K {
-            let (_, rows, s) = rows_of::<K, N>(&self.tangents, i);
-            let (row, sign) = match rows {
+            let slot = slot_of::<K, N>(&self.tangents, i);
+            let s = slot.sigma();
+            let (row, sign) = match slot.friction() {
                 [Some(f), _] => (f, T::one()),
                 [None, Some(f)] => (f, -T::one()),
                 [None, None] => continue,
@@ -731,11 +733,9 @@ pub(crate) fn cone_scale<T: Real>(mu: T) -> T {
     T::one() / mu.power_of_two_below()
 }
 
-/// Contact `i`'s variables: its normal, its friction rows `[+d, -d]` (as kept) and its sigma.
-pub(crate) fn rows_of<const K: usize, const N: usize>(
-    tangents: &[Tangents; K],
-    i: usize,
-) -> (usize, [Option<usize>; 2], usize) {
+/// Contact `i`'s [`Slot`]: its normal, its friction rows `[+d, -d]` (as kept) and its sigma
+/// (in the full layout, `crate::slot::full_rows(K, i)`).
+pub(crate) fn slot_of<const K: usize, const N: usize>(tangents: &[Tangents; K], i: usize) -> Slot {
     let mut j = K;
     for k in 0..i.min(K) {
         j += tangents[k].count();
@@ -743,7 +743,7 @@ pub(crate) fn rows_of<const K: usize, const N: usize>(
     let t = tangents.get(i).copied().unwrap_or(Tangents::Both);
     let plus = t.keeps(Direction::Plus).then_some(j);
     let minus = t.keeps(Direction::Minus).then_some(j + usize::from(plus.is_some()));
-    (i, [plus, minus], Layout::<K, N>::SIGMA_START + i)
+    Slot::new(i, [plus, minus], Layout::<K, N>::SIGMA_START + i)
 }
 
 /// The basis' `m x m` system by [`solve_leading`], in one copy out of line (flash): without

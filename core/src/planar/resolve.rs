@@ -9,15 +9,22 @@
 //! normal row `W_n^T M^-1 (W_n + mu W_d)` can change sign). The [`Detector`] decides from the
 //! model once whether either can happen at all (a meter stick on two tips at `mu = 0.6` never
 //! gets past that one test), and then per step from the step's frames.
+//!
+//! The enumeration walks the bases with the slot codec's odometer ([`each_basis`]), the one the
+//! multibody rule's descent walks its neighbourhoods with (`core/src/multibody/resolve.rs`). One
+//! body enumerates where several bodies descend: the descent on these steps moves the three-fingers
+//! reduced runs' checksums and has no answer to start from where the paths failed
+//! ([`solve_by_rule`]); `docs/formulation.md`, "One answer: the rule", 2, has the figures.
 
-use super::candidates::{PATTERN_COUNT, pattern_basis};
+use super::candidates::RULE_ORDER;
 use super::contact::{Contact, Feature};
-use super::factored::FactoredLcp;
+use super::factored::{FactoredLcp, slot_of};
 use super::inputs::{StepInputs, dot3};
 use super::strategy::{SolvePath, Solved};
 use crate::lcp::Basis;
 use crate::real::{Real, max};
 use crate::rule::{Answer, Choice, Resolution, Rule};
+use crate::slot::{Slot, each_basis};
 
 /// Friction coupling at or above this fraction of a normal row's own stiffness flags a step
 /// ([`Detector::flags`]). For one contact 1 is exact: below it a sliding contact's normal row
@@ -31,7 +38,7 @@ pub(crate) const COUPLING: f64 = 1.0;
 /// 2), the meter stick's ambiguous steps at `mu = 1000` at 18 times it and more.
 const COUPLING_SEVERAL: f64 = 2.0;
 
-/// At most this many active contacts are enumerated (`PATTERN_COUNT^4` bases); a step with more keeps
+/// At most this many active contacts are enumerated (`8^4` bases); a step with more keeps
 /// its path's answer.
 const MAX_CONTACTS: usize = 4;
 
@@ -292,21 +299,22 @@ pub(crate) struct BasisSolution<T, const N: usize> {
 }
 
 /// Calls `found` with every verified solution of `factored` over the bases of the active
-/// contacts' patterns ([`pattern_basis`], `PATTERN_COUNT^k` for `k <= MAX_CONTACTS` active contacts,
-/// the others off), in a fixed order (contact by contact, the first the fastest digit), except
-/// the basis `skip`; with the basis' number. Nothing for more than `MAX_CONTACTS` active contacts.
+/// contacts' patterns ([`RULE_ORDER`], `8^k` for `k <= MAX_CONTACTS` active contacts, the others
+/// off; a pattern along a direction a contact does not keep has no basis), in a fixed order
+/// ([`each_basis`]: contact by contact, the first the fastest digit), except the basis `skip`;
+/// with the basis' number. Nothing for more than `MAX_CONTACTS` active contacts.
 fn each_solution<T: Real, const K: usize, const N: usize>(
     factored: &FactoredLcp<T, K, N>,
     tolerance: T,
     skip: Option<Basis<N>>,
     mut found: impl FnMut(usize, &BasisSolution<T, N>),
 ) {
-    let mut active = [0usize; MAX_CONTACTS];
+    let mut active = [Slot::new(0, [None, None], 0); MAX_CONTACTS];
     let mut count = 0;
     for i in 0..K {
         if (factored.inactive >> i) & 1 == 0 {
             let Some(slot) = active.get_mut(count) else { return };
-            *slot = i;
+            *slot = slot_of::<K, N>(factored.tangents(), i);
             count += 1;
         }
     }
@@ -317,18 +325,10 @@ fn each_solution<T: Real, const K: usize, const N: usize>(
         v_plus: [T::zero(); 3],
         residual: T::zero(),
     };
-    'bases: for code in 0..PATTERN_COUNT.saturating_pow(count as u32) {
-        let mut basis = Basis::<N>::all_w();
-        let mut digits = code;
-        for &i in active.iter().take(count) {
-            match pattern_basis(factored.tangents(), basis, i, digits % PATTERN_COUNT) {
-                Some(b) => basis = b,
-                None => continue 'bases,
-            }
-            digits /= PATTERN_COUNT;
-        }
+    each_basis(0, active.get(..count).unwrap_or(&[]), &RULE_ORDER, |code, mask| {
+        let basis = Basis::<N>::from_z_mask(mask);
         if skip == Some(basis) {
-            continue;
+            return;
         }
         if let Ok((v_plus, residual)) =
             factored.solve_basis_into(basis, tolerance, &mut solution.z, &mut solution.w)
@@ -336,5 +336,5 @@ fn each_solution<T: Real, const K: usize, const N: usize>(
             (solution.basis, solution.v_plus, solution.residual) = (basis, v_plus, residual);
             found(code, &solution);
         }
-    }
+    });
 }

@@ -8,9 +8,9 @@
 
 use super::systems::{form_sliding, solve_four, solve_leading_out_of_line, solve_small, solve_symmetric};
 use super::{Answer, ContactBlocks, Factored, MOST_SLOTS, UNKNOWNS, negated_if};
-use crate::multibody::slots::slot_rows;
 use crate::planar::Declined;
 use crate::real::{AllFinite, Real, max};
+use crate::slot::full_rows;
 
 /// The scale of a basis answer's round-off ([`Factored::round_off_scale`]).
 #[derive(Debug, Clone, Copy)]
@@ -94,7 +94,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let basic = |v: usize| mask.checked_shr(v as u32).unwrap_or(0) & 1 == 1;
         let (mut held, mut pinned) = (0u32, 0u32);
         for j in 0..k {
-            let [_, plus, minus, sigma] = slot_rows(k, j);
+            let [_, plus, minus, sigma] = full_rows(k, j);
             if basic(plus) || basic(minus) {
                 let bit = 1u32.checked_shl(u32::from(self.pair[j])).unwrap_or(0);
                 held |= bit;
@@ -184,7 +184,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let mut follower = [N; UNKNOWNS];
         let mut m = 0usize;
         for j in 0..k {
-            let [_, plus, minus, sigma] = slot_rows(k, j);
+            let [_, plus, minus, sigma] = full_rows(k, j);
             let frictions = usize::from(basic(plus)) + usize::from(basic(minus));
             if basic(sigma) {
                 if frictions != 1 {
@@ -302,7 +302,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let mut scale = None;
         let mut along = [T::zero(); MOST_SLOTS];
         for j in 0..k.min(N / 4) {
-            let [n, plus, minus, sigma] = slot_rows(k, j).map(|v| v.min(N - 1));
+            let [n, plus, minus, sigma] = full_rows(k, j).map(|v| v.min(N - 1));
             let slip = self.q[plus] + self.cols[plus].dot(&dv);
             if let Some(a) = along.get_mut(j) {
                 *a = slip;

@@ -53,10 +53,10 @@ mod tests;
 use nalgebra::{SMatrix, SVector};
 
 use crate::lcp::Lcp;
-use crate::multibody::slots::slot_rows;
 use crate::planar::inputs::dot3;
 use crate::planar::{MU_WEIGHTED_FROM, cone_scale};
 use crate::real::{AllFinite, Real, max, min};
+use crate::slot::full_rows;
 
 /// The most unknowns a basis may have here: three bodies' degrees of freedom (a basis of more is
 /// declined, and Lemke's method answers it).
@@ -273,7 +273,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         // `+d` columns: the `-d` one is the `+d` one negated, the same diagonal, finite with it).
         let (mut m_low, mut finite) = (self.m_low, self.columns_finite);
         let (mut q_norm, mut q_min, mut q_friction) = (self.q_norm, self.q_min, self.q_friction);
-        let [normal, plus, ..] = slot_rows(k, j);
+        let [normal, plus, ..] = full_rows(k, j);
         for (r, row) in rows.iter().enumerate() {
             let v = if r == 0 { normal } else { plus };
             let col = Column {
@@ -434,7 +434,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         let sigmas = low(mask, 3 * k, k);
         let mut frictions = 0u32;
         for j in 0..k {
-            if low(mask, slot_rows(k, j)[1], 2) != 0 {
+            if low(mask, full_rows(k, j)[1], 2) != 0 {
                 frictions |= 1 << j;
             }
         }
@@ -516,7 +516,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         for j in 0..k {
             // Slot `j`'s `+d` column once for both directions (`-d`'s `M~ c z` as
             // `M~ c_+d (-z)`: the same product).
-            let [_, plus, minus, _] = slot_rows(k, j).map(|v| v.min(N - 1));
+            let [_, plus, minus, _] = full_rows(k, j).map(|v| v.min(N - 1));
             let col = &self.cols[plus];
             let (plus, minus) = (z[plus], z[minus]);
             if plus != T::zero() {
@@ -563,7 +563,7 @@ impl<T: Real, const B: usize, const N: usize> Factored<T, B, N> {
         }
         let from = T::of(MU_WEIGHTED_FROM);
         for j in 0..k {
-            let [_, plus, minus, sigma] = slot_rows(k, j);
+            let [_, plus, minus, sigma] = full_rows(k, j);
             let mu = self.mu[j.min(N - 1)];
             let s = if weighted && mu >= from { cone_scale(mu) } else { T::one() };
             let cone = [
@@ -625,7 +625,7 @@ fn contact_blocks<T: Real, const B: usize, const N: usize, const K: usize>(
     let col = |v: usize| &cols[v.min(N - 1)];
     // Column `j`'s normal and friction `M~ c` against every slot's normal `c`.
     for j in 0..rows {
-        let [normal, plus, ..] = slot_rows(k, j);
+        let [normal, plus, ..] = full_rows(k, j);
         let (a, f) = (col(normal), col(plus));
         for i in 0..rows {
             let u = col(i);

@@ -13,9 +13,9 @@ use proptest::strategy::ValueTree as _;
 
 use super::Factored;
 use crate::lcp::{Basis, Lcp, Lemke, default_tolerance, verify};
-use crate::multibody::slots::slot_rows;
 use crate::multibody::{Pair, RestsOn, System, SystemSettings, SystemStepper, Table};
 use crate::planar::{Body, BodyState};
+use crate::slot::full_rows;
 
 /// The LCP's capacity (block-on-block's).
 const N: usize = 24;
@@ -207,10 +207,10 @@ fn check_case(c: &Case, counts: &mut Counts) {
         }
         for base in bases.clone() {
             for j in 0..step.k {
-                for pattern in super::super::slots::PATTERNS {
+                for pattern in crate::slot::PATTERNS {
                     let mut mask = base;
-                    for (bit, row) in slot_rows(step.k, j).into_iter().enumerate() {
-                        mask = (mask & !(1 << row)) | (u32::from(pattern >> bit & 1) << row);
+                    for (bit, row) in full_rows(step.k, j).into_iter().enumerate() {
+                        mask = (mask & !(1 << row)) | (u32::from(pattern.bits() >> bit & 1) << row);
                     }
                     bases.push(mask);
                 }

@@ -10,9 +10,9 @@ use super::solve::Solved;
 use crate::lcp::Basis;
 use crate::multibody::factored::{ContactBlocks, MOST_SLOTS};
 use crate::multibody::resolve::DeclinedBases;
-use crate::multibody::slots::{PATTERNS, Pattern, TOUCH, slot_pattern, slot_rows, with_pattern};
 use crate::planar::{Declined, PathCounts, SolvePath};
 use crate::real::Real;
+use crate::slot::{PATTERNS, Pattern, Slot};
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The candidates of [`Self::solve`] after the warm basis failed with `why`: the first that
@@ -47,14 +47,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         // others (both sticking is singular). The failing slot first, then its pair, then the
         // other slots, then the other pairs.
         let pair_of = |j: usize| step.slots[j.min(N - 1)].0;
-        let with_slot = |basis: Basis<N>, j: usize, pattern: Pattern| with_pattern(basis, k, j, pattern);
+        let with_slot = |basis: Basis<N>, j: usize, pattern: Pattern| Slot::full(k, j).set(basis, pattern);
         let with_pair = |p: usize, pattern: Pattern| {
             let mut basis = warm;
             let mut slots = 0;
             for j in 0..k {
                 if pair_of(j) == p {
-                    let sticking = pattern == PATTERNS[0] || pattern == PATTERNS[1];
-                    basis = with_slot(basis, j, if sticking && slots > 0 { TOUCH } else { pattern });
+                    let touch = pattern.is_sticking() && slots > 0;
+                    basis = with_slot(basis, j, if touch { Pattern::TOUCH } else { pattern });
                     slots += 1;
                 }
             }
@@ -66,10 +66,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         let sliding = {
             let mut basis = warm;
             for j in 0..k {
-                let [n, plus, ..] = slot_rows(k, j);
+                let [n, plus, ..] = crate::slot::full_rows(k, j);
                 let q = f.q()[plus.min(N - 1)];
                 if warm.is_z_basic(n) && q != T::zero() {
-                    basis = with_slot(basis, j, if q < T::zero() { PATTERNS[2] } else { PATTERNS[3] });
+                    basis = with_slot(
+                        basis,
+                        j,
+                        if q < T::zero() { Pattern::SLIDE_PLUS } else { Pattern::SLIDE_MINUS },
+                    );
                 }
             }
             basis
@@ -86,7 +90,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         let changed = |basis: Basis<N>| {
             let (diff, mut slots) = (basis.z_mask() ^ warm.z_mask(), 0u32);
             for j in 0..k {
-                if slot_pattern(diff, k, j) != 0 {
+                if Slot::full(k, j).read(diff) != Pattern::OFF {
                     slots |= 1 << j;
                 }
             }
@@ -159,18 +163,18 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             return None;
         }
         let pair_of = |i: usize| self.lcp.slots[i.min(N - 1)].0;
-        let current = slot_pattern(basis.z_mask(), k, j);
-        if PATTERNS.contains(&(current & !1)) {
-            return Some(with_pattern(basis, k, j, current & !1));
+        let current = Slot::full(k, j).read(basis.z_mask());
+        if current.lifted().is_listed() {
+            return Some(Slot::full(k, j).set(basis, current.lifted()));
         }
-        if current != PATTERNS[0] && current != PATTERNS[1] {
+        if !current.is_sticking() {
             return None;
         }
-        let mut lifted = with_pattern(basis, k, j, PATTERNS[5]);
-        let touching =
-            (0..k).find(|&i| pair_of(i) == pair_of(j) && slot_pattern(lifted.z_mask(), k, i) == TOUCH);
+        let mut lifted = Slot::full(k, j).set(basis, Pattern::OFF);
+        let touching = (0..k)
+            .find(|&i| pair_of(i) == pair_of(j) && Slot::full(k, i).read(lifted.z_mask()) == Pattern::TOUCH);
         if let Some(i) = touching {
-            lifted = with_pattern(lifted, k, i, current);
+            lifted = Slot::full(k, i).set(lifted, current);
         }
         Some(lifted)
     }

@@ -28,13 +28,13 @@ use super::factored::Factored;
 use super::factored::MOST_SLOTS;
 use super::geometry::{CornerFrame, Pair, Shape, Table, pair_frames, poses, rim_frames};
 use super::resolve::SystemDetector;
-use super::slots::Pattern;
 use crate::RunStats;
 use crate::lcp::{Basis, Lemke};
 use crate::params::{Check, ParamError, check_fields};
 use crate::planar::check_friction;
 use crate::planar::{Body, BodyState, ContactMode};
 use crate::real::Real;
+use crate::slot::Pattern;
 
 /// The scalars of a step: one body's ([`crate::planar::Settings`]: time step, gravity, stick
 /// threshold) and the activity rule's margin.
@@ -187,7 +187,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             carry: [[T::zero(); 3]; B],
             frames: [[CornerFrame::inactive(); 4]; P],
             modes: [[ContactMode::Separated; 4]; P],
-            patterns: [[0; 4]; P],
+            patterns: [[Pattern::OFF; 4]; P],
             impulse_floor: T::of(64.0) * T::EPS * s.gravity * s.step * m_min / m_ref,
             solver: Lemke::new(),
             lcp: StepLcp {
@@ -215,7 +215,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
                     stepper.modes[p][c] = ContactMode::Sticking;
                     // The warm start's guess: the pair's first touching corner sticks (`p_n`,
                     // `p_+d`), the others touch (`p_n`): both sticking is singular.
-                    stepper.patterns[p][c] = if sticking { 0b0001 } else { 0b0011 };
+                    stepper.patterns[p][c] = if sticking { Pattern::TOUCH } else { Pattern::STICK_PLUS };
                     sticking = true;
                 }
             }

@@ -9,11 +9,11 @@ use crate::StepError;
 use crate::lcp::{Basis, Lcp, LcpError, LcpSolution, verify};
 use crate::multibody::factored::{Answer, ContactBlocks, MOST_SLOTS};
 use crate::multibody::resolve::{self, DeclinedBases};
-use crate::multibody::slots::{PATTERNS, pattern_bits, with_pattern};
 use crate::planar::assemble::normal_bias;
 use crate::planar::{Declined, PathCounts, SolvePath};
 use crate::real::Real;
 use crate::rule::Resolution;
+use crate::slot::{PATTERNS, Slot};
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The retries after a failed solve (a ray, the pivot cap, an answer that failed
@@ -72,7 +72,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         }
         for j in 0..k {
             for pattern in PATTERNS {
-                let basis = with_pattern(warm, k, j, pattern);
+                let basis = Slot::full(k, j).set(warm, pattern);
                 if made.contains(&basis) || Some(basis) == near_basis {
                     continue;
                 }
@@ -139,7 +139,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
                 mu,
                 &self.inverse_mass,
             );
-            warm |= pattern_bits(self.patterns[p][c], k, j);
+            warm |= Slot::full(k, j).bits(self.patterns[p][c]);
         }
         out.factored.finish();
         out.k = k;

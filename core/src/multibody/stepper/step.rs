@@ -15,13 +15,13 @@ use crate::load::{Carry, LoadContact, LoadPath, least_norm};
 use crate::multibody::factored::MOST_SLOTS;
 use crate::multibody::geometry::slip;
 use crate::multibody::resolve;
-use crate::multibody::slots::{Pattern, slot_rows};
 #[cfg(feature = "fallback")]
 use crate::planar::assemble::normal_bias;
 use crate::planar::{ContactMode, SolvePath};
 #[cfg(feature = "fallback")]
 use crate::real::max;
 use crate::real::{Real, compensated_add};
+use crate::slot::{FullPatterns, Pattern, full_rows};
 
 impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B, P, N> {
     /// The load of least 2-norm with this step's motion `v_plus` (`crate::load`) in place of the
@@ -51,7 +51,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         let mut before = [ContactMode::Separated; MOST_SLOTS];
         let mut scale = T::zero();
         for j in 0..slots {
-            let rows = slot_rows(k, j);
+            let rows = full_rows(k, j);
             path[j] = [z[rows[0]], z[rows[1]] - z[rows[2]]];
             scale = max(scale, max(path[j][0].abs_exact(), path[j][1].abs_exact()));
             let (p, c) = self.lcp.slots[j];
@@ -243,7 +243,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         }
         // Modes after the step, interface forces, each corner's load, the next warm patterns.
         let mut modes = [[ContactMode::Separated; 4]; P];
-        let mut patterns = [[0; 4]; P];
+        let mut patterns = [[Pattern::OFF; 4]; P];
         let mut impulses = [[T::zero(); 2]; P];
         let mut corner_loads = [[[T::zero(); 2]; 4]; P];
         let per_second = m_ref / h;
@@ -252,9 +252,6 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         // one per sliding one) than the bodies' `3B` coordinates.
         #[cfg(feature = "fallback")]
         let (mut open, mut unknowns, mut sticking_pair) = (false, 0, usize::MAX);
-        // Each slot's pattern ([`slot_pattern`]) from the normals', frictions' and sigmas' bits,
-        // shifted out slot by slot.
-        let (mut normals, mut frictions, mut sigmas) = (mask, mask >> k.min(8), mask >> (3 * k.min(8)));
         // The pairs with a loaded slot whose `sigma` is not basic (`stuck`, bits by pair): its `w_+d
         // = slip` and `w_-d = -slip` are both `>= 0`, so the answer's slip is zero, and every corner
         // of one interface has the one slip of its two bodies along their face: each sticks. (The
@@ -262,14 +259,15 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         // light one makes larger than the stick speed.) Another corner of such a pair read sliding
         // (`sliding`) is turned after the loop ([`Self::stick_pairs`]).
         let (mut stuck, mut sliding) = (0u32, 0u32);
+        let mut read = FullPatterns::new(mask, k);
         for j in 0..k {
             let (p, c) = self.lcp.slots[j];
             let (p, c) = (p.min(P - 1), c.min(3));
             let f = &self.frames[p][c];
-            let rows = slot_rows(k, j);
-            patterns[p][c] = (normals & 1 | (frictions & 3) << 1 | (sigmas & 1) << 3) as Pattern;
-            let sigma_basic = sigmas & 1 == 1;
-            (normals, frictions, sigmas) = (normals >> 1, frictions >> 2, sigmas >> 1);
+            let rows = full_rows(k, j);
+            let pattern = read.next_pattern();
+            patterns[p][c] = pattern;
+            let sigma_basic = pattern.bits() & 0b1000 != 0;
             let (pn, pf) = (z[rows[0]], z[rows[1]] - z[rows[2]]);
             if pn > self.impulse_floor {
                 // `p < P <= 32` ([`Self::SIZE_CHECK`]): the mask is the pair's own bit.
