@@ -166,12 +166,25 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let size = k + 2;
         let mut m = [[o; N]; N];
         let mut q = [o; N];
+        // Entries by `get_mut`: `k` is the scene's run-time count of directions, so no index here
+        // is known in range at compile time, and none may panic (`scripts/panic-paths.sh`); the
+        // scene sizes `N` for its directions (`PYRAMID_ROWS`), so none falls outside.
+        let put = |m: &mut [[T; N]; N], r: usize, c: usize, v: T| {
+            if let Some(e) = m.get_mut(r).and_then(|row| row.get_mut(c)) {
+                *e = v;
+            }
+        };
+        let put_q = |q: &mut [T; N], r: usize, v: T| {
+            if let Some(e) = q.get_mut(r) {
+                *e = v;
+            }
+        };
         for (i, ci) in self.touches.iter().enumerate() {
             let b = size * i;
             if !ci.active {
                 for row in b..b + size {
-                    m[row][row] = one;
-                    q[row] = one;
+                    put(&mut m, row, row, one);
+                    put_q(&mut q, row, one);
                 }
                 continue;
             }
@@ -181,17 +194,17 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 for (j, cj) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
                     for c in 0..=k {
                         let fc = if c == 0 { n } else { edge(c - 1) };
-                        m[b + a][size * j + c] = self.delassus(&ci.arm, &ea, &cj.arm, &fc);
+                        put(&mut m, b + a, size * j + c, self.delassus(&ci.arm, &ea, &cj.arm, &fc));
                     }
                 }
                 if a > 0 {
-                    m[b + a][b + k + 1] = one;
-                    m[b + k + 1][b + a] = -one;
-                    q[b + a] = dot(&ea, &ci.slip_free);
+                    put(&mut m, b + a, b + k + 1, one);
+                    put(&mut m, b + k + 1, b + a, -one);
+                    put_q(&mut q, b + a, dot(&ea, &ci.slip_free));
                 }
             }
-            m[b + k + 1][b] = ci.mu;
-            q[b] = ci.normal_free;
+            put(&mut m, b + k + 1, b, ci.mu);
+            put_q(&mut q, b, ci.normal_free);
         }
         pad(&mut m, &mut q, size * K);
         let lcp = Lcp::from_rows(&m, &q);
@@ -201,18 +214,22 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let zero = [o; 3];
         let mut impulses = [(o, zero); K];
         let mut full = [zero; K];
-        for (i, _) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
-            let pn = sol.z[size * i];
-            let pt = (0..k).fold(zero, |a, l| add(&a, &scale(sol.z[size * i + 1 + l], &edge(l))));
-            full[i] = add(&scale(pn, &n), &pt);
-            impulses[i] = (pn, pt);
+        // Zipped, not indexed: no index that may panic (`scripts/panic-paths.sh`).
+        let each = self.touches.iter().zip(impulses.iter_mut().zip(full.iter_mut())).enumerate();
+        for (i, (_, (impulse, total))) in each.filter(|(_, (c, _))| c.active) {
+            let z = |r: usize| sol.z.get(r).copied().unwrap_or(o);
+            let pn = z(size * i);
+            let pt = (0..k).fold(zero, |a, l| add(&a, &scale(z(size * i + 1 + l), &edge(l))));
+            *total = add(&scale(pn, &n), &pt);
+            *impulse = (pn, pt);
         }
         let (v, w) = self.moved(&full, v_free, w_free);
         let bound = verification_bound(solver, &lcp, &sol.z);
         let mut reports = [SpatialContactReport::separated(); K];
-        for (i, c) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
-            let (pn, pt) = impulses[i];
-            reports[i] = self.report(pn, &pt, &self.slip(&v, &w, c), c.mu, (1, bound, false))?;
+        for ((c, &(pn, pt)), report) in self.touches.iter().zip(&impulses).zip(reports.iter_mut()) {
+            if c.active {
+                *report = self.report(pn, &pt, &self.slip(&v, &w, c), c.mu, (1, bound, false))?;
+            }
         }
         Ok((reports, v, w))
     }
