@@ -34,6 +34,7 @@ done
   echo "defaults, f32, stepped directly, and the stack through the stack rig (stack-rig-held: 0.2 s at the default"
   echo "overhang; stack-rig-fell: overhang 1.02), and the tablecloth at mu = 2 (tablecloth-mu2) with its steps the rule"
   echo "flagged as possibly having several motions timed apart (tablecloth-mu2-flagged: the worst flagged multibody step);"
+  echo "the puck and the billiard ball at their defaults, f32, through the registry's view (the qemu-*-spatial builds);"
   echo "the slow scene's steps whose load the contacts decide (slow-determinate) and those whose load the rule decides"
   echo "(slow-decided: the rod at rest on two sticking fingers, docs/formulation.md, \"The load: the least norm\") apart;"
   echo "QEMU -icount shift=0, SysTick ticks converted with the calibration loop;"
@@ -41,14 +42,20 @@ done
   echo
   echo "| core (QEMU machine) | scene | steps | instructions/step (mean) | worst step (instructions) | stack peak (B) |"
   echo "|---|---|---|---|---|---|"
-  for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0" "qemu-m33 mps2-an505 Cortex-M33F"; do
+  # The spatial builds run the scenes of one body too: only their own scenes are printed (those the
+  # machine's main build did not time).
+  for m in "qemu-m4f mps2-an386 Cortex-M4F" "qemu-m0 microbit Cortex-M0" "qemu-m33 mps2-an505 Cortex-M33F" \
+    "qemu-m4f-spatial mps2-an386 Cortex-M4F qemu-m4f" "qemu-m33-spatial mps2-an505 Cortex-M33F qemu-m33"; do
     set -- $m
     # host-sim reads the firmware's timing lines and converts them (JSON, `host-sim qemu --json`).
     target/release/host-sim qemu --icount --json --machine "$2" "${ELF[$1]}" > "out/firmware/$1-icount.json"
-    python3 - "out/firmware/$1-icount.json" "$3 ($2)" <<'PY'
+    python3 - "out/firmware/$1-icount.json" "$3 ($2)" "${4:+out/firmware/$4-icount.json}" <<'PY'
 import json, sys
 timing = json.load(open(sys.argv[1]))["timing"]
+timed = {s["scene"] for s in json.load(open(sys.argv[3]))["timing"]["scenes"]} if sys.argv[3] else set()
 for s in timing["scenes"]:
+    if s["scene"] in timed:
+        continue
     peak = s["stack_peak_bytes"]
     peak = "-" if peak is None else f"{peak:,}"
     print(f"| {sys.argv[2]} | {s['scene']} | {s['steps']} | {s['mean_instructions']:,.0f} | {s['worst_instructions']:,.0f} | {peak} |")

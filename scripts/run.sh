@@ -9,7 +9,7 @@ bash scripts/setup.sh
 $HOST_CARGO build --locked --release -p meterstick-host-sim
 echo "== the paper's scenes: core f32 6x6 (as the firmware) beside the independent f64 reference"
 target/release/host-sim run --out out/run
-M4=$(build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback)
+M4=$(build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,qemu-multibody,fallback)
 M0=$(build_firmware qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback)
 echo
 echo "== firmware on Cortex-M4F (QEMU mps2-an386)"

@@ -14,7 +14,7 @@ step() { printf '\n== %s\n' "$*"; }
 step "build glue: a failing build stops its caller"
 # scripts/lib.sh's helpers are called as `x=$(helper)`; a failed build must stop the caller, not
 # hand it a stale artefact. Here the build command itself is made to fail.
-for helper in "build_web" "build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,fallback"; do
+for helper in "build_web" "build_firmware qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,qemu-multibody,fallback"; do
   status=0
   bash -c 'set -euo pipefail; . scripts/lib.sh; cross_cargo() { return 3; }; out=$('"$helper"'); echo "reached: $out"' \
     >target/glue.out 2>target/glue.err || status=$?
@@ -130,6 +130,8 @@ done
 
 step "firmware under QEMU (and the host link end to end)"
 MS_FIRMWARE_M4="$M4" MS_FIRMWARE_M0="$M0" MS_FIRMWARE_M33="$M33" \
+MS_FIRMWARE_M4_SPATIAL="$FIRMWARE_TARGET_DIR/elf/qemu-m4f-spatial.elf" \
+MS_FIRMWARE_M33_SPATIAL="$FIRMWARE_TARGET_DIR/elf/qemu-m33-spatial.elf" \
   $HOST_CARGO test --locked -p meterstick-tests --test qemu -- --ignored
 MS_FIRMWARE_M4_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m4f-link.elf" \
 MS_FIRMWARE_M0_LINK="$FIRMWARE_TARGET_DIR/elf/qemu-m0-link.elf" \

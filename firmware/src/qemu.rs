@@ -19,7 +19,10 @@
 //! solved and every scene ended as physics says
 //! (balanced, fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc
 //! rolled, the tablecloth stayed; the stack rig held with every interface sticking and fell with
-//! every one tipping; the failing runs failed).
+//! every one tipping; the failing runs failed). With `qemu-spatial` (M4F and M33F) also the puck
+//! and the billiard ball at their defaults in f32 through the registry's view
+//! (`SceneParams::build_view`): outcome, steps, the view's checksum and the ticks of their steps
+//! (the puck stopped, the ball rolled).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
@@ -28,11 +31,15 @@ use meterstick_core::multibody::StepError;
 #[cfg(feature = "qemu-multibody")]
 use meterstick_core::multibody::scenes::{BlockOnBlockParams, MultibodyScene, StackParams, TableclothParams};
 use meterstick_core::planar::{Checksum, SolvePath, SwitchEvent};
+#[cfg(feature = "qemu-multibody")]
+use meterstick_core::scene::MultibodyVisitor;
+#[cfg(any(feature = "qemu-multibody", feature = "qemu-spatial"))]
+use meterstick_core::scene::Precision;
 use meterstick_core::scene::{
     LcpLayout, MeterStickParams, Outcome, Scene, SceneKind, SceneParams, SceneVisitor,
 };
-#[cfg(feature = "qemu-multibody")]
-use meterstick_core::scene::{MultibodyVisitor, Precision};
+#[cfg(feature = "qemu-spatial")]
+use meterstick_core::scene::{SceneView, ViewVisitor};
 #[cfg(feature = "qemu-multibody")]
 use meterstick_rig::{InterfaceMode, MultibodyRigState, StackRig};
 use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
@@ -231,6 +238,10 @@ const fn expected(kind: SceneKind) -> Outcome {
         SceneKind::Tablecloth => Outcome::Stayed,
         #[cfg(feature = "qemu-multibody")]
         SceneKind::DiscOnBoard => Outcome::Rolled,
+        #[cfg(feature = "qemu-spatial")]
+        SceneKind::Puck => Outcome::Stopped,
+        #[cfg(feature = "qemu-spatial")]
+        SceneKind::Billiard => Outcome::Rolled,
     }
 }
 
@@ -258,7 +269,8 @@ impl SceneVisitor for CheckPlain {
 fn check_other_scenes() -> i32 {
     let mut failures = 0;
     for kind in SceneKind::ALL {
-        if kind == SceneKind::MeterStick || kind.is_multibody() {
+        // The rig's, and the engines of several bodies and of three dimensions (their own checks).
+        if kind == SceneKind::MeterStick || !kind.has_layout_choice() {
             continue;
         }
         let check = CheckPlain { name: kind.name(), expected: expected(kind) };
@@ -475,6 +487,79 @@ fn check_failing_steps() -> i32 {
     failures
 }
 
+/// A scene in three dimensions through the registry's view ([`SceneParams::build_view`]): each
+/// step timed (the view's `dyn` call and bookkeeping included), then its outcome, steps, pivots and
+/// the view's trajectory checksum (every body's state after every step), and its ticks, in the
+/// lines the scenes of several bodies print; counts 1 unless it ended in `expected`.
+#[cfg(feature = "qemu-spatial")]
+struct CheckView {
+    name: &'static str,
+    expected: Outcome,
+}
+
+#[cfg(feature = "qemu-spatial")]
+impl ViewVisitor for CheckView {
+    type Output = i32;
+
+    /// Not inlined, so that each scene's stack frame is its own.
+    #[inline(never)]
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> i32 {
+        let (mut steps, mut ticks, mut worst) = (0u64, 0u64, 0u32);
+        loop {
+            let t0 = systick::now();
+            let stepped = view.step();
+            let used = systick::elapsed(t0, systick::now());
+            if !stepped {
+                break;
+            }
+            steps += 1;
+            ticks += u64::from(used);
+            worst = worst.max(used);
+        }
+        let outcome = view.outcome().unwrap_or(Outcome::Unfinished);
+        let st = view.summary();
+        defmt::println!(
+            "{=str} outcome={} t={=f32} steps={=u64} pivots={=u64} max_active={=u8} checksum={=u32:08x}",
+            self.name,
+            outcome,
+            view.time().as_f64() as f32,
+            st.steps,
+            st.pivots,
+            st.most_lcp_contacts.unwrap_or(0),
+            view.checksum()
+        );
+        defmt::println!(
+            "{=str} timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
+            self.name,
+            ticks,
+            worst,
+            steps
+        );
+        i32::from(outcome != self.expected)
+    }
+}
+
+/// The puck and the billiard ball at their defaults, in f32, through the registry's view; the
+/// number refused or ended otherwise than physics says (the puck stops, the ball rolls).
+#[cfg(feature = "qemu-spatial")]
+fn check_spatial_scenes() -> i32 {
+    let mut failures = 0;
+    for kind in [SceneKind::Puck, SceneKind::Billiard] {
+        let check = CheckView { name: kind.name(), expected: expected(kind) };
+        stack_peak::paint();
+        failures +=
+            match SceneParams::defaults(kind).build_view::<0, _>(Precision::F32, LcpLayout::Reduced, check) {
+                Ok(failed) => failed,
+                Err(e) => {
+                    defmt::println!("{=str}: {}", kind.name(), e);
+                    1
+                }
+            };
+        print_stack_peak(kind.name());
+    }
+    failures
+}
+
 /// Runs the 3-block stack through the stack rig (`StackRig` on headless pins, the start button
 /// pressed on the first tick), timing each tick that stepped, and prints its outcome, steps and
 /// the checksum of every step's states of all bodies (as the plain runs), each interface's mode
@@ -626,6 +711,10 @@ pub fn main() -> ! {
     {
         failures += check_multibody_scenes();
         failures += check_stack_rig();
+    }
+    #[cfg(feature = "qemu-spatial")]
+    {
+        failures += check_spatial_scenes();
     }
     defmt::println!("exit {=i32}", failures);
     semihosting::process::exit(failures)

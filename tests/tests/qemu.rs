@@ -1,7 +1,8 @@
 //! The firmware, cross-built by `scripts/test.sh`, run under QEMU: its decoded defmt output
 //! and its exit status are checked. Ignored in a plain `cargo test` (they need the ELFs);
 //! `scripts/test.sh` builds them and runs these with `--ignored`, passing the paths in
-//! `MS_FIRMWARE_M4`, `MS_FIRMWARE_M0` and `MS_FIRMWARE_M33`.
+//! `MS_FIRMWARE_M4`, `MS_FIRMWARE_M0` and `MS_FIRMWARE_M33` (and the spatial builds' in
+//! `MS_FIRMWARE_M4_SPATIAL` and `MS_FIRMWARE_M33_SPATIAL`).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::path::PathBuf;
@@ -13,9 +14,9 @@ use meterstick_core::multibody::scenes::{
 };
 use meterstick_core::planar::Checksum;
 use meterstick_core::scene::{
-    Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, MeterStick6, MeterStickParams,
-    MultibodyVisitor, Outcome, Painleve, PainleveParams, Precision, Scene, SceneKind, SceneParams,
-    ThreeFingers, ThreeFingersParams,
+    Cylinder, CylinderParams, Incline, InclineParams, Ladder, LadderParams, LcpLayout, MeterStick6,
+    MeterStickParams, MultibodyVisitor, Outcome, Painleve, PainleveParams, Precision, Scene, SceneKind,
+    SceneParams, SceneView, ThreeFingers, ThreeFingersParams, ViewVisitor,
 };
 use meterstick_host_sim::qemu::{self, FirmwareRun, Machine};
 
@@ -251,6 +252,58 @@ fn check_stack_rig(run: &FirmwareRun) {
         }
         let timing = run.lines.iter().find(|l| l.starts_with(&format!("{name} rig "))).expect("timing line");
         assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
+    }
+}
+
+/// The host's f32 run of a scene through the registry's view, as the spatial firmware runs it:
+/// outcome, steps and the view's checksum.
+struct HostView;
+
+impl ViewVisitor for HostView {
+    type Output = (Outcome, u64, u32);
+
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Self::Output {
+        let mut steps = 0;
+        while view.step() {
+            steps += 1;
+        }
+        (view.outcome().unwrap(), steps, view.checksum())
+    }
+}
+
+/// The puck and the billiard ball at their defaults (firmware/src/qemu.rs, `qemu-spatial`): the
+/// outcome physics says (the puck stops, the ball rolls: `docs/scenes.md`), and outcome, steps
+/// and checksum equal to the host's f32 run (bit-identical IEEE f32 arithmetic); a timing line
+/// for every step.
+fn check_spatial_scenes(run: &FirmwareRun) {
+    for (kind, expected) in [(SceneKind::Puck, Outcome::Stopped), (SceneKind::Billiard, Outcome::Rolled)] {
+        let (outcome, steps, sum) = SceneParams::defaults(kind)
+            .build_view::<0, _>(Precision::F32, LcpLayout::Reduced, HostView)
+            .unwrap();
+        assert_eq!(outcome, expected, "{kind} on the host");
+        let name = kind.name();
+        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
+        assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
+        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+        assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
+        let timing =
+            run.lines.iter().find(|l| l.starts_with(&format!("{name} timing "))).expect("timing line");
+        assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
+    }
+}
+
+/// The spatial builds: the scenes of one body as every build runs them, and the puck and the
+/// billiard ball (the Cortex-M4F and the Cortex-M33F).
+#[test]
+#[ignore = "needs the cross-built firmware and qemu-system-arm: run scripts/test.sh"]
+fn spatial_scenes_on_the_m4f_and_the_m33f() {
+    for (var, machine) in
+        [("MS_FIRMWARE_M4_SPATIAL", Machine::Mps2An386), ("MS_FIRMWARE_M33_SPATIAL", Machine::Mps2An505)]
+    {
+        let run = run(var, machine);
+        check_common(&run);
+        check_other_scenes(&run);
+        check_spatial_scenes(&run);
     }
 }
 
