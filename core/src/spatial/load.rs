@@ -15,10 +15,10 @@
 //!
 //! The load moves the body's motion in the plane (every point's friction has its own direction),
 //! so the slips move: the directions are set to the new slips and the load taken again until they
-//! agree within the step's round-off, at most [`MAX_DIRECTIONS`] times
-//! ([`StepError::ConeNotConverged`]). A point whose slip would stop under the new load leaves the
-//! step to the LCP's answer (its friction is no longer `mu p_n` along the slip): the rule is for a
-//! base sliding as a whole.
+//! agree within the step's round-off, at most [`MAX_DIRECTIONS`] times. A point whose slip would
+//! stop under the new load, or directions that do not settle (a point's slip near its end turns
+//! with the load), leave the step to the LCP's answer and its vertex load (its friction is no
+//! longer `mu p_n` along a slip the load does not turn): the rule is for a base sliding as a whole.
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::inverse_inertia_times;
@@ -93,9 +93,9 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// than [`OPEN_FROM`] points touch or one of them does not slide.
     ///
     /// # Errors
-    /// [`StepError::Solver`] (the least-norm LCP), [`StepError::ConeNotConverged`] (slips and
-    /// directions did not agree), [`StepError::ConeUnverified`] (the load misses the motion out of
-    /// the plane, or an answer the circular cone's conditions, beyond round-off).
+    /// [`StepError::Solver`] (the least-norm LCP), [`StepError::ConeUnverified`] (the load misses
+    /// the motion out of the plane, or an answer the circular cone's conditions, beyond
+    /// round-off).
     pub fn least_norm<const N: usize>(
         &self,
         solver: &Lemke<T, N>,
@@ -140,8 +140,9 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
 
     /// The least-norm load of the `touching` points that moves the body out of the plane by `g`
     /// (`(n . dv, lever t1 . domega, lever t2 . domega)`), each point's friction along its slip,
-    /// the slips set again until they agree (module docs). `None` when a point would stop, or
-    /// (`feasible` false) no load `x >= 0` gives `g`.
+    /// the slips set again until they agree (module docs). `None` when a point would stop, the
+    /// directions do not settle in [`MAX_DIRECTIONS`] tries, or (`feasible` false) no load
+    /// `x >= 0` gives `g`.
     #[allow(clippy::too_many_arguments)]
     fn settle<const N: usize>(
         &self,
@@ -207,7 +208,9 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             }
             return Ok(Some((out, v, w)));
         }
-        Err(StepError::ConeNotConverged)
+        // The directions did not settle (a point's slip near its end turns with the load): the
+        // step is the LCP's.
+        Ok(None)
     }
 
     /// The least-norm `x >= 0` with `sum_i x_i columns_i = g` over the `touching` points (module

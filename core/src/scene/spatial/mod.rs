@@ -8,10 +8,12 @@
 //! from its parameters, the outcome it judges after each step, what it measures.
 
 mod billiard;
+mod curling;
 mod puck;
 mod view;
 
 pub use billiard::{Billiard, BilliardParams};
+pub use curling::{Curling, CurlingParams, MAX_POINTS};
 pub use puck::{Puck, PuckParams};
 pub use view::SpatialView;
 
@@ -51,9 +53,9 @@ pub fn friction_cone<T: Real>(directions: T) -> Result<FrictionCone, ParamError>
 
 /// A scene in three dimensions, as [`SpatialView`] drives it; its LCP has `N` rows
 /// ([`CIRCULAR_ROWS`] or [`PYRAMID_ROWS`]).
-pub trait SpatialScene<T: Real, const N: usize = CIRCULAR_ROWS> {
+pub trait SpatialScene<T: Real, const N: usize = CIRCULAR_ROWS, const K: usize = 1> {
     /// Advances one step and judges it; `None` once the run has an outcome (nothing done).
-    fn step(&mut self) -> Option<SpatialStepReport<T, 1>>;
+    fn step(&mut self) -> Option<SpatialStepReport<T, K>>;
     /// Takes the outcome so that the run goes on ([`crate::scene::SceneView::go_on`]); `None`
     /// before it.
     fn go_on(&mut self) -> Option<Outcome>;
@@ -62,29 +64,29 @@ pub trait SpatialScene<T: Real, const N: usize = CIRCULAR_ROWS> {
     /// The body's outline.
     fn shape(&self) -> BodyShape<T>;
     /// The run: its stepper and counters.
-    fn run(&self) -> &Run<T, N>;
+    fn run(&self) -> &Run<T, N, K>;
     /// What the scene measures, in its catalogue entry's order.
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
 }
 
-/// One body on a plane at one point, stepped to an outcome by an LCP of `N` rows: the part every
+/// One body on a plane at `K` points, stepped to an outcome by an LCP of `N` rows: the part every
 /// scene in three dimensions shares.
 #[derive(Debug, Clone)]
-pub struct Run<T: Real, const N: usize = CIRCULAR_ROWS> {
-    stepper: SpatialStepper<T, 1, N>,
+pub struct Run<T: Real, const N: usize = CIRCULAR_ROWS, const K: usize = 1> {
+    stepper: SpatialStepper<T, K, N>,
     max_time: T,
     outcome: Option<Outcome>,
     stats: RunStats,
 }
 
-impl<T: Real, const N: usize> Run<T, N> {
-    fn new(stepper: SpatialStepper<T, 1, N>, max_time: T) -> Self {
+impl<T: Real, const N: usize, const K: usize> Run<T, N, K> {
+    fn new(stepper: SpatialStepper<T, K, N>, max_time: T) -> Self {
         Self { stepper, max_time, outcome: None, stats: RunStats::default() }
     }
 
     /// The stepper.
     #[must_use]
-    pub const fn stepper(&self) -> &SpatialStepper<T, 1, N> {
+    pub const fn stepper(&self) -> &SpatialStepper<T, K, N> {
         &self.stepper
     }
 
@@ -98,9 +100,9 @@ impl<T: Real, const N: usize> Run<T, N> {
     /// limit (`at_limit`); a failed step ends the run with its error.
     fn advance(
         &mut self,
-        judge: impl FnOnce(&SpatialStepReport<T, 1>) -> Option<Outcome>,
+        judge: impl FnOnce(&SpatialStepReport<T, K>) -> Option<Outcome>,
         at_limit: Outcome,
-    ) -> Option<SpatialStepReport<T, 1>> {
+    ) -> Option<SpatialStepReport<T, K>> {
         if self.outcome.is_some() {
             return None;
         }
