@@ -99,9 +99,9 @@
 //!   the same step (Farkas, Bartels, Unger & Wolf, PRL 90, 248302 (2003)), and the same launch
 //!   turned about the vertical ends turned.
 //!
-//! Scope: one body on one plane; its scenes (a puck, a billiard ball) are `crate::scene::spatial`'s
-//! (feature `scenes-spatial`). Moving supports (fingers) and several bodies are to come
-//! (`CHANGELOG.md`).
+//! Scope: one body on one plane; its scenes (a puck, a billiard ball, a curling stone) are
+//! `crate::scene::spatial`'s (feature `scenes-spatial`). Moving supports (fingers) and several
+//! bodies are to come (`CHANGELOG.md`).
 
 mod algebra;
 mod body;

@@ -1,8 +1,10 @@
 //! The scenes in three dimensions (`docs/scenes.md`, "Scenes in three dimensions"; feature
 //! `scenes-spatial`): [`Puck`] and [`Billiard`], one body touching a plane at one point, stepped by
 //! [`crate::spatial::OneContact`] with Coulomb's circular cone (or, with `friction_directions`
-//! set, a stepper of [`PYRAMID_ROWS`] rows with the pyramid of LCP engines, the baseline), and seen
-//! by the front ends through [`SpatialView`] like every other scene.
+//! set, a stepper of [`PYRAMID_ROWS`] rows with the pyramid of LCP engines, the baseline), and
+//! [`Curling`], a ring or a disc touching it at up to [`MAX_POINTS`] points (its flat base's load
+//! the least-norm one, `crate::spatial`'s "The load"); each seen by the front ends through
+//! [`SpatialView`] like every other scene.
 //!
 //! Each scene is a [`Run`] (the stepper, the outcome, the counters) and its own rules: its start
 //! from its parameters, the outcome it judges after each step, what it measures.
