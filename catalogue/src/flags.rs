@@ -525,7 +525,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "shape",
         unit: "",
-        help: "curling: the base, 0 a ring (its points on its rim) or 1 a uniform disc",
+        help: "curling: the base, ring (0: its points on its rim) or disc (1: a uniform disc)",
         fields: &[(CU, "shape")],
     },
     #[cfg(feature = "spatial")]
@@ -550,6 +550,15 @@ pub const FLAGS: &[Flag] = &[
         fields: &[(CU, "mu")],
     },
 ];
+
+/// The words a flag takes for its values, `(flag, word, value)`: `--shape ring` is `--shape 0`.
+pub const WORDS: &[(&str, &str, f64)] = &[("shape", "ring", 0.0), ("shape", "disc", 1.0)];
+
+/// The value `word` stands for in flag `long` ([`WORDS`]).
+#[must_use]
+pub fn word_value(long: &str, word: &str) -> Option<f64> {
+    WORDS.iter().find(|(f, w, _)| *f == long && *w == word).map(|(_, _, v)| *v)
+}
 
 /// The number of flags.
 pub const FLAG_COUNT: usize = FLAGS.len();

@@ -32,7 +32,7 @@ mod intros;
 mod refusals;
 mod scenes;
 
-pub use flags::{FLAG_COUNT, FLAGS, Flag, flag_index, flag_of};
+pub use flags::{FLAG_COUNT, FLAGS, Flag, WORDS, flag_index, flag_of, word_value};
 pub use intros::{INTRODUCTIONS, Introduction};
 pub use refusals::{MAX_STEPS, Refusal, Short, Worded};
 pub use scenes::{Catalogued, SCENES, SceneInfo};

@@ -188,7 +188,7 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
         outcomes: &[OutcomeKind::Stopped, OutcomeKind::Slid],
         measures: &["terminal_ratio", "slide_stop_s", "spin_stop_s"],
         ranges: &[
-            ("shape", "0 (a ring) or 1 (a disc)"),
+            ("shape", "ring (0) or disc (1)"),
             ("points", "a whole number from 4 to 8"),
             ("step", "0 < h <= duration"),
         ],

@@ -137,7 +137,7 @@ fn scene_prints_the_checksum_and_bad_flags_are_refused_by_name() {
 
 #[test]
 fn curling_runs_through_scene_and_its_bad_flags_are_refused_by_name() {
-    let (code, stdout, err) = host_sim(&["scene", "--scene", "curling", "--shape", "0", "--points", "4"]);
+    let (code, stdout, err) = host_sim(&["scene", "--scene", "curling", "--shape", "ring", "--points", "4"]);
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("outcome Stopped") && stdout.contains("terminal_ratio"), "{stdout}");
     for (args, words) in [
@@ -148,7 +148,11 @@ fn curling_runs_through_scene_and_its_bad_flags_are_refused_by_name() {
         (&["scene", "--scene", "curling", "--points", "4.5"][..], "--points 4.5: out of range"),
         (
             &["scene", "--scene", "curling", "--shape", "2"][..],
-            "--shape 2: out of range (0 (a ring) or 1 (a disc))",
+            "--shape 2: out of range (ring (0) or disc (1))",
+        ),
+        (
+            &["scene", "--scene", "curling", "--shape", "cube"][..],
+            "\"cube\" is not a number nor ring nor disc",
         ),
         (&["scene", "--scene", "curling", "--mu", "0"][..], "--mu"),
         (&["scene", "--scene", "curling", "--mu-k", "0.3"][..], "--mu-k does not apply to --scene curling"),
