@@ -36,7 +36,7 @@ impl Flag {
 }
 
 #[cfg(feature = "spatial")]
-use SceneKind::{Billiard as BI, Puck as PK};
+use SceneKind::{Billiard as BI, Curling as CU, Puck as PK};
 #[cfg(feature = "multibody")]
 use SceneKind::{BlockOnBlock as BB, DiscOnBoard as DB, Stack as ST, Tablecloth as TC};
 use SceneKind::{
@@ -49,7 +49,7 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "speed",
         unit: "m/s",
-        help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's velocity along x at the start (negative: its lower end slides away from under it); puck: the launch speed (>= 0); billiard: the ball's speed along +x (>= 0)",
+        help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's velocity along x at the start (negative: its lower end slides away from under it); puck: the launch speed (>= 0); billiard: the ball's speed along +x (>= 0); curling: the launch speed along +x (>= 0)",
         fields: &[
             (M, "finger1_velocity"),
             (F, "finger1_velocity"),
@@ -58,6 +58,8 @@ pub const FLAGS: &[Flag] = &[
             (PK, "speed"),
             #[cfg(feature = "spatial")]
             (BI, "speed"),
+            #[cfg(feature = "spatial")]
+            (CU, "speed"),
         ],
     },
     Flag {
@@ -196,6 +198,8 @@ pub const FLAGS: &[Flag] = &[
             (PK, "mass"),
             #[cfg(feature = "spatial")]
             (BI, "mass"),
+            #[cfg(feature = "spatial")]
+            (CU, "mass"),
         ],
     },
     Flag {
@@ -262,6 +266,8 @@ pub const FLAGS: &[Flag] = &[
             (PK, "radius"),
             #[cfg(feature = "spatial")]
             (BI, "radius"),
+            #[cfg(feature = "spatial")]
+            (CU, "radius"),
         ],
     },
     Flag {
@@ -293,6 +299,8 @@ pub const FLAGS: &[Flag] = &[
             (PK, "gravity"),
             #[cfg(feature = "spatial")]
             (BI, "gravity"),
+            #[cfg(feature = "spatial")]
+            (CU, "gravity"),
         ],
     },
     Flag {
@@ -318,6 +326,8 @@ pub const FLAGS: &[Flag] = &[
             (PK, "step"),
             #[cfg(feature = "spatial")]
             (BI, "step"),
+            #[cfg(feature = "spatial")]
+            (CU, "step"),
         ],
     },
     Flag {
@@ -343,6 +353,8 @@ pub const FLAGS: &[Flag] = &[
             (PK, "max_time"),
             #[cfg(feature = "spatial")]
             (BI, "max_time"),
+            #[cfg(feature = "spatial")]
+            (CU, "max_time"),
         ],
     },
     Flag {
@@ -368,6 +380,8 @@ pub const FLAGS: &[Flag] = &[
             (PK, "stick_speed"),
             #[cfg(feature = "spatial")]
             (BI, "stick_speed"),
+            #[cfg(feature = "spatial")]
+            (CU, "stick_speed"),
         ],
     },
     Flag {
@@ -507,7 +521,44 @@ pub const FLAGS: &[Flag] = &[
                that LCP engines use instead (a sliding body's path bends toward them)",
         fields: &[(PK, "friction_directions"), (BI, "friction_directions")],
     },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "shape",
+        unit: "",
+        help: "curling: the base, ring (0: its points on its rim) or disc (1: a uniform disc)",
+        fields: &[(CU, "shape")],
+    },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "points",
+        unit: "",
+        help: "curling: the points of the base touching the table (a whole number from 4 to 8)",
+        fields: &[(CU, "points")],
+    },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "spin",
+        unit: "rad/s",
+        help: "curling: the launch spin about the vertical (+z)",
+        fields: &[(CU, "spin")],
+    },
+    #[cfg(feature = "spatial")]
+    Flag {
+        long: "mu",
+        unit: "",
+        help: "curling: the coefficient of friction with the table (> 0)",
+        fields: &[(CU, "mu")],
+    },
 ];
+
+/// The words a flag takes for its values, `(flag, word, value)`: `--shape ring` is `--shape 0`.
+pub const WORDS: &[(&str, &str, f64)] = &[("shape", "ring", 0.0), ("shape", "disc", 1.0)];
+
+/// The value `word` stands for in flag `long` ([`WORDS`]).
+#[must_use]
+pub fn word_value(long: &str, word: &str) -> Option<f64> {
+    WORDS.iter().find(|(f, w, _)| *f == long && *w == word).map(|(_, _, v)| *v)
+}
 
 /// The number of flags.
 pub const FLAG_COUNT: usize = FLAGS.len();

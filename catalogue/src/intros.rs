@@ -146,4 +146,15 @@ pub const INTRODUCTIONS: [Introduction; SceneKind::ALL.len()] = [
                 spin about the vertical stays, since a point of contact has no friction against it. \
                 Look for the moment it starts rolling and the rolling velocity.",
     },
+    #[cfg(feature = "spatial")]
+    Introduction {
+        kind: SceneKind::Curling,
+        heading: "A curling stone that slides and spins",
+        intro: "A ring or a flat disc is launched along the table, spinning. Each point of its base slips \
+                its own way, and friction opposes each point's slip: spinning makes the stone slide \
+                further, sliding makes it stop spinning sooner, and the two stop at the same moment. \
+                Near the end the sliding speed over the rim's speed tends to a number of the shape \
+                alone: 1 for a ring, 0.653 for a uniform disc (Farkas, Bartels, Unger and Wolf, 2003). \
+                Look for the two stopping times and that ratio.",
+    },
 ];

@@ -36,7 +36,7 @@ mod refusals;
 mod scenes;
 
 pub use cautions::{Caution, F32_MASS_RATIO_REACH, MassRatioReach, WordedCaution, cautions};
-pub use flags::{FLAG_COUNT, FLAGS, Flag, flag_index, flag_of};
+pub use flags::{FLAG_COUNT, FLAGS, Flag, WORDS, flag_index, flag_of, word_value};
 pub use intros::{INTRODUCTIONS, Introduction};
 pub use refusals::{MAX_STEPS, Refusal, Short, Worded};
 pub use scenes::{Catalogued, SCENES, SceneInfo};
@@ -57,8 +57,13 @@ mod tests {
             assert_eq!(kind.info().kind, kind);
             assert_eq!(kind.index(), i);
             // A scene in three dimensions is not a planar `Scene` (`contacts` 0): its names are its
-            // view's contacts'.
-            let contacts = if kind.is_spatial() { 1 } else { kind.contacts() };
+            // view's contacts', the curling stone's one a point of its base at most.
+            let contacts = match kind {
+                #[cfg(feature = "spatial")]
+                SceneKind::Curling => meterstick_core::scene::spatial::MAX_POINTS,
+                _ if kind.is_spatial() => 1,
+                _ => kind.contacts(),
+            };
             assert_eq!(kind.info().contact_names.len(), contacts, "{kind}");
             for long in kind.info().main_flags {
                 let flag = FLAGS.iter().find(|f| f.long == *long);

@@ -177,6 +177,22 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
             ("friction_directions", "0, or a whole number from 3 to 16"),
         ],
     },
+    #[cfg(feature = "spatial")]
+    SceneInfo {
+        kind: SceneKind::Curling,
+        title: "A curling stone, a ring or a disc, launched sliding and spinning: it stops sliding and spinning together",
+        contact_names: &[
+            "point 1", "point 2", "point 3", "point 4", "point 5", "point 6", "point 7", "point 8",
+        ],
+        main_flags: &["shape", "points", "speed", "spin", "mu", "radius", "h"],
+        outcomes: &[OutcomeKind::Stopped, OutcomeKind::Slid],
+        measures: &["terminal_ratio", "slide_stop_s", "spin_stop_s"],
+        ranges: &[
+            ("shape", "ring (0) or disc (1)"),
+            ("points", "a whole number from 4 to 8"),
+            ("step", "0 < h <= duration"),
+        ],
+    },
 ];
 
 /// The catalogue's entry of a scene.

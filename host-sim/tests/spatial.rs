@@ -134,3 +134,32 @@ fn scene_prints_the_checksum_and_bad_flags_are_refused_by_name() {
         assert!(err.contains(words), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn curling_runs_through_scene_and_its_bad_flags_are_refused_by_name() {
+    let (code, stdout, err) = host_sim(&["scene", "--scene", "curling", "--shape", "ring", "--points", "4"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("outcome Stopped") && stdout.contains("terminal_ratio"), "{stdout}");
+    for (args, words) in [
+        (
+            &["scene", "--scene", "curling", "--points", "9"][..],
+            "--points 9: out of range (a whole number from 4 to 8)",
+        ),
+        (&["scene", "--scene", "curling", "--points", "4.5"][..], "--points 4.5: out of range"),
+        (
+            &["scene", "--scene", "curling", "--shape", "2"][..],
+            "--shape 2: out of range (ring (0) or disc (1))",
+        ),
+        (
+            &["scene", "--scene", "curling", "--shape", "cube"][..],
+            "\"cube\" is not a number nor ring nor disc",
+        ),
+        (&["scene", "--scene", "curling", "--mu", "0"][..], "--mu"),
+        (&["scene", "--scene", "curling", "--mu-k", "0.3"][..], "--mu-k does not apply to --scene curling"),
+        (&["scene", "--scene", "puck", "--spin", "3"][..], "--spin does not apply to --scene puck"),
+    ] {
+        let (code, _, err) = host_sim(args);
+        assert_ne!(code, 0, "{args:?}");
+        assert!(err.contains(words), "{args:?}: {err}");
+    }
+}

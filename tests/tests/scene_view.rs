@@ -481,6 +481,10 @@ fn mass_and_inertia(params: &SceneParams) -> Vec<(f64, f64)> {
         // In three dimensions: the moment about the body's own `z` (a puck's axis).
         SceneParams::Puck(p) => vec![(p.mass, p.mass * p.radius * p.radius * 0.5)],
         SceneParams::Billiard(p) => vec![(p.mass, 0.4 * p.mass * p.radius * p.radius)],
+        // A thin ring (`shape` 0): `m R^2`; a thin uniform disc: `m R^2 / 2`.
+        SceneParams::Curling(p) => {
+            vec![(p.mass, if p.shape == 0.0 { 1.0 } else { 0.5 } * p.mass * p.radius * p.radius)]
+        }
     }
 }
 

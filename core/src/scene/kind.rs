@@ -30,7 +30,7 @@ use crate::multibody::scenes::{BlockOnBlockParams, DiscOnBoardParams, StackParam
 use crate::params::ParamError;
 use crate::real::Real;
 #[cfg(feature = "scenes-spatial")]
-use crate::scene::spatial::{BilliardParams, PuckParams};
+use crate::scene::spatial::{BilliardParams, CurlingParams, PuckParams};
 
 /// A scene of the catalogue (`docs/scenes.md`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -66,12 +66,15 @@ pub enum SceneKind {
     /// A billiard ball struck with spin: it slides, then rolls (three dimensions).
     #[cfg(feature = "scenes-spatial")]
     Billiard,
+    /// A ring or a uniform disc sliding and spinning: both stop together (three dimensions).
+    #[cfg(feature = "scenes-spatial")]
+    Curling,
 }
 
 /// The number of scenes this build names ([`SceneKind::ALL`]).
 const SCENE_COUNT: usize = 6
     + if cfg!(feature = "scenes-multibody") { 4 } else { 0 }
-    + if cfg!(feature = "scenes-spatial") { 2 } else { 0 };
+    + if cfg!(feature = "scenes-spatial") { 3 } else { 0 };
 
 /// The most quantities a scene measures ([`super::Scene::measured`]; `meterstick-catalogue` names
 /// them).
@@ -100,6 +103,8 @@ impl SceneKind {
         Self::Puck,
         #[cfg(feature = "scenes-spatial")]
         Self::Billiard,
+        #[cfg(feature = "scenes-spatial")]
+        Self::Curling,
     ];
 
     /// The scene's name on the command line and in the page's URL, e.g. `meter-stick`.
@@ -124,6 +129,8 @@ impl SceneKind {
             Self::Puck => "puck",
             #[cfg(feature = "scenes-spatial")]
             Self::Billiard => "billiard",
+            #[cfg(feature = "scenes-spatial")]
+            Self::Curling => "curling",
         }
     }
 
@@ -139,7 +146,7 @@ impl SceneKind {
             #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock | Self::Tablecloth | Self::Stack | Self::DiscOnBoard => 0,
             #[cfg(feature = "scenes-spatial")]
-            Self::Puck | Self::Billiard => 0,
+            Self::Puck | Self::Billiard | Self::Curling => 0,
         }
     }
 
@@ -148,7 +155,7 @@ impl SceneKind {
     #[must_use]
     pub const fn is_spatial(self) -> bool {
         #[cfg(feature = "scenes-spatial")]
-        return matches!(self, Self::Puck | Self::Billiard);
+        return matches!(self, Self::Puck | Self::Billiard | Self::Curling);
         #[cfg(not(feature = "scenes-spatial"))]
         {
             let _ = self;
@@ -219,6 +226,8 @@ impl SceneKind {
             Self::Puck => PuckParams::<f64>::NAMES,
             #[cfg(feature = "scenes-spatial")]
             Self::Billiard => BilliardParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-spatial")]
+            Self::Curling => CurlingParams::<f64>::NAMES,
         }
     }
 }
@@ -336,6 +345,9 @@ pub enum SceneParams {
     /// The billiard ball.
     #[cfg(feature = "scenes-spatial")]
     Billiard(BilliardParams<f64>),
+    /// The curling stone.
+    #[cfg(feature = "scenes-spatial")]
+    Curling(CurlingParams<f64>),
 }
 
 impl SceneParams {
@@ -361,6 +373,8 @@ impl SceneParams {
             SceneKind::Puck => Self::Puck(PuckParams::default()),
             #[cfg(feature = "scenes-spatial")]
             SceneKind::Billiard => Self::Billiard(BilliardParams::default()),
+            #[cfg(feature = "scenes-spatial")]
+            SceneKind::Curling => Self::Curling(CurlingParams::default()),
         }
     }
 
@@ -386,6 +400,8 @@ impl SceneParams {
             Self::Puck(_) => SceneKind::Puck,
             #[cfg(feature = "scenes-spatial")]
             Self::Billiard(_) => SceneKind::Billiard,
+            #[cfg(feature = "scenes-spatial")]
+            Self::Curling(_) => SceneKind::Curling,
         }
     }
 
@@ -411,6 +427,8 @@ impl SceneParams {
             Self::Puck(p) => p.get(field),
             #[cfg(feature = "scenes-spatial")]
             Self::Billiard(p) => p.get(field),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Curling(p) => p.get(field),
         }
     }
 
@@ -435,6 +453,8 @@ impl SceneParams {
             Self::Puck(p) => p.set(field, value),
             #[cfg(feature = "scenes-spatial")]
             Self::Billiard(p) => p.set(field, value),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Curling(p) => p.set(field, value),
         }
     }
 
@@ -501,6 +521,11 @@ impl SceneParams {
             }
             #[cfg(feature = "scenes-spatial")]
             Self::Billiard(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            #[cfg(feature = "scenes-spatial")]
+            Self::Curling(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }

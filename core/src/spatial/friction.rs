@@ -52,14 +52,19 @@ pub(super) struct Contacts<'a, T: Real, const K: usize> {
 impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// `e . W f` per unit mass between a unit impulse along `f` at arm `rf` and the velocity
     /// along `e` of the point at arm `re`: `e . f + m (re x e) . I_w^-1 (rf x f)`.
-    fn delassus(&self, re: &Vector<T>, e: &Vector<T>, rf: &Vector<T>, f: &Vector<T>) -> T {
+    pub(super) fn delassus(&self, re: &Vector<T>, e: &Vector<T>, rf: &Vector<T>, f: &Vector<T>) -> T {
         let turn = inverse_inertia_times(self.body, self.orientation, &cross(rf, f));
         dot(e, f) + self.body.mass * dot(&cross(re, e), &turn)
     }
 
     /// The body's velocity and angular velocity after each active contact's impulse `p` (per unit
     /// mass, world axes): `v~ + sum p`, `omega~ + m I_w^-1 sum r x p`.
-    fn moved(&self, p: &[Vector<T>; K], v_free: &Vector<T>, w_free: &Vector<T>) -> (Vector<T>, Vector<T>) {
+    pub(super) fn moved(
+        &self,
+        p: &[Vector<T>; K],
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> (Vector<T>, Vector<T>) {
         let (mut push, mut twist) = ([T::zero(); 3], [T::zero(); 3]);
         for (c, p) in self.touches.iter().zip(p).filter(|(c, _)| c.active) {
             push = add(&push, p);
@@ -71,7 +76,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
 
     /// Contact `c`'s slip at velocity `v` and angular velocity `w`: its point's velocity in the
     /// plane.
-    fn slip(&self, v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
+    pub(super) fn slip(&self, v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
         let u = add(v, &cross(w, &c.arm));
         sub(&u, &scale(dot(&self.normal, &u), &self.normal))
     }
@@ -367,7 +372,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// LCP answer is verified already; this checks the cone the LCP's line stood for). Then: the
     /// tries it took, `bound` (the LCP's verification scale, in impulse per unit mass), and
     /// whether the friction must oppose the slip (not a pyramid's).
-    fn report(
+    pub(super) fn report(
         &self,
         pn: T,
         pt: &Vector<T>,
@@ -432,7 +437,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
 
 /// `x` with `m x = b`, by Gaussian elimination with partial pivoting; a pivot of zero leaves its
 /// unknown zero (a contact whose turn the system does not decide keeps its line).
-fn solved<T: Real, const K: usize>(mut m: [[T; K]; K], mut b: [T; K]) -> [T; K] {
+pub(super) fn solved<T: Real, const K: usize>(mut m: [[T; K]; K], mut b: [T; K]) -> [T; K] {
     for col in 0..K {
         let mut pivot = col;
         for row in col + 1..K {
@@ -468,7 +473,7 @@ fn solved<T: Real, const K: usize>(mut m: [[T; K]; K], mut b: [T; K]) -> [T; K] 
 }
 
 /// Rows `from..N` of an LCP no contact uses: `w = z + 1` (their `z` zero).
-fn pad<T: Real, const N: usize>(m: &mut [[T; N]; N], q: &mut [T; N], from: usize) {
+pub(super) fn pad<T: Real, const N: usize>(m: &mut [[T; N]; N], q: &mut [T; N], from: usize) {
     for row in from..N {
         m[row][row] = T::one();
         q[row] = T::one();
@@ -477,7 +482,7 @@ fn pad<T: Real, const N: usize>(m: &mut [[T; N]; N], q: &mut [T; N], from: usize
 
 /// What a cone's condition may miss by, in impulse per unit mass: the LCP's verification
 /// tolerance times its scale `||M|| ||z|| + ||q||` (`crate::lcp::verify`), four times over.
-fn verification_bound<T: Real, const N: usize>(
+pub(super) fn verification_bound<T: Real, const N: usize>(
     solver: &Lemke<T, N>,
     lcp: &Lcp<T, N>,
     z: &nalgebra::SVector<T, N>,

@@ -55,8 +55,21 @@
 //!    p_n` is a failure.
 //!
 //!    **The load.** Up to three points (not in a line) carry a load the step decides. Four or more
-//!    points of a flat base leave it open, and the LCP answers with one of its vertices: the rule
-//!    of `docs/formulation.md` ("The load: the least norm") is not yet the spatial core's.
+//!    points of a flat base leave it open, and the LCP would answer with one of its vertices; the
+//!    core takes the load of least 2-norm (`docs/formulation.md`, "The load: the least norm"), the
+//!    one elasticity gives equally stiff points (Menabrea): with every touching point sliding, each
+//!    point's friction `mu p_n` against its slip, the normal impulses of least norm that give the
+//!    body's motion out of the plane (`n . v` and the turn about the plane's two axes), `p_n >= 0`
+//!    (`super::load`'s module): uniform under a centred base whose centre of mass is in its plane,
+//!    affine in the points' positions when the friction's moment tips it. A base sliding as a whole
+//!    (every point touching and slipping before the step) is stepped that way without the
+//!    contacts' LCP (whose degenerate rows, four or more coplanar normals, end Lemke's method on a
+//!    ray at some orientations); its motion out of the plane is the one that closes every point's
+//!    normal row. Otherwise the LCP's answer is taken and, when four or more points touch and all
+//!    slide after it, its load replaced by the least-norm one. Either way the directions are set to
+//!    the slips until they agree ([`MAX_DIRECTIONS`] tries) and every answer is verified (the motion
+//!    out of the plane, the circular cone, `p_n >= 0`). A base with a sticking point keeps the
+//!    LCP's load (a vertex).
 //! 4. `v+ = v~ + p`, `omega+ = omega~ + m I_w^-1 (r x p)`, `x+ = x + h v+`. **The gyroscopic
 //!    term**: between the impulses no torque acts, so the angular momentum `L = I_w(q) omega+`
 //!    (world axes) is the body's all through the step, and its angular velocity at any
@@ -79,18 +92,21 @@
 //! - A puck launched horizontally across an incline with `mu = tan(angle)` tends to half its
 //!   launch speed.
 //! - A free box tumbling at 10 rad/s keeps its angular momentum and its energy over 1e5 steps.
+//! - A ring of four to eight feet sliding without turning carries the least-norm (Menabrea) load,
+//!   uniform when its centre of mass is in the feet's plane (`tests/tests/flat_base.rs`).
 //! - A tripod sliding without turning carries the loads its balance of forces and moments gives
 //!   (`tests/tests/spatial_contacts.rs`); spinning as it slides, it stops sliding and spinning in
 //!   the same step (Farkas, Bartels, Unger & Wolf, PRL 90, 248302 (2003)), and the same launch
 //!   turned about the vertical ends turned.
 //!
-//! Scope: one body on one plane; its scenes (a puck, a billiard ball) are `crate::scene::spatial`'s
-//! (feature `scenes-spatial`). Moving supports (fingers) and several bodies are to come
-//! (`CHANGELOG.md`).
+//! Scope: one body on one plane; its scenes (a puck, a billiard ball, a curling stone) are
+//! `crate::scene::spatial`'s (feature `scenes-spatial`). Moving supports (fingers) and several
+//! bodies are to come (`CHANGELOG.md`).
 
 mod algebra;
 mod body;
 mod friction;
+mod load;
 mod report;
 mod stepper;
 

@@ -63,6 +63,9 @@ pub enum SpatialShape<T> {
         /// m, body axes.
         offset: Vector<T>,
     },
+    /// A slot the body leaves empty (a base of fewer points than the stepper's `K`): it never
+    /// touches, enters no LCP and has no lever.
+    Unused,
 }
 
 /// How a contact's friction cone is taken.
@@ -125,6 +128,8 @@ pub struct SpatialStepper<T: Real, const K: usize, const N: usize> {
     steps: u64,
     solver: Lemke<T, N>,
     basis: Basis<N>,
+    /// The warm basis of the flat base's least-norm load (`super::load`).
+    load_basis: Basis<N>,
 }
 
 /// A body touching the plane at one point (a sphere, a puck).
@@ -221,6 +226,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             steps: 0,
             solver: Lemke::new(),
             basis: Basis::all_w(),
+            load_basis: Basis::all_w(),
         })
     }
 
@@ -254,10 +260,20 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
         &self.settings
     }
 
-    /// Contact `i`'s point from the centre of mass now, world axes (m); `None` past `K`.
+    /// Contact `i`'s point from the centre of mass now, world axes (m); `None` past `K` and for
+    /// a slot left [`SpatialShape::Unused`].
     #[must_use]
     pub fn lever(&self, i: usize) -> Option<Vector<T>> {
-        self.shapes.get(i).map(|shape| self.arm(shape, &self.state))
+        self.shapes
+            .get(i)
+            .filter(|shape| !matches!(shape, SpatialShape::Unused))
+            .map(|shape| self.arm(shape, &self.state))
+    }
+
+    /// The contacts the body has: the slots not left [`SpatialShape::Unused`].
+    #[must_use]
+    pub fn used(&self) -> usize {
+        self.shapes.iter().filter(|s| !matches!(s, SpatialShape::Unused)).count()
     }
 
     /// Contact `i`'s gap now: its point's height over the plane along the plane's normal (m,
@@ -279,6 +295,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
         match *shape {
             SpatialShape::Sphere { radius } => scale(-radius, &self.plane.normal),
             SpatialShape::Point { offset } => rotate(&state.orientation, &offset),
+            SpatialShape::Unused => [T::zero(); 3],
         }
     }
 
@@ -302,7 +319,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             let mu =
                 if self.modes[i] == Mode::Sliding { self.plane.mu_kinetic } else { self.plane.mu_static };
             Touch {
-                active: gap <= s.margin,
+                active: gap <= s.margin && !matches!(self.shapes[i], SpatialShape::Unused),
                 arm: r,
                 normal_free: dot(&n, &u_free) + normal_bias(gap, h, norm(&s.gravity), round_off),
                 slip_free: sub(&u_free, &scale(dot(&n, &u_free), &n)),
@@ -323,7 +340,13 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             };
             match s.friction {
                 FrictionCone::Circular => {
-                    contacts.solve(&self.solver, &mut self.basis, &mut pivots, &v_free, &w_free)?
+                    let (solver, load) = (&self.solver, &mut self.load_basis);
+                    if let Some(answer) = contacts.flat_base(solver, load, &mut pivots, &v_free, &w_free)? {
+                        answer
+                    } else {
+                        let path = contacts.solve(solver, &mut self.basis, &mut pivots, &v_free, &w_free)?;
+                        contacts.least_norm(solver, load, &mut pivots, path, &v_free, &w_free)?
+                    }
                 }
                 FrictionCone::Pyramid { directions } => contacts.solve_pyramid(
                     &self.solver,

@@ -2,7 +2,7 @@
 //! dimensions.
 
 use meterstick_core::multibody::scenes::DiscOnBoardParams;
-use meterstick_core::scene::spatial::{BilliardParams, PuckParams};
+use meterstick_core::scene::spatial::{BilliardParams, CurlingParams, PuckParams};
 use meterstick_core::scene::{OutcomeKind, SceneKind, SceneParams};
 
 use crate::trajectory::Measured;
@@ -88,6 +88,7 @@ pub fn law(spec: &SceneParams) -> Option<Law> {
         SceneParams::DiscOnBoard(p) => disc_on_board_law(&p),
         SceneParams::Puck(p) => puck_law(&p),
         SceneParams::Billiard(p) => billiard_law(&p),
+        SceneParams::Curling(p) => curling_law(&p),
         _ => return None,
     })
 }
@@ -190,5 +191,23 @@ pub fn billiard_law(p: &BilliardParams<f64>) -> Law {
             if rolls { [Some(t), Some(v[0]), Some(v[1])] } else { [None; 3] },
         ),
         text: "Rolled at t = 2 |u0| / (7 mu_k g), u0 = (v0 - R spin_y, R spin_x), at v = (5 v0 + 2 R omega0 x z) / 7",
+    }
+}
+
+/// The curling stone's law (`docs/scenes.md`, "curling"; Farkas, Bartels, Unger & Wolf, PRL 90,
+/// 248302 (2003)): sliding and spinning stop together, `v / (R omega)` tending to 1 for a ring and
+/// to 0.6530 for a uniform disc (the root of `F(e) / e = 2 T(e)`, derived there), whatever the
+/// launch; the stopping time has no closed form. A launch without spin or without speed has no
+/// ratio.
+#[must_use]
+pub fn curling_law(p: &CurlingParams<f64>) -> Law {
+    let ratio =
+        if p.speed > 0.0 && p.spin != 0.0 { Some(if p.is_ring() { 1.0 } else { 0.653 }) } else { None };
+    Law {
+        outcome: Some(OutcomeKind::Stopped),
+        lower_acceleration: None,
+        upper_acceleration: None,
+        measured: Measured::of(SceneKind::Curling, [ratio, None, None]),
+        text: "Stopped: sliding and spinning end together, v / (R omega) -> 1 (ring), 0.653 (uniform disc)",
     }
 }

@@ -47,16 +47,21 @@ pub struct SceneArgs {
     pub layout_given: bool,
 }
 
-/// Parses `"0.1"` or `"0.1,0.5"`.
-fn parse_list(s: &str) -> Result<Vec<f64>, String> {
+/// Parses `"0.1"` or `"0.1,0.5"`, each value a number or one of the words flag `long` takes
+/// (`meterstick_catalogue::WORDS`: `--shape ring`).
+fn parse_list(long: &'static str, s: &str) -> Result<Vec<f64>, String> {
     s.split(',')
         .map(|t| {
             let t = t.trim();
-            t.parse::<f64>().map_err(|_| {
+            meterstick_catalogue::word_value(long, t).map_or_else(|| t.parse::<f64>(), Ok).map_err(|_| {
+                let words: Vec<&str> =
+                    meterstick_catalogue::WORDS.iter().filter(|w| w.0 == long).map(|w| w.1).collect();
                 if t.starts_with("--") {
                     format!("{t:?} is not a number: every flag needs a value")
-                } else {
+                } else if words.is_empty() {
                     format!("{t:?} is not a number")
+                } else {
+                    format!("{t:?} is not a number nor {}", words.join(" nor "))
                 }
             })
         })
@@ -116,7 +121,7 @@ impl clap::Args for SceneArgs {
                     .value_name(value_name)
                     .allow_hyphen_values(true)
                     .action(ArgAction::Set)
-                    .value_parser(parse_list)
+                    .value_parser(move |s: &str| parse_list(flag.long, s))
                     .help(help_of(flag)),
             );
         }

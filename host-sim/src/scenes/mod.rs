@@ -145,7 +145,8 @@ impl ParamsExt for SceneParams {
             | Self::Stack(_)
             | Self::DiscOnBoard(_)
             | Self::Puck(_)
-            | Self::Billiard(_) => return None,
+            | Self::Billiard(_)
+            | Self::Curling(_) => return None,
         })
     }
 }

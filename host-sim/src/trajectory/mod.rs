@@ -173,6 +173,15 @@ pub struct Measured {
     /// Billiard: its velocity along `y` then (m/s).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rolling_velocity_y_m_s: Option<f64>,
+    /// Curling: `v / (R omega)` ten steps of friction before the end (absent for other scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub terminal_ratio: Option<f64>,
+    /// Curling: when it stopped sliding (s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slide_stop_s: Option<f64>,
+    /// Curling: when it stopped spinning (s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spin_stop_s: Option<f64>,
 }
 
 impl Measured {
@@ -204,6 +213,7 @@ impl Measured {
             SceneKind::Billiard => {
                 (m.rolling_time_s, m.rolling_velocity_x_m_s, m.rolling_velocity_y_m_s) = (a, b, c);
             }
+            SceneKind::Curling => (m.terminal_ratio, m.slide_stop_s, m.spin_stop_s) = (a, b, c),
         }
         m
     }
@@ -231,6 +241,7 @@ impl Measured {
             SceneKind::Stack => [m.max_speed_m_s, None, None],
             SceneKind::Puck => [m.final_speed_m_s, m.displacement_m, m.displacement_heading_deg],
             SceneKind::Billiard => [m.rolling_time_s, m.rolling_velocity_x_m_s, m.rolling_velocity_y_m_s],
+            SceneKind::Curling => [m.terminal_ratio, m.slide_stop_s, m.spin_stop_s],
         }
     }
 }

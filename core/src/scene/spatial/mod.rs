@@ -1,17 +1,21 @@
 //! The scenes in three dimensions (`docs/scenes.md`, "Scenes in three dimensions"; feature
 //! `scenes-spatial`): [`Puck`] and [`Billiard`], one body touching a plane at one point, stepped by
 //! [`crate::spatial::OneContact`] with Coulomb's circular cone (or, with `friction_directions`
-//! set, a stepper of [`PYRAMID_ROWS`] rows with the pyramid of LCP engines, the baseline), and seen
-//! by the front ends through [`SpatialView`] like every other scene.
+//! set, a stepper of [`PYRAMID_ROWS`] rows with the pyramid of LCP engines, the baseline), and
+//! [`Curling`], a ring or a disc touching it at up to [`MAX_POINTS`] points (its flat base's load
+//! the least-norm one, `crate::spatial`'s "The load"); each seen by the front ends through
+//! [`SpatialView`] like every other scene.
 //!
 //! Each scene is a [`Run`] (the stepper, the outcome, the counters) and its own rules: its start
 //! from its parameters, the outcome it judges after each step, what it measures.
 
 mod billiard;
+mod curling;
 mod puck;
 mod view;
 
 pub use billiard::{Billiard, BilliardParams};
+pub use curling::{Curling, CurlingParams, MAX_POINTS};
 pub use puck::{Puck, PuckParams};
 pub use view::SpatialView;
 
@@ -51,9 +55,9 @@ pub fn friction_cone<T: Real>(directions: T) -> Result<FrictionCone, ParamError>
 
 /// A scene in three dimensions, as [`SpatialView`] drives it; its LCP has `N` rows
 /// ([`CIRCULAR_ROWS`] or [`PYRAMID_ROWS`]).
-pub trait SpatialScene<T: Real, const N: usize = CIRCULAR_ROWS> {
+pub trait SpatialScene<T: Real, const N: usize = CIRCULAR_ROWS, const K: usize = 1> {
     /// Advances one step and judges it; `None` once the run has an outcome (nothing done).
-    fn step(&mut self) -> Option<SpatialStepReport<T, 1>>;
+    fn step(&mut self) -> Option<SpatialStepReport<T, K>>;
     /// Takes the outcome so that the run goes on ([`crate::scene::SceneView::go_on`]); `None`
     /// before it.
     fn go_on(&mut self) -> Option<Outcome>;
@@ -62,29 +66,29 @@ pub trait SpatialScene<T: Real, const N: usize = CIRCULAR_ROWS> {
     /// The body's outline.
     fn shape(&self) -> BodyShape<T>;
     /// The run: its stepper and counters.
-    fn run(&self) -> &Run<T, N>;
+    fn run(&self) -> &Run<T, N, K>;
     /// What the scene measures, in its catalogue entry's order.
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
 }
 
-/// One body on a plane at one point, stepped to an outcome by an LCP of `N` rows: the part every
+/// One body on a plane at `K` points, stepped to an outcome by an LCP of `N` rows: the part every
 /// scene in three dimensions shares.
 #[derive(Debug, Clone)]
-pub struct Run<T: Real, const N: usize = CIRCULAR_ROWS> {
-    stepper: SpatialStepper<T, 1, N>,
+pub struct Run<T: Real, const N: usize = CIRCULAR_ROWS, const K: usize = 1> {
+    stepper: SpatialStepper<T, K, N>,
     max_time: T,
     outcome: Option<Outcome>,
     stats: RunStats,
 }
 
-impl<T: Real, const N: usize> Run<T, N> {
-    fn new(stepper: SpatialStepper<T, 1, N>, max_time: T) -> Self {
+impl<T: Real, const N: usize, const K: usize> Run<T, N, K> {
+    fn new(stepper: SpatialStepper<T, K, N>, max_time: T) -> Self {
         Self { stepper, max_time, outcome: None, stats: RunStats::default() }
     }
 
     /// The stepper.
     #[must_use]
-    pub const fn stepper(&self) -> &SpatialStepper<T, 1, N> {
+    pub const fn stepper(&self) -> &SpatialStepper<T, K, N> {
         &self.stepper
     }
 
@@ -98,9 +102,9 @@ impl<T: Real, const N: usize> Run<T, N> {
     /// limit (`at_limit`); a failed step ends the run with its error.
     fn advance(
         &mut self,
-        judge: impl FnOnce(&SpatialStepReport<T, 1>) -> Option<Outcome>,
+        judge: impl FnOnce(&SpatialStepReport<T, K>) -> Option<Outcome>,
         at_limit: Outcome,
-    ) -> Option<SpatialStepReport<T, 1>> {
+    ) -> Option<SpatialStepReport<T, K>> {
         if self.outcome.is_some() {
             return None;
         }

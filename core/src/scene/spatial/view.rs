@@ -13,14 +13,14 @@ use crate::spatial::{Mode, SpatialContactReport, norm};
 /// step's contact report and pivots, and the checksum of the steps taken through it (each step's
 /// position, orientation `[w, x, y, z]`, velocity and angular velocity, in that order).
 #[derive(Debug, Clone)]
-pub struct SpatialView<T: Real, S, const N: usize = CIRCULAR_ROWS> {
+pub struct SpatialView<T: Real, S, const N: usize = CIRCULAR_ROWS, const K: usize = 1> {
     scene: S,
-    last: Option<SpatialContactReport<T>>,
+    last: Option<[SpatialContactReport<T>; K]>,
     solve: Option<StepStats<T>>,
     checksum: Checksum,
 }
 
-impl<T: Real, const N: usize, S: SpatialScene<T, N>> SpatialView<T, S, N> {
+impl<T: Real, const N: usize, const K: usize, S: SpatialScene<T, N, K>> SpatialView<T, S, N, K> {
     /// Sees `scene` from where it is (no impulses yet, an empty checksum).
     pub const fn new(scene: S) -> Self {
         Self { scene, last: None, solve: None, checksum: Checksum::new() }
@@ -42,7 +42,9 @@ const fn mode_of(mode: Mode) -> ContactMode {
     }
 }
 
-impl<T: Real, const N: usize, S: SpatialScene<T, N>> SceneView<T> for SpatialView<T, S, N> {
+impl<T: Real, const N: usize, const K: usize, S: SpatialScene<T, N, K>> SceneView<T>
+    for SpatialView<T, S, N, K>
+{
     fn step(&mut self) -> bool {
         let Some(report) = self.scene.step() else {
             return false;
@@ -56,7 +58,7 @@ impl<T: Real, const N: usize, S: SpatialScene<T, N>> SceneView<T> for SpatialVie
             *slot = v;
         }
         self.checksum.add_values(&values);
-        self.last = Some(report.contacts[0]);
+        self.last = Some(report.contacts);
         self.solve = Some(StepStats { pivots: report.pivots, residual: None });
         true
     }
@@ -92,7 +94,7 @@ impl<T: Real, const N: usize, S: SpatialScene<T, N>> SceneView<T> for SpatialVie
     }
 
     fn contact_count(&self) -> usize {
-        1
+        self.scene.run().stepper().used()
     }
 
     fn contact(&self, i: usize) -> Option<ContactView<T>> {
@@ -100,8 +102,10 @@ impl<T: Real, const N: usize, S: SpatialScene<T, N>> SceneView<T> for SpatialVie
         let (lever, gap) = (stepper.lever(i)?, stepper.gap(i)?);
         let (state, plane) = (stepper.state(), stepper.plane());
         let normal = plane.normal;
-        let (mode, normal_impulse, friction, slip) =
-            self.last.map_or((ContactMode::Separated, T::zero(), [T::zero(); 3], [T::zero(); 3]), |c| {
+        let (mode, normal_impulse, friction, slip) = self
+            .last
+            .and_then(|l| l.get(i).copied())
+            .map_or((ContactMode::Separated, T::zero(), [T::zero(); 3], [T::zero(); 3]), |c| {
                 (mode_of(c.mode), c.normal_impulse, c.friction_impulse, c.slip)
             });
         let unit = |v: [T; 3]| {

@@ -81,7 +81,7 @@ impl SceneParams {
 impl SceneParams {
     /// A scene in three dimensions in `T`, checked in f64 and `T` first.
     fn build_spatial<T: Real, V: ViewVisitor>(&self, visitor: V) -> Result<V::Output, ParamError> {
-        use crate::scene::spatial::{Billiard, CIRCULAR_ROWS, PYRAMID_ROWS, Puck, SpatialView};
+        use crate::scene::spatial::{Billiard, CIRCULAR_ROWS, Curling, PYRAMID_ROWS, Puck, SpatialView};
         self.validate_as::<T>()?;
         // Coulomb's circular cone in an LCP of its own size; the pyramid baseline in one that
         // holds 16 directions.
@@ -99,6 +99,7 @@ impl SceneParams {
             Self::Billiard(p) => {
                 Ok(visitor.visit(&mut SpatialView::new(Billiard::<T, PYRAMID_ROWS>::new(p.cast::<T>())?)))
             }
+            Self::Curling(p) => Ok(visitor.visit(&mut SpatialView::new(Curling::<T>::new(p.cast::<T>())?))),
             _ => Err(ParamError::OutOfRange("scene")),
         }
     }

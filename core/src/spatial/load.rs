@@ -1,0 +1,270 @@
+//! The load of a flat base (`super`'s module docs, "The load"): four or more points touching the
+//! plane, every one sliding, carry the normal impulses of least 2-norm that give the body's motion
+//! out of the plane (`docs/formulation.md`, "The load: the least norm").
+//!
+//! With each point's friction along its slip, `p_t,i = -mu p_n,i s_i` (`s_i` the unit slip after
+//! the step), contact `i`'s impulse per unit mass is `x_i e_i`, `e_i = n - mu s_i`, and the body's
+//! velocity changes by `sum x_i e_i` and its angular velocity by `m I_w^-1 sum x_i (r_i x e_i)`.
+//! Its motion out of the plane, `(n . v, t1 . omega, t2 . omega)` (`t1`, `t2` the plane's axes), is
+//! what holds each point on the plane: three linear conditions `G x = g`, `g` the LCP's answer's.
+//! The friction's size follows the load (`mu x_i`), so the normal impulses' least norm is the
+//! impulses' (`sum x_i^2 (1 + mu^2)`, one `mu` for every point of one plane). The least-norm point of
+//! `{x : G x = g}` is `x0 = G^T (G G^T)^-1 g`; when some `x0_i < 0` the problem's optimality
+//! conditions are the LCP `w = P lambda + x0`, `P = I - G^T (G G^T)^-1 G` (positive semidefinite),
+//! `x = w` (as `core/src/load.rs` for the planar core), solved by Lemke's method and verified.
+//!
+//! The load moves the body's motion in the plane (every point's friction has its own direction),
+//! so the slips move: the directions are set to the new slips and the load taken again until they
+//! agree within the step's round-off, at most [`MAX_DIRECTIONS`] times. A point whose slip would
+//! stop under the new load, or directions that do not settle (a point's slip near its end turns
+//! with the load), leave the step to the LCP's answer and its vertex load (its friction is no
+//! longer `mu p_n` along a slip the load does not turn): the rule is for a base sliding as a whole.
+
+use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
+use super::body::inverse_inertia_times;
+use super::friction::{Contacts, Solved, pad, solved};
+use super::report::{MAX_DIRECTIONS, SpatialContactReport};
+use crate::StepError;
+use crate::lcp::{Basis, Lcp, Lemke};
+use crate::real::{Real, max};
+
+/// The fewest points touching the plane whose load is left open by the motion: three not in a
+/// line decide theirs.
+pub(super) const OPEN_FROM: usize = 4;
+
+impl<T: Real, const K: usize> Contacts<'_, T, K> {
+    /// The step of a flat base sliding as a whole, without the contacts' LCP: every active point
+    /// (at least [`OPEN_FROM`]) touching and slipping beyond the stick speed before the step, the
+    /// motion out of the plane that closes every point's normal row (`n . v + (r_i x n) . omega`
+    /// with the gap's bias, by least squares over the points, their residual within round-off),
+    /// then the least-norm load of that motion (module docs). `None` where it does not apply: too
+    /// few points, a point that lifts (a residual) or needs a pull (no load `x >= 0`) or stops;
+    /// the step is then the LCP's.
+    ///
+    /// # Errors
+    /// As [`Self::least_norm`].
+    pub fn flat_base<const N: usize>(
+        &self,
+        solver: &Lemke<T, N>,
+        basis: &mut Basis<N>,
+        pivots: &mut u32,
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> Result<Option<Solved<T, K>>, StepError> {
+        let moving = max(self.slip_tolerance, self.stick_speed);
+        let touching: [bool; K] = core::array::from_fn(|i| self.touches[i].active);
+        if touching.iter().filter(|&&t| t).count() < OPEN_FROM
+            || self.touches.iter().any(|c| c.active && norm(&c.slip_free) <= moving)
+        {
+            return Ok(None);
+        }
+        let (n, zero) = (self.normal, T::zero());
+        let (t1, lever) = self.plane_axes();
+        let t2 = cross(&n, &t1);
+        // Point i's normal velocity per unit of the motion out of the plane `y`:
+        // `y_0 + (r_i x n) . (t1 y_1 + t2 y_2) / lever`.
+        let rows: [[T; 3]; K] = core::array::from_fn(|i| {
+            let a = cross(&self.touches[i].arm, &n);
+            [T::one(), dot(&a, &t1) / lever, dot(&a, &t2) / lever]
+        });
+        let mut normal_matrix = [[zero; 3]; 3];
+        let mut rhs = [zero; 3];
+        for (i, row) in rows.iter().enumerate().filter(|&(i, _)| touching[i]) {
+            for a in 0..3 {
+                rhs[a] -= row[a] * self.touches[i].normal_free;
+                for b in 0..3 {
+                    normal_matrix[a][b] += row[a] * row[b];
+                }
+            }
+        }
+        let g = solved(normal_matrix, rhs);
+        let closes = (0..K).filter(|&i| touching[i]).all(|i| {
+            let w = self.touches[i].normal_free + rows[i][0] * g[0] + rows[i][1] * g[1] + rows[i][2] * g[2];
+            w.abs_exact() <= self.slip_tolerance
+        });
+        if !closes {
+            return Ok(None);
+        }
+        let slips = self.touches.map(|c| c.slip_free);
+        self.settle(solver, basis, pivots, &touching, slips, &g, v_free, w_free, false)
+    }
+
+    /// The least-norm load of the LCP's answer `path` (module docs), or `path` itself when fewer
+    /// than [`OPEN_FROM`] points touch or one of them does not slide.
+    ///
+    /// # Errors
+    /// [`StepError::Solver`] (the least-norm LCP), [`StepError::ConeUnverified`] (the load misses
+    /// the motion out of the plane, or an answer the circular cone's conditions, beyond
+    /// round-off).
+    pub fn least_norm<const N: usize>(
+        &self,
+        solver: &Lemke<T, N>,
+        basis: &mut Basis<N>,
+        pivots: &mut u32,
+        path: Solved<T, K>,
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> Result<Solved<T, K>, StepError> {
+        let (reports, v0, w0) = path;
+        let (n, zero) = (self.normal, T::zero());
+        let (dv, dw) = (sub(&v0, v_free), sub(&w0, w_free));
+        let moving = max(self.slip_tolerance, self.stick_speed);
+        // A point touches when it carries load or its normal velocity after the step is nil.
+        let touching: [bool; K] = core::array::from_fn(|i| {
+            let c = &self.touches[i];
+            let normal = c.normal_free + dot(&n, &add(&dv, &cross(&dw, &c.arm)));
+            c.active && (reports[i].normal_impulse > zero || normal <= self.slip_tolerance)
+        });
+        if touching.iter().filter(|&&t| t).count() < OPEN_FROM {
+            return Ok(path);
+        }
+        let mut slips = [[zero; 3]; K];
+        for (i, c) in self.touches.iter().enumerate().filter(|&(i, _)| touching[i]) {
+            slips[i] = self.slip(&v0, &w0, c);
+            if norm(&slips[i]) <= moving {
+                return Ok(path);
+            }
+        }
+        let (t1, lever) = self.plane_axes();
+        let t2 = cross(&n, &t1);
+        let g = [dot(&n, &dv), lever * dot(&t1, &dw), lever * dot(&t2, &dw)];
+        Ok(self.settle(solver, basis, pivots, &touching, slips, &g, v_free, w_free, true)?.unwrap_or(path))
+    }
+
+    /// The plane's first axis `t1` and the largest lever (the angular rows' scale, in velocity's
+    /// units).
+    fn plane_axes(&self) -> (Vector<T>, T) {
+        let lever = self.touches.iter().fold(T::TINY, |a, c| max(a, norm(&c.arm)));
+        (perpendicular(&self.normal), lever)
+    }
+
+    /// The least-norm load of the `touching` points that moves the body out of the plane by `g`
+    /// (`(n . dv, lever t1 . domega, lever t2 . domega)`), each point's friction along its slip,
+    /// the slips set again until they agree (module docs). `None` when a point would stop, the
+    /// directions do not settle in [`MAX_DIRECTIONS`] tries, or (`feasible` false) no load
+    /// `x >= 0` gives `g`.
+    #[allow(clippy::too_many_arguments)]
+    fn settle<const N: usize>(
+        &self,
+        solver: &Lemke<T, N>,
+        basis: &mut Basis<N>,
+        pivots: &mut u32,
+        touching: &[bool; K],
+        mut slips: [Vector<T>; K],
+        g: &[T; 3],
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+        feasible: bool,
+    ) -> Result<Option<Solved<T, K>>, StepError> {
+        let (n, zero) = (self.normal, T::zero());
+        let moving = max(self.slip_tolerance, self.stick_speed);
+        let (t1, lever) = self.plane_axes();
+        let t2 = cross(&n, &t1);
+        let out_of_plane =
+            |v: &Vector<T>, w: &Vector<T>| [dot(&n, v), lever * dot(&t1, w), lever * dot(&t2, w)];
+        let size = g.iter().fold(T::TINY, |a, x| max(a, x.abs_exact()));
+        for tries in 1..=MAX_DIRECTIONS {
+            let unit: [Vector<T>; K] = core::array::from_fn(|i| direction(&slips[i]).unwrap_or([zero; 3]));
+            let e: [Vector<T>; K] = core::array::from_fn(|i| sub(&n, &scale(self.touches[i].mu, &unit[i])));
+            // G's column of point i: the motion out of the plane per unit of its load.
+            let columns: [[T; 3]; K] = core::array::from_fn(|i| {
+                if !touching[i] {
+                    return [zero; 3];
+                }
+                let turn =
+                    inverse_inertia_times(self.body, self.orientation, &cross(&self.touches[i].arm, &e[i]));
+                out_of_plane(&e[i], &scale(self.body.mass, &turn))
+            });
+            let x = match Self::least_norm_load(solver, basis, pivots, &columns, touching, g) {
+                Ok(x) => x,
+                Err(StepError::Solver(crate::lcp::LcpError::Ray { .. })) if !feasible => return Ok(None),
+                Err(e) => return Err(e),
+            };
+            let impulses: [Vector<T>; K] = core::array::from_fn(|i| scale(x[i], &e[i]));
+            let (v, w) = self.moved(&impulses, v_free, w_free);
+            let next: [Vector<T>; K] = core::array::from_fn(|i| self.slip(&v, &w, &self.touches[i]));
+            if (0..K).any(|i| touching[i] && norm(&next[i]) <= moving) {
+                return Ok(None);
+            }
+            let agree = (0..K).all(|i| {
+                !touching[i] || dot(&next[i], &cross(&n, &unit[i])).abs_exact() <= self.slip_tolerance
+            });
+            if !agree {
+                slips = next;
+                continue;
+            }
+            // Verified: the motion out of the plane is `g`, each answer the cone's.
+            let reached = out_of_plane(&sub(&v, v_free), &sub(&w, w_free));
+            let miss = (0..3).fold(zero, |a, k| max(a, (reached[k] - g[k]).abs_exact()));
+            if miss.partial_cmp(&(T::of(64.0 * K as f64) * T::EPS * size)) != Some(core::cmp::Ordering::Less)
+                && miss != zero
+            {
+                return Err(StepError::ConeUnverified { residual: (miss / size).as_f32() });
+            }
+            let mut out = [SpatialContactReport::separated(); K];
+            for (i, c) in self.touches.iter().enumerate().filter(|&(i, _)| touching[i]) {
+                let friction = scale(-c.mu * x[i], &unit[i]);
+                out[i] = self.report(x[i], &friction, &next[i], c.mu, (tries, self.floor, true))?;
+            }
+            return Ok(Some((out, v, w)));
+        }
+        // The directions did not settle (a point's slip near its end turns with the load): the
+        // step is the LCP's.
+        Ok(None)
+    }
+
+    /// The least-norm `x >= 0` with `sum_i x_i columns_i = g` over the `touching` points (module
+    /// docs): the projection `x0`, or the LCP when it has a negative entry.
+    fn least_norm_load<const N: usize>(
+        solver: &Lemke<T, N>,
+        basis: &mut Basis<N>,
+        pivots: &mut u32,
+        columns: &[[T; 3]; K],
+        touching: &[bool; K],
+        g: &[T; 3],
+    ) -> Result<[T; K], StepError> {
+        let zero = T::zero();
+        let mut gram = [[zero; 3]; 3];
+        for (a, row) in gram.iter_mut().enumerate() {
+            for (b, slot) in row.iter_mut().enumerate() {
+                *slot = columns.iter().fold(zero, |s, c| s + c[a] * c[b]);
+            }
+        }
+        // `G^T (G G^T)^-1 a` for `a` of three entries.
+        let lift = |a: &[T; 3]| -> [T; K] {
+            let y = solved(gram, *a);
+            core::array::from_fn(|i| dot(&columns[i], &y))
+        };
+        let x0 = lift(g);
+        let largest = x0.iter().fold(T::TINY, |a, x| max(a, x.abs_exact()));
+        let round_off = T::of(64.0 * K as f64) * T::EPS * largest;
+        if x0.iter().all(|&x| x >= -round_off) {
+            return Ok(x0.map(|x| max(x, zero)));
+        }
+        // `P = I - G^T (G G^T)^-1 G` over the touching points, the LCP's first rows; the others
+        // decoupled.
+        let mut m = [[zero; N]; N];
+        let mut q = [zero; N];
+        let rows: [usize; K] = core::array::from_fn(|i| i);
+        for &j in rows.iter().filter(|&&j| touching[j]) {
+            let column = lift(&columns[j]);
+            for &i in rows.iter().filter(|&&i| touching[i]) {
+                m[i][j] = if i == j { T::one() } else { zero } - column[i];
+            }
+        }
+        for (i, &t) in touching.iter().enumerate() {
+            if t {
+                q[i] = x0[i];
+            } else {
+                m[i][i] = T::one();
+                q[i] = T::one();
+            }
+        }
+        pad(&mut m, &mut q, K);
+        let lcp = Lcp::from_rows(&m, &q);
+        let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
+        *basis = sol.basis;
+        *pivots = pivots.saturating_add(sol.pivots);
+        Ok(core::array::from_fn(|i| if touching[i] { max(sol.w[i], zero) } else { zero }))
+    }
+}
