@@ -19,10 +19,10 @@
 //! solved and every scene ended as physics says
 //! (balanced, fell, slid, fell, held, rolled, jammed; block-on-block slid, the stack held, the disc
 //! rolled, the tablecloth stayed; the stack rig held with every interface sticking and fell with
-//! every one tipping; the failing runs failed). With `qemu-spatial` (M4F and M33F) also the puck
-//! and the billiard ball at their defaults in f32 through the registry's view
+//! every one tipping; the failing runs failed). With `qemu-spatial` (M4F and M33F) also the puck,
+//! the billiard ball and the curling stone at their defaults in f32 through the registry's view
 //! (`SceneParams::build_view`): outcome, steps, the view's checksum and the ticks of their steps
-//! (the puck stopped, the ball rolled).
+//! (the puck stopped, the ball rolled, the stone stopped).
 
 use meterstick_core::Real;
 use meterstick_core::lcp::{Lcp, Lemke};
@@ -242,6 +242,8 @@ const fn expected(kind: SceneKind) -> Outcome {
         SceneKind::Puck => Outcome::Stopped,
         #[cfg(feature = "qemu-spatial")]
         SceneKind::Billiard => Outcome::Rolled,
+        #[cfg(feature = "qemu-spatial")]
+        SceneKind::Curling => Outcome::Stopped,
     }
 }
 
@@ -539,12 +541,13 @@ impl ViewVisitor for CheckView {
     }
 }
 
-/// The puck and the billiard ball at their defaults, in f32, through the registry's view; the
-/// number refused or ended otherwise than physics says (the puck stops, the ball rolls).
+/// The puck, the billiard ball and the curling stone at their defaults, in f32, through the
+/// registry's view; the number refused or ended otherwise than physics says (the puck stops, the
+/// ball rolls, the stone stops).
 #[cfg(feature = "qemu-spatial")]
 fn check_spatial_scenes() -> i32 {
     let mut failures = 0;
-    for kind in [SceneKind::Puck, SceneKind::Billiard] {
+    for kind in [SceneKind::Puck, SceneKind::Billiard, SceneKind::Curling] {
         let check = CheckView { name: kind.name(), expected: expected(kind) };
         stack_peak::paint();
         failures +=

@@ -271,12 +271,17 @@ impl ViewVisitor for HostView {
     }
 }
 
-/// The puck and the billiard ball at their defaults (firmware/src/qemu.rs, `qemu-spatial`): the
-/// outcome physics says (the puck stops, the ball rolls: `docs/scenes.md`), and outcome, steps
+/// The puck, the billiard ball and the curling stone at their defaults (firmware/src/qemu.rs,
+/// `qemu-spatial`): the outcome physics says (the puck and the stone stop, the ball rolls:
+/// `docs/scenes.md`), and outcome, steps
 /// and checksum equal to the host's f32 run (bit-identical IEEE f32 arithmetic); a timing line
 /// for every step.
 fn check_spatial_scenes(run: &FirmwareRun) {
-    for (kind, expected) in [(SceneKind::Puck, Outcome::Stopped), (SceneKind::Billiard, Outcome::Rolled)] {
+    for (kind, expected) in [
+        (SceneKind::Puck, Outcome::Stopped),
+        (SceneKind::Billiard, Outcome::Rolled),
+        (SceneKind::Curling, Outcome::Stopped),
+    ] {
         let (outcome, steps, sum) = SceneParams::defaults(kind)
             .build_view::<0, _>(Precision::F32, LcpLayout::Reduced, HostView)
             .unwrap();

@@ -325,7 +325,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let mut jac = [[zero; N]; N];
         let mut rhs = [zero; N];
         for row in 0..N {
-            jac[row][row] = one;
+            put(&mut jac, row, row, one);
         }
         for i in (0..K).filter(|&i| loaded[i]) {
             let ri = &self.touches[i].arm;
@@ -337,16 +337,16 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 (3 * i + 2, lines[i].d, -dot(&lines[i].d, &slips[i])),
             ];
             for &(row, e, r) in conditions.iter().take(used(i)) {
-                jac[row][row] = zero;
-                rhs[row] = r;
+                put(&mut jac, row, row, zero);
+                put_in(&mut rhs, row, r);
                 if saturated[i] && row == 3 * i + 1 {
-                    jac[row][row] = -dot(&lines[i].d, &slips[i]);
+                    put(&mut jac, row, row, -dot(&lines[i].d, &slips[i]));
                 }
                 for j in (0..K).filter(|&j| loaded[j]) {
                     for k in 0..used(j) {
                         let f = effect(j, k);
                         let w = self.delassus(ri, &e, &self.touches[j].arm, &f);
-                        jac[row][3 * j + k] += w;
+                        add_to(&mut jac, row, 3 * j + k, w);
                     }
                 }
             }
@@ -358,10 +358,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 // The turn by `dtheta` to first order, `d + dtheta a` (normalised below): Newton's
                 // step needs no more, and no sine. A turn of more than a right angle is no longer
                 // a correction: it is held to `tan` of 1.5 rad.
-                let angle = max(min(x[3 * i + 1], T::of(14.0)), T::of(-14.0));
+                let angle = max(min(entry(&x, 3 * i + 1), T::of(14.0)), T::of(-14.0));
                 add(&d, &scale(angle, &a))
             } else {
-                add(&scale(impulses[i].1 + x[3 * i + 1], &d), &scale(x[3 * i + 2], &a))
+                add(&scale(impulses[i].1 + entry(&x, 3 * i + 1), &d), &scale(entry(&x, 3 * i + 2), &a))
             };
             lines[i].d = direction(&next).unwrap_or(d);
         }
@@ -470,6 +470,34 @@ pub(super) fn solved<T: Real, const K: usize>(mut m: [[T; K]; K], mut b: [T; K])
         }
     }
     x
+}
+
+/// `m[r][c] = v`, or nothing where `(r, c)` is beyond `m`: a contact's rows are computed (`3 i`,
+/// `size * j + c`), so no index is known in range at compile time and none may panic
+/// (`scripts/panic-paths.sh`); the scene sizes `N` for its contacts, so none falls outside.
+pub(super) fn put<T: Real, const N: usize>(m: &mut [[T; N]; N], r: usize, c: usize, v: T) {
+    if let Some(e) = m.get_mut(r).and_then(|row| row.get_mut(c)) {
+        *e = v;
+    }
+}
+
+/// `m[r][c] += v` ([`put`]).
+fn add_to<T: Real, const N: usize>(m: &mut [[T; N]; N], r: usize, c: usize, v: T) {
+    if let Some(e) = m.get_mut(r).and_then(|row| row.get_mut(c)) {
+        *e += v;
+    }
+}
+
+/// `x[r] = v` ([`put`]).
+pub(super) fn put_in<T: Real, const N: usize>(x: &mut [T; N], r: usize, v: T) {
+    if let Some(e) = x.get_mut(r) {
+        *e = v;
+    }
+}
+
+/// `x[r]`, zero beyond `x` ([`put`]).
+fn entry<T: Real, const N: usize>(x: &[T; N], r: usize) -> T {
+    x.get(r).copied().unwrap_or(T::zero())
 }
 
 /// Rows `from..N` of an LCP no contact uses: `w = z + 1` (their `z` zero).

@@ -22,7 +22,7 @@
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::inverse_inertia_times;
-use super::friction::{Contacts, Solved, pad, solved};
+use super::friction::{Contacts, Solved, pad, put, put_in, solved};
 use super::report::{MAX_DIRECTIONS, SpatialContactReport};
 use crate::StepError;
 use crate::lcp::{Basis, Lcp, Lemke};
@@ -69,19 +69,20 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         });
         let mut normal_matrix = [[zero; 3]; 3];
         let mut rhs = [zero; 3];
-        for (i, row) in rows.iter().enumerate().filter(|&(i, _)| touching[i]) {
+        for ((row, _), c) in rows.iter().zip(&touching).zip(&self.touches).filter(|((_, t), _)| **t) {
             for a in 0..3 {
-                rhs[a] -= row[a] * self.touches[i].normal_free;
+                rhs[a] -= row[a] * c.normal_free;
                 for b in 0..3 {
                     normal_matrix[a][b] += row[a] * row[b];
                 }
             }
         }
         let g = solved(normal_matrix, rhs);
-        let closes = (0..K).filter(|&i| touching[i]).all(|i| {
-            let w = self.touches[i].normal_free + rows[i][0] * g[0] + rows[i][1] * g[1] + rows[i][2] * g[2];
-            w.abs_exact() <= self.slip_tolerance
-        });
+        let closes =
+            self.touches.iter().zip(touching).zip(&rows).filter(|((_, t), _)| *t).all(|((c, _), row)| {
+                let w = c.normal_free + row[0] * g[0] + row[1] * g[1] + row[2] * g[2];
+                w.abs_exact() <= self.slip_tolerance
+            });
         if !closes {
             return Ok(None);
         }
@@ -119,9 +120,11 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             return Ok(path);
         }
         let mut slips = [[zero; 3]; K];
-        for (i, c) in self.touches.iter().enumerate().filter(|&(i, _)| touching[i]) {
-            slips[i] = self.slip(&v0, &w0, c);
-            if norm(&slips[i]) <= moving {
+        for ((c, _), slip) in
+            self.touches.iter().zip(&touching).zip(slips.iter_mut()).filter(|((_, t), _)| **t)
+        {
+            *slip = self.slip(&v0, &w0, c);
+            if norm(slip) <= moving {
                 return Ok(path);
             }
         }
@@ -202,9 +205,16 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 return Err(StepError::ConeUnverified { residual: (miss / size).as_f32() });
             }
             let mut out = [SpatialContactReport::separated(); K];
-            for (i, c) in self.touches.iter().enumerate().filter(|&(i, _)| touching[i]) {
-                let friction = scale(-c.mu * x[i], &unit[i]);
-                out[i] = self.report(x[i], &friction, &next[i], c.mu, (tries, self.floor, true))?;
+            // Zipped, not indexed: no index that may panic (`scripts/panic-paths.sh`).
+            let each = self
+                .touches
+                .iter()
+                .zip(touching)
+                .zip(out.iter_mut())
+                .zip(x.iter().zip(unit.iter().zip(&next)));
+            for (((c, _), report), (&xi, (u, slip))) in each.filter(|(((_, t), _), _)| **t) {
+                let friction = scale(-c.mu * xi, u);
+                *report = self.report(xi, &friction, slip, c.mu, (tries, self.floor, true))?;
             }
             return Ok(Some((out, v, w)));
         }
@@ -245,19 +255,19 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         // decoupled.
         let mut m = [[zero; N]; N];
         let mut q = [zero; N];
-        let rows: [usize; K] = core::array::from_fn(|i| i);
-        for &j in rows.iter().filter(|&&j| touching[j]) {
-            let column = lift(&columns[j]);
-            for &i in rows.iter().filter(|&&i| touching[i]) {
-                m[i][j] = if i == j { T::one() } else { zero } - column[i];
+        // Written by `put`: `N >= K` is the scene's, not known here (`scripts/panic-paths.sh`).
+        for ((j, column), _) in columns.iter().enumerate().zip(touching).filter(|(_, t)| **t) {
+            let column = lift(column);
+            for ((i, &entry), _) in column.iter().enumerate().zip(touching).filter(|(_, t)| **t) {
+                put(&mut m, i, j, if i == j { T::one() } else { zero } - entry);
             }
         }
-        for (i, &t) in touching.iter().enumerate() {
+        for ((i, &t), &x) in touching.iter().enumerate().zip(&x0) {
             if t {
-                q[i] = x0[i];
+                put_in(&mut q, i, x);
             } else {
-                m[i][i] = T::one();
-                q[i] = T::one();
+                put(&mut m, i, i, T::one());
+                put_in(&mut q, i, T::one());
             }
         }
         pad(&mut m, &mut q, K);
@@ -265,6 +275,8 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
         *basis = sol.basis;
         *pivots = pivots.saturating_add(sol.pivots);
-        Ok(core::array::from_fn(|i| if touching[i] { max(sol.w[i], zero) } else { zero }))
+        Ok(core::array::from_fn(|i| {
+            if touching[i] { max(sol.w.get(i).copied().unwrap_or(zero), zero) } else { zero }
+        }))
     }
 }
