@@ -33,8 +33,9 @@
 //!   friction is no longer saturated); its velocity then is its rolling velocity, and its slip
 //!   then is printed.
 //!
-//! Run time: the median over repeats of the stepping loop alone (building the world or the scene
-//! excluded), in ns per step, to each run's own end.
+//! Run time: the median over 15 repeats of the stepping loop alone (building the world or the
+//! scene excluded), in ns per step, to each run's own end; the engines' runs interleaved, one of
+//! each per round, so that the shared machine's load falls on all of them alike.
 //!
 //! Anisotropy, measured the same way in both: the puck launched on a level table (`alpha = 0`) at
 //! 16 headings `phi = 0, 22.5, ... 337.5` degrees, each run to its stop; the spread of the
@@ -52,7 +53,8 @@ use meterstick_core::scene::Outcome;
 use meterstick_core::scene::spatial::{Billiard, BilliardParams, Puck, PuckParams, SpatialScene};
 use rapier3d::prelude::*;
 
-const REPEATS: usize = 7;
+/// Rounds of the timed runs (each run is short: 1,417 steps of the puck, 292 of the ball).
+const REPEATS: usize = 15;
 
 /// The anisotropy runs' headings: 16, every 22.5 degrees.
 const HEADINGS: usize = 16;
@@ -286,11 +288,21 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// `repeats` runs of `run`: the median ns per step and the last run's end.
-fn timed(repeats: usize, run: impl Fn() -> End) -> (f64, End) {
-    let ends: Vec<End> = (0..repeats).map(|_| run()).collect();
-    let ns = median(ends.iter().map(|e| e.ns_per_step).collect());
-    (ns, ends.into_iter().last().unwrap())
+/// `repeats` rounds of every one of `runs`, interleaved (one run of each per round, so that a
+/// change of the shared machine's load falls on all of them): each one's median ns per step and
+/// its last run's end.
+fn timed<const N: usize>(repeats: usize, runs: [&dyn Fn() -> End; N]) -> [(f64, End); N] {
+    let mut ns: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
+    let mut last: [Option<End>; N] = std::array::from_fn(|_| None);
+    for _ in 0..repeats {
+        for (k, run) in runs.iter().enumerate() {
+            let e = run();
+            ns[k].push(e.ns_per_step);
+            last[k] = Some(e);
+        }
+    }
+    let mut ns = ns.into_iter();
+    last.map(|e| (median(ns.next().unwrap()), e.unwrap()))
 }
 
 /// One engine's line; `what` names its measure, printed times `scale` in `unit`.
@@ -314,7 +326,10 @@ const MOVED: (&str, f32, &str) = ("moved", 1e3, "mm");
 /// The ball's measure in [`line`]: its rolling velocity in m/s.
 const ROLLING: (&str, f32, &str) = ("rolling at", 1.0, "m/s");
 
-fn speed_section(text: &mut String, repeats: usize) {
+/// The side-by-side table's rows: a quantity, the core's figure, rapier3d's.
+type Rows = Vec<[String; 3]>;
+
+fn speed_section(text: &mut String, table: &mut Rows, repeats: usize) {
     let p = PuckParams::<f32>::default();
     writeln!(
         text,
@@ -333,15 +348,26 @@ fn speed_section(text: &mut String, repeats: usize) {
         p.max_time
     )
     .unwrap();
-    let (core, c) = timed(repeats, || core_puck(p));
+    let [(core, c), cylinder, ball] = timed(
+        repeats,
+        [&|| core_puck(p), &|| rapier_puck(p, PuckShape::Cylinder), &|| {
+            rapier_puck(p, PuckShape::LockedBall)
+        }],
+    );
     line(text, "meterstick core f32 Puck", core, &c, MOVED);
-    let mut ratios = Vec::new();
-    for shape in [PuckShape::Cylinder, PuckShape::LockedBall] {
-        let (ns, e) = timed(repeats, || rapier_puck(p, shape));
+    let (mut ratios, mut figures) = (Vec::new(), Vec::new());
+    for (shape, (ns, e)) in [(PuckShape::Cylinder, cylinder), (PuckShape::LockedBall, ball)] {
         line(text, &format!("rapier3d 0.36 (f32), {}", shape.name()), ns, &e, MOVED);
         ratios.push(format!("{:.1}x ({})", ns / core, shape.name()));
+        figures.push(format!("{ns:.0} ({})", shape.name()));
     }
-    writeln!(text, "  ratio rapier3d / core: {}", ratios.join(", ")).unwrap();
+    let ratios = ratios.join(", ");
+    writeln!(text, "  ratio rapier3d / core: {ratios}").unwrap();
+    table.push([
+        "puck on an incline (defaults), ns/step".into(),
+        format!("{core:.0}"),
+        format!("{}; ratio {ratios}", figures.join(", ")),
+    ]);
 
     let b = BilliardParams::<f32>::default();
     writeln!(
@@ -356,11 +382,15 @@ fn speed_section(text: &mut String, repeats: usize) {
         b.stick_speed
     )
     .unwrap();
-    let (core, c) = timed(repeats, || core_ball(b));
+    let [(core, c), (ns, e)] = timed(repeats, [&|| core_ball(b), &|| rapier_ball(b)]);
     line(text, "meterstick core f32 Billiard", core, &c, ROLLING);
-    let (ns, e) = timed(repeats, || rapier_ball(b));
     line(text, "rapier3d 0.36 (f32), ball", ns, &e, ROLLING);
     writeln!(text, "  ratio rapier3d / core: {:.1}x", ns / core).unwrap();
+    table.push([
+        "billiard ball (defaults), ns/step".into(),
+        format!("{core:.0}"),
+        format!("{ns:.0}; ratio {:.1}x", ns / core),
+    ]);
 }
 
 /// The puck's anisotropy on a level table: `(spread of the stopping distance, largest direction
@@ -396,7 +426,7 @@ fn five_sevenths(b: &BilliardParams<f32>) -> [f64; 2] {
     [(5.0 * v0 + 2.0 * r * f64::from(b.spin_y)) / 7.0, -2.0 * r * f64::from(b.spin_x) / 7.0 + 0.0]
 }
 
-fn anisotropy_section(text: &mut String) {
+fn anisotropy_section(text: &mut String, table: &mut Rows) {
     let p = PuckParams::<f32>::default();
     let closed = f64::from(p.speed).powi(2) / (2.0 * f64::from(p.mu_kinetic) * f64::from(p.gravity));
     writeln!(
@@ -418,6 +448,19 @@ fn anisotropy_section(text: &mut String) {
             anisotropy(|p| rapier_puck(p, PuckShape::LockedBall)),
         ),
     ];
+    let rapier = |f: fn(&(f64, f64, f64)) -> f64| {
+        format!("{:.1e} (cylinder), {:.1e} (ball, rotations locked)", f(&rows[1].1), f(&rows[2].1))
+    };
+    table.push([
+        "puck, level table, 16 headings: spread of the stopping distance".into(),
+        format!("{:.1e}", core.0),
+        rapier(|r| r.0),
+    ]);
+    table.push([
+        "puck, level table, 16 headings: largest direction error (deg)".into(),
+        format!("{:.1e}", core.1),
+        rapier(|r| r.1),
+    ]);
     for (name, (spread, worst, mean)) in rows {
         writeln!(
             text,
@@ -441,11 +484,19 @@ fn anisotropy_section(text: &mut String) {
     for (case, b) in cases {
         let law = five_sevenths(&b);
         writeln!(text, "  {case}: the law's ({:.6}, {:.6}) m/s", law[0], law[1]).unwrap();
-        for (name, e) in
+        let mut row = [
+            format!("billiard ball, {case}: rolling velocity's relative error against the 5/7 law"),
+            String::new(),
+            String::new(),
+        ];
+        for (k, (name, e)) in
             [("meterstick core f32 Billiard", core_ball(b)), ("rapier3d 0.36 (f32), ball", rapier_ball(b))]
+                .into_iter()
+                .enumerate()
         {
             let [x, y] = e.measure.map(f64::from);
             let error = (x - law[0]).hypot(y - law[1]) / law[0].hypot(law[1]);
+            row[k + 1] = format!("{error:.1e}");
             writeln!(
                 text,
                 "    {name:<30} ({x:.6}, {y:.6}) m/s at t = {:.3} s, relative error {error:.1e}{}",
@@ -454,6 +505,7 @@ fn anisotropy_section(text: &mut String) {
             )
             .unwrap();
         }
+        table.push(row);
     }
 }
 
@@ -461,14 +513,21 @@ fn main() {
     // `cargo bench` passes `--bench`; `cargo test --benches` passes nothing: run once, quickly.
     let repeats = if std::env::args().any(|a| a == "--bench") { REPEATS } else { 1 };
     let mut text = format!("rapier3d 0.36 and the core side by side, on {}:\n", machine());
-    speed_section(&mut text, repeats);
-    anisotropy_section(&mut text);
+    let mut table = Rows::new();
+    speed_section(&mut text, &mut table, repeats);
+    anisotropy_section(&mut text, &mut table);
     print!("{text}");
+    // The same figures side by side, a Markdown table under the printed block.
+    let mut rows =
+        String::from("\n| quantity | meterstick core (f32) | rapier3d 0.36 (f32) |\n|---|---|---|\n");
+    for [what, core, rapier] in &table {
+        writeln!(rows, "| {what} | {core} | {rapier} |").unwrap();
+    }
     // Quoted in docs/performance.md ("Against rapier3d") by scripts/performance.sh.
     if repeats > 1 {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../out/bench");
         let written = std::fs::create_dir_all(&dir)
-            .and_then(|()| std::fs::write(dir.join("rapier3d.md"), format!("```text\n{text}```\n")));
+            .and_then(|()| std::fs::write(dir.join("rapier3d.md"), format!("```text\n{text}```\n{rows}")));
         if let Err(e) = written {
             eprintln!("could not write {}: {e}", dir.join("rapier3d.md").display());
         }
