@@ -6,13 +6,17 @@
 #   - the rapier bench (`cargo bench -p meterstick-tests --features rapier --bench rapier`): the
 #     meter stick and the 3-block stack in rapier2d and in the core, one process
 #     (out/bench/rapier.md, quoted as written);
+#   - the rapier3d bench (`cargo bench -p meterstick-tests --features rapier3d --bench rapier3d`):
+#     the puck on an incline and the billiard ball in rapier3d and in the core, their anisotropy
+#     (out/bench/rapier3d.md, quoted as written);
 #   - `host-sim report --quick`: host ns/step, pivots and solve paths at h = 1 ms
 #     (out/performance/report/report.json, read as JSON);
 #   - the page's wasm modules (scripts/lib.sh `build_web`): their sizes, plain and gzipped.
 # Usage: bash scripts/performance.sh [--render-only]
 #   --render-only  write docs/performance.md from the files a previous full run left in out/
 #                  (nothing is measured; the stamp still names the current commit and machine).
-# Takes about as long as scripts/firmware-report.sh plus a release build of rapier2d (minutes).
+# Takes about as long as scripts/firmware-report.sh plus release builds of rapier2d and rapier3d
+# (minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -31,6 +35,7 @@ if [ "$render_only" = 0 ]; then
   bash scripts/firmware-report.sh >/dev/null
   . scripts/lib.sh
   $HOST_CARGO bench --locked -p meterstick-tests --features rapier --bench rapier
+  $HOST_CARGO bench --locked -p meterstick-tests --features rapier3d --bench rapier3d
   target/release/host-sim report --quick --out "$REPORT_DIR" \
     --firmware-figures out/firmware/report.md --bench-figures out/bench/rapier.md >/dev/null
   wasm=$(build_web)
@@ -40,7 +45,7 @@ else
 fi
 
 for f in out/firmware/report.md out/firmware/qemu-m4f-icount.json out/firmware/qemu-m0-icount.json \
-  out/firmware/qemu-m33-icount.json out/bench/rapier.md "$REPORT_DIR/report.json" "${WEB_MODULES[@]}"; do
+  out/firmware/qemu-m33-icount.json out/bench/rapier.md out/bench/rapier3d.md "$REPORT_DIR/report.json" "${WEB_MODULES[@]}"; do
   [ -s "$f" ] || { echo "performance.sh: $f is missing: run without --render-only first" >&2; exit 1; }
 done
 
@@ -162,6 +167,18 @@ print("`cargo bench -p meterstick-tests --features rapier --bench rapier`: rapie
       "and in the core's Stack3, in one process, as it printed:")
 print()
 with open("out/bench/rapier.md") as f:
+    print(f.read().rstrip())
+print()
+print("## Against rapier3d")
+print()
+print("`cargo bench -p meterstick-tests --features rapier3d --bench rapier3d`: rapier3d 0.36 (f32) and the core (f32) "
+      "on the puck on an incline and the billiard ball at their defaults (rapier: a tilted fixed cuboid for the plane, "
+      "the puck as its own cylinder and as a ball with its rotations locked, contact recycling off, one Coulomb "
+      "coefficient mu_k, its default solver and friction model; see the bench's module doc), then the anisotropy "
+      "measured the same way in both (the puck on a level table at 16 headings; the ball's rolling velocity against "
+      "the 5/7 law), in one process, as it printed:")
+print()
+with open("out/bench/rapier3d.md") as f:
     print(f.read().rstrip())
 print()
 print("## The microcontrollers")
