@@ -45,7 +45,7 @@ else
 fi
 
 for f in out/firmware/report.md out/firmware/qemu-m4f-icount.json out/firmware/qemu-m0-icount.json \
-  out/firmware/qemu-m33-icount.json out/bench/rapier.md out/bench/rapier3d.md "$REPORT_DIR/report.json" "${WEB_MODULES[@]}"; do
+  out/firmware/qemu-m33-icount.json out/firmware/qemu-m4f-spatial-icount.json out/firmware/qemu-m33-spatial-icount.json out/bench/rapier.md out/bench/rapier3d.md "$REPORT_DIR/report.json" "${WEB_MODULES[@]}"; do
   [ -s "$f" ] || { echo "performance.sh: $f is missing: run without --render-only first" >&2; exit 1; }
 done
 
@@ -133,6 +133,12 @@ for scene, title in MULTIBODY:
                  "(the M4F firmware runs the scenes of several bodies: see firmware/Cargo.toml)")
     print(f"| Cortex-M4F, {title} (f32, defaults): instructions per step, mean / worst | "
           f"{mean_worst(timings['qemu-m4f'][scene])} |")
+# The scenes in three dimensions run in builds of their own (firmware/Cargo.toml, `qemu-spatial`).
+SPATIAL = (("puck", "puck"), ("billiard", "billiard ball"), ("curling", "curling stone (8 points)"))
+spatial_cores = [(label, build + "-spatial", machine) for label, build, machine, _ in cores[:2]]
+spatial = {build: icount(build) for _, build, _ in spatial_cores}
+print("| Cortex-M4F, the " + " / the ".join(t for _, t in SPATIAL) + " (f32, defaults): instructions per step, "
+      "mean / worst | " + "; ".join(mean_worst(spatial["qemu-m4f-spatial"][s]) for s, _ in SPATIAL) + " |")
 if "tablecloth-mu2-flagged" in timings["qemu-m4f"]:
     print("| Cortex-M4F, the tablecloth at `mu = 2` (f32): its "
           f"{n(timings['qemu-m4f']['tablecloth-mu2-flagged']['steps'])} flagged steps, instructions per step, "
@@ -216,6 +222,17 @@ table(["core (QEMU machine)"] + [f"{s} ({what}): mean / worst" for s, what in ST
        + [mean_worst(timings[build][s]) if s in timings[build] else "not run" for s, _ in STACK_RIG]
        + [" / ".join(peak(timings[build], s) for s, _ in STACK_RIG)]
        for label, build, machine, _ in cores])
+print()
+print("The scenes in three dimensions at their defaults (f32, through the registry's view, "
+      "`SceneParams::build_view`: its `dyn` call and bookkeeping included; the `qemu-m4f-spatial` and "
+      "`qemu-m33-spatial` builds), with the deepest the stack grew (issue target on the M4F: the curling "
+      "stone with its default points mean <= 40,000):")
+print()
+table(["core (QEMU machine)"] + [f"{t}: mean / worst" for _, t in SPATIAL]
+      + ["stack peak (B): " + " / ".join(s for s, _ in SPATIAL)],
+      [[f"{label} (`{machine}`)"] + [mean_worst(spatial[build][s]) for s, _ in SPATIAL]
+       + [" / ".join(peak(spatial[build], s) for s, _ in SPATIAL)]
+       for label, build, machine in spatial_cores])
 m4f = timings["qemu-m4f"]
 if all(m4f[s].get("stack_peak_bytes") is not None for s in ("stack", "block-on-block")):
     print()
