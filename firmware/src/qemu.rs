@@ -25,6 +25,8 @@
 //! (the puck stopped, the ball rolled, the stone stopped).
 
 use meterstick_core::Real;
+#[cfg(any(feature = "qemu-multibody", feature = "qemu-spatial"))]
+use meterstick_core::RunStats;
 use meterstick_core::lcp::{Lcp, Lemke};
 #[cfg(feature = "qemu-multibody")]
 use meterstick_core::multibody::StepError;
@@ -346,24 +348,8 @@ impl MultibodyVisitor for CheckMultibody {
             report.add_to(&mut checksum);
         }
         let outcome = scene.outcome().unwrap_or(Outcome::Unfinished);
-        let st = scene.stats();
-        defmt::println!(
-            "{=str} outcome={} t={=f32} steps={=u64} pivots={=u64} max_active={=u8} checksum={=u32:08x}",
-            self.name,
-            outcome,
-            scene.time().as_f64() as f32,
-            st.steps,
-            st.pivots,
-            st.most_lcp_contacts.unwrap_or(0),
-            checksum.value()
-        );
-        defmt::println!(
-            "{=str} timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
-            self.name,
-            ticks,
-            worst,
-            steps
-        );
+        let time = scene.time().as_f64() as f32;
+        print_run(self.name, outcome, time, scene.stats(), checksum.value(), (ticks, worst, steps));
         if self.flagged {
             defmt::println!(
                 "{=str}-flagged timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
@@ -489,6 +475,31 @@ fn check_failing_steps() -> i32 {
     failures
 }
 
+/// A run of several bodies or in three dimensions: `<name> outcome=.. t=.. steps=.. pivots=..
+/// max_active=.. checksum=..`, then `<name> timing systicks=.. worst_step_systicks=.. steps=..`
+/// (`timed`: the ticks of its steps, the worst one's, the steps timed), for `host-sim qemu`.
+#[cfg(any(feature = "qemu-multibody", feature = "qemu-spatial"))]
+fn print_run(name: &str, outcome: Outcome, time: f32, st: &RunStats, checksum: u32, timed: (u64, u32, u64)) {
+    defmt::println!(
+        "{=str} outcome={} t={=f32} steps={=u64} pivots={=u64} max_active={=u8} checksum={=u32:08x}",
+        name,
+        outcome,
+        time,
+        st.steps,
+        st.pivots,
+        st.most_lcp_contacts.unwrap_or(0),
+        checksum
+    );
+    let (ticks, worst, steps) = timed;
+    defmt::println!(
+        "{=str} timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
+        name,
+        ticks,
+        worst,
+        steps
+    );
+}
+
 /// A scene in three dimensions through the registry's view ([`SceneParams::build_view`]): each
 /// step timed (the view's `dyn` call and bookkeeping included), then its outcome, steps, pivots and
 /// the view's trajectory checksum (every body's state after every step), and its ticks, in the
@@ -519,24 +530,8 @@ impl ViewVisitor for CheckView {
             worst = worst.max(used);
         }
         let outcome = view.outcome().unwrap_or(Outcome::Unfinished);
-        let st = view.summary();
-        defmt::println!(
-            "{=str} outcome={} t={=f32} steps={=u64} pivots={=u64} max_active={=u8} checksum={=u32:08x}",
-            self.name,
-            outcome,
-            view.time().as_f64() as f32,
-            st.steps,
-            st.pivots,
-            st.most_lcp_contacts.unwrap_or(0),
-            view.checksum()
-        );
-        defmt::println!(
-            "{=str} timing systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
-            self.name,
-            ticks,
-            worst,
-            steps
-        );
+        let time = view.time().as_f64() as f32;
+        print_run(self.name, outcome, time, &view.summary(), view.checksum(), (ticks, worst, steps));
         i32::from(outcome != self.expected)
     }
 }

@@ -152,6 +152,17 @@ impl MultibodyVisitor for HostMultibody {
     }
 }
 
+/// The firmware's `<name> outcome=..` and `<name> timing ..` lines of a run: its outcome, steps
+/// and checksum the host's, and a timing line for every step.
+fn check_run_lines(run: &FirmwareRun, name: &str, outcome: Outcome, steps: u64, sum: u32) {
+    let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
+    assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
+    assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
+    assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
+    let timing = run.lines.iter().find(|l| l.starts_with(&format!("{name} timing "))).expect("timing line");
+    assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
+}
+
 /// Block-on-block, the 3-block stack and disc-on-board at their defaults, and the tablecloth at
 /// `mu = 2` (firmware/src/qemu.rs, `qemu-multibody`):
 /// the outcome physics says (`docs/scenes.md`), and outcome, steps and checksum equal to the
@@ -165,14 +176,7 @@ fn check_multibody_scenes(run: &FirmwareRun) {
         let (outcome, steps, sum) =
             SceneParams::defaults(kind).build_multibody(Precision::F32, HostMultibody).unwrap();
         assert_eq!(outcome, expected, "{kind} on the host");
-        let name = kind.name();
-        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
-        assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
-        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
-        assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
-        let timing =
-            run.lines.iter().find(|l| l.starts_with(&format!("{name} timing "))).expect("timing line");
-        assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
+        check_run_lines(run, kind.name(), outcome, steps, sum);
     }
     // The tablecloth at `mu = 2`, whose flagged steps are timed apart.
     let params =
@@ -286,14 +290,7 @@ fn check_spatial_scenes(run: &FirmwareRun) {
             .build_view::<0, _>(Precision::F32, LcpLayout::Reduced, HostView)
             .unwrap();
         assert_eq!(outcome, expected, "{kind} on the host");
-        let name = kind.name();
-        let line = run.lines.iter().find(|l| l.starts_with(&format!("{name} outcome="))).expect("scene line");
-        assert!(line.starts_with(&format!("{name} outcome={} ", outcome.name())), "{line}: host {outcome:?}");
-        assert!(line.contains(&format!(" steps={steps} ")), "{line}: host took {steps} steps");
-        assert!(line.ends_with(&format!("checksum={sum:08x}")), "{line}: the host's checksum is {sum:08x}");
-        let timing =
-            run.lines.iter().find(|l| l.starts_with(&format!("{name} timing "))).expect("timing line");
-        assert!(timing.ends_with(&format!(" steps={steps}")), "{timing}: host took {steps} steps");
+        check_run_lines(run, kind.name(), outcome, steps, sum);
     }
 }
 
