@@ -11,7 +11,7 @@
 //!   bodies): a heavy body on a light one, the light body's velocity is the difference of impulses
 //!   of the heavy one's size; a light body on a heavy one, the heavy body's rows of the LCP are
 //!   `m / M` of the light one's. Each scene's edges are measured (`docs/host-sim.md`, "Where f32
-//!   holds: several bodies"; `host-sim/src/multibody/reach.rs` runs every edge again).
+//!   holds: several bodies"; `host-sim/src/bodies/reach.rs` runs every edge again).
 
 use core::fmt;
 

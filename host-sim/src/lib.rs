@@ -10,7 +10,8 @@
 //! **The libraries** they are written over, each named for what it is: the scenes and their flags
 //! ([`scenes`]); one recorded run of a scene in the core or the independent f64 reference
 //! ([`mod@reference`]) ([`trajectory`]: its types, the rows kept, the core's run, the reference's
-//! run, the eq. 21 switches and deviations, the CSVs); a run of any scene in the core, of either
+//! run, the eq. 21 switches and deviations, the CSVs); the same of a scene of several bodies or in
+//! three dimensions, recorded body by body, with its laws and files ([`bodies`]); a run of any scene in the core, of either
 //! engine, through its one scene interface ([`view_run`]); what the commands write ([`output`]) and
 //! draw ([`plot`]); the outcome over two parameters ([`map`]); the error against run time over
 //! `h` ([`sweep`]); where f32 holds ([`envelope`]); the stress grid ([`stress`]); the rig over
@@ -18,6 +19,7 @@
 //! page's file server ([`serve`]); the LCP file reader ([`lcp_io`]); input files read with a size
 //! cap ([`input`]); progress and Ctrl-C ([`progress`]); the failed-check error ([`errors`]).
 
+pub mod bodies;
 pub mod cli;
 pub mod commands;
 pub mod envelope;
@@ -26,7 +28,6 @@ pub mod input;
 pub mod lcp_io;
 pub mod map;
 pub mod monitor;
-pub mod multibody;
 pub mod output;
 pub mod plot;
 pub mod progress;

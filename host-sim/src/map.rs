@@ -157,7 +157,7 @@ pub struct Map {
     /// `outcomes[row][column]`.
     pub outcomes: Vec<Vec<OutcomeKind>>,
     /// The law's outcome at each cell's centre, `[row][column]`, for a scene with a law
-    /// ([`crate::multibody::law`]; `None` in a cell at the law's threshold).
+    /// ([`crate::bodies::law`]; `None` in a cell at the law's threshold).
     pub law: Option<Vec<Vec<Option<OutcomeKind>>>>,
     /// The summary.
     pub summary: MapSummary,
@@ -184,7 +184,7 @@ fn outcome_at(
 /// as one ([`crate::scenes::ParamsExt::to_reference`]), else its run of several bodies.
 fn reference_outcome(spec: &SceneParams) -> anyhow::Result<OutcomeKind> {
     if spec.to_reference().is_none() {
-        return Ok(crate::multibody::run_reference(spec, false)?.outcome.class);
+        return Ok(crate::bodies::run_reference(spec, false)?.outcome.class);
     }
     Ok(crate::with_contacts!(
         spec.kind(),
@@ -192,11 +192,11 @@ fn reference_outcome(spec: &SceneParams) -> anyhow::Result<OutcomeKind> {
     ))
 }
 
-/// The law's outcome at `(x, y)` (`docs/scenes.md`; [`crate::multibody::law`]): `None` for a scene
+/// The law's outcome at `(x, y)` (`docs/scenes.md`; [`crate::bodies::law`]): `None` for a scene
 /// without a law or at its threshold.
 fn law_at(base: &SceneParams, axes: (Axis, Axis), (x, y): (f64, f64)) -> anyhow::Result<Option<OutcomeKind>> {
     let spec = apply_axes(base, axes, (x, y))?;
-    Ok(crate::multibody::law(&spec).and_then(|l| l.outcome))
+    Ok(crate::bodies::law(&spec).and_then(|l| l.outcome))
 }
 
 /// The law's boundaries along x in the row at `y` over `(from, to)`: scanned at the cells' edges
@@ -401,7 +401,7 @@ pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) 
             None => counts.push((*o, 1)),
         }
     }
-    let law = if crate::multibody::law(base).is_some() {
+    let law = if crate::bodies::law(base).is_some() {
         let rows = ys
             .iter()
             .map(|&y| xs.iter().map(|&x| law_at(base, axes, (x, y))).collect())

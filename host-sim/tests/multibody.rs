@@ -384,7 +384,7 @@ fn a_mass_ratio_beyond_f32s_reach_is_named() {
 /// or the floor's ends, which it has not) carry nothing.
 #[test]
 fn a_centred_resting_box_loads_both_corners_alike() {
-    use meterstick_host_sim::multibody::{run_core, run_reference};
+    use meterstick_host_sim::bodies::{run_core, run_reference};
     use meterstick_host_sim::scenes::{Precision, SceneKind, SceneParams};
     let mut spec = SceneParams::defaults(SceneKind::BlockOnBlock);
     assert!(spec.set("force", 0.0));

@@ -26,9 +26,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+use meterstick_host_sim::bodies;
 use meterstick_host_sim::commands::{run as run_command, scene};
 use meterstick_host_sim::lcp_io::Precision;
-use meterstick_host_sim::multibody;
 use meterstick_host_sim::scenes::{Catalogued as _, FLAGS, INTRODUCTIONS, LcpLayout, SceneArgs, SceneKind};
 use meterstick_host_sim::serve::{Replay, ServeArgs, Server};
 use meterstick_host_sim::trajectory::{Record, run_k};
@@ -513,7 +513,7 @@ fn check_bodies(b: &Browser, base: &str, name: &str, query: &str) {
     );
     let args = scene_args(query);
     let spec = args.specs(None).unwrap()[0].1;
-    let host = multibody::run_core(&spec, args.precision, false, None).unwrap();
+    let host = bodies::run_core(&spec, args.precision, false, None).unwrap();
     let shot = b.screenshot(name, None);
     println!(
         "{name}: ?{query}\n    page {}, host-sim's core {} ({:.1} s; {})",

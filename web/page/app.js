@@ -10,19 +10,15 @@ import { compileCore, instantiateCore, moduleUrl, parseNumber } from './core.js'
 import { SceneView, drawPlot, COLORS, CONTACT_COLORS } from './draw.js';
 import { OutcomeMap } from './map.js';
 import { listRuns, loadRun } from './replay.js';
-import { COL, MODE_NAMES, Trace } from './trace.js';
+import { liveSource, replaySource } from './sources.js';
+import { testHooks } from './hooks.js';
+import { MODE_NAMES } from './trace.js';
 import { lcpText, measuredText, niceCeil, parseCompare, plain, scaled, toFlagUnit } from './words.js';
 
 const $ = (id) => document.getElementById(id);
 
 /// Query keys that are not scene flags (and `b.<flag>`: run B's flags, the comparison).
 const PAGE_KEYS = ['scene', 'precision', 'lcp-size', 'autorun', 'rate', 'replay', 'map', 'bench', 'after'];
-
-/// A run goes on past its outcome (`after=0`: it stops there) until its bodies rest (every point
-/// slower than REST_SPEED m/s for REST_TIME s), leave the view, or AFTER_SECONDS s have passed.
-const AFTER_SECONDS = 5;
-const REST_SPEED = 1e-3;
-const REST_TIME = 0.2;
 
 const S = {
   core: null,
@@ -198,100 +194,10 @@ function writeUrl() {
 
 // --- runs -----------------------------------------------------------------------------------------
 
-/// The fastest point's speed between two rows (m/s; a body's turning counted at 0.1 m from its
-/// centre): from the velocities of a scene of one body, from the motion over the step for several.
-function rowSpeed(trace, prev, rows, at, h) {
-  if (trace.bodies === 0) return Math.hypot(rows[at + COL.vx], rows[at + COL.vy]) + 0.1 * Math.abs(rows[at + COL.omega]);
-  let v = 0;
-  for (let b = 0; b < trace.bodies; b += 1) {
-    const i = 1 + 3 * b;
-    v = Math.max(v, (Math.hypot(rows[at + i] - prev[i], rows[at + i + 1] - prev[i + 1]) + 0.1 * Math.abs(rows[at + i + 2] - prev[i + 2])) / h);
-  }
-  return v;
-}
-
-/// A live run of `core` (made by core.create), drawn in `sceneView`. `ended` once the judge has
-/// decided (outcome, checksum, counters and measured quantities as decided); then, `going` past
-/// the outcome (the core's ms_step_past) until its bodies rest or leave the view; `done` when
-/// nothing more is to be stepped.
-function liveSource(core, params, sceneView) {
-  const shapes = core.shapes();
-  const scene = core.current.name;
-  const trace = new Trace(core.contacts(scene), shapes ? shapes.sizes.length : 0);
-  trace.push(core.startRow());
-  return {
-    kind: 'live', scene, params, trace, shapes, view: sceneView, ended: false, outcome: null,
-    going: false, done: false, judgedRow: null, judgedN: 0, restFor: 0,
-    precision: $('precision').value, lcpSize: $('lcp-size').value,
-    advance(n) {
-      if (this.done) return 0;
-      if (this.ended) return this.goOn(n);
-      const rows = core.step(n);
-      const taken = rows.length / trace.row;
-      for (let k = 0; k < taken; k += 1) trace.push(rows, k * trace.row);
-      const outcome = core.outcome();
-      if (outcome) {
-        this.ended = true;
-        this.outcome = outcome;
-        this.checksum = core.checksum();
-        this.stats = core.stats();
-        this.measured = core.measured();
-        this.judgedRow = trace.last.slice();
-        this.judgedN = trace.n;
-        trace.judged = trace.whole;
-        this.going = S.goOn;
-        this.done = !this.going;
-      }
-      return taken;
-    },
-    /// Past the outcome: steps on until the bodies rest, leave the view or AFTER_SECONDS pass.
-    goOn(n) {
-      const rows = core.stepPast(n);
-      const taken = rows.length / trace.row;
-      const h = params.step;
-      let k = 0;
-      for (; k < taken && this.going; k += 1) {
-        const slow = rowSpeed(trace, trace.last, rows, k * trace.row, h) < REST_SPEED;
-        trace.push(rows, k * trace.row);
-        this.restFor = slow ? this.restFor + h : 0;
-        if (this.restFor >= REST_TIME || trace.time - this.judgedRow[0] >= AFTER_SECONDS || !this.view.inView(trace.last)) {
-          this.going = false;
-        }
-      }
-      if (taken === 0) this.going = false;
-      this.done = !this.going;
-      return k;
-    },
-  };
-}
-
-/// A run of host-sim run, replayed row by row.
-function replaySource(run) {
-  const trace = new Trace(run.core.k); const reference = new Trace(run.core.k);
-  const src = {
-    kind: 'replay', scene: run.summary.scene, params: run.summary.parameters, trace, reference,
-    ended: false, outcome: null, run, cursor: 0,
-    advance(n) {
-      let taken = 0;
-      while (taken < n && this.cursor < run.core.n) {
-        trace.push(run.core.rows, this.cursor * trace.row);
-        if (run.reference && this.cursor < run.reference.n) reference.push(run.reference.rows, this.cursor * trace.row);
-        this.cursor += 1; taken += 1;
-      }
-      if (this.cursor >= run.core.n) {
-        this.ended = true;
-        this.done = true;
-        const c = run.summary.core;
-        this.outcome = { name: c.outcome, text: c.outcome_detail ? `${c.outcome} (${c.outcome_detail})` : c.outcome };
-      }
-      return taken;
-    },
-    referenceRow() {
-      return reference.n > 0 ? reference.last : null;
-    },
-  };
-  src.advance(1);
-  return src;
+/// What a live run takes from the form: its precision and LCP size (shown with its result), and
+/// whether it goes on past its outcome (`after`).
+function liveOptions() {
+  return { precision: $('precision').value, lcpSize: $('lcp-size').value, goOn: S.goOn };
 }
 
 function clearResult(status) {
@@ -340,7 +246,7 @@ function makeRun() {
     const v = made.params[flag.fields[S.scene]];
     S.inputs.get(flag.long).placeholder = plain(toFlagUnit(flag, v));
   }
-  S.source = liveSource(S.core, made.params, view);
+  S.source = liveSource(S.core, made.params, view, liveOptions());
   S.other = null;
   S.simTarget = 0;
   view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
@@ -359,7 +265,7 @@ function makeRun() {
       S.source = null; clearResult('not run: invalid parameters'); drawEmpty(); setState('error');
       return false;
     }
-    S.other = liveSource(S.coreB, madeB.params, viewB);
+    S.other = liveSource(S.coreB, madeB.params, viewB, liveOptions());
     cautionsB = madeB.cautions.map((c) => `run B: ${c}`);
     viewB.setScene(S.scene, madeB.params, S.other.trace.last, S.other.trace.k, S.other.shapes);
   }
@@ -879,51 +785,6 @@ async function main() {
   if (q.get('autorun') === '1' && S.source && !problems.length) play();
 }
 
-// For the browser test and the console: the live run's trajectory (every step; the test shows
-// the first step that differs from the host's), and the map's outcome code at a cell.
-window.meterstick = {
-  trace() {
-    const tr = S.source && S.source.trace;
-    if (!tr) return null;
-    // A scene of several bodies keeps no velocities (x, y, theta: the top body's).
-    // The judged run (the rows up to the outcome; not those after it).
-    const n = S.source.judgedN || tr.n;
-    const pick = (k) => (tr.cols[k] ? Array.from(tr.cols[k].subarray(0, n)) : []);
-    return { t: pick('t'), x: pick('x'), y: pick('y'), theta: pick('theta'), vx: pick('vx'), vy: pick('vy'), omega: pick('omega') };
-  },
-  /// The shown run's last row (a scene of several bodies: t, then each body's x, y, theta).
-  lastRow() {
-    const src = S.source;
-    if (!src) return null;
-    return Array.from(src.judgedRow || src.trace.last);
-  },
-  /// The row shown last (past the outcome when the run went on), of run A or run B (`b`).
-  shownRow(b = false) {
-    const src = b ? S.other : S.source;
-    return src ? Array.from(src.trace.last) : null;
-  },
-  /// The drawing of run A (or B): its extent (m) and the least room between a body and its edge
-  /// over every frame drawn (px; negative: a body was out of the drawing), the bodies' sizes.
-  view(b = false) {
-    const v = b ? viewB : view;
-    return { extent: v.extent(), worst: v.worst, sizes: v.shapes ? v.shapes.sizes : null };
-  },
-  /// The CSV the download button offers (run A, or B).
-  csv(b = false) {
-    const src = b ? S.other : S.source;
-    return src && src.kind === 'live' ? src.trace.csv() : null;
-  },
-  /// The shown scene's contacts, as the description names them, and the last row's length.
-  contacts() {
-    const src = S.source;
-    return src ? { names: S.main.scene(src.scene).contacts, row: src.trace.last.length } : null;
-  },
-  mapOutcome(i, j) {
-    return map.grid[j] ? map.grid[j][i] : null;
-  },
-  mapCellCenter(i, j) {
-    return map.cellCenter(i, j);
-  },
-};
+window.meterstick = testHooks(S, view, viewB, map);
 
 main();

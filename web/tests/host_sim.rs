@@ -140,7 +140,7 @@ fn a_config_gives_each_flag_once() {
 #[test]
 #[allow(clippy::float_cmp)] // exact: the same computation, the bits compared
 fn a_run_of_several_bodies_through_the_exports_ends_as_host_sims_core_run() {
-    use meterstick_host_sim::multibody::run_core;
+    use meterstick_host_sim::bodies::run_core;
     use meterstick_web::{
         ms_configure, ms_create, ms_give, ms_outcome, ms_start_row, ms_step, ms_time, trace_row,
     };

@@ -146,11 +146,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<String> {
     // The paper's speeds are the meter stick's (three-fingers has a `--speed` too, and one run).
     let paper = (args.scene.kind() == SceneKind::MeterStick).then_some(("speed", &PAPER_SPEEDS[..]));
     let specs = args.scene.specs(paper)?;
-    if crate::multibody::runs(args.scene.kind()) {
+    if crate::bodies::runs(args.scene.kind()) {
         for (_, spec) in &specs {
             check_recorded_steps(spec)?;
         }
-        return crate::multibody::run_all(&specs, args.scene.precision, &args.out);
+        return crate::bodies::run_all(&specs, args.scene.precision, &args.out);
     }
     // Only the meter stick's default duration follows its fingers ([`SceneParams::follow_travel_time`]).
     let followed = args.scene.kind() == SceneKind::MeterStick

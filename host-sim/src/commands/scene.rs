@@ -25,8 +25,8 @@ pub fn run(cmd: &SceneCmdArgs) -> anyhow::Result<String> {
     let [(_, spec)] = specs.as_slice() else {
         anyhow::bail!("host-sim scene runs one scene: give each flag one value (host-sim run takes lists)");
     };
-    if crate::multibody::runs(spec.kind()) {
-        return crate::multibody::summarise(spec, cmd.scene.precision);
+    if crate::bodies::runs(spec.kind()) {
+        return crate::bodies::summarise(spec, cmd.scene.precision);
     }
     crate::with_contacts!(spec.kind(), K => summarise::<K>(cmd, spec))
 }

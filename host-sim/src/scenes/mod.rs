@@ -37,7 +37,7 @@ pub trait ParamsExt {
 
     /// The same scene for the independent reference (its own parameter types: data only);
     /// `None` for a scene the single-body reference does not implement (a scene of several
-    /// bodies: `crate::multibody::to_reference`).
+    /// bodies: `crate::bodies::to_reference`).
     fn to_reference(&self) -> Option<crate::reference::Spec>;
 }
 

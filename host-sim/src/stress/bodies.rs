@@ -13,7 +13,7 @@
 //!   judged against `64 eps (size + |x| + |y|)` ([`Metrics::still_scale`]).
 //! * **The laws' accelerations** ([`Claim::LawAccelerations`], block-on-block, disc-on-board): the
 //!   scene's measured lower and upper accelerations against `docs/scenes.md`'s
-//!   ([`crate::multibody::law`]), their largest difference over [`acceleration_tolerance`].
+//!   ([`crate::bodies::law`]), their largest difference over [`acceleration_tolerance`].
 //!
 //! Every LCP answer is verified in the core (a step that cannot be verified ends the run with
 //! `Failed`), so no residual is reported here (0); penetration is not measured for several bodies
@@ -139,7 +139,7 @@ impl ViewVisitor for Measure<'_> {
         }
         if self.case.claim == Claim::LawAccelerations {
             let measured = view.measured();
-            let law = crate::multibody::law(spec);
+            let law = crate::bodies::law(spec);
             let laws = [law.and_then(|l| l.lower_acceleration), law.and_then(|l| l.upper_acceleration)];
             // A missing measure (or law) is NaN, which fails the judge's `<= 1`.
             m.claim_motion =

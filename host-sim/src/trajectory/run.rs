@@ -20,7 +20,7 @@ pub fn run(spec: &SceneParams, implementation: Implementation, record: Record) -
 /// Calls `$body` with the const `$k` set to the number of contacts of scene `$kind` (1, 2 or 3):
 /// the commands that record a scene of one body are generic over its contacts. Any other count (a
 /// scene of several bodies has none, [`SceneKind::contacts`] 0: the commands run those through
-/// [`crate::multibody`] before they get here) returns [`UnrecordedContacts`] from the enclosing
+/// [`crate::bodies`] before they get here) returns [`UnrecordedContacts`] from the enclosing
 /// function, whose error type takes an `anyhow::Error`.
 ///
 /// [`SceneKind::contacts`]: meterstick_core::scene::SceneKind::contacts

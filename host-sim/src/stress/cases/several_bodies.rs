@@ -9,7 +9,7 @@ use super::{Case, Claim};
 use crate::scenes::SceneParams;
 use crate::trajectory::OutcomeKind;
 
-/// The law's outcome of a scene of several bodies (`docs/scenes.md`; [`crate::multibody::law`])
+/// The law's outcome of a scene of several bodies (`docs/scenes.md`; [`crate::bodies::law`])
 /// where it is clear: every threshold the scene's parameters meet more than 5 % away (the
 /// pulled scenes: the pull against `mu_floor (M + m) g` and `(mu_s + mu_floor) (M + m) g`; the
 /// stack: its overhang scale against 1), and a tablecloth's `Stayed` only with the board out within
@@ -17,7 +17,7 @@ use crate::trajectory::OutcomeKind;
 /// the law before `max_time`), a sliding top block only while it stays in full contact.
 fn law_claim(spec: &SceneParams) -> Option<OutcomeKind> {
     let clear = |a: f64, b: f64| (a - b).abs() > 0.05 * a.abs().max(b.abs());
-    let law = crate::multibody::law(spec)?;
+    let law = crate::bodies::law(spec)?;
     let pulled = |force: f64, total: f64, mu_s: f64, mu_floor: f64, g: f64| {
         clear(force, mu_floor * total * g) && clear(force, (mu_s + mu_floor) * total * g)
     };

@@ -110,7 +110,7 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
         return run_spatial_reference(spec, record);
     }
     let Some(r_spec) = to_reference(spec) else {
-        anyhow::bail!("scene {kind} has no multibody reference");
+        anyhow::bail!("scene {kind} has no reference of several bodies");
     };
     progress::check()?;
     let sample = if record { Sample::All } else { Sample::None };

@@ -85,7 +85,7 @@ pub fn warnings(spec: &SceneParams, precision: Precision) -> Vec<BodiesWarning> 
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-    use crate::multibody::run_core;
+    use crate::bodies::run_core;
     use meterstick_core::scene::{OutcomeKind, SceneKind};
 
     /// `reach`'s scene with `upper / lower = 10^exponent` (the other 1 kg), pulled at `k (m + M) g`.

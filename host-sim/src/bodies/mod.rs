@@ -1,5 +1,6 @@
-//! The scenes of several bodies (`docs/scenes.md`, "Scenes of several bodies"; [`SceneKind::is_multibody`])
-//! in `host-sim`: a run in the core ([`run_core`], through the core's one scene interface,
+//! The scenes recorded body by body: of several bodies (`docs/scenes.md`, "Scenes of several
+//! bodies"; [`SceneKind::is_multibody`]) and in three dimensions ("Scenes in three dimensions";
+//! [`SceneKind::is_spatial`]), in `host-sim`: a run in the core ([`run_core`], through the core's one scene interface,
 //! [`SceneView`](meterstick_core::scene::SceneView), its pair forces and loads the view's figures) or
 //! in the independent reference ([`run_reference`], `meterstick_reference::multibody::run`), recorded as a
 //! [`BodiesRun`] (every body's state after every step, the outcome, what the scene measures, the
