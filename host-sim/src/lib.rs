@@ -14,7 +14,7 @@
 //! three dimensions, recorded body by body, with its laws and files ([`bodies`]); a run of any scene in the core, of either
 //! engine, through its one scene interface ([`view_run`]); what the commands write ([`output`]) and
 //! draw ([`plot`]); the outcome over two parameters ([`map`]); the error against run time over
-//! `h` ([`sweep`]); where f32 holds ([`envelope`]); the stress grid ([`stress`]); the rig over
+//! `h` ([`sweep`]; of the scenes in three dimensions, [`spatial_sweep`]); where f32 holds ([`envelope`]); the stress grid ([`stress`]); the rig over
 //! its link ([`monitor`]: parameters, recording, comparison); firmware under QEMU ([`qemu`]); the
 //! page's file server ([`serve`]); the LCP file reader ([`lcp_io`]); input files read with a size
 //! cap ([`input`]); progress and Ctrl-C ([`progress`]); the failed-check error ([`errors`]).
@@ -35,6 +35,7 @@ pub mod qemu;
 pub use meterstick_reference as reference;
 pub mod scenes;
 pub mod serve;
+pub mod spatial_sweep;
 pub mod stress;
 pub mod sweep;
 pub mod trajectory;

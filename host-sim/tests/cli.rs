@@ -359,13 +359,21 @@ fn report_quick_writes_its_tables_and_pictures() {
             && md.contains("| finger speed (m/s) | h = 1e-3 s | h = 1e-2 s |")
     );
     assert!(md.contains("run `scripts/firmware-report.sh` before this report"));
-    for pic in ["error_vs_runtime.svg", "error_vs_h.svg", "map/map.svg"] {
+    // The scenes in three dimensions: 4 cases x 2 precisions x 2 values of h, each with an error.
+    let (_, spatial) = read_csv(&out.join("spatial_error_vs_h.csv"));
+    assert_eq!(spatial.len(), 16);
+    assert!(spatial.iter().all(|r| num(&r[5]).is_finite() && num(&r[6]) > 0.0), "{spatial:?}");
+    assert!(md.contains("## Three dimensions: error against the closed forms\n"));
+    assert!(md.contains("### Where f32 holds: the puck\n") && md.contains("| 10 | ok "));
+    for pic in ["error_vs_runtime.svg", "error_vs_h.svg", "map/map.svg", "spatial_error_vs_h.svg"] {
         assert!(md.contains(pic), "report.md does not link {pic}");
         assert!(std::fs::read_to_string(out.join(pic)).unwrap().starts_with("<svg"));
     }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(json["sweep"].as_array().unwrap().len(), 12);
+    assert_eq!(json["spatial_sweep"].as_array().unwrap().len(), 16);
+    assert_eq!(json["spatial_envelope"].as_array().unwrap().len(), 4 * 2);
     std::fs::remove_dir_all(&out).unwrap();
 }
 

@@ -8,6 +8,7 @@ use super::maps::{Comparison, MAP_CONFIGS, SuccessMaps};
 use super::{Fit, ReportArgs};
 use crate::envelope::Envelope;
 use crate::output::sci;
+use crate::spatial_sweep::{ENVELOPE_SPEEDS, ENVELOPE_TOLERANCE, EnvelopeCell, REPEATS, SpatialRow};
 use crate::sweep::{Sweep, SweepRow};
 
 /// The whole of `report.md`.
@@ -16,6 +17,7 @@ pub fn report(
     sweep: &Sweep,
     fits: &[Fit],
     envelope: &Envelope,
+    spatial: (&[SpatialRow], &[EnvelopeCell]),
     maps: &SuccessMaps,
     comparison: &Comparison,
 ) -> String {
@@ -30,6 +32,7 @@ pub fn report(
     );
     md += &sweep_section(sweep, fits);
     md += &envelope_section(envelope);
+    md += &spatial_section(spatial.0, spatial.1);
     md += &performance_section(&sweep.rows, args);
     md += &map_section(maps, comparison);
     md
@@ -89,6 +92,51 @@ fn sweep_section(sweep: &Sweep, fits: &[Fit]) -> String {
            resolved as one LCP per step; switches happen at step boundaries), so about one decade of error per \
            decade of h is expected; the pictures show where each configuration stops paying off.\n\n";
     md
+}
+
+/// "Three dimensions": each case's error against its closed form over `h` in f32 and f64, with
+/// the host's time per step, and where f32 holds for the puck over speed x step.
+fn spatial_section(rows: &[SpatialRow], cells: &[EnvelopeCell]) -> String {
+    let mut md = String::from("## Three dimensions: error against the closed forms\n\n");
+    md += "The puck on a level table launched at 30 degrees and the billiard ball struck with back and side \
+           spin (`docs/scenes.md`), in the core through its scene interface, against their closed forms \
+           (`host-sim/src/spatial_sweep.rs`). The heading's error is in degrees (isotropic friction keeps \
+           the puck on its launch heading); the others are relative. Host ns/step: the fastest of ";
+    md += &format!("{REPEATS} runs.\n\n![error vs h](spatial_error_vs_h.svg)\n\n");
+    md += "| case | precision | h (s) | steps | error | host ns/step |\n|---|---|---|---|---|---|\n";
+    for r in rows {
+        let unit = if r.unit == "deg" { " deg" } else { "" };
+        md += &format!(
+            "| {} | {} | {:e} | {} | {}{unit} | {:.0} |\n",
+            r.case,
+            r.precision,
+            r.h,
+            r.steps,
+            sci(r.error),
+            r.ns_per_step
+        );
+    }
+    md += &format!(
+        "\n### Where f32 holds: the puck\n\nf32's stopping distance against f64's at the same launch speed and \
+         step (relative); `ok` where within {ENVELOPE_TOLERANCE:e}.\n\n| speed (m/s) |"
+    );
+    // The cells run over the steps for each speed in turn.
+    let per_speed = cells.len() / ENVELOPE_SPEEDS.len();
+    let steps: Vec<f64> = cells.iter().take(per_speed).map(|c| c.h).collect();
+    for h in &steps {
+        md += &format!(" h = {h:e} s |");
+    }
+    md += "\n|---|";
+    md += &"---|".repeat(steps.len());
+    md += "\n";
+    for (speed, row) in ENVELOPE_SPEEDS.iter().zip(cells.chunks(per_speed.max(1))) {
+        md += &format!("| {speed} |");
+        for c in row {
+            md += &format!(" {} {} |", if c.holds { "ok" } else { "**no**" }, sci(c.difference));
+        }
+        md += "\n";
+    }
+    md + "\n"
 }
 
 /// "Where f32 holds": the envelope's table.

@@ -1,7 +1,8 @@
 //! `host-sim report`: error against run time over a sweep of `h` ([`crate::sweep`]), a success
 //! map in three implementations ([`crate::map`], one grid for the three: `maps.rs`), where f32
-//! holds ([`crate::envelope`]'s table) and the performance figures; writes `report.md`
-//! (`markdown.rs`) with its tables and pictures.
+//! holds ([`crate::envelope`]'s table), the scenes in three dimensions against their closed forms
+//! and where f32 holds for the puck ([`crate::spatial_sweep`]) and the performance figures; writes
+//! `report.md` (`markdown.rs`) with its tables and pictures.
 //!
 //! [`run`] is a list of named steps: compute the sweep, the maps and the envelope, then write the
 //! sweep's table and pictures, the maps' files, `report.json` and `report.md`.
@@ -19,6 +20,7 @@ use crate::envelope;
 use crate::output::{create_dir, sci, write_json};
 use crate::plot;
 use crate::scenes::Implementation;
+use crate::spatial_sweep::{self, CASES, SpatialRow};
 use crate::sweep::{self, CONFIGS, Sweep, SweepRow, order_fit};
 use meterstick_catalogue::Short;
 
@@ -74,13 +76,24 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<String> {
     let sweep = sweep::run(&sweep::steps(args.quick), args.horizon)?;
     let maps = SuccessMaps::compute(args.quick)?;
     let envelope = envelope::compute(args.quick, 2_000_000)?;
+    let spatial_steps = spatial_sweep::steps(args.quick);
+    let spatial = spatial_sweep::sweep(&spatial_steps)?;
+    let spatial_envelope = spatial_sweep::envelope(&spatial_steps)?;
     let fits = write_sweep(out, &sweep, args.horizon)?;
+    write_spatial(out, &spatial)?;
     let comparison = maps.write(out)?;
     write_json(
         &out.join("report.json"),
-        &json!({ "sweep": sweep.rows, "h_converged_s": sweep.h_converged, "horizon_s": args.horizon }),
+        &json!({
+            "sweep": sweep.rows,
+            "h_converged_s": sweep.h_converged,
+            "horizon_s": args.horizon,
+            "spatial_sweep": spatial,
+            "spatial_envelope": spatial_envelope,
+        }),
     )?;
-    let md = markdown::report(args, &sweep, &fits, &envelope, &maps, &comparison);
+    let md =
+        markdown::report(args, &sweep, &fits, &envelope, (&spatial, &spatial_envelope), &maps, &comparison);
     std::fs::write(out.join("report.md"), &md)?;
     Ok(terminal_text(&fits, &maps, &comparison, out))
 }
@@ -142,6 +155,43 @@ fn write_sweep(out: &Path, sweep: &Sweep, horizon: f64) -> anyhow::Result<Vec<Fi
         &plot::SeriesLabelPosition::LowerRight,
     )?;
     Ok(fits)
+}
+
+/// Writes `spatial_error_vs_h.csv` and `spatial_error_vs_h.svg` (each case's error against `h`,
+/// f32 and f64).
+fn write_spatial(out: &Path, rows: &[SpatialRow]) -> anyhow::Result<()> {
+    let mut csv = String::from("case,unit,precision,h_s,steps,error,ns_per_step\n");
+    for r in rows {
+        writeln!(
+            csv,
+            "{},{},{},{},{},{},{:.1}",
+            r.case, r.unit, r.precision, r.h, r.steps, r.error, r.ns_per_step
+        )?;
+    }
+    std::fs::write(out.join("spatial_error_vs_h.csv"), csv)?;
+    let series: Vec<plot::Series> = CASES
+        .iter()
+        .filter(|c| c.unit == "relative")
+        .flat_map(|c| {
+            ["f32", "f64"].map(|precision| plot::Series {
+                label: format!("{} ({precision})", c.name),
+                points: rows
+                    .iter()
+                    .filter(|r| r.case == c.name && r.precision == precision && r.error > 0.0)
+                    .map(|r| (r.h, r.error))
+                    .collect(),
+                dashed: precision == "f32",
+            })
+        })
+        .collect();
+    plot::lines(
+        &out.join("spatial_error_vs_h.svg"),
+        "Three dimensions: error against the closed forms vs h",
+        ("h (s)", "relative error"),
+        &series,
+        true,
+        &plot::SeriesLabelPosition::LowerRight,
+    )
 }
 
 /// The lines the terminal gets: each configuration's order and best error, and the map's count
