@@ -4,7 +4,8 @@
 //! gravities and edge geometries; blocks on steep and shallow inclines, very tall and very flat;
 //! ladders frictionless, at and near the critical angle; Painlevé's rod jamming, at tiny steps,
 //! huge speeds and friction; cylinders rolling and slipping; the scenes of several bodies at mass
-//! ratios 1:1000, steps 1e-6..0.1 s and friction up to 1e4, [`bodies`]), each run in the core as f32 6x6 (the
+//! ratios 1:1000, steps 1e-6..0.1 s and friction up to 1e4, [`bodies`]; the scenes in three
+//! dimensions at extreme masses, steps, friction, speeds and spins), each run in the core as f32 6x6 (the
 //! firmware's), f32 8x8 and f64 8x8 (a one-contact scene: 3x3, 4x4 and 4x4), with metrics computed here in f64 from what the core reports
 //! after every step ([`metrics`]) and judged by the criteria of [`mod@judge`]; [`output`] writes the
 //! report.
@@ -55,7 +56,7 @@ pub fn run_case(case: &Case, config: Implementation) -> Metrics {
         Implementation::Reference => (Precision::F64, LcpLayout::Full),
     };
     let run = std::panic::catch_unwind(|| {
-        if case.spec.kind().is_multibody() {
+        if crate::bodies::runs(case.spec.kind()) {
             bodies::measure(case, precision, stride)
         } else {
             metrics::measure(case, precision, layout, stride)

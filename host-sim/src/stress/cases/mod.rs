@@ -4,9 +4,11 @@
 //! * `one_body.rs`: the scenes of one body (the meter stick, the incline, the ladder, Painlevé's
 //!   rod, the cylinder, three fingers) and what the statics and dynamics of each decide.
 //! * `several_bodies.rs`: the scenes of several bodies and what `docs/scenes.md`'s laws decide.
+//! * `spatial.rs`: the scenes in three dimensions and what their laws decide.
 
 mod one_body;
 mod several_bodies;
+mod spatial;
 
 use crate::scenes::SceneParams;
 use crate::trajectory::OutcomeKind;
@@ -49,6 +51,7 @@ pub struct Case {
 pub fn cases(quick: bool) -> Vec<Case> {
     let mut out = one_body::cases(quick);
     out.extend(several_bodies::cases(quick));
+    out.extend(spatial::cases(quick));
     if quick {
         // Short runs (at most 5 s simulated): the subset checks the criteria, not long physics; a
         // run cut short cannot balance.
