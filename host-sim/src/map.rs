@@ -7,8 +7,8 @@
 //! The bands where the meter-stick trick works and fails are not monotone in speed (the moving
 //! finger stops abruptly when the fingers meet; a rod riding on it slides on by
 //! `v^2 / (2 mu_k g)`, past the other finger or not, depending on the phase of the stick-slip
-//! cycle at the stop). Any scene flag can be an axis, and `mu-ratio` scales `mu_k` to
-//! `ratio * mu_s`.
+//! cycle at the stop). Any scene flag can be an axis, `mu-ratio` scales `mu_k` to
+//! `ratio * mu_s`, and `mu` sets both to one coefficient (a scene with `--mu-s` and `--mu-k`).
 //!
 //! Each row's boundaries (adjacent cells with different outcomes along the x axis) are bisected
 //! to the grid's tolerance (in the x axis's unit), every run in the implementation given.
@@ -40,6 +40,9 @@ pub enum Axis {
     Flag(&'static Flag),
     /// `mu_k / mu_s` with `mu_s` as given.
     MuRatio,
+    /// One coefficient of friction, `mu_s = mu_k` (`mu` of a scene whose flags are `--mu-s` and
+    /// `--mu-k`: Coulomb's law with one coefficient, as the puck's and the ball's laws take it).
+    Coulomb,
 }
 
 impl Axis {
@@ -52,9 +55,17 @@ impl Axis {
             return Ok(Self::MuRatio);
         }
         let name = name.trim_start_matches("--");
+        let own_mu = FLAGS.iter().any(|f| f.long == "mu" && f.field(kind).is_some());
+        if name == "mu" && !own_mu && kind.field_names().contains(&"mu_static") {
+            return Ok(Self::Coulomb);
+        }
         FLAGS.iter().find(|f| f.long == name).map(Self::Flag).with_context(|| {
             let names: Vec<&str> = FLAGS.iter().filter(|f| f.field(kind).is_some()).map(|f| f.long).collect();
-            format!("no axis {name:?}: use mu-ratio or a flag of --scene {kind} ({})", names.join(", "))
+            let coulomb = if kind.field_names().contains(&"mu_static") { "mu (mu-s = mu-k), " } else { "" };
+            format!(
+                "no axis {name:?}: use mu-ratio, {coulomb}or a flag of --scene {kind} ({})",
+                names.join(", ")
+            )
         })
     }
 
@@ -63,6 +74,7 @@ impl Axis {
     pub fn label(&self) -> String {
         match self {
             Self::MuRatio => "mu_k / mu_s".into(),
+            Self::Coulomb => "mu (mu_s = mu_k)".into(),
             Self::Flag(f) if f.unit.is_empty() => f.long.to_string(),
             Self::Flag(f) => format!("{} ({})", f.long, f.unit),
         }
@@ -76,6 +88,10 @@ impl Axis {
                 let mu_s =
                     spec.get("mu_static").with_context(|| format!("mu-ratio: --scene {kind} has no mu_s"))?;
                 spec.set("mu_kinetic", value * mu_s);
+            }
+            Self::Coulomb => {
+                spec.set("mu_static", value);
+                spec.set("mu_kinetic", value);
             }
             Self::Flag(f) => {
                 let field = f

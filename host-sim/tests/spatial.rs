@@ -113,6 +113,44 @@ fn the_puck_s_map_puts_its_boundary_where_the_law_does() {
     assert!(law["cells_compared"].as_u64().unwrap() > 500, "{stdout}");
     assert_eq!(law["disagree"], 0, "{stdout}");
     std::fs::remove_dir_all(&out).unwrap();
+    // Over one coefficient `mu` (mu_s = mu_k) x the angle: the boundary of each row at or above
+    // the law's `tan(angle)` (from there the puck needs `v / (g (mu cos a - sin a))` to stop, so
+    // within `max_time` a little more), the cells away from it as the law says.
+    let out = temp_dir("map-mu");
+    let (code, stdout, err) = host_sim(&[
+        "map",
+        "--scene",
+        "puck",
+        "--x-axis",
+        "mu",
+        "--x-range",
+        "0.05,0.8",
+        "--x-cells",
+        "30",
+        "--y-axis",
+        "angle",
+        "--y-range",
+        "0,35",
+        "--y-cells",
+        "8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(s["law_disagreements"]["cells_compared"].as_u64().unwrap() > 100, "{stdout}");
+    assert_eq!(s["law_disagreements"]["disagree"], 0, "{stdout}");
+    let boundaries = s["boundaries"].as_array().unwrap();
+    assert_eq!(boundaries.len(), 7, "{stdout}");
+    for b in boundaries {
+        let (angle, mu) = (b["y"].as_f64().unwrap().to_radians(), b["x"].as_f64().unwrap());
+        assert!(mu >= angle.tan() && mu <= angle.tan() + 0.03, "{b}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+    let (code, _, err) = host_sim(&["map", "--scene", "puck", "--x-axis", "mu", "--y-axis", "mu-s"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("mu sets mu-s and mu-k, so the two cannot both be axes"), "{err}");
 }
 
 #[test]

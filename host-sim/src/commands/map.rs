@@ -4,7 +4,8 @@
 //!
 //! The default is the meter stick's outcome over finger speed (0.05 .. 1 m/s, 200 columns) and
 //! `mu_k / mu_s` (0.2 .. 1, 50 rows, `mu_s` fixed). Any scene flag can be an axis (`--x-axis x1`,
-//! `--y-axis angle`), and `mu-ratio` scales `mu_k` to `ratio * mu_s`. Each row's boundaries are
+//! `--y-axis angle`), `mu-ratio` scales `mu_k` to `ratio * mu_s`, and `mu` sets `mu_s = mu_k` (the
+//! puck's outcome over `--x-axis mu --y-axis angle`). Each row's boundaries are
 //! bisected to `--tolerance` (default 1e-3, in the x axis's unit), every run in the precision and
 //! LCP size given (default the firmware's, core f32 6x6). Runs go in parallel on all cores.
 //!
@@ -26,7 +27,7 @@ pub struct MapArgs {
     /// The scene and its fixed parameters (the axes' flags are set per cell).
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// The x axis: a scene flag (e.g. speed, x1, angle) or mu-ratio.
+    /// The x axis: a scene flag (e.g. speed, x1, angle), mu-ratio, or mu (mu-s = mu-k).
     #[arg(long, default_value = "speed")]
     pub x_axis: String,
     /// The x range, `from,to`, in the flag's unit.
@@ -35,7 +36,7 @@ pub struct MapArgs {
     /// Columns.
     #[arg(long, default_value_t = 200)]
     pub x_cells: usize,
-    /// The y axis: a scene flag or mu-ratio (mu_k / mu_s, mu_s fixed).
+    /// The y axis: a scene flag, mu-ratio (mu_k / mu_s, mu_s fixed), or mu (mu-s = mu-k).
     #[arg(long, default_value = "mu-ratio")]
     pub y_axis: String,
     /// The y range, `from,to`.
@@ -80,11 +81,24 @@ pub fn grid(args: &MapArgs) -> anyhow::Result<Grid> {
         bail!("--x-axis and --y-axis are both {}: choose two different axes", names.0);
     }
     let is_mu_k = |a: Axis| matches!(a, Axis::Flag(f) if f.long == "mu-k");
+    let is_mu = |a: Axis| matches!(a, Axis::Flag(f) if f.long == "mu-k" || f.long == "mu-s");
     if (grid.axes.0 == Axis::MuRatio || grid.axes.1 == Axis::MuRatio)
         && (is_mu_k(grid.axes.0) || is_mu_k(grid.axes.1))
     {
         bail!(
             "--x-axis {} with --y-axis {}: mu-ratio sets mu-k, so the two cannot both be axes",
+            names.0,
+            names.1
+        );
+    }
+    if (grid.axes.0 == Axis::Coulomb || grid.axes.1 == Axis::Coulomb)
+        && (is_mu(grid.axes.0)
+            || is_mu(grid.axes.1)
+            || grid.axes.0 == Axis::MuRatio
+            || grid.axes.1 == Axis::MuRatio)
+    {
+        bail!(
+            "--x-axis {} with --y-axis {}: mu sets mu-s and mu-k, so the two cannot both be axes",
             names.0,
             names.1
         );
