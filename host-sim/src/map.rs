@@ -1,6 +1,7 @@
 //! The outcome of a scene over two of its parameters (a [`Grid`] over two [`Axis`]), one run per
 //! cell in parallel, with the boundaries between outcomes located by bisection; and the files
-//! of a map (`map.csv`, `boundaries.csv`, `summary.json`, `map.svg`). `host-sim map`
+//! of a map (`map.csv`, `boundaries.csv`, `summary.json`, `map.svg`; with a measure, its value in
+//! each cell in `map.csv` and `measure.svg`). `host-sim map`
 //! ([`crate::commands::map`]) and `host-sim report` ([`crate::commands::report`]) draw theirs
 //! with it.
 //!
@@ -27,7 +28,7 @@ use crate::scenes::{
     flag_error,
 };
 use crate::trajectory::{OutcomeKind, Record, run_k};
-use meterstick_catalogue::Refusal;
+use meterstick_catalogue::{Catalogued as _, Refusal};
 
 /// The most cells a map may have (each is a run of up to `MAX_STEPS`).
 /// (At about 550 runs per second on 2 cores, 200,000 cells take about 6 minutes.)
@@ -43,6 +44,9 @@ pub enum Axis {
     /// One coefficient of friction, `mu_s = mu_k` (`mu` of a scene whose flags are `--mu-s` and
     /// `--mu-k`: Coulomb's law with one coefficient, as the puck's and the ball's laws take it).
     Coulomb,
+    /// A launch's `v0 / (R omega0)`, the launch speed as given (a scene of a spinning stone:
+    /// `--spin` set to `speed / (radius * ratio)`).
+    LaunchRatio,
 }
 
 impl Axis {
@@ -58,6 +62,11 @@ impl Axis {
         let own_mu = FLAGS.iter().any(|f| f.long == "mu" && f.field(kind).is_some());
         if name == "mu" && !own_mu && kind.field_names().contains(&"mu_static") {
             return Ok(Self::Coulomb);
+        }
+        if name == "launch-ratio"
+            && ["speed", "spin", "radius"].iter().all(|f| kind.field_names().contains(f))
+        {
+            return Ok(Self::LaunchRatio);
         }
         FLAGS.iter().find(|f| f.long == name).map(Self::Flag).with_context(|| {
             let names: Vec<&str> = FLAGS.iter().filter(|f| f.field(kind).is_some()).map(|f| f.long).collect();
@@ -75,6 +84,7 @@ impl Axis {
         match self {
             Self::MuRatio => "mu_k / mu_s".into(),
             Self::Coulomb => "mu (mu_s = mu_k)".into(),
+            Self::LaunchRatio => "v0 / (R omega0)".into(),
             Self::Flag(f) if f.unit.is_empty() => f.long.to_string(),
             Self::Flag(f) => format!("{} ({})", f.long, f.unit),
         }
@@ -92,6 +102,13 @@ impl Axis {
             Self::Coulomb => {
                 spec.set("mu_static", value);
                 spec.set("mu_kinetic", value);
+            }
+            Self::LaunchRatio => {
+                let (speed, radius) = (spec.get("speed"), spec.get("radius"));
+                let (Some(speed), Some(radius)) = (speed, radius) else {
+                    anyhow::bail!("launch-ratio: --scene {kind} has no --speed and --radius");
+                };
+                spec.set("spin", speed / (radius * value));
             }
             Self::Flag(f) => {
                 let field = f
@@ -175,24 +192,32 @@ pub struct Map {
     /// The law's outcome at each cell's centre, `[row][column]`, for a scene with a law
     /// ([`crate::bodies::law`]; `None` in a cell at the law's threshold).
     pub law: Option<Vec<Vec<Option<OutcomeKind>>>>,
+    /// The measure [`Grid::measure`] asked for: its name and its value at each cell's centre,
+    /// `[row][column]` (NaN where the run measured none).
+    pub measured: Option<(&'static str, Vec<Vec<f64>>)>,
     /// The summary.
     pub summary: MapSummary,
 }
 
+/// The outcome at `(x, y)`, and the scene's measure of index `measure` there (NaN where it
+/// measured none; the core's runs only).
 fn outcome_at(
     base: &SceneParams,
     axes: (Axis, Axis),
     (x, y): (f64, f64),
     implementation: Implementation,
-) -> anyhow::Result<OutcomeKind> {
+    measure: Option<usize>,
+) -> anyhow::Result<(OutcomeKind, f64)> {
     let spec = apply_axes(base, axes, (x, y))?;
     spec.validate(implementation.precision())
         .map_err(|e| anyhow::anyhow!("at ({x:?}, {y:?}): {}", flag_error(&spec, e)))?;
     Ok(match implementation {
         Implementation::Core(precision, layout) => {
-            crate::view_run::run_view(&spec, precision, layout)?.outcome.class
+            let run = crate::view_run::run_view(&spec, precision, layout)?;
+            let value = measure.and_then(|i| run.measured.get(i).copied().flatten()).unwrap_or(f64::NAN);
+            (run.outcome.class, value)
         }
-        Implementation::Reference => reference_outcome(&spec)?,
+        Implementation::Reference => (reference_outcome(&spec)?, f64::NAN),
     })
 }
 
@@ -278,12 +303,13 @@ fn agreement(outcomes: &[Vec<OutcomeKind>], law: &[Vec<Option<OutcomeKind>>]) ->
     tally
 }
 
-/// `base` with the axes at `(x, y)`: a scene flag first, then `mu-ratio` (which scales the
-/// cell's `mu_s`, whichever axis sets it).
+/// `base` with the axes at `(x, y)`: a scene flag first, then `mu-ratio` or `launch-ratio` (which
+/// scale the cell's `mu_s`, or set its spin from its speed and radius, whichever axis sets those).
 fn apply_axes(base: &SceneParams, axes: (Axis, Axis), (x, y): (f64, f64)) -> anyhow::Result<SceneParams> {
     let mut spec = *base;
+    let derived = |a: Axis| matches!(a, Axis::MuRatio | Axis::LaunchRatio);
     let (first, second) =
-        if axes.0 == Axis::MuRatio { ((axes.1, y), (axes.0, x)) } else { ((axes.0, x), (axes.1, y)) };
+        if derived(axes.0) { ((axes.1, y), (axes.0, x)) } else { ((axes.0, x), (axes.1, y)) };
     first.0.apply(&mut spec, first.1)?;
     second.0.apply(&mut spec, second.1)?;
     Ok(spec)
@@ -302,6 +328,9 @@ pub struct Grid {
     pub cells: [usize; 2],
     /// Bisect each boundary along x to this width (0: no bisection).
     pub tolerance: f64,
+    /// A quantity the scene measures, drawn beside the outcome: its index in the scene's
+    /// measures (`SceneKind::info().measures`; the core's runs only).
+    pub measure: Option<usize>,
 }
 
 impl Grid {
@@ -315,22 +344,35 @@ impl Grid {
         tolerance: f64,
     ) -> anyhow::Result<Self> {
         let speed = Axis::parse("speed", SceneKind::MeterStick)?;
-        Ok(Self { axes: (speed, Axis::MuRatio), x: (from, to), y: (0.2, 1.0), cells, tolerance })
+        Ok(Self {
+            axes: (speed, Axis::MuRatio),
+            x: (from, to),
+            y: (0.2, 1.0),
+            cells,
+            tolerance,
+            measure: None,
+        })
     }
 
-    /// Checks every corner of the grid on `base` (ranges are linear and the parameter checks are
-    /// bounds, so the corners stand for the whole grid).
+    /// Checks the centres of the grid's four corner cells on `base`: every run is at a cell's
+    /// centre or between two neighbours' (the bisection), the ranges are linear and the parameter
+    /// checks are bounds, so those four stand for the whole grid (and a whole-number axis, such as
+    /// `points` over `3.5,8.5` in 5 cells, is checked at 4 and 8, where it runs).
     ///
     /// # Errors
     /// The first corner whose parameters do not validate, in the flags' words.
     pub fn validate(&self, base: &SceneParams, implementation: Implementation) -> anyhow::Result<()> {
-        for &x in &[self.x.0, self.x.1] {
-            for &y in &[self.y.0, self.y.1] {
+        let ends = |range: (f64, f64), cells: usize| {
+            let c = centres(range, cells.max(1));
+            [c.first().copied().unwrap_or(range.0), c.last().copied().unwrap_or(range.1)]
+        };
+        for x in ends(self.x, self.cells[0]) {
+            for y in ends(self.y, self.cells[1]) {
                 let spec = apply_axes(base, self.axes, (x, y))?;
                 // `{:?}`: 1e300 stays 1e300 (Display writes all 301 digits).
                 let at_corner = |why: String| {
                     anyhow::anyhow!(
-                        "--x-range {:?},{:?} x --y-range {:?},{:?}: at the corner ({x:?}, {y:?}): {why}",
+                        "--x-range {:?},{:?} x --y-range {:?},{:?}: at the corner cell ({x:?}, {y:?}): {why}",
                         self.x.0,
                         self.x.1,
                         self.y.0,
@@ -362,17 +404,23 @@ pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) 
     let cells = xs.len() * ys.len();
     let started = Instant::now();
     let bar = progress(cells as u64, "map cells");
-    let flat: Vec<anyhow::Result<OutcomeKind>> = (0..cells)
+    let flat: Vec<anyhow::Result<(OutcomeKind, f64)>> = (0..cells)
         .into_par_iter()
         .map(|k| {
-            let r = outcome_at(base, axes, (xs[k % xs.len()], ys[k / xs.len()]), implementation);
+            let r =
+                outcome_at(base, axes, (xs[k % xs.len()], ys[k / xs.len()]), implementation, grid.measure);
             bar.inc(1);
             r
         })
         .collect();
     bar.finish_and_clear();
-    let flat = flat.into_iter().collect::<anyhow::Result<Vec<_>>>()?;
+    let (flat, values): (Vec<OutcomeKind>, Vec<f64>) =
+        flat.into_iter().collect::<anyhow::Result<Vec<_>>>()?.into_iter().unzip();
     let outcomes: Vec<Vec<OutcomeKind>> = flat.chunks(xs.len()).map(<[OutcomeKind]>::to_vec).collect();
+    let measured = grid.measure.map(|i| {
+        let name = base.kind().info().measures.get(i).copied().unwrap_or("");
+        (name, values.chunks(xs.len()).map(<[f64]>::to_vec).collect())
+    });
     // Boundaries along x, bisected.
     let pairs: Vec<(usize, usize)> = (0..ys.len())
         .flat_map(|j| (1..xs.len()).map(move |i| (j, i)))
@@ -394,8 +442,13 @@ pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) 
                 if mid <= lo || mid >= hi {
                     break; // no representable point between them
                 }
+                // A midpoint the core refuses (a whole-number axis such as `points`) ends the
+                // bisection: the boundary lies between the two valid points.
+                if apply_axes(base, axes, (mid, ys[j]))?.validate(implementation.precision()).is_err() {
+                    break;
+                }
                 runs += 1;
-                let here = outcome_at(base, axes, (mid, ys[j]), implementation)?;
+                let (here, _) = outcome_at(base, axes, (mid, ys[j]), implementation, None)?;
                 if here == below {
                     lo = mid;
                 } else {
@@ -447,7 +500,7 @@ pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) 
         counts,
         boundaries: bisected.into_iter().map(|b| b.0).collect(),
     };
-    Ok(Map { xs, ys, outcomes, law, summary })
+    Ok(Map { xs, ys, outcomes, law, measured, summary })
 }
 
 /// Writes `map.csv`, `boundaries.csv`, `summary.json` and `map.svg` into `out`.
@@ -457,10 +510,27 @@ pub fn compute(base: &SceneParams, grid: &Grid, implementation: Implementation) 
 pub fn write(map: &Map, out: &Path) -> anyhow::Result<()> {
     create_dir(out)?;
     let s = &map.summary;
+    let value =
+        |j: usize, i: usize| map.measured.as_ref().map(|(_, v)| format!(",{}", v[j][i])).unwrap_or_default();
     let cells = map.ys.iter().enumerate().flat_map(|(j, y)| {
-        map.xs.iter().enumerate().map(move |(i, x)| format!("{x},{y},{}", map.outcomes[j][i]))
+        map.xs.iter().enumerate().map(move |(i, x)| format!("{x},{y},{}{}", map.outcomes[j][i], value(j, i)))
     });
-    write_lines(&out.join("map.csv"), "x,y,outcome", cells)?;
+    let header = match &map.measured {
+        Some((name, _)) => format!("x,y,outcome,{name}"),
+        None => "x,y,outcome".into(),
+    };
+    write_lines(&out.join("map.csv"), &header, cells)?;
+    if let Some((name, values)) = &map.measured {
+        let title =
+            format!("{} {name}, {} ({} x {} cells)", s.scene, s.implementation, s.cells[0], s.cells[1]);
+        plot::value_map(
+            &out.join("measure.svg"),
+            &title,
+            (&s.x_axis, &map.xs),
+            (&s.y_axis, &map.ys),
+            values,
+        )?;
+    }
     let bounds = s.boundaries.iter().map(|b| format!("{},{},{},{},{}", b.y, b.x, b.width, b.below, b.above));
     write_lines(&out.join("boundaries.csv"), "y,x,width,below,above", bounds)?;
     let laws =

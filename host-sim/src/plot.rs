@@ -386,6 +386,56 @@ pub fn ratio_map(
     heat_map(path, title, ("", columns), ("", rows), &colors, &legend, (1100, height))
 }
 
+/// A quantity over a map's cells, `values[row][column]` at the column centres `xs` and the row
+/// centres `ys`: each cell coloured on a linear scale from the least value (blue) to the largest
+/// (yellow), grey where there is none (NaN); the legend gives the two ends and the middle.
+///
+/// # Errors
+/// I/O.
+pub fn value_map(
+    path: &Path,
+    title: &str,
+    (x_desc, xs): (&str, &[f64]),
+    (y_desc, ys): (&str, &[f64]),
+    values: &[Vec<f64>],
+) -> anyhow::Result<()> {
+    let finite = values.iter().flatten().copied().filter(|v| v.is_finite());
+    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let color = |v: f64| {
+        if !v.is_finite() {
+            return RGBColor(200, 200, 200);
+        }
+        let a = if hi > lo { ((v - lo) / (hi - lo)).clamp(0.0, 1.0) } else { 0.5 };
+        let mix = |from: f64, to: f64| (from + a * (to - from)).round() as u8;
+        RGBColor(mix(40.0, 250.0), mix(60.0, 220.0), mix(160.0, 40.0))
+    };
+    let colors: Vec<Vec<RGBColor>> =
+        values.iter().map(|row| row.iter().map(|&v| color(v)).collect()).collect();
+    let short = |v: &f64| format!("{}", meterstick_catalogue::Short(*v));
+    let legend: Vec<(String, RGBColor)> = if lo <= hi {
+        let mid = 0.5 * (lo + hi);
+        vec![
+            (short(&lo), color(lo)),
+            (short(&mid), color(mid)),
+            (short(&hi), color(hi)),
+            ("none".into(), color(f64::NAN)),
+        ]
+    } else {
+        vec![("none".into(), color(f64::NAN))]
+    };
+    let labels = |v: &[f64]| v.iter().map(short).collect::<Vec<_>>();
+    let height = 160 + 26 * ys.len().min(30) as u32;
+    heat_map(
+        path,
+        title,
+        (x_desc, &labels(xs)),
+        (y_desc, &labels(ys)),
+        &colors,
+        &legend,
+        (1100, height.max(420)),
+    )
+}
+
 /// Coloured cells `colors[row][column]` with labelled axes and a legend.
 fn heat_map(
     path: &Path,

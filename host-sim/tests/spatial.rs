@@ -201,3 +201,55 @@ fn curling_runs_through_scene_and_its_bad_flags_are_refused_by_name() {
         assert!(err.contains(words), "{args:?}: {err}");
     }
 }
+
+/// The curling ring's terminal ratio over `points` x the launch's `v0 / (R omega0)`: each cell's
+/// value beside its outcome in `map.csv` and drawn in `measure.svg`, near 1 wherever the stone
+/// stopped (Farkas et al.: whatever the launch); a measure the scene does not have is refused,
+/// naming those it has.
+#[test]
+fn the_curling_map_draws_the_terminal_ratio_over_points_and_launch() {
+    let out = temp_dir("map-curling");
+    let (code, stdout, err) = host_sim(&[
+        "map",
+        "--scene",
+        "curling",
+        "--shape",
+        "ring",
+        "--measure",
+        "terminal_ratio",
+        "--x-axis",
+        "points",
+        "--x-range",
+        "3.5,6.5",
+        "--x-cells",
+        "3",
+        "--y-axis",
+        "launch-ratio",
+        "--y-range",
+        "0.5,2",
+        "--y-cells",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(out.join("map.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("x,y,outcome,terminal_ratio"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 6, "{csv}");
+    let points: Vec<f64> = rows.iter().map(|r| r[0].parse().unwrap()).collect();
+    assert_eq!(points[..3], [4.0, 5.0, 6.0], "{csv}");
+    let stopped: Vec<f64> =
+        rows.iter().filter(|r| r[2] == "Stopped").map(|r| r[3].parse().unwrap()).collect();
+    assert!(stopped.len() >= 3, "{stdout}{csv}");
+    assert!(stopped.iter().all(|r| (r - 1.0).abs() < 2e-3), "{csv}");
+    assert!(std::fs::read_to_string(out.join("measure.svg")).unwrap().starts_with("<svg"));
+    std::fs::remove_dir_all(&out).unwrap();
+    let (code, _, err) = host_sim(&["map", "--scene", "puck", "--measure", "terminal_ratio"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--measure terminal_ratio: --scene puck measures final_speed_m_s, displacement_m"),
+        "{err}"
+    );
+}

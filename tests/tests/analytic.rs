@@ -338,7 +338,7 @@ fn the_cylinders_map_boundary_is_the_rolling_law() {
         Axis::parse("angle", SceneKind::Cylinder).unwrap(),
         Axis::parse("inertia-ratio", SceneKind::Cylinder).unwrap(),
     );
-    let grid = Grid { axes, x: (10.0, 80.0), y: (0.3, 1.0), cells: [15, 5], tolerance: 1e-3 };
+    let grid = Grid { axes, x: (10.0, 80.0), y: (0.3, 1.0), cells: [15, 5], tolerance: 1e-3, measure: None };
     for implementation in [Implementation::CORE_F32_REDUCED, Implementation::CORE_F64_FULL] {
         let map = compute(&base, &grid, implementation).unwrap();
         let boundaries = &map.summary.boundaries;

@@ -9,6 +9,9 @@
 //! bisected to `--tolerance` (default 1e-3, in the x axis's unit), every run in the precision and
 //! LCP size given (default the firmware's, core f32 6x6). Runs go in parallel on all cores.
 //!
+//! `--measure` writes a quantity the scene measures beside each cell's outcome and draws it
+//! (the curling stone's terminal ratio over `--x-axis points --y-axis launch-ratio`).
+//!
 //! A scene of several bodies maps the same way (`--scene block-on-block --x-axis force --y-axis
 //! mu-s`), its law's boundaries (`docs/scenes.md`) drawn beside the runs' and the cells away from
 //! them compared with it.
@@ -19,7 +22,8 @@ use std::path::PathBuf;
 use anyhow::{Context as _, bail};
 
 use crate::map::{self, Axis, Grid, MAX_CELLS, Map};
-use crate::scenes::SceneArgs;
+use crate::scenes::{Implementation, SceneArgs};
+use meterstick_catalogue::Catalogued as _;
 
 /// `host-sim map` options.
 #[derive(Debug, Clone, clap::Args)]
@@ -48,6 +52,11 @@ pub struct MapArgs {
     /// Bisect each boundary along x to this width (in the x axis's unit; 0: no bisection).
     #[arg(long, default_value_t = 1e-3)]
     pub tolerance: f64,
+    /// A quantity the scene measures (a key of its `summary.json`'s `measured`, e.g.
+    /// `terminal_ratio`), written beside each cell's outcome (`map.csv`) and drawn in `measure.svg`;
+    /// the core's runs only.
+    #[arg(long)]
+    pub measure: Option<String>,
     /// Output directory (created; files in it are overwritten).
     #[arg(long, default_value = "out/map")]
     pub out: PathBuf,
@@ -64,6 +73,21 @@ fn parse_range(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     Ok((a, b))
 }
 
+/// `--measure`'s index in the scene's measures, refused (naming those it has) before anything runs.
+fn measure_of(args: &MapArgs) -> anyhow::Result<Option<usize>> {
+    let Some(name) = &args.measure else { return Ok(None) };
+    let kind = args.scene.kind();
+    let measures = kind.info().measures;
+    let Some(index) = measures.iter().position(|m| m == name) else {
+        let names = if measures.is_empty() { "none".to_string() } else { measures.join(", ") };
+        bail!("--measure {name}: --scene {kind} measures {names}");
+    };
+    if args.scene.implementation() == Implementation::Reference {
+        bail!("--measure {name}: a map of a measure runs in the core (--precision), not the reference");
+    }
+    Ok(Some(index))
+}
+
 /// The grid `args` describe.
 ///
 /// # Errors
@@ -75,6 +99,7 @@ pub fn grid(args: &MapArgs) -> anyhow::Result<Grid> {
         y: parse_range("--y-range", &args.y_range)?,
         cells: [args.x_cells, args.y_cells],
         tolerance: args.tolerance,
+        measure: measure_of(args)?,
     };
     let names = (args.x_axis.trim_start_matches("--"), args.y_axis.trim_start_matches("--"));
     if grid.axes.0 == grid.axes.1 {
