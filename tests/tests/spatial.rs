@@ -100,6 +100,60 @@ fn a_billiard_ball_rolls_when_and_as_the_closed_form_says() {
     billiard::<f32>(1e-5);
 }
 
+/// At `h = 1e-6` a ball struck with spin `(30, -40, 0)` rad/s slips at 1e-4 m/s near rolling on a
+/// surface turning at 1 m/s: the slip's round-off is that of its terms, `|v| + R |omega|`, and
+/// the first friction line, the free slip's, holds every step (a sphere's tangential response is
+/// isotropic). It rolls at `t = 2 |u0| / (7 mu g)` (the step whose slip falls within the stick
+/// speed, `1e-5 / (7 mu g / 2)` s before, ends it) and then runs at `v = (5 v0 + 2 R omega0 x z) /
+/// 7`: in f64 to `tolerance` of the launch speed; in f32 the velocity's round-off over the run's `t / h`
+/// steps, each adding a half ulp of `|v0| + R |omega0|` at most, bounds it.
+fn billiard_at_a_microsecond<T: Real>(tolerance: f64) {
+    let (radius, mass, mu, h) = (0.028_575, 0.17, 0.2, 1e-6);
+    let (v0, spin) = ([2.0, 0.0, 0.0], [30.0, -40.0, 0.0]);
+    let mut state = at_rest_on::<T>([0.0, 0.0, radius]);
+    state.velocity = v0.map(T::of);
+    state.angular_velocity = spin.map(T::of);
+    let settings = SpatialSettings { step: T::of(h), ..SpatialSettings::default() };
+    let mut ball = OneContact::new(
+        Body::sphere(T::of(mass), T::of(radius)),
+        [SpatialShape::Sphere { radius: T::of(radius) }],
+        Plane::table(T::zero(), T::of(mu)),
+        settings,
+        state,
+    )
+    .unwrap();
+    let u0 = [v0[0] - radius * spin[1], v0[1] + radius * spin[0], 0.0];
+    let u0_speed = (u0[0] * u0[0] + u0[1] * u0[1]).sqrt();
+    let t_roll = 2.0 * u0_speed / (7.0 * mu * G);
+    let v_roll =
+        [(5.0 * v0[0] + 2.0 * radius * spin[1]) / 7.0, (5.0 * v0[1] - 2.0 * radius * spin[0]) / 7.0, 0.0];
+    let steps = (t_roll / h) as usize;
+    let surface = v0[0] + radius * (spin[0] * spin[0] + spin[1] * spin[1]).sqrt();
+    let tolerance = tolerance.max(steps as f64 * T::EPS.as_f64() / 2.0 * surface);
+    let mut rolled = None;
+    for _ in 0..steps + 50 {
+        let r = ball.step().unwrap();
+        assert!(r.contacts[0].directions == 1, "{} at {}: {:?}", T::NAME, r.time.as_f64(), r.contacts[0]);
+        if rolled.is_none() && r.contacts[0].mode == Mode::Sticking {
+            rolled = Some(r.time.as_f64());
+        }
+    }
+    let t = rolled.expect("the ball rolls");
+    let v = f64s(ball.state().velocity);
+    let e = relative(v, v_roll, v0[0]);
+    println!("{} billiard h = 1e-6: rolls at {t:.6} s (law {t_roll:.6}), velocity off by {e:.1e}", T::NAME);
+    let early = 1e-5 / (3.5 * mu * G) + h;
+    let slack = tolerance * t_roll;
+    assert!(t >= t_roll - early - slack && t <= t_roll + h + slack, "rolls at {t} s, law {t_roll} s");
+    assert!(e <= tolerance, "rolls at {v:?}, law {v_roll:?} ({e:e} > {tolerance:e})");
+}
+
+#[test]
+fn a_billiard_ball_at_a_microsecond_step_rolls_as_the_closed_form_says() {
+    billiard_at_a_microsecond::<f64>(1e-9);
+    billiard_at_a_microsecond::<f32>(0.0);
+}
+
 /// Launched at `speed` across a level table in `heading`, a puck (one contact under its centre
 /// of mass) stops at the same distance along its heading whatever the heading: the friction
 /// opposes the slip, not the world's axes. Returns the distance along and across the heading.

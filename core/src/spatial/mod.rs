@@ -30,7 +30,10 @@
 //!
 //!    solved by Lemke's method and verified ([`crate::lcp`]). The answer holds when every loaded
 //!    contact's slip after the step has no component across its `d` (within `256 eps` of the
-//!    step's velocity scale): its friction then lies on the slip's line, opposing it (the LCP's
+//!    step's velocity scale, the largest free slip and `g h`, and at least `8 eps` of the largest
+//!    contact's `|v~| + |omega~| |r_i|`: a slip is summed from those terms, so its round-off is
+//!    of their size, not its own, about `3 eps` of them; a ball near rolling slips at 1e-4 m/s on
+//!    a surface turning at 1 m/s, and no turn of its line meets a finer test): its friction then lies on the slip's line, opposing it (the LCP's
 //!    complementarity) or stopping it. Otherwise the lines turn together by one step of Newton's
 //!    method on those conditions, the LCP's modes held: each loaded contact's normal row stays
 //!    closed and its normal impulse moves with the friction (`W` couples the two off the centre of

@@ -309,13 +309,16 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
         let v_free = advanced(&st.velocity, h, &s.gravity);
         let w_free = st.angular_velocity;
         let position_size = st.position.iter().fold(T::zero(), |a, x| a + x.abs_exact());
-        let mut speed = T::zero();
+        let (mut speed, mut terms) = (T::zero(), T::zero());
         let touches = core::array::from_fn(|i| {
             let r = self.arm(&self.shapes[i], &st);
             let gap = dot(&n, &sub(&add(&st.position, &r), &self.plane.point));
             let round_off = T::of(4.0) * T::EPS * (position_size + norm(&r));
             let u_free = add(&v_free, &cross(&w_free, &r));
             speed = max(speed, norm(&u_free));
+            // The slip is summed from `v~` and `omega~ x r`: its round-off is of their sizes, not
+            // of its own (a ball near rolling slips slowly on a fast surface).
+            terms = max(terms, norm(&v_free) + norm(&w_free) * norm(&r));
             let mu =
                 if self.modes[i] == Mode::Sliding { self.plane.mu_kinetic } else { self.plane.mu_static };
             Touch {
@@ -333,8 +336,12 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
                 orientation: &st.orientation,
                 normal: n,
                 touches,
-                // The step's velocity scale: the round-off of slips and of the cone's conditions.
-                slip_tolerance: T::of(256.0) * T::EPS * (speed + norm(&s.gravity) * h + T::TINY),
+                // The round-off of slips and of the cone's conditions: `256 eps` of the step's
+                // velocity scale, at least `8 eps` of the terms a slip is summed from.
+                slip_tolerance: max(
+                    T::of(256.0) * T::EPS * (speed + norm(&s.gravity) * h + T::TINY),
+                    T::of(8.0) * T::EPS * terms,
+                ),
                 floor: T::of(64.0) * T::EPS * norm(&s.gravity) * h,
                 stick_speed: s.stick_speed,
             };
