@@ -109,9 +109,11 @@ mod friction;
 mod load;
 mod report;
 mod stepper;
+mod supported;
 
 pub use crate::StepError;
-pub use algebra::{Quaternion, Vector, about, dot, identity, norm, perpendicular, rotate};
+pub use algebra::{Quaternion, Vector, about, cross, dot, identity, norm, perpendicular, rotate};
 pub use body::{Body, State};
 pub use report::{MAX_DIRECTIONS, Mode, SpatialContactReport, SpatialStepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper};
+pub use supported::{Finger, LowerFace, SupportPoint, SupportedStepper};
