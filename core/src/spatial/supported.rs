@@ -45,7 +45,7 @@ pub struct LowerFace<T> {
     pub half_thickness: T,
 }
 
-/// A support point under the face: where it is at the step's end and how its material moves
+/// A support point under the face: where it is at the step's start and how its material moves
 /// over the step, world axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -110,7 +110,10 @@ pub struct SupportedStepper<T: Real, const K: usize, const N: usize> {
 
 impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
     /// A stepper for `body` of lower face `face`, friction `mu_static` and `mu_kinetic` at every
-    /// support, from `state`.
+    /// support, from `state` on the supports `start` (where they are and move at the start). The
+    /// modes before the first step: a support under the face touching it (its gap within `64 eps`
+    /// of the positions) slides when its slip exceeds the stick speed, else sticks; any other is
+    /// separated (the planar stepper's rule).
     ///
     /// # Errors
     /// [`ParamError`]: the body's ([`Body::validate`]), a face's half length or width not finite
@@ -123,6 +126,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         [mu_static, mu_kinetic]: [T; 2],
         settings: SpatialSettings<T>,
         state: State<T>,
+        start: &[Option<SupportPoint<T>>; K],
     ) -> Result<Self, ParamError> {
         const {
             assert!(
@@ -163,7 +167,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
             return Err(ParamError::NonFiniteState);
         }
         let state = State { orientation: super::algebra::normalized(&state.orientation), ..state };
-        Ok(Self {
+        let mut stepper = Self {
             body,
             face,
             mu: [mu_static, mu_kinetic],
@@ -172,7 +176,22 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
             modes: [Mode::Separated; K],
             steps: 0,
             solve: Solve::new(),
-        })
+        };
+        let size = state.position.iter().fold(face.half_length + face.half_width, |a, x| a + x.abs_exact());
+        let touching = T::of(64.0) * T::EPS * size;
+        let n = stepper.normal();
+        for (mode, support) in stepper.modes.iter_mut().zip(start) {
+            let Some(p) = support else { continue };
+            let l = unrotate(&state.orientation, &sub(&p.position, &state.position));
+            let gap = -l[2] - face.half_thickness;
+            if l[0].abs_exact() <= face.half_length && l[2] <= T::zero() && gap <= touching {
+                let r = rotate(&state.orientation, &[l[0], l[1], -face.half_thickness]);
+                let u = sub(&add(&state.velocity, &cross(&state.angular_velocity, &r)), &p.velocity);
+                let slip = norm(&sub(&u, &scale(dot(&n, &u), &n)));
+                *mode = if slip <= settings.stick_speed { Mode::Sticking } else { Mode::Sliding };
+            }
+        }
+        Ok(stepper)
     }
 
     /// The body's state now.

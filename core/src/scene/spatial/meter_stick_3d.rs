@@ -161,13 +161,27 @@ pub struct FingerSwitch<T> {
     pub mode: Mode,
 }
 
+/// Each finger's mode from its points' ([`FingerSwitch`]).
+fn finger_modes(points: &[Mode; ROD_POINTS]) -> [Mode; 2] {
+    let [a, b, c] = *points;
+    [[a, b], [c, c]].map(|pair| {
+        if pair.contains(&Mode::Sliding) {
+            Mode::Sliding
+        } else if pair.contains(&Mode::Sticking) {
+            Mode::Sticking
+        } else {
+            Mode::Separated
+        }
+    })
+}
+
 /// The meter stick in three dimensions, as `docs/scenes.md` defines it.
 #[derive(Debug, Clone)]
 pub struct MeterStick3d<T: Real> {
     params: MeterStick3dParams<T>,
     stepper: SupportedStepper<T, ROD_POINTS, ROD_ROWS>,
-    /// The path's direction, and the travel's `y` per unit of `x` (`tan heading`).
-    path: (Vector<T>, T),
+    /// The path's heading, `(sin, cos)`.
+    path: (T, T),
     /// Where approaching fingers stop (`x`); `None` when they do not approach.
     stops: Option<[T; 2]>,
     /// The fingers' `x` velocities over a step before they stop.
@@ -225,16 +239,21 @@ impl<T: Real> MeterStick3d<T> {
             half_width: p.rod_width * half,
             half_thickness: p.rod_thickness * half,
         };
-        let stepper = SupportedStepper::new(p.body(), face, [p.mu_static, p.mu_kinetic], settings, state)?;
-        let h = p.step;
+        let (sin_cos, h) = ((sin, cos), p.step);
+        let velocity = [planar.finger1_velocity, planar.finger2_velocity];
+        let tips = [[p.finger1_x, T::zero(), p.finger1_y], [p.finger2_x, T::zero(), p.finger2_y]];
+        let start = Self::fingers_at(&face, &state, sin_cos, &tips, velocity);
+        let stepper =
+            SupportedStepper::new(p.body(), face, [p.mu_static, p.mu_kinetic], settings, state, &start)?;
+        let modes = finger_modes(stepper.modes());
         Ok(Self {
             params,
             stepper,
-            path: ([cos, sin, T::zero()], sin / cos),
+            path: sin_cos,
             stops,
             travel_velocity: [planar.finger1_velocity * h / h, planar.finger2_velocity * h / h],
-            tips: [[p.finger1_x, T::zero(), p.finger1_y], [p.finger2_x, T::zero(), p.finger2_y]],
-            modes: [Mode::Separated; 2],
+            tips,
+            modes,
             events: Vec::new(),
             meeting: None,
             outcome: None,
@@ -285,13 +304,19 @@ impl<T: Real> MeterStick3d<T> {
         self.modes
     }
 
-    /// The fingers as lines across the rod, at tips `tips` moving at `velocity` (`x` speeds).
-    fn fingers(&self, tips: &[Vector<T>; 2], velocity: [T; 2]) -> [Option<SupportPoint<T>>; ROD_POINTS] {
-        let (face, state) = (self.stepper.face(), self.stepper.state());
+    /// The fingers as lines across the rod along `y`, at tips `tips` moving at `velocity` (`x`
+    /// speeds) along the path `(cos, sin)` of `sin_cos`: finger 1 a pad (the face's edges),
+    /// finger 2 a point (its centre line).
+    fn fingers_at(
+        face: &LowerFace<T>,
+        state: &crate::spatial::State<T>,
+        (sin, cos): (T, T),
+        tips: &[Vector<T>; 2],
+        velocity: [T; 2],
+    ) -> [Option<SupportPoint<T>>; ROD_POINTS] {
         let across = [T::zero(), T::one(), T::zero()];
-        let tan = self.path.1;
         let [a, b] = [0, 1].map(|i| {
-            let v = [velocity[i], velocity[i] * tan, T::zero()];
+            let v = [velocity[i], velocity[i] * sin / cos, T::zero()];
             Finger { tip: tips[i], across, velocity: v }
         });
         let pad = a.crossings(face, state);
@@ -341,8 +366,11 @@ impl<T: Real> MeterStick3d<T> {
         let start = [p.finger1_x, p.finger2_x];
         let heights = [p.finger1_y, p.finger2_y];
         let tips: [Vector<T>; 2] =
-            core::array::from_fn(|i| [ends[i], (ends[i] - start[i]) * self.path.1, heights[i]]);
-        let supports = self.fingers(&tips, velocity);
+            core::array::from_fn(|i| [ends[i], (ends[i] - start[i]) * self.path.0 / self.path.1, heights[i]]);
+        let (face, state) = (self.stepper.face(), self.stepper.state());
+        // The contacts' geometry is the step's start's: the rod's state and the fingers' places
+        // then, each moving at its velocity over the step (as the planar stepper's frames).
+        let supports = Self::fingers_at(face, state, self.path, &self.tips, velocity);
         let report = match self.stepper.step(&supports) {
             Ok(report) => report,
             Err(e) => {
@@ -351,16 +379,7 @@ impl<T: Real> MeterStick3d<T> {
             }
         };
         self.tips = tips;
-        let [a, b, c] = report.contacts.map(|c| c.mode);
-        let modes = [[a, b], [c, c]].map(|pair| {
-            if pair.contains(&Mode::Sliding) {
-                Mode::Sliding
-            } else if pair.contains(&Mode::Sticking) {
-                Mode::Sticking
-            } else {
-                Mode::Separated
-            }
-        });
+        let modes = finger_modes(&report.contacts.map(|c| c.mode));
         for (f, (&now, &before)) in modes.iter().zip(&self.modes).enumerate() {
             if now != before {
                 // A full log keeps its first events.
@@ -368,7 +387,8 @@ impl<T: Real> MeterStick3d<T> {
             }
         }
         self.modes = modes;
-        self.judge(stopped, &supports, &report);
+        let after = Self::fingers_at(self.stepper.face(), self.stepper.state(), self.path, &tips, velocity);
+        self.judge(stopped, &after, &report);
         Some(report)
     }
 
