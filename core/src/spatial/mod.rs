@@ -116,4 +116,4 @@ pub use algebra::{Quaternion, Vector, about, cross, dot, identity, norm, perpend
 pub use body::{Body, State};
 pub use report::{MAX_DIRECTIONS, Mode, SpatialContactReport, SpatialStepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper};
-pub use supported::{Finger, LowerFace, SupportPoint, SupportedStepper};
+pub use supported::{FaceTouch, Finger, LowerFace, SupportPoint, SupportedStepper};

@@ -94,6 +94,17 @@ impl<T: Real> Finger<T> {
     }
 }
 
+/// A support point against the face ([`SupportedStepper::touch`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceTouch<T> {
+    /// The contact point's offset from the centre of mass, world axes, m.
+    pub lever: Vector<T>,
+    /// The point's depth below the face, m (negative when sunk in).
+    pub gap: T,
+    /// Whether it is under the face.
+    pub under: bool,
+}
+
 /// A body on `K` support points under its [`LowerFace`] (`N = 4 K` LCP rows), each carried as the
 /// caller says step by step, stepped as `super`'s module docs say.
 #[derive(Debug, Clone)]
@@ -180,17 +191,17 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         let size = state.position.iter().fold(face.half_length + face.half_width, |a, x| a + x.abs_exact());
         let touching = T::of(64.0) * T::EPS * size;
         let n = stepper.normal();
-        for (mode, support) in stepper.modes.iter_mut().zip(start) {
+        let mut modes = [Mode::Separated; K];
+        for (mode, support) in modes.iter_mut().zip(start) {
             let Some(p) = support else { continue };
-            let l = unrotate(&state.orientation, &sub(&p.position, &state.position));
-            let gap = -l[2] - face.half_thickness;
-            if l[0].abs_exact() <= face.half_length && l[2] <= T::zero() && gap <= touching {
-                let r = rotate(&state.orientation, &[l[0], l[1], -face.half_thickness]);
+            let FaceTouch { lever: r, gap, under } = stepper.touch(&p.position);
+            if under && gap <= touching {
                 let u = sub(&add(&state.velocity, &cross(&state.angular_velocity, &r)), &p.velocity);
                 let slip = norm(&sub(&u, &scale(dot(&n, &u), &n)));
                 *mode = if slip <= settings.stick_speed { Mode::Sticking } else { Mode::Sliding };
             }
         }
+        stepper.modes = modes;
         Ok(stepper)
     }
 
@@ -242,17 +253,33 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         rotate(&self.state.orientation, &[T::zero(), T::zero(), T::one()])
     }
 
+    /// A support point at `p` against the face now: `l = R^T (p - x)`, under the face when
+    /// `|l.x| <= half_length`, `|l.y| <= half_width` (within `16 eps` of the positions:
+    /// [`Finger::crossings`] puts points on its edges) and `l.z <= 0`; its gap `-l.z -
+    /// half_thickness`, its contact point `R (l.x, l.y, -half_thickness)`.
+    #[must_use]
+    pub fn touch(&self, p: &Vector<T>) -> FaceTouch<T> {
+        let (st, f) = (&self.state, &self.face);
+        let l = unrotate(&st.orientation, &sub(p, &st.position));
+        let lever = rotate(&st.orientation, &[l[0], l[1], -f.half_thickness]);
+        let size = st.position.iter().fold(norm(&lever), |a, x| a + x.abs_exact());
+        let edge = f.half_width + T::of(16.0) * T::EPS * size;
+        FaceTouch {
+            lever,
+            gap: -l[2] - f.half_thickness,
+            under: l[0].abs_exact() <= f.half_length && l[1].abs_exact() <= edge && l[2] <= T::zero(),
+        }
+    }
+
     /// Support `p` in the body's frame: `R^T (p - x)`.
     #[must_use]
     pub fn in_body(&self, p: &Vector<T>) -> Vector<T> {
         unrotate(&self.state.orientation, &sub(p, &self.state.position))
     }
 
-    /// Advances one step of `h` on the `supports` (`None`: a slot that touches nothing this step).
-    /// A support point `p` at `l = R^T (p - x)` touches the face when `|l.x| <= half_length`,
-    /// `|l.y| <= half_width` (within `16 eps` of the positions: [`Finger::crossings`] puts points
-    /// on its edges), `l.z <= 0` and its gap `-l.z - half_thickness` is within the margin; its
-    /// contact point is `R (l.x, l.y, -half_thickness)`.
+    /// Advances one step of `h` on the `supports` (`None`: a slot that touches nothing this step):
+    /// a support point enters the step's LCP when it is under the face ([`Self::touch`]) and its
+    /// gap is within the margin.
     ///
     /// # Errors
     /// [`StepError`]; the state is then unchanged. [`StepError::NonFinite`] for a support that is
@@ -267,7 +294,6 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         let v_free = advanced(&st.velocity, h, &s.gravity);
         let w_free = st.angular_velocity;
         let position_size = st.position.iter().fold(T::zero(), |a, x| a + x.abs_exact());
-        let f = self.face;
         // A support at rest on the body starts its friction along the body's axis (the face's
         // length): a free slip within round-off has no direction of its own.
         let axis = rotate(&st.orientation, &[T::one(), T::zero(), T::zero()]);
@@ -286,19 +312,13 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
                 };
             };
             finite &= super::algebra::finite(&support.position) && super::algebra::finite(&support.velocity);
-            let l = unrotate(&st.orientation, &sub(&support.position, &st.position));
-            let r = rotate(&st.orientation, &[l[0], l[1], -f.half_thickness]);
-            let gap = -l[2] - f.half_thickness;
+            let FaceTouch { lever: r, gap, under } = self.touch(&support.position);
             let round_off = T::of(4.0) * T::EPS * (position_size + norm(&r));
-            let edge = f.half_width + T::of(4.0) * round_off;
             let u_free = sub(&add(&v_free, &cross(&w_free, &r)), &support.velocity);
             speed = max(speed, norm(&u_free));
             let mu = if self.modes[i] == Mode::Sliding { self.mu[1] } else { self.mu[0] };
             Touch {
-                active: l[0].abs_exact() <= f.half_length
-                    && l[1].abs_exact() <= edge
-                    && l[2] <= T::zero()
-                    && gap <= s.margin,
+                active: under && gap <= s.margin,
                 arm: r,
                 normal_free: dot(&n, &u_free) + normal_bias(gap, h, norm(&s.gravity), round_off),
                 slip_free: sub(&u_free, &scale(dot(&n, &u_free), &n)),

@@ -19,6 +19,8 @@
 
 use heapless::Vec;
 
+use super::view::SeenContact;
+use crate::RunStats;
 use crate::params::{ParamError, params};
 use crate::real::Real;
 use crate::scene::{Meeting, MeterStickParams, Outcome};
@@ -194,6 +196,9 @@ pub struct MeterStick3d<T: Real> {
     outcome: Option<Outcome>,
     start_normal: Vector<T>,
     start_z: T,
+    /// The fingers' `x` velocities over the last step.
+    velocity: [T; 2],
+    stats: RunStats,
 }
 
 impl<T: Real> MeterStick3d<T> {
@@ -259,6 +264,8 @@ impl<T: Real> MeterStick3d<T> {
             outcome: None,
             start_normal: rotate(&orientation, &[T::zero(), T::zero(), T::one()]),
             start_z: rest.y,
+            velocity,
+            stats: RunStats::default(),
         })
     }
 
@@ -296,6 +303,43 @@ impl<T: Real> MeterStick3d<T> {
     #[must_use]
     pub fn events(&self) -> &[FingerSwitch<T>] {
         &self.events
+    }
+
+    /// The run's counters: steps, pivots, the steps the warm basis answered without a pivot.
+    #[must_use]
+    pub const fn stats(&self) -> &RunStats {
+        &self.stats
+    }
+
+    /// Takes the outcome so that the run goes on (`SceneView::go_on`); `None` before it.
+    pub fn go_on(&mut self) -> Option<Outcome> {
+        self.outcome.take()
+    }
+
+    /// Finger `i` (0 or 1) now: the line across the rod at its tip, moving at its velocity over
+    /// the last step.
+    #[must_use]
+    pub fn finger(&self, i: usize) -> Option<Finger<T>> {
+        let (sin, cos) = self.path;
+        let (tip, v) = (*self.tips.get(i)?, *self.velocity.get(i)?);
+        Some(Finger { tip, across: [T::zero(), T::one(), T::zero()], velocity: [v, v * sin / cos, T::zero()] })
+    }
+
+    /// Support point `i` (finger 1's two, then finger 2's) against the rod now; `None` past
+    /// [`ROD_POINTS`] or when its finger runs along the rod.
+    #[must_use]
+    pub fn contact(&self, i: usize) -> Option<SeenContact<T>> {
+        let (face, state) = (self.stepper.face(), self.stepper.state());
+        let points = Self::fingers_at(face, state, self.path, &self.tips, self.velocity);
+        let p = (*points.get(i)?)?;
+        let touch = self.stepper.touch(&p.position);
+        Some(SeenContact {
+            lever: touch.lever,
+            gap: touch.gap,
+            normal: self.stepper.normal(),
+            active: touch.under && touch.gap <= self.stepper.settings().margin,
+            support: if i < 2 { 0 } else { 1 },
+        })
     }
 
     /// Each finger's mode after the last step (its two points', [`FingerSwitch`]).
@@ -379,6 +423,12 @@ impl<T: Real> MeterStick3d<T> {
             }
         };
         self.tips = tips;
+        self.velocity = velocity;
+        self.stats.steps += 1;
+        self.stats.count_pivots(report.pivots);
+        if report.pivots == 0 {
+            self.stats.warm_starts += 1;
+        }
         let modes = finger_modes(&report.contacts.map(|c| c.mode));
         for (f, (&now, &before)) in modes.iter().zip(&self.modes).enumerate() {
             if now != before {

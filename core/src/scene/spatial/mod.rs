@@ -19,7 +19,7 @@ pub use billiard::{Billiard, BilliardParams};
 pub use curling::{Curling, CurlingParams, MAX_POINTS};
 pub use meter_stick_3d::{FingerSwitch, MeterStick3d, MeterStick3dParams, ROD_EVENTS, ROD_POINTS, ROD_ROWS};
 pub use puck::{Puck, PuckParams};
-pub use view::SpatialView;
+pub use view::{SeenContact, SpatialSeen, SpatialView};
 
 use crate::RunStats;
 use crate::params::ParamError;
