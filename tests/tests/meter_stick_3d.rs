@@ -127,9 +127,9 @@ fn heading_zero_is_the_planar_run() {
 /// rod's centre of mass at every step, to the step's round-off grown over the run.
 #[test]
 fn opposite_headings_mirror_each_other() {
-    for heading in [10.0, 30.0] {
+    for heading in [5.0, 10.0, 30.0] {
         let run = |heading: f64| {
-            let mut scene = MeterStick3d::<f64>::new(MeterStick3dParams { heading, ..Default::default() })
+            let mut scene = MeterStick3d::<f64>::new(MeterStick3dParams { heading: heading.to_radians(), ..Default::default() })
                 .expect("valid");
             let mut path = Vec::new();
             while let Some(r) = scene.step() {
@@ -155,3 +155,4 @@ fn opposite_headings_mirror_each_other() {
         assert!(sideways > 0.0);
     }
 }
+

@@ -68,7 +68,8 @@ params! {
         finger1_velocity: 0.1, Finite;
         /// Speed of finger 2 along the same heading (m/s). 0.
         finger2_velocity: 0.0, Finite;
-        /// The path's heading from the rod's axis toward `+y`, degrees (`|heading| <= 80`). 0.
+        /// The path's heading from the rod's axis toward `+y`, rad (`|heading| <= 80 deg`; the
+        /// command line's `--heading` in degrees). 0.
         heading: 0.0, Finite;
         /// Finger width along the rod (m, >= 0): approaching fingers stop when their `x` are this
         /// far apart. 0.01.
@@ -124,7 +125,7 @@ impl<T: Real> MeterStick3dParams<T> {
     /// `(sin, cos)` of the heading.
     #[must_use]
     pub fn heading_sin_cos(&self) -> (T, T) {
-        (self.heading * T::of(core::f64::consts::PI / 180.0)).sin_cos_portable()
+        self.heading.sin_cos_portable()
     }
 
     /// The rod: a uniform box `L x w x t`.
@@ -134,13 +135,13 @@ impl<T: Real> MeterStick3dParams<T> {
     }
 
     /// Checks every parameter: the planar scene's ([`MeterStickParams::validate`]), the heading
-    /// (`|heading| <= 80`) and the rod's box.
+    /// (`|heading| <= 80 deg`) and the rod's box.
     ///
     /// # Errors
     /// The first problem found.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.check_fields()?;
-        if self.heading.abs_exact() > T::of(80.0) {
+        if self.heading.abs_exact() > T::of(80.0_f64.to_radians()) {
             return Err(ParamError::OutOfRange("heading"));
         }
         self.planar().validate()?;
