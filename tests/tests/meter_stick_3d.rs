@@ -107,7 +107,7 @@ fn heading_zero_is_the_planar_run() {
                 assert_eq!(r.outcomes[0], r.outcomes[1], "f{bits}");
                 // In f32 a switch whose test sits within round-off of its threshold may fall a step
                 // apart: each switch may then differ for one step.
-                let slack = if bits == 64 { 0 } else { 1 };
+                let slack = usize::from(bits != 64);
                 assert!(r.modes_differ <= slack * r.switches[1].len(), "f{bits}: {}", r.modes_differ);
                 let [a, b] = r.meetings.map(|m| m.expect("the fingers met"));
                 assert!((a - b).abs() <= tolerance, "f{bits}: meeting offsets {a} {b}");
@@ -129,8 +129,11 @@ fn heading_zero_is_the_planar_run() {
 fn opposite_headings_mirror_each_other() {
     for heading in [5.0, 10.0, 30.0] {
         let run = |heading: f64| {
-            let mut scene = MeterStick3d::<f64>::new(MeterStick3dParams { heading: heading.to_radians(), ..Default::default() })
-                .expect("valid");
+            let mut scene = MeterStick3d::<f64>::new(MeterStick3dParams {
+                heading: heading.to_radians(),
+                ..Default::default()
+            })
+            .expect("valid");
             let mut path = Vec::new();
             while let Some(r) = scene.step() {
                 path.push(r.state.position);
@@ -155,4 +158,3 @@ fn opposite_headings_mirror_each_other() {
         assert!(sideways > 0.0);
     }
 }
-

@@ -332,6 +332,9 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
     }
 }
 
+/// A step's end: the state, each contact's report, the pivots taken.
+pub(super) type Advanced<T, const K: usize> = (State<T>, [SpatialContactReport<T>; K], u32);
+
 /// The solver a stepper keeps between steps: Lemke's method and its warm bases.
 #[derive(Debug, Clone)]
 pub(super) struct Solve<T: Real, const N: usize> {
@@ -364,7 +367,7 @@ impl<T: Real, const N: usize> Solve<T, N> {
         speed: T,
         v_free: &Vector<T>,
         w_free: &Vector<T>,
-    ) -> Result<(State<T>, [SpatialContactReport<T>; K], u32), StepError> {
+    ) -> Result<Advanced<T, K>, StepError> {
         let h = s.step;
         let mut pivots = 0;
         let (contacts, v, w) = if touches.iter().any(|c: &Touch<T>| c.active) {

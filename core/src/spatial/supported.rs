@@ -79,7 +79,8 @@ impl<T: Real> Finger<T> {
     pub fn crossing(&self, along_y: T, state: &State<T>) -> Option<SupportPoint<T>> {
         let l0 = unrotate(&state.orientation, &sub(&self.tip, &state.position));
         let e = unrotate(&state.orientation, &self.across);
-        if !(e[1].abs_exact() >= T::of(1.0 / 16.0)) {
+        // Not at least 1/16 (NaN included).
+        if e[1].abs_exact().partial_cmp(&T::of(1.0 / 16.0)).is_none_or(core::cmp::Ordering::is_lt) {
             return None;
         }
         let s = (along_y - l0[1]) / e[1];

@@ -165,8 +165,8 @@ pub struct FingerSwitch<T> {
 }
 
 /// Each finger's mode from its points' ([`FingerSwitch`]).
-fn finger_modes(points: &[Mode; ROD_POINTS]) -> [Mode; 2] {
-    let [a, b, c] = *points;
+fn finger_modes(points: [Mode; ROD_POINTS]) -> [Mode; 2] {
+    let [a, b, c] = points;
     [[a, b], [c, c]].map(|pair| {
         if pair.contains(&Mode::Sliding) {
             Mode::Sliding
@@ -251,7 +251,7 @@ impl<T: Real> MeterStick3d<T> {
         let start = Self::fingers_at(&face, &state, sin_cos, &tips, velocity);
         let stepper =
             SupportedStepper::new(p.body(), face, [p.mu_static, p.mu_kinetic], settings, state, &start)?;
-        let modes = finger_modes(stepper.modes());
+        let modes = finger_modes(*stepper.modes());
         Ok(Self {
             params,
             stepper,
@@ -323,7 +323,11 @@ impl<T: Real> MeterStick3d<T> {
     pub fn finger(&self, i: usize) -> Option<Finger<T>> {
         let (sin, cos) = self.path;
         let (tip, v) = (*self.tips.get(i)?, *self.velocity.get(i)?);
-        Some(Finger { tip, across: [T::zero(), T::one(), T::zero()], velocity: [v, v * sin / cos, T::zero()] })
+        Some(Finger {
+            tip,
+            across: [T::zero(), T::one(), T::zero()],
+            velocity: [v, v * sin / cos, T::zero()],
+        })
     }
 
     /// Support point `i` (finger 1's two, then finger 2's) against the rod now; `None` past
@@ -339,7 +343,7 @@ impl<T: Real> MeterStick3d<T> {
             gap: touch.gap,
             normal: self.stepper.normal(),
             active: touch.under && touch.gap <= self.stepper.settings().margin,
-            support: if i < 2 { 0 } else { 1 },
+            support: u8::from(i >= 2),
         })
     }
 
@@ -430,7 +434,7 @@ impl<T: Real> MeterStick3d<T> {
         if report.pivots == 0 {
             self.stats.warm_starts += 1;
         }
-        let modes = finger_modes(&report.contacts.map(|c| c.mode));
+        let modes = finger_modes(report.contacts.map(|c| c.mode));
         for (f, (&now, &before)) in modes.iter().zip(&self.modes).enumerate() {
             if now != before {
                 // A full log keeps its first events.

@@ -3,12 +3,12 @@
 use super::{Billiard, CIRCULAR_ROWS, Curling, MeterStick3d, Puck, ROD_POINTS, ROD_ROWS, SpatialScene};
 use crate::planar::{Checksum, ContactMode, Direction};
 use crate::real::Real;
+use crate::scene::BodyShape;
 use crate::scene::{
     BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepFigure,
     StepStats, SupportView, Thing, Velocity,
 };
 use crate::spatial::{Body, Mode, SpatialContactReport, SpatialStepReport, State, Vector, norm};
-use crate::scene::BodyShape;
 
 /// One contact's geometry now, as the view shows it.
 #[derive(Debug, Clone, Copy, PartialEq)]
