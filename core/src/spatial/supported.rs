@@ -8,17 +8,25 @@
 //! line: its centre of mass sits half its thickness above them, so any roll grows, and a finger
 //! that slides across the rod (a path not along its axis) turns the friction into a moment about
 //! it. A real finger is a pad lying across the rod. A [`Finger`] here is a horizontal line
-//! through its tip along `across`, carried at one velocity; it touches the face's rectangle where
-//! the rod's long edges cross it ([`Finger::crossings`]): two points, the rod's width `2 b`
-//! apart. Two fingers give four points in the face's plane, and the normal rows of four coplanar
-//! points leave one load open (the body's motion out of the plane fixes three): each finger's
-//! total and moment along the rod are decided, the split between its two points only together
-//! with the friction. Where every point slides the core takes the least-norm load (`super`'s
-//! "The load"); with a sticking finger the LCP's vertex; either way the body's motion is the one
-//! the constraints decide, the load's split moving only the internal forces. At a path along the
-//! rod's axis (the paper's trick) each finger's two points are mirror images across the centre
-//! line, their slips and their frictions equal, and the rod moves in its vertical plane exactly
-//! as on two point fingers at the tips: the planar scene's motion (`tests/tests/meter_stick_3d.rs`).
+//! through its tip along `across`, carried at one velocity; it touches the face where the line
+//! crosses a line of the face along the rod ([`Finger::crossing`]): a pad touches at the face's
+//! two long edges ([`Finger::crossings`], the rod's width apart), a point finger on its centre
+//! line.
+//!
+//! **A pad and a point.** `crate::scene::spatial::MeterStick3d` puts finger 1 as a pad and finger
+//! 2 as a point: three points not in a line, which hold the rod against roll and decide every
+//! point's load (the body's motion out of the face's plane, three conditions, fixes three loads).
+//! Two pads would give four coplanar points, whose normal rows leave one load open: the LCP's
+//! rows are then degenerate: on the meter stick's run Lemke's method returned, 36 steps in, an
+//! answer it could not verify (residual `7e-6` after 23 pivots; `super`'s "The load" takes the
+//! least-norm load only for a base sliding as a whole, and here one finger always sticks). At a path along the rod's axis (the
+//! paper's trick) the pad's two points are mirror images across the centre line: their loads are
+//! equal (the roll's balance), their frictions along the axis, and with finger 2's point their
+//! sums are two point fingers' at the tips: the planar scene's motion
+//! (`tests/tests/meter_stick_3d.rs`).
+//!
+//! **The step's geometry** is its start's, as the planar stepper's frames: the body's state then
+//! and the supports where they were, each moving at its velocity over the step.
 //!
 //! What the finger's width along the rod decides (how close the fingers come) is the scene's.
 

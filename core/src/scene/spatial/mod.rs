@@ -3,8 +3,9 @@
 //! [`crate::spatial::OneContact`] with Coulomb's circular cone (or, with `friction_directions`
 //! set, a stepper of [`PYRAMID_ROWS`] rows with the pyramid of LCP engines, the baseline), and
 //! [`Curling`], a ring or a disc touching it at up to [`MAX_POINTS`] points (its flat base's load
-//! the least-norm one, `crate::spatial`'s "The load"); each seen by the front ends through
-//! [`SpatialView`] like every other scene.
+//! the least-norm one, `crate::spatial`'s "The load"); and [`MeterStick3d`], the paper's rod on a
+//! finger pad and a point finger ([`crate::spatial::SupportedStepper`]); each seen by the front
+//! ends through [`SpatialView`] ([`SpatialSeen`]) like every other scene.
 //!
 //! Each scene is a [`Run`] (the stepper, the outcome, the counters) and its own rules: its start
 //! from its parameters, the outcome it judges after each step, what it measures.
