@@ -36,7 +36,7 @@ impl Flag {
 }
 
 #[cfg(feature = "spatial")]
-use SceneKind::{Billiard as BI, Curling as CU, Puck as PK};
+use SceneKind::{Billiard as BI, Curling as CU, MeterStick3d as M3, Puck as PK};
 #[cfg(feature = "multibody")]
 use SceneKind::{BlockOnBlock as BB, DiscOnBoard as DB, Stack as ST, Tablecloth as TC};
 use SceneKind::{
@@ -52,6 +52,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Finger 1's velocity (+x: toward finger 2); painleve: the rod's velocity along x at the start (negative: its lower end slides away from under it); puck: the launch speed (>= 0); billiard: the ball's speed along +x (>= 0); curling: the launch speed along +x (>= 0)",
         fields: &[
             (M, "finger1_velocity"),
+            #[cfg(feature = "spatial")]
+            (M3, "finger1_velocity"),
             (F, "finger1_velocity"),
             (P, "speed"),
             #[cfg(feature = "spatial")]
@@ -66,19 +68,33 @@ pub const FLAGS: &[Flag] = &[
         long: "speed2",
         unit: "m/s",
         help: "Finger 2's velocity (-x: toward finger 1)",
-        fields: &[(M, "finger2_velocity")],
+        fields: &[
+            (M, "finger2_velocity"),
+            #[cfg(feature = "spatial")]
+            (M3, "finger2_velocity"),
+        ],
     },
     Flag {
         long: "x1",
         unit: "m",
         help: "Start x of finger 1 (from the rod's centre of mass; within +-L/2)",
-        fields: &[(M, "finger1_x"), (F, "finger1_x")],
+        fields: &[
+            (M, "finger1_x"),
+            #[cfg(feature = "spatial")]
+            (M3, "finger1_x"),
+            (F, "finger1_x"),
+        ],
     },
     Flag {
         long: "x2",
         unit: "m",
         help: "Start x of finger 2 (> x1 + finger width)",
-        fields: &[(M, "finger2_x"), (F, "finger2_x")],
+        fields: &[
+            (M, "finger2_x"),
+            #[cfg(feature = "spatial")]
+            (M3, "finger2_x"),
+            (F, "finger2_x"),
+        ],
     },
     Flag {
         long: "x3",
@@ -86,13 +102,36 @@ pub const FLAGS: &[Flag] = &[
         help: "x of finger 3 (three-fingers; > x2, within +-L/2)",
         fields: &[(F, "finger3_x")],
     },
-    Flag { long: "y1", unit: "m", help: "Height of finger 1's tip", fields: &[(M, "finger1_y")] },
-    Flag { long: "y2", unit: "m", help: "Height of finger 2's tip", fields: &[(M, "finger2_y")] },
+    Flag {
+        long: "y1",
+        unit: "m",
+        help: "Height of finger 1's tip",
+        fields: &[
+            (M, "finger1_y"),
+            #[cfg(feature = "spatial")]
+            (M3, "finger1_y"),
+        ],
+    },
+    Flag {
+        long: "y2",
+        unit: "m",
+        help: "Height of finger 2's tip",
+        fields: &[
+            (M, "finger2_y"),
+            #[cfg(feature = "spatial")]
+            (M3, "finger2_y"),
+        ],
+    },
     Flag {
         long: "finger-width",
         unit: "m",
         help: "Approaching fingers stop when their tips are this far apart (>= 0)",
-        fields: &[(M, "finger_width"), (F, "finger_width")],
+        fields: &[
+            (M, "finger_width"),
+            #[cfg(feature = "spatial")]
+            (M3, "finger_width"),
+            (F, "finger_width"),
+        ],
     },
     Flag {
         long: "mu-s",
@@ -100,6 +139,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Static friction coefficient (>= 0; between the bodies; stack: every contact's)",
         fields: &[
             (M, "mu_static"),
+            #[cfg(feature = "spatial")]
+            (M3, "mu_static"),
             (I, "mu_static"),
             (F, "mu_static"),
             (C, "mu_static"),
@@ -124,6 +165,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Kinetic friction coefficient (0 <= mu-k <= mu-s)",
         fields: &[
             (M, "mu_kinetic"),
+            #[cfg(feature = "spatial")]
+            (M3, "mu_kinetic"),
             (I, "mu_kinetic"),
             (F, "mu_kinetic"),
             (C, "mu_kinetic"),
@@ -181,6 +224,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Mass of the body (> 0; the upper block; each block of a stack; disc-on-board the disc)",
         fields: &[
             (M, "rod_mass"),
+            #[cfg(feature = "spatial")]
+            (M3, "rod_mass"),
             (I, "mass"),
             (L, "mass"),
             (F, "rod_mass"),
@@ -208,6 +253,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Rod length (> 0; stack: each block's)",
         fields: &[
             (M, "rod_length"),
+            #[cfg(feature = "spatial")]
+            (M3, "rod_length"),
             (L, "length"),
             (F, "rod_length"),
             (P, "length"),
@@ -221,6 +268,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Rod thickness (> 0, less than its length)",
         fields: &[
             (M, "rod_thickness"),
+            #[cfg(feature = "spatial")]
+            (M3, "rod_thickness"),
             (L, "thickness"),
             (F, "rod_thickness"),
             (P, "thickness"),
@@ -231,9 +280,11 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "width",
         unit: "m",
-        help: "Block width (> 0; incline: along the slope; the upper block)",
+        help: "Block width (> 0; incline: along the slope; the upper block); meter-stick-3d: the rod's width, across it",
         fields: &[
             (I, "width"),
+            #[cfg(feature = "spatial")]
+            (M3, "rod_width"),
             #[cfg(feature = "multibody")]
             (BB, "top_width"),
             #[cfg(feature = "multibody")]
@@ -282,6 +333,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Gravity (>= 0)",
         fields: &[
             (M, "gravity"),
+            #[cfg(feature = "spatial")]
+            (M3, "gravity"),
             (I, "gravity"),
             (L, "gravity"),
             (F, "gravity"),
@@ -309,6 +362,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Time step (> 0, at most the duration)",
         fields: &[
             (M, "step"),
+            #[cfg(feature = "spatial")]
+            (M3, "step"),
             (I, "step"),
             (L, "step"),
             (F, "step"),
@@ -336,6 +391,8 @@ pub const FLAGS: &[Flag] = &[
         help: "Longest simulated time (> 0); a run still going then ends Unfinished (the meter stick's default grows with the fingers' travel time)",
         fields: &[
             (M, "max_time"),
+            #[cfg(feature = "spatial")]
+            (M3, "max_time"),
             (I, "max_time"),
             (L, "max_time"),
             (F, "max_time"),
@@ -363,6 +420,8 @@ pub const FLAGS: &[Flag] = &[
         help: "A touching contact whose slip speed is at most this sticks (>= 0)",
         fields: &[
             (M, "stick_speed"),
+            #[cfg(feature = "spatial")]
+            (M3, "stick_speed"),
             (I, "stick_speed"),
             (L, "stick_speed"),
             (F, "stick_speed"),
@@ -390,6 +449,8 @@ pub const FLAGS: &[Flag] = &[
         help: "The body has fallen (tipped) when it tilted this far from its start angle (> 0)",
         fields: &[
             (M, "tilt_limit"),
+            #[cfg(feature = "spatial")]
+            (M3, "tilt_limit"),
             (F, "tilt_limit"),
             #[cfg(feature = "multibody")]
             (BB, "tilt_limit"),
@@ -403,6 +464,8 @@ pub const FLAGS: &[Flag] = &[
         help: "The body has fallen when its centre of mass dropped this far (> 0)",
         fields: &[
             (M, "drop_limit"),
+            #[cfg(feature = "spatial")]
+            (M3, "drop_limit"),
             #[cfg(feature = "multibody")]
             (ST, "drop_limit"),
         ],
@@ -411,7 +474,12 @@ pub const FLAGS: &[Flag] = &[
         long: "hold-time",
         unit: "s",
         help: "After the fingers meet, the rod must stay on them this long to balance (>= 0)",
-        fields: &[(M, "hold_time"), (F, "hold_time")],
+        fields: &[
+            (M, "hold_time"),
+            #[cfg(feature = "spatial")]
+            (M3, "hold_time"),
+            (F, "hold_time"),
+        ],
     },
     // The scenes of several bodies' own flags, last: a build without the feature `multibody` lists
     // the flags before them with their numbers unchanged.
@@ -489,8 +557,8 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "heading",
         unit: "deg",
-        help: "The launch's heading from +x (across the slope) toward down the slope; on a level table counter-clockwise from +x",
-        fields: &[(PK, "heading")],
+        help: "The launch's heading from +x (across the slope) toward down the slope; on a level table counter-clockwise from +x; meter-stick-3d: finger 1's path from the rod's axis toward +y (|heading| <= 80)",
+        fields: &[(PK, "heading"), (M3, "heading")],
     },
     #[cfg(feature = "spatial")]
     Flag {

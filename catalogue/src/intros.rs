@@ -157,4 +157,14 @@ pub const INTRODUCTIONS: [Introduction; SceneKind::ALL.len()] = [
                 alone: 1 for a ring, 0.653 for a uniform disc (Farkas, Bartels, Unger and Wolf, 2003). \
                 Look for the two stopping times and that ratio.",
     },
+    #[cfg(feature = "spatial")]
+    Introduction {
+        kind: SceneKind::MeterStick3d,
+        heading: "The meter stick in three dimensions",
+        intro: "The paper's trick with a real rod: finger 1 is a pad lying across it, finger 2 a point \
+                under its centre line, and finger 1 moves along a path at a heading to the rod. At \
+                heading 0 it is the planar meter stick, step for step. At other headings the fingers \
+                also slide across the rod, friction pulls it sideways and may turn it, and a heading \
+                and its opposite give mirror-image runs. Look for where the fingers meet.",
+    },
 ];

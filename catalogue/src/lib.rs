@@ -61,6 +61,8 @@ mod tests {
             let contacts = match kind {
                 #[cfg(feature = "spatial")]
                 SceneKind::Curling => meterstick_core::scene::spatial::MAX_POINTS,
+                #[cfg(feature = "spatial")]
+                SceneKind::MeterStick3d => meterstick_core::scene::spatial::ROD_POINTS,
                 _ if kind.is_spatial() => 1,
                 _ => kind.contacts(),
             };

@@ -193,6 +193,20 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
             ("step", "0 < h <= duration"),
         ],
     },
+    #[cfg(feature = "spatial")]
+    SceneInfo {
+        kind: SceneKind::MeterStick3d,
+        title: "The paper's rod on two fingers in three dimensions, finger 1 moving at a heading to the rod",
+        contact_names: &["finger 1, one edge", "finger 1, the other edge", "finger 2"],
+        main_flags: &["speed", "heading", "speed2", "x1", "x2", "mu-s", "mu-k", "h"],
+        outcomes: &[OutcomeKind::Balanced, OutcomeKind::Fell, OutcomeKind::Unfinished],
+        measures: &["meeting.time_s", "meeting.com_offset_m"],
+        ranges: &[
+            ("step", "0 < h <= duration"),
+            ("rod_thickness", "0 < thickness < length"),
+            ("heading", "-80 <= heading <= 80 deg"),
+        ],
+    },
 ];
 
 /// The catalogue's entry of a scene.

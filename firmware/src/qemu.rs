@@ -246,6 +246,8 @@ const fn expected(kind: SceneKind) -> Outcome {
         SceneKind::Billiard => Outcome::Rolled,
         #[cfg(feature = "qemu-spatial")]
         SceneKind::Curling => Outcome::Stopped,
+        #[cfg(feature = "qemu-spatial")]
+        SceneKind::MeterStick3d => Outcome::Balanced,
     }
 }
 
@@ -536,13 +538,13 @@ impl ViewVisitor for CheckView {
     }
 }
 
-/// The puck, the billiard ball and the curling stone at their defaults, in f32, through the
-/// registry's view; the number refused or ended otherwise than physics says (the puck stops, the
-/// ball rolls, the stone stops).
+/// The puck, the billiard ball, the curling stone and the meter stick in three dimensions at their
+/// defaults, in f32, through the registry's view; the number refused or ended otherwise than
+/// physics says (the puck stops, the ball rolls, the stone stops, the rod balances).
 #[cfg(feature = "qemu-spatial")]
 fn check_spatial_scenes() -> i32 {
     let mut failures = 0;
-    for kind in [SceneKind::Puck, SceneKind::Billiard, SceneKind::Curling] {
+    for kind in [SceneKind::Puck, SceneKind::Billiard, SceneKind::Curling, SceneKind::MeterStick3d] {
         let check = CheckView { name: kind.name(), expected: expected(kind) };
         stack_peak::paint();
         failures +=

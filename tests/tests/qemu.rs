@@ -275,9 +275,9 @@ impl ViewVisitor for HostView {
     }
 }
 
-/// The puck, the billiard ball and the curling stone at their defaults (firmware/src/qemu.rs,
-/// `qemu-spatial`): the outcome physics says (the puck and the stone stop, the ball rolls:
-/// `docs/scenes.md`), and outcome, steps
+/// The puck, the billiard ball, the curling stone and the meter stick in three dimensions at their
+/// defaults (firmware/src/qemu.rs, `qemu-spatial`): the outcome physics says (the puck and the
+/// stone stop, the ball rolls, the rod balances: `docs/scenes.md`), and outcome, steps
 /// and checksum equal to the host's f32 run (bit-identical IEEE f32 arithmetic); a timing line
 /// for every step.
 fn check_spatial_scenes(run: &FirmwareRun) {
@@ -285,6 +285,7 @@ fn check_spatial_scenes(run: &FirmwareRun) {
         (SceneKind::Puck, Outcome::Stopped),
         (SceneKind::Billiard, Outcome::Rolled),
         (SceneKind::Curling, Outcome::Stopped),
+        (SceneKind::MeterStick3d, Outcome::Balanced),
     ] {
         let (outcome, steps, sum) = SceneParams::defaults(kind)
             .build_view::<0, _>(Precision::F32, LcpLayout::Reduced, HostView)

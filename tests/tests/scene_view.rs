@@ -485,6 +485,10 @@ fn mass_and_inertia(params: &SceneParams) -> Vec<(f64, f64)> {
         SceneParams::Curling(p) => {
             vec![(p.mass, if p.shape == 0.0 { 1.0 } else { 0.5 } * p.mass * p.radius * p.radius)]
         }
+        // A box `L x w x t` about its own `z` (vertical): `m (L^2 + w^2) / 12`.
+        SceneParams::MeterStick3d(p) => {
+            vec![(p.rod_mass, p.rod_mass * (p.rod_length.powi(2) + p.rod_width.powi(2)) / 12.0)]
+        }
     }
 }
 

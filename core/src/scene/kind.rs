@@ -30,7 +30,7 @@ use crate::multibody::scenes::{BlockOnBlockParams, DiscOnBoardParams, StackParam
 use crate::params::ParamError;
 use crate::real::Real;
 #[cfg(feature = "scenes-spatial")]
-use crate::scene::spatial::{BilliardParams, CurlingParams, PuckParams};
+use crate::scene::spatial::{BilliardParams, CurlingParams, MeterStick3dParams, PuckParams};
 
 /// A scene of the catalogue (`docs/scenes.md`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -69,12 +69,16 @@ pub enum SceneKind {
     /// A ring or a uniform disc sliding and spinning: both stop together (three dimensions).
     #[cfg(feature = "scenes-spatial")]
     Curling,
+    /// The paper's rod on two fingers, finger 1 moving along a path at a heading to the rod
+    /// (three dimensions).
+    #[cfg(feature = "scenes-spatial")]
+    MeterStick3d,
 }
 
 /// The number of scenes this build names ([`SceneKind::ALL`]).
 const SCENE_COUNT: usize = 6
     + if cfg!(feature = "scenes-multibody") { 4 } else { 0 }
-    + if cfg!(feature = "scenes-spatial") { 3 } else { 0 };
+    + if cfg!(feature = "scenes-spatial") { 4 } else { 0 };
 
 /// The most quantities a scene measures ([`super::Scene::measured`]; `meterstick-catalogue` names
 /// them).
@@ -105,6 +109,8 @@ impl SceneKind {
         Self::Billiard,
         #[cfg(feature = "scenes-spatial")]
         Self::Curling,
+        #[cfg(feature = "scenes-spatial")]
+        Self::MeterStick3d,
     ];
 
     /// The scene's name on the command line and in the page's URL, e.g. `meter-stick`.
@@ -131,6 +137,8 @@ impl SceneKind {
             Self::Billiard => "billiard",
             #[cfg(feature = "scenes-spatial")]
             Self::Curling => "curling",
+            #[cfg(feature = "scenes-spatial")]
+            Self::MeterStick3d => "meter-stick-3d",
         }
     }
 
@@ -146,7 +154,7 @@ impl SceneKind {
             #[cfg(feature = "scenes-multibody")]
             Self::BlockOnBlock | Self::Tablecloth | Self::Stack | Self::DiscOnBoard => 0,
             #[cfg(feature = "scenes-spatial")]
-            Self::Puck | Self::Billiard | Self::Curling => 0,
+            Self::Puck | Self::Billiard | Self::Curling | Self::MeterStick3d => 0,
         }
     }
 
@@ -155,7 +163,7 @@ impl SceneKind {
     #[must_use]
     pub const fn is_spatial(self) -> bool {
         #[cfg(feature = "scenes-spatial")]
-        return matches!(self, Self::Puck | Self::Billiard | Self::Curling);
+        return matches!(self, Self::Puck | Self::Billiard | Self::Curling | Self::MeterStick3d);
         #[cfg(not(feature = "scenes-spatial"))]
         {
             let _ = self;
@@ -228,6 +236,8 @@ impl SceneKind {
             Self::Billiard => BilliardParams::<f64>::NAMES,
             #[cfg(feature = "scenes-spatial")]
             Self::Curling => CurlingParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-spatial")]
+            Self::MeterStick3d => MeterStick3dParams::<f64>::NAMES,
         }
     }
 }
@@ -348,6 +358,9 @@ pub enum SceneParams {
     /// The curling stone.
     #[cfg(feature = "scenes-spatial")]
     Curling(CurlingParams<f64>),
+    /// The meter stick in three dimensions.
+    #[cfg(feature = "scenes-spatial")]
+    MeterStick3d(MeterStick3dParams<f64>),
 }
 
 impl SceneParams {
@@ -375,6 +388,8 @@ impl SceneParams {
             SceneKind::Billiard => Self::Billiard(BilliardParams::default()),
             #[cfg(feature = "scenes-spatial")]
             SceneKind::Curling => Self::Curling(CurlingParams::default()),
+            #[cfg(feature = "scenes-spatial")]
+            SceneKind::MeterStick3d => Self::MeterStick3d(MeterStick3dParams::default()),
         }
     }
 
@@ -402,6 +417,8 @@ impl SceneParams {
             Self::Billiard(_) => SceneKind::Billiard,
             #[cfg(feature = "scenes-spatial")]
             Self::Curling(_) => SceneKind::Curling,
+            #[cfg(feature = "scenes-spatial")]
+            Self::MeterStick3d(_) => SceneKind::MeterStick3d,
         }
     }
 
@@ -429,6 +446,8 @@ impl SceneParams {
             Self::Billiard(p) => p.get(field),
             #[cfg(feature = "scenes-spatial")]
             Self::Curling(p) => p.get(field),
+            #[cfg(feature = "scenes-spatial")]
+            Self::MeterStick3d(p) => p.get(field),
         }
     }
 
@@ -455,6 +474,8 @@ impl SceneParams {
             Self::Billiard(p) => p.set(field, value),
             #[cfg(feature = "scenes-spatial")]
             Self::Curling(p) => p.set(field, value),
+            #[cfg(feature = "scenes-spatial")]
+            Self::MeterStick3d(p) => p.set(field, value),
         }
     }
 
@@ -526,6 +547,11 @@ impl SceneParams {
             }
             #[cfg(feature = "scenes-spatial")]
             Self::Curling(p) => {
+                p.validate()?;
+                p.cast::<T>().validate()
+            }
+            #[cfg(feature = "scenes-spatial")]
+            Self::MeterStick3d(p) => {
                 p.validate()?;
                 p.cast::<T>().validate()
             }

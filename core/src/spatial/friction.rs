@@ -18,8 +18,14 @@ pub(super) struct Touch<T> {
     pub arm: Vector<T>,
     /// Its free normal velocity with the gap's bias: the normal row's `q`.
     pub normal_free: T,
-    /// Its free slip: the free velocity's part in the plane.
+    /// Its free slip: the free relative velocity's part in the plane.
     pub slip_free: Vector<T>,
+    /// The velocity of the support's material at the point (zero on a fixed plane; a moving
+    /// finger's): slips are the body point's velocity less this.
+    pub carried: Vector<T>,
+    /// The friction line to start from when the free slip is within the step's round-off
+    /// (`None`: the free slip's direction whatever its size, or the plane's `perpendicular`).
+    pub rest_line: Option<Vector<T>>,
     /// Its friction coefficient this step.
     pub mu: T,
 }
@@ -74,10 +80,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         (add(v_free, &push), add(w_free, &scale(self.body.mass, &turn)))
     }
 
-    /// Contact `c`'s slip at velocity `v` and angular velocity `w`: its point's velocity in the
-    /// plane.
+    /// Contact `c`'s slip at velocity `v` and angular velocity `w`: its point's velocity less the
+    /// support's ([`Touch::carried`]), in the plane.
     pub(super) fn slip(&self, v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
-        let u = add(v, &cross(w, &c.arm));
+        let u = sub(&add(v, &cross(w, &c.arm)), &c.carried);
         sub(&u, &scale(dot(&self.normal, &u), &self.normal))
     }
 
@@ -97,8 +103,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     ) -> Result<Solved<T, K>, StepError> {
         let n = self.normal;
         let zero = [T::zero(); 3];
-        let mut lines =
-            self.touches.map(|c| Line { d: direction(&c.slip_free).unwrap_or_else(|| perpendicular(&n)) });
+        let mut lines = self.touches.map(|c| Line {
+            d: match c.rest_line {
+                Some(d) if norm(&c.slip_free) <= self.slip_tolerance => d,
+                _ => direction(&c.slip_free).unwrap_or_else(|| perpendicular(&n)),
+            },
+        });
         for tries in 1..=MAX_DIRECTIONS {
             let lcp = self.lcp::<N>(&lines);
             let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;

@@ -102,9 +102,11 @@
 //!   the same step (Farkas, Bartels, Unger & Wolf, PRL 90, 248302 (2003)), and the same launch
 //!   turned about the vertical ends turned.
 //!
-//! Scope: one body on one plane; its scenes (a puck, a billiard ball, a curling stone) are
-//! `crate::scene::spatial`'s (feature `scenes-spatial`). Moving supports (fingers) and several
-//! bodies are to come (`CHANGELOG.md`).
+//! Scope: one body, on one fixed plane ([`SpatialStepper`]) or on support points carried under its
+//! flat lower face ([`SupportedStepper`], `supported`'s module docs: fingers lying across a rod;
+//! the same step, each slip the body point's velocity less the support's); its scenes (a puck, a
+//! billiard ball, a curling stone, the meter stick) are `crate::scene::spatial`'s (feature
+//! `scenes-spatial`). Several bodies in three dimensions are to come (`CHANGELOG.md`).
 
 mod algebra;
 mod body;
@@ -112,9 +114,11 @@ mod friction;
 mod load;
 mod report;
 mod stepper;
+mod supported;
 
 pub use crate::StepError;
-pub use algebra::{Quaternion, Vector, about, dot, identity, norm, perpendicular, rotate};
+pub use algebra::{Quaternion, Vector, about, cross, dot, identity, norm, perpendicular, rotate};
 pub use body::{Body, State};
 pub use report::{MAX_DIRECTIONS, Mode, SpatialContactReport, SpatialStepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper};
+pub use supported::{FaceTouch, Finger, LowerFace, SupportPoint, SupportedStepper};

@@ -126,10 +126,7 @@ pub struct SpatialStepper<T: Real, const K: usize, const N: usize> {
     state: State<T>,
     modes: [Mode; K],
     steps: u64,
-    solver: Lemke<T, N>,
-    basis: Basis<N>,
-    /// The warm basis of the flat base's least-norm load (`super::load`).
-    load_basis: Basis<N>,
+    solve: Solve<T, N>,
 }
 
 /// A body touching the plane at one point (a sphere, a puck).
@@ -224,9 +221,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             state,
             modes: [Mode::Separated; K],
             steps: 0,
-            solver: Lemke::new(),
-            basis: Basis::all_w(),
-            load_basis: Basis::all_w(),
+            solve: Solve::new(),
         })
     }
 
@@ -326,13 +321,61 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
                 arm: r,
                 normal_free: dot(&n, &u_free) + normal_bias(gap, h, norm(&s.gravity), round_off),
                 slip_free: sub(&u_free, &scale(dot(&n, &u_free), &n)),
+                carried: [T::zero(); 3],
+                rest_line: None,
                 mu,
             }
         });
+        let (state, contacts, pivots) =
+            self.solve.advance(&self.body, &s, &st, n, touches, speed, &v_free, &w_free)?;
+        self.state = state;
+        self.modes = contacts.map(|c| c.mode);
+        self.steps += 1;
+        Ok(SpatialStepReport { time: self.time(), state, contacts, pivots })
+    }
+}
+
+/// A step's end: the state, each contact's report, the pivots taken.
+pub(super) type Advanced<T, const K: usize> = (State<T>, [SpatialContactReport<T>; K], u32);
+
+/// The solver a stepper keeps between steps: Lemke's method and its warm bases.
+#[derive(Debug, Clone)]
+pub(super) struct Solve<T: Real, const N: usize> {
+    solver: Lemke<T, N>,
+    basis: Basis<N>,
+    /// The warm basis of the flat base's least-norm load (`super::load`).
+    load_basis: Basis<N>,
+}
+
+impl<T: Real, const N: usize> Solve<T, N> {
+    pub(super) fn new() -> Self {
+        Self { solver: Lemke::new(), basis: Basis::all_w(), load_basis: Basis::all_w() }
+    }
+
+    /// The step from `st` (`super`'s module docs, 3 and 4): the impulses of the `touches` (a
+    /// plane of unit normal `normal`; `speed` the largest free point speed, the step's velocity
+    /// scale) on the free velocities `v_free`, `w_free`, then the turn. The state after the step,
+    /// each contact's report and the pivots taken.
+    ///
+    /// # Errors
+    /// [`StepError`]: the contacts' solve's, or a state that is not finite.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn advance<const K: usize>(
+        &mut self,
+        body: &Body<T>,
+        s: &SpatialSettings<T>,
+        st: &State<T>,
+        n: Vector<T>,
+        touches: [Touch<T>; K],
+        speed: T,
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> Result<Advanced<T, K>, StepError> {
+        let h = s.step;
         let mut pivots = 0;
         let (contacts, v, w) = if touches.iter().any(|c: &Touch<T>| c.active) {
             let contacts = Contacts {
-                body: &self.body,
+                body,
                 orientation: &st.orientation,
                 normal: n,
                 touches,
@@ -348,11 +391,11 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             match s.friction {
                 FrictionCone::Circular => {
                     let (solver, load) = (&self.solver, &mut self.load_basis);
-                    if let Some(answer) = contacts.flat_base(solver, load, &mut pivots, &v_free, &w_free)? {
+                    if let Some(answer) = contacts.flat_base(solver, load, &mut pivots, v_free, w_free)? {
                         answer
                     } else {
-                        let path = contacts.solve(solver, &mut self.basis, &mut pivots, &v_free, &w_free)?;
-                        contacts.least_norm(solver, load, &mut pivots, path, &v_free, &w_free)?
+                        let path = contacts.solve(solver, &mut self.basis, &mut pivots, v_free, w_free)?;
+                        contacts.least_norm(solver, load, &mut pivots, path, v_free, w_free)?
                     }
                 }
                 FrictionCone::Pyramid { directions } => contacts.solve_pyramid(
@@ -360,33 +403,29 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
                     &mut self.basis,
                     &mut pivots,
                     usize::from(directions),
-                    &v_free,
-                    &w_free,
+                    v_free,
+                    w_free,
                 )?,
             }
         } else {
-            ([SpatialContactReport::separated(); K], v_free, w_free)
+            ([SpatialContactReport::separated(); K], *v_free, *w_free)
         };
         // A body whose moments are equal (a sphere) has `I_w = I` at every orientation: its
         // angular velocity is its momentum's, unchanged, with no round-off of the turns.
-        let [ia, ib, ic] = self.body.inertia;
+        let [ia, ib, ic] = body.inertia;
         let (orientation, angular_velocity) = if ia == ib && ib == ic {
             (turned(&st.orientation, &w, h), w)
         } else {
-            let momentum = inertia_times(&self.body, &st.orientation, &w);
+            let momentum = inertia_times(body, &st.orientation, &w);
             let half = turned(&st.orientation, &w, h * T::of(0.5));
-            let orientation =
-                turned(&st.orientation, &inverse_inertia_times(&self.body, &half, &momentum), h);
-            (orientation, inverse_inertia_times(&self.body, &orientation, &momentum))
+            let orientation = turned(&st.orientation, &inverse_inertia_times(body, &half, &momentum), h);
+            (orientation, inverse_inertia_times(body, &orientation, &momentum))
         };
         let state =
             State { position: advanced(&st.position, h, &v), orientation, velocity: v, angular_velocity };
         if !state.is_finite() {
             return Err(StepError::NonFinite);
         }
-        self.state = state;
-        self.modes = contacts.map(|c| c.mode);
-        self.steps += 1;
-        Ok(SpatialStepReport { time: self.time(), state, contacts, pivots })
+        Ok((state, contacts, pivots))
     }
 }

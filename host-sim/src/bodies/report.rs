@@ -82,7 +82,7 @@ fn measured_text(spec: &SceneParams, m: &Measured, law: Option<&Law>) -> String 
             of(lower),
             of(upper)
         ),
-        SceneKind::Puck | SceneKind::Billiard | SceneKind::Curling => {
+        SceneKind::Puck | SceneKind::Billiard | SceneKind::Curling | SceneKind::MeterStick3d => {
             let keys = meterstick_catalogue::SCENES[spec.kind().index()].measures;
             let ours = m.values(spec.kind());
             let theirs = law.map(|l| l.measured.values(spec.kind()));

@@ -146,7 +146,8 @@ impl ParamsExt for SceneParams {
             | Self::DiscOnBoard(_)
             | Self::Puck(_)
             | Self::Billiard(_)
-            | Self::Curling(_) => return None,
+            | Self::Curling(_)
+            | Self::MeterStick3d(_) => return None,
         })
     }
 }

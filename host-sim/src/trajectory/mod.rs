@@ -192,7 +192,7 @@ impl Measured {
         let [a, b, c] = values;
         let mut m = Self::default();
         match kind {
-            SceneKind::MeterStick => {
+            SceneKind::MeterStick | SceneKind::MeterStick3d => {
                 m.meeting = a.zip(b).map(|(time_s, com_offset_m)| Meeting { time_s, com_offset_m });
             }
             SceneKind::Incline => m.acceleration_m_s2 = a,
@@ -224,7 +224,9 @@ impl Measured {
     pub fn values(&self, kind: SceneKind) -> [Option<f64>; MAX_MEASURES] {
         let m = self;
         match kind {
-            SceneKind::MeterStick => [m.meeting.map(|x| x.time_s), m.meeting.map(|x| x.com_offset_m), None],
+            SceneKind::MeterStick | SceneKind::MeterStick3d => {
+                [m.meeting.map(|x| x.time_s), m.meeting.map(|x| x.com_offset_m), None]
+            }
             SceneKind::Incline => [m.acceleration_m_s2, None, None],
             SceneKind::Ladder => [m.wall_release_height_m, m.wall_release_ratio, None],
             SceneKind::ThreeFingers => [None; MAX_MEASURES],

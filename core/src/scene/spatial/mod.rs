@@ -3,21 +3,24 @@
 //! [`crate::spatial::OneContact`] with Coulomb's circular cone (or, with `friction_directions`
 //! set, a stepper of [`PYRAMID_ROWS`] rows with the pyramid of LCP engines, the baseline), and
 //! [`Curling`], a ring or a disc touching it at up to [`MAX_POINTS`] points (its flat base's load
-//! the least-norm one, `crate::spatial`'s "The load"); each seen by the front ends through
-//! [`SpatialView`] like every other scene.
+//! the least-norm one, `crate::spatial`'s "The load"); and [`MeterStick3d`], the paper's rod on a
+//! finger pad and a point finger ([`crate::spatial::SupportedStepper`]); each seen by the front
+//! ends through [`SpatialView`] ([`SpatialSeen`]) like every other scene.
 //!
 //! Each scene is a [`Run`] (the stepper, the outcome, the counters) and its own rules: its start
 //! from its parameters, the outcome it judges after each step, what it measures.
 
 mod billiard;
 mod curling;
+mod meter_stick_3d;
 mod puck;
 mod view;
 
 pub use billiard::{Billiard, BilliardParams};
 pub use curling::{Curling, CurlingParams, MAX_POINTS};
+pub use meter_stick_3d::{FingerSwitch, MeterStick3d, MeterStick3dParams, ROD_EVENTS, ROD_POINTS, ROD_ROWS};
 pub use puck::{Puck, PuckParams};
-pub use view::SpatialView;
+pub use view::{SeenContact, SpatialSeen, SpatialView};
 
 use crate::RunStats;
 use crate::params::ParamError;

@@ -81,7 +81,9 @@ impl SceneParams {
 impl SceneParams {
     /// A scene in three dimensions in `T`, checked in f64 and `T` first.
     fn build_spatial<T: Real, V: ViewVisitor>(&self, visitor: V) -> Result<V::Output, ParamError> {
-        use crate::scene::spatial::{Billiard, CIRCULAR_ROWS, Curling, PYRAMID_ROWS, Puck, SpatialView};
+        use crate::scene::spatial::{
+            Billiard, CIRCULAR_ROWS, Curling, MeterStick3d, PYRAMID_ROWS, Puck, SpatialView,
+        };
         self.validate_as::<T>()?;
         // Coulomb's circular cone in an LCP of its own size; the pyramid baseline in one that
         // holds 16 directions.
@@ -100,6 +102,9 @@ impl SceneParams {
                 Ok(visitor.visit(&mut SpatialView::new(Billiard::<T, PYRAMID_ROWS>::new(p.cast::<T>())?)))
             }
             Self::Curling(p) => Ok(visitor.visit(&mut SpatialView::new(Curling::<T>::new(p.cast::<T>())?))),
+            Self::MeterStick3d(p) => {
+                Ok(visitor.visit(&mut SpatialView::new(MeterStick3d::<T>::new(p.cast::<T>())?)))
+            }
             _ => Err(ParamError::OutOfRange("scene")),
         }
     }

@@ -22,6 +22,17 @@ pub enum SupportView<T> {
         /// Its velocity.
         velocity: [T; 2],
     },
+    /// A finger lying across a rod in three dimensions (`crate::spatial::Finger`): the horizontal
+    /// line through `tip` along `across`, moving at `velocity` (world, `z` up).
+    #[cfg(feature = "spatial")]
+    Finger {
+        /// A point of the line (the finger's tip), m.
+        tip: [T; 3],
+        /// The line's unit direction.
+        across: [T; 3],
+        /// Its velocity, m/s.
+        velocity: [T; 3],
+    },
     /// A plane in three dimensions (a table, an incline) through `point` with unit `normal`
     /// toward the body (world, `z` up), fixed.
     #[cfg(feature = "spatial")]
