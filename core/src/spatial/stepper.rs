@@ -327,7 +327,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             }
         });
         let (state, contacts, pivots) =
-            self.solve.advance(&self.body, &s, &st, n, touches, speed, &v_free, &w_free)?;
+            self.solve.advance(&self.body, &s, &st, n, touches, (speed, terms), &v_free, &w_free)?;
         self.state = state;
         self.modes = contacts.map(|c| c.mode);
         self.steps += 1;
@@ -354,6 +354,7 @@ impl<T: Real, const N: usize> Solve<T, N> {
 
     /// The step from `st` (`super`'s module docs, 3 and 4): the impulses of the `touches` (a
     /// plane of unit normal `normal`; `speed` the largest free point speed, the step's velocity
+    /// scale, and `terms` the largest sum of the sizes a free slip is summed from, its round-off's
     /// scale) on the free velocities `v_free`, `w_free`, then the turn. The state after the step,
     /// each contact's report and the pivots taken.
     ///
@@ -367,7 +368,7 @@ impl<T: Real, const N: usize> Solve<T, N> {
         st: &State<T>,
         n: Vector<T>,
         touches: [Touch<T>; K],
-        speed: T,
+        (speed, terms): (T, T),
         v_free: &Vector<T>,
         w_free: &Vector<T>,
     ) -> Result<Advanced<T, K>, StepError> {

@@ -306,7 +306,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         // A support at rest on the body starts its friction along the body's axis (the face's
         // length): a free slip within round-off has no direction of its own.
         let axis = rotate(&st.orientation, &[T::one(), T::zero(), T::zero()]);
-        let mut speed = T::zero();
+        let (mut speed, mut terms) = (T::zero(), T::zero());
         let mut finite = true;
         let touches = core::array::from_fn(|i| {
             let Some(support) = supports[i] else {
@@ -325,6 +325,9 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
             let round_off = T::of(4.0) * T::EPS * (position_size + norm(&r));
             let u_free = sub(&add(&v_free, &cross(&w_free, &r)), &support.velocity);
             speed = max(speed, norm(&u_free));
+            // The slip is summed from `v~`, `omega~ x r` and the support's velocity: its round-off
+            // is of their sizes (as on a plane, `super::stepper`).
+            terms = max(terms, norm(&v_free) + norm(&w_free) * norm(&r) + norm(&support.velocity));
             let mu = if self.modes[i] == Mode::Sliding { self.mu[1] } else { self.mu[0] };
             Touch {
                 active: under && gap <= s.margin,
@@ -340,7 +343,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
             return Err(StepError::NonFinite);
         }
         let (state, contacts, pivots) =
-            self.solve.advance(&self.body, &s, &st, n, touches, speed, &v_free, &w_free)?;
+            self.solve.advance(&self.body, &s, &st, n, touches, (speed, terms), &v_free, &w_free)?;
         self.state = state;
         self.modes = contacts.map(|c| c.mode);
         self.steps += 1;
