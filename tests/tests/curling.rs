@@ -44,6 +44,57 @@ fn a_ring_stops_sliding_and_spinning_together_at_the_ratio_one() {
     ring::<f32>(1e-3);
 }
 
+/// The radius, over `R`, of the centroid of one of `n` equal sectors of a disc:
+/// `(2 / 3) sin(pi / n) / (pi / n)` (the disc's points, `docs/scenes.md`, "curling"), from the
+/// sector's area `R^2 pi / n` and first moment `(2 / 3) R^3 sin(pi / n)`.
+fn sector_centroid(n: usize) -> f64 {
+    let half = std::f64::consts::PI / n as f64;
+    2.0 / 3.0 * half.sin() / half
+}
+
+/// The uniform disc of 8 points (the defaults), launched four ways: it stops sliding and spinning
+/// in the same step, every step verified; launched at the defaults (1 m/s, 5 rad/s) and at
+/// (0.5 m/s, 10 rad/s) it ends turning about one of its points, its ratio that point's radius and
+/// within 2 % of the law's 0.653; the other two launches reach that pivot only after the ratio is
+/// read (`docs/scenes.md`, "curling"), their ratio below it.
+fn disc<T: Real>() {
+    let pivot = sector_centroid(8);
+    for (v, w) in [(1.0, 5.0), (1.0, 20.0), (2.0, 2.0), (0.5, 10.0)] {
+        let (ratio, slide, spin, outcome) = run::<T>(false, 8.0, v, w);
+        println!("disc, 8 points, {v} m/s, {w} rad/s: ratio {ratio}, slides {slide} s, spins {spin} s");
+        assert_eq!(outcome, Outcome::Stopped, "{v} m/s, {w} rad/s");
+        let same = slide.is_finite() && (slide - spin).abs() < 0.5e-3;
+        assert!(same, "{v} m/s, {w} rad/s: slides {slide} s, spins {spin} s");
+        assert!(ratio <= pivot + 1e-4, "{v} m/s, {w} rad/s: ratio {ratio}, pivot {pivot}");
+        if (v, w) == (1.0, 5.0) || (v, w) == (0.5, 10.0) {
+            assert!((ratio - pivot).abs() <= 1e-4, "{v} m/s, {w} rad/s: ratio {ratio}, pivot {pivot}");
+            assert!((ratio - 0.653).abs() <= 0.02 * 0.653, "{v} m/s, {w} rad/s: ratio {ratio}");
+        }
+    }
+}
+
+#[test]
+fn a_uniform_disc_stops_sliding_and_spinning_together_within_two_percent_of_the_law() {
+    disc::<f64>();
+    disc::<f32>();
+}
+
+/// The disc of 4 to 8 points launched at (0.5 m/s, 10 rad/s): its ratio is the radius of the point
+/// it ends turning about, the centroid of its sector of the disc (within 5e-3: at 7 points it is
+/// still closing in when read), in f64 and f32.
+#[test]
+fn a_disc_of_n_points_ends_at_its_sector_centroid_radius() {
+    for n in 4..=8 {
+        for (ratio, scalar) in [
+            (run::<f64>(false, n as f64, 0.5, 10.0).0, "f64"),
+            (run::<f32>(false, n as f64, 0.5, 10.0).0, "f32"),
+        ] {
+            let pivot = sector_centroid(n);
+            assert!((ratio - pivot).abs() <= 5e-3, "{n} points, {scalar}: ratio {ratio}, centroid {pivot}");
+        }
+    }
+}
+
 /// The disc's terminal ratio against `--points` (`docs/scenes.md`, "curling": the table); run with
 /// `--ignored --nocapture`.
 #[test]

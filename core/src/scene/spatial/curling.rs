@@ -100,8 +100,8 @@ impl<T: Real> CurlingParams<T> {
         if self.is_ring() {
             return r;
         }
-        let a = r / T::of(libm::sqrt(n as f64));
-        T::of(2.0) * (r * r * r - a * a * a) / (T::of(3.0) * (r * r - a * a))
+        let half = core::f64::consts::PI / n as f64;
+        T::of(2.0 / 3.0 * libm::sin(half) / half) * r
     }
 
     /// The base's points in the body's frame (its centre of mass in their plane), `Unused` past
@@ -109,7 +109,7 @@ impl<T: Real> CurlingParams<T> {
     #[must_use]
     pub fn base(&self) -> [SpatialShape<T>; MAX_POINTS] {
         let n = self.count().unwrap_or(MAX_POINTS);
-        let ring = if self.is_ring() { n } else { n - 1 };
+        let ring = n;
         let rim = self.rim(n);
         core::array::from_fn(|i| {
             if i >= n {
