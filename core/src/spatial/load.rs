@@ -15,10 +15,28 @@
 //!
 //! The load moves the body's motion in the plane (every point's friction has its own direction),
 //! so the slips move: the directions are set to the new slips and the load taken again until they
-//! agree within the step's round-off, at most [`MAX_DIRECTIONS`] times. A point whose slip would
-//! stop under the new load, or directions that do not settle (a point's slip near its end turns
-//! with the load), leave the step to the LCP's answer and its vertex load (its friction is no
-//! longer `mu p_n` along a slip the load does not turn): the rule is for a base sliding as a whole.
+//! agree within the step's round-off, at most [`MAX_DIRECTIONS`] times.
+//!
+//! # Points that stop
+//!
+//! A base of point loads ends turning about one of its points (`docs/scenes.md`, "curling", "The
+//! layout"), and its last step brings every point to rest. Both are stepped on the same load:
+//! - **a pivot**: the touching point of least slip before the step. The others slide as above;
+//!   the pivot carries its least-norm normal load and, in the plane, the impulse `f = -D^-1 s`
+//!   that stops its slip `s` under the others' impulses (`D` its 2x2 Delassus matrix on the plane's
+//!   axes) when `|f| <= mu x` (it sticks), or else the impulse on the cone's edge against the slip
+//!   it is left with, `f = -(D + lambda I)^-1 s`, `|f| = mu x` (the slip after is `-lambda f`);
+//! - **a rest**: the pivot's impulse in the plane and every other point's friction along its slip
+//!   times one common factor, the three unknowns that stop the base in the plane (`t1 . v`,
+//!   `t2 . v`, `n . omega` nil: for a base in the plane of its centre of mass every point then
+//!   rests), each point's friction within its cone.
+//!
+//! The friction's push out of the plane (nil for a base in the plane of the centre of mass) is
+//! taken off `g` and the load taken again until it settles. The pivot is tried when a point's slip
+//! is within the stick speed before the step or the base's sliding as a whole does not answer; the
+//! rest when the pivot does not. A step none of them answers (two points within the stick speed
+//! before it, directions that do not settle, a friction beyond its cone) is the contacts' LCP's,
+//! with its vertex load.
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::inverse_inertia_times;
@@ -32,6 +50,9 @@ use crate::real::{Real, max};
 /// line decide theirs.
 pub(super) const OPEN_FROM: usize = 4;
 
+/// Each point's normal load and friction held (`Contacts::held_load`), per unit mass.
+type HeldLoad<T, const K: usize> = ([T; K], [Vector<T>; K]);
+
 /// Which points of a flat base stop in the step (module docs, "Points that stop").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Stop {
@@ -44,13 +65,13 @@ enum Stop {
 }
 
 impl<T: Real, const K: usize> Contacts<'_, T, K> {
-    /// The step of a flat base sliding as a whole, without the contacts' LCP: every active point
-    /// (at least [`OPEN_FROM`]) touching and slipping beyond the stick speed before the step, the
-    /// motion out of the plane that closes every point's normal row (`n . v + (r_i x n) . omega`
-    /// with the gap's bias, by least squares over the points, their residual within round-off),
-    /// then the least-norm load of that motion (module docs). `None` where it does not apply: too
-    /// few points, a point that lifts (a residual) or needs a pull (no load `x >= 0`) or stops;
-    /// the step is then the LCP's.
+    /// The step of a flat base, without the contacts' LCP: every active point (at least
+    /// [`OPEN_FROM`]) touching, the motion out of the plane that closes every point's normal row
+    /// (`n . v + (r_i x n) . omega` with the gap's bias, by least squares over the points, their
+    /// residual within round-off), then the least-norm load of that motion with every point
+    /// sliding, or one point stopping (a pivot), or all (a rest) (module docs). `None` where none
+    /// applies: too few points, a point that lifts (a residual) or needs a pull (no load `x >= 0`),
+    /// or none of the three (module docs, "Points that stop"); the step is then the LCP's.
     ///
     /// # Errors
     /// As [`Self::least_norm`].
@@ -184,12 +205,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
 
     /// The least-norm load of the `touching` points that moves the body out of the plane by `g`
     /// (`(n . dv, lever t1 . domega, lever t2 . domega)`), each sliding point's friction along its
-    /// slip, the slips set again until they agree (module docs); the point `pivot`, if any, sticks:
-    /// its friction is the impulse in the plane that stops its slip, and its normal load the least
-    /// norm's with that friction's push out of the plane taken off `g` (module docs, "A pivot").
-    /// `None` when a sliding point would stop, the pivot's friction leaves its cone, the
-    /// directions or the pivot's friction do not settle in [`MAX_DIRECTIONS`] tries, or
-    /// (`feasible` false) no load `x >= 0` gives `g`.
+    /// slip, the slips set again until they agree (module docs); the points `stop` names carry the
+    /// friction `held_load` gives them (module docs, "Points that stop"). `None` when a sliding
+    /// point would stop or turn back, a point at rest would not, the directions do not settle in
+    /// [`MAX_DIRECTIONS`] tries, or `held_load` gives none.
     #[allow(clippy::too_many_arguments)]
     fn settle<const N: usize>(
         &self,
@@ -299,7 +318,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         w_free: &Vector<T>,
         feasible: bool,
         stop: Stop,
-    ) -> Result<Option<([T; K], [Vector<T>; K])>, StepError> {
+    ) -> Result<Option<HeldLoad<T, K>>, StepError> {
         let (n, zero) = (self.normal, T::zero());
         let (t1, lever) = self.plane_axes();
         let t2 = cross(&n, &t1);
