@@ -285,9 +285,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 .zip(touching)
                 .zip(out.iter_mut())
                 .zip(x.iter().zip(unit.iter().zip(&next)))
+                .zip(&held)
                 .enumerate();
-            for (i, (((c, _), report), (&xi, (u, slip)))) in each.filter(|(_, (((_, t), _), _))| **t) {
-                let friction = if is_pivot(i) { held[i] } else { scale(-c.mu * xi, u) };
+            for (i, ((((c, _), report), (&xi, (u, slip))), stopped)) in
+                each.filter(|(_, ((((_, t), _), _), _))| **t)
+            {
+                let friction = if is_pivot(i) { *stopped } else { scale(-c.mu * xi, u) };
                 *report = self.report(xi, &friction, slip, c.mu, (tries, self.floor, true))?;
             }
             return Ok(Some((out, v, w)));
@@ -320,6 +323,15 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         stop: Stop,
     ) -> Result<Option<HeldLoad<T, K>>, StepError> {
         let (n, zero) = (self.normal, T::zero());
+        let mut load =
+            |target: &[T; 3]| match Self::least_norm_load(solver, basis, pivots, columns, touching, target) {
+                Ok(x) => Ok(Some(x)),
+                Err(StepError::Solver(crate::lcp::LcpError::Ray { .. })) if !feasible => Ok(None),
+                Err(e) => Err(e),
+            };
+        if stop == Stop::None {
+            return Ok(load(g)?.map(|x| (x, [[zero; 3]; K])));
+        }
         let (t1, lever) = self.plane_axes();
         let t2 = cross(&n, &t1);
         let size = g.iter().fold(T::TINY, |a, x| max(a, x.abs_exact()));
@@ -327,15 +339,13 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let mut push = [zero; 3];
         for _ in 0..MAX_DIRECTIONS {
             let target = [g[0] - push[0], g[1] - push[1], g[2] - push[2]];
-            let x = match Self::least_norm_load(solver, basis, pivots, columns, touching, &target) {
-                Ok(x) => x,
-                Err(StepError::Solver(crate::lcp::LcpError::Ray { .. })) if !feasible => return Ok(None),
-                Err(e) => return Err(e),
+            let Some(x) = load(&target)? else {
+                return Ok(None);
             };
             let impulses: [Vector<T>; K] = core::array::from_fn(|i| scale(x[i], &e[i]));
             let (v, w) = self.moved(&impulses, v_free, w_free);
             let held = match stop {
-                Stop::None => return Ok(Some((x, [[zero; 3]; K]))),
+                Stop::None => [[zero; 3]; K],
                 Stop::Pivot(j) => {
                     let (Some(c), Some(&load)) = (self.touches.get(j), x.get(j)) else {
                         return Ok(None);
@@ -373,8 +383,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// the edge against the slip it leaves, `-(D + lambda I)^-1 slip` with `|.| = limit`
     /// (`lambda >= 0` by bisection: the slip after is `-lambda` times the friction).
     fn pivot_friction(&self, c: &Touch<T>, slip: &Vector<T>, limit: T, axes: [Vector<T>; 2]) -> Vector<T> {
+        // `D_ab = t_a . t_b + m (r x t_a) . I_w^-1 (r x t_b)` (`Self::delassus`), each turn once.
+        let turn = axes.map(|t| {
+            scale(self.body.mass, &inverse_inertia_times(self.body, self.orientation, &cross(&c.arm, &t)))
+        });
         let delassus: [[T; 2]; 2] = core::array::from_fn(|a| {
-            core::array::from_fn(|b| self.delassus(&c.arm, &axes[a], &c.arm, &axes[b]))
+            core::array::from_fn(|b| dot(&axes[a], &axes[b]) + dot(&cross(&c.arm, &axes[a]), &turn[b]))
         });
         let s = [dot(&axes[0], slip), dot(&axes[1], slip)];
         let with = |lambda: T| {
@@ -388,9 +402,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         }
         // `|f(lambda)|` falls as `lambda` grows, to at most `|slip| / lambda`.
         let (mut lo, mut hi) = (T::zero(), norm(slip) / max(limit, T::TINY));
+        // To the scalar's precision of the first bracket: `lambda`'s error moves the friction by
+        // a part in `1 / eps` of the slip's.
+        let precision = T::of(4.0) * T::EPS * hi;
         for _ in 0..128 {
             let mid = (lo + hi) * T::of(0.5);
-            if mid <= lo || mid >= hi {
+            if hi - lo <= precision || mid <= lo || mid >= hi {
                 break;
             }
             if norm(&with(mid)) > limit {
