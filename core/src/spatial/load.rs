@@ -85,10 +85,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     ) -> Result<Option<Solved<T, K>>, StepError> {
         let moving = max(self.slip_tolerance, self.stick_speed);
         let touching: [bool; K] = core::array::from_fn(|i| self.touches[i].active);
-        let slow = self.touches.iter().filter(|c| c.active && norm(&c.slip_free) <= moving).count();
         if touching.iter().filter(|&&t| t).count() < OPEN_FROM {
             return Ok(None);
         }
+        let slow = self.touches.iter().filter(|c| c.active && norm(&c.slip_free) <= moving).count();
         let (n, zero) = (self.normal, T::zero());
         let (t1, lever) = self.plane_axes();
         let t2 = cross(&n, &t1);
