@@ -26,10 +26,11 @@
 //!   that stops its slip `s` under the others' impulses (`D` its 2x2 Delassus matrix on the plane's
 //!   axes) when `|f| <= mu x` (it sticks), or else the impulse on the cone's edge against the slip
 //!   it is left with, `f = -(D + lambda I)^-1 s`, `|f| = mu x` (the slip after is `-lambda f`);
-//! - **a rest**: the pivot's impulse in the plane and every other point's friction along its slip
-//!   times one common factor, the three unknowns that stop the base in the plane (`t1 . v`,
-//!   `t2 . v`, `n . omega` nil: for a base in the plane of its centre of mass every point then
-//!   rests), each point's friction within its cone.
+//! - **a rest**: three unknowns that stop the base in the plane (`t1 . v`, `t2 . v`, `n . omega`
+//!   nil: for a base in the plane of its centre of mass every point then rests), each point's
+//!   friction within its cone: first the friction affine in the points' position, `a + b n x r_i`
+//!   (the least norm that stops the base), else the pivot's impulse in the plane and every other
+//!   point's friction along its slip times one common factor.
 //!
 //! The friction's push out of the plane (nil for a base in the plane of the centre of mass) is
 //! taken off `g` and the load taken again until it settles. The pivot is tried when a point's slip
@@ -60,8 +61,9 @@ enum Stop {
     None,
     /// This one: the body turns about it, the others sliding.
     Pivot(usize),
-    /// All: the base comes to rest in the plane, this one the pivot.
-    Rest(usize),
+    /// All: the base comes to rest in the plane, its friction affine in the points' position
+    /// (`None`) or this one the pivot.
+    Rest(Option<usize>),
 }
 
 impl<T: Real, const K: usize> Contacts<'_, T, K> {
@@ -147,7 +149,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         {
             return Ok(Some(answer));
         }
-        settle(Stop::Rest(j))
+        if let Some(answer) = settle(Stop::Rest(None))? {
+            return Ok(Some(answer));
+        }
+        settle(Stop::Rest(Some(j)))
     }
 
     /// The least-norm load of the LCP's answer `path` (module docs), or `path` itself when fewer
@@ -420,17 +425,18 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     }
 
     /// The friction that brings the `touching` points to rest in the plane at once, loaded `x`
-    /// and moving at `v`, `w` under that load: the point `pivot`'s impulse in the plane (two
-    /// unknowns) and every other point's `-c mu x_i s_i` along its slip `s_i` (one common factor
-    /// `c`), the answer of the three conditions `t1 . v = t2 . v = 0`, `n . omega = 0` after the
-    /// step (a base in the plane of the centre of mass: its points then rest). `None` when those
-    /// conditions are singular.
+    /// and moving at `v`, `w` under that load, the answer of the three conditions `t1 . v =
+    /// t2 . v = 0`, `n . omega = 0` after the step (a base in the plane of the centre of mass: its
+    /// points then rest) in three unknowns: without a pivot, the friction affine in the points'
+    /// position, `a + b n x r_i / lever` (the least norm that meets them); with the point `pivot`,
+    /// its impulse in the plane and every other point's `-c mu x_i s_i` along its slip `s_i` (one
+    /// common factor `c`). `None` when those conditions are singular.
     #[allow(clippy::too_many_arguments)]
     fn rest_friction(
         &self,
         touching: &[bool; K],
         x: &[T; K],
-        pivot: usize,
+        pivot: Option<usize>,
         v: &Vector<T>,
         w: &Vector<T>,
         axes: [Vector<T>; 2],
@@ -439,9 +445,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let (n, zero) = (self.normal, T::zero());
         let shape = |k: usize, i: usize| -> Vector<T> {
             let c = &self.touches[i];
-            match (k, i == pivot) {
-                (0 | 1, true) => axes[k & 1],
-                (2, false) => {
+            match (k, pivot.map(|j| i == j)) {
+                (0 | 1, None | Some(true)) => axes[k & 1],
+                (2, None) => scale(T::one() / lever, &cross(&n, &c.arm)),
+                (2, Some(false)) => {
                     let along = direction(&self.slip(v, w, c)).unwrap_or([zero; 3]);
                     scale(-c.mu * x[i], &along)
                 }
