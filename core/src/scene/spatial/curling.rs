@@ -21,7 +21,7 @@ params! {
     /// Parameters of the curling scene, SI units (`docs/scenes.md`, "curling").
     pub struct CurlingParams {
         /// The base: 0 a ring (its points on its rim), 1 a uniform disc (its points each the
-        /// centre of an equal share of its area). 1.
+        /// centroid of an equal sector of its area). 1.
         shape: 1.0, NonNegative;
         /// Radius `R` (m, > 0). 0.145 (a curling stone's running band is 0.065; its body 0.145).
         radius: 0.145, Positive;
@@ -90,18 +90,17 @@ impl<T: Real> CurlingParams<T> {
     }
 
     /// The radius of the base's points off its centre (m): the rim for the ring; for the disc of
-    /// `n` points, one at the centre standing for the central `1/n` of the area and `n - 1` on a
-    /// circle at the mean radius of the rest, the annulus from `a = R / sqrt(n)` to `R`:
-    /// `2 (R^3 - a^3) / (3 (R^2 - a^2))` (the annulus' own torque under a uniform pressure
-    /// spinning).
+    /// `n` points, the centroid of each of its `n` equal sectors, `(2 / 3) R sin(pi / n) / (pi /
+    /// n)` (`docs/scenes.md`, "curling": a layout of point loads ends turning about one of its
+    /// points, so this radius over `R` is the ratio it ends at).
     #[must_use]
     pub fn rim(&self, n: usize) -> T {
         let r = self.radius;
         if self.is_ring() {
             return r;
         }
-        let a = r / T::of(libm::sqrt(n as f64));
-        T::of(2.0) * (r * r * r - a * a * a) / (T::of(3.0) * (r * r - a * a))
+        let half = core::f64::consts::PI / n as f64;
+        T::of(2.0 / 3.0 * libm::sin(half) / half) * r
     }
 
     /// The base's points in the body's frame (its centre of mass in their plane), `Unused` past
@@ -109,16 +108,12 @@ impl<T: Real> CurlingParams<T> {
     #[must_use]
     pub fn base(&self) -> [SpatialShape<T>; MAX_POINTS] {
         let n = self.count().unwrap_or(MAX_POINTS);
-        let ring = if self.is_ring() { n } else { n - 1 };
         let rim = self.rim(n);
         core::array::from_fn(|i| {
             if i >= n {
                 return SpatialShape::Unused;
             }
-            if i >= ring {
-                return SpatialShape::Point { offset: [T::zero(); 3] };
-            }
-            let a = T::of(core::f64::consts::TAU * i as f64 / ring as f64);
+            let a = T::of(core::f64::consts::TAU * i as f64 / n as f64);
             let (s, c) = a.sin_cos_portable();
             SpatialShape::Point { offset: [rim * c, rim * s, T::zero()] }
         })
