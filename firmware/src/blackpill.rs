@@ -32,9 +32,6 @@
 //! `meterstick_rig::session`); the USB device is serviced while the loop waits for the next tick.
 
 use meterstick_rig::ModeLights;
-#[cfg(feature = "rig-stack")]
-use meterstick_rig::MultibodyRigPins;
-#[cfg(not(feature = "rig-stack"))]
 use meterstick_rig::RigPins;
 use stm32f4xx_hal::gpio::{AnyPin, Input, Output, PA0};
 use stm32f4xx_hal::pac;
@@ -69,10 +66,10 @@ pub fn main() -> ! {
     let gpioa = dp.GPIOA.split(&mut rcc);
     let gpiob = dp.GPIOB.split(&mut rcc);
     let preset_button = gpioa.pa1.into_pull_up_input();
-    let pins: RigPins<PA0<Input>, Out> = RigPins {
+    let step = gpiob.pb0.into_push_pull_output().erase();
+    let dir = gpiob.pb1.into_push_pull_output().erase();
+    let pins: RigPins<PA0<Input>, Out, 2> = RigPins {
         start: gpioa.pa0.into_pull_up_input(),
-        step: gpiob.pb0.into_push_pull_output().erase(),
-        dir: gpiob.pb1.into_push_pull_output().erase(),
         lights: [
             ModeLights {
                 sticking: gpiob.pb12.into_push_pull_output().erase(),
@@ -87,7 +84,7 @@ pub fn main() -> ! {
         ],
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
-    let Some(rig) = realtime::new_rig(pins, SYSCLK_HZ) else { halt() };
+    let Some(rig) = realtime::new_rig(pins, step, dir, SYSCLK_HZ) else { halt() };
     #[cfg(all(feature = "link", not(feature = "uart-link")))]
     let Some(port) = usb::UsbPort::new(
         (dp.OTG_FS_GLOBAL, dp.OTG_FS_DEVICE, dp.OTG_FS_PWRCLK),
@@ -116,7 +113,7 @@ pub fn main() -> ! {
     let gpioa = dp.GPIOA.split(&mut rcc);
     let gpiob = dp.GPIOB.split(&mut rcc);
     let preset_button = gpioa.pa1.into_pull_up_input();
-    let pins: MultibodyRigPins<PA0<Input>, Out, 3> = MultibodyRigPins {
+    let pins: RigPins<PA0<Input>, Out, 3> = RigPins {
         start: gpioa.pa0.into_pull_up_input(),
         lights: [
             ModeLights {

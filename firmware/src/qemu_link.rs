@@ -9,7 +9,7 @@
 //! gives instructions per tick). Never exits: the host ends QEMU.
 
 use meterstick_rig::session::{Session, build_id, version};
-use meterstick_rig::{NoDelay, Preset, PresetScene as _, Rig, RigConfig, RigError};
+use meterstick_rig::{MeterStickRig, NoDelay, Preset, PresetScene as _, RigConfig, RigError};
 
 use crate::systick;
 use crate::uart::Uart;
@@ -46,7 +46,7 @@ pub fn main() -> ! {
     let ticks = systick::elapsed(t0, systick::now());
     defmt::println!("calibration instructions={=u32} systicks={=u32}", 2 * (n + 1), ticks);
 
-    let mut rig = match Rig::<_, _, _, 6, 8>::headless(Preset::Slow.params(1e-3), CONFIG, NoDelay) {
+    let mut rig = match MeterStickRig::<_, _, _, 6, 8>::headless(Preset::Slow.params(1e-3), CONFIG, NoDelay) {
         Ok(rig) => rig,
         Err(e) => {
             defmt::println!("rig not started: {}", e);

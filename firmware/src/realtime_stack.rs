@@ -15,7 +15,7 @@ use core::convert::Infallible;
 use cortex_m::peripheral::SYST;
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::StackParams;
-use meterstick_rig::{MultibodyRigPins, MultibodyRigState, PressDetector, RigError, StackRig};
+use meterstick_rig::{NoActuator, PressDetector, RigError, RigPins, RigState, StackRig};
 
 use crate::realtime::{DEBOUNCE_TICKS, RestartButton, Ticker, config, period_of};
 
@@ -27,13 +27,13 @@ pub const OVERHANGS: [f32; 2] = [0.98, 1.02];
 /// The stack of three at the catalogue's defaults (h = 1 ms) and the first of [`OVERHANGS`],
 /// with `pins`, its start button debounced over [`DEBOUNCE_TICKS`] and the steps SysTick can tick
 /// at `sysclk_hz`; the selection shown. `None` if it cannot start (logged).
-pub fn new_rig<B, P>(pins: MultibodyRigPins<B, P, 3>, sysclk_hz: u32) -> Option<StackRig<B, P>>
+pub fn new_rig<B, P>(pins: RigPins<B, P, 3>, sysclk_hz: u32) -> Option<StackRig<B, P>>
 where
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
 {
     let params = StackParams { overhang: OVERHANGS[0], ..StackParams::default() };
-    let rig = StackRig::new(params, config(sysclk_hz), pins);
+    let rig = StackRig::new(params, config(sysclk_hz), pins, NoActuator);
     #[cfg(feature = "log")]
     if let Err(e) = &rig {
         defmt::error!("stack rig not started: {}", e);
@@ -86,13 +86,13 @@ struct Buttons {
 }
 
 impl Buttons {
-    fn between_runs<B, P>(&mut self, rig: &mut StackRig<B, P>, state: MultibodyRigState, preset_pressed: bool)
+    fn between_runs<B, P>(&mut self, rig: &mut StackRig<B, P>, state: RigState, preset_pressed: bool)
     where
         B: InputPin<Error = Infallible>,
         P: OutputPin<Error = Infallible>,
     {
         // Pins on this HAL cannot fail (`Infallible`); both overhangs are valid for the core.
-        if self.preset_press.sample(preset_pressed) && !matches!(state, MultibodyRigState::Running) {
+        if self.preset_press.sample(preset_pressed) && !matches!(state, RigState::Running) {
             let next = (self.selected + 1) % OVERHANGS.len() as u8;
             if let Some(&overhang) = OVERHANGS.get(usize::from(next))
                 && rig.reset(StackParams { overhang, ..*rig.params() }).is_ok()
@@ -101,7 +101,7 @@ impl Buttons {
                 let _ = rig.indicate(Some(next));
             }
         }
-        let ended = matches!(state, MultibodyRigState::Finished(_) | MultibodyRigState::Fault(_));
+        let ended = matches!(state, RigState::Finished(_) | RigState::Fault(_));
         if self.restart.sample(ended, || rig.start_pressed().unwrap_or(false)) {
             let _ = rig.reset(*rig.params());
             let _ = rig.indicate(Some(self.selected));

@@ -19,7 +19,7 @@ use meterstick_link::{
     RejectReason, Report, ReportDecoder, RigState, SceneId, encode,
 };
 use meterstick_rig::session::{MARGIN_EVERY, POLL_BYTES, Port, Session, build_id, version};
-use meterstick_rig::{HeadlessPin, NoDelay, PresetScene as _, Rig, RigConfig, RigError};
+use meterstick_rig::{HeadlessPin, MeterStickRig, NoDelay, PresetScene as _, RigConfig, RigError};
 
 /// The QEMU build's rig: 1 cm per pulse, no practical limit per tick, and a start button that
 /// reads released (a headless pin reads low; active high), so only `Start` starts a run.
@@ -59,7 +59,7 @@ impl Port for Pipe {
     }
 }
 
-type HeadlessRig = Rig<HeadlessPin, HeadlessPin, NoDelay, 6>;
+type HeadlessRig = MeterStickRig<HeadlessPin, HeadlessPin, NoDelay, 6>;
 
 /// The rig, its session, the pipe and the host's decoder.
 struct Bench {
@@ -77,7 +77,7 @@ impl Bench {
     }
 
     fn with(params: MeterStickParams<f32>, config: RigConfig) -> Self {
-        let rig = Rig::headless(params, config, NoDelay).unwrap();
+        let rig = MeterStickRig::headless(params, config, NoDelay).unwrap();
         let mut session = Session::new(0, FIRMWARE, build_id("abc1234-dirty"));
         session.boot(&rig);
         let pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
@@ -200,7 +200,7 @@ fn mode_of(m: ContactMode) -> Mode {
 
 #[test]
 fn boot_says_hello_and_waits() {
-    let rig = Rig::<_, _, _, 6>::headless(Preset::Slow.params(H), CONFIG, NoDelay).unwrap();
+    let rig = MeterStickRig::<_, _, _, 6>::headless(Preset::Slow.params(H), CONFIG, NoDelay).unwrap();
     let mut session = Session::new(0, version("0.7.12-rc.1"), build_id("abc"));
     session.boot(&rig);
     let mut pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
@@ -489,7 +489,7 @@ fn a_stalled_port_drops_telemetry_first_and_announces_it() {
 fn commands_over_the_port_drive_the_pins() {
     use embedded_hal_mock::eh1::delay::NoopDelay;
     use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
-    use meterstick_rig::{ModeLights, RigPins};
+    use meterstick_rig::{Carriage, ModeLights, RigPins};
 
     const TICKS: usize = 5;
     let params = Preset::Slow.params(H);
@@ -530,10 +530,9 @@ fn commands_over_the_port_drive_the_pins() {
     let button = vec![T::get(State::High); 3];
 
     let m = |t: &Vec<T>| PinMock::new(t);
+    let carriage = Carriage::new(m(&vec![T::set(State::Low)]), m(&dir), NoopDelay::new());
     let pins = RigPins {
         start: m(&button),
-        step: m(&vec![T::set(State::Low)]),
-        dir: m(&dir),
         lights: [0, 1].map(|i| ModeLights {
             sticking: m(&lights[i][0]),
             sliding: m(&lights[i][1]),
@@ -542,20 +541,21 @@ fn commands_over_the_port_drive_the_pins() {
         fault: m(&fault),
     };
     let config = RigConfig { steps_per_meter: 1000.0, max_pulses_per_tick: 10, ..RigConfig::default_rig() };
-    let mut rig = Rig::<_, _, _, 6>::new(params, config, pins, NoopDelay::new()).unwrap();
+    let mut rig = MeterStickRig::<_, _, _, 6>::new(params, config, pins, carriage).unwrap();
     let mut session = Session::new(0, FIRMWARE, build_id("mock"));
     session.boot(&rig);
     let mut pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
     let mut decoder = ReportDecoder::new();
-    let mut tick = |rig: &mut Rig<PinMock, PinMock, NoopDelay, 6>, pipe: &mut Pipe| -> Vec<Report> {
-        session.poll(pipe, rig).unwrap();
-        rig.tick_with(|r| session.record(r)).unwrap();
-        session.end_tick(rig, 1);
-        session.flush(pipe);
-        let mut out = Vec::new();
-        decoder.feed(&std::mem::take(&mut pipe.tx), |f| out.push(f.unwrap()));
-        out
-    };
+    let mut tick =
+        |rig: &mut MeterStickRig<PinMock, PinMock, NoopDelay, 6>, pipe: &mut Pipe| -> Vec<Report> {
+            session.poll(pipe, rig).unwrap();
+            rig.tick_with(|r| session.record(r)).unwrap();
+            session.end_tick(rig, 1);
+            session.flush(pipe);
+            let mut out = Vec::new();
+            decoder.feed(&std::mem::take(&mut pipe.tx), |f| out.push(f.unwrap()));
+            out
+        };
     tick(&mut rig, &mut pipe);
     pipe.rx.extend(frame(&Command::Start));
     assert!(tick(&mut rig, &mut pipe).contains(&ack(&Command::Start)));
@@ -571,8 +571,9 @@ fn commands_over_the_port_drive_the_pins() {
     assert_eq!(rig.state(), meterstick_rig::RigState::WaitingForStart);
     assert_eq!(*rig.params(), Preset::Fast.params(H));
 
-    let (pins, _) = rig.release();
-    let RigPins { mut start, mut step, mut dir, lights, mut fault } = pins;
+    let (pins, carriage) = rig.release();
+    let RigPins { mut start, lights, mut fault } = pins;
+    let (mut step, mut dir) = (carriage.step, carriage.dir);
     for p in [&mut start, &mut step, &mut dir, &mut fault] {
         p.done();
     }

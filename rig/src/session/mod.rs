@@ -44,7 +44,9 @@ use meterstick_link::{
 use codes::{fault_code, fault_error, mode_of, param_of, reason_of, state_of};
 use queue::TxQueue;
 
-use crate::{PresetScene as _, Rig, RigError, RigState as CoreState};
+#[cfg(doc)]
+use crate::Rig;
+use crate::{MeterStickRig, PresetScene as _, RigError, RigState as CoreState};
 
 /// A byte link that never blocks.
 pub trait Port {
@@ -124,7 +126,7 @@ impl Session {
 
     /// At boot: a lone delimiter (closes whatever the host had half-received), then
     /// [`Report::Hello`] and [`Report::State`].
-    pub fn boot<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &Rig<B, P, D, N, EV>)
+    pub fn boot<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &MeterStickRig<B, P, D, N, EV>)
     where
         B: InputPin<Error = E>,
         P: OutputPin<Error = E>,
@@ -149,7 +151,7 @@ impl Session {
     pub fn poll<Pt, B, P, D, E, const N: usize, const EV: usize>(
         &mut self,
         port: &mut Pt,
-        rig: &mut Rig<B, P, D, N, EV>,
+        rig: &mut MeterStickRig<B, P, D, N, EV>,
     ) -> Result<(), RigError<E>>
     where
         Pt: Port,
@@ -186,7 +188,7 @@ impl Session {
     /// telemetry; run ended: outcome, margin and state).
     pub fn end_tick<B, P, D, E, const N: usize, const EV: usize>(
         &mut self,
-        rig: &Rig<B, P, D, N, EV>,
+        rig: &MeterStickRig<B, P, D, N, EV>,
         cycles: u32,
     ) where
         B: InputPin<Error = E>,
@@ -279,7 +281,7 @@ impl Session {
 
     fn telemetry<B, P, D, E, const N: usize, const EV: usize>(
         &mut self,
-        rig: &Rig<B, P, D, N, EV>,
+        rig: &MeterStickRig<B, P, D, N, EV>,
         time: f32,
         contacts: [ContactTelemetry; 2],
     ) where
@@ -307,7 +309,7 @@ impl Session {
     }
 
     /// Reports a change of the rig's state since the last call.
-    fn sync<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &Rig<B, P, D, N, EV>)
+    fn sync<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &MeterStickRig<B, P, D, N, EV>)
     where
         B: InputPin<Error = E>,
         P: OutputPin<Error = E>,
@@ -360,7 +362,7 @@ impl Session {
     fn handle<B, P, D, E, const N: usize, const EV: usize>(
         &mut self,
         command: Command,
-        rig: &mut Rig<B, P, D, N, EV>,
+        rig: &mut MeterStickRig<B, P, D, N, EV>,
     ) -> Result<(), RigError<E>>
     where
         B: InputPin<Error = E>,
