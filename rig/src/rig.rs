@@ -320,6 +320,10 @@ where
         lights::indicate(&mut self.pins.lights, &mut self.lit, index).map_err(RigError::Pin)
     }
 
+    /// A running tick: one step, the actuator, the lights, the outcome. Out of line: inlined into
+    /// a board's loop (and QEMU's timing harness, `firmware/src/qemu.rs`) it cost about 1 % more
+    /// instructions per step of the meter stick's slow scene (QEMU M4F), and flash.
+    #[inline(never)]
     fn advance(&mut self, observe: impl FnOnce(&S::Report)) -> Result<(), RigError<PinError>> {
         let Some(report) = self.scene.advance() else {
             return self.finish(self.scene.outcome().unwrap_or(Outcome::Unfinished));
