@@ -36,13 +36,15 @@ mod queue;
 mod scene;
 
 pub use codes::outcome_code;
+/// The link's scene ids, for a board that selects among its scenes ([`Session::with_scenes`]).
+pub use meterstick_link::SceneId;
 pub use scene::LinkScene;
 
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::planar::Checksum;
 use meterstick_link::{
     Command, CommandDecoder, DEFAULT_TELEMETRY_EVERY, DELIMITER, ErrorCode, MAX_FRAME, OutcomeCode,
-    PROTOCOL_VERSION, RejectReason, Report, RigState, SceneId, encode,
+    PROTOCOL_VERSION, RejectReason, Report, RigState, encode,
 };
 
 use codes::{fault_code, fault_error, param_of, reason_of, state_of};
