@@ -105,11 +105,15 @@ pub fn main() -> ! {
     )
 }
 
-/// The stack rig (`rig-stack`): the pins of the second table above, no host link.
+/// The stack rig (`rig-stack`): the pins of the second table above; with `link`, the host link
+/// as the meter-stick rig's.
 #[cfg(feature = "rig-stack")]
 pub fn main() -> ! {
     let (Some(dp), Some(cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else { halt() };
+    #[cfg(not(all(feature = "link", not(feature = "uart-link"))))]
     let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()));
+    #[cfg(all(feature = "link", not(feature = "uart-link")))]
+    let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()).require_pll48clk());
     let gpioa = dp.GPIOA.split(&mut rcc);
     let gpiob = dp.GPIOB.split(&mut rcc);
     let preset_button = gpioa.pa1.into_pull_up_input();
@@ -135,7 +139,24 @@ pub fn main() -> ! {
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
     let Some(rig) = realtime_stack::new_rig(pins, SYSCLK_HZ) else { halt() };
-    realtime_stack::run(rig, || preset_button.is_low(), cp.SYST, SYSCLK_HZ)
+    #[cfg(all(feature = "link", not(feature = "uart-link")))]
+    let Some(port) = usb::UsbPort::new(
+        (dp.OTG_FS_GLOBAL, dp.OTG_FS_DEVICE, dp.OTG_FS_PWRCLK),
+        (gpioa.pa11, gpioa.pa12),
+        &rcc.clocks,
+    ) else {
+        halt()
+    };
+    #[cfg(feature = "uart-link")]
+    let Some(port) = uart::UartPort::new(dp.USART2, (gpioa.pa2, gpioa.pa3), &mut rcc) else { halt() };
+    realtime_stack::run(
+        rig,
+        || preset_button.is_low(),
+        cp.SYST,
+        SYSCLK_HZ,
+        #[cfg(feature = "link")]
+        port,
+    )
 }
 
 /// The host link on USART2 (`uart-link`): PA2 TX, PA3 RX, 921,600 baud 8N1, polled.

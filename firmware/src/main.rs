@@ -61,8 +61,6 @@ compile_error!(
 compile_error!("uart-link is the Black Pill's (the Picos' `link` is on a UART already)");
 #[cfg(all(feature = "rig-stack", not(feature = "board-blackpill")))]
 compile_error!("rig-stack is a Black Pill build (board-blackpill)");
-#[cfg(all(feature = "rig-stack", feature = "link"))]
-compile_error!("the stack rig has no host link: build rig-stack without link or uart-link");
 #[cfg(all(feature = "builtins-float", not(feature = "board-pico")))]
 compile_error!("builtins-float is the Pico's (RP2040) choice");
 

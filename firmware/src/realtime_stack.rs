@@ -1,7 +1,9 @@
 //! The stack rig's real-time loop (`rig-stack`, on the Black Pill): one [`StackRig::tick`] per
 //! SysTick period `h` (the scene's step, 1 ms) on the core clock, the buttons between runs and
 //! the real-time margin, on [`crate::realtime`]'s clock ([`Ticker`]), start button between runs
-//! ([`RestartButton`]) and constants, as the meter-stick rig runs. No host link.
+//! ([`RestartButton`]) and constants, as the meter-stick rig runs; with `link`, the host link as
+//! the meter-stick rig's (`meterstick_rig::session` serving the stack: `Report::Body` telemetry,
+//! `Report::InterfaceSwitch` events, the stack's parameters by name).
 //!
 //! Buttons (debounced, [`DEBOUNCE_TICKS`] ticks): a press of the start button starts a run (the
 //! rig debounces it while waiting); once the run has ended, a press resets it (all lights off)
@@ -17,6 +19,8 @@ use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::StackParams;
 use meterstick_rig::{NoActuator, PressDetector, RigError, RigPins, RigState, StackRig};
 
+#[cfg(feature = "link")]
+use crate::realtime::LinkPort;
 use crate::realtime::{DEBOUNCE_TICKS, RestartButton, Ticker, config, period_of};
 
 /// The overhangs the preset button selects (the scale `s` of the harmonic overhangs,
@@ -50,21 +54,51 @@ pub fn run<B, P>(
     mut preset_pressed: impl FnMut() -> bool,
     syst: SYST,
     sysclk_hz: u32,
+    #[cfg(feature = "link")] mut port: impl LinkPort,
 ) -> !
 where
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
 {
-    // Every selectable set has the catalogue's step: one period for good.
+    #[cfg(feature = "link")]
+    let mut session = {
+        use meterstick_rig::session::{Session, build_id, version};
+        let mut session = Session::new(0, version(env!("CARGO_PKG_VERSION")), build_id(env!("MS_BUILD_ID")));
+        session.boot(&rig);
+        session
+    };
+    // The buttons' sets have the catalogue's step; one from the host may change it (between
+    // runs, below).
     let mut ticker = Ticker::start(syst, period_of(rig.params().step, sysclk_hz));
+    #[cfg(feature = "link")]
+    session.set_period(ticker.period());
     let mut buttons = Buttons {
         selected: 0,
         preset_press: PressDetector::new(DEBOUNCE_TICKS),
         restart: RestartButton::new(),
     };
     loop {
-        while !ticker.due() {}
-        let (state, _) = ticker.time(|| rig.tick());
+        while !ticker.due() {
+            #[cfg(feature = "link")]
+            port.poll();
+        }
+        // The stack is this build's one scene: a `SelectScene` of another is refused by the
+        // session (`NoSuchScene`), never returned.
+        #[cfg(feature = "link")]
+        if let Err(RigError::Pin(never)) = session.poll(&mut port, &mut rig) {
+            match never {}
+        }
+        #[cfg(feature = "link")]
+        let (state, used) = ticker.time(|| rig.tick_with(|r| session.record(r)));
+        #[cfg(not(feature = "link"))]
+        let (state, used) = ticker.time(|| rig.tick());
+        #[cfg(feature = "link")]
+        {
+            session.end_tick(&rig, used);
+            session.flush(&mut port);
+        }
+        #[cfg(not(feature = "link"))]
+        let _ = used;
         let state = match state {
             Ok(s) => s,
             // `Params` and `Unperformable` only come from `new` and `reset`; pins on this HAL
@@ -73,6 +107,12 @@ where
             Err(RigError::Pin(never)) => match never {},
         };
         buttons.between_runs(&mut rig, state, preset_pressed());
+        let want = period_of(rig.params().step, sysclk_hz);
+        if want != ticker.period() && !matches!(state, RigState::Running) {
+            ticker.set_period(want);
+            #[cfg(feature = "link")]
+            session.set_period(want);
+        }
     }
 }
 
