@@ -10,7 +10,7 @@
 //!   (stm32f4xx-hal): one scene step per SysTick period h = 1 ms, stepper STEP/DIR, mode and
 //!   fault lights, start and preset buttons; defmt over RTT with the `log` feature. With
 //!   `rig-stack`, the rig of the 3-block stack instead ([`realtime_stack`]): a light set per
-//!   interface, no stepper, no host link.
+//!   interface, no stepper; the host link as the meter-stick rig's.
 //! * `board-pico2` / `board-pico` ([`pico`]): the same rig on a Raspberry Pi Pico 2 (RP2350,
 //!   rp235x-hal) or Pico (RP2040, rp2040-hal), flashed from a `.uf2` file without a probe.
 //!
