@@ -4,7 +4,7 @@
 use meterstick_core::scene::MeterStickParams;
 
 #[cfg(doc)]
-use crate::{Carriage, PressDetector, RigFault};
+use crate::{Carriage, PressDetector, RigError, RigFault};
 
 /// Rig constants.
 #[derive(Debug, Clone, Copy, PartialEq)]

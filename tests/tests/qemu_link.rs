@@ -58,9 +58,9 @@ fn stack_over_the_link(link: &mut Link) {
     assert_eq!(link.request(&select, REPLY_TIMEOUT).unwrap(), link_checks::ack(select));
     // The new scene's hello follows the ack (after any report still waiting from before).
     let hello = loop {
-        match link.next(REPLY_TIMEOUT).unwrap().expect("a Hello after SelectScene") {
-            h @ Report::Hello { .. } => break h,
-            _ => {}
+        let report = link.next(REPLY_TIMEOUT).unwrap().expect("a Hello after SelectScene");
+        if matches!(report, Report::Hello { .. }) {
+            break report;
         }
     };
     assert!(matches!(hello, Report::Hello { scene: SceneId::Stack, lcp_size: 32, .. }), "{hello:?}");

@@ -88,7 +88,7 @@ pub fn record_stack_run(
         match report {
             Report::Body { .. } => body_frames += 1,
             Report::InterfaceSwitch { step, time, interface, mode } => {
-                switches.push((step, time, interface, mode))
+                switches.push((step, time, interface, mode));
             }
             Report::Error(ErrorCode::TxDropped { count }) => dropped = dropped.saturating_add(count),
             Report::Outcome { outcome, time, steps, checksum } => {
@@ -126,6 +126,7 @@ pub fn interface_mode(candidates: [ContactMode; 4]) -> Mode {
 
 /// A stack run recorded from the rig against the host core's.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[allow(clippy::struct_excessive_bools)] // one verdict per figure compared
 pub struct StackComparison {
     /// Same outcome.
     pub same_outcome: bool,
