@@ -500,7 +500,8 @@ pub enum Report {
         build: [u8; 8],
         /// The scene the firmware runs.
         scene: SceneId,
-        /// The LCP size of the scene (6 or 8).
+        /// The LCP size of the scene (the meter stick's 6 or 8; the stack's rows, 32 for three
+        /// blocks).
         lcp_size: u8,
         /// The time step (us).
         step_us: u32,
