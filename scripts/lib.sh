@@ -60,7 +60,7 @@ build_firmware() {
 # (`log`) and the 8x8 fallback (the 6x6-only builds link no 8x8 code); *-link: with the host link
 # (`meterstick-link`: QEMU's UART, the Black Pill's USB CDC), the QEMU ones run by the end-to-end
 # test; *-uart: the Black Pill's link on USART2; rig-m4f-stack*: the Black Pill running the rig of
-# the 3-block stack (`rig-stack`, no host link), with and without `log`. qemu-m33: the Cortex-M33F (the Pico 2's core) on
+# the 3-block stack (`rig-stack`), with and without `log`, the host link on USB and on USART2. qemu-m33: the Cortex-M33F (the Pico 2's core) on
 # QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on a Pico
 # (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`, and with
 # the host link on UART0; pico-nolog-builtins and pico-link-builtins: the Pico's arithmetic from
@@ -88,6 +88,8 @@ FIRMWARE_BUILDS=(
   "rig-m4f-6x6-nolog-uart thumbv7em-none-eabihf board-blackpill,uart-link clippy,nopanic"
   "rig-m4f-stack thumbv7em-none-eabihf board-blackpill,rig-stack,log,fallback clippy"
   "rig-m4f-stack-nolog thumbv7em-none-eabihf board-blackpill,rig-stack,fallback clippy,nopanic"
+  "rig-m4f-stack-link thumbv7em-none-eabihf board-blackpill,rig-stack,log,fallback,link clippy"
+  "rig-m4f-stack-nolog-uart thumbv7em-none-eabihf board-blackpill,rig-stack,fallback,uart-link clippy,nopanic"
   "qemu-m33 thumbv8m.main-none-eabihf qemu-mps2-an505,qemu-multibody,fallback clippy,nopanic"
   "qemu-m33-spatial thumbv8m.main-none-eabihf qemu-mps2-an505,qemu-spatial,fallback nopanic"
   "pico2 thumbv8m.main-none-eabihf board-pico2,log,fallback clippy,uf2"

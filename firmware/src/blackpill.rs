@@ -32,9 +32,6 @@
 //! `meterstick_rig::session`); the USB device is serviced while the loop waits for the next tick.
 
 use meterstick_rig::ModeLights;
-#[cfg(feature = "rig-stack")]
-use meterstick_rig::MultibodyRigPins;
-#[cfg(not(feature = "rig-stack"))]
 use meterstick_rig::RigPins;
 use stm32f4xx_hal::gpio::{AnyPin, Input, Output, PA0};
 use stm32f4xx_hal::pac;
@@ -69,10 +66,10 @@ pub fn main() -> ! {
     let gpioa = dp.GPIOA.split(&mut rcc);
     let gpiob = dp.GPIOB.split(&mut rcc);
     let preset_button = gpioa.pa1.into_pull_up_input();
-    let pins: RigPins<PA0<Input>, Out> = RigPins {
+    let step = gpiob.pb0.into_push_pull_output().erase();
+    let dir = gpiob.pb1.into_push_pull_output().erase();
+    let pins: RigPins<PA0<Input>, Out, 2> = RigPins {
         start: gpioa.pa0.into_pull_up_input(),
-        step: gpiob.pb0.into_push_pull_output().erase(),
-        dir: gpiob.pb1.into_push_pull_output().erase(),
         lights: [
             ModeLights {
                 sticking: gpiob.pb12.into_push_pull_output().erase(),
@@ -87,7 +84,7 @@ pub fn main() -> ! {
         ],
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
-    let Some(rig) = realtime::new_rig(pins, SYSCLK_HZ) else { halt() };
+    let Some(rig) = realtime::new_rig(pins, step, dir, SYSCLK_HZ) else { halt() };
     #[cfg(all(feature = "link", not(feature = "uart-link")))]
     let Some(port) = usb::UsbPort::new(
         (dp.OTG_FS_GLOBAL, dp.OTG_FS_DEVICE, dp.OTG_FS_PWRCLK),
@@ -108,15 +105,19 @@ pub fn main() -> ! {
     )
 }
 
-/// The stack rig (`rig-stack`): the pins of the second table above, no host link.
+/// The stack rig (`rig-stack`): the pins of the second table above; with `link`, the host link
+/// as the meter-stick rig's.
 #[cfg(feature = "rig-stack")]
 pub fn main() -> ! {
     let (Some(dp), Some(cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else { halt() };
+    #[cfg(not(all(feature = "link", not(feature = "uart-link"))))]
     let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()));
+    #[cfg(all(feature = "link", not(feature = "uart-link")))]
+    let mut rcc = dp.RCC.freeze(Config::hse(25.MHz()).sysclk(SYSCLK_HZ.Hz()).require_pll48clk());
     let gpioa = dp.GPIOA.split(&mut rcc);
     let gpiob = dp.GPIOB.split(&mut rcc);
     let preset_button = gpioa.pa1.into_pull_up_input();
-    let pins: MultibodyRigPins<PA0<Input>, Out, 3> = MultibodyRigPins {
+    let pins: RigPins<PA0<Input>, Out, 3> = RigPins {
         start: gpioa.pa0.into_pull_up_input(),
         lights: [
             ModeLights {
@@ -138,7 +139,24 @@ pub fn main() -> ! {
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
     let Some(rig) = realtime_stack::new_rig(pins, SYSCLK_HZ) else { halt() };
-    realtime_stack::run(rig, || preset_button.is_low(), cp.SYST, SYSCLK_HZ)
+    #[cfg(all(feature = "link", not(feature = "uart-link")))]
+    let Some(port) = usb::UsbPort::new(
+        (dp.OTG_FS_GLOBAL, dp.OTG_FS_DEVICE, dp.OTG_FS_PWRCLK),
+        (gpioa.pa11, gpioa.pa12),
+        &rcc.clocks,
+    ) else {
+        halt()
+    };
+    #[cfg(feature = "uart-link")]
+    let Some(port) = uart::UartPort::new(dp.USART2, (gpioa.pa2, gpioa.pa3), &mut rcc) else { halt() };
+    realtime_stack::run(
+        rig,
+        || preset_button.is_low(),
+        cp.SYST,
+        SYSCLK_HZ,
+        #[cfg(feature = "link")]
+        port,
+    )
 }
 
 /// The host link on USART2 (`uart-link`): PA2 TX, PA3 RX, 921,600 baud 8N1, polled.

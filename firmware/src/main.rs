@@ -10,7 +10,7 @@
 //!   (stm32f4xx-hal): one scene step per SysTick period h = 1 ms, stepper STEP/DIR, mode and
 //!   fault lights, start and preset buttons; defmt over RTT with the `log` feature. With
 //!   `rig-stack`, the rig of the 3-block stack instead ([`realtime_stack`]): a light set per
-//!   interface, no stepper, no host link.
+//!   interface, no stepper; the host link as the meter-stick rig's.
 //! * `board-pico2` / `board-pico` ([`pico`]): the same rig on a Raspberry Pi Pico 2 (RP2350,
 //!   rp235x-hal) or Pico (RP2040, rp2040-hal), flashed from a `.uf2` file without a probe.
 //!
@@ -61,8 +61,6 @@ compile_error!(
 compile_error!("uart-link is the Black Pill's (the Picos' `link` is on a UART already)");
 #[cfg(all(feature = "rig-stack", not(feature = "board-blackpill")))]
 compile_error!("rig-stack is a Black Pill build (board-blackpill)");
-#[cfg(all(feature = "rig-stack", feature = "link"))]
-compile_error!("the stack rig has no host link: build rig-stack without link or uart-link");
 #[cfg(all(feature = "builtins-float", not(feature = "board-pico")))]
 compile_error!("builtins-float is the Pico's (RP2040) choice");
 

@@ -81,10 +81,10 @@ pub fn main() -> ! {
     let sio = hal::Sio::new(pac.SIO);
     let gp = hal::gpio::Pins::new(pac.IO_BANK0, pac.PADS_BANK0, sio.gpio_bank0, &mut pac.RESETS);
     let mut preset_button = gp.gpio15.into_pull_up_input();
-    let pins: RigPins<StartButton, Out> = RigPins {
+    let step = gp.gpio2.into_push_pull_output().into_dyn_pin();
+    let dir = gp.gpio3.into_push_pull_output().into_dyn_pin();
+    let pins: RigPins<StartButton, Out, 2> = RigPins {
         start: gp.gpio14.into_pull_up_input(),
-        step: gp.gpio2.into_push_pull_output().into_dyn_pin(),
-        dir: gp.gpio3.into_push_pull_output().into_dyn_pin(),
         lights: [
             ModeLights {
                 sticking: gp.gpio6.into_push_pull_output().into_dyn_pin(),
@@ -99,7 +99,7 @@ pub fn main() -> ! {
         ],
         fault: gp.gpio25.into_push_pull_output().into_dyn_pin(),
     };
-    let Some(rig) = realtime::new_rig(pins, sysclk_hz) else { halt() };
+    let Some(rig) = realtime::new_rig(pins, step, dir, sysclk_hz) else { halt() };
     #[cfg(feature = "link")]
     let Some(port) = uart::UartPort::new(
         pac.UART0,

@@ -43,8 +43,8 @@ use meterstick_core::scene::{
 #[cfg(feature = "qemu-spatial")]
 use meterstick_core::scene::{SceneView, ViewVisitor};
 #[cfg(feature = "qemu-multibody")]
-use meterstick_rig::{InterfaceMode, MultibodyRigState, StackRig};
-use meterstick_rig::{NoDelay, Rig, RigConfig, RigState};
+use meterstick_rig::{InterfaceMode, StackRig};
+use meterstick_rig::{MeterStickRig, NoDelay, RigConfig, RigState};
 
 use crate::{stack_peak, systick};
 
@@ -99,7 +99,7 @@ const CONFIG: RigConfig = RigConfig {
 fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
     let params =
         MeterStickParams { finger1_velocity: speed, finger1_x: -0.35, ..MeterStickParams::<f32>::paper() };
-    let mut rig = match Rig::<_, _, _, 6, 32>::headless(params, CONFIG, NoDelay) {
+    let mut rig = match MeterStickRig::<_, _, _, 6, 32>::headless(params, CONFIG, NoDelay) {
         Ok(rig) => rig,
         Err(e) => {
             defmt::println!("{=str}: rig not started: {}", name, e);
@@ -188,11 +188,11 @@ fn run_scene(name: &str, speed: f32) -> Option<Outcome> {
             );
         }
     }
-    let (pins, _) = rig.release();
+    let (_, carriage) = rig.release();
     defmt::println!(
         "{=str} rig pulses={=u32} systicks={=u64} worst_step_systicks={=u32} steps={=u64}",
         name,
-        pins.step.rises(),
+        carriage.step.rises(),
         all.ticks,
         all.worst,
         steps
@@ -607,13 +607,13 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
                 slot.add(used);
             }
         }
-        if !matches!(state, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) {
+        if !matches!(state, RigState::WaitingForStart | RigState::Running) {
             break state;
         }
     };
     let modes = *rig.shown();
     let outcome = match state {
-        MultibodyRigState::Finished(o) => o,
+        RigState::Finished(o) => o,
         other => {
             defmt::println!("{=str} rig stopped: {}", name, other);
             return 1;
@@ -644,7 +644,7 @@ fn run_stack_rig(name: &str, params: StackParams<f32>, expected: Outcome, shown:
     );
     // A failed step stops the rig (`Fault`, counted a failure above): none here.
     print_paths(name, &by_path, Tally::default());
-    let faulted = rig.release().fault.rises() > 0;
+    let faulted = rig.release().0.fault.rises() > 0;
     i32::from(outcome != expected || modes != [Some(shown); 3] || faulted)
 }
 

@@ -1,5 +1,5 @@
 //! The real-time loop every board binding runs (the Black Pill, the Pico 2, the Pico): one
-//! [`Rig::tick`] per SysTick period `h` on the core clock, the buttons between runs, the real-time
+//! [`MeterStickRig`]'s tick per SysTick period `h` on the core clock, the buttons between runs, the real-time
 //! margin and, with `link`, the host link.
 //!
 //! SysTick wraps every `h` (the scene's step; reprogrammed when `h` changes between runs); each
@@ -22,7 +22,9 @@ use core::convert::Infallible;
 use cortex_m::peripheral::SYST;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
-use meterstick_rig::{Preset, PresetScene as _, PressDetector, Rig, RigConfig, RigError, RigPins, RigState};
+use meterstick_rig::{
+    Carriage, MeterStickRig, Preset, PresetScene as _, PressDetector, RigConfig, RigError, RigPins, RigState,
+};
 
 use crate::systick;
 
@@ -116,17 +118,22 @@ pub fn config(sysclk_hz: u32) -> RigConfig {
     )
 }
 
-/// The rig with `pins` and the slow preset at h = 1 ms, its start button debounced over
-/// [`DEBOUNCE_TICKS`], and the steps SysTick can tick at `sysclk_hz`; `None` if it cannot start
-/// (logged).
-pub fn new_rig<B, P>(pins: RigPins<B, P>, sysclk_hz: u32) -> Option<Rig<B, P, CycleDelay, 6>>
+/// The rig with `pins`, its carriage on the stepper driver's `step` and `dir`, and the slow preset
+/// at h = 1 ms, its start button debounced over [`DEBOUNCE_TICKS`], and the steps SysTick can tick
+/// at `sysclk_hz`; `None` if it cannot start (logged).
+pub fn new_rig<B, P>(
+    pins: RigPins<B, P, 2>,
+    step: P,
+    dir: P,
+    sysclk_hz: u32,
+) -> Option<MeterStickRig<B, P, CycleDelay, 6>>
 where
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
 {
     let params = Preset::Slow.params(1.0 / STEP_HZ as f32);
-    let delay = CycleDelay::new(sysclk_hz);
-    let rig = Rig::<_, _, _, 6>::new(params, config(sysclk_hz), pins, delay);
+    let carriage = Carriage::new(step, dir, CycleDelay::new(sysclk_hz));
+    let rig = MeterStickRig::<_, _, _, 6>::new(params, config(sysclk_hz), pins, carriage);
     #[cfg(feature = "log")]
     if let Err(e) = &rig {
         defmt::error!("rig not started: {}", e);
@@ -137,7 +144,7 @@ where
 /// Runs the rig in real time on SysTick at `sysclk_hz` (the core clock), forever.
 /// `preset_pressed` reads the preset button (`true`: pressed).
 pub fn run<B, P>(
-    mut rig: Rig<B, P, CycleDelay, 6>,
+    mut rig: MeterStickRig<B, P, CycleDelay, 6>,
     mut preset_pressed: impl FnMut() -> bool,
     syst: SYST,
     sysclk_hz: u32,
@@ -301,8 +308,12 @@ struct Buttons {
 }
 
 impl Buttons {
-    fn between_runs<B, P, D>(&mut self, rig: &mut Rig<B, P, D, 6>, state: RigState, preset_pressed: bool)
-    where
+    fn between_runs<B, P, D>(
+        &mut self,
+        rig: &mut MeterStickRig<B, P, D, 6>,
+        state: RigState,
+        preset_pressed: bool,
+    ) where
         B: InputPin<Error = Infallible>,
         P: OutputPin<Error = Infallible>,
         D: DelayNs,

@@ -1,7 +1,9 @@
 //! The stack rig's real-time loop (`rig-stack`, on the Black Pill): one [`StackRig::tick`] per
 //! SysTick period `h` (the scene's step, 1 ms) on the core clock, the buttons between runs and
 //! the real-time margin, on [`crate::realtime`]'s clock ([`Ticker`]), start button between runs
-//! ([`RestartButton`]) and constants, as the meter-stick rig runs. No host link.
+//! ([`RestartButton`]) and constants, as the meter-stick rig runs; with `link`, the host link as
+//! the meter-stick rig's (`meterstick_rig::session` serving the stack: `Report::Body` telemetry,
+//! `Report::InterfaceSwitch` events, the stack's parameters by name).
 //!
 //! Buttons (debounced, [`DEBOUNCE_TICKS`] ticks): a press of the start button starts a run (the
 //! rig debounces it while waiting); once the run has ended, a press resets it (all lights off)
@@ -15,8 +17,10 @@ use core::convert::Infallible;
 use cortex_m::peripheral::SYST;
 use embedded_hal::digital::{InputPin, OutputPin};
 use meterstick_core::multibody::scenes::StackParams;
-use meterstick_rig::{MultibodyRigPins, MultibodyRigState, PressDetector, RigError, StackRig};
+use meterstick_rig::{NoActuator, PressDetector, RigError, RigPins, RigState, StackRig};
 
+#[cfg(feature = "link")]
+use crate::realtime::LinkPort;
 use crate::realtime::{DEBOUNCE_TICKS, RestartButton, Ticker, config, period_of};
 
 /// The overhangs the preset button selects (the scale `s` of the harmonic overhangs,
@@ -27,13 +31,13 @@ pub const OVERHANGS: [f32; 2] = [0.98, 1.02];
 /// The stack of three at the catalogue's defaults (h = 1 ms) and the first of [`OVERHANGS`],
 /// with `pins`, its start button debounced over [`DEBOUNCE_TICKS`] and the steps SysTick can tick
 /// at `sysclk_hz`; the selection shown. `None` if it cannot start (logged).
-pub fn new_rig<B, P>(pins: MultibodyRigPins<B, P, 3>, sysclk_hz: u32) -> Option<StackRig<B, P>>
+pub fn new_rig<B, P>(pins: RigPins<B, P, 3>, sysclk_hz: u32) -> Option<StackRig<B, P>>
 where
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
 {
     let params = StackParams { overhang: OVERHANGS[0], ..StackParams::default() };
-    let rig = StackRig::new(params, config(sysclk_hz), pins);
+    let rig = StackRig::new(params, config(sysclk_hz), pins, NoActuator);
     #[cfg(feature = "log")]
     if let Err(e) = &rig {
         defmt::error!("stack rig not started: {}", e);
@@ -50,21 +54,51 @@ pub fn run<B, P>(
     mut preset_pressed: impl FnMut() -> bool,
     syst: SYST,
     sysclk_hz: u32,
+    #[cfg(feature = "link")] mut port: impl LinkPort,
 ) -> !
 where
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
 {
-    // Every selectable set has the catalogue's step: one period for good.
+    #[cfg(feature = "link")]
+    let mut session = {
+        use meterstick_rig::session::{Session, build_id, version};
+        let mut session = Session::new(0, version(env!("CARGO_PKG_VERSION")), build_id(env!("MS_BUILD_ID")));
+        session.boot(&rig);
+        session
+    };
+    // The buttons' sets have the catalogue's step; one from the host may change it (between
+    // runs, below).
     let mut ticker = Ticker::start(syst, period_of(rig.params().step, sysclk_hz));
+    #[cfg(feature = "link")]
+    session.set_period(ticker.period());
     let mut buttons = Buttons {
         selected: 0,
         preset_press: PressDetector::new(DEBOUNCE_TICKS),
         restart: RestartButton::new(),
     };
     loop {
-        while !ticker.due() {}
-        let (state, _) = ticker.time(|| rig.tick());
+        while !ticker.due() {
+            #[cfg(feature = "link")]
+            port.poll();
+        }
+        // The stack is this build's one scene: a `SelectScene` of another is refused by the
+        // session (`NoSuchScene`), never returned.
+        #[cfg(feature = "link")]
+        if let Err(RigError::Pin(never)) = session.poll(&mut port, &mut rig) {
+            match never {}
+        }
+        #[cfg(feature = "link")]
+        let (state, used) = ticker.time(|| rig.tick_with(|r| session.record(r)));
+        #[cfg(not(feature = "link"))]
+        let (state, used) = ticker.time(|| rig.tick());
+        #[cfg(feature = "link")]
+        {
+            session.end_tick(&rig, used);
+            session.flush(&mut port);
+        }
+        #[cfg(not(feature = "link"))]
+        let _ = used;
         let state = match state {
             Ok(s) => s,
             // `Params` and `Unperformable` only come from `new` and `reset`; pins on this HAL
@@ -73,6 +107,12 @@ where
             Err(RigError::Pin(never)) => match never {},
         };
         buttons.between_runs(&mut rig, state, preset_pressed());
+        let want = period_of(rig.params().step, sysclk_hz);
+        if want != ticker.period() && !matches!(state, RigState::Running) {
+            ticker.set_period(want);
+            #[cfg(feature = "link")]
+            session.set_period(want);
+        }
     }
 }
 
@@ -86,13 +126,13 @@ struct Buttons {
 }
 
 impl Buttons {
-    fn between_runs<B, P>(&mut self, rig: &mut StackRig<B, P>, state: MultibodyRigState, preset_pressed: bool)
+    fn between_runs<B, P>(&mut self, rig: &mut StackRig<B, P>, state: RigState, preset_pressed: bool)
     where
         B: InputPin<Error = Infallible>,
         P: OutputPin<Error = Infallible>,
     {
         // Pins on this HAL cannot fail (`Infallible`); both overhangs are valid for the core.
-        if self.preset_press.sample(preset_pressed) && !matches!(state, MultibodyRigState::Running) {
+        if self.preset_press.sample(preset_pressed) && !matches!(state, RigState::Running) {
             let next = (self.selected + 1) % OVERHANGS.len() as u8;
             if let Some(&overhang) = OVERHANGS.get(usize::from(next))
                 && rig.reset(StackParams { overhang, ..*rig.params() }).is_ok()
@@ -101,7 +141,7 @@ impl Buttons {
                 let _ = rig.indicate(Some(next));
             }
         }
-        let ended = matches!(state, MultibodyRigState::Finished(_) | MultibodyRigState::Fault(_));
+        let ended = matches!(state, RigState::Finished(_) | RigState::Fault(_));
         if self.restart.sample(ended, || rig.start_pressed().unwrap_or(false)) {
             let _ = rig.reset(*rig.params());
             let _ = rig.indicate(Some(self.selected));

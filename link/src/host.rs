@@ -206,6 +206,7 @@ pub fn is_reply_to(command: &Command, report: &Report) -> bool {
         | (Command::GetStats, Report::Stats(_))
         | (Command::Preset(_), Report::Rejected { .. }) => true,
         (Command::Ping { nonce }, Report::Pong { nonce: n }) => nonce == n,
+        (Command::SelectScene(scene), Report::Error(ErrorCode::NoSuchScene(s))) => scene == s,
         (Command::GetParam { id }, Report::Param { id: i, .. })
         | (Command::SetParam { id, .. }, Report::Rejected { id: i, .. }) => id == i,
         (_, Report::Ack { command } | Report::Error(ErrorCode::NotAllowed { command, .. })) => {
@@ -251,5 +252,9 @@ mod tests {
             &Report::Error(ErrorCode::NotAllowed { command: Command::Start.tag(), state: RigState::Running })
         ));
         assert!(!is_reply_to(&Command::Start, &Report::State(RigState::Running)));
+        let stack = Command::SelectScene(crate::SceneId::Stack);
+        assert!(is_reply_to(&stack, &Report::Error(ErrorCode::NoSuchScene(crate::SceneId::Stack))));
+        assert!(!is_reply_to(&stack, &Report::Error(ErrorCode::NoSuchScene(crate::SceneId::Ladder))));
+        assert!(is_reply_to(&stack, &Report::Ack { command: stack.tag() }));
     }
 }

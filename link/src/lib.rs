@@ -68,7 +68,7 @@
 //!
 //! ## Versions
 //!
-//! [`PROTOCOL_VERSION`] (now 6) is sent by the rig in [`Report::Hello`]. It changes with any
+//! [`PROTOCOL_VERSION`] (now 7) is sent by the rig in [`Report::Hello`]. It changes with any
 //! change a peer could see: a field added, removed, reordered or retyped, a variant added,
 //! or a meaning changed. postcard is not self-describing, so the host must compare it and
 //! refuse (or warn about) a rig with another version rather than guess. Two things never
@@ -95,6 +95,16 @@
 //! `OutcomeCode::Stayed`, so that every outcome of the core crosses the link as itself (a run
 //! ending in `Rolled` or `Jammed` was reported as `Unfinished`; `Rode` and `Stayed` are the
 //! scenes of several bodies').
+//!
+//! Version 6: `OutcomeCode::Stopped` (the puck's outcome).
+//!
+//! Version 7: one rig, several scenes. `Command::SelectScene` (and `CommandTag::SelectScene`)
+//! switches the rig to another scene it runs, `ErrorCode::NoSuchScene` refusing one it does not;
+//! `SceneId::Stack`; the stack's parameters `ParamId::Length`, `Height`, `Mass`, `Overhang` and
+//! `ContactMargin` (its other parameters share the meter stick's names); telemetry of several
+//! bodies, `Report::Body` (one report per body and telemetry step, at most 36 bytes, so that
+//! every frame stays within [`MAX_FRAME`]) and `Report::InterfaceSwitch`; `Mode::Tipping`, an
+//! interface on one corner.
 //!
 //! ## Errors and counting
 //!
@@ -301,7 +311,7 @@ pub use wire::{
 
 /// The protocol version, sent in [`Report::Hello`]. Bumped on every change a peer could
 /// see (see the crate docs, "Versions").
-pub const PROTOCOL_VERSION: u16 = 6;
+pub const PROTOCOL_VERSION: u16 = 7;
 
 /// The largest postcard message of this protocol version, in bytes: a [`Report::Telemetry`]
 /// (tag 1, `step` up to a 5-byte varint, 13 `f32`, 2 modes).

@@ -12,9 +12,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::LinkStats;
 
-/// A meter-stick parameter the teacher can set with [`Command::SetParam`]. Values are `f32`
-/// in SI units; the rig's core validates them and answers [`Report::Rejected`] naming the
-/// parameter when it refuses one.
+/// A parameter of the rig's scene the teacher can set with [`Command::SetParam`]: the meter
+/// stick's, and (since protocol version 7) the stack's; a name both scenes have (`MuStatic`,
+/// `Step`, `MaxTime`, ...) is each scene's parameter of that name. Values are `f32` in SI units;
+/// the rig's core validates them and answers [`Report::Rejected`] naming the parameter when it
+/// refuses one ([`RejectReason::Other`] for a parameter its scene does not have).
 ///
 /// Coordinates as in the core: `x` to the right along the rod at rest, `y` up, origin at the
 /// rod's centre of mass at the start.
@@ -61,11 +63,23 @@ pub enum ParamId {
     HoldTime,
     /// A run ends unfinished at this simulated time (s). Since version 2.
     MaxTime,
+    /// The stack's block length `L` (m). Since version 7.
+    Length,
+    /// The stack's block height (m). Since version 7.
+    Height,
+    /// The stack's block mass (kg, each). Since version 7.
+    Mass,
+    /// The stack's overhang scale `s`: the `k`-th block from the top reaches `s L / (2k)` beyond
+    /// the one under it (1 the critical stack; dimensionless). Since version 7.
+    Overhang,
+    /// The stack's contact margin: a corner within it of a face is a candidate contact (m).
+    /// Since version 7.
+    ContactMargin,
 }
 
 impl ParamId {
     /// Every parameter, in tag order.
-    pub const ALL: [Self; 19] = [
+    pub const ALL: [Self; 24] = [
         Self::Finger1X,
         Self::Finger2X,
         Self::Finger1Y,
@@ -85,6 +99,11 @@ impl ParamId {
         Self::DropLimit,
         Self::HoldTime,
         Self::MaxTime,
+        Self::Length,
+        Self::Height,
+        Self::Mass,
+        Self::Overhang,
+        Self::ContactMargin,
     ];
 
     /// The parameter's name in snake case, as the core's and `host-sim`'s parameters are
@@ -112,6 +131,11 @@ impl ParamId {
             Self::DropLimit => "drop_limit",
             Self::HoldTime => "hold_time",
             Self::MaxTime => "max_time",
+            Self::Length => "length",
+            Self::Height => "height",
+            Self::Mass => "mass",
+            Self::Overhang => "overhang",
+            Self::ContactMargin => "contact_margin",
         }
     }
 
@@ -126,10 +150,13 @@ impl ParamId {
             | Self::FingerWidth
             | Self::RodLength
             | Self::RodThickness
-            | Self::DropLimit => "m",
+            | Self::DropLimit
+            | Self::Length
+            | Self::Height
+            | Self::ContactMargin => "m",
             Self::Finger1Velocity | Self::Finger2Velocity | Self::StickSpeed => "m/s",
-            Self::MuStatic | Self::MuKinetic => "",
-            Self::RodMass => "kg",
+            Self::MuStatic | Self::MuKinetic | Self::Overhang => "",
+            Self::RodMass | Self::Mass => "kg",
             Self::Gravity => "m/s^2",
             Self::Step | Self::HoldTime | Self::MaxTime => "s",
             Self::TiltLimit => "rad",
@@ -155,7 +182,8 @@ impl Preset {
     pub const ALL: [Self; 3] = [Self::Slow, Self::Fast, Self::NearThreshold];
 }
 
-/// The scene the rig runs, announced in [`Report::Hello`].
+/// The scene the rig runs, announced in [`Report::Hello`] and chosen with
+/// [`Command::SelectScene`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SceneId {
@@ -165,9 +193,15 @@ pub enum SceneId {
     Incline,
     /// A ladder against a wall.
     Ladder,
+    /// Three blocks stacked over a table's edge at harmonic overhangs: the rig's lights show each
+    /// interface's mode (table-block 1, block 1-block 2, block 2-block 3). Since version 7.
+    Stack,
 }
 
-/// The mode of one contact.
+/// The mode of one contact, or (since protocol version 7) of an interface between two bodies,
+/// from its candidate contacts: [`Self::Sticking`] when at least two touch and none slides,
+/// sliding when one slides, [`Self::Tipping`] when exactly one touches (and sticks),
+/// [`Self::Separated`] when none touches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Mode {
@@ -179,6 +213,9 @@ pub enum Mode {
     SlidingPositive,
     /// Sliding, the rod moving in `-x` relative to the finger.
     SlidingNegative,
+    /// An interface whose whole load is on one corner, which sticks: the upper body pivots
+    /// about it (a stack falling over the table's edge). Since version 7.
+    Tipping,
 }
 
 /// How a run ended ([`Report::Outcome`]).
@@ -317,6 +354,8 @@ pub enum CommandTag {
     Ping,
     /// [`Command::GetParam`] (since protocol version 2).
     GetParam,
+    /// [`Command::SelectScene`] (since protocol version 7).
+    SelectScene,
 }
 
 /// A rig-side error ([`Report::Error`]).
@@ -345,6 +384,8 @@ pub enum ErrorCode {
     /// The rig's actuator could not follow the scene (see [`OutcomeCode::ActuatorOverrun`]); the
     /// rig is now in [`RigState::Fault`].
     ActuatorOverrun,
+    /// The rig does not run this scene ([`Command::SelectScene`]). Since protocol version 7.
+    NoSuchScene(SceneId),
 }
 
 /// One contact's part of a [`Report::Telemetry`].
@@ -370,6 +411,7 @@ pub struct ContactTelemetry {
 /// | `GetStats` | [`Report::Stats`] (the rig's receive counters) |
 /// | `Ping` | [`Report::Pong`] with the same nonce |
 /// | `GetParam` | [`Report::Param`] with the value the next (or current) run uses |
+/// | `SelectScene` | [`Report::Ack`] then the new scene's [`Report::Hello`] and [`Report::State`]; [`Report::Error`] with [`ErrorCode::NotAllowed`] while running, or [`ErrorCode::NoSuchScene`] |
 ///
 /// A frame that fails to decode gets no reply (it is counted): the host times out and may
 /// retry, or ask [`Command::GetStats`].
@@ -414,6 +456,9 @@ pub enum Command {
         /// Which parameter.
         id: ParamId,
     },
+    /// Run another scene the rig has (its default parameters; not while a run is in progress).
+    /// Since protocol version 7.
+    SelectScene(SceneId),
 }
 
 impl Command {
@@ -431,6 +476,7 @@ impl Command {
             Self::GetStats => CommandTag::GetStats,
             Self::Ping { .. } => CommandTag::Ping,
             Self::GetParam { .. } => CommandTag::GetParam,
+            Self::SelectScene(_) => CommandTag::SelectScene,
         }
     }
 }
@@ -454,7 +500,8 @@ pub enum Report {
         build: [u8; 8],
         /// The scene the firmware runs.
         scene: SceneId,
-        /// The LCP size of the scene (6 or 8).
+        /// The LCP size of the scene (the meter stick's 6 or 8; the stack's rows, 32 for three
+        /// blocks).
         lcp_size: u8,
         /// The time step (us).
         step_us: u32,
@@ -536,5 +583,33 @@ pub enum Report {
         id: ParamId,
         /// Its value (SI units, see [`ParamId`]).
         value: f32,
+    },
+    /// One body's state after a step of a scene of several bodies, every `every_n_steps` steps:
+    /// one report per body, in the scene's body order (the stack: from the bottom block up), all
+    /// with the same `step` (since protocol version 7).
+    Body {
+        /// Step number (0 = the initial state).
+        step: u32,
+        /// Simulated time (s).
+        time: f32,
+        /// The body (0 = the first).
+        body: u8,
+        /// Its state: `x`, `y` (m), `theta` (rad), `vx`, `vy` (m/s), `omega` (rad/s).
+        state: [f32; 6],
+        /// The mode of the interface the body rests on (the stack: body `i` on interface `i`,
+        /// the bottom block on the table).
+        mode: Mode,
+    },
+    /// An interface between two bodies changed mode on this step (sent whatever the telemetry
+    /// rate; since protocol version 7).
+    InterfaceSwitch {
+        /// Step number.
+        step: u32,
+        /// Simulated time (s).
+        time: f32,
+        /// The interface (the stack: 0 = the table and the bottom block).
+        interface: u8,
+        /// Its new mode.
+        mode: Mode,
     },
 }

@@ -66,6 +66,7 @@ fn command() -> impl Strategy<Value = Command> {
         Just(Command::GetStats),
         any::<u32>().prop_map(|nonce| Command::Ping { nonce }),
         select(ParamId::ALL.to_vec()).prop_map(|id| Command::GetParam { id }),
+        select(common::SCENES.to_vec()).prop_map(Command::SelectScene),
     ]
 }
 
@@ -96,6 +97,7 @@ fn error_code() -> impl Strategy<Value = ErrorCode> {
         Just(ErrorCode::CoreFault),
         Just(ErrorCode::ActuatorOverrun),
         any::<u16>().prop_map(ErrorCode::Other),
+        select(common::SCENES.to_vec()).prop_map(ErrorCode::NoSuchScene),
     ]
 }
 
@@ -152,6 +154,11 @@ fn report() -> impl Strategy<Value = Report> {
         any::<u32>().prop_map(|nonce| Report::Pong { nonce }),
         rig_state().prop_map(Report::State),
         (select(ParamId::ALL.to_vec()), any_f32()).prop_map(|(id, value)| Report::Param { id, value }),
+        (any::<u32>(), any_f32(), any::<u8>(), prop::array::uniform6(any_f32()), mode())
+            .prop_map(|(step, time, body, state, mode)| Report::Body { step, time, body, state, mode }),
+        (any::<u32>(), any_f32(), any::<u8>(), mode()).prop_map(|(step, time, interface, mode)| {
+            Report::InterfaceSwitch { step, time, interface, mode }
+        }),
     ]
 }
 

@@ -303,14 +303,14 @@ fn flood_of_random_bytes_with_interleaved_frames() {
 
 #[test]
 fn unknown_tags_are_decode_errors() {
-    // Commands have tags 0..=9, reports 0..=11. Tags as postcard varints (1 or more bytes).
+    // Commands have tags 0..=10, reports 0..=13. Tags as postcard varints (1 or more bytes).
     let cases: [(&[u8], bool); 8] = [
-        (&[10], true),                           // first unknown command tag
+        (&[11], true),                           // first unknown command tag
         (&[127], true),                          //
         (&[0x80, 0x01], true),                   // tag 128, two-byte varint
         (&[0xFF, 0xFF, 0xFF, 0xFF, 0x0F], true), // tag u32::MAX
         (&[0xFF, 0xFF, 0xFF, 0xFF, 0xFF], true), // varint too long
-        (&[1, 19, 0, 0, 0, 0], true),            // SetParam with ParamId 19 (unknown)
+        (&[1, 24, 0, 0, 0, 0], true),            // SetParam with ParamId 24 (unknown)
         (&[], true),                             // no tag at all
         (&[8, 0x80], true),                      // Ping, nonce varint cut short
     ];
@@ -320,7 +320,7 @@ fn unknown_tags_are_decode_errors() {
         let s = dec.stats();
         assert_eq!((s.decode_errors, s.crc_errors, s.frames_ok), (1, 0, 0));
     }
-    for tag in [12u8, 13, 100] {
+    for tag in [14u8, 15, 100] {
         let mut dec = ReportDecoder::new();
         assert_eq!(
             run(&mut dec, &frame_of(&[tag, 0, 0, 0, 0])),

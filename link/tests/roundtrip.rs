@@ -69,10 +69,11 @@ fn every_command_round_trips() {
     for c in &all {
         round_trip(c);
     }
-    // Every tag 0..=8 is covered (a new variant must be added to `all_commands`).
+    // Every tag 0..=10 is covered (a new variant must be added to `all_commands`).
     let mut tags: Vec<u8> = all.iter().map(first_byte).collect();
+    tags.sort_unstable();
     tags.dedup();
-    assert_eq!(tags, (0..=9).collect::<Vec<u8>>());
+    assert_eq!(tags, (0..=10).collect::<Vec<u8>>());
 }
 
 #[test]
@@ -84,7 +85,7 @@ fn every_report_round_trips() {
     let mut tags: Vec<u8> = all.iter().map(first_byte).collect();
     tags.sort_unstable();
     tags.dedup();
-    assert_eq!(tags, (0..=11).collect::<Vec<u8>>());
+    assert_eq!(tags, (0..=13).collect::<Vec<u8>>());
 }
 
 /// The tags are the protocol: a reordering of variants must fail here (and bump the version).
@@ -101,6 +102,7 @@ fn tags_are_stable() {
         (Command::GetStats, 7),
         (Command::Ping { nonce: 1 }, 8),
         (Command::GetParam { id: ParamId::MaxTime }, 9),
+        (Command::SelectScene(meterstick_link::SceneId::Stack), 10),
     ];
     for (c, tag) in commands {
         assert_eq!(first_byte(&c), tag, "{c:?}");
@@ -119,6 +121,8 @@ fn tags_are_stable() {
         (9, |r| matches!(r, Report::Pong { .. })),
         (10, |r| matches!(r, Report::State(_))),
         (11, |r| matches!(r, Report::Param { .. })),
+        (12, |r| matches!(r, Report::Body { .. })),
+        (13, |r| matches!(r, Report::InterfaceSwitch { .. })),
     ];
     for r in all_reports() {
         let tag = first_byte(&r);

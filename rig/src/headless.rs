@@ -6,7 +6,7 @@ use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 use meterstick_core::scene::MeterStickParams;
 
-use crate::{ModeLights, MultibodyRig, MultibodyRigPins, Rig, RigConfig, RigError, RigPins, RigScene};
+use crate::{Carriage, MeterStickRig, ModeLights, NoActuator, Rig, RigConfig, RigError, RigPins, RigScene};
 
 /// A headless pin, for running the rig without hardware (QEMU, host tests): as an output it
 /// counts its rising edges; as an input it reads low, i.e. a pressed active-low button.
@@ -57,39 +57,37 @@ impl DelayNs for NoDelay {
     fn delay_ns(&mut self, _ns: u32) {}
 }
 
-impl<D: DelayNs, const N: usize, const E: usize> Rig<HeadlessPin, HeadlessPin, D, N, E> {
-    /// A rig on [`HeadlessPin`]s (the start button reads pressed).
+impl<D: DelayNs, const N: usize, const E: usize> MeterStickRig<HeadlessPin, HeadlessPin, D, N, E> {
+    /// A meter-stick rig on [`HeadlessPin`]s (the start button reads pressed), its carriage's
+    /// pulses timed by `delay`.
     ///
     /// # Errors
-    /// Invalid parameters.
+    /// Invalid parameters, or parameters the rig cannot perform.
     pub fn headless(
         params: MeterStickParams<f32>,
         config: RigConfig,
         delay: D,
     ) -> Result<Self, RigError<Infallible>> {
-        let pins = RigPins {
-            start: HeadlessPin::default(),
-            step: HeadlessPin::default(),
-            dir: HeadlessPin::default(),
-            lights: [headless_lights(), headless_lights()],
-            fault: HeadlessPin::default(),
-        };
-        Self::new(params, config, pins, delay)
+        let carriage = Carriage::new(HeadlessPin::default(), HeadlessPin::default(), delay);
+        Self::new(params, config, headless_pins(), carriage)
     }
 }
 
-impl<S: RigScene<B, P>, const B: usize, const P: usize> MultibodyRig<HeadlessPin, HeadlessPin, S, B, P> {
-    /// A rig of several bodies on [`HeadlessPin`]s (the start button reads pressed).
+impl<S: RigScene<L>, const L: usize> Rig<S, NoActuator, HeadlessPin, HeadlessPin, L> {
+    /// A rig without an actuator on [`HeadlessPin`]s (the start button reads pressed).
     ///
     /// # Errors
     /// Invalid parameters, or a step outside the config's range.
     pub fn headless(params: S::Params, config: RigConfig) -> Result<Self, RigError<Infallible>> {
-        let pins = MultibodyRigPins {
-            start: HeadlessPin::default(),
-            lights: core::array::from_fn(|_| headless_lights()),
-            fault: HeadlessPin::default(),
-        };
-        Self::new(params, config, pins)
+        Self::new(params, config, headless_pins(), NoActuator)
+    }
+}
+
+fn headless_pins<const L: usize>() -> RigPins<HeadlessPin, HeadlessPin, L> {
+    RigPins {
+        start: HeadlessPin::default(),
+        lights: core::array::from_fn(|_| headless_lights()),
+        fault: HeadlessPin::default(),
     }
 }
 

@@ -75,4 +75,9 @@ impl Shown for InterfaceMode {
             _ => Self::Separated,
         }
     }
+
+    #[inline]
+    fn name(self) -> &'static str {
+        Self::name(self)
+    }
 }

@@ -8,13 +8,12 @@
 //! (`firmware/`) supplies the pins, the timer and a byte port; everything else is here, and
 //! tested on the host (`rig/tests/`: `embedded-hal-mock` pins, an in-memory port).
 //!
-//! * [`Rig`] (`rig.rs`): the state machine over `embedded-hal` 1.0 pins and delay, one scene
-//!   step per [`Rig::tick`]; [`RigConfig`], [`RigPins`], [`RigState`], [`RigFault`],
-//!   [`Unperformable`].
-//! * [`MultibodyRig`] (`multibody_rig.rs`): the rig of a scene of several bodies ([`RigScene`],
-//!   `rig_scene.rs`), one scene step per [`MultibodyRig::tick`], a [`ModeLights`] (`lights.rs`)
-//!   per interface; [`StackRig`], the 3-block stack's; [`MultibodyRigPins`],
-//!   [`MultibodyRigState`]. It has no host link.
+//! * [`Rig`] (`rig.rs`): the one state machine over any scene a board runs ([`RigScene`],
+//!   `rig_scene.rs`) and the [`Actuator`] that follows it (`actuator.rs`), on `embedded-hal` 1.0
+//!   pins ([`RigPins`]: a [`ModeLights`] per finger or interface, `lights.rs`), one scene step per
+//!   [`Rig::tick`]; [`RigState`], [`RigFault`], [`RigError`]. [`MeterStickRig`]: the meter stick
+//!   with its [`Carriage`]; [`StackRig`]: the 3-block stack, [`NoActuator`].
+//! * [`RigConfig`] and [`Unperformable`] (`config.rs`): what a board's rig can perform.
 //! * [`PresetScene`] and [`PressDetector`] (`controls.rs`): what the link's [`Preset`]s are, and a
 //!   button debouncer.
 //! * [`HeadlessPin`] and [`NoDelay`] (`headless.rs`): the rig without hardware.
@@ -30,19 +29,21 @@
 #[macro_use]
 #[allow(unused_macros)]
 mod fmt;
+mod actuator;
+mod config;
 mod controls;
 mod headless;
 mod interface;
 mod lights;
-mod multibody_rig;
 mod rig;
 mod rig_scene;
 pub mod session;
 
+pub use actuator::{Actuator, Carriage, NoActuator};
+pub use config::{RigConfig, Unperformable};
 pub use controls::{Preset, PresetScene, PressDetector};
 pub use headless::{HeadlessPin, NoDelay};
 pub use interface::InterfaceMode;
 pub use lights::ModeLights;
-pub use multibody_rig::{MultibodyRig, MultibodyRigPins, MultibodyRigState, StackRig};
-pub use rig::{Rig, RigConfig, RigError, RigFault, RigPins, RigState, Unperformable};
+pub use rig::{MeterStickRig, Rig, RigError, RigFault, RigPins, RigState, StackRig};
 pub use rig_scene::RigScene;

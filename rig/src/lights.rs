@@ -1,12 +1,12 @@
 //! [`ModeLights`]: one contact's three mode lights (sticking / sliding / separated), the piece
-//! every rig shows its modes with: a finger's on the meter-stick rig ([`crate::Rig`]: exactly one
-//! on), an interface's on the rig of several bodies ([`crate::MultibodyRig`]: one, or sticking
-//! and separated together while the interface tips, [`crate::InterfaceMode::Tipping`]).
+//! the rig ([`crate::Rig`]) shows its modes with: a finger's on the meter-stick rig (exactly one
+//! on), an interface's on the stack rig (one, or sticking and separated together while the
+//! interface tips, [`crate::InterfaceMode::Tipping`]).
 //!
 //! What is shown is a set of lights ([`STICKING`], [`SLIDING`], [`SEPARATED`] as bits) of a mode
 //! ([`Shown`]); a change turns the lights that leave the set off first, then those that join it
 //! on, and touches no other pin (a slide that changes direction keeps the sliding light on
-//! untouched). Both rigs light their modes ([`ModeLights::show_mode`]), turn them off
+//! untouched). The rig lights their modes ([`ModeLights::show_mode`]), turn them off
 //! ([`all_off`]) and show the waiting number ([`indicate`]) here.
 
 use embedded_hal::digital::OutputPin;
@@ -31,13 +31,16 @@ pub(crate) const SLIDING: u8 = 2;
 pub(crate) const SEPARATED: u8 = 4;
 
 /// A mode a [`ModeLights`] shows: a contact's ([`ContactMode`], the meter-stick rig's fingers) or
-/// an interface's ([`crate::InterfaceMode`]).
-pub(crate) trait Shown: Copy + PartialEq {
+/// an interface's ([`crate::InterfaceMode`]), the modes a [`crate::RigScene`] shows (public in this
+/// private module: nameable in `RigScene`'s bound, implemented here only).
+pub trait Shown: Copy + PartialEq {
     /// The set of lights that shows it.
     fn lights(self) -> u8;
     /// The mode that shows the small number `index` while a rig waits (0 sticking, 1 sliding,
     /// 2 and above separated: one light each).
     fn number(index: u8) -> Self;
+    /// A short stable name, for logs.
+    fn name(self) -> &'static str;
 }
 
 impl Shown for ContactMode {
@@ -57,6 +60,11 @@ impl Shown for ContactMode {
             1 => Self::Sliding(Direction::Plus),
             _ => Self::Separated,
         }
+    }
+
+    #[inline]
+    fn name(self) -> &'static str {
+        Self::name(self)
     }
 }
 

@@ -1,170 +1,64 @@
-//! [`Rig`]: the demo rig's control loop, generic over `embedded-hal` 1.0 pins and delay,
-//! separate from any board.
+//! [`Rig`]: the demo rig's one state machine, over any scene a board runs ([`RigScene`]), the
+//! [`Actuator`] that follows it, and `embedded-hal` 1.0 pins, separate from any board.
+//! [`MeterStickRig`] is the meter stick's (a motor-driven finger carriage under a real meter
+//! stick, [`Carriage`], a light per finger); [`StackRig`] the 3-block stack's (no actuator: the
+//! teacher builds a real stack at the overhang the model is given, `StackParams::overhang`; a
+//! light per interface).
 //!
-//! The rig is a motor-driven finger carriage (finger 1) moving toward a fixed finger under a
-//! real meter stick, with lights that show what the model predicts each finger is doing.
-//! The board calls [`Rig::tick`] once per timer period `h` (real time: one scene step per
-//! tick); each tick:
+//! The board calls [`Rig::tick`] once per timer period `h` (real time: one scene step per tick);
+//! each tick:
 //!
-//! 1. before the start: reads the start button, debounced ([`PressDetector`],
-//!    [`RigConfig::debounce_ticks`] equal samples); on a press, sets the stepper's direction
-//!    pin (toward finger 2) and lights each finger's initial mode;
-//! 2. running: advances the scene one step, emits the stepper pulses that bring the carriage
-//!    to the scene's finger 1 position (`round((x1(t) - x1(0)) * steps_per_meter)` pulses in
-//!    all), switches a finger's light when its mode changes, and stops at the outcome;
-//! 3. a solver error (or a non-finite state, or more pulses due in one tick than
-//!    [`RigConfig::max_pulses_per_tick`]: with checked parameters only when the carriage's
-//!    resolution is finer than the f32 finger position's, e.g. 1 nm per pulse) never panics: the rig turns the mode lights off,
-//!    turns the fault light on, logs it, and stays in [`RigState::Fault`].
+//! 1. before the start: while the actuator is on its way back to its origin after a reset
+//!    ([`Actuator::homing`]), one tick of that way ([`Actuator::home`]); then the start button,
+//!    debounced ([`PressDetector`], [`RigConfig::debounce_ticks`] equal samples): a press readies
+//!    the actuator ([`Actuator::arm`]: the carriage's DIR toward finger 2) and lights each
+//!    light's mode at the scene's start ([`RigScene::start_modes`]);
+//! 2. running: advances the scene one step, has the actuator follow it ([`Actuator::follow`]:
+//!    the carriage's stepper pulses to finger 1's position), switches a light when its mode
+//!    changes, and stops at the outcome with the lights showing the last step's modes;
+//! 3. a failed step (the solver, a non-finite state, more contacts than the LCP holds: the
+//!    core's `StepError`), a reported state the rig finds non-finite ([`RigScene::finite`]), or
+//!    an actuator that cannot follow ([`RigFault`]) never panics: the rig turns the mode lights
+//!    off, turns the fault light on, logs it, and stays in [`RigState::Fault`].
 //!
-//! Lights: per finger one pin for each of sticking / sliding / separated; exactly one is on
-//! while running. Pins are driven only when their state changes. Logging (mode switches,
-//! outcome, faults) goes to `defmt` with the `defmt` feature and compiles to nothing without it.
+//! Lights: one [`ModeLights`] per light of the scene: the meter stick's fingers (exactly one of
+//! sticking / sliding / separated on), the stack's interfaces (their [`crate::InterfaceMode`]:
+//! sticking and separated together while an interface tips). Pins are driven only when their
+//! state changes. Logging (start, mode switches, outcome, faults) goes to `defmt` with the
+//! `defmt` feature and compiles to nothing without it.
 //!
-//! Parameters: [`Rig::new`] and [`Rig::reset`] accept only a set the core validates *and* the rig
-//! can perform ([`RigConfig::check`]): a step its timer ticks in real time
-//! ([`RigConfig::min_step`] ..= [`RigConfig::max_step`]), finger 2 fixed (the hardware has no
-//! actuator for it), finger 1 approaching it or still (DIR is set toward finger 2 for the whole
-//! run; the carriage only moves back while homing) and never faster than
-//! [`RigConfig::max_pulses_per_tick`] pulses per tick. Anything else is
-//! [`RigError::Unperformable`], and [`RigFault::ActuatorOverrun`] stays a fault of last resort.
+//! Parameters: [`Rig::new`] and [`Rig::reset`] accept only a set the core validates
+//! ([`RigScene::build`]) *and* the rig can perform ([`RigScene::check`]: for every scene a step
+//! the board's timer ticks in real time, [`RigConfig::check_step`]; for the meter stick also a
+//! run the carriage follows, [`RigConfig::check`]); anything else is [`RigError::Params`] or
+//! [`RigError::Unperformable`] before any pin is touched, and [`RigFault::ActuatorOverrun`]
+//! stays a fault of last resort.
 //!
 //! Runs on demand (a host link, a second button): [`Rig::start`] and [`Rig::stop`] do what the
-//! button and the outcome do; [`Rig::reset`] loads a parameter set (validated as above; a
-//! rejected set leaves the rig as it was), turns the lights off and returns to
-//! [`RigState::WaitingForStart`], where the next ticks first drive the carriage back to its
-//! origin (DIR low, at most `max_pulses_per_tick` pulses per tick) and only then accept a start;
-//! after a reset the start button must be released (debounced) before a press starts a run again.
+//! button and the outcome do; [`Rig::reset`] loads a parameter set (a rejected set leaves the rig
+//! as it was), turns the lights off and returns to [`RigState::WaitingForStart`], where the next
+//! ticks first bring the actuator back to its origin and only then accept a start; after a reset
+//! the start button must be released (debounced) before a press starts a run again.
 //! [`Rig::tick_with`] hands each step's report to the caller (telemetry). [`Rig::indicate`]
-//! shows a small number on finger 1's lights while waiting (the selected [`Preset`]).
+//! shows a small number on the first light while waiting (the selected preset).
 
-use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
-use meterstick_core::ParamError;
-use meterstick_core::planar::{ContactMode, StepError, StepReport};
-use meterstick_core::scene::{MeterStick, MeterStickParams, Outcome, Scene};
+use meterstick_core::multibody::scenes::Stack3;
+use meterstick_core::scene::{MeterStick, Outcome};
+use meterstick_core::{ParamError, StepError};
 
-#[cfg(doc)]
-use crate::Preset;
-use crate::PressDetector;
-use crate::lights::{self, ModeLights};
+use crate::lights::{self, ModeLights, Shown as _};
+use crate::{Actuator, Carriage, NoActuator, PressDetector, RigConfig, RigScene, Unperformable};
 
-/// Rig constants.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RigConfig {
-    /// Stepper pulses per metre of carriage travel (e.g. 80 steps/mm for a GT2 belt on a
-    /// 200-step motor at 1/16 microstepping: 80,000).
-    pub steps_per_meter: f32,
-    /// High and low time of one step pulse (ns); drivers such as the A4988 need >= 1 us.
-    pub pulse_ns: u32,
-    /// The most pulses one tick may emit (they must fit in the tick's time budget); more is
-    /// a fault ([`RigFault::ActuatorOverrun`]), not a silently lagging carriage.
-    pub max_pulses_per_tick: u32,
-    /// The start button reads low when pressed (a button to ground with a pull-up).
-    pub button_active_low: bool,
-    /// Equal samples of the start button (one per tick) before a press or a release counts
-    /// ([`PressDetector`]); 0 and 1 both take a single sample.
-    pub debounce_ticks: u16,
-    /// The shortest step `h` (s) the board can tick in real time (one tick per step).
-    pub min_step: f32,
-    /// The longest step `h` (s) the board can tick in real time.
-    pub max_step: f32,
-}
-
-/// What the rig cannot perform ([`RigError::Unperformable`]), though the core accepts it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Unperformable {
-    /// The step is outside [`RigConfig::min_step`] ..= [`RigConfig::max_step`].
-    Step,
-    /// Finger 1 would need more than [`RigConfig::max_pulses_per_tick`] pulses per tick (less
-    /// half a pulse for rounding).
-    Finger1TooFast,
-    /// Finger 1 would move away from finger 2 (the run drives the carriage toward it only).
-    Finger1Backward,
-    /// Finger 2 would move (it is fixed on the rig).
-    Finger2Moves,
-}
-
-impl RigConfig {
-    /// 80 steps/mm, 2 us pulses, at most 100 pulses per tick (finger 1 up to 1.24 m/s at
-    /// h = 1 ms: [`Self::check`] keeps half a pulse to spare), active-low
-    /// button debounced over 20 ticks, any step (the board narrows the range to what its timer
-    /// ticks: [`Self::ticked_by`]).
-    #[must_use]
-    pub const fn default_rig() -> Self {
-        Self {
-            steps_per_meter: 80_000.0,
-            pulse_ns: 2_000,
-            max_pulses_per_tick: 100,
-            button_active_low: true,
-            debounce_ticks: 20,
-            min_step: 0.0,
-            max_step: f32::INFINITY,
-        }
-    }
-
-    /// The config with the step range of a timer on a `clock_hz` clock whose period can be
-    /// `min_cycles` ..= `max_cycles` cycles.
-    #[must_use]
-    #[inline]
-    #[allow(clippy::cast_precision_loss)] // clocks and periods below 2^24 are exact; above, within 1e-7
-    pub fn ticked_by(self, clock_hz: u32, min_cycles: u32, max_cycles: u32) -> Self {
-        let hz = clock_hz as f32;
-        Self { min_step: min_cycles as f32 / hz, max_step: max_cycles as f32 / hz, ..self }
-    }
-
-    /// Whether the board's timer ticks a step of `step` seconds in real time
-    /// ([`Self::min_step`] ..= [`Self::max_step`]; a NaN is refused).
-    ///
-    /// # Errors
-    /// [`Unperformable::Step`].
-    #[inline]
-    pub fn check_step(&self, step: f32) -> Result<(), Unperformable> {
-        // Negated: a NaN is refused too.
-        let ticks = step >= self.min_step && step <= self.max_step;
-        if ticks { Ok(()) } else { Err(Unperformable::Step) }
-    }
-
-    /// Whether the rig can perform `params` (already valid for the core): see
-    /// [`Unperformable`].
-    ///
-    /// # Errors
-    /// What it cannot perform.
-    #[inline]
-    #[allow(clippy::cast_precision_loss)]
-    pub fn check(&self, params: &MeterStickParams<f32>) -> Result<(), Unperformable> {
-        self.check_step(params.step)?;
-        if params.finger2_velocity != 0.0 {
-            return Err(Unperformable::Finger2Moves);
-        }
-        if params.finger1_velocity < 0.0 {
-            return Err(Unperformable::Finger1Backward);
-        }
-        // The pulses due in a tick are the increments of the rounded travel: the ceiling of
-        // this rate at most, give or take the rounding of the finger's position in f32 (a few
-        // thousandths of a pulse at 80 steps/mm); half a pulse to spare covers it.
-        let per_tick = params.finger1_velocity * params.step * self.steps_per_meter;
-        let follows = per_tick + 0.5 <= self.max_pulses_per_tick as f32;
-        if !follows {
-            return Err(Unperformable::Finger1TooFast);
-        }
-        Ok(())
-    }
-}
-
-/// The rig's pins: `B` an input (the start button), `P` outputs.
+/// The rig's pins besides its actuator's, for `L` lights: `B` an input (the start button), `P`
+/// outputs.
 #[derive(Debug)]
-pub struct RigPins<B, P> {
+pub struct RigPins<B, P, const L: usize> {
     /// Start button.
     pub start: B,
-    /// Stepper driver STEP (one pulse per step).
-    pub step: P,
-    /// Stepper driver DIR (high: toward finger 2).
-    pub dir: P,
-    /// Mode lights of finger 1 (moving) and finger 2 (fixed).
-    pub lights: [ModeLights<P>; 2],
+    /// Each light's mode lights, in the scene's order ([`RigScene`]: the meter stick's finger 1
+    /// (moving) then finger 2 (fixed); the stack's interfaces from the table's up).
+    pub lights: [ModeLights<P>; L],
     /// Fault light.
     pub fault: P,
 }
@@ -173,8 +67,9 @@ pub struct RigPins<B, P> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RigFault {
-    /// A scene step failed: the solver, a non-finite state, or the 6x6 model leaving its range
-    /// without the 8x8 fallback compiled in.
+    /// A scene step failed: the solver, a non-finite state (the core's, or one the rig checks,
+    /// [`RigScene::finite`]), more contacts than the LCP holds, or the 6x6 model leaving its
+    /// range without the 8x8 fallback compiled in.
     Step(StepError),
     /// The carriage target became non-finite.
     NonFinite,
@@ -186,33 +81,18 @@ pub enum RigFault {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RigState {
-    /// Waiting for the start button.
+    /// Waiting for the start button (after the actuator is back at its origin).
     WaitingForStart,
     /// Stepping the scene in real time.
     Running,
-    /// The scene ended: balanced, fell, or unfinished.
+    /// The scene ended (the meter stick: balanced, fell; the stack: held, fell; unfinished when
+    /// stopped); the lights show the last step's modes.
     Finished(Outcome),
-    /// Stopped on a fault (fault light on).
+    /// Stopped on a fault (fault light on, mode lights off).
     Fault(RigFault),
 }
 
-/// The demo rig's loop over the scene `MeterStick<f32, N, E>` (`N` 6: reduced, 8: the paper's
-/// form; room for `E` switch events).
-#[derive(Debug)]
-pub struct Rig<B, P, D, const N: usize, const E: usize = 8> {
-    scene: MeterStick<f32, N, E>,
-    pins: RigPins<B, P>,
-    delay: D,
-    config: RigConfig,
-    state: RigState,
-    origin: f32,
-    pulses: i64,
-    lit: [Option<ContactMode>; 2],
-    /// The start button, debounced.
-    start_press: PressDetector,
-}
-
-/// What went wrong with a pin (the HAL's error type).
+/// What went wrong building or resetting the rig, or with a pin (the HAL's error type).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RigError<E> {
@@ -224,39 +104,62 @@ pub enum RigError<E> {
     Pin(E),
 }
 
-impl<B, P, D, PinError, const N: usize, const E: usize> Rig<B, P, D, N, E>
+/// The demo rig's loop over the scene `S` shown on `L` lights, with the actuator `A`.
+#[derive(Debug)]
+pub struct Rig<S, A, B, P, const L: usize>
 where
+    S: RigScene<L>,
+{
+    scene: S,
+    actuator: A,
+    pins: RigPins<B, P, L>,
+    config: RigConfig,
+    state: RigState,
+    lit: [Option<S::Mode>; L],
+    /// The start button, debounced.
+    start_press: PressDetector,
+}
+
+/// The meter-stick rig: the scene `MeterStick<f32, N, E>` (`N` 6: reduced, 8: the paper's form;
+/// room for `E` switch events), its [`Carriage`] following finger 1, a light per finger.
+pub type MeterStickRig<B, P, D, const N: usize, const E: usize = 8> =
+    Rig<MeterStick<f32, N, E>, Carriage<P, D>, B, P, 2>;
+
+/// The rig of the 3-block stack (`Stack3<f32>`): no actuator, three interfaces, table-block 1,
+/// block 1-block 2, block 2-block 3.
+pub type StackRig<B, P> = Rig<Stack3<f32>, NoActuator, B, P, 3>;
+
+impl<S, A, B, P, PinError, const L: usize> Rig<S, A, B, P, L>
+where
+    S: RigScene<L>,
+    A: Actuator<S, PinError>,
     B: InputPin<Error = PinError>,
     P: OutputPin<Error = PinError>,
-    D: DelayNs,
 {
     /// A rig for `params`, with every output driven low.
     ///
     /// # Errors
-    /// Invalid parameters, parameters the rig cannot perform ([`RigConfig::check`]), or a pin
-    /// error.
+    /// Invalid parameters, parameters the rig cannot perform ([`RigScene::check`]), both before
+    /// any pin is touched, or a pin error.
     pub fn new(
-        params: MeterStickParams<f32>,
+        params: S::Params,
         config: RigConfig,
-        pins: RigPins<B, P>,
-        delay: D,
+        pins: RigPins<B, P, L>,
+        actuator: A,
     ) -> Result<Self, RigError<PinError>> {
-        let scene = MeterStick::new(params).map_err(RigError::Params)?;
-        config.check(&params).map_err(RigError::Unperformable)?;
+        let scene = S::build(params).map_err(RigError::Params)?;
+        S::check(&config, &params).map_err(RigError::Unperformable)?;
         let mut rig = Self {
             scene,
+            actuator,
             pins,
-            delay,
             config,
             state: RigState::WaitingForStart,
-            origin: params.finger1_x,
-            pulses: 0,
-            lit: [None; 2],
+            lit: [None; L],
             start_press: PressDetector::new(config.debounce_ticks),
         };
+        rig.actuator.init(&rig.scene).map_err(RigError::Pin)?;
         let p = &mut rig.pins;
-        p.step.set_low().map_err(RigError::Pin)?;
-        p.dir.set_low().map_err(RigError::Pin)?;
         p.fault.set_low().map_err(RigError::Pin)?;
         for l in &mut p.lights {
             l.all_low().map_err(RigError::Pin)?;
@@ -266,8 +169,14 @@ where
 
     /// The scene being shown.
     #[must_use]
-    pub const fn scene(&self) -> &MeterStick<f32, N, E> {
+    pub const fn scene(&self) -> &S {
         &self.scene
+    }
+
+    /// The actuator.
+    #[must_use]
+    pub const fn actuator(&self) -> &A {
+        &self.actuator
     }
 
     /// The rig's state.
@@ -276,16 +185,16 @@ where
         self.state
     }
 
-    /// Stepper pulses emitted so far.
-    #[must_use]
-    pub const fn pulses(&self) -> i64 {
-        self.pulses
-    }
-
     /// The parameters of the scene being shown (or about to be).
     #[must_use]
-    pub const fn params(&self) -> &MeterStickParams<f32> {
+    pub fn params(&self) -> &S::Params {
         self.scene.params()
+    }
+
+    /// Each light's mode as it shows it (`None`: all three off).
+    #[must_use]
+    pub const fn shown(&self) -> &[Option<S::Mode>; L] {
+        &self.lit
     }
 
     /// Reads the start button now, raw (`true`: pressed), e.g. for the board to restart a
@@ -298,15 +207,15 @@ where
         Ok(self.pins.start.is_low().map_err(RigError::Pin)? == self.config.button_active_low)
     }
 
-    /// `true` while the carriage is still being driven back to its origin after a reset.
+    /// `true` while the actuator is still on its way back to its origin after a reset.
     #[must_use]
-    pub const fn homing(&self) -> bool {
-        self.pulses > 0
+    pub fn homing(&self) -> bool {
+        self.actuator.homing()
     }
 
-    /// Gives the pins and the delay back.
-    pub fn release(self) -> (RigPins<B, P>, D) {
-        (self.pins, self.delay)
+    /// Gives the pins and the actuator back.
+    pub fn release(self) -> (RigPins<B, P, L>, A) {
+        (self.pins, self.actuator)
     }
 
     /// One timer tick (call once per `h`); returns the state after it.
@@ -318,16 +227,15 @@ where
     }
 
     /// [`Self::tick`], handing the step's report to `observe` when the tick stepped the scene
-    /// (for telemetry; not called on a tick that waits, homes, finishes or faults).
+    /// (for telemetry; not called on a tick that waits, homes, finishes or whose step failed).
     ///
     /// # Errors
     /// A pin error (the rig's state is unchanged by it).
-    pub fn tick_with(
-        &mut self,
-        observe: impl FnOnce(&StepReport<f32, 2>),
-    ) -> Result<RigState, RigError<PinError>> {
+    pub fn tick_with(&mut self, observe: impl FnOnce(&S::Report)) -> Result<RigState, RigError<PinError>> {
         match self.state {
-            RigState::WaitingForStart if self.pulses > 0 => self.home()?,
+            RigState::WaitingForStart if self.actuator.homing() => {
+                self.actuator.home(&self.config).map_err(RigError::Pin)?;
+            }
             RigState::WaitingForStart => self.wait_for_start()?,
             RigState::Running => self.advance(observe)?,
             RigState::Finished(_) | RigState::Fault(_) => {}
@@ -346,17 +254,17 @@ where
         Ok(())
     }
 
-    /// Starts the run (as the start button does), if the rig is waiting with the carriage at
+    /// Starts the run (as the start button does), if the rig is waiting with the actuator at
     /// its origin; returns whether it started.
     ///
     /// # Errors
     /// A pin error.
     pub fn start(&mut self) -> Result<bool, RigError<PinError>> {
-        if self.state != RigState::WaitingForStart || self.pulses > 0 {
+        if self.state != RigState::WaitingForStart || self.actuator.homing() {
             return Ok(false);
         }
-        self.pins.dir.set_high().map_err(RigError::Pin)?;
-        self.show_modes(self.scene.modes())?;
+        self.actuator.arm().map_err(RigError::Pin)?;
+        self.show_modes(self.scene.start_modes())?;
         log_info!("rig: start");
         self.state = RigState::Running;
         Ok(true)
@@ -376,33 +284,32 @@ where
     }
 
     /// Loads `params` (validated by the core and checked against the rig first: on
-    /// [`RigError::Params`] or [`RigError::Unperformable`] nothing changes),
-    /// turns the lights and the fault light off and goes back to
-    /// [`RigState::WaitingForStart`]; the next ticks drive the carriage back to its origin.
-    /// Allowed in any state (it also ends a run in progress, unfinished and unreported).
+    /// [`RigError::Params`] or [`RigError::Unperformable`] nothing changes), turns the lights and
+    /// the fault light off and goes back to [`RigState::WaitingForStart`]; the next ticks bring
+    /// the actuator back to its origin. Allowed in any state (it also ends a run in progress,
+    /// unfinished and unreported).
     ///
     /// # Errors
     /// Invalid parameters, parameters the rig cannot perform, or a pin error.
     #[inline(never)]
-    pub fn reset(&mut self, params: MeterStickParams<f32>) -> Result<(), RigError<PinError>> {
-        let scene = MeterStick::new(params).map_err(RigError::Params)?;
-        self.config.check(&params).map_err(RigError::Unperformable)?;
+    pub fn reset(&mut self, params: S::Params) -> Result<(), RigError<PinError>> {
+        let scene = S::build(params).map_err(RigError::Params)?;
+        S::check(&self.config, &params).map_err(RigError::Unperformable)?;
         self.lights_off()?;
         self.pins.fault.set_low().map_err(RigError::Pin)?;
-        self.pins.dir.set_low().map_err(RigError::Pin)?;
+        self.actuator.park(&scene).map_err(RigError::Pin)?;
         self.scene = scene;
-        self.origin = params.finger1_x;
         self.state = RigState::WaitingForStart;
         // A press held through the reset (the one that asked for it) is spent: a start needs a
         // debounced release, then a debounced press.
         self.start_press.spend_press();
-        log_info!("rig: reset, {=i64} pulses back to the origin", self.pulses);
+        log_info!("rig: reset");
         Ok(())
     }
 
-    /// While waiting: lights finger 1's light number `index` (0 sticking, 1 sliding,
-    /// 2 separated; e.g. the selected [`Preset`]'s index), or none. The run's first modes
-    /// replace it at the start. Ignored in other states.
+    /// While waiting: lights the first light's number `index` (0 sticking, 1 sliding,
+    /// 2 separated; e.g. the selected preset's index), or none. The run's first modes replace it
+    /// at the start. Ignored in other states.
     ///
     /// # Errors
     /// A pin error.
@@ -413,45 +320,22 @@ where
         lights::indicate(&mut self.pins.lights, &mut self.lit, index).map_err(RigError::Pin)
     }
 
-    /// One tick of the way back to the origin: DIR low, at most `max_pulses_per_tick` pulses.
-    fn home(&mut self) -> Result<(), RigError<PinError>> {
-        self.pins.dir.set_low().map_err(RigError::Pin)?;
-        let n = self.pulses.min(i64::from(self.config.max_pulses_per_tick));
-        for _ in 0..n {
-            self.pulse()?;
-            self.pulses -= 1;
-        }
-        Ok(())
-    }
-
-    fn pulse(&mut self) -> Result<(), RigError<PinError>> {
-        self.pins.step.set_high().map_err(RigError::Pin)?;
-        self.delay.delay_ns(self.config.pulse_ns);
-        self.pins.step.set_low().map_err(RigError::Pin)?;
-        self.delay.delay_ns(self.config.pulse_ns);
-        Ok(())
-    }
-
-    fn advance(&mut self, observe: impl FnOnce(&StepReport<f32, 2>)) -> Result<(), RigError<PinError>> {
-        let Some(report) = self.scene.step() else {
+    /// A running tick: one step, the actuator, the lights, the outcome. Out of line: inlined into
+    /// a board's loop (and QEMU's timing harness, `firmware/src/qemu.rs`) it cost about 1 % more
+    /// instructions per step of the meter stick's slow scene (QEMU M4F), and flash.
+    #[inline(never)]
+    fn advance(&mut self, observe: impl FnOnce(&S::Report)) -> Result<(), RigError<PinError>> {
+        let Some(report) = self.scene.advance() else {
             return self.finish(self.scene.outcome().unwrap_or(Outcome::Unfinished));
         };
+        if !S::finite(&report) {
+            return self.fault(RigFault::Step(StepError::NonFinite));
+        }
         observe(&report);
-        let target = libm::roundf((self.scene.fingers()[0] - self.origin) * self.config.steps_per_meter);
-        if !target.is_finite() {
-            return self.fault(RigFault::NonFinite);
+        if let Some(fault) = self.actuator.follow(&self.scene, &self.config).map_err(RigError::Pin)? {
+            return self.fault(fault);
         }
-        // `as i32` saturates (one instruction on an FPU; `as i64` is a library call): a target
-        // beyond 2^31 pulses, 27 km at 80 steps/mm, is still more than one tick's worth.
-        let due = i64::from(target as i32) - self.pulses;
-        if due > i64::from(self.config.max_pulses_per_tick) {
-            return self.fault(RigFault::ActuatorOverrun);
-        }
-        for _ in 0..due.max(0) {
-            self.pulse()?;
-            self.pulses += 1;
-        }
-        self.show_modes(report.modes())?;
+        self.show_modes(S::modes_of(&report))?;
         match self.scene.outcome() {
             None => Ok(()),
             Some(o) => self.finish(o),
@@ -462,13 +346,17 @@ where
         match outcome {
             Outcome::Failed(e) => self.fault(RigFault::Step(e)),
             o => {
-                log_info!("rig: outcome {} at t={=f32}, {=i64} pulses", o, self.scene.time(), self.pulses);
+                log_info!("rig: outcome {} at t={=f32}", o, self.scene.time());
                 self.state = RigState::Finished(o);
                 Ok(())
             }
         }
     }
 
+    /// Out of line (and cold): reached at most once a run, it must not weigh on the running
+    /// tick's code.
+    #[cold]
+    #[inline(never)]
     fn fault(&mut self, fault: RigFault) -> Result<(), RigError<PinError>> {
         log_error!("rig: fault {} at t={=f32}", fault, self.scene.time());
         self.state = RigState::Fault(fault);
@@ -480,21 +368,37 @@ where
         lights::all_off(&mut self.pins.lights, &mut self.lit).map_err(RigError::Pin)
     }
 
-    /// Lights each finger's mode (turning the previous light off first); pins that keep
-    /// their state are not touched.
+    /// Lights each light's mode (turning its previous lights off first); pins that keep their
+    /// state are not touched.
     // Out of line, as `reset`: inlined into a board's loop (`firmware/src/realtime.rs`) the two
     // cost about 1.6 KB of flash in the smallest rig build; the instructions per step are the
     // same (QEMU M4F and M0).
     #[inline(never)]
-    fn show_modes(&mut self, modes: [ContactMode; 2]) -> Result<(), RigError<PinError>> {
-        for i in 0..2 {
+    fn show_modes(&mut self, modes: [S::Mode; L]) -> Result<(), RigError<PinError>> {
+        // Indexed as the meter-stick rig's two fingers were (`i < L` for every array here, so no
+        // bounds check is left): zipped iterators cost it about 40 instructions a step (QEMU M4F).
+        for i in 0..L {
             let new = modes[i];
             let old = self.lit[i];
             if old != Some(new) {
-                log_info!("rig: t={=f32} finger {=usize} -> {=str}", self.scene.time(), i + 1, new.name());
+                log_info!(
+                    "rig: t={=f32} {=str} {=usize} -> {=str}",
+                    self.scene.time(),
+                    S::LIGHT,
+                    i + S::FIRST_LIGHT,
+                    new.name()
+                );
             }
             self.pins.lights[i].show_mode(&mut self.lit[i], Some(new)).map_err(RigError::Pin)?;
         }
         Ok(())
+    }
+}
+
+impl<B, P, D, const N: usize, const E: usize> MeterStickRig<B, P, D, N, E> {
+    /// Stepper pulses the carriage is from its origin (toward finger 2).
+    #[must_use]
+    pub const fn pulses(&self) -> i64 {
+        self.actuator.pulses()
     }
 }

@@ -13,8 +13,8 @@ use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
 use meterstick_core::planar::ContactMode;
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use meterstick_rig::{
-    HeadlessPin, ModeLights, NoDelay, Preset, PresetScene as _, Rig, RigConfig, RigError, RigFault, RigPins,
-    RigState, Unperformable,
+    Carriage, HeadlessPin, MeterStickRig, ModeLights, NoDelay, Preset, PresetScene as _, RigConfig, RigError,
+    RigFault, RigPins, RigState, Unperformable,
 };
 
 /// Finger 1 close to the eq. 21 switch (x1/x2 = 0.675 > mu_k/mu_s), moving fast: finger 2
@@ -63,24 +63,26 @@ impl Expect {
         }
     }
 
-    fn pins(&self) -> RigPins<PinMock, PinMock> {
+    /// The rig's pins and its carriage's.
+    fn pins(&self) -> (RigPins<PinMock, PinMock, 2>, Carriage<PinMock, NoopDelay>) {
         let m = |t: &Vec<T>| PinMock::new(t);
-        RigPins {
+        let carriage = Carriage::new(m(&self.step), m(&self.dir), NoopDelay::new());
+        let pins = RigPins {
             start: m(&self.button),
-            step: m(&self.step),
-            dir: m(&self.dir),
             lights: [0, 1].map(|i| ModeLights {
                 sticking: m(&self.lights[i][0]),
                 sliding: m(&self.lights[i][1]),
                 separated: m(&self.lights[i][2]),
             }),
             fault: m(&self.fault),
-        }
+        };
+        (pins, carriage)
     }
 }
 
-fn done(pins: RigPins<PinMock, PinMock>) {
-    let RigPins { mut start, mut step, mut dir, lights, mut fault } = pins;
+fn done((pins, carriage): (RigPins<PinMock, PinMock, 2>, Carriage<PinMock, NoopDelay>)) {
+    let RigPins { mut start, lights, mut fault } = pins;
+    let (mut step, mut dir) = (carriage.step, carriage.dir);
     start.done();
     step.done();
     dir.done();
@@ -133,15 +135,18 @@ fn a_short_scene_drives_the_expected_pin_transitions() {
     }
     assert_eq!(pulses, i64::try_from(TICKS).unwrap(), "1 mm per step at 1000 steps/m");
 
-    let mut rig = Rig::<_, _, _, 6>::new(params, CONFIG, e.pins(), NoopDelay::new()).unwrap();
+    let mut rig = {
+        let (pins, carriage) = e.pins();
+        MeterStickRig::<_, _, _, 6>::new(params, CONFIG, pins, carriage)
+    }
+    .unwrap();
     assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart);
     assert_eq!(rig.tick().unwrap(), RigState::Running);
     for _ in 0..TICKS {
         assert_eq!(rig.tick().unwrap(), RigState::Running);
     }
     assert_eq!(rig.pulses(), pulses);
-    let (pins, _) = rig.release();
-    done(pins);
+    done(rig.release());
 }
 
 /// 1 nm per pulse, at most 10 pulses per tick: finger 1 at 5 um/s needs 5 pulses per tick, so the
@@ -157,7 +162,7 @@ fn nanometre_rig() -> (MeterStickParams<f32>, RigConfig) {
 fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
     // The limit is checked up front: a carriage that cannot follow at all is refused.
     let slow = RigConfig { max_pulses_per_tick: 0, ..CONFIG };
-    let refused = Rig::<_, _, _, 6>::headless(short_scene(), slow, NoDelay);
+    let refused = MeterStickRig::<_, _, _, 6>::headless(short_scene(), slow, NoDelay);
     assert!(matches!(refused, Err(RigError::Unperformable(Unperformable::Finger1TooFast))));
     // An overrun that gets past the check (a position quantised coarser than a pulse) is a fault.
     let (params, config) = nanometre_rig();
@@ -170,7 +175,11 @@ fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
         e.lights[i][l].extend([T::set(State::High), T::set(State::Low)]); // on at start, off at the fault
     }
     e.fault.push(T::set(State::High));
-    let mut rig = Rig::<_, _, _, 6>::new(params, config, e.pins(), NoopDelay::new()).unwrap();
+    let mut rig = {
+        let (pins, carriage) = e.pins();
+        MeterStickRig::<_, _, _, 6>::new(params, config, pins, carriage)
+    }
+    .unwrap();
     assert_eq!(rig.tick().unwrap(), RigState::Running);
     let fault = RigState::Fault(RigFault::ActuatorOverrun);
     let mut ticks = 0;
@@ -184,15 +193,14 @@ fn an_actuator_overrun_is_a_fault_with_the_fault_light_on_and_no_panic() {
         assert_eq!(rig.tick().unwrap(), fault);
     }
     assert_eq!(rig.pulses(), 0);
-    let (pins, _) = rig.release();
-    done(pins);
+    done(rig.release());
 }
 
 #[test]
 fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
     let params = MeterStickParams::<f32> { finger1_x: -0.35, ..MeterStickParams::paper() };
     let config = RigConfig::default_rig();
-    let mut rig = Rig::<_, _, _, 6>::headless(params, config, NoDelay).unwrap();
+    let mut rig = MeterStickRig::<_, _, _, 6>::headless(params, config, NoDelay).unwrap();
     let mut ticks = 0;
     let state = loop {
         let s = rig.tick().unwrap();
@@ -206,8 +214,8 @@ fn a_whole_slow_run_balances_and_the_carriage_travels_with_the_finger() {
     assert_eq!(rig.pulses(), (travel * config.steps_per_meter).round() as i64);
     assert_eq!(rig.pulses(), 59_200, "0.74 m at 80 steps/mm");
     let switches = rig.scene().events().len() as u32 + rig.scene().events_dropped();
-    let (pins, _) = rig.release();
-    assert_eq!(pins.step.rises(), 59_200);
+    let (pins, carriage) = rig.release();
+    assert_eq!(carriage.step.rises(), 59_200);
     assert_eq!(pins.fault.rises(), 0);
     // Each finger's light changes at its switches: as many rises in all as mode changes
     // between light classes, plus the two lit at the start.
@@ -224,7 +232,7 @@ fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
     let config =
         RigConfig { steps_per_meter: 10_000.0, max_pulses_per_tick: 1_000, ..RigConfig::default_rig() };
     let fast = Preset::Fast.params(1e-3);
-    let mut rig = Rig::<_, _, _, 6>::headless(fast, config, NoDelay).unwrap();
+    let mut rig = MeterStickRig::<_, _, _, 6>::headless(fast, config, NoDelay).unwrap();
     let mut steps = 0u64;
     let state = loop {
         let s = rig.tick_with(|_| steps += 1).unwrap();
@@ -267,8 +275,12 @@ fn reset_homes_the_carriage_and_runs_start_and_stop_on_demand() {
     assert!(!rig.stop().unwrap());
     let run = rig.pulses();
     assert_eq!(run, 10, "10 steps of 0.1 mm at 0.1 mm per pulse");
-    let (pins, _) = rig.release();
-    assert_eq!(i64::from(pins.step.rises()), 2 * out + run, "out and back, then the stopped run's pulses");
+    let (_, carriage) = rig.release();
+    assert_eq!(
+        i64::from(carriage.step.rises()),
+        2 * out + run,
+        "out and back, then the stopped run's pulses"
+    );
 }
 
 #[test]
@@ -311,7 +323,7 @@ impl InputPin for Button {
     }
 }
 
-fn rig_with_button(config: RigConfig) -> (Rig<Button, HeadlessPin, NoDelay, 6>, Rc<Cell<bool>>) {
+fn rig_with_button(config: RigConfig) -> (MeterStickRig<Button, HeadlessPin, NoDelay, 6>, Rc<Cell<bool>>) {
     let button = Button::default();
     let pressed = Rc::clone(&button.0);
     let lights = || ModeLights {
@@ -319,14 +331,9 @@ fn rig_with_button(config: RigConfig) -> (Rig<Button, HeadlessPin, NoDelay, 6>, 
         sliding: HeadlessPin::default(),
         separated: HeadlessPin::default(),
     };
-    let pins = RigPins {
-        start: button,
-        step: HeadlessPin::default(),
-        dir: HeadlessPin::default(),
-        lights: [lights(), lights()],
-        fault: HeadlessPin::default(),
-    };
-    (Rig::new(Preset::Slow.params(1e-3), config, pins, NoDelay).unwrap(), pressed)
+    let pins = RigPins { start: button, lights: [lights(), lights()], fault: HeadlessPin::default() };
+    let carriage = Carriage::new(HeadlessPin::default(), HeadlessPin::default(), NoDelay);
+    (MeterStickRig::new(Preset::Slow.params(1e-3), config, pins, carriage).unwrap(), pressed)
 }
 
 /// The start button is debounced while waiting (`debounce_ticks` equal samples): a glitch at
@@ -393,7 +400,7 @@ fn parameters_the_rig_cannot_perform_are_refused() {
     assert!((config.max_step - 0.167_772_15).abs() < 1e-8, "{}", config.max_step);
     let slow = Preset::Slow.params(1e-3);
     let unperformable = |p: MeterStickParams<f32>| -> Option<Unperformable> {
-        match Rig::<_, _, _, 6>::headless(p, config, NoDelay) {
+        match MeterStickRig::<_, _, _, 6>::headless(p, config, NoDelay) {
             Ok(_) => None,
             Err(RigError::Unperformable(u)) => Some(u),
             Err(e) => panic!("{e:?}"),
@@ -423,7 +430,7 @@ fn parameters_the_rig_cannot_perform_are_refused() {
     );
     assert_eq!(unperformable(with(|p| (p.step, p.finger1_velocity) = (0.16, 0.005))), None);
     // A refused reset leaves the rig as it was.
-    let mut rig = Rig::<_, _, _, 6>::headless(slow, config, NoDelay).unwrap();
+    let mut rig = MeterStickRig::<_, _, _, 6>::headless(slow, config, NoDelay).unwrap();
     for _ in 0..30 {
         rig.tick().unwrap();
     }

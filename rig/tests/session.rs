@@ -9,17 +9,24 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::float_cmp)]
 #![allow(clippy::trivially_copy_pass_by_ref)] // commands as the link's `encode` takes them
 
+mod common;
+
 use std::collections::VecDeque;
 use std::convert::Infallible;
+
+use common::{Pipe, frame};
 
 use meterstick_core::planar::{Checksum, ContactMode, Direction};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use meterstick_link::{
     Command, DELIMITER, ErrorCode, MAX_FRAME, Mode, OutcomeCode, PROTOCOL_VERSION, ParamId, Preset,
-    RejectReason, Report, ReportDecoder, RigState, SceneId, encode,
+    RejectReason, Report, ReportDecoder, RigState, SceneId,
 };
-use meterstick_rig::session::{MARGIN_EVERY, POLL_BYTES, Port, Session, build_id, version};
-use meterstick_rig::{HeadlessPin, NoDelay, PresetScene as _, Rig, RigConfig, RigError};
+use meterstick_rig::session::LinkScene;
+use meterstick_rig::session::{MARGIN_EVERY, POLL_BYTES, Session, build_id, version};
+use meterstick_rig::{
+    Actuator, Carriage, HeadlessPin, MeterStickRig, NoDelay, PresetScene as _, Rig, RigConfig, RigError,
+};
 
 /// The QEMU build's rig: 1 cm per pulse, no practical limit per tick, and a start button that
 /// reads released (a headless pin reads low; active high), so only `Start` starts a run.
@@ -34,53 +41,38 @@ const CONFIG: RigConfig = RigConfig {
 const H: f32 = 1e-3;
 const FIRMWARE: (u8, u8, u8) = (1, 2, 3);
 
-/// An in-memory byte pipe: what the host wrote waits in `rx`; what the rig wrote lands in `tx`,
-/// at most `room` bytes per write (`usize::MAX`: all).
-struct Pipe {
-    rx: VecDeque<u8>,
-    tx: Vec<u8>,
-    room: usize,
-    reads: usize,
-}
-
-impl Port for Pipe {
-    fn read(&mut self, buf: &mut [u8]) -> usize {
-        self.reads += 1;
-        let n = buf.len().min(self.rx.len());
-        for (b, byte) in buf.iter_mut().zip(self.rx.drain(..n)) {
-            *b = byte;
-        }
-        n
-    }
-    fn write(&mut self, bytes: &[u8]) -> usize {
-        let n = bytes.len().min(self.room);
-        self.tx.extend_from_slice(&bytes[..n]);
-        n
-    }
-}
-
-type HeadlessRig = Rig<HeadlessPin, HeadlessPin, NoDelay, 6>;
-
-/// The rig, its session, the pipe and the host's decoder.
-struct Bench {
-    rig: HeadlessRig,
-    session: Session,
+/// The rig of scene `S` (actuator `A`, `L` lights) on headless pins, its session, the pipe and
+/// the host's decoder.
+struct Bench<S: LinkScene<L>, A, const L: usize> {
+    rig: Rig<S, A, HeadlessPin, HeadlessPin, L>,
+    session: Session<S, L>,
     pipe: Pipe,
     decoder: ReportDecoder,
     /// Reports decoded so far and not yet taken.
     reports: VecDeque<Report>,
 }
 
-impl Bench {
+/// The QEMU link build's meter-stick rig.
+type MeterBench = Bench<MeterStick6<f32, 8>, Carriage<HeadlessPin, NoDelay>, 2>;
+
+impl MeterBench {
     fn new(params: MeterStickParams<f32>) -> Self {
         Self::with(params, CONFIG)
     }
 
     fn with(params: MeterStickParams<f32>, config: RigConfig) -> Self {
-        let rig = Rig::headless(params, config, NoDelay).unwrap();
+        Bench::boot(MeterStickRig::headless(params, config, NoDelay).unwrap())
+    }
+}
+
+impl<S: LinkScene<L>, A: Actuator<S, Infallible>, const L: usize> Bench<S, A, L>
+where
+    S::Report: Copy,
+{
+    fn boot(rig: Rig<S, A, HeadlessPin, HeadlessPin, L>) -> Self {
         let mut session = Session::new(0, FIRMWARE, build_id("abc1234-dirty"));
         session.boot(&rig);
-        let pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
+        let pipe = Pipe::new();
         let mut bench = Self { rig, session, pipe, decoder: ReportDecoder::new(), reports: VecDeque::new() };
         bench.session.flush(&mut bench.pipe);
         bench.receive();
@@ -98,9 +90,11 @@ impl Bench {
     /// One pass of the firmware's loop (firmware/src/qemu_link.rs): commands, a tick, its
     /// reports, the queue drained into the port; then the host decodes what arrived.
     fn tick(&mut self) {
-        if let Err(RigError::Pin(never)) = self.session.poll(&mut self.pipe, &mut self.rig) {
-            let never: Infallible = never;
-            match never {}
+        match self.session.poll(&mut self.pipe, &mut self.rig) {
+            Ok(None) => {}
+            Ok(Some(scene)) => panic!("a bench runs one scene, not {scene:?}"),
+            Err(RigError::Pin(never)) => match never {},
+            Err(e) => panic!("{e:?}"),
         }
         let session = &mut self.session;
         self.rig.tick_with(|r| session.record(r)).unwrap();
@@ -144,11 +138,6 @@ impl Bench {
         }
         panic!("no outcome within {limit} ticks");
     }
-}
-
-fn frame(command: &Command) -> Vec<u8> {
-    let mut buf = [0u8; MAX_FRAME];
-    encode(command, &mut buf).unwrap().to_vec()
 }
 
 /// A reply to some command (the link crate's reply table), not an event or a state report.
@@ -200,10 +189,10 @@ fn mode_of(m: ContactMode) -> Mode {
 
 #[test]
 fn boot_says_hello_and_waits() {
-    let rig = Rig::<_, _, _, 6>::headless(Preset::Slow.params(H), CONFIG, NoDelay).unwrap();
+    let rig = MeterStickRig::<_, _, _, 6>::headless(Preset::Slow.params(H), CONFIG, NoDelay).unwrap();
     let mut session = Session::new(0, version("0.7.12-rc.1"), build_id("abc"));
     session.boot(&rig);
-    let mut pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
+    let mut pipe = Pipe::new();
     session.flush(&mut pipe);
     assert_eq!(pipe.tx[0], DELIMITER, "a lone delimiter first: it closes a half-received frame");
     let mut reports = Vec::new();
@@ -237,7 +226,7 @@ fn a_run_on_demand_reports_what_the_host_core_computes() {
     let (outcome, steps, checksum, switches) = host_run(params);
     assert_eq!(outcome, Outcome::Balanced);
 
-    let mut b = Bench::new(params);
+    let mut b = MeterBench::new(params);
     b.reports.clear();
     let every = Command::SetTelemetry { every_n_steps: 1 };
     assert_eq!(b.reply(&every), ack(&every));
@@ -292,7 +281,7 @@ fn a_run_on_demand_reports_what_the_host_core_computes() {
 /// step; refused while running. The fast preset falls, as on the host.
 #[test]
 fn presets_load_their_parameters_and_the_fast_one_falls_as_on_the_host() {
-    let mut b = Bench::new(Preset::Slow.params(H));
+    let mut b = MeterBench::new(Preset::Slow.params(H));
     b.reports.clear();
     for (preset, speed) in [(Preset::Fast, 5.0), (Preset::NearThreshold, 0.3), (Preset::Slow, 0.1)] {
         let c = Command::Preset(preset);
@@ -330,7 +319,7 @@ fn presets_load_their_parameters_and_the_fast_one_falls_as_on_the_host() {
 #[test]
 fn refused_parameters_leave_the_rig_as_it_was() {
     let params = Preset::Slow.params(H);
-    let mut b = Bench::new(params);
+    let mut b = MeterBench::new(params);
     b.reports.clear();
     for (id, value, reason) in [
         (ParamId::MuKinetic, 0.9, RejectReason::KineticAboveStatic),
@@ -356,7 +345,7 @@ fn refused_parameters_leave_the_rig_as_it_was() {
 /// a command after each is answered.
 #[test]
 fn damaged_and_truncated_frames_are_refused_and_counted() {
-    let mut b = Bench::new(Preset::Slow.params(H));
+    let mut b = MeterBench::new(Preset::Slow.params(H));
     b.reports.clear();
     let ping = |nonce| Command::Ping { nonce };
 
@@ -388,7 +377,7 @@ fn damaged_and_truncated_frames_are_refused_and_counted() {
 #[test]
 fn a_flood_of_pings_is_answered_in_order_then_a_run_stops_on_command() {
     const FLOOD: u32 = 2000;
-    let mut b = Bench::new(Preset::Fast.params(H));
+    let mut b = MeterBench::new(Preset::Fast.params(H));
     b.reports.clear();
     for nonce in 0..FLOOD {
         b.send(&Command::Ping { nonce });
@@ -437,7 +426,7 @@ fn a_flood_of_pings_is_answered_in_order_then_a_run_stops_on_command() {
 /// report due is either received or counted.
 #[test]
 fn a_stalled_port_drops_telemetry_first_and_announces_it() {
-    let mut b = Bench::new(Preset::Fast.params(H));
+    let mut b = MeterBench::new(Preset::Fast.params(H));
     b.reports.clear();
     let every = Command::SetTelemetry { every_n_steps: 1 };
     assert_eq!(b.reply(&every), ack(&every));
@@ -489,7 +478,7 @@ fn a_stalled_port_drops_telemetry_first_and_announces_it() {
 fn commands_over_the_port_drive_the_pins() {
     use embedded_hal_mock::eh1::delay::NoopDelay;
     use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
-    use meterstick_rig::{ModeLights, RigPins};
+    use meterstick_rig::{Carriage, ModeLights, RigPins};
 
     const TICKS: usize = 5;
     let params = Preset::Slow.params(H);
@@ -530,10 +519,9 @@ fn commands_over_the_port_drive_the_pins() {
     let button = vec![T::get(State::High); 3];
 
     let m = |t: &Vec<T>| PinMock::new(t);
+    let carriage = Carriage::new(m(&vec![T::set(State::Low)]), m(&dir), NoopDelay::new());
     let pins = RigPins {
         start: m(&button),
-        step: m(&vec![T::set(State::Low)]),
-        dir: m(&dir),
         lights: [0, 1].map(|i| ModeLights {
             sticking: m(&lights[i][0]),
             sliding: m(&lights[i][1]),
@@ -542,20 +530,21 @@ fn commands_over_the_port_drive_the_pins() {
         fault: m(&fault),
     };
     let config = RigConfig { steps_per_meter: 1000.0, max_pulses_per_tick: 10, ..RigConfig::default_rig() };
-    let mut rig = Rig::<_, _, _, 6>::new(params, config, pins, NoopDelay::new()).unwrap();
+    let mut rig = MeterStickRig::<_, _, _, 6>::new(params, config, pins, carriage).unwrap();
     let mut session = Session::new(0, FIRMWARE, build_id("mock"));
     session.boot(&rig);
-    let mut pipe = Pipe { rx: VecDeque::new(), tx: Vec::new(), room: usize::MAX, reads: 0 };
+    let mut pipe = Pipe::new();
     let mut decoder = ReportDecoder::new();
-    let mut tick = |rig: &mut Rig<PinMock, PinMock, NoopDelay, 6>, pipe: &mut Pipe| -> Vec<Report> {
-        session.poll(pipe, rig).unwrap();
-        rig.tick_with(|r| session.record(r)).unwrap();
-        session.end_tick(rig, 1);
-        session.flush(pipe);
-        let mut out = Vec::new();
-        decoder.feed(&std::mem::take(&mut pipe.tx), |f| out.push(f.unwrap()));
-        out
-    };
+    let mut tick =
+        |rig: &mut MeterStickRig<PinMock, PinMock, NoopDelay, 6>, pipe: &mut Pipe| -> Vec<Report> {
+            session.poll(pipe, rig).unwrap();
+            rig.tick_with(|r| session.record(r)).unwrap();
+            session.end_tick(rig, 1);
+            session.flush(pipe);
+            let mut out = Vec::new();
+            decoder.feed(&std::mem::take(&mut pipe.tx), |f| out.push(f.unwrap()));
+            out
+        };
     tick(&mut rig, &mut pipe);
     pipe.rx.extend(frame(&Command::Start));
     assert!(tick(&mut rig, &mut pipe).contains(&ack(&Command::Start)));
@@ -571,8 +560,9 @@ fn commands_over_the_port_drive_the_pins() {
     assert_eq!(rig.state(), meterstick_rig::RigState::WaitingForStart);
     assert_eq!(*rig.params(), Preset::Fast.params(H));
 
-    let (pins, _) = rig.release();
-    let RigPins { mut start, mut step, mut dir, lights, mut fault } = pins;
+    let (pins, carriage) = rig.release();
+    let RigPins { mut start, lights, mut fault } = pins;
+    let (mut step, mut dir) = (carriage.step, carriage.dir);
     for p in [&mut start, &mut step, &mut dir, &mut fault] {
         p.done();
     }
@@ -602,7 +592,7 @@ fn black_pill() -> RigConfig {
 #[test]
 fn values_the_rig_cannot_perform_are_refused_with_beyond_rig() {
     let params = Preset::Slow.params(H);
-    let mut b = Bench::with(params, black_pill());
+    let mut b = MeterBench::with(params, black_pill());
     b.reports.clear();
     let fast = Command::Preset(Preset::Fast);
     let refused = Report::Rejected { id: ParamId::Finger1Velocity, reason: RejectReason::BeyondRig };
@@ -647,7 +637,7 @@ fn values_the_rig_cannot_perform_are_refused_with_beyond_rig() {
 fn an_actuator_overrun_is_reported_as_one() {
     let config = RigConfig { steps_per_meter: 1e9, max_pulses_per_tick: 10, ..CONFIG };
     let params = MeterStickParams { finger1_x: -0.35, finger1_velocity: 5e-6, ..MeterStickParams::paper() };
-    let mut b = Bench::with(params, config);
+    let mut b = MeterBench::with(params, config);
     b.reports.clear();
     assert_eq!(b.reply(&Command::Start), ack(&Command::Start));
     let all = b.run_to_end(100);
@@ -673,7 +663,7 @@ fn an_actuator_overrun_is_reported_as_one() {
 /// was 500, and so were 2,886 of the 199,999 whole-microsecond steps up to 0.2 s).
 #[test]
 fn hello_rounds_the_step_to_microseconds() {
-    let mut b = Bench::new(Preset::Slow.params(H));
+    let mut b = MeterBench::new(Preset::Slow.params(H));
     b.reports.clear();
     for us in (1..200_000u32).step_by(97).chain([501, 700, 1_700, 300]) {
         let step: f32 = format!("{us}e-6").parse().unwrap();

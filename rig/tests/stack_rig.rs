@@ -1,4 +1,4 @@
-//! The rig of several bodies (`meterstick_rig::StackRig`, the 3-block stack) against
+//! The stack rig (`meterstick_rig::StackRig`: the one rig state machine over the 3-block stack) against
 //! `embedded-hal-mock` pins: the default stack holds with every interface sticking, one beyond the
 //! critical overhang falls with its interfaces tipping, the exact light transitions of both runs
 //! (from the scene run beside the rig), the debounced start, stop and reset, the parameters it
@@ -8,14 +8,12 @@
 use embedded_hal_mock::eh1::digital::{Mock as PinMock, State, Transaction as T};
 use meterstick_core::ParamError;
 use meterstick_core::multibody::scenes::{MultibodyScene, Stack3, StackParams};
-use meterstick_core::multibody::{
-    CornerFrame, Pair, RestsOn, RunStats, StepError, System, SystemSettings, SystemStepReport, Table,
-};
-use meterstick_core::planar::{Body, BodyState, ContactMode, Direction};
-use meterstick_core::scene::{MAX_MEASURES, Outcome};
+use meterstick_core::multibody::{StepError, SystemStepReport};
+use meterstick_core::planar::{BodyState, ContactMode, Direction};
+use meterstick_core::scene::Outcome;
 use meterstick_rig::{
-    InterfaceMode, ModeLights, MultibodyRig, MultibodyRigPins, MultibodyRigState, RigConfig, RigError,
-    RigScene, StackRig, Unperformable,
+    InterfaceMode, ModeLights, NoActuator, Rig, RigConfig, RigError, RigFault, RigPins, RigScene, RigState,
+    StackRig, Unperformable,
 };
 
 /// One button sample starts a run (the mocks list every read); any step.
@@ -82,8 +80,8 @@ impl<const I: usize> Expect<I> {
 }
 
 impl<const I: usize> Mocks<I> {
-    fn pins(&self) -> MultibodyRigPins<PinMock, PinMock, I> {
-        MultibodyRigPins {
+    fn pins(&self) -> RigPins<PinMock, PinMock, I> {
+        RigPins {
             start: self.start.clone(),
             lights: std::array::from_fn(|i| {
                 let [sticking, sliding, separated] = self.lights[i].clone();
@@ -117,7 +115,7 @@ fn reference_run(params: StackParams<f32>) -> (Vec<[[ContactMode; 4]; 3]>, Outco
 /// Runs a stack rig on mocks that expect exactly the light transitions of the reference run; the
 /// button pressed on the first tick. Returns the rig's end state, the steps it reported and the
 /// lights it ends with.
-fn run_against_reference(params: StackParams<f32>) -> (MultibodyRigState, Outcome, usize, [[bool; 3]; 3]) {
+fn run_against_reference(params: StackParams<f32>) -> (RigState, Outcome, usize, [[bool; 3]; 3]) {
     let (modes, outcome) = reference_run(params);
     let mut e = Expect::<3>::new();
     e.button = vec![T::get(State::Low)];
@@ -125,12 +123,12 @@ fn run_against_reference(params: StackParams<f32>) -> (MultibodyRigState, Outcom
         e.show(m.map(lights_for));
     }
     let mocks = e.mocks();
-    let mut rig = StackRig::new(params, CONFIG, mocks.pins()).unwrap();
-    assert_eq!(rig.tick().unwrap(), MultibodyRigState::Running, "the press starts the run");
+    let mut rig = StackRig::new(params, CONFIG, mocks.pins(), NoActuator).unwrap();
+    assert_eq!(rig.tick().unwrap(), RigState::Running, "the press starts the run");
     let mut reported = Vec::new();
     let state = loop {
         let s = rig.tick_with(|r| reported.push(r.modes)).unwrap();
-        if s != MultibodyRigState::Running {
+        if s != RigState::Running {
             break s;
         }
         assert!(reported.len() <= 20_000, "no outcome in 20,000 steps");
@@ -168,7 +166,7 @@ fn the_default_stack_holds_with_every_interface_sticking() {
     assert_eq!(params.overhang, 0.98, "the catalogue's default stack, 2 % inside the critical overhang");
     let (state, outcome, steps, shown) = run_against_reference(params);
     assert_eq!(outcome, Outcome::Held);
-    assert_eq!(state, MultibodyRigState::Finished(Outcome::Held));
+    assert_eq!(state, RigState::Finished(Outcome::Held));
     assert_eq!(steps, 10_000, "max_time 10 s at h = 1 ms");
     assert_eq!(shown, [[true, false, false]; 3], "every interface ends sticking, nothing else lit");
 }
@@ -180,7 +178,7 @@ fn the_stack_beyond_the_critical_overhang_falls_and_its_interfaces_leave_stickin
     assert_eq!(modes[0].map(lights_for), [[true, false, false]; 3], "it starts resting flat");
     let (state, outcome, steps, shown) = run_against_reference(params);
     assert_eq!(outcome, Outcome::Fell);
-    assert_eq!(state, MultibodyRigState::Finished(Outcome::Fell));
+    assert_eq!(state, RigState::Finished(Outcome::Fell));
     assert!(steps < 1_000, "it falls within a second: {steps} steps");
     // Falling over the edge, every block pivots about one corner: each interface tips.
     assert_eq!(shown, [[true, false, true]; 3], "every interface ends tipping");
@@ -195,13 +193,13 @@ fn the_headless_stack_rig_falls_with_each_interface_tipping_once() {
     let state = loop {
         let s = rig.tick().unwrap();
         ticks += 1;
-        if !matches!(s, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) || ticks > 1_000 {
+        if !matches!(s, RigState::WaitingForStart | RigState::Running) || ticks > 1_000 {
             break s;
         }
     };
-    assert_eq!(state, MultibodyRigState::Finished(Outcome::Fell));
+    assert_eq!(state, RigState::Finished(Outcome::Fell));
     assert_eq!(ticks, 1 + 200, "the press, then 200 steps");
-    let pins = rig.release();
+    let (pins, NoActuator) = rig.release();
     assert_eq!(pins.fault.rises(), 0);
     for (i, l) in pins.lights.iter().enumerate() {
         // Sticking at the start; from the first step on one corner: the separated light joins.
@@ -253,48 +251,44 @@ fn a_debounced_press_starts_and_stop_and_reset_behave() {
     e.fault.push(T::set(State::Low));
     e.show(sticking);
     let mocks = e.mocks();
-    let mut rig = StackRig::new(params, config, mocks.pins()).unwrap();
+    let mut rig = StackRig::new(params, config, mocks.pins(), NoActuator).unwrap();
 
     for tick in 1..=6 {
-        assert_eq!(rig.tick().unwrap(), MultibodyRigState::WaitingForStart, "tick {tick}");
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart, "tick {tick}");
     }
     assert_eq!(rig.shown(), &[None; 3], "no light before the start");
-    assert_eq!(rig.tick().unwrap(), MultibodyRigState::Running);
+    assert_eq!(rig.tick().unwrap(), RigState::Running);
     assert_eq!(rig.shown(), &[Some(InterfaceMode::Sticking); 3]);
     assert!(!rig.start().unwrap(), "already running");
     for _ in 0..5 {
-        assert_eq!(rig.tick().unwrap(), MultibodyRigState::Running);
+        assert_eq!(rig.tick().unwrap(), RigState::Running);
     }
     assert_eq!(rig.scene().stats().steps, 5);
     assert!(rig.stop().unwrap());
-    assert_eq!(rig.state(), MultibodyRigState::Finished(Outcome::Unfinished));
+    assert_eq!(rig.state(), RigState::Finished(Outcome::Unfinished));
     assert!(!rig.stop().unwrap(), "nothing to stop");
     assert!(!rig.start().unwrap(), "a finished run starts only after a reset");
-    assert_eq!(rig.tick().unwrap(), MultibodyRigState::Finished(Outcome::Unfinished));
+    assert_eq!(rig.tick().unwrap(), RigState::Finished(Outcome::Unfinished));
     assert_eq!(rig.scene().stats().steps, 5, "a finished rig does not step");
     assert_eq!(rig.shown(), &[Some(InterfaceMode::Sticking); 3], "the lights keep the last modes");
 
     let bad = StackParams { mu_kinetic: 0.6, ..params };
     assert_eq!(rig.reset(bad), Err(RigError::Params(ParamError::KineticAboveStatic)));
-    assert_eq!(
-        rig.state(),
-        MultibodyRigState::Finished(Outcome::Unfinished),
-        "a refused reset changes nothing"
-    );
+    assert_eq!(rig.state(), RigState::Finished(Outcome::Unfinished), "a refused reset changes nothing");
     let taller = StackParams { height: 0.06, ..params };
     rig.reset(taller).unwrap();
-    assert_eq!(rig.state(), MultibodyRigState::WaitingForStart);
+    assert_eq!(rig.state(), RigState::WaitingForStart);
     assert_eq!(rig.params(), &taller);
     assert_eq!(rig.scene().stats().steps, 0, "a new scene");
     assert_eq!(rig.shown(), &[None; 3]);
     for tick in 1..=8 {
-        assert_eq!(rig.tick().unwrap(), MultibodyRigState::WaitingForStart, "tick {tick} after the reset");
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart, "tick {tick} after the reset");
     }
-    assert_eq!(rig.tick().unwrap(), MultibodyRigState::Running);
+    assert_eq!(rig.tick().unwrap(), RigState::Running);
 
     rig.reset(params).unwrap();
     assert!(rig.start().unwrap(), "a start on command");
-    assert_eq!(rig.state(), MultibodyRigState::Running);
+    assert_eq!(rig.state(), RigState::Running);
     drop(rig);
     mocks.done();
 }
@@ -311,14 +305,14 @@ fn a_reset_needs_the_button_released_before_a_press_starts() {
     e.button = vec![l.clone(), l.clone(), h, l];
     e.show([[true, false, false]; 3]);
     let mocks = e.mocks();
-    let mut rig = StackRig::new(StackParams::default(), CONFIG, mocks.pins()).unwrap();
+    let mut rig = StackRig::new(StackParams::default(), CONFIG, mocks.pins(), NoActuator).unwrap();
     assert!(rig.start().unwrap());
     assert!(rig.stop().unwrap());
     rig.reset(StackParams::default()).unwrap();
     for tick in 1..=3 {
-        assert_eq!(rig.tick().unwrap(), MultibodyRigState::WaitingForStart, "tick {tick}: held, released");
+        assert_eq!(rig.tick().unwrap(), RigState::WaitingForStart, "tick {tick}: held, released");
     }
-    assert_eq!(rig.tick().unwrap(), MultibodyRigState::Running, "pressed again");
+    assert_eq!(rig.tick().unwrap(), RigState::Running, "pressed again");
     drop(rig);
     mocks.done();
 }
@@ -332,7 +326,7 @@ fn indicate_shows_a_number_on_the_first_interface_while_waiting() {
     e.show([[false, false, true], [false; 3], [false; 3]]);
     e.show([[true, false, false]; 3]);
     let mocks = e.mocks();
-    let mut rig = StackRig::new(StackParams::default(), CONFIG, mocks.pins()).unwrap();
+    let mut rig = StackRig::new(StackParams::default(), CONFIG, mocks.pins(), NoActuator).unwrap();
     rig.indicate(Some(1)).unwrap();
     rig.indicate(Some(1)).unwrap();
     assert_eq!(rig.shown()[0], Some(InterfaceMode::Sliding(Direction::Plus)));
@@ -364,14 +358,14 @@ fn invalid_parameters_are_refused_before_any_pin_is_touched() {
             shown: [[false; 3]; 3],
         }
         .mocks();
-        let refused = StackRig::new(params, config, mocks.pins());
+        let refused = StackRig::new(params, config, mocks.pins(), NoActuator);
         assert_eq!(refused.err(), Some(expected), "{params:?}");
         mocks.done();
     }
     // The same sets, refused by a rig that runs: it stays as it was.
     let e = Expect::<3>::new();
     let mocks = e.mocks();
-    let mut rig = StackRig::new(ok, config, mocks.pins()).unwrap();
+    let mut rig = StackRig::new(ok, config, mocks.pins(), NoActuator).unwrap();
     assert_eq!(
         rig.reset(StackParams { step: 5e-3, ..ok }),
         Err(RigError::Unperformable(Unperformable::Step))
@@ -390,10 +384,7 @@ struct Failing {
     steps: u32,
     outcome: Option<Outcome>,
     states: [BodyState<f32>; 1],
-    system: System<f32, 1, 1>,
-    frames: [[CornerFrame<f32>; 4]; 1],
     modes: [[ContactMode; 4]; 1],
-    stats: RunStats,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -410,9 +401,34 @@ enum Failure {
     NonFiniteState,
 }
 
-impl MultibodyScene<f32, 1, 1> for Failing {
-    const ROWS: usize = 8;
-    fn step(&mut self) -> Option<SystemStepReport<f32, 1, 1>> {
+impl RigScene<1> for Failing {
+    type Params = FailAt;
+    type Report = SystemStepReport<f32, 1, 1>;
+    type Mode = InterfaceMode;
+    const LIGHT: &'static str = "interface";
+    const FIRST_LIGHT: usize = 0;
+
+    fn build(params: FailAt) -> Result<Self, ParamError> {
+        if params.step == 0 {
+            return Err(ParamError::OutOfRange("step"));
+        }
+        let s = ContactMode::Sticking;
+        let x = ContactMode::Separated;
+        Ok(Self {
+            params,
+            steps: 0,
+            outcome: None,
+            states: [BodyState::at_rest(0.0, 0.025, 0.0)],
+            modes: [[s, x, x, s]],
+        })
+    }
+    fn check(config: &RigConfig, _: &FailAt) -> Result<(), Unperformable> {
+        config.check_step(1e-3)
+    }
+    fn params(&self) -> &FailAt {
+        &self.params
+    }
+    fn advance(&mut self) -> Option<SystemStepReport<f32, 1, 1>> {
         if self.outcome.is_some() {
             return None;
         }
@@ -437,75 +453,20 @@ impl MultibodyScene<f32, 1, 1> for Failing {
             pivots: 0,
         })
     }
+    fn finite(report: &SystemStepReport<f32, 1, 1>) -> bool {
+        report.states.iter().all(BodyState::is_finite)
+    }
     fn outcome(&self) -> Option<Outcome> {
         self.outcome
-    }
-    fn states(&self) -> &[BodyState<f32>; 1] {
-        &self.states
-    }
-    fn system(&self) -> &System<f32, 1, 1> {
-        &self.system
-    }
-    fn frames(&self) -> &[[CornerFrame<f32>; 4]; 1] {
-        &self.frames
-    }
-    fn modes(&self) -> &[[ContactMode; 4]; 1] {
-        &self.modes
     }
     fn time(&self) -> f32 {
         self.steps as f32 * 1e-3
     }
-    fn stats(&self) -> &RunStats {
-        &self.stats
+    fn start_modes(&self) -> [InterfaceMode; 1] {
+        self.modes.map(InterfaceMode::of)
     }
-    fn measured(&self) -> [Option<f32>; MAX_MEASURES] {
-        [None; MAX_MEASURES]
-    }
-}
-
-impl RigScene<1, 1> for Failing {
-    type Params = FailAt;
-    fn build(params: FailAt) -> Result<Self, ParamError> {
-        if params.step == 0 {
-            return Err(ParamError::OutOfRange("step"));
-        }
-        let s = ContactMode::Sticking;
-        let x = ContactMode::Separated;
-        Ok(Self {
-            params,
-            steps: 0,
-            outcome: None,
-            states: [BodyState::at_rest(0.0, 0.025, 0.0)],
-            system: System {
-                bodies: [Body::block(1.0, 0.1, 0.05)],
-                table: Table::floor(),
-                pairs: [Pair::boxed(0, RestsOn::Table, 0.5, 0.4)],
-                forces: [[0.0; 2]],
-                settings: SystemSettings {
-                    base: meterstick_core::planar::Settings { step: 1e-3, gravity: 9.81, stick_speed: 1e-5 },
-                    margin: 1e-3,
-                },
-            },
-            frames: [[CornerFrame {
-                active: false,
-                corner: None,
-                face: None,
-                gap: 0.0,
-                along: 0.0,
-                point: [0.0; 2],
-                normal: [0.0, 1.0],
-                tangent: [1.0, 0.0],
-                lever_corner: [0.0; 2],
-                lever_face: [0.0; 2],
-                gap_round_off: 0.0,
-                touch: 0.0,
-            }; 4]],
-            modes: [[s, x, x, s]],
-            stats: RunStats::default(),
-        })
-    }
-    fn step_of(_: &FailAt) -> f32 {
-        1e-3
+    fn modes_of(report: &SystemStepReport<f32, 1, 1>) -> [InterfaceMode; 1] {
+        report.modes.map(InterfaceMode::of)
     }
 }
 
@@ -523,21 +484,21 @@ fn a_failed_or_non_finite_step_is_a_fault_with_the_lights_off_and_no_panic() {
         e.fault.push(T::set(State::Low));
         let mocks = e.mocks();
         let params = FailAt { step: 4, failure };
-        let mut rig = MultibodyRig::<_, _, Failing, 1, 1>::new(params, CONFIG, mocks.pins()).unwrap();
-        assert_eq!(rig.tick().unwrap(), MultibodyRigState::Running);
+        let mut rig = Rig::<Failing, _, _, _, 1>::new(params, CONFIG, mocks.pins(), NoActuator).unwrap();
+        assert_eq!(rig.tick().unwrap(), RigState::Running);
         let mut observed = 0;
         for _ in 0..3 {
-            assert_eq!(rig.tick_with(|_| observed += 1).unwrap(), MultibodyRigState::Running);
+            assert_eq!(rig.tick_with(|_| observed += 1).unwrap(), RigState::Running);
         }
         let state = rig.tick_with(|_| observed += 1).unwrap();
-        assert_eq!(state, MultibodyRigState::Fault(fault), "{failure:?}");
+        assert_eq!(state, RigState::Fault(RigFault::Step(fault)), "{failure:?}");
         assert_eq!(observed, 3, "the failed step is not reported");
         assert_eq!(rig.shown(), &[None], "mode lights off");
         for _ in 0..3 {
             assert_eq!(rig.tick().unwrap(), state, "it stays in the fault, touching no pin");
         }
         rig.reset(params).unwrap();
-        assert_eq!(rig.state(), MultibodyRigState::WaitingForStart);
+        assert_eq!(rig.state(), RigState::WaitingForStart);
         drop(rig);
         mocks.done();
     }
@@ -552,13 +513,13 @@ fn the_held_stack_lights_each_interface_sticking_once_and_nothing_else() {
     let state = loop {
         let s = rig.tick().unwrap();
         ticks += 1;
-        if !matches!(s, MultibodyRigState::WaitingForStart | MultibodyRigState::Running) || ticks > 20_000 {
+        if !matches!(s, RigState::WaitingForStart | RigState::Running) || ticks > 20_000 {
             break s;
         }
     };
-    assert_eq!(state, MultibodyRigState::Finished(Outcome::Held));
+    assert_eq!(state, RigState::Finished(Outcome::Held));
     assert_eq!(ticks, 1 + 10_000, "the press, then 10 s of 1 ms steps");
-    let pins = rig.release();
+    let (pins, NoActuator) = rig.release();
     assert_eq!(pins.fault.rises(), 0);
     for (i, l) in pins.lights.iter().enumerate() {
         let rises = [l.sticking.rises(), l.sliding.rises(), l.separated.rises()];

@@ -2,7 +2,7 @@
 //! `builtins-float` build, `scripts/lib.sh`) runs on an emulated RP2040 (`tests/pico/harness.mjs`
 //! on rp2040js, `node_modules` installed by `scripts/setup.sh`), its buttons pressed as a teacher
 //! presses them; what its pins did is checked against the host core running the same rig
-//! (`meterstick_rig::Rig` on recording pins, the same preset, the same `RigConfig`):
+//! (`meterstick_rig::MeterStickRig` on recording pins, the same preset, the same `RigConfig`):
 //!
 //! - the run: the same number of scene steps, ended the same way (balanced / fault);
 //! - STEP: the same pulses in every tick (the first differing step is named), in all
@@ -38,7 +38,8 @@ use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use meterstick_link::OutcomeCode;
 use meterstick_link::host::Link;
 use meterstick_rig::{
-    ModeLights, NoDelay, Preset, PresetScene as _, Rig, RigConfig, RigFault, RigPins, RigState,
+    Carriage, MeterStickRig, ModeLights, NoDelay, Preset, PresetScene as _, RigConfig, RigFault, RigPins,
+    RigState,
 };
 use serde_json::Value;
 
@@ -154,15 +155,10 @@ fn host_run(presses: usize) -> HostRun {
         sliding: pin(LIGHTS[f][1]),
         separated: pin(LIGHTS[f][2]),
     };
-    let pins = RigPins {
-        start: Released,
-        step: pin(STEP),
-        dir: pin(DIR),
-        lights: [lights(0), lights(1)],
-        fault: pin(FAULT),
-    };
+    let carriage = Carriage::new(pin(STEP), pin(DIR), NoDelay);
+    let pins = RigPins { start: Released, lights: [lights(0), lights(1)], fault: pin(FAULT) };
     let config = RigConfig::default_rig();
-    let mut rig = Rig::<_, _, _, 6>::new(Preset::Slow.params(H), config, pins, NoDelay).unwrap();
+    let mut rig = MeterStickRig::<_, _, _, 6>::new(Preset::Slow.params(H), config, pins, carriage).unwrap();
     let mut preset = Preset::Slow;
     for _ in 0..presses {
         // As the firmware's preset button (firmware/src/realtime.rs, `Buttons::between_runs`): the

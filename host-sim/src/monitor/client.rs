@@ -5,13 +5,15 @@ use meterstick_core::scene::MeterStickParams;
 use meterstick_link::host::{Link, REPLY_TIMEOUT};
 use meterstick_link::{Command, ParamId, RejectReason, Report};
 
-/// The rig's parameter set, read back with `GetParam` (every [`ParamId`]).
+/// The rig's meter-stick parameter set, read back with `GetParam` (every [`ParamId`] the meter
+/// stick has).
 ///
 /// # Errors
 /// A missing reply, or a name the core does not know.
 pub fn read_params(link: &mut Link) -> anyhow::Result<MeterStickParams<f32>> {
     let mut p = MeterStickParams::<f32>::default();
-    for id in ParamId::ALL {
+    // The meter stick's parameters (the link also names the stack's).
+    for id in ParamId::ALL.into_iter().filter(|id| MeterStickParams::<f32>::NAMES.contains(&id.name())) {
         match link.request(&Command::GetParam { id }, REPLY_TIMEOUT)? {
             Report::Param { value, .. } => {
                 if !p.set(id.name(), value) {

@@ -51,12 +51,13 @@ pub struct Recording {
     pub wall_s: f64,
 }
 
-/// How the rig's modes map to the core's.
+/// How the rig's modes map to the core's (an interface's [`Mode::Tipping`], which the meter
+/// stick's contacts never report, as the sticking of its one touching corner).
 #[must_use]
 pub const fn mode_of(m: Mode) -> ContactMode {
     match m {
         Mode::Separated => ContactMode::Separated,
-        Mode::Sticking => ContactMode::Sticking,
+        Mode::Sticking | Mode::Tipping => ContactMode::Sticking,
         Mode::SlidingPositive => ContactMode::Sliding(Direction::Plus),
         Mode::SlidingNegative => ContactMode::Sliding(Direction::Minus),
     }

@@ -33,11 +33,13 @@ pub fn all_commands() -> Vec<Command> {
         Command::Ping { nonce: 0 },
         Command::Ping { nonce: u32::MAX },
     ]);
+    v.extend(SCENES.map(Command::SelectScene));
     v.extend(ParamId::ALL.map(|id| Command::GetParam { id }));
     v
 }
 
-pub const MODES: [Mode; 4] = [Mode::Separated, Mode::Sticking, Mode::SlidingPositive, Mode::SlidingNegative];
+pub const MODES: [Mode; 5] =
+    [Mode::Separated, Mode::Sticking, Mode::SlidingPositive, Mode::SlidingNegative, Mode::Tipping];
 pub const OUTCOMES: [OutcomeCode; 14] = [
     OutcomeCode::Balanced,
     OutcomeCode::Fell,
@@ -66,7 +68,7 @@ pub const REASONS: [RejectReason; 9] = [
     RejectReason::Other,
     RejectReason::BeyondRig,
 ];
-pub const SCENES: [SceneId; 3] = [SceneId::MeterStick, SceneId::Incline, SceneId::Ladder];
+pub const SCENES: [SceneId; 4] = [SceneId::MeterStick, SceneId::Incline, SceneId::Ladder, SceneId::Stack];
 
 /// A telemetry report; `step` decides its size (varint).
 pub fn telemetry(step: u32) -> Report {
@@ -126,6 +128,7 @@ pub fn all_reports() -> Vec<Report> {
         Report::Error(ErrorCode::CoreFault),
         Report::Error(ErrorCode::Other(0xBEEF)),
         Report::Error(ErrorCode::ActuatorOverrun),
+        Report::Error(ErrorCode::NoSuchScene(SceneId::Stack)),
         Report::Stats(LinkStats {
             frames_ok: u32::MAX,
             crc_errors: u32::MAX,
@@ -139,6 +142,13 @@ pub fn all_reports() -> Vec<Report> {
     ]);
     for (i, id) in ParamId::ALL.into_iter().enumerate() {
         v.push(Report::Param { id, value: 0.5 * i as f32 - 2.0 });
+    }
+    // The body report at its largest (a 5-byte step) and smallest.
+    for (i, mode) in MODES.into_iter().enumerate() {
+        let step = [0, u32::MAX][i % 2];
+        let state = [0.1, 0.075, -0.02, 1e-3, -9.81e-3, 0.5];
+        v.push(Report::Body { step, time: 2.5, body: i as u8, state, mode });
+        v.push(Report::InterfaceSwitch { step, time: 2.5, interface: i as u8, mode });
     }
     v
 }

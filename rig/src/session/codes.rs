@@ -6,7 +6,7 @@ use meterstick_core::planar::{ContactMode, Direction};
 use meterstick_core::scene::{Outcome, OutcomeKind};
 use meterstick_link::{ErrorCode, Mode, OutcomeCode, ParamId, RejectReason, RigState};
 
-use crate::{RigFault, RigState as CoreState, Unperformable};
+use crate::{InterfaceMode, RigFault, RigState as CoreState, Unperformable};
 
 #[inline]
 pub(super) const fn state_of(s: CoreState) -> RigState {
@@ -25,6 +25,17 @@ pub(super) const fn mode_of(m: ContactMode) -> Mode {
         ContactMode::Sticking => Mode::Sticking,
         ContactMode::Sliding(Direction::Plus) => Mode::SlidingPositive,
         ContactMode::Sliding(Direction::Minus) => Mode::SlidingNegative,
+    }
+}
+
+/// An interface's mode as the link names it (the lights' [`InterfaceMode`]).
+#[inline]
+pub(super) const fn interface_mode_of(m: InterfaceMode) -> Mode {
+    match m {
+        InterfaceMode::Sticking => Mode::Sticking,
+        InterfaceMode::Sliding(d) => mode_of(ContactMode::Sliding(d)),
+        InterfaceMode::Tipping => Mode::Tipping,
+        InterfaceMode::Separated => Mode::Separated,
     }
 }
 

@@ -2,7 +2,11 @@
 //! under QEMU and on the Picos, USB CDC or USART2 on the Black Pill) are decoded with
 //! `meterstick-link`'s [`CommandDecoder`] and carried out on the [`Rig`]; telemetry, switch
 //! events, outcomes, real-time margins and replies are encoded into a transmit queue that the
-//! board drains without blocking.
+//! board drains without blocking. One session serves any scene a board runs ([`LinkScene`]: the
+//! meter stick, one [`Report::Telemetry`] a telemetry step and [`Report::Switch`] events; the
+//! stack, one [`Report::Body`] per block and [`Report::InterfaceSwitch`] events), and a board that
+//! runs several switches between them on [`Command::SelectScene`] ([`Session::poll`] returns the
+//! scene asked for, [`Session::select`] carries the session over to it).
 //!
 //! The board's loop, once per tick:
 //!
@@ -15,8 +19,8 @@
 //!
 //! Rules (the link crate's docs, "reply rule"): every decoded command gets exactly one reply;
 //! a frame that does not decode gets none and is counted by the decoder ([`Command::GetStats`]
-//! reads the counters). Parameters are validated by the core ([`MeterStickParams::validate`],
-//! through [`Rig::reset`]) and checked against the rig ([`crate::RigConfig::check`]): a refused
+//! reads the counters). Parameters are validated by the core (the scene's `validate`, through
+//! [`Rig::reset`]) and checked against the rig ([`crate::RigScene::check`]): a refused
 //! value gets [`Report::Rejected`] naming it ([`RejectReason::BeyondRig`] for a value the rig
 //! cannot perform; a preset the rig cannot perform, e.g. the fast one on a carriage slower than
 //! 5 m/s, is refused the same way, naming the parameter), and the rig keeps its previous, valid
@@ -28,23 +32,25 @@
 //! no indexing, no slicing that can fail, no unchecked arithmetic that matters (counters wrap).
 
 mod codes;
+mod queue;
+mod scene;
 
 pub use codes::outcome_code;
-mod queue;
+/// The link's scene ids, for a board that selects among its scenes ([`Session::with_scenes`]).
+pub use meterstick_link::SceneId;
+pub use scene::LinkScene;
 
-use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
-use meterstick_core::planar::{Checksum, StepReport};
-use meterstick_core::scene::{MeterStickParams, Scene};
+use meterstick_core::planar::Checksum;
 use meterstick_link::{
-    Command, CommandDecoder, ContactTelemetry, DEFAULT_TELEMETRY_EVERY, DELIMITER, ErrorCode, MAX_FRAME,
-    OutcomeCode, PROTOCOL_VERSION, RejectReason, Report, RigState, SceneId, encode,
+    Command, CommandDecoder, DEFAULT_TELEMETRY_EVERY, DELIMITER, ErrorCode, MAX_FRAME, OutcomeCode,
+    PROTOCOL_VERSION, RejectReason, Report, RigState, encode,
 };
 
-use codes::{fault_code, fault_error, mode_of, param_of, reason_of, state_of};
+use codes::{fault_code, fault_error, param_of, reason_of, state_of};
 use queue::TxQueue;
 
-use crate::{PresetScene as _, Rig, RigError, RigState as CoreState};
+use crate::{Actuator, Rig, RigError, RigState as CoreState};
 
 /// A byte link that never blocks.
 pub trait Port {
@@ -67,15 +73,20 @@ const _: () = assert!(POLL_BYTES.is_multiple_of(POLL_CHUNK));
 /// A [`Report::Margin`] every this many steps while running (and one at the end of the run).
 pub const MARGIN_EVERY: u32 = 1000;
 
-/// The link session: decoder, transmit queue, telemetry rate and the current run's figures.
-pub struct Session {
+/// The link session for the scene `S` shown on `L` lights: decoder, transmit queue, telemetry
+/// rate and the current run's figures.
+pub struct Session<S: LinkScene<L>, const L: usize> {
     decoder: CommandDecoder,
     tx: TxQueue,
     every: u16,
     checksum: Checksum,
     steps: u32,
     last: RigState,
-    pending: Option<StepReport<f32, 2>>,
+    pending: Option<S::Report>,
+    /// The rig's lights after the last tick (what a step's events compare with).
+    shown: [Option<S::Mode>; L],
+    /// The scenes the board runs besides `S` ([`Command::SelectScene`]).
+    scenes: &'static [SceneId],
     worst: u32,
     worst_step: u32,
     overruns: u32,
@@ -85,7 +96,7 @@ pub struct Session {
     build: [u8; 8],
 }
 
-impl core::fmt::Debug for Session {
+impl<S: LinkScene<L>, const L: usize> core::fmt::Debug for Session<S, L> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("Session")
             .field("steps", &self.steps)
@@ -96,11 +107,11 @@ impl core::fmt::Debug for Session {
     }
 }
 
-impl Session {
+impl<S: LinkScene<L>, const L: usize> Session<S, L> {
     /// A session for a rig whose step period is `period_cycles` CPU cycles (0 when it does not
     /// run in real time, e.g. under QEMU), for firmware version `firmware` ([`version`] of the
     /// firmware crate's `CARGO_PKG_VERSION`) and build id `build` (see [`build_id`]), both sent
-    /// in [`Report::Hello`].
+    /// in [`Report::Hello`]. It runs `S` only until [`Self::with_scenes`] names others.
     #[must_use]
     #[inline]
     pub const fn new(period_cycles: u32, firmware: (u8, u8, u8), build: [u8; 8]) -> Self {
@@ -112,6 +123,8 @@ impl Session {
             steps: 0,
             last: RigState::Waiting,
             pending: None,
+            shown: [None; L],
+            scenes: &[],
             worst: 0,
             worst_step: 0,
             overruns: 0,
@@ -122,18 +135,64 @@ impl Session {
         }
     }
 
+    /// The session with `scenes`, the scenes the board runs ([`Command::SelectScene`] is
+    /// refused with [`ErrorCode::NoSuchScene`] for any other than these and `S`).
+    #[must_use]
+    #[inline]
+    pub const fn with_scenes(mut self, scenes: &'static [SceneId]) -> Self {
+        self.scenes = scenes;
+        self
+    }
+
     /// At boot: a lone delimiter (closes whatever the host had half-received), then
     /// [`Report::Hello`] and [`Report::State`].
-    pub fn boot<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &Rig<B, P, D, N, EV>)
+    pub fn boot<A, B, P, E>(&mut self, rig: &Rig<S, A, B, P, L>)
     where
+        A: Actuator<S, E>,
         B: InputPin<Error = E>,
         P: OutputPin<Error = E>,
-        D: DelayNs,
     {
         let _ = self.tx.push(&[DELIMITER]);
-        self.send(&hello::<N>(rig.params(), self.firmware, self.build));
+        self.announce(rig);
+    }
+
+    /// [`Report::Hello`] and [`Report::State`] for `rig`.
+    fn announce<A, B, P, E>(&mut self, rig: &Rig<S, A, B, P, L>)
+    where
+        A: Actuator<S, E>,
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+    {
+        self.send(&hello::<S, L>(rig.params(), self.firmware, self.build));
         self.last = state_of(rig.state());
+        self.shown = *rig.shown();
         self.send(&Report::State(self.last));
+    }
+
+    /// The session carried over to the scene `S2` of `rig` (after [`Self::poll`] returned it):
+    /// the decoder, its counters, the queue and the telemetry rate kept, the run's figures
+    /// cleared; it announces the new scene ([`Report::Hello`], [`Report::State`]).
+    #[must_use]
+    pub fn select<S2, A, B, P, E, const L2: usize>(self, rig: &Rig<S2, A, B, P, L2>) -> Session<S2, L2>
+    where
+        S2: LinkScene<L2>,
+        A: Actuator<S2, E>,
+        B: InputPin<Error = E>,
+        P: OutputPin<Error = E>,
+    {
+        let mut next = Session::<S2, L2> {
+            decoder: self.decoder,
+            tx: self.tx,
+            every: self.every,
+            period: self.period,
+            dropped: self.dropped,
+            firmware: self.firmware,
+            build: self.build,
+            scenes: self.scenes,
+            ..Session::new(self.period, self.firmware, self.build)
+        };
+        next.announce(rig);
+        next
     }
 
     /// Sets the step period (CPU cycles) the margins are reported against.
@@ -142,20 +201,22 @@ impl Session {
         self.period = period_cycles;
     }
 
-    /// Reads and carries out the commands received (at most [`POLL_BYTES`] bytes).
+    /// Reads and carries out the commands received (at most [`POLL_BYTES`] bytes); returns the
+    /// scene a [`Command::SelectScene`] asked for (acknowledged), for the board to switch to
+    /// ([`Self::select`]); the commands after it wait in the port.
     ///
     /// # Errors
     /// A pin error from the rig.
-    pub fn poll<Pt, B, P, D, E, const N: usize, const EV: usize>(
+    pub fn poll<Pt, A, B, P, E>(
         &mut self,
         port: &mut Pt,
-        rig: &mut Rig<B, P, D, N, EV>,
-    ) -> Result<(), RigError<E>>
+        rig: &mut Rig<S, A, B, P, L>,
+    ) -> Result<Option<SceneId>, RigError<E>>
     where
         Pt: Port,
+        A: Actuator<S, E>,
         B: InputPin<Error = E>,
         P: OutputPin<Error = E>,
-        D: DelayNs,
     {
         // Whole chunks only: every byte taken from the port is handled, at most POLL_BYTES of
         // them, and the ports' reads get a fixed-size buffer (a slice of run-time length keeps
@@ -164,38 +225,42 @@ impl Session {
         for _ in 0..POLL_BYTES / POLL_CHUNK {
             let n = port.read(&mut chunk).min(POLL_CHUNK);
             for &byte in chunk.get(..n).unwrap_or(&[]) {
-                if let Some(Ok(command)) = self.decoder.push(byte) {
-                    self.handle(command, rig)?;
+                if let Some(Ok(command)) = self.decoder.push(byte)
+                    && let Some(scene) = self.handle(command, rig)?
+                {
+                    // The bytes after it in this chunk are lost with the scene's session: a host
+                    // waits for the new Hello before it sends more.
+                    return Ok(Some(scene));
                 }
             }
             if n < POLL_CHUNK {
                 break; // the port has nothing more now
             }
         }
-        Ok(())
+        Ok(None)
     }
 
     /// Keeps the report of the step the rig just made (call from [`Rig::tick_with`]).
     #[inline]
-    pub fn record(&mut self, report: &StepReport<f32, 2>) {
+    pub fn record(&mut self, report: &S::Report)
+    where
+        S::Report: Copy,
+    {
         self.pending = Some(*report);
     }
 
     /// After a tick that took `cycles`: the step's checksum, switch events, telemetry and
     /// margin, then the reports of a state change (run started: state and the step-0
     /// telemetry; run ended: outcome, margin and state).
-    pub fn end_tick<B, P, D, E, const N: usize, const EV: usize>(
-        &mut self,
-        rig: &Rig<B, P, D, N, EV>,
-        cycles: u32,
-    ) where
+    pub fn end_tick<A, B, P, E>(&mut self, rig: &Rig<S, A, B, P, L>, cycles: u32)
+    where
+        A: Actuator<S, E>,
         B: InputPin<Error = E>,
         P: OutputPin<Error = E>,
-        D: DelayNs,
     {
         if let Some(report) = self.pending.take() {
             self.steps = self.steps.wrapping_add(1);
-            self.checksum.add(&report.state);
+            S::checksum(&mut self.checksum, &report);
             if cycles > self.worst {
                 self.worst = cycles;
                 self.worst_step = self.steps;
@@ -203,23 +268,11 @@ impl Session {
             if self.period > 0 && cycles > self.period {
                 self.overruns = self.overruns.wrapping_add(1);
             }
-            let along = report.along();
-            for (contact, mode) in report.switches() {
-                self.send(&Report::Switch {
-                    step: self.steps,
-                    time: report.time,
-                    contact: u8::try_from(contact).unwrap_or(u8::MAX),
-                    mode: mode_of(mode),
-                    along,
-                });
-            }
+            let (before, shown) = (self.shown, *rig.shown());
+            S::events(&report, &before, &shown, self.steps, |r| self.send(r));
+            self.shown = shown;
             if self.every > 0 && self.steps.is_multiple_of(u32::from(self.every)) {
-                let contacts = report.contacts.map(|c| ContactTelemetry {
-                    mode: mode_of(c.mode),
-                    normal_impulse: c.normal_impulse,
-                    friction_impulse: c.friction_impulse,
-                });
-                self.telemetry(rig, report.time, contacts);
+                rig.scene().telemetry(Some(&report), &shown, self.steps, |r| self.send_telemetry(r));
             }
             if self.steps.is_multiple_of(MARGIN_EVERY) {
                 self.send(&self.margin());
@@ -277,27 +330,11 @@ impl Session {
         }
     }
 
-    fn telemetry<B, P, D, E, const N: usize, const EV: usize>(
-        &mut self,
-        rig: &Rig<B, P, D, N, EV>,
-        time: f32,
-        contacts: [ContactTelemetry; 2],
-    ) where
-        B: InputPin<Error = E>,
-        P: OutputPin<Error = E>,
-        D: DelayNs,
-    {
-        let s = rig.scene().state();
-        let [vx, vy, omega] = s.velocity();
-        let report = Report::Telemetry {
-            step: self.steps,
-            time,
-            state: [s.x, s.y, s.theta, vx, vy, omega],
-            fingers: rig.scene().fingers(),
-            contacts,
-        };
+    /// Queues a telemetry report: only while it leaves [`RESERVE`] bytes free (else dropped and
+    /// counted).
+    fn send_telemetry(&mut self, report: &Report) {
         let mut buf = [0u8; MAX_FRAME];
-        let ok = match encode(&report, &mut buf) {
+        let ok = match encode(report, &mut buf) {
             Ok(frame) => self.tx.free() >= frame.len().saturating_add(RESERVE) && self.tx.push(frame),
             Err(_) => false,
         };
@@ -307,11 +344,11 @@ impl Session {
     }
 
     /// Reports a change of the rig's state since the last call.
-    fn sync<B, P, D, E, const N: usize, const EV: usize>(&mut self, rig: &Rig<B, P, D, N, EV>)
+    fn sync<A, B, P, E>(&mut self, rig: &Rig<S, A, B, P, L>)
     where
+        A: Actuator<S, E>,
         B: InputPin<Error = E>,
         P: OutputPin<Error = E>,
-        D: DelayNs,
     {
         let core = rig.state();
         let now = state_of(core);
@@ -325,14 +362,11 @@ impl Session {
             self.worst_step = 0;
             self.overruns = 0;
             self.pending = None;
+            self.shown = *rig.shown();
             self.send(&Report::State(now));
             if self.every > 0 {
-                let contacts = rig.scene().modes().map(|m| ContactTelemetry {
-                    mode: mode_of(m),
-                    normal_impulse: 0.0,
-                    friction_impulse: 0.0,
-                });
-                self.telemetry(rig, 0.0, contacts);
+                let shown = self.shown;
+                rig.scene().telemetry(None, &shown, 0, |r| self.send_telemetry(r));
             }
         } else {
             if self.last == RigState::Running {
@@ -357,26 +391,28 @@ impl Session {
         self.last = now;
     }
 
-    fn handle<B, P, D, E, const N: usize, const EV: usize>(
+    /// Carries out `command` and queues its reply; returns the scene a
+    /// [`Command::SelectScene`] switches to.
+    fn handle<A, B, P, E>(
         &mut self,
         command: Command,
-        rig: &mut Rig<B, P, D, N, EV>,
-    ) -> Result<(), RigError<E>>
+        rig: &mut Rig<S, A, B, P, L>,
+    ) -> Result<Option<SceneId>, RigError<E>>
     where
+        A: Actuator<S, E>,
         B: InputPin<Error = E>,
         P: OutputPin<Error = E>,
-        D: DelayNs,
     {
         let tag = command.tag();
         let ack = Report::Ack { command: tag };
         let state = state_of(rig.state());
         let not_allowed = Report::Error(ErrorCode::NotAllowed { command: tag, state });
         let reply = match command {
-            Command::Hello => hello::<N>(rig.params(), self.firmware, self.build),
+            Command::Hello => hello::<S, L>(rig.params(), self.firmware, self.build),
             Command::Ping { nonce } => Report::Pong { nonce },
             Command::GetStats => Report::Stats(self.decoder.stats()),
             Command::GetParam { id } => {
-                Report::Param { id, value: rig.params().get(id.name()).unwrap_or(f32::NAN) }
+                Report::Param { id, value: S::param(rig.params(), id).unwrap_or(f32::NAN) }
             }
             Command::SetTelemetry { every_n_steps } => {
                 self.every = every_n_steps;
@@ -387,7 +423,7 @@ impl Session {
             }
             Command::SetParam { id, value } => {
                 let mut params = *rig.params();
-                if params.set(id.name(), value) {
+                if S::set_param(&mut params, id, value) {
                     match rig.reset(params) {
                         Ok(()) => ack,
                         Err(RigError::Params(e)) => Report::Rejected { id, reason: reason_of(e) },
@@ -401,17 +437,14 @@ impl Session {
                 }
             }
             Command::Preset(_) if state == RigState::Running => not_allowed,
-            Command::Preset(p) => {
-                let step = rig.params().step;
-                match rig.reset(p.params(step)) {
-                    Ok(()) => ack,
-                    Err(RigError::Params(_)) => not_allowed,
-                    Err(RigError::Unperformable(u)) => {
-                        Report::Rejected { id: param_of(u), reason: RejectReason::BeyondRig }
-                    }
-                    Err(e) => return Err(e),
+            Command::Preset(p) => match S::preset(p, rig.params()).map(|params| rig.reset(params)) {
+                Some(Ok(())) => ack,
+                None | Some(Err(RigError::Params(_))) => not_allowed,
+                Some(Err(RigError::Unperformable(u))) => {
+                    Report::Rejected { id: param_of(u), reason: RejectReason::BeyondRig }
                 }
-            }
+                Some(Err(e)) => return Err(e),
+            },
             Command::Start => {
                 if rig.start()? {
                     ack
@@ -432,25 +465,38 @@ impl Session {
                 rig.reset(*rig.params())?;
                 ack
             }
+            Command::SelectScene(scene) if scene == S::SCENE => ack,
+            Command::SelectScene(scene) if !self.scenes.contains(&scene) => {
+                Report::Error(ErrorCode::NoSuchScene(scene))
+            }
+            Command::SelectScene(_) if state == RigState::Running => not_allowed,
+            Command::SelectScene(scene) => {
+                self.send(&ack);
+                return Ok(Some(scene));
+            }
         };
         self.send(&reply);
         self.sync(rig);
-        Ok(())
+        Ok(None)
     }
 }
 
 /// The rig's identity.
-fn hello<const N: usize>(params: &MeterStickParams<f32>, firmware: (u8, u8, u8), build: [u8; 8]) -> Report {
+fn hello<S: LinkScene<L>, const L: usize>(
+    params: &S::Params,
+    firmware: (u8, u8, u8),
+    build: [u8; 8],
+) -> Report {
     Report::Hello {
         protocol: PROTOCOL_VERSION,
         firmware,
         core: CORE_VERSION,
         build,
-        scene: SceneId::MeterStick,
-        lcp_size: u8::try_from(N).unwrap_or(u8::MAX),
+        scene: S::SCENE,
+        lcp_size: S::LCP_SIZE,
         // Rounded (5.01e-4 s is 501 us, not 500); saturating: a valid step is positive and finite.
         #[allow(clippy::cast_sign_loss)]
-        step_us: libm::roundf(params.step * 1e6) as u32,
+        step_us: libm::roundf(S::step_of(params) * 1e6) as u32,
     }
 }
 

@@ -1,6 +1,7 @@
 //! `host-sim monitor`: the host end of the rig's link ([`crate::monitor`]). Connects to a serial
 //! port (the Black Pill's USB CDC port, e.g. `/dev/ttyACM0`) or a TCP port (`tcp:HOST:PORT`:
-//! QEMU's UART), sends commands from flags, prints a line per event and a progress line
+//! QEMU's UART), selects the rig's scene (`--scene`: the meter stick or the 3-block stack, on a
+//! rig that runs both), sends commands from flags, prints a line per event and a progress line
 //! ([`mod@print`]), records a run in the same files as `host-sim run` and compares it with the host's
 //! f32 build of the same scene (bit-identical checksum and events expected); with
 //! `--stress-grid`, the worst step of each meter-stick stress case on the rig ([`stress_grid`]).
@@ -11,6 +12,7 @@
 //! step), `summary.json` ([`MonitorSummary`]); with `--stress-grid`, `worst-steps.csv`.
 
 pub mod print;
+pub mod stack;
 pub mod stress_grid;
 
 use std::fmt::Write as _;
@@ -20,7 +22,7 @@ use std::time::Duration;
 
 use anyhow::{Context as _, bail};
 use meterstick_link::host::{Link, REPLY_TIMEOUT};
-use meterstick_link::{Command, PROTOCOL_VERSION, ParamId, Preset, Report};
+use meterstick_link::{Command, PROTOCOL_VERSION, ParamId, Preset, Report, SceneId};
 use serde::Serialize;
 
 use crate::monitor::{Margin, RigComparison, apply_params, compare, read_params, record_run};
@@ -30,6 +32,25 @@ use crate::trajectory::{OutcomeKind, write_csv, write_events_csv};
 use meterstick_catalogue::Short;
 
 use print::Printer;
+
+/// A scene of the rig, as the command line spells it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SceneArg {
+    /// The meter stick (the carriage under a rod).
+    MeterStick,
+    /// The 3-block stack over a table's edge (its parameters: `length`, `height`, `mass`,
+    /// `overhang`, `mu_static`, ...).
+    Stack,
+}
+
+impl From<SceneArg> for SceneId {
+    fn from(s: SceneArg) -> Self {
+        match s {
+            SceneArg::MeterStick => Self::MeterStick,
+            SceneArg::Stack => Self::Stack,
+        }
+    }
+}
 
 /// A preset, as the command line spells it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -52,7 +73,7 @@ impl From<PresetArg> for Preset {
     }
 }
 
-/// `host-sim monitor` options. Commands go out in this order: reset, preset, each `--set`,
+/// `host-sim monitor` options. Commands go out in this order: scene, reset, preset, each `--set`,
 /// telemetry rate, stop, start (then the run is recorded until its outcome).
 #[derive(Debug, Clone, clap::Args)]
 #[allow(clippy::struct_excessive_bools)] // command-line switches
@@ -64,6 +85,10 @@ pub struct MonitorArgs {
     /// Baud rate of a serial port (ignored by USB CDC and TCP).
     #[arg(long, default_value_t = 115_200)]
     pub baud: u32,
+    /// Switch the rig to this scene first (`SelectScene`; refused while a run is in progress, and
+    /// by a rig that does not run it).
+    #[arg(long, value_enum)]
+    pub scene: Option<SceneArg>,
     /// Send `Reset` first (stops a run in progress, clears a fault).
     #[arg(long)]
     pub reset: bool,
@@ -180,8 +205,27 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<String> {
     let timeout = Duration::from_secs_f64(args.timeout_s);
     let mut link = Link::open(&args.port, args.baud)?;
     let mut printer = Printer::new(std::io::stderr().is_terminal());
-    let hello = link.request(&Command::Hello, REPLY_TIMEOUT)?;
-    if let Report::Hello { protocol, firmware, build, lcp_size, step_us, .. } = hello {
+    let mut hello = link.request(&Command::Hello, REPLY_TIMEOUT)?;
+    if let (Some(want), Report::Hello { scene, .. }) = (args.scene, hello)
+        && scene != SceneId::from(want)
+    {
+        let select = Command::SelectScene(want.into());
+        match link.request(&select, REPLY_TIMEOUT)? {
+            Report::Ack { .. } => {}
+            other => bail!("--scene: the rig refused it: {other:?}"),
+        }
+        // The new scene's Hello follows the acknowledgement (after the boot's, if still waiting).
+        hello = loop {
+            match link.next(REPLY_TIMEOUT)? {
+                Some(h @ Report::Hello { scene, .. }) if scene == SceneId::from(want) => break h,
+                Some(_) => {}
+                None => bail!("--scene: no Hello from the rig's new scene"),
+            }
+        };
+    }
+    let mut scene = SceneId::MeterStick;
+    if let Report::Hello { protocol, firmware, build, lcp_size, step_us, scene: s, .. } = hello {
+        scene = s;
         if protocol != PROTOCOL_VERSION {
             bail!(
                 "{}: the rig speaks protocol version {protocol}, this host-sim version {PROTOCOL_VERSION}",
@@ -189,7 +233,7 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<String> {
             );
         }
         printer.line(&format!(
-            "rig: firmware {}.{}.{} ({}), {lcp_size}x{lcp_size} LCP, h = {step_us} us, protocol {protocol}",
+            "rig: {s:?}, firmware {}.{}.{} ({}), {lcp_size}x{lcp_size} LCP, h = {step_us} us, protocol {protocol}",
             firmware.0,
             firmware.1,
             firmware.2,
@@ -219,8 +263,13 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<String> {
         simple(&mut link, Command::Stop, "--stop")?;
     }
     let mut summary = String::new();
-    if args.start || args.follow {
+    if (args.start || args.follow) && scene == SceneId::Stack {
+        summary = stack::record_and_write(&mut link, args, timeout, &mut printer)?;
+    } else if args.start || args.follow {
         summary = record_and_write(&mut link, args, timeout, &mut printer)?;
+    }
+    if args.stress_grid && scene != SceneId::MeterStick {
+        bail!("--stress-grid: the stress cases are the meter stick's, the rig runs {scene:?}");
     }
     if args.stress_grid {
         summary.push_str(&stress_grid::run(&mut link, args)?);

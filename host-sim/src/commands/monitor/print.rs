@@ -66,6 +66,18 @@ impl Observer for Printer {
                     100.0 * f64::from(worst_cycles) / f64::from(period_cycles)
                 ));
             }
+            Report::InterfaceSwitch { step, time, interface, mode } => {
+                self.line(&format!("t = {time:.3} s (step {step}): interface {interface} -> {mode:?}"));
+            }
+            Report::Body { step, time, body, state, mode }
+                if self.terminal && self.last_progress.elapsed() > Duration::from_millis(100) =>
+            {
+                self.last_progress = Instant::now();
+                eprint!(
+                    "\r\x1b[Kt = {time:8.3} s  step {step:7}  block {body}: x = {:+.4} m  theta = {:+.4} rad  on {mode:?}",
+                    state[0], state[2]
+                );
+            }
             Report::Error(e) => self.line(&format!("rig error: {e:?}")),
             Report::State(s) => self.line(&format!("rig state: {s:?}")),
             _ => {}

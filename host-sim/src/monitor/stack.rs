@@ -1,0 +1,186 @@
+//! The stack over the link (`SceneId::Stack`, protocol version 7): its parameters read back, a
+//! run recorded (the outcome, the checksum, each interface's switches, the body telemetry frames)
+//! and compared with the host core's f32 `Stack3` of the same parameters, run here (bit-identical
+//! outcome, steps, checksum and switches expected).
+
+use std::time::{Duration, Instant};
+
+use anyhow::bail;
+use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack3, StackParams};
+use meterstick_core::planar::{Checksum, ContactMode, Direction};
+use meterstick_link::host::{Link, REPLY_TIMEOUT};
+use meterstick_link::{Command, ErrorCode, Mode, OutcomeCode, ParamId, Report};
+use serde::Serialize;
+
+use super::Observer;
+
+/// The rig's stack parameters, read back with `GetParam` (every [`ParamId`] the stack has).
+///
+/// # Errors
+/// A missing or unexpected reply.
+pub fn read_stack_params(link: &mut Link) -> anyhow::Result<StackParams<f32>> {
+    let mut p = StackParams::<f32>::default();
+    for id in ParamId::ALL.into_iter().filter(|id| StackParams::<f32>::NAMES.contains(&id.name())) {
+        match link.request(&Command::GetParam { id }, REPLY_TIMEOUT)? {
+            Report::Param { value, .. } if p.set(id.name(), value) => {}
+            other => bail!("GetParam {}: unexpected reply {other:?}", id.name()),
+        }
+    }
+    Ok(p)
+}
+
+/// An interface switch: step, time (s), interface, mode.
+pub type InterfaceSwitch = (u32, f32, u8, Mode);
+
+/// A stack run as the rig reported it.
+#[derive(Debug, Clone)]
+pub struct StackRecording {
+    /// The parameters the rig ran (read back before the start).
+    pub params: StackParams<f32>,
+    /// The rig's outcome code, end time (s), steps and checksum.
+    pub outcome: OutcomeCode,
+    /// Simulated time at the end (s).
+    pub end_time: f32,
+    /// Steps.
+    pub steps: u32,
+    /// The rig's checksum of the run.
+    pub checksum: u32,
+    /// Each interface's switches.
+    pub switches: Vec<InterfaceSwitch>,
+    /// `Report::Body` frames received.
+    pub body_frames: u64,
+    /// Reports the rig said it dropped.
+    pub dropped: u32,
+    /// Wall time from start to outcome (s).
+    pub wall_s: f64,
+}
+
+/// Records a stack run until its outcome: with `start`, sends `Start` first; otherwise waits for
+/// a run to begin.
+///
+/// # Errors
+/// The start refused, no outcome within `timeout`, or the link failed.
+pub fn record_stack_run(
+    link: &mut Link,
+    params: StackParams<f32>,
+    start: bool,
+    timeout: Duration,
+    observer: &mut dyn Observer,
+) -> anyhow::Result<StackRecording> {
+    let began = Instant::now();
+    if start {
+        match link.request(&Command::Start, REPLY_TIMEOUT)? {
+            Report::Ack { .. } => {}
+            other => bail!("the rig refused to start: {other:?}"),
+        }
+    }
+    let deadline = began + timeout;
+    let (mut switches, mut body_frames, mut dropped) = (Vec::new(), 0u64, 0u32);
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        let Some(report) = link.next(left.min(Duration::from_secs(1)))? else {
+            if Instant::now() >= deadline {
+                bail!("no outcome within {:.0} s", timeout.as_secs_f64());
+            }
+            continue;
+        };
+        observer.report(&report);
+        match report {
+            Report::Body { .. } => body_frames += 1,
+            Report::InterfaceSwitch { step, time, interface, mode } => {
+                switches.push((step, time, interface, mode));
+            }
+            Report::Error(ErrorCode::TxDropped { count }) => dropped = dropped.saturating_add(count),
+            Report::Outcome { outcome, time, steps, checksum } => {
+                return Ok(StackRecording {
+                    params,
+                    outcome,
+                    end_time: time,
+                    steps,
+                    checksum,
+                    switches,
+                    body_frames,
+                    dropped,
+                    wall_s: began.elapsed().as_secs_f64(),
+                });
+            }
+            _ => {}
+        }
+    }
+}
+
+/// An interface's mode from its four candidates, by the rule the link documents ([`Mode`]):
+/// sliding when one slides; else by the touching (sticking) candidates: none separated, one
+/// tipping, more sticking.
+#[must_use]
+pub fn interface_mode(candidates: [ContactMode; 4]) -> Mode {
+    if let Some(ContactMode::Sliding(d)) = candidates.iter().find(|m| m.is_sliding()) {
+        return if *d == Direction::Plus { Mode::SlidingPositive } else { Mode::SlidingNegative };
+    }
+    match candidates.iter().filter(|m| **m == ContactMode::Sticking).count() {
+        0 => Mode::Separated,
+        1 => Mode::Tipping,
+        _ => Mode::Sticking,
+    }
+}
+
+/// A stack run recorded from the rig against the host core's.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[allow(clippy::struct_excessive_bools)] // one verdict per figure compared
+pub struct StackComparison {
+    /// Same outcome.
+    pub same_outcome: bool,
+    /// Same number of steps.
+    pub same_steps: bool,
+    /// Same checksum (every block's state after every step, bit-identical).
+    pub same_checksum: bool,
+    /// Same interface switches (step, time, interface, mode).
+    pub same_switches: bool,
+    /// The rig's checksum.
+    pub rig_checksum: String,
+    /// The host's.
+    pub host_checksum: String,
+}
+
+impl StackComparison {
+    /// Everything the same.
+    #[must_use]
+    pub const fn identical(&self) -> bool {
+        self.same_outcome && self.same_steps && self.same_checksum && self.same_switches
+    }
+}
+
+/// Runs the host core's f32 `Stack3` of the rig's parameters and compares it with `rec`.
+///
+/// # Errors
+/// Parameters the host core refuses.
+pub fn compare_stack(rec: &StackRecording) -> anyhow::Result<StackComparison> {
+    let mut scene =
+        Stack3::<f32>::new(rec.params).map_err(|e| anyhow::anyhow!("the rig's parameters: {e}"))?;
+    let mut checksum = Checksum::new();
+    let mut last = scene.modes().map(interface_mode);
+    let (mut steps, mut switches) = (0u32, Vec::new());
+    let outcome = scene.run(|r| {
+        steps += 1;
+        r.states.iter().for_each(|b| checksum.add(b));
+        let now = r.modes.map(interface_mode);
+        for (i, (a, b)) in last.iter().zip(&now).enumerate() {
+            if a != b {
+                switches.push((steps, r.time, u8::try_from(i).unwrap_or(u8::MAX), *b));
+            }
+        }
+        last = now;
+    });
+    Ok(StackComparison {
+        same_outcome: super::outcome_of(rec.outcome).class == outcome.kind(),
+        same_steps: steps == rec.steps,
+        same_checksum: checksum.value() == rec.checksum,
+        same_switches: switches.len() == rec.switches.len()
+            && switches
+                .iter()
+                .zip(&rec.switches)
+                .all(|(h, r)| h.0 == r.0 && h.1.to_bits() == r.1.to_bits() && h.2 == r.2 && h.3 == r.3),
+        rig_checksum: format!("{:08x}", rec.checksum),
+        host_checksum: format!("{:08x}", checksum.value()),
+    })
+}
