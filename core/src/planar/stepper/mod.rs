@@ -340,6 +340,7 @@ impl<T: Real, const K: usize, const N: usize, const NF: usize> Stepper<T, K, N, 
     /// `true` when contact `i` was left touching and slipping but carrying nothing by the last
     /// step's load ([`Self::decide_load`], three or more contacts).
     #[inline]
+    #[cfg_attr(not(feature = "fallback"), allow(clippy::unused_self))] // none is left without it
     fn slips_unloaded(&self, i: usize) -> bool {
         #[cfg(feature = "fallback")]
         return K >= 3 && self.slipping_unloaded[i];
