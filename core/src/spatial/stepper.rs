@@ -305,6 +305,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
         let w_free = st.angular_velocity;
         let position_size = st.position.iter().fold(T::zero(), |a, x| a + x.abs_exact());
         let (mut speed, mut terms) = (T::zero(), T::zero());
+        let (v_size, w_size) = (norm(&v_free), norm(&w_free));
         let touches = core::array::from_fn(|i| {
             let r = self.arm(&self.shapes[i], &st);
             let gap = dot(&n, &sub(&add(&st.position, &r), &self.plane.point));
@@ -313,7 +314,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             speed = max(speed, norm(&u_free));
             // The slip is summed from `v~` and `omega~ x r`: its round-off is of their sizes, not
             // of its own (a ball near rolling slips slowly on a fast surface).
-            terms = max(terms, norm(&v_free) + norm(&w_free) * norm(&r));
+            terms = max(terms, v_size + w_size * norm(&r));
             let mu =
                 if self.modes[i] == Mode::Sliding { self.plane.mu_kinetic } else { self.plane.mu_static };
             Touch {

@@ -307,6 +307,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         // length): a free slip within round-off has no direction of its own.
         let axis = rotate(&st.orientation, &[T::one(), T::zero(), T::zero()]);
         let (mut speed, mut terms) = (T::zero(), T::zero());
+        let (v_size, w_size) = (norm(&v_free), norm(&w_free));
         let mut finite = true;
         let touches = core::array::from_fn(|i| {
             let Some(support) = supports[i] else {
@@ -327,7 +328,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
             speed = max(speed, norm(&u_free));
             // The slip is summed from `v~`, `omega~ x r` and the support's velocity: its round-off
             // is of their sizes (as on a plane, `super::stepper`).
-            terms = max(terms, norm(&v_free) + norm(&w_free) * norm(&r) + norm(&support.velocity));
+            terms = max(terms, v_size + w_size * norm(&r) + norm(&support.velocity));
             let mu = if self.modes[i] == Mode::Sliding { self.mu[1] } else { self.mu[0] };
             Touch {
                 active: under && gap <= s.margin,
