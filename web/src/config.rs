@@ -213,7 +213,7 @@ mod tests {
         let c = config(SceneKind::MeterStick, &[("width", 0.1)]);
         assert_eq!(
             message(&c).as_str(),
-            "width does not apply to scene meter-stick (it is a parameter of incline, block-on-block, tablecloth)"
+            "width does not apply to scene meter-stick (it is a parameter of incline, meter-stick-3d, block-on-block, tablecloth)"
         );
         let c = config(SceneKind::Ladder, &[("h", 1e-9)]);
         assert_eq!(
