@@ -355,15 +355,20 @@ fn record_and_write(
         rec.wall_s,
         args.out.display()
     );
-    if s.comparison.as_ref().is_some_and(|c| !c.identical()) {
-        // Exit status 1: a check failed (not bad input).
-        return Err(crate::errors::CheckFailed(format!(
-            "{summary}the rig's run differs from the host's f32 build (see {})",
-            args.out.join("summary.json").display()
-        ))
-        .into());
+    answer(summary, s.comparison.as_ref().is_none_or(RigComparison::identical), &args.out)
+}
+
+/// `summary` as the command's answer; when the rig's run is not `identical` to the host's, a
+/// failed check (exit status 1, not bad input) naming `summary.json` in `out`.
+fn answer(summary: String, identical: bool, out: &std::path::Path) -> anyhow::Result<String> {
+    if identical {
+        return Ok(summary);
     }
-    Ok(summary)
+    Err(crate::errors::CheckFailed(format!(
+        "{summary}the rig's run differs from the host's f32 build (see {})",
+        out.join("summary.json").display()
+    ))
+    .into())
 }
 
 #[cfg(test)]
