@@ -2,7 +2,7 @@
 //! against run time as the step shrinks, and where f32 holds over launch speed x step.
 //!
 //! **Error against run time** ([`sweep`]). Each [`CASES`] entry is a scene with a closed form
-//! (`docs/scenes.md`; [`crate::bodies::puck_law`], [`crate::bodies::billiard_law`]), run in the
+//! (`docs/scenes.md`; [`crate::bodies::law`]), run in the
 //! core in f32 and in f64 with each `h` of a sweep through the one scene interface
 //! ([`crate::view_run::run_view`]); its error is the measured quantity's against the law's:
 //! * the puck on a level table launched at 30 degrees: its stopping distance against
@@ -27,7 +27,6 @@ use std::time::Instant;
 use meterstick_core::scene::spatial::{BilliardParams, PuckParams};
 use meterstick_core::scene::{SceneKind, SceneParams};
 
-use crate::bodies::{billiard_law, puck_law};
 use crate::scenes::{LcpLayout, Precision};
 use crate::trajectory::Measured;
 use crate::view_run::{ViewRun, run_view};
@@ -113,15 +112,6 @@ pub const CASES: [Case; 4] = [
     },
 ];
 
-/// The law's measured quantities of a scene of [`CASES`].
-fn law_of(spec: &SceneParams) -> Measured {
-    match spec {
-        SceneParams::Puck(p) => puck_law(p).measured,
-        SceneParams::Billiard(p) => billiard_law(p).measured,
-        _ => Measured::default(),
-    }
-}
-
 /// One run of the sweep.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct SpatialRow {
@@ -179,7 +169,9 @@ pub fn sweep(steps: &[f64]) -> anyhow::Result<Vec<SpatialRow>> {
                     precision: precision.name(),
                     h,
                     steps: run.steps,
-                    error: (case.error)(&measured, &law_of(&spec)).unwrap_or(f64::NAN),
+                    error: crate::bodies::law(&spec)
+                        .and_then(|law| (case.error)(&measured, &law.measured))
+                        .unwrap_or(f64::NAN),
                     ns_per_step,
                 });
             }

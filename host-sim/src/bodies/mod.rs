@@ -30,7 +30,7 @@ use serde::Serialize;
 use crate::trajectory::{Measured, RunOutcome};
 
 pub use core_run::run_core;
-pub use law::{Law, billiard_law, disc_on_board_law, law, puck_law};
+pub use law::{Law, disc_on_board_law, law};
 pub use reach::{BodiesWarning, F32_MASS_RATIO_REACH, MassRatioReach, warnings};
 pub use reference_run::{run_reference, to_reference};
 
