@@ -120,13 +120,19 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// The median host ns per step of `p`'s whole run in `config`: the core stepped through its scene
+/// interface to the outcome with nothing read ([`crate::view_run::run_view`]), the reference run
+/// unrecorded.
 fn time_run(config: Implementation, p: &SceneParams) -> anyhow::Result<(f64, usize)> {
     let mut samples = Vec::new();
     loop {
         let start = Instant::now();
-        let t = run_scene(p, config, Record::Nothing)?;
+        let steps = match config {
+            Implementation::Core(precision, layout) => crate::view_run::run_view(p, precision, layout)?.steps,
+            Implementation::Reference => run_scene(p, config, Record::Nothing)?.steps,
+        };
         let s = start.elapsed().as_secs_f64();
-        samples.push(1e9 * s / t.steps.max(1) as f64);
+        samples.push(1e9 * s / steps.max(1) as f64);
         if samples.len() >= 5 || s > 1.0 || (s > 0.3 && samples.len() >= 3) {
             break;
         }

@@ -126,7 +126,7 @@ impl ViewVisitor for CoreRun<'_> {
                 pivots: summary.pivots,
                 max_pivots: summary.max_pivots,
                 warm_direct: u32::try_from(summary.warm_starts).unwrap_or(u32::MAX),
-                max_active: summary.most_lcp_contacts.unwrap_or(0),
+                max_active: summary.most_lcp_contacts,
                 lcp_rows: view.lcp_capacity(),
                 ambiguous_steps: summary.ambiguous_steps,
                 rule_checked_steps: summary.rule_checked_steps,

@@ -1,6 +1,6 @@
-//! The scenes recorded body by body: of several bodies (`docs/scenes.md`, "Scenes of several
-//! bodies"; [`SceneKind::is_multibody`]) and in three dimensions ("Scenes in three dimensions";
-//! [`SceneKind::is_spatial`]), in `host-sim`: a run in the core ([`run_core`], through the core's one scene interface,
+//! The scenes recorded body by body ([`runs`]: every scene but one body on its supports; today
+//! those of several bodies, `docs/scenes.md`, "Scenes of several bodies", and in three dimensions,
+//! "Scenes in three dimensions"), in `host-sim`: a run in the core ([`run_core`], through the core's one scene interface,
 //! [`SceneView`](meterstick_core::scene::SceneView), its pair forces and loads the view's figures) or
 //! in the independent reference ([`run_reference`], `meterstick_reference::multibody::run`), recorded as a
 //! [`BodiesRun`] (every body's state after every step, the outcome, what the scene measures, the
@@ -34,11 +34,13 @@ pub use law::{Law, disc_on_board_law, law};
 pub use reach::{BodiesWarning, F32_MASS_RATIO_REACH, MassRatioReach, warnings};
 pub use reference_run::{run_reference, to_reference};
 
-/// `true` for a scene this module runs: of several bodies, or in three dimensions (every scene
-/// but those of one planar body, which `crate::trajectory` runs).
+/// `true` for a scene this module records: every scene but one body on a fixed list of supports
+/// (its catalogue row's [`SceneKind::contacts`], 1 to 3), which `crate::trajectory` records with
+/// each support's touch point and switch events. The choice is the record's shape, not the
+/// engine's: a scene of a new engine is recorded here with no change.
 #[must_use]
 pub const fn runs(kind: SceneKind) -> bool {
-    kind.is_multibody() || kind.is_spatial()
+    kind.contacts() == 0
 }
 pub use report::{
     BodiesComparison, BodiesImplementation, BodiesSummary, LawSummary, max_deviation, run_all, summarise,
@@ -105,8 +107,9 @@ pub struct BodiesCounters {
     pub max_pivots: u32,
     /// Steps the warm basis solved without a pivot (core).
     pub warm_direct: u32,
-    /// The most active candidate contacts of one step (core).
-    pub max_active: u8,
+    /// The most candidate contacts one step's LCP held (core; `None` for an engine whose every
+    /// step's LCP holds all its contacts, `RunStats::most_lcp_contacts`).
+    pub max_active: Option<u8>,
     /// The LCP's capacity (core) or its largest size (reference), rows.
     pub lcp_rows: usize,
     /// Steps whose verified solutions moved the bodies differently (reference; core: of the

@@ -39,10 +39,16 @@ fn body_series(runs: &[&BodiesRun], quantity: &str, value: impl Fn(&BodiesRow, u
 
 /// A run's plots in `dir`: every body's position (`positions.svg`: `x`, and `y` in a second
 /// panel), velocity (`velocities.svg`: `vx`, `vy`) and angle (`angles.svg`) over time, core
-/// solid, reference dashed.
-pub(super) fn write_plots(name: &str, runs: &[&BodiesRun], dir: &std::path::Path) -> anyhow::Result<()> {
+/// solid, reference dashed; of bodies in three dimensions, [`write_spatial_plots`]'s. Gives the
+/// name of the third plot (`angles.svg` or `path.svg`).
+pub(super) fn write_plots(
+    name: &str,
+    runs: &[&BodiesRun],
+    dir: &std::path::Path,
+) -> anyhow::Result<&'static str> {
     if runs.first().is_some_and(|r| !r.last.spatial.is_empty()) {
-        return write_spatial_plots(name, runs, dir);
+        write_spatial_plots(name, runs, dir)?;
+        return Ok("path.svg");
     }
     let legend = SeriesLabelPosition::UpperLeft;
     for (file, title, panels) in [
@@ -64,7 +70,8 @@ pub(super) fn write_plots(name: &str, runs: &[&BodiesRun], dir: &std::path::Path
         &angles,
         false,
         &legend,
-    )
+    )?;
+    Ok("angles.svg")
 }
 
 /// The plots of a scene in three dimensions in `dir`: every body's position (`positions.svg`: `x`,

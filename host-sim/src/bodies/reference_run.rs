@@ -105,13 +105,12 @@ fn reference_row(r: &reference::Row) -> BodiesRow {
 /// # Errors
 /// A scene the reference does not have, or its refusal of the parameters.
 pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesRun> {
-    let kind = spec.kind();
-    if kind.is_spatial() {
-        return run_spatial_reference(spec, record);
-    }
+    // The reference's scenes of several bodies, else its scenes in three dimensions (which
+    // refuses a scene it does not have).
     let Some(r_spec) = to_reference(spec) else {
-        anyhow::bail!("scene {kind} has no reference of several bodies");
+        return run_spatial_reference(spec, record);
     };
+    let kind = spec.kind();
     progress::check()?;
     let sample = if record { Sample::All } else { Sample::None };
     let r = reference::run(&r_spec, sample).map_err(|e| anyhow::anyhow!("reference: {e}"))?;
@@ -198,7 +197,7 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
             },
             keep,
         ),
-        _ => anyhow::bail!("scene {} has no reference in three dimensions", spec.kind()),
+        _ => anyhow::bail!("scene {} has no reference", spec.kind()),
     }
     .map_err(|e| anyhow::anyhow!("reference: {e}"))?;
     progress::check()?;

@@ -125,15 +125,14 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
     }
     let _ = writeln!(out, "{}", measured_text(spec, &run.measured, law.as_ref()));
     let c = &run.counters;
-    let contacts = if spec.kind().is_multibody() {
-        format!("most active contacts {} (LCP of {} rows, the full form)", c.max_active, c.lcp_rows)
-    } else {
-        match spec.get("friction_directions") {
-            Some(d) if d > 0.0 => {
-                format!("LCP of {} rows (the pyramid of {d} friction directions, the baseline)", c.lcp_rows)
-            }
-            _ => format!("LCP of {} rows (one friction line a contact, turned to its slip)", c.lcp_rows),
+    let contacts = match (c.max_active, spec.get("friction_directions")) {
+        (Some(active), _) => {
+            format!("most active contacts {active} (LCP of {} rows, the full form)", c.lcp_rows)
         }
+        (None, Some(d)) if d > 0.0 => {
+            format!("LCP of {} rows (the pyramid of {d} friction directions, the baseline)", c.lcp_rows)
+        }
+        (None, _) => format!("LCP of {} rows (one friction line a contact, turned to its slip)", c.lcp_rows),
     };
     let _ = writeln!(
         out,
@@ -144,7 +143,8 @@ pub fn summarise(spec: &SceneParams, precision: Precision) -> anyhow::Result<Str
         c.max_pivots,
         c.warm_direct,
     );
-    if run.checksum.is_some() && spec.kind().is_multibody() {
+    // The one-answer rule's counts, for an engine whose rule looks at its steps (the core's run).
+    if run.checksum.is_some() && c.max_active.is_some() {
         let _ = writeln!(out, "{}", rule_text(c));
     }
     if let Some(warning) = crate::scenes::friction_warning(spec, precision) {
@@ -270,6 +270,8 @@ pub fn run_all(
     };
     crate::output::create_dir(out)?;
     let mut summaries = Vec::new();
+    // The third plot of each run: its angles, or its path seen from above.
+    let mut plots = std::collections::BTreeSet::new();
     let mut text = String::new();
     for (name, spec) in specs {
         let (core, reference) = rayon::join(
@@ -303,7 +305,7 @@ pub fn run_all(
         crate::output::create_dir(&dir)?;
         write_trajectory(&core, &dir.join("core.csv"))?;
         write_trajectory(&reference, &dir.join("reference.csv"))?;
-        write_plots(name, &[&core, &reference], &dir)?;
+        plots.insert(write_plots(name, &[&core, &reference], &dir)?);
         crate::output::write_json(&dir.join("summary.json"), &summary)?;
         for run in [&core, &reference] {
             let _ = writeln!(
@@ -337,7 +339,7 @@ pub fn run_all(
                 "{name}: the core ran the pyramid of {d} friction directions, the reference Coulomb's circular cone: the deviation is the pyramid's error"
             );
         }
-        if spec.kind().is_multibody() {
+        if core.counters.max_active.is_some() {
             let _ = writeln!(
                 text,
                 "{name}: the reference found {} steps whose LCP has solutions that move the bodies differently; both take the least kinetic energy after the step (docs/formulation.md, \"One answer: the rule\")",
@@ -352,7 +354,7 @@ pub fn run_all(
         text,
         "files in {} (each run: core.csv, reference.csv, positions.svg, velocities.svg, {}, summary.json)",
         out.display(),
-        if specs.iter().any(|(_, s)| s.kind().is_spatial()) { "path.svg" } else { "angles.svg" }
+        plots.into_iter().collect::<Vec<_>>().join(" or ")
     );
     Ok(text)
 }

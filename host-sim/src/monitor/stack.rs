@@ -1,13 +1,18 @@
 //! The stack over the link (`SceneId::Stack`, protocol version 7): its parameters read back, a
 //! run recorded (the outcome, the checksum, each interface's switches, the body telemetry frames)
-//! and compared with the host core's f32 `Stack3` of the same parameters, run here (bit-identical
+//! and compared with the host core's f32 stack of the same parameters, run here through the core's
+//! scene interface (bit-identical
 //! outcome, steps, checksum and switches expected).
 
 use std::time::{Duration, Instant};
 
 use anyhow::bail;
-use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack3, StackParams};
-use meterstick_core::planar::{Checksum, ContactMode, Direction};
+use meterstick_core::Real;
+use meterstick_core::multibody::scenes::StackParams;
+use meterstick_core::planar::{ContactMode, Direction};
+use meterstick_core::scene::{
+    LcpLayout, Outcome, Precision, SceneParams, SceneView, StackSetup, ViewVisitor,
+};
 use meterstick_link::host::{Link, REPLY_TIMEOUT};
 use meterstick_link::{Command, ErrorCode, Mode, OutcomeCode, ParamId, Report};
 use serde::Serialize;
@@ -150,37 +155,145 @@ impl StackComparison {
     }
 }
 
-/// Runs the host core's f32 `Stack3` of the rig's parameters and compares it with `rec`.
+/// Runs the host core's f32 stack of the rig's parameters (`SceneParams::Stack`, through the
+/// core's scene interface: the same scene the rig's `Stack3` is) and compares it with `rec`.
 ///
 /// # Errors
 /// Parameters the host core refuses.
 pub fn compare_stack(rec: &StackRecording) -> anyhow::Result<StackComparison> {
-    let mut scene =
-        Stack3::<f32>::new(rec.params).map_err(|e| anyhow::anyhow!("the rig's parameters: {e}"))?;
-    let mut checksum = Checksum::new();
-    let mut last = scene.modes().map(interface_mode);
-    let (mut steps, mut switches) = (0u32, Vec::new());
-    let outcome = scene.run(|r| {
-        steps += 1;
-        r.states.iter().for_each(|b| checksum.add(b));
-        let now = r.modes.map(interface_mode);
-        for (i, (a, b)) in last.iter().zip(&now).enumerate() {
-            if a != b {
-                switches.push((steps, r.time, u8::try_from(i).unwrap_or(u8::MAX), *b));
-            }
-        }
-        last = now;
-    });
+    // The rig runs three blocks (`Stack3`).
+    let spec = SceneParams::Stack(StackSetup { blocks: 3.0, params: rec.params.cast::<f64>() });
+    let host = spec
+        .build_view::<0, _>(Precision::F32, LcpLayout::Full, HostRun)
+        .map_err(|e| anyhow::anyhow!("the rig's parameters: {e}"))?;
+    let (outcome, steps, checksum, switches) = (host.outcome, host.steps, host.checksum, host.switches);
     Ok(StackComparison {
         same_outcome: super::outcome_of(rec.outcome).class == outcome.kind(),
         same_steps: steps == rec.steps,
-        same_checksum: checksum.value() == rec.checksum,
+        same_checksum: checksum == rec.checksum,
         same_switches: switches.len() == rec.switches.len()
             && switches
                 .iter()
                 .zip(&rec.switches)
                 .all(|(h, r)| h.0 == r.0 && h.1.to_bits() == r.1.to_bits() && h.2 == r.2 && h.3 == r.3),
         rig_checksum: format!("{:08x}", rec.checksum),
-        host_checksum: format!("{:08x}", checksum.value()),
+        host_checksum: format!("{checksum:08x}"),
     })
+}
+
+/// The host's run of the stack: its outcome, steps, checksum and interface switches `(step, time,
+/// interface, mode)`.
+struct HostStack {
+    outcome: Outcome,
+    steps: u32,
+    checksum: u32,
+    switches: Vec<(u32, f32, u8, Mode)>,
+}
+
+/// Steps a scene of several bodies to its outcome through its view, reading each interface's mode
+/// from its four candidate contacts (the view lists them pair by pair).
+struct HostRun;
+
+impl ViewVisitor for HostRun {
+    type Output = HostStack;
+
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> HostStack {
+        let interfaces = |view: &dyn SceneView<T>| -> Vec<Mode> {
+            (0..view.contact_count() / 4)
+                .map(|p| {
+                    interface_mode(core::array::from_fn(|c| {
+                        view.contact(4 * p + c).map_or(ContactMode::Separated, |x| x.mode)
+                    }))
+                })
+                .collect()
+        };
+        let mut last = interfaces(view);
+        let (mut steps, mut switches) = (0u32, Vec::new());
+        while view.step() {
+            steps += 1;
+            let now = interfaces(view);
+            for (i, (a, b)) in last.iter().zip(&now).enumerate() {
+                if a != b {
+                    let time = view.time().as_f64() as f32;
+                    switches.push((steps, time, u8::try_from(i).unwrap_or(u8::MAX), *b));
+                }
+            }
+            last = now;
+        }
+        HostStack {
+            outcome: view.outcome().unwrap_or(Outcome::Unfinished),
+            steps,
+            checksum: view.checksum(),
+            switches,
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::panic)]
+mod tests {
+    use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack3};
+    use meterstick_core::planar::Checksum;
+
+    use super::*;
+
+    /// The rig's side of a run, as the rig steps it: its concrete `Stack3`, the checksum of every
+    /// block after every step, each interface's switches.
+    fn rig_run(params: StackParams<f32>) -> StackRecording {
+        let mut scene = Stack3::<f32>::new(params).unwrap();
+        let mut checksum = Checksum::new();
+        let mut last = scene.modes().map(interface_mode);
+        let (mut steps, mut switches) = (0u32, Vec::new());
+        let outcome = scene.run(|r| {
+            steps += 1;
+            r.states.iter().for_each(|b| checksum.add(b));
+            let now = r.modes.map(interface_mode);
+            for (i, (a, b)) in last.iter().zip(&now).enumerate() {
+                if a != b {
+                    switches.push((steps, r.time, u8::try_from(i).unwrap(), *b));
+                }
+            }
+            last = now;
+        });
+        let code = match outcome {
+            Outcome::Held => OutcomeCode::Held,
+            Outcome::Fell => OutcomeCode::Fell,
+            other => panic!("the stack ended {other:?}"),
+        };
+        StackRecording {
+            params,
+            outcome: code,
+            end_time: scene.time(),
+            steps,
+            checksum: checksum.value(),
+            switches,
+            body_frames: 0,
+            dropped: 0,
+            wall_s: 0.0,
+        }
+    }
+
+    /// The host's run through the scene interface is the rig's concrete run, bit for bit (the
+    /// stack held at overhang 0.98 and fallen at 1.02), and a run that differs in its checksum, its
+    /// steps or a switch's time is told apart.
+    #[test]
+    fn the_host_run_through_the_view_is_the_rigs() {
+        for overhang in [0.98, 1.02] {
+            let params = StackParams { overhang, max_time: 2.0, ..StackParams::default() };
+            let rec = rig_run(params);
+            assert!(!rec.switches.is_empty() || overhang < 1.0, "the falling stack switched");
+            let cmp = compare_stack(&rec).unwrap();
+            assert!(cmp.identical(), "overhang {overhang}: {cmp:?}");
+            let mut other = rec.clone();
+            other.checksum ^= 1;
+            assert!(!compare_stack(&other).unwrap().same_checksum);
+            let mut other = rec.clone();
+            other.steps += 1;
+            assert!(!compare_stack(&other).unwrap().same_steps);
+            if let Some(first) = other.switches.first_mut() {
+                first.1 = f32::from_bits(first.1.to_bits() + 1);
+                assert!(!compare_stack(&other).unwrap().same_switches);
+            }
+        }
+    }
 }

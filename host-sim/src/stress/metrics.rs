@@ -19,8 +19,9 @@ use std::time::Instant;
 
 use meterstick_core::Real;
 use meterstick_core::lcp::default_tolerance;
-use meterstick_core::planar::{BodyState, StepReport};
-use meterstick_core::scene::{MeterStick, Outcome, Scene, SceneVisitor};
+use meterstick_core::scene::{
+    MeterStick, Outcome, PlanarView, Pose, Scene, SceneView, SceneVisitor, SupportView, Velocity, ViewVisitor,
+};
 
 use super::cases::{Case, Claim};
 use crate::scenes::{LcpLayout, Precision, SceneParams};
@@ -219,56 +220,89 @@ pub fn penetrations(spec: &SceneParams, s: &[f64; 6], supports: &[[f64; 2]]) -> 
     }
 }
 
-fn state_of<T: Real>(s: &BodyState<T>) -> [f64; 6] {
-    s.to_array().map(Real::as_f64)
+/// Body 0's `(x, y, theta, vx, vy, omega)` in f64 (NaN for a body not in the plane, which fails
+/// every bound).
+fn state_of<T: Real>(view: &dyn SceneView<T>) -> [f64; 6] {
+    match view.body(0).map(|b| (b.pose, b.velocity)) {
+        Some((Pose::Planar { x, y, theta }, Velocity::Planar { vx, vy, omega })) => {
+            [x, y, theta, vx, vy, omega].map(Real::as_f64)
+        }
+        _ => [f64::NAN; 6],
+    }
 }
 
 /// Each support's position (finger tips; fixed lines give zero velocity anyway).
-fn support_points<T: Real, S: Scene<T, K>, const K: usize>(scene: &S) -> Vec<[f64; 2]> {
-    scene.supports().iter().map(|s| s.position().map(Real::as_f64)).collect()
+fn support_points<T: Real>(view: &dyn SceneView<T>) -> Vec<[f64; 2]> {
+    (0..view.support_count())
+        .filter_map(|i| match view.support(i)? {
+            SupportView::Point { position, .. } | SupportView::Line { position, .. } => {
+                Some(position.map(Real::as_f64))
+            }
+            _ => None,
+        })
+        .collect()
 }
 
-/// Runs `case`, a scene of one body, in `precision` and `layout`, measuring as it goes; samples
-/// the state every `stride` steps (a scene of several bodies: [`super::bodies::measure`]).
+/// Each contact's normal and friction impulse over the last step (N s).
+fn impulses<T: Real>(view: &dyn SceneView<T>) -> Vec<[f64; 2]> {
+    (0..view.contact_count())
+        .filter_map(|i| view.contact(i).map(|c| [c.normal_impulse.as_f64(), c.friction_impulse.as_f64()]))
+        .collect()
+}
+
+/// Runs `case`, a scene of one body, in `precision` and `layout` through the core's scene
+/// interface, measuring as it goes; samples the state every `stride` steps (a scene of several
+/// bodies: [`super::bodies::measure`]). A case that starts above its rest ([`Case::start_dy`], the
+/// meter stick) is built at that start, then measured through the same interface.
 #[must_use]
 pub fn measure(case: &Case, precision: Precision, layout: LcpLayout, stride: u64) -> Metrics {
-    case.spec.build::<0, _>(precision, layout, Measure { case, stride }).unwrap_or_else(Metrics::invalid)
+    let measure = Measure { case, stride, layout };
+    let built = if case.start_dy == 0.0 {
+        case.spec.build_view::<0, _>(precision, layout, measure)
+    } else {
+        case.spec.build::<0, _>(precision, layout, Lifted(measure))
+    };
+    built.unwrap_or_else(Metrics::invalid)
 }
 
-/// [`measure_scene`] as a visitor of the core's registry.
-struct Measure<'a> {
-    case: &'a Case,
-    stride: u64,
-}
+/// [`Measure`], the scene first lifted `start_dy` above its rest on the fingers (the meter stick:
+/// no other scene starts elsewhere than its parameters say).
+struct Lifted<'a>(Measure<'a>);
 
-impl SceneVisitor for Measure<'_> {
+impl SceneVisitor for Lifted<'_> {
     type Output = Metrics;
 
-    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, mut scene: S) -> Metrics {
-        measure_scene::<T, N, _, K>(&mut scene, self.case, self.stride, LcpLayout::Full.size(K))
+    fn visit<T: Real, const K: usize, const N: usize, S: Scene<T, K>>(self, _: S) -> Metrics {
+        Metrics::invalid("only the meter stick starts above its rest")
     }
 
-    /// The meter stick starts `case.start_dy` above its rest on the fingers.
     fn visit_meter_stick<T: Real, const N: usize, const E: usize>(
         self,
         scene: MeterStick<T, N, E>,
     ) -> Metrics {
         let p = *scene.params();
         let mut start = p.resting_state();
-        start.y += T::of(self.case.start_dy);
+        start.y += T::of(self.0.case.start_dy);
         match MeterStick::<T, N, E>::with_state(p, start) {
-            Ok(lifted) => self.visit::<T, 2, N, _>(lifted),
+            Ok(lifted) => self.0.visit(&mut PlanarView::new(lifted)),
             Err(e) => Metrics::invalid(e),
         }
     }
 }
 
+/// Measures a scene of one body through its view.
+struct Measure<'a> {
+    case: &'a Case,
+    stride: u64,
+    layout: LcpLayout,
+}
+
 /// The work of the supports on the body over a step: `sum_i u_i . (n p_n + d p_f)`, `u_i` from
 /// the supports' positions before and after, `n = R(theta) (0, 1)`, `d = R(theta) (1, 0)` for a
 /// finger under the rod at the step's start angle (supports on lines do not move).
-fn support_work<T: Real, const K: usize>(
+fn support_work(
     spec: &SceneParams,
-    r: &StepReport<T, K>,
+    impulses: &[[f64; 2]],
     before: &[[f64; 2]],
     after: &[[f64; 2]],
     theta: f64,
@@ -279,92 +313,99 @@ fn support_work<T: Real, const K: usize>(
     let (sn, cs) = theta.sin_cos();
     let h = spec.step();
     let mut work = 0.0;
-    for ((b, a), c) in before.iter().zip(after).zip(&r.contacts) {
+    for ((b, a), &[pn, pf]) in before.iter().zip(after).zip(impulses) {
         let u = [(a[0] - b[0]) / h, (a[1] - b[1]) / h];
-        let (pn, pf) = (c.normal_impulse.as_f64(), c.friction_impulse.as_f64());
         work += u[0] * (-sn * pn + cs * pf) + u[1] * (cs * pn + sn * pf);
     }
     work
 }
 
-/// Steps `scene` (`K` contacts, an `N x N` LCP, `n_full` its full layout's size) to its outcome,
-/// measuring.
-fn measure_scene<T: Real, const N: usize, S: Scene<T, K>, const K: usize>(
-    scene: &mut S,
-    case: &Case,
-    stride: u64,
-    n_full: usize,
-) -> Metrics {
-    let started = Instant::now();
-    let spec = &case.spec;
-    let body = body_of(spec);
-    let (m_body, _, size, _) = body;
-    let eps = T::EPS.as_f64();
-    let g = spec.get("gravity").unwrap_or(0.0);
-    let mut m = Metrics { eps, still_scale: size, ..Metrics::default() };
-    let mut s = state_of(scene.state());
-    let s0 = s;
-    let mut supports = support_points(scene);
-    let mut pen = penetrations(spec, &s, &supports);
-    let pen0 = pen.iter().fold(0.0, |a: f64, &p| a.max(p));
-    let e0 = energy(body, spec, &s);
-    let mut e_before = e0;
-    let mut work = 0.0;
-    m.trace.push([s[0], s[1], s[2]]);
-    while let Some(r) = scene.step() {
-        // The full layout's tolerance when the reduced check sent the step to it.
-        let n_used = if r.full_layout_used { n_full } else { N };
-        let tolerance = default_tolerance::<T, 8>().as_f64() * n_used as f64 / 8.0;
-        m.residual_ratio = m.residual_ratio.max(r.residual.as_f64() / tolerance);
-        m.max_pivots = m.max_pivots.max(r.pivots);
-        let after = state_of(&r.state);
-        let supports_after = support_points(scene);
-        let step_work = support_work(spec, &r, &supports, &supports_after, s[2]);
-        let u = supports.iter().zip(&supports_after).fold(0.0, |a: f64, (b, c)| a.max((c[0] - b[0]).abs()))
-            / spec.step();
-        let e_after = energy(body, spec, &after);
-        if e_after.is_finite() {
-            m.step_energy_gain = m.step_energy_gain.max(e_after - e_before - step_work);
-            work += step_work;
-            let gain = e_after - e0 - work;
-            m.energy_gain = m.energy_gain.max(gain);
-            let allowance = m_body * g * pen0 + energy_tolerance(body, spec, eps, N, &after);
-            m.energy_ratio = m.energy_ratio.max(gain / allowance);
-        }
-        let pen_after = penetrations(spec, &after, &supports_after);
-        for (&before, &after) in pen.iter().zip(&pen_after) {
-            let bound = penetration_bound(body, spec, eps, before, &s, u);
-            m.penetration = m.penetration.max(after);
-            m.penetration_ratio = m.penetration_ratio.max(after / bound);
-        }
-        match case.claim {
-            Claim::NotDragged => {
-                if supports_after[0][0] < after[0] - 0.01 * size {
-                    m.claim_motion = m.claim_motion.max((after[0] - s0[0]).abs());
+impl ViewVisitor for Measure<'_> {
+    type Output = Metrics;
+
+    /// Steps `view` (one body on `K` supports, an LCP of the layout's size, the full layout's
+    /// when the reduced check sent a step to it) to its outcome, measuring.
+    fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> Metrics {
+        let started = Instant::now();
+        let (case, stride) = (self.case, self.stride);
+        let spec = &case.spec;
+        let body = body_of(spec);
+        let (m_body, _, size, _) = body;
+        let eps = T::EPS.as_f64();
+        let g = spec.get("gravity").unwrap_or(0.0);
+        let (n, n_full) = (self.layout.size(view.contact_count()), view.lcp_capacity());
+        let mut m = Metrics { eps, still_scale: size, ..Metrics::default() };
+        let mut s = state_of(view);
+        let s0 = s;
+        let mut supports = support_points(view);
+        let mut pen = penetrations(spec, &s, &supports);
+        let pen0 = pen.iter().fold(0.0, |a: f64, &p| a.max(p));
+        let e0 = energy(body, spec, &s);
+        let mut e_before = e0;
+        let mut work = 0.0;
+        let mut fired = view.summary().reduced_check_fired;
+        m.trace.push([s[0], s[1], s[2]]);
+        while view.step() {
+            let stats = view.summary();
+            // The full layout's tolerance when the reduced check sent the step to it.
+            let n_used = if stats.reduced_check_fired > fired { n_full } else { n };
+            fired = stats.reduced_check_fired;
+            let tolerance = default_tolerance::<T, 8>().as_f64() * n_used as f64 / 8.0;
+            if let Some(last) = view.last_step() {
+                let residual = last.residual.map_or(0.0, Real::as_f64);
+                m.residual_ratio = m.residual_ratio.max(residual / tolerance);
+                m.max_pivots = m.max_pivots.max(last.pivots);
+            }
+            let after = state_of(view);
+            let supports_after = support_points(view);
+            let step_work = support_work(spec, &impulses(view), &supports, &supports_after, s[2]);
+            let u =
+                supports.iter().zip(&supports_after).fold(0.0, |a: f64, (b, c)| a.max((c[0] - b[0]).abs()))
+                    / spec.step();
+            let e_after = energy(body, spec, &after);
+            if e_after.is_finite() {
+                m.step_energy_gain = m.step_energy_gain.max(e_after - e_before - step_work);
+                work += step_work;
+                let gain = e_after - e0 - work;
+                m.energy_gain = m.energy_gain.max(gain);
+                let allowance = m_body * g * pen0 + energy_tolerance(body, spec, eps, n, &after);
+                m.energy_ratio = m.energy_ratio.max(gain / allowance);
+            }
+            let pen_after = penetrations(spec, &after, &supports_after);
+            for (&before, &after) in pen.iter().zip(&pen_after) {
+                let bound = penetration_bound(body, spec, eps, before, &s, u);
+                m.penetration = m.penetration.max(after);
+                m.penetration_ratio = m.penetration_ratio.max(after / bound);
+            }
+            match case.claim {
+                Claim::NotDragged => {
+                    if supports_after[0][0] < after[0] - 0.01 * size {
+                        m.claim_motion = m.claim_motion.max((after[0] - s0[0]).abs());
+                    }
                 }
+                Claim::BodyStill => {
+                    let moved = [after[0] - s0[0], after[1] - s0[1], size / 2.0 * (after[2] - s0[2])];
+                    m.claim_motion = moved.iter().fold(m.claim_motion, |a, d| a.max(d.abs()));
+                }
+                Claim::None | Claim::LawAccelerations => {}
             }
-            Claim::BodyStill => {
-                let moved = [after[0] - s0[0], after[1] - s0[1], size / 2.0 * (after[2] - s0[2])];
-                m.claim_motion = moved.iter().fold(m.claim_motion, |a, d| a.max(d.abs()));
+            s = after;
+            e_before = e_after;
+            supports = supports_after;
+            pen = pen_after;
+            if stats.steps % stride == 0 {
+                m.trace.push([s[0], s[1], s[2]]);
             }
-            Claim::None | Claim::LawAccelerations => {}
         }
-        s = after;
-        e_before = e_after;
-        supports = supports_after;
-        pen = pen_after;
-        if scene.stats().steps % stride == 0 {
-            m.trace.push([s[0], s[1], s[2]]);
-        }
+        let stats = view.summary();
+        m.steps = stats.steps;
+        m.mean_pivots = stats.pivots as f64 / stats.steps.max(1) as f64;
+        m.reduced_check_fired = stats.reduced_check_fired;
+        m.regularized_solves = stats.regularized_solves;
+        m.outcome = Some(view.outcome().unwrap_or(Outcome::Unfinished).into());
+        m.wall_s = started.elapsed().as_secs_f64();
+        m
     }
-    let stats = scene.stats();
-    m.steps = stats.steps;
-    m.mean_pivots = stats.pivots as f64 / stats.steps.max(1) as f64;
-    m.reduced_check_fired = stats.reduced_check_fired;
-    m.regularized_solves = stats.regularized_solves;
-    m.outcome = Some(scene.outcome().unwrap_or(Outcome::Unfinished).into());
-    m.wall_s = started.elapsed().as_secs_f64();
-    m
 }
 
 #[cfg(test)]
