@@ -7,7 +7,8 @@
 #     meter stick and the 3-block stack in rapier2d and in the core, one process
 #     (out/bench/rapier.md, quoted as written);
 #   - the rapier3d bench (`cargo bench -p meterstick-tests --features rapier3d --bench rapier3d`):
-#     the puck on an incline and the billiard ball in rapier3d and in the core, their anisotropy
+#     the puck on an incline, the billiard ball and the curling stone in rapier3d and in the core,
+#     their anisotropy
 #     (out/bench/rapier3d.md, quoted as written);
 #   - `host-sim report --quick`: host ns/step, pivots and solve paths at h = 1 ms
 #     (out/performance/report/report.json, read as JSON);
@@ -181,7 +182,9 @@ print()
 print("`cargo bench -p meterstick-tests --features rapier3d --bench rapier3d`: rapier3d 0.36 (f32) and the core (f32) "
       "on the puck on an incline and the billiard ball at their defaults (rapier: a tilted fixed cuboid for the plane, "
       "the puck as its own cylinder and as a ball with its rotations locked, contact recycling off, one Coulomb "
-      "coefficient mu_k, its default solver and friction model; see the bench's module doc), then the anisotropy "
+      "coefficient mu_k, its default solver and friction model; see the bench's module doc), the curling stone (the "
+      "uniform disc: rapier's cylinder; its friction model holds sliding and twisting apart, so its spin stops long "
+      "before its slide, where Coulomb's law on the face stops both together), then the anisotropy "
       "measured the same way in both (the puck on a level table at 16 headings; the ball's rolling velocity against "
       "the 5/7 law), in one process, as it printed:")
 print()

@@ -1,6 +1,7 @@
 //! `cargo bench -p meterstick-tests --features rapier3d --bench rapier3d`: the puck on an incline
 //! and the billiard ball, stepped by `rapier3d` 0.36 (f32) and by the core (f32), in one process,
-//! side by side; then the anisotropy of both (issue #44, item 3). The planar peer is
+//! side by side; the curling stone's terminal ratio in both; then the anisotropy of both (issue
+//! #44, item 3). The planar peer is
 //! `tests/benches/rapier.rs`; this file follows it.
 //!
 //! The core: `meterstick_core::scene::spatial::{Puck, Billiard}` at their defaults
@@ -50,7 +51,9 @@ use std::fmt::Write as _;
 use std::time::Instant;
 
 use meterstick_core::scene::Outcome;
-use meterstick_core::scene::spatial::{Billiard, BilliardParams, Puck, PuckParams, SpatialScene};
+use meterstick_core::scene::spatial::{
+    Billiard, BilliardParams, Curling, CurlingParams, Puck, PuckParams, SpatialScene,
+};
 use rapier3d::prelude::*;
 
 /// Rounds of the timed runs (each run is short: 1,417 steps of the puck, 292 of the ball).
@@ -143,6 +146,27 @@ fn core_ball(p: BilliardParams<f32>) -> End {
         ns_per_step: ns / steps as f64,
         measure: [m[1].unwrap_or(f32::NAN), m[2].unwrap_or(f32::NAN)],
         points: 1,
+        slip: 0.0,
+    }
+}
+
+/// The curling stone's end: its outcome, the time both speeds stopped, and `(terminal ratio,
+/// spin stop - slide stop in s)`.
+fn core_curling(p: CurlingParams<f32>) -> End {
+    let mut s = Curling::<f32>::new(p).unwrap();
+    let start = Instant::now();
+    while s.step().is_some() {}
+    let ns = start.elapsed().as_nanos() as f64;
+    let steps = s.run().stats().steps;
+    let [ratio, slide, spin] = s.measured();
+    let (slide, spin) = (slide.unwrap_or(f32::NAN), spin.unwrap_or(f32::NAN));
+    End {
+        outcome: outcome_name(s.outcome()),
+        time: s.run().stepper().time(),
+        steps,
+        ns_per_step: ns / steps as f64,
+        measure: [ratio.unwrap_or(f32::NAN), spin - slide],
+        points: p.count().unwrap_or(0),
         slip: 0.0,
     }
 }
@@ -280,6 +304,68 @@ fn rapier_ball(p: BilliardParams<f32>) -> End {
         ns_per_step: ns / steps as f64,
         measure: [v.x, v.y],
         points: contact_points,
+    }
+}
+
+/// The curling stone in rapier: its own cylinder (radius `R`, thickness `R / 10`, mass `m`, so
+/// the uniform disc's moment `m R^2 / 2` about its axis), face down on a level table, launched at
+/// `speed` along `x` spinning at `spin` about `z`. The ratio `v / (R omega)` is read as the core
+/// reads it (while both are at least `10 mu g h`); sliding stops when `|v| <= stick_speed`,
+/// spinning when `R |omega_z| <= stick_speed`; the run ends when both have, or at `max_time`.
+fn rapier_curling(p: CurlingParams<f32>) -> End {
+    let mut w = world(p.step, p.gravity);
+    let table = plane(&mut w, 0.0, p.mu);
+    let thickness = p.radius / 10.0;
+    let (body, collider) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, 0.0, thickness / 2.0))
+            .linvel(Vector::new(p.speed, 0.0, 0.0))
+            .angvel(Vector::new(0.0, 0.0, p.spin))
+            .can_sleep(false),
+        // Parry's cylinder stands along its local y: turned to the body's z.
+        ColliderBuilder::cylinder(thickness / 2.0, p.radius)
+            .rotation(Vector::new(PI / 2.0, 0.0, 0.0))
+            .density(p.mass / (PI * p.radius * p.radius * thickness))
+            .friction(p.mu)
+            .restitution(0.0),
+    );
+    let floor = 10.0 * p.mu * p.gravity * p.step;
+    let total = (p.max_time / p.step).round() as u64;
+    let (mut steps, mut contact_points) = (0u64, 0);
+    let (mut ratio, mut slide, mut spin) = (f32::NAN, None, None);
+    let start = Instant::now();
+    loop {
+        let b = &w.bodies[body];
+        let (v, rw) = (b.linvel().truncate().length(), p.radius * b.angvel().z.abs());
+        if v >= floor && rw >= floor {
+            ratio = v / rw;
+        }
+        w.step();
+        steps += 1;
+        if steps == 1 {
+            contact_points = points(&w, table, collider);
+        }
+        let b = &w.bodies[body];
+        let t = steps as f32 * p.step;
+        if slide.is_none() && b.linvel().truncate().length() <= p.stick_speed {
+            slide = Some(t);
+        }
+        if spin.is_none() && p.radius * b.angvel().z.abs() <= p.stick_speed {
+            spin = Some(t);
+        }
+        if (slide.is_some() && spin.is_some()) || steps >= total {
+            break;
+        }
+    }
+    let ns = start.elapsed().as_nanos() as f64;
+    End {
+        outcome: if slide.is_some() && spin.is_some() { "Stopped" } else { "Slid" },
+        time: steps as f32 * p.step,
+        steps,
+        ns_per_step: ns / steps as f64,
+        measure: [ratio, spin.unwrap_or(f32::NAN) - slide.unwrap_or(f32::NAN)],
+        points: contact_points,
+        slip: 0.0,
     }
 }
 
@@ -509,12 +595,62 @@ fn anisotropy_section(text: &mut String, table: &mut Rows) {
     }
 }
 
+/// The curling stone (the uniform disc) in both: ns per step, and what Farkas et al. (PRL 90,
+/// 248302, 2003) predict of a disc sliding and spinning under Coulomb friction, that sliding and
+/// spinning stop together with `v / (R omega)` tending to 0.653 (`docs/scenes.md`, "curling").
+fn curling_section(text: &mut String, table: &mut Rows, repeats: usize) {
+    let p = CurlingParams::<f32>::default();
+    writeln!(
+        text,
+        "curling stone, the uniform disc (defaults: R = {} m, m = {} kg, {} points, launched at {} m/s spinning at {} rad/s, \
+         mu = {}, h = {} ms), {repeats} runs each, median;\n  ends when sliding and spinning have both stopped \
+         (|v| and R |omega| <= {} m/s); (v / (R omega) read while both are >= 10 mu g h, spin stop - slide stop):",
+        p.radius,
+        p.mass,
+        p.points,
+        p.speed,
+        p.spin,
+        p.mu,
+        1e3 * p.step,
+        p.stick_speed
+    )
+    .unwrap();
+    let [(core, c), (ns, e)] = timed(repeats, [&|| core_curling(p), &|| rapier_curling(p)]);
+    let ratio = ("ratio, stops apart", 1.0, "(-, s)");
+    line(text, "meterstick core f32 Curling (disc)", core, &c, ratio);
+    line(text, "rapier3d 0.36 (f32), cylinder", ns, &e, ratio);
+    writeln!(
+        text,
+        "  ratio rapier3d / core: {:.1}x; Farkas et al.'s terminal ratio for the disc: 0.653",
+        ns / core
+    )
+    .unwrap();
+    table.push([
+        "curling stone, the disc (defaults), ns/step".into(),
+        format!("{core:.0}"),
+        format!("{ns:.0}; ratio {:.1}x", ns / core),
+    ]);
+    let stops = |e: &End| {
+        if e.measure[1].is_nan() {
+            format!("{:.3} (did not stop in {} s)", e.measure[0], p.max_time)
+        } else {
+            format!("{:.3}, spinning stops {:+.3} s after sliding", e.measure[0], e.measure[1])
+        }
+    };
+    table.push([
+        "curling stone, the disc (defaults): v / (R omega) before the stop (Farkas: 0.653, stopping together)".into(),
+        stops(&c),
+        stops(&e),
+    ]);
+}
+
 fn main() {
     // `cargo bench` passes `--bench`; `cargo test --benches` passes nothing: run once, quickly.
     let repeats = if std::env::args().any(|a| a == "--bench") { REPEATS } else { 1 };
     let mut text = format!("rapier3d 0.36 and the core side by side, on {}:\n", machine());
     let mut table = Rows::new();
     speed_section(&mut text, &mut table, repeats);
+    curling_section(&mut text, &mut table, repeats);
     anisotropy_section(&mut text, &mut table);
     print!("{text}");
     // The same figures side by side, a Markdown table under the printed block.
