@@ -202,6 +202,36 @@ fn curling_runs_through_scene_and_its_bad_flags_are_refused_by_name() {
     }
 }
 
+/// `run` on a scene the independent reference does not have (the curling stone, the meter stick in
+/// three dimensions) writes the core's run and says so: `core.csv` with every step, its plots, a
+/// `summary.json` whose `reference` and `comparison` are null; no `reference.csv`.
+#[test]
+fn run_without_a_reference_writes_the_core_s_run_and_says_so() {
+    for (scene, args) in
+        [("curling", &["--duration", "0.2"][..]), ("meter-stick-3d", &["--duration", "0.2"][..])]
+    {
+        let out = temp_dir(&format!("{scene}-alone"));
+        let mut all = vec!["run", "--scene", scene, "--out", out.to_str().unwrap()];
+        all.extend_from_slice(args);
+        let (code, stdout, err) = host_sim(&all);
+        assert_eq!(code, 0, "{all:?}: {err}");
+        assert!(stdout.contains("the independent reference does not have this scene"), "{stdout}");
+        let dir = out.join(scene);
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+        assert!(s["reference"].is_null() && s["comparison"].is_null(), "{s}");
+        let steps = s["core"]["steps"].as_u64().unwrap();
+        assert!(steps > 0, "{s}");
+        let csv = std::fs::read_to_string(dir.join("core.csv")).unwrap();
+        assert_eq!(csv.lines().count() as u64, steps + 2, "{scene}: a header, the start and every step");
+        assert!(!dir.join("reference.csv").exists(), "{scene}");
+        for plot in ["positions.svg", "velocities.svg", "path.svg"] {
+            assert!(std::fs::metadata(dir.join(plot)).unwrap().len() > 1000, "{scene}: {plot}");
+        }
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+}
+
 /// The curling ring's terminal ratio over `points` x the launch's `v0 / (R omega0)`: each cell's
 /// value beside its outcome in `map.csv` and drawn in `measure.svg`, near 1 wherever the stone
 /// stopped (Farkas et al.: whatever the launch); a measure the scene does not have is refused,

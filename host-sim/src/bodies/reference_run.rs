@@ -159,45 +159,64 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
     })
 }
 
+/// A scene in three dimensions as the independent reference has it (`meterstick_reference::spatial`).
+enum SpatialReference {
+    Puck(crate::reference::spatial::Puck),
+    Billiard(crate::reference::spatial::Billiard),
+}
+
+/// `spec` in the reference's scenes in three dimensions; `None` for a scene it does not have.
+fn to_spatial_reference(spec: &SceneParams) -> Option<SpatialReference> {
+    use crate::reference::spatial as r;
+    Some(match *spec {
+        SceneParams::Puck(p) => SpatialReference::Puck(r::Puck {
+            radius: p.radius,
+            thickness: p.thickness,
+            mass: p.mass,
+            g: p.gravity,
+            angle: p.angle,
+            heading: p.heading,
+            speed: p.speed,
+            mu_s: p.mu_static,
+            mu_k: p.mu_kinetic,
+            h: p.step,
+            stick_speed: p.stick_speed,
+            max_time: p.max_time,
+        }),
+        SceneParams::Billiard(p) => SpatialReference::Billiard(r::Billiard {
+            radius: p.radius,
+            mass: p.mass,
+            g: p.gravity,
+            speed: p.speed,
+            spin: [p.spin_x, p.spin_y, p.spin_z],
+            mu_s: p.mu_static,
+            mu_k: p.mu_kinetic,
+            h: p.step,
+            stick_speed: p.stick_speed,
+            max_time: p.max_time,
+        }),
+        _ => return None,
+    })
+}
+
+/// `true` when the independent reference has `spec`'s scene (of several bodies or in three
+/// dimensions): [`run_reference`] runs it.
+#[must_use]
+pub fn has_reference(spec: &SceneParams) -> bool {
+    to_reference(spec).is_some() || to_spatial_reference(spec).is_some()
+}
+
 /// A scene in three dimensions in the independent reference (`meterstick_reference::spatial`).
 fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesRun> {
     use crate::reference::spatial as r;
     let keep = if record { r::Keep::All } else { r::Keep::StartAndEnd };
+    let Some(reference) = to_spatial_reference(spec) else {
+        anyhow::bail!("scene {} has no reference", spec.kind());
+    };
     progress::check()?;
-    let run = match *spec {
-        SceneParams::Puck(p) => r::run_puck_keeping(
-            &r::Puck {
-                radius: p.radius,
-                thickness: p.thickness,
-                mass: p.mass,
-                g: p.gravity,
-                angle: p.angle,
-                heading: p.heading,
-                speed: p.speed,
-                mu_s: p.mu_static,
-                mu_k: p.mu_kinetic,
-                h: p.step,
-                stick_speed: p.stick_speed,
-                max_time: p.max_time,
-            },
-            keep,
-        ),
-        SceneParams::Billiard(p) => r::run_billiard_keeping(
-            &r::Billiard {
-                radius: p.radius,
-                mass: p.mass,
-                g: p.gravity,
-                speed: p.speed,
-                spin: [p.spin_x, p.spin_y, p.spin_z],
-                mu_s: p.mu_static,
-                mu_k: p.mu_kinetic,
-                h: p.step,
-                stick_speed: p.stick_speed,
-                max_time: p.max_time,
-            },
-            keep,
-        ),
-        _ => anyhow::bail!("scene {} has no reference", spec.kind()),
+    let run = match reference {
+        SpatialReference::Puck(p) => r::run_puck_keeping(&p, keep),
+        SpatialReference::Billiard(b) => r::run_billiard_keeping(&b, keep),
     }
     .map_err(|e| anyhow::anyhow!("reference: {e}"))?;
     progress::check()?;

@@ -7,7 +7,8 @@ use serde::Serialize;
 use super::csv::write_trajectory;
 use super::plots::write_plots;
 use super::{
-    BodiesCounters, BodiesRow, BodiesRun, BodiesWarning, Law, law, run_core, run_reference, warnings,
+    BodiesCounters, BodiesRow, BodiesRun, BodiesWarning, Law, has_reference, law, run_core, run_reference,
+    warnings,
 };
 use crate::progress;
 use crate::trajectory::Measured;
@@ -242,19 +243,20 @@ pub struct BodiesSummary {
     pub parameters: serde_json::Map<String, serde_json::Value>,
     /// The core's run.
     pub core: BodiesImplementation,
-    /// The reference's run.
-    pub reference: BodiesImplementation,
-    /// Core against reference.
-    pub comparison: BodiesComparison,
+    /// The reference's run (`None` for a scene the reference does not have).
+    pub reference: Option<BodiesImplementation>,
+    /// Core against reference (`None` without a reference).
+    pub comparison: Option<BodiesComparison>,
     /// What `docs/scenes.md`'s laws say.
     pub law: Option<LawSummary>,
     /// What the core's run is warned of, by cause ([`super::warnings`]; empty when nothing).
     pub warnings: Vec<BodiesWarning>,
 }
 
-/// `host-sim run` for scenes of several bodies: each in the core (`precision`) beside the
-/// independent reference, each body's trajectory as CSV (`core.csv`, `reference.csv`), its plots
-/// (`write_plots`), its `summary.json`, and `summary.json` over all runs under `out`.
+/// `host-sim run` for scenes recorded body by body: each in the core (`precision`) beside the
+/// independent reference where the reference has the scene ([`super::has_reference`]), each
+/// body's trajectory as CSV (`core.csv`, `reference.csv`), its plots (`write_plots`), its
+/// `summary.json`, and `summary.json` over all runs under `out`.
 ///
 /// # Errors
 /// Invalid parameters (before anything runs), Ctrl-C, or I/O.
@@ -276,23 +278,26 @@ pub fn run_all(
     for (name, spec) in specs {
         let (core, reference) = rayon::join(
             || timed(&|| run_core(spec, precision, true, None)),
-            || timed(&|| run_reference(spec, true)),
+            || has_reference(spec).then(|| timed(&|| run_reference(spec, true))),
         );
-        let ((core, core_s), (reference, reference_s)) = (core?, reference?);
-        let (dev_q, dev_angle) = max_deviation(&core, &reference);
+        let (core, core_s) = core?;
+        let reference = reference.transpose()?;
         let law = law(spec);
         let summary = BodiesSummary {
             name: name.clone(),
             scene: spec.kind(),
             parameters: crate::output::parameters_json(spec),
             core: BodiesImplementation::of(&core, core_s),
-            reference: BodiesImplementation::of(&reference, reference_s),
-            comparison: BodiesComparison {
-                same_outcome: core.outcome.class == reference.outcome.class,
-                max_position_deviation_m: dev_q,
-                max_angle_deviation_rad: dev_angle,
-                compared_steps: core.rows.len().min(reference.rows.len()).saturating_sub(1),
-            },
+            reference: reference.as_ref().map(|(r, s)| BodiesImplementation::of(r, *s)),
+            comparison: reference.as_ref().map(|(reference, _)| {
+                let (dev_q, dev_angle) = max_deviation(&core, reference);
+                BodiesComparison {
+                    same_outcome: core.outcome.class == reference.outcome.class,
+                    max_position_deviation_m: dev_q,
+                    max_angle_deviation_rad: dev_angle,
+                    compared_steps: core.rows.len().min(reference.rows.len()).saturating_sub(1),
+                }
+            }),
             law: law.as_ref().map(|l| LawSummary {
                 outcome: l.outcome,
                 lower_acceleration_m_s2: l.lower_acceleration,
@@ -304,10 +309,14 @@ pub fn run_all(
         let dir = out.join(name);
         crate::output::create_dir(&dir)?;
         write_trajectory(&core, &dir.join("core.csv"))?;
-        write_trajectory(&reference, &dir.join("reference.csv"))?;
-        plots.insert(write_plots(name, &[&core, &reference], &dir)?);
+        let reference = reference.map(|(r, _)| r);
+        if let Some(reference) = &reference {
+            write_trajectory(reference, &dir.join("reference.csv"))?;
+        }
+        let runs: Vec<&BodiesRun> = std::iter::once(&core).chain(reference.as_ref()).collect();
+        plots.insert(write_plots(name, &runs, &dir)?);
         crate::output::write_json(&dir.join("summary.json"), &summary)?;
-        for run in [&core, &reference] {
+        for run in &runs {
             let _ = writeln!(
                 text,
                 "{name}: {:<14} {:<10} t = {:.3} s, {} steps; {}",
@@ -328,10 +337,20 @@ pub fn run_all(
         for warning in &summary.warnings {
             let _ = writeln!(text, "{name}: {warning}");
         }
+        let Some((reference, comparison)) = reference.as_ref().zip(summary.comparison.as_ref()) else {
+            let _ = writeln!(
+                text,
+                "{name}: the independent reference does not have this scene: the core's run only"
+            );
+            summaries.push(summary);
+            continue;
+        };
         let _ = writeln!(
             text,
-            "{name}: core vs reference: max position deviation {dev_q:.3e} m, max angle deviation {dev_angle:.3e} rad{}",
-            if summary.comparison.same_outcome { "" } else { "  OUTCOMES DIFFER" }
+            "{name}: core vs reference: max position deviation {:.3e} m, max angle deviation {:.3e} rad{}",
+            comparison.max_position_deviation_m,
+            comparison.max_angle_deviation_rad,
+            if comparison.same_outcome { "" } else { "  OUTCOMES DIFFER" }
         );
         if let Some(d) = spec.get("friction_directions").filter(|&d| d > 0.0) {
             let _ = writeln!(
@@ -352,7 +371,7 @@ pub fn run_all(
     crate::output::write_json(&out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;
     let _ = writeln!(
         text,
-        "files in {} (each run: core.csv, reference.csv, positions.svg, velocities.svg, {}, summary.json)",
+        "files in {} (each run: core.csv, reference.csv where the reference has the scene, positions.svg, velocities.svg, {}, summary.json)",
         out.display(),
         plots.into_iter().collect::<Vec<_>>().join(" or ")
     );
