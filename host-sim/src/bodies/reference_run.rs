@@ -163,6 +163,7 @@ pub fn run_reference(spec: &SceneParams, record: bool) -> anyhow::Result<BodiesR
 enum SpatialReference {
     Puck(crate::reference::spatial::Puck),
     Billiard(crate::reference::spatial::Billiard),
+    Curling(crate::reference::spatial::Curling),
 }
 
 /// `spec` in the reference's scenes in three dimensions; `None` for a scene it does not have.
@@ -195,6 +196,19 @@ fn to_spatial_reference(spec: &SceneParams) -> Option<SpatialReference> {
             stick_speed: p.stick_speed,
             max_time: p.max_time,
         }),
+        SceneParams::Curling(p) => SpatialReference::Curling(r::Curling {
+            ring: p.is_ring(),
+            radius: p.radius,
+            mass: p.mass,
+            points: p.count()?,
+            g: p.gravity,
+            speed: p.speed,
+            spin: p.spin,
+            mu: p.mu,
+            h: p.step,
+            stick_speed: p.stick_speed,
+            max_time: p.max_time,
+        }),
         _ => return None,
     })
 }
@@ -217,6 +231,7 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
     let run = match reference {
         SpatialReference::Puck(p) => r::run_puck_keeping(&p, keep),
         SpatialReference::Billiard(b) => r::run_billiard_keeping(&b, keep),
+        SpatialReference::Curling(c) => r::run_curling_keeping(&c, keep),
     }
     .map_err(|e| anyhow::anyhow!("reference: {e}"))?;
     progress::check()?;

@@ -1,5 +1,5 @@
-//! The scenes in three dimensions, `puck` and `billiard` (docs/scenes.md, "Scenes in three
-//! dimensions"), on the spatial model of docs/formulation.md ("Three dimensions"), written again
+//! The scenes in three dimensions, `puck`, `billiard` and `curling` (docs/scenes.md, "Scenes in
+//! three dimensions"; the curling stone's step in `curling.rs`, a minimisation of its own), on the spatial model of docs/formulation.md ("Three dimensions"), written again
 //! from those texts and sharing no code with `meterstick-core`'s `spatial` module.
 //!
 //! # The model
@@ -45,12 +45,14 @@
 
 mod algebra;
 mod contact;
+mod curling;
 mod scenes;
 mod step;
 #[cfg(test)]
 mod tests;
 
 pub use contact::ContactError;
+pub use curling::{CURLING_QUANTITIES, Curling, MOST_POINTS, run_curling_keeping};
 pub use scenes::{
     BILLIARD_QUANTITIES, Billiard, Keep, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_billiard_keeping,
     run_puck, run_puck_keeping,

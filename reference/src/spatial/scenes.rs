@@ -102,12 +102,12 @@ impl Default for Billiard {
     }
 }
 
-fn invalid(field: &'static str, rule: Rule) -> Error {
+pub(super) fn invalid(field: &'static str, rule: Rule) -> Error {
     Error::Invalid { field, rule }
 }
 
 /// The rules both scenes share, after their own finiteness checks.
-fn common(
+pub(super) fn common(
     positive: &[(&'static str, f64)],
     non_negative: &[(&'static str, f64)],
     (mu_s, mu_k): (f64, f64),
