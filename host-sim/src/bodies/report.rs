@@ -301,8 +301,8 @@ pub fn run_all(
         };
         let dir = out.join(name);
         crate::output::create_dir(&dir)?;
-        write_trajectory(&core, &dir.join("core.csv"))?;
-        write_trajectory(&reference, &dir.join("reference.csv"))?;
+        write_trajectory(&core.rows, &dir.join("core.csv"))?;
+        write_trajectory(&reference.rows, &dir.join("reference.csv"))?;
         write_plots(name, &[&core, &reference], &dir)?;
         crate::output::write_json(&dir.join("summary.json"), &summary)?;
         for run in [&core, &reference] {
