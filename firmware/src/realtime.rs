@@ -1,5 +1,5 @@
 //! The real-time loop every board binding runs (the Black Pill, the Pico 2, the Pico), for
-//! either rig ([`run`], [`serve`]: the meter stick's [`MeterStickRig`], the stack's
+//! either rig (`run`, [`serve`]: the meter stick's [`MeterStickRig`], the stack's
 //! `meterstick_rig::StackRig`): one tick per SysTick period `h` on the core clock, the buttons
 //! between runs, the real-time margin and, with `link`, the host link.
 //!
@@ -45,7 +45,7 @@ pub const DEBOUNCE_TICKS: u16 = 20;
 const MIN_PERIOD: u32 = 1_000;
 
 /// Busy-wait delay on the core clock, timed by SysTick, which runs on it for the ticks
-/// ([`run`] starts it before the rig's first tick): the cycles asked plus at most one poll, on
+/// ([`Ticker::start`] starts it before the rig's first tick): the cycles asked plus at most one poll, on
 /// any core. (`asm::delay` assumes two cycles a loop: the Cortex-M0+ takes three, and the
 /// emulated RP2040 counted about six, so the stepper's pulses were 1.5 to 3 times `pulse_ns`, a
 /// tenth of the Pico's worst tick.) Before SysTick runs (a counter that does not move), it falls
@@ -148,7 +148,7 @@ where
 }
 
 /// The host link's session for `rig`, at boot (`Hello` and the state queued), its margins
-/// against `ticker`'s period; it also runs `scenes` ([`Session::with_scenes`]: none but the rig's
+/// against `ticker`'s period; it also runs `scenes` (`Session::with_scenes`: none but the rig's
 /// own on a board that runs one scene).
 #[cfg(feature = "link")]
 pub fn open_session<S, A, B, P, const L: usize>(
@@ -209,10 +209,10 @@ where
     }
 }
 
-/// The loop of [`run`]: one tick of `rig` per SysTick period, `between_runs` after each, the
+/// The loop of `run`: one tick of `rig` per SysTick period, `between_runs` after each, the
 /// period following the scene's step between runs; with `link`, the session polled before the
 /// tick and its reports flushed after it. Returns the scene the host selects
-/// ([`Session::poll`]; the rig is not running then), for the board to switch to
+/// (`meterstick_rig::session::Session::poll`; the rig is not running then), for the board to switch to
 /// (`crate::realtime_stack::run_both_scenes`); never without `link`.
 pub fn serve<S, A, B, P, const L: usize>(
     rig: &mut Rig<S, A, B, P, L>,
@@ -271,9 +271,9 @@ where
     }
 }
 
-/// SysTick as the loop's clock (every board binding's, the meter-stick rig's [`run`] and the
-/// stack rig's `realtime_stack::run`): it wraps every period, each wrap starts one tick; the
-/// time a tick took is read from SysTick, and (with `log`) the real-time margin recorded.
+/// SysTick as the loop's clock (every board binding's, for either rig: [`serve`]): it wraps every
+/// period, each wrap starts one tick; the time a tick took is read from SysTick, and (with `log`)
+/// the real-time margin recorded.
 pub struct Ticker {
     syst: SYST,
     period: u32,
