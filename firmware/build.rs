@@ -51,6 +51,14 @@ fn main() {
     if target.starts_with("thumbv6m") && !rom_floats {
         println!("cargo:rustc-cfg=soft_float");
     }
+    // A rig of both scenes, the meter stick's and the stack's, switched by the host
+    // (src/realtime_stack.rs, `run_both_scenes`): the Picos with the link.
+    println!("cargo::rustc-check-cfg=cfg(both_scenes)");
+    let pico = env::var_os("CARGO_FEATURE_BOARD_PICO").is_some()
+        || env::var_os("CARGO_FEATURE_BOARD_PICO2").is_some();
+    if pico && env::var_os("CARGO_FEATURE_LINK").is_some() {
+        println!("cargo:rustc-cfg=both_scenes");
+    }
     if target.starts_with("thumb") {
         println!("cargo:rustc-link-arg-bins=-Tlink.x");
         if env::var_os("CARGO_FEATURE_LOG").is_some() {

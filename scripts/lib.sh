@@ -63,7 +63,8 @@ build_firmware() {
 # the 3-block stack (`rig-stack`), with and without `log`, the host link on USB and on USART2. qemu-m33: the Cortex-M33F (the Pico 2's core) on
 # QEMU's mps2-an505. pico2-*: the rig on a Raspberry Pi Pico 2 (RP2350), pico-*: on a Pico
 # (RP2040), each with a .uf2; as the Black Pill's, with and without `log` and `fallback`, and with
-# the host link on UART0; pico-nolog-builtins and pico-link-builtins: the Pico's arithmetic from
+# the host link on UART0 (the Picos' link builds run the meter stick and, selected by the host, the
+# 3-block stack: firmware/src/realtime_stack.rs); pico-nolog-builtins and pico-link-builtins: the Pico's arithmetic from
 # compiler_builtins instead of its boot ROM (docs/hardware.md), which the emulated RP2040 runs
 # (scripts/pico-emu.sh).
 # Tags (comma-separated; scripts select builds by tag, never by position, `builds_tagged`):

@@ -41,9 +41,7 @@ use stm32f4xx_hal::rcc::Config;
 #[cfg(feature = "log")]
 use defmt_rtt as _;
 
-#[cfg(not(feature = "rig-stack"))]
-use crate::realtime;
-use crate::realtime::halt;
+use crate::realtime::{self, halt};
 #[cfg(feature = "rig-stack")]
 use crate::realtime_stack;
 
@@ -95,9 +93,10 @@ pub fn main() -> ! {
     };
     #[cfg(feature = "uart-link")]
     let Some(port) = uart::UartPort::new(dp.USART2, (gpioa.pa2, gpioa.pa3), &mut rcc) else { halt() };
+    let mut buttons = realtime::Buttons::new();
     realtime::run(
         rig,
-        || preset_button.is_low(),
+        move |rig, state| buttons.between_runs(rig, state, preset_button.is_low()),
         cp.SYST,
         SYSCLK_HZ,
         #[cfg(feature = "link")]
@@ -138,7 +137,11 @@ pub fn main() -> ! {
         ],
         fault: gpioa.pa10.into_push_pull_output().erase(),
     };
-    let Some(rig) = realtime_stack::new_rig(pins, SYSCLK_HZ) else { halt() };
+    let mut buttons = realtime_stack::Buttons::new();
+    let Some(mut rig) = realtime_stack::new_rig(pins, realtime_stack::boot_params(), SYSCLK_HZ) else {
+        halt()
+    };
+    buttons.show(&mut rig);
     #[cfg(all(feature = "link", not(feature = "uart-link")))]
     let Some(port) = usb::UsbPort::new(
         (dp.OTG_FS_GLOBAL, dp.OTG_FS_DEVICE, dp.OTG_FS_PWRCLK),
@@ -149,9 +152,9 @@ pub fn main() -> ! {
     };
     #[cfg(feature = "uart-link")]
     let Some(port) = uart::UartPort::new(dp.USART2, (gpioa.pa2, gpioa.pa3), &mut rcc) else { halt() };
-    realtime_stack::run(
+    realtime::run(
         rig,
-        || preset_button.is_low(),
+        move |rig, state| buttons.between_runs(rig, state, preset_button.is_low()),
         cp.SYST,
         SYSCLK_HZ,
         #[cfg(feature = "link")]

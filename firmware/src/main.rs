@@ -12,9 +12,11 @@
 //!   `rig-stack`, the rig of the 3-block stack instead ([`realtime_stack`]): a light set per
 //!   interface, no stepper; the host link as the meter-stick rig's.
 //! * `board-pico2` / `board-pico` ([`pico`]): the same rig on a Raspberry Pi Pico 2 (RP2350,
-//!   rp235x-hal) or Pico (RP2040, rp2040-hal), flashed from a `.uf2` file without a probe.
+//!   rp235x-hal) or Pico (RP2040, rp2040-hal), flashed from a `.uf2` file without a probe; with
+//!   `link`, a rig of both scenes: the meter stick at boot, the 3-block stack when the host
+//!   selects it (`realtime_stack::run_both_scenes`, a third light set).
 //!
-//! The boards share the real-time loop ([`realtime`]). With `link`, the rig is driven from a host
+//! The boards share the real-time loop ([`realtime`]), for either scene. With `link`, the rig is driven from a host
 //! (`meterstick_rig::session`, the `meterstick-link` protocol): under QEMU over the machine's UART ([`uart`],
 //! [`qemu_link`]), on the Black Pill over USB CDC (its USB-C port) or with `uart-link` over
 //! USART2, on the Picos over UART0.
@@ -73,10 +75,10 @@ mod qemu;
 #[cfg(all(feature = "qemu", feature = "link"))]
 mod qemu_link;
 #[cfg(any(feature = "board-blackpill", feature = "board-pico2", feature = "board-pico"))]
-// The stack rig uses its period, constants and margin, not the meter-stick rig's loop.
+// The stack rig's build uses its loop, not the meter-stick rig's construction and buttons.
 #[cfg_attr(feature = "rig-stack", allow(dead_code))]
 mod realtime;
-#[cfg(feature = "rig-stack")]
+#[cfg(any(feature = "rig-stack", both_scenes))]
 mod realtime_stack;
 #[cfg(feature = "qemu")]
 mod semihosting_log;

@@ -11,7 +11,17 @@
 //! | finger 2 lights: sticking / sliding / separated | GP9 / GP10 / GP11 | 12 / 14 / 15 | active high |
 //! | start button | GP14 | 19 | to ground (pin 18), internal pull-up: active low |
 //! | preset button | GP15 | 20 | to ground (pin 18), internal pull-up: each press selects the next preset |
+//! | stack's block 2 / block 3 lights (`link`): sticking / sliding / separated | GP16 / GP17 / GP18 | 21 / 22 / 24 | active high; off while the meter stick runs |
 //! | fault light | GP25 | (on board) | the board's LED |
+//!
+//! With `link` the rig runs both scenes, one at a time ([`crate::realtime_stack::run_both_scenes`]):
+//! the meter stick at boot and the 3-block stack when the host selects it (`SelectScene`, as
+//! `host-sim monitor --scene stack` does), and back. The stack moves nothing (the teacher builds
+//! the real stack at the overhang the model is given): its interfaces' lights are finger 1's
+//! (the table / block 1 interface), finger 2's (block 1 / block 2) and GP16-18 (block 2 / block
+//! 3); the buttons are the same (the preset button toggles the overhang, 0.98 / 1.02). One build
+//! serves both, as a classroom's one board runs both; without `link` nothing can select the
+//! stack, and the build is the meter stick's alone.
 //!
 //! Clocks: the boards' 12 MHz crystal; the HALs' default PLL settings give a 150 MHz core on the
 //! Pico 2 and 125 MHz on the Pico. The loop is [`crate::realtime`]'s, as on the Black Pill: one
@@ -100,23 +110,41 @@ pub fn main() -> ! {
         fault: gp.gpio25.into_push_pull_output().into_dyn_pin(),
     };
     let Some(rig) = realtime::new_rig(pins, step, dir, sysclk_hz) else { halt() };
+    #[cfg(not(feature = "link"))]
+    {
+        let mut buttons = realtime::Buttons::new();
+        realtime::run(
+            rig,
+            move |rig, state| buttons.between_runs(rig, state, preset_button.is_low().unwrap_or(false)),
+            cp.SYST,
+            sysclk_hz,
+        )
+    }
     #[cfg(feature = "link")]
-    let Some(port) = uart::UartPort::new(
-        pac.UART0,
-        (gp.gpio0.into_function(), gp.gpio1.into_function()),
-        &mut pac.RESETS,
-        clocks.peripheral_clock.freq(),
-    ) else {
-        halt()
-    };
-    realtime::run(
-        rig,
-        move || preset_button.is_low().unwrap_or(false),
-        cp.SYST,
-        sysclk_hz,
-        #[cfg(feature = "link")]
-        port,
-    )
+    {
+        let Some(port) = uart::UartPort::new(
+            pac.UART0,
+            (gp.gpio0.into_function(), gp.gpio1.into_function()),
+            &mut pac.RESETS,
+            clocks.peripheral_clock.freq(),
+        ) else {
+            halt()
+        };
+        // The stack's third light set (block 2 / block 3), off until the stack runs.
+        let stack_lights = ModeLights {
+            sticking: gp.gpio16.into_push_pull_output().into_dyn_pin(),
+            sliding: gp.gpio17.into_push_pull_output().into_dyn_pin(),
+            separated: gp.gpio18.into_push_pull_output().into_dyn_pin(),
+        };
+        crate::realtime_stack::run_both_scenes(
+            rig,
+            stack_lights,
+            move || preset_button.is_low().unwrap_or(false),
+            cp.SYST,
+            sysclk_hz,
+            port,
+        )
+    }
 }
 
 /// The host link on UART0 (`link`): GP0 TX, GP1 RX, 921,600 baud 8N1, polled.

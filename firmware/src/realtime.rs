@@ -1,19 +1,21 @@
-//! The real-time loop every board binding runs (the Black Pill, the Pico 2, the Pico): one
-//! [`MeterStickRig`]'s tick per SysTick period `h` on the core clock, the buttons between runs, the real-time
-//! margin and, with `link`, the host link.
+//! The real-time loop every board binding runs (the Black Pill, the Pico 2, the Pico), for
+//! either rig (`run`, [`serve`]: the meter stick's [`MeterStickRig`], the stack's
+//! `meterstick_rig::StackRig`): one tick per SysTick period `h` on the core clock, the buttons
+//! between runs, the real-time margin and, with `link`, the host link.
 //!
 //! SysTick wraps every `h` (the scene's step; reprogrammed when `h` changes between runs); each
 //! wrap runs one tick, i.e. one scene step in real time. The time a tick took is read from
 //! SysTick: the worst is logged (with `log`) once a second as the real-time margin, and sent to
 //! the host (with `link`) in `Report::Margin`; a tick that overran its period is counted. The
-//! link's port is serviced while the loop waits for the next tick. The clock ([`Ticker`]) and
-//! the start button between runs ([`RestartButton`]) are also the stack rig's
-//! (`crate::realtime_stack`, `rig-stack`).
+//! link's port is serviced while the loop waits for the next tick. A board whose rig runs both
+//! scenes switches between them on the host's `SelectScene` (`crate::realtime_stack::run_both_scenes`,
+//! the Picos with `link`), a [`serve`] each.
 //!
-//! Buttons (debounced, [`DEBOUNCE_TICKS`] ticks): a press of the start button starts a run (the
-//! rig debounces it while waiting); once the run has ended, a press resets it (the carriage
-//! drives back to its origin) and the next press starts it again. While no run is in progress,
-//! the preset button cycles slow / fast / near the fall threshold, shown on finger 1's lights
+//! The meter-stick rig's buttons ([`Buttons`]; the stack's are `crate::realtime_stack`'s),
+//! debounced over [`DEBOUNCE_TICKS`] ticks: a press of the start button starts a run (the rig
+//! debounces it while waiting); once the run has ended, a press resets it (the carriage drives
+//! back to its origin) and the next press starts it again. While no run is in progress, the
+//! preset button cycles slow / fast / near the fall threshold, shown on finger 1's lights
 //! (sticking / sliding / separated), skipping a preset the rig cannot perform (the fast one,
 //! 5 m/s, on the Black Pill's carriage: about 1.24 m/s at h = 1 ms).
 
@@ -22,8 +24,12 @@ use core::convert::Infallible;
 use cortex_m::peripheral::SYST;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
+#[cfg(feature = "link")]
+use meterstick_rig::session::Session;
+use meterstick_rig::session::{LinkScene, SceneId};
 use meterstick_rig::{
-    Carriage, MeterStickRig, Preset, PresetScene as _, PressDetector, RigConfig, RigError, RigPins, RigState,
+    Actuator, Carriage, MeterStickRig, Preset, PresetScene as _, PressDetector, Rig, RigConfig, RigError,
+    RigPins, RigState,
 };
 
 use crate::systick;
@@ -39,7 +45,7 @@ pub const DEBOUNCE_TICKS: u16 = 20;
 const MIN_PERIOD: u32 = 1_000;
 
 /// Busy-wait delay on the core clock, timed by SysTick, which runs on it for the ticks
-/// ([`run`] starts it before the rig's first tick): the cycles asked plus at most one poll, on
+/// ([`Ticker::start`] starts it before the rig's first tick): the cycles asked plus at most one poll, on
 /// any core. (`asm::delay` assumes two cycles a loop: the Cortex-M0+ takes three, and the
 /// emulated RP2040 counted about six, so the stepper's pulses were 1.5 to 3 times `pulse_ns`, a
 /// tenth of the Pico's worst tick.) Before SysTick runs (a counter that does not move), it falls
@@ -141,42 +147,100 @@ where
     rig.ok()
 }
 
-/// Runs the rig in real time on SysTick at `sysclk_hz` (the core clock), forever.
-/// `preset_pressed` reads the preset button (`true`: pressed).
-pub fn run<B, P>(
-    mut rig: MeterStickRig<B, P, CycleDelay, 6>,
-    mut preset_pressed: impl FnMut() -> bool,
+/// The host link's session for `rig`, at boot (`Hello` and the state queued), its margins
+/// against `ticker`'s period; it also runs `scenes` (`Session::with_scenes`: none but the rig's
+/// own on a board that runs one scene).
+#[cfg(feature = "link")]
+pub fn open_session<S, A, B, P, const L: usize>(
+    rig: &Rig<S, A, B, P, L>,
+    ticker: &Ticker,
+    scenes: &'static [SceneId],
+) -> Session<S, L>
+where
+    S: LinkScene<L>,
+    A: Actuator<S, Infallible>,
+    B: InputPin<Error = Infallible>,
+    P: OutputPin<Error = Infallible>,
+{
+    use meterstick_rig::session::{build_id, version};
+    let mut session =
+        Session::new(ticker.period(), version(env!("CARGO_PKG_VERSION")), build_id(env!("MS_BUILD_ID")))
+            .with_scenes(scenes);
+    session.boot(rig);
+    session
+}
+
+/// Runs `rig` (either scene: the meter stick's, the stack's) in real time on SysTick at
+/// `sysclk_hz` (the core clock), forever; with `link`, the host link serves it and this scene
+/// only. `between_runs` is the scene's buttons, called after every tick with the state
+/// (`Buttons::between_runs`, `crate::realtime_stack::Buttons::between_runs`). (A rig of both
+/// scenes runs `crate::realtime_stack::run_both_scenes` instead.)
+#[cfg(not(both_scenes))]
+pub fn run<S, A, B, P, const L: usize>(
+    mut rig: Rig<S, A, B, P, L>,
+    mut between_runs: impl FnMut(&mut Rig<S, A, B, P, L>, RigState),
     syst: SYST,
     sysclk_hz: u32,
     #[cfg(feature = "link")] mut port: impl LinkPort,
 ) -> !
 where
+    S: LinkScene<L>,
+    S::Report: Copy,
+    A: Actuator<S, Infallible>,
     B: InputPin<Error = Infallible>,
     P: OutputPin<Error = Infallible>,
 {
+    let mut ticker = Ticker::start(syst, period_of(S::step_of(rig.params()), sysclk_hz));
     #[cfg(feature = "link")]
-    let mut session = {
-        use meterstick_rig::session::{Session, build_id, version};
-        let mut session = Session::new(0, version(env!("CARGO_PKG_VERSION")), build_id(env!("MS_BUILD_ID")));
-        session.boot(&rig);
-        session
-    };
-    let mut ticker = Ticker::start(syst, period_of(rig.params().step, sysclk_hz));
-    #[cfg(feature = "link")]
-    session.set_period(ticker.period());
-    let mut buttons = Buttons {
-        preset: Preset::Slow,
-        preset_press: PressDetector::new(DEBOUNCE_TICKS),
-        restart: RestartButton::new(),
-    };
+    let mut session = open_session(&rig, &ticker, &[]);
+    loop {
+        // This build's one scene: the session refuses a `SelectScene` of another
+        // (`NoSuchScene`), never returns one.
+        let _ = serve(
+            &mut rig,
+            &mut between_runs,
+            &mut ticker,
+            sysclk_hz,
+            #[cfg(feature = "link")]
+            &mut session,
+            #[cfg(feature = "link")]
+            &mut port,
+        );
+    }
+}
+
+/// The loop of `run`: one tick of `rig` per SysTick period, `between_runs` after each, the
+/// period following the scene's step between runs; with `link`, the session polled before the
+/// tick and its reports flushed after it. Returns the scene the host selects
+/// (`meterstick_rig::session::Session::poll`; the rig is not running then), for the board to switch to
+/// (`crate::realtime_stack::run_both_scenes`); never without `link`.
+pub fn serve<S, A, B, P, const L: usize>(
+    rig: &mut Rig<S, A, B, P, L>,
+    between_runs: &mut impl FnMut(&mut Rig<S, A, B, P, L>, RigState),
+    ticker: &mut Ticker,
+    sysclk_hz: u32,
+    #[cfg(feature = "link")] session: &mut Session<S, L>,
+    #[cfg(feature = "link")] port: &mut impl LinkPort,
+) -> SceneId
+where
+    S: LinkScene<L>,
+    S::Report: Copy,
+    A: Actuator<S, Infallible>,
+    B: InputPin<Error = Infallible>,
+    P: OutputPin<Error = Infallible>,
+{
     loop {
         while !ticker.due() {
             #[cfg(feature = "link")]
             port.poll();
         }
+        // Pins on these HALs cannot fail; `Params` and `Unperformable` the session answers
+        // itself (a `Rejected`).
         #[cfg(feature = "link")]
-        if let Err(RigError::Pin(never)) = session.poll(&mut port, &mut rig) {
-            match never {}
+        match session.poll(port, rig) {
+            Ok(Some(scene)) => return scene,
+            Err(RigError::Pin(never)) => match never {},
+            Ok(None) | Err(RigError::Params(_) | RigError::Unperformable(_)) => {}
         }
         #[cfg(feature = "link")]
         let (state, used) = ticker.time(|| rig.tick_with(|r| session.record(r)));
@@ -184,8 +248,8 @@ where
         let (state, used) = ticker.time(|| rig.tick());
         #[cfg(feature = "link")]
         {
-            session.end_tick(&rig, used);
-            session.flush(&mut port);
+            session.end_tick(rig, used);
+            session.flush(port);
         }
         #[cfg(not(feature = "link"))]
         let _ = used;
@@ -196,9 +260,9 @@ where
             Err(RigError::Params(_) | RigError::Unperformable(_)) => continue,
             Err(RigError::Pin(never)) => match never {},
         };
-        buttons.between_runs(&mut rig, state, preset_pressed());
+        between_runs(rig, state);
         // A new `h` (from the host or a preset): a new tick period.
-        let want = period_of(rig.params().step, sysclk_hz);
+        let want = period_of(S::step_of(rig.params()), sysclk_hz);
         if want != ticker.period() && !matches!(state, RigState::Running) {
             ticker.set_period(want);
             #[cfg(feature = "link")]
@@ -207,9 +271,9 @@ where
     }
 }
 
-/// SysTick as the loop's clock (every board binding's, the meter-stick rig's [`run`] and the
-/// stack rig's `realtime_stack::run`): it wraps every period, each wrap starts one tick; the
-/// time a tick took is read from SysTick, and (with `log`) the real-time margin recorded.
+/// SysTick as the loop's clock (every board binding's, for either rig: [`serve`]): it wraps every
+/// period, each wrap starts one tick; the time a tick took is read from SysTick, and (with `log`)
+/// the real-time margin recorded.
 pub struct Ticker {
     syst: SYST,
     period: u32,
@@ -262,12 +326,18 @@ impl Ticker {
         let start = systick::now();
         let result = tick();
         let end = systick::now();
-        // SysTick wrapped during the tick: it overran, and the counter's difference is only its
-        // excess over one period (a tick of 1.2 periods read as 0.2). A wrap in the few cycles
-        // between the two reads counts the tick a period longer: an overrun reported, never one
-        // missed.
+        // The counter counts down from `period - 1` and reloads at 0: the difference of the two
+        // readings is taken modulo the period (a later reading above the earlier one has wrapped
+        // between them). SysTick wrapped during the tick: it overran, and that difference is only
+        // its excess over one period (a tick of 1.2 periods read as 0.2), counted a period
+        // longer: exact for a tick shorter than two periods (a longer one is read as under two:
+        // SysTick's flag holds one wrap); one that started late and crossed a boundary in less
+        // than a period is counted a period longer too. A wrap in the few cycles between
+        // the second reading and the flag's counts the tick a period longer: an overrun reported,
+        // never one missed.
         self.late = self.syst.has_wrapped();
-        let used = systick::elapsed(start, end).saturating_add(if self.late { self.period } else { 0 });
+        let within = if end <= start { start - end } else { start.saturating_add(self.period) - end };
+        let used = within.saturating_add(if self.late { self.period } else { 0 });
         #[cfg(feature = "log")]
         self.margin.record(used, self.late, self.period);
         (result, used)
@@ -299,16 +369,27 @@ impl RestartButton {
     }
 }
 
-/// The buttons between runs: the preset button cycles the presets (shown on finger 1's
-/// lights), the start button resets a finished run (the next press starts it).
-struct Buttons {
+/// The meter-stick rig's buttons between runs: the preset button cycles the presets (shown on
+/// finger 1's lights), the start button resets a finished run (the next press starts it).
+pub struct Buttons {
     preset: Preset,
     preset_press: PressDetector,
     restart: RestartButton,
 }
 
 impl Buttons {
-    fn between_runs<B, P, D>(
+    /// The slow preset selected (the rig's at boot, [`new_rig`]).
+    pub const fn new() -> Self {
+        Self {
+            preset: Preset::Slow,
+            preset_press: PressDetector::new(DEBOUNCE_TICKS),
+            restart: RestartButton::new(),
+        }
+    }
+
+    /// One sample per tick, after it: `state` the rig's, `preset_pressed` the preset button
+    /// (`true`: pressed).
+    pub fn between_runs<B, P, D>(
         &mut self,
         rig: &mut MeterStickRig<B, P, D, 6>,
         state: RigState,

@@ -25,7 +25,7 @@ pub fn now() -> u32 {
     SYST::get_current()
 }
 
-#[cfg_attr(not(any(feature = "qemu", feature = "log")), allow(dead_code))]
+#[cfg_attr(not(feature = "qemu"), allow(dead_code))]
 /// Ticks from `start` to `end` (it counts down; one wrap at most, full 24-bit reload).
 #[must_use]
 pub fn elapsed(start: u32, end: u32) -> u32 {

@@ -26,7 +26,8 @@
 //
 // Pins (firmware/src/pico.rs): UART0 GP0/GP1, STEP GP2, DIR GP3, finger 1 lights GP6/7/8,
 // finger 2 lights GP9/10/11 (sticking/sliding/separated), start GP14 (active low, pull-up),
-// preset GP15 (active low, pull-up), fault light GP25.
+// preset GP15 (active low, pull-up), the stack's third interface lights GP16/17/18 (the link
+// build's), fault light GP25.
 //
 // Time: rp2040js counts Cortex-M0+ cycles; the harness advances the emulated clock by 8 ns per
 // cycle (125 MHz, the Pico's core clock, firmware/src/pico.rs). A tick is found where the
@@ -56,6 +57,9 @@ const LIGHTS = [
   [9, 10, 11],
 ];
 const LIGHT_NAMES = ['sticking', 'sliding', 'separated'];
+// The stack's block 2 / block 3 interface lights (the link build's, while the host runs the
+// stack; the other two interfaces' are the fingers' LIGHTS).
+const STACK_LIGHTS = [16, 17, 18];
 
 function fail(msg) {
   process.stderr.write(`pico harness: ${msg}\n`);
@@ -163,7 +167,7 @@ const level = new Map(); // pin -> 0/1 (driven outputs only)
 const edges = []; // { pin, level, cycle, tick }
 const stepPulse = { rises: [0, 0], minHigh: Infinity, minLow: Infinity, lastRise: null, lastFall: null };
 const stepRisesPerTick = []; // STEP rises in each tick (index: tick)
-const watched = [PIN.step, PIN.dir, ...LIGHTS.flat(), PIN.fault];
+const watched = [PIN.step, PIN.dir, ...LIGHTS.flat(), ...STACK_LIGHTS, PIN.fault];
 for (const p of watched) {
   mcu.gpio[p].addListener((state) => {
     if (state !== GPIOPinState.High && state !== GPIOPinState.Low) return;
@@ -390,6 +394,8 @@ const pinName = (p) => {
     const i = pins.indexOf(p);
     if (i >= 0) return `GP${p} finger ${f + 1} ${LIGHT_NAMES[i]}`;
   }
+  const i = STACK_LIGHTS.indexOf(p);
+  if (i >= 0) return `GP${p} interface 2 ${LIGHT_NAMES[i]}`;
   return { [PIN.dir]: `GP${p} DIR`, [PIN.fault]: `GP${p} fault` }[p] ?? `GP${p}`;
 };
 
@@ -441,7 +447,9 @@ const result = {
   lights_on_per_finger_while_running: lightsPerFinger,
   // Every edge of DIR, the lights and the fault light, with the tick it happened in.
   edges: edges.map((e) => ({ ...e, name: pinName(e.pin) })),
-  uart: uart ? { port: uart.port, tx_bytes: uart.txBytes, rx_bytes: uart.rxBytes } : null,
+  // With the link: the work of every tick (cycles, index: tick), for the checker to pick a run's
+  // steps out by the edges of its lights.
+  uart: uart ? { port: uart.port, tx_bytes: uart.txBytes, rx_bytes: uart.rxBytes, tick_work_cycles: tickWork } : null,
 };
 // Exit once stdout is flushed (a pipe takes 64 KiB at a time).
 process.stdout.write(JSON.stringify(result) + '\n', () => process.exit(0));

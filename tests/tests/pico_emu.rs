@@ -53,6 +53,9 @@ const STEP: u8 = 2;
 const DIR: u8 = 3;
 const FAULT: u8 = 25;
 const LIGHTS: [[u8; 3]; 2] = [[6, 7, 8], [9, 10, 11]];
+/// The stack's block 2 / block 3 interface lights (the link build's: sticking / sliding /
+/// separated).
+const STACK_LIGHTS: [u8; 3] = [16, 17, 18];
 
 fn pin_name(pin: u8) -> String {
     for (f, pins) in LIGHTS.iter().enumerate() {
@@ -545,6 +548,10 @@ fn link_end_to_end_on_the_emulated_pico() {
     // The near-threshold preset: the Pico's rig refuses the fast one (400 pulses due in a tick, at
     // most 100: `the_fast_preset_is_skipped_and_near_threshold_runs_as_on_the_host`).
     link_checks::still_runs_and_stops(&mut link, Preset::NearThreshold, OutcomeCode::Balanced);
+    // The stack (a rig of both scenes, firmware/src/realtime_stack.rs), its bodies' telemetry
+    // every 2 steps: three `Body` frames a step (123 bytes, 1.3 ms at 921,600 baud) are more
+    // than a 1 ms step carries on a real UART (the emulated one sends at once).
+    let stack = link_checks::stack_over_the_link(&mut link, 2, Preset::NearThreshold, OutcomeCode::Balanced);
     println!("emulated Pico: host side: {:?}", link.host_stats());
     closer.shutdown(std::net::Shutdown::Both).ok();
     drop(link);
@@ -560,6 +567,7 @@ fn link_end_to_end_on_the_emulated_pico() {
         * link_checks::frame(meterstick_link::Command::Ping { nonce: 1000 }).len();
     let rx = int(&emu["uart"]["rx_bytes"], "rx");
     assert!(rx >= i64::try_from(flood).unwrap(), "UART0 received {rx} bytes, the flood alone is {flood}");
+    stack_cycles(&emu, &stack);
     let w = &emu["ticks"]["interval_cycles"];
     println!(
         "emulated Pico with the link: {:.1} s emulated in {:.1} s ({:.1} s in all), UART0 {} bytes in, {} out; \
@@ -572,5 +580,43 @@ fn link_end_to_end_on_the_emulated_pico() {
         emu["run"]["cycles_per_step"]["max"],
         w["min"],
         w["max"],
+    );
+}
+
+/// The stack's steps on the emulated Pico, from the harness's work per tick: the run starts in
+/// the tick that lights the third interface's lights (GP16-18, which only the stack drives; the
+/// host's `Start` is carried out in the tick's poll, and its first step follows in the same tick)
+/// and takes one tick per step (an overrun's next tick starts at once). Prints the cycles per
+/// step, mean and worst, against the 1 kHz tick, and the rig's own margin (`Report::Margin`:
+/// the step alone, timed by SysTick).
+fn stack_cycles(emu: &Value, stack: &link_checks::StackRun) {
+    let start = emu["edges"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| STACK_LIGHTS.contains(&(int(&e["pin"], "pin") as u8)) && e["level"] == 1)
+        .map(|e| usize::try_from(int(&e["tick"], "tick")).unwrap())
+        .expect("the stack's lights (GP16-18) never lit");
+    let work: Vec<f64> = emu["uart"]["tick_work_cycles"].as_array().unwrap()
+        [start..start + stack.steps as usize]
+        .iter()
+        .map(|w| w.as_f64().unwrap())
+        .collect();
+    let period = (f64::from(H) * CORE_HZ).round();
+    let mean = work.iter().sum::<f64>() / work.len() as f64;
+    let worst = work.iter().copied().fold(0.0, f64::max);
+    let over = work.iter().filter(|&&w| w > period).count();
+    let margin = stack.margin.expect("the rig's margin after the stack's run");
+    assert_eq!(i64::from(margin.period_cycles), period as i64, "the stack's tick period");
+    println!(
+        "emulated Pico, the 3-block stack (overhang 1.02, falls): {} steps, checksum {:08x}, cycles per step (the tick's work: the \
+         link's poll and the step) mean {mean:.0}, worst {worst:.0} of {period:.0} ({:.1}%), {over} over the \
+         period; the rig's margin: worst step {} cycles (step {}), {} overruns",
+        stack.steps,
+        stack.checksum,
+        100.0 * worst / period,
+        margin.worst_cycles,
+        margin.worst_step,
+        margin.overruns,
     );
 }

@@ -1,6 +1,6 @@
 //! A run's trajectory as CSV.
 
-use super::BodiesRun;
+use super::BodiesRow;
 
 /// Writes a run's trajectory: `t`, then each body's `x, y, theta, vx, vy, omega` (body 0 the
 /// lowest), then each pair's interface force on its upper body `fx, fy` and its four candidates'
@@ -9,10 +9,11 @@ use super::BodiesRun;
 /// z`, its orientation `qw, qx, qy, qz` and as Euler angles `roll, pitch, yaw` (z-y-x, degrees),
 /// `vx, vy, vz, wx, wy, wz`; then each contact's `c{i}_mode` (0 separated, 1 sticking, 2 sliding),
 /// point `c{i}_x, c{i}_y, c{i}_z`, normal impulse `c{i}_normal` and friction impulse
-/// `c{i}_friction_x, _y, _z` (N s).
-pub(super) fn write_trajectory(run: &BodiesRun, path: &std::path::Path) -> anyhow::Result<()> {
+/// `c{i}_friction_x, _y, _z` (N s). Rows without interface forces (a rig's telemetry,
+/// `host-sim monitor --scene stack`) have no pair columns.
+pub(crate) fn write_trajectory(rows: &[BodiesRow], path: &std::path::Path) -> anyhow::Result<()> {
     use std::fmt::Write as _;
-    let first = run.rows.first();
+    let first = rows.first();
     let (bodies, pairs) = first.map_or((0, 0), |r| (r.q.len(), r.interface_forces.len()));
     let mut header = String::from("t");
     for b in 0..bodies {
@@ -37,7 +38,7 @@ pub(super) fn write_trajectory(run: &BodiesRun, path: &std::path::Path) -> anyho
             let _ = write!(header, ",c{c}_{name}");
         }
     }
-    let lines = run.rows.iter().map(|r| {
+    let lines = rows.iter().map(|r| {
         let mut line = format!("{}", r.t);
         for (q, v) in r.q.iter().zip(&r.v) {
             for x in q.iter().chain(v) {

@@ -18,6 +18,7 @@
 
 mod core_run;
 mod csv;
+pub(crate) use csv::write_trajectory;
 mod law;
 mod plots;
 mod reach;

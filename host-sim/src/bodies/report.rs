@@ -308,10 +308,10 @@ pub fn run_all(
         };
         let dir = out.join(name);
         crate::output::create_dir(&dir)?;
-        write_trajectory(&core, &dir.join("core.csv"))?;
+        write_trajectory(&core.rows, &dir.join("core.csv"))?;
         let reference = reference.map(|(r, _)| r);
         if let Some(reference) = &reference {
-            write_trajectory(reference, &dir.join("reference.csv"))?;
+            write_trajectory(&reference.rows, &dir.join("reference.csv"))?;
         }
         let runs: Vec<&BodiesRun> = std::iter::once(&core).chain(reference.as_ref()).collect();
         plots.insert(write_plots(name, &runs, &dir)?);

@@ -21,6 +21,6 @@ pub use client::{Refused, apply_params, read_params};
 pub use comparison::{RigComparison, compare};
 pub use recording::{Margin, Observer, Recording, mode_of, outcome_of, record_run};
 pub use stack::{
-    InterfaceSwitch, StackComparison, StackRecording, compare_stack, interface_mode, read_stack_params,
-    record_stack_run,
+    BodiesFrame, InterfaceSwitch, StackComparison, StackRecording, compare_stack, interface_mode,
+    read_stack_params, record_stack_run,
 };

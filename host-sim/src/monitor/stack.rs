@@ -1,5 +1,5 @@
 //! The stack over the link (`SceneId::Stack`, protocol version 7): its parameters read back, a
-//! run recorded (the outcome, the checksum, each interface's switches, the body telemetry frames)
+//! run recorded (the outcome, the checksum, each interface's switches, the bodies' telemetry)
 //! and compared with the host core's f32 stack of the same parameters, run here through the core's
 //! scene interface (bit-identical
 //! outcome, steps, checksum and switches expected).
@@ -18,6 +18,7 @@ use meterstick_link::{Command, ErrorCode, Mode, OutcomeCode, ParamId, Report};
 use serde::Serialize;
 
 use super::Observer;
+use crate::bodies::BodiesRow;
 
 /// The rig's stack parameters, read back with `GetParam` (every [`ParamId`] the stack has).
 ///
@@ -37,6 +38,36 @@ pub fn read_stack_params(link: &mut Link) -> anyhow::Result<StackParams<f32>> {
 /// An interface switch: step, time (s), interface, mode.
 pub type InterfaceSwitch = (u32, f32, u8, Mode);
 
+/// Every body's telemetry of one step, as the rig sent it (`Report::Body`, one per body).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodiesFrame {
+    /// The step (0: the start).
+    pub step: u32,
+    /// Simulated time (s).
+    pub time: f32,
+    /// Each body's `[x, y, theta, vx, vy, omega]`, from the bottom up (`NaN` for a body whose
+    /// frame did not arrive).
+    pub states: Vec<[f32; 6]>,
+}
+
+impl BodiesFrame {
+    /// The frame as a row of `host-sim run`'s scenes of several bodies (`crate::bodies`), for its
+    /// CSV (no interface forces: the link does not carry them).
+    #[must_use]
+    pub fn row(&self) -> BodiesRow {
+        let f = |s: &[f32; 6], i: usize| [f64::from(s[i]), f64::from(s[i + 1]), f64::from(s[i + 2])];
+        BodiesRow {
+            t: f64::from(self.time),
+            q: self.states.iter().map(|s| f(s, 0)).collect(),
+            v: self.states.iter().map(|s| f(s, 3)).collect(),
+            interface_forces: Vec::new(),
+            corner_loads: Vec::new(),
+            spatial: Vec::new(),
+            contacts: Vec::new(),
+        }
+    }
+}
+
 /// A stack run as the rig reported it.
 #[derive(Debug, Clone)]
 pub struct StackRecording {
@@ -54,6 +85,8 @@ pub struct StackRecording {
     pub switches: Vec<InterfaceSwitch>,
     /// `Report::Body` frames received.
     pub body_frames: u64,
+    /// The bodies' telemetry, a frame per telemetry step (`Report::Body` gathered by step).
+    pub frames: Vec<BodiesFrame>,
     /// Reports the rig said it dropped.
     pub dropped: u32,
     /// Wall time from start to outcome (s).
@@ -81,6 +114,7 @@ pub fn record_stack_run(
     }
     let deadline = began + timeout;
     let (mut switches, mut body_frames, mut dropped) = (Vec::new(), 0u64, 0u32);
+    let mut frames: Vec<BodiesFrame> = Vec::new();
     loop {
         let left = deadline.saturating_duration_since(Instant::now());
         let Some(report) = link.next(left.min(Duration::from_secs(1)))? else {
@@ -91,7 +125,19 @@ pub fn record_stack_run(
         };
         observer.report(&report);
         match report {
-            Report::Body { .. } => body_frames += 1,
+            Report::Body { step, time, body, state, .. } => {
+                body_frames += 1;
+                if frames.last().is_none_or(|f| f.step != step) {
+                    frames.push(BodiesFrame { step, time, states: Vec::new() });
+                }
+                if let Some(f) = frames.last_mut() {
+                    let b = usize::from(body);
+                    if f.states.len() <= b {
+                        f.states.resize(b + 1, [f32::NAN; 6]);
+                    }
+                    f.states[b] = state;
+                }
+            }
             Report::InterfaceSwitch { step, time, interface, mode } => {
                 switches.push((step, time, interface, mode));
             }
@@ -105,6 +151,7 @@ pub fn record_stack_run(
                     checksum,
                     switches,
                     body_frames,
+                    frames,
                     dropped,
                     wall_s: began.elapsed().as_secs_f64(),
                 });
@@ -230,7 +277,7 @@ impl ViewVisitor for HostRun {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::panic)]
+#[allow(clippy::unwrap_used, clippy::panic, clippy::float_cmp)]
 mod tests {
     use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack3};
     use meterstick_core::planar::Checksum;
@@ -268,6 +315,7 @@ mod tests {
             checksum: checksum.value(),
             switches,
             body_frames: 0,
+            frames: Vec::new(),
             dropped: 0,
             wall_s: 0.0,
         }
@@ -295,5 +343,35 @@ mod tests {
                 assert!(!compare_stack(&other).unwrap().same_switches);
             }
         }
+    }
+
+    /// A frame's row: each body's pose and velocity, exactly (f32 widened), time in `t`, and no
+    /// interface forces (the link does not carry them).
+    #[test]
+    fn a_frame_is_a_row_of_the_scenes_of_several_bodies() {
+        let frame = BodiesFrame {
+            step: 10,
+            time: 0.01,
+            states: vec![[1.0, 2.0, 0.1, 3.0, 4.0, 0.5], [0.1, 0.3, -0.2, 1e-7, -2.0, 6.0]],
+        };
+        let row = frame.row();
+        assert_eq!(row.t, f64::from(0.01f32));
+        assert_eq!(
+            row.q,
+            vec![[1.0, 2.0, f64::from(0.1f32)], [f64::from(0.1f32), f64::from(0.3f32), f64::from(-0.2f32)]]
+        );
+        assert_eq!(row.v, vec![[3.0, 4.0, 0.5], [f64::from(1e-7f32), -2.0, 6.0]]);
+        assert!(row.interface_forces.is_empty() && row.corner_loads.is_empty());
+        let dir = std::env::temp_dir().join(format!("meterstick-bodies-frame-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("rig.csv");
+        crate::bodies::write_trajectory(&[row], &path).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("t,x0,y0,theta0,vx0,vy0,omega0,x1,y1,theta1,vx1,vy1,omega1"), "{text}");
+        let values: Vec<f64> = lines.next().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+        assert_eq!(values.len(), 13);
+        assert_eq!(values[7], f64::from(0.1f32));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -9,18 +9,26 @@
 //! 3. garbage, cut frames, corrupted frames, an unknown message, an overlong frame and a flood
 //!    of 2,000 pings: every ping answered, every bad frame counted, none taken for a command,
 //!    and the rig still runs (the fast preset, again identical to the host), and stops on
-//!    command.
+//!    command;
+//! 4. on a rig of both scenes, `SelectScene` switches it to the 3-block stack, whose run beyond
+//!    the critical overhang (set over the link) falls with outcome, steps, checksum, every
+//!    interface switch and every body's telemetry equal to the host core's `Stack3`; then back
+//!    to the meter stick, which runs as on the host again ([`stack_over_the_link`]).
 // Exact float comparisons are the point: values read back from the rig must be the bits sent.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::float_cmp)]
 
 use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
-use meterstick_host_sim::monitor::{RigComparison, apply_params, compare, read_params, record_run};
+use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack3};
+use meterstick_host_sim::monitor::{
+    Margin, RigComparison, apply_params, compare, compare_stack, read_params, read_stack_params, record_run,
+    record_stack_run,
+};
 use meterstick_link::host::{Link, REPLY_TIMEOUT};
 use meterstick_link::{
     Command, ErrorCode, LinkStats, OutcomeCode, PROTOCOL_VERSION, ParamId, Preset, RejectReason, Report,
-    RigState, encode,
+    RigState, SceneId, encode,
 };
 
 /// The checks up to the flood, in order, on the rig at the other end of `link` (`name` in
@@ -199,17 +207,7 @@ pub fn damage_and_flood(link: &mut Link, name: &str) {
 /// The rig still runs after all that (`preset`, ending in `outcome`, identical to the host), and
 /// stops on command.
 pub fn still_runs_and_stops(link: &mut Link, preset: Preset, outcome: OutcomeCode) {
-    // The preset (telemetry every 10 steps), identical to the host.
-    assert_eq!(link.request(&Command::Preset(preset), REPLY_TIMEOUT).unwrap(), ack(Command::Preset(preset)));
-    assert_eq!(
-        link.request(&Command::SetTelemetry { every_n_steps: 10 }, REPLY_TIMEOUT).unwrap(),
-        ack(Command::SetTelemetry { every_n_steps: 10 })
-    );
-    let params = read_params(link).unwrap();
-    start_when_homed(link);
-    let rec = record_run(link, params, false, Duration::from_secs(60), &mut |_: &Report| {}).unwrap();
-    assert_eq!(rec.outcome, outcome);
-    check_identical(&format!("{preset:?} preset"), &compare(&rec).unwrap().1);
+    runs_as_on_the_host(link, preset, outcome);
 
     // Stop on command: the slow preset made a run that cannot end before the stop arrives, even on
     // QEMU's rig, which steps as fast as its reports go out (the slow preset's 7,900 steps once
@@ -244,6 +242,110 @@ pub fn still_runs_and_stops(link: &mut Link, preset: Preset, outcome: OutcomeCod
     }
     assert_eq!(stopped, Some(OutcomeCode::Unfinished));
     assert_eq!(link.request(&Command::Reset, REPLY_TIMEOUT).unwrap(), ack(Command::Reset));
+}
+
+/// A run of the meter stick's `preset` at its step of 1 ms (telemetry every 10 steps), ending in
+/// `outcome`, identical to the host.
+pub fn runs_as_on_the_host(link: &mut Link, preset: Preset, outcome: OutcomeCode) {
+    for c in [Command::SetParam { id: ParamId::Step, value: 1e-3 }, Command::Preset(preset)] {
+        assert_eq!(link.request(&c, REPLY_TIMEOUT).unwrap(), ack(c));
+    }
+    assert_eq!(
+        link.request(&Command::SetTelemetry { every_n_steps: 10 }, REPLY_TIMEOUT).unwrap(),
+        ack(Command::SetTelemetry { every_n_steps: 10 })
+    );
+    let params = read_params(link).unwrap();
+    start_when_homed(link);
+    let rec = record_run(link, params, false, Duration::from_secs(60), &mut |_: &Report| {}).unwrap();
+    assert_eq!(rec.outcome, outcome);
+    check_identical(&format!("{preset:?} preset"), &compare(&rec).unwrap().1);
+}
+
+/// The stack's run over the link ([`stack_over_the_link`]).
+#[derive(Debug)]
+pub struct StackRun {
+    /// Steps to the outcome.
+    pub steps: u32,
+    /// The rig's checksum (the host's).
+    pub checksum: u32,
+    /// The real-time margin the rig reported after the run.
+    pub margin: Option<Margin>,
+}
+
+/// Check 4, on a rig of both scenes: `SelectScene` switches it to the 3-block stack, whose run beyond
+/// the critical overhang (1.02, set over the link) falls; outcome, steps, checksum and every
+/// interface switch equal to the host core's `Stack3` of the parameters read back
+/// (`compare_stack`), and every body's telemetry, `every` steps apart (at most the rate the link
+/// carries in real time: three `Body` frames a step), equal to the host's states bit for bit.
+/// Then back to the meter stick, which runs `preset` to `outcome` as on the host
+/// ([`runs_as_on_the_host`]: the rig it left, back).
+pub fn stack_over_the_link(link: &mut Link, every: u16, preset: Preset, outcome: OutcomeCode) -> StackRun {
+    assert_eq!(link.request(&Command::Reset, REPLY_TIMEOUT).unwrap(), ack(Command::Reset));
+    let select = Command::SelectScene(SceneId::Stack);
+    assert_eq!(link.request(&select, REPLY_TIMEOUT).unwrap(), ack(select));
+    // The new scene's hello follows the ack (after any report still waiting from before).
+    let hello = loop {
+        let report = link.next(REPLY_TIMEOUT).unwrap().expect("a Hello after SelectScene");
+        if matches!(report, Report::Hello { .. }) {
+            break report;
+        }
+    };
+    assert!(matches!(hello, Report::Hello { scene: SceneId::Stack, lcp_size: 32, .. }), "{hello:?}");
+    assert_eq!(link.next(REPLY_TIMEOUT).unwrap(), Some(Report::State(RigState::Waiting)));
+    for c in [
+        Command::SetParam { id: ParamId::Overhang, value: 1.02 },
+        Command::SetTelemetry { every_n_steps: every },
+    ] {
+        assert_eq!(link.request(&c, REPLY_TIMEOUT).unwrap(), ack(c));
+    }
+    let params = read_stack_params(link).unwrap();
+    assert_eq!(params.overhang, 1.02, "the overhang read back");
+    let rec = record_stack_run(link, params, true, Duration::from_secs(120), &mut |_: &Report| {}).unwrap();
+    // The margin follows the outcome, then the state.
+    let mut margin = None;
+    loop {
+        match link.next(REPLY_TIMEOUT).unwrap().expect("the margin and the state after the outcome") {
+            Report::Margin { worst_cycles, period_cycles, overruns, worst_step } => {
+                margin = Some(Margin { worst_cycles, period_cycles, overruns, worst_step });
+            }
+            Report::State(RigState::Finished) => break,
+            other => panic!("after the stack's outcome: {other:?}"),
+        }
+    }
+    let cmp = compare_stack(&rec).unwrap();
+    println!("stack over the link: {cmp:?}, margin {margin:?}");
+    assert!(cmp.identical(), "the stack's run differs from the host's: {cmp:?}");
+    assert_eq!(rec.outcome, OutcomeCode::Fell);
+    assert!(rec.switches.iter().any(|s| s.3 == meterstick_link::Mode::Tipping), "{:?}", rec.switches);
+    assert_eq!(rec.dropped, 0, "reports dropped");
+
+    // Every body's state, against the host core's at the start and after the same step.
+    let state6 = |s: &meterstick_core::planar::BodyState<f32>| {
+        let [vx, vy, omega] = s.velocity();
+        [s.x, s.y, s.theta, vx, vy, omega]
+    };
+    let mut scene = Stack3::<f32>::new(params).unwrap();
+    let mut states: Vec<Vec<[f32; 6]>> = vec![scene.states().iter().map(state6).collect()];
+    scene.run(|r| states.push(r.states.iter().map(state6).collect()));
+    let steps = u32::try_from(states.len() - 1).unwrap();
+    assert_eq!(rec.steps, steps);
+    assert_eq!(rec.body_frames, 3 * rec.frames.len() as u64, "three bodies a telemetry step");
+    let expected: Vec<u32> = (0..=steps).step_by(usize::from(every)).collect();
+    let sent: Vec<u32> = rec.frames.iter().map(|f| f.step).collect();
+    assert_eq!(sent, expected, "telemetry every {every} steps and at the start");
+    for f in &rec.frames {
+        assert_eq!(f.states, states[f.step as usize], "step {}", f.step);
+    }
+    println!("stack over the link: fell after {steps} steps, checksum {}", cmp.rig_checksum);
+
+    // Back to the meter stick.
+    assert_eq!(link.request(&Command::Reset, REPLY_TIMEOUT).unwrap(), ack(Command::Reset));
+    let select = Command::SelectScene(SceneId::MeterStick);
+    assert_eq!(link.request(&select, REPLY_TIMEOUT).unwrap(), ack(select));
+    let hello = link.request(&Command::Hello, REPLY_TIMEOUT).unwrap();
+    assert!(matches!(hello, Report::Hello { scene: SceneId::MeterStick, lcp_size: 6, .. }), "{hello:?}");
+    runs_as_on_the_host(link, preset, outcome);
+    StackRun { steps, checksum: rec.checksum, margin }
 }
 
 /// Sends `Start` until the rig takes it: after a reset (a preset) the carriage first drives back

@@ -1,6 +1,8 @@
 //! `host-sim monitor` on the rig's stack (`--scene stack`): a run recorded, compared with the
-//! host core's f32 `Stack3` of the parameters the rig reported, and `summary.json`
-//! ([`StackSummary`]) written under `--out`.
+//! host core's f32 `Stack3` of the parameters the rig reported, and written under `--out`:
+//! `rig.csv` (the bodies' telemetry, a row per telemetry step, in `host-sim run`'s columns for
+//! the scenes of several bodies: `t`, each body's `x, y, theta, vx, vy, omega`) and
+//! `summary.json` ([`StackSummary`]).
 
 use std::fmt::Write as _;
 use std::time::Duration;
@@ -10,7 +12,10 @@ use serde::Serialize;
 
 use super::print::Printer;
 use super::{MonitorArgs, answer};
-use crate::monitor::{StackComparison, compare_stack, outcome_of, read_stack_params, record_stack_run};
+use crate::bodies::write_trajectory;
+use crate::monitor::{
+    BodiesFrame, StackComparison, compare_stack, outcome_of, read_stack_params, record_stack_run,
+};
 use crate::output::{create_dir, parameters_json, write_json};
 use crate::scenes::{SceneKind, SceneParams};
 use crate::trajectory::OutcomeKind;
@@ -61,6 +66,8 @@ pub fn record_and_write(
     let rec = record_stack_run(link, params, args.start, timeout, printer)?;
     printer.clear();
     create_dir(&args.out)?;
+    let rows: Vec<_> = rec.frames.iter().map(BodiesFrame::row).collect();
+    write_trajectory(&rows, &args.out.join("rig.csv"))?;
     let comparison = if args.no_compare {
         None
     } else {
