@@ -406,6 +406,8 @@ fn print_run(name: &str, outcome: Outcome, time: f32, st: &RunStats, checksum: u
 impl ViewVisitor for Check {
     type Output = i32;
 
+    /// The same check through `dyn`; [`SceneParams::build_view_in`] calls
+    /// [`Self::visit_concrete`] instead, so this one is never compiled into the firmware.
     fn visit<T: Real>(self, view: &mut dyn SceneView<T>) -> i32 {
         self.drive(view)
     }
