@@ -30,14 +30,17 @@ done
   done
   echo
   echo "Instructions per step (slow scene v = 0.1 m/s and fast v = 5 m/s, x1 = -0.35 m, f32 6x6 with the 8x8"
-  echo "fallback, through the rig loop; on the M4F and M33F also block-on-block and the 3-block stack at their"
-  echo "defaults, f32, stepped directly, and the stack through the stack rig (stack-rig-held: 0.2 s at the default"
+  echo "fallback, through the rig loop; every other scene of one body at its defaults, f32, in the reduced layout,"
+  echo "through the core's scene interface (SceneView: the scene's step and the view's checksum of it); on the M4F"
+  echo "and M33F also block-on-block, the 3-block stack and disc-on-board at their defaults, f32, through the same"
+  echo "interface, and the stack through the stack rig (stack-rig-held: 0.2 s at the default"
   echo "overhang; stack-rig-fell: overhang 1.02), and the tablecloth at mu = 2 (tablecloth-mu2) with its steps the rule"
   echo "flagged as possibly having several motions timed apart (tablecloth-mu2-flagged: the worst flagged multibody step);"
-  echo "the puck, the billiard ball and the curling stone at their defaults, f32, through the registry's view (the"
-  echo "qemu-*-spatial builds);"
-  echo "the slow scene's steps whose load the contacts decide (slow-determinate) and those whose load the rule decides"
-  echo "(slow-decided: the rod at rest on two sticking fingers, docs/formulation.md, \"The load: the least norm\") apart;"
+  echo "the puck, the billiard ball, the curling stone and the meter stick in 3D at their defaults, f32, through the"
+  echo "same interface (the qemu-*-spatial builds);"
+  echo "in a run where the rule decided some steps' load, the steps whose load the contacts decide (<scene>-determinate)"
+  echo "and those whose load the rule decides (<scene>-decided: e.g. the slow rod at rest on two sticking fingers,"
+  echo "docs/formulation.md, \"The load: the least norm\") apart;"
   echo "QEMU -icount shift=0, SysTick ticks converted with the calibration loop;"
   echo "stack peak: the deepest the stack grew in the scene, painted and read back, firmware/src/stack_peak.rs):"
   echo

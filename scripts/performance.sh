@@ -201,7 +201,8 @@ table(["core (QEMU machine)", "board it stands for", "slow: mean / worst", "fast
       [[f"{label} (`{machine}`)", board] + [mean_worst(timings[build][s]) for s in ("slow", "fast")]
        for label, build, machine, board in cores])
 print()
-print("The scenes of several bodies at their defaults (f32, stepped directly, not through the rig loop; "
+print("The scenes of several bodies at their defaults (f32, through the core's scene interface, not the rig loop: "
+      "the view's `step`, the scene's step and the view's checksum of it; "
       "issue targets on the M4F: block-on-block mean <= 5,000 / worst <= 25,000, the 3-block stack "
       "<= 12,000 / <= 100,000; disc-on-board has none), with the deepest the stack grew (painted RAM read back, "
       "`firmware/src/stack_peak.rs`):")
@@ -227,8 +228,8 @@ table(["core (QEMU machine)"] + [f"{s} ({what}): mean / worst" for s, what in ST
        + [" / ".join(peak(timings[build], s) for s, _ in STACK_RIG)]
        for label, build, machine, _ in cores])
 print()
-print("The scenes in three dimensions at their defaults (f32, through the registry's view, "
-      "`SceneParams::build_view`: its `dyn` call and bookkeeping included; the `qemu-m4f-spatial` and "
+print("The scenes in three dimensions at their defaults (f32, through the core's scene interface, "
+      "`SceneParams::build_view_in`: the view's bookkeeping included; the `qemu-m4f-spatial` and "
       "`qemu-m33-spatial` builds), with the deepest the stack grew (issue targets on the M4F: the curling "
       "stone with its default points mean <= 40,000; the meter stick in 3D mean <= 8,000, worst <= 30,000):")
 print()

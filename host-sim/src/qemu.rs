@@ -238,8 +238,8 @@ pub struct RunStats {
 pub struct Timing {
     /// Instructions per `SysTick` tick.
     pub instructions_per_tick: f64,
-    /// Each scene timed step by step: through the rig loop (`<scene> rig ..`) or driven directly
-    /// (`<scene> timing ..`, the scenes of several bodies).
+    /// Each scene timed step by step: through the rig loop (`<scene> rig ..`) or driven through the
+    /// core's scene interface (`<scene> timing ..`, every other scene).
     pub scenes: Vec<SceneTiming>,
     /// The RAM the stack may grow into (`ram stack_room_bytes=..`: the stack top less the end of
     /// the static data); `None` when the firmware does not print it.
@@ -409,7 +409,7 @@ mod timing_tests {
         assert_eq!(s.paths.iter().map(|p| p.path).collect::<Vec<_>>(), ["free", "warm", "candidate"]);
         assert_eq!(s.paths[0].mean_instructions, None);
         assert_eq!(s.paths[2].steps, 29);
-        // A scene driven directly (no rig, no solve paths): its `timing` line.
+        // A scene driven through the scene interface (here without solve paths): its `timing` line.
         let m = &t.scenes[1];
         assert_eq!((m.scene.as_str(), m.steps, t.scenes.len()), ("stack", 10_000, 2));
         assert!((m.mean_instructions - 1_000_000.0 * per / 10_000.0).abs() < 1e-9);

@@ -182,7 +182,11 @@ impl SceneParams {
         }
     }
 
-    fn build_multibody_in<T: Real, V: MultibodyVisitor>(&self, visitor: V) -> Result<V::Output, ParamError> {
+    /// [`Self::build_multibody`] with the precision a type.
+    pub(crate) fn build_multibody_in<T: Real, V: MultibodyVisitor>(
+        &self,
+        visitor: V,
+    ) -> Result<V::Output, ParamError> {
         match *self {
             Self::BlockOnBlock(p) => visit_built(|| BlockOnBlock::<T>::new(p.cast()), visitor),
             Self::Tablecloth(p) => visit_built(|| Tablecloth::<T>::new(p.cast()), visitor),

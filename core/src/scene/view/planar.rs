@@ -122,8 +122,7 @@ impl<T: Real, const K: usize, S: Scene<T, K>> SceneView<T> for PlanarView<T, K, 
     }
 
     fn event(&self, i: usize) -> Option<EventView<T>> {
-        let e = self.scene.events().get(i)?;
-        Some(EventView { time: e.time, contact: usize::from(e.contact), mode: e.mode })
+        self.scene.events().get(i).map(EventView::from)
     }
 
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {
