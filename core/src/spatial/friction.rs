@@ -44,6 +44,11 @@ struct Line<T> {
     d: Vector<T>,
 }
 
+/// What a restart's sweeps need of one contact ([`Contacts::restart`]): its gap bias (its normal
+/// row less its free point's normal velocity), its plane's axes `(t1, t2)`, `W_nn` and the
+/// inverse of its tangential block of `W` (row by row).
+type Local<T> = (T, Vector<T>, Vector<T>, T, [T; 4]);
+
 /// The bodies' velocities after the step's impulses and each contact's report.
 pub(super) type Solved<T, const K: usize> = ([SpatialContactReport<T>; K], Vector<T>, Vector<T>);
 
@@ -441,9 +446,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let zero = T::zero();
         let mut p = *full;
         let (mut v, mut w) = self.moved(&p, v_free, w_free);
-        // Per contact: its gap bias (its normal row less its free point's normal velocity), its
-        // plane's axes `(t1, t2)`, `W_nn` and the inverse of its tangential block of `W`.
-        let local: [(T, Vector<T>, Vector<T>, T, [T; 4]); K] = core::array::from_fn(|i| {
+        let local: [Local<T>; K] = core::array::from_fn(|i| {
             let c = &self.touches[i];
             let r = &c.arm;
             let bias = c.normal_free - dot(&n, &sub(&add(v_free, &cross(w_free, r)), &c.carried));

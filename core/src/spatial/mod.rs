@@ -86,7 +86,7 @@
 //!    ray at some orientations); its motion out of the plane is the one that closes every point's
 //!    normal row. Otherwise the LCP's answer is taken and, when four or more points touch and all
 //!    slide after it, its load replaced by the least-norm one. Either way the directions are set to
-//!    the slips until they agree ([`MAX_DIRECTIONS`] tries) and every answer is verified (the motion
+//!    the slips until they agree (16 tries) and every answer is verified (the motion
 //!    out of the plane, the circular cone, `p_n >= 0`). A base with a sticking point keeps the
 //!    LCP's load (a vertex).
 //! 4. `v+ = v~ + p`, `omega+ = omega~ + m I_w^-1 (r x p)`, `x+ = x + h v+`. **The gyroscopic
