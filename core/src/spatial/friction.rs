@@ -9,6 +9,13 @@ use crate::StepError;
 use crate::lcp::{Basis, Lcp, Lemke};
 use crate::real::{Real, max, min};
 
+/// Every this many tries a solve whose worst slip across a line has not shrunk fourfold in the
+/// last try starts its lines again from the cone's own problem ([`Contacts::restart`]).
+const RESTART_EVERY: u32 = 4;
+
+/// The projected Gauss-Seidel sweeps of a restart ([`Contacts::restart`]).
+const RESTART_SWEEPS: u32 = 256;
+
 /// What the solve needs of one contact, per unit mass.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Touch<T> {
@@ -36,6 +43,11 @@ pub(super) struct Touch<T> {
 struct Line<T> {
     d: Vector<T>,
 }
+
+/// What a restart's sweeps need of one contact ([`Contacts::restart`]): its gap bias (its normal
+/// row less its free point's normal velocity), its plane's axes `(t1, t2)`, `W_nn` and the
+/// inverse of its tangential block of `W` (row by row).
+type Local<T> = (T, Vector<T>, Vector<T>, T, [T; 4]);
 
 /// The bodies' velocities after the step's impulses and each contact's report.
 pub(super) type Solved<T, const K: usize> = ([SpatialContactReport<T>; K], Vector<T>, Vector<T>);
@@ -109,6 +121,9 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 _ => direction(&c.slip_free).unwrap_or_else(|| perpendicular(&n)),
             },
         });
+        // The worst slip across a line not held at the last try; whether the lines have been
+        // restarted.
+        let (mut last_worst, mut restarted) = (T::zero(), false);
         for tries in 1..=MAX_DIRECTIONS {
             let lcp = self.lcp::<N>(&lines);
             let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
@@ -125,12 +140,18 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             }
             let (v, w) = self.moved(&full, v_free, w_free);
             let slip = |c: &Touch<T>| self.slip(&v, &w, c);
+            // After a restart, a contact slipping within the stick speed reads sticking, as its
+            // report does: the cone alone holds it (its slip's direction is not asked for).
+            let resting: [bool; K] = core::array::from_fn(|i| {
+                restarted && norm(&slip(&self.touches[i])) <= max(self.slip_tolerance, self.stick_speed)
+            });
             let held: [bool; K] = core::array::from_fn(|i| {
                 let c = &self.touches[i];
                 // An unloaded contact carries no friction on any line.
                 !c.active
                     || impulses[i].0 <= T::zero()
                     || dot(&slip(c), &cross(&n, &lines[i].d)).abs_exact() <= self.slip_tolerance
+                    || resting[i]
             });
             if held.iter().all(|&h| h) {
                 // The LCP's verification scale, `||M|| ||z|| + ||q||`, times its tolerance: what
@@ -147,7 +168,17 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 return Ok((reports, v, w));
             }
             let slips: [Vector<T>; K] = core::array::from_fn(|i| slip(&self.touches[i]));
-            self.turn::<N>(&mut lines, &impulses, &slips);
+            let worst = (0..K)
+                .filter(|&i| !held[i])
+                .fold(T::zero(), |a, i| max(a, dot(&slips[i], &cross(&n, &lines[i].d)).abs_exact()));
+            let stalled = tries % RESTART_EVERY == 0 && worst * T::of(4.0) > last_worst;
+            last_worst = worst;
+            if stalled {
+                restarted = true;
+                self.restart(&mut lines, &full, v_free, w_free);
+            } else {
+                self.turn::<N>(&mut lines, &impulses, &slips, &resting);
+            }
         }
         Err(StepError::ConeNotConverged)
     }
@@ -307,15 +338,32 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// changes its friction by `(dq_d, dq_a)` along `(d, a)`, toward the impulse that stops its
     /// slip (both components of its slip its conditions). The velocities move by the Delassus
     /// operator `W` of the impulses' changes; the linear system over all of them (at most `3 K`
-    /// unknowns) is solved once and each line set to its new friction's direction.
-    fn turn<const N: usize>(&self, lines: &mut [Line<T>; K], impulses: &[(T, T); K], slips: &[Vector<T>; K]) {
+    /// unknowns) is solved once and each line set to its new friction's direction. A contact is
+    /// sliding here when its friction is on the cone's edge (within `1e-3`) and it slips along its
+    /// line beyond round-off, or its friction is the edge's to `64 eps` (one stopped just inside
+    /// the edge sticks); a sliding one `resting` (within the stick speed, after a restart) keeps
+    /// its line, its friction following its normal impulse.
+    fn turn<const N: usize>(
+        &self,
+        lines: &mut [Line<T>; K],
+        impulses: &[(T, T); K],
+        slips: &[Vector<T>; K],
+        resting: &[bool; K],
+    ) {
         let n = self.normal;
         let (zero, one) = (T::zero(), T::one());
         let loaded: [bool; K] = core::array::from_fn(|i| self.touches[i].active && impulses[i].0 > zero);
         let saturated: [bool; K] = core::array::from_fn(|i| {
             let (c, (pn, pt)) = (&self.touches[i], impulses[i]);
-            loaded[i] && pt.abs_exact() >= c.mu * pn * (one - T::of(1e-3))
+            loaded[i]
+                && pt.abs_exact() >= c.mu * pn * (one - T::of(1e-3))
+                && (dot(&lines[i].d, &slips[i]).abs_exact() > self.slip_tolerance
+                    || pt.abs_exact() >= c.mu * pn * (one - T::of(64.0) * T::EPS))
         });
+        // A sliding contact slipping within the stick speed (after a restart, `resting`) keeps
+        // its line: its slip's direction is not asked for, its friction follows its normal
+        // impulse.
+        let kept: [bool; K] = core::array::from_fn(|i| resting[i] && saturated[i]);
         let across: [Vector<T>; K] = core::array::from_fn(|i| cross(&n, &lines[i].d));
         // Unknowns `3 i`, `3 i + 1`, `3 i + 2` of contact `i`: `(dp_n, dtheta, -)` sliding,
         // `(dp_n, dq_d, dq_a)` sticking; an unknown no contact uses has the row `x = 0`.
@@ -331,7 +379,11 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 (true, _) => [zero; 3],
             }
         };
-        let used = |j: usize| if saturated[j] { 2 } else { 3 };
+        let used = |j: usize| match (kept[j], saturated[j]) {
+            (true, _) => 1,
+            (false, true) => 2,
+            (false, false) => 3,
+        };
         let mut jac = [[zero; N]; N];
         let mut rhs = [zero; N];
         for row in 0..N {
@@ -362,7 +414,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             }
         }
         let x = solved(jac, rhs);
-        for i in (0..K).filter(|&i| loaded[i]) {
+        for i in (0..K).filter(|&i| loaded[i] && !kept[i]) {
             let (d, a) = (lines[i].d, across[i]);
             let next = if saturated[i] {
                 // The turn by `dtheta` to first order, `d + dtheta a` (normalised below): Newton's
@@ -374,6 +426,65 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 add(&scale(impulses[i].1 + entry(&x, 3 * i + 1), &d), &scale(entry(&x, 3 * i + 2), &a))
             };
             lines[i].d = direction(&next).unwrap_or(d);
+        }
+    }
+
+    /// The restart (`super`'s module docs, 3): the lines from the circular cone's own problem,
+    /// solved roughly by [`RESTART_SWEEPS`] sweeps of projected Gauss-Seidel from the impulses
+    /// `full` (per unit mass, on the free velocities `v_free`, `w_free`): contact by contact, the
+    /// normal impulse that closes its row (`p_n >= 0`), then the friction that stops its slip
+    /// (its tangential block of `W` inverted) held to the disc `|p_t| <= mu p_n`. Each active
+    /// contact's line is then its friction's direction (kept where it has none).
+    fn restart(
+        &self,
+        lines: &mut [Line<T>; K],
+        full: &[Vector<T>; K],
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) {
+        let n = self.normal;
+        let zero = T::zero();
+        let mut p = *full;
+        let (mut v, mut w) = self.moved(&p, v_free, w_free);
+        let local: [Local<T>; K] = core::array::from_fn(|i| {
+            let c = &self.touches[i];
+            let r = &c.arm;
+            let bias = c.normal_free - dot(&n, &sub(&add(v_free, &cross(w_free, r)), &c.carried));
+            let t1 = lines[i].d;
+            let t2 = cross(&n, &t1);
+            let (a11, a12) = (self.delassus(r, &t1, r, &t1), self.delassus(r, &t1, r, &t2));
+            let (a21, a22) = (self.delassus(r, &t2, r, &t1), self.delassus(r, &t2, r, &t2));
+            let det = a11 * a22 - a12 * a21;
+            let inverse = if det > zero { [a22 / det, -a12 / det, -a21 / det, a11 / det] } else { [zero; 4] };
+            (bias, t1, t2, self.delassus(r, &n, r, &n), inverse)
+        });
+        for _ in 0..RESTART_SWEEPS {
+            for ((c, &(bias, t1, t2, wnn, [b11, b12, b21, b22])), p) in
+                self.touches.iter().zip(&local).zip(p.iter_mut()).filter(|((c, _), _)| c.active)
+            {
+                let r = &c.arm;
+                let u = sub(&add(&v, &cross(&w, r)), &c.carried);
+                let pn_now = dot(&n, p);
+                let pn = if wnn > zero { max(pn_now - (dot(&n, &u) + bias) / wnn, zero) } else { pn_now };
+                let (s1, s2) = (dot(&t1, &u), dot(&t2, &u));
+                let (q1, q2) = (b11 * s1 + b12 * s2, b21 * s1 + b22 * s2);
+                let pt = sub(p, &scale(pn_now, &n));
+                let mut next = sub(&pt, &add(&scale(q1, &t1), &scale(q2, &t2)));
+                let (size, limit) = (norm(&next), c.mu * pn);
+                if size > limit {
+                    next = scale(limit / size, &next);
+                }
+                let change = sub(&add(&scale(pn, &n), &next), p);
+                *p = add(p, &change);
+                v = add(&v, &change);
+                let turn = inverse_inertia_times(self.body, self.orientation, &cross(r, &change));
+                w = add(&w, &scale(self.body.mass, &turn));
+            }
+        }
+        for ((line, c), p) in lines.iter_mut().zip(&self.touches).zip(&p) {
+            if let Some(d) = direction(&sub(p, &scale(dot(&n, p), &n))).filter(|_| c.active) {
+                line.d = d;
+            }
         }
     }
 

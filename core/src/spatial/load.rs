@@ -15,7 +15,7 @@
 //!
 //! The load moves the body's motion in the plane (every point's friction has its own direction),
 //! so the slips move: the directions are set to the new slips and the load taken again until they
-//! agree within the step's round-off, at most [`MAX_DIRECTIONS`] times.
+//! agree within the step's round-off, at most [`LOAD_TRIES`] times.
 //!
 //! # Points that stop
 //!
@@ -42,10 +42,14 @@
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::inverse_inertia_times;
 use super::friction::{Contacts, Solved, Touch, pad, put, put_in, solved};
-use super::report::{MAX_DIRECTIONS, SpatialContactReport};
+use super::report::SpatialContactReport;
 use crate::StepError;
 use crate::lcp::{Basis, Lcp, Lemke};
 use crate::real::{Real, max};
+
+/// The most times a flat base's directions are set to its slips, or a stopping point's friction
+/// and the load taken again in turn (module docs), before the step takes another way.
+const LOAD_TRIES: u32 = 16;
 
 /// The fewest points touching the plane whose load is left open by the motion: three not in a
 /// line decide theirs.
@@ -213,7 +217,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// slip, the slips set again until they agree (module docs); the points `stop` names carry the
     /// friction `held_load` gives them (module docs, "Points that stop"). `None` when a sliding
     /// point would stop or turn back, a point at rest would not, the directions do not settle in
-    /// [`MAX_DIRECTIONS`] tries, or `held_load` gives none.
+    /// [`LOAD_TRIES`] tries, or `held_load` gives none.
     #[allow(clippy::too_many_arguments)]
     fn settle<const N: usize>(
         &self,
@@ -238,7 +242,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let round_off = T::of(64.0 * K as f64) * T::EPS * size;
         // A point that stops carries the friction `held_load` gives it, along no slip.
         let is_pivot = |i: usize| matches!(stop, Stop::Rest(_)) || stop == Stop::Pivot(i);
-        for tries in 1..=MAX_DIRECTIONS {
+        for tries in 1..=LOAD_TRIES {
             let unit: [Vector<T>; K] = core::array::from_fn(|i| {
                 if is_pivot(i) { [zero; 3] } else { direction(&slips[i]).unwrap_or([zero; 3]) }
             });
@@ -309,7 +313,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// of its load, along `e`) and the friction `held` of the points that `stop` names (module
     /// docs, "Points that stop"): `held` from the points' slips in the plane under `x`, `x` the
     /// least norm's for `g` less `held`'s push out of the plane, the two taken again in turn until
-    /// that push settles within round-off. `None` when it does not in [`MAX_DIRECTIONS`] turns, a
+    /// that push settles within round-off. `None` when it does not in [`LOAD_TRIES`] turns, a
     /// resting point's friction leaves its cone, or (`feasible` false) no load `x >= 0` gives
     /// `g`. With [`Stop::None`], `held` is zero and `x` the least norm's for `g`.
     #[allow(clippy::too_many_arguments)]
@@ -342,7 +346,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let size = g.iter().fold(T::TINY, |a, x| max(a, x.abs_exact()));
         let round_off = T::of(64.0 * K as f64) * T::EPS * size;
         let mut push = [zero; 3];
-        for _ in 0..MAX_DIRECTIONS {
+        for _ in 0..LOAD_TRIES {
             let target = [g[0] - push[0], g[1] - push[1], g[2] - push[2]];
             let Some(x) = load(&target)? else {
                 return Ok(None);

@@ -42,7 +42,23 @@
 //!    sticking one's friction moves toward the tangential impulse that stops its slip, the
 //!    velocities moving by `W` of the impulses' changes (a linear system of at most `3 K`
 //!    unknowns); the LCP is solved again, at most [`MAX_DIRECTIONS`] times
-//!    ([`StepError::ConeNotConverged`]). Where every contact's tangential response is isotropic
+//!    ([`StepError::ConeNotConverged`]). A contact counts as sliding there when its friction is on
+//!    the cone's edge (within `1e-3`) and it slips along its line beyond round-off, or its
+//!    friction is the edge's to `64 eps`: one whose slip the LCP stopped just inside the edge
+//!    sticks, and modelled as sliding (its condition's `d . s` zero) its turn is singular and the
+//!    tries converge only linearly. **A restart.** Newton's step holds the LCP's modes; where
+//!    those of the answer differ (a rod's yaw stopping about one finger: that finger's free slip
+//!    round-off's, its first line anywhere, the LCP sticking the others along theirs, each try
+//!    trading which one slides), the tries wander. Every fourth try, when the worst slip across a
+//!    line not held has not shrunk fourfold in the last one, the lines start again from the
+//!    cone's own problem, solved roughly by projected Gauss-Seidel (256 sweeps from the try's
+//!    impulses: each contact's normal impulse closing its row, then the friction that stops its
+//!    slip held to the disc `|p_t| <= mu p_n`): each line along its contact's friction, whose
+//!    modes are the answer's, and Newton's turns go on from there. From a restart on, a contact
+//!    slipping within the stick speed reads sticking, as its report does (the cone alone holds
+//!    it, its slip's direction is not asked for), and a sliding one so slow keeps its line (its
+//!    friction following its load): at the stick/slip edge the slip tends to zero as the tries
+//!    go, its direction's condition degenerate (Newton's step halving it per try). Where every contact's tangential response is isotropic
 //!    and uncoupled from its normal (a sphere; a point under the centre of mass) the first lines,
 //!    the free slips', hold: one LCP a step; a lone sticking contact's conditions are linear,
 //!    one turn meets them; a box's corner sliding and spinning needs two to six, a tripod two to four.
@@ -70,7 +86,7 @@
 //!    ray at some orientations); its motion out of the plane is the one that closes every point's
 //!    normal row. Otherwise the LCP's answer is taken and, when four or more points touch and all
 //!    slide after it, its load replaced by the least-norm one. Either way the directions are set to
-//!    the slips until they agree ([`MAX_DIRECTIONS`] tries) and every answer is verified (the motion
+//!    the slips until they agree (16 tries) and every answer is verified (the motion
 //!    out of the plane, the circular cone, `p_n >= 0`). A base with a sticking point keeps the
 //!    LCP's load (a vertex).
 //! 4. `v+ = v~ + p`, `omega+ = omega~ + m I_w^-1 (r x p)`, `x+ = x + h v+`. **The gyroscopic

@@ -7,8 +7,9 @@ use crate::real::Real;
 
 /// The most friction directions a step tries before it gives up ([`crate::StepError::ConeNotConverged`]):
 /// a contact whose tangential response is isotropic and uncoupled from its normal (a sphere, a
-/// point under the centre of mass) needs one.
-pub const MAX_DIRECTIONS: u32 = 16;
+/// point under the centre of mass) needs one; the meter stick across its fingers at small
+/// headings, whose lines restart (`super`'s module docs, 3), up to 18.
+pub const MAX_DIRECTIONS: u32 = 32;
 
 /// The contact's mode after a step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
