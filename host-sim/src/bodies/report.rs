@@ -253,6 +253,81 @@ pub struct BodiesSummary {
     pub warnings: Vec<BodiesWarning>,
 }
 
+impl BodiesSummary {
+    /// The summary of run `name` of `spec`: the core's run (and its wall time), the reference's
+    /// where it has the scene, the two compared, the law's figures and the core's warnings.
+    fn of(
+        name: &str,
+        spec: &SceneParams,
+        precision: Precision,
+        (core, core_s): (&BodiesRun, f64),
+        reference: Option<&(BodiesRun, f64)>,
+        law: Option<&Law>,
+    ) -> Self {
+        Self {
+            name: name.to_string(),
+            scene: spec.kind(),
+            parameters: crate::output::parameters_json(spec),
+            core: BodiesImplementation::of(core, core_s),
+            reference: reference.map(|(r, s)| BodiesImplementation::of(r, *s)),
+            comparison: reference.map(|(reference, _)| {
+                let (dev_q, dev_angle) = max_deviation(core, reference);
+                BodiesComparison {
+                    same_outcome: core.outcome.class == reference.outcome.class,
+                    max_position_deviation_m: dev_q,
+                    max_angle_deviation_rad: dev_angle,
+                    compared_steps: core.rows.len().min(reference.rows.len()).saturating_sub(1),
+                }
+            }),
+            law: law.map(|l| LawSummary {
+                outcome: l.outcome,
+                lower_acceleration_m_s2: l.lower_acceleration,
+                upper_acceleration_m_s2: l.upper_acceleration,
+                measured: l.measured,
+            }),
+            warnings: warnings(spec, precision),
+        }
+    }
+}
+
+/// `run`'s lines comparing the core with the reference (or saying there is none), and the rule's
+/// counts for an engine whose rule looks at its steps.
+fn comparison_text(
+    text: &mut String,
+    name: &str,
+    spec: &SceneParams,
+    core: &BodiesRun,
+    reference: Option<(&BodiesRun, &BodiesComparison)>,
+) {
+    use std::fmt::Write as _;
+    let Some((reference, comparison)) = reference else {
+        let _ =
+            writeln!(text, "{name}: the independent reference does not have this scene: the core's run only");
+        return;
+    };
+    let _ = writeln!(
+        text,
+        "{name}: core vs reference: max position deviation {:.3e} m, max angle deviation {:.3e} rad{}",
+        comparison.max_position_deviation_m,
+        comparison.max_angle_deviation_rad,
+        if comparison.same_outcome { "" } else { "  OUTCOMES DIFFER" }
+    );
+    if let Some(d) = spec.get("friction_directions").filter(|&d| d > 0.0) {
+        let _ = writeln!(
+            text,
+            "{name}: the core ran the pyramid of {d} friction directions, the reference Coulomb's circular cone: the deviation is the pyramid's error"
+        );
+    }
+    if core.counters.max_active.is_some() {
+        let _ = writeln!(
+            text,
+            "{name}: the reference found {} steps whose LCP has solutions that move the bodies differently; both take the least kinetic energy after the step (docs/formulation.md, \"One answer: the rule\")",
+            reference.counters.ambiguous_steps
+        );
+        let _ = writeln!(text, "{name}: {}", rule_text(&core.counters));
+    }
+}
+
 /// `host-sim run` for scenes recorded body by body: each in the core (`precision`) beside the
 /// independent reference where the reference has the scene ([`super::has_reference`]), each
 /// body's trajectory as CSV (`core.csv`, `reference.csv`), its plots (`write_plots`), its
@@ -283,29 +358,8 @@ pub fn run_all(
         let (core, core_s) = core?;
         let reference = reference.transpose()?;
         let law = law(spec);
-        let summary = BodiesSummary {
-            name: name.clone(),
-            scene: spec.kind(),
-            parameters: crate::output::parameters_json(spec),
-            core: BodiesImplementation::of(&core, core_s),
-            reference: reference.as_ref().map(|(r, s)| BodiesImplementation::of(r, *s)),
-            comparison: reference.as_ref().map(|(reference, _)| {
-                let (dev_q, dev_angle) = max_deviation(&core, reference);
-                BodiesComparison {
-                    same_outcome: core.outcome.class == reference.outcome.class,
-                    max_position_deviation_m: dev_q,
-                    max_angle_deviation_rad: dev_angle,
-                    compared_steps: core.rows.len().min(reference.rows.len()).saturating_sub(1),
-                }
-            }),
-            law: law.as_ref().map(|l| LawSummary {
-                outcome: l.outcome,
-                lower_acceleration_m_s2: l.lower_acceleration,
-                upper_acceleration_m_s2: l.upper_acceleration,
-                measured: l.measured,
-            }),
-            warnings: warnings(spec, precision),
-        };
+        let summary =
+            BodiesSummary::of(name, spec, precision, (&core, core_s), reference.as_ref(), law.as_ref());
         let dir = out.join(name);
         crate::output::create_dir(&dir)?;
         write_trajectory(&core.rows, &dir.join("core.csv"))?;
@@ -337,35 +391,7 @@ pub fn run_all(
         for warning in &summary.warnings {
             let _ = writeln!(text, "{name}: {warning}");
         }
-        let Some((reference, comparison)) = reference.as_ref().zip(summary.comparison.as_ref()) else {
-            let _ = writeln!(
-                text,
-                "{name}: the independent reference does not have this scene: the core's run only"
-            );
-            summaries.push(summary);
-            continue;
-        };
-        let _ = writeln!(
-            text,
-            "{name}: core vs reference: max position deviation {:.3e} m, max angle deviation {:.3e} rad{}",
-            comparison.max_position_deviation_m,
-            comparison.max_angle_deviation_rad,
-            if comparison.same_outcome { "" } else { "  OUTCOMES DIFFER" }
-        );
-        if let Some(d) = spec.get("friction_directions").filter(|&d| d > 0.0) {
-            let _ = writeln!(
-                text,
-                "{name}: the core ran the pyramid of {d} friction directions, the reference Coulomb's circular cone: the deviation is the pyramid's error"
-            );
-        }
-        if core.counters.max_active.is_some() {
-            let _ = writeln!(
-                text,
-                "{name}: the reference found {} steps whose LCP has solutions that move the bodies differently; both take the least kinetic energy after the step (docs/formulation.md, \"One answer: the rule\")",
-                reference.counters.ambiguous_steps
-            );
-            let _ = writeln!(text, "{name}: {}", rule_text(&core.counters));
-        }
+        comparison_text(&mut text, name, spec, &core, reference.as_ref().zip(summary.comparison.as_ref()));
         summaries.push(summary);
     }
     crate::output::write_json(&out.join("summary.json"), &serde_json::json!({ "runs": summaries }))?;
