@@ -163,13 +163,13 @@ impl<T: Real, const C: usize> RowSpace<T, C> {
         if self.rank() >= 2 * C {
             return;
         }
-        let length = dot(&v, &v).sqrt_libm();
+        let length = dot(&v, &v).sqrt_rounded();
         if length <= T::zero() || !length.finite() {
             return;
         }
         self.reject(&mut v);
         self.reject(&mut v);
-        let rest = dot(&v, &v).sqrt_libm();
+        let rest = dot(&v, &v).sqrt_rounded();
         if rest <= T::of(64.0 * (2 * C) as f64) * T::EPS * length {
             return;
         }

@@ -3,7 +3,8 @@
 //! [`Real`] extends [`nalgebra::RealField`] with the few things the core needs that
 //! must behave identically on every target:
 //! * the machine epsilon as a constant, used to scale every tolerance;
-//! * `sin`/`cos`, `sqrt` and `atan` computed by the crate's own code or the `libm` crate, never the
+//! * `sin`/`cos`, `sqrt` and `atan` computed by the crate's own code or the `libm` crate (`sqrt`
+//!   on a Cortex-M with hardware floats by its FPU, correctly rounded as `libm`'s), never the
 //!   platform's C library, so a host build and a Cortex-M build of the same f32 scene
 //!   perform the same IEEE operations and produce bit-identical trajectories (the firmware
 //!   issue checks this with a checksum). Rust never contracts `a * b + c` into a fused
@@ -40,9 +41,12 @@ pub trait Real: RealField + Copy + sealed::Sealed {
     /// for f64).
     #[must_use]
     fn sin_cos_portable(self) -> (Self, Self);
-    /// `sqrt x` computed by `libm` (correctly rounded), identical on every target.
+    /// `sqrt x` correctly rounded (IEEE 754's one answer), identical on every target: `libm`'s,
+    /// or on a Cortex-M with hardware floats (`eabihf`) in f32 the FPU's `vsqrt.f32`, which IEEE
+    /// requires to give the same bits in 14 cycles where `libm`'s software root takes hundreds of
+    /// instructions.
     #[must_use]
-    fn sqrt_libm(self) -> Self;
+    fn sqrt_rounded(self) -> Self;
     /// `atan x` computed by `libm`, identical on every target.
     #[must_use]
     fn atan_libm(self) -> Self;
@@ -85,7 +89,28 @@ impl Real for f32 {
         sin_cos_f32(self)
     }
     #[inline]
-    fn sqrt_libm(self) -> Self {
+    fn sqrt_rounded(self) -> Self {
+        #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+        {
+            let root: u32;
+            // SAFETY: the value crosses in a core register, `s0` (declared clobbered) holds it for
+            // `vsqrt.f32`; nothing touches memory, the stack or the condition flags (only the
+            // FPSCR's cumulative exception bits, which nothing here reads).
+            #[allow(unsafe_code)]
+            unsafe {
+                core::arch::asm!(
+                    "vmov s0, {x}",
+                    "vsqrt.f32 s0, s0",
+                    "vmov {root}, s0",
+                    x = in(reg) self.to_bits(),
+                    root = lateout(reg) root,
+                    out("s0") _,
+                    options(pure, nomem, nostack, preserves_flags)
+                );
+            }
+            f32::from_bits(root)
+        }
+        #[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
         libm::sqrtf(self)
     }
     #[inline]
@@ -136,7 +161,7 @@ impl Real for f64 {
         libm::sincos(self)
     }
     #[inline]
-    fn sqrt_libm(self) -> Self {
+    fn sqrt_rounded(self) -> Self {
         libm::sqrt(self)
     }
     #[inline]

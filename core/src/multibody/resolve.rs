@@ -66,7 +66,7 @@ impl<T: Real, const B: usize> SystemDetector<T, B> {
                 metric[i][c] = T::one() / (inverse_mass[i][c] * mass_sum);
             }
             let [a, b] = bodies[i].half_extents();
-            reach[i][2] = if shapes[i] == Shape::Disc { a } else { (a * a + b * b).sqrt_libm() };
+            reach[i][2] = if shapes[i] == Shape::Disc { a } else { (a * a + b * b).sqrt_rounded() };
         }
         Self { metric, reach }
     }

@@ -65,7 +65,7 @@ pub fn normal_bias<T: Real>(gap: T, h: T, gravity: T, round_off: T) -> T {
         return excess / h;
     }
     let one_step = -excess / h;
-    let cap = -(T::of(2.0) * gravity * excess).sqrt_libm();
+    let cap = -(T::of(2.0) * gravity * excess).sqrt_rounded();
     if one_step > cap { one_step } else { cap }
 }
 

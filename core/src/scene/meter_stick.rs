@@ -124,7 +124,7 @@ impl<T: Real> MeterStickParams<T> {
         // The tips lie on the rod's lower face at rest; their distance along it from the foot of
         // the centre of mass (above x = 0) is the horizontal distance times sqrt(1 + slope^2).
         let slope = (self.finger2_y - self.finger1_y) / (self.finger2_x - self.finger1_x);
-        let stretch = (T::one() + slope * slope).sqrt_libm();
+        let stretch = (T::one() + slope * slope).sqrt_rounded();
         let foot_x = slope / stretch * (self.rod_thickness / T::of(2.0));
         let half = self.rod_length / T::of(2.0);
         [("finger1_x", self.finger1_x), ("finger2_x", self.finger2_x)]

@@ -46,7 +46,7 @@ pub fn cross<T: Real>(a: &Vector<T>, b: &Vector<T>) -> Vector<T> {
 #[inline]
 #[must_use]
 pub fn norm<T: Real>(a: &Vector<T>) -> T {
-    dot(a, a).sqrt_libm()
+    dot(a, a).sqrt_rounded()
 }
 
 /// `true` when every coordinate is finite.
@@ -87,7 +87,7 @@ pub fn mul<T: Real>(a: &Quaternion<T>, b: &Quaternion<T>) -> Quaternion<T> {
 /// `q` divided by its length (a unit quaternion again after round-off has moved it).
 #[must_use]
 pub fn normalized<T: Real>(q: &Quaternion<T>) -> Quaternion<T> {
-    let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt_libm();
+    let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt_rounded();
     let inv = T::one() / n;
     [q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv]
 }

@@ -121,7 +121,7 @@ pub(super) fn inertia_times<T: Real>(body: &Body<T>, q: &Quaternion<T>, a: &Vect
 /// q`, the exact rotation, renormalised.
 #[must_use]
 pub(super) fn turned<T: Real>(q: &Quaternion<T>, omega: &Vector<T>, h: T) -> Quaternion<T> {
-    let speed = dot(omega, omega).sqrt_libm();
+    let speed = dot(omega, omega).sqrt_rounded();
     if speed <= T::zero() || !speed.finite() {
         return *q;
     }

@@ -242,5 +242,5 @@ impl<T: Real> FullContact<T> {
 /// `|(vx, vy)| + reach |omega|`: the speed bound of a box's fastest point (`reach` half its
 /// diagonal).
 fn point_speed_bound<T: Real>(state: &BodyState<T>, reach: T) -> T {
-    (state.vx * state.vx + state.vy * state.vy).sqrt_libm() + reach * state.omega.abs_exact()
+    (state.vx * state.vx + state.vy * state.vy).sqrt_rounded() + reach * state.omega.abs_exact()
 }

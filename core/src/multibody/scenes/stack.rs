@@ -128,7 +128,7 @@ impl<T: Real, const B: usize, const N: usize> Stack<T, B, N> {
         Ok(Self {
             run: Run::new(params, system, states)?,
             start_y,
-            reach: T::of(0.5) * (p.length * p.length + p.height * p.height).sqrt_libm(),
+            reach: T::of(0.5) * (p.length * p.length + p.height * p.height).sqrt_rounded(),
             max_speed: T::zero(),
         })
     }

@@ -131,7 +131,7 @@ impl<T: Real> Tablecloth<T> {
         let half = T::of(0.5);
         let (_, cos) = board.theta.sin_cos_portable();
         let behind = block.x < board.x - half * p.board_length * cos;
-        let reach = half * (p.block_width * p.block_width + p.block_height * p.block_height).sqrt_libm();
+        let reach = half * (p.block_width * p.block_width + p.block_height * p.block_height).sqrt_rounded();
         let at_rest = block.vx.abs_exact() <= p.stick_speed
             && block.vy.abs_exact() <= p.stick_speed
             && reach * block.omega.abs_exact() <= p.stick_speed;

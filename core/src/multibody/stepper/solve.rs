@@ -52,7 +52,7 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
         // `k <= N / 4` (said so: every row index below is in range, no panic path).
         let k = k.min(N / 4);
         let mut opened = *lcp;
-        let delta = T::EPS.sqrt_libm() * lcp.q_norm_inf();
+        let delta = T::EPS.sqrt_rounded() * lcp.q_norm_inf();
         for j in 3 * k..4 * k {
             opened.q[j] += delta;
         }
