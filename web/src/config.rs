@@ -45,13 +45,20 @@ pub enum Module {
     /// `meterstick_web_mb.wasm` (feature `mb`): the scenes whose contacts come and go, none
     /// counted (the scenes of several bodies).
     Bodies,
+    /// `meterstick_web_sp.wasm` (feature `sp`): the scenes in three dimensions.
+    Spatial,
 }
 
 impl Module {
-    /// The module that runs `kind`, by the contacts the catalogue counts for it (the page's
-    /// `moduleUrl`, `web/page/core.js`).
+    /// The module that runs `kind`: a scene in three dimensions ([`SceneKind::is_spatial`]) its
+    /// own, another by the contacts the catalogue counts for it (the page's `moduleUrl`,
+    /// `web/page/core.js`; the page learns a scene in three dimensions' module from
+    /// `pkg/intros.json`, `examples/intros.rs`).
     #[must_use]
     pub const fn of(kind: SceneKind) -> Self {
+        if kind.is_spatial() {
+            return Self::Spatial;
+        }
         match kind.contacts() {
             0 => Self::Bodies,
             1 => Self::One,
@@ -68,6 +75,7 @@ impl Module {
             Self::Two => "meterstick_web.wasm",
             Self::Three => "meterstick_web_k3.wasm",
             Self::Bodies => "meterstick_web_mb.wasm",
+            Self::Spatial => "meterstick_web_sp.wasm",
         }
     }
 
@@ -79,6 +87,7 @@ impl Module {
             Self::Two => cfg!(feature = "k2"),
             Self::Three => cfg!(feature = "k3"),
             Self::Bodies => cfg!(feature = "mb"),
+            Self::Spatial => cfg!(feature = "sp"),
         }
     }
 }
@@ -89,12 +98,12 @@ pub const fn holds(kind: SceneKind) -> bool {
     on_page(kind) && Module::of(kind).built()
 }
 
-/// `true` for a scene the page offers: every scene but those in three dimensions, which no page
-/// module runs yet (they reach this crate only where a host build of the whole workspace names
-/// them: the page's own builds leave them out).
+/// `true` for a scene this build describes to the page: every scene it names, those in three
+/// dimensions with the feature `sp` only (a host build of the whole workspace names them without
+/// running them; the planar page modules do not name them).
 #[must_use]
 pub const fn on_page(kind: SceneKind) -> bool {
-    !kind.is_spatial()
+    !kind.is_spatial() || cfg!(feature = "sp")
 }
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.

@@ -24,8 +24,14 @@ pub type Held = meterstick_core::scene::AnyView<0>;
 #[cfg(all(any(feature = "k1", feature = "k2", feature = "k3"), not(feature = "mb")))]
 pub type Held = meterstick_core::scene::PlanarViews<0>;
 /// The holder of the scenes this build runs: the module of the scenes of several bodies.
-#[cfg(not(any(feature = "k1", feature = "k2", feature = "k3")))]
+#[cfg(all(
+    not(any(feature = "k1", feature = "k2", feature = "k3")),
+    any(feature = "mb", not(feature = "sp"))
+))]
 pub type Held = meterstick_core::scene::MultibodyViews;
+/// The holder of the scenes this build runs: the module of the scenes in three dimensions.
+#[cfg(all(not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb")), feature = "sp"))]
+pub type Held = meterstick_core::scene::SpatialViews;
 
 /// The most contacts a scene of the catalogue has (three fingers).
 pub const MAX_CONTACTS: usize = 3;
@@ -45,8 +51,16 @@ pub const MAX_BODIES: usize = 3;
 /// lowest; NaN for a body the scene does not have), as `host-sim`'s trajectory of bodies.
 pub const BODIES_ROW: usize = 1 + 3 * MAX_BODIES;
 
-/// The longest row (a scene with [`MAX_CONTACTS`]).
+/// The longest row: a scene with [`MAX_CONTACTS`], or one in three dimensions
+/// (`spatial::SPATIAL_ROW`) in a build with the feature `sp`.
+#[cfg(not(feature = "sp"))]
 pub const MAX_ROW: usize = row_len(MAX_CONTACTS);
+/// The longest row: a scene with [`MAX_CONTACTS`], or one in three dimensions
+/// ([`crate::spatial::SPATIAL_ROW`]) in a build with the feature `sp`.
+#[cfg(feature = "sp")]
+pub const MAX_ROW: usize = crate::spatial::SPATIAL_ROW;
+#[cfg(feature = "sp")]
+const _: () = assert!(crate::spatial::SPATIAL_ROW >= row_len(MAX_CONTACTS));
 const _: () = assert!(BODIES_ROW <= MAX_ROW);
 
 /// The modes by code ([`mode_code`]), as `core.csv` spells them.
@@ -86,12 +100,21 @@ pub enum Rows {
     /// A scene whose contacts come and go (none counted): time, then each body's `x, y, theta`
     /// ([`BODIES_ROW`]; NaN past its bodies), as `host-sim`'s trajectory of bodies.
     Bodies,
+    /// A scene in three dimensions: time, the body's position, orientation, velocity and angular
+    /// velocity, each contact's point, normal, friction direction, mode and impulses
+    /// ([`crate::spatial::SPATIAL_ROW`], [`crate::spatial::write_row`]).
+    #[cfg(feature = "sp")]
+    Spatial,
 }
 
 impl Rows {
     /// The rows of `kind`.
     #[must_use]
     pub const fn of(kind: SceneKind) -> Self {
+        #[cfg(feature = "sp")]
+        if kind.is_spatial() {
+            return Self::Spatial;
+        }
         match kind.contacts() {
             0 => Self::Bodies,
             k => Self::Contacts(k),
@@ -104,6 +127,8 @@ impl Rows {
         match self {
             Self::Contacts(k) => row_len(k),
             Self::Bodies => BODIES_ROW,
+            #[cfg(feature = "sp")]
+            Self::Spatial => crate::spatial::SPATIAL_ROW,
         }
     }
 
@@ -112,6 +137,8 @@ impl Rows {
     fn write<T: Real>(self, view: &dyn SceneView<T>, row: &mut [f64]) {
         row[0] = view.time().as_f64();
         match self {
+            #[cfg(feature = "sp")]
+            Self::Spatial => crate::spatial::write_row(view, row),
             Self::Contacts(k) => {
                 let Some((q, v)) = view.body(0).and_then(|b| planar(&b)) else { return };
                 for (slot, x) in row[1..7].iter_mut().zip(q.into_iter().chain(v)) {
@@ -318,6 +345,21 @@ impl Sim {
     #[must_use]
     pub fn body_round(&self, i: usize) -> bool {
         matches!(self.view.read(ShapeOf(i)), Some(BodyShape::Disc { .. }))
+    }
+
+    /// The body's solid, `[code, a, b]` ([`crate::spatial::Solid`]): a scene in three dimensions.
+    #[cfg(feature = "sp")]
+    #[must_use]
+    pub fn solid(&self) -> Option<[f64; 3]> {
+        self.view.read(crate::spatial::Solid)
+    }
+
+    /// Support `i`, `[code, point, direction]` ([`crate::spatial::SupportOf`]): a scene in three
+    /// dimensions.
+    #[cfg(feature = "sp")]
+    #[must_use]
+    pub fn support(&self, i: usize) -> Option<[f64; 7]> {
+        self.view.read(crate::spatial::SupportOf(i))
     }
 
     /// The ends `[lo, hi]` of the table the scene's bodies rest on (m; `None` for an infinite end,

@@ -63,6 +63,8 @@ pub use view::AnyView;
 pub use view::MultibodyViews;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use view::PlanarViews;
+#[cfg(feature = "scenes-spatial")]
+pub use view::SpatialViews;
 pub use view::{
     Axis, BodyShape, BodyView, ContactView, DIMENSIONS, EventView, FigureName, Force, HeldView, LoadPart,
     MultibodyView, PlanarView, Pose, RunStats, SceneView, StepFigure, StepStats, SupportView, Thing,

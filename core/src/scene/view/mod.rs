@@ -52,6 +52,8 @@ pub use held::AnyView;
 pub use held::MultibodyViews;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use held::PlanarViews;
+#[cfg(feature = "scenes-spatial")]
+pub use held::SpatialViews;
 pub use held::{HeldView, ViewReader};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
