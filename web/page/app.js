@@ -134,7 +134,7 @@ function buildForm(scene) {
   $('lcp-size').options[0].textContent = `${lcpText(k, '6')} (firmware)`;
   $('lcp-size').options[1].textContent = `${lcpText(k, '8')} (${k === 2 ? 'paper' : 'full'})`;
   // A scene of several bodies has one LCP form, sized by its candidate contacts: no choice.
-  $('lcp-size').disabled = k === 0;
+  $('lcp-size').disabled = k === 0 || S.core.isSpatial(scene);
   const bodies = S.core.isBodies(scene);
   if (!S.captions) S.captions = ['cap-positions', 'cap-angle', 'cap-height'].map((id) => $(id).innerHTML);
   const bodyCaptions = ['Positions: each body\'s centre of mass (body 1 the lowest), x (m) over t (s)',

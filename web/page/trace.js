@@ -48,11 +48,13 @@ export class Trace {
   /// body's x, y, theta (body 0 the lowest), kept as b<i>x, b<i>y, b<i>theta (1-based; x, y and
   /// theta are the top body's).
   constructor(k, bodies = 0, spatialRow = 0) {
-    this.k = k;
-    this.bodies = bodies;
     this.spatial = spatialRow > 0;
+    // A scene in three dimensions keeps its contacts in its rows, not as a planar scene's columns.
+    this.k = this.spatial ? 0 : k;
+    bodies = this.spatial ? 0 : bodies;
+    this.bodies = bodies;
     this.row = this.spatial ? spatialRow : bodies > 0 ? BODIES_ROW : rowLength(k);
-    this.at = Array.from({ length: k }, (_, i) => contactColumns(k, i));
+    this.at = Array.from({ length: this.k }, (_, i) => contactColumns(this.k, i));
     if (this.spatial) {
       // A scene in three dimensions (web/src/spatial.rs): t, position, orientation, velocity,
       // angular velocity, then each contact.
