@@ -6,7 +6,8 @@
 // (the catalogue); a scene whose contacts the first module does not hold runs in the module that
 // does, fetched when it is chosen.
 
-import { compileCore, instantiateCore, moduleFileUrl, moduleUrl, parseNumber } from './core.js';
+import { compileCore, instantiateCore, parseNumber } from './core.js';
+import { pageModules } from './modules.js';
 import { SpaceView } from './view3d.js';
 import { spatialCaptions, drawSpatialPlots } from './space.js';
 import { SceneView, drawPlot, COLORS, CONTACT_COLORS } from './draw.js';
@@ -49,6 +50,7 @@ const view2d = new SceneView($('scene'));
 const view3d = new SpaceView($('scene3d'));
 /// The drawing of run A: in the plane, or in perspective for a scene in three dimensions.
 let view = view2d;
+const { coreFor, coreBFor, knownScene, sceneNames } = pageModules(S);
 const viewB = new SceneView($('scene-b'));
 const map = new OutcomeMap({
   canvas: $('map'), status: $('map-status'), time: $('map-time'), cell: $('map-cell'),
@@ -65,47 +67,6 @@ const map = new OutcomeMap({
 
 function setState(state) {
   document.body.dataset.state = state;
-}
-
-/// The module that runs `scene`: the first module, the module of the scene's contacts, or, for a
-/// scene the first module does not name (one in three dimensions), the one pkg/intros.json names.
-function moduleOf(scene) {
-  if (!S.main.scene(scene)) {
-    const file = S.intros && S.intros[scene] ? S.intros[scene].module : null;
-    return { key: file, url: file ? moduleFileUrl(file) : null, main: false };
-  }
-  const k = S.main.contacts(scene);
-  return { key: k, url: moduleUrl(k), main: S.main.desc.holds.includes(k) };
-}
-
-/// `true` for a scene some module runs.
-function knownScene(scene) {
-  return Boolean(S.main.scene(scene) || moduleOf(scene).url);
-}
-
-/// The core that runs `scene`: the first module, or the module of `moduleOf` (fetched and
-/// compiled once).
-function coreFor(scene) {
-  const m = moduleOf(scene);
-  if (m.main) return Promise.resolve(S.main);
-  if (!S.cores.has(m.key)) {
-    const loading = compileCore(m.url).then(instantiateCore);
-    loading.catch(() => S.cores.delete(m.key));
-    S.cores.set(m.key, loading);
-  }
-  return S.cores.get(m.key);
-}
-
-/// A second instance of the module that runs `scene`, for run B (made once per module).
-function coreBFor(scene) {
-  const m = moduleOf(scene);
-  if (!S.coresB.has(m.key)) {
-    const module = m.main ? Promise.resolve(S.module) : compileCore(m.url);
-    const loading = module.then(instantiateCore);
-    loading.catch(() => S.coresB.delete(m.key));
-    S.coresB.set(m.key, loading);
-  }
-  return S.coresB.get(m.key);
 }
 
 /// Makes `scene` the form's scene, with the core that runs it (and run B's, when comparing).
@@ -811,14 +772,6 @@ async function main() {
   if (q.get('bench') === '1') bench();
   if (q.get('map') === '1' && ok && !problems.length) computeMap();
   if (q.get('autorun') === '1' && S.source && !problems.length) play();
-}
-
-/// Every scene's name: the first module's, then those of the other modules it does not name (from
-/// pkg/intros.json: the scenes in three dimensions).
-function sceneNames() {
-  const names = S.main.desc.scenes.map((s) => s.name);
-  const others = Object.keys(S.intros || {}).filter((name) => !names.includes(name) && moduleOf(name).url);
-  return [...names, ...others];
 }
 
 window.meterstick = testHooks(S, () => view, viewB, map);
