@@ -32,7 +32,7 @@ void main() {
   vec3 c = uColor;
   // 1: a ball's octants, 2: a puck's radial mark (their turning shows), 3: a 10 cm grid.
   if (uPattern == 1 && vLocal.x * vLocal.y * vLocal.z > 0.0) c *= 0.55;
-  if (uPattern == 2 && vLocal.x > 0.0 && abs(vLocal.y) < 0.18 && vLocal.z > 0.49) c = vec3(0.1);
+  if (uPattern == 2 && vLocal.x > 0.3 && abs(vLocal.y) < 0.18 && vLocal.z > 0.49) c = vec3(0.1);
   if (uPattern == 3) {
     vec2 g = abs(fract(vWorld.xy * 10.0 + 0.5) - 0.5);
     if (min(g.x, g.y) < 0.04) c *= 0.85;
@@ -223,7 +223,7 @@ export class SpaceView {
   cameraFor(row) {
     const o = this.orbit;
     const target = [row[1], row[2], row[3]];
-    const dist = 3.5 * Math.max(this.size, 0.08) * o.zoom;
+    const dist = (this.shapes.solid[0] === 0 ? 1.4 : 3.5) * Math.max(this.size, 0.08) * o.zoom;
     const eye = [
       target[0] + dist * Math.cos(o.pitch) * Math.cos(o.yaw),
       target[1] + dist * Math.cos(o.pitch) * Math.sin(o.yaw),
@@ -308,7 +308,9 @@ export class SpaceView {
     const [code, a, b] = this.shapes.solid;
     const [c0, c1, c2] = rotation([row[4], row[5], row[6], row[7]]);
     const pos = [row[1], row[2], row[3]];
-    const scale = code === 0 ? [a, b, b] : code === 1 ? [a, a, a] : [a, a, b];
+    // A rod: its length along its x, its thickness along its z, its width (the scene's parameter;
+    // the view's box has two sides) along its y.
+    const scale = code === 0 ? [a, this.params.rod_width || b, b] : code === 1 ? [a, a, a] : [a, a, b];
     const m = model(c0.map((x) => x * scale[0]), c1.map((x) => x * scale[1]), c2.map((x) => x * scale[2]), pos);
     this.put(code === 0 ? 'cube' : code === 1 ? 'sphere' : 'cylinder', m, this.bodyColor, code === 1 ? 1 : code === 2 ? 2 : 0);
     // Each contact's force ((pn n + pf t) / h) as an arrow, scaled to the largest seen; its mode's colour.
@@ -358,8 +360,8 @@ export class SpaceView {
     gl.drawArrays(gl.LINE_STRIP, 0, pts.length / 6);
   }
 
-  /// The canvas's pixels: how many distinct colours, and the colour at the body's centre
-  /// (for the page's test: the bodies are drawn, not a blank frame).
+  /// The canvas's pixels: how many distinct colours, the colour at the body's centre and how many
+  /// pixels have the body's hue (for the page's test: the bodies are drawn, not a blank frame).
   pixels() {
     const gl = this.gl;
     if (!gl || !this.lastRow) return null;
@@ -370,13 +372,20 @@ export class SpaceView {
     const data = new Uint8Array(w * h * 4);
     gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, data);
     const seen = new Set();
-    for (let i = 0; i < data.length; i += 4) seen.add((data[i] << 16) | (data[i + 1] << 8) | data[i + 2]);
+    const hue = (r, g, b) => { const s = Math.max(r + g + b, 1); return [r / s, g / s, b / s]; };
+    const bodyHue = hue(...this.bodyColor);
+    let bodyPixels = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      seen.add((data[i] << 16) | (data[i + 1] << 8) | data[i + 2]);
+      const q = hue(data[i], data[i + 1], data[i + 2]);
+      if (data[i] > 30 && Math.hypot(q[0] - bodyHue[0], q[1] - bodyHue[1], q[2] - bodyHue[2]) < 0.08) bodyPixels += 1;
+    }
     const [x, y] = this.project([this.lastRow[1], this.lastRow[2], this.lastRow[3]]).map(Math.round);
     const at = ((h - 1 - y) * w + x) * 4;
     const to255 = (c) => c.map((v) => Math.round(v * 255));
     this.draw(row, info);
     return {
-      colours: seen.size, width: w, height: h, centre: [x, y],
+      colours: seen.size, width: w, height: h, centre: [x, y], bodyPixels,
       body: Array.from(data.subarray(at, at + 3)), bodyColor: to255(this.bodyColor),
       background: to255(this.background), plane: to255(this.planeColor),
     };
