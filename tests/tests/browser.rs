@@ -443,6 +443,12 @@ fn the_page_in_chromium() {
     browser_spatial::check_spatial(
         &b,
         &base,
+        "curling-f64",
+        "scene=curling&precision=f64&autorun=1&rate=max",
+    );
+    browser_spatial::check_spatial(
+        &b,
+        &base,
         "puck-contract",
         "scene=puck&angle=20&mu-k=0.3&speed=0.9&heading=15&autorun=1",
     );

@@ -50,7 +50,7 @@ const view2d = new SceneView($('scene'));
 const view3d = new SpaceView($('scene3d'));
 /// The drawing of run A: in the plane, or in perspective for a scene in three dimensions.
 let view = view2d;
-const { coreFor, coreBFor, knownScene, sceneNames } = pageModules(S);
+const { coreFor, coreBFor, knownScene, sceneNames } = pageModules(S, () => $('precision').value);
 const viewB = new SceneView($('scene-b'));
 const map = new OutcomeMap({
   canvas: $('map'), status: $('map-status'), time: $('map-time'), cell: $('map-cell'),
@@ -627,7 +627,8 @@ function wire() {
     }
     makeRun();
   });
-  $('precision').addEventListener('change', () => makeRun());
+  // A scene in three dimensions runs in the module of its precision.
+  $('precision').addEventListener('change', async () => { S.core = await coreFor(S.scene); makeRun(); });
   $('lcp-size').addEventListener('change', () => makeRun());
   $('params').addEventListener('submit', (e) => { e.preventDefault(); makeRun(); });
   $('map-run').addEventListener('click', computeMap);
@@ -740,6 +741,8 @@ async function main() {
   let problems;
   try {
     problems = await readUrl(q);
+    // The query's precision may name another module (a scene in three dimensions).
+    S.core = await coreFor(S.scene);
   } catch (e) {
     showError(`could not load the core for scene ${q.get('scene')}: ${e.message}`);
     setState('error');

@@ -1,17 +1,21 @@
 // Which wasm module runs a scene, and the cores made from them (one per module, and a second
 // for run B): the first module (meterstick_web.wasm) runs the two-contact scenes; another scene of
 // a module it names runs in the module of its contacts; a scene it does not name (one in three
-// dimensions) in the module pkg/intros.json names (web/examples/intros.rs, config::Module::of).
+// dimensions) in the module pkg/intros.json names for the run's precision (`module`, `module_f64`:
+// web/examples/intros.rs, config::Module::file_for; one module a precision, for their size).
 
 import { compileCore, instantiateCore, moduleFileUrl, moduleUrl } from './core.js';
 
-/// The page's modules over its state `S` (S.main, S.module, S.cores, S.coresB, S.intros).
-export function pageModules(S) {
+/// The page's modules over its state `S` (S.main, S.module, S.cores, S.coresB, S.intros), for runs
+/// in the precision `precision()` gives ('f32' or 'f64').
+export function pageModules(S, precision) {
   /// The module that runs `scene`: the first module, the module of the scene's contacts, or, for a
-  /// scene the first module does not name (one in three dimensions), the one pkg/intros.json names.
+  /// scene the first module does not name (one in three dimensions), the one pkg/intros.json names
+  /// for the precision.
   function moduleOf(scene) {
     if (!S.main.scene(scene)) {
-      const file = S.intros && S.intros[scene] ? S.intros[scene].module : null;
+      const intro = S.intros && S.intros[scene];
+      const file = intro ? (precision() === 'f64' ? intro.module_f64 : intro.module) : null;
       return { key: file, url: file ? moduleFileUrl(file) : null, main: false };
     }
     const k = S.main.contacts(scene);

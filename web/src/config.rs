@@ -45,7 +45,8 @@ pub enum Module {
     /// `meterstick_web_mb.wasm` (feature `mb`): the scenes whose contacts come and go, none
     /// counted (the scenes of several bodies).
     Bodies,
-    /// `meterstick_web_sp.wasm` (feature `sp`): the scenes in three dimensions.
+    /// `meterstick_web_sp.wasm` (feature `sp`): the scenes in three dimensions, in f32; in f64
+    /// `meterstick_web_sp64.wasm` (features `sp` and `sp64`, [`Self::file_for`]).
     Spatial,
 }
 
@@ -76,6 +77,16 @@ impl Module {
             Self::Three => "meterstick_web_k3.wasm",
             Self::Bodies => "meterstick_web_mb.wasm",
             Self::Spatial => "meterstick_web_sp.wasm",
+        }
+    }
+
+    /// Its file for a run in `precision`: the scenes in three dimensions have a module for each
+    /// precision (each within the page's size budget), the other scenes one for both.
+    #[must_use]
+    pub const fn file_for(self, precision: Precision) -> &'static str {
+        match (self, precision) {
+            (Self::Spatial, Precision::F64) => "meterstick_web_sp64.wasm",
+            _ => self.file(),
         }
     }
 
@@ -258,6 +269,18 @@ mod tests {
         assert_eq!(fixed.max_time(), 5.0);
         let fast = config(SceneKind::MeterStick, &[("speed", 1.0)]).resolve(Precision::F32).unwrap();
         assert_eq!(fast.max_time(), 30.0);
+    }
+
+    /// A scene in three dimensions runs in the module of its kind, one file a precision; the others
+    /// in one file for both.
+    #[test]
+    fn a_scene_in_three_dimensions_has_a_module_a_precision() {
+        assert_eq!(Module::of(SceneKind::Curling), Module::Spatial);
+        assert_eq!(Module::Spatial.file_for(Precision::F32), "meterstick_web_sp.wasm");
+        assert_eq!(Module::Spatial.file_for(Precision::F64), "meterstick_web_sp64.wasm");
+        assert_eq!(Module::of(SceneKind::Stack), Module::Bodies);
+        assert_eq!(Module::Bodies.file_for(Precision::F64), "meterstick_web_mb.wasm");
+        assert!(holds(SceneKind::Puck), "the host build runs every scene");
     }
 
     #[test]

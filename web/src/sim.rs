@@ -365,9 +365,15 @@ pub const fn outcome_code(o: Outcome) -> u8 {
     o.kind().code()
 }
 
-/// The holder of the scenes this build runs: the module of the scenes in three dimensions.
-#[cfg(all(not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb")), feature = "sp"))]
-pub type Held = meterstick_core::scene::SpatialViews;
+/// The holder of the scenes this build runs: the module of the scenes in three dimensions in f32.
+#[cfg(all(
+    not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb", feature = "sp64")),
+    feature = "sp"
+))]
+pub type Held = meterstick_core::scene::SpatialViewsIn<f32>;
+/// The holder of the scenes this build runs: the module of the scenes in three dimensions in f64.
+#[cfg(all(not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb")), feature = "sp64"))]
+pub type Held = meterstick_core::scene::SpatialViewsIn<f64>;
 
 /// A view's row as it is now ([`Rows::write`]).
 struct RowNow<'a> {

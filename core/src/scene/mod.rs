@@ -63,10 +63,10 @@ pub use view::AnyView;
 pub use view::MultibodyViews;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use view::PlanarViews;
-#[cfg(feature = "scenes-spatial")]
-pub use view::SpatialViews;
 pub use view::{
     Axis, BodyShape, BodyView, ContactView, DIMENSIONS, EventView, FigureName, Force, HeldView, LoadPart,
     MultibodyView, PlanarView, Pose, RunStats, SceneView, StepFigure, StepStats, SupportView, Thing,
     Velocity, ViewReader, ViewVector, ViewVisitor,
 };
+#[cfg(feature = "scenes-spatial")]
+pub use view::{SpatialViews, SpatialViewsIn};

@@ -44,8 +44,14 @@ pub fn check_spatial(b: &Browser, base: &str, name: &str, query: &str) {
         (host_outcome.as_str(), host_checksum.as_str()),
         "{name}: the page differs from host-sim scene"
     );
+    // One module a precision (`config::Module::file_for`).
+    let module = if query.contains("precision=f64") {
+        "pkg/meterstick_web_sp64.wasm"
+    } else {
+        "pkg/meterstick_web_sp.wasm"
+    };
     let fetched = b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
-    assert!(fetched.as_str().unwrap().contains("pkg/meterstick_web_sp.wasm"), "{name}: {fetched}");
+    assert!(fetched.as_str().unwrap().contains(module), "{name}: {module} not fetched: {fetched}");
     let row = b.js("return window.meterstick.contacts().row");
     assert_eq!(row.as_u64(), Some(110), "{name}: the row of a scene in three dimensions");
     // The drawing: WebGL2 in headless Chromium (SwiftShader), read back.

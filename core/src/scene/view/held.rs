@@ -7,7 +7,7 @@
 //!   its [`PlanarView`];
 //! * [`MultibodyViews`]: any scene of several bodies, each through its [`MultibodyView`];
 //! * [`SpatialViews`]: any scene in three dimensions (feature `scenes-spatial`), each through its
-//!   [`SpatialView`];
+//!   [`SpatialView`]; [`SpatialViewsIn`] in one precision;
 //! * [`AnyView`]: any scene of the catalogue, one of them by the scene's engine.
 //!
 //! A build that runs the scenes of one engine only (a page module) holds that engine's holder:
@@ -341,6 +341,31 @@ impl HeldView for SpatialViews {
 
     fn read<R: ViewReader>(&self, reader: R) -> R::Output {
         self.0.read(reader)
+    }
+}
+
+/// Any scene in three dimensions in one precision, `T`, held in place and seen through its
+/// [`SpatialView`]: a build that runs them in that precision only (a page module of one
+/// precision, half the code of [`SpatialViews`]), refusing the other as `OutOfRange("precision")`.
+#[cfg(feature = "scenes-spatial")]
+#[derive(Debug, Clone)]
+pub struct SpatialViewsIn<T: Real>(SpaceIn<T>);
+
+#[cfg(feature = "scenes-spatial")]
+impl<T: Real> HeldView for SpatialViewsIn<T> {
+    fn new(params: &SceneParams, precision: Precision, _: LcpLayout) -> Result<Self, ParamError> {
+        if precision.name() != T::NAME {
+            return Err(ParamError::OutOfRange("precision"));
+        }
+        Ok(Self(SpaceIn::new(params)?))
+    }
+
+    fn visit_mut<V: ViewVisitor>(&mut self, visitor: V) -> V::Output {
+        visitor.visit(self.0.view_mut())
+    }
+
+    fn read<R: ViewReader>(&self, reader: R) -> R::Output {
+        reader.read(self.0.view())
     }
 }
 
