@@ -493,6 +493,25 @@ mod tests {
         }
     }
 
+    /// A holder of the scenes in three dimensions in one precision runs them as the holder of both
+    /// (the same steps and checksum) and refuses the other precision.
+    #[cfg(feature = "scenes-spatial")]
+    #[test]
+    fn a_holder_of_one_precision_runs_as_the_holder_of_both() {
+        let layout = LcpLayout::Reduced;
+        for kind in SceneKind::ALL.into_iter().filter(|k| k.is_spatial()) {
+            let params = SceneParams::defaults(kind);
+            let mut both = SpatialViews::new(&params, Precision::F64, layout).unwrap();
+            let mut one = SpatialViewsIn::<f64>::new(&params, Precision::F64, layout).unwrap();
+            assert_eq!(one.visit_mut(Steps(200)), both.visit_mut(Steps(200)), "{kind}");
+            assert_eq!(
+                SpatialViewsIn::<f32>::new(&params, Precision::F64, layout).err(),
+                Some(ParamError::OutOfRange("precision")),
+                "{kind}"
+            );
+        }
+    }
+
     /// Each engine's holder holds its scenes only; a held scene gives its bodies and its table.
     #[test]
     fn a_holder_holds_its_engines_scenes() {
