@@ -35,6 +35,8 @@ use meterstick_host_sim::trajectory::{Record, run_k};
 use meterstick_host_sim::with_contacts;
 use serde_json::{Value, json};
 
+mod browser_spatial;
+
 const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
 
 fn repo() -> PathBuf {
@@ -134,7 +136,7 @@ impl Browser {
             TempDir(std::env::temp_dir().join(format!("meterstick-chromium-{}", std::process::id())));
         let caps = json!({"capabilities": {"alwaysMatch": {"browserName": "chrome", "goog:chromeOptions": {
             "binary": "/usr/bin/chromium",
-            "args": ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+            "args": ["--headless=new", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-dev-shm-usage",
                      "--disable-quic", "--no-first-run", "--disable-background-networking",
                      "--disable-component-update", "--disable-sync", "--window-size=1600,1100",
                      format!("--user-data-dir={}", profile.0.display())]
@@ -433,6 +435,23 @@ fn the_page_in_chromium() {
         "disc-on-board-sliding",
         "scene=disc-on-board&force=40&duration=0.2&precision=f64&autorun=1&rate=max",
     );
+    // The scenes in three dimensions, in their module, drawn in perspective: each at its
+    // defaults, and the puck on a slope as the URL contract's example.
+    for scene in ["puck", "billiard", "curling", "meter-stick-3d"] {
+        browser_spatial::check_spatial(&b, &base, scene, &format!("scene={scene}&autorun=1&rate=max"));
+    }
+    browser_spatial::check_spatial(
+        &b,
+        &base,
+        "curling-f64",
+        "scene=curling&precision=f64&autorun=1&rate=max",
+    );
+    browser_spatial::check_spatial(
+        &b,
+        &base,
+        "puck-contract",
+        "scene=puck&angle=20&mu-k=0.3&speed=0.9&heading=15&autorun=1",
+    );
     check_scene_selector(&b, &base);
     check_intros(&b, &base);
     check_pulled_block_in_view(&b, &base);
@@ -552,8 +571,8 @@ fn check_bodies(b: &Browser, base: &str, name: &str, query: &str) {
 /// Each scene is headed and introduced as the catalogue's `INTRODUCTIONS` say (from
 /// `pkg/intros.json`, which `build_web` writes from them).
 fn check_intros(b: &Browser, base: &str) {
-    // The page runs no scene in three dimensions yet (`web::config::on_page`).
-    let on_page: Vec<_> = INTRODUCTIONS.iter().filter(|i| !i.kind.is_spatial()).collect();
+    // Every scene (`web::config::on_page`; those in three dimensions from their module).
+    let on_page: Vec<_> = INTRODUCTIONS.iter().collect();
     for intro in &on_page {
         let name = intro.kind.name();
         b.goto(&format!("{base}?scene={name}"));
@@ -759,13 +778,19 @@ fn check_scene_selector(b: &Browser, base: &str) {
     b.goto(&format!("{base}?scene=meter-stick&rate=max"));
     b.wait("the page", "return document.body.dataset.state === 'ready'", Duration::from_secs(30));
     let options = b.js("return [...document.getElementById('scene-select').options].map((o) => o.value)");
-    let names: Vec<&str> = SceneKind::ALL.iter().filter(|k| !k.is_spatial()).map(|k| k.name()).collect();
-    assert_eq!(
-        options,
-        json!(names),
-        "the selector lists the catalogue's scenes (none in three dimensions yet)"
-    );
+    // The first module's scenes in the catalogue's order, then those it does not name (the scenes
+    // in three dimensions, from pkg/intros.json: by name).
+    let mut names: Vec<&str> = SceneKind::ALL.iter().filter(|k| !k.is_spatial()).map(|k| k.name()).collect();
+    let mut spatial: Vec<&str> = SceneKind::ALL.iter().filter(|k| k.is_spatial()).map(|k| k.name()).collect();
+    spatial.sort_unstable();
+    names.extend(spatial);
+    assert_eq!(options, json!(names), "the selector lists the catalogue's scenes");
     let fetched = || b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
+    assert!(
+        !fetched().as_str().unwrap().contains("meterstick_web_sp.wasm"),
+        "the module of the scenes in three dimensions is fetched when such a scene is chosen: {}",
+        fetched()
+    );
     assert!(
         !fetched().as_str().unwrap().contains("meterstick_web_k1.wasm"),
         "a two-contact scene needs only the first module: {}",

@@ -6,7 +6,10 @@
 // (the catalogue); a scene whose contacts the first module does not hold runs in the module that
 // does, fetched when it is chosen.
 
-import { compileCore, instantiateCore, moduleUrl, parseNumber } from './core.js';
+import { compileCore, instantiateCore, parseNumber } from './core.js';
+import { pageModules } from './modules.js';
+import { SpaceView } from './view3d.js';
+import { spatialCaptions, drawSpatialPlots } from './space.js';
 import { SceneView, drawPlot, COLORS, CONTACT_COLORS } from './draw.js';
 import { OutcomeMap } from './map.js';
 import { listRuns, loadRun } from './replay.js';
@@ -43,7 +46,11 @@ const S = {
   intros: null,
 };
 
-const view = new SceneView($('scene'));
+const view2d = new SceneView($('scene'));
+const view3d = new SpaceView($('scene3d'));
+/// The drawing of run A: in the plane, or in perspective for a scene in three dimensions.
+let view = view2d;
+const { coreFor, coreBFor, knownScene, sceneNames } = pageModules(S, () => $('precision').value);
 const viewB = new SceneView($('scene-b'));
 const map = new OutcomeMap({
   canvas: $('map'), status: $('map-status'), time: $('map-time'), cell: $('map-cell'),
@@ -62,31 +69,6 @@ function setState(state) {
   document.body.dataset.state = state;
 }
 
-/// The core that runs `scene`: the first module, or the module of the scene's contacts (fetched
-/// and compiled once).
-function coreFor(scene) {
-  const k = S.main.contacts(scene);
-  if (S.main.desc.holds.includes(k)) return Promise.resolve(S.main);
-  if (!S.cores.has(k)) {
-    const loading = compileCore(moduleUrl(k)).then(instantiateCore);
-    loading.catch(() => S.cores.delete(k));
-    S.cores.set(k, loading);
-  }
-  return S.cores.get(k);
-}
-
-/// A second instance of the module that runs `scene`, for run B (made once per module).
-function coreBFor(scene) {
-  const k = S.main.contacts(scene);
-  if (!S.coresB.has(k)) {
-    const module = S.main.desc.holds.includes(k) ? Promise.resolve(S.module) : compileCore(moduleUrl(k));
-    const loading = module.then(instantiateCore);
-    loading.catch(() => S.coresB.delete(k));
-    S.coresB.set(k, loading);
-  }
-  return S.coresB.get(k);
-}
-
 /// Makes `scene` the form's scene, with the core that runs it (and run B's, when comparing).
 async function selectScene(scene) {
   S.core = await coreFor(scene);
@@ -99,7 +81,7 @@ async function selectScene(scene) {
 /// that is missing).
 function showIntro(scene) {
   const intro = S.intros && S.intros[scene];
-  $('heading').textContent = intro ? intro.heading : S.main.scene(scene).title;
+  $('heading').textContent = intro ? intro.heading : S.core.scene(scene).title;
   $('intro').textContent = intro ? intro.intro : '';
   document.title = `meterstick: ${$('heading').textContent}`;
 }
@@ -113,7 +95,7 @@ function buildForm(scene) {
   $('lcp-size').options[0].textContent = `${lcpText(k, '6')} (firmware)`;
   $('lcp-size').options[1].textContent = `${lcpText(k, '8')} (${k === 2 ? 'paper' : 'full'})`;
   // A scene of several bodies has one LCP form, sized by its candidate contacts: no choice.
-  $('lcp-size').disabled = k === 0;
+  $('lcp-size').disabled = k === 0 || S.core.isSpatial(scene);
   const bodies = S.core.isBodies(scene);
   if (!S.captions) S.captions = ['cap-positions', 'cap-angle', 'cap-height'].map((id) => $(id).innerHTML);
   const bodyCaptions = ['Positions: each body\'s centre of mass (body 1 the lowest), x (m) over t (s)',
@@ -121,6 +103,7 @@ function buildForm(scene) {
   ['cap-positions', 'cap-angle', 'cap-height'].forEach((id, i) => {
     if (bodies) $(id).textContent = bodyCaptions[i]; else $(id).innerHTML = S.captions[i];
   });
+  if (S.core.isSpatial(scene)) spatialCaptions($);
   // The catalogue's main flags are shown first, the rest under "More parameters".
   const isMain = (flag) => S.core.scene(scene).main_flags.includes(flag.long);
   const main = $('main-fields'); const more = $('more-fields');
@@ -246,12 +229,16 @@ function makeRun() {
     const v = made.params[flag.fields[S.scene]];
     S.inputs.get(flag.long).placeholder = plain(toFlagUnit(flag, v));
   }
+  // A scene in three dimensions is drawn in perspective (view3d.js), with no run B.
+  const spatial = S.core.isSpatial(S.scene);
+  view = spatial ? view3d : view2d;
+  $('scene').hidden = spatial; $('scene3d').hidden = !spatial;
   S.source = liveSource(S.core, made.params, view, liveOptions());
   S.other = null;
   S.simTarget = 0;
   view.setScene(S.scene, made.params, S.source.trace.last, S.source.trace.k, S.source.shapes);
   let cautionsB = [];
-  if (S.compare.length && S.coreB) {
+  if (S.compare.length && S.coreB && !spatial) {
     // Run B: run A's flags with the comparison's changed, in a second instance of the module.
     const given = new Map(parsed.given);
     for (const [long, text] of S.compare) {
@@ -343,7 +330,7 @@ function finish() {
     const c = src.run.summary.core; const r = src.run.summary.reference;
     $('run-info').textContent = `replay of ${src.run.name}: ${c.implementation} ${c.steps.toLocaleString('en')} steps; `
       + (r ? `${r.implementation}: ${r.outcome}` : 'no reference');
-    const keys = S.main.scene(src.scene).measures;
+    const keys = S.core.scene(src.scene).measures;
     const values = Object.fromEntries(keys.map((key) => [key, key.split('.').reduce((v, part) => (v == null ? null : v[part]), c.measured)]));
     $('measured').textContent = measuredText(values, src.scene);
   }
@@ -434,8 +421,9 @@ function render(full) {
     ? (S.rate === 'max' ? `${(S.speedWindow.rate / 1e3).toFixed(0)}k steps/s` : `${S.rate}x`) : '';
   const title = src.kind === 'replay'
     ? `replay ${src.run.name}: ${src.run.summary.core.implementation} (reference dashed)`
-    : S.other ? `run A: ${runLabel(src)}` : `${S.main.scene(src.scene).title}, ${src.precision} ${lcpText(src.trace.k, src.lcpSize)}`;
+    : S.other ? `run A: ${runLabel(src)}` : `${S.core.scene(src.scene).title}, ${src.precision} ${lcpText(src.trace.k, src.lcpSize)}`;
   view.draw(tr.last, {
+    trace: tr, supports: tr.spatial && src.kind === 'live' ? S.core.supports() : null,
     title, time: tr.time, steps: tr.n - 1, outcome: src.ended ? src.outcome : null,
     reference: src.referenceRow ? src.referenceRow() : null, rate: rateText, moving: moving(tr),
   });
@@ -467,6 +455,7 @@ function moving(tr) {
 
 function drawPlots(src) {
   const tr = src.trace;
+  if (tr.spatial) { drawSpatialPlots($, src, view3d.shapes); return; }
   // A replay's reference, or run B: dashed on the same time axis.
   const ref = src.reference || (S.other ? S.other.trace : null);
   const markers = Boolean(src.reference);
@@ -503,7 +492,7 @@ function showSwitches(src) {
   const eq21 = src.trace.events.filter((e) => e.ratio !== null);
   list.replaceChildren(...eq21.map((e) => {
     const li = document.createElement('li');
-    li.textContent = `t = ${e.t.toFixed(3)} s: ${S.main.scene(src.scene).contacts[e.contact]} starts to slide, ratio ${e.ratio.toFixed(4)}`;
+    li.textContent = `t = ${e.t.toFixed(3)} s: ${S.core.scene(src.scene).contacts[e.contact]} starts to slide, ratio ${e.ratio.toFixed(4)}`;
     return li;
   }));
   if (eq21.length === 0) {
@@ -638,7 +627,8 @@ function wire() {
     }
     makeRun();
   });
-  $('precision').addEventListener('change', () => makeRun());
+  // A scene in three dimensions runs in the module of its precision.
+  $('precision').addEventListener('change', async () => { S.core = await coreFor(S.scene); makeRun(); });
   $('lcp-size').addEventListener('change', () => makeRun());
   $('params').addEventListener('submit', (e) => { e.preventDefault(); makeRun(); });
   $('map-run').addEventListener('click', computeMap);
@@ -670,8 +660,8 @@ function wire() {
 async function readUrl(q) {
   const scene = q.get('scene') || 'meter-stick';
   const problems = [];
-  if (!S.main.scene(scene)) {
-    const names = S.main.desc.scenes.map((s) => s.name).join(', ');
+  if (!knownScene(scene)) {
+    const names = sceneNames().join(', ');
     problems.push(`scene ${JSON.stringify(scene)}: not a scene (${names})`);
     await selectScene('meter-stick');
   } else {
@@ -730,11 +720,6 @@ async function main() {
     S.module = await compileCore();
     S.core = await instantiateCore(S.module);
     S.main = S.core;
-    $('scene-select').replaceChildren(...S.main.desc.scenes.map((s) => {
-      const option = new Option(s.name, s.name);
-      option.title = s.title;
-      return option;
-    }));
   } catch (e) {
     showError(`could not load the core: ${e.message}`);
     setState('error');
@@ -745,12 +730,19 @@ async function main() {
     const response = await fetch(new URL('./pkg/intros.json', import.meta.url));
     if (response.ok) S.intros = await response.json();
   } catch (e) {
-    S.intros = null; // the headings fall back to the scenes' titles
+    S.intros = null; // the headings fall back to the scenes' titles; no scene in three dimensions
   }
+  $('scene-select').replaceChildren(...sceneNames().map((name) => {
+    const option = new Option(name, name);
+    option.title = S.main.scene(name) ? S.main.scene(name).title : S.intros[name].heading;
+    return option;
+  }));
   const q = new URLSearchParams(location.search);
   let problems;
   try {
     problems = await readUrl(q);
+    // The query's precision may name another module (a scene in three dimensions).
+    S.core = await coreFor(S.scene);
   } catch (e) {
     showError(`could not load the core for scene ${q.get('scene')}: ${e.message}`);
     setState('error');
@@ -785,6 +777,6 @@ async function main() {
   if (q.get('autorun') === '1' && S.source && !problems.length) play();
 }
 
-window.meterstick = testHooks(S, view, viewB, map);
+window.meterstick = testHooks(S, () => view, viewB, map);
 
 main();

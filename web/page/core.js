@@ -14,6 +14,12 @@ export function moduleUrl(k) {
 }
 
 /// Compiles a module (once; the map workers get the compiled module).
+/// A module by its file name in pkg/ (pkg/intros.json names each scene's: the planar modules do
+/// not name the scenes in three dimensions, whose module is meterstick_web_sp.wasm).
+export function moduleFileUrl(file) {
+  return new URL(`./pkg/${file}`, import.meta.url);
+}
+
 export async function compileCore(url = WASM_URL) {
   const response = await fetch(url);
   if (!response.ok) {
@@ -54,6 +60,11 @@ export class Core {
   }
 
   /// The number of contacts of a scene (0 for a scene of several bodies).
+  isSpatial(name) {
+    const scene = this.scene(name);
+    return Boolean(scene && scene.spatial);
+  }
+
   contacts(name) {
     const scene = this.scene(name);
     return scene ? scene.contacts.length : 0;
@@ -100,6 +111,7 @@ export class Core {
   /// lowest), round: [bool] (a disc, its diameter the width), table: [lo, hi] (null for an end it
   /// does not have)}; null for a scene of one body.
   shapes() {
+    if (this.current && this.current.spatial) return { spatial: true, sizes: [], solid: [0, 1, 2].map((j) => this.x.ms_solid(j)), supports: this.supports() };
     if (!this.current || !this.current.bodies) return null;
     const sizes = [];
     for (let i = 0; !Number.isNaN(this.x.ms_body_size(i, 0)); i += 1) sizes.push([this.x.ms_body_size(i, 0), this.x.ms_body_size(i, 1)]);
@@ -109,6 +121,14 @@ export class Core {
   }
 
   /// The state at t = 0 as a row (a copy).
+  /// The supports of a scene in three dimensions where the last step left them: [code, point,
+  /// direction] each (web/src/spatial.rs `SupportOf`).
+  supports() {
+    const out = [];
+    for (let i = 0; !Number.isNaN(this.x.ms_support(i, 0)); i += 1) out.push(Array.from({ length: 7 }, (_, j) => this.x.ms_support(i, j)));
+    return out;
+  }
+
   startRow() {
     this.x.ms_start_row();
     return new Float64Array(this.x.memory.buffer, this.x.ms_trace_ptr(), this.current.row).slice();

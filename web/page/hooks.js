@@ -3,7 +3,7 @@
 // and shown rows, the drawing's extent, the CSV offered, and the map's outcome code at a cell.
 
 /// The hooks over the page's state `S` (its runs A and B), the two drawings and the map.
-export function testHooks(S, view, viewB, map) {
+export function testHooks(S, shownView, viewB, map) {
   return {
     trace() {
       const tr = S.source && S.source.trace;
@@ -28,7 +28,7 @@ export function testHooks(S, view, viewB, map) {
     /// The drawing of run A (or B): its extent (m) and the least room between a body and its edge
     /// over every frame drawn (px; negative: a body was out of the drawing), the bodies' sizes.
     view(b = false) {
-      const v = b ? viewB : view;
+      const v = b ? viewB : shownView();
       return { extent: v.extent(), worst: v.worst, sizes: v.shapes ? v.shapes.sizes : null };
     },
     /// The CSV the download button offers (run A, or B).
@@ -39,7 +39,13 @@ export function testHooks(S, view, viewB, map) {
     /// The shown scene's contacts, as the description names them, and the last row's length.
     contacts() {
       const src = S.source;
-      return src ? { names: S.main.scene(src.scene).contacts, row: src.trace.last.length } : null;
+      return src ? { names: S.core.scene(src.scene).contacts, row: src.trace.last.length } : null;
+    },
+    /// The drawing's pixels, read back (a scene in three dimensions: how many colours, the colour
+    /// at the body's centre, the body's, the plane's and the background's; view3d.js `pixels`).
+    pixels() {
+      const v = shownView();
+      return v.pixels ? v.pixels() : null;
     },
     mapOutcome(i, j) {
       return map.grid[j] ? map.grid[j][i] : null;

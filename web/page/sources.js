@@ -14,6 +14,7 @@ const REST_TIME = 0.2;
 /// The fastest point's speed between two rows (m/s; a body's turning counted at 0.1 m from its
 /// centre): from the velocities of a scene of one body, from the motion over the step for several.
 function rowSpeed(trace, prev, rows, at, h) {
+  if (trace.spatial) return Math.hypot(rows[at + 8], rows[at + 9], rows[at + 10]) + 0.1 * Math.hypot(rows[at + 11], rows[at + 12], rows[at + 13]);
   if (trace.bodies === 0) return Math.hypot(rows[at + COL.vx], rows[at + COL.vy]) + 0.1 * Math.abs(rows[at + COL.omega]);
   let v = 0;
   for (let b = 0; b < trace.bodies; b += 1) {
@@ -31,7 +32,7 @@ function rowSpeed(trace, prev, rows, at, h) {
 export function liveSource(core, params, sceneView, options) {
   const shapes = core.shapes();
   const scene = core.current.name;
-  const trace = new Trace(core.contacts(scene), shapes ? shapes.sizes.length : 0);
+  const trace = new Trace(core.contacts(scene), shapes ? shapes.sizes.length : 0, core.isSpatial(scene) ? core.current.row : 0);
   trace.push(core.startRow());
   return {
     kind: 'live', scene, params, trace, shapes, view: sceneView, ended: false, outcome: null,

@@ -30,6 +30,16 @@ const isSliding = (m) => m === 2 || m === 3;
 /// Numbers per row of a scene of several bodies: t, then each of up to 3 bodies' x, y, theta.
 export const BODIES_ROW = 10;
 
+/// The columns of a row of a scene in three dimensions (web/src/spatial.rs `write_row`).
+const SPATIAL_STATE = ['t', 'x', 'y', 'z', 'qw', 'qx', 'qy', 'qz', 'vx', 'vy', 'vz', 'wx', 'wy', 'wz'];
+function spatialColumns(row) {
+  const names = [...SPATIAL_STATE];
+  for (let i = 1; names.length < row; i += 1) {
+    for (const c of ['px', 'py', 'pz', 'nx', 'ny', 'nz', 'tx', 'ty', 'tz', 'mode', 'pn', 'pf']) names.push(`${c}${i}`);
+  }
+  return names;
+}
+
 /// The most numbers a trace keeps of whole rows for its CSV (32 MB); the plots' columns go on.
 const MAX_KEPT = 1 << 22;
 
@@ -37,12 +47,19 @@ export class Trace {
   /// An empty trace of a scene with k contacts, or of `bodies` bodies (k = 0): rows of t and each
   /// body's x, y, theta (body 0 the lowest), kept as b<i>x, b<i>y, b<i>theta (1-based; x, y and
   /// theta are the top body's).
-  constructor(k, bodies = 0) {
-    this.k = k;
+  constructor(k, bodies = 0, spatialRow = 0) {
+    this.spatial = spatialRow > 0;
+    // A scene in three dimensions keeps its contacts in its rows, not as a planar scene's columns.
+    this.k = this.spatial ? 0 : k;
+    bodies = this.spatial ? 0 : bodies;
     this.bodies = bodies;
-    this.row = bodies > 0 ? BODIES_ROW : rowLength(k);
-    this.at = Array.from({ length: k }, (_, i) => contactColumns(k, i));
-    if (bodies > 0) {
+    this.row = this.spatial ? spatialRow : bodies > 0 ? BODIES_ROW : rowLength(k);
+    this.at = Array.from({ length: this.k }, (_, i) => contactColumns(this.k, i));
+    if (this.spatial) {
+      // A scene in three dimensions (web/src/spatial.rs): t, position, orientation, velocity,
+      // angular velocity, then each contact.
+      this.kept = SPATIAL_STATE.map((name, c) => [name, c]);
+    } else if (bodies > 0) {
       const top = 1 + 3 * (bodies - 1);
       this.kept = [['t', 0], ['x', top], ['y', top + 1], ['theta', top + 2]];
       for (let b = 0; b < bodies; b += 1) this.kept.push([`b${b + 1}x`, 1 + 3 * b], [`b${b + 1}y`, 2 + 3 * b], [`b${b + 1}theta`, 3 + 3 * b]);
@@ -64,7 +81,7 @@ export class Trace {
   /// The CSV of the rows kept: core.csv's columns (a scene of several bodies: t and each body's
   /// x, y, theta), and `after_outcome` (1 for a row past the outcome).
   csv() {
-    const names = this.bodies > 0
+    const names = this.spatial ? spatialColumns(this.row) : this.bodies > 0
       ? ['t', ...Array.from({ length: this.bodies }, (_, b) => [`x${b + 1}`, `y${b + 1}`, `theta${b + 1}`]).flat()]
       : columns(this.k);
     const width = this.bodies > 0 ? 1 + 3 * this.bodies : this.row;

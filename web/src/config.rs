@@ -45,13 +45,21 @@ pub enum Module {
     /// `meterstick_web_mb.wasm` (feature `mb`): the scenes whose contacts come and go, none
     /// counted (the scenes of several bodies).
     Bodies,
+    /// `meterstick_web_sp.wasm` (feature `sp`): the scenes in three dimensions, in f32; in f64
+    /// `meterstick_web_sp64.wasm` (features `sp` and `sp64`, [`Self::file_for`]).
+    Spatial,
 }
 
 impl Module {
-    /// The module that runs `kind`, by the contacts the catalogue counts for it (the page's
-    /// `moduleUrl`, `web/page/core.js`).
+    /// The module that runs `kind`: a scene in three dimensions ([`SceneKind::is_spatial`]) its
+    /// own, another by the contacts the catalogue counts for it (the page's `moduleUrl`,
+    /// `web/page/core.js`; the page learns a scene in three dimensions' module from
+    /// `pkg/intros.json`, `examples/intros.rs`).
     #[must_use]
     pub const fn of(kind: SceneKind) -> Self {
+        if kind.is_spatial() {
+            return Self::Spatial;
+        }
         match kind.contacts() {
             0 => Self::Bodies,
             1 => Self::One,
@@ -68,6 +76,17 @@ impl Module {
             Self::Two => "meterstick_web.wasm",
             Self::Three => "meterstick_web_k3.wasm",
             Self::Bodies => "meterstick_web_mb.wasm",
+            Self::Spatial => "meterstick_web_sp.wasm",
+        }
+    }
+
+    /// Its file for a run in `precision`: the scenes in three dimensions have a module for each
+    /// precision (each within the page's size budget), the other scenes one for both.
+    #[must_use]
+    pub const fn file_for(self, precision: Precision) -> &'static str {
+        match (self, precision) {
+            (Self::Spatial, Precision::F64) => "meterstick_web_sp64.wasm",
+            _ => self.file(),
         }
     }
 
@@ -79,6 +98,7 @@ impl Module {
             Self::Two => cfg!(feature = "k2"),
             Self::Three => cfg!(feature = "k3"),
             Self::Bodies => cfg!(feature = "mb"),
+            Self::Spatial => cfg!(feature = "sp"),
         }
     }
 }
@@ -89,12 +109,12 @@ pub const fn holds(kind: SceneKind) -> bool {
     on_page(kind) && Module::of(kind).built()
 }
 
-/// `true` for a scene the page offers: every scene but those in three dimensions, which no page
-/// module runs yet (they reach this crate only where a host build of the whole workspace names
-/// them: the page's own builds leave them out).
+/// `true` for a scene this build describes to the page: every scene it names, those in three
+/// dimensions with the feature `sp` only (a host build of the whole workspace names them without
+/// running them; the planar page modules do not name them).
 #[must_use]
 pub const fn on_page(kind: SceneKind) -> bool {
-    !kind.is_spatial()
+    !kind.is_spatial() || cfg!(feature = "sp")
 }
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.
@@ -249,6 +269,18 @@ mod tests {
         assert_eq!(fixed.max_time(), 5.0);
         let fast = config(SceneKind::MeterStick, &[("speed", 1.0)]).resolve(Precision::F32).unwrap();
         assert_eq!(fast.max_time(), 30.0);
+    }
+
+    /// A scene in three dimensions runs in the module of its kind, one file a precision; the others
+    /// in one file for both.
+    #[test]
+    fn a_scene_in_three_dimensions_has_a_module_a_precision() {
+        assert_eq!(Module::of(SceneKind::Curling), Module::Spatial);
+        assert_eq!(Module::Spatial.file_for(Precision::F32), "meterstick_web_sp.wasm");
+        assert_eq!(Module::Spatial.file_for(Precision::F64), "meterstick_web_sp64.wasm");
+        assert_eq!(Module::of(SceneKind::Stack), Module::Bodies);
+        assert_eq!(Module::Bodies.file_for(Precision::F64), "meterstick_web_mb.wasm");
+        assert!(holds(SceneKind::Puck), "the host build runs every scene");
     }
 
     #[test]

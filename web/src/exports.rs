@@ -373,6 +373,31 @@ pub extern "C" fn ms_table_end(end: u32) -> f64 {
     })
 }
 
+/// The body of a scene in three dimensions: its solid's code (`j` 0: 0 a box, 1 a ball, 2 a flat
+/// cylinder) and sizes (`j` 1, 2: m; `spatial::Solid`); NaN for another `j` or without such a run.
+#[cfg(feature = "sp")]
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_solid(j: u32) -> f64 {
+    store::with(|s, _, _| {
+        let solid = s.session.sim().and_then(crate::sim::Sim::solid);
+        solid.and_then(|v| v.get(j as usize).copied()).unwrap_or(f64::NAN)
+    })
+}
+
+/// Support `i` of a scene in three dimensions: number `j` of `[code, point, direction]` (code 1 a
+/// plane and its normal, 2 a finger's tip and the direction it lies along; m, world, `z` up;
+/// `spatial::SupportOf`); NaN past its supports, for another `j` or without such a run.
+#[cfg(feature = "sp")]
+#[unsafe(no_mangle)]
+#[must_use]
+pub extern "C" fn ms_support(i: u32, j: u32) -> f64 {
+    store::with(|s, _, _| {
+        let support = s.session.sim().and_then(|sim| sim.support(i as usize));
+        support.and_then(|v| v.get(j as usize).copied()).unwrap_or(f64::NAN)
+    })
+}
+
 /// The text buffer's content (host only: tests).
 #[cfg(not(target_arch = "wasm32"))]
 #[must_use]
@@ -405,7 +430,9 @@ mod tests {
         assert_eq!(json.len(), n as usize);
         assert!(json.len() < TEXT_BYTES / 2, "room to grow: {} bytes", json.len());
         assert!(json.starts_with("{\"version\":") && json.ends_with('}'), "{json}");
-        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic","stack":"mu_kinetic","disc-on-board":"mu_kinetic"}}"#), "{json}");
+        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","meter-stick-3d":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic","stack":"mu_kinetic","disc-on-board":"mu_kinetic","puck":"mu_kinetic","billiard":"mu_kinetic"}}"#), "{json}");
+        // The scenes in three dimensions (feature `sp`): rows of the body and eight contacts.
+        assert!(json.contains(r#""contacts":["its face"],"spatial":true,"row":110,"#), "{json}");
         assert!(json.contains(r#""contacts":["finger 1","finger 2"],"row":19,"measures":["meeting.time_s","meeting.com_offset_m"]"#), "{json}");
         assert!(
             json.contains(r#""name":"cylinder","#) && json.contains(r#""contacts":["rim"],"row":13,"#),

@@ -10,6 +10,7 @@
 //!   resolves it, and refusals in the user's words;
 //! * [`sim`]: one run in f32/f64 x 6x6/8x8, one row of numbers per step, the trajectory checksum;
 //! * [`session`]: what the exports operate on;
+//! * `spatial` (feature `sp`): the rows, solid and supports of a scene in three dimensions;
 //! * `exports`: the plain `extern "C"` functions the page calls (listed in `docs/page.md`).
 #![cfg_attr(target_arch = "wasm32", no_std)]
 
@@ -18,6 +19,8 @@ mod exports;
 pub mod flags;
 pub mod session;
 pub mod sim;
+#[cfg(feature = "sp")]
+pub mod spatial;
 pub mod text;
 
 pub use exports::*;

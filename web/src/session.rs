@@ -12,8 +12,10 @@ use crate::text::{Text, json_num, json_str};
 
 /// Rows one `ms_step` call may write (the trace buffer holds this many).
 pub const TRACE_ROWS: usize = 2048;
-/// Bytes of text one call may return (the description, an error, an outcome).
-pub const TEXT_BYTES: usize = 32 * 1024;
+/// Bytes of text one call may return (the description, an error, an outcome): twice the
+/// description's length, which is longer in a build that names the scenes in three dimensions
+/// (feature `sp`).
+pub const TEXT_BYTES: usize = if cfg!(feature = "sp") { 48 * 1024 } else { 32 * 1024 };
 
 /// Why [`Session::create`] made no run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,6 +164,10 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         let rows = Rows::of(kind);
         if rows == Rows::Bodies {
             out.write_str(",\"bodies\":true")?;
+        }
+        #[cfg(feature = "sp")]
+        if rows == Rows::Spatial {
+            out.write_str(",\"spatial\":true")?;
         }
         write!(out, ",\"row\":{}", rows.width())?;
         list(out, "measures", &mut info.measures.iter().copied())?;

@@ -24,7 +24,7 @@ pub type Held = meterstick_core::scene::AnyView<0>;
 #[cfg(all(any(feature = "k1", feature = "k2", feature = "k3"), not(feature = "mb")))]
 pub type Held = meterstick_core::scene::PlanarViews<0>;
 /// The holder of the scenes this build runs: the module of the scenes of several bodies.
-#[cfg(not(any(feature = "k1", feature = "k2", feature = "k3")))]
+#[cfg(not(any(feature = "k1", feature = "k2", feature = "k3", all(feature = "sp", not(feature = "mb")))))]
 pub type Held = meterstick_core::scene::MultibodyViews;
 
 /// The most contacts a scene of the catalogue has (three fingers).
@@ -45,8 +45,15 @@ pub const MAX_BODIES: usize = 3;
 /// lowest; NaN for a body the scene does not have), as `host-sim`'s trajectory of bodies.
 pub const BODIES_ROW: usize = 1 + 3 * MAX_BODIES;
 
-/// The longest row (a scene with [`MAX_CONTACTS`]).
-pub const MAX_ROW: usize = row_len(MAX_CONTACTS);
+/// The longest row (a scene with [`MAX_CONTACTS`]; one in three dimensions with the feature `sp`).
+pub const MAX_ROW: usize = if cfg!(feature = "sp") { SPATIAL_ROW } else { row_len(MAX_CONTACTS) };
+/// Numbers per row of a scene in three dimensions ([`crate::spatial::SPATIAL_ROW`]; none without
+/// the feature `sp`).
+#[cfg(feature = "sp")]
+pub use crate::spatial::SPATIAL_ROW;
+/// Numbers per row of a scene in three dimensions: none without the feature `sp`.
+#[cfg(not(feature = "sp"))]
+pub const SPATIAL_ROW: usize = 0;
 const _: () = assert!(BODIES_ROW <= MAX_ROW);
 
 /// The modes by code ([`mode_code`]), as `core.csv` spells them.
@@ -57,23 +64,6 @@ pub const OUTCOMES: [&str; OutcomeKind::ALL.len()] = OutcomeKind::names();
 
 /// The most measured quantities a scene has (the catalogue's).
 pub use meterstick_core::scene::MAX_MEASURES;
-
-/// A mode's code: 0 separated, 1 sticking, 2 sliding+, 3 sliding- ([`MODES`]).
-#[must_use]
-pub const fn mode_code(m: ContactMode) -> u8 {
-    match m {
-        ContactMode::Separated => 0,
-        ContactMode::Sticking => 1,
-        ContactMode::Sliding(Direction::Plus) => 2,
-        ContactMode::Sliding(Direction::Minus) => 3,
-    }
-}
-
-/// An outcome's code, the index of its name in [`OUTCOMES`].
-#[must_use]
-pub const fn outcome_code(o: Outcome) -> u8 {
-    o.kind().code()
-}
 
 /// What each row of a scene holds: its length and columns, from the scene's contacts as the
 /// catalogue counts them ([`SceneKind::contacts`]), the numbers from its view.
@@ -86,12 +76,20 @@ pub enum Rows {
     /// A scene whose contacts come and go (none counted): time, then each body's `x, y, theta`
     /// ([`BODIES_ROW`]; NaN past its bodies), as `host-sim`'s trajectory of bodies.
     Bodies,
+    /// A scene in three dimensions: the body's pose (a quaternion), its velocities and each
+    /// contact's point, normal, friction direction, mode and impulses ([`crate::spatial::write_row`]).
+    #[cfg(feature = "sp")]
+    Spatial,
 }
 
 impl Rows {
     /// The rows of `kind`.
     #[must_use]
     pub const fn of(kind: SceneKind) -> Self {
+        #[cfg(feature = "sp")]
+        if kind.is_spatial() {
+            return Self::Spatial;
+        }
         match kind.contacts() {
             0 => Self::Bodies,
             k => Self::Contacts(k),
@@ -104,6 +102,8 @@ impl Rows {
         match self {
             Self::Contacts(k) => row_len(k),
             Self::Bodies => BODIES_ROW,
+            #[cfg(feature = "sp")]
+            Self::Spatial => SPATIAL_ROW,
         }
     }
 
@@ -141,6 +141,8 @@ impl Rows {
                     slot.copy_from_slice(&q);
                 }
             }
+            #[cfg(feature = "sp")]
+            Self::Spatial => crate::spatial::write_row(view, row),
         }
     }
 }
@@ -153,12 +155,10 @@ fn planar<T: Real>(body: &meterstick_core::scene::BodyView<T>) -> Option<([T; 3]
     Some(([x, y, theta], [vx, vy, omega]))
 }
 
-/// The most steps a run goes on after its outcome ([`Sim::step_past_rows`]): 30 s at the
-/// default step of 1 ms, so that nothing runs forever (the page stops sooner, when the bodies
-/// rest or leave its view).
-pub const MAX_PAST_STEPS: u32 = 30_000;
-
-/// One run.
+/// One run: the scene held in place ([`Held`]: the scenes of this build's features, those in
+/// three dimensions with the feature `sp`), the rows it writes ([`Rows`]), its start, and once it
+/// goes on past its outcome the run as judged (what the accessors report then: the steps past the
+/// outcome are not in it).
 #[derive(Debug, Clone)]
 pub struct Sim {
     /// The scene, built and seen through its view.
@@ -320,6 +320,21 @@ impl Sim {
         matches!(self.view.read(ShapeOf(i)), Some(BodyShape::Disc { .. }))
     }
 
+    /// The body's solid, `[code, a, b]` ([`crate::spatial::Solid`]): a scene in three dimensions.
+    #[cfg(feature = "sp")]
+    #[must_use]
+    pub fn solid(&self) -> Option<[f64; 3]> {
+        self.view.read(crate::spatial::Solid)
+    }
+
+    /// Support `i`, `[code, point, direction]` ([`crate::spatial::SupportOf`]): a scene in three
+    /// dimensions.
+    #[cfg(feature = "sp")]
+    #[must_use]
+    pub fn support(&self, i: usize) -> Option<[f64; 7]> {
+        self.view.read(crate::spatial::SupportOf(i))
+    }
+
     /// The ends `[lo, hi]` of the table the scene's bodies rest on (m; `None` for an infinite end,
     /// and both for a scene without a table).
     #[must_use]
@@ -327,6 +342,38 @@ impl Sim {
         self.view.read(Table)
     }
 }
+
+/// The most steps a run goes on after its outcome ([`Sim::step_past_rows`]): 30 s at the
+/// default step of 1 ms, so that nothing runs forever (the page stops sooner, when the bodies
+/// rest or leave its view).
+pub const MAX_PAST_STEPS: u32 = 30_000;
+
+/// A mode's code: 0 separated, 1 sticking, 2 sliding+, 3 sliding- ([`MODES`]).
+#[must_use]
+pub const fn mode_code(m: ContactMode) -> u8 {
+    match m {
+        ContactMode::Separated => 0,
+        ContactMode::Sticking => 1,
+        ContactMode::Sliding(Direction::Plus) => 2,
+        ContactMode::Sliding(Direction::Minus) => 3,
+    }
+}
+
+/// An outcome's code, the index of its name in [`OUTCOMES`].
+#[must_use]
+pub const fn outcome_code(o: Outcome) -> u8 {
+    o.kind().code()
+}
+
+/// The holder of the scenes this build runs: the module of the scenes in three dimensions in f32.
+#[cfg(all(
+    not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb", feature = "sp64")),
+    feature = "sp"
+))]
+pub type Held = meterstick_core::scene::SpatialViewsIn<f32>;
+/// The holder of the scenes this build runs: the module of the scenes in three dimensions in f64.
+#[cfg(all(not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb")), feature = "sp64"))]
+pub type Held = meterstick_core::scene::SpatialViewsIn<f64>;
 
 /// A view's row as it is now ([`Rows::write`]).
 struct RowNow<'a> {

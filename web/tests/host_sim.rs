@@ -123,6 +123,52 @@ fn parameters_outcome_and_checksum_match_host_sim_scene() {
     }
 }
 
+/// The scenes in three dimensions (the module `meterstick_web_sp.wasm`, feature `sp`): the same
+/// parameters, outcome and checksum as `host-sim scene`, in both precisions and both friction cones
+/// (the page holds the puck and the ball in the curling stone's LCP capacity, `SpatialViews`).
+#[test]
+fn a_scene_in_three_dimensions_ends_as_host_sim_scene() {
+    let cases: &[(SceneKind, Given, Precision)] = &[
+        (SceneKind::Puck, &[], Precision::F32),
+        (SceneKind::Puck, &[], Precision::F64),
+        (
+            SceneKind::Puck,
+            &[("angle", 20.0), ("mu-k", 0.3), ("speed", 0.9), ("heading", 15.0)],
+            Precision::F32,
+        ),
+        (SceneKind::Puck, &[("friction-directions", 8.0)], Precision::F32),
+        (SceneKind::Billiard, &[], Precision::F32),
+        (SceneKind::Billiard, &[("friction-directions", 4.0)], Precision::F64),
+        (SceneKind::Curling, &[], Precision::F32),
+        (SceneKind::Curling, &[], Precision::F64),
+        (SceneKind::MeterStick3d, &[], Precision::F32),
+        (SceneKind::MeterStick3d, &[], Precision::F64),
+    ];
+    for (kind, given, precision) in cases {
+        let (args, mut session) = both(*kind, given, *precision, LcpLayout::Reduced);
+        let (_, spec) = args.specs(None).unwrap().remove(0);
+        session.create(*precision, LcpLayout::Reduced).unwrap();
+        let ours = session.spec().unwrap();
+        for (i, (name, value)) in spec.fields().enumerate() {
+            assert_eq!(ours.field(i).map(f64::to_bits), Some(value.to_bits()), "{kind:?} {name}");
+        }
+        let text = run_scene(&SceneCmd { scene: args }).unwrap();
+        let sim = session.sim_mut().unwrap();
+        assert_eq!(sim.row_len(), meterstick_web::spatial::SPATIAL_ROW, "{kind:?}");
+        sim.run(u64::MAX);
+        let outcome = sim.outcome().unwrap().to_string();
+        assert!(
+            text.contains(&format!(": outcome {outcome} at t = ")),
+            "{kind:?} {given:?} {precision:?}: {outcome}\n{text}"
+        );
+        assert!(
+            text.contains(&format!("checksum {:08x}", sim.checksum())),
+            "{kind:?} {given:?} {precision:?}: {:08x}\n{text}",
+            sim.checksum()
+        );
+    }
+}
+
 #[test]
 fn a_config_gives_each_flag_once() {
     let mut c = Config::new(SceneKind::MeterStick);

@@ -68,3 +68,5 @@ pub use view::{
     MultibodyView, PlanarView, Pose, RunStats, SceneView, StepFigure, StepStats, SupportView, Thing,
     Velocity, ViewReader, ViewVector, ViewVisitor,
 };
+#[cfg(feature = "scenes-spatial")]
+pub use view::{SpatialViews, SpatialViewsIn};

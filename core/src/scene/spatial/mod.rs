@@ -17,7 +17,7 @@ mod puck;
 mod view;
 
 pub use billiard::{Billiard, BilliardParams};
-pub use curling::{Curling, CurlingParams, MAX_POINTS};
+pub use curling::{CURLING_ROWS, Curling, CurlingParams, MAX_POINTS};
 pub use meter_stick_3d::{FingerSwitch, MeterStick3d, MeterStick3dParams, ROD_EVENTS, ROD_POINTS, ROD_ROWS};
 pub use puck::{Puck, PuckParams};
 pub use view::{SeenContact, SpatialSeen, SpatialView};

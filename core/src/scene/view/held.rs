@@ -6,7 +6,9 @@
 //! * [`PlanarViews`]: any scene of one body (the registry's table, `registry.rs`), each through
 //!   its [`PlanarView`];
 //! * [`MultibodyViews`]: any scene of several bodies, each through its [`MultibodyView`];
-//! * [`AnyView`]: any scene of the catalogue, either of them by the scene's engine.
+//! * [`SpatialViews`]: any scene in three dimensions (feature `scenes-spatial`), each through its
+//!   [`SpatialView`]; [`SpatialViewsIn`] in one precision;
+//! * [`AnyView`]: any scene of the catalogue, one of them by the scene's engine.
 //!
 //! A build that runs the scenes of one engine only (a page module) holds that engine's holder:
 //! naming the other's links none of its steppers.
@@ -26,6 +28,10 @@ use crate::scene::SceneIn;
 use crate::scene::ThreeFingers;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 use crate::scene::registry::scene_table;
+#[cfg(feature = "scenes-spatial")]
+use crate::scene::spatial::{
+    Billiard, CURLING_ROWS, Curling, MAX_POINTS, MeterStick3d, Puck, ROD_POINTS, ROD_ROWS, SpatialView,
+};
 #[cfg(feature = "scenes-k1")]
 use crate::scene::{Cylinder, Painleve};
 #[cfg(feature = "scenes-k2")]
@@ -64,7 +70,8 @@ pub trait HeldView: Sized {
     feature = "scenes-k1",
     feature = "scenes-k2",
     feature = "scenes-k3",
-    feature = "scenes-multibody"
+    feature = "scenes-multibody",
+    feature = "scenes-spatial"
 ))]
 trait Seen<T: Real> {
     fn view_mut(&mut self) -> &mut dyn SceneView<T>;
@@ -76,7 +83,8 @@ trait Seen<T: Real> {
     feature = "scenes-k1",
     feature = "scenes-k2",
     feature = "scenes-k3",
-    feature = "scenes-multibody"
+    feature = "scenes-multibody",
+    feature = "scenes-spatial"
 ))]
 #[derive(Debug, Clone)]
 enum InPrecision<A, B> {
@@ -88,7 +96,8 @@ enum InPrecision<A, B> {
     feature = "scenes-k1",
     feature = "scenes-k2",
     feature = "scenes-k3",
-    feature = "scenes-multibody"
+    feature = "scenes-multibody",
+    feature = "scenes-spatial"
 ))]
 impl<A: Seen<f32>, B: Seen<f64>> InPrecision<A, B> {
     fn visit_mut<V: ViewVisitor>(&mut self, visitor: V) -> V::Output {
@@ -251,6 +260,115 @@ impl HeldView for MultibodyViews {
     }
 }
 
+/// Any scene in three dimensions in scalar `T`, seen through its [`SpatialView`]. The puck and the
+/// ball are held in an LCP of the curling stone's capacity ([`CURLING_ROWS`], which holds Coulomb's
+/// circular cone's rows and the pyramid baseline's, [`PYRAMID_ROWS`]): one copy of the contact
+/// solve for the three (a page module's size) where [`SceneParams::build_view`] sizes each cone's
+/// LCP to fit. The same operations on the rows in use (the same bits: the page's test checks its
+/// checksums against `host-sim scene`'s).
+#[cfg(feature = "scenes-spatial")]
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // one scene per run, held in place: no heap
+enum SpaceIn<T: Real> {
+    Puck(SpatialView<T, Puck<T, CURLING_ROWS>, CURLING_ROWS>),
+    Billiard(SpatialView<T, Billiard<T, CURLING_ROWS>, CURLING_ROWS>),
+    Curling(SpatialView<T, Curling<T>, CURLING_ROWS, MAX_POINTS>),
+    MeterStick3d(SpatialView<T, MeterStick3d<T>, ROD_ROWS, ROD_POINTS>),
+}
+
+#[cfg(feature = "scenes-spatial")]
+/// `$body` with `$v` bound to the held view, whichever it is.
+macro_rules! each_space {
+    ($held:expr, $v:ident => $body:expr) => {
+        match $held {
+            SpaceIn::Puck($v) => $body,
+            SpaceIn::Billiard($v) => $body,
+            SpaceIn::Curling($v) => $body,
+            SpaceIn::MeterStick3d($v) => $body,
+        }
+    };
+}
+
+#[cfg(feature = "scenes-spatial")]
+impl<T: Real> Seen<T> for SpaceIn<T> {
+    fn view_mut(&mut self) -> &mut dyn SceneView<T> {
+        each_space!(self, v => v)
+    }
+
+    fn view(&self) -> &dyn SceneView<T> {
+        each_space!(self, v => v)
+    }
+}
+
+#[cfg(feature = "scenes-spatial")]
+impl<T: Real> SpaceIn<T> {
+    /// The scene of `params` in `T`, checked in f64 and `T` first (as [`SceneParams::build_view`]).
+    fn new(params: &SceneParams) -> Result<Self, ParamError> {
+        params.validate_as::<T>()?;
+        Ok(match *params {
+            SceneParams::Puck(p) => Self::Puck(SpatialView::new(Puck::new(p.cast())?)),
+            SceneParams::Billiard(p) => Self::Billiard(SpatialView::new(Billiard::new(p.cast())?)),
+            SceneParams::Curling(p) => Self::Curling(SpatialView::new(Curling::new(p.cast())?)),
+            SceneParams::MeterStick3d(p) => {
+                Self::MeterStick3d(SpatialView::new(MeterStick3d::new(p.cast())?))
+            }
+            _ => return Err(ParamError::OutOfRange("scene")),
+        })
+    }
+}
+
+#[cfg(feature = "scenes-spatial")]
+const _: () = assert!(CURLING_ROWS >= crate::scene::spatial::PYRAMID_ROWS);
+
+/// Any scene in three dimensions in either precision, held in place and seen through its
+/// [`SpatialView`] (one layout: `layout` unused).
+#[cfg(feature = "scenes-spatial")]
+#[derive(Debug, Clone)]
+pub struct SpatialViews(InPrecision<SpaceIn<f32>, SpaceIn<f64>>);
+
+#[cfg(feature = "scenes-spatial")]
+impl HeldView for SpatialViews {
+    fn new(params: &SceneParams, precision: Precision, _: LcpLayout) -> Result<Self, ParamError> {
+        Ok(Self(match precision {
+            Precision::F32 => InPrecision::F32(SpaceIn::new(params)?),
+            Precision::F64 => InPrecision::F64(SpaceIn::new(params)?),
+        }))
+    }
+
+    fn visit_mut<V: ViewVisitor>(&mut self, visitor: V) -> V::Output {
+        self.0.visit_mut(visitor)
+    }
+
+    fn read<R: ViewReader>(&self, reader: R) -> R::Output {
+        self.0.read(reader)
+    }
+}
+
+/// Any scene in three dimensions in one precision, `T`, held in place and seen through its
+/// [`SpatialView`]: a build that runs them in that precision only (a page module of one
+/// precision, half the code of [`SpatialViews`]), refusing the other as `OutOfRange("precision")`.
+#[cfg(feature = "scenes-spatial")]
+#[derive(Debug, Clone)]
+pub struct SpatialViewsIn<T: Real>(SpaceIn<T>);
+
+#[cfg(feature = "scenes-spatial")]
+impl<T: Real> HeldView for SpatialViewsIn<T> {
+    fn new(params: &SceneParams, precision: Precision, _: LcpLayout) -> Result<Self, ParamError> {
+        if precision.name() != T::NAME {
+            return Err(ParamError::OutOfRange("precision"));
+        }
+        Ok(Self(SpaceIn::new(params)?))
+    }
+
+    fn visit_mut<V: ViewVisitor>(&mut self, visitor: V) -> V::Output {
+        visitor.visit(self.0.view_mut())
+    }
+
+    fn read<R: ViewReader>(&self, reader: R) -> R::Output {
+        reader.read(self.0.view())
+    }
+}
+
 /// Any scene of the catalogue, of either engine, held in place and seen as a [`SceneView`]: a
 /// scene of one body as [`PlanarViews`] holds it, a scene of several bodies as
 /// [`MultibodyViews`] does.
@@ -265,6 +383,9 @@ pub enum AnyView<const E: usize> {
     Planar(PlanarViews<E>),
     /// A scene of several bodies.
     Multibody(MultibodyViews),
+    /// A scene in three dimensions.
+    #[cfg(feature = "scenes-spatial")]
+    Spatial(SpatialViews),
 }
 
 #[cfg(all(
@@ -273,6 +394,10 @@ pub enum AnyView<const E: usize> {
 ))]
 impl<const E: usize> HeldView for AnyView<E> {
     fn new(params: &SceneParams, precision: Precision, layout: LcpLayout) -> Result<Self, ParamError> {
+        #[cfg(feature = "scenes-spatial")]
+        if params.kind().is_spatial() {
+            return Ok(Self::Spatial(SpatialViews::new(params, precision, layout)?));
+        }
         Ok(if params.kind().is_multibody() {
             Self::Multibody(MultibodyViews::new(params, precision, layout)?)
         } else {
@@ -284,6 +409,8 @@ impl<const E: usize> HeldView for AnyView<E> {
         match self {
             Self::Planar(v) => v.visit_mut(visitor),
             Self::Multibody(v) => v.visit_mut(visitor),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Spatial(v) => v.visit_mut(visitor),
         }
     }
 
@@ -291,6 +418,8 @@ impl<const E: usize> HeldView for AnyView<E> {
         match self {
             Self::Planar(v) => v.read(reader),
             Self::Multibody(v) => v.read(reader),
+            #[cfg(feature = "scenes-spatial")]
+            Self::Spatial(v) => v.read(reader),
         }
     }
 }
@@ -352,8 +481,7 @@ mod tests {
     /// ([`SceneParams::build_view`]): the same steps, bodies and checksum.
     #[test]
     fn a_held_scene_runs_as_built() {
-        // No holder holds a scene in three dimensions yet (the page does not run them).
-        for kind in SceneKind::ALL.into_iter().filter(|k| !k.is_spatial()) {
+        for kind in SceneKind::ALL {
             for precision in Precision::ALL {
                 let params = SceneParams::defaults(kind);
                 let whole = params.build_view::<0, _>(precision, LcpLayout::Reduced, Steps(300)).unwrap();
@@ -362,6 +490,25 @@ mod tests {
                 assert_eq!((a.0 + b.0, b.1, b.2), whole, "{kind} {precision:?}");
                 assert_eq!(held.read(Outline).0, whole.0 as u64, "{kind} {precision:?}");
             }
+        }
+    }
+
+    /// A holder of the scenes in three dimensions in one precision runs them as the holder of both
+    /// (the same steps and checksum) and refuses the other precision.
+    #[cfg(feature = "scenes-spatial")]
+    #[test]
+    fn a_holder_of_one_precision_runs_as_the_holder_of_both() {
+        let layout = LcpLayout::Reduced;
+        for kind in SceneKind::ALL.into_iter().filter(|k| k.is_spatial()) {
+            let params = SceneParams::defaults(kind);
+            let mut both = SpatialViews::new(&params, Precision::F64, layout).unwrap();
+            let mut one = SpatialViewsIn::<f64>::new(&params, Precision::F64, layout).unwrap();
+            assert_eq!(one.visit_mut(Steps(200)), both.visit_mut(Steps(200)), "{kind}");
+            assert_eq!(
+                SpatialViewsIn::<f32>::new(&params, Precision::F64, layout).err(),
+                Some(ParamError::OutOfRange("precision")),
+                "{kind}"
+            );
         }
     }
 

@@ -53,6 +53,8 @@ pub use held::MultibodyViews;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 pub use held::PlanarViews;
 pub use held::{HeldView, ViewReader};
+#[cfg(feature = "scenes-spatial")]
+pub use held::{SpatialViews, SpatialViewsIn};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use step::StepStats;

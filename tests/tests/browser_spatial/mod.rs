@@ -1,0 +1,74 @@
+//! The scenes in three dimensions on the page (`meterstick_web_sp.wasm`, drawn in perspective by
+//! `web/page/view3d.js`): the outcome and checksum of `host-sim scene`, the module fetched, and a
+//! drawing that shows the body (its pixels read back: not one colour, the body's colour at its
+//! centre or, for a body seen edge on or marked there, in a patch of at least 50 pixels).
+
+use std::time::{Duration, Instant};
+
+use serde_json::Value;
+
+use super::{Browser, host_scene};
+
+/// Chromaticity (each channel over their sum) of an RGB triple.
+fn chroma(c: &Value) -> [f64; 3] {
+    let v: Vec<f64> = (0..3).map(|i| c[i].as_f64().unwrap()).collect();
+    let sum = v.iter().sum::<f64>().max(1.0);
+    [v[0] / sum, v[1] / sum, v[2] / sum]
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
+}
+
+/// Loads `query` (a scene in three dimensions), waits for the outcome and checks it and the
+/// checksum against `host-sim scene`'s, the module fetched, and the drawing's pixels.
+pub fn check_spatial(b: &Browser, base: &str, name: &str, query: &str) {
+    let started = Instant::now();
+    b.goto(&format!("{base}?{query}"));
+    let outcome = b.wait(
+        "the outcome",
+        "return document.getElementById('outcome').textContent",
+        Duration::from_secs(120),
+    );
+    let outcome = outcome.as_str().unwrap().to_owned();
+    let checksum = b.text("checksum");
+    let (host_outcome, host_checksum) = host_scene(query);
+    let shot = b.screenshot(name, None);
+    println!(
+        "{name}: ?{query}\n    page {outcome} {checksum}, host-sim scene {host_outcome} {host_checksum} ({:.1} s; {})",
+        started.elapsed().as_secs_f64(),
+        shot.display()
+    );
+    assert_eq!(
+        (outcome.as_str(), checksum.as_str()),
+        (host_outcome.as_str(), host_checksum.as_str()),
+        "{name}: the page differs from host-sim scene"
+    );
+    // One module a precision (`config::Module::file_for`).
+    let module = if query.contains("precision=f64") {
+        "pkg/meterstick_web_sp64.wasm"
+    } else {
+        "pkg/meterstick_web_sp.wasm"
+    };
+    let fetched = b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
+    assert!(fetched.as_str().unwrap().contains(module), "{name}: {module} not fetched: {fetched}");
+    let row = b.js("return window.meterstick.contacts().row");
+    assert_eq!(row.as_u64(), Some(110), "{name}: the row of a scene in three dimensions");
+    // The drawing: WebGL2 in headless Chromium (SwiftShader), read back.
+    let px = b.js("return window.meterstick.pixels()");
+    assert!(px.is_object(), "{name}: no drawing in three dimensions (no WebGL2?): {px}");
+    let colours = px["colours"].as_u64().unwrap();
+    assert!(colours > 16, "{name}: a blank frame ({colours} colours): {px}");
+    let body = chroma(&px["body"]);
+    let to_body = distance(body, chroma(&px["bodyColor"]));
+    let to_plane = distance(body, chroma(&px["plane"]));
+    let to_background = distance(body, chroma(&px["background"]));
+    let at_centre = to_body < to_plane && to_body < to_background;
+    let body_pixels = px["bodyPixels"].as_u64().unwrap();
+    assert!(body_pixels >= 50, "{name}: the body is not drawn ({body_pixels} pixels of its colour): {px}");
+    println!(
+        "    drawn: {colours} colours, {body_pixels} pixels of the body's colour, at its centre {} ({})",
+        px["body"],
+        if at_centre { "the body's" } else { "not the body's: a mark or an edge" }
+    );
+}
