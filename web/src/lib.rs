@@ -17,6 +17,7 @@
 pub mod config;
 mod exports;
 pub mod flags;
+mod modes;
 pub mod session;
 pub mod sim;
 #[cfg(feature = "sp")]

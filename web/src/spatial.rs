@@ -6,7 +6,7 @@
 use meterstick_core::Real;
 use meterstick_core::scene::{BodyShape, Pose, SceneView, SupportView, Velocity, ViewReader};
 
-use crate::sim::mode_code;
+use crate::modes::mode_code;
 
 /// The most contacts a scene in three dimensions lists (the curling stone's ring of points; the
 /// meter stick has three, the puck and the ball one).
