@@ -33,7 +33,7 @@
 //! solved by cases, with no stick speed inside the step. The stick speed only names the modes
 //! after it and the stops, as the docs say.
 
-use super::algebra::{V3, apply, dot, length, matrix_of, turn};
+use super::algebra::{V3, apply, cross, dot, length, matrix_of, turn};
 use super::scenes::{Keep, common, invalid};
 use super::{Error, MAX_STEPS, Mode, Outcome, Row, Rule, SpatialRun};
 
@@ -148,7 +148,7 @@ impl Curling {
 
 /// The least-norm normal impulses of points at horizontal offsets `r` carrying `total` with no
 /// moment: `P = A^T (A A^T)^-1 (total, 0, 0)`, `A` the rows `(1, x_i, y_i)` (Cramer's rule on the
-/// 3x3 system).
+/// 3x3 system, [`solve3`]).
 fn least_norm_loads(r: &[V3], total: f64) -> Vec<f64> {
     let rows = |i: usize| [1.0, r[i][0], r[i][1]];
     let mut g = [[0.0; 3]; 3];
@@ -160,21 +160,10 @@ fn least_norm_loads(r: &[V3], total: f64) -> Vec<f64> {
             }
         }
     }
-    let det3 = |m: &[[f64; 3]; 3]| dot(m[0], cross3(m[1], m[2]));
-    let d = det3(&g);
-    // lambda = G^-1 (total, 0, 0): Cramer, the first column replaced.
-    let lambda: [f64; 3] = std::array::from_fn(|c| {
-        let mut m = g;
-        for (row, m_row) in m.iter_mut().enumerate() {
-            m_row[c] = if row == 0 { total } else { 0.0 };
-        }
-        det3(&m) / d
-    });
+    // A layout of points not all on a line: `G` is positive definite. Were it not, NaN loads end
+    // the run (`Error::NonFinite`).
+    let lambda = solve3(&g, [total, 0.0, 0.0]).unwrap_or([f64::NAN; 3]);
     (0..r.len()).map(|i| dot(rows(i), lambda)).collect()
-}
-
-fn cross3(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// One step's friction problem: `min 1/2 (u - u~)^T M (u - u~) + sum c_i |J_i u|`.
@@ -327,7 +316,7 @@ fn hypot2(s: [f64; 2]) -> f64 {
 
 /// `H^-1 g` for a symmetric positive definite 3x3 `H` (Cramer); `None` when singular.
 fn solve3(h: &[[f64; 3]; 3], g: [f64; 3]) -> Option<[f64; 3]> {
-    let det3 = |m: &[[f64; 3]; 3]| dot(m[0], cross3(m[1], m[2]));
+    let det3 = |m: &[[f64; 3]; 3]| dot(m[0], cross(m[1], m[2]));
     let d = det3(h);
     if d == 0.0 || !d.is_finite() {
         return None;

@@ -3,11 +3,9 @@
 //! drawing that shows the body (its pixels read back: not one colour, the body's colour at its
 //! centre or, for a body seen edge on or marked there, in a patch of at least 50 pixels).
 
-use std::time::{Duration, Instant};
-
 use serde_json::Value;
 
-use super::{Browser, host_scene};
+use super::Browser;
 
 /// Chromaticity (each channel over their sum) of an RGB triple.
 fn chroma(c: &Value) -> [f64; 3] {
@@ -23,27 +21,7 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// Loads `query` (a scene in three dimensions), waits for the outcome and checks it and the
 /// checksum against `host-sim scene`'s, the module fetched, and the drawing's pixels.
 pub fn check_spatial(b: &Browser, base: &str, name: &str, query: &str) {
-    let started = Instant::now();
-    b.goto(&format!("{base}?{query}"));
-    let outcome = b.wait(
-        "the outcome",
-        "return document.getElementById('outcome').textContent",
-        Duration::from_secs(120),
-    );
-    let outcome = outcome.as_str().unwrap().to_owned();
-    let checksum = b.text("checksum");
-    let (host_outcome, host_checksum) = host_scene(query);
-    let shot = b.screenshot(name, None);
-    println!(
-        "{name}: ?{query}\n    page {outcome} {checksum}, host-sim scene {host_outcome} {host_checksum} ({:.1} s; {})",
-        started.elapsed().as_secs_f64(),
-        shot.display()
-    );
-    assert_eq!(
-        (outcome.as_str(), checksum.as_str()),
-        (host_outcome.as_str(), host_checksum.as_str()),
-        "{name}: the page differs from host-sim scene"
-    );
+    super::check_contract(b, base, name, query);
     // One module a precision (`config::Module::file_for`).
     let module = if query.contains("precision=f64") {
         "pkg/meterstick_web_sp64.wasm"
