@@ -66,7 +66,9 @@ build_firmware() {
 # the host link on UART0 (the Picos' link builds run the meter stick and, selected by the host, the
 # 3-block stack: firmware/src/realtime_stack.rs); pico-nolog-builtins and pico-link-builtins: the Pico's arithmetic from
 # compiler_builtins instead of its boot ROM (docs/hardware.md), which the emulated RP2040 runs
-# (scripts/pico-emu.sh).
+# (scripts/pico-emu.sh); pico2-stick-3d and pico-stick-3d-builtins: the rig of the meter stick in
+# three dimensions (`rig-stick-3d`, firmware/src/realtime_stick_3d.rs), the Pico's run on the
+# emulated RP2040 for its cycles a step.
 # Tags (comma-separated; scripts select builds by tag, never by position, `builds_tagged`):
 #   clippy  - linted in scripts/test.sh (the distinct code paths);
 #   nopanic - linked with the panic handler that references an undefined symbol (firmware/src/
@@ -74,7 +76,8 @@ build_firmware() {
 #   uf2     - a Pico build: build_firmware writes its .uf2, test.sh checks it is there;
 #   emu     - the one Pico build run on the emulated RP2040 by scripts/pico-emu.sh (rp2040js has
 #             no boot ROM: the build's float arithmetic must not call it, `builtins-float`);
-#   emu-link - the one Pico build with the host link run there, its UART0 bridged to TCP.
+#   emu-link - the one Pico build with the host link run there, its UART0 bridged to TCP;
+#   emu-3d  - the one Pico build of the meter stick in three dimensions run there.
 FIRMWARE_BUILDS=(
   "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,qemu-multibody,fallback clippy,nopanic"
   "qemu-m4f-spatial thumbv7em-none-eabihf qemu-mps2-an386,qemu-spatial,fallback clippy,nopanic"
@@ -97,12 +100,14 @@ FIRMWARE_BUILDS=(
   "pico2-nolog thumbv8m.main-none-eabihf board-pico2,fallback nopanic,uf2"
   "pico2-6x6-nolog thumbv8m.main-none-eabihf board-pico2 nopanic,uf2"
   "pico2-link thumbv8m.main-none-eabihf board-pico2,fallback,link clippy,nopanic,uf2"
+  "pico2-stick-3d thumbv8m.main-none-eabihf board-pico2,rig-stick-3d,fallback clippy,nopanic,uf2"
   "pico thumbv6m-none-eabi board-pico,log,fallback clippy,uf2"
   "pico-nolog thumbv6m-none-eabi board-pico,fallback uf2"
   "pico-6x6-nolog thumbv6m-none-eabi board-pico uf2"
   "pico-link thumbv6m-none-eabi board-pico,fallback,link clippy,uf2"
   "pico-nolog-builtins thumbv6m-none-eabi board-pico,fallback,builtins-float clippy,uf2,emu"
   "pico-link-builtins thumbv6m-none-eabi board-pico,fallback,link,builtins-float uf2,emu-link"
+  "pico-stick-3d-builtins thumbv6m-none-eabi board-pico,rig-stick-3d,fallback,builtins-float clippy,uf2,emu-3d"
 )
 
 # Sets TAGGED to the specs ("<name> <target> <features> <tags>") of the builds tagged $1 (no

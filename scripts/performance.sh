@@ -10,6 +10,9 @@
 #     the puck on an incline, the billiard ball and the curling stone in rapier3d and in the core,
 #     their anisotropy
 #     (out/bench/rapier3d.md, quoted as written);
+#   - the Pico's rig of the meter stick in three dimensions (the build tagged `emu-3d`) on the
+#     emulated RP2040 (tests/pico/harness.mjs): its cycles a step over its first 300 steps
+#     (out/firmware/pico-stick-3d-emu.json, read as JSON);
 #   - `host-sim report --quick`: host ns/step, pivots and solve paths at h = 1 ms
 #     (out/performance/report/report.json, read as JSON);
 #   - the page's wasm modules (scripts/lib.sh `build_web`): their sizes, plain and gzipped.
@@ -35,6 +38,9 @@ if [ "$render_only" = 0 ]; then
   # Runs scripts/setup.sh and builds host-sim; prints its report, which is read from its files below.
   bash scripts/firmware-report.sh >/dev/null
   . scripts/lib.sh
+  builds_tagged emu-3d
+  node tests/pico/harness.mjs --uf2 "$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2" --max-cycles 290000000 \
+    >out/firmware/pico-stick-3d-emu.json
   $HOST_CARGO bench --locked -p meterstick-tests --features rapier --bench rapier
   $HOST_CARGO bench --locked -p meterstick-tests --features rapier3d --bench rapier3d
   target/release/host-sim report --quick --out "$REPORT_DIR" \
@@ -46,7 +52,7 @@ else
 fi
 
 for f in out/firmware/report.md out/firmware/qemu-m4f-icount.json out/firmware/qemu-m0-icount.json \
-  out/firmware/qemu-m33-icount.json out/firmware/qemu-m4f-spatial-icount.json out/firmware/qemu-m33-spatial-icount.json out/bench/rapier.md out/bench/rapier3d.md "$REPORT_DIR/report.json" "${WEB_MODULES[@]}"; do
+  out/firmware/qemu-m33-icount.json out/firmware/qemu-m4f-spatial-icount.json out/firmware/qemu-m33-spatial-icount.json out/firmware/pico-stick-3d-emu.json out/bench/rapier.md out/bench/rapier3d.md "$REPORT_DIR/report.json" "${WEB_MODULES[@]}"; do
   [ -s "$f" ] || { echo "performance.sh: $f is missing: run without --render-only first" >&2; exit 1; }
 done
 
@@ -238,6 +244,16 @@ table(["core (QEMU machine)"] + [f"{t}: mean / worst" for _, t in SPATIAL]
       [[f"{label} (`{machine}`)"] + [mean_worst(spatial[build][s]) for s, _ in SPATIAL]
        + [" / ".join(peak(spatial[build], s) for s, _ in SPATIAL)]
        for label, build, machine in spatial_cores])
+with open("out/firmware/pico-stick-3d-emu.json") as f:
+    emu3d = json.load(f)["run"]["cycles_per_step"]
+print()
+print(f"The boards' rigs of the meter stick in 3D (`rig-stick-3d`: the carriage on a rail at the path's heading): "
+      f"the Pico 2's `pico2-stick-3d.uf2` (its Cortex-M33F's figures above, within the 150,000 cycles of h = 1 ms "
+      f"at 150 MHz); the Pico's (RP2040, Cortex-M0+ without an FPU) on the emulated RP2040 (rp2040js, "
+      f"`pico-stick-3d-builtins`, compiler_builtins' floats, its first {n(emu3d['n'])} steps): "
+      f"{n(round(emu3d['mean']))} / {n(emu3d['max'])} cycles a step, mean / worst, against the 125,000 of h = 1 ms "
+      f"at 125 MHz: it does not keep up in real time (the rig runs a step a tick, late, at about "
+      f"{125e6 / emu3d['mean']:.0f} steps/s).")
 m4f = timings["qemu-m4f"]
 if all(m4f[s].get("stack_peak_bytes") is not None for s in ("stack", "block-on-block")):
     print()

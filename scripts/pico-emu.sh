@@ -3,13 +3,15 @@
 # emulated RP2040 (rp2040js, tests/pico/), checked against the host core running the same rig
 # (tests/tests/pico_emu.rs): STEP pulses tick by tick, DIR, the lights at the scene's switch
 # events, the fault light, the tick period; it prints the cycles each step takes on the
-# 125 MHz Cortex-M0+ against the 1 ms period. Then the host link over the emulated UART0,
+# 125 MHz Cortex-M0+ against the 1 ms period; the meter stick in three dimensions' .uf2 the same
+# way for its first steps (it does not keep up with 1 ms there). Then the host link over the emulated UART0,
 # bridged to TCP: the QEMU link test's checks (tests/tests/link_checks/).
 #
 # Usage: bash scripts/pico-emu.sh [--no-setup] [TEST-NAME-FILTER...]
 #   --no-setup   skip scripts/setup.sh (scripts/test.sh has run it)
 #   MS_PICO_UF2       a .uf2 to run instead of the build tagged `emu` (scripts/lib.sh)
 #   MS_PICO_LINK_UF2  the same for the host link's tests, instead of the build tagged `emu-link`
+#   MS_PICO_3D_UF2    the same for the meter stick in three dimensions, instead of `emu-3d`
 # Only builds whose arithmetic does not call the RP2040's boot ROM run on the emulator
 # (rp2040js has none): `builtins-float`.
 set -euo pipefail
@@ -34,11 +36,12 @@ build_tagged_uf2() {
 }
 if [ -z "${MS_PICO_UF2:-}" ]; then build_tagged_uf2 emu; MS_PICO_UF2=$UF2; fi
 if [ -z "${MS_PICO_LINK_UF2:-}" ]; then build_tagged_uf2 emu-link; MS_PICO_LINK_UF2=$UF2; fi
-for f in "$MS_PICO_UF2" "$MS_PICO_LINK_UF2"; do
+if [ -z "${MS_PICO_3D_UF2:-}" ]; then build_tagged_uf2 emu-3d; MS_PICO_3D_UF2=$UF2; fi
+for f in "$MS_PICO_UF2" "$MS_PICO_LINK_UF2" "$MS_PICO_3D_UF2"; do
   [ -s "$f" ] || { echo "pico-emu: no .uf2 at $f" >&2; exit 1; }
 done
 version=$(node -p 'require("./tests/pico/node_modules/rp2040js/package.json").version')
 echo "pico-emu: ${MS_PICO_UF2#"$ROOT"/} and ${MS_PICO_LINK_UF2#"$ROOT"/} on rp2040js $version"
-MS_PICO_UF2="$MS_PICO_UF2" MS_PICO_LINK_UF2="$MS_PICO_LINK_UF2" $HOST_CARGO test --locked -p meterstick-tests --test pico_emu -- \
+MS_PICO_UF2="$MS_PICO_UF2" MS_PICO_LINK_UF2="$MS_PICO_LINK_UF2" MS_PICO_3D_UF2="$MS_PICO_3D_UF2" $HOST_CARGO test --locked -p meterstick-tests --test pico_emu -- \
   --ignored --test-threads=1 --nocapture "$@"
 echo "pico-emu: the harness's JSON per run is in target/pico-emu/"

@@ -143,7 +143,9 @@ builds_tagged emu
 emu_uf2="$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2"
 builds_tagged emu-link
 emu_link_uf2="$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2"
-MS_PICO_UF2="$emu_uf2" MS_PICO_LINK_UF2="$emu_link_uf2" bash scripts/pico-emu.sh --no-setup
+builds_tagged emu-3d
+emu_3d_uf2="$FIRMWARE_TARGET_DIR/uf2/${TAGGED[0]%% *}.uf2"
+MS_PICO_UF2="$emu_uf2" MS_PICO_LINK_UF2="$emu_link_uf2" MS_PICO_3D_UF2="$emu_3d_uf2" bash scripts/pico-emu.sh --no-setup
 
 echo
 echo "all tests passed in $(( $(date +%s) - start )) s"

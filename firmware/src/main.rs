@@ -14,7 +14,8 @@
 //! * `board-pico2` / `board-pico` ([`pico`]): the same rig on a Raspberry Pi Pico 2 (RP2350,
 //!   rp235x-hal) or Pico (RP2040, rp2040-hal), flashed from a `.uf2` file without a probe; with
 //!   `link`, a rig of both scenes: the meter stick at boot, the 3-block stack when the host
-//!   selects it (`realtime_stack::run_both_scenes`, a third light set).
+//!   selects it (`realtime_stack::run_both_scenes`, a third light set); with `rig-stick-3d`
+//!   (no `link`), the meter stick in three dimensions ([`realtime_stick_3d`]).
 //!
 //! The boards share the real-time loop ([`realtime`]), for either scene. With `link`, the rig is driven from a host
 //! (`meterstick_rig::session`, the `meterstick-link` protocol): under QEMU over the machine's UART ([`uart`],
@@ -63,6 +64,11 @@ compile_error!(
 compile_error!("uart-link is the Black Pill's (the Picos' `link` is on a UART already)");
 #[cfg(all(feature = "rig-stack", not(feature = "board-blackpill")))]
 compile_error!("rig-stack is a Black Pill build (board-blackpill)");
+#[cfg(all(
+    feature = "rig-stick-3d",
+    any(feature = "link", not(any(feature = "board-pico2", feature = "board-pico")))
+))]
+compile_error!("rig-stick-3d is a Pico 2 or Pico build (board-pico2, board-pico) without `link`");
 #[cfg(all(feature = "builtins-float", not(feature = "board-pico")))]
 compile_error!("builtins-float is the Pico's (RP2040) choice");
 
@@ -76,10 +82,12 @@ mod qemu;
 mod qemu_link;
 #[cfg(any(feature = "board-blackpill", feature = "board-pico2", feature = "board-pico"))]
 // The stack rig's build uses its loop, not the meter-stick rig's construction and buttons.
-#[cfg_attr(feature = "rig-stack", allow(dead_code))]
+#[cfg_attr(any(feature = "rig-stack", feature = "rig-stick-3d"), allow(dead_code))]
 mod realtime;
 #[cfg(any(feature = "rig-stack", both_scenes))]
 mod realtime_stack;
+#[cfg(feature = "rig-stick-3d")]
+mod realtime_stick_3d;
 #[cfg(feature = "qemu")]
 mod semihosting_log;
 #[cfg(soft_float)]

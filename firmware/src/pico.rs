@@ -23,6 +23,10 @@
 //! serves both, as a classroom's one board runs both; without `link` nothing can select the
 //! stack, and the build is the meter stick's alone.
 //!
+//! With `rig-stick-3d` (no `link`) the rig runs the meter stick in three dimensions instead
+//! (`crate::realtime_stick_3d`): the same pins, the carriage on a rail laid at the path's heading
+//! to the rod, the preset button cycling the heading.
+//!
 //! Clocks: the boards' 12 MHz crystal; the HALs' default PLL settings give a 150 MHz core on the
 //! Pico 2 and 125 MHz on the Pico. The loop is [`crate::realtime`]'s, as on the Black Pill: one
 //! scene step per SysTick period `h` (1 ms by default) on the core clock, the real-time margin
@@ -109,10 +113,16 @@ pub fn main() -> ! {
         ],
         fault: gp.gpio25.into_push_pull_output().into_dyn_pin(),
     };
+    #[cfg(not(feature = "rig-stick-3d"))]
     let Some(rig) = realtime::new_rig(pins, step, dir, sysclk_hz) else { halt() };
+    #[cfg(feature = "rig-stick-3d")]
+    let Some(rig) = crate::realtime_stick_3d::new_rig(pins, step, dir, sysclk_hz) else { halt() };
     #[cfg(not(feature = "link"))]
     {
+        #[cfg(not(feature = "rig-stick-3d"))]
         let mut buttons = realtime::Buttons::new();
+        #[cfg(feature = "rig-stick-3d")]
+        let mut buttons = crate::realtime_stick_3d::Buttons::new();
         realtime::run(
             rig,
             move |rig, state| buttons.between_runs(rig, state, preset_button.is_low().unwrap_or(false)),

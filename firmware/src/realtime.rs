@@ -24,9 +24,13 @@ use core::convert::Infallible;
 use cortex_m::peripheral::SYST;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{InputPin, OutputPin};
+#[cfg(not(feature = "link"))]
+use meterstick_rig::RigScene;
+#[cfg(feature = "link")]
+use meterstick_rig::session::LinkScene;
+use meterstick_rig::session::SceneId;
 #[cfg(feature = "link")]
 use meterstick_rig::session::Session;
-use meterstick_rig::session::{LinkScene, SceneId};
 use meterstick_rig::{
     Actuator, Carriage, MeterStickRig, Preset, PresetScene as _, PressDetector, Rig, RigConfig, RigError,
     RigPins, RigState,
@@ -43,6 +47,20 @@ pub const DEBOUNCE_TICKS: u16 = 20;
 /// wait for the wrap. The longest is SysTick's 24-bit range ([`systick::MASK`]). The rig
 /// refuses steps outside them ([`RigConfig::ticked_by`]), so a tick is always one step.
 const MIN_PERIOD: u32 = 1_000;
+
+/// What [`run`] and [`serve`] need of a scene: the link's ([`LinkScene`]: its parameters and
+/// telemetry by the protocol's names) with `link`, the rig's alone (`meterstick_rig::RigScene`)
+/// without.
+#[cfg(feature = "link")]
+pub trait RunScene<const L: usize>: LinkScene<L> {}
+#[cfg(feature = "link")]
+impl<S: LinkScene<L>, const L: usize> RunScene<L> for S {}
+/// What [`run`] and [`serve`] need of a scene: the rig's (`meterstick_rig::RigScene`; with
+/// `link`, the link's too).
+#[cfg(not(feature = "link"))]
+pub trait RunScene<const L: usize>: RigScene<L> {}
+#[cfg(not(feature = "link"))]
+impl<S: RigScene<L>, const L: usize> RunScene<L> for S {}
 
 /// Busy-wait delay on the core clock, timed by SysTick, which runs on it for the ticks
 /// ([`Ticker::start`] starts it before the rig's first tick): the cycles asked plus at most one poll, on
@@ -184,7 +202,7 @@ pub fn run<S, A, B, P, const L: usize>(
     #[cfg(feature = "link")] mut port: impl LinkPort,
 ) -> !
 where
-    S: LinkScene<L>,
+    S: RunScene<L>,
     S::Report: Copy,
     A: Actuator<S, Infallible>,
     B: InputPin<Error = Infallible>,
@@ -223,7 +241,7 @@ pub fn serve<S, A, B, P, const L: usize>(
     #[cfg(feature = "link")] port: &mut impl LinkPort,
 ) -> SceneId
 where
-    S: LinkScene<L>,
+    S: RunScene<L>,
     S::Report: Copy,
     A: Actuator<S, Infallible>,
     B: InputPin<Error = Infallible>,

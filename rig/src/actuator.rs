@@ -128,21 +128,59 @@ impl<P: OutputPin, D: DelayNs> Carriage<P, D> {
     }
 }
 
-impl<P, D, E, const N: usize, const EV: usize> Actuator<MeterStick<f32, N, EV>, E> for Carriage<P, D>
+/// A scene whose finger 1 a [`Carriage`] moves: where that finger is along the carriage's rail.
+pub trait CarriedFinger {
+    /// Finger 1 at the scene's start, along the rail (m): the carriage's origin.
+    fn rail_start(&self) -> f32;
+    /// Finger 1 now, along the rail (m).
+    fn rail_position(&self) -> f32;
+}
+
+/// The rail along `x`: finger 1's `x`.
+impl<const N: usize, const EV: usize> CarriedFinger for MeterStick<f32, N, EV> {
+    #[inline]
+    fn rail_start(&self) -> f32 {
+        self.params().finger1_x
+    }
+
+    #[inline]
+    fn rail_position(&self) -> f32 {
+        self.fingers()[0]
+    }
+}
+
+/// The rail along finger 1's path, at the heading `psi` to the rod's axis (`docs/scenes.md`,
+/// "meter-stick-3d"): the finger's `x` over `cos psi`, the distance along the path from where it
+/// crosses the rod's vertical plane (feature `spatial`).
+#[cfg(feature = "spatial")]
+impl CarriedFinger for meterstick_core::scene::spatial::MeterStick3d<f32> {
+    #[inline]
+    fn rail_start(&self) -> f32 {
+        self.params().finger1_x / self.params().heading_sin_cos().1
+    }
+
+    #[inline]
+    fn rail_position(&self) -> f32 {
+        self.tips()[0][0] / self.path().1
+    }
+}
+
+impl<S, P, D, E> Actuator<S, E> for Carriage<P, D>
 where
+    S: CarriedFinger,
     P: OutputPin<Error = E>,
     D: DelayNs,
 {
-    fn init(&mut self, scene: &MeterStick<f32, N, EV>) -> Result<(), E> {
+    fn init(&mut self, scene: &S) -> Result<(), E> {
         self.step.set_low()?;
         self.dir.set_low()?;
-        self.origin = scene.params().finger1_x;
+        self.origin = scene.rail_start();
         Ok(())
     }
 
-    fn park(&mut self, scene: &MeterStick<f32, N, EV>) -> Result<(), E> {
+    fn park(&mut self, scene: &S) -> Result<(), E> {
         self.dir.set_low()?;
-        self.origin = scene.params().finger1_x;
+        self.origin = scene.rail_start();
         log_info!("rig: {=i64} pulses back to the origin", self.pulses);
         Ok(())
     }
@@ -168,8 +206,8 @@ where
     }
 
     #[inline]
-    fn follow(&mut self, scene: &MeterStick<f32, N, EV>, config: &RigConfig) -> Result<Option<RigFault>, E> {
-        let target = libm::roundf((scene.fingers()[0] - self.origin) * config.steps_per_meter);
+    fn follow(&mut self, scene: &S, config: &RigConfig) -> Result<Option<RigFault>, E> {
+        let target = libm::roundf((scene.rail_position() - self.origin) * config.steps_per_meter);
         if !target.is_finite() {
             return Ok(Some(RigFault::NonFinite));
         }

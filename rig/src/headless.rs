@@ -4,9 +4,8 @@ use core::convert::Infallible;
 
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
-use meterstick_core::scene::MeterStickParams;
 
-use crate::{Carriage, MeterStickRig, ModeLights, NoActuator, Rig, RigConfig, RigError, RigPins, RigScene};
+use crate::{CarriedFinger, Carriage, ModeLights, NoActuator, Rig, RigConfig, RigError, RigPins, RigScene};
 
 /// A headless pin, for running the rig without hardware (QEMU, host tests): as an output it
 /// counts its rising edges; as an input it reads low, i.e. a pressed active-low button.
@@ -57,17 +56,13 @@ impl DelayNs for NoDelay {
     fn delay_ns(&mut self, _ns: u32) {}
 }
 
-impl<D: DelayNs, const N: usize, const E: usize> MeterStickRig<HeadlessPin, HeadlessPin, D, N, E> {
-    /// A meter-stick rig on [`HeadlessPin`]s (the start button reads pressed), its carriage's
-    /// pulses timed by `delay`.
+impl<S: RigScene<2> + CarriedFinger, D: DelayNs> Rig<S, Carriage<HeadlessPin, D>, HeadlessPin, HeadlessPin, 2> {
+    /// A rig whose carriage moves finger 1 (the meter stick's, in the plane or in space), on
+    /// [`HeadlessPin`]s (the start button reads pressed), its carriage's pulses timed by `delay`.
     ///
     /// # Errors
     /// Invalid parameters, or parameters the rig cannot perform.
-    pub fn headless(
-        params: MeterStickParams<f32>,
-        config: RigConfig,
-        delay: D,
-    ) -> Result<Self, RigError<Infallible>> {
+    pub fn headless(params: S::Params, config: RigConfig, delay: D) -> Result<Self, RigError<Infallible>> {
         let carriage = Carriage::new(HeadlessPin::default(), HeadlessPin::default(), delay);
         Self::new(params, config, headless_pins(), carriage)
     }

@@ -39,7 +39,7 @@ mod rig;
 mod rig_scene;
 pub mod session;
 
-pub use actuator::{Actuator, Carriage, NoActuator};
+pub use actuator::{Actuator, Carriage, CarriedFinger, NoActuator};
 pub use config::{RigConfig, Unperformable};
 pub use controls::{Preset, PresetScene, PressDetector};
 pub use headless::{HeadlessPin, NoDelay};

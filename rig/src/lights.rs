@@ -68,6 +68,38 @@ impl Shown for ContactMode {
     }
 }
 
+/// A contact's mode in three dimensions (feature `spatial`: the meter stick in space's fingers);
+/// its sliding has no sign (a slip in the plane has a direction, not a side).
+#[cfg(feature = "spatial")]
+impl Shown for meterstick_core::spatial::Mode {
+    #[inline]
+    fn lights(self) -> u8 {
+        match self {
+            Self::Sticking => STICKING,
+            Self::Sliding => SLIDING,
+            Self::Separated => SEPARATED,
+        }
+    }
+
+    #[inline]
+    fn number(index: u8) -> Self {
+        match index {
+            0 => Self::Sticking,
+            1 => Self::Sliding,
+            _ => Self::Separated,
+        }
+    }
+
+    #[inline]
+    fn name(self) -> &'static str {
+        match self {
+            Self::Sticking => "sticking",
+            Self::Sliding => "sliding",
+            Self::Separated => "separated",
+        }
+    }
+}
+
 impl<P: OutputPin> ModeLights<P> {
     /// Drives all three lights low (a rig's start, before anything is shown).
     pub(crate) fn all_low(&mut self) -> Result<(), P::Error> {

@@ -395,7 +395,7 @@ where
     }
 }
 
-impl<B, P, D, const N: usize, const E: usize> MeterStickRig<B, P, D, N, E> {
+impl<S: RigScene<L>, B, P, D, const L: usize> Rig<S, Carriage<P, D>, B, P, L> {
     /// Stepper pulses the carriage is from its origin (toward finger 2).
     #[must_use]
     pub const fn pulses(&self) -> i64 {

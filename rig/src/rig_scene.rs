@@ -1,6 +1,8 @@
 //! [`RigScene`]: what the one rig state machine ([`crate::Rig`]) needs of the scene it shows, so
 //! that one loop runs every scene a board runs: the meter stick (`MeterStick<f32, N, E>`, a light
-//! per finger) and the stack of blocks (`Stack<f32, B, N>`, a light per interface).
+//! per finger), the stack of blocks (`Stack<f32, B, N>`, a light per interface) and, with the
+//! feature `spatial`, the meter stick in three dimensions (`MeterStick3d<f32>`, a light per
+//! finger).
 
 use meterstick_core::ParamError;
 use meterstick_core::multibody::SystemStepReport;
@@ -40,6 +42,9 @@ pub trait RigScene<const L: usize>: Sized {
 
     /// The parameters the scene was built from.
     fn params(&self) -> &Self::Params;
+
+    /// The time step of `params` (s): the rig ticks once per step.
+    fn step_of(params: &Self::Params) -> f32;
 
     /// One step, unless the run has its outcome ([`Self::outcome`]; a failed step ends the run
     /// with [`Outcome::Failed`]).
@@ -83,6 +88,11 @@ impl<const N: usize, const E: usize> RigScene<2> for MeterStick<f32, N, E> {
     #[inline]
     fn params(&self) -> &MeterStickParams<f32> {
         MeterStick::params(self)
+    }
+
+    #[inline]
+    fn step_of(params: &MeterStickParams<f32>) -> f32 {
+        params.step
     }
 
     #[inline]
@@ -145,6 +155,11 @@ impl<const B: usize, const N: usize> RigScene<B> for Stack<f32, B, N> {
     }
 
     #[inline]
+    fn step_of(params: &StackParams<f32>) -> f32 {
+        params.step
+    }
+
+    #[inline]
     fn advance(&mut self) -> Option<SystemStepReport<f32, B, B>> {
         MultibodyScene::step(self)
     }
@@ -172,5 +187,74 @@ impl<const B: usize, const N: usize> RigScene<B> for Stack<f32, B, N> {
     #[inline]
     fn modes_of(report: &SystemStepReport<f32, B, B>) -> [InterfaceMode; B] {
         report.modes.map(InterfaceMode::of)
+    }
+}
+
+/// The meter stick in three dimensions (`docs/scenes.md`, "meter-stick-3d"; feature `spatial`): a
+/// light per finger, finger 1's (the pad: sliding when either of its points slides, sticking when
+/// either touches) first.
+#[cfg(feature = "spatial")]
+impl RigScene<2> for meterstick_core::scene::spatial::MeterStick3d<f32> {
+    type Params = meterstick_core::scene::spatial::MeterStick3dParams<f32>;
+    type Report =
+        meterstick_core::spatial::SpatialStepReport<f32, { meterstick_core::scene::spatial::ROD_POINTS }>;
+    type Mode = meterstick_core::spatial::Mode;
+    const LIGHT: &'static str = "finger";
+    const FIRST_LIGHT: usize = 1;
+
+    #[inline]
+    fn build(params: Self::Params) -> Result<Self, ParamError> {
+        Self::new(params)
+    }
+
+    /// [`RigConfig::check`] of the scene with finger 1 moving at its speed along its path (the
+    /// carriage runs along the path, `crate::Carriage`).
+    #[inline]
+    fn check(config: &RigConfig, params: &Self::Params) -> Result<(), Unperformable> {
+        let (_, cos) = params.heading_sin_cos();
+        let planar = params.planar();
+        config.check(&MeterStickParams { finger1_velocity: planar.finger1_velocity / cos, ..planar })
+    }
+
+    #[inline]
+    fn params(&self) -> &Self::Params {
+        Self::params(self)
+    }
+
+    #[inline]
+    fn step_of(params: &Self::Params) -> f32 {
+        params.step
+    }
+
+    #[inline]
+    fn advance(&mut self) -> Option<Self::Report> {
+        self.step()
+    }
+
+    /// Always: the core fails a step whose state is not finite, and the carriage checks the
+    /// target it follows.
+    #[inline]
+    fn finite(_: &Self::Report) -> bool {
+        true
+    }
+
+    #[inline]
+    fn outcome(&self) -> Option<Outcome> {
+        Self::outcome(self)
+    }
+
+    #[inline]
+    fn time(&self) -> f32 {
+        self.stepper().time()
+    }
+
+    #[inline]
+    fn start_modes(&self) -> [Self::Mode; 2] {
+        self.finger_modes()
+    }
+
+    #[inline]
+    fn modes_of(report: &Self::Report) -> [Self::Mode; 2] {
+        meterstick_core::scene::spatial::finger_modes(report.contacts.map(|c| c.mode))
     }
 }

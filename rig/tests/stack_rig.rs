@@ -428,6 +428,9 @@ impl RigScene<1> for Failing {
     fn params(&self) -> &FailAt {
         &self.params
     }
+    fn step_of(_: &FailAt) -> f32 {
+        1e-3
+    }
     fn advance(&mut self) -> Option<SystemStepReport<f32, 1, 1>> {
         if self.outcome.is_some() {
             return None;

@@ -19,6 +19,11 @@
 //! `qemu_link.rs`: handshake, refusals, a run bit for bit against the host, garbage and a flood,
 //! stop on command) run against the emulated Pico.
 //!
+//! The meter stick in three dimensions (`MS_PICO_3D_UF2`, the build tagged `emu-3d`,
+//! `rig-stick-3d`): its first steps' STEP pulses and edges against the host's rig of the same
+//! scene, and its cycles a step (it needs several 1 ms periods a step on the RP2040: the rig runs
+//! late, a step per tick, and counts the overruns).
+//!
 //! `scripts/pico-emu.sh` runs them (`--test-threads=1`); ignored in a plain `cargo test`.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::cast_possible_truncation)]
 
@@ -34,12 +39,13 @@ use std::time::{Duration, Instant};
 
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 use meterstick_core::planar::ContactMode;
+use meterstick_core::scene::spatial::{MeterStick3d, MeterStick3dParams};
 use meterstick_core::scene::{MeterStick6, MeterStickParams, Outcome, Scene};
 use meterstick_link::OutcomeCode;
 use meterstick_link::host::Link;
 use meterstick_rig::{
-    Carriage, MeterStickRig, ModeLights, NoDelay, Preset, PresetScene as _, RigConfig, RigFault, RigPins,
-    RigState,
+    Carriage, MeterStickRig, ModeLights, NoDelay, Preset, PresetScene as _, Rig, RigConfig, RigFault,
+    RigPins, RigState,
 };
 use serde_json::Value;
 
@@ -243,11 +249,16 @@ fn harness(presses: usize, max_ticks: u64) -> Value {
 
 /// [`harness`] with more of the harness's options (`tests/pico/harness.mjs`).
 fn harness_with(presses: usize, max_ticks: u64, options: &[&str]) -> Value {
-    let uf2 = std::env::var("MS_PICO_UF2")
-        .unwrap_or_else(|_| panic!("MS_PICO_UF2 is not set: run scripts/pico-emu.sh"));
+    harness_of("MS_PICO_UF2", presses, (max_ticks as f64 * f64::from(H) * CORE_HZ).ceil(), options)
+}
+
+/// The harness on the `.uf2` named by the environment variable `uf2_var`, stopped after at most
+/// `max_cycles`; its JSON kept in `target/pico-emu/`.
+fn harness_of(uf2_var: &str, presses: usize, max_cycles: f64, options: &[&str]) -> Value {
+    let uf2 =
+        std::env::var(uf2_var).unwrap_or_else(|_| panic!("{uf2_var} is not set: run scripts/pico-emu.sh"));
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
     let script = root.join("tests/pico/harness.mjs");
-    let max_cycles = (max_ticks as f64 * f64::from(H) * CORE_HZ).ceil();
     let out = Command::new("node")
         .arg(&script)
         .args(["--uf2", &uf2, "--presets", &presses.to_string(), "--max-cycles", &max_cycles.to_string()])
@@ -264,7 +275,7 @@ fn harness_with(presses: usize, max_ticks: u64, options: &[&str]) -> Value {
     let v: Value = serde_json::from_slice(&out.stdout).expect("the harness printed one JSON object");
     let dir = root.join("target/pico-emu");
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join(format!("presets{presses}.json")), &out.stdout).unwrap();
+    std::fs::write(dir.join(format!("{uf2_var}-presets{presses}.json")), &out.stdout).unwrap();
     v
 }
 
@@ -492,6 +503,81 @@ fn the_fast_preset_is_skipped_and_near_threshold_runs_as_on_the_host() {
 fn slow_preset_runs_as_on_the_host() {
     let (_, host) = check(0);
     assert_eq!(host.state, RigState::Finished(Outcome::Balanced));
+}
+
+/// The steps of the meter stick in three dimensions the emulated Pico runs: its first 0.3 s (the
+/// pad slides from its first step, finger 2 sticks), about 250 M emulated cycles.
+const STEPS_3D: i64 = 300;
+
+/// The meter stick in three dimensions (`rig-stick-3d`) at its boot heading (0): the emulated
+/// Pico's first [`STEPS_3D`] steps pulse STEP and switch the lights in the same steps as the host
+/// core's rig of the same scene; its cycles a step are printed against the 1 ms period.
+#[test]
+#[ignore = "needs node, tests/pico/node_modules and MS_PICO_3D_UF2 (scripts/pico-emu.sh)"]
+fn the_meter_stick_in_three_dimensions_runs_as_on_the_host() {
+    let rec = Rc::new(RefCell::new(Record { tick: -1, ..Record::default() }));
+    let pin = |p: u8| RecPin(p, rec.clone());
+    let lights = |f: usize| ModeLights {
+        sticking: pin(LIGHTS[f][0]),
+        sliding: pin(LIGHTS[f][1]),
+        separated: pin(LIGHTS[f][2]),
+    };
+    let carriage = Carriage::new(pin(STEP), pin(DIR), NoDelay);
+    let pins = RigPins { start: Released, lights: [lights(0), lights(1)], fault: pin(FAULT) };
+    // As firmware/src/realtime_stick_3d.rs's `new_rig`: the catalogue's scene at h = 1 ms.
+    let params = MeterStick3dParams { step: H, ..MeterStick3dParams::default() };
+    let mut rig: Rig<MeterStick3d<f32>, _, _, _, 2> =
+        Rig::new(params, RigConfig::default_rig(), pins, carriage).unwrap();
+    rec.borrow_mut().tick = 0;
+    assert!(rig.start().unwrap(), "the host rig did not start");
+    for tick in 1..=STEPS_3D + 1 {
+        rec.borrow_mut().tick = tick;
+        assert_eq!(rig.tick().unwrap(), RigState::Running, "the host run ended at step {tick}");
+    }
+    drop(rig);
+    let host = Rc::try_unwrap(rec).ok().unwrap().into_inner();
+
+    // The boot and the start button take about 70 ticks of 125,000 cycles; a step about 0.9 M.
+    let emu = harness_of("MS_PICO_3D_UF2", 0, 2e7 + 0.9e6 * STEPS_3D as f64, &[]);
+    let name = "the meter stick in three dimensions";
+    nothing_unmodelled(name, &emu);
+    assert_eq!(emu["fault_level"], 0, "{name}: GP25 (fault) is on");
+    let start = int(&emu["run"]["start_tick"], "start tick (DIR high)");
+    let rises = emu["step"]["rises_per_tick"].as_array().unwrap();
+    // The cycle cap stops the run inside a step: the steps before it are whole (and the host ran
+    // STEPS_3D + 1).
+    let whole = (i64::try_from(rises.len()).unwrap() - 1).min(STEPS_3D + 1);
+    assert!(whole >= STEPS_3D * 9 / 10, "{name}: only {whole} steps ran within the cycle cap");
+    for (k, r) in rises.iter().enumerate().take(usize::try_from(whole).unwrap()) {
+        let want = host.rises.get(&i64::try_from(k).unwrap()).copied().unwrap_or(0);
+        assert_eq!(
+            int(r, "rises") as u64,
+            want,
+            "{name}: GP2 (STEP) pulses in step {k}: Pico {r}, host {want}"
+        );
+    }
+    let emu_edges: Vec<(i64, u8, bool)> = emu["edges"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| {
+            (int(&e["tick"], "tick") - start, int(&e["pin"], "pin") as u8, int(&e["level"], "level") == 1)
+        })
+        .filter(|e| e.0 >= 0 && e.0 < whole)
+        .collect();
+    let host_edges: Vec<(i64, u8, bool)> =
+        host.edges.iter().copied().filter(|e| e.0 >= 0 && e.0 < whole).collect();
+    assert!(!host_edges.is_empty(), "{name}: the host's rig switched no light");
+    assert_eq!(emu_edges, host_edges, "{name}: the edges (step, pin, high) differ");
+    let w = &emu["run"]["cycles_per_step"];
+    let period = (f64::from(H) * CORE_HZ).round();
+    println!(
+        "{name}: {whole} steps as on the host; cycles per step mean {:.0}, worst {} against the {period} of \
+         h = 1 ms ({:.1} periods a step at the worst)",
+        w["mean"].as_f64().unwrap_or(f64::NAN),
+        w["max"],
+        w["max"].as_f64().unwrap_or(f64::NAN) / period,
+    );
 }
 
 /// The harness, killed if the test fails before it ends.

@@ -19,9 +19,6 @@ pub trait LinkScene<const L: usize>: RigScene<L> {
     /// rows, 32 for three blocks).
     const LCP_SIZE: u8;
 
-    /// The time step of `params` (s).
-    fn step_of(params: &Self::Params) -> f32;
-
     /// The value of the parameter `id` in `params`; `None` if the scene has no such parameter.
     fn param(params: &Self::Params, id: ParamId) -> Option<f32>;
 
@@ -61,11 +58,6 @@ impl<const N: usize, const E: usize> LinkScene<2> for MeterStick<f32, N, E> {
     const SCENE: SceneId = SceneId::MeterStick;
     #[allow(clippy::cast_possible_truncation)] // 6 or 8
     const LCP_SIZE: u8 = N as u8;
-
-    #[inline]
-    fn step_of(params: &Self::Params) -> f32 {
-        params.step
-    }
 
     #[inline]
     fn param(params: &Self::Params, id: ParamId) -> Option<f32> {
@@ -146,11 +138,6 @@ impl<const B: usize, const N: usize> LinkScene<B> for Stack<f32, B, N> {
     const SCENE: SceneId = SceneId::Stack;
     #[allow(clippy::cast_possible_truncation)] // 24 or 32
     const LCP_SIZE: u8 = N as u8;
-
-    #[inline]
-    fn step_of(params: &Self::Params) -> f32 {
-        params.step
-    }
 
     #[inline]
     fn param(params: &Self::Params, id: ParamId) -> Option<f32> {

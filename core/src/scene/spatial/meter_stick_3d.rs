@@ -165,7 +165,8 @@ pub struct FingerSwitch<T> {
 }
 
 /// Each finger's mode from its points' ([`FingerSwitch`]).
-fn finger_modes(points: [Mode; ROD_POINTS]) -> [Mode; 2] {
+#[must_use]
+pub fn finger_modes(points: [Mode; ROD_POINTS]) -> [Mode; 2] {
     let [a, b, c] = points;
     [[a, b], [c, c]].map(|pair| {
         if pair.contains(&Mode::Sliding) {
@@ -280,6 +281,12 @@ impl<T: Real> MeterStick3d<T> {
     #[must_use]
     pub const fn stepper(&self) -> &SupportedStepper<T, ROD_POINTS, ROD_ROWS> {
         &self.stepper
+    }
+
+    /// The fingers' path's heading to the rod's axis, `(sin psi, cos psi)`.
+    #[must_use]
+    pub const fn path(&self) -> (T, T) {
+        self.path
     }
 
     /// The fingers' tips now (m, world axes).

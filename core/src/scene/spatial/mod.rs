@@ -18,7 +18,9 @@ mod view;
 
 pub use billiard::{Billiard, BilliardParams};
 pub use curling::{CURLING_ROWS, Curling, CurlingParams, MAX_POINTS};
-pub use meter_stick_3d::{FingerSwitch, MeterStick3d, MeterStick3dParams, ROD_EVENTS, ROD_POINTS, ROD_ROWS};
+pub use meter_stick_3d::{
+    FingerSwitch, MeterStick3d, MeterStick3dParams, ROD_EVENTS, ROD_POINTS, ROD_ROWS, finger_modes,
+};
 pub use puck::{Puck, PuckParams};
 pub use view::{SeenContact, SpatialSeen, SpatialView};
 
