@@ -44,15 +44,23 @@
 //! `tests/tests/spatial_reference.rs` steps it beside the core.
 
 mod algebra;
+mod cone;
 mod contact;
 mod curling;
+mod dense;
+mod meter_stick;
 mod scenes;
 mod step;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod meter_stick_tests;
 
 pub use contact::ContactError;
 pub use curling::{CURLING_QUANTITIES, Curling, MOST_POINTS, run_curling_keeping};
+pub use meter_stick::{
+    METER_STICK_3D_QUANTITIES, MeterStick3d, MeterStick3dRun, ROD_POINTS, RodPoint, run_meter_stick_3d_keeping,
+};
 pub use scenes::{
     BILLIARD_QUANTITIES, Billiard, Keep, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_billiard_keeping,
     run_puck, run_puck_keeping,
@@ -81,8 +89,14 @@ pub enum Outcome {
     Slid,
     /// Billiard: the contact sticking after a step (the ball rolls).
     Rolled,
-    /// Billiard: at `max_time` without rolling.
+    /// Billiard, meter stick: at `max_time` without another outcome.
     Unfinished,
+    /// Meter stick: the fingers met under the centre of mass and every point stayed on for
+    /// `hold_time`.
+    Balanced,
+    /// Meter stick: the face tilted or the centre of mass dropped past its limit, or no finger
+    /// is under the rod.
+    Fell,
 }
 
 /// The state after a step (row 0: the start, separated, no impulse).

@@ -1,0 +1,57 @@
+//! The meter stick in three dimensions against the planar reference (heading 0) and its mirror
+//! (docs/scenes.md, "meter-stick-3d", "Laws"). The measured numbers are printed (`--
+//! --nocapture`).
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::float_cmp)]
+
+use super::*;
+use crate::{MeterStick, Sample, Spec};
+
+fn timed(label: &str, p: &MeterStick3d, keep: Keep) -> MeterStick3dRun {
+    let start = std::time::Instant::now();
+    let run = run_meter_stick_3d_keeping(p, keep).unwrap();
+    eprintln!(
+        "{label}: {:?} after {} steps in {:.2} s, meeting {:?}, first guesses missed {}, worst residual {:.1e}",
+        run.run.outcome,
+        run.run.steps,
+        start.elapsed().as_secs_f64(),
+        run.run.measured,
+        run.guesses_missed,
+        run.worst_residual
+    );
+    run
+}
+
+#[test]
+fn heading_zero_is_the_planar_reference() {
+    let planar = MeterStick::default();
+    let p = MeterStick3d::from_planar(&planar, 0.025, 0.0);
+    let spatial = timed("meter-stick-3d heading 0", &p, Keep::All);
+    let flat = crate::run(&Spec::MeterStick(planar), Sample::All).unwrap();
+    eprintln!("planar: {:?} after {} steps, meeting {:?}", flat.outcome, flat.steps, flat.meeting);
+    assert_eq!(spatial.run.steps, flat.steps);
+    let mut worst = 0.0_f64;
+    for (a, b) in spatial.run.trajectory.iter().zip(&flat.rows) {
+        let d = [a.position[0] - b.q[0], a.position[1], a.position[2] - b.q[1]];
+        worst = worst.max(d.iter().map(|x| x * x).sum::<f64>().sqrt());
+    }
+    eprintln!("heading 0 against the planar reference: centres of mass within {worst:.1e} m");
+    assert!(worst <= 1e-9, "{worst}");
+}
+
+/// The headings of docs/scenes.md's outcomes: Balanced at 0 to 20 deg, Fell at 30.
+#[test]
+fn opposite_headings_mirror_each_other() {
+    for degrees in [5.0_f64, 10.0, 20.0, 30.0] {
+        let p = MeterStick3d { heading: degrees.to_radians(), ..MeterStick3d::default() };
+        let a = timed(&format!("meter-stick-3d {degrees} deg"), &p, Keep::All);
+        let b = timed(&format!("meter-stick-3d -{degrees} deg"), &MeterStick3d { heading: -p.heading, ..p }, Keep::All);
+        assert_eq!((a.run.outcome, a.run.steps), (b.run.outcome, b.run.steps));
+        let mut worst = 0.0_f64;
+        for (x, y) in a.run.trajectory.iter().zip(&b.run.trajectory) {
+            let d = [x.position[0] - y.position[0], x.position[1] + y.position[1], x.position[2] - y.position[2]];
+            worst = worst.max(d.iter().map(|v| v * v).sum::<f64>().sqrt());
+        }
+        eprintln!("{degrees} deg and its negative: mirrored within {worst:.1e} m");
+        assert!(worst <= 1e-9, "{degrees} deg: {worst}");
+    }
+}
