@@ -41,9 +41,30 @@
 //! contacts there are at most 27 combinations, and the step before names the right one nearly
 //! always.
 
-use super::algebra::{M3, V3, ZERO, apply, cross, dot, in_plane, length, plus, some_perpendicular, times};
+use super::algebra::{
+    M3, V3, ZERO, apply, cross, dot, in_plane, length, plus, product, skew, some_perpendicular, times,
+    transpose,
+};
 use super::contact::ContactError;
 use super::dense::Svd;
+
+/// `W` of contacts at the arms `arms` (from the centre of mass, world axes) of a body of mass
+/// `mass` and world inverse inertia `inverse`: `W_ij = I3 + m [r_i]x^T I_w^-1 [r_j]x`, rows first.
+pub(crate) fn delassus(mass: f64, inverse: &M3, arms: &[V3]) -> Vec<f64> {
+    let k = arms.len();
+    let mut w = vec![0.0; 9 * k * k];
+    for (a, ra) in arms.iter().enumerate() {
+        for (b, rb) in arms.iter().enumerate() {
+            let block = product(&transpose(&skew(*ra)), &product(inverse, &skew(*rb)));
+            for r in 0..3 {
+                for c in 0..3 {
+                    w[(3 * a + r) * 3 * k + 3 * b + c] = mass * block[r][c] + f64::from(u8::from(r == c));
+                }
+            }
+        }
+    }
+    w
+}
 
 /// A contact's case in the answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -79,6 +100,9 @@ pub(crate) struct Solved {
     pub cases: Vec<PointCase>,
     /// The worst condition's miss, over the step's velocity scale.
     pub residual: f64,
+    /// Whether the stuck contacts' least-norm impulses left a cone and were moved along the
+    /// internal forces into it.
+    pub fitted: bool,
 }
 
 /// A singular value below this part of the largest is nil.
@@ -169,7 +193,9 @@ impl Combination<'_> {
         for (j, case) in self.cases.iter().enumerate() {
             match case {
                 PointCase::Apart => {}
-                PointCase::Stuck => unknowns.extend([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|d| (j, d))),
+                PointCase::Stuck => {
+                    unknowns.extend([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|d| (j, d)))
+                }
                 PointCase::Slides => unknowns.push((j, plus(c.normals[j], times(-c.mu[j], e[j])))),
             }
         }
@@ -187,7 +213,8 @@ impl Combination<'_> {
         let columns: Vec<Vec<f64>> =
             unknowns.iter().map(|&(j, d)| rows(&|i| apply(&c.block(i, j), d))).collect();
         let b: Vec<f64> = rows(&|i| c.u[i]).iter().map(|x| -x).collect();
-        let (x, null) = if columns.is_empty() { (Vec::new(), Vec::new()) } else { Svd::of(&columns)?.solve(&b, RANK) };
+        let (x, null) =
+            if columns.is_empty() { (Vec::new(), Vec::new()) } else { Svd::of(&columns)?.solve(&b, RANK) };
         let p = self.impulses(&x, &e);
         let after = c.after(&p);
         Some(Eval { x, null, p, after, e })
@@ -234,7 +261,7 @@ impl Combination<'_> {
     /// Moves the stuck contacts' impulses along the null space until every cone holds (Newton's
     /// steps on the violated cones, each aimed `2^-20` of its bound inside it); `false` when they
     /// do not fit.
-    fn fit_cones(&self, ev: &mut Eval, tol_p: f64) -> bool {
+    fn fit_cones(&self, ev: &mut Eval, tol_p: f64, fitted: &mut bool) -> bool {
         let c = self.c;
         let violation = |p: &[V3], i: usize| {
             let n = c.normals[i];
@@ -242,7 +269,8 @@ impl Combination<'_> {
         };
         let stuck: Vec<usize> = (0..c.k()).filter(|&i| self.cases[i] == PointCase::Stuck).collect();
         for _ in 0..32 {
-            let violated: Vec<usize> = stuck.iter().copied().filter(|&i| violation(&ev.p, i) > tol_p).collect();
+            let violated: Vec<usize> =
+                stuck.iter().copied().filter(|&i| violation(&ev.p, i) > tol_p).collect();
             if violated.is_empty() {
                 return true;
             }
@@ -251,10 +279,12 @@ impl Combination<'_> {
             }
             // Each null direction's change of each violated cone's function.
             let moved = |t: &[f64]| -> Vec<V3> {
-                let x: Vec<f64> =
-                    (0..ev.x.len()).map(|r| ev.x[r] + ev.null.iter().zip(t).map(|(z, tk)| z[r] * tk).sum::<f64>()).collect();
+                let x: Vec<f64> = (0..ev.x.len())
+                    .map(|r| ev.x[r] + ev.null.iter().zip(t).map(|(z, tk)| z[r] * tk).sum::<f64>())
+                    .collect();
                 self.impulses(&x, &ev.e)
             };
+            *fitted = true;
             let g0: Vec<f64> = violated.iter().map(|&i| violation(&ev.p, i)).collect();
             let scale = ev.p.iter().fold(0.0_f64, |a, p| a.max(length(*p)));
             let delta = 1e-7 * scale.max(f64::MIN_POSITIVE);
@@ -263,7 +293,13 @@ impl Combination<'_> {
                 let mut t = vec![0.0; ev.null.len()];
                 t[k] = delta;
                 let p = moved(&t);
-                columns.push(violated.iter().zip(&g0).map(|(&i, g)| (violation(&p, i) - g) / delta).collect::<Vec<f64>>());
+                columns.push(
+                    violated
+                        .iter()
+                        .zip(&g0)
+                        .map(|(&i, g)| (violation(&p, i) - g) / delta)
+                        .collect::<Vec<f64>>(),
+                );
             }
             // Rows: the violated cones; columns: the null directions (transposed for the solve).
             let rows = violated.len();
@@ -275,13 +311,20 @@ impl Combination<'_> {
                 .map(|(&i, g)| -g - c.mu[i] * dot(ev.p[i], c.normals[i]) * 2.0_f64.powi(-20))
                 .collect();
             // The least-norm step: t = J^T y with (J J^T) y = target, J = transposed.
-            let gram: Vec<Vec<f64>> =
-                (0..rows).map(|a| (0..rows).map(|b| transposed[a].iter().zip(&transposed[b]).map(|(x, y)| x * y).sum()).collect()).collect();
+            let gram: Vec<Vec<f64>> = (0..rows)
+                .map(|a| {
+                    (0..rows)
+                        .map(|b| transposed[a].iter().zip(&transposed[b]).map(|(x, y)| x * y).sum())
+                        .collect()
+                })
+                .collect();
             let Some(svd) = Svd::of(&gram) else { return false };
             let (y, _) = svd.solve(&target, 1e-12);
-            let t: Vec<f64> = (0..ev.null.len()).map(|k| (0..rows).map(|r| transposed[r][k] * y[r]).sum()).collect();
-            let x: Vec<f64> =
-                (0..ev.x.len()).map(|r| ev.x[r] + ev.null.iter().zip(&t).map(|(z, tk)| z[r] * tk).sum::<f64>()).collect();
+            let t: Vec<f64> =
+                (0..ev.null.len()).map(|k| (0..rows).map(|r| transposed[r][k] * y[r]).sum()).collect();
+            let x: Vec<f64> = (0..ev.x.len())
+                .map(|r| ev.x[r] + ev.null.iter().zip(&t).map(|(z, tk)| z[r] * tk).sum::<f64>())
+                .collect();
             ev.p = self.impulses(&x, &ev.e);
             ev.x = x;
             ev.after = c.after(&ev.p);
@@ -355,11 +398,12 @@ impl Combination<'_> {
         for theta in self.starts() {
             let Some(mut ev) = self.newton(theta, 1024.0 * f64::EPSILON * scale) else { continue };
             let pmax = ev.p.iter().fold(0.0_f64, |a, p| a.max(length(*p)));
-            if !self.fit_cones(&mut ev, 1024.0 * f64::EPSILON * pmax) {
+            let mut fitted = false;
+            if !self.fit_cones(&mut ev, 1024.0 * f64::EPSILON * pmax, &mut fitted) {
                 continue;
             }
             if let Some(residual) = self.verify(&ev) {
-                return Some(Solved { p: ev.p, cases: self.cases.to_vec(), residual });
+                return Some(Solved { p: ev.p, cases: self.cases.to_vec(), residual, fitted });
             }
         }
         None
@@ -371,7 +415,8 @@ impl Combination<'_> {
 fn combinations(k: usize, guess: Option<&[PointCase]>) -> Vec<Vec<PointCase>> {
     let mut all: Vec<Vec<PointCase>> = vec![Vec::new()];
     for _ in 0..k {
-        all = all.into_iter().flat_map(|head| CASES.map(|case| [head.clone(), vec![case]].concat())).collect();
+        all =
+            all.into_iter().flat_map(|head| CASES.map(|case| [head.clone(), vec![case]].concat())).collect();
     }
     let key = |combo: &Vec<PointCase>| {
         let differ = guess.map_or(0, |g| combo.iter().zip(g).filter(|(a, b)| a != b).count());
@@ -390,7 +435,12 @@ fn combinations(k: usize, guess: Option<&[PointCase]>) -> Vec<Vec<PointCase>> {
 /// [`MOST_CONTACTS`] contacts; [`ContactError::NoAnswer`] when no combination verifies.
 pub(crate) fn solve(c: &Contacts, guess: Option<&[PointCase]>) -> Result<Solved, ContactError> {
     let k = c.k();
-    let finite = c.w.iter().chain(c.mu.iter()).chain(c.u.iter().flatten()).chain(c.normals.iter().flatten()).all(|x| x.is_finite());
+    let finite =
+        c.w.iter()
+            .chain(c.mu.iter())
+            .chain(c.u.iter().flatten())
+            .chain(c.normals.iter().flatten())
+            .all(|x| x.is_finite());
     if k > MOST_CONTACTS
         || c.u.len() != k
         || c.mu.len() != k

@@ -29,7 +29,8 @@ impl Svd {
         if u.iter().flatten().any(|x| !x.is_finite()) {
             return None;
         }
-        let mut v: Vec<Vec<f64>> = (0..n).map(|j| (0..n).map(|i| f64::from(u8::from(i == j))).collect()).collect();
+        let mut v: Vec<Vec<f64>> =
+            (0..n).map(|j| (0..n).map(|i| f64::from(u8::from(i == j))).collect()).collect();
         let mut converged = false;
         for _ in 0..SWEEPS {
             let mut rotated = false;

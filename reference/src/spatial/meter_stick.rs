@@ -19,7 +19,9 @@
 //! `64 eps (|x| + |y| + |z| + L/2 + w/2)`) slides when its slip exceeds `stick_speed`, else
 //! sticks.
 
-use super::algebra::{V3, ZERO, apply, congruent, cross, dot, in_plane, length, matrix_of, plus, skew, times, transpose, product};
+use super::algebra::{
+    V3, ZERO, apply, congruent, cross, dot, in_plane, length, matrix_of, plus, times, transpose,
+};
 use super::cone::{self, Contacts, PointCase};
 use super::scenes::{Keep, invalid};
 use super::step::{MARGIN, bias, turned};
@@ -302,7 +304,14 @@ impl Fingers {
                 [s1, s1 + w]
             }
         });
-        Self { start: [x1, x2], height: [p.finger1_y, p.finger2_y], velocity: [v1, v2], stop, tan: p.heading.tan(), h: p.step }
+        Self {
+            start: [x1, x2],
+            height: [p.finger1_y, p.finger2_y],
+            velocity: [v1, v2],
+            stop,
+            tan: p.heading.tan(),
+            h: p.step,
+        }
     }
 
     fn stopped(&self, steps: u64) -> bool {
@@ -400,23 +409,14 @@ impl Scene {
         let inv = self.inverse_inertia(s);
         let position_size: f64 = s.x.iter().map(|c| c.abs()).sum();
         let carried = |i: usize| finger_v[usize::from(i == 2)];
-        let active: Vec<usize> = (0..ROD_POINTS).filter(|&i| touches[i].under && touches[i].gap <= MARGIN).collect();
+        let active: Vec<usize> =
+            (0..ROD_POINTS).filter(|&i| touches[i].under && touches[i].gap <= MARGIN).collect();
         let mut impulses = [ZERO; ROD_POINTS];
         let (mut missed, mut residual) = (false, 0.0);
         if !active.is_empty() {
             let k = active.len();
             let arms: Vec<V3> = active.iter().map(|&i| touches[i].arm).collect();
-            let mut w = vec![0.0; 9 * k * k];
-            for (a, ra) in arms.iter().enumerate() {
-                for (b, rb) in arms.iter().enumerate() {
-                    let block = product(&transpose(&skew(*ra)), &product(&inv, &skew(*rb)));
-                    for r in 0..3 {
-                        for c in 0..3 {
-                            w[(3 * a + r) * 3 * k + 3 * b + c] = m * block[r][c] + f64::from(u8::from(r == c));
-                        }
-                    }
-                }
-            }
+            let w = cone::delassus(m, &inv, &arms);
             let u: Vec<V3> = active
                 .iter()
                 .map(|&i| {
@@ -426,7 +426,10 @@ impl Scene {
                     plus(free, times(bias(t.gap, h, g, fuzz), n))
                 })
                 .collect();
-            let mu: Vec<f64> = active.iter().map(|&i| if before[i] == Mode::Sliding { p.mu_kinetic } else { p.mu_static }).collect();
+            let mu: Vec<f64> = active
+                .iter()
+                .map(|&i| if before[i] == Mode::Sliding { p.mu_kinetic } else { p.mu_static })
+                .collect();
             let contacts = Contacts { normals: vec![n; k], w, u, mu };
             let hint = (guess.len() == k).then_some(guess.as_slice());
             let solved = cone::solve(&contacts, hint)?;
@@ -454,7 +457,12 @@ impl Scene {
                 Mode::Sliding
             };
             let point = t.crossing.map_or(tips[usize::from(i == 2)], |_| plus(s.x, t.arm));
-            RodPoint { mode, normal_impulse: m * pn, friction_impulse: times(m, in_plane(impulses[i], n)), point }
+            RodPoint {
+                mode,
+                normal_impulse: m * pn,
+                friction_impulse: times(m, in_plane(impulses[i], n)),
+                point,
+            }
         });
         let (q, omega) = turned(self.moments, h, s.q, omega);
         Ok((State { x: plus(s.x, times(h, v)), q, v, omega }, points, missed, residual))
@@ -482,7 +490,9 @@ pub fn run_meter_stick_3d_keeping(p: &MeterStick3d, keep: Keep) -> Result<MeterS
     // The modes before the first step (module docs).
     let tips0 = scene.fingers.tips(0);
     let velocity0 = scene.fingers.velocity_over(0);
-    let touching = 64.0 * f64::EPSILON * (state.x.iter().map(|c| c.abs()).sum::<f64>() + 0.5 * (p.rod_length + p.rod_width));
+    let touching = 64.0
+        * f64::EPSILON
+        * (state.x.iter().map(|c| c.abs()).sum::<f64>() + 0.5 * (p.rod_length + p.rod_width));
     let touches0 = scene.touches(&state, &tips0);
     let mut modes: [Mode; ROD_POINTS] = std::array::from_fn(|i| {
         let t = &touches0[i];
@@ -525,8 +535,9 @@ pub fn run_meter_stick_3d_keeping(p: &MeterStick3d, keep: Keep) -> Result<MeterS
     let (mut steps, mut missed_count, mut worst_residual) = (0_u64, 0_u64, 0.0_f64);
     let mut meeting: Option<(f64, f64)> = None;
     let outcome = loop {
-        let (next, after, missed, residual) =
-            scene.step(&state, steps, &modes, &mut guess).map_err(|error| Error::Contact { step: steps + 1, error })?;
+        let (next, after, missed, residual) = scene
+            .step(&state, steps, &modes, &mut guess)
+            .map_err(|error| Error::Contact { step: steps + 1, error })?;
         steps += 1;
         missed_count += u64::from(missed);
         worst_residual = worst_residual.max(residual);
@@ -560,7 +571,9 @@ pub fn run_meter_stick_3d_keeping(p: &MeterStick3d, keep: Keep) -> Result<MeterS
         }
         let normal = Scene::normal(&state);
         let (sin, cos) = (length(cross(normal, start_normal)), dot(normal, start_normal));
-        let fell = !(cos > 0.0 && (sin / cos).atan() <= p.tilt_limit) || state.x[2] < z0 - p.drop_limit || !(under[0] || under[1]);
+        let fell = !(cos > 0.0 && (sin / cos).atan() <= p.tilt_limit)
+            || state.x[2] < z0 - p.drop_limit
+            || !(under[0] || under[1]);
         if fell {
             break Outcome::Fell;
         }

@@ -44,11 +44,16 @@ fn opposite_headings_mirror_each_other() {
     for degrees in [5.0_f64, 10.0, 20.0, 30.0] {
         let p = MeterStick3d { heading: degrees.to_radians(), ..MeterStick3d::default() };
         let a = timed(&format!("meter-stick-3d {degrees} deg"), &p, Keep::All);
-        let b = timed(&format!("meter-stick-3d -{degrees} deg"), &MeterStick3d { heading: -p.heading, ..p }, Keep::All);
+        let b = timed(
+            &format!("meter-stick-3d -{degrees} deg"),
+            &MeterStick3d { heading: -p.heading, ..p },
+            Keep::All,
+        );
         assert_eq!((a.run.outcome, a.run.steps), (b.run.outcome, b.run.steps));
         let mut worst = 0.0_f64;
         for (x, y) in a.run.trajectory.iter().zip(&b.run.trajectory) {
-            let d = [x.position[0] - y.position[0], x.position[1] + y.position[1], x.position[2] - y.position[2]];
+            let d =
+                [x.position[0] - y.position[0], x.position[1] + y.position[1], x.position[2] - y.position[2]];
             worst = worst.max(d.iter().map(|v| v * v).sum::<f64>().sqrt());
         }
         eprintln!("{degrees} deg and its negative: mirrored within {worst:.1e} m");

@@ -45,21 +45,24 @@
 
 mod algebra;
 mod cone;
+#[cfg(test)]
+mod cone_tests;
 mod contact;
 mod curling;
 mod dense;
 mod meter_stick;
+#[cfg(test)]
+mod meter_stick_tests;
 mod scenes;
 mod step;
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod meter_stick_tests;
 
 pub use contact::ContactError;
 pub use curling::{CURLING_QUANTITIES, Curling, MOST_POINTS, run_curling_keeping};
 pub use meter_stick::{
-    METER_STICK_3D_QUANTITIES, MeterStick3d, MeterStick3dRun, ROD_POINTS, RodPoint, run_meter_stick_3d_keeping,
+    METER_STICK_3D_QUANTITIES, MeterStick3d, MeterStick3dRun, ROD_POINTS, RodPoint,
+    run_meter_stick_3d_keeping,
 };
 pub use scenes::{
     BILLIARD_QUANTITIES, Billiard, Keep, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_billiard_keeping,
