@@ -43,14 +43,39 @@ fn compare(degrees: f64) -> (f64, usize, [Option<f64>; 2]) {
     (worst, steps, meetings)
 }
 
+/// Both in f64 over about 9,000 steps at the headings of docs/scenes.md's outcomes: the runs
+/// differ by round-off alone (measured at most 2.7e-15 m, at 30 deg; the meeting offsets by
+/// 5e-16 m), asserted within `1e-12` m.
 #[test]
 fn the_core_agrees_with_the_reference() {
     for degrees in [0.0, 5.0, 10.0, 20.0, 30.0] {
         let (worst, _, meetings) = compare(degrees);
-        assert!(worst <= 1e-9, "{degrees} deg: {worst}");
+        assert!(worst <= 1e-12, "{degrees} deg: {worst}");
         match meetings {
-            [Some(a), Some(b)] => assert!((a - b).abs() <= 1e-9, "{degrees} deg: {meetings:?}"),
+            [Some(a), Some(b)] => assert!((a - b).abs() <= 1e-12, "{degrees} deg: {meetings:?}"),
             [None, None] => {}
+            _ => panic!("{degrees} deg: {meetings:?}"),
+        }
+    }
+}
+
+/// At 0.3 and 1 deg the runs part by more than round-off, and the reference is the exact one.
+/// At 0.3 deg, from step 3,247 (the pad carrying the rod, one of its points at the edge of its
+/// cone), the core's answers let that point creep (slip `4e-11` growing to `2.4e-7` m/s, below
+/// `stick_speed`, so reported sticking) with its friction at the cone's edge but 0.02 rad off
+/// the slip's direction: the core holds a point slipping within the stick speed to its cone
+/// alone (`core/src/spatial/mod.rs`, "A restart"); the reference sticks it, its slip nil to
+/// `1e-13` and every cone verified. At 1 deg the same at step 8,183 (all three points stopping
+/// after the meeting, the core's slips left at up to `7e-6` m/s). Measured: 5.6e-8 m at 0.3 deg,
+/// 5e-11 m at 1 deg; asserted within `1e-6` m, the same outcome and steps, the meetings' offsets
+/// within `1e-6` m.
+#[test]
+fn near_the_edge_of_sticking_the_core_creeps_within_the_stick_speed() {
+    for degrees in [0.3, 1.0] {
+        let (worst, _, meetings) = compare(degrees);
+        assert!(worst <= 1e-6, "{degrees} deg: {worst}");
+        match meetings {
+            [Some(a), Some(b)] => assert!((a - b).abs() <= 1e-6, "{degrees} deg: {meetings:?}"),
             _ => panic!("{degrees} deg: {meetings:?}"),
         }
     }

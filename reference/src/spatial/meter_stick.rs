@@ -28,7 +28,7 @@ use super::step::{MARGIN, bias, turned};
 use super::{Error, MAX_STEPS, Mode, Outcome, Row, Rule, SpatialRun};
 
 /// The measured quantities, in [`SpatialRun::measured`]'s order.
-pub const METER_STICK_3D_QUANTITIES: [&str; 3] = ["meeting.time_s", "meeting.com_offset_m", "-"];
+pub const METER_STICK_3D_QUANTITIES: [&str; 2] = ["meeting.time_s", "meeting.com_offset_m"];
 
 /// The contact points: the pad's two (`y_b = -w/2`, `+w/2`), finger 2's one.
 pub const ROD_POINTS: usize = 3;

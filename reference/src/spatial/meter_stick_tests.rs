@@ -60,3 +60,21 @@ fn opposite_headings_mirror_each_other() {
         assert!(worst <= 1e-9, "{degrees} deg: {worst}");
     }
 }
+
+/// docs/scenes.md's outcomes: Balanced from 0.01 to 20 deg (the small headings' meeting offset
+/// near the planar one's), Fell from 30 deg on.
+#[test]
+fn small_headings_balance_as_the_planar_scene_and_large_ones_fall() {
+    let planar = timed("meter-stick-3d 0 deg", &MeterStick3d::default(), Keep::StartAndEnd);
+    let offset = planar.run.measured[1].unwrap();
+    for degrees in [0.01_f64, 0.05, 0.3, 1.0, 2.0, 45.0, 80.0] {
+        let p = MeterStick3d { heading: degrees.to_radians(), ..MeterStick3d::default() };
+        let run = timed(&format!("meter-stick-3d {degrees} deg"), &p, Keep::StartAndEnd);
+        let expected = if degrees < 30.0 { Outcome::Balanced } else { Outcome::Fell };
+        assert_eq!(run.run.outcome, expected, "{degrees} deg");
+        if degrees <= 0.05 {
+            let off = (run.run.measured[1].unwrap() - offset).abs();
+            assert!(off <= 2e-4, "{degrees} deg: offset {off} from the planar one's");
+        }
+    }
+}
