@@ -313,13 +313,8 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
         r::Outcome::Balanced => OutcomeKind::Balanced,
         r::Outcome::Fell => OutcomeKind::Fell,
     });
-    let last = run
-        .trajectory
-        .iter()
-        .enumerate()
-        .last()
-        .map(|(k, x)| row_at(k, x))
-        .ok_or_else(|| anyhow::anyhow!("reference: no row"))?;
+    let end = run.trajectory.len().checked_sub(1).ok_or_else(|| anyhow::anyhow!("reference: no row"))?;
+    let last = row_at(end, &run.trajectory[end]);
     Ok(BodiesRun {
         label: "reference f64".into(),
         scene: spec.kind(),

@@ -194,7 +194,7 @@ impl Combination<'_> {
             match case {
                 PointCase::Apart => {}
                 PointCase::Stuck => {
-                    unknowns.extend([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|d| (j, d)))
+                    unknowns.extend([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|d| (j, d)));
                 }
                 PointCase::Slides => unknowns.push((j, plus(c.normals[j], times(-c.mu[j], e[j])))),
             }

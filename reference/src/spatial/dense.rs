@@ -66,7 +66,9 @@ impl Svd {
         let s: Vec<f64> = u.iter().map(|c| dot(c, c).sqrt()).collect();
         for (c, &sj) in u.iter_mut().zip(&s) {
             if sj > 0.0 {
-                c.iter_mut().for_each(|x| *x /= sj);
+                for x in c.iter_mut() {
+                    *x /= sj;
+                }
             }
         }
         Some(Self { u, s, v })

@@ -11,8 +11,8 @@
 //! under the face when `|l_x| <= L/2`, `|l_y| <= w/2` (to `16 eps` of the positions) and `l_z <=
 //! 0`; its gap is `-l_z - t/2`, its arm `r = R (l_x, l_y, -t/2)`, its normal the face's, `R e_z`.
 //! A contact under the face within the margin `1e-3` m enters the step with its free velocity
-//! `v~ + omega x r - V_finger` and the gap's bias (`step::bias`, its dead band `4 eps (|x| + |y|
-//! + |z| + |r|)`); `W_ij = I3 + m [r_i]x^T I_w^-1 [r_j]x`. After the step a contact is separated
+//! `v~ + omega x r - V_finger` and the gap's bias (`step::bias`, its dead band
+//! `4 eps (|x| + |y| + |z| + |r|)`); `W_ij = I3 + m [r_i]x^T I_w^-1 [r_j]x`. After the step a contact is separated
 //! when it did not enter or its normal impulse per unit mass is at most `64 eps g h`, sticking
 //! when its slip against its finger is at most `stick_speed`, else sliding; `mu` is `mu_k` after
 //! a sliding step and `mu_s` otherwise. Before the first step a contact touching (its gap within
@@ -112,6 +112,9 @@ pub struct MeterStick3dRun {
     pub points: Vec<[RodPoint; ROD_POINTS]>,
     /// Steps whose first guess at the contacts' cases (the step before's) did not verify.
     pub guesses_missed: u64,
+    /// Steps whose stuck points' least-norm impulses left a cone and were moved into it along
+    /// the internal forces (`cone.rs`).
+    pub cones_fitted: u64,
     /// The worst step's miss of the cone's conditions, over its velocity scale (`cone.rs`).
     pub worst_residual: f64,
 }
@@ -349,6 +352,39 @@ impl Fingers {
     }
 }
 
+/// How a step's contacts were solved.
+#[derive(Debug, Clone, Copy, Default)]
+struct Solve {
+    /// The step before's cases did not verify.
+    missed: bool,
+    /// The answer's worst miss (`cone.rs`).
+    residual: f64,
+    /// The stuck points' impulses were moved into their cones.
+    fitted: bool,
+}
+
+/// The rod's row: sliding when a point slides, else sticking when one touches; the points'
+/// impulses summed.
+fn rod_row(t: f64, s: &State, points: &[RodPoint; ROD_POINTS]) -> Row {
+    let mode = if points.iter().any(|q| q.mode == Mode::Sliding) {
+        Mode::Sliding
+    } else if points.iter().any(|q| q.mode == Mode::Sticking) {
+        Mode::Sticking
+    } else {
+        Mode::Separated
+    };
+    Row {
+        t,
+        position: s.x,
+        orientation: s.q,
+        velocity: s.v,
+        angular_velocity: s.omega,
+        mode,
+        normal_impulse: points.iter().map(|q| q.normal_impulse).sum(),
+        friction_impulse: points.iter().fold(ZERO, |a, q| plus(a, q.friction_impulse)),
+    }
+}
+
 /// The scene while it runs.
 struct Scene {
     p: MeterStick3d,
@@ -382,6 +418,43 @@ impl Scene {
         [self.touch(s, tips[0], -half_w), self.touch(s, tips[0], half_w), self.touch(s, tips[1], 0.0)]
     }
 
+    /// The points before the first step (module docs): their modes, no impulse.
+    fn start(&self, s: &State) -> [RodPoint; ROD_POINTS] {
+        let p = &self.p;
+        let (tips, velocity) = (self.fingers.tips(0), self.fingers.velocity_over(0));
+        let size: f64 = s.x.iter().map(|c| c.abs()).sum::<f64>() + 0.5 * (p.rod_length + p.rod_width);
+        let touches = self.touches(s, &tips);
+        let n = Self::normal(s);
+        std::array::from_fn(|i| {
+            let (t, finger) = (&touches[i], usize::from(i == 2));
+            let slip = length(in_plane(times(-1.0, velocity[finger]), n));
+            let mode = if !(t.under && t.gap <= 64.0 * f64::EPSILON * size) {
+                Mode::Separated
+            } else if slip <= p.stick_speed {
+                Mode::Sticking
+            } else {
+                Mode::Sliding
+            };
+            let point = t.crossing.map_or(tips[finger], |_| plus(s.x, t.arm));
+            RodPoint { mode, normal_impulse: 0.0, friction_impulse: ZERO, point }
+        })
+    }
+
+    /// Each finger's place along the rod (the pad's mean of its points') at `steps h`, and
+    /// whether it is under the rod.
+    fn along(&self, s: &State, steps: u64) -> ([f64; 2], [bool; 2]) {
+        let ends = self.touches(s, &self.fingers.tips(steps));
+        let (mut along, mut under) = ([0.0; 2], [false; 2]);
+        for (i, e) in ends.iter().enumerate() {
+            if e.crossing.is_some() {
+                let (finger, share) = if i == 2 { (1, 1.0) } else { (0, 0.5) };
+                along[finger] += share * e.local[0];
+                under[finger] |= e.local[0].abs() <= 0.5 * self.p.rod_length && e.local[2] <= 0.0;
+            }
+        }
+        (along, under)
+    }
+
     fn normal(s: &State) -> V3 {
         apply(&matrix_of(s.q), [0.0, 0.0, 1.0])
     }
@@ -396,9 +469,9 @@ impl Scene {
         &self,
         s: &State,
         steps: u64,
-        before: &[Mode; ROD_POINTS],
+        before: [Mode; ROD_POINTS],
         guess: &mut Vec<PointCase>,
-    ) -> Result<(State, [RodPoint; ROD_POINTS], bool, f64), super::ContactError> {
+    ) -> Result<(State, [RodPoint; ROD_POINTS], Solve), super::ContactError> {
         let p = &self.p;
         let (h, m, g) = (p.step, p.rod_mass, p.gravity);
         let tips = self.fingers.tips(steps);
@@ -412,8 +485,10 @@ impl Scene {
         let active: Vec<usize> =
             (0..ROD_POINTS).filter(|&i| touches[i].under && touches[i].gap <= MARGIN).collect();
         let mut impulses = [ZERO; ROD_POINTS];
-        let (mut missed, mut residual) = (false, 0.0);
-        if !active.is_empty() {
+        let mut solve = Solve::default();
+        if active.is_empty() {
+            guess.clear();
+        } else {
             let k = active.len();
             let arms: Vec<V3> = active.iter().map(|&i| touches[i].arm).collect();
             let w = cone::delassus(m, &inv, &arms);
@@ -433,14 +508,15 @@ impl Scene {
             let contacts = Contacts { normals: vec![n; k], w, u, mu };
             let hint = (guess.len() == k).then_some(guess.as_slice());
             let solved = cone::solve(&contacts, hint)?;
-            missed = hint.is_some_and(|g| g != solved.cases.as_slice());
-            *guess = solved.cases.clone();
-            residual = solved.residual;
+            solve = Solve {
+                missed: hint.is_some_and(|g| g != solved.cases.as_slice()),
+                residual: solved.residual,
+                fitted: solved.fitted,
+            };
+            guess.clone_from(&solved.cases);
             for (slot, &i) in active.iter().enumerate() {
                 impulses[i] = solved.p[slot];
             }
-        } else {
-            guess.clear();
         }
         let v = impulses.iter().fold(v_free, |acc, pi| plus(acc, *pi));
         let torque = (0..ROD_POINTS).fold(ZERO, |acc, i| plus(acc, cross(touches[i].arm, impulses[i])));
@@ -465,7 +541,7 @@ impl Scene {
             }
         });
         let (q, omega) = turned(self.moments, h, s.q, omega);
-        Ok((State { x: plus(s.x, times(h, v)), q, v, omega }, points, missed, residual))
+        Ok((State { x: plus(s.x, times(h, v)), q, v, omega }, points, solve))
     }
 }
 
@@ -487,60 +563,23 @@ pub fn run_meter_stick_3d_keeping(p: &MeterStick3d, keep: Keep) -> Result<MeterS
     let (sin, cos) = (0.5 * theta0).sin_cos();
     let mut state = State { x: [x0, 0.0, z0], q: [cos, 0.0, -sin, 0.0], v: ZERO, omega: ZERO };
     let start_normal = Scene::normal(&state);
-    // The modes before the first step (module docs).
-    let tips0 = scene.fingers.tips(0);
-    let velocity0 = scene.fingers.velocity_over(0);
-    let touching = 64.0
-        * f64::EPSILON
-        * (state.x.iter().map(|c| c.abs()).sum::<f64>() + 0.5 * (p.rod_length + p.rod_width));
-    let touches0 = scene.touches(&state, &tips0);
-    let mut modes: [Mode; ROD_POINTS] = std::array::from_fn(|i| {
-        let t = &touches0[i];
-        if !(t.under && t.gap <= touching) {
-            return Mode::Separated;
-        }
-        let slip = length(in_plane(times(-1.0, velocity0[usize::from(i == 2)]), start_normal));
-        if slip <= p.stick_speed { Mode::Sticking } else { Mode::Sliding }
-    });
-    let rod_row = |t: f64, s: &State, points: &[RodPoint; ROD_POINTS]| {
-        let mode = if points.iter().any(|q| q.mode == Mode::Sliding) {
-            Mode::Sliding
-        } else if points.iter().any(|q| q.mode == Mode::Sticking) {
-            Mode::Sticking
-        } else {
-            Mode::Separated
-        };
-        Row {
-            t,
-            position: s.x,
-            orientation: s.q,
-            velocity: s.v,
-            angular_velocity: s.omega,
-            mode,
-            normal_impulse: points.iter().map(|q| q.normal_impulse).sum(),
-            friction_impulse: points.iter().fold(ZERO, |a, q| plus(a, q.friction_impulse)),
-        }
-    };
-    let start_points: [RodPoint; ROD_POINTS] = std::array::from_fn(|i| RodPoint {
-        mode: modes[i],
-        normal_impulse: 0.0,
-        friction_impulse: ZERO,
-        point: touches0[i].crossing.map_or(tips0[usize::from(i == 2)], |_| plus(state.x, touches0[i].arm)),
-    });
+    let start_points = scene.start(&state);
+    let mut modes = start_points.map(|q| q.mode);
     let capacity = if keep == Keep::All { needed as usize + 1 } else { 2 };
     let (mut rows, mut points) = (Vec::with_capacity(capacity), Vec::with_capacity(capacity));
     rows.push(rod_row(0.0, &state, &start_points));
     points.push(start_points);
     let mut guess: Vec<PointCase> = Vec::new();
-    let (mut steps, mut missed_count, mut worst_residual) = (0_u64, 0_u64, 0.0_f64);
+    let (mut steps, mut missed_count, mut fitted_count, mut worst_residual) = (0_u64, 0_u64, 0_u64, 0.0_f64);
     let mut meeting: Option<(f64, f64)> = None;
     let outcome = loop {
-        let (next, after, missed, residual) = scene
-            .step(&state, steps, &modes, &mut guess)
+        let (next, after, solve) = scene
+            .step(&state, steps, modes, &mut guess)
             .map_err(|error| Error::Contact { step: steps + 1, error })?;
         steps += 1;
-        missed_count += u64::from(missed);
-        worst_residual = worst_residual.max(residual);
+        missed_count += u64::from(solve.missed);
+        fitted_count += u64::from(solve.fitted);
+        worst_residual = worst_residual.max(solve.residual);
         if !(next.x.iter().chain(&next.q).chain(&next.v).chain(&next.omega)).all(|c| c.is_finite()) {
             return Err(Error::NonFinite { step: steps });
         }
@@ -548,24 +587,15 @@ pub fn run_meter_stick_3d_keeping(p: &MeterStick3d, keep: Keep) -> Result<MeterS
         modes = after.map(|q| q.mode);
         let t = steps as f64 * h;
         let kept = rod_row(t, &state, &after);
-        match (keep, rows.get_mut(1), points.get_mut(1)) {
-            (Keep::StartAndEnd, Some(last), Some(last_points)) => (*last, *last_points) = (kept, after),
-            _ => {
-                rows.push(kept);
-                points.push(after);
-            }
+        if let (Keep::StartAndEnd, Some(last), Some(last_points)) = (keep, rows.get_mut(1), points.get_mut(1))
+        {
+            (*last, *last_points) = (kept, after);
+        } else {
+            rows.push(kept);
+            points.push(after);
         }
         // The outcome (docs/scenes.md), on the points at the step's end.
-        let tips = scene.fingers.tips(steps);
-        let ends = scene.touches(&state, &tips);
-        let (mut along, mut under) = ([0.0; 2], [false; 2]);
-        for (i, e) in ends.iter().enumerate() {
-            if e.crossing.is_some() {
-                let (finger, share) = if i == 2 { (1, 1.0) } else { (0, 0.5) };
-                along[finger] += share * e.local[0];
-                under[finger] |= e.local[0].abs() <= 0.5 * p.rod_length && e.local[2] <= 0.0;
-            }
-        }
+        let (along, under) = scene.along(&state, steps);
         if meeting.is_none() && scene.fingers.stopped(steps) {
             meeting = Some((t, -(along[0] + along[1]) / 2.0));
         }
@@ -593,6 +623,7 @@ pub fn run_meter_stick_3d_keeping(p: &MeterStick3d, keep: Keep) -> Result<MeterS
         run: SpatialRun { outcome, measured, steps, trajectory: rows },
         points,
         guesses_missed: missed_count,
+        cones_fitted: fitted_count,
         worst_residual,
     })
 }

@@ -10,12 +10,13 @@ fn timed(label: &str, p: &MeterStick3d, keep: Keep) -> MeterStick3dRun {
     let start = std::time::Instant::now();
     let run = run_meter_stick_3d_keeping(p, keep).unwrap();
     eprintln!(
-        "{label}: {:?} after {} steps in {:.2} s, meeting {:?}, first guesses missed {}, worst residual {:.1e}",
+        "{label}: {:?} after {} steps in {:.2} s, meeting {:?}, first guesses missed {}, cones fitted {}, worst residual {:.1e}",
         run.run.outcome,
         run.run.steps,
         start.elapsed().as_secs_f64(),
         run.run.measured,
         run.guesses_missed,
+        run.cones_fitted,
         run.worst_residual
     );
     run
