@@ -3,7 +3,7 @@
 //! reference (`meterstick_reference::spatial::run_meter_stick_3d_keeping`, the circular cone by
 //! cases): the same outcome and meeting, the centres of mass step by step (docs/scenes.md,
 //! "meter-stick-3d").
-#![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::print_stdout)]
 
 use meterstick_core::scene::Outcome;
 use meterstick_core::scene::spatial::{MeterStick3d, MeterStick3dParams};

@@ -23,6 +23,7 @@ use super::algebra::{
     V3, ZERO, apply, congruent, cross, dot, in_plane, length, matrix_of, plus, times, transpose,
 };
 use super::cone::{self, Contacts, PointCase};
+use super::fingers::Fingers;
 use super::scenes::{Keep, invalid};
 use super::step::{MARGIN, bias, turned};
 use super::{Error, MAX_STEPS, Mode, Outcome, Row, Rule, SpatialRun};
@@ -277,79 +278,6 @@ struct Touch {
     arm: V3,
     gap: f64,
     under: bool,
-}
-
-/// The fingers' motion (docs/scenes.md, "meter-stick", "Finger motion", in `x`; `y` follows at
-/// `tan psi` of `x`'s travel).
-struct Fingers {
-    start: [f64; 2],
-    height: [f64; 2],
-    /// `x` speeds.
-    velocity: [f64; 2],
-    stop: Option<[f64; 2]>,
-    tan: f64,
-    h: f64,
-}
-
-impl Fingers {
-    fn new(p: &MeterStick3d) -> Self {
-        let c = p.heading.cos();
-        let [x1, x2] = [p.finger1_x, p.finger2_x];
-        let [v1, v2] = [p.finger1_velocity * c, p.finger2_velocity * c];
-        let w = p.finger_width;
-        let stop = (v1 > v2).then(|| {
-            if v2 == 0.0 {
-                [x2 - w, x2]
-            } else if v1 == 0.0 {
-                [x1, x1 + w]
-            } else {
-                let s1 = x1 + v1 * ((x2 - x1 - w) / (v1 - v2));
-                [s1, s1 + w]
-            }
-        });
-        Self {
-            start: [x1, x2],
-            height: [p.finger1_y, p.finger2_y],
-            velocity: [v1, v2],
-            stop,
-            tan: p.heading.tan(),
-            h: p.step,
-        }
-    }
-
-    fn stopped(&self, steps: u64) -> bool {
-        let Some([s1, s2]) = self.stop else { return false };
-        let t = steps as f64 * self.h;
-        let [v1, v2] = self.velocity;
-        if v1 > 0.0 {
-            self.start[0] + v1 * t >= s1
-        } else if v1 < 0.0 {
-            self.start[0] + v1 * t <= s1
-        } else {
-            self.start[1] + v2 * t <= s2
-        }
-    }
-
-    /// The tips at `steps h`, world.
-    fn tips(&self, steps: u64) -> [V3; 2] {
-        let t = steps as f64 * self.h;
-        let x = match self.stop {
-            Some(stop) if self.stopped(steps) => stop,
-            _ => [self.start[0] + self.velocity[0] * t, self.start[1] + self.velocity[1] * t],
-        };
-        std::array::from_fn(|i| [x[i], (x[i] - self.start[i]) * self.tan, self.height[i]])
-    }
-
-    /// The fingers' velocities over the step from `steps h`, world.
-    fn velocity_over(&self, steps: u64) -> [V3; 2] {
-        let vx = if self.stopped(steps + 1) {
-            let (a, b) = (self.tips(steps), self.tips(steps + 1));
-            [(b[0][0] - a[0][0]) / self.h, (b[1][0] - a[1][0]) / self.h]
-        } else {
-            self.velocity
-        };
-        vx.map(|v| [v, v * self.tan, 0.0])
-    }
 }
 
 /// How a step's contacts were solved.
