@@ -120,7 +120,7 @@ impl Contacts {
         std::array::from_fn(|a| std::array::from_fn(|b| self.w[(3 * i + a) * n + 3 * j + b]))
     }
 
-    fn after(&self, p: &[V3]) -> Vec<V3> {
+    pub(crate) fn after(&self, p: &[V3]) -> Vec<V3> {
         (0..self.k())
             .map(|i| (0..self.k()).fold(self.u[i], |acc, j| plus(acc, apply(&self.block(i, j), p[j]))))
             .collect()
@@ -460,4 +460,15 @@ pub(crate) fn solve(c: &Contacts, guess: Option<&[PointCase]>) -> Result<Solved,
         }
     }
     Err(ContactError::NoAnswer)
+}
+
+/// Every combination whose answer verifies (`solve` takes the first): where several do, the step's
+/// contact problem has several answers.
+#[cfg(test)]
+pub(crate) fn every_answer(c: &Contacts) -> Vec<Solved> {
+    let frames: Vec<(V3, V3)> = (0..c.k()).map(|i| c.frame(i)).collect();
+    combinations(c.k(), None)
+        .iter()
+        .filter_map(|cases| Combination { c, cases, frames: frames.clone() }.solve())
+        .collect()
 }

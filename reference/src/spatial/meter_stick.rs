@@ -280,6 +280,12 @@ struct Touch {
     under: bool,
 }
 
+#[cfg(test)]
+thread_local! {
+    /// When `Some`, every step's contact problem (its step, 1 the first), for the tests.
+    pub(crate) static PROBLEMS: std::cell::RefCell<Option<Vec<(u64, Contacts)>>> = const { std::cell::RefCell::new(None) };
+}
+
 /// How a step's contacts were solved.
 #[derive(Debug, Clone, Copy, Default)]
 struct Solve {
@@ -434,6 +440,12 @@ impl Scene {
                 .map(|&i| if before[i] == Mode::Sliding { p.mu_kinetic } else { p.mu_static })
                 .collect();
             let contacts = Contacts { normals: vec![n; k], w, u, mu };
+            #[cfg(test)]
+            PROBLEMS.with(|record| {
+                if let Some(list) = record.borrow_mut().as_mut() {
+                    list.push((steps + 1, contacts.clone()));
+                }
+            });
             let hint = (guess.len() == k).then_some(guess.as_slice());
             let solved = cone::solve(&contacts, hint)?;
             solve = Solve {
