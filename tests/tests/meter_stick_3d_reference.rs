@@ -18,13 +18,16 @@ fn compare(degrees: f64) -> (f64, usize, [Option<f64>; 2]) {
     let reference_time = started.elapsed().as_secs_f64();
     let started = std::time::Instant::now();
     let mut core = MeterStick3d::<f64>::new(params).expect("valid");
-    let mut worst = 0.0_f64;
+    let (mut worst, mut worst_velocity) = (0.0_f64, 0.0_f64);
     let mut steps = 0;
     while let Some(report) = core.step() {
         steps += 1;
         let row = run.run.trajectory.get(steps).expect("the reference ran as long");
         let d: f64 = (0..3).map(|k| (report.state.position[k] - row.position[k]).powi(2)).sum::<f64>().sqrt();
         worst = worst.max(d);
+        let dv: f64 =
+            (0..3).map(|k| (report.state.velocity[k] - row.velocity[k]).powi(2)).sum::<f64>().sqrt();
+        worst_velocity = worst_velocity.max(dv);
     }
     let core_time = started.elapsed().as_secs_f64();
     let outcome = core.outcome().expect("ended");
@@ -37,7 +40,7 @@ fn compare(degrees: f64) -> (f64, usize, [Option<f64>; 2]) {
     assert_eq!(steps as u64, run.run.steps, "{degrees} deg");
     let meetings = [core.meeting().map(|m| m.com_offset), run.run.measured[1]];
     println!(
-        "{degrees} deg: {outcome:?} after {steps} steps; centres of mass within {worst:.1e} m; meeting offsets {meetings:?}; \
+        "{degrees} deg: {outcome:?} after {steps} steps; centres of mass within {worst:.1e} m, velocities {worst_velocity:.1e} m/s; meeting offsets {meetings:?}; \
          reference {reference_time:.2} s, core {core_time:.2} s"
     );
     (worst, steps, meetings)
