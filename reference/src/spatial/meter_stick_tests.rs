@@ -109,20 +109,20 @@ fn validity_names_the_field() {
 #[test]
 fn the_steps_answers_move_the_rod_alike() {
     let p = MeterStick3d { heading: 0.3_f64.to_radians(), ..MeterStick3d::default() };
-    super::meter_stick::PROBLEMS.with(|r| *r.borrow_mut() = Some(Vec::new()));
+    meter_stick::PROBLEMS.with(|r| *r.borrow_mut() = Some(Vec::new()));
     let run = run_meter_stick_3d_keeping(&p, Keep::StartAndEnd).unwrap();
-    let problems = super::meter_stick::PROBLEMS.with(|r| r.borrow_mut().take()).unwrap();
+    let problems = meter_stick::PROBLEMS.with(|r| r.borrow_mut().take()).unwrap();
     assert_eq!(problems.len() as u64, run.run.steps);
     let (mut several, mut sampled, mut worst) = (0, 0, 0.0_f64);
     for (step, c) in problems.iter().filter(|(step, _)| step % 29 == 0 || (3240..=3260).contains(step)) {
         sampled += 1;
-        let answers = super::cone::every_answer(c);
+        let answers = cone::every_answer(c);
         assert!(!answers.is_empty(), "step {step}");
         several += usize::from(answers.len() > 1);
         let first = c.after(&answers[0].p);
         for a in &answers {
             for (x, y) in c.after(&a.p).iter().zip(&first) {
-                worst = worst.max(super::algebra::length(super::algebra::minus(*x, *y)));
+                worst = worst.max(algebra::length(algebra::minus(*x, *y)));
             }
         }
     }
