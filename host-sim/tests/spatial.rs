@@ -242,30 +242,47 @@ fn the_curling_stone_follows_the_reference_to_its_stop() {
     }
 }
 
-/// `run` on a scene the independent reference does not have (the meter stick in three
-/// dimensions) writes the core's run and says so: `core.csv` with every step, its plots, a
-/// `summary.json` whose `reference` and `comparison` are null; no `reference.csv`.
+/// The meter stick in three dimensions in f64 beside the independent reference
+/// (`reference/src/spatial/meter_stick.rs`, its three contacts by cases): at 10 and 30 deg the
+/// same outcome in the same step, the same meeting, every step's position within 1e-12 m and
+/// angle within 1e-12 rad (measured 1e-15 m), and `reference.csv` with the start and every step.
 #[test]
-fn run_without_a_reference_writes_the_core_s_run_and_says_so() {
-    for (scene, args) in [("meter-stick-3d", &["--duration", "0.2"][..])] {
-        let out = temp_dir(&format!("{scene}-alone"));
-        let mut all = vec!["run", "--scene", scene, "--out", out.to_str().unwrap()];
-        all.extend_from_slice(args);
+fn the_meter_stick_in_three_dimensions_follows_the_reference() {
+    for (heading, outcome) in [("10", "Balanced"), ("30", "Fell")] {
+        let out = temp_dir("meter-stick-3d-reference");
+        let all = [
+            "run",
+            "--scene",
+            "meter-stick-3d",
+            "--precision",
+            "f64",
+            "--heading",
+            heading,
+            "--out",
+            out.to_str().unwrap(),
+        ];
         let (code, stdout, err) = host_sim(&all);
         assert_eq!(code, 0, "{all:?}: {err}");
-        assert!(stdout.contains("the independent reference does not have this scene"), "{stdout}");
-        let dir = out.join(scene);
+        let dir = out.join("meter-stick-3d");
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
-        assert!(s["reference"].is_null() && s["comparison"].is_null(), "{s}");
-        let steps = s["core"]["steps"].as_u64().unwrap();
-        assert!(steps > 0, "{s}");
-        let csv = std::fs::read_to_string(dir.join("core.csv")).unwrap();
-        assert_eq!(csv.lines().count() as u64, steps + 2, "{scene}: a header, the start and every step");
-        assert!(!dir.join("reference.csv").exists(), "{scene}");
-        for plot in ["positions.svg", "velocities.svg", "path.svg"] {
-            assert!(std::fs::metadata(dir.join(plot)).unwrap().len() > 1000, "{scene}: {plot}");
+        let (core, reference) = (&s["core"], &s["reference"]);
+        assert_eq!(core["outcome"], outcome, "{heading} deg: {stdout}");
+        assert_eq!(core["outcome"], reference["outcome"], "{heading} deg");
+        assert_eq!(core["steps"], reference["steps"], "{heading} deg");
+        for key in ["time_s", "com_offset_m"] {
+            let at = |r: &serde_json::Value| r["measured"]["meeting"][key].as_f64();
+            match (at(core), at(reference)) {
+                (Some(a), Some(b)) => assert!((a - b).abs() < 1e-12, "{heading} deg: {key} {a} {b}"),
+                (a, b) => assert_eq!(a, b, "{heading} deg: {key}"),
+            }
         }
+        let c = &s["comparison"];
+        assert!(c["max_position_deviation_m"].as_f64().unwrap() < 1e-12, "{heading} deg: {c}");
+        assert!(c["max_angle_deviation_rad"].as_f64().unwrap() < 1e-12, "{heading} deg: {c}");
+        let steps = reference["steps"].as_u64().unwrap();
+        let csv = std::fs::read_to_string(dir.join("reference.csv")).unwrap();
+        assert_eq!(csv.lines().count() as u64, steps + 2, "a header, the start and every step");
         std::fs::remove_dir_all(&out).unwrap();
     }
 }

@@ -164,6 +164,7 @@ enum SpatialReference {
     Puck(crate::reference::spatial::Puck),
     Billiard(crate::reference::spatial::Billiard),
     Curling(crate::reference::spatial::Curling),
+    MeterStick3d(crate::reference::spatial::MeterStick3d),
 }
 
 /// `spec` in the reference's scenes in three dimensions; `None` for a scene it does not have.
@@ -209,6 +210,29 @@ fn to_spatial_reference(spec: &SceneParams) -> Option<SpatialReference> {
             stick_speed: p.stick_speed,
             max_time: p.max_time,
         }),
+        SceneParams::MeterStick3d(p) => SpatialReference::MeterStick3d(r::MeterStick3d {
+            rod_length: p.rod_length,
+            rod_thickness: p.rod_thickness,
+            rod_width: p.rod_width,
+            rod_mass: p.rod_mass,
+            gravity: p.gravity,
+            finger1_x: p.finger1_x,
+            finger2_x: p.finger2_x,
+            finger1_y: p.finger1_y,
+            finger2_y: p.finger2_y,
+            finger1_velocity: p.finger1_velocity,
+            finger2_velocity: p.finger2_velocity,
+            heading: p.heading,
+            finger_width: p.finger_width,
+            mu_static: p.mu_static,
+            mu_kinetic: p.mu_kinetic,
+            step: p.step,
+            stick_speed: p.stick_speed,
+            tilt_limit: p.tilt_limit,
+            drop_limit: p.drop_limit,
+            hold_time: p.hold_time,
+            max_time: p.max_time,
+        }),
         _ => return None,
     })
 }
@@ -228,14 +252,26 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
         anyhow::bail!("scene {} has no reference", spec.kind());
     };
     progress::check()?;
+    // The rod's three points (the pad's two, finger 2's), each kept row's; the other scenes'
+    // one point is their row's own.
+    let mut rod_points: Vec<[r::RodPoint; r::ROD_POINTS]> = Vec::new();
     let run = match reference {
         SpatialReference::Puck(p) => r::run_puck_keeping(&p, keep),
         SpatialReference::Billiard(b) => r::run_billiard_keeping(&b, keep),
         SpatialReference::Curling(c) => r::run_curling_keeping(&c, keep),
+        SpatialReference::MeterStick3d(m) => r::run_meter_stick_3d_keeping(&m, keep).map(|run| {
+            rod_points = run.points;
+            run.run
+        }),
     }
     .map_err(|e| anyhow::anyhow!("reference: {e}"))?;
     progress::check()?;
-    let row = |x: &r::Row| BodiesRow {
+    let code = |mode: r::Mode| match mode {
+        r::Mode::Separated => 0,
+        r::Mode::Sticking => 1,
+        r::Mode::Sliding => 2,
+    };
+    let row_at = |k: usize, x: &r::Row| BodiesRow {
         t: x.t,
         q: Vec::new(),
         v: Vec::new(),
@@ -247,34 +283,48 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
             velocity: x.velocity,
             angular: x.angular_velocity,
         }],
-        contacts: vec![ContactRow {
-            mode: match x.mode {
-                r::Mode::Separated => 0,
-                r::Mode::Sticking => 1,
-                r::Mode::Sliding => 2,
-            },
-            // The contact point: the puck's centre, the ball's lowest point.
-            point: match *spec {
-                SceneParams::Billiard(p) => [x.position[0], x.position[1], x.position[2] - p.radius],
-                _ => x.position,
-            },
-            normal_impulse: x.normal_impulse,
-            friction_impulse: x.friction_impulse,
-        }],
+        contacts: match rod_points.get(k) {
+            Some(points) => points
+                .iter()
+                .map(|q| ContactRow {
+                    mode: code(q.mode),
+                    point: q.point,
+                    normal_impulse: q.normal_impulse,
+                    friction_impulse: q.friction_impulse,
+                })
+                .collect(),
+            None => vec![ContactRow {
+                mode: code(x.mode),
+                // The contact point: the puck's centre, the ball's lowest point.
+                point: match *spec {
+                    SceneParams::Billiard(p) => [x.position[0], x.position[1], x.position[2] - p.radius],
+                    _ => x.position,
+                },
+                normal_impulse: x.normal_impulse,
+                friction_impulse: x.friction_impulse,
+            }],
+        },
     };
     let outcome = RunOutcome::of(match run.outcome {
         r::Outcome::Stopped => OutcomeKind::Stopped,
         r::Outcome::Slid => OutcomeKind::Slid,
         r::Outcome::Rolled => OutcomeKind::Rolled,
         r::Outcome::Unfinished => OutcomeKind::Unfinished,
+        r::Outcome::Balanced => OutcomeKind::Balanced,
+        r::Outcome::Fell => OutcomeKind::Fell,
     });
-    let last = run.trajectory.last().map(row).ok_or_else(|| anyhow::anyhow!("reference: no row"))?;
+    let end = run.trajectory.len().checked_sub(1).ok_or_else(|| anyhow::anyhow!("reference: no row"))?;
+    let last = row_at(end, &run.trajectory[end]);
     Ok(BodiesRun {
         label: "reference f64".into(),
         scene: spec.kind(),
         steps: run.steps,
         end_time: last.t,
-        rows: if record { run.trajectory.iter().map(row).collect() } else { Vec::new() },
+        rows: if record {
+            run.trajectory.iter().enumerate().map(|(k, x)| row_at(k, x)).collect()
+        } else {
+            Vec::new()
+        },
         last,
         outcome,
         measured: Measured::of(spec.kind(), run.measured),

@@ -53,6 +53,11 @@ pub enum ContactError {
     },
     /// Newton's method with bisection did not converge within its iterations.
     NotConverged,
+    /// Several contacts' data of the wrong sizes, not finite, a normal not unit, a negative
+    /// `mu`, or too many contacts (`cone.rs`).
+    InvalidInput,
+    /// No combination of the contacts' cases meets the cone's conditions (`cone.rs`).
+    NoAnswer,
 }
 
 impl std::fmt::Display for ContactError {
@@ -64,6 +69,8 @@ impl std::fmt::Display for ContactError {
                 write!(f, "{count} sliding directions satisfy the contact's conditions")
             }
             Self::NotConverged => write!(f, "the sliding direction's iteration did not converge"),
+            Self::InvalidInput => write!(f, "the contacts' data are not a contact problem"),
+            Self::NoAnswer => write!(f, "no combination of the contacts' cases meets the cone's conditions"),
         }
     }
 }

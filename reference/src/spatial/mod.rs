@@ -1,6 +1,8 @@
-//! The scenes in three dimensions, `puck`, `billiard` and `curling` (docs/scenes.md, "Scenes in
-//! three dimensions"; the curling stone's step in `curling.rs`, a minimisation of its own), on the spatial model of docs/formulation.md ("Three dimensions"), written again
-//! from those texts and sharing no code with `meterstick-core`'s `spatial` module.
+//! The scenes in three dimensions, `puck`, `billiard`, `curling` and `meter-stick-3d` (docs/scenes.md,
+//! "Scenes in three dimensions"; the curling stone's step in `curling.rs`, a minimisation of its own;
+//! the meter stick's three contacts in `meter_stick.rs`, by the several-contact cone of `cone.rs`), on
+//! the spatial model of docs/formulation.md ("Three dimensions"), written again from those texts and
+//! sharing no code with `meterstick-core`'s `spatial` module.
 //!
 //! # The model
 //!
@@ -39,13 +41,30 @@
 //! keeping every step's [`Row`] (row 0 the start). A run longer than [`MAX_STEPS`] steps is
 //! refused ([`Error::TooManySteps`]): a full trajectory costs about 160 bytes a step.
 //!
+//! [`MeterStick3d`] (a rod on two fingers in space, `run_meter_stick_3d_keeping`) touches at three
+//! points, the pad's two and finger 2's, not in a line: each step's contacts are solved by cases
+//! (`cone.rs`): every combination of each point's case (apart, stuck, sliding), its linear system by
+//! the singular value decomposition (stuck points' internal forces move nothing: the least-norm
+//! impulses, moved along those forces into their cones where they leave them), the sliding
+//! directions by Newton's method on their angles, the first combination whose answer meets the
+//! circular cone's conditions taken (the step before's cases tried first). It keeps the rod's
+//! [`Row`]s and each point's [`RodPoint`].
+//!
 //! [`OnePoint`] opens the same step for a point fixed in the body off its centre of mass (a box's
 //! corner), where `W` couples the normal and the slip and the sliding case takes the root search:
 //! `tests/tests/spatial_reference.rs` steps it beside the core.
 
 mod algebra;
+mod cone;
+#[cfg(test)]
+mod cone_tests;
 mod contact;
 mod curling;
+mod dense;
+mod fingers;
+mod meter_stick;
+#[cfg(test)]
+mod meter_stick_tests;
 mod scenes;
 mod step;
 #[cfg(test)]
@@ -53,6 +72,10 @@ mod tests;
 
 pub use contact::ContactError;
 pub use curling::{CURLING_QUANTITIES, Curling, MOST_POINTS, run_curling_keeping};
+pub use meter_stick::{
+    METER_STICK_3D_QUANTITIES, MeterStick3d, MeterStick3dRun, ROD_POINTS, RodPoint,
+    run_meter_stick_3d_keeping,
+};
 pub use scenes::{
     BILLIARD_QUANTITIES, Billiard, Keep, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_billiard_keeping,
     run_puck, run_puck_keeping,
@@ -81,8 +104,14 @@ pub enum Outcome {
     Slid,
     /// Billiard: the contact sticking after a step (the ball rolls).
     Rolled,
-    /// Billiard: at `max_time` without rolling.
+    /// Billiard, meter stick: at `max_time` without another outcome.
     Unfinished,
+    /// Meter stick: the fingers met under the centre of mass and every point stayed on for
+    /// `hold_time`.
+    Balanced,
+    /// Meter stick: the face tilted or the centre of mass dropped past its limit, or no finger
+    /// is under the rod.
+    Fell,
 }
 
 /// The state after a step (row 0: the start, separated, no impulse).

@@ -91,11 +91,6 @@ impl World {
         congruent(&matrix_of(q), self.body.moments.map(|i| 1.0 / i))
     }
 
-    /// `I_w` at orientation `q`.
-    fn inertia(&self, q: Quat) -> M3 {
-        congruent(&matrix_of(q), self.body.moments)
-    }
-
     /// The contact point's offset from the centre of mass, world axes.
     fn arm(&self, q: Quat) -> V3 {
         match self.toucher {
@@ -161,15 +156,20 @@ impl World {
     /// omega+ / 2`), `q+ = exp(h I_w(q_half)^-1 L / 2) q` (by `h I_w(q_half)^-1 L`), `omega =
     /// I_w(q+)^-1 L`.
     fn turned(&self, q: Quat, omega: V3) -> (Quat, V3) {
-        let h = self.h;
-        let [a, b, c] = self.body.moments;
-        #[allow(clippy::float_cmp)]
-        if a == b && b == c {
-            return (turn(q, times(h, omega)), omega);
-        }
-        let momentum = apply(&self.inertia(q), omega);
-        let half = turn(q, times(0.5 * h, omega));
-        let q_next = turn(q, times(h, apply(&self.inverse_inertia(half), momentum)));
-        (q_next, apply(&self.inverse_inertia(q_next), momentum))
+        turned(self.body.moments, self.h, q, omega)
     }
+}
+
+/// [`World::turned`] for a body of principal moments `moments` over a step `h`.
+pub(crate) fn turned(moments: V3, h: f64, q: Quat, omega: V3) -> (Quat, V3) {
+    let [a, b, c] = moments;
+    #[allow(clippy::float_cmp)]
+    if a == b && b == c {
+        return (turn(q, times(h, omega)), omega);
+    }
+    let inverse = |q: Quat| congruent(&matrix_of(q), moments.map(|i| 1.0 / i));
+    let momentum = apply(&congruent(&matrix_of(q), moments), omega);
+    let half = turn(q, times(0.5 * h, omega));
+    let q_next = turn(q, times(h, apply(&inverse(half), momentum)));
+    (q_next, apply(&inverse(q_next), momentum))
 }

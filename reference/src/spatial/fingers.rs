@@ -1,0 +1,79 @@
+//! The meter stick's fingers in three dimensions (docs/scenes.md, "meter-stick-3d"): the planar
+//! scene's finger motion in `x` ("meter-stick", "Finger motion"), at the path's `x` speeds `v cos
+//! psi`, each tip's `y` following at `tan psi` of its `x`'s travel.
+
+use super::algebra::V3;
+use super::meter_stick::MeterStick3d;
+
+/// The fingers' motion (docs/scenes.md, "meter-stick", "Finger motion", in `x`; `y` follows at
+/// `tan psi` of `x`'s travel).
+pub(crate) struct Fingers {
+    start: [f64; 2],
+    height: [f64; 2],
+    /// `x` speeds.
+    velocity: [f64; 2],
+    stop: Option<[f64; 2]>,
+    tan: f64,
+    h: f64,
+}
+
+impl Fingers {
+    pub(crate) fn new(p: &MeterStick3d) -> Self {
+        let c = p.heading.cos();
+        let [x1, x2] = [p.finger1_x, p.finger2_x];
+        let [v1, v2] = [p.finger1_velocity * c, p.finger2_velocity * c];
+        let w = p.finger_width;
+        let stop = (v1 > v2).then(|| {
+            if v2 == 0.0 {
+                [x2 - w, x2]
+            } else if v1 == 0.0 {
+                [x1, x1 + w]
+            } else {
+                let s1 = x1 + v1 * ((x2 - x1 - w) / (v1 - v2));
+                [s1, s1 + w]
+            }
+        });
+        Self {
+            start: [x1, x2],
+            height: [p.finger1_y, p.finger2_y],
+            velocity: [v1, v2],
+            stop,
+            tan: p.heading.tan(),
+            h: p.step,
+        }
+    }
+
+    pub(crate) fn stopped(&self, steps: u64) -> bool {
+        let Some([s1, s2]) = self.stop else { return false };
+        let t = steps as f64 * self.h;
+        let [v1, v2] = self.velocity;
+        if v1 > 0.0 {
+            self.start[0] + v1 * t >= s1
+        } else if v1 < 0.0 {
+            self.start[0] + v1 * t <= s1
+        } else {
+            self.start[1] + v2 * t <= s2
+        }
+    }
+
+    /// The tips at `steps h`, world.
+    pub(crate) fn tips(&self, steps: u64) -> [V3; 2] {
+        let t = steps as f64 * self.h;
+        let x = match self.stop {
+            Some(stop) if self.stopped(steps) => stop,
+            _ => [self.start[0] + self.velocity[0] * t, self.start[1] + self.velocity[1] * t],
+        };
+        std::array::from_fn(|i| [x[i], (x[i] - self.start[i]) * self.tan, self.height[i]])
+    }
+
+    /// The fingers' velocities over the step from `steps h`, world.
+    pub(crate) fn velocity_over(&self, steps: u64) -> [V3; 2] {
+        let vx = if self.stopped(steps + 1) {
+            let (a, b) = (self.tips(steps), self.tips(steps + 1));
+            [(b[0][0] - a[0][0]) / self.h, (b[1][0] - a[1][0]) / self.h]
+        } else {
+            self.velocity
+        };
+        vx.map(|v| [v, v * self.tan, 0.0])
+    }
+}
