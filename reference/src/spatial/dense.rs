@@ -31,13 +31,24 @@ impl Svd {
         }
         let mut v: Vec<Vec<f64>> =
             (0..n).map(|j| (0..n).map(|i| f64::from(u8::from(i == j))).collect()).collect();
+        // A column whose length is round-off's of the largest (a rank-deficient matrix) is
+        // zero: rotating it against another only trades round-off, and would never end.
+        let largest = u.iter().map(|c| dot(c, c)).fold(0.0, f64::max);
+        let negligible = (f64::EPSILON * f64::EPSILON) * largest;
+        // A dot product of columns of this length carries round-off of about its length times
+        // `eps` of their sizes: pairs orthogonal to that are orthogonal.
+        #[allow(clippy::cast_precision_loss)]
+        let rows = u.first().map_or(1, Vec::len) as f64;
         let mut converged = false;
         for _ in 0..SWEEPS {
             let mut rotated = false;
             for p in 0..n {
                 for q in p + 1..n {
                     let (alpha, beta, gamma) = (dot(&u[p], &u[p]), dot(&u[q], &u[q]), dot(&u[p], &u[q]));
-                    if gamma == 0.0 || gamma.abs() <= f64::EPSILON * (alpha * beta).sqrt() {
+                    if gamma == 0.0
+                        || gamma.abs() <= rows * f64::EPSILON * (alpha * beta).sqrt()
+                        || alpha.min(beta) <= negligible
+                    {
                         continue;
                     }
                     rotated = true;

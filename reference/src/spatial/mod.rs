@@ -66,6 +66,9 @@ mod meter_stick;
 #[cfg(test)]
 mod meter_stick_tests;
 mod scenes;
+mod stack;
+#[cfg(test)]
+mod stack_tests;
 mod step;
 #[cfg(test)]
 mod tests;
@@ -80,6 +83,7 @@ pub use scenes::{
     BILLIARD_QUANTITIES, Billiard, Keep, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_billiard_keeping,
     run_puck, run_puck_keeping,
 };
+pub use stack::{LOAD_SETS, Stack3d, StackRun, run_stack_3d_keeping};
 
 /// The most steps a run may take (`ceil(max_time / h)`): `10^7`.
 pub const MAX_STEPS: u64 = 10_000_000;
@@ -110,8 +114,10 @@ pub enum Outcome {
     /// `hold_time`.
     Balanced,
     /// Meter stick: the face tilted or the centre of mass dropped past its limit, or no finger
-    /// is under the rod.
+    /// is under the rod; stack: a block tilted or dropped past its limit.
     Fell,
+    /// Stack: at `max_time`, no block tilted or dropped past its limit.
+    Held,
 }
 
 /// The state after a step (row 0: the start, separated, no impulse).
@@ -188,6 +194,17 @@ pub enum Error {
         /// Why.
         error: ContactError,
     },
+    /// Stack: a step in which a loaded contact would slide (its friction beyond `mu p_n` if it
+    /// stuck): beyond the cases the stack's reference answers.
+    Sliding {
+        /// The step (1 the first).
+        step: u64,
+    },
+    /// Stack: a step whose contacts' problem found no verified answer.
+    Unsolved {
+        /// The step (1 the first).
+        step: u64,
+    },
     /// A step's state was not finite.
     NonFinite {
         /// The step (1 the first).
@@ -201,6 +218,10 @@ impl std::fmt::Display for Error {
             Self::Invalid { field, rule } => write!(f, "{field}: {rule:?}"),
             Self::TooManySteps { steps } => write!(f, "{steps} steps, more than {MAX_STEPS}"),
             Self::Contact { step, error } => write!(f, "step {step}: {error}"),
+            Self::Sliding { step } => {
+                write!(f, "step {step}: a contact would slide, beyond the stack reference's sticking cases")
+            }
+            Self::Unsolved { step } => write!(f, "step {step}: no verified answer of the contacts"),
             Self::NonFinite { step } => write!(f, "step {step}: the state is not finite"),
         }
     }
