@@ -5,7 +5,7 @@ use core::convert::Infallible;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{ErrorType, InputPin, OutputPin};
 
-use crate::{CarriedFinger, Carriage, ModeLights, NoActuator, Rig, RigConfig, RigError, RigPins, RigScene};
+use crate::{Carriage, CarriedFinger, ModeLights, NoActuator, Rig, RigConfig, RigError, RigPins, RigScene};
 
 /// A headless pin, for running the rig without hardware (QEMU, host tests): as an output it
 /// counts its rising edges; as an input it reads low, i.e. a pressed active-low button.
@@ -56,7 +56,9 @@ impl DelayNs for NoDelay {
     fn delay_ns(&mut self, _ns: u32) {}
 }
 
-impl<S: RigScene<2> + CarriedFinger, D: DelayNs> Rig<S, Carriage<HeadlessPin, D>, HeadlessPin, HeadlessPin, 2> {
+impl<S: RigScene<2> + CarriedFinger, D: DelayNs>
+    Rig<S, Carriage<HeadlessPin, D>, HeadlessPin, HeadlessPin, 2>
+{
     /// A rig whose carriage moves finger 1 (the meter stick's, in the plane or in space), on
     /// [`HeadlessPin`]s (the start button reads pressed), its carriage's pulses timed by `delay`.
     ///

@@ -16,7 +16,8 @@ type Stick3dRig = Rig<MeterStick3d<f32>, Carriage<HeadlessPin, NoDelay>, Headles
 #[test]
 fn the_carriage_travels_along_the_path_and_the_run_ends_as_the_scene() {
     for heading_deg in [0.0f32, 10.0] {
-        let params = MeterStick3dParams { heading: heading_deg.to_radians(), ..MeterStick3dParams::default() };
+        let params =
+            MeterStick3dParams { heading: heading_deg.to_radians(), ..MeterStick3dParams::default() };
         let mut alone = MeterStick3d::new(params).unwrap();
         let mut modes = vec![alone.finger_modes()];
         while let Some(report) = alone.step() {

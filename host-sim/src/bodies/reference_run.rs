@@ -312,6 +312,7 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
         r::Outcome::Unfinished => OutcomeKind::Unfinished,
         r::Outcome::Balanced => OutcomeKind::Balanced,
         r::Outcome::Fell => OutcomeKind::Fell,
+        r::Outcome::Held => OutcomeKind::Held,
     });
     let end = run.trajectory.len().checked_sub(1).ok_or_else(|| anyhow::anyhow!("reference: no row"))?;
     let last = row_at(end, &run.trajectory[end]);

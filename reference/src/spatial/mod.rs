@@ -1,6 +1,7 @@
-//! The scenes in three dimensions, `puck`, `billiard`, `curling` and `meter-stick-3d` (docs/scenes.md,
-//! "Scenes in three dimensions"; the curling stone's step in `curling.rs`, a minimisation of its own;
-//! the meter stick's three contacts in `meter_stick.rs`, by the several-contact cone of `cone.rs`), on
+//! The scenes in three dimensions, `puck`, `billiard`, `curling`, `meter-stick-3d` and `stack-3d`
+//! (docs/scenes.md, "Scenes in three dimensions"; the curling stone's step in `curling.rs`, a
+//! minimisation of its own; the meter stick's three contacts in `meter_stick.rs`, by the
+//! several-contact cone of `cone.rs`; the stack's blocks in `stack.rs`, sticking or separating), on
 //! the spatial model of docs/formulation.md ("Three dimensions"), written again from those texts and
 //! sharing no code with `meterstick-core`'s `spatial` module.
 //!
@@ -49,6 +50,11 @@
 //! directions by Newton's method on their angles, the first combination whose answer meets the
 //! circular cone's conditions taken (the step before's cases tried first). It keeps the rod's
 //! [`Row`]s and each point's [`RodPoint`].
+//!
+//! [`Stack3d`] (`run_stack_3d_keeping`) is several blocks, each pair's contacts the vertices of its
+//! faces' overlap; each step's loads by the active-set method of nonnegative least squares over the
+//! contacts' three rows, every loaded contact stuck (a step in which one would slide is refused,
+//! [`Error::Sliding`]): `stack.rs`'s module docs.
 //!
 //! [`OnePoint`] opens the same step for a point fixed in the body off its centre of mass (a box's
 //! corner), where `W` couples the normal and the slip and the sliding case takes the root search:
