@@ -44,6 +44,8 @@
 //! heading) and the largest error of the final displacement's direction against `phi`. Then the
 //! billiard ball's rolling velocity against the 5/7 law `v = (5 v0 + 2 R omega0 x z) / 7`
 //! (`docs/scenes.md`, "billiard") at the defaults (no spin) and struck with side and back spin.
+//! Last, the 3-block stack at headings to the table's edge: rapier3d's outcome beside the
+//! reference's (`rapier3d/stack.rs`).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::print_stderr, missing_docs)]
 
 use std::f32::consts::PI;
@@ -55,6 +57,9 @@ use meterstick_core::scene::spatial::{
     Billiard, BilliardParams, Curling, CurlingParams, Puck, PuckParams, SpatialScene,
 };
 use rapier3d::prelude::*;
+
+#[path = "rapier3d/stack.rs"]
+mod stack;
 
 /// Rounds of the timed runs (each run is short: 1,417 steps of the puck, 292 of the ball).
 const REPEATS: usize = 15;
@@ -652,6 +657,7 @@ fn main() {
     speed_section(&mut text, &mut table, repeats);
     curling_section(&mut text, &mut table, repeats);
     anisotropy_section(&mut text, &mut table);
+    stack::stack_section(&mut text, &mut table, repeats);
     print!("{text}");
     // The same figures side by side, a Markdown table under the printed block.
     let mut rows =
