@@ -3,7 +3,6 @@
 //! psi`, each tip's `y` following at `tan psi` of its `x`'s travel.
 
 use super::algebra::V3;
-use super::meter_stick::MeterStick3d;
 
 /// The fingers' motion (docs/scenes.md, "meter-stick", "Finger motion", in `x`; `y` follows at
 /// `tan psi` of `x`'s travel).
@@ -17,12 +16,24 @@ pub(crate) struct Fingers {
     h: f64,
 }
 
+/// What the fingers' motion is made from (the scene's parameters of that name, SI units):
+/// the fingers' start `x`, heights, speeds along the path, width, the path's heading (rad), the
+/// step.
+pub(crate) struct FingerParams {
+    pub x: [f64; 2],
+    pub height: [f64; 2],
+    pub speed: [f64; 2],
+    pub width: f64,
+    pub heading: f64,
+    pub h: f64,
+}
+
 impl Fingers {
-    pub(crate) fn new(p: &MeterStick3d) -> Self {
+    pub(crate) fn new(p: &FingerParams) -> Self {
         let c = p.heading.cos();
-        let [x1, x2] = [p.finger1_x, p.finger2_x];
-        let [v1, v2] = [p.finger1_velocity * c, p.finger2_velocity * c];
-        let w = p.finger_width;
+        let [x1, x2] = p.x;
+        let [v1, v2] = [p.speed[0] * c, p.speed[1] * c];
+        let w = p.width;
         let stop = (v1 > v2).then(|| {
             if v2 == 0.0 {
                 [x2 - w, x2]
@@ -33,14 +44,7 @@ impl Fingers {
                 [s1, s1 + w]
             }
         });
-        Self {
-            start: [x1, x2],
-            height: [p.finger1_y, p.finger2_y],
-            velocity: [v1, v2],
-            stop,
-            tan: p.heading.tan(),
-            h: p.step,
-        }
+        Self { start: [x1, x2], height: p.height, velocity: [v1, v2], stop, tan: p.heading.tan(), h: p.h }
     }
 
     pub(crate) fn stopped(&self, steps: u64) -> bool {

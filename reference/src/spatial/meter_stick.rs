@@ -23,7 +23,7 @@ use super::algebra::{
     V3, ZERO, apply, congruent, cross, dot, in_plane, length, matrix_of, plus, times, transpose,
 };
 use super::cone::{self, Contacts, PointCase};
-use super::fingers::Fingers;
+use super::fingers::{FingerParams, Fingers};
 use super::scenes::{Keep, invalid};
 use super::step::{MARGIN, bias, turned};
 use super::{Error, MAX_STEPS, Mode, Outcome, Row, Rule, SpatialRun};
@@ -498,7 +498,15 @@ pub fn run_meter_stick_3d_keeping(p: &MeterStick3d, keep: Keep) -> Result<MeterS
     if needed > MAX_STEPS as f64 {
         return Err(Error::TooManySteps { steps: needed });
     }
-    let scene = Scene { p: *p, fingers: Fingers::new(p), moments: p.moments() };
+    let fingers = Fingers::new(&FingerParams {
+        x: [p.finger1_x, p.finger2_x],
+        height: [p.finger1_y, p.finger2_y],
+        speed: [p.finger1_velocity, p.finger2_velocity],
+        width: p.finger_width,
+        heading: p.heading,
+        h: p.step,
+    });
+    let scene = Scene { p: *p, fingers, moments: p.moments() };
     let (x0, z0, theta0) = p.rest();
     let (sin, cos) = (0.5 * theta0).sin_cos();
     let mut state = State { x: [x0, 0.0, z0], q: [cos, 0.0, -sin, 0.0], v: ZERO, omega: ZERO };
