@@ -126,6 +126,7 @@
 
 mod algebra;
 mod body;
+mod direct;
 mod friction;
 mod load;
 mod report;
