@@ -58,7 +58,7 @@ pub(super) struct Contacts<'a, T: Real, const K: usize> {
     pub body: &'a Body<T>,
     pub orientation: &'a super::algebra::Quaternion<T>,
     pub normal: Vector<T>,
-    pub touches: [Touch<T>; K],
+    pub touches: &'a [Touch<T>; K],
     /// The round-off of the step's velocities: slips within it count as zero.
     pub slip_tolerance: T,
     /// Normal impulses per unit mass at or below it read separated.
@@ -517,7 +517,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 w = add(&w, &scale(self.body.mass, &turn));
             }
         }
-        for ((line, c), p) in lines.iter_mut().zip(&self.touches).zip(&p) {
+        for ((line, c), p) in lines.iter_mut().zip(self.touches).zip(&p) {
             if let Some(d) = direction(&sub(p, &scale(dot(&n, p), &n))).filter(|_| c.active) {
                 line.d = d;
             }
