@@ -516,6 +516,47 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         self.solve_warm_inner(lcp, warm, true)
     }
 
+    /// `z`, the complementary solution of the basis `basis` (`z_i = 0` where `w_i` is basic, `w_i
+    /// = 0` meant where `z_i` is) that a caller computed its own way, accepted on
+    /// [`Self::solve_warm`]'s terms for its warm basis' answer: `z >= 0` and `w = M z + q >= 0`
+    /// outside the basis as computed, and the normalised residual ([`super::verify`]) within the
+    /// tolerance. The rows of the mask `tied` are the exception: rows whose `w` the problem's
+    /// structure makes the negative of a row closed by the basis (zero in exact arithmetic, its
+    /// sign round-off's), held to the residual alone, as Lemke's pivoting holds every `w`. For a
+    /// caller that knows its problem's structure (the spatial stepper solves a basis in its
+    /// contacts' few unknowns, `crate::spatial`); on `None` it goes on with
+    /// [`Self::solve_from_basis`]. The answer has no pivots and [`LcpSolution::warm_start_used`].
+    #[must_use]
+    pub fn accept(
+        &self,
+        lcp: &Lcp<T, N>,
+        z: &SVector<T, N>,
+        basis: Basis<N>,
+        tied: u32,
+    ) -> Option<LcpSolution<T, N>> {
+        let scales = lcp.scales()?;
+        let w = lcp.w_of(z);
+        let mut feasible = true;
+        for i in 0..N {
+            let held = basis.is_z_basic(i) || (tied >> i) & 1 == 1;
+            feasible &= z[i] >= T::zero() && (held || w[i] >= T::zero());
+        }
+        let check = Verification {
+            residual: residual(z, &w, scales.m_norm, scales.q_norm),
+            tolerance: self.tolerance,
+        };
+        (feasible && check.passed()).then_some(LcpSolution {
+            z: *z,
+            w,
+            pivots: 0,
+            setup_eliminations: 0,
+            warm_start_used: true,
+            basis,
+            residual: check.residual,
+            regularized: false,
+        })
+    }
+
     /// [`Self::solve_warm`] without its first step, the direct solve of `warm`'s own complementary
     /// solution: for a caller that has just tried that basis itself (the planar stepper solves it
     /// in the body's coordinates, `crate::planar::FactoredLcp`). Lemke's method runs from `warm`'s

@@ -167,3 +167,29 @@ fn verification_rejects_wrong_answers() {
     assert!(!is_solution(&lcp, &SVector::<f64, 2>::new(0.0, 0.0)));
     assert!(!is_solution(&lcp, &SVector::<f64, 2>::new(-1.0, 3.5)));
 }
+
+/// [`Lemke::accept`] on a caller's answer of a basis: Kostreva's problem at `z = 1/3` (every `z`
+/// basic, `w = 0`) is taken as Lemke's method's own answer; a `z` with a negative entry, one whose
+/// `w` is negative outside the basis, and one off the solution are refused; a row in `tied` may
+/// be negative by its round-off, not beyond the residual's tolerance.
+#[test]
+fn accept_holds_a_callers_answer_to_the_warm_answers_terms() {
+    let lemke = Lemke::<f64, 3>::new();
+    let kostreva = Lcp::from_rows(&[[1.0, 2.0, 0.0], [0.0, 1.0, 2.0], [2.0, 0.0, 1.0]], &[-1.0, -1.0, -1.0]);
+    let all = Basis::from_z_mask(0b111);
+    let z = SVector::from([1.0 / 3.0; 3]);
+    let sol = lemke.accept(&kostreva, &z, all, 0).expect("the solution");
+    assert_z(&sol.z, [1.0 / 3.0; 3]);
+    assert_eq!((sol.pivots, sol.basis, sol.warm_start_used), (0, all, true));
+    assert!(lemke.accept(&kostreva, &SVector::from([0.5, 0.5, -0.1]), all, 0).is_none(), "z < 0");
+    assert!(lemke.accept(&kostreva, &SVector::from([0.3, 0.3, 0.3]), all, 0).is_none(), "not complementary");
+    // `w = z - 1 + (0, e, 0)`: `z = (1, 0, 0)` with only `z_0` basic leaves `w_1` at `-e`.
+    let e = 1e-18;
+    let tied = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -e, 1.0]);
+    let first = Basis::from_z_mask(0b001);
+    let z = SVector::from([1.0, 0.0, 0.0]);
+    assert!(lemke.accept(&tied, &z, first, 0).is_none(), "w_1 < 0 outside the basis");
+    assert!(lemke.accept(&tied, &z, first, 0b010).is_some(), "w_1 tied: round-off's");
+    let far = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -0.5, 1.0]);
+    assert!(lemke.accept(&far, &z, first, 0b010).is_none(), "w_1 = -0.5 fails the residual");
+}

@@ -58,7 +58,7 @@ pub(super) struct Contacts<'a, T: Real, const K: usize> {
     pub body: &'a Body<T>,
     pub orientation: &'a super::algebra::Quaternion<T>,
     pub normal: Vector<T>,
-    pub touches: [Touch<T>; K],
+    pub touches: &'a [Touch<T>; K],
     /// The round-off of the step's velocities: slips within it count as zero.
     pub slip_tolerance: T,
     /// Normal impulses per unit mass at or below it read separated.
@@ -126,7 +126,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let (mut last_worst, mut restarted) = (T::zero(), false);
         for tries in 1..=MAX_DIRECTIONS {
             let lcp = self.lcp::<N>(&lines);
-            let sol = solver.solve_warm(&lcp, *basis).map_err(StepError::Solver)?;
+            let sol = self.answer(solver, &lcp, *basis)?;
             *basis = sol.basis;
             *pivots = pivots.saturating_add(sol.pivots);
             let mut impulses = [(T::zero(), T::zero()); K];
@@ -281,50 +281,86 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     }
 
     /// The LCP of the contacts' lines: per contact the rows of `p_n`, `p_+d`, `p_-d` and
-    /// `sigma`; a contact beyond the margin's rows `w = z + 1` (its impulse zero).
+    /// `sigma`; a contact beyond the margin's rows `w = z + 1` (its impulse zero). Each entry is
+    /// [`Self::delassus`]'s, its two factors computed once a contact and direction (`r x e` and
+    /// `I_w^-1 (r x f)`: `6 K` turns, not `4 K^2`), in place in the problem's matrix.
     fn lcp<const N: usize>(&self, lines: &[Line<T>; K]) -> Lcp<T, N> {
         let (n, o, one) = (self.normal, T::zero(), T::one());
-        let mut m = [[o; N]; N];
-        let mut q = [o; N];
-        for (i, (ci, li)) in self.touches.iter().zip(lines).enumerate() {
+        let mut lcp = Lcp::<T, N>::new(nalgebra::SMatrix::zeros(), nalgebra::SVector::zeros());
+        // Per contact, along the normal then its line: `r x e` and `I_w^-1 (r x e)`.
+        let levers: [[(Vector<T>, Vector<T>); 2]; K] = core::array::from_fn(|i| {
+            let (arm, d) = (&self.touches[i].arm, &lines[i].d);
+            [n, *d].map(|e| {
+                let lever = cross(arm, &e);
+                (lever, inverse_inertia_times(self.body, self.orientation, &lever))
+            })
+        });
+        let mass = self.body.mass;
+        let mut set = |r: usize, c: usize, v: T| {
+            if let Some(e) = lcp.m.get_mut((r, c)) {
+                *e = v;
+            }
+        };
+        for (i, ((ci, li), [(ln_i, _), (ld_i, _)])) in self.touches.iter().zip(lines).zip(&levers).enumerate()
+        {
             let b = 4 * i;
             if !ci.active {
                 for k in b..b + 4 {
-                    m[k][k] = one;
-                    q[k] = one;
+                    set(k, k, one);
                 }
                 continue;
             }
-            for (j, (cj, lj)) in self.touches.iter().zip(lines).enumerate() {
+            for (j, ((cj, lj), [(_, tn_j), (_, td_j)])) in
+                self.touches.iter().zip(lines).zip(&levers).enumerate()
+            {
                 if !cj.active {
                     continue;
                 }
                 let c = 4 * j;
-                let (ri, rj, di, dj) = (&ci.arm, &cj.arm, &li.d, &lj.d);
-                let (wnn, wnd) = (self.delassus(ri, &n, rj, &n), self.delassus(ri, &n, rj, dj));
-                let (wdn, wdd) = (self.delassus(ri, di, rj, &n), self.delassus(ri, di, rj, dj));
-                m[b][c] = wnn;
-                m[b][c + 1] = wnd;
-                m[b][c + 2] = -wnd;
-                m[b + 1][c] = wdn;
-                m[b + 1][c + 1] = wdd;
-                m[b + 1][c + 2] = -wdd;
-                m[b + 2][c] = -wdn;
-                m[b + 2][c + 1] = -wdd;
-                m[b + 2][c + 2] = wdd;
+                let (di, dj) = (&li.d, &lj.d);
+                let wnn = dot(&n, &n) + mass * dot(ln_i, tn_j);
+                let wnd = dot(&n, dj) + mass * dot(ln_i, td_j);
+                let wdn = dot(di, &n) + mass * dot(ld_i, tn_j);
+                let wdd = dot(di, dj) + mass * dot(ld_i, td_j);
+                set(b, c, wnn);
+                set(b, c + 1, wnd);
+                set(b, c + 2, -wnd);
+                set(b + 1, c, wdn);
+                set(b + 1, c + 1, wdd);
+                set(b + 1, c + 2, -wdd);
+                set(b + 2, c, -wdn);
+                set(b + 2, c + 1, -wdd);
+                set(b + 2, c + 2, wdd);
             }
-            m[b + 1][b + 3] = one;
-            m[b + 2][b + 3] = one;
-            m[b + 3][b] = ci.mu;
-            m[b + 3][b + 1] = -one;
-            m[b + 3][b + 2] = -one;
-            let ud = dot(&li.d, &ci.slip_free);
-            q[b] = ci.normal_free;
-            q[b + 1] = ud;
-            q[b + 2] = -ud;
+            set(b + 1, b + 3, one);
+            set(b + 2, b + 3, one);
+            set(b + 3, b, ci.mu);
+            set(b + 3, b + 1, -one);
+            set(b + 3, b + 2, -one);
         }
-        pad(&mut m, &mut q, 4 * K);
-        Lcp::from_rows(&m, &q)
+        for row in 4 * K..N {
+            set(row, row, one);
+        }
+        for (i, (ci, li)) in self.touches.iter().zip(lines).enumerate() {
+            let b = 4 * i;
+            let entries = if ci.active {
+                let ud = dot(&li.d, &ci.slip_free);
+                [ci.normal_free, ud, -ud, o]
+            } else {
+                [one; 4]
+            };
+            for (k, v) in entries.into_iter().enumerate() {
+                if let Some(e) = lcp.q.get_mut(b + k) {
+                    *e = v;
+                }
+            }
+        }
+        for row in 4 * K..N {
+            if let Some(e) = lcp.q.get_mut(row) {
+                *e = one;
+            }
+        }
+        lcp
     }
 
     /// Turns the lines (module docs, 3) by one step of Newton's method on every loaded contact's
@@ -481,7 +517,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 w = add(&w, &scale(self.body.mass, &turn));
             }
         }
-        for ((line, c), p) in lines.iter_mut().zip(&self.touches).zip(&p) {
+        for ((line, c), p) in lines.iter_mut().zip(self.touches).zip(&p) {
             if let Some(d) = direction(&sub(p, &scale(dot(&n, p), &n))).filter(|_| c.active) {
                 line.d = d;
             }

@@ -106,7 +106,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         });
         let mut normal_matrix = [[zero; 3]; 3];
         let mut rhs = [zero; 3];
-        for ((row, _), c) in rows.iter().zip(&touching).zip(&self.touches).filter(|((_, t), _)| **t) {
+        for ((row, _), c) in rows.iter().zip(&touching).zip(self.touches).filter(|((_, t), _)| **t) {
             for a in 0..3 {
                 rhs[a] -= row[a] * c.normal_free;
                 for b in 0..3 {

@@ -28,7 +28,9 @@
 //!        [ mu    -1     -1    0 ]     [ 0    ]
 //!    ```
 //!
-//!    solved by Lemke's method and verified ([`crate::lcp`]). The answer holds when every loaded
+//!    solved by Lemke's method and verified ([`crate::lcp`]), the last answer's basis first solved
+//!    in the contacts' normal impulses and sticking frictions alone (`direct`'s module docs) and
+//!    verified on the whole problem as Lemke's own warm answer is. The answer holds when every loaded
 //!    contact's slip after the step has no component across its `d` (within `256 eps` of the
 //!    step's velocity scale, the largest free slip and `g h`, and at least `8 eps` of the largest
 //!    contact's `|v~| + |omega~| |r_i|`: a slip is summed from those terms, so its round-off is
@@ -126,6 +128,7 @@
 
 mod algebra;
 mod body;
+mod direct;
 mod friction;
 mod load;
 mod report;

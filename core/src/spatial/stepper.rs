@@ -328,7 +328,7 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
             }
         });
         let (state, contacts, pivots) =
-            self.solve.advance(&self.body, &s, &st, n, touches, (speed, terms), &v_free, &w_free)?;
+            self.solve.advance(&self.body, &s, &st, n, &touches, (speed, terms), &v_free, &w_free)?;
         self.state = state;
         self.modes = contacts.map(|c| c.mode);
         self.steps += 1;
@@ -368,7 +368,7 @@ impl<T: Real, const N: usize> Solve<T, N> {
         s: &SpatialSettings<T>,
         st: &State<T>,
         n: Vector<T>,
-        touches: [Touch<T>; K],
+        touches: &[Touch<T>; K],
         (speed, terms): (T, T),
         v_free: &Vector<T>,
         w_free: &Vector<T>,

@@ -344,7 +344,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
             return Err(StepError::NonFinite);
         }
         let (state, contacts, pivots) =
-            self.solve.advance(&self.body, &s, &st, n, touches, (speed, terms), &v_free, &w_free)?;
+            self.solve.advance(&self.body, &s, &st, n, &touches, (speed, terms), &v_free, &w_free)?;
         self.state = state;
         self.modes = contacts.map(|c| c.mode);
         self.steps += 1;

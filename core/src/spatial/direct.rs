@@ -1,0 +1,150 @@
+//! A warm basis' own answer from the contacts' structure (`super`'s module docs, 3). The LCP of `N
+//! = 4 K` rows has, per loaded contact, one or two unknowns that matter; a contact's basic `z` say
+//! its mode: none, separated; `p_n` alone, no friction; `p_n` and `p_+d` (or `p_-d`), sticking
+//! along its line, its normal row and that friction row closed (the other friction row, `w_-d =
+//! -w_+d` while `sigma` is zero, nil too); `p_n`, `p_+d`, `p_-d` and `sigma`, sticking with both
+//! frictions basic, `p_+-d = (mu p_n +- p_t) / 2` by its `sigma` row, `sigma` zero; `p_n`, `p_+d`
+//! (or `p_-d`) and `sigma`, sliding, its friction `mu p_n` by its `sigma` row, its normal row
+//! closed, its `sigma` read from its friction row once the impulses are known. The basis'
+//! complementary solution is then that of a system in the loaded contacts' normal impulses and the
+//! sticking ones' frictions (at most `2 K` unknowns where Lemke's direct solve has the basis' up to
+//! `4 K`: on the meter stick's pad and point, five or six where it had up to twelve), and Lemke's
+//! verification ([`Lemke::accept`]) judges it on the whole problem as it judges its own warm answer
+//! ([`Lemke::solve_warm`]). A basis of any other pattern goes to [`Lemke::solve_warm`], one whose
+//! answer this path's check refuses to [`Lemke::solve_from_basis`] (Lemke's pivoting from its
+//! tableau, then the cold start).
+
+use nalgebra::SVector;
+
+use super::friction::Contacts;
+use crate::StepError;
+use crate::lcp::elimination::solve_leading;
+use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
+use crate::real::{Real, max};
+
+/// One unknown of a basis' reduced system: the variables of `z` it moves, each by a factor (a
+/// factor of zero moves none).
+type Unknown<T> = [(usize, T); 3];
+
+impl<T: Real, const K: usize> Contacts<'_, T, K> {
+    /// The verified answer of the contacts' LCP `lcp` ([`Contacts`]' layout: per contact `(p_n,
+    /// p_+d, p_-d, sigma)`, then the padding rows `w = z + 1`) from the basis `basis`: its own
+    /// complementary solution when it verifies (module docs), else Lemke's method's. A lone
+    /// contact's (`K = 1`: a puck, a ball) goes to [`Lemke::solve_warm`] whole.
+    ///
+    /// # Errors
+    /// [`StepError::Solver`].
+    pub(super) fn answer<const N: usize>(
+        &self,
+        solver: &Lemke<T, N>,
+        lcp: &Lcp<T, N>,
+        basis: Basis<N>,
+    ) -> Result<LcpSolution<T, N>, StepError> {
+        // A lone contact's basis is of at most three unknowns: Lemke's own direct solve of it.
+        let reduced = if K > 1 { self.basis_solution(lcp, basis) } else { None };
+        match reduced {
+            Some((z, tied)) => match solver.accept(lcp, &z, basis, tied) {
+                Some(sol) => Ok(sol),
+                None => solver.solve_from_basis(lcp, basis),
+            },
+            None => solver.solve_warm(lcp, basis),
+        }
+        .map_err(StepError::Solver)
+    }
+
+    /// The complementary solution of `basis` for `lcp` by its reduced system (module docs): `None`
+    /// when a contact's basic `z` are of no pattern listed there, a padding row's `z` or an inactive
+    /// contact's is basic, or the system is numerically singular (a pivot within `N eps` of its
+    /// largest entry). Its signs are not checked here ([`Lemke::accept`] does). With it the mask of
+    /// the sticking contacts' other friction rows: `w_-d = -w_+d` while `sigma` is zero, both nil
+    /// in exact arithmetic, their signs round-off's.
+    fn basis_solution<const N: usize>(
+        &self,
+        lcp: &Lcp<T, N>,
+        basis: Basis<N>,
+    ) -> Option<(SVector<T, N>, u32)> {
+        let zero = T::zero();
+        let mask = basis.z_mask();
+        // The padding rows' `z` are never basic in the contacts' answer.
+        if mask.checked_shr(u32::try_from(4 * K).unwrap_or(u32::MAX)).unwrap_or(0) != 0 {
+            return None;
+        }
+        let (one, half) = (T::one(), T::of(0.5));
+        let none: Unknown<T> = [(0, zero); 3];
+        // The unknowns and, row for row, the rows of `w` they close; the sliding contacts' friction
+        // rows and their `sigma`.
+        let (mut unknowns, mut rows, mut m) = ([none; N], [0usize; N], 0usize);
+        let (mut sigmas, mut slides) = ([(0usize, 0usize); K], 0usize);
+        let mut tied = 0u32;
+        let mut push = |unknown: Unknown<T>, row: usize| {
+            if let (Some(u), Some(r)) = (unknowns.get_mut(m), rows.get_mut(m)) {
+                (*u, *r) = (unknown, row);
+                m += 1;
+            }
+        };
+        for (i, c) in self.touches.iter().enumerate() {
+            let b = 4 * i;
+            let bits = mask.checked_shr(u32::try_from(b).unwrap_or(u32::MAX)).unwrap_or(0) & 0b1111;
+            let plain = |variable| [(variable, one), (variable, zero), (variable, zero)];
+            match (c.active, bits) {
+                (_, 0b0000) => {}
+                (true, 0b0001) => push(plain(b), b),
+                (true, 0b0011 | 0b0101) => {
+                    let (friction, other) = if bits == 0b0011 { (b + 1, b + 2) } else { (b + 2, b + 1) };
+                    push(plain(b), b);
+                    push(plain(friction), friction);
+                    tied |= 1u32.checked_shl(u32::try_from(other).unwrap_or(u32::MAX)).unwrap_or(0);
+                }
+                (true, 0b1011 | 0b1101) => {
+                    let friction = if bits == 0b1011 { b + 1 } else { b + 2 };
+                    push([(b, one), (friction, c.mu), (b, zero)], b);
+                    if let Some(s) = sigmas.get_mut(slides) {
+                        *s = (friction, b + 3);
+                        slides += 1;
+                    }
+                }
+                // Sticking with both frictions basic and `sigma` zero: `p_+-d = (mu p_n +- p_t) / 2`.
+                (true, 0b1111) => {
+                    push([(b, one), (b + 1, half * c.mu), (b + 2, half * c.mu)], b);
+                    push([(b + 1, half), (b + 2, -half), (b, zero)], b + 1);
+                }
+                _ => return None,
+            }
+        }
+        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
+        let mut a = [[zero; N]; N];
+        let mut x = [zero; N];
+        let mut largest = zero;
+        for ((a_row, x_k), &row) in a.iter_mut().zip(x.iter_mut()).zip(&rows).take(m) {
+            for (slot, u) in a_row.iter_mut().zip(&unknowns).take(m) {
+                *slot = u.iter().fold(zero, |acc, &(v, factor)| acc + factor * entry(row, v));
+                largest = max(largest, slot.abs_exact());
+            }
+            *x_k = -lcp.q.get(row).copied().unwrap_or(zero);
+        }
+        if !solve_leading(&mut a, &mut x, m, T::of(N as f64) * T::EPS * max(largest, T::TINY)) {
+            return None;
+        }
+        let mut z = SVector::<T, N>::zeros();
+        for (u, &value) in unknowns.iter().zip(&x).take(m) {
+            for &(v, factor) in u {
+                if let Some(slot) = z.get_mut(v) {
+                    *slot += factor * value;
+                }
+            }
+        }
+        // A sliding contact's `sigma` closes its friction row: `w_r = (M z + q)_r + M_rs sigma`.
+        for &(row, sigma) in sigmas.iter().take(slides) {
+            let rest =
+                (0..N).fold(lcp.q.get(row).copied().unwrap_or(zero), |acc, j| acc + entry(row, j) * z[j]);
+            let coefficient = entry(row, sigma);
+            if coefficient <= zero {
+                return None;
+            }
+            if let Some(slot) = z.get_mut(sigma) {
+                *slot = -rest / coefficient;
+            }
+        }
+        Some((z, tied))
+    }
+}
