@@ -41,7 +41,7 @@ for f in "$MS_PICO_UF2" "$MS_PICO_LINK_UF2" "$MS_PICO_3D_UF2"; do
   [ -s "$f" ] || { echo "pico-emu: no .uf2 at $f" >&2; exit 1; }
 done
 version=$(node -p 'require("./tests/pico/node_modules/rp2040js/package.json").version')
-echo "pico-emu: ${MS_PICO_UF2#"$ROOT"/} and ${MS_PICO_LINK_UF2#"$ROOT"/} on rp2040js $version"
+echo "pico-emu: ${MS_PICO_UF2#"$ROOT"/}, ${MS_PICO_LINK_UF2#"$ROOT"/} and ${MS_PICO_3D_UF2#"$ROOT"/} on rp2040js $version"
 MS_PICO_UF2="$MS_PICO_UF2" MS_PICO_LINK_UF2="$MS_PICO_LINK_UF2" MS_PICO_3D_UF2="$MS_PICO_3D_UF2" $HOST_CARGO test --locked -p meterstick-tests --test pico_emu -- \
   --ignored --test-threads=1 --nocapture "$@"
 echo "pico-emu: the harness's JSON per run is in target/pico-emu/"
