@@ -356,22 +356,26 @@ struct Fingers {
     step: f64,
 }
 
+/// Where approaching fingers (`v1 > v2`) stop, `(s1, s2)`, their `x` `w` apart (docs/scenes.md,
+/// "meter-stick", "Finger motion"), from their start `x` and `x` speeds; none otherwise.
+pub(crate) fn finger_stops([x1, x2]: [f64; 2], [v1, v2]: [f64; 2], w: f64) -> Option<[f64; 2]> {
+    (v1 > v2).then(|| {
+        if v2 == 0.0 {
+            [x2 - w, x2]
+        } else if v1 == 0.0 {
+            [x1, x1 + w]
+        } else {
+            let s1 = x1 + v1 * ((x2 - x1 - w) / (v1 - v2));
+            [s1, s1 + w]
+        }
+    })
+}
+
 impl Fingers {
     fn new(p: &MeterStick) -> Self {
         let [x1, x2] = [p.finger1_x, p.finger2_x];
         let [v1, v2] = [p.finger1_velocity, p.finger2_velocity];
-        let w = p.finger_width;
-        let stop = (v1 > v2).then(|| {
-            if v2 == 0.0 {
-                [x2 - w, x2]
-            } else if v1 == 0.0 {
-                [x1, x1 + w]
-            } else {
-                let t_stop = (x2 - x1 - w) / (v1 - v2);
-                let s1 = x1 + v1 * t_stop;
-                [s1, s1 + w]
-            }
-        });
+        let stop = finger_stops([x1, x2], [v1, v2], p.finger_width);
         Self { start: [x1, x2], velocity: [v1, v2], height: [p.finger1_y, p.finger2_y], stop, step: p.step }
     }
 

@@ -156,8 +156,8 @@ struct HostRun {
     record: Record,
 }
 
-fn host_run(presses: usize) -> HostRun {
-    let rec = Rc::new(RefCell::new(Record { tick: -1, ..Record::default() }));
+/// The rig's pins and carriage as the Pico wires them (firmware/src/pico.rs), recording into `rec`.
+fn recording_rig(rec: &Rc<RefCell<Record>>) -> (RigPins<Released, RecPin, 2>, Carriage<RecPin, NoDelay>) {
     let pin = |p: u8| RecPin(p, rec.clone());
     let lights = |f: usize| ModeLights {
         sticking: pin(LIGHTS[f][0]),
@@ -165,7 +165,12 @@ fn host_run(presses: usize) -> HostRun {
         separated: pin(LIGHTS[f][2]),
     };
     let carriage = Carriage::new(pin(STEP), pin(DIR), NoDelay);
-    let pins = RigPins { start: Released, lights: [lights(0), lights(1)], fault: pin(FAULT) };
+    (RigPins { start: Released, lights: [lights(0), lights(1)], fault: pin(FAULT) }, carriage)
+}
+
+fn host_run(presses: usize) -> HostRun {
+    let rec = Rc::new(RefCell::new(Record { tick: -1, ..Record::default() }));
+    let (pins, carriage) = recording_rig(&rec);
     let config = RigConfig::default_rig();
     let mut rig = MeterStickRig::<_, _, _, 6>::new(Preset::Slow.params(H), config, pins, carriage).unwrap();
     let mut preset = Preset::Slow;
@@ -516,14 +521,7 @@ const STEPS_3D: i64 = 300;
 #[ignore = "needs node, tests/pico/node_modules and MS_PICO_3D_UF2 (scripts/pico-emu.sh)"]
 fn the_meter_stick_in_three_dimensions_runs_as_on_the_host() {
     let rec = Rc::new(RefCell::new(Record { tick: -1, ..Record::default() }));
-    let pin = |p: u8| RecPin(p, rec.clone());
-    let lights = |f: usize| ModeLights {
-        sticking: pin(LIGHTS[f][0]),
-        sliding: pin(LIGHTS[f][1]),
-        separated: pin(LIGHTS[f][2]),
-    };
-    let carriage = Carriage::new(pin(STEP), pin(DIR), NoDelay);
-    let pins = RigPins { start: Released, lights: [lights(0), lights(1)], fault: pin(FAULT) };
+    let (pins, carriage) = recording_rig(&rec);
     // As firmware/src/realtime_stick_3d.rs's `new_rig`: the catalogue's scene at h = 1 ms.
     let params = MeterStick3dParams { step: H, ..MeterStick3dParams::default() };
     let mut rig: Rig<MeterStick3d<f32>, _, _, _, 2> =

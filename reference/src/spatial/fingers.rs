@@ -33,17 +33,7 @@ impl Fingers {
         let c = p.heading.cos();
         let [x1, x2] = p.x;
         let [v1, v2] = [p.speed[0] * c, p.speed[1] * c];
-        let w = p.width;
-        let stop = (v1 > v2).then(|| {
-            if v2 == 0.0 {
-                [x2 - w, x2]
-            } else if v1 == 0.0 {
-                [x1, x1 + w]
-            } else {
-                let s1 = x1 + v1 * ((x2 - x1 - w) / (v1 - v2));
-                [s1, s1 + w]
-            }
-        });
+        let stop = crate::scenes::finger_stops([x1, x2], [v1, v2], p.width);
         Self { start: [x1, x2], height: p.height, velocity: [v1, v2], stop, tan: p.heading.tan(), h: p.h }
     }
 
