@@ -26,7 +26,7 @@ use crate::real::{Real, max};
 /// factor of zero moves none).
 type Unknown<T> = [(usize, T); 3];
 
-impl<T: Real, const K: usize> Contacts<'_, T, K> {
+impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The verified answer of the contacts' LCP `lcp` ([`Contacts`]' layout: per contact `(p_n,
     /// p_+d, p_-d, sigma)`, then the padding rows `w = z + 1`) from the basis `basis`: its own
     /// complementary solution when it verifies (module docs), else Lemke's method's. A lone

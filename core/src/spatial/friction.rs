@@ -3,8 +3,8 @@
 //! cone (`super`'s module docs, 3).
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
-use super::body::{Body, inverse_inertia_times};
 use super::report::{MAX_DIRECTIONS, Mode, SpatialContactReport};
+use super::space::{Frame, Motion};
 use crate::StepError;
 use crate::lcp::{Basis, Lcp, Lemke};
 use crate::real::{Real, max, min};
@@ -35,6 +35,13 @@ pub(super) struct Touch<T> {
     pub rest_line: Option<Vector<T>>,
     /// Its friction coefficient this step.
     pub mu: T,
+    /// The unit normal of its plane, world axes: the push on its body.
+    pub normal: Vector<T>,
+    /// The body it pushes (`+p`): its index in [`Contacts::bodies`].
+    pub body: usize,
+    /// The body beneath it, pushed back (`-p`), and the point's arm from that body's centre of
+    /// mass (`None`: a fixed plane or a support; `super::space`).
+    pub beneath: Option<(usize, Vector<T>)>,
 }
 
 /// One contact's friction line: a unit vector `d` in the plane; friction acts along `+d` or
@@ -52,11 +59,14 @@ type Local<T> = (T, Vector<T>, Vector<T>, T, [T; 4]);
 /// The bodies' velocities after the step's impulses and each contact's report.
 pub(super) type Solved<T, const K: usize> = ([SpatialContactReport<T>; K], Vector<T>, Vector<T>);
 
-/// The contacts of a body on a plane of unit normal `n`, in the unknowns `(p_n, p_+d, p_-d,
-/// sigma)` of each contact in turn (`N = 4 K`).
-pub(super) struct Contacts<'a, T: Real, const K: usize> {
-    pub body: &'a Body<T>,
-    pub orientation: &'a super::algebra::Quaternion<T>,
+/// The contacts of `B` bodies (one on a plane or supports, or several resting on each other:
+/// `super::space`), in the unknowns `(p_n, p_+d, p_-d, sigma)` of each contact in turn (`N = 4
+/// K`), impulses per unit of the reference mass `mass`.
+pub(super) struct Contacts<'a, T: Real, const K: usize, const B: usize = 1> {
+    pub bodies: [Frame<'a, T>; B],
+    /// The reference mass `m0`, kg: the first body's.
+    pub mass: T,
+    /// The plane's unit normal, for one body on one plane (the flat base's load, the pyramid).
     pub normal: Vector<T>,
     pub touches: &'a [Touch<T>; K],
     /// The round-off of the step's velocities: slips within it count as zero.
@@ -67,58 +77,26 @@ pub(super) struct Contacts<'a, T: Real, const K: usize> {
     pub stick_speed: T,
 }
 
-impl<T: Real, const K: usize> Contacts<'_, T, K> {
-    /// `e . W f` per unit mass between a unit impulse along `f` at arm `rf` and the velocity
-    /// along `e` of the point at arm `re`: `e . f + m (re x e) . I_w^-1 (rf x f)`.
-    pub(super) fn delassus(&self, re: &Vector<T>, e: &Vector<T>, rf: &Vector<T>, f: &Vector<T>) -> T {
-        let turn = inverse_inertia_times(self.body, self.orientation, &cross(rf, f));
-        dot(e, f) + self.body.mass * dot(&cross(re, e), &turn)
-    }
-
-    /// The body's velocity and angular velocity after each active contact's impulse `p` (per unit
-    /// mass, world axes): `v~ + sum p`, `omega~ + m I_w^-1 sum r x p`.
-    pub(super) fn moved(
-        &self,
-        p: &[Vector<T>; K],
-        v_free: &Vector<T>,
-        w_free: &Vector<T>,
-    ) -> (Vector<T>, Vector<T>) {
-        let (mut push, mut twist) = ([T::zero(); 3], [T::zero(); 3]);
-        for (c, p) in self.touches.iter().zip(p).filter(|(c, _)| c.active) {
-            push = add(&push, p);
-            twist = add(&twist, &cross(&c.arm, p));
-        }
-        let turn = inverse_inertia_times(self.body, self.orientation, &twist);
-        (add(v_free, &push), add(w_free, &scale(self.body.mass, &turn)))
-    }
-
-    /// Contact `c`'s slip at velocity `v` and angular velocity `w`: its point's velocity less the
-    /// support's ([`Touch::carried`]), in the plane.
-    pub(super) fn slip(&self, v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
-        let u = sub(&add(v, &cross(w, &c.arm)), &c.carried);
-        sub(&u, &scale(dot(&self.normal, &u), &self.normal))
-    }
-
+impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// Solves the step: the LCP of every contact's line, warm-started from `basis` (which it
     /// leaves at the last answer's), the lines turned until every active contact's slip runs
-    /// along its line, each answer checked against the circular cone.
+    /// along its line, each answer checked against the circular cone. The bodies' motion after
+    /// the impulses on the free motion `free`, and each contact's report.
     ///
     /// # Errors
     /// [`StepError::Solver`], [`StepError::ConeNotConverged`], [`StepError::ConeUnverified`].
-    pub fn solve<const N: usize>(
+    pub fn solve_lines<const N: usize>(
         &self,
         solver: &Lemke<T, N>,
         basis: &mut Basis<N>,
         pivots: &mut u32,
-        v_free: &Vector<T>,
-        w_free: &Vector<T>,
-    ) -> Result<Solved<T, K>, StepError> {
-        let n = self.normal;
+        free: &Motion<T, B>,
+    ) -> Result<([SpatialContactReport<T>; K], Motion<T, B>), StepError> {
         let zero = [T::zero(); 3];
         let mut lines = self.touches.map(|c| Line {
             d: match c.rest_line {
                 Some(d) if norm(&c.slip_free) <= self.slip_tolerance => d,
-                _ => direction(&c.slip_free).unwrap_or_else(|| perpendicular(&n)),
+                _ => direction(&c.slip_free).unwrap_or_else(|| perpendicular(&c.normal)),
             },
         });
         // The worst slip across a line not held at the last try; whether the lines have been
@@ -134,12 +112,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             for (i, (c, line)) in self.touches.iter().zip(&lines).enumerate() {
                 if c.active {
                     let (pn, pt) = (sol.z[4 * i], sol.z[4 * i + 1] - sol.z[4 * i + 2]);
-                    full[i] = add(&scale(pn, &n), &scale(pt, &line.d));
+                    full[i] = add(&scale(pn, &c.normal), &scale(pt, &line.d));
                     impulses[i] = (pn, pt);
                 }
             }
-            let (v, w) = self.moved(&full, v_free, w_free);
-            let slip = |c: &Touch<T>| self.slip(&v, &w, c);
+            let motion = self.moved_all(&full, free);
+            let slip = |c: &Touch<T>| self.slip_in(&motion, c);
             // After a restart, a contact slipping within the stick speed reads sticking, as its
             // report does: the cone alone holds it (its slip's direction is not asked for).
             let resting: [bool; K] = core::array::from_fn(|i| {
@@ -150,7 +128,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 // An unloaded contact carries no friction on any line.
                 !c.active
                     || impulses[i].0 <= T::zero()
-                    || dot(&slip(c), &cross(&n, &lines[i].d)).abs_exact() <= self.slip_tolerance
+                    || dot(&slip(c), &cross(&c.normal, &lines[i].d)).abs_exact() <= self.slip_tolerance
                     || resting[i]
             });
             if held.iter().all(|&h| h) {
@@ -165,22 +143,48 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                             self.report(pn, &scale(pt, &lines[i].d), &slip(c), c.mu, (tries, bound, true))?;
                     }
                 }
-                return Ok((reports, v, w));
+                return Ok((reports, motion));
             }
             let slips: [Vector<T>; K] = core::array::from_fn(|i| slip(&self.touches[i]));
-            let worst = (0..K)
-                .filter(|&i| !held[i])
-                .fold(T::zero(), |a, i| max(a, dot(&slips[i], &cross(&n, &lines[i].d)).abs_exact()));
+            let worst = self
+                .touches
+                .iter()
+                .zip(&slips)
+                .zip(&lines)
+                .zip(&held)
+                .filter(|(_, h)| !**h)
+                .fold(T::zero(), |a, (((c, s), line), _)| {
+                    max(a, dot(s, &cross(&c.normal, &line.d)).abs_exact())
+                });
             let stalled = tries % RESTART_EVERY == 0 && worst * T::of(4.0) > last_worst;
             last_worst = worst;
             if stalled {
                 restarted = true;
-                self.restart(&mut lines, &full, v_free, w_free);
+                self.restart(&mut lines, &full, free);
             } else {
                 self.turn::<N>(&mut lines, &impulses, &slips, &resting);
             }
         }
         Err(StepError::ConeNotConverged)
+    }
+}
+
+impl<T: Real, const K: usize> Contacts<'_, T, K> {
+    /// [`Self::solve_lines`] for the one body, on its free velocity `v_free` and angular velocity
+    /// `w_free`.
+    ///
+    /// # Errors
+    /// As [`Self::solve_lines`].
+    pub fn solve<const N: usize>(
+        &self,
+        solver: &Lemke<T, N>,
+        basis: &mut Basis<N>,
+        pivots: &mut u32,
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> Result<Solved<T, K>, StepError> {
+        let (reports, [(v, w)]) = self.solve_lines(solver, basis, pivots, &[(*v_free, *w_free)])?;
+        Ok((reports, v, w))
     }
 
     /// Solves the step with each contact's friction in a pyramid of `k` directions fixed in the
@@ -240,7 +244,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 for (j, cj) in self.touches.iter().enumerate().filter(|(_, c)| c.active) {
                     for c in 0..=k {
                         let fc = if c == 0 { n } else { edge(c - 1) };
-                        put(&mut m, b + a, size * j + c, self.delassus(&ci.arm, &ea, &cj.arm, &fc));
+                        put(&mut m, b + a, size * j + c, self.delassus(ci, &ea, cj, &fc));
                     }
                 }
                 if a > 0 {
@@ -279,30 +283,27 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         }
         Ok((reports, v, w))
     }
+}
 
+impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The LCP of the contacts' lines: per contact the rows of `p_n`, `p_+d`, `p_-d` and
     /// `sigma`; a contact beyond the margin's rows `w = z + 1` (its impulse zero). Each entry is
     /// [`Self::delassus`]'s, its two factors computed once a contact and direction (`r x e` and
     /// `I_w^-1 (r x f)`: `6 K` turns, not `4 K^2`), in place in the problem's matrix.
     fn lcp<const N: usize>(&self, lines: &[Line<T>; K]) -> Lcp<T, N> {
-        let (n, o, one) = (self.normal, T::zero(), T::one());
+        let (o, one) = (T::zero(), T::one());
         let mut lcp = Lcp::<T, N>::new(nalgebra::SMatrix::zeros(), nalgebra::SVector::zeros());
-        // Per contact, along the normal then its line: `r x e` and `I_w^-1 (r x e)`.
-        let levers: [[(Vector<T>, Vector<T>); 2]; K] = core::array::from_fn(|i| {
-            let (arm, d) = (&self.touches[i].arm, &lines[i].d);
-            [n, *d].map(|e| {
-                let lever = cross(arm, &e);
-                (lever, inverse_inertia_times(self.body, self.orientation, &lever))
-            })
+        // Per contact, along its normal then its line: each side's `r x e` and `I_w^-1 (r x e)`.
+        let sides = core::array::from_fn::<_, K, _>(|i| {
+            let c = &self.touches[i];
+            [self.sides(c, &c.normal), self.sides(c, &lines[i].d)]
         });
-        let mass = self.body.mass;
         let mut set = |r: usize, c: usize, v: T| {
             if let Some(e) = lcp.m.get_mut((r, c)) {
                 *e = v;
             }
         };
-        for (i, ((ci, li), [(ln_i, _), (ld_i, _)])) in self.touches.iter().zip(lines).zip(&levers).enumerate()
-        {
+        for (i, ((ci, li), [sn_i, sd_i])) in self.touches.iter().zip(lines).zip(&sides).enumerate() {
             let b = 4 * i;
             if !ci.active {
                 for k in b..b + 4 {
@@ -310,18 +311,16 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 }
                 continue;
             }
-            for (j, ((cj, lj), [(_, tn_j), (_, td_j)])) in
-                self.touches.iter().zip(lines).zip(&levers).enumerate()
-            {
+            for (j, ((cj, lj), [sn_j, sd_j])) in self.touches.iter().zip(lines).zip(&sides).enumerate() {
                 if !cj.active {
                     continue;
                 }
                 let c = 4 * j;
-                let (di, dj) = (&li.d, &lj.d);
-                let wnn = dot(&n, &n) + mass * dot(ln_i, tn_j);
-                let wnd = dot(&n, dj) + mass * dot(ln_i, td_j);
-                let wdn = dot(di, &n) + mass * dot(ld_i, tn_j);
-                let wdd = dot(di, dj) + mass * dot(ld_i, td_j);
+                let (ni, nj, di, dj) = (&ci.normal, &cj.normal, &li.d, &lj.d);
+                let wnn = self.coupling(sn_i, ni, sn_j, nj);
+                let wnd = self.coupling(sn_i, ni, sd_j, dj);
+                let wdn = self.coupling(sd_i, di, sn_j, nj);
+                let wdd = self.coupling(sd_i, di, sd_j, dj);
                 set(b, c, wnn);
                 set(b, c + 1, wnd);
                 set(b, c + 2, -wnd);
@@ -386,7 +385,6 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         slips: &[Vector<T>; K],
         resting: &[bool; K],
     ) {
-        let n = self.normal;
         let (zero, one) = (T::zero(), T::one());
         let loaded: [bool; K] = core::array::from_fn(|i| self.touches[i].active && impulses[i].0 > zero);
         let saturated: [bool; K] = core::array::from_fn(|i| {
@@ -400,12 +398,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         // its line: its slip's direction is not asked for, its friction follows its normal
         // impulse.
         let kept: [bool; K] = core::array::from_fn(|i| resting[i] && saturated[i]);
-        let across: [Vector<T>; K] = core::array::from_fn(|i| cross(&n, &lines[i].d));
+        let across: [Vector<T>; K] = core::array::from_fn(|i| cross(&self.touches[i].normal, &lines[i].d));
         // Unknowns `3 i`, `3 i + 1`, `3 i + 2` of contact `i`: `(dp_n, dtheta, -)` sliding,
         // `(dp_n, dq_d, dq_a)` sticking; an unknown no contact uses has the row `x = 0`.
         // `N = 4 K >= 3 K`. The impulse's change per unit of unknown `3 j + k`.
         let effect = |j: usize, k: usize| -> Vector<T> {
-            let (pn, pt) = impulses[j];
+            let ((pn, pt), n) = (impulses[j], self.touches[j].normal);
             match (saturated[j], k) {
                 (true, 0) => add(&n, &scale(pt / pn, &lines[j].d)),
                 (false, 0) => n,
@@ -426,11 +424,11 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             put(&mut jac, row, row, one);
         }
         for i in (0..K).filter(|&i| loaded[i]) {
-            let ri = &self.touches[i].arm;
+            let ci = &self.touches[i];
             // Contact i's conditions: its normal row (closed at the LCP's answer: no residual);
             // sliding, the slip across its line; sticking, its slip across and along `d`.
             let conditions: [(usize, Vector<T>, T); 3] = [
-                (3 * i, n, zero),
+                (3 * i, ci.normal, zero),
                 (3 * i + 1, across[i], -dot(&across[i], &slips[i])),
                 (3 * i + 2, lines[i].d, -dot(&lines[i].d, &slips[i])),
             ];
@@ -443,7 +441,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 for j in (0..K).filter(|&j| loaded[j]) {
                     for k in 0..used(j) {
                         let f = effect(j, k);
-                        let w = self.delassus(ri, &e, &self.touches[j].arm, &f);
+                        let w = self.delassus(ci, &e, &self.touches[j], &f);
                         add_to(&mut jac, row, 3 * j + k, w);
                     }
                 }
@@ -471,35 +469,28 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// normal impulse that closes its row (`p_n >= 0`), then the friction that stops its slip
     /// (its tangential block of `W` inverted) held to the disc `|p_t| <= mu p_n`. Each active
     /// contact's line is then its friction's direction (kept where it has none).
-    fn restart(
-        &self,
-        lines: &mut [Line<T>; K],
-        full: &[Vector<T>; K],
-        v_free: &Vector<T>,
-        w_free: &Vector<T>,
-    ) {
-        let n = self.normal;
+    fn restart(&self, lines: &mut [Line<T>; K], full: &[Vector<T>; K], free: &Motion<T, B>) {
         let zero = T::zero();
         let mut p = *full;
-        let (mut v, mut w) = self.moved(&p, v_free, w_free);
+        let mut motion = self.moved_all(&p, free);
         let local: [Local<T>; K] = core::array::from_fn(|i| {
             let c = &self.touches[i];
-            let r = &c.arm;
-            let bias = c.normal_free - dot(&n, &sub(&add(v_free, &cross(w_free, r)), &c.carried));
+            let n = c.normal;
+            let bias = c.normal_free - dot(&n, &self.velocity(free, c));
             let t1 = lines[i].d;
             let t2 = cross(&n, &t1);
-            let (a11, a12) = (self.delassus(r, &t1, r, &t1), self.delassus(r, &t1, r, &t2));
-            let (a21, a22) = (self.delassus(r, &t2, r, &t1), self.delassus(r, &t2, r, &t2));
+            let (a11, a12) = (self.delassus(c, &t1, c, &t1), self.delassus(c, &t1, c, &t2));
+            let (a21, a22) = (self.delassus(c, &t2, c, &t1), self.delassus(c, &t2, c, &t2));
             let det = a11 * a22 - a12 * a21;
             let inverse = if det > zero { [a22 / det, -a12 / det, -a21 / det, a11 / det] } else { [zero; 4] };
-            (bias, t1, t2, self.delassus(r, &n, r, &n), inverse)
+            (bias, t1, t2, self.delassus(c, &n, c, &n), inverse)
         });
         for _ in 0..RESTART_SWEEPS {
             for ((c, &(bias, t1, t2, wnn, [b11, b12, b21, b22])), p) in
                 self.touches.iter().zip(&local).zip(p.iter_mut()).filter(|((c, _), _)| c.active)
             {
-                let r = &c.arm;
-                let u = sub(&add(&v, &cross(&w, r)), &c.carried);
+                let n = c.normal;
+                let u = self.velocity(&motion, c);
                 let pn_now = dot(&n, p);
                 let pn = if wnn > zero { max(pn_now - (dot(&n, &u) + bias) / wnn, zero) } else { pn_now };
                 let (s1, s2) = (dot(&t1, &u), dot(&t2, &u));
@@ -512,13 +503,11 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 }
                 let change = sub(&add(&scale(pn, &n), &next), p);
                 *p = add(p, &change);
-                v = add(&v, &change);
-                let turn = inverse_inertia_times(self.body, self.orientation, &cross(r, &change));
-                w = add(&w, &scale(self.body.mass, &turn));
+                self.push(&mut motion, c, &change);
             }
         }
         for ((line, c), p) in lines.iter_mut().zip(self.touches).zip(&p) {
-            if let Some(d) = direction(&sub(p, &scale(dot(&n, p), &n))).filter(|_| c.active) {
+            if let Some(d) = direction(&sub(p, &scale(dot(&c.normal, p), &c.normal))).filter(|_| c.active) {
                 line.d = d;
             }
         }
@@ -580,7 +569,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         } else {
             Mode::Sliding
         };
-        let m = self.body.mass;
+        let m = self.mass;
         Ok(SpatialContactReport {
             mode,
             normal_impulse: pn * m,

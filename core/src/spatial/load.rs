@@ -252,9 +252,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 if !touching[i] {
                     return [zero; 3];
                 }
-                let turn =
-                    inverse_inertia_times(self.body, self.orientation, &cross(&self.touches[i].arm, &e[i]));
-                out_of_plane(&e[i], &scale(self.body.mass, &turn))
+                let turn = inverse_inertia_times(
+                    self.body(),
+                    self.orientation(),
+                    &cross(&self.touches[i].arm, &e[i]),
+                );
+                out_of_plane(&e[i], &scale(self.body().mass, &turn))
             });
             let Some((x, held)) = self.held_load(
                 solver, basis, pivots, &columns, touching, g, &e, v_free, w_free, feasible, stop,
@@ -394,7 +397,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     fn pivot_friction(&self, c: &Touch<T>, slip: &Vector<T>, limit: T, axes: [Vector<T>; 2]) -> Vector<T> {
         // `D_ab = t_a . t_b + m (r x t_a) . I_w^-1 (r x t_b)` (`Self::delassus`), each turn once.
         let turn = axes.map(|t| {
-            scale(self.body.mass, &inverse_inertia_times(self.body, self.orientation, &cross(&c.arm, &t)))
+            scale(
+                self.body().mass,
+                &inverse_inertia_times(self.body(), self.orientation(), &cross(&c.arm, &t)),
+            )
         });
         let delassus: [[T; 2]; 2] = core::array::from_fn(|a| {
             core::array::from_fn(|b| dot(&axes[a], &axes[b]) + dot(&cross(&c.arm, &axes[a]), &turn[b]))

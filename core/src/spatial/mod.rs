@@ -132,6 +132,7 @@ mod direct;
 mod friction;
 mod load;
 mod report;
+mod space;
 mod stepper;
 mod supported;
 

@@ -5,6 +5,7 @@ use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport, SpatialStepReport};
+use super::space::Frame;
 use crate::ParamError;
 use crate::StepError;
 use crate::lcp::{Basis, Lemke};
@@ -325,6 +326,9 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
                 carried: [T::zero(); 3],
                 rest_line: None,
                 mu,
+                normal: n,
+                body: 0,
+                beneath: None,
             }
         });
         let (state, contacts, pivots) =
@@ -377,8 +381,8 @@ impl<T: Real, const N: usize> Solve<T, N> {
         let mut pivots = 0;
         let (contacts, v, w) = if touches.iter().any(|c: &Touch<T>| c.active) {
             let contacts = Contacts {
-                body,
-                orientation: &st.orientation,
+                bodies: [Frame { body, orientation: &st.orientation, inverse_mass: T::one() }],
+                mass: body.mass,
                 normal: n,
                 touches,
                 // The round-off of slips and of the cone's conditions: `256 eps` of the step's

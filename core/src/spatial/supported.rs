@@ -319,6 +319,9 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
                     carried: [T::zero(); 3],
                     rest_line: None,
                     mu: T::zero(),
+                    normal: n,
+                    body: 0,
+                    beneath: None,
                 };
             };
             finite &= super::algebra::finite(&support.position) && super::algebra::finite(&support.velocity);
@@ -338,6 +341,9 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
                 carried: support.velocity,
                 rest_line: Some(axis),
                 mu,
+                normal: n,
+                body: 0,
+                beneath: None,
             }
         });
         if !finite {

@@ -1,0 +1,181 @@
+//! The bodies a step's contacts push: how an impulse at one contact moves the others (the
+//! Delassus operator `W`), and the bodies' motion after the impulses, for one body on a plane or
+//! supports (`B = 1`) and for several bodies resting on each other.
+//!
+//! Contact `i` pushes its body `a` with `+p` at the arm `r_a` from `a`'s centre of mass and, when
+//! it rests on another body `b` (not a fixed plane or support), pushes `b` with `-p` at the arm
+//! `r_b`; its velocity is `a`'s point's less `b`'s point's less the support's material's
+//! ([`Touch::carried`]). Impulses are per unit of a reference mass `m0` (the first body's): a
+//! body of mass `m` and world inertia `I_w` moves by `(m0 / m) p` and turns by `m0 I_w^-1 (r x
+//! p)`, and
+//!
+//! ```text
+//! e . W_ij f = sum over the bodies c both contacts push, s_i s_j [ (m0 / m_c) e . f
+//!              + m0 (r_ic x e) . I_c^-1 (r_jc x f) ]
+//! ```
+//!
+//! (`s = +1` for a contact's body, `-1` for the one beneath it). With one body `m0 / m = 1` and the
+//! sum has one term: the one-body operator of `super`'s module docs (2), to the bit.
+
+use super::algebra::{Quaternion, Vector, add, cross, dot, scale, sub};
+use super::body::{Body, inverse_inertia_times};
+use super::friction::{Contacts, Touch};
+use crate::real::Real;
+
+/// A body the contacts push: its inertia, its orientation at the step's start, and its inverse
+/// mass per unit of the reference mass (`m0 / m`; 1 for the reference body itself).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Frame<'a, T> {
+    pub body: &'a Body<T>,
+    pub orientation: &'a Quaternion<T>,
+    pub inverse_mass: T,
+}
+
+/// Each body's velocity and angular velocity, world axes.
+pub(super) type Motion<T, const B: usize> = [(Vector<T>, Vector<T>); B];
+
+/// One side of a contact along one direction `e` (a body it pushes, `sign` the impulse's on it):
+/// `r x e` and `I_w^-1 (r x e)`, computed once a contact and direction for the LCP's entries.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Side<T> {
+    body: usize,
+    pushed: bool,
+    lever: Vector<T>,
+    turn: Vector<T>,
+}
+
+impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
+    /// The sides of contact `c` along `e`: its body's, then the one beneath it (if any).
+    pub(super) fn sides(&self, c: &Touch<T>, e: &Vector<T>) -> [Option<Side<T>>; 2] {
+        let side = |body: usize, pushed: bool, arm: &Vector<T>| {
+            let frame = self.bodies.get(body)?;
+            let lever = cross(arm, e);
+            Some(Side {
+                body,
+                pushed,
+                lever,
+                turn: inverse_inertia_times(frame.body, frame.orientation, &lever),
+            })
+        };
+        [side(c.body, true, &c.arm), c.beneath.and_then(|(b, arm)| side(b, false, &arm))]
+    }
+
+    /// `e . W f` (module docs) from the [`Self::sides`] of the contacts along `e` and `f`.
+    pub(super) fn coupling(
+        &self,
+        a: &[Option<Side<T>>; 2],
+        e: &Vector<T>,
+        b: &[Option<Side<T>>; 2],
+        f: &Vector<T>,
+    ) -> T {
+        let mut total = T::zero();
+        for sa in a.iter().flatten() {
+            for sb in b.iter().flatten().filter(|sb| sb.body == sa.body) {
+                let inverse_mass = self.bodies.get(sa.body).map_or(T::zero(), |frame| frame.inverse_mass);
+                let term = inverse_mass * dot(e, f) + self.mass * dot(&sa.lever, &sb.turn);
+                total = if sa.pushed == sb.pushed { total + term } else { total - term };
+            }
+        }
+        total
+    }
+
+    /// `e . W f` between a unit impulse along `f` at contact `cf` and contact `ce`'s velocity
+    /// along `e` (module docs): [`Self::coupling`] reads `ce`'s levers and `cf`'s turns only.
+    pub(super) fn delassus(&self, ce: &Touch<T>, e: &Vector<T>, cf: &Touch<T>, f: &Vector<T>) -> T {
+        let levers = |body: usize, pushed: bool, arm: &Vector<T>| {
+            Some(Side { body, pushed, lever: cross(arm, e), turn: [T::zero(); 3] })
+        };
+        let at_e = [levers(ce.body, true, &ce.arm), ce.beneath.and_then(|(b, arm)| levers(b, false, &arm))];
+        self.coupling(&at_e, e, &self.sides(cf, f), f)
+    }
+
+    /// Contact `c`'s velocity in `motion`: its body's point's less the one beneath's less the
+    /// support's material's.
+    pub(super) fn velocity(&self, motion: &Motion<T, B>, c: &Touch<T>) -> Vector<T> {
+        let at = |body: usize, arm: &Vector<T>| {
+            motion.get(body).map_or([T::zero(); 3], |(v, w)| add(v, &cross(w, arm)))
+        };
+        let mut u = at(c.body, &c.arm);
+        if let Some((b, arm)) = c.beneath {
+            u = sub(&u, &at(b, &arm));
+        }
+        sub(&u, &c.carried)
+    }
+
+    /// Contact `c`'s slip in `motion`: its velocity's part in its plane.
+    pub(super) fn slip_in(&self, motion: &Motion<T, B>, c: &Touch<T>) -> Vector<T> {
+        let u = self.velocity(motion, c);
+        sub(&u, &scale(dot(&c.normal, &u), &c.normal))
+    }
+
+    /// The motion after each active contact's impulse `p` (per unit reference mass, world axes)
+    /// on the motion `free`.
+    pub(super) fn moved_all(&self, p: &[Vector<T>; K], free: &Motion<T, B>) -> Motion<T, B> {
+        let (mut push, mut twist) = ([[T::zero(); 3]; B], [[T::zero(); 3]; B]);
+        for (c, p) in self.touches.iter().zip(p).filter(|(c, _)| c.active) {
+            if let (Some(v), Some(w)) = (push.get_mut(c.body), twist.get_mut(c.body)) {
+                *v = add(v, p);
+                *w = add(w, &cross(&c.arm, p));
+            }
+            if let Some((b, arm)) = c.beneath
+                && let (Some(v), Some(w)) = (push.get_mut(b), twist.get_mut(b))
+            {
+                *v = sub(v, p);
+                *w = sub(w, &cross(&arm, p));
+            }
+        }
+        let mut motion = *free;
+        for (((frame, (v, w)), push), twist) in self.bodies.iter().zip(&mut motion).zip(&push).zip(&twist) {
+            let turn = inverse_inertia_times(frame.body, frame.orientation, twist);
+            (*v, *w) = (add(v, &scale(frame.inverse_mass, push)), add(w, &scale(self.mass, &turn)));
+        }
+        motion
+    }
+
+    /// Adds contact `c`'s impulse `change` (per unit reference mass) to `motion`.
+    pub(super) fn push(&self, motion: &mut Motion<T, B>, c: &Touch<T>, change: &Vector<T>) {
+        let mut apply = |body: usize, arm: &Vector<T>, change: &Vector<T>| {
+            if let (Some(frame), Some((v, w))) = (self.bodies.get(body), motion.get_mut(body)) {
+                *v = add(v, &scale(frame.inverse_mass, change));
+                let turn = inverse_inertia_times(frame.body, frame.orientation, &cross(arm, change));
+                *w = add(w, &scale(self.mass, &turn));
+            }
+        };
+        apply(c.body, &c.arm, change);
+        if let Some((b, arm)) = c.beneath {
+            apply(b, &arm, &scale(-T::one(), change));
+        }
+    }
+}
+
+impl<T: Real, const K: usize> Contacts<'_, T, K> {
+    /// The one body.
+    pub(super) fn body(&self) -> &Body<T> {
+        let [frame] = &self.bodies;
+        frame.body
+    }
+
+    /// The one body's orientation at the step's start.
+    pub(super) fn orientation(&self) -> &Quaternion<T> {
+        let [frame] = &self.bodies;
+        frame.orientation
+    }
+
+    /// The body's velocity and angular velocity after each active contact's impulse `p` (per unit
+    /// mass, world axes): `v~ + sum p`, `omega~ + m I_w^-1 sum r x p`.
+    pub(super) fn moved(
+        &self,
+        p: &[Vector<T>; K],
+        v_free: &Vector<T>,
+        w_free: &Vector<T>,
+    ) -> (Vector<T>, Vector<T>) {
+        let [(v, w)] = self.moved_all(p, &[(*v_free, *w_free)]);
+        (v, w)
+    }
+
+    /// Contact `c`'s slip at velocity `v` and angular velocity `w`: its point's velocity less the
+    /// support's ([`Touch::carried`]), in the plane.
+    pub(super) fn slip(&self, v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
+        self.slip_in(&[(*v, *w)], c)
+    }
+}
