@@ -62,9 +62,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         &self,
         lcp: &Lcp<T, N>,
         basis: Basis<N>,
-    ) -> Option<(SVector<T, N>, u32)> {
+    ) -> Option<(SVector<T, N>, u64)> {
         let zero = T::zero();
-        let mask = basis.z_mask();
+        let mask = basis.z_bits();
         // The padding rows' `z` are never basic in the contacts' answer.
         if mask.checked_shr(u32::try_from(4 * K).unwrap_or(u32::MAX)).unwrap_or(0) != 0 {
             return None;
@@ -75,7 +75,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // rows and their `sigma`.
         let (mut unknowns, mut rows, mut m) = ([none; N], [0usize; N], 0usize);
         let (mut sigmas, mut slides) = ([(0usize, 0usize); K], 0usize);
-        let mut tied = 0u32;
+        let mut tied = 0u64;
         let mut push = |unknown: Unknown<T>, row: usize| {
             if let (Some(u), Some(r)) = (unknowns.get_mut(m), rows.get_mut(m)) {
                 (*u, *r) = (unknown, row);
@@ -93,7 +93,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                     let (friction, other) = if bits == 0b0011 { (b + 1, b + 2) } else { (b + 2, b + 1) };
                     push(plain(b), b);
                     push(plain(friction), friction);
-                    tied |= 1u32.checked_shl(u32::try_from(other).unwrap_or(u32::MAX)).unwrap_or(0);
+                    tied |= 1u64.checked_shl(u32::try_from(other).unwrap_or(u32::MAX)).unwrap_or(0);
                 }
                 (true, 0b1011 | 0b1101) => {
                     let friction = if bits == 0b1011 { b + 1 } else { b + 2 };
