@@ -16,7 +16,7 @@
 
 use nalgebra::SVector;
 
-use super::friction::Contacts;
+use super::friction::{Contacts, solved};
 use crate::StepError;
 use crate::lcp::elimination::solve_leading;
 use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
@@ -42,14 +42,38 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     ) -> Result<LcpSolution<T, N>, StepError> {
         // A lone contact's basis is of at most three unknowns: Lemke's own direct solve of it.
         let reduced = if K > 1 { self.basis_solution(lcp, basis) } else { None };
-        match reduced {
+        let lemke = match reduced {
             Some((z, tied)) => match solver.accept(lcp, &z, basis, tied) {
-                Some(sol) => Ok(sol),
+                Some(sol) => return Ok(sol),
                 None => solver.solve_from_basis(lcp, basis),
             },
             None => solver.solve_warm(lcp, basis),
+        };
+        match lemke {
+            Ok(sol) => Ok(sol),
+            // A face on a face (several bodies: `B > 1`): Lemke's pivots through the open loads'
+            // singular bases; the basis of the problem made strictly copositive, then that
+            // basis' least-norm solution, verified on the problem itself.
+            Err(e) if K > 1 && B > 1 => self.open_load(solver, lcp).ok_or(StepError::Solver(e)),
+            Err(e) => Err(StepError::Solver(e)),
         }
-        .map_err(StepError::Solver)
+    }
+
+    /// The answer of an LCP whose loads are open (module docs of `super::stack`): Lemke's method
+    /// on `M + delta I` (`delta = sqrt(eps) ||M||`, strictly copositive: Lemke's method processes
+    /// it) for a basis, that basis' reduced system solved for its least-norm solution, and the
+    /// answer accepted only as [`Lemke::accept`] accepts any (on `lcp` itself). `None` otherwise.
+    fn open_load<const N: usize>(&self, solver: &Lemke<T, N>, lcp: &Lcp<T, N>) -> Option<LcpSolution<T, N>> {
+        let delta = T::EPS.sqrt_rounded() * max(lcp.m_norm_inf(), T::TINY);
+        let mut regularized = *lcp;
+        for i in 0..N {
+            if let Some(e) = regularized.m.get_mut((i, i)) {
+                *e += delta;
+            }
+        }
+        let basis = solver.solve(&regularized).ok()?.basis;
+        let (z, tied) = self.basis_solution(lcp, basis)?;
+        solver.accept(lcp, &z, basis, tied)
     }
 
     /// The complementary solution of `basis` for `lcp` by its reduced system (module docs): `None`
@@ -122,8 +146,15 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             }
             *x_k = -lcp.q.get(row).copied().unwrap_or(zero);
         }
+        let (system, rhs) = (a, x);
         if !solve_leading(&mut a, &mut x, m, T::of(N as f64) * T::EPS * max(largest, T::TINY)) {
-            return None;
+            // Four or more coplanar points of a face on a face (several bodies) leave the basis'
+            // loads open: its solution of least norm (the load rule, `super`'s module docs, "The
+            // load"). One body's singular basis goes to Lemke's method.
+            if B == 1 {
+                return None;
+            }
+            x = least_norm(&system, &rhs, m)?;
         }
         let mut z = SVector::<T, N>::zeros();
         for (u, &value) in unknowns.iter().zip(&x).take(m) {
@@ -148,3 +179,51 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         Some((z, tied))
     }
 }
+
+/// The least-norm solution of the leading `m x m` system `a x = b` (consistent, possibly
+/// singular) by iterated Tikhonov regularisation: from `x = 0`, [`LEAST_NORM_SWEEPS`] times `x +=
+/// (A^T A + mu I)^-1 A^T (b - A x)`, `mu = sqrt(eps)` of `A^T A`'s largest diagonal entry. Each
+/// sweep shrinks the error along a singular direction of value `s` by `mu / (s^2 + mu)`; a null
+/// direction, which `A^T` never reaches, stays zero: the least-norm solution. `None` when the
+/// residual is not within `N eps` of `|A| |x| + |b|` (an inconsistent or too ill-conditioned
+/// system).
+fn least_norm<T: Real, const N: usize>(a: &[[T; N]; N], b: &[T; N], m: usize) -> Option<[T; N]> {
+    let zero = T::zero();
+    let mut normal = [[zero; N]; N];
+    let mut largest = zero;
+    for (r, row) in normal.iter_mut().enumerate().take(m) {
+        for (c, e) in row.iter_mut().enumerate().take(m) {
+            *e = a.iter().take(m).fold(zero, |acc, ak| acc + ak[r] * ak[c]);
+        }
+        largest = max(largest, row[r]);
+    }
+    let mu = T::EPS.sqrt_rounded() * max(largest, T::TINY);
+    for (r, row) in normal.iter_mut().enumerate() {
+        row[r] = if r < m { row[r] + mu } else { T::one() };
+    }
+    let mut x = [zero; N];
+    let residual = |x: &[T; N]| -> [T; N] {
+        core::array::from_fn(|r| {
+            if r < m { b[r] - a[r].iter().zip(x).take(m).fold(zero, |acc, (a, x)| acc + *a * *x) } else { zero }
+        })
+    };
+    for _ in 0..LEAST_NORM_SWEEPS {
+        let r = residual(&x);
+        let rhs: [T; N] =
+            core::array::from_fn(|c| if c < m { a.iter().zip(&r).take(m).fold(zero, |acc, (ak, rk)| acc + ak[c] * *rk) } else { zero });
+        let step = solved(normal, rhs);
+        for (x, s) in x.iter_mut().zip(&step).take(m) {
+            *x += *s;
+        }
+    }
+    let r = residual(&x);
+    let scale = a.iter().zip(b).take(m).fold(zero, |acc, (row, bk)| {
+        let size = row.iter().zip(&x).take(m).fold(zero, |s, (a, x)| s + (*a * *x).abs_exact());
+        max(acc, size + bk.abs_exact())
+    });
+    let worst = r.iter().fold(zero, |acc, r| max(acc, r.abs_exact()));
+    (worst <= T::of(N as f64) * T::EPS * max(scale, T::TINY)).then_some(x)
+}
+
+/// The sweeps of [`least_norm`].
+const LEAST_NORM_SWEEPS: u32 = 8;

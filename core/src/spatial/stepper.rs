@@ -5,7 +5,7 @@ use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport, SpatialStepReport};
-use super::space::Frame;
+use super::space::{Frame, Motion};
 use crate::ParamError;
 use crate::StepError;
 use crate::lcp::{Basis, Lemke};
@@ -416,22 +416,42 @@ impl<T: Real, const N: usize> Solve<T, N> {
         } else {
             ([SpatialContactReport::separated(); K], *v_free, *w_free)
         };
-        // A body whose moments are equal (a sphere) has `I_w = I` at every orientation: its
-        // angular velocity is its momentum's, unchanged, with no round-off of the turns.
-        let [ia, ib, ic] = body.inertia;
-        let (orientation, angular_velocity) = if ia == ib && ib == ic {
-            (turned(&st.orientation, &w, h), w)
-        } else {
-            let momentum = inertia_times(body, &st.orientation, &w);
-            let half = turned(&st.orientation, &w, h * T::of(0.5));
-            let orientation = turned(&st.orientation, &inverse_inertia_times(body, &half, &momentum), h);
-            (orientation, inverse_inertia_times(body, &orientation, &momentum))
-        };
-        let state =
-            State { position: advanced(&st.position, h, &v), orientation, velocity: v, angular_velocity };
+        let state = moved_state(body, st, v, w, h);
         if !state.is_finite() {
             return Err(StepError::NonFinite);
         }
         Ok((state, contacts, pivots))
     }
+
+    /// The impulses of `contacts` on the bodies' free motion `free` ([`Contacts::solve_lines`],
+    /// warm-started from the last step's basis), the pivots added to `pivots`.
+    ///
+    /// # Errors
+    /// As [`Contacts::solve_lines`].
+    pub(super) fn lines<const K: usize, const B: usize>(
+        &mut self,
+        contacts: &Contacts<'_, T, K, B>,
+        free: &Motion<T, B>,
+        pivots: &mut u32,
+    ) -> Result<([SpatialContactReport<T>; K], Motion<T, B>), StepError> {
+        contacts.solve_lines(&self.solver, &mut self.basis, pivots, free)
+    }
+}
+
+/// The body at `st` after a step `h` at velocity `v` and angular velocity `w` (`super`'s module
+/// docs, 4): `x + h v`, the turn at the midpoint's angular velocity of the momentum `I_w w`, and
+/// the angular velocity of that momentum at the new orientation.
+pub(super) fn moved_state<T: Real>(body: &Body<T>, st: &State<T>, v: Vector<T>, w: Vector<T>, h: T) -> State<T> {
+    // A body whose moments are equal (a sphere) has `I_w = I` at every orientation: its
+    // angular velocity is its momentum's, unchanged, with no round-off of the turns.
+    let [ia, ib, ic] = body.inertia;
+    let (orientation, angular_velocity) = if ia == ib && ib == ic {
+        (turned(&st.orientation, &w, h), w)
+    } else {
+        let momentum = inertia_times(body, &st.orientation, &w);
+        let half = turned(&st.orientation, &w, h * T::of(0.5));
+        let orientation = turned(&st.orientation, &inverse_inertia_times(body, &half, &momentum), h);
+        (orientation, inverse_inertia_times(body, &orientation, &momentum))
+    };
+    State { position: advanced(&st.position, h, &v), orientation, velocity: v, angular_velocity }
 }

@@ -14,6 +14,7 @@ mod billiard;
 mod curling;
 mod meter_stick_3d;
 mod puck;
+mod stack_3d;
 mod view;
 
 pub use billiard::{Billiard, BilliardParams};
@@ -22,6 +23,7 @@ pub use meter_stick_3d::{
     FingerSwitch, MeterStick3d, MeterStick3dParams, ROD_EVENTS, ROD_POINTS, ROD_ROWS, finger_modes,
 };
 pub use puck::{Puck, PuckParams};
+pub use stack_3d::{Stack3d, Stack3d2, Stack3d3, Stack3dParams};
 pub use view::{SeenContact, SpatialSeen, SpatialView};
 
 use crate::RunStats;
