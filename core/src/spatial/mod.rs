@@ -129,6 +129,7 @@
 mod algebra;
 mod body;
 mod direct;
+mod face_patch;
 mod friction;
 mod load;
 mod report;
@@ -138,6 +139,7 @@ mod supported;
 pub use crate::StepError;
 pub use algebra::{Quaternion, Vector, about, cross, dot, identity, norm, perpendicular, rotate};
 pub use body::{Body, State};
+pub use face_patch::{Beneath, FaceContact, FacePatch, PatchOverflow, SCRATCH, face_patch};
 pub use report::{MAX_DIRECTIONS, Mode, SpatialContactReport, SpatialStepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper};
 pub use supported::{FaceTouch, Finger, LowerFace, SupportPoint, SupportedStepper};

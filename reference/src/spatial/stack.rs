@@ -108,24 +108,33 @@ pub struct StackRun {
     pub table_impulse: f64,
 }
 
-/// A block's state.
+/// A block's state (world frame, `z` up).
 #[derive(Debug, Clone, Copy)]
-struct Block {
-    x: V3,
-    q: Quat,
-    v: V3,
-    omega: V3,
+pub struct Block {
+    /// Centre of mass, m.
+    pub x: V3,
+    /// Orientation, the unit quaternion `[w, x, y, z]` from the block's frame to the world's.
+    pub q: Quat,
+    /// Velocity, m/s.
+    pub v: V3,
+    /// Angular velocity, rad/s, world axes.
+    pub omega: V3,
 }
 
 /// An active contact: its upper block, its lower one (`None`: the table), the point, the unit
 /// normal on the upper block, the gap.
 #[derive(Debug, Clone, Copy)]
-struct Contact {
-    upper: usize,
-    lower: Option<usize>,
-    point: V3,
-    normal: V3,
-    gap: f64,
+pub struct Contact {
+    /// The upper block's index.
+    pub upper: usize,
+    /// The lower block's index, `None` for the table.
+    pub lower: Option<usize>,
+    /// Where the impulse acts, world, m.
+    pub point: V3,
+    /// Unit, world: the push on the upper block.
+    pub normal: V3,
+    /// The gap along `normal`, m.
+    pub gap: f64,
 }
 
 impl Stack3d {
@@ -194,7 +203,8 @@ impl Stack3d {
     }
 
     /// The start: the harmonic offsets along `d`, each block turned by `psi` about `z`.
-    fn start(&self) -> Vec<Block> {
+    #[must_use]
+    pub fn start(&self) -> Vec<Block> {
         let n = self.blocks;
         let d = [self.heading.cos(), self.heading.sin(), 0.0];
         let q = [(0.5 * self.heading).cos(), 0.0, 0.0, (0.5 * self.heading).sin()];
@@ -255,7 +265,8 @@ fn clip(poly: &[Vertex], a: [f64; 2], b: f64) -> Vec<Vertex> {
 /// normal. A vertex that is the upper face's corner is that corner on the lower face (the lower
 /// face's normal); any other (the lower face's corner, the table's edge, where two edges cross)
 /// is the lower body's point on the upper face (the upper face's normal, turned up).
-fn contacts(p: &Stack3d, blocks: &[Block]) -> Vec<Contact> {
+#[must_use]
+pub fn contacts(p: &Stack3d, blocks: &[Block]) -> Vec<Contact> {
     let half = p.half();
     let merge = 64.0 * f64::EPSILON * (p.length + p.width);
     let mut out = Vec::new();
