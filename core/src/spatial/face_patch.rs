@@ -16,16 +16,25 @@
 //! 1. **The overlap.** The upper face's corners, taken in the order `(-a, -b)`, `(a, -b)`, `(a, b)`,
 //!    `(-a, b)`, are projected along `n_l` onto the lower face's plane, `(s, t) = ((P - centre) .
 //!    e_s, (P - centre) . e_t)`, and the quadrilateral is clipped by the lower face's half-planes
-//!    (Sutherland & Hodgman: for each half-plane `f <= 0` in turn, in the order `s <= a_l`, `-s
-//!    <= a_l`, `t <= b_l`, `-t <= b_l`, or the table's `s <= 0`, each vertex kept when `f <= 0`,
-//!    a point on the line added where an edge's ends lie on its two sides, at `prev + f_prev /
-//!    (f_prev - f_cur) (cur - prev)`). A kept vertex of the quadrilateral is an *upper corner*;
-//!    every added one (a lower corner, a point of the table's edge, two edges crossing) is not.
+//!    (Sutherland & Hodgman), for each half-plane `f <= 0` in turn, in the order `s <= a_l`, `-s
+//!    <= a_l`, `t <= b_l`, `-t <= b_l`, or the table's `s <= 0`. A vertex within `delta = 64 eps
+//!    (2 a + 2 b)` of the line (`|f| <= delta`; `64 eps` of the upper face's length plus width) is
+//!    on it, and kept; one with `f < -delta` is kept; one with `f > delta` is dropped; where an
+//!    edge's ends lie beyond `delta` on the line's two sides a point of the line is added, at
+//!    `prev + f_prev / (f_prev - f_cur) (cur - prev)`. A kept vertex of the quadrilateral is an
+//!    *upper corner*; every added one (a lower corner, a point of the table's edge, two edges
+//!    crossing) is not.
+//!
+//!    The band makes blocks of one width standing edge on edge (the stack's start, and any tilt
+//!    about the blocks' common `e`) one overlap whatever the round-off: without it, the side of
+//!    the line each of the two corners of a side falls on is round-off's, and a corner a hair
+//!    outside with its neighbour a hair inside puts a crossing anywhere along the side between
+//!    them (two implementations rounding differently find four vertices or five, and a corner or
+//!    a crossing, whose normals differ by the blocks' relative tilt). A corner carried past the
+//!    side beyond the band is clipped away, and the crossing beside it takes its place.
 //! 2. **Coinciding vertices.** Consecutive vertices (the last and the first included) within
-//!    `64 eps (2 a + 2 b)` of each other (`64 eps` of the upper face's length plus width) are one
-//!    vertex: an upper corner where one of them is (the upper face's), otherwise the first. A
-//!    corner a tilt carries just past a side of the lower face is clipped away, and the crossing
-//!    beside it takes its place.
+//!    `delta` of each other are one vertex: an upper corner where one of them is (the upper
+//!    face's), otherwise the first.
 //! 3. **Facing.** When `n_u . n_l <= 0` the faces do not face each other: no contacts.
 //! 4. **Each vertex** `(s, t)`, the lower face's point `Q = centre + s e_s + t e_t`, the upper
 //!    face's height over it along `n_l`, `lambda = n_u . (x_u - c n_u - Q) / (n_u . n_l)`:
@@ -39,8 +48,8 @@
 //!
 //! # Fixed sizes
 //!
-//! Clipping a polygon of `n` vertices by a half-plane keeps `k` of them and adds one per change of
-//! side along its boundary, at most `2 min(k, n - k)` of them: at most `3 n / 2` in all, however
+//! Clipping a polygon of `n` vertices by a half-plane keeps `k` of them and adds one per edge from
+//! a kept vertex to a dropped one or back, at most `2 min(k, n - k)` of them: at most `3 n / 2` in all, however
 //! round-off bends the polygon (a convex one gains at most one). The quadrilateral's four clips
 //! hold at most `4, 6, 9, 13, 19` vertices ([`SCRATCH`]), so no vertex is ever lost; at most `C`
 //! active contacts fit a [`FacePatch`], and more is [`PatchOverflow`] (eight when the lower face
@@ -159,8 +168,26 @@ impl<T: Real> HalfPlane<T> {
     }
 }
 
-/// `poly` clipped to `plane` (Sutherland & Hodgman; module docs, 1).
-fn clip<T: Real>(poly: &Polygon<T>, plane: HalfPlane<T>) -> Result<Polygon<T>, PatchOverflow> {
+/// Where a vertex lies from a half-plane's line: beyond `band` of it (`In` or `Out`) or on it.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Side {
+    In,
+    On,
+    Out,
+}
+
+/// `poly` clipped to `plane` (Sutherland & Hodgman, a vertex within `band` of the line on it; the
+/// module docs, 1).
+fn clip<T: Real>(poly: &Polygon<T>, plane: HalfPlane<T>, band: T) -> Result<Polygon<T>, PatchOverflow> {
+    let side = |f: T| {
+        if f > band {
+            Side::Out
+        } else if f < -band {
+            Side::In
+        } else {
+            Side::On
+        }
+    };
     let mut out = Polygon::new();
     let push = |v: Vertex<T>, out: &mut Polygon<T>| {
         out.push(v).map_err(|_| PatchOverflow { capacity: SCRATCH, needed: SCRATCH + 1 })
@@ -170,16 +197,13 @@ fn clip<T: Real>(poly: &Polygon<T>, plane: HalfPlane<T>) -> Result<Polygon<T>, P
     };
     for cur in poly {
         let (fp, fc) = (plane.side(&prev), plane.side(cur));
-        let (prev_in, cur_in) = (fp <= T::zero(), fc <= T::zero());
-        if prev_in != cur_in {
+        let (sp, sc) = (side(fp), side(fc));
+        if matches!((sp, sc), (Side::In, Side::Out) | (Side::Out, Side::In)) {
             let k = fp / (fp - fc);
-            let at = [
-                prev.at[0] + k * (cur.at[0] - prev.at[0]),
-                prev.at[1] + k * (cur.at[1] - prev.at[1]),
-            ];
+            let at = [prev.at[0] + k * (cur.at[0] - prev.at[0]), prev.at[1] + k * (cur.at[1] - prev.at[1])];
             push(Vertex { at, upper_corner: false }, &mut out)?;
         }
-        if cur_in {
+        if sc != Side::Out {
             push(*cur, &mut out)?;
         }
         prev = *cur;
@@ -236,12 +260,19 @@ impl<T: Real> Below<T> {
                 let mut planes = Vec::new();
                 // One plane into a vector of four: cannot fail.
                 planes.push(HalfPlane { axis: 0, sign: one, limit: zero }).unwrap_or(());
-                Self { centre: [zero; 3], axes: [[one, zero, zero], [zero, one, zero], [zero, zero, one]], planes }
+                Self {
+                    centre: [zero; 3],
+                    axes: [[one, zero, zero], [zero, one, zero], [zero, zero, one]],
+                    planes,
+                }
             }
             Beneath::Block { state, half } => {
                 let q = &state.orientation;
-                let axes =
-                    [rotate(q, &[one, zero, zero]), rotate(q, &[zero, one, zero]), rotate(q, &[zero, zero, one])];
+                let axes = [
+                    rotate(q, &[one, zero, zero]),
+                    rotate(q, &[zero, one, zero]),
+                    rotate(q, &[zero, zero, one]),
+                ];
                 let centre = add(&state.position, &scale(half[2], &axes[2]));
                 let planes = Vec::from_array([
                     HalfPlane { axis: 0, sign: one, limit: half[0] },
@@ -287,10 +318,10 @@ pub fn face_patch<T: Real, const C: usize>(
         // Four corners into nineteen places: cannot fail.
         poly.push(Vertex { at: [dot(&r, &e_s), dot(&r, &e_t)], upper_corner: true }).unwrap_or(());
     }
-    for plane in &lower.planes {
-        poly = clip(&poly, *plane)?;
-    }
     let merge = T::of(64.0) * T::EPS * two * (half[0] + half[1]);
+    for plane in &lower.planes {
+        poly = clip(&poly, *plane, merge)?;
+    }
     let mut needed = 0;
     for v in &merged(&poly, merge) {
         let on_lower = add(&lower.centre, &add(&scale(v.at[0], &e_s), &scale(v.at[1], &e_t)));

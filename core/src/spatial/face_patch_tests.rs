@@ -26,11 +26,9 @@ fn half<T: Real>(h: [f64; 3]) -> Vector<T> {
 }
 
 /// The contact of `patch` at `point` (within `tol`), which must be there.
-fn at<'p, T: Real>(patch: &'p [FaceContact<T>], point: [f64; 3], tol: f64) -> &'p FaceContact<T> {
-    let found: Vec<_> = patch
-        .iter()
-        .filter(|c| (0..3).all(|i| (c.point[i].as_f64() - point[i]).abs() <= tol))
-        .collect();
+fn at<T: Real>(patch: &[FaceContact<T>], point: [f64; 3], tol: f64) -> &FaceContact<T> {
+    let found: Vec<_> =
+        patch.iter().filter(|c| (0..3).all(|i| (c.point[i].as_f64() - point[i]).abs() <= tol)).collect();
     assert_eq!(found.len(), 1, "one contact at {point:?} in {patch:?}");
     found[0]
 }
@@ -95,8 +93,9 @@ fn heading_30<T: Real>(tol: f64) {
     let upper = state::<T>(centre, [0.0, 0.0, 1.0], psi);
     let patch: FacePatch<T, 6> = face_patch(&upper, &half(HALF), Beneath::Table, T::of(MARGIN)).unwrap();
     assert_eq!(patch.len(), 5, "{patch:?}");
-    let corner =
-        |sx: f64, sy: f64| [0, 1, 2].map(|i| centre[i] + sx * HALF[0] * d[i] + sy * HALF[1] * e[i] - [0.0, 0.0, HALF[2]][i]);
+    let corner = |sx: f64, sy: f64| {
+        [0, 1, 2].map(|i| centre[i] + sx * HALF[0] * d[i] + sy * HALF[1] * e[i] - [0.0, 0.0, HALF[2]][i])
+    };
     let past = corner(1.0, -1.0);
     assert!(past[0] > 0.0);
     for (sx, sy) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
@@ -197,4 +196,32 @@ fn face_patch_too_small_for_its_contacts_is_an_error_not_a_drop() {
     let upper = state::<f32>([0.0, 0.0, 0.025], [0.0, 0.0, 1.0], 0.0);
     let err = face_patch::<f32, 3>(&upper, &half(HALF), Beneath::Table, 1e-3).unwrap_err();
     assert_eq!(err, PatchOverflow { capacity: 3, needed: 4 });
+}
+
+/// Blocks of one width edge on edge at heading 30 degrees, the upper `o = 0.05` further along
+/// `d`: the overlap is `-a <= u <= a - o`, `|w| <= b` of the upper's own axes, its two corners
+/// at `u = -a` the upper face's, the two at `u = a - o` the lower's. Moved across by `delta`
+/// within the band (`64 eps (2 a + 2 b)`, 4.3e-15 m) its sides are still on the lower's: the same
+/// four vertices; moved by 1e-13 m the corners on that side are clipped, crossings in their place.
+#[test]
+fn face_patch_of_blocks_of_one_width_edge_on_edge_is_four_vertices_whatever_the_round_off() {
+    let psi = 30f64.to_radians();
+    let (s, c) = psi.sin_cos();
+    let [a, b, hz] = HALF;
+    let o = 0.05;
+    let lower = state::<f64>([0.0, 0.0, hz], [0.0, 0.0, 1.0], psi);
+    let below = Beneath::Block { state: &lower, half: HALF };
+    for delta in [-3e-15, -1e-15, 0.0, 1e-15, 3e-15, 1e-13] {
+        let centre = [o * c - delta * s, o * s + delta * c, 3.0 * hz];
+        let upper = state::<f64>(centre, [0.0, 0.0, 1.0], psi);
+        let patch: FacePatch<f64, 8> = face_patch(&upper, &HALF, below, MARGIN).unwrap();
+        assert_eq!(patch.len(), 4, "delta {delta}: {patch:?}");
+        for (u, w, upper_corner) in [(-a, -b, true), (-a, b, true), (a - o, -b, false), (a - o, b, false)] {
+            let w = if delta > 1e-14 && w > 0.0 { w - delta } else { w };
+            let point = [centre[0] + u * c - w * s, centre[1] + u * s + w * c, 2.0 * hz];
+            let found = at(patch.as_slice(), point, 1e-15);
+            let expected = upper_corner && !(delta > 1e-14 && w > 0.0);
+            assert_eq!(found.upper_corner, expected, "delta {delta}: {found:?}");
+        }
+    }
 }
