@@ -51,9 +51,10 @@
 //! Clipping a polygon of `n` vertices by a half-plane keeps `k` of them and adds one per edge from
 //! a kept vertex to a dropped one or back, at most `2 min(k, n - k)` of them: at most `3 n / 2` in all, however
 //! round-off bends the polygon (a convex one gains at most one). The quadrilateral's four clips
-//! hold at most `4, 6, 9, 13, 19` vertices ([`SCRATCH`]), so no vertex is ever lost; at most `C`
-//! active contacts fit a [`FacePatch`], and more is [`PatchOverflow`] (eight when the lower face
-//! is a block's and the two rectangles overlap in an octagon, six on the table's edge).
+//! hold at most `4, 6, 9, 13, 19` vertices ([`SCRATCH`]), so no vertex is ever lost. At most `C`
+//! active contacts fit a [`FacePatch`], and more is [`PatchOverflow`]: two rectangles overlap in
+//! at most an octagon, a rectangle cut by the table's edge in at most a pentagon (a convex polygon
+//! gains at most one vertex a clip), so `C = 8` holds every patch of the stack.
 
 use super::algebra::{Vector, add, dot, rotate, scale, sub};
 use super::body::State;
