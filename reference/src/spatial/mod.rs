@@ -89,7 +89,10 @@ pub use scenes::{
     BILLIARD_QUANTITIES, Billiard, Keep, OnePoint, PUCK_QUANTITIES, Puck, run_billiard, run_billiard_keeping,
     run_puck, run_puck_keeping,
 };
-pub use stack::{LOAD_SETS, Stack3d, StackRun, run_stack_3d_keeping};
+pub use stack::{
+    Block as StackBlock, Contact as StackContact, LOAD_SETS, Stack3d, StackRun, contacts as stack_contacts,
+    run_stack_3d_keeping,
+};
 
 /// The most steps a run may take (`ceil(max_time / h)`): `10^7`.
 pub const MAX_STEPS: u64 = 10_000_000;

@@ -108,24 +108,33 @@ pub struct StackRun {
     pub table_impulse: f64,
 }
 
-/// A block's state.
+/// A block's state (world frame, `z` up).
 #[derive(Debug, Clone, Copy)]
-struct Block {
-    x: V3,
-    q: Quat,
-    v: V3,
-    omega: V3,
+pub struct Block {
+    /// Centre of mass, m.
+    pub x: V3,
+    /// Orientation, the unit quaternion `[w, x, y, z]` from the block's frame to the world's.
+    pub q: Quat,
+    /// Velocity, m/s.
+    pub v: V3,
+    /// Angular velocity, rad/s, world axes.
+    pub omega: V3,
 }
 
 /// An active contact: its upper block, its lower one (`None`: the table), the point, the unit
 /// normal on the upper block, the gap.
 #[derive(Debug, Clone, Copy)]
-struct Contact {
-    upper: usize,
-    lower: Option<usize>,
-    point: V3,
-    normal: V3,
-    gap: f64,
+pub struct Contact {
+    /// The upper block's index.
+    pub upper: usize,
+    /// The lower block's index, `None` for the table.
+    pub lower: Option<usize>,
+    /// Where the impulse acts, world, m.
+    pub point: V3,
+    /// Unit, world: the push on the upper block.
+    pub normal: V3,
+    /// The gap along `normal`, m.
+    pub gap: f64,
 }
 
 impl Stack3d {
@@ -194,7 +203,8 @@ impl Stack3d {
     }
 
     /// The start: the harmonic offsets along `d`, each block turned by `psi` about `z`.
-    fn start(&self) -> Vec<Block> {
+    #[must_use]
+    pub fn start(&self) -> Vec<Block> {
         let n = self.blocks;
         let d = [self.heading.cos(), self.heading.sin(), 0.0];
         let q = [(0.5 * self.heading).cos(), 0.0, 0.0, (0.5 * self.heading).sin()];
@@ -228,21 +238,23 @@ const SIGNS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]
 type Vertex = ([f64; 2], bool);
 
 /// The polygon `poly` clipped to the half-plane `a . (s, t) <= b` (Sutherland & Hodgman): its
-/// points inside (on the line included) and where its edges cross the line.
-fn clip(poly: &[Vertex], a: [f64; 2], b: f64) -> Vec<Vertex> {
-    let inside = |v: &Vertex| a[0] * v.0[0] + a[1] * v.0[1] <= b;
+/// points inside, those within `band` of the line counting as on it (kept, no crossing beside
+/// them), and where its edges cross the line from beyond `band` on one side to beyond it on the
+/// other.
+fn clip(poly: &[Vertex], a: [f64; 2], b: f64, band: f64) -> Vec<Vertex> {
+    let f = |v: &Vertex| a[0] * v.0[0] + a[1] * v.0[1] - b;
     let mut out = Vec::new();
     for (i, cur) in poly.iter().enumerate() {
         let prev = &poly[(i + poly.len() - 1) % poly.len()];
-        let (fp, fc) = (a[0] * prev.0[0] + a[1] * prev.0[1] - b, a[0] * cur.0[0] + a[1] * cur.0[1] - b);
-        if inside(cur) != inside(prev) {
+        let (fp, fc) = (f(prev), f(cur));
+        if (fp < -band && fc > band) || (fp > band && fc < -band) {
             let t = fp / (fp - fc);
             out.push((
                 [prev.0[0] + t * (cur.0[0] - prev.0[0]), prev.0[1] + t * (cur.0[1] - prev.0[1])],
                 false,
             ));
         }
-        if inside(cur) {
+        if fc <= band {
             out.push(*cur);
         }
     }
@@ -251,11 +263,13 @@ fn clip(poly: &[Vertex], a: [f64; 2], b: f64) -> Vec<Vertex> {
 
 /// The active contacts of docs/scenes.md, "stack-3d", "Contacts": each pair's overlap of the
 /// upper block's bottom face, projected along the lower face's normal, with the lower face (the
-/// table's `x <= 0`); at each vertex the upper face's height over the lower one along its
+/// table's `x <= 0`), a vertex within `64 eps (L + W)` of a side on it, coinciding vertices one
+/// (the upper face's corner where one is); at each vertex the upper face's height over the lower one along its
 /// normal. A vertex that is the upper face's corner is that corner on the lower face (the lower
 /// face's normal); any other (the lower face's corner, the table's edge, where two edges cross)
 /// is the lower body's point on the upper face (the upper face's normal, turned up).
-fn contacts(p: &Stack3d, blocks: &[Block]) -> Vec<Contact> {
+#[must_use]
+pub fn contacts(p: &Stack3d, blocks: &[Block]) -> Vec<Contact> {
     let half = p.half();
     let merge = 64.0 * f64::EPSILON * (p.length + p.width);
     let mut out = Vec::new();
@@ -284,16 +298,26 @@ fn contacts(p: &Stack3d, blocks: &[Block]) -> Vec<Contact> {
             Some(_) => {
                 [([1.0, 0.0], half[0]), ([-1.0, 0.0], half[0]), ([0.0, 1.0], half[1]), ([0.0, -1.0], half[1])]
                     .iter()
-                    .fold(face, |poly, &(a, limit)| clip(&poly, a, limit))
+                    .fold(face, |poly, &(a, limit)| clip(&poly, a, limit, merge))
             }
-            None => clip(&face, [1.0, 0.0], 0.0),
+            None => clip(&face, [1.0, 0.0], 0.0, merge),
         };
-        poly.dedup_by(|a, b| (a.0[0] - b.0[0]).hypot(a.0[1] - b.0[1]) <= merge);
+        // Coinciding vertices are one, the upper face's corner where one of them is.
+        poly.dedup_by(|later, kept| {
+            let same = (later.0[0] - kept.0[0]).hypot(later.0[1] - kept.0[1]) <= merge;
+            if same && later.1 && !kept.1 {
+                *kept = *later;
+            }
+            same
+        });
         if poly.len() > 1
             && (poly[0].0[0] - poly[poly.len() - 1].0[0]).hypot(poly[0].0[1] - poly[poly.len() - 1].0[1])
                 <= merge
         {
-            poly.pop();
+            let last = poly.pop().unwrap_or(poly[0]);
+            if last.1 && !poly[0].1 {
+                poly[0] = last;
+            }
         }
         for ([s, t], is_corner) in poly {
             let on_lower = plus(centre, plus(times(s, axes[0]), times(t, axes[1])));
