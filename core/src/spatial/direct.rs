@@ -59,21 +59,61 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         }
     }
 
-    /// The answer of an LCP whose loads are open (module docs of `super::stack`): Lemke's method
-    /// on `M + delta I` (`delta = sqrt(eps) ||M||`, strictly copositive: Lemke's method processes
-    /// it) for a basis, that basis' reduced system solved for its least-norm solution, and the
-    /// answer accepted only as [`Lemke::accept`] accepts any (on `lcp` itself). `None` otherwise.
+    /// The answer of an LCP whose loads are open (`super::stack`'s module docs, "The load"), where
+    /// Lemke's method pivoted through their singular bases and failed: Lemke's method on `M +
+    /// delta I` (`delta = sqrt(eps) ||M||`: strictly copositive, which it always processes) for a
+    /// basis; that basis' system `M_bb z_b = -q_b` solved for its least-norm solution (round-off's
+    /// negative entries zero), held to [`Lemke::accept`]'s residual on `lcp` itself (every row
+    /// tied: the backward error of Lemke's own verification); else, the basis not one of `lcp`'s,
+    /// Lemke's method on `lcp` from it ([`Lemke::solve_from_basis`]). `None` when neither
+    /// verifies.
     fn open_load<const N: usize>(&self, solver: &Lemke<T, N>, lcp: &Lcp<T, N>) -> Option<LcpSolution<T, N>> {
-        let delta = T::EPS.sqrt_rounded() * max(lcp.m_norm_inf(), T::TINY);
-        let mut regularized = *lcp;
-        for i in 0..N {
-            if let Some(e) = regularized.m.get_mut((i, i)) {
-                *e += delta;
+        let mut delta = T::EPS.sqrt_rounded() * max(lcp.m_norm_inf(), T::TINY);
+        for _ in 0..OPEN_LOAD_TRIES {
+            let mut regularized = *lcp;
+            for i in 0..N {
+                if let Some(e) = regularized.m.get_mut((i, i)) {
+                    *e += delta;
+                }
+            }
+            delta *= T::of(1.0 / 16.0);
+            let Ok(sol) = solver.solve(&regularized) else { continue };
+            if let Some(answer) = Self::least_norm_of(solver, lcp, sol.basis) {
+                return Some(answer);
+            }
+            if let Ok(answer) = solver.solve_from_basis(lcp, sol.basis) {
+                return Some(answer);
             }
         }
-        let basis = solver.solve(&regularized).ok()?.basis;
-        let (z, tied) = self.basis_solution(lcp, basis)?;
-        solver.accept(lcp, &z, basis, tied)
+        None
+    }
+
+    /// The least-norm solution of `basis`' system `M_bb z_b = -q_b` over its basic `z`, round-off's
+    /// negative entries zero, held to [`Lemke::accept`]'s residual on `lcp` (every row tied: the
+    /// backward error of Lemke's own verification). `None` when the system has no solution or it
+    /// does not verify.
+    fn least_norm_of<const N: usize>(solver: &Lemke<T, N>, lcp: &Lcp<T, N>, basis: Basis<N>) -> Option<LcpSolution<T, N>> {
+        let (mut index, mut m) = ([0usize; N], 0usize);
+        for i in (0..N).filter(|&i| basis.is_z_basic(i)) {
+            if let Some(slot) = index.get_mut(m) {
+                *slot = i;
+                m += 1;
+            }
+        }
+        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(T::zero());
+        let system: [[T; N]; N] = core::array::from_fn(|r| {
+            core::array::from_fn(|c| if r < m && c < m { entry(index[r], index[c]) } else { T::zero() })
+        });
+        let rhs: [T; N] =
+            core::array::from_fn(|r| if r < m { -lcp.q.get(index[r]).copied().unwrap_or(T::zero()) } else { T::zero() });
+        let x = least_norm(&system, &rhs, m)?;
+        let mut z = SVector::<T, N>::zeros();
+        for (&i, &value) in index.iter().zip(&x).take(m) {
+            if let Some(slot) = z.get_mut(i) {
+                *slot = max(value, T::zero());
+            }
+        }
+        solver.accept(lcp, &z, basis, u64::MAX)
     }
 
     /// The complementary solution of `basis` for `lcp` by its reduced system (module docs): `None`
@@ -224,6 +264,9 @@ fn least_norm<T: Real, const N: usize>(a: &[[T; N]; N], b: &[T; N], m: usize) ->
     let worst = r.iter().fold(zero, |acc, r| max(acc, r.abs_exact()));
     (worst <= T::of(N as f64) * T::EPS * max(scale, T::TINY)).then_some(x)
 }
+
+/// The regularisations an open load tries (`Contacts::open_load`), each a sixteenth of the last.
+const OPEN_LOAD_TRIES: u32 = 5;
 
 /// The sweeps of [`least_norm`].
 const LEAST_NORM_SWEEPS: u32 = 8;

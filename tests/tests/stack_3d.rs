@@ -1,0 +1,174 @@
+//! The core's stack in three dimensions (`docs/scenes.md`, "stack-3d") against its laws and two
+//! things it shares no code with: the independent f64 reference's stack (`reference/src/spatial/
+//! stack.rs`: its own geometry, rotation algebra, cone and solver), step by step, and the planar
+//! engine's stack (`crate::multibody`) at heading 0.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::float_cmp)]
+
+use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack2, Stack3, StackParams};
+use meterstick_core::scene::Outcome;
+use meterstick_core::scene::spatial::{Stack3d, Stack3d2, Stack3d3, Stack3dParams};
+use meterstick_core::spatial::{State, rotate};
+use meterstick_core::Real;
+use meterstick_reference::spatial::{Keep, Stack3d as Reference, run_stack_3d_keeping};
+
+/// Each step's blocks (positions and orientations' `x` and `z` axes), the core's run to its
+/// outcome at `p` with `B` blocks.
+fn core_run<T: Real, const B: usize, const K: usize, const N: usize>(
+    p: Stack3dParams<T>,
+) -> (Outcome, Vec<[State<T>; B]>) {
+    let mut scene = Stack3d::<T, B, K, N>::new(p).expect("valid");
+    let mut rows = vec![*scene.stepper().states()];
+    while let Some(report) = scene.step() {
+        rows.push(report.states);
+    }
+    (scene.outcome().expect("an outcome"), rows)
+}
+
+/// The reference's parameters for the core's `p`.
+fn reference_of(p: &Stack3dParams<f64>, blocks: usize) -> Reference {
+    Reference {
+        blocks,
+        length: p.length,
+        width: p.width,
+        height: p.height,
+        mass: p.mass,
+        mu_s: p.mu_static,
+        mu_k: p.mu_kinetic,
+        overhang: p.overhang,
+        heading: p.heading,
+        g: p.gravity,
+        h: p.step,
+        stick_speed: p.stick_speed,
+        tilt_limit: p.tilt_limit,
+        drop_limit: p.drop_limit,
+        margin: p.contact_margin,
+        max_time: p.max_time,
+    }
+}
+
+/// The largest distance between the core's and the reference's block centres, and between their
+/// blocks' turned axes, over every step both took.
+fn apart<const B: usize>(core: &[[State<f64>; B]], p: &Stack3dParams<f64>) -> (Outcome, usize, f64, f64) {
+    let reference = run_stack_3d_keeping(&reference_of(p, B), Keep::All).expect("the reference answers");
+    let (mut position, mut turn) = (0.0f64, 0.0f64);
+    for (row, (_, xs, qs)) in core.iter().zip(&reference.trajectory) {
+        for (st, (x, q)) in row.iter().zip(xs.iter().zip(qs)) {
+            position = position.max((0..3).map(|k| (st.position[k] - x[k]).abs()).fold(0.0, f64::max));
+            // The reference's quaternion `[w, x, y, z]`, as the core's: twice the distance of the
+            // nearer of `q` and `-q`, the angle between the two to first order.
+            let gap = |sign: f64| st.orientation.iter().zip(q).map(|(a, b)| (a - sign * b).powi(2)).sum::<f64>();
+            turn = turn.max(2.0 * gap(1.0).min(gap(-1.0)).sqrt());
+        }
+    }
+    let outcome = match reference.outcome {
+        meterstick_reference::spatial::Outcome::Fell => Outcome::Fell,
+        meterstick_reference::spatial::Outcome::Held => Outcome::Held,
+        other => panic!("the reference's stack ended {other:?}"),
+    };
+    (outcome, reference.trajectory.len(), position, turn)
+}
+
+/// 2 and 3 blocks at headings -45 to 60 degrees, f64: held at 0.98 (over 0.3 s) and fallen at
+/// 1.02, as the reference, step for step: the same outcome after the same steps, every block
+/// centre within 1e-9 m and every orientation within 1e-9 rad of the reference's.
+#[test]
+fn the_stack_follows_the_reference_at_every_heading() {
+    for heading in [0.0f64, 15.0, 30.0, -45.0, 60.0] {
+        for overhang in [0.98, 1.02] {
+            let p = Stack3dParams::<f64> { overhang, heading: heading.to_radians(), max_time: 0.3, ..Default::default() };
+            let expected = if overhang < 1.0 { Outcome::Held } else { Outcome::Fell };
+            let (outcome, rows) = core_run::<f64, 2, 13, 52>(p);
+            let (ref_outcome, ref_rows, position, turn) = apart(&rows, &p);
+            println!("2 blocks at {heading} deg, s = {overhang}: {outcome:?} after {} steps; reference {ref_outcome:?} after {}; apart {position:.1e} m, {turn:.1e} rad", rows.len() - 1, ref_rows - 1);
+            assert_eq!((outcome, ref_outcome), (expected, expected), "2 blocks at {heading} deg, s = {overhang}");
+            assert_eq!(rows.len(), ref_rows, "2 blocks at {heading} deg, s = {overhang}: steps");
+            assert!(position <= 1e-9 && turn <= 1e-9, "2 blocks at {heading} deg, s = {overhang}: {position:e} m, {turn:e} rad");
+            let (outcome, rows) = core_run::<f64, 3, 16, 64>(p);
+            let (ref_outcome, ref_rows, position, turn) = apart(&rows, &p);
+            println!("3 blocks at {heading} deg, s = {overhang}: {outcome:?} after {} steps; reference {ref_outcome:?} after {}; apart {position:.1e} m, {turn:.1e} rad", rows.len() - 1, ref_rows - 1);
+            assert_eq!((outcome, ref_outcome), (expected, expected), "3 blocks at {heading} deg, s = {overhang}");
+            assert_eq!(rows.len(), ref_rows, "3 blocks at {heading} deg, s = {overhang}: steps");
+            assert!(position <= 1e-9 && turn <= 1e-9, "3 blocks at {heading} deg, s = {overhang}: {position:e} m, {turn:e} rad");
+        }
+    }
+}
+
+/// In f32: held at 0.98 and fallen at 1.02 at every heading, 2 and 3 blocks.
+#[test]
+fn in_f32_the_stack_holds_at_098_and_falls_at_102() {
+    for heading in [0.0f32, 15.0, 30.0, -45.0, 60.0] {
+        for (overhang, expected) in [(0.98f32, Outcome::Held), (1.02, Outcome::Fell)] {
+            let p = Stack3dParams::<f32> { overhang, heading: heading.to_radians(), max_time: 0.3, ..Default::default() };
+            assert_eq!(core_run::<f32, 2, 13, 52>(p).0, expected, "2 blocks at {heading} deg, s = {overhang}");
+            assert_eq!(core_run::<f32, 3, 16, 64>(p).0, expected, "3 blocks at {heading} deg, s = {overhang}");
+        }
+    }
+}
+
+/// At heading 0 the stack is the planar one (`docs/scenes.md`, "stack-3d", law 2): each block's
+/// centre `(x, 0, z)` the planar block's `(x, y)`, its axis `x` turned to `(cos theta, 0, sin
+/// theta)`, to 1e-9 over every step, held and falling; the same outcome after the same steps.
+#[test]
+fn at_heading_zero_the_stack_is_the_planar_stack() {
+    fn compare<const B: usize>(core: &[[State<f64>; B]], planar: &[[meterstick_core::planar::BodyState<f64>; B]]) -> f64 {
+        let mut worst = 0.0f64;
+        for (row, flat) in core.iter().zip(planar) {
+            for (st, b) in row.iter().zip(flat) {
+                let axis = rotate(&st.orientation, &[1.0, 0.0, 0.0]);
+                for (a, e) in [
+                    (st.position[0], b.x),
+                    (st.position[1], 0.0),
+                    (st.position[2], b.y),
+                    (axis[0], b.theta.cos()),
+                    (axis[1], 0.0),
+                    (axis[2], b.theta.sin()),
+                ] {
+                    worst = worst.max((a - e).abs());
+                }
+            }
+        }
+        worst
+    }
+    for overhang in [0.98, 1.02] {
+        let p = Stack3dParams::<f64> { overhang, max_time: 0.3, ..Default::default() };
+        let flat = StackParams::<f64> { overhang, max_time: 0.3, ..Default::default() };
+        let (outcome, rows) = core_run::<f64, 2, 13, 52>(p);
+        let mut planar = Stack2::<f64>::new(flat).expect("valid");
+        let mut planar_rows = vec![*planar.states()];
+        while let Some(report) = planar.step() {
+            planar_rows.push(report.states);
+        }
+        let worst = compare(&rows, &planar_rows);
+        println!("2 blocks, s = {overhang}: {outcome:?} after {} steps, planar {:?} after {}; apart {worst:.1e}", rows.len() - 1, planar.outcome(), planar_rows.len() - 1);
+        assert_eq!((Some(outcome), rows.len()), (planar.outcome(), planar_rows.len()), "2 blocks, s = {overhang}");
+        assert!(worst <= 1e-9, "2 blocks, s = {overhang}: {worst:e}");
+        let (outcome, rows) = core_run::<f64, 3, 16, 64>(p);
+        let mut planar = Stack3::<f64>::new(flat).expect("valid");
+        let mut planar_rows = vec![*planar.states()];
+        while let Some(report) = planar.step() {
+            planar_rows.push(report.states);
+        }
+        let worst = compare(&rows, &planar_rows);
+        println!("3 blocks, s = {overhang}: {outcome:?} after {} steps, planar {:?} after {}; apart {worst:.1e}", rows.len() - 1, planar.outcome(), planar_rows.len() - 1);
+        assert_eq!((Some(outcome), rows.len()), (planar.outcome(), planar_rows.len()), "3 blocks, s = {overhang}");
+        assert!(worst <= 1e-9, "3 blocks, s = {overhang}: {worst:e}");
+    }
+}
+
+/// The stack's parameters are refused by name: a heading beyond 60 degrees, a block count other
+/// than 2 or 3, a kinetic coefficient above the static one.
+#[test]
+fn bad_parameters_are_refused_by_name() {
+    use meterstick_core::ParamError;
+    let p = Stack3dParams::<f64>::default();
+    assert_eq!(
+        Stack3d2::<f64>::new(Stack3dParams { heading: 61f64.to_radians(), ..p }).err(),
+        Some(ParamError::OutOfRange("heading"))
+    );
+    assert_eq!(Stack3d::<f64, 4, 16, 64>::new(p).err(), Some(ParamError::OutOfRange("blocks")));
+    assert_eq!(
+        Stack3d3::<f64>::new(Stack3dParams { mu_kinetic: 0.6, ..p }).err(),
+        Some(ParamError::KineticAboveStatic)
+    );
+    assert_eq!(Stack3d2::<f64>::new(Stack3dParams { width: -0.1, ..p }).err(), Some(ParamError::NotPositive("width")));
+}
