@@ -237,7 +237,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
     /// `binv[row] / div(row)` is lexicographically smallest. `B^-1` is non-singular, so in
     /// exact arithmetic exactly one row remains; with round-off the lowest index of the
     /// survivors is taken.
-    fn lex_min(&self, mut ties: u32, div: impl Fn(usize) -> T) -> usize {
+    fn lex_min(&self, mut ties: u64, div: impl Fn(usize) -> T) -> usize {
         let n_eps = T::of(N as f64) * T::EPS;
         for j in 0..N {
             if ties.count_ones() <= 1 {
@@ -279,7 +279,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             }
         }
         let tol = T::of(N as f64) * T::EPS * lo.abs_exact();
-        let mut ties = 0u32;
+        let mut ties = 0u64;
         for i in 0..N {
             if self.rhs[i] <= lo + tol {
                 ties |= 1 << i;
@@ -311,7 +311,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             }
         }
         let theta = theta?;
-        let mut ties = 0u32;
+        let mut ties = 0u64;
         for i in 0..N {
             if col[i] > piv_tol
                 && max(self.rhs[i], T::zero()) / col[i] <= theta + n_eps * max(theta, rhs_max / col_max)
@@ -415,7 +415,7 @@ fn basis_solution<T: Real, const N: usize>(
     warm: Basis<N>,
     scale: T,
 ) -> Option<SVector<T, N>> {
-    let set = warm.z_mask();
+    let set = warm.z_bits();
     let mut index = [0usize; N];
     let mut m = 0usize;
     for i in 0..N {
@@ -459,7 +459,7 @@ fn basis_solution<T: Real, const N: usize>(
 }
 
 impl<T: Real, const N: usize> Lemke<T, N> {
-    const SIZE_CHECK: () = assert!(N > 0 && N <= 32, "Lemke<T, N> needs 1 <= N <= 32");
+    const SIZE_CHECK: () = assert!(N > 0 && N <= 64, "Lemke<T, N> needs 1 <= N <= 64");
 
     /// A solver with the default pivot cap ([`default_max_pivots`]) and verification
     /// tolerance ([`default_tolerance`]).
@@ -611,7 +611,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
                         z,
                         w,
                         pivots: 0,
-                        setup_eliminations: warm.z_mask().count_ones(),
+                        setup_eliminations: warm.z_count(),
                         warm_start_used: true,
                         basis: warm,
                         residual: check.residual,

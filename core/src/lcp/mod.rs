@@ -8,7 +8,7 @@
 //! ```
 //!
 //! Every time step of the meter-stick scene is one such problem (paper, eq. 18), so the
-//! solver is statically sized (`const N: usize`, checked `1 <= N <= 32` at compile time),
+//! solver is statically sized (`const N: usize`, checked `1 <= N <= 64` at compile time),
 //! generic over the scalar ([`crate::Real`]: `f32` on the microcontroller, `f64` on the
 //! host), and keeps everything in fixed arrays on the stack: for `N = 6` in f32 the
 //! tableau is 6 x 14 floats (336 bytes).

@@ -193,3 +193,37 @@ fn accept_holds_a_callers_answer_to_the_warm_answers_terms() {
     let far = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -0.5, 1.0]);
     assert!(lemke.accept(&far, &z, first, 0b010).is_none(), "w_1 = -0.5 fails the residual");
 }
+
+/// Beyond 32 rows (the basis's bits above the 32nd, the ties' masks): a P-matrix LCP of `N`
+/// rows built from a chosen answer (`M = 4 I` plus ones beside the diagonal, every third `z_i`
+/// basic, `q = w* - M z*`), whose one solution is that answer, solved cold, then warm from its
+/// basis with no pivot.
+fn wide_known_answer<const N: usize>() {
+    let mut m = [[0.0; N]; N];
+    let (mut z, mut w) = ([0.0; N], [0.0; N]);
+    for i in 0..N {
+        m[i][i] = 4.0;
+        if i + 1 < N {
+            m[i][i + 1] = 1.0;
+            m[i + 1][i] = 1.0;
+        }
+        if i % 3 == 0 {
+            z[i] = 1.0 + (i as f64) / 16.0;
+        } else {
+            w[i] = 0.5 + (i as f64) / 32.0;
+        }
+    }
+    let q: [f64; N] = core::array::from_fn(|i| w[i] - (0..N).map(|j| m[i][j] * z[j]).sum::<f64>());
+    let sol = solve(m, q).unwrap();
+    assert_z(&sol.z, z);
+    assert!(sol.basis.is_z_basic(N - 1) == (z[N - 1] > 0.0) && sol.basis.is_z_basic(33));
+    let warm = Lemke::<f64, N>::new().solve_warm(&Lcp::from_rows(&m, &q), sol.basis).unwrap();
+    assert_z(&warm.z, z);
+    assert_eq!(warm.pivots, 0, "the answer's basis is its own warm start");
+}
+
+#[test]
+fn lcps_of_more_than_32_rows() {
+    wide_known_answer::<48>();
+    wide_known_answer::<64>();
+}
