@@ -13,10 +13,10 @@ use meterstick_reference::spatial::{Keep, Stack3d as Reference, run_stack_3d_kee
 
 /// Each step's blocks (positions and orientations' `x` and `z` axes), the core's run to its
 /// outcome at `p` with `B` blocks.
-fn core_run<T: Real, const B: usize, const K: usize, const N: usize>(
+fn core_run<T: Real, const B: usize, const K: usize, const N: usize, const W: usize>(
     p: Stack3dParams<T>,
 ) -> (Outcome, Vec<[State<T>; B]>) {
-    let mut scene = Stack3d::<T, B, K, N>::new(p).expect("valid");
+    let mut scene = Stack3d::<T, B, K, N, W>::new(p).expect("valid");
     let mut rows = vec![*scene.stepper().states()];
     while let Some(report) = scene.step() {
         rows.push(report.states);
@@ -77,13 +77,13 @@ fn the_stack_follows_the_reference_at_every_heading() {
         for overhang in [0.98, 1.02] {
             let p = Stack3dParams::<f64> { overhang, heading: heading.to_radians(), max_time: 0.3, ..Default::default() };
             let expected = if overhang < 1.0 { Outcome::Held } else { Outcome::Fell };
-            let (outcome, rows) = core_run::<f64, 2, 13, 52>(p);
+            let (outcome, rows) = core_run::<f64, 2, 13, 52, 2>(p);
             let (ref_outcome, ref_rows, position, turn) = apart(&rows, &p);
             println!("2 blocks at {heading} deg, s = {overhang}: {outcome:?} after {} steps; reference {ref_outcome:?} after {}; apart {position:.1e} m, {turn:.1e} rad", rows.len() - 1, ref_rows - 1);
             assert_eq!((outcome, ref_outcome), (expected, expected), "2 blocks at {heading} deg, s = {overhang}");
             assert_eq!(rows.len(), ref_rows, "2 blocks at {heading} deg, s = {overhang}: steps");
             assert!(position <= 1e-9 && turn <= 1e-9, "2 blocks at {heading} deg, s = {overhang}: {position:e} m, {turn:e} rad");
-            let (outcome, rows) = core_run::<f64, 3, 16, 64>(p);
+            let (outcome, rows) = core_run::<f64, 3, 16, 64, 2>(p);
             let (ref_outcome, ref_rows, position, turn) = apart(&rows, &p);
             println!("3 blocks at {heading} deg, s = {overhang}: {outcome:?} after {} steps; reference {ref_outcome:?} after {}; apart {position:.1e} m, {turn:.1e} rad", rows.len() - 1, ref_rows - 1);
             assert_eq!((outcome, ref_outcome), (expected, expected), "3 blocks at {heading} deg, s = {overhang}");
@@ -99,8 +99,8 @@ fn in_f32_the_stack_holds_at_098_and_falls_at_102() {
     for heading in [0.0f32, 15.0, 30.0, -45.0, 60.0] {
         for (overhang, expected) in [(0.98f32, Outcome::Held), (1.02, Outcome::Fell)] {
             let p = Stack3dParams::<f32> { overhang, heading: heading.to_radians(), max_time: 0.3, ..Default::default() };
-            assert_eq!(core_run::<f32, 2, 13, 52>(p).0, expected, "2 blocks at {heading} deg, s = {overhang}");
-            assert_eq!(core_run::<f32, 3, 16, 64>(p).0, expected, "3 blocks at {heading} deg, s = {overhang}");
+            assert_eq!(core_run::<f32, 2, 13, 52, 2>(p).0, expected, "2 blocks at {heading} deg, s = {overhang}");
+            assert_eq!(core_run::<f32, 3, 16, 64, 2>(p).0, expected, "3 blocks at {heading} deg, s = {overhang}");
         }
     }
 }
@@ -132,7 +132,7 @@ fn at_heading_zero_the_stack_is_the_planar_stack() {
     for overhang in [0.98, 1.02] {
         let p = Stack3dParams::<f64> { overhang, max_time: 0.3, ..Default::default() };
         let flat = StackParams::<f64> { overhang, max_time: 0.3, ..Default::default() };
-        let (outcome, rows) = core_run::<f64, 2, 13, 52>(p);
+        let (outcome, rows) = core_run::<f64, 2, 13, 52, 2>(p);
         let mut planar = Stack2::<f64>::new(flat).expect("valid");
         let mut planar_rows = vec![*planar.states()];
         while let Some(report) = planar.step() {
@@ -142,7 +142,7 @@ fn at_heading_zero_the_stack_is_the_planar_stack() {
         println!("2 blocks, s = {overhang}: {outcome:?} after {} steps, planar {:?} after {}; apart {worst:.1e}", rows.len() - 1, planar.outcome(), planar_rows.len() - 1);
         assert_eq!((Some(outcome), rows.len()), (planar.outcome(), planar_rows.len()), "2 blocks, s = {overhang}");
         assert!(worst <= 1e-9, "2 blocks, s = {overhang}: {worst:e}");
-        let (outcome, rows) = core_run::<f64, 3, 16, 64>(p);
+        let (outcome, rows) = core_run::<f64, 3, 16, 64, 2>(p);
         let mut planar = Stack3::<f64>::new(flat).expect("valid");
         let mut planar_rows = vec![*planar.states()];
         while let Some(report) = planar.step() {
@@ -165,7 +165,7 @@ fn bad_parameters_are_refused_by_name() {
         Stack3d2::<f64>::new(Stack3dParams { heading: 61f64.to_radians(), ..p }).err(),
         Some(ParamError::OutOfRange("heading"))
     );
-    assert_eq!(Stack3d::<f64, 4, 16, 64>::new(p).err(), Some(ParamError::OutOfRange("blocks")));
+    assert_eq!(Stack3d::<f64, 4, 16, 64, 2>::new(p).err(), Some(ParamError::OutOfRange("blocks")));
     assert_eq!(
         Stack3d3::<f64>::new(Stack3dParams { mu_kinetic: 0.6, ..p }).err(),
         Some(ParamError::KineticAboveStatic)

@@ -7,6 +7,7 @@ use super::basis::Basis;
 use super::elimination::solve_leading;
 use super::error::LcpError;
 use super::problem::{Lcp, Scales};
+use super::rows::Rows;
 use super::verify::{Verification, default_tolerance, residual};
 use crate::real::{Real, max};
 
@@ -29,10 +30,10 @@ impl Var {
     }
 }
 
-/// A verified solution of an LCP.
+/// A verified solution of an LCP (`WORDS`: its basis', as the solver's, [`Lemke`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[must_use]
-pub struct LcpSolution<T: Real, const N: usize> {
+pub struct LcpSolution<T: Real, const N: usize, const WORDS: usize = 1> {
     /// `z >= 0`.
     pub z: SVector<T, N>,
     /// `w = M z + q >= 0`, recomputed from the original data.
@@ -45,7 +46,7 @@ pub struct LcpSolution<T: Real, const N: usize> {
     /// `true` when the returned solution came from the warm-start basis.
     pub warm_start_used: bool,
     /// The terminal complementary basis; pass it to [`Lemke::solve_warm`] next time.
-    pub basis: Basis<N>,
+    pub basis: Basis<N, WORDS>,
     /// Normalised verification residual (see [`super::verify`]).
     pub residual: T,
     /// `true` when the answer came from the regularised retry after a ray termination
@@ -54,14 +55,15 @@ pub struct LcpSolution<T: Real, const N: usize> {
 }
 
 /// Lemke's method for LCPs of size `N` in scalar `T`, with its pivot cap and verification
-/// tolerance.
+/// tolerance. Its bases ([`Basis<N, WORDS>`]) and its ties are sets of rows in `WORDS` 32-bit
+/// words: 1 (the default) for `N <= 32`, 2 for `N <= 64` (checked at compile time).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Lemke<T: Real, const N: usize> {
+pub struct Lemke<T: Real, const N: usize, const WORDS: usize = 1> {
     max_pivots: u32,
     tolerance: T,
 }
 
-impl<T: Real, const N: usize> Default for Lemke<T, N> {
+impl<T: Real, const N: usize, const WORDS: usize> Default for Lemke<T, N, WORDS> {
     fn default() -> Self {
         Self::new()
     }
@@ -77,7 +79,7 @@ pub const fn default_max_pivots(n: usize) -> u32 {
     (1u32 << exp) + 4 * n as u32
 }
 
-struct Tableau<T: Real, const N: usize> {
+struct Tableau<T: Real, const N: usize, const WORDS: usize> {
     /// Columns of `w` in the current tableau: `B^-1` (row-major, `binv[row][col]`).
     binv: [[T; N]; N],
     /// Columns of `z`: `-B^-1 M`.
@@ -90,7 +92,7 @@ struct Tableau<T: Real, const N: usize> {
     basis: [Var; N],
 }
 
-impl<T: Real, const N: usize> Tableau<T, N> {
+impl<T: Real, const N: usize, const WORDS: usize> Tableau<T, N, WORDS> {
     /// The cold-start tableau `[I, -M, -e | q]` with every `w_i` basic (covering vector `e`).
     fn cold(lcp: &Lcp<T, N>) -> Self {
         let mut t = Self {
@@ -128,7 +130,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
     /// Gauss-Jordan elimination with partial pivoting. The artificial column is then reset
     /// to `-e` in these coordinates (covering vector `d = B e`). `None` when the basis
     /// matrix is numerically singular. Returns the eliminations spent.
-    fn warm(lcp: &Lcp<T, N>, warm: Basis<N>, scale: T) -> Option<(Self, u32)> {
+    fn warm(lcp: &Lcp<T, N>, warm: Basis<N, WORDS>, scale: T) -> Option<(Self, u32)> {
         let mut t = Self::cold(lcp);
         let mut eliminations = 0;
         for i in 0..N {
@@ -233,21 +235,21 @@ impl<T: Real, const N: usize> Tableau<T, N> {
         self.basis[r] = entering;
     }
 
-    /// Breaks a tie among the rows in `ties` (bit mask) lexicographically: the row whose
+    /// Breaks a tie among the rows in `ties` lexicographically: the row whose
     /// `binv[row] / div(row)` is lexicographically smallest. `B^-1` is non-singular, so in
     /// exact arithmetic exactly one row remains; with round-off the lowest index of the
     /// survivors is taken.
-    fn lex_min(&self, mut ties: u64, div: impl Fn(usize) -> T) -> usize {
+    fn lex_min(&self, mut ties: Rows<N, WORDS>, div: impl Fn(usize) -> T) -> usize {
         let n_eps = T::of(N as f64) * T::EPS;
         for j in 0..N {
-            if ties.count_ones() <= 1 {
+            if ties.len() <= 1 {
                 break;
             }
             let mut lo = T::zero();
             let mut mag = T::zero();
             let mut first = true;
             for i in 0..N {
-                if ties >> i & 1 == 1 {
+                if ties.contains(i) {
                     let v = self.binv[i][j] / div(i);
                     mag = max(mag, v.abs_exact());
                     if first || v < lo {
@@ -258,14 +260,14 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             }
             let tol = n_eps * mag;
             for i in 0..N {
-                if ties >> i & 1 == 1 && self.binv[i][j] / div(i) > lo + tol {
-                    ties &= !(1 << i);
+                if ties.contains(i) && self.binv[i][j] / div(i) > lo + tol {
+                    ties.remove(i);
                 }
             }
         }
-        // `ties` always has a row below `N`; the `min` lets the compiler see that every use of
-        // the row is in bounds (no panic path in the firmware).
-        (ties.trailing_zeros() as usize).min(N - 1)
+        // `ties` always has a row; `first` is below `N` even for none, so the compiler sees that
+        // every use of the row is in bounds (no panic path in the firmware).
+        ties.first()
     }
 
     /// Row that leaves when the artificial variable enters first: the most negative
@@ -279,10 +281,10 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             }
         }
         let tol = T::of(N as f64) * T::EPS * lo.abs_exact();
-        let mut ties = 0u64;
+        let mut ties = Rows::EMPTY;
         for i in 0..N {
             if self.rhs[i] <= lo + tol {
-                ties |= 1 << i;
+                ties.insert(i);
             }
         }
         self.lex_min(ties, |_| T::one())
@@ -311,7 +313,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
             }
         }
         let theta = theta?;
-        let mut ties = 0u64;
+        let mut ties = Rows::EMPTY;
         for i in 0..N {
             if col[i] > piv_tol
                 && max(self.rhs[i], T::zero()) / col[i] <= theta + n_eps * max(theta, rhs_max / col_max)
@@ -319,7 +321,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
                 if self.basis[i] == Var::Artificial {
                     return Some(i);
                 }
-                ties |= 1 << i;
+                ties.insert(i);
             }
         }
         Some(self.lex_min(ties, |i| col[i]))
@@ -361,7 +363,7 @@ impl<T: Real, const N: usize> Tableau<T, N> {
     /// the tableau's own `B^-1` (`O(N^2)`). This removes most of the error that pivot growth
     /// leaves in long pivot sequences. Tiny negative basic values left by round-off are
     /// then clamped to zero; verification judges the result.
-    fn solution(&self, lcp: &Lcp<T, N>) -> (SVector<T, N>, Basis<N>) {
+    fn solution(&self, lcp: &Lcp<T, N>) -> (SVector<T, N>, Basis<N, WORDS>) {
         let mut x = self.rhs;
         let mut residual = [T::zero(); N];
         for i in 0..N {
@@ -410,16 +412,16 @@ impl<T: Real, const N: usize> Tableau<T, N> {
 /// the `|a| x |a|` system, which matters on a Cortex-M0, where every float operation, compares
 /// included, is a library call). Every loop has the constant bound `N`, each index is clamped
 /// below `N`: no panic path.
-fn basis_solution<T: Real, const N: usize>(
+fn basis_solution<T: Real, const N: usize, const WORDS: usize>(
     lcp: &Lcp<T, N>,
-    warm: Basis<N>,
+    warm: Basis<N, WORDS>,
     scale: T,
 ) -> Option<SVector<T, N>> {
-    let set = warm.z_bits();
+    let set = warm.z_rows();
     let mut index = [0usize; N];
     let mut m = 0usize;
     for i in 0..N {
-        if (set >> i) & 1 == 1
+        if set.contains(i)
             && let Some(slot) = index.get_mut(m)
         {
             *slot = i;
@@ -458,8 +460,11 @@ fn basis_solution<T: Real, const N: usize>(
     Some(z)
 }
 
-impl<T: Real, const N: usize> Lemke<T, N> {
-    const SIZE_CHECK: () = assert!(N > 0 && N <= 64, "Lemke<T, N> needs 1 <= N <= 64");
+impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
+    const SIZE_CHECK: () = assert!(
+        N > 0 && N <= 64 && (WORDS == 1 || WORDS == 2) && N <= 32 * WORDS,
+        "Lemke<T, N, WORDS> needs 1 <= N <= 64 and N <= 32 WORDS, WORDS 1 or 2"
+    );
 
     /// A solver with the default pivot cap ([`default_max_pivots`]) and verification
     /// tolerance ([`default_tolerance`]).
@@ -500,7 +505,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     /// # Errors
     /// [`LcpError::NonFiniteInput`], [`LcpError::Ray`], [`LcpError::MaxPivots`] or
     /// [`LcpError::Unverified`]; never a solution that failed verification.
-    pub fn solve(&self, lcp: &Lcp<T, N>) -> Result<LcpSolution<T, N>, LcpError> {
+    pub fn solve(&self, lcp: &Lcp<T, N>) -> Result<LcpSolution<T, N, WORDS>, LcpError> {
         self.solve_warm(lcp, Basis::all_w())
     }
 
@@ -512,7 +517,11 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     ///
     /// # Errors
     /// As [`Lemke::solve`].
-    pub fn solve_warm(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Result<LcpSolution<T, N>, LcpError> {
+    pub fn solve_warm(
+        &self,
+        lcp: &Lcp<T, N>,
+        warm: Basis<N, WORDS>,
+    ) -> Result<LcpSolution<T, N, WORDS>, LcpError> {
         self.solve_warm_inner(lcp, warm, true)
     }
 
@@ -520,7 +529,7 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     /// = 0` meant where `z_i` is) that a caller computed its own way, accepted on
     /// [`Self::solve_warm`]'s terms for its warm basis' answer: `z >= 0` and `w = M z + q >= 0`
     /// outside the basis as computed, and the normalised residual ([`super::verify`]) within the
-    /// tolerance. The rows of the mask `tied` are the exception: rows whose `w` the problem's
+    /// tolerance. The rows `tied` says are the exception: rows whose `w` the problem's
     /// structure makes the negative of a row closed by the basis (zero in exact arithmetic, its
     /// sign round-off's), held to the residual alone, as Lemke's pivoting holds every `w`. For a
     /// caller that knows its problem's structure (the spatial stepper solves a basis in its
@@ -531,14 +540,14 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         &self,
         lcp: &Lcp<T, N>,
         z: &SVector<T, N>,
-        basis: Basis<N>,
-        tied: u64,
-    ) -> Option<LcpSolution<T, N>> {
+        basis: Basis<N, WORDS>,
+        tied: impl Fn(usize) -> bool,
+    ) -> Option<LcpSolution<T, N, WORDS>> {
         let scales = lcp.scales()?;
         let w = lcp.w_of(z);
         let mut feasible = true;
         for i in 0..N {
-            let held = basis.is_z_basic(i) || (tied >> i) & 1 == 1;
+            let held = basis.is_z_basic(i) || tied(i);
             feasible &= z[i] >= T::zero() && (held || w[i] >= T::zero());
         }
         let check = Verification {
@@ -564,16 +573,20 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     ///
     /// # Errors
     /// As [`Lemke::solve`].
-    pub fn solve_from_basis(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Result<LcpSolution<T, N>, LcpError> {
+    pub fn solve_from_basis(
+        &self,
+        lcp: &Lcp<T, N>,
+        warm: Basis<N, WORDS>,
+    ) -> Result<LcpSolution<T, N, WORDS>, LcpError> {
         self.solve_warm_inner(lcp, warm, false)
     }
 
     fn solve_warm_inner(
         &self,
         lcp: &Lcp<T, N>,
-        warm: Basis<N>,
+        warm: Basis<N, WORDS>,
         direct: bool,
-    ) -> Result<LcpSolution<T, N>, LcpError> {
+    ) -> Result<LcpSolution<T, N, WORDS>, LcpError> {
         let () = Self::SIZE_CHECK;
         let Some(scales) = lcp.scales() else {
             return Err(LcpError::NonFiniteInput);
@@ -671,7 +684,11 @@ impl<T: Real, const N: usize> Lemke<T, N> {
     /// `warm` is the trivial basis (its tableau is the cold start's), the data are not finite, the
     /// basis is singular or the run fails or does not verify.
     #[inline(never)] // its tableau in a frame of its own, not in its caller's
-    pub(crate) fn solve_from_tableau(&self, lcp: &Lcp<T, N>, warm: Basis<N>) -> Option<LcpSolution<T, N>> {
+    pub(crate) fn solve_from_tableau(
+        &self,
+        lcp: &Lcp<T, N>,
+        warm: Basis<N, WORDS>,
+    ) -> Option<LcpSolution<T, N, WORDS>> {
         let scales = lcp.scales()?;
         if warm == Basis::all_w() {
             return None;
@@ -689,9 +706,9 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         &self,
         lcp: &Lcp<T, N>,
         scales: &Scales<T>,
-        warm: Basis<N>,
+        warm: Basis<N, WORDS>,
         scale: T,
-    ) -> Result<LcpSolution<T, N>, (u32, u32)> {
+    ) -> Result<LcpSolution<T, N, WORDS>, (u32, u32)> {
         let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) else { return Err((0, 0)) };
         match tab.run(self.max_pivots) {
             Ok(pivots) => {
@@ -706,12 +723,12 @@ impl<T: Real, const N: usize> Lemke<T, N> {
         &self,
         lcp: &Lcp<T, N>,
         scales: &Scales<T>,
-        tab: &Tableau<T, N>,
+        tab: &Tableau<T, N, WORDS>,
         pivots: u32,
         setup_eliminations: u32,
         warm_start_used: bool,
         regularized: bool,
-    ) -> Result<LcpSolution<T, N>, LcpError> {
+    ) -> Result<LcpSolution<T, N, WORDS>, LcpError> {
         let (z, basis) = tab.solution(lcp);
         // A regularised answer is held to `w`'s scale `||q||` alone (see `solve_warm`).
         let m_scale = if regularized { T::zero() } else { scales.m_norm };

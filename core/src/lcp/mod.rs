@@ -11,7 +11,11 @@
 //! solver is statically sized (`const N: usize`, checked `1 <= N <= 64` at compile time),
 //! generic over the scalar ([`crate::Real`]: `f32` on the microcontroller, `f64` on the
 //! host), and keeps everything in fixed arrays on the stack: for `N = 6` in f32 the
-//! tableau is 6 x 14 floats (336 bytes).
+//! tableau is 6 x 14 floats (336 bytes). Its sets of rows (the [`Basis`], the ties of the ratio
+//! test) are bits in `WORDS` 32-bit words, a const parameter that is 1 by default, for
+//! `N <= 32`, and 2 for `N <= 64` (`Lemke<T, N, 2>`, `Basis<N, 2>`): one word costs what a `u32`
+//! mask costs, and no set needs 64-bit arithmetic, which takes several instructions on a 32-bit
+//! core.
 //!
 //! # The algorithm
 //! Lemke's complementary pivoting, as in the paper's reference \[4\] (P. L. Fackler and
@@ -71,6 +75,7 @@ pub(crate) mod elimination;
 mod error;
 mod lemke;
 mod problem;
+mod rows;
 mod verify;
 
 pub use basis::Basis;

@@ -178,27 +178,27 @@ fn accept_holds_a_callers_answer_to_the_warm_answers_terms() {
     let kostreva = Lcp::from_rows(&[[1.0, 2.0, 0.0], [0.0, 1.0, 2.0], [2.0, 0.0, 1.0]], &[-1.0, -1.0, -1.0]);
     let all = Basis::from_z_mask(0b111);
     let z = SVector::from([1.0 / 3.0; 3]);
-    let sol = lemke.accept(&kostreva, &z, all, 0).expect("the solution");
+    let sol = lemke.accept(&kostreva, &z, all, |_| false).expect("the solution");
     assert_z(&sol.z, [1.0 / 3.0; 3]);
     assert_eq!((sol.pivots, sol.basis, sol.warm_start_used), (0, all, true));
-    assert!(lemke.accept(&kostreva, &SVector::from([0.5, 0.5, -0.1]), all, 0).is_none(), "z < 0");
-    assert!(lemke.accept(&kostreva, &SVector::from([0.3, 0.3, 0.3]), all, 0).is_none(), "not complementary");
+    assert!(lemke.accept(&kostreva, &SVector::from([0.5, 0.5, -0.1]), all, |_| false).is_none(), "z < 0");
+    assert!(lemke.accept(&kostreva, &SVector::from([0.3, 0.3, 0.3]), all, |_| false).is_none(), "not complementary");
     // `w = z - 1 + (0, e, 0)`: `z = (1, 0, 0)` with only `z_0` basic leaves `w_1` at `-e`.
     let e = 1e-18;
     let tied = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -e, 1.0]);
     let first = Basis::from_z_mask(0b001);
     let z = SVector::from([1.0, 0.0, 0.0]);
-    assert!(lemke.accept(&tied, &z, first, 0).is_none(), "w_1 < 0 outside the basis");
-    assert!(lemke.accept(&tied, &z, first, 0b010).is_some(), "w_1 tied: round-off's");
+    assert!(lemke.accept(&tied, &z, first, |_| false).is_none(), "w_1 < 0 outside the basis");
+    assert!(lemke.accept(&tied, &z, first, |i| i == 1).is_some(), "w_1 tied: round-off's");
     let far = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -0.5, 1.0]);
-    assert!(lemke.accept(&far, &z, first, 0b010).is_none(), "w_1 = -0.5 fails the residual");
+    assert!(lemke.accept(&far, &z, first, |i| i == 1).is_none(), "w_1 = -0.5 fails the residual");
 }
 
-/// Beyond 32 rows (the basis's bits above the 32nd, the ties' masks): a P-matrix LCP of `N`
-/// rows built from a chosen answer (`M = 4 I` plus ones beside the diagonal, every third `z_i`
-/// basic, `q = w* - M z*`), whose one solution is that answer, solved cold, then warm from its
-/// basis with no pivot.
-fn wide_known_answer<const N: usize>() {
+/// Beyond 32 rows (the basis's second word, the ties' sets): a P-matrix LCP of `N` rows built
+/// from a chosen answer (`M = 4 I` plus ones beside the diagonal, every third `z_i` basic,
+/// `q = w* - M z*`), whose one solution is that answer, solved cold, then warm from its basis
+/// with no pivot.
+fn wide_known_answer<const N: usize, const WORDS: usize>() {
     let mut m = [[0.0; N]; N];
     let (mut z, mut w) = ([0.0; N], [0.0; N]);
     for i in 0..N {
@@ -214,16 +214,118 @@ fn wide_known_answer<const N: usize>() {
         }
     }
     let q: [f64; N] = core::array::from_fn(|i| w[i] - (0..N).map(|j| m[i][j] * z[j]).sum::<f64>());
-    let sol = solve(m, q).unwrap();
+    let lcp = Lcp::from_rows(&m, &q);
+    let lemke = Lemke::<f64, N, WORDS>::new();
+    let sol = lemke.solve(&lcp).unwrap();
     assert_z(&sol.z, z);
     assert!(sol.basis.is_z_basic(N - 1) == (z[N - 1] > 0.0) && sol.basis.is_z_basic(33));
-    let warm = Lemke::<f64, N>::new().solve_warm(&Lcp::from_rows(&m, &q), sol.basis).unwrap();
+    assert_eq!(sol.basis.z_count() as usize, (0..N).filter(|i| i % 3 == 0).count());
+    let warm = lemke.solve_warm(&lcp, sol.basis).unwrap();
     assert_z(&warm.z, z);
     assert_eq!(warm.pivots, 0, "the answer's basis is its own warm start");
 }
 
 #[test]
 fn lcps_of_more_than_32_rows() {
-    wide_known_answer::<48>();
-    wide_known_answer::<64>();
+    wide_known_answer::<48, 2>();
+    wide_known_answer::<64, 2>();
+}
+
+/// A dense, unsymmetric LCP of `N` rows with a chosen answer, solved through two words: `M` of
+/// pseudo-random entries in `[-1, 1)` off the diagonal and `1 + sum_j |m_ij|` on it (strictly
+/// diagonally dominant with a positive diagonal, so every principal submatrix is too and has a
+/// positive determinant: a P-matrix, whose LCP has exactly one solution), `z*` and `w*` chosen
+/// row by row (`z*_i > 0`, `w*_i > 0`, or both zero: degenerate rows, where the ratio test ties),
+/// `q = w* - M z*`. Lemke's answer, cold and warm from a basis one row off, must be `z*`, and
+/// `M z + q` must be `w*`.
+fn dense_known_answer<const N: usize, const WORDS: usize>(seed: u64) {
+    let mut state = seed;
+    let mut uniform = || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut m = [[0.0; N]; N];
+    for i in 0..N {
+        for j in 0..N {
+            if i != j {
+                m[i][j] = 2.0 * uniform() - 1.0;
+            }
+        }
+        m[i][i] = 1.0 + (0..N).map(|j| m[i][j].abs()).sum::<f64>();
+    }
+    let (mut z, mut w) = ([0.0; N], [0.0; N]);
+    for i in 0..N {
+        let u = uniform();
+        if u < 0.4 {
+            z[i] = 0.5 + 2.0 * uniform();
+        } else if u < 0.85 {
+            w[i] = 0.5 + 2.0 * uniform();
+        }
+    }
+    let q: [f64; N] = core::array::from_fn(|i| w[i] - (0..N).map(|j| m[i][j] * z[j]).sum::<f64>());
+    let lcp = Lcp::from_rows(&m, &q);
+    let lemke = Lemke::<f64, N, WORDS>::new();
+    let close = |sol: &LcpSolution<f64, N, WORDS>| {
+        for i in 0..N {
+            assert!((sol.z[i] - z[i]).abs() < 1e-9, "z_{i} = {} against {}", sol.z[i], z[i]);
+            let wi: f64 = q[i] + (0..N).map(|j| m[i][j] * sol.z[j]).sum::<f64>();
+            assert!((wi - w[i]).abs() < 1e-9, "w_{i} = {wi} against {}", w[i]);
+        }
+    };
+    let cold = lemke.solve(&lcp).unwrap();
+    close(&cold);
+    assert!(cold.pivots > 0 && !cold.warm_start_used);
+    // The answer's basis with its last basic `z` swapped for a `w`: a warm start that is wrong
+    // in one row, in the second word when the answer has a basic `z` there.
+    let mut off = cold.basis;
+    let last = (0..N).rev().find(|&i| z[i] > 0.0).unwrap();
+    off.set_z_basic(last, false);
+    assert!(!off.is_z_basic(last) && off.z_count() + 1 == cold.basis.z_count());
+    close(&lemke.solve_warm(&lcp, off).unwrap());
+}
+
+#[test]
+fn dense_lcps_of_48_and_64_rows_reach_their_chosen_answers() {
+    for seed in [1, 2, 3] {
+        dense_known_answer::<48, 2>(seed);
+        dense_known_answer::<64, 2>(seed);
+    }
+}
+
+/// Ties across both words: `M = diag(d)`, `q = -e`, whose answer is `z_i = 1 / d_i`. Every row
+/// ties in the first ratio test and, after it, every row but the pivot's is degenerate, so every
+/// pivot breaks a tie of up to `N` rows lexicographically.
+#[test]
+fn ties_over_64_rows_break_lexicographically() {
+    const N: usize = 64;
+    let d: [f64; N] = core::array::from_fn(|i| 1.0 + (i as f64) / 8.0);
+    let m: [[f64; N]; N] =
+        core::array::from_fn(|i| core::array::from_fn(|j| if i == j { d[i] } else { 0.0 }));
+    let sol = Lemke::<f64, N, 2>::new().solve(&Lcp::from_rows(&m, &[-1.0; N])).unwrap();
+    assert_z(&sol.z, core::array::from_fn(|i| 1.0 / d[i]));
+    assert_eq!(sol.basis.z_count() as usize, N);
+}
+
+/// [`rows::Rows`] of 60 rows in two words against a set of booleans: the same members, count and
+/// lowest member after every insertion and removal.
+#[test]
+fn sets_of_60_rows_match_a_set_of_booleans() {
+    const N: usize = 60;
+    let mut rows = rows::Rows::<N, 2>::EMPTY;
+    let mut model = [false; N];
+    let mut state = 7u64;
+    for _ in 0..2000 {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        let i = (state >> 33) as usize % N;
+        if (state >> 20) & 1 == 1 {
+            rows.insert(i);
+            model[i] = true;
+        } else {
+            rows.remove(i);
+            model[i] = false;
+        }
+        assert!((0..N).all(|k| rows.contains(k) == model[k]));
+        assert_eq!(rows.len() as usize, model.iter().filter(|&&b| b).count());
+        assert_eq!(rows.first(), model.iter().position(|&b| b).unwrap_or(N - 1));
+    }
 }

@@ -34,16 +34,18 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     ///
     /// # Errors
     /// [`StepError::Solver`].
-    pub(super) fn answer<const N: usize>(
+    pub(super) fn answer<const N: usize, const W: usize>(
         &self,
-        solver: &Lemke<T, N>,
+        solver: &Lemke<T, N, W>,
         lcp: &Lcp<T, N>,
-        basis: Basis<N>,
-    ) -> Result<LcpSolution<T, N>, StepError> {
+        basis: Basis<N, W>,
+    ) -> Result<LcpSolution<T, N, W>, StepError> {
         // A lone contact's basis is of at most three unknowns: Lemke's own direct solve of it.
         let reduced = if K > 1 { self.basis_solution(lcp, basis) } else { None };
         let lemke = match reduced {
-            Some((z, tied)) => match solver.accept(lcp, &z, basis, tied) {
+            Some((z, tied)) => match solver.accept(lcp, &z, basis, |i| {
+                u32::try_from(i).ok().and_then(|i| tied.checked_shr(i)).is_some_and(|t| t & 1 == 1)
+            }) {
                 Some(sol) => return Ok(sol),
                 None => solver.solve_from_basis(lcp, basis),
             },
@@ -67,7 +69,11 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// tied: the backward error of Lemke's own verification); else, the basis not one of `lcp`'s,
     /// Lemke's method on `lcp` from it ([`Lemke::solve_from_basis`]). `None` when neither
     /// verifies.
-    fn open_load<const N: usize>(&self, solver: &Lemke<T, N>, lcp: &Lcp<T, N>) -> Option<LcpSolution<T, N>> {
+    fn open_load<const N: usize, const W: usize>(
+        &self,
+        solver: &Lemke<T, N, W>,
+        lcp: &Lcp<T, N>,
+    ) -> Option<LcpSolution<T, N, W>> {
         let mut delta = T::EPS.sqrt_rounded() * max(lcp.m_norm_inf(), T::TINY);
         for _ in 0..OPEN_LOAD_TRIES {
             let mut regularized = *lcp;
@@ -92,7 +98,11 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// negative entries zero, held to [`Lemke::accept`]'s residual on `lcp` (every row tied: the
     /// backward error of Lemke's own verification). `None` when the system has no solution or it
     /// does not verify.
-    fn least_norm_of<const N: usize>(solver: &Lemke<T, N>, lcp: &Lcp<T, N>, basis: Basis<N>) -> Option<LcpSolution<T, N>> {
+    fn least_norm_of<const N: usize, const W: usize>(
+        solver: &Lemke<T, N, W>,
+        lcp: &Lcp<T, N>,
+        basis: Basis<N, W>,
+    ) -> Option<LcpSolution<T, N, W>> {
         let (mut index, mut m) = ([0usize; N], 0usize);
         for i in (0..N).filter(|&i| basis.is_z_basic(i)) {
             if let Some(slot) = index.get_mut(m) {
@@ -113,7 +123,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 *slot = max(value, T::zero());
             }
         }
-        solver.accept(lcp, &z, basis, u64::MAX)
+        solver.accept(lcp, &z, basis, |_| true)
     }
 
     /// The complementary solution of `basis` for `lcp` by its reduced system (module docs): `None`
@@ -122,15 +132,14 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// largest entry). Its signs are not checked here ([`Lemke::accept`] does). With it the mask of
     /// the sticking contacts' other friction rows: `w_-d = -w_+d` while `sigma` is zero, both nil
     /// in exact arithmetic, their signs round-off's.
-    fn basis_solution<const N: usize>(
+    fn basis_solution<const N: usize, const W: usize>(
         &self,
         lcp: &Lcp<T, N>,
-        basis: Basis<N>,
+        basis: Basis<N, W>,
     ) -> Option<(SVector<T, N>, u64)> {
         let zero = T::zero();
-        let mask = basis.z_bits();
         // The padding rows' `z` are never basic in the contacts' answer.
-        if mask.checked_shr(u32::try_from(4 * K).unwrap_or(u32::MAX)).unwrap_or(0) != 0 {
+        if (4 * K..N).any(|i| basis.is_z_basic(i)) {
             return None;
         }
         let (one, half) = (T::one(), T::of(0.5));
@@ -148,7 +157,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         };
         for (i, c) in self.touches.iter().enumerate() {
             let b = 4 * i;
-            let bits = mask.checked_shr(u32::try_from(b).unwrap_or(u32::MAX)).unwrap_or(0) & 0b1111;
+            let bits = (0..4).fold(0u32, |bits, k| bits | (u32::from(basis.is_z_basic(b + k)) << k));
             let plain = |variable| [(variable, one), (variable, zero), (variable, zero)];
             match (c.active, bits) {
                 (_, 0b0000) => {}

@@ -85,10 +85,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     ///
     /// # Errors
     /// [`StepError::Solver`], [`StepError::ConeNotConverged`], [`StepError::ConeUnverified`].
-    pub fn solve_lines<const N: usize>(
+    pub fn solve_lines<const N: usize, const W: usize>(
         &self,
-        solver: &Lemke<T, N>,
-        basis: &mut Basis<N>,
+        solver: &Lemke<T, N, W>,
+        basis: &mut Basis<N, W>,
         pivots: &mut u32,
         free: &Motion<T, B>,
     ) -> Result<([SpatialContactReport<T>; K], Motion<T, B>), StepError> {
@@ -656,8 +656,8 @@ pub(super) fn pad<T: Real, const N: usize>(m: &mut [[T; N]; N], q: &mut [T; N], 
 
 /// What a cone's condition may miss by, in impulse per unit mass: the LCP's verification
 /// tolerance times its scale `||M|| ||z|| + ||q||` (`crate::lcp::verify`), four times over.
-pub(super) fn verification_bound<T: Real, const N: usize>(
-    solver: &Lemke<T, N>,
+pub(super) fn verification_bound<T: Real, const N: usize, const W: usize>(
+    solver: &Lemke<T, N, W>,
     lcp: &Lcp<T, N>,
     z: &nalgebra::SVector<T, N>,
 ) -> T {

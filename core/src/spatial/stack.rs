@@ -51,9 +51,10 @@ pub struct StackStepReport<T, const B: usize, const K: usize> {
 }
 
 /// `B` equal blocks (half extents `half`) stacked over the table's edge, `K` contact slots (`N
-/// = 4 K` LCP rows), stepped as the module docs say.
+/// = 4 K` LCP rows, their bases in `W` words of 32 rows: `crate::lcp::Basis`), stepped as the
+/// module docs say.
 #[derive(Debug, Clone)]
-pub struct BlockStack<T: Real, const B: usize, const K: usize, const N: usize> {
+pub struct BlockStack<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> {
     body: Body<T>,
     half: Vector<T>,
     mu: [T; 2],
@@ -61,14 +62,14 @@ pub struct BlockStack<T: Real, const B: usize, const K: usize, const N: usize> {
     states: [State<T>; B],
     modes: [Mode; K],
     steps: u64,
-    solve: Solve<T, N>,
+    solve: Solve<T, N, W>,
 }
 
 /// A step's contacts: each slot's touch and its pair and point, the largest free contact speed
 /// and the largest sum of the terms a free slip is summed from (`super::stepper`).
 type Gathered<T, const K: usize> = ([Touch<T>; K], [Option<(usize, Vector<T>)>; K], T, T);
 
-impl<T: Real, const B: usize, const K: usize, const N: usize> BlockStack<T, B, K, N> {
+impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> BlockStack<T, B, K, N, W> {
     /// A stack of `B` blocks of inertia `body` and half extents `half` (along their `x`, `y`,
     /// `z`), friction `mu_static` and `mu_kinetic` at every contact, from `states` (block 0 the
     /// bottom). Before the first step a touching slot (gap within the margin) reads sliding when

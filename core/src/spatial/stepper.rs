@@ -343,20 +343,37 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
 /// A step's end: the state, each contact's report, the pivots taken.
 pub(super) type Advanced<T, const K: usize> = (State<T>, [SpatialContactReport<T>; K], u32);
 
-/// The solver a stepper keeps between steps: Lemke's method and its warm bases.
+/// The solver a stepper keeps between steps: Lemke's method and its warm bases (`W` words of rows:
+/// 1 for up to 32, 2 for up to 64, `crate::lcp::Basis`).
 #[derive(Debug, Clone)]
-pub(super) struct Solve<T: Real, const N: usize> {
-    solver: Lemke<T, N>,
-    basis: Basis<N>,
+pub(super) struct Solve<T: Real, const N: usize, const W: usize = 1> {
+    solver: Lemke<T, N, W>,
+    basis: Basis<N, W>,
     /// The warm basis of the flat base's least-norm load (`super::load`).
-    load_basis: Basis<N>,
+    load_basis: Basis<N, W>,
 }
 
-impl<T: Real, const N: usize> Solve<T, N> {
+impl<T: Real, const N: usize, const W: usize> Solve<T, N, W> {
     pub(super) fn new() -> Self {
         Self { solver: Lemke::new(), basis: Basis::all_w(), load_basis: Basis::all_w() }
     }
 
+    /// The impulses of `contacts` on the bodies' free motion `free` ([`Contacts::solve_lines`],
+    /// warm-started from the last step's basis), the pivots added to `pivots`.
+    ///
+    /// # Errors
+    /// As [`Contacts::solve_lines`].
+    pub(super) fn lines<const K: usize, const B: usize>(
+        &mut self,
+        contacts: &Contacts<'_, T, K, B>,
+        free: &Motion<T, B>,
+        pivots: &mut u32,
+    ) -> Result<([SpatialContactReport<T>; K], Motion<T, B>), StepError> {
+        contacts.solve_lines(&self.solver, &mut self.basis, pivots, free)
+    }
+}
+
+impl<T: Real, const N: usize> Solve<T, N> {
     /// The step from `st` (`super`'s module docs, 3 and 4): the impulses of the `touches` (a
     /// plane of unit normal `normal`; `speed` the largest free point speed, the step's velocity
     /// scale, and `terms` the largest sum of the sizes a free slip is summed from, its round-off's
@@ -421,20 +438,6 @@ impl<T: Real, const N: usize> Solve<T, N> {
             return Err(StepError::NonFinite);
         }
         Ok((state, contacts, pivots))
-    }
-
-    /// The impulses of `contacts` on the bodies' free motion `free` ([`Contacts::solve_lines`],
-    /// warm-started from the last step's basis), the pivots added to `pivots`.
-    ///
-    /// # Errors
-    /// As [`Contacts::solve_lines`].
-    pub(super) fn lines<const K: usize, const B: usize>(
-        &mut self,
-        contacts: &Contacts<'_, T, K, B>,
-        free: &Motion<T, B>,
-        pivots: &mut u32,
-    ) -> Result<([SpatialContactReport<T>; K], Motion<T, B>), StepError> {
-        contacts.solve_lines(&self.solver, &mut self.basis, pivots, free)
     }
 }
 

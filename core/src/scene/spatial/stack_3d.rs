@@ -97,21 +97,21 @@ impl<T: Real> Stack3dParams<T> {
 }
 
 /// `B` blocks over the table's edge in three dimensions, `K` contact slots, an LCP of `N` rows
-/// ([`Stack3d2`], [`Stack3d3`]).
+/// in `W` words ([`Stack3d2`], [`Stack3d3`]).
 #[derive(Debug, Clone)]
-pub struct Stack3d<T: Real, const B: usize, const K: usize, const N: usize> {
+pub struct Stack3d<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> {
     params: Stack3dParams<T>,
-    stepper: BlockStack<T, B, K, N>,
+    stepper: BlockStack<T, B, K, N, W>,
     start_z: [T; B],
     outcome: Option<Outcome>,
 }
 
 /// Two blocks: the table's overlap (at most five points) and one pair's (four, eight at most).
-pub type Stack3d2<T> = Stack3d<T, 2, 13, 52>;
+pub type Stack3d2<T> = Stack3d<T, 2, 13, 52, 2>;
 /// Three blocks: 16 slots, the 64 rows Lemke's method holds.
-pub type Stack3d3<T> = Stack3d<T, 3, 16, 64>;
+pub type Stack3d3<T> = Stack3d<T, 3, 16, 64, 2>;
 
-impl<T: Real, const B: usize, const K: usize, const N: usize> Stack3d<T, B, K, N> {
+impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Stack3d<T, B, K, N, W> {
     /// Validates `params` and stacks the blocks at rest.
     ///
     /// # Errors
@@ -146,7 +146,7 @@ impl<T: Real, const B: usize, const K: usize, const N: usize> Stack3d<T, B, K, N
 
     /// The stepper.
     #[must_use]
-    pub const fn stepper(&self) -> &BlockStack<T, B, K, N> {
+    pub const fn stepper(&self) -> &BlockStack<T, B, K, N, W> {
         &self.stepper
     }
 
