@@ -566,6 +566,25 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         })
     }
 
+    /// The basis Lemke's method ends in on `lcp` from `warm`'s tableau (the cold start's for the
+    /// trivial basis), whether or not its answer verifies: for a caller that solves that basis'
+    /// own system its own way and then verifies the answer ([`Self::accept`]; the spatial
+    /// stepper's open loads, whose singular bases Lemke's tableau crosses with too much round-off
+    /// to verify, `crate::spatial`). `None` on a ray, at the pivot cap, for a singular `warm` or
+    /// for data that are not finite.
+    #[must_use]
+    pub fn terminal_basis(&self, lcp: &Lcp<T, N>, warm: Basis<N, WORDS>) -> Option<Basis<N, WORDS>> {
+        let () = Self::SIZE_CHECK;
+        let scales = lcp.scales()?;
+        let mut tab = if warm == Basis::all_w() {
+            Tableau::cold(lcp)
+        } else {
+            Tableau::warm(lcp, warm, max(scales.m_norm, T::TINY))?.0
+        };
+        tab.run(self.max_pivots).ok()?;
+        Some(tab.solution(lcp).1)
+    }
+
     /// [`Self::solve_warm`] without its first step, the direct solve of `warm`'s own complementary
     /// solution: for a caller that has just tried that basis itself (the planar stepper solves it
     /// in the body's coordinates, `crate::planar::FactoredLcp`). Lemke's method runs from `warm`'s

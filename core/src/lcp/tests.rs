@@ -182,7 +182,10 @@ fn accept_holds_a_callers_answer_to_the_warm_answers_terms() {
     assert_z(&sol.z, [1.0 / 3.0; 3]);
     assert_eq!((sol.pivots, sol.basis, sol.warm_start_used), (0, all, true));
     assert!(lemke.accept(&kostreva, &SVector::from([0.5, 0.5, -0.1]), all, |_| false).is_none(), "z < 0");
-    assert!(lemke.accept(&kostreva, &SVector::from([0.3, 0.3, 0.3]), all, |_| false).is_none(), "not complementary");
+    assert!(
+        lemke.accept(&kostreva, &SVector::from([0.3, 0.3, 0.3]), all, |_| false).is_none(),
+        "not complementary"
+    );
     // `w = z - 1 + (0, e, 0)`: `z = (1, 0, 0)` with only `z_0` basic leaves `w_1` at `-e`.
     let e = 1e-18;
     let tied = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -e, 1.0]);

@@ -117,7 +117,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 }
             }
             let motion = self.moved_all(&full, free);
-            let slip = |c: &Touch<T>| self.slip_in(&motion, c);
+            let slip = |c: &Touch<T>| Self::slip_in(&motion, c);
             // After a restart, a contact slipping within the stick speed reads sticking, as its
             // report does: the cone alone holds it (its slip's direction is not asked for).
             let resting: [bool; K] = core::array::from_fn(|i| {
@@ -278,7 +278,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let mut reports = [SpatialContactReport::separated(); K];
         for ((c, &(pn, pt)), report) in self.touches.iter().zip(&impulses).zip(reports.iter_mut()) {
             if c.active {
-                *report = self.report(pn, &pt, &self.slip(&v, &w, c), c.mu, (1, bound, false))?;
+                *report = self.report(pn, &pt, &Self::slip(&v, &w, c), c.mu, (1, bound, false))?;
             }
         }
         Ok((reports, v, w))
@@ -476,7 +476,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         let local: [Local<T>; K] = core::array::from_fn(|i| {
             let c = &self.touches[i];
             let n = c.normal;
-            let bias = c.normal_free - dot(&n, &self.velocity(free, c));
+            let bias = c.normal_free - dot(&n, &Self::velocity(free, c));
             let t1 = lines[i].d;
             let t2 = cross(&n, &t1);
             let (a11, a12) = (self.delassus(c, &t1, c, &t1), self.delassus(c, &t1, c, &t2));
@@ -490,7 +490,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 self.touches.iter().zip(&local).zip(p.iter_mut()).filter(|((c, _), _)| c.active)
             {
                 let n = c.normal;
-                let u = self.velocity(&motion, c);
+                let u = Self::velocity(&motion, c);
                 let pn_now = dot(&n, p);
                 let pn = if wnn > zero { max(pn_now - (dot(&n, &u) + bias) / wnn, zero) } else { pn_now };
                 let (s1, s2) = (dot(&t1, &u), dot(&t2, &u));

@@ -192,7 +192,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         for ((c, _), slip) in
             self.touches.iter().zip(&touching).zip(slips.iter_mut()).filter(|((_, t), _)| **t)
         {
-            *slip = self.slip(&v0, &w0, c);
+            *slip = Self::slip(&v0, &w0, c);
             if norm(slip) <= moving {
                 return Ok(path);
             }
@@ -267,7 +267,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             };
             let impulses: [Vector<T>; K] = core::array::from_fn(|i| add(&scale(x[i], &e[i]), &held[i]));
             let (v, w) = self.moved(&impulses, v_free, w_free);
-            let next: [Vector<T>; K] = core::array::from_fn(|i| self.slip(&v, &w, &self.touches[i]));
+            let next: [Vector<T>; K] = core::array::from_fn(|i| Self::slip(&v, &w, &self.touches[i]));
             if (0..K).any(|i| touching[i] && !is_pivot(i) && norm(&next[i]) <= moving)
                 || matches!(stop, Stop::Rest(_)) && (0..K).any(|i| touching[i] && norm(&next[i]) > moving)
             {
@@ -362,7 +362,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                     let (Some(c), Some(&load)) = (self.touches.get(j), x.get(j)) else {
                         return Ok(None);
                     };
-                    let f = self.pivot_friction(c, &self.slip(&v, &w, c), c.mu * load, [t1, t2]);
+                    let f = self.pivot_friction(c, &Self::slip(&v, &w, c), c.mu * load, [t1, t2]);
                     core::array::from_fn(|i| if i == j { f } else { [zero; 3] })
                 }
                 Stop::Rest(j) => {
@@ -459,7 +459,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 (0 | 1, None | Some(true)) => axes[k & 1],
                 (2, None) => scale(T::one() / lever, &cross(&n, &c.arm)),
                 (2, Some(false)) => {
-                    let along = direction(&self.slip(v, w, c)).unwrap_or([zero; 3]);
+                    let along = direction(&Self::slip(v, w, c)).unwrap_or([zero; 3]);
                     scale(-c.mu * x[i], &along)
                 }
                 _ => [zero; 3],

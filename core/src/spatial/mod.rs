@@ -142,7 +142,7 @@ pub use crate::StepError;
 pub use algebra::{Quaternion, Vector, about, cross, dot, identity, norm, perpendicular, rotate};
 pub use body::{Body, State};
 pub use face_patch::{Beneath, FaceContact, FacePatch, PatchOverflow, SCRATCH, face_patch};
-pub use stack::{BlockStack, PATCH_POINTS, StackStepReport};
 pub use report::{MAX_DIRECTIONS, Mode, SpatialContactReport, SpatialStepReport};
+pub use stack::{BlockStack, PATCH_POINTS, StackStepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper};
 pub use supported::{FaceTouch, Finger, LowerFace, SupportPoint, SupportedStepper};

@@ -91,7 +91,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
 
     /// Contact `c`'s velocity in `motion`: its body's point's less the one beneath's less the
     /// support's material's.
-    pub(super) fn velocity(&self, motion: &Motion<T, B>, c: &Touch<T>) -> Vector<T> {
+    pub(super) fn velocity(motion: &Motion<T, B>, c: &Touch<T>) -> Vector<T> {
         let at = |body: usize, arm: &Vector<T>| {
             motion.get(body).map_or([T::zero(); 3], |(v, w)| add(v, &cross(w, arm)))
         };
@@ -103,8 +103,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     }
 
     /// Contact `c`'s slip in `motion`: its velocity's part in its plane.
-    pub(super) fn slip_in(&self, motion: &Motion<T, B>, c: &Touch<T>) -> Vector<T> {
-        let u = self.velocity(motion, c);
+    pub(super) fn slip_in(motion: &Motion<T, B>, c: &Touch<T>) -> Vector<T> {
+        let u = Self::velocity(motion, c);
         sub(&u, &scale(dot(&c.normal, &u), &c.normal))
     }
 
@@ -175,7 +175,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
 
     /// Contact `c`'s slip at velocity `v` and angular velocity `w`: its point's velocity less the
     /// support's ([`Touch::carried`]), in the plane.
-    pub(super) fn slip(&self, v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
-        self.slip_in(&[(*v, *w)], c)
+    pub(super) fn slip(v: &Vector<T>, w: &Vector<T>, c: &Touch<T>) -> Vector<T> {
+        Self::slip_in(&[(*v, *w)], c)
     }
 }

@@ -358,6 +358,11 @@ impl<T: Real, const N: usize, const W: usize> Solve<T, N, W> {
         Self { solver: Lemke::new(), basis: Basis::all_w(), load_basis: Basis::all_w() }
     }
 
+    /// A solver whose answers are verified to `tolerance` ([`Lemke::with_tolerance`]).
+    pub(super) fn with_tolerance(tolerance: T) -> Self {
+        Self { solver: Lemke::new().with_tolerance(tolerance), ..Self::new() }
+    }
+
     /// The impulses of `contacts` on the bodies' free motion `free` ([`Contacts::solve_lines`],
     /// warm-started from the last step's basis), the pivots added to `pivots`.
     ///
@@ -444,7 +449,13 @@ impl<T: Real, const N: usize> Solve<T, N> {
 /// The body at `st` after a step `h` at velocity `v` and angular velocity `w` (`super`'s module
 /// docs, 4): `x + h v`, the turn at the midpoint's angular velocity of the momentum `I_w w`, and
 /// the angular velocity of that momentum at the new orientation.
-pub(super) fn moved_state<T: Real>(body: &Body<T>, st: &State<T>, v: Vector<T>, w: Vector<T>, h: T) -> State<T> {
+pub(super) fn moved_state<T: Real>(
+    body: &Body<T>,
+    st: &State<T>,
+    v: Vector<T>,
+    w: Vector<T>,
+    h: T,
+) -> State<T> {
     // A body whose moments are equal (a sphere) has `I_w = I` at every orientation: its
     // angular velocity is its momentum's, unchanged, with no round-off of the turns.
     let [ia, ib, ic] = body.inertia;
