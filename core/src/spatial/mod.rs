@@ -122,9 +122,12 @@
 //!
 //! Scope: one body, on one fixed plane ([`SpatialStepper`]) or on support points carried under its
 //! flat lower face ([`SupportedStepper`], `supported`'s module docs: fingers lying across a rod;
-//! the same step, each slip the body point's velocity less the support's); its scenes (a puck, a
-//! billiard ball, a curling stone, the meter stick) are `crate::scene::spatial`'s (feature
-//! `scenes-spatial`). Several bodies in three dimensions are to come (`CHANGELOG.md`).
+//! the same step, each slip the body point's velocity less the support's); and blocks resting on
+//! each other over a table's edge ([`BlockStack`], `stack`'s module docs: each contact pushes its
+//! upper block and the one beneath it back, the Delassus operator over both, `space`'s module
+//! docs; the contacts of a face on a face, [`face_patch`]). Their scenes (a puck, a billiard ball,
+//! a curling stone, the meter stick, the stack) are `crate::scene::spatial`'s (feature
+//! `scenes-spatial`).
 
 mod algebra;
 mod body;

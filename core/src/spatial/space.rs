@@ -15,7 +15,8 @@
 //! ```
 //!
 //! (`s = +1` for a contact's body, `-1` for the one beneath it). With one body `m0 / m = 1` and the
-//! sum has one term: the one-body operator of `super`'s module docs (2), to the bit.
+//! sum has one term: the one-body operator of `super`'s module docs (2), which one body's paths
+//! compute as they did (`B == 1`, folded at compile time: the same operations in the same order).
 
 use super::algebra::{Quaternion, Vector, add, cross, dot, scale, sub};
 use super::body::{Body, inverse_inertia_times};
@@ -57,6 +58,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 turn: inverse_inertia_times(frame.body, frame.orientation, &lever),
             })
         };
+        if B == 1 {
+            return [side(0, true, &c.arm), None];
+        }
         [side(c.body, true, &c.arm), c.beneath.and_then(|(b, arm)| side(b, false, &arm))]
     }
 
@@ -68,6 +72,13 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         b: &[Option<Side<T>>; 2],
         f: &Vector<T>,
     ) -> T {
+        if B == 1 {
+            // One body: `e . f + m (r x e) . I_w^-1 (r' x f)`.
+            return match (&a[0], &b[0]) {
+                (Some(sa), Some(sb)) => dot(e, f) + self.mass * dot(&sa.lever, &sb.turn),
+                _ => T::zero(),
+            };
+        }
         let mut total = T::zero();
         for sa in a.iter().flatten() {
             for sb in b.iter().flatten().filter(|sb| sb.body == sa.body) {
@@ -82,6 +93,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// `e . W f` between a unit impulse along `f` at contact `cf` and contact `ce`'s velocity
     /// along `e` (module docs): [`Self::coupling`] reads `ce`'s levers and `cf`'s turns only.
     pub(super) fn delassus(&self, ce: &Touch<T>, e: &Vector<T>, cf: &Touch<T>, f: &Vector<T>) -> T {
+        if let (1, Some(frame)) = (B, self.bodies.first()) {
+            let turn = inverse_inertia_times(frame.body, frame.orientation, &cross(&cf.arm, f));
+            return dot(e, f) + self.mass * dot(&cross(&ce.arm, e), &turn);
+        }
         let levers = |body: usize, pushed: bool, arm: &Vector<T>| {
             Some(Side { body, pushed, lever: cross(arm, e), turn: [T::zero(); 3] })
         };
@@ -92,6 +107,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// Contact `c`'s velocity in `motion`: its body's point's less the one beneath's less the
     /// support's material's.
     pub(super) fn velocity(motion: &Motion<T, B>, c: &Touch<T>) -> Vector<T> {
+        if let (1, Some((v, w))) = (B, motion.first()) {
+            return sub(&add(v, &cross(w, &c.arm)), &c.carried);
+        }
         let at = |body: usize, arm: &Vector<T>| {
             motion.get(body).map_or([T::zero(); 3], |(v, w)| add(v, &cross(w, arm)))
         };
@@ -111,6 +129,20 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The motion after each active contact's impulse `p` (per unit reference mass, world axes)
     /// on the motion `free`.
     pub(super) fn moved_all(&self, p: &[Vector<T>; K], free: &Motion<T, B>) -> Motion<T, B> {
+        if let (1, Some(frame)) = (B, self.bodies.first()) {
+            // One body: `v~ + sum p`, `omega~ + m I_w^-1 sum r x p`.
+            let (mut push, mut twist) = ([T::zero(); 3], [T::zero(); 3]);
+            for (c, p) in self.touches.iter().zip(p).filter(|(c, _)| c.active) {
+                push = add(&push, p);
+                twist = add(&twist, &cross(&c.arm, p));
+            }
+            let turn = inverse_inertia_times(frame.body, frame.orientation, &twist);
+            let mut motion = *free;
+            if let Some((v, w)) = motion.first_mut() {
+                (*v, *w) = (add(v, &push), add(w, &scale(self.mass, &turn)));
+            }
+            return motion;
+        }
         let (mut push, mut twist) = ([[T::zero(); 3]; B], [[T::zero(); 3]; B]);
         for (c, p) in self.touches.iter().zip(p).filter(|(c, _)| c.active) {
             if let (Some(v), Some(w)) = (push.get_mut(c.body), twist.get_mut(c.body)) {
@@ -134,6 +166,12 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
 
     /// Adds contact `c`'s impulse `change` (per unit reference mass) to `motion`.
     pub(super) fn push(&self, motion: &mut Motion<T, B>, c: &Touch<T>, change: &Vector<T>) {
+        if let (1, Some(frame), Some((v, w))) = (B, self.bodies.first(), motion.first_mut()) {
+            *v = add(v, change);
+            let turn = inverse_inertia_times(frame.body, frame.orientation, &cross(&c.arm, change));
+            *w = add(w, &scale(self.mass, &turn));
+            return;
+        }
         let mut apply = |body: usize, arm: &Vector<T>, change: &Vector<T>| {
             if let (Some(frame), Some((v, w))) = (self.bodies.get(body), motion.get_mut(body)) {
                 *v = add(v, &scale(frame.inverse_mass, change));

@@ -1,8 +1,7 @@
 //! The 3-block stack over a table's edge in three dimensions (docs/scenes.md, "stack-3d"), its
-//! overhang at headings to the edge: rapier3d's outcome and time per step beside the independent
-//! reference's outcome (`meterstick_reference::spatial::run_stack_3d_keeping`; the core's engine
-//! of several bodies in three dimensions is not built yet, so there is no core figure and no
-//! ratio here).
+//! overhang at headings to the edge: rapier3d's and the core's outcomes and times per step (both
+//! in f32, `Stack3d3`), the ratio of the two on the held stack, and the independent reference's
+//! outcome (`meterstick_reference::spatial::run_stack_3d_keeping`).
 //!
 //! Rapier: the table a fixed cuboid whose top face is `z = 0` over `x <= 0`; each block a cuboid
 //! `L x W x hb` (mass `m`), at the scene's start (the planar stack's harmonic offsets along `d =
@@ -14,6 +13,7 @@
 use std::fmt::Write as _;
 use std::time::Instant;
 
+use meterstick_core::scene::spatial::{Stack3d3, Stack3dParams};
 use meterstick_reference::spatial::{Keep, Outcome, Stack3d, run_stack_3d_keeping};
 use rapier3d::prelude::*;
 
@@ -81,6 +81,37 @@ fn rapier_stack(p: &Stack3d) -> (&'static str, f64, f64) {
     (outcome, steps as f64 * p.h, ns / steps as f64)
 }
 
+/// The core's run of `p` (f32, `Stack3d3`): its outcome, the time it ended (s) and ns per step.
+fn core_stack(p: &Stack3d) -> (String, f64, f64) {
+    let f = |x: f64| x as f32;
+    let params = Stack3dParams::<f32> {
+        length: f(p.length),
+        width: f(p.width),
+        height: f(p.height),
+        mass: f(p.mass),
+        mu_static: f(p.mu_s),
+        mu_kinetic: f(p.mu_k),
+        overhang: f(p.overhang),
+        heading: f(p.heading),
+        gravity: f(p.g),
+        step: f(p.h),
+        stick_speed: f(p.stick_speed),
+        tilt_limit: f(p.tilt_limit),
+        drop_limit: f(p.drop_limit),
+        contact_margin: f(p.margin),
+        max_time: f(p.max_time),
+    };
+    let mut scene = Stack3d3::<f32>::new(params).expect("the stack's defaults are valid");
+    let mut steps = 0u64;
+    let start = Instant::now();
+    while scene.step().is_some() {
+        steps += 1;
+    }
+    let ns = start.elapsed().as_nanos() as f64 / steps.max(1) as f64;
+    let outcome = scene.outcome().map_or_else(|| "none".to_string(), |o| format!("{o:?}"));
+    (outcome, steps as f64 * p.h, ns)
+}
+
 /// The reference's outcome of `p` over 1 s.
 fn reference_stack(p: &Stack3d) -> String {
     match run_stack_3d_keeping(&Stack3d { max_time: 1.0, ..*p }, Keep::StartAndEnd) {
@@ -109,15 +140,16 @@ pub fn stack_section(text: &mut String, table: &mut super::Rows, repeats: usize)
     .unwrap();
     for heading in HEADINGS {
         let p = Stack3d { heading: heading.to_radians(), ..base };
-        let ns = super::median(
-            (0..repeats).map(|_| rapier_stack(&Stack3d { overhang: OVERHANGS[0], ..p }).2).collect(),
-        );
-        let mut rapier = Vec::new();
-        let mut reference = Vec::new();
+        let held = Stack3d { overhang: OVERHANGS[0], ..p };
+        let ns = super::median((0..repeats).map(|_| rapier_stack(&held).2).collect());
+        let core_ns = super::median((0..repeats).map(|_| core_stack(&held).2).collect());
+        let (mut rapier, mut core, mut reference) = (Vec::new(), Vec::new(), Vec::new());
         for s in OVERHANGS {
+            let how = |outcome: &str| if outcome == "Held" { "for" } else { "at t =" };
             let (outcome, t, _) = rapier_stack(&Stack3d { overhang: s, ..p });
-            let how = if outcome == "Held" { "for" } else { "at t =" };
-            rapier.push(format!("s = {s:.2}: {outcome} {how} {t:.3} s"));
+            rapier.push(format!("s = {s:.2}: {outcome} {} {t:.3} s", how(outcome)));
+            let (outcome, t, _) = core_stack(&Stack3d { overhang: s, ..p });
+            core.push(format!("s = {s:.2}: {outcome} {} {t:.3} s", how(&outcome)));
             reference.push(format!("s = {s:.2}: {}", reference_stack(&Stack3d { overhang: s, ..p })));
         }
         writeln!(
@@ -126,10 +158,13 @@ pub fn stack_section(text: &mut String, table: &mut super::Rows, repeats: usize)
             rapier.join("  ")
         )
         .unwrap();
+        writeln!(text, "  {:>17}  core (f32)          {core_ns:>9.1} ns/step  {}", "", core.join("  "))
+            .unwrap();
         writeln!(text, "  {:>17}  reference (f64)  {}", "", reference.join("  ")).unwrap();
+        writeln!(text, "  {:>17}  ratio rapier3d / core: {:.2}x", "", ns / core_ns).unwrap();
         table.push([
-            format!("3-block stack at heading {heading} deg: outcome at s = 0.98 / 1.02 (the core: the reference's)"),
-            reference.join("; "),
+            format!("3-block stack at heading {heading} deg: outcome at s = 0.98 / 1.02; ns/step held"),
+            format!("{}; {core_ns:.0} ns/step", core.join("; ")),
             format!("{}; {ns:.0} ns/step", rapier.join("; ")),
         ]);
     }
