@@ -135,3 +135,15 @@ pub(super) fn turned<T: Real>(q: &Quaternion<T>, omega: &Vector<T>, h: T) -> Qua
 pub(super) fn advanced<T: Real>(a: &Vector<T>, h: T, rate: &Vector<T>) -> Vector<T> {
     add(a, &scale(h, rate))
 }
+
+/// A body the contacts push: its inertia, its orientation at the step's start, and its inverse
+/// mass per unit of the reference mass (`m0 / m`; 1 for the reference body itself).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Frame<'a, T> {
+    pub body: &'a Body<T>,
+    pub orientation: &'a Quaternion<T>,
+    pub inverse_mass: T,
+}
+
+/// Each body's velocity and angular velocity, world axes.
+pub(super) type Motion<T, const B: usize> = [(Vector<T>, Vector<T>); B];

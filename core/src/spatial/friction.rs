@@ -3,8 +3,8 @@
 //! cone (`super`'s module docs, 3).
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
+use super::body::{Frame, Motion};
 use super::report::{MAX_DIRECTIONS, Mode, SpatialContactReport};
-use super::space::{Frame, Motion};
 use crate::StepError;
 use crate::lcp::{Basis, Lcp, Lemke};
 use crate::real::{Real, max, min};

@@ -19,21 +19,10 @@
 //! compute as they did (`B == 1`, folded at compile time: the same operations in the same order).
 
 use super::algebra::{Quaternion, Vector, add, cross, dot, scale, sub};
+use super::body::Motion;
 use super::body::{Body, inverse_inertia_times};
 use super::friction::{Contacts, Touch};
 use crate::real::Real;
-
-/// A body the contacts push: its inertia, its orientation at the step's start, and its inverse
-/// mass per unit of the reference mass (`m0 / m`; 1 for the reference body itself).
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Frame<'a, T> {
-    pub body: &'a Body<T>,
-    pub orientation: &'a Quaternion<T>,
-    pub inverse_mass: T,
-}
-
-/// Each body's velocity and angular velocity, world axes.
-pub(super) type Motion<T, const B: usize> = [(Vector<T>, Vector<T>); B];
 
 /// One side of a contact along one direction `e` (a body it pushes, `sign` the impulse's on it):
 /// `r x e` and `I_w^-1 (r x e)`, computed once a contact and direction for the LCP's entries.

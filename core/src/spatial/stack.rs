@@ -30,10 +30,10 @@
 
 use super::algebra::{Vector, add, cross, dot, finite, norm, normalized, scale, sub};
 use super::body::{Body, State, advanced};
+use super::body::{Frame, Motion};
 use super::face_patch::{Beneath, face_patch};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport};
-use super::space::{Frame, Motion};
 use super::stepper::{Solve, SpatialSettings, moved_state};
 use crate::ParamError;
 use crate::StepError;

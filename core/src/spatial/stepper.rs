@@ -3,9 +3,9 @@
 
 use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
+use super::body::{Frame, Motion};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport, SpatialStepReport};
-use super::space::{Frame, Motion};
 use crate::ParamError;
 use crate::StepError;
 use crate::lcp::{Basis, Lemke};
