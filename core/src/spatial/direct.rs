@@ -16,7 +16,7 @@
 
 use nalgebra::SVector;
 
-use super::friction::{Contacts, solved};
+use super::friction::Contacts;
 use crate::StepError;
 use crate::lcp::elimination::solve_leading;
 use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
@@ -242,7 +242,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
 /// The least-norm solution of the leading `m x m` system `a x = b` (possibly singular) by
 /// iterated Tikhonov regularisation: from `x = 0`, [`LEAST_NORM_SWEEPS`] times `x += (A^T A + mu
 /// I)^-1 A^T (b - A x)`, `mu = 64 eps` of `A^T A`'s largest diagonal entry. Each sweep shrinks the
-/// error along a singular direction of value `s` by `mu / (s^2 + mu)`; a null direction, which
+/// error along a singular direction of value `s` by `mu / (s^2 + mu)` (`A^T A + mu I` factored once,
+/// [`cholesky`]); a null direction, which
 /// `A^T` never reaches, stays zero: for a consistent system, its solution of least norm. Its
 /// residual is not checked here: the caller verifies the answer it builds from it.
 fn least_norm<T: Real, const N: usize>(a: &[[T; N]; N], b: &[T; N], m: usize) -> [T; N] {
@@ -256,30 +257,72 @@ fn least_norm<T: Real, const N: usize>(a: &[[T; N]; N], b: &[T; N], m: usize) ->
         largest = max(largest, row[r]);
     }
     let mu = T::of(64.0) * T::EPS * max(largest, T::TINY);
-    for (r, row) in normal.iter_mut().enumerate() {
-        row[r] = if r < m { row[r] + mu } else { T::one() };
+    let m = m.min(N);
+    for (r, row) in normal.iter_mut().enumerate().take(m) {
+        row[r] += mu;
     }
     let mut x = [zero; N];
-    let residual = |x: &[T; N]| -> [T; N] {
-        core::array::from_fn(|r| {
+    // `A^T A + mu I` is symmetric positive definite: factored once (Cholesky), solved each sweep.
+    if !cholesky(&mut normal, m) {
+        return x;
+    }
+    for _ in 0..LEAST_NORM_SWEEPS {
+        let r: [T; N] = core::array::from_fn(|r| {
             if r < m {
-                b[r] - a[r].iter().zip(x).take(m).fold(zero, |acc, (a, x)| acc + *a * *x)
+                b[r] - a[r].iter().zip(&x).take(m).fold(zero, |acc, (a, x)| acc + *a * *x)
             } else {
                 zero
             }
-        })
-    };
-    for _ in 0..LEAST_NORM_SWEEPS {
-        let r = residual(&x);
-        let rhs: [T; N] = core::array::from_fn(|c| {
+        });
+        let mut step: [T; N] = core::array::from_fn(|c| {
             if c < m { a.iter().zip(&r).take(m).fold(zero, |acc, (ak, rk)| acc + ak[c] * *rk) } else { zero }
         });
-        let step = solved(normal, rhs);
+        cholesky_solve(&normal, &mut step, m);
         for (x, s) in x.iter_mut().zip(&step).take(m) {
             *x += *s;
         }
     }
     x
+}
+
+/// The Cholesky factor `L` (`L L^T = g`) of `g`'s leading `m x m` block (`m <= N`), in place in its
+/// lower triangle; `false` when a pivot is not positive (not positive definite to round-off).
+fn cholesky<T: Real, const N: usize>(g: &mut [[T; N]; N], m: usize) -> bool {
+    for i in 0..m {
+        for j in 0..=i {
+            let mut sum = g[i][j];
+            for k in 0..j {
+                sum -= g[i][k] * g[j][k];
+            }
+            if i == j {
+                if sum <= T::zero() || !sum.finite() {
+                    return false;
+                }
+                g[i][i] = sum.sqrt_rounded();
+            } else {
+                g[i][j] = sum / g[j][j];
+            }
+        }
+    }
+    true
+}
+
+/// `x` with `L L^T x = b` for [`cholesky`]'s factor `l` of the leading `m x m` block, in place.
+fn cholesky_solve<T: Real, const N: usize>(l: &[[T; N]; N], b: &mut [T; N], m: usize) {
+    for i in 0..m {
+        let mut sum = b[i];
+        for k in 0..i {
+            sum -= l[i][k] * b[k];
+        }
+        b[i] = sum / l[i][i];
+    }
+    for i in (0..m).rev() {
+        let mut sum = b[i];
+        for k in i + 1..m {
+            sum -= l[k][i] * b[k];
+        }
+        b[i] = sum / l[i][i];
+    }
 }
 
 /// The regularisations an open load tries (`Contacts::open_load`), each a sixteenth of the last.
