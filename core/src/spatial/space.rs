@@ -19,8 +19,7 @@
 //! compute as they did (`B == 1`, folded at compile time: the same operations in the same order).
 
 use super::algebra::{Quaternion, Vector, add, cross, dot, scale, sub};
-use super::body::Motion;
-use super::body::{Body, inverse_inertia_times};
+use super::body::{Body, Motion, inverse_inertia_times};
 use super::friction::{Contacts, Touch};
 use crate::real::Real;
 

@@ -29,8 +29,7 @@
 //! but one: 2 blocks held at -45 deg stop at step 97 with [`StepError::ConeNotConverged`].
 
 use super::algebra::{Vector, add, cross, dot, finite, norm, normalized, scale, sub};
-use super::body::{Body, State, advanced};
-use super::body::{Frame, Motion};
+use super::body::{Body, Frame, Motion, State, advanced};
 use super::face_patch::{Beneath, face_patch};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport};

@@ -2,8 +2,7 @@
 //! `super`'s module docs (the contacts' impulses: `super::friction`).
 
 use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
-use super::body::{Body, State, advanced, inertia_times, inverse_inertia_times, turned};
-use super::body::{Frame, Motion};
+use super::body::{Body, Frame, Motion, State, advanced, inertia_times, inverse_inertia_times, turned};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport, SpatialStepReport};
 use crate::ParamError;
