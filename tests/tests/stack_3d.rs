@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::float_cmp)]
 
 use meterstick_core::Real;
-use meterstick_core::multibody::scenes::{MultibodyScene as _, Stack2, Stack3, StackParams};
+use meterstick_core::multibody::scenes::{MultibodyScene, Stack2, Stack3, StackParams};
 use meterstick_core::scene::Outcome;
 use meterstick_core::scene::spatial::{Stack3d, Stack3d2, Stack3d3, Stack3dParams};
 use meterstick_core::spatial::{State, StepError, rotate};
@@ -69,9 +69,27 @@ fn apart<const B: usize>(core: &[[State<f64>; B]], p: &Stack3dParams<f64>) -> (O
     (outcome, reference.trajectory.len(), position, turn)
 }
 
+/// The core's run of `p` with `B` blocks against the reference's: the outcome `expected` in both
+/// after the same steps, every block within 1e-9 m and 1e-9 rad at every step.
+fn follows_the_reference<const B: usize, const K: usize, const N: usize, const W: usize>(
+    p: &Stack3dParams<f64>,
+    expected: Outcome,
+) {
+    let what = format!("{B} blocks at {:.0} deg, s = {}", p.heading.to_degrees(), p.overhang);
+    let (outcome, rows) = core_run::<f64, B, K, N, W>(*p);
+    let (ref_outcome, ref_rows, position, turn) = apart(&rows, p);
+    println!(
+        "{what}: {outcome:?} after {} steps; reference {ref_outcome:?} after {}; apart {position:.1e} m, {turn:.1e} rad",
+        rows.len() - 1,
+        ref_rows - 1
+    );
+    assert_eq!((outcome, ref_outcome), (expected, expected), "{what}");
+    assert_eq!(rows.len(), ref_rows, "{what}: steps");
+    assert!(position <= 1e-9 && turn <= 1e-9, "{what}: {position:e} m, {turn:e} rad");
+}
+
 /// 2 and 3 blocks at headings -45 to 60 degrees, f64: held at 0.98 (over 0.3 s) and fallen at
-/// 1.02, as the reference, step for step: the same outcome after the same steps, every block
-/// centre within 1e-9 m and every orientation within 1e-9 rad of the reference's.
+/// 1.02, as the reference, step for step ([`follows_the_reference`]).
 #[test]
 fn the_stack_follows_the_reference_at_every_heading() {
     for heading in [0.0f64, 15.0, 30.0, -45.0, 60.0] {
@@ -83,40 +101,8 @@ fn the_stack_follows_the_reference_at_every_heading() {
                 ..Default::default()
             };
             let expected = if overhang < 1.0 { Outcome::Held } else { Outcome::Fell };
-            let (outcome, rows) = core_run::<f64, 2, 13, 52, 2>(p);
-            let (ref_outcome, ref_rows, position, turn) = apart(&rows, &p);
-            println!(
-                "2 blocks at {heading} deg, s = {overhang}: {outcome:?} after {} steps; reference {ref_outcome:?} after {}; apart {position:.1e} m, {turn:.1e} rad",
-                rows.len() - 1,
-                ref_rows - 1
-            );
-            assert_eq!(
-                (outcome, ref_outcome),
-                (expected, expected),
-                "2 blocks at {heading} deg, s = {overhang}"
-            );
-            assert_eq!(rows.len(), ref_rows, "2 blocks at {heading} deg, s = {overhang}: steps");
-            assert!(
-                position <= 1e-9 && turn <= 1e-9,
-                "2 blocks at {heading} deg, s = {overhang}: {position:e} m, {turn:e} rad"
-            );
-            let (outcome, rows) = core_run::<f64, 3, 16, 64, 2>(p);
-            let (ref_outcome, ref_rows, position, turn) = apart(&rows, &p);
-            println!(
-                "3 blocks at {heading} deg, s = {overhang}: {outcome:?} after {} steps; reference {ref_outcome:?} after {}; apart {position:.1e} m, {turn:.1e} rad",
-                rows.len() - 1,
-                ref_rows - 1
-            );
-            assert_eq!(
-                (outcome, ref_outcome),
-                (expected, expected),
-                "3 blocks at {heading} deg, s = {overhang}"
-            );
-            assert_eq!(rows.len(), ref_rows, "3 blocks at {heading} deg, s = {overhang}: steps");
-            assert!(
-                position <= 1e-9 && turn <= 1e-9,
-                "3 blocks at {heading} deg, s = {overhang}: {position:e} m, {turn:e} rad"
-            );
+            follows_the_reference::<2, 13, 52, 2>(&p, expected);
+            follows_the_reference::<3, 16, 64, 2>(&p, expected);
         }
     }
 }
@@ -158,70 +144,51 @@ fn in_f32_the_stack_holds_at_098_and_falls_at_102() {
 /// theta)`, to 1e-9 over every step, held and falling; the same outcome after the same steps.
 #[test]
 fn at_heading_zero_the_stack_is_the_planar_stack() {
-    fn compare<const B: usize>(
-        core: &[[State<f64>; B]],
-        planar: &[[meterstick_core::planar::BodyState<f64>; B]],
-    ) -> f64 {
-        let mut worst = 0.0f64;
-        for (row, flat) in core.iter().zip(planar) {
-            for (st, b) in row.iter().zip(flat) {
-                let axis = rotate(&st.orientation, &[1.0, 0.0, 0.0]);
-                for (a, e) in [
-                    (st.position[0], b.x),
-                    (st.position[1], 0.0),
-                    (st.position[2], b.y),
-                    (axis[0], b.theta.cos()),
-                    (axis[1], 0.0),
-                    (axis[2], b.theta.sin()),
-                ] {
-                    worst = worst.max((a - e).abs());
-                }
-            }
-        }
-        worst
-    }
     for overhang in [0.98, 1.02] {
         let p = Stack3dParams::<f64> { overhang, max_time: 0.3, ..Default::default() };
         let flat = StackParams::<f64> { overhang, max_time: 0.3, ..Default::default() };
-        let (outcome, rows) = core_run::<f64, 2, 13, 52, 2>(p);
-        let mut planar = Stack2::<f64>::new(flat).expect("valid");
-        let mut planar_rows = vec![*planar.states()];
-        while let Some(report) = planar.step() {
-            planar_rows.push(report.states);
-        }
-        let worst = compare(&rows, &planar_rows);
-        println!(
-            "2 blocks, s = {overhang}: {outcome:?} after {} steps, planar {:?} after {}; apart {worst:.1e}",
-            rows.len() - 1,
-            planar.outcome(),
-            planar_rows.len() - 1
-        );
-        assert_eq!(
-            (Some(outcome), rows.len()),
-            (planar.outcome(), planar_rows.len()),
-            "2 blocks, s = {overhang}"
-        );
-        assert!(worst <= 1e-9, "2 blocks, s = {overhang}: {worst:e}");
-        let (outcome, rows) = core_run::<f64, 3, 16, 64, 2>(p);
-        let mut planar = Stack3::<f64>::new(flat).expect("valid");
-        let mut planar_rows = vec![*planar.states()];
-        while let Some(report) = planar.step() {
-            planar_rows.push(report.states);
-        }
-        let worst = compare(&rows, &planar_rows);
-        println!(
-            "3 blocks, s = {overhang}: {outcome:?} after {} steps, planar {:?} after {}; apart {worst:.1e}",
-            rows.len() - 1,
-            planar.outcome(),
-            planar_rows.len() - 1
-        );
-        assert_eq!(
-            (Some(outcome), rows.len()),
-            (planar.outcome(), planar_rows.len()),
-            "3 blocks, s = {overhang}"
-        );
-        assert!(worst <= 1e-9, "3 blocks, s = {overhang}: {worst:e}");
+        is_the_planar_stack::<2, 13, 52, 2>(p, Stack2::<f64>::new(flat).expect("valid"));
+        is_the_planar_stack::<3, 16, 64, 2>(p, Stack3::<f64>::new(flat).expect("valid"));
     }
+}
+
+/// The core's run of `p` with `B` blocks against the planar engine's `planar`: the same outcome
+/// after the same steps, each block's centre `(x, 0, z)` the planar `(x, y)` and its axis `x`
+/// `(cos theta, 0, sin theta)` to 1e-9.
+fn is_the_planar_stack<const B: usize, const K: usize, const N: usize, const W: usize>(
+    p: Stack3dParams<f64>,
+    mut planar: impl MultibodyScene<f64, B, B>,
+) {
+    let what = format!("{B} blocks, s = {}", p.overhang);
+    let (outcome, rows) = core_run::<f64, B, K, N, W>(p);
+    let mut planar_rows = vec![*planar.states()];
+    while let Some(report) = planar.step() {
+        planar_rows.push(report.states);
+    }
+    let mut worst = 0.0f64;
+    for (row, flat) in rows.iter().zip(&planar_rows) {
+        for (st, b) in row.iter().zip(flat) {
+            let axis = rotate(&st.orientation, &[1.0, 0.0, 0.0]);
+            for (a, e) in [
+                (st.position[0], b.x),
+                (st.position[1], 0.0),
+                (st.position[2], b.y),
+                (axis[0], b.theta.cos()),
+                (axis[1], 0.0),
+                (axis[2], b.theta.sin()),
+            ] {
+                worst = worst.max((a - e).abs());
+            }
+        }
+    }
+    println!(
+        "{what}: {outcome:?} after {} steps, planar {:?} after {}; apart {worst:.1e}",
+        rows.len() - 1,
+        planar.outcome(),
+        planar_rows.len() - 1
+    );
+    assert_eq!((Some(outcome), rows.len()), (planar.outcome(), planar_rows.len()), "{what}");
+    assert!(worst <= 1e-9, "{what}: {worst:e}");
 }
 
 /// The stack's parameters are refused by name: a heading beyond 60 degrees, a block count other

@@ -33,7 +33,7 @@ use super::body::{Body, Frame, Motion, State, advanced};
 use super::face_patch::{Beneath, face_patch};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport};
-use super::stepper::{Solve, SpatialSettings, moved_state};
+use super::stepper::{Solve, SpatialSettings, check_friction, moved_state};
 use crate::ParamError;
 use crate::StepError;
 use crate::planar::assemble::normal_bias;
@@ -106,27 +106,8 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
         if !half.iter().all(|h| h.finite() && *h > T::zero()) {
             return Err(ParamError::OutOfRange("half"));
         }
-        for (value, name) in [(mu_static, "mu_static"), (mu_kinetic, "mu_kinetic")] {
-            if !value.finite() {
-                return Err(ParamError::NonFinite(name));
-            }
-            if value < T::zero() {
-                return Err(ParamError::Negative(name));
-            }
-        }
-        if mu_kinetic > mu_static {
-            return Err(ParamError::KineticAboveStatic);
-        }
-        for (value, name) in
-            [(settings.step, "step"), (settings.stick_speed, "stick_speed"), (settings.margin, "margin")]
-        {
-            if !value.finite() {
-                return Err(ParamError::NonFinite(name));
-            }
-            if value <= T::zero() {
-                return Err(ParamError::NotPositive(name));
-            }
-        }
+        check_friction(mu_static, mu_kinetic)?;
+        settings.check_steps()?;
         if !finite(&settings.gravity) {
             return Err(ParamError::NonFinite("gravity"));
         }

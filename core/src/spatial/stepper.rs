@@ -115,6 +115,46 @@ impl<T: Real> Default for SpatialSettings<T> {
     }
 }
 
+impl<T: Real> SpatialSettings<T> {
+    /// Refuses a step, stick speed or margin that is not finite and positive.
+    ///
+    /// # Errors
+    /// [`ParamError::NonFinite`] or [`ParamError::NotPositive`] naming `step`, `stick_speed` or
+    /// `margin`.
+    pub(super) fn check_steps(&self) -> Result<(), ParamError> {
+        for (value, name) in [(self.step, "step"), (self.stick_speed, "stick_speed"), (self.margin, "margin")]
+        {
+            if !value.finite() {
+                return Err(ParamError::NonFinite(name));
+            }
+            if value <= T::zero() {
+                return Err(ParamError::NotPositive(name));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Refuses friction coefficients that are not finite, negative, or kinetic above static.
+///
+/// # Errors
+/// [`ParamError::NonFinite`] or [`ParamError::Negative`] naming `mu_static` or `mu_kinetic`;
+/// [`ParamError::KineticAboveStatic`].
+pub(super) fn check_friction<T: Real>(mu_static: T, mu_kinetic: T) -> Result<(), ParamError> {
+    for (value, name) in [(mu_static, "mu_static"), (mu_kinetic, "mu_kinetic")] {
+        if !value.finite() {
+            return Err(ParamError::NonFinite(name));
+        }
+        if value < T::zero() {
+            return Err(ParamError::Negative(name));
+        }
+    }
+    if mu_kinetic > mu_static {
+        return Err(ParamError::KineticAboveStatic);
+    }
+    Ok(())
+}
+
 /// A body on a plane touching it at up to `K` points (`N = 4 K`, the LCP's size: one friction
 /// line per contact), stepped as `super`'s module docs say.
 #[derive(Debug, Clone)]
@@ -180,27 +220,8 @@ impl<T: Real, const K: usize, const N: usize> SpatialStepper<T, K, N> {
         if !n.finite() || (n - T::one()).abs_exact() > T::of(64.0) * T::EPS {
             return Err(ParamError::OutOfRange("normal"));
         }
-        for (value, name) in [(plane.mu_static, "mu_static"), (plane.mu_kinetic, "mu_kinetic")] {
-            if !value.finite() {
-                return Err(ParamError::NonFinite(name));
-            }
-            if value < T::zero() {
-                return Err(ParamError::Negative(name));
-            }
-        }
-        if plane.mu_kinetic > plane.mu_static {
-            return Err(ParamError::KineticAboveStatic);
-        }
-        for (value, name) in
-            [(settings.step, "step"), (settings.stick_speed, "stick_speed"), (settings.margin, "margin")]
-        {
-            if !value.finite() {
-                return Err(ParamError::NonFinite(name));
-            }
-            if value <= T::zero() {
-                return Err(ParamError::NotPositive(name));
-            }
-        }
+        check_friction(plane.mu_static, plane.mu_kinetic)?;
+        settings.check_steps()?;
         if matches!(settings.friction, FrictionCone::Pyramid { directions }
             if !(3..=16).contains(&directions) || K * (usize::from(directions) + 2) > N)
         {

@@ -34,7 +34,7 @@ use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub, unrotate
 use super::body::{Body, State, advanced};
 use super::friction::Touch;
 use super::report::{Mode, SpatialStepReport};
-use super::stepper::{Solve, SpatialSettings};
+use super::stepper::{Solve, SpatialSettings, check_friction};
 use crate::ParamError;
 use crate::StepError;
 use crate::planar::assemble::normal_bias;
@@ -159,27 +159,8 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         if !(l.finite() && w.finite() && t.finite() && l > T::zero() && w > T::zero() && t >= T::zero()) {
             return Err(ParamError::OutOfRange("face"));
         }
-        for (value, name) in [(mu_static, "mu_static"), (mu_kinetic, "mu_kinetic")] {
-            if !value.finite() {
-                return Err(ParamError::NonFinite(name));
-            }
-            if value < T::zero() {
-                return Err(ParamError::Negative(name));
-            }
-        }
-        if mu_kinetic > mu_static {
-            return Err(ParamError::KineticAboveStatic);
-        }
-        for (value, name) in
-            [(settings.step, "step"), (settings.stick_speed, "stick_speed"), (settings.margin, "margin")]
-        {
-            if !value.finite() {
-                return Err(ParamError::NonFinite(name));
-            }
-            if value <= T::zero() {
-                return Err(ParamError::NotPositive(name));
-            }
-        }
+        check_friction(mu_static, mu_kinetic)?;
+        settings.check_steps()?;
         if !super::algebra::finite(&settings.gravity) {
             return Err(ParamError::NonFinite("gravity"));
         }
