@@ -35,6 +35,8 @@ impl Flag {
     }
 }
 
+#[cfg(feature = "stack-3d")]
+use SceneKind::Stack3d as S3;
 #[cfg(feature = "spatial")]
 use SceneKind::{Billiard as BI, Curling as CU, MeterStick3d as M3, Puck as PK};
 #[cfg(feature = "multibody")]
@@ -151,6 +153,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "mu_static"),
             #[cfg(feature = "multibody")]
             (ST, "mu_static"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "mu_static"),
             #[cfg(feature = "multibody")]
             (DB, "mu_static"),
             #[cfg(feature = "spatial")]
@@ -177,6 +181,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "mu_kinetic"),
             #[cfg(feature = "multibody")]
             (ST, "mu_kinetic"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "mu_kinetic"),
             #[cfg(feature = "multibody")]
             (DB, "mu_kinetic"),
             #[cfg(feature = "spatial")]
@@ -237,6 +243,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "block_mass"),
             #[cfg(feature = "multibody")]
             (ST, "mass"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "mass"),
             #[cfg(feature = "multibody")]
             (DB, "disc_mass"),
             #[cfg(feature = "spatial")]
@@ -260,6 +268,8 @@ pub const FLAGS: &[Flag] = &[
             (P, "length"),
             #[cfg(feature = "multibody")]
             (ST, "length"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "length"),
         ],
     },
     Flag {
@@ -289,6 +299,8 @@ pub const FLAGS: &[Flag] = &[
             (BB, "top_width"),
             #[cfg(feature = "multibody")]
             (TC, "block_width"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "width"),
         ],
     },
     Flag {
@@ -303,6 +315,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "block_height"),
             #[cfg(feature = "multibody")]
             (ST, "height"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "height"),
         ],
     },
     Flag {
@@ -346,6 +360,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "gravity"),
             #[cfg(feature = "multibody")]
             (ST, "gravity"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "gravity"),
             #[cfg(feature = "multibody")]
             (DB, "gravity"),
             #[cfg(feature = "spatial")]
@@ -375,6 +391,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "step"),
             #[cfg(feature = "multibody")]
             (ST, "step"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "step"),
             #[cfg(feature = "multibody")]
             (DB, "step"),
             #[cfg(feature = "spatial")]
@@ -404,6 +422,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "max_time"),
             #[cfg(feature = "multibody")]
             (ST, "max_time"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "max_time"),
             #[cfg(feature = "multibody")]
             (DB, "max_time"),
             #[cfg(feature = "spatial")]
@@ -433,6 +453,8 @@ pub const FLAGS: &[Flag] = &[
             (TC, "stick_speed"),
             #[cfg(feature = "multibody")]
             (ST, "stick_speed"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "stick_speed"),
             #[cfg(feature = "multibody")]
             (DB, "stick_speed"),
             #[cfg(feature = "spatial")]
@@ -456,6 +478,8 @@ pub const FLAGS: &[Flag] = &[
             (BB, "tilt_limit"),
             #[cfg(feature = "multibody")]
             (ST, "tilt_limit"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "tilt_limit"),
         ],
     },
     Flag {
@@ -468,6 +492,8 @@ pub const FLAGS: &[Flag] = &[
             (M3, "drop_limit"),
             #[cfg(feature = "multibody")]
             (ST, "drop_limit"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "drop_limit"),
         ],
     },
     Flag {
@@ -533,13 +559,26 @@ pub const FLAGS: &[Flag] = &[
         fields: &[(TC, "offset"), (DB, "offset")],
     },
     #[cfg(feature = "multibody")]
-    Flag { long: "blocks", unit: "", help: "Blocks in the stack: 2 or 3", fields: &[(ST, "blocks")] },
+    Flag {
+        long: "blocks",
+        unit: "",
+        help: "Blocks in the stack: 2 or 3",
+        fields: &[
+            (ST, "blocks"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "blocks"),
+        ],
+    },
     #[cfg(feature = "multibody")]
     Flag {
         long: "overhang",
         unit: "",
         help: "The harmonic overhangs' scale s (0 <= s < 2 x blocks): each block reaches s L / (2k) past the one below; below 1 the stack holds, above it falls",
-        fields: &[(ST, "overhang")],
+        fields: &[
+            (ST, "overhang"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "overhang"),
+        ],
     },
     #[cfg(feature = "multibody")]
     Flag {
@@ -550,6 +589,8 @@ pub const FLAGS: &[Flag] = &[
             (BB, "contact_margin"),
             (TC, "contact_margin"),
             (ST, "contact_margin"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "contact_margin"),
             (DB, "contact_margin"),
         ],
     }, // The scenes in three dimensions' own flags, last.
@@ -557,8 +598,13 @@ pub const FLAGS: &[Flag] = &[
     Flag {
         long: "heading",
         unit: "deg",
-        help: "The launch's heading from +x (across the slope) toward down the slope; on a level table counter-clockwise from +x; meter-stick-3d: finger 1's path from the rod's axis toward +y (|heading| <= 80)",
-        fields: &[(PK, "heading"), (M3, "heading")],
+        help: "The launch's heading from +x (across the slope) toward down the slope; on a level table counter-clockwise from +x; meter-stick-3d: finger 1's path from the rod's axis toward +y (|heading| <= 80); stack-3d: the overhang's from the table edge's normal +x toward +y (|heading| <= 60)",
+        fields: &[
+            (PK, "heading"),
+            (M3, "heading"),
+            #[cfg(feature = "stack-3d")]
+            (S3, "heading"),
+        ],
     },
     #[cfg(feature = "spatial")]
     Flag {

@@ -167,4 +167,10 @@ pub const INTRODUCTIONS: [Introduction; SceneKind::ALL.len()] = [
                 also slide across the rod, friction pulls it sideways and may turn it, and a heading \
                 and its opposite give mirror-image runs. Look for where the fingers meet.",
     },
+    #[cfg(feature = "stack-3d")]
+    Introduction {
+        kind: SceneKind::Stack3d,
+        heading: "Blocks stacked over a table's edge, in three dimensions",
+        intro: "The harmonic stack again, now with blocks of a width, their overhang reaching out at a                 heading to the table's edge. Each block rests on the one below on the overlap of their                 faces, touching at its corners, and the stack's balance is about the edge along the                 overhang's direction: it still holds at overhang 0.98 and falls at 1.02, whatever the                 heading. At heading 0 it moves as the planar stack. Turn the heading and compare 0.98                 with 1.02.",
+    },
 ];

@@ -63,6 +63,9 @@ mod tests {
                 SceneKind::Curling => meterstick_core::scene::spatial::MAX_POINTS,
                 #[cfg(feature = "spatial")]
                 SceneKind::MeterStick3d => meterstick_core::scene::spatial::ROD_POINTS,
+                // Its contacts come and go with the faces' overlaps, as the planar stack's.
+                #[cfg(feature = "stack-3d")]
+                SceneKind::Stack3d => 0,
                 _ if kind.is_spatial() => 1,
                 _ => kind.contacts(),
             };

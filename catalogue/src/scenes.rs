@@ -207,6 +207,21 @@ pub const SCENES: [SceneInfo; SceneKind::ALL.len()] = [
             ("heading", "-80 <= heading <= 80 deg"),
         ],
     },
+    #[cfg(feature = "stack-3d")]
+    SceneInfo {
+        kind: SceneKind::Stack3d,
+        title: "Blocks stacked over a table's edge in three dimensions, the overhang at a heading to the edge",
+        contact_names: &[],
+        main_flags: &["blocks", "overhang", "heading", "mu-s", "mu-k", "length", "width", "height"],
+        outcomes: &[OutcomeKind::Held, OutcomeKind::Fell],
+        measures: &["max_speed_m_s"],
+        ranges: &[
+            ("blocks", "2 or 3"),
+            ("overhang", "0 <= overhang < 2 x blocks"),
+            ("heading", "-60 <= heading <= 60 deg"),
+            ("step", "0 < h <= duration"),
+        ],
+    },
 ];
 
 /// The catalogue's entry of a scene.

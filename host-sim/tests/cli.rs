@@ -549,7 +549,7 @@ fn run_and_scene_reject_each_invalid_parameter() {
         (&["--scene", "ladder", "--mu-s", "0.3"], "--mu-s does not apply to --scene ladder"),
         (
             &["--width", "0.2"],
-            "--width does not apply to --scene meter-stick (it is a parameter of incline, meter-stick-3d, block-on-block, tablecloth)",
+            "--width does not apply to --scene meter-stick (it is a parameter of incline, meter-stick-3d, block-on-block, tablecloth, stack-3d)",
         ),
         (&["--speed", "0.1,0.2", "--h", "1e-3,1e-4"], "only one flag may"),
         (&["--layout", "8"], "invalid value '8' for '--layout"),

@@ -338,3 +338,74 @@ fn the_curling_map_draws_the_terminal_ratio_over_points_and_launch() {
         "{err}"
     );
 }
+
+/// The stack in three dimensions (`docs/scenes.md`, "stack-3d") through `run` in f64 beside the
+/// independent reference (`reference/src/spatial/stack.rs`: its own contacts, loads by nonnegative
+/// least squares): held at 0.98 and fallen at 1.02, 2 and 3 blocks, at headings the law says do
+/// not matter; the same outcome after the same steps, every block within 1e-12 m and 1e-12 rad;
+/// each block in both CSV files at every step; `scene` prints its checksum and refuses a heading,
+/// a block count or another scene's flag by name.
+#[test]
+fn the_stack_in_three_dimensions_follows_the_reference() {
+    for (blocks, heading, overhang, outcome) in
+        [("2", "30", "1.02", "Fell"), ("3", "-45", "0.98", "Held"), ("3", "60", "1.02", "Fell")]
+    {
+        let out = temp_dir("stack-3d");
+        let all = [
+            "run",
+            "--scene",
+            "stack-3d",
+            "--precision",
+            "f64",
+            "--blocks",
+            blocks,
+            "--heading",
+            heading,
+            "--overhang",
+            overhang,
+            "--duration",
+            "0.3",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let (code, stdout, err) = host_sim(&all);
+        assert_eq!(code, 0, "{all:?}: {err}");
+        let dir = out.join("stack-3d");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+        let (core, reference) = (&s["core"], &s["reference"]);
+        assert_eq!(s["scene"], "stack-3d", "{all:?}: the catalogue's name");
+        assert_eq!(core["outcome"], outcome, "{all:?}: {stdout}");
+        assert_eq!(core["outcome"], reference["outcome"], "{all:?}");
+        assert_eq!(core["steps"], reference["steps"], "{all:?}");
+        let c = &s["comparison"];
+        assert!(c["max_position_deviation_m"].as_f64().unwrap() < 1e-12, "{all:?}: {c}");
+        assert!(c["max_angle_deviation_rad"].as_f64().unwrap() < 1e-12, "{all:?}: {c}");
+        let last = format!("x{}", blocks.parse::<usize>().unwrap() - 1);
+        for file in ["core.csv", "reference.csv"] {
+            let text = std::fs::read_to_string(dir.join(file)).unwrap();
+            let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+            assert!(header.contains(&last.as_str()) && header.contains(&"qz0"), "{file}: {header:?}");
+            let steps = core["steps"].as_u64().unwrap();
+            assert_eq!(text.lines().count() as u64, steps + 2, "{file}: a header, the start and every step");
+        }
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+    let (code, stdout, err) =
+        host_sim(&["scene", "--scene", "stack-3d", "--blocks", "2", "--duration", "0.1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("outcome Held") && stdout.contains("checksum "), "{stdout}");
+    for (args, words) in [
+        (
+            &["scene", "--scene", "stack-3d", "--heading", "70"][..],
+            "--heading 70 deg: out of range (-60 <= heading <= 60 deg)",
+        ),
+        (&["scene", "--scene", "stack-3d", "--blocks", "4"][..], "--blocks 4: out of range (2 or 3)"),
+        (&["scene", "--scene", "stack-3d", "--spin", "3"][..], "--spin does not apply to --scene stack-3d"),
+        (&["scene", "--scene", "stack-3d", "--width", "0"][..], "--width"),
+    ] {
+        let (code, _, err) = host_sim(args);
+        assert_ne!(code, 0, "{args:?}");
+        assert!(err.contains(words), "{args:?}: {err}");
+    }
+}

@@ -399,10 +399,13 @@ fn the_meter_stick_shows_its_rod_on_two_fingers() {
     );
 }
 
-/// The stack's table ends at its edge, `x = 0`; block-on-block's floor has no ends.
+/// The stack's table ends at its edge, `x = 0` (in the plane and in three dimensions);
+/// block-on-block's floor has no ends.
 #[test]
 fn the_table_is_the_multibody_scenes_support() {
-    for (kind, hi) in [(SceneKind::Stack, Some(0.0)), (SceneKind::BlockOnBlock, None)] {
+    for (kind, hi) in
+        [(SceneKind::Stack, Some(0.0)), (SceneKind::Stack3d, Some(0.0)), (SceneKind::BlockOnBlock, None)]
+    {
         let table =
             SceneParams::defaults(kind).build_view::<0, _>(Precision::F64, LcpLayout::Full, Table).unwrap();
         assert_eq!(table, (1, Some(SupportView::Table { lo: None, hi })), "{kind}");
@@ -488,6 +491,11 @@ fn mass_and_inertia(params: &SceneParams) -> Vec<(f64, f64)> {
         // A box `L x w x t` about its own `z` (vertical): `m (L^2 + w^2) / 12`.
         SceneParams::MeterStick3d(p) => {
             vec![(p.rod_mass, p.rod_mass * (p.rod_length.powi(2) + p.rod_width.powi(2)) / 12.0)]
+        }
+        // Each block `L x W x hb` about its own `z` (vertical): `m (L^2 + W^2) / 12`.
+        SceneParams::Stack3d(s) => {
+            let p = s.params;
+            vec![(p.mass, p.mass * (p.length.powi(2) + p.width.powi(2)) / 12.0); s.block_count().unwrap()]
         }
     }
 }

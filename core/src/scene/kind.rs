@@ -15,13 +15,17 @@
 //! `host-sim/src/trajectory/mod.rs` for its measures). A scene in three dimensions: its module in
 //! `core/src/scene/spatial/` implementing `SpatialScene` (its view is `SpatialView`), its variants
 //! here (`is_spatial` true, `contacts` 0; each behind the feature `scenes-spatial`, as its
-//! catalogue entry is behind the catalogue's `spatial`), its arm in `build_spatial`
-//! (`view/build.rs`), and in `host-sim/src/multibody/` its reference run and law.
+//! catalogue entry is behind the catalogue's `spatial`; the stack in three dimensions behind
+//! `scenes-stack-3d` and the catalogue's `stack-3d`), its arm in `build_spatial`
+//! (`view/build.rs`) and in `view/held.rs`'s `SpaceIn`, and in `host-sim/src/bodies/` its
+//! reference run and law.
 //!
 //! [`MultibodyScene`]: crate::multibody::scenes::MultibodyScene
 
 use core::fmt;
 
+#[cfg(any(feature = "scenes-multibody", feature = "scenes-stack-3d"))]
+use super::stack_setup::{StackSetup, with_blocks};
 use super::{
     CylinderParams, InclineParams, LadderParams, MeterStickParams, PainleveParams, ThreeFingersParams,
 };
@@ -29,12 +33,13 @@ use super::{
 use crate::multibody::scenes::{BlockOnBlockParams, DiscOnBoardParams, StackParams, TableclothParams};
 use crate::params::ParamError;
 use crate::real::Real;
+#[cfg(feature = "scenes-stack-3d")]
+use crate::scene::spatial::Stack3dParams;
 #[cfg(feature = "scenes-spatial")]
 use crate::scene::spatial::{BilliardParams, CurlingParams, MeterStick3dParams, PuckParams};
 
 /// A scene of the catalogue (`docs/scenes.md`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "kebab-case"))]
 pub enum SceneKind {
     /// The paper's rod on two fingers.
     MeterStick,
@@ -73,12 +78,17 @@ pub enum SceneKind {
     /// (three dimensions).
     #[cfg(feature = "scenes-spatial")]
     MeterStick3d,
+    /// Two or three blocks stacked over a table's edge, the overhang at a heading to the edge
+    /// (three dimensions, several bodies).
+    #[cfg(feature = "scenes-stack-3d")]
+    Stack3d,
 }
 
 /// The number of scenes this build names ([`SceneKind::ALL`]).
 const SCENE_COUNT: usize = 6
     + if cfg!(feature = "scenes-multibody") { 4 } else { 0 }
-    + if cfg!(feature = "scenes-spatial") { 4 } else { 0 };
+    + if cfg!(feature = "scenes-spatial") { 4 } else { 0 }
+    + if cfg!(feature = "scenes-stack-3d") { 1 } else { 0 };
 
 /// The most quantities a scene measures ([`super::Scene::measured`]; `meterstick-catalogue` names
 /// them).
@@ -111,6 +121,8 @@ impl SceneKind {
         Self::Curling,
         #[cfg(feature = "scenes-spatial")]
         Self::MeterStick3d,
+        #[cfg(feature = "scenes-stack-3d")]
+        Self::Stack3d,
     ];
 
     /// The scene's name on the command line and in the page's URL, e.g. `meter-stick`.
@@ -139,6 +151,8 @@ impl SceneKind {
             Self::Curling => "curling",
             #[cfg(feature = "scenes-spatial")]
             Self::MeterStick3d => "meter-stick-3d",
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d => "stack-3d",
         }
     }
 
@@ -155,6 +169,8 @@ impl SceneKind {
             Self::BlockOnBlock | Self::Tablecloth | Self::Stack | Self::DiscOnBoard => 0,
             #[cfg(feature = "scenes-spatial")]
             Self::Puck | Self::Billiard | Self::Curling | Self::MeterStick3d => 0,
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d => 0,
         }
     }
 
@@ -163,7 +179,12 @@ impl SceneKind {
     #[must_use]
     pub const fn is_spatial(self) -> bool {
         #[cfg(feature = "scenes-spatial")]
-        return matches!(self, Self::Puck | Self::Billiard | Self::Curling | Self::MeterStick3d);
+        return match self {
+            Self::Puck | Self::Billiard | Self::Curling | Self::MeterStick3d => true,
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d => true,
+            _ => false,
+        };
         #[cfg(not(feature = "scenes-spatial"))]
         {
             let _ = self;
@@ -238,7 +259,17 @@ impl SceneKind {
             Self::Curling => CurlingParams::<f64>::NAMES,
             #[cfg(feature = "scenes-spatial")]
             Self::MeterStick3d => MeterStick3dParams::<f64>::NAMES,
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d => &STACK_3D_FIELDS,
         }
+    }
+}
+
+/// Serialised as its [`SceneKind::name`] (`meter-stick-3d`).
+#[cfg(feature = "serde")]
+impl serde::Serialize for SceneKind {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
     }
 }
 
@@ -250,76 +281,11 @@ impl fmt::Display for SceneKind {
 
 #[cfg(feature = "scenes-multibody")]
 /// The stack's fields: `blocks`, then [`StackParams`]'s.
-const STACK_FIELDS: [&str; 14] = [
-    "blocks",
-    "length",
-    "height",
-    "mass",
-    "mu_static",
-    "mu_kinetic",
-    "overhang",
-    "gravity",
-    "step",
-    "stick_speed",
-    "tilt_limit",
-    "drop_limit",
-    "contact_margin",
-    "max_time",
-];
+const STACK_FIELDS: [&str; 14] = with_blocks(StackParams::<f64>::NAMES);
 
-/// The stack's parameters and its number of blocks (the `B` of
-/// [`crate::multibody::scenes::Stack`]: 2 or 3 here), a number as every field is so that it is
-/// set and refused by name like them (`blocks` 2.5 is out of range).
-#[cfg(feature = "scenes-multibody")]
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StackSetup {
-    /// The blocks: 2 or 3 (default 3, `docs/scenes.md`).
-    pub blocks: f64,
-    /// The rest.
-    pub params: StackParams<f64>,
-}
-
-#[cfg(feature = "scenes-multibody")]
-impl Default for StackSetup {
-    fn default() -> Self {
-        Self { blocks: 3.0, params: StackParams::default() }
-    }
-}
-
-#[cfg(feature = "scenes-multibody")]
-impl StackSetup {
-    /// The blocks as a count, when it is 2 or 3.
-    #[must_use]
-    pub fn block_count(&self) -> Option<usize> {
-        [2_u8, 3].into_iter().find(|&n| self.blocks.to_bits() == f64::from(n).to_bits()).map(usize::from)
-    }
-
-    /// The stack's rules ([`StackParams::validate`]) in f64 and in `T`, and 2 or 3 blocks.
-    ///
-    /// # Errors
-    /// `OutOfRange("blocks")`, or the core's first complaint.
-    pub fn validate_as<T: Real>(&self) -> Result<(), ParamError> {
-        if !self.blocks.is_finite() {
-            return Err(ParamError::NonFinite("blocks"));
-        }
-        let blocks = self.block_count().ok_or(ParamError::OutOfRange("blocks"))?;
-        self.params.validate(blocks)?;
-        self.params.cast::<T>().validate(blocks)
-    }
-
-    fn get(&self, field: &str) -> Option<f64> {
-        if field == "blocks" { Some(self.blocks) } else { self.params.get(field) }
-    }
-
-    fn set(&mut self, field: &str, value: f64) -> bool {
-        if field == "blocks" {
-            self.blocks = value;
-            true
-        } else {
-            self.params.set(field, value)
-        }
-    }
-}
+#[cfg(feature = "scenes-stack-3d")]
+/// The stack in three dimensions' fields: `blocks`, then [`Stack3dParams`]'s.
+const STACK_3D_FIELDS: [&str; 16] = with_blocks(Stack3dParams::<f64>::NAMES);
 
 /// Any scene's parameters in the core's units (SI, radians), f64 as given; cast to the run's
 /// precision when run.
@@ -345,7 +311,7 @@ pub enum SceneParams {
     Tablecloth(TableclothParams<f64>),
     /// The stack.
     #[cfg(feature = "scenes-multibody")]
-    Stack(StackSetup),
+    Stack(StackSetup<StackParams<f64>>),
     /// Disc-on-board.
     #[cfg(feature = "scenes-multibody")]
     DiscOnBoard(DiscOnBoardParams<f64>),
@@ -361,6 +327,9 @@ pub enum SceneParams {
     /// The meter stick in three dimensions.
     #[cfg(feature = "scenes-spatial")]
     MeterStick3d(MeterStick3dParams<f64>),
+    /// The stack in three dimensions.
+    #[cfg(feature = "scenes-stack-3d")]
+    Stack3d(StackSetup<Stack3dParams<f64>>),
 }
 
 impl SceneParams {
@@ -390,6 +359,8 @@ impl SceneParams {
             SceneKind::Curling => Self::Curling(CurlingParams::default()),
             #[cfg(feature = "scenes-spatial")]
             SceneKind::MeterStick3d => Self::MeterStick3d(MeterStick3dParams::default()),
+            #[cfg(feature = "scenes-stack-3d")]
+            SceneKind::Stack3d => Self::Stack3d(StackSetup::default()),
         }
     }
 
@@ -419,6 +390,8 @@ impl SceneParams {
             Self::Curling(_) => SceneKind::Curling,
             #[cfg(feature = "scenes-spatial")]
             Self::MeterStick3d(_) => SceneKind::MeterStick3d,
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d(_) => SceneKind::Stack3d,
         }
     }
 
@@ -448,6 +421,8 @@ impl SceneParams {
             Self::Curling(p) => p.get(field),
             #[cfg(feature = "scenes-spatial")]
             Self::MeterStick3d(p) => p.get(field),
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d(p) => p.get(field),
         }
     }
 
@@ -476,6 +451,8 @@ impl SceneParams {
             Self::Curling(p) => p.set(field, value),
             #[cfg(feature = "scenes-spatial")]
             Self::MeterStick3d(p) => p.set(field, value),
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d(p) => p.set(field, value),
         }
     }
 
@@ -555,6 +532,8 @@ impl SceneParams {
                 p.validate()?;
                 p.cast::<T>().validate()
             }
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d(p) => p.validate_as::<T>(),
             #[allow(unreachable_patterns)] // every scene, when the build has them all
             _ => Err(ParamError::OutOfRange("scene")),
         }

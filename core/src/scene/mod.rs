@@ -35,13 +35,13 @@ mod registry;
 mod scene_trait;
 #[cfg(feature = "scenes-spatial")]
 pub mod spatial;
+#[cfg(any(feature = "scenes-multibody", feature = "scenes-stack-3d"))]
+mod stack_setup;
 mod three_fingers;
 mod view;
 
 pub use cylinder::{Cylinder, CylinderParams};
 pub use incline::{Incline, InclineParams};
-#[cfg(feature = "scenes-multibody")]
-pub use kind::StackSetup;
 pub use kind::{MAX_MEASURES, SceneKind, SceneParams};
 pub use ladder::{Ladder, LadderParams};
 pub use meter_stick::{Meeting, MeterStick, MeterStick6, MeterStick8, MeterStickParams};
@@ -53,6 +53,8 @@ pub use registry::{LcpLayout, Precision, SceneVisitor};
 #[cfg(feature = "scenes-multibody")]
 pub use registry::{MAX_BODIES, MultibodyVisitor};
 pub use scene_trait::Scene;
+#[cfg(any(feature = "scenes-multibody", feature = "scenes-stack-3d"))]
+pub use stack_setup::{StackSetup, StackedParams};
 pub use three_fingers::{ThreeFingers, ThreeFingersParams};
 #[cfg(all(
     any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"),

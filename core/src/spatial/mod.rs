@@ -146,6 +146,6 @@ pub use algebra::{Quaternion, Vector, about, cross, dot, identity, norm, perpend
 pub use body::{Body, State};
 pub use face_patch::{Beneath, FaceContact, FacePatch, PatchOverflow, SCRATCH, face_patch};
 pub use report::{MAX_DIRECTIONS, Mode, SpatialContactReport, SpatialStepReport};
-pub use stack::{BlockStack, PATCH_POINTS, StackStepReport};
+pub use stack::{BlockStack, PATCH_POINTS, SlotContacts, StackStepReport};
 pub use stepper::{FrictionCone, OneContact, Plane, SpatialSettings, SpatialShape, SpatialStepper};
 pub use supported::{FaceTouch, Finger, LowerFace, SupportPoint, SupportedStepper};

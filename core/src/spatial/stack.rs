@@ -30,7 +30,7 @@
 
 use super::algebra::{Vector, add, cross, dot, finite, norm, normalized, scale, sub};
 use super::body::{Body, Frame, Motion, State, advanced};
-use super::face_patch::{Beneath, face_patch};
+use super::face_patch::{Beneath, FaceContact, face_patch};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport};
 use super::stepper::{Solve, SpatialSettings, check_friction, moved_state};
@@ -43,6 +43,10 @@ use crate::real::{Real, max};
 /// rectangle.
 pub const PATCH_POINTS: usize = 8;
 
+/// Each slot's pair (the upper block's index) and contact (its point, normal and gap, world
+/// axes, m); `None` for a slot no contact filled.
+pub type SlotContacts<T, const K: usize> = [Option<(usize, FaceContact<T>)>; K];
+
 /// One step's result.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StackStepReport<T, const B: usize, const K: usize> {
@@ -52,9 +56,9 @@ pub struct StackStepReport<T, const B: usize, const K: usize> {
     pub states: [State<T>; B],
     /// Each slot's contact: its report (impulses on the upper block).
     pub contacts: [SpatialContactReport<T>; K],
-    /// Each slot's pair (the upper block's index) and point, world axes, m; `None` for a slot
-    /// no contact filled.
-    pub points: [Option<(usize, Vector<T>)>; K],
+    /// Each slot's pair (the upper block's index) and contact (its point, normal and gap before
+    /// the step, world axes, m); `None` for a slot no contact filled.
+    pub points: SlotContacts<T, K>,
     /// Lemke pivots of the step's solves.
     pub pivots: u32,
 }
@@ -76,7 +80,7 @@ pub struct BlockStack<T: Real, const B: usize, const K: usize, const N: usize, c
 
 /// A step's contacts: each slot's touch and its pair and point, the largest free contact speed
 /// and the largest sum of the terms a free slip is summed from (`super::stepper`).
-type Gathered<T, const K: usize> = ([Touch<T>; K], [Option<(usize, Vector<T>)>; K], T, T);
+type Gathered<T, const K: usize> = ([Touch<T>; K], SlotContacts<T, K>, T, T);
 
 impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> BlockStack<T, B, K, N, W> {
     /// A stack of `B` blocks of inertia `body` and half extents `half` (along their `x`, `y`,
@@ -172,6 +176,16 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
         T::of_count(u32::try_from(self.steps).unwrap_or(u32::MAX)) * self.settings.step
     }
 
+    /// Each slot's pair (the upper block's index) and contact now, the pairs' contacts filling
+    /// the slots in turn as a step fills them (module docs); `None` for a slot none fills.
+    ///
+    /// # Errors
+    /// [`StepError::TooManyContacts`] when the pairs touch at more points than `K`.
+    pub fn contacts(&self) -> Result<SlotContacts<T, K>, StepError> {
+        let now = self.states.map(|st| (st.velocity, st.angular_velocity));
+        self.gather(&now).map(|(_, points, ..)| points)
+    }
+
     /// The contacts of every pair on the motion `free` (module docs), filling the slots in turn.
     ///
     /// # Errors
@@ -236,7 +250,7 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
                     body: upper,
                     beneath: under,
                 };
-                *point = Some((upper, c.point));
+                *point = Some((upper, *c));
                 slot += 1;
             }
         }

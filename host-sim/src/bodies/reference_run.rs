@@ -165,6 +165,7 @@ enum SpatialReference {
     Billiard(crate::reference::spatial::Billiard),
     Curling(crate::reference::spatial::Curling),
     MeterStick3d(crate::reference::spatial::MeterStick3d),
+    Stack3d(crate::reference::spatial::Stack3d),
 }
 
 /// `spec` in the reference's scenes in three dimensions; `None` for a scene it does not have.
@@ -233,6 +234,27 @@ fn to_spatial_reference(spec: &SceneParams) -> Option<SpatialReference> {
             hold_time: p.hold_time,
             max_time: p.max_time,
         }),
+        SceneParams::Stack3d(s) => {
+            let p = s.params;
+            SpatialReference::Stack3d(r::Stack3d {
+                blocks: s.block_count()?,
+                length: p.length,
+                width: p.width,
+                height: p.height,
+                mass: p.mass,
+                mu_s: p.mu_static,
+                mu_k: p.mu_kinetic,
+                overhang: p.overhang,
+                heading: p.heading,
+                g: p.gravity,
+                h: p.step,
+                stick_speed: p.stick_speed,
+                tilt_limit: p.tilt_limit,
+                drop_limit: p.drop_limit,
+                margin: p.contact_margin,
+                max_time: p.max_time,
+            })
+        }
         _ => return None,
     })
 }
@@ -256,6 +278,7 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
     // one point is their row's own.
     let mut rod_points: Vec<[r::RodPoint; r::ROD_POINTS]> = Vec::new();
     let run = match reference {
+        SpatialReference::Stack3d(stack) => return run_stack_reference(spec.kind(), &stack, keep),
         SpatialReference::Puck(p) => r::run_puck_keeping(&p, keep),
         SpatialReference::Billiard(b) => r::run_billiard_keeping(&b, keep),
         SpatialReference::Curling(c) => r::run_curling_keeping(&c, keep),
@@ -330,6 +353,60 @@ fn run_spatial_reference(spec: &SceneParams, record: bool) -> anyhow::Result<Bod
         outcome,
         measured: Measured::of(spec.kind(), run.measured),
         counters: BodiesCounters { lcp_rows: 0, ..BodiesCounters::default() },
+        checksum: None,
+    })
+}
+
+/// The stack in three dimensions in the independent reference: each kept row's blocks (no
+/// contacts: the reference keeps none of its impulses), its outcome and largest point speed.
+fn run_stack_reference(
+    kind: SceneKind,
+    stack: &crate::reference::spatial::Stack3d,
+    keep: crate::reference::spatial::Keep,
+) -> anyhow::Result<BodiesRun> {
+    use crate::reference::spatial as r;
+    let run = r::run_stack_3d_keeping(stack, keep).map_err(|e| anyhow::anyhow!("reference: {e}"))?;
+    progress::check()?;
+    let rows: Vec<BodiesRow> = run
+        .trajectory
+        .iter()
+        .zip(&run.motion)
+        .map(|((t, xs, qs), motion)| BodiesRow {
+            t: *t,
+            q: Vec::new(),
+            v: Vec::new(),
+            interface_forces: Vec::new(),
+            corner_loads: Vec::new(),
+            spatial: xs
+                .iter()
+                .zip(qs)
+                .zip(motion)
+                .map(|((x, q), (v, w))| SpatialBody {
+                    position: *x,
+                    orientation: *q,
+                    velocity: *v,
+                    angular: *w,
+                })
+                .collect(),
+            contacts: Vec::new(),
+        })
+        .collect();
+    let last = rows.last().cloned().ok_or_else(|| anyhow::anyhow!("reference: no row"))?;
+    let outcome = RunOutcome::of(match run.outcome {
+        r::Outcome::Fell => OutcomeKind::Fell,
+        r::Outcome::Held => OutcomeKind::Held,
+        _ => OutcomeKind::Unfinished,
+    });
+    Ok(BodiesRun {
+        label: "reference f64".into(),
+        scene: kind,
+        steps: run.steps,
+        end_time: last.t,
+        rows: if keep == r::Keep::All { rows } else { Vec::new() },
+        last,
+        outcome,
+        measured: Measured::of(kind, [Some(run.max_speed), None, None]),
+        counters: BodiesCounters::default(),
         checksum: None,
     })
 }

@@ -147,7 +147,8 @@ impl ParamsExt for SceneParams {
             | Self::Puck(_)
             | Self::Billiard(_)
             | Self::Curling(_)
-            | Self::MeterStick3d(_) => return None,
+            | Self::MeterStick3d(_)
+            | Self::Stack3d(_) => return None,
         })
     }
 }

@@ -109,7 +109,8 @@ pub fn body_of(spec: &SceneParams) -> (f64, f64, f64, f64) {
         | SceneParams::Puck(_)
         | SceneParams::Billiard(_)
         | SceneParams::Curling(_)
-        | SceneParams::MeterStick3d(_) => f64::NAN,
+        | SceneParams::MeterStick3d(_)
+        | SceneParams::Stack3d(_) => f64::NAN,
     };
     match super::figures::bodies_of(spec).0.as_slice() {
         &[(m, w, h, j)] if !speed.is_nan() => (m, j, w.max(h), speed),
@@ -216,7 +217,8 @@ pub fn penetrations(spec: &SceneParams, s: &[f64; 6], supports: &[[f64; 2]]) -> 
         | SceneParams::Puck(_)
         | SceneParams::Billiard(_)
         | SceneParams::Curling(_)
-        | SceneParams::MeterStick3d(_) => vec![f64::NAN],
+        | SceneParams::MeterStick3d(_)
+        | SceneParams::Stack3d(_) => vec![f64::NAN],
     }
 }
 

@@ -208,7 +208,7 @@ impl Measured {
                 (m.acceleration_m_s2, m.top_acceleration_m_s2) = (a, b);
             }
             SceneKind::Tablecloth => m.block_displacement_m = a,
-            SceneKind::Stack => m.max_speed_m_s = a,
+            SceneKind::Stack | SceneKind::Stack3d => m.max_speed_m_s = a,
             SceneKind::Puck => (m.final_speed_m_s, m.displacement_m, m.displacement_heading_deg) = (a, b, c),
             SceneKind::Billiard => {
                 (m.rolling_time_s, m.rolling_velocity_x_m_s, m.rolling_velocity_y_m_s) = (a, b, c);
@@ -240,7 +240,7 @@ impl Measured {
                 [m.acceleration_m_s2, m.top_acceleration_m_s2, None]
             }
             SceneKind::Tablecloth => [m.block_displacement_m, None, None],
-            SceneKind::Stack => [m.max_speed_m_s, None, None],
+            SceneKind::Stack | SceneKind::Stack3d => [m.max_speed_m_s, None, None],
             SceneKind::Puck => [m.final_speed_m_s, m.displacement_m, m.displacement_heading_deg],
             SceneKind::Billiard => [m.rolling_time_s, m.rolling_velocity_x_m_s, m.rolling_velocity_y_m_s],
             SceneKind::Curling => [m.terminal_ratio, m.slide_stop_s, m.spin_stop_s],

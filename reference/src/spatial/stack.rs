@@ -104,6 +104,8 @@ pub struct StackRun {
     /// After `k` steps (row 0 the start; with [`Keep::StartAndEnd`] the start and the end): the
     /// time and each block's centre of mass and orientation.
     pub trajectory: Vec<(f64, Vec<V3>, Vec<Quat>)>,
+    /// Each of `trajectory`'s rows' blocks' velocity and angular velocity (m/s, rad/s, world).
+    pub motion: Vec<Vec<(V3, V3)>>,
     /// The table's load over the last step (N s): the sum of its contacts' normal impulses.
     pub table_impulse: f64,
 }
@@ -355,7 +357,9 @@ pub fn run_stack_3d_keeping(p: &Stack3d, keep: Keep) -> Result<StackRun, Error> 
     let start_z: Vec<f64> = blocks.iter().map(|b| b.x[2]).collect();
     let reach = 0.5 * (p.length * p.length + p.width * p.width + p.height * p.height).sqrt();
     let row = |t: f64, bs: &[Block]| (t, bs.iter().map(|b| b.x).collect(), bs.iter().map(|b| b.q).collect());
+    let motion_of = |bs: &[Block]| bs.iter().map(|b| (b.v, b.omega)).collect::<Vec<_>>();
     let mut trajectory = vec![row(0.0, &blocks)];
+    let mut motion = vec![motion_of(&blocks)];
     let (mut steps, mut max_speed) = (0u64, 0.0f64);
     let mut table_impulse;
     let outcome = loop {
@@ -372,6 +376,7 @@ pub fn run_stack_3d_keeping(p: &Stack3d, keep: Keep) -> Result<StackRun, Error> 
         }
         if keep == Keep::All {
             trajectory.push(row(t, &blocks));
+            motion.push(motion_of(&blocks));
         }
         let fell = blocks
             .iter()
@@ -386,8 +391,9 @@ pub fn run_stack_3d_keeping(p: &Stack3d, keep: Keep) -> Result<StackRun, Error> 
     };
     if keep != Keep::All {
         trajectory.push(row(steps as f64 * p.h, &blocks));
+        motion.push(motion_of(&blocks));
     }
-    Ok(StackRun { outcome, steps, max_speed, trajectory, table_impulse })
+    Ok(StackRun { outcome, steps, max_speed, trajectory, motion, table_impulse })
 }
 
 /// Why a step has no answer here.

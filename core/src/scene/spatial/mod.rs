@@ -15,6 +15,8 @@ mod curling;
 mod meter_stick_3d;
 mod puck;
 mod stack_3d;
+#[cfg(feature = "scenes-stack-3d")]
+mod stack_view;
 mod view;
 
 pub use billiard::{Billiard, BilliardParams};
@@ -24,6 +26,8 @@ pub use meter_stick_3d::{
 };
 pub use puck::{Puck, PuckParams};
 pub use stack_3d::{Stack3d, Stack3d2, Stack3d3, Stack3dParams};
+#[cfg(feature = "scenes-stack-3d")]
+pub use stack_view::StackView;
 pub use view::{SeenContact, SpatialSeen, SpatialView};
 
 use crate::RunStats;

@@ -1,11 +1,12 @@
 //! [`Stack3d`]: the planar stack in three dimensions, its overhang at a heading to the table's
 //! edge (`docs/scenes.md`, "stack-3d"), stepped by [`BlockStack`].
 
+use crate::RunStats;
 use crate::params::{ParamError, check_step_within, params};
-use crate::real::Real;
-use crate::scene::Outcome;
+use crate::real::{Real, max};
+use crate::scene::{BodyShape, Outcome};
 use crate::spatial::{
-    BlockStack, Body, Quaternion, SpatialSettings, StackStepReport, State, Vector, about, rotate,
+    BlockStack, Body, Quaternion, SpatialSettings, StackStepReport, State, Vector, about, norm, rotate,
 };
 
 params! {
@@ -104,6 +105,11 @@ pub struct Stack3d<T: Real, const B: usize, const K: usize, const N: usize, cons
     stepper: BlockStack<T, B, K, N, W>,
     start_z: [T; B],
     outcome: Option<Outcome>,
+    stats: RunStats,
+    /// The largest `|v| + reach |omega|` so far, m/s.
+    max_speed: T,
+    /// Half a block's diagonal, m: the farthest a block's point is from its centre.
+    reach: T,
 }
 
 /// Two blocks: the table's overlap (at most five points) and one pair's (four, eight at most).
@@ -135,7 +141,17 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> St
             settings,
             states,
         )?;
-        Ok(Self { params, stepper, start_z: states.map(|s| s.position[2]), outcome: None })
+        let reach = half * (p.length * p.length + p.width * p.width + p.height * p.height).sqrt_rounded();
+        let start_z = states.map(|s| s.position[2]);
+        Ok(Self {
+            params,
+            stepper,
+            start_z,
+            outcome: None,
+            stats: RunStats::default(),
+            max_speed: T::zero(),
+            reach,
+        })
     }
 
     /// The parameters.
@@ -156,6 +172,32 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> St
         self.outcome
     }
 
+    /// Takes the outcome so that the run goes on ([`crate::scene::SceneView::go_on`]); `None`
+    /// before it.
+    pub const fn go_on(&mut self) -> Option<Outcome> {
+        self.outcome.take()
+    }
+
+    /// The run's counters: steps, pivots, the steps the warm basis answered without a pivot.
+    #[must_use]
+    pub const fn stats(&self) -> &RunStats {
+        &self.stats
+    }
+
+    /// `max_speed` (`docs/scenes.md`, "stack-3d", "Measured"): the largest `|v| + reach |omega|`
+    /// over the steps so far and the blocks, `reach` half a block's diagonal (m/s).
+    #[must_use]
+    pub const fn max_speed(&self) -> T {
+        self.max_speed
+    }
+
+    /// A block's outline.
+    #[must_use]
+    pub const fn shape(&self) -> BodyShape<T> {
+        let p = &self.params;
+        BodyShape::Cuboid { length: p.length, width: p.width, height: p.height }
+    }
+
     /// Advances one step and judges it (`docs/scenes.md`, "stack-3d", "Outcome"): **Fell** when a
     /// block's top normal turned more than `tilt_limit` from `z` or its centre dropped more than
     /// `drop_limit` below its start, **Held** at `max_time`, **Failed** on a step's error. `None`
@@ -171,7 +213,14 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> St
                 return None;
             }
         };
+        self.stats.steps += 1;
+        self.stats.count_pivots(report.pivots);
+        self.stats.warm_starts += u64::from(report.pivots == 0);
         let p = &self.params;
+        for st in &report.states {
+            let speed = norm(&st.velocity) + self.reach * norm(&st.angular_velocity);
+            self.max_speed = max(self.max_speed, speed);
+        }
         let cos_limit = p.tilt_limit.sin_cos_portable().1;
         let fell = report.states.iter().zip(&self.start_z).any(|(st, z0)| {
             let up: Vector<T> = rotate(&st.orientation, &[T::zero(), T::zero(), T::one()]);

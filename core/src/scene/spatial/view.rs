@@ -171,9 +171,32 @@ impl<T: Real, const N: usize, const K: usize, S: SpatialSeen<T, N, K>> SpatialVi
     }
 }
 
+/// Adds a body's state to `checksum`: its position, orientation `[w, x, y, z]`, velocity and
+/// angular velocity, in that order.
+pub(super) fn add_state<T: Real>(checksum: &mut Checksum, s: &State<T>) {
+    let mut values = [T::zero(); 13];
+    for (slot, v) in values
+        .iter_mut()
+        .zip(s.position.into_iter().chain(s.orientation).chain(s.velocity).chain(s.angular_velocity))
+    {
+        *slot = v;
+    }
+    checksum.add_values(&values);
+}
+
+/// A contact's tangent as the view gives it ([`ContactView::tangent`]): the friction impulse's
+/// direction, where there is none the slip's, where neither a fixed direction across `normal`.
+pub(super) fn tangent_of<T: Real>(friction: &Vector<T>, slip: &Vector<T>, normal: &Vector<T>) -> Vector<T> {
+    let unit = |v: &Vector<T>| {
+        let n = norm(v);
+        (n > T::zero()).then(|| v.map(|x| x / n))
+    };
+    unit(friction).or_else(|| unit(slip)).unwrap_or_else(|| crate::spatial::perpendicular(normal))
+}
+
 /// The planar record's mode of a contact in three dimensions: sliding is along the view's tangent
 /// (the friction's direction), so `Sliding(Plus)`.
-const fn mode_of(mode: Mode) -> ContactMode {
+pub(super) const fn mode_of(mode: Mode) -> ContactMode {
     match mode {
         Mode::Separated => ContactMode::Separated,
         Mode::Sticking => ContactMode::Sticking,
@@ -188,15 +211,7 @@ impl<T: Real, const N: usize, const K: usize, S: SpatialSeen<T, N, K>> SceneView
         let Some(report) = self.scene.step() else {
             return false;
         };
-        let s = report.state;
-        let mut values = [T::zero(); 13];
-        for (slot, v) in values
-            .iter_mut()
-            .zip(s.position.into_iter().chain(s.orientation).chain(s.velocity).chain(s.angular_velocity))
-        {
-            *slot = v;
-        }
-        self.checksum.add_values(&values);
+        add_state(&mut self.checksum, &report.state);
         self.last = Some(report.contacts);
         self.solve = Some(StepStats { pivots: report.pivots, residual: None });
         true
@@ -244,12 +259,7 @@ impl<T: Real, const N: usize, const K: usize, S: SpatialSeen<T, N, K>> SceneView
             .map_or((ContactMode::Separated, T::zero(), [T::zero(); 3], [T::zero(); 3]), |c| {
                 (mode_of(c.mode), c.normal_impulse, c.friction_impulse, c.slip)
             });
-        let unit = |v: [T; 3]| {
-            let n = norm(&v);
-            (n > T::zero()).then(|| v.map(|x| x / n))
-        };
-        let tangent =
-            unit(friction).or_else(|| unit(slip)).unwrap_or_else(|| crate::spatial::perpendicular(&normal));
+        let tangent = tangent_of(&friction, &slip, &normal);
         Some(ContactView {
             between: [Thing::Body(0), Thing::Support(support)],
             active,

@@ -31,6 +31,17 @@ pub enum BodyShape<T> {
         /// The thickness (m).
         thickness: T,
     },
+    /// A box `length` along the body's `x`, `width` along its `y` and `height` along its `z` (m),
+    /// in three dimensions (a block of the stack).
+    #[cfg(feature = "spatial")]
+    Cuboid {
+        /// Extent along the body's `x` (m).
+        length: T,
+        /// Extent along the body's `y` (m).
+        width: T,
+        /// Extent along the body's `z` (m).
+        height: T,
+    },
 }
 
 /// Where a body is: its centre of mass and its orientation, in the dimension the body moves in.
@@ -117,8 +128,8 @@ pub struct BodyView<T> {
     /// Its mass `m` (kg), as its engine moves it.
     pub mass: T,
     /// Its moment of inertia about its centre of mass `J` (kg m^2; a planar body's about the axis
-    /// normal to the plane, a body in three dimensions' least principal moment), as its engine
-    /// moves it.
+    /// normal to the plane, a body in three dimensions' about its own `z`), as its engine moves
+    /// it.
     pub inertia: T,
     /// Where it is.
     pub pose: Pose<T>,

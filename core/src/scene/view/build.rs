@@ -154,6 +154,17 @@ impl SceneParams {
             Self::MeterStick3d(p) => {
                 Ok(visitor.visit_concrete(&mut SpatialView::new(MeterStick3d::<T>::new(p.cast::<T>())?)))
             }
+            // Validated above: 2 or 3 blocks.
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d(s) if s.block_count() == Some(2) => {
+                use crate::scene::spatial::{Stack3d2, StackView};
+                Ok(visitor.visit_concrete(&mut StackView::new(Stack3d2::<T>::new(s.params.cast::<T>())?)))
+            }
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack3d(s) => {
+                use crate::scene::spatial::{Stack3d3, StackView};
+                Ok(visitor.visit_concrete(&mut StackView::new(Stack3d3::<T>::new(s.params.cast::<T>())?)))
+            }
             _ => Err(ParamError::OutOfRange("scene")),
         }
     }

@@ -28,6 +28,8 @@ use crate::scene::SceneIn;
 use crate::scene::ThreeFingers;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 use crate::scene::registry::scene_table;
+#[cfg(feature = "scenes-stack-3d")]
+use crate::scene::spatial::StackView;
 #[cfg(feature = "scenes-spatial")]
 use crate::scene::spatial::{
     Billiard, CURLING_ROWS, Curling, MAX_POINTS, MeterStick3d, Puck, ROD_POINTS, ROD_ROWS, SpatialView,
@@ -274,6 +276,10 @@ enum SpaceIn<T: Real> {
     Billiard(SpatialView<T, Billiard<T, CURLING_ROWS>, CURLING_ROWS>),
     Curling(SpatialView<T, Curling<T>, CURLING_ROWS, MAX_POINTS>),
     MeterStick3d(SpatialView<T, MeterStick3d<T>, ROD_ROWS, ROD_POINTS>),
+    #[cfg(feature = "scenes-stack-3d")]
+    Stack3d2(StackView<T, 2, 13, 52, 2>),
+    #[cfg(feature = "scenes-stack-3d")]
+    Stack3d3(StackView<T, 3, 16, 64, 2>),
 }
 
 #[cfg(feature = "scenes-spatial")]
@@ -285,6 +291,10 @@ macro_rules! each_space {
             SpaceIn::Billiard($v) => $body,
             SpaceIn::Curling($v) => $body,
             SpaceIn::MeterStick3d($v) => $body,
+            #[cfg(feature = "scenes-stack-3d")]
+            SpaceIn::Stack3d2($v) => $body,
+            #[cfg(feature = "scenes-stack-3d")]
+            SpaceIn::Stack3d3($v) => $body,
         }
     };
 }
@@ -311,6 +321,15 @@ impl<T: Real> SpaceIn<T> {
             SceneParams::Curling(p) => Self::Curling(SpatialView::new(Curling::new(p.cast())?)),
             SceneParams::MeterStick3d(p) => {
                 Self::MeterStick3d(SpatialView::new(MeterStick3d::new(p.cast())?))
+            }
+            // Validated above: 2 or 3 blocks.
+            #[cfg(feature = "scenes-stack-3d")]
+            SceneParams::Stack3d(s) if s.block_count() == Some(2) => {
+                Self::Stack3d2(StackView::new(crate::scene::spatial::Stack3d2::new(s.params.cast())?))
+            }
+            #[cfg(feature = "scenes-stack-3d")]
+            SceneParams::Stack3d(s) => {
+                Self::Stack3d3(StackView::new(crate::scene::spatial::Stack3d3::new(s.params.cast())?))
             }
             _ => return Err(ParamError::OutOfRange("scene")),
         })
@@ -467,6 +486,12 @@ mod tests {
                     BodyShape::Puck { radius, thickness } => {
                         BodyShape::Puck { radius: radius.as_f64(), thickness: thickness.as_f64() }
                     }
+                    #[cfg(feature = "spatial")]
+                    BodyShape::Cuboid { length, width, height } => BodyShape::Cuboid {
+                        length: length.as_f64(),
+                        width: width.as_f64(),
+                        height: height.as_f64(),
+                    },
                 })
             });
             let table = match view.support(0) {

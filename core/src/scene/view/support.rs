@@ -42,8 +42,8 @@ pub enum SupportView<T> {
         /// Its unit normal, toward the body.
         normal: [T; 3],
     },
-    /// The fixed table: its top face is the line `y = 0` over `lo <= x <= hi`, an end that is
-    /// `None` infinite.
+    /// The fixed table: its top face is the line `y = 0` over `lo <= x <= hi` (in three
+    /// dimensions the plane `z = 0` over `lo <= x <= hi`), an end that is `None` infinite.
     Table {
         /// The left end (m).
         lo: Option<T>,
