@@ -112,6 +112,9 @@ fn spatial_energy<T: Real>(view: &dyn SceneView<T>, moments: &[[f64; 3]], g: f64
         let d = match b.shape {
             BodyShape::Ball { radius } => 2.0 * radius.as_f64(),
             BodyShape::Puck { radius, thickness } => (2.0 * radius.as_f64()).max(thickness.as_f64()),
+            BodyShape::Cuboid { length, width, height } => {
+                length.as_f64().max(width.as_f64()).max(height.as_f64())
+            }
             _ => f64::NAN,
         };
         let v2: f64 = v.iter().map(|c| c * c).sum();

@@ -32,6 +32,8 @@ impl ViewVisitor for Figures {
                         ((radius + radius).as_f64(), (radius + radius).as_f64())
                     }
                     BodyShape::Puck { radius, thickness } => ((radius + radius).as_f64(), thickness.as_f64()),
+                    // A block of the stack in three dimensions: its length and its height.
+                    BodyShape::Cuboid { length, height, .. } => (length.as_f64(), height.as_f64()),
                     _ => (f64::NAN, f64::NAN),
                 };
                 (b.mass.as_f64(), w, h, b.inertia.as_f64())
@@ -49,7 +51,8 @@ impl ViewVisitor for Figures {
 /// m^2), from the parameters as `docs/scenes.md` defines the bodies: the puck a uniform cylinder
 /// (`m (3 r^2 + t^2) / 12` across, `m r^2 / 2` about its axis), the billiard ball a uniform sphere
 /// (`2 m R^2 / 5`), the curling stone a thin ring (`m R^2` about its axis, half that across) or a
-/// uniform disc (`m R^2 / 2`, `m R^2 / 4`); none for another scene.
+/// uniform disc (`m R^2 / 2`, `m R^2 / 4`), each block of the stack a uniform box (`m (W^2 + hb^2)
+/// / 12`, `m (L^2 + hb^2) / 12`, `m (L^2 + W^2) / 12`); none for another scene.
 #[must_use]
 pub fn moments_of(spec: &SceneParams) -> Vec<[f64; 3]> {
     match spec {
@@ -62,6 +65,12 @@ pub fn moments_of(spec: &SceneParams) -> Vec<[f64; 3]> {
         SceneParams::Curling(p) => {
             let axis = if p.is_ring() { 1.0 } else { 0.5 } * p.mass * p.radius * p.radius;
             vec![[axis / 2.0, axis / 2.0, axis]]
+        }
+        SceneParams::Stack3d(s) => {
+            let p = s.params;
+            let (m, l, w, h) = (p.mass, p.length, p.width, p.height);
+            let block = [m * (w * w + h * h) / 12.0, m * (l * l + h * h) / 12.0, m * (l * l + w * w) / 12.0];
+            vec![block; s.block_count().unwrap_or(0)]
         }
         _ => Vec::new(),
     }
