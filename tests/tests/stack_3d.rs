@@ -9,7 +9,8 @@ use meterstick_core::multibody::scenes::{MultibodyScene, Stack2, Stack3, StackPa
 use meterstick_core::scene::Outcome;
 use meterstick_core::scene::spatial::{Stack3d, Stack3d2, Stack3d3, Stack3dParams};
 use meterstick_core::spatial::{State, StepError, rotate};
-use meterstick_reference::spatial::{Keep, Stack3d as Reference, run_stack_3d_keeping};
+use meterstick_host_sim::bodies::stack_3d_reference;
+use meterstick_reference::spatial::{Keep, run_stack_3d_keeping};
 
 /// Each step's blocks (positions and orientations' `x` and `z` axes), the core's run to its
 /// outcome at `p` with `B` blocks.
@@ -24,32 +25,11 @@ fn core_run<T: Real, const B: usize, const K: usize, const N: usize, const W: us
     (scene.outcome().expect("an outcome"), rows)
 }
 
-/// The reference's parameters for the core's `p`.
-fn reference_of(p: &Stack3dParams<f64>, blocks: usize) -> Reference {
-    Reference {
-        blocks,
-        length: p.length,
-        width: p.width,
-        height: p.height,
-        mass: p.mass,
-        mu_s: p.mu_static,
-        mu_k: p.mu_kinetic,
-        overhang: p.overhang,
-        heading: p.heading,
-        g: p.gravity,
-        h: p.step,
-        stick_speed: p.stick_speed,
-        tilt_limit: p.tilt_limit,
-        drop_limit: p.drop_limit,
-        margin: p.contact_margin,
-        max_time: p.max_time,
-    }
-}
-
 /// The largest distance between the core's and the reference's block centres, and between their
 /// blocks' turned axes, over every step both took.
 fn apart<const B: usize>(core: &[[State<f64>; B]], p: &Stack3dParams<f64>) -> (Outcome, usize, f64, f64) {
-    let reference = run_stack_3d_keeping(&reference_of(p, B), Keep::All).expect("the reference answers");
+    let reference =
+        run_stack_3d_keeping(&stack_3d_reference(p, B), Keep::All).expect("the reference answers");
     let (mut position, mut turn) = (0.0f64, 0.0f64);
     for (row, (_, xs, qs)) in core.iter().zip(&reference.trajectory) {
         for (st, (x, q)) in row.iter().zip(xs.iter().zip(qs)) {

@@ -33,7 +33,7 @@ use crate::trajectory::{Measured, RunOutcome};
 pub use core_run::run_core;
 pub use law::{Law, disc_on_board_law, law};
 pub use reach::{BodiesWarning, F32_MASS_RATIO_REACH, MassRatioReach, warnings};
-pub use reference_run::{has_reference, run_reference, to_reference};
+pub use reference_run::{has_reference, run_reference, stack_3d_reference, to_reference};
 
 /// `true` for a scene this module records: every scene but one body on a fixed list of supports
 /// (its catalogue row's [`SceneKind::contacts`], 1 to 3), which `crate::trajectory` records with

@@ -234,29 +234,36 @@ fn to_spatial_reference(spec: &SceneParams) -> Option<SpatialReference> {
             hold_time: p.hold_time,
             max_time: p.max_time,
         }),
-        SceneParams::Stack3d(s) => {
-            let p = s.params;
-            SpatialReference::Stack3d(r::Stack3d {
-                blocks: s.block_count()?,
-                length: p.length,
-                width: p.width,
-                height: p.height,
-                mass: p.mass,
-                mu_s: p.mu_static,
-                mu_k: p.mu_kinetic,
-                overhang: p.overhang,
-                heading: p.heading,
-                g: p.gravity,
-                h: p.step,
-                stick_speed: p.stick_speed,
-                tilt_limit: p.tilt_limit,
-                drop_limit: p.drop_limit,
-                margin: p.contact_margin,
-                max_time: p.max_time,
-            })
-        }
+        SceneParams::Stack3d(s) => SpatialReference::Stack3d(stack_3d_reference(&s.params, s.block_count()?)),
         _ => return None,
     })
+}
+
+/// The independent reference's stack in three dimensions of `blocks` blocks for the core's
+/// parameters `p` (its own parameter type: data only).
+#[must_use]
+pub fn stack_3d_reference(
+    p: &meterstick_core::scene::spatial::Stack3dParams<f64>,
+    blocks: usize,
+) -> crate::reference::spatial::Stack3d {
+    crate::reference::spatial::Stack3d {
+        blocks,
+        length: p.length,
+        width: p.width,
+        height: p.height,
+        mass: p.mass,
+        mu_s: p.mu_static,
+        mu_k: p.mu_kinetic,
+        overhang: p.overhang,
+        heading: p.heading,
+        g: p.gravity,
+        h: p.step,
+        stick_speed: p.stick_speed,
+        tilt_limit: p.tilt_limit,
+        drop_limit: p.drop_limit,
+        margin: p.contact_margin,
+        max_time: p.max_time,
+    }
 }
 
 /// `true` when the independent reference has `spec`'s scene (of several bodies or in three

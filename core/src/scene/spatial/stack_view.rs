@@ -5,8 +5,8 @@ use super::view::{add_state, mode_of, tangent_of};
 use crate::planar::{Checksum, ContactMode};
 use crate::real::Real;
 use crate::scene::{
-    BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepFigure,
-    StepStats, SupportView, Thing, Velocity,
+    BodyView, ContactView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepStats, SupportView,
+    Thing, Velocity,
 };
 use crate::spatial::{SlotContacts, SpatialContactReport, norm};
 
@@ -128,14 +128,6 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Sc
         (i == 0).then_some(SupportView::Table { lo: None, hi: Some(T::zero()) })
     }
 
-    fn event_count(&self) -> usize {
-        0
-    }
-
-    fn event(&self, _: usize) -> Option<EventView<T>> {
-        None
-    }
-
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {
         let mut measured = [None; MAX_MEASURES];
         if let Some(first) = measured.first_mut() {
@@ -154,14 +146,6 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Sc
 
     fn lcp_capacity(&self) -> usize {
         N
-    }
-
-    fn figure_count(&self) -> usize {
-        0
-    }
-
-    fn figure(&self, _: usize) -> Option<StepFigure<T>> {
-        None
     }
 
     fn checksum(&self) -> u32 {

@@ -5,8 +5,8 @@ use crate::planar::{Checksum, ContactMode, Direction};
 use crate::real::Real;
 use crate::scene::BodyShape;
 use crate::scene::{
-    BodyView, ContactView, EventView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepFigure,
-    StepStats, SupportView, Thing, Velocity,
+    BodyView, ContactView, Force, MAX_MEASURES, Outcome, Pose, RunStats, SceneView, StepStats, SupportView,
+    Thing, Velocity,
 };
 use crate::spatial::{Body, Mode, SpatialContactReport, SpatialStepReport, State, Vector, norm};
 
@@ -283,14 +283,6 @@ impl<T: Real, const N: usize, const K: usize, S: SpatialSeen<T, N, K>> SceneView
         self.scene.support(i)
     }
 
-    fn event_count(&self) -> usize {
-        0
-    }
-
-    fn event(&self, _: usize) -> Option<EventView<T>> {
-        None
-    }
-
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {
         self.scene.measured()
     }
@@ -305,14 +297,6 @@ impl<T: Real, const N: usize, const K: usize, S: SpatialSeen<T, N, K>> SceneView
 
     fn lcp_capacity(&self) -> usize {
         N
-    }
-
-    fn figure_count(&self) -> usize {
-        0
-    }
-
-    fn figure(&self, _: usize) -> Option<StepFigure<T>> {
-        None
     }
 
     fn checksum(&self) -> u32 {

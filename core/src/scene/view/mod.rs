@@ -110,10 +110,15 @@ pub trait SceneView<T: Real> {
     /// Support `i` where the last step left it (before the first: where it starts).
     fn support(&self, i: usize) -> Option<SupportView<T>>;
     /// The number of switch events the scene keeps ([`super::Scene::events`]; a scene of several
-    /// bodies keeps none).
-    fn event_count(&self) -> usize;
-    /// Switch event `i`, oldest first.
-    fn event(&self, i: usize) -> Option<EventView<T>>;
+    /// bodies keeps none; by default none).
+    fn event_count(&self) -> usize {
+        0
+    }
+    /// Switch event `i`, oldest first (by default none).
+    fn event(&self, i: usize) -> Option<EventView<T>> {
+        let _ = i;
+        None
+    }
     /// What the scene measures, in the order of its catalogue entry's `measures`; `None` where a
     /// quantity has no value (yet).
     fn measured(&self) -> [Option<T>; MAX_MEASURES];
@@ -126,10 +131,16 @@ pub trait SceneView<T: Real> {
     /// its full form's capacity).
     fn lcp_capacity(&self) -> usize;
     /// The number of figures the engine reports of each step beyond the records above (a scene of
-    /// one body: none; of several: each pair's force and candidates' loads).
-    fn figure_count(&self) -> usize;
-    /// Figure `i` of the last step (before the first: zero), in the same order after every step.
-    fn figure(&self, i: usize) -> Option<StepFigure<T>>;
+    /// one body: none; of several: each pair's force and candidates' loads; by default none).
+    fn figure_count(&self) -> usize {
+        0
+    }
+    /// Figure `i` of the last step (before the first: zero), in the same order after every step
+    /// (by default none).
+    fn figure(&self, i: usize) -> Option<StepFigure<T>> {
+        let _ = i;
+        None
+    }
     /// The trajectory checksum ([`crate::planar::Checksum`]) over every body's state, in body
     /// order, after every step taken through this view: the fingerprint the firmware prints.
     fn checksum(&self) -> u32;

@@ -1,8 +1,8 @@
 //! [`MultibodyView`]: a scene of several bodies ([`MultibodyScene`]) seen as a [`SceneView`].
 
 use super::{
-    Axis, BodyShape, BodyView, ContactView, EventView, FigureName, LoadPart, RunStats, SceneView, StepFigure,
-    StepStats, SupportView, Thing,
+    Axis, BodyShape, BodyView, ContactView, FigureName, LoadPart, RunStats, SceneView, StepFigure, StepStats,
+    SupportView, Thing,
 };
 use crate::multibody::scenes::MultibodyScene;
 use crate::multibody::{RestsOn, Shape};
@@ -137,14 +137,6 @@ impl<T: Real, const B: usize, const P: usize, S: MultibodyScene<T, B, P>> SceneV
     fn support(&self, i: usize) -> Option<SupportView<T>> {
         let table = self.scene.system().table;
         (i == 0).then_some(SupportView::Table { lo: table.lo, hi: table.hi })
-    }
-
-    fn event_count(&self) -> usize {
-        0
-    }
-
-    fn event(&self, _: usize) -> Option<EventView<T>> {
-        None
     }
 
     fn measured(&self) -> [Option<T>; MAX_MEASURES] {
