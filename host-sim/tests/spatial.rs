@@ -388,6 +388,13 @@ fn the_stack_in_three_dimensions_follows_the_reference() {
             assert!(header.contains(&last.as_str()) && header.contains(&"qz0"), "{file}: {header:?}");
             let steps = core["steps"].as_u64().unwrap();
             assert_eq!(text.lines().count() as u64, steps + 2, "{file}: a header, the start and every step");
+            for (k, line) in text.lines().enumerate() {
+                assert_eq!(
+                    line.split(',').count(),
+                    header.len(),
+                    "{file} line {k}: every row as wide as the header"
+                );
+            }
         }
         std::fs::remove_dir_all(&out).unwrap();
     }

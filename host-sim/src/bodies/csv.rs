@@ -9,7 +9,8 @@ use super::BodiesRow;
 /// z`, its orientation `qw, qx, qy, qz` and as Euler angles `roll, pitch, yaw` (z-y-x, degrees),
 /// `vx, vy, vz, wx, wy, wz`; then each contact's `c{i}_mode` (0 separated, 1 sticking, 2 sliding),
 /// point `c{i}_x, c{i}_y, c{i}_z`, normal impulse `c{i}_normal` and friction impulse
-/// `c{i}_friction_x, _y, _z` (N s). Rows without interface forces (a rig's telemetry,
+/// `c{i}_friction_x, _y, _z` (N s), as many as the row with the most has (a row with fewer leaves
+/// the rest empty: the stack in three dimensions' contacts come and go). Rows without interface forces (a rig's telemetry,
 /// `host-sim monitor --scene stack`) have no pair columns.
 pub(crate) fn write_trajectory(rows: &[BodiesRow], path: &std::path::Path) -> anyhow::Result<()> {
     use std::fmt::Write as _;
@@ -27,7 +28,10 @@ pub(crate) fn write_trajectory(rows: &[BodiesRow], path: &std::path::Path) -> an
             let _ = write!(header, ",pair{p}_c{c}_normal,pair{p}_c{c}_friction");
         }
     }
-    let (spatial, contacts) = first.map_or((0, 0), |r| (r.spatial.len(), r.contacts.len()));
+    let spatial = first.map_or(0, |r| r.spatial.len());
+    // The most contacts a row has: a scene whose contacts come and go (the stack in three
+    // dimensions) leaves the cells of the slots a row does not fill empty.
+    let contacts = rows.iter().map(|r| r.contacts.len()).max().unwrap_or(0);
     for b in 0..spatial {
         for name in SPATIAL_COLUMNS {
             let _ = write!(header, ",{name}{b}");
@@ -63,6 +67,9 @@ pub(crate) fn write_trajectory(rows: &[BodiesRow], path: &std::path::Path) -> an
             for x in c.point.iter().chain([&c.normal_impulse]).chain(&c.friction_impulse) {
                 let _ = write!(line, ",{x}");
             }
+        }
+        for _ in r.contacts.len()..contacts {
+            line.push_str(",,,,,,,,");
         }
         line
     });
