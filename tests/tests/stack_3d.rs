@@ -206,30 +206,33 @@ fn bad_parameters_are_refused_by_name() {
 }
 
 /// The cost of the held 3-block stack in f32 (`Stack3d3`, overhang 0.98, 2 s) at headings 0, 30
-/// and 60 deg: Lemke pivots and microseconds per step (the best of three runs), printed; each run
-/// must hold. Ignored by default (a timing, not a check): `cargo test --release -p
-/// meterstick-tests --test stack_3d -- --ignored --nocapture held_stack_cost`.
+/// and 60 deg: Lemke pivots, tries of the friction lines and microseconds per step (the best of
+/// three runs), printed; each run must hold. Ignored by default (a timing, not a check): `cargo
+/// test --release -p meterstick-tests --test stack_3d -- --ignored --nocapture held_stack_cost`.
 #[test]
 #[ignore = "timing: run in release with --ignored --nocapture"]
 fn held_stack_cost() {
     for heading in [0.0f32, 30.0, 60.0] {
         let p = Stack3dParams::<f32> { heading: heading.to_radians(), max_time: 2.0, ..Default::default() };
         let mut best = f64::INFINITY;
-        let (mut steps, mut pivots) = (0u64, 0u64);
+        let (mut steps, mut pivots, mut tries) = (0u64, 0u64, 0u64);
         for _ in 0..3 {
             let mut scene = Stack3d3::<f32>::new(p).expect("valid");
-            (steps, pivots) = (0, 0);
+            (steps, pivots, tries) = (0, 0, 0);
             let start = std::time::Instant::now();
             while let Some(report) = scene.step() {
                 steps += 1;
                 pivots += u64::from(report.pivots);
+                tries += u64::from(report.contacts.iter().map(|c| c.directions).max().unwrap_or(0));
             }
             best = best.min(start.elapsed().as_secs_f64() * 1e6 / steps as f64);
             assert_eq!(scene.outcome(), Some(Outcome::Held), "3 blocks at {heading} deg");
         }
         println!(
-            "3 blocks held at {heading:>4.1} deg (f32): {:.2} pivots/step, {best:.1} us/step over {steps} steps",
-            pivots as f64 / steps as f64
+            "3 blocks held at {heading:>4.1} deg (f32): {:.2} pivots/step, {:.2} tries of the lines/step, \
+             {best:.1} us/step over {steps} steps",
+            pivots as f64 / steps as f64,
+            tries as f64 / steps as f64
         );
     }
 }
