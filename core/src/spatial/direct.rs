@@ -70,15 +70,16 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// an impulse) and the padding rows.
     ///
     /// Why the velocities' round-off and not the residual alone (`1024 N eps` of `||M|| ||z|| +
-    /// ||q||`, `4e-3` of it in f32, the stack's): a row beyond it is a slip the lines count as
-    /// real. On a falling stack a loaded point with `p_n` alone basic comes out slipping along its
-    /// line at `5e-5` m/s with no friction, its friction rows `-+5e-5`: a wrong mode. Accepted, it
-    /// is the warm basis' answer again at every try of the lines ([`Contacts::solve_lines`]):
-    /// turning a line moves that point's slip across the line but cannot change its mode, which
-    /// only a pivot does, so the slips never run along the lines ([`StepError::ConeNotConverged`]).
-    /// Within the bound the lines read the slip as none, and the answer is the one they converge
-    /// on; beyond it the basis goes to Lemke's pivoting, which changes the mode. (A bound from the
-    /// matrix alone, `N eps` of the same scale, is 25 times the velocities' round-off here.)
+    /// ||q||`, `8e-3` of it in f32 for 64 rows, the stack's): a row beyond it is a slip the lines
+    /// count as real. On a falling stack a loaded point with `p_n` alone basic comes out slipping
+    /// along its line at `5e-5` m/s with no friction, its friction rows `-+5e-5`: a wrong mode.
+    /// Accepted, it is the warm basis' answer again at every try of the lines
+    /// ([`Contacts::solve_lines`]): turning a line moves that point's slip across the line but
+    /// cannot change its mode, which only a pivot does, so the slips never run along the lines
+    /// ([`StepError::ConeNotConverged`]). Within the bound the lines read the slip as none, and the
+    /// answer is the one they converge on; beyond it the basis goes to Lemke's pivoting, which
+    /// changes the mode. (A bound from the matrix alone, `N eps` of the same scale, is 25 times the
+    /// velocities' round-off here.)
     fn slack(&self, tied: u64, row: usize) -> T {
         let structural =
             u32::try_from(row).ok().and_then(|i| tied.checked_shr(i)).is_some_and(|t| t & 1 == 1);
