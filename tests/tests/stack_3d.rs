@@ -8,7 +8,7 @@ use meterstick_core::Real;
 use meterstick_core::multibody::scenes::{MultibodyScene, Stack2, Stack3, StackParams};
 use meterstick_core::scene::Outcome;
 use meterstick_core::scene::spatial::{Stack3d, Stack3d2, Stack3d3, Stack3dParams};
-use meterstick_core::spatial::{State, StepError, rotate};
+use meterstick_core::spatial::{State, rotate};
 use meterstick_host_sim::bodies::stack_3d_reference;
 use meterstick_reference::spatial::{Keep, run_stack_3d_keeping};
 
@@ -87,9 +87,7 @@ fn the_stack_follows_the_reference_at_every_heading() {
     }
 }
 
-/// In f32: held at 0.98 and fallen at 1.02 at every heading, 2 and 3 blocks, but for 2 blocks held
-/// at -45 degrees, whose friction lines stop converging at step 97 (`core/src/spatial/stack.rs`,
-/// module docs): there the run must end in that typed error, not in an outcome.
+/// In f32: held at 0.98 and fallen at 1.02 at every heading, 2 and 3 blocks.
 #[test]
 fn in_f32_the_stack_holds_at_098_and_falls_at_102() {
     for heading in [0.0f32, 15.0, 30.0, -45.0, 60.0] {
@@ -100,16 +98,11 @@ fn in_f32_the_stack_holds_at_098_and_falls_at_102() {
                 max_time: 0.3,
                 ..Default::default()
             };
-            let two = core_run::<f32, 2, 13, 52, 2>(p).0;
-            if heading == -45.0 && overhang < 1.0 {
-                assert_eq!(
-                    two,
-                    Outcome::Failed(StepError::ConeNotConverged),
-                    "2 blocks at {heading} deg, s = {overhang}"
-                );
-            } else {
-                assert_eq!(two, expected, "2 blocks at {heading} deg, s = {overhang}");
-            }
+            assert_eq!(
+                core_run::<f32, 2, 13, 52, 2>(p).0,
+                expected,
+                "2 blocks at {heading} deg, s = {overhang}"
+            );
             assert_eq!(
                 core_run::<f32, 3, 16, 64, 2>(p).0,
                 expected,
@@ -190,4 +183,36 @@ fn bad_parameters_are_refused_by_name() {
         Stack3d2::<f64>::new(Stack3dParams { width: -0.1, ..p }).err(),
         Some(ParamError::NotPositive("width"))
     );
+}
+
+/// The cost of the held 3-block stack in f32 (`Stack3d3`, overhang 0.98, 2 s) at headings 0, 30
+/// and 60 deg: Lemke pivots, tries of the friction lines and microseconds per step (the best of
+/// three runs), printed; each run must hold. Ignored by default (a timing, not a check): `cargo
+/// test --release -p meterstick-tests --test stack_3d -- --ignored --nocapture held_stack_cost`.
+#[test]
+#[ignore = "timing: run in release with --ignored --nocapture"]
+fn held_stack_cost() {
+    for heading in [0.0f32, 30.0, 60.0] {
+        let p = Stack3dParams::<f32> { heading: heading.to_radians(), max_time: 2.0, ..Default::default() };
+        let mut best = f64::INFINITY;
+        let (mut steps, mut pivots, mut tries) = (0u64, 0u64, 0u64);
+        for _ in 0..3 {
+            let mut scene = Stack3d3::<f32>::new(p).expect("valid");
+            (steps, pivots, tries) = (0, 0, 0);
+            let start = std::time::Instant::now();
+            while let Some(report) = scene.step() {
+                steps += 1;
+                pivots += u64::from(report.pivots);
+                tries += u64::from(report.contacts.iter().map(|c| c.directions).max().unwrap_or(0));
+            }
+            best = best.min(start.elapsed().as_secs_f64() * 1e6 / steps as f64);
+            assert_eq!(scene.outcome(), Some(Outcome::Held), "3 blocks at {heading} deg");
+        }
+        println!(
+            "3 blocks held at {heading:>4.1} deg (f32): {:.2} pivots/step, {:.2} tries of the lines/step, \
+             {best:.1} us/step over {steps} steps",
+            pivots as f64 / steps as f64,
+            tries as f64 / steps as f64
+        );
+    }
 }

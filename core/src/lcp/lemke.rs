@@ -529,10 +529,11 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
     /// = 0` meant where `z_i` is) that a caller computed its own way, accepted on
     /// [`Self::solve_warm`]'s terms for its warm basis' answer: `z >= 0` and `w = M z + q >= 0`
     /// outside the basis as computed, and the normalised residual ([`super::verify`]) within the
-    /// tolerance. The rows `tied` says are the exception: rows whose `w` the problem's
-    /// structure makes the negative of a row closed by the basis (zero in exact arithmetic, its
-    /// sign round-off's), held to the residual alone, as Lemke's pivoting holds every `w`. For a
-    /// caller that knows its problem's structure (the spatial stepper solves a basis in its
+    /// tolerance. The exception is the `slack` a caller grants a row outside the basis: its `w_i`
+    /// may be as low as `-slack(i)` (zero: none; infinite: held to the residual alone, as Lemke's
+    /// pivoting holds every `w`), for rows whose `w` its problem's structure makes zero in exact
+    /// arithmetic, their sign round-off's, and that it knows the size of that round-off for. For
+    /// a caller that knows its problem's structure (the spatial stepper solves a basis in its
     /// contacts' few unknowns, `crate::spatial`); on `None` it goes on with
     /// [`Self::solve_from_basis`]. The answer has no pivots and [`LcpSolution::warm_start_used`].
     #[must_use]
@@ -541,14 +542,13 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         lcp: &Lcp<T, N>,
         z: &SVector<T, N>,
         basis: Basis<N, WORDS>,
-        tied: impl Fn(usize) -> bool,
+        slack: impl Fn(usize) -> T,
     ) -> Option<LcpSolution<T, N, WORDS>> {
         let scales = lcp.scales()?;
         let w = lcp.w_of(z);
         let mut feasible = true;
         for i in 0..N {
-            let held = basis.is_z_basic(i) || tied(i);
-            feasible &= z[i] >= T::zero() && (held || w[i] >= T::zero());
+            feasible &= z[i] >= T::zero() && (basis.is_z_basic(i) || w[i] >= T::zero() || w[i] >= -slack(i));
         }
         let check = Verification {
             residual: residual(z, &w, scales.m_norm, scales.q_norm),

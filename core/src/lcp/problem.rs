@@ -55,20 +55,24 @@ impl<T: Real, const N: usize> Lcp<T, N> {
     #[must_use]
     pub fn m_norm_inf(&self) -> T {
         let mut norm = T::zero();
-        for i in 0..N {
-            norm = max(norm, self.row_abs_sum(i));
+        for row in self.row_abs_sums() {
+            norm = max(norm, row);
         }
         norm
     }
 
-    /// `sum_j |M_ij|`.
+    /// Each row's `sum_j |M_ij|`, its terms added in the order `j = 0 .. N`. `M` is stored by
+    /// columns, so the sums are taken column by column (every row's next term at once, a read
+    /// in storage order): the same operations in the same order per row as row by row.
     #[inline]
-    fn row_abs_sum(&self, i: usize) -> T {
-        let mut row = T::zero();
-        for j in 0..N {
-            row += self.m[(i, j)].abs_exact();
+    fn row_abs_sums(&self) -> [T; N] {
+        let mut rows = [T::zero(); N];
+        for column in self.m.as_slice().chunks_exact(N) {
+            for (row, m) in rows.iter_mut().zip(column) {
+                *row += m.abs_exact();
+            }
         }
-        row
+        rows
     }
 
     /// `||M||_inf`, `||q||_inf` and `min q` in one pass over the data (the solver's entry:
@@ -81,8 +85,7 @@ impl<T: Real, const N: usize> Lcp<T, N> {
     pub(crate) fn scales(&self) -> Option<Scales<T>> {
         let mut m_norm = T::zero();
         let mut total = T::zero();
-        for i in 0..N {
-            let row = self.row_abs_sum(i);
+        for row in self.row_abs_sums() {
             m_norm = max(m_norm, row);
             total += row;
         }
@@ -107,14 +110,17 @@ impl<T: Real, const N: usize> Lcp<T, N> {
         norm
     }
 
-    /// `w = M z + q`, computed from the original data in a fixed order of operations.
+    /// `w = M z + q`, computed from the original data in a fixed order of operations: each `w_i`
+    /// is `q_i` plus its terms `M_ij z_j` in the order `j = 0 .. N`. They are added column by
+    /// column, `M`'s storage order (every row's next term at once, independent of each other):
+    /// the same operations in the same order per row as row by row.
     #[must_use]
     #[inline]
     pub fn w_of(&self, z: &SVector<T, N>) -> SVector<T, N> {
         let mut w = self.q;
-        for i in 0..N {
-            for j in 0..N {
-                w[i] += self.m[(i, j)] * z[j];
+        for (column, &zj) in self.m.as_slice().chunks_exact(N).zip(z.as_slice()) {
+            for (wi, &m) in w.as_mut_slice().iter_mut().zip(column) {
+                *wi += m * zj;
             }
         }
         w

@@ -170,20 +170,21 @@ fn verification_rejects_wrong_answers() {
 
 /// [`Lemke::accept`] on a caller's answer of a basis: Kostreva's problem at `z = 1/3` (every `z`
 /// basic, `w = 0`) is taken as Lemke's method's own answer; a `z` with a negative entry, one whose
-/// `w` is negative outside the basis, and one off the solution are refused; a row in `tied` may
-/// be negative by its round-off, not beyond the residual's tolerance.
+/// `w` is negative outside the basis, and one off the solution are refused; a row granted a
+/// slack may be negative by it, and no further (a finite slack), nor beyond the residual's
+/// tolerance (an infinite one).
 #[test]
 fn accept_holds_a_callers_answer_to_the_warm_answers_terms() {
     let lemke = Lemke::<f64, 3>::new();
     let kostreva = Lcp::from_rows(&[[1.0, 2.0, 0.0], [0.0, 1.0, 2.0], [2.0, 0.0, 1.0]], &[-1.0, -1.0, -1.0]);
     let all = Basis::from_z_mask(0b111);
     let z = SVector::from([1.0 / 3.0; 3]);
-    let sol = lemke.accept(&kostreva, &z, all, |_| false).expect("the solution");
+    let sol = lemke.accept(&kostreva, &z, all, |_| 0.0).expect("the solution");
     assert_z(&sol.z, [1.0 / 3.0; 3]);
     assert_eq!((sol.pivots, sol.basis, sol.warm_start_used), (0, all, true));
-    assert!(lemke.accept(&kostreva, &SVector::from([0.5, 0.5, -0.1]), all, |_| false).is_none(), "z < 0");
+    assert!(lemke.accept(&kostreva, &SVector::from([0.5, 0.5, -0.1]), all, |_| 0.0).is_none(), "z < 0");
     assert!(
-        lemke.accept(&kostreva, &SVector::from([0.3, 0.3, 0.3]), all, |_| false).is_none(),
+        lemke.accept(&kostreva, &SVector::from([0.3, 0.3, 0.3]), all, |_| 0.0).is_none(),
         "not complementary"
     );
     // `w = z - 1 + (0, e, 0)`: `z = (1, 0, 0)` with only `z_0` basic leaves `w_1` at `-e`.
@@ -191,10 +192,13 @@ fn accept_holds_a_callers_answer_to_the_warm_answers_terms() {
     let tied = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -e, 1.0]);
     let first = Basis::from_z_mask(0b001);
     let z = SVector::from([1.0, 0.0, 0.0]);
-    assert!(lemke.accept(&tied, &z, first, |_| false).is_none(), "w_1 < 0 outside the basis");
-    assert!(lemke.accept(&tied, &z, first, |i| i == 1).is_some(), "w_1 tied: round-off's");
+    assert!(lemke.accept(&tied, &z, first, |_| 0.0).is_none(), "w_1 < 0 outside the basis");
+    let slack = |s: f64| move |i: usize| if i == 1 { s } else { 0.0 };
+    assert!(lemke.accept(&tied, &z, first, slack(2.0 * e)).is_some(), "w_1 within its slack");
+    assert!(lemke.accept(&tied, &z, first, slack(0.5 * e)).is_none(), "w_1 beyond its slack");
+    assert!(lemke.accept(&tied, &z, first, slack(f64::INFINITY)).is_some(), "w_1 held to the residual");
     let far = Lcp::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], &[-1.0, -0.5, 1.0]);
-    assert!(lemke.accept(&far, &z, first, |i| i == 1).is_none(), "w_1 = -0.5 fails the residual");
+    assert!(lemke.accept(&far, &z, first, slack(f64::INFINITY)).is_none(), "w_1 = -0.5 fails the residual");
 }
 
 /// Beyond 32 rows (the basis's second word, the ties' sets): a P-matrix LCP of `N` rows built

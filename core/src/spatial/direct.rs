@@ -10,9 +10,10 @@
 //! sticking ones' frictions (at most `2 K` unknowns where Lemke's direct solve has the basis' up to
 //! `4 K`: on the meter stick's pad and point, five or six where it had up to twelve), and Lemke's
 //! verification ([`Lemke::accept`]) judges it on the whole problem as it judges its own warm answer
-//! ([`Lemke::solve_warm`]). A basis of any other pattern goes to [`Lemke::solve_warm`], one whose
-//! answer this path's check refuses to [`Lemke::solve_from_basis`] (Lemke's pivoting from its
-//! tableau, then the cold start).
+//! ([`Lemke::solve_warm`]), but for the rows zero in exact arithmetic, which may miss zero by the
+//! step's velocity round-off ([`Contacts::slack`]). A basis of any other pattern goes to
+//! [`Lemke::solve_warm`], one whose answer this path's check refuses to
+//! [`Lemke::solve_from_basis`] (Lemke's pivoting from its tableau, then the cold start).
 
 use nalgebra::SVector;
 
@@ -43,9 +44,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // A lone contact's basis is of at most three unknowns: Lemke's own direct solve of it.
         let reduced = if K > 1 { self.basis_solution(lcp, basis) } else { None };
         let lemke = match reduced {
-            Some((z, tied)) => match solver.accept(lcp, &z, basis, |i| {
-                u32::try_from(i).ok().and_then(|i| tied.checked_shr(i)).is_some_and(|t| t & 1 == 1)
-            }) {
+            Some((z, tied)) => match solver.accept(lcp, &z, basis, |i| self.slack(tied, i)) {
                 Some(sol) => return Ok(sol),
                 None => solver.solve_from_basis(lcp, basis),
             },
@@ -59,6 +58,33 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             Err(e) if K > 1 && B > 1 => Self::open_load(solver, lcp).ok_or(StepError::Solver(e)),
             Err(e) => Err(StepError::Solver(e)),
         }
+    }
+
+    /// How far below zero row `row`'s `w` may come out, outside the basis, in a basis' own answer
+    /// ([`Lemke::accept`]'s slack): [`Contacts::slip_tolerance`], the round-off of the step's
+    /// velocities, for a row that is a velocity and zero in exact arithmetic: a sticking contact's
+    /// other friction row (`tied`, [`Self::basis_solution`]) and, for several bodies, every
+    /// contact's normal and friction rows (a face on a face closes them with its open loads,
+    /// `super::stack`'s module docs, "The load": the unloaded fourth point's normal row, the
+    /// friction rows of a loaded point that carries none); none for the `sigma` rows (a bound on
+    /// an impulse) and the padding rows.
+    ///
+    /// Why the velocities' round-off and not the residual alone (`1024 N eps` of `||M|| ||z|| +
+    /// ||q||`, `8e-3` of it in f32 for 64 rows, the stack's): a row beyond it is a slip the lines
+    /// count as real. On a falling stack a loaded point with `p_n` alone basic comes out slipping
+    /// along its line at `5e-5` m/s with no friction, its friction rows `-+5e-5`: a wrong mode.
+    /// Accepted, it is the warm basis' answer again at every try of the lines
+    /// ([`Contacts::solve_lines`]): turning a line moves that point's slip across the line but
+    /// cannot change its mode, which only a pivot does, so the slips never run along the lines
+    /// ([`StepError::ConeNotConverged`]). Within the bound the lines read the slip as none, and the
+    /// answer is the one they converge on; beyond it the basis goes to Lemke's pivoting, which
+    /// changes the mode. (A bound from the matrix alone, `N eps` of the same scale, is 25 times the
+    /// velocities' round-off here.)
+    fn slack(&self, tied: u64, row: usize) -> T {
+        let structural =
+            u32::try_from(row).ok().and_then(|i| tied.checked_shr(i)).is_some_and(|t| t & 1 == 1);
+        let velocity = B > 1 && row < 4 * K && row % 4 != 3;
+        if structural || velocity { self.slip_tolerance } else { T::zero() }
     }
 
     /// The answer of an LCP whose loads are open (`super::stack`'s module docs, "The load"), where
@@ -101,9 +127,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     }
 
     /// The least-norm solution of `basis`' system `M_bb z_b = -q_b` over its basic `z` ([`least_norm`]),
-    /// round-off's negative entries zero, held to [`Lemke::accept`]'s residual on `lcp` (every row
-    /// tied: the backward error Lemke's method verifies its own answers by). `None` when it does
-    /// not verify.
+    /// round-off's negative entries zero, held to [`Lemke::accept`]'s residual on `lcp` (every row's
+    /// slack infinite: the backward error Lemke's method verifies its own answers by; this is the
+    /// answer after Lemke's method failed). `None` when it does not verify.
     fn least_norm_of<const N: usize, const W: usize>(
         solver: &Lemke<T, N, W>,
         lcp: &Lcp<T, N>,
@@ -133,7 +159,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 *slot = max(value, T::zero());
             }
         }
-        solver.accept(lcp, &z, basis, |_| true)
+        solver.accept(lcp, &z, basis, |_| T::of(f64::INFINITY))
     }
 
     /// The complementary solution of `basis` for `lcp` by its reduced system (module docs): `None`

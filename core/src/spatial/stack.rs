@@ -19,14 +19,18 @@
 //! the load rule's, `docs/formulation.md`, "The load: the least norm", among that basis'
 //! solutions); where Lemke's method crosses such bases with more round-off than its
 //! verification allows, the basis it ends in (or that of the problem made strictly copositive)
-//! is solved so, and verified on the problem itself (`super::direct`'s open loads). Every answer
-//! is verified to `1024 N eps` (four times Lemke's default, [`crate::lcp::default_tolerance`]):
-//! one step of three blocks falling at 30 deg needs 1.23 times the default.
+//! is solved so, and verified on the problem itself (`super::direct`'s open loads). The rows the
+//! open loads close (the unloaded fourth point's normal row, the friction rows of a loaded point
+//! that carries none) come out of a basis' answer at zero to round-off, of either sign: they are
+//! held to the step's velocity round-off (`super::direct`'s slack), so a stack at rest keeps its
+//! warm basis without a pivot, and a slip beyond it, a wrong mode, goes to Lemke's pivoting.
+//! Every answer is verified to `1024 N eps` (four times Lemke's default,
+//! [`crate::lcp::default_tolerance`]): one step of three blocks falling at 30 deg needs 1.23
+//! times the default.
 //!
 //! Checked (`tests/tests/stack_3d.rs`): in f64 held at 0.98 and fallen at 1.02 at headings -45
 //! to 60 deg, 2 and 3 blocks, every step within `2.5e-12` m and `3.2e-11` rad of the independent
-//! reference's; at heading 0 the planar engine's stack to `4.4e-14`. In f32 the same outcomes
-//! but one: 2 blocks held at -45 deg stop at step 97 with [`StepError::ConeNotConverged`].
+//! reference's; at heading 0 the planar engine's stack to `4.4e-14`. In f32 the same outcomes.
 
 use super::algebra::{Vector, add, cross, dot, finite, norm, normalized, scale, sub};
 use super::body::{Body, Frame, Motion, State, advanced};
