@@ -124,15 +124,16 @@ builds_tagged() {
 # The core for the browser: meterstick-web built for wasm32-unknown-unknown (release, without
 # debug info, in a target directory of its own so that the host builds are not invalidated), once
 # per number of contacts (cargo features k2, k1, k3), once for the scenes of several bodies
-# (feature mb) and twice for the scenes in three dimensions (feature sp: f32; sp64: f64), copied to
-# web/page/pkg/: meterstick_web.wasm (the two-contact scenes, which the page loads first),
-# meterstick_web_k1.wasm, meterstick_web_k3.wasm, meterstick_web_mb.wasm, meterstick_web_sp.wasm and
-# meterstick_web_sp64.wasm, and the scenes'
+# (feature mb), twice for the scenes in three dimensions of one body (feature sp: f32; sp64: f64)
+# and twice for the stack in three dimensions (st, st64), copied to web/page/pkg/: meterstick_web.wasm
+# (the two-contact scenes, which the page loads first), meterstick_web_k1.wasm, meterstick_web_k3.wasm,
+# meterstick_web_mb.wasm, meterstick_web_sp.wasm, meterstick_web_sp64.wasm, meterstick_web_st.wasm and
+# meterstick_web_st64.wasm, and the scenes'
 # headings, introductions and modules, intros.json (generated, git-ignored). Prints the first module's path.
 WEB_TARGET_DIR="$ROOT/target/web/$MS_CROSS_MODE"
 WEB_WASM="$ROOT/web/page/pkg/meterstick_web.wasm"
 WEB_MODULES=("$WEB_WASM" "${WEB_WASM%.wasm}_k1.wasm" "${WEB_WASM%.wasm}_k3.wasm" "${WEB_WASM%.wasm}_mb.wasm"
-  "${WEB_WASM%.wasm}_sp.wasm" "${WEB_WASM%.wasm}_sp64.wasm")
+  "${WEB_WASM%.wasm}_sp.wasm" "${WEB_WASM%.wasm}_sp64.wasm" "${WEB_WASM%.wasm}_st.wasm" "${WEB_WASM%.wasm}_st64.wasm")
 build_web() {
   local args=(build --locked --release -p meterstick-web --lib --target wasm32-unknown-unknown
     --target-dir "$WEB_TARGET_DIR" --config profile.release.debug=0 --config profile.release.strip=true
@@ -150,12 +151,14 @@ build_web() {
   # without it). The same arithmetic: optimisation levels and the copies keep IEEE results, and
   # the page's test checks the checksums bit for bit against the host, which has every copy.
   local k out feature
-  for k in 2 1 3 mb sp sp64; do
+  for k in 2 1 3 mb sp sp64 st st64; do
     case $k in
       2) out=$WEB_WASM feature=k2 ;;
       mb) out="${WEB_WASM%.wasm}_mb.wasm" feature=mb,compact ;;
       sp) out="${WEB_WASM%.wasm}_sp.wasm" feature=sp ;;
       sp64) out="${WEB_WASM%.wasm}_sp64.wasm" feature=sp,sp64 ;;
+      st) out="${WEB_WASM%.wasm}_st.wasm" feature=st ;;
+      st64) out="${WEB_WASM%.wasm}_st64.wasm" feature=st,st64 ;;
       *) out="${WEB_WASM%.wasm}_k$k.wasm" feature="k$k" ;;
     esac
     (cd "$ROOT" && cross_cargo "${args[@]}" --features "$feature" >&2) || { echo "build_web: the build failed" >&2; return 1; }

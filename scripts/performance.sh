@@ -311,7 +311,9 @@ holds = {"meterstick_web.wasm": "meter stick, incline, ladder (two contacts)",
          "meterstick_web_k3.wasm": "three fingers (three contacts)",
          "meterstick_web_mb.wasm": "block-on-block, tablecloth, stack, disc-on-board (several bodies)",
          "meterstick_web_sp.wasm": "puck, billiard, curling, meter stick in three dimensions, f32 (feature `sp`)",
-         "meterstick_web_sp64.wasm": "the same in f64 (features `sp`, `sp64`)"}
+         "meterstick_web_sp64.wasm": "the same in f64 (features `sp`, `sp64`)",
+         "meterstick_web_st.wasm": "the stack in three dimensions, f32 (feature `st`)",
+         "meterstick_web_st64.wasm": "the same in f64 (features `st`, `st64`)"}
 for m in modules:
     with open(m, "rb") as f:
         data = f.read()

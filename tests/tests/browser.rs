@@ -441,7 +441,7 @@ fn the_page_in_chromium() {
     );
     // The scenes in three dimensions, in their module, drawn in perspective: each at its
     // defaults, and the puck on a slope as the URL contract's example.
-    for scene in ["puck", "billiard", "curling", "meter-stick-3d"] {
+    for scene in ["puck", "billiard", "curling", "meter-stick-3d", "stack-3d"] {
         browser_spatial::check_spatial(&b, &base, scene, &format!("scene={scene}&autorun=1&rate=max"));
     }
     browser_spatial::check_spatial(
@@ -784,9 +784,8 @@ fn check_scene_selector(b: &Browser, base: &str) {
     let options = b.js("return [...document.getElementById('scene-select').options].map((o) => o.value)");
     // The first module's scenes in the catalogue's order, then those it does not name (the scenes
     // in three dimensions, from pkg/intros.json: by name).
-    let page = SceneKind::ALL.into_iter().filter(|k| meterstick_web::config::on_page(*k));
-    let mut names: Vec<&str> = page.clone().filter(|k| !k.is_spatial()).map(SceneKind::name).collect();
-    let mut spatial: Vec<&str> = page.filter(|k| k.is_spatial()).map(SceneKind::name).collect();
+    let mut names: Vec<&str> = SceneKind::ALL.iter().filter(|k| !k.is_spatial()).map(|k| k.name()).collect();
+    let mut spatial: Vec<&str> = SceneKind::ALL.iter().filter(|k| k.is_spatial()).map(|k| k.name()).collect();
     spatial.sort_unstable();
     names.extend(spatial);
     assert_eq!(options, json!(names), "the selector lists the catalogue's scenes");

@@ -3,7 +3,7 @@
 //! ..., "intro": ..., "module": "meterstick_web.wasm", "module_f64": "meterstick_web.wasm"}, ...}`: `scripts/lib.sh` `build_web` puts it in
 //! `web/page/pkg/intros.json`, which the page reads (the wasm modules, within their size budget,
 //! do not carry the text; the planar modules do not name the scenes in three dimensions, which
-//! the page learns from here); a scene no page module runs (`config::NOT_ON_PAGE`) is left out.
+//! the page learns from here).
 #![allow(missing_docs)]
 
 use meterstick_web::config::Precision;
@@ -11,7 +11,6 @@ use meterstick_web::config::Precision;
 fn main() {
     let intros: serde_json::Map<String, serde_json::Value> = meterstick_catalogue::INTRODUCTIONS
         .iter()
-        .filter(|i| meterstick_web::config::on_page(i.kind))
         .map(|i| {
             let module = meterstick_web::config::Module::of(i.kind);
             let (f32_file, f64_file) = (module.file_for(Precision::F32), module.file_for(Precision::F64));

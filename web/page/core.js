@@ -111,7 +111,7 @@ export class Core {
   /// lowest), round: [bool] (a disc, its diameter the width), table: [lo, hi] (null for an end it
   /// does not have)}; null for a scene of one body.
   shapes() {
-    if (this.current && this.current.spatial) return { spatial: true, sizes: [], solid: [0, 1, 2].map((j) => this.x.ms_solid(j)), supports: this.supports() };
+    if (this.current && this.current.spatial) return { spatial: true, sizes: [], solid: [0, 1, 2, 3].map((j) => this.x.ms_solid(j)), supports: this.supports() };
     if (!this.current || !this.current.bodies) return null;
     const sizes = [];
     for (let i = 0; !Number.isNaN(this.x.ms_body_size(i, 0)); i += 1) sizes.push([this.x.ms_body_size(i, 0), this.x.ms_body_size(i, 1)]);

@@ -14,14 +14,14 @@ export function spatialCaptions($) {
   $('cap-height').textContent = 'Height z of the centre of mass (cm) over t (s)';
 }
 
-/// R omega of each row: `solid` [code, a, b] (web/src/spatial.rs `Solid`): a ball's whole angular
-/// speed times its radius, a puck's spin about the vertical times its radius, a rod's angular
-/// speed times half its length.
+/// R omega of each row: `solid` [code, a, b, c] (web/src/spatial.rs `Solid`): a ball's whole
+/// angular speed times its radius, a puck's spin about the vertical times its radius, a rod's (a
+/// block's: body 0's, the lowest) angular speed times half its length.
 function rOmega(c, n, [code, a]) {
   const out = new Float64Array(n);
   for (let i = 0; i < n; i += 1) {
     const w = code === 2 ? Math.abs(c.wz[i]) : Math.hypot(c.wx[i], c.wy[i], c.wz[i]);
-    out[i] = (code === 0 ? a / 2 : a) * w;
+    out[i] = (code === 0 || code === 3 ? a / 2 : a) * w;
   }
   return out;
 }

@@ -30,10 +30,14 @@ const isSliding = (m) => m === 2 || m === 3;
 /// Numbers per row of a scene of several bodies: t, then each of up to 3 bodies' x, y, theta.
 export const BODIES_ROW = 10;
 
-/// The columns of a row of a scene in three dimensions (web/src/spatial.rs `write_row`).
+/// The columns of a row of a scene in three dimensions (web/src/spatial.rs `write_row`): t, each
+/// of three bodies' state (body 0's unnumbered, then b2..., b3...: NaN past the scene's bodies),
+/// then each contact.
 const SPATIAL_STATE = ['t', 'x', 'y', 'z', 'qw', 'qx', 'qy', 'qz', 'vx', 'vy', 'vz', 'wx', 'wy', 'wz'];
+const SPATIAL_BODIES = 3;
 function spatialColumns(row) {
   const names = [...SPATIAL_STATE];
+  for (let b = 2; b <= SPATIAL_BODIES; b += 1) for (const c of SPATIAL_STATE.slice(1)) names.push(`b${b}${c}`);
   for (let i = 1; names.length < row; i += 1) {
     for (const c of ['px', 'py', 'pz', 'nx', 'ny', 'nz', 'tx', 'ty', 'tz', 'mode', 'pn', 'pf']) names.push(`${c}${i}`);
   }

@@ -3,12 +3,15 @@
 // the body at its position and orientation (quaternion [w, x, y, z], world z up), the plane or the
 // fingers it rests on, each contact's force as an arrow coloured by its mode, the path of its
 // centre traced on the plane; the camera orbits the body (drag), zooms (wheel, pinch) and follows
-// it. A row is the core's (`web/src/spatial.rs`): t, position, orientation, velocity, angular
-// velocity, then per contact point, normal, friction direction, mode, normal and friction impulse.
+// it. A row is the core's (`web/src/spatial.rs`): t, then per body (up to three, NaN past the
+// scene's) position, orientation, velocity, angular velocity, then per contact point, normal,
+// friction direction, mode, normal and friction impulse.
 
 import { COLORS } from './draw.js';
 
-const BODY = 14;
+const STATE = 13;
+const BODIES = 3;
+const BODY = 1 + STATE * BODIES;
 const CONTACT = 12;
 
 const VERT = `#version 300 es
@@ -205,9 +208,9 @@ export class SpaceView {
   /// The scene's body (`shapes.solid`: [code, a, b], web/src/spatial.rs `Solid`) and supports.
   setScene(scene, params, start, k, shapes) {
     this.scene = scene; this.params = params; this.shapes = shapes;
-    const [code, a, b] = shapes.solid;
-    this.size = code === 0 ? a : 2 * a;
-    this.halfHeight = code === 0 ? b / 2 : code === 1 ? a : b / 2;
+    const [code, a, b, c] = shapes.solid;
+    this.size = code === 0 || code === 3 ? a : 2 * a;
+    this.halfHeight = code === 0 ? b / 2 : code === 1 ? a : code === 3 ? c / 2 : b / 2;
     this.forceScale = 0;
     this.worst = 0;
   }
@@ -294,6 +297,12 @@ export class SpaceView {
         const centre = cam.target.map((x, i) => x - off * d[i]);
         const side = 20 * cam.dist;
         this.put('square', model(u.map((x) => x * side), v.map((x) => x * side), d, centre), this.planeColor, 3);
+      } else if (sup[0] === 3) {
+        // The table: its top z = 0 over x <= the edge's x, a slab 20 camera distances wide.
+        plane = { p, n: d };
+        const side = 20 * cam.dist; const depth = 0.02;
+        const centre = [p[0] - side / 2, cam.target[1], -depth / 2];
+        this.put('cube', model([side, 0, 0], [0, side, 0], [0, 0, depth], centre), this.planeColor, 3);
       } else if (sup[0] === 2) {
         // A finger lying along d under the line through its tip.
         const r = 0.012;
@@ -304,15 +313,19 @@ export class SpaceView {
     }
     // The path of the body's centre, traced on the plane (or under the body).
     this.drawPath(info.trace, plane);
-    // The body.
-    const [code, a, b] = this.shapes.solid;
-    const [c0, c1, c2] = rotation([row[4], row[5], row[6], row[7]]);
-    const pos = [row[1], row[2], row[3]];
+    // The bodies, each of the scene's solid.
+    const [code, a, b, c] = this.shapes.solid;
     // A rod: its length along its x, its thickness along its z, its width (the scene's parameter;
-    // the view's box has two sides) along its y.
-    const scale = code === 0 ? [a, this.params.rod_width || b, b] : code === 1 ? [a, a, a] : [a, a, b];
-    const m = model(c0.map((x) => x * scale[0]), c1.map((x) => x * scale[1]), c2.map((x) => x * scale[2]), pos);
-    this.put(code === 0 ? 'cube' : code === 1 ? 'sphere' : 'cylinder', m, this.bodyColor, code === 1 ? 1 : code === 2 ? 2 : 0);
+    // the view's box has two sides) along its y; a block: its length, width and height.
+    const scale = code === 0 ? [a, this.params.rod_width || b, b] : code === 1 ? [a, a, a] : code === 3 ? [a, b, c] : [a, a, b];
+    for (let k = 0; k < BODIES; k += 1) {
+      const at = 1 + STATE * k;
+      if (Number.isNaN(row[at])) continue;
+      const [c0, c1, c2] = rotation([row[at + 3], row[at + 4], row[at + 5], row[at + 6]]);
+      const pos = [row[at], row[at + 1], row[at + 2]];
+      const m = model(c0.map((x) => x * scale[0]), c1.map((x) => x * scale[1]), c2.map((x) => x * scale[2]), pos);
+      this.put(code === 1 ? 'sphere' : code === 2 ? 'cylinder' : 'cube', m, this.bodyColor, code === 1 ? 1 : code === 2 ? 2 : 0);
+    }
     // Each contact's force ((pn n + pf t) / h) as an arrow, scaled to the largest seen; its mode's colour.
     const hstep = this.params.step;
     const forces = [];

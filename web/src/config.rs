@@ -45,9 +45,12 @@ pub enum Module {
     /// `meterstick_web_mb.wasm` (feature `mb`): the scenes whose contacts come and go, none
     /// counted (the scenes of several bodies).
     Bodies,
-    /// `meterstick_web_sp.wasm` (feature `sp`): the scenes in three dimensions, in f32; in f64
-    /// `meterstick_web_sp64.wasm` (features `sp` and `sp64`, [`Self::file_for`]).
+    /// `meterstick_web_sp.wasm` (feature `sp`): the scenes in three dimensions of one body, in
+    /// f32; in f64 `meterstick_web_sp64.wasm` (features `sp` and `sp64`, [`Self::file_for`]).
     Spatial,
+    /// `meterstick_web_st.wasm` (feature `st`): the stack in three dimensions, in f32; in f64
+    /// `meterstick_web_st64.wasm` (features `st` and `st64`).
+    Stacked,
 }
 
 impl Module {
@@ -57,6 +60,10 @@ impl Module {
     /// `pkg/intros.json`, `examples/intros.rs`).
     #[must_use]
     pub const fn of(kind: SceneKind) -> Self {
+        #[cfg(feature = "st")]
+        if matches!(kind, SceneKind::Stack3d) {
+            return Self::Stacked;
+        }
         if kind.is_spatial() {
             return Self::Spatial;
         }
@@ -77,6 +84,7 @@ impl Module {
             Self::Three => "meterstick_web_k3.wasm",
             Self::Bodies => "meterstick_web_mb.wasm",
             Self::Spatial => "meterstick_web_sp.wasm",
+            Self::Stacked => "meterstick_web_st.wasm",
         }
     }
 
@@ -86,6 +94,7 @@ impl Module {
     pub const fn file_for(self, precision: Precision) -> &'static str {
         match (self, precision) {
             (Self::Spatial, Precision::F64) => "meterstick_web_sp64.wasm",
+            (Self::Stacked, Precision::F64) => "meterstick_web_st64.wasm",
             _ => self.file(),
         }
     }
@@ -99,27 +108,23 @@ impl Module {
             Self::Three => cfg!(feature = "k3"),
             Self::Bodies => cfg!(feature = "mb"),
             Self::Spatial => cfg!(feature = "sp"),
+            Self::Stacked => cfg!(feature = "st"),
         }
     }
 }
 
 /// `true` when this build runs `kind` (its [`Module`]).
 #[must_use]
-pub fn holds(kind: SceneKind) -> bool {
+pub const fn holds(kind: SceneKind) -> bool {
     on_page(kind) && Module::of(kind).built()
 }
 
-/// The scenes no page module runs yet, by name: a host build of the whole workspace names them
-/// (its core has every scene), the page's modules are built without them (the stack in three
-/// dimensions: the core's `scenes-stack-3d`, which `sp` does not enable).
-pub const NOT_ON_PAGE: [&str; 1] = ["stack-3d"];
-
-/// `true` for a scene this build describes to the page: every scene it names but
-/// [`NOT_ON_PAGE`], those in three dimensions with the feature `sp` only (a host build of the
-/// whole workspace names them without running them; the planar page modules do not name them).
+/// `true` for a scene this build describes to the page: every scene it names, those in three
+/// dimensions with the feature `sp` only (a host build of the whole workspace names them without
+/// running them; the planar page modules do not name them).
 #[must_use]
-pub fn on_page(kind: SceneKind) -> bool {
-    (!kind.is_spatial() || cfg!(feature = "sp")) && !NOT_ON_PAGE.contains(&kind.name())
+pub const fn on_page(kind: SceneKind) -> bool {
+    !kind.is_spatial() || cfg!(any(feature = "sp", feature = "st"))
 }
 
 /// Checks the parameters in f64 and, for an f32 run, again after rounding to f32.
@@ -236,13 +241,9 @@ mod tests {
         let c = config(SceneKind::Incline, &[("angle", 95.0)]);
         assert_eq!(message(&c).as_str(), "angle 95 deg: out of range (0 <= angle < 90 deg)");
         let c = config(SceneKind::MeterStick, &[("width", 0.1)]);
-        // The stack in three dimensions is named where the build's core has it (the workspace's).
-        let also = if SceneKind::from_name("stack-3d").is_some() { ", stack-3d" } else { "" };
         assert_eq!(
             message(&c).as_str(),
-            format!(
-                "width does not apply to scene meter-stick (it is a parameter of incline, meter-stick-3d, block-on-block, tablecloth{also})"
-            )
+            "width does not apply to scene meter-stick (it is a parameter of incline, meter-stick-3d, block-on-block, tablecloth, stack-3d)"
         );
         let c = config(SceneKind::Ladder, &[("h", 1e-9)]);
         assert_eq!(
@@ -290,6 +291,9 @@ mod tests {
         assert_eq!(Module::of(SceneKind::Stack), Module::Bodies);
         assert_eq!(Module::Bodies.file_for(Precision::F64), "meterstick_web_mb.wasm");
         assert!(holds(SceneKind::Puck), "the host build runs every scene");
+        assert_eq!(Module::of(SceneKind::Stack3d), Module::Stacked);
+        assert_eq!(Module::Stacked.file_for(Precision::F64), "meterstick_web_st64.wasm");
+        assert!(holds(SceneKind::Stack3d), "the host build runs every scene");
     }
 
     #[test]

@@ -373,9 +373,10 @@ pub extern "C" fn ms_table_end(end: u32) -> f64 {
     })
 }
 
-/// The body of a scene in three dimensions: its solid's code (`j` 0: 0 a box, 1 a ball, 2 a flat
-/// cylinder) and sizes (`j` 1, 2: m; `spatial::Solid`); NaN for another `j` or without such a run.
-#[cfg(feature = "sp")]
+/// The bodies of a scene in three dimensions: their solid's code (`j` 0: 0 a box, 1 a ball, 2 a
+/// flat cylinder, 3 a block) and sizes (`j` 1 to 3: m; `spatial::Solid`); NaN for another `j` or
+/// without such a run.
+#[cfg(any(feature = "sp", feature = "st"))]
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_solid(j: u32) -> f64 {
@@ -386,9 +387,10 @@ pub extern "C" fn ms_solid(j: u32) -> f64 {
 }
 
 /// Support `i` of a scene in three dimensions: number `j` of `[code, point, direction]` (code 1 a
-/// plane and its normal, 2 a finger's tip and the direction it lies along; m, world, `z` up;
+/// plane and its normal, 2 a finger's tip and the direction it lies along, 3 the table's edge and
+/// its top's normal; m, world, `z` up;
 /// `spatial::SupportOf`); NaN past its supports, for another `j` or without such a run.
-#[cfg(feature = "sp")]
+#[cfg(any(feature = "sp", feature = "st"))]
 #[unsafe(no_mangle)]
 #[must_use]
 pub extern "C" fn ms_support(i: u32, j: u32) -> f64 {
@@ -430,9 +432,9 @@ mod tests {
         assert_eq!(json.len(), n as usize);
         assert!(json.len() < TEXT_BYTES / 2, "room to grow: {} bytes", json.len());
         assert!(json.starts_with("{\"version\":") && json.ends_with('}'), "{json}");
-        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","meter-stick-3d":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic","stack":"mu_kinetic","disc-on-board":"mu_kinetic","puck":"mu_kinetic","billiard":"mu_kinetic"}}"#), "{json}");
-        // The scenes in three dimensions (feature `sp`): rows of the body and eight contacts.
-        assert!(json.contains(r#""contacts":["its face"],"spatial":true,"row":110,"#), "{json}");
+        assert!(json.contains(r#"{"long":"mu-k","unit":"","help":"Kinetic friction coefficient (0 <= mu-k <= mu-s)","fields":{"meter-stick":"mu_kinetic","meter-stick-3d":"mu_kinetic","incline":"mu_kinetic","three-fingers":"mu_kinetic","cylinder":"mu_kinetic","painleve":"mu_kinetic","block-on-block":"mu_kinetic","tablecloth":"mu_kinetic","stack":"mu_kinetic","stack-3d":"mu_kinetic","disc-on-board":"mu_kinetic","puck":"mu_kinetic","billiard":"mu_kinetic"}}"#), "{json}");
+        // The scenes in three dimensions (feature `sp`): rows of three bodies and sixteen contacts.
+        assert!(json.contains(r#""contacts":["its face"],"spatial":true,"row":232,"#), "{json}");
         assert!(json.contains(r#""contacts":["finger 1","finger 2"],"row":19,"measures":["meeting.time_s","meeting.com_offset_m"]"#), "{json}");
         assert!(
             json.contains(r#""name":"cylinder","#) && json.contains(r#""contacts":["rim"],"row":13,"#),

@@ -20,7 +20,7 @@ pub mod flags;
 mod modes;
 pub mod session;
 pub mod sim;
-#[cfg(feature = "sp")]
+#[cfg(any(feature = "sp", feature = "st"))]
 pub mod spatial;
 pub mod text;
 

@@ -15,7 +15,7 @@ pub const TRACE_ROWS: usize = 2048;
 /// Bytes of text one call may return (the description, an error, an outcome): twice the
 /// description's length, which is longer in a build that names the scenes in three dimensions
 /// (feature `sp`).
-pub const TEXT_BYTES: usize = if cfg!(feature = "sp") { 48 * 1024 } else { 32 * 1024 };
+pub const TEXT_BYTES: usize = if cfg!(any(feature = "sp", feature = "st")) { 48 * 1024 } else { 32 * 1024 };
 
 /// Why [`Session::create`] made no run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -165,7 +165,7 @@ pub fn describe(out: &mut Text<'_>) -> core::fmt::Result {
         if rows == Rows::Bodies {
             out.write_str(",\"bodies\":true")?;
         }
-        #[cfg(feature = "sp")]
+        #[cfg(any(feature = "sp", feature = "st"))]
         if rows == Rows::Spatial {
             out.write_str(",\"spatial\":true")?;
         }

@@ -24,7 +24,13 @@ pub type Held = meterstick_core::scene::AnyView<0>;
 #[cfg(all(any(feature = "k1", feature = "k2", feature = "k3"), not(feature = "mb")))]
 pub type Held = meterstick_core::scene::PlanarViews<0>;
 /// The holder of the scenes this build runs: the module of the scenes of several bodies.
-#[cfg(not(any(feature = "k1", feature = "k2", feature = "k3", all(feature = "sp", not(feature = "mb")))))]
+#[cfg(not(any(
+    feature = "k1",
+    feature = "k2",
+    feature = "k3",
+    all(feature = "sp", not(feature = "mb")),
+    all(feature = "st", not(feature = "mb"))
+)))]
 pub type Held = meterstick_core::scene::MultibodyViews;
 
 /// The most contacts a scene of the catalogue has (three fingers).
@@ -46,13 +52,14 @@ pub const MAX_BODIES: usize = 3;
 pub const BODIES_ROW: usize = 1 + 3 * MAX_BODIES;
 
 /// The longest row (a scene with [`MAX_CONTACTS`]; one in three dimensions with the feature `sp`).
-pub const MAX_ROW: usize = if cfg!(feature = "sp") { SPATIAL_ROW } else { row_len(MAX_CONTACTS) };
+pub const MAX_ROW: usize =
+    if cfg!(any(feature = "sp", feature = "st")) { SPATIAL_ROW } else { row_len(MAX_CONTACTS) };
 /// Numbers per row of a scene in three dimensions ([`crate::spatial::SPATIAL_ROW`]; none without
 /// the feature `sp`).
-#[cfg(feature = "sp")]
+#[cfg(any(feature = "sp", feature = "st"))]
 pub use crate::spatial::SPATIAL_ROW;
 /// Numbers per row of a scene in three dimensions: none without the feature `sp`.
-#[cfg(not(feature = "sp"))]
+#[cfg(not(any(feature = "sp", feature = "st")))]
 pub const SPATIAL_ROW: usize = 0;
 const _: () = assert!(BODIES_ROW <= MAX_ROW);
 
@@ -78,7 +85,7 @@ pub enum Rows {
     Bodies,
     /// A scene in three dimensions: the body's pose (a quaternion), its velocities and each
     /// contact's point, normal, friction direction, mode and impulses ([`crate::spatial::write_row`]).
-    #[cfg(feature = "sp")]
+    #[cfg(any(feature = "sp", feature = "st"))]
     Spatial,
 }
 
@@ -86,7 +93,7 @@ impl Rows {
     /// The rows of `kind`.
     #[must_use]
     pub const fn of(kind: SceneKind) -> Self {
-        #[cfg(feature = "sp")]
+        #[cfg(any(feature = "sp", feature = "st"))]
         if kind.is_spatial() {
             return Self::Spatial;
         }
@@ -102,7 +109,7 @@ impl Rows {
         match self {
             Self::Contacts(k) => row_len(k),
             Self::Bodies => BODIES_ROW,
-            #[cfg(feature = "sp")]
+            #[cfg(any(feature = "sp", feature = "st"))]
             Self::Spatial => SPATIAL_ROW,
         }
     }
@@ -141,7 +148,7 @@ impl Rows {
                     slot.copy_from_slice(&q);
                 }
             }
-            #[cfg(feature = "sp")]
+            #[cfg(any(feature = "sp", feature = "st"))]
             Self::Spatial => crate::spatial::write_row(view, row),
         }
     }
@@ -320,16 +327,17 @@ impl Sim {
         matches!(self.view.read(ShapeOf(i)), Some(BodyShape::Disc { .. }))
     }
 
-    /// The body's solid, `[code, a, b]` ([`crate::spatial::Solid`]): a scene in three dimensions.
-    #[cfg(feature = "sp")]
+    /// The bodies' solid, `[code, a, b, c]` ([`crate::spatial::Solid`]): a scene in three
+    /// dimensions.
+    #[cfg(any(feature = "sp", feature = "st"))]
     #[must_use]
-    pub fn solid(&self) -> Option<[f64; 3]> {
+    pub fn solid(&self) -> Option<[f64; 4]> {
         self.view.read(crate::spatial::Solid)
     }
 
     /// Support `i`, `[code, point, direction]` ([`crate::spatial::SupportOf`]): a scene in three
     /// dimensions.
-    #[cfg(feature = "sp")]
+    #[cfg(any(feature = "sp", feature = "st"))]
     #[must_use]
     pub fn support(&self, i: usize) -> Option<[f64; 7]> {
         self.view.read(crate::spatial::SupportOf(i))
@@ -367,13 +375,42 @@ pub const fn outcome_code(o: Outcome) -> u8 {
 
 /// The holder of the scenes this build runs: the module of the scenes in three dimensions in f32.
 #[cfg(all(
-    not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb", feature = "sp64")),
+    not(any(
+        feature = "k1",
+        feature = "k2",
+        feature = "k3",
+        feature = "mb",
+        feature = "sp64",
+        feature = "st"
+    )),
     feature = "sp"
 ))]
 pub type Held = meterstick_core::scene::SpatialViewsIn<f32>;
 /// The holder of the scenes this build runs: the module of the scenes in three dimensions in f64.
-#[cfg(all(not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb")), feature = "sp64"))]
+#[cfg(all(
+    not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb", feature = "st")),
+    feature = "sp64"
+))]
 pub type Held = meterstick_core::scene::SpatialViewsIn<f64>;
+/// The holder of the scenes this build runs: the module of the stack in three dimensions in f32.
+#[cfg(all(
+    not(any(
+        feature = "k1",
+        feature = "k2",
+        feature = "k3",
+        feature = "mb",
+        feature = "sp",
+        feature = "st64"
+    )),
+    feature = "st"
+))]
+pub type Held = meterstick_core::scene::StackViewsIn<f32>;
+/// The holder of the scenes this build runs: the module of the stack in three dimensions in f64.
+#[cfg(all(
+    not(any(feature = "k1", feature = "k2", feature = "k3", feature = "mb", feature = "sp")),
+    feature = "st64"
+))]
+pub type Held = meterstick_core::scene::StackViewsIn<f64>;
 
 /// A view's row as it is now ([`Rows::write`]).
 struct RowNow<'a> {

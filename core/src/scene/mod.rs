@@ -72,3 +72,5 @@ pub use view::{
 };
 #[cfg(feature = "scenes-spatial")]
 pub use view::{SpatialViews, SpatialViewsIn};
+#[cfg(feature = "scenes-stack-3d")]
+pub use view::{StackViews, StackViewsIn};

@@ -1,4 +1,5 @@
-//! The scenes in three dimensions on the page (`meterstick_web_sp.wasm`, drawn in perspective by
+//! The scenes in three dimensions on the page (`meterstick_web_sp.wasm`, the stack's
+//! `meterstick_web_st.wasm`, drawn in perspective by
 //! `web/page/view3d.js`): the outcome and checksum of `host-sim scene`, the module fetched, and a
 //! drawing that shows the body (its pixels read back: not one colour, the body's colour at its
 //! centre or, for a body seen edge on or marked there, in a patch of at least 50 pixels).
@@ -22,16 +23,15 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// checksum against `host-sim scene`'s, the module fetched, and the drawing's pixels.
 pub fn check_spatial(b: &Browser, base: &str, name: &str, query: &str) {
     super::check_contract(b, base, name, query);
-    // One module a precision (`config::Module::file_for`).
-    let module = if query.contains("precision=f64") {
-        "pkg/meterstick_web_sp64.wasm"
-    } else {
-        "pkg/meterstick_web_sp.wasm"
-    };
+    // One module a precision (`config::Module::file_for`); the stack in three dimensions its own.
+    let family = if name.starts_with("stack-3d") { "st" } else { "sp" };
+    let precision = if query.contains("precision=f64") { "64" } else { "" };
+    let module = format!("pkg/meterstick_web_{family}{precision}.wasm");
     let fetched = b.js("return performance.getEntriesByType('resource').map((e) => e.name).join(' ')");
-    assert!(fetched.as_str().unwrap().contains(module), "{name}: {module} not fetched: {fetched}");
+    assert!(fetched.as_str().unwrap().contains(&module), "{name}: {module} not fetched: {fetched}");
+    // Time, three bodies' 13 numbers, sixteen contacts' 12 (`web/src/spatial.rs`).
     let row = b.js("return window.meterstick.contacts().row");
-    assert_eq!(row.as_u64(), Some(110), "{name}: the row of a scene in three dimensions");
+    assert_eq!(row.as_u64(), Some(1 + 3 * 13 + 16 * 12), "{name}: the row of a scene in three dimensions");
     // The drawing: WebGL2 in headless Chromium (SwiftShader), read back.
     let px = b.js("return window.meterstick.pixels()");
     assert!(px.is_object(), "{name}: no drawing in three dimensions (no WebGL2?): {px}");

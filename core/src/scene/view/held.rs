@@ -6,8 +6,10 @@
 //! * [`PlanarViews`]: any scene of one body (the registry's table, `registry.rs`), each through
 //!   its [`PlanarView`];
 //! * [`MultibodyViews`]: any scene of several bodies, each through its [`MultibodyView`];
-//! * [`SpatialViews`]: any scene in three dimensions (feature `scenes-spatial`), each through its
-//!   [`SpatialView`]; [`SpatialViewsIn`] in one precision;
+//! * [`SpatialViews`]: any scene in three dimensions of one body (feature `scenes-spatial`), each
+//!   through its [`SpatialView`]; [`SpatialViewsIn`] in one precision;
+//! * `StackViews`: the stack in three dimensions (feature `scenes-stack-3d`), through its
+//!   `StackView`; `StackViewsIn` in one precision;
 //! * [`AnyView`]: any scene of the catalogue, one of them by the scene's engine.
 //!
 //! A build that runs the scenes of one engine only (a page module) holds that engine's holder:
@@ -28,12 +30,12 @@ use crate::scene::SceneIn;
 use crate::scene::ThreeFingers;
 #[cfg(any(feature = "scenes-k1", feature = "scenes-k2", feature = "scenes-k3"))]
 use crate::scene::registry::scene_table;
-#[cfg(feature = "scenes-stack-3d")]
-use crate::scene::spatial::StackView;
 #[cfg(feature = "scenes-spatial")]
 use crate::scene::spatial::{
     Billiard, CURLING_ROWS, Curling, MAX_POINTS, MeterStick3d, Puck, ROD_POINTS, ROD_ROWS, SpatialView,
 };
+#[cfg(feature = "scenes-stack-3d")]
+use crate::scene::spatial::{Stack3d2, Stack3d3, StackView};
 #[cfg(feature = "scenes-k1")]
 use crate::scene::{Cylinder, Painleve};
 #[cfg(feature = "scenes-k2")]
@@ -276,10 +278,6 @@ enum SpaceIn<T: Real> {
     Billiard(SpatialView<T, Billiard<T, CURLING_ROWS>, CURLING_ROWS>),
     Curling(SpatialView<T, Curling<T>, CURLING_ROWS, MAX_POINTS>),
     MeterStick3d(SpatialView<T, MeterStick3d<T>, ROD_ROWS, ROD_POINTS>),
-    #[cfg(feature = "scenes-stack-3d")]
-    Stack3d2(StackView<T, 2, 13, 52, 2>),
-    #[cfg(feature = "scenes-stack-3d")]
-    Stack3d3(StackView<T, 3, 16, 64, 2>),
 }
 
 #[cfg(feature = "scenes-spatial")]
@@ -291,10 +289,6 @@ macro_rules! each_space {
             SpaceIn::Billiard($v) => $body,
             SpaceIn::Curling($v) => $body,
             SpaceIn::MeterStick3d($v) => $body,
-            #[cfg(feature = "scenes-stack-3d")]
-            SpaceIn::Stack3d2($v) => $body,
-            #[cfg(feature = "scenes-stack-3d")]
-            SpaceIn::Stack3d3($v) => $body,
         }
     };
 }
@@ -321,15 +315,6 @@ impl<T: Real> SpaceIn<T> {
             SceneParams::Curling(p) => Self::Curling(SpatialView::new(Curling::new(p.cast())?)),
             SceneParams::MeterStick3d(p) => {
                 Self::MeterStick3d(SpatialView::new(MeterStick3d::new(p.cast())?))
-            }
-            // Validated above: 2 or 3 blocks.
-            #[cfg(feature = "scenes-stack-3d")]
-            SceneParams::Stack3d(s) if s.block_count() == Some(2) => {
-                Self::Stack3d2(StackView::new(crate::scene::spatial::Stack3d2::new(s.params.cast())?))
-            }
-            #[cfg(feature = "scenes-stack-3d")]
-            SceneParams::Stack3d(s) => {
-                Self::Stack3d3(StackView::new(crate::scene::spatial::Stack3d3::new(s.params.cast())?))
             }
             _ => return Err(ParamError::OutOfRange("scene")),
         })
@@ -388,6 +373,97 @@ impl<T: Real> HeldView for SpatialViewsIn<T> {
     }
 }
 
+/// The stack in three dimensions in scalar `T`, 2 or 3 blocks, seen through its [`StackView`].
+#[cfg(feature = "scenes-stack-3d")]
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // one scene per run, held in place: no heap
+enum StackIn<T: Real> {
+    Two(StackView<T, 2, 13, 52, 2>),
+    Three(StackView<T, 3, 16, 64, 2>),
+}
+
+#[cfg(feature = "scenes-stack-3d")]
+impl<T: Real> Seen<T> for StackIn<T> {
+    fn view_mut(&mut self) -> &mut dyn SceneView<T> {
+        match self {
+            Self::Two(v) => v,
+            Self::Three(v) => v,
+        }
+    }
+
+    fn view(&self) -> &dyn SceneView<T> {
+        match self {
+            Self::Two(v) => v,
+            Self::Three(v) => v,
+        }
+    }
+}
+
+#[cfg(feature = "scenes-stack-3d")]
+impl<T: Real> StackIn<T> {
+    /// The stack of `params` in `T`, checked in f64 and `T` first (as [`SceneParams::build_view`]).
+    fn new(params: &SceneParams) -> Result<Self, ParamError> {
+        params.validate_as::<T>()?;
+        match params {
+            // Validated above: 2 or 3 blocks.
+            SceneParams::Stack3d(s) if s.block_count() == Some(2) => {
+                Ok(Self::Two(StackView::new(Stack3d2::new(s.params.cast())?)))
+            }
+            SceneParams::Stack3d(s) => Ok(Self::Three(StackView::new(Stack3d3::new(s.params.cast())?))),
+            _ => Err(ParamError::OutOfRange("scene")),
+        }
+    }
+}
+
+/// The stack in three dimensions in either precision, held in place and seen through its
+/// [`StackView`] (one layout: `layout` unused); any other scene is refused.
+#[cfg(feature = "scenes-stack-3d")]
+#[derive(Debug, Clone)]
+pub struct StackViews(InPrecision<StackIn<f32>, StackIn<f64>>);
+
+#[cfg(feature = "scenes-stack-3d")]
+impl HeldView for StackViews {
+    fn new(params: &SceneParams, precision: Precision, _: LcpLayout) -> Result<Self, ParamError> {
+        Ok(Self(match precision {
+            Precision::F32 => InPrecision::F32(StackIn::new(params)?),
+            Precision::F64 => InPrecision::F64(StackIn::new(params)?),
+        }))
+    }
+
+    fn visit_mut<V: ViewVisitor>(&mut self, visitor: V) -> V::Output {
+        self.0.visit_mut(visitor)
+    }
+
+    fn read<R: ViewReader>(&self, reader: R) -> R::Output {
+        self.0.read(reader)
+    }
+}
+
+/// The stack in three dimensions in one precision, `T`, held in place: a page module of its own
+/// (its steppers are the size of the other scenes in three dimensions together), refusing the
+/// other precision as `OutOfRange("precision")`.
+#[cfg(feature = "scenes-stack-3d")]
+#[derive(Debug, Clone)]
+pub struct StackViewsIn<T: Real>(StackIn<T>);
+
+#[cfg(feature = "scenes-stack-3d")]
+impl<T: Real> HeldView for StackViewsIn<T> {
+    fn new(params: &SceneParams, precision: Precision, _: LcpLayout) -> Result<Self, ParamError> {
+        if precision.name() != T::NAME {
+            return Err(ParamError::OutOfRange("precision"));
+        }
+        Ok(Self(StackIn::new(params)?))
+    }
+
+    fn visit_mut<V: ViewVisitor>(&mut self, visitor: V) -> V::Output {
+        visitor.visit(self.0.view_mut())
+    }
+
+    fn read<R: ViewReader>(&self, reader: R) -> R::Output {
+        reader.read(self.0.view())
+    }
+}
+
 /// Any scene of the catalogue, of either engine, held in place and seen as a [`SceneView`]: a
 /// scene of one body as [`PlanarViews`] holds it, a scene of several bodies as
 /// [`MultibodyViews`] does.
@@ -405,6 +481,9 @@ pub enum AnyView<const E: usize> {
     /// A scene in three dimensions.
     #[cfg(feature = "scenes-spatial")]
     Spatial(SpatialViews),
+    /// The stack in three dimensions.
+    #[cfg(feature = "scenes-stack-3d")]
+    Stack(StackViews),
 }
 
 #[cfg(all(
@@ -413,6 +492,10 @@ pub enum AnyView<const E: usize> {
 ))]
 impl<const E: usize> HeldView for AnyView<E> {
     fn new(params: &SceneParams, precision: Precision, layout: LcpLayout) -> Result<Self, ParamError> {
+        #[cfg(feature = "scenes-stack-3d")]
+        if matches!(params, SceneParams::Stack3d(_)) {
+            return Ok(Self::Stack(StackViews::new(params, precision, layout)?));
+        }
         #[cfg(feature = "scenes-spatial")]
         if params.kind().is_spatial() {
             return Ok(Self::Spatial(SpatialViews::new(params, precision, layout)?));
@@ -430,6 +513,8 @@ impl<const E: usize> HeldView for AnyView<E> {
             Self::Multibody(v) => v.visit_mut(visitor),
             #[cfg(feature = "scenes-spatial")]
             Self::Spatial(v) => v.visit_mut(visitor),
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack(v) => v.visit_mut(visitor),
         }
     }
 
@@ -439,6 +524,8 @@ impl<const E: usize> HeldView for AnyView<E> {
             Self::Multibody(v) => v.read(reader),
             #[cfg(feature = "scenes-spatial")]
             Self::Spatial(v) => v.read(reader),
+            #[cfg(feature = "scenes-stack-3d")]
+            Self::Stack(v) => v.read(reader),
         }
     }
 }
@@ -526,6 +613,14 @@ mod tests {
         let layout = LcpLayout::Reduced;
         for kind in SceneKind::ALL.into_iter().filter(|k| k.is_spatial()) {
             let params = SceneParams::defaults(kind);
+            #[cfg(feature = "scenes-stack-3d")]
+            if kind == SceneKind::Stack3d {
+                let mut both = StackViews::new(&params, Precision::F64, layout).unwrap();
+                let mut one = StackViewsIn::<f64>::new(&params, Precision::F64, layout).unwrap();
+                assert_eq!(one.visit_mut(Steps(200)), both.visit_mut(Steps(200)), "{kind}");
+                assert!(SpatialViews::new(&params, Precision::F64, layout).is_err(), "its own holder");
+                continue;
+            }
             let mut both = SpatialViews::new(&params, Precision::F64, layout).unwrap();
             let mut one = SpatialViewsIn::<f64>::new(&params, Precision::F64, layout).unwrap();
             assert_eq!(one.visit_mut(Steps(200)), both.visit_mut(Steps(200)), "{kind}");

@@ -55,6 +55,8 @@ pub use held::PlanarViews;
 pub use held::{HeldView, ViewReader};
 #[cfg(feature = "scenes-spatial")]
 pub use held::{SpatialViews, SpatialViewsIn};
+#[cfg(feature = "scenes-stack-3d")]
+pub use held::{StackViews, StackViewsIn};
 pub use multibody::MultibodyView;
 pub use planar::PlanarView;
 pub use step::StepStats;
