@@ -81,6 +81,7 @@ build_firmware() {
 FIRMWARE_BUILDS=(
   "qemu-m4f thumbv7em-none-eabihf qemu-mps2-an386,qemu-multibody,fallback clippy,nopanic"
   "qemu-m4f-spatial thumbv7em-none-eabihf qemu-mps2-an386,qemu-spatial,fallback clippy,nopanic"
+  "qemu-m4f-algebra thumbv7em-none-eabihf qemu-mps2-an386,qemu-algebra clippy"
   "qemu-m0 thumbv6m-none-eabi qemu-microbit,fallback nopanic"
   "rig-m4f thumbv7em-none-eabihf board-blackpill,log,fallback clippy"
   "rig-m4f-nolog thumbv7em-none-eabihf board-blackpill,fallback nopanic"

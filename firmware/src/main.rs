@@ -72,6 +72,8 @@ compile_error!("rig-stick-3d is a Pico 2 or Pico build (board-pico2, board-pico)
 #[cfg(all(feature = "builtins-float", not(feature = "board-pico")))]
 compile_error!("builtins-float is the Pico's (RP2040) choice");
 
+#[cfg(feature = "qemu-algebra")]
+mod algebra_bench;
 #[cfg(feature = "board-blackpill")]
 mod blackpill;
 #[cfg(any(feature = "board-pico2", feature = "board-pico"))]

@@ -619,6 +619,12 @@ pub fn main() -> ! {
     let ticks = systick::elapsed(t0, systick::now());
     defmt::println!("calibration instructions={=u32} systicks={=u32}", 2 * (n + 1), ticks);
     defmt::println!("ram stack_room_bytes={=u32}", stack_peak::room_bytes());
+    // The algebra's comparison alone (`crate::algebra_bench`), not the scenes.
+    if cfg!(feature = "qemu-algebra") {
+        #[cfg(feature = "qemu-algebra")]
+        crate::algebra_bench::run();
+        semihosting::process::exit(0)
+    }
 
     let mut failures = 0i32;
     // Kostreva's cycling example in f32: z = (1/3, 1/3, 1/3).
