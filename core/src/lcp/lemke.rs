@@ -8,7 +8,7 @@ use super::elimination::solve_leading;
 use super::error::LcpError;
 use super::problem::{Lcp, Scales};
 use super::rows::Rows;
-use super::verify::{Verification, default_tolerance, residual};
+use super::verify::{Verification, default_tolerance};
 use crate::real::{Real, max};
 
 /// A variable of the Lemke tableau `[I, -M, -d | q]`.
@@ -49,6 +49,10 @@ pub struct LcpSolution<T: Real, const N: usize, const WORDS: usize = 1> {
     pub basis: Basis<N, WORDS>,
     /// Normalised verification residual (see [`super::verify`]).
     pub residual: T,
+    /// The scale the residual divided `w` by, `||M||_inf ||z||_inf + ||q||_inf` (`||q||_inf`
+    /// alone for a [`Self::regularized`] answer): what `w`'s entries are summed from, so that
+    /// `residual * scale` bounds the violation of `w >= 0` and of complementarity in `w`'s units.
+    pub scale: T,
     /// `true` when the answer came from the regularised retry after a ray termination
     /// ([`Lemke::solve_warm`]); it is verified against the original `(M, q)` all the same.
     pub regularized: bool,
@@ -550,10 +554,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         for i in 0..N {
             feasible &= z[i] >= T::zero() && (basis.is_z_basic(i) || w[i] >= T::zero() || w[i] >= -slack(i));
         }
-        let check = Verification {
-            residual: residual(z, &w, scales.m_norm, scales.q_norm),
-            tolerance: self.tolerance,
-        };
+        let check = Verification::of(z, &w, (scales.m_norm, scales.q_norm), self.tolerance);
         (feasible && check.passed()).then_some(LcpSolution {
             z: *z,
             w,
@@ -562,6 +563,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
             warm_start_used: true,
             basis,
             residual: check.residual,
+            scale: check.scale,
             regularized: false,
         })
     }
@@ -619,6 +621,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
                 warm_start_used: false,
                 basis: Basis::all_w(),
                 residual: T::zero(),
+                scale: scales.q_norm,
                 regularized: false,
             });
         }
@@ -634,10 +637,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
                 for i in 0..N {
                     feasible &= warm.is_z_basic(i) || w[i] >= T::zero();
                 }
-                let check = Verification {
-                    residual: residual(&z, &w, scales.m_norm, scales.q_norm),
-                    tolerance: self.tolerance,
-                };
+                let check = Verification::of(&z, &w, (scales.m_norm, scales.q_norm), self.tolerance);
                 if feasible && check.passed() {
                     return Ok(LcpSolution {
                         z,
@@ -647,6 +647,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
                         warm_start_used: true,
                         basis: warm,
                         residual: check.residual,
+                        scale: check.scale,
                         regularized: false,
                     });
                 }
@@ -752,8 +753,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         // A regularised answer is held to `w`'s scale `||q||` alone (see `solve_warm`).
         let m_scale = if regularized { T::zero() } else { scales.m_norm };
         let w = lcp.w_of(&z);
-        let check =
-            Verification { residual: residual(&z, &w, m_scale, scales.q_norm), tolerance: self.tolerance };
+        let check = Verification::of(&z, &w, (m_scale, scales.q_norm), self.tolerance);
         if !check.passed() {
             return Err(LcpError::Unverified {
                 residual: check.residual.as_f32(),
@@ -769,6 +769,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
             warm_start_used,
             basis,
             residual: check.residual,
+            scale: check.scale,
             regularized,
         })
     }

@@ -32,9 +32,24 @@ pub struct Verification<T> {
     pub residual: T,
     /// Tolerance `r` was compared with.
     pub tolerance: T,
+    /// The scale `s_w = ||M||_inf ||z||_inf + ||q||_inf` that `w`'s violations were divided by
+    /// (module docs): the size of the terms `w` is summed from.
+    pub scale: T,
 }
 
 impl<T: Real> Verification<T> {
+    /// `z` with `w = M z + q` already computed, held to `tolerance` on the data's scales
+    /// `||M||_inf` and `||q||_inf` ([`residual`]).
+    pub(crate) fn of<const N: usize>(
+        z: &SVector<T, N>,
+        w: &SVector<T, N>,
+        (m_norm, q_norm): (T, T),
+        tolerance: T,
+    ) -> Self {
+        let (residual, scale) = residual(z, w, m_norm, q_norm);
+        Self { residual, tolerance, scale }
+    }
+
     /// `true` when the residual is finite and within the tolerance.
     #[must_use]
     pub fn passed(&self) -> bool {
@@ -51,11 +66,12 @@ pub fn default_tolerance<T: Real, const N: usize>() -> T {
 /// Computes the normalised residual of `z` for `lcp` and compares it with `tolerance`.
 pub fn verify<T: Real, const N: usize>(lcp: &Lcp<T, N>, z: &SVector<T, N>, tolerance: T) -> Verification<T> {
     let w = lcp.w_of(z);
-    Verification { residual: residual(z, &w, lcp.m_norm_inf(), lcp.q_norm_inf()), tolerance }
+    Verification::of(z, &w, (lcp.m_norm_inf(), lcp.q_norm_inf()), tolerance)
 }
 
 /// The normalised residual of `z` with `w = M z + q` already computed and the data's scales
-/// `||M||_inf`, `||q||_inf` given (the solver's hot path has all three). Infinite when `z` or
+/// `||M||_inf`, `||q||_inf` given (the solver's hot path has all three), and the scale `s_w` it
+/// divided `w` by. The residual is infinite when `z` or
 /// `w` has a non-finite entry, or when the scale `s_w` is not finite (`||M|| ||z||` beyond the
 /// scalar's range: every `w_i` divided by it would read as 0, a violation included, so nothing
 /// can be verified in this precision). The scales are inverted once: two divisions, not `3 N`.
@@ -65,7 +81,7 @@ pub(crate) fn residual<T: Real, const N: usize>(
     w: &SVector<T, N>,
     m_norm: T,
     q_norm: T,
-) -> T {
+) -> (T, T) {
     let mut z_norm = T::zero();
     for i in 0..N {
         z_norm = max(z_norm, z[i].abs_exact());
@@ -84,9 +100,9 @@ pub(crate) fn residual<T: Real, const N: usize>(
         residual = max(residual, max(neg_z, max(neg_w, comp)));
     }
     if !finite {
-        return T::of(f64::INFINITY);
+        return (T::of(f64::INFINITY), s_w);
     }
-    residual
+    (residual, s_w)
 }
 
 /// `true` when `z` solves `lcp` within the default tolerance ([`default_tolerance`]).

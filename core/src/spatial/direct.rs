@@ -23,9 +23,12 @@ use crate::lcp::elimination::solve_leading;
 use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
 use crate::real::{Real, max};
 
-/// One unknown of a basis' reduced system: the variables of `z` it moves, each by a factor (a
-/// factor of zero moves none).
-type Unknown<T> = [(usize, T); 3];
+/// One unknown of a basis' reduced system: the variables of `z` it moves, each by a factor, and how
+/// many of them there are (one to three).
+type Unknown<T> = ([(usize, T); 3], usize);
+
+/// The most unknowns of a reduced system solved in its small array ([`Contacts::reduced`]).
+const SMALL_SYSTEM: usize = 8;
 
 impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The verified answer of the contacts' LCP `lcp` ([`Contacts`]' layout: per contact `(p_n,
@@ -179,7 +182,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             return None;
         }
         let (one, half) = (T::one(), T::of(0.5));
-        let none: Unknown<T> = [(0, zero); 3];
+        let none: Unknown<T> = ([(0, zero); 3], 0);
         // The unknowns and, row for row, the rows of `w` they close; the sliding contacts' friction
         // rows and their `sigma`.
         let (mut unknowns, mut rows, mut m) = ([none; N], [0usize; N], 0usize);
@@ -194,7 +197,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         for (i, c) in self.touches.iter().enumerate() {
             let b = 4 * i;
             let bits = (0..4).fold(0u32, |bits, k| bits | (u32::from(basis.is_z_basic(b + k)) << k));
-            let plain = |variable| [(variable, one), (variable, zero), (variable, zero)];
+            let plain = |variable| ([(variable, one), (variable, zero), (variable, zero)], 1);
             match (c.active, bits) {
                 (_, 0b0000) => {}
                 (true, 0b0001) => push(plain(b), b),
@@ -206,7 +209,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 }
                 (true, 0b1011 | 0b1101) => {
                     let friction = if bits == 0b1011 { b + 1 } else { b + 2 };
-                    push([(b, one), (friction, c.mu), (b, zero)], b);
+                    push(([(b, one), (friction, c.mu), (b, zero)], 2), b);
                     if let Some(s) = sigmas.get_mut(slides) {
                         *s = (friction, b + 3);
                         slides += 1;
@@ -214,41 +217,32 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 }
                 // Sticking with both frictions basic and `sigma` zero: `p_+-d = (mu p_n +- p_t) / 2`.
                 (true, 0b1111) => {
-                    push([(b, one), (b + 1, half * c.mu), (b + 2, half * c.mu)], b);
-                    push([(b + 1, half), (b + 2, -half), (b, zero)], b + 1);
+                    push(([(b, one), (b + 1, half * c.mu), (b + 2, half * c.mu)], 3), b);
+                    push(([(b + 1, half), (b + 2, -half), (b, zero)], 2), b + 1);
                 }
                 _ => return None,
             }
         }
-        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
-        let mut a = [[zero; N]; N];
-        let mut x = [zero; N];
-        let mut largest = zero;
-        for ((a_row, x_k), &row) in a.iter_mut().zip(x.iter_mut()).zip(&rows).take(m) {
-            for (slot, u) in a_row.iter_mut().zip(&unknowns).take(m) {
-                *slot = u.iter().fold(zero, |acc, &(v, factor)| acc + factor * entry(row, v));
-                largest = max(largest, slot.abs_exact());
-            }
-            *x_k = -lcp.q.get(row).copied().unwrap_or(zero);
-        }
-        let (system, rhs) = (a, x);
-        if !solve_leading(&mut a, &mut x, m, T::of(N as f64) * T::EPS * max(largest, T::TINY)) {
-            // Four or more coplanar points of a face on a face (several bodies) leave the basis'
-            // loads open: its solution of least norm (the load rule, `super`'s module docs, "The
-            // load"). One body's singular basis goes to Lemke's method.
-            if B == 1 {
-                return None;
-            }
-            x = least_norm(&system, &rhs, m);
-        }
+        // The system in an array of its own size: its elimination's loops run over the array's
+        // rows and columns, so `m <= 8` unknowns (at most two a contact: always, up to four
+        // contacts) go in an `8 x 8` array, not the problem's `N x N`; the same operations
+        // either way.
         let mut z = SVector::<T, N>::zeros();
-        for (u, &value) in unknowns.iter().zip(&x).take(m) {
-            for &(v, factor) in u {
-                if let Some(slot) = z.get_mut(v) {
-                    *slot += factor * value;
+        let mut spread = |x: &[T]| {
+            for (u, &value) in unknowns.iter().zip(x).take(m) {
+                for &(v, factor) in u.0.iter().take(u.1) {
+                    if let Some(slot) = z.get_mut(v) {
+                        *slot += factor * value;
+                    }
                 }
             }
+        };
+        if 2 * K <= SMALL_SYSTEM || m <= SMALL_SYSTEM {
+            spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, &unknowns, &rows, m)?);
+        } else {
+            spread(&Self::reduced::<N, N>(lcp, &unknowns, &rows, m)?);
         }
+        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
         // A sliding contact's `sigma` closes its friction row: `w_r = (M z + q)_r + M_rs sigma`.
         for &(row, sigma) in sigmas.iter().take(slides) {
             let rest =
@@ -262,6 +256,40 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             }
         }
         Some((z, tied))
+    }
+
+    /// The reduced system of [`Self::basis_solution`]'s `m <= D` unknowns (each unknown's `z`
+    /// moves, row for row the LCP's row it closes) solved in a `D x D` array: `None` when it is
+    /// numerically singular (a pivot within `N eps` of its largest entry) for one body; for
+    /// several, its solution of least norm ([`least_norm`]).
+    fn reduced<const N: usize, const D: usize>(
+        lcp: &Lcp<T, N>,
+        unknowns: &[Unknown<T>; N],
+        rows: &[usize; N],
+        m: usize,
+    ) -> Option<[T; D]> {
+        let zero = T::zero();
+        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
+        let mut a = [[zero; D]; D];
+        let mut x = [zero; D];
+        let mut largest = zero;
+        for ((a_row, x_k), &row) in a.iter_mut().zip(x.iter_mut()).zip(rows).take(m) {
+            for (slot, u) in a_row.iter_mut().zip(unknowns).take(m) {
+                *slot = u.0.iter().take(u.1).fold(zero, |acc, &(v, factor)| acc + factor * entry(row, v));
+                largest = max(largest, slot.abs_exact());
+            }
+            *x_k = -lcp.q.get(row).copied().unwrap_or(zero);
+        }
+        // The system kept for its least-norm solution (several bodies only, below).
+        let kept = (B > 1).then_some((a, x));
+        if !solve_leading(&mut a, &mut x, m, T::of(N as f64) * T::EPS * max(largest, T::TINY)) {
+            // Four or more coplanar points of a face on a face (several bodies) leave the basis'
+            // loads open: its solution of least norm (the load rule, `super`'s module docs, "The
+            // load"). One body's singular basis goes to Lemke's method.
+            let (system, rhs) = kept?;
+            x = least_norm(&system, &rhs, m);
+        }
+        Some(x)
     }
 }
 

@@ -6,7 +6,7 @@ use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, sc
 use super::body::{Frame, Motion};
 use super::report::{MAX_DIRECTIONS, Mode, SpatialContactReport};
 use crate::StepError;
-use crate::lcp::{Basis, Lcp, Lemke};
+use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
 use crate::real::{Real, max, min};
 
 /// Every this many tries a solve whose worst slip across a line has not shrunk fourfold in the
@@ -134,7 +134,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             if held.iter().all(|&h| h) {
                 // The LCP's verification scale, `||M|| ||z|| + ||q||`, times its tolerance: what
                 // a cone's condition may miss by in absolute terms.
-                let bound = verification_bound(solver, &lcp, &sol.z);
+                let bound = verification_bound(solver, &sol);
                 let mut reports = [SpatialContactReport::separated(); K];
                 for (i, c) in self.touches.iter().enumerate() {
                     if c.active {
@@ -274,7 +274,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             *impulse = (pn, pt);
         }
         let (v, w) = self.moved(&full, v_free, w_free);
-        let bound = verification_bound(solver, &lcp, &sol.z);
+        let bound = verification_bound(solver, &sol);
         let mut reports = [SpatialContactReport::separated(); K];
         for ((c, &(pn, pt)), report) in self.touches.iter().zip(&impulses).zip(reports.iter_mut()) {
             if c.active {
@@ -655,12 +655,11 @@ pub(super) fn pad<T: Real, const N: usize>(m: &mut [[T; N]; N], q: &mut [T; N], 
 }
 
 /// What a cone's condition may miss by, in impulse per unit mass: the LCP's verification
-/// tolerance times its scale `||M|| ||z|| + ||q||` (`crate::lcp::verify`), four times over.
+/// tolerance times the scale its answer was verified on, `||M|| ||z|| + ||q||`
+/// ([`LcpSolution::scale`], `crate::lcp::verify`), four times over.
 pub(super) fn verification_bound<T: Real, const N: usize, const W: usize>(
     solver: &Lemke<T, N, W>,
-    lcp: &Lcp<T, N>,
-    z: &nalgebra::SVector<T, N>,
+    sol: &LcpSolution<T, N, W>,
 ) -> T {
-    let z_norm = z.iter().fold(T::zero(), |a, z| max(a, z.abs_exact()));
-    T::of(4.0) * solver.tolerance() * (lcp.m_norm_inf() * z_norm + lcp.q_norm_inf())
+    T::of(4.0) * solver.tolerance() * sol.scale
 }

@@ -65,8 +65,14 @@ impl<T: Real, const B: usize, const P: usize, const N: usize> SystemStepper<T, B
             {
                 return Ok(exact);
             }
-            if verify(lcp, &near.z, self.solver.tolerance()).passed() {
-                return Ok(LcpSolution { w: lcp.w_of(&near.z), warm_start_used: false, ..near });
+            let check = verify(lcp, &near.z, self.solver.tolerance());
+            if check.passed() {
+                return Ok(LcpSolution {
+                    w: lcp.w_of(&near.z),
+                    warm_start_used: false,
+                    scale: check.scale,
+                    ..near
+                });
             }
             near_basis = Some(near.basis);
         }
