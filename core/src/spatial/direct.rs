@@ -237,10 +237,14 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 }
             }
         };
-        if 2 * K <= SMALL_SYSTEM || m <= SMALL_SYSTEM {
-            spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, &unknowns, &rows, m)?);
-        } else {
-            spread(&Self::reduced::<N, N>(lcp, &unknowns, &rows, m)?);
+        match m {
+            0..=2 => spread(&Self::reduced::<N, 2>(lcp, &unknowns, &rows, m)?),
+            3..=4 => spread(&Self::reduced::<N, 4>(lcp, &unknowns, &rows, m)?),
+            5..=6 => spread(&Self::reduced::<N, 6>(lcp, &unknowns, &rows, m)?),
+            _ if 2 * K <= SMALL_SYSTEM || m <= SMALL_SYSTEM => {
+                spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, &unknowns, &rows, m)?);
+            }
+            _ => spread(&Self::reduced::<N, N>(lcp, &unknowns, &rows, m)?),
         }
         let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
         // A sliding contact's `sigma` closes its friction row: `w_r = (M z + q)_r + M_rs sigma`.
@@ -282,7 +286,22 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         }
         // The system kept for its least-norm solution (several bodies only, below).
         let kept = (B > 1).then_some((a, x));
-        if !solve_leading(&mut a, &mut x, m, T::of(N as f64) * T::EPS * max(largest, T::TINY)) {
+        let tiny = T::of(N as f64) * T::EPS * max(largest, T::TINY);
+        // A small array is filled to its size with unknowns of their own, `largest x = 0`: the
+        // elimination then runs over a constant size, its loops unrolled. Their rows and columns
+        // are zero in the system's (no pivot is taken from them before their own, and their
+        // `x` is zero), so the system's unknowns get the same operations in the same order.
+        let size = if D <= SMALL_SYSTEM {
+            for (k, row) in a.iter_mut().enumerate().skip(m) {
+                if let Some(e) = row.get_mut(k) {
+                    *e = max(largest, T::TINY);
+                }
+            }
+            D
+        } else {
+            m
+        };
+        if !solve_leading(&mut a, &mut x, size, tiny) {
             // Four or more coplanar points of a face on a face (several bodies) leave the basis'
             // loads open: its solution of least norm (the load rule, `super`'s module docs, "The
             // load"). One body's singular basis goes to Lemke's method.
