@@ -130,12 +130,13 @@ impl<T: Real, const N: usize, const WORDS: usize> Tableau<T, N, WORDS> {
         t
     }
 
-    /// The tableau of the complementary basis `warm`, reached from the cold tableau by
-    /// Gauss-Jordan elimination with partial pivoting. The artificial column is then reset
-    /// to `-e` in these coordinates (covering vector `d = B e`). `None` when the basis
-    /// matrix is numerically singular. Returns the eliminations spent.
-    fn warm(lcp: &Lcp<T, N>, warm: Basis<N, WORDS>, scale: T) -> Option<(Self, u32)> {
-        let mut t = Self::cold(lcp);
+    /// This cold tableau ([`Self::cold`]) turned, in place (a tableau is a kilobyte and more: not
+    /// moved), into that of the complementary basis `warm` by Gauss-Jordan elimination with
+    /// partial pivoting. The artificial column is then reset to `-e` in these coordinates
+    /// (covering vector `d = B e`). `None` when the basis matrix is numerically singular (the
+    /// tableau is then unspecified). Returns the eliminations spent.
+    fn warm(&mut self, warm: Basis<N, WORDS>, scale: T) -> Option<u32> {
+        let t = self;
         let mut eliminations = 0;
         for i in 0..N {
             if !warm.is_z_basic(i) {
@@ -162,7 +163,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Tableau<T, N, WORDS> {
             eliminations += 1;
         }
         t.art = [-T::one(); N];
-        Some((t, eliminations))
+        Some(eliminations)
     }
 
     /// The tableau column of `var`. One `match` and one index check per column, not per row:
@@ -578,11 +579,10 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
     pub fn terminal_basis(&self, lcp: &Lcp<T, N>, warm: Basis<N, WORDS>) -> Option<Basis<N, WORDS>> {
         let () = Self::SIZE_CHECK;
         let scales = lcp.scales()?;
-        let mut tab = if warm == Basis::all_w() {
-            Tableau::cold(lcp)
-        } else {
-            Tableau::warm(lcp, warm, max(scales.m_norm, T::TINY))?.0
-        };
+        let mut tab = Tableau::cold(lcp);
+        if warm != Basis::all_w() {
+            tab.warm(warm, max(scales.m_norm, T::TINY))?;
+        }
         tab.run(self.max_pivots).ok()?;
         Some(tab.solution(lcp).1)
     }
@@ -729,7 +729,8 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         warm: Basis<N, WORDS>,
         scale: T,
     ) -> Result<LcpSolution<T, N, WORDS>, (u32, u32)> {
-        let Some((mut tab, elim)) = Tableau::warm(lcp, warm, scale) else { return Err((0, 0)) };
+        let mut tab = Tableau::cold(lcp);
+        let Some(elim) = tab.warm(warm, scale) else { return Err((0, 0)) };
         match tab.run(self.max_pivots) {
             Ok(pivots) => {
                 self.finish(lcp, scales, &tab, pivots, elim, true, false).map_err(|e| (e.pivots(), elim))

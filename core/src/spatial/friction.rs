@@ -102,8 +102,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // The worst slip across a line not held at the last try; whether the lines have been
         // restarted.
         let (mut last_worst, mut restarted) = (T::zero(), false);
+        let mut lcp = Lcp::<T, N>::new(nalgebra::SMatrix::zeros(), nalgebra::SVector::zeros());
         for tries in 1..=MAX_DIRECTIONS {
-            let lcp = self.lcp::<N>(&lines);
+            self.write_lcp(&lines, &mut lcp);
             let sol = self.answer(solver, &lcp, *basis)?;
             *basis = sol.basis;
             *pivots = pivots.saturating_add(sol.pivots);
@@ -290,9 +291,12 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// `sigma`; a contact beyond the margin's rows `w = z + 1` (its impulse zero). Each entry is
     /// [`Self::delassus`]'s, its two factors computed once a contact and direction (`r x e` and
     /// `I_w^-1 (r x f)`: `6 K` turns, not `4 K^2`), in place in the problem's matrix.
-    fn lcp<const N: usize>(&self, lines: &[Line<T>; K]) -> Lcp<T, N> {
+    ///
+    /// Written in place in `lcp`, which starts zero: which entries are written depends on which
+    /// contacts are active alone, so the lines' next try writes the same entries again and the
+    /// rest stay zero (one problem a solve, not one a try).
+    fn write_lcp<const N: usize>(&self, lines: &[Line<T>; K], lcp: &mut Lcp<T, N>) {
         let (o, one) = (T::zero(), T::one());
-        let mut lcp = Lcp::<T, N>::new(nalgebra::SMatrix::zeros(), nalgebra::SVector::zeros());
         // Per contact, along its normal then its line: each side's `r x e` and `I_w^-1 (r x e)`.
         let sides = core::array::from_fn::<_, K, _>(|i| {
             let c = &self.touches[i];
@@ -359,7 +363,6 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 *e = one;
             }
         }
-        lcp
     }
 
     /// Turns the lines (module docs, 3) by one step of Newton's method on every loaded contact's
