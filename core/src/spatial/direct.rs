@@ -47,7 +47,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // A lone contact's basis is of at most three unknowns: Lemke's own direct solve of it.
         let reduced = if K > 1 { self.basis_solution(lcp, basis) } else { None };
         let lemke = match reduced {
-            Some((z, tied)) => match solver.accept(lcp, &z, basis, |i| self.slack(tied, i)) {
+            Some((z, tied, own)) => match solver.accept(lcp, &z, own, |i| self.slack(tied, i)) {
                 Some(sol) => return Ok(sol),
                 None => solver.solve_from_basis(lcp, basis),
             },
@@ -168,14 +168,18 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The complementary solution of `basis` for `lcp` by its reduced system (module docs): `None`
     /// when a contact's basic `z` are of no pattern listed there, a padding row's `z` or an inactive
     /// contact's is basic, or the system is numerically singular (a pivot within `N eps` of its
-    /// largest entry). Its signs are not checked here ([`Lemke::accept`] does). With it the mask of
-    /// the sticking contacts' other friction rows: `w_-d = -w_+d` while `sigma` is zero, both nil
-    /// in exact arithmetic, their signs round-off's.
+    /// largest entry). Its signs are not checked here ([`Lemke::accept`] does), but for two whose
+    /// meaning does not change with them: a sticking contact's friction along its line that comes
+    /// out negative is its other friction's (`basis` mirrored for that contact), and a sliding
+    /// one's slip speed `sigma` below zero by no more than the step's velocity round-off is zero.
+    /// With it the mask of the sticking contacts' other friction rows (`w_-d = -w_+d` while
+    /// `sigma` is zero, both nil in exact arithmetic, their signs round-off's) and the basis whose
+    /// answer it is.
     fn basis_solution<const N: usize, const W: usize>(
         &self,
         lcp: &Lcp<T, N>,
         basis: Basis<N, W>,
-    ) -> Option<(SVector<T, N>, u64)> {
+    ) -> Option<(SVector<T, N>, u64, Basis<N, W>)> {
         let zero = T::zero();
         // The padding rows' `z` are never basic in the contacts' answer.
         if (4 * K..N).any(|i| basis.is_z_basic(i)) {
@@ -187,6 +191,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // rows and their `sigma`.
         let (mut unknowns, mut rows, mut m) = ([none; N], [0usize; N], 0usize);
         let (mut sigmas, mut slides) = ([(0usize, 0usize); K], 0usize);
+        // The sticking contacts' basic friction and its other one.
+        let (mut sticks, mut sticking) = ([(0usize, 0usize); K], 0usize);
         let mut tied = 0u64;
         let mut push = |unknown: Unknown<T>, row: usize| {
             if let (Some(u), Some(r)) = (unknowns.get_mut(m), rows.get_mut(m)) {
@@ -205,7 +211,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                     let (friction, other) = if bits == 0b0011 { (b + 1, b + 2) } else { (b + 2, b + 1) };
                     push(plain(b), b);
                     push(plain(friction), friction);
-                    tied |= 1u64.checked_shl(u32::try_from(other).unwrap_or(u32::MAX)).unwrap_or(0);
+                    if let Some(s) = sticks.get_mut(sticking) {
+                        *s = (friction, other);
+                        sticking += 1;
+                    }
                 }
                 (true, 0b1011 | 0b1101) => {
                     let friction = if bits == 0b1011 { b + 1 } else { b + 2 };
@@ -246,8 +255,31 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             }
             _ => spread(&Self::reduced::<N, N>(lcp, &unknowns, &rows, m)?),
         }
+        // A sticking contact's friction along its line holds either way: one that came out
+        // negative is the other friction's, positive (its column and row are the first's negated,
+        // but for `sigma`, which is zero: the mirrored basis' own answer, to the bit).
+        let mut basis = basis;
+        for &(friction, other) in sticks.iter().take(sticking) {
+            let value = z.get(friction).copied().unwrap_or(zero);
+            let tie = if value < zero {
+                if let Some(p) = z.get_mut(friction) {
+                    *p = zero;
+                }
+                if let Some(q) = z.get_mut(other) {
+                    *q = -value;
+                }
+                basis.set_z_basic(friction, false);
+                basis.set_z_basic(other, true);
+                friction
+            } else {
+                other
+            };
+            tied |= 1u64.checked_shl(u32::try_from(tie).unwrap_or(u32::MAX)).unwrap_or(0);
+        }
         let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
-        // A sliding contact's `sigma` closes its friction row: `w_r = (M z + q)_r + M_rs sigma`.
+        // A sliding contact's `sigma` closes its friction row: `w_r = (M z + q)_r + M_rs sigma`;
+        // `sigma` is its slip's speed, and one below zero by no more than the step's velocity
+        // round-off (`slip_tolerance`: a contact at the edge of sticking) is zero.
         for &(row, sigma) in sigmas.iter().take(slides) {
             let rest =
                 (0..N).fold(lcp.q.get(row).copied().unwrap_or(zero), |acc, j| acc + entry(row, j) * z[j]);
@@ -256,10 +288,18 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 return None;
             }
             if let Some(slot) = z.get_mut(sigma) {
-                *slot = -rest / coefficient;
+                let speed = -rest / coefficient;
+                *slot = if speed < zero && speed >= -self.slip_tolerance {
+                    // Its other friction row, `w = 2 sigma`, is then nil in exact arithmetic.
+                    let other = if row + 1 == sigma { row - 1 } else { row + 1 };
+                    tied |= 1u64.checked_shl(u32::try_from(other).unwrap_or(u32::MAX)).unwrap_or(0);
+                    zero
+                } else {
+                    speed
+                };
             }
         }
-        Some((z, tied))
+        Some((z, tied, basis))
     }
 
     /// The reduced system of [`Self::basis_solution`]'s `m <= D` unknowns (each unknown's `z`
