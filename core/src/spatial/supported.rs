@@ -85,8 +85,19 @@ impl<T: Real> Finger<T> {
     /// carries nothing).
     #[must_use]
     pub fn crossing(&self, along_y: T, state: &State<T>) -> Option<SupportPoint<T>> {
-        let l0 = unrotate(&state.orientation, &sub(&self.tip, &state.position));
-        let e = unrotate(&state.orientation, &self.across);
+        self.crossing_in(along_y, &self.in_body(state))
+    }
+
+    /// The finger's line in the body's frame at `state`: `(R^T (tip - x), R^T across)`.
+    fn in_body(&self, state: &State<T>) -> (Vector<T>, Vector<T>) {
+        (
+            unrotate(&state.orientation, &sub(&self.tip, &state.position)),
+            unrotate(&state.orientation, &self.across),
+        )
+    }
+
+    /// [`Self::crossing`] with the line in the body's frame, `(l0, e)`, given ([`Self::in_body`]).
+    fn crossing_in(&self, along_y: T, (l0, e): &(Vector<T>, Vector<T>)) -> Option<SupportPoint<T>> {
         // Not at least 1/16 (NaN included).
         if e[1].abs_exact().partial_cmp(&T::of(1.0 / 16.0)).is_none_or(core::cmp::Ordering::is_lt) {
             return None;
@@ -99,7 +110,8 @@ impl<T: Real> Finger<T> {
     /// ([`Self::crossing`]): a pad across the whole face.
     #[must_use]
     pub fn crossings(&self, face: &LowerFace<T>, state: &State<T>) -> [Option<SupportPoint<T>>; 2] {
-        [-face.half_width, face.half_width].map(|b| self.crossing(b, state))
+        let line = self.in_body(state);
+        [-face.half_width, face.half_width].map(|b| self.crossing_in(b, &line))
     }
 }
 

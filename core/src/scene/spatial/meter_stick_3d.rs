@@ -164,6 +164,11 @@ pub struct FingerSwitch<T> {
     pub mode: Mode,
 }
 
+/// A finger's velocity at `x` speed `v` along the path `(sin, cos)` of its heading: `(v, v tan, 0)`.
+fn along_path<T: Real>((sin, cos): (T, T), v: T) -> Vector<T> {
+    [v, v * sin / cos, T::zero()]
+}
+
 /// Each finger's mode from its points' ([`FingerSwitch`]).
 #[must_use]
 pub fn finger_modes(points: [Mode; ROD_POINTS]) -> [Mode; 2] {
@@ -200,6 +205,8 @@ pub struct MeterStick3d<T: Real> {
     start_z: T,
     /// The fingers' `x` velocities over the last step.
     velocity: [T; 2],
+    /// Where the fingers cross under the rod now, moving at `velocity` ([`Self::fingers_at`]).
+    crossings: [Option<SupportPoint<T>>; ROD_POINTS],
     stats: RunStats,
 }
 
@@ -267,6 +274,7 @@ impl<T: Real> MeterStick3d<T> {
             start_normal: rotate(&orientation, &[T::zero(), T::zero(), T::one()]),
             start_z: rest.y,
             velocity,
+            crossings: start,
             stats: RunStats::default(),
         })
     }
@@ -330,20 +338,14 @@ impl<T: Real> MeterStick3d<T> {
     pub fn finger(&self, i: usize) -> Option<Finger<T>> {
         let (sin, cos) = self.path;
         let (tip, v) = (*self.tips.get(i)?, *self.velocity.get(i)?);
-        Some(Finger {
-            tip,
-            across: [T::zero(), T::one(), T::zero()],
-            velocity: [v, v * sin / cos, T::zero()],
-        })
+        Some(Finger { tip, across: [T::zero(), T::one(), T::zero()], velocity: along_path((sin, cos), v) })
     }
 
     /// Support point `i` (finger 1's two, then finger 2's) against the rod now; `None` past
     /// [`ROD_POINTS`] or when its finger runs along the rod.
     #[must_use]
     pub fn contact(&self, i: usize) -> Option<SeenContact<T>> {
-        let (face, state) = (self.stepper.face(), self.stepper.state());
-        let points = Self::fingers_at(face, state, self.path, &self.tips, self.velocity);
-        let p = (*points.get(i)?)?;
+        let p = (*self.crossings.get(i)?)?;
         let touch = self.stepper.touch(&p.position);
         Some(SeenContact {
             lever: touch.lever,
@@ -371,10 +373,8 @@ impl<T: Real> MeterStick3d<T> {
         velocity: [T; 2],
     ) -> [Option<SupportPoint<T>>; ROD_POINTS] {
         let across = [T::zero(), T::one(), T::zero()];
-        let [a, b] = [0, 1].map(|i| {
-            let v = [velocity[i], velocity[i] * sin / cos, T::zero()];
-            Finger { tip: tips[i], across, velocity: v }
-        });
+        let [a, b] =
+            [0, 1].map(|i| Finger { tip: tips[i], across, velocity: along_path((sin, cos), velocity[i]) });
         let pad = a.crossings(face, state);
         [pad[0], pad[1], b.crossing(T::zero(), state)]
     }
@@ -423,10 +423,17 @@ impl<T: Real> MeterStick3d<T> {
         let heights = [p.finger1_y, p.finger2_y];
         let tips: [Vector<T>; 2] =
             core::array::from_fn(|i| [ends[i], (ends[i] - start[i]) * self.path.0 / self.path.1, heights[i]]);
-        let (face, state) = (self.stepper.face(), self.stepper.state());
         // The contacts' geometry is the step's start's: the rod's state and the fingers' places
-        // then, each moving at its velocity over the step (as the planar stepper's frames).
-        let supports = Self::fingers_at(face, state, self.path, &self.tips, velocity);
+        // then (the last step's crossings), each moving at its velocity over the step (as the
+        // planar stepper's frames).
+        let mut supports = self.crossings;
+        if velocity != self.velocity {
+            for (support, (finger, _)) in supports.iter_mut().zip(FINGER_OF) {
+                if let (Some(point), Some(&v)) = (support.as_mut(), velocity.get(finger)) {
+                    point.velocity = along_path(self.path, v);
+                }
+            }
+        }
         let report = match self.stepper.step(&supports) {
             Ok(report) => report,
             Err(e) => {
@@ -449,7 +456,9 @@ impl<T: Real> MeterStick3d<T> {
             }
         }
         self.modes = modes;
-        let after = Self::fingers_at(self.stepper.face(), self.stepper.state(), self.path, &tips, velocity);
+        self.crossings =
+            Self::fingers_at(self.stepper.face(), self.stepper.state(), self.path, &tips, velocity);
+        let after = self.crossings;
         self.judge(stopped, &after, &report);
         Some(report)
     }
