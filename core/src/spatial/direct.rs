@@ -234,8 +234,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         }
         // The system in an array of its own size: its elimination's loops run over the array's
         // rows and columns, so `m <= 8` unknowns (at most two a contact: always, up to four
-        // contacts) go in an `8 x 8` array, not the problem's `N x N`; the same operations
-        // either way.
+        // contacts) go in an `8 x 8` array, not the problem's `N x N`, and up to 16 or 32 in
+        // one of that size (the stack's); the same operations either way.
         let mut z = SVector::<T, N>::zeros();
         let mut spread = |x: &[T]| {
             for (u, &value) in unknowns.iter().zip(x).take(m) {
@@ -253,6 +253,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             _ if 2 * K <= SMALL_SYSTEM || m <= SMALL_SYSTEM => {
                 spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, &unknowns, &rows, m)?);
             }
+            _ if m <= 16 => spread(&Self::reduced::<N, 16>(lcp, &unknowns, &rows, m)?),
+            _ if 2 * K <= 32 || m <= 32 => spread(&Self::reduced::<N, 32>(lcp, &unknowns, &rows, m)?),
             _ => spread(&Self::reduced::<N, N>(lcp, &unknowns, &rows, m)?),
         }
         // A sticking contact's friction along its line holds either way: one that came out
@@ -314,18 +316,20 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     ) -> Option<[T; D]> {
         let zero = T::zero();
         let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
-        let mut a = [[zero; D]; D];
-        let mut x = [zero; D];
-        let mut largest = zero;
-        for ((a_row, x_k), &row) in a.iter_mut().zip(x.iter_mut()).zip(rows).take(m) {
-            for (slot, u) in a_row.iter_mut().zip(unknowns).take(m) {
-                *slot = u.0.iter().take(u.1).fold(zero, |acc, &(v, factor)| acc + factor * entry(row, v));
-                largest = max(largest, slot.abs_exact());
+        // The system into `a` and `x`, its largest entry's size returned.
+        let system = |a: &mut [[T; D]; D], x: &mut [T; D]| {
+            let mut largest = zero;
+            for ((a_row, x_k), &row) in a.iter_mut().zip(x.iter_mut()).zip(rows).take(m) {
+                for (slot, u) in a_row.iter_mut().zip(unknowns).take(m) {
+                    *slot = u.0.iter().take(u.1).fold(zero, |acc, &(v, factor)| acc + factor * entry(row, v));
+                    largest = max(largest, slot.abs_exact());
+                }
+                *x_k = -lcp.q.get(row).copied().unwrap_or(zero);
             }
-            *x_k = -lcp.q.get(row).copied().unwrap_or(zero);
-        }
-        // The system kept for its least-norm solution (several bodies only, below).
-        let kept = (B > 1).then_some((a, x));
+            largest
+        };
+        let (mut a, mut x) = ([[zero; D]; D], [zero; D]);
+        let largest = system(&mut a, &mut x);
         let tiny = T::of(N as f64) * T::EPS * max(largest, T::TINY);
         // A small array is filled to its size with unknowns of their own, `largest x = 0`: the
         // elimination then runs over a constant size, its loops unrolled. Their rows and columns
@@ -344,9 +348,14 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         if !solve_leading(&mut a, &mut x, size, tiny) {
             // Four or more coplanar points of a face on a face (several bodies) leave the basis'
             // loads open: its solution of least norm (the load rule, `super`'s module docs, "The
-            // load"). One body's singular basis goes to Lemke's method.
-            let (system, rhs) = kept?;
-            x = least_norm(&system, &rhs, m);
+            // load"), of the system made again (the elimination overwrote it). One body's
+            // singular basis goes to Lemke's method.
+            if B == 1 {
+                return None;
+            }
+            let (mut a, mut rhs) = ([[zero; D]; D], [zero; D]);
+            system(&mut a, &mut rhs);
+            x = least_norm(&a, &rhs, m);
         }
         Some(x)
     }
