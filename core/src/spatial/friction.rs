@@ -321,10 +321,18 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 }
                 let c = 4 * j;
                 let (ni, nj, di, dj) = (&ci.normal, &cj.normal, &li.d, &lj.d);
-                let wnn = self.coupling(sn_i, ni, sn_j, nj);
-                let wnd = self.coupling(sn_i, ni, sd_j, dj);
-                let wdn = self.coupling(sd_i, di, sn_j, nj);
-                let wdd = self.coupling(sd_i, di, sd_j, dj);
+                // Two contacts on no common body do not couple: every entry `+0`, as the
+                // coupling's empty sum.
+                let (wnn, wnd, wdn, wdd) = if B == 1 || Self::share_a_body(ci, cj) {
+                    (
+                        self.coupling(sn_i, ni, sn_j, nj),
+                        self.coupling(sn_i, ni, sd_j, dj),
+                        self.coupling(sd_i, di, sn_j, nj),
+                        self.coupling(sd_i, di, sd_j, dj),
+                    )
+                } else {
+                    (o, o, o, o)
+                };
                 set(b, c, wnn);
                 set(b, c + 1, wnd);
                 set(b, c + 2, -wnd);

@@ -52,6 +52,14 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         [side(c.body, true, &c.arm), c.beneath.and_then(|(b, arm)| side(b, false, &arm))]
     }
 
+    /// Whether contacts `a` and `b` push a body in common (their bodies, or those beneath them).
+    pub(super) fn share_a_body(a: &Touch<T>, b: &Touch<T>) -> bool {
+        let bodies = |c: &Touch<T>| [Some(c.body), c.beneath.map(|(body, _)| body)];
+        let [a0, a1] = bodies(a);
+        let [b0, b1] = bodies(b);
+        a0 == b0 || a0 == b1 || (a1.is_some() && (a1 == b0 || a1 == b1))
+    }
+
     /// `e . W f` (module docs) from the [`Self::sides`] of the contacts along `e` and `f`.
     pub(super) fn coupling(
         &self,
@@ -67,12 +75,24 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 _ => T::zero(),
             };
         }
+        // Each pair of sides on one body in turn, `a`'s first then `b`'s: written out, not as
+        // iterators over the options (the stack's LCP has `4 K^2` of these, most of its pairs on no
+        // common body).
         let mut total = T::zero();
-        for sa in a.iter().flatten() {
-            for sb in b.iter().flatten().filter(|sb| sb.body == sa.body) {
+        let mut add_pair = |sa: &Side<T>, sb: &Side<T>| {
+            if sb.body == sa.body {
                 let inverse_mass = self.bodies.get(sa.body).map_or(T::zero(), |frame| frame.inverse_mass);
                 let term = inverse_mass * dot(e, f) + self.mass * dot(&sa.lever, &sb.turn);
                 total = if sa.pushed == sb.pushed { total + term } else { total - term };
+            }
+        };
+        for sa in [&a[0], &a[1]] {
+            let Some(sa) = sa else { continue };
+            if let Some(sb) = &b[0] {
+                add_pair(sa, sb);
+            }
+            if let Some(sb) = &b[1] {
+                add_pair(sa, sb);
             }
         }
         total
