@@ -189,7 +189,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         let none: Unknown<T> = ([(0, zero); 3], 0);
         // The unknowns and, row for row, the rows of `w` they close; the sliding contacts' friction
         // rows and their `sigma`.
-        let (mut unknowns, mut rows, mut m) = ([none; N], [0usize; N], 0usize);
+        // At most two a contact: `2 K` slots, filled in order.
+        let (mut unknown_slots, mut row_slots, mut m) = ([[none; 2]; K], [[0usize; 2]; K], 0usize);
+        let (unknowns, rows) = (unknown_slots.as_flattened_mut(), row_slots.as_flattened_mut());
         let (mut sigmas, mut slides) = ([(0usize, 0usize); K], 0usize);
         // The sticking contacts' basic friction and its other one.
         let (mut sticks, mut sticking) = ([(0usize, 0usize); K], 0usize);
@@ -247,15 +249,15 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             }
         };
         match m {
-            0..=2 => spread(&Self::reduced::<N, 2>(lcp, &unknowns, &rows, m)?),
-            3..=4 => spread(&Self::reduced::<N, 4>(lcp, &unknowns, &rows, m)?),
-            5..=6 => spread(&Self::reduced::<N, 6>(lcp, &unknowns, &rows, m)?),
+            0..=2 => spread(&Self::reduced::<N, 2>(lcp, unknowns, rows, m)?),
+            3..=4 => spread(&Self::reduced::<N, 4>(lcp, unknowns, rows, m)?),
+            5..=6 => spread(&Self::reduced::<N, 6>(lcp, unknowns, rows, m)?),
             _ if 2 * K <= SMALL_SYSTEM || m <= SMALL_SYSTEM => {
-                spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, &unknowns, &rows, m)?);
+                spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, unknowns, rows, m)?);
             }
-            _ if m <= 16 => spread(&Self::reduced::<N, 16>(lcp, &unknowns, &rows, m)?),
-            _ if 2 * K <= 32 || m <= 32 => spread(&Self::reduced::<N, 32>(lcp, &unknowns, &rows, m)?),
-            _ => spread(&Self::reduced::<N, N>(lcp, &unknowns, &rows, m)?),
+            _ if m <= 16 => spread(&Self::reduced::<N, 16>(lcp, unknowns, rows, m)?),
+            _ if 2 * K <= 32 || m <= 32 => spread(&Self::reduced::<N, 32>(lcp, unknowns, rows, m)?),
+            _ => spread(&Self::reduced::<N, N>(lcp, unknowns, rows, m)?),
         }
         // A sticking contact's friction along its line holds either way: one that came out
         // negative is the other friction's, positive (its column and row are the first's negated,
@@ -310,8 +312,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// several, its solution of least norm ([`least_norm`]).
     fn reduced<const N: usize, const D: usize>(
         lcp: &Lcp<T, N>,
-        unknowns: &[Unknown<T>; N],
-        rows: &[usize; N],
+        unknowns: &[Unknown<T>],
+        rows: &[usize],
         m: usize,
     ) -> Option<[T; D]> {
         let zero = T::zero();
