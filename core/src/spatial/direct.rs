@@ -27,6 +27,11 @@ use crate::real::{Real, max};
 /// many of them there are (one to three).
 type Unknown<T> = ([(usize, T); 3], usize);
 
+/// Row `row`'s bit in a mask of rows (none beyond 64).
+fn row_bit(row: usize) -> u64 {
+    1u64.checked_shl(u32::try_from(row).unwrap_or(u32::MAX)).unwrap_or(0)
+}
+
 /// The most unknowns of a reduced system solved in its small array ([`Contacts::reduced`]).
 const SMALL_SYSTEM: usize = 8;
 
@@ -234,6 +239,62 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 _ => return None,
             }
         }
+        let mut z = Self::solved_reduced(lcp, unknowns, rows, m)?;
+        // A sticking contact's friction along its line holds either way: one that came out
+        // negative is the other friction's, positive (its column and row are the first's negated,
+        // but for `sigma`, which is zero: the mirrored basis' own answer, to the bit).
+        let mut basis = basis;
+        for &(friction, other) in sticks.iter().take(sticking) {
+            let value = z.get(friction).copied().unwrap_or(zero);
+            let tie = if value < zero {
+                if let Some(p) = z.get_mut(friction) {
+                    *p = zero;
+                }
+                if let Some(q) = z.get_mut(other) {
+                    *q = -value;
+                }
+                basis.set_z_basic(friction, false);
+                basis.set_z_basic(other, true);
+                friction
+            } else {
+                other
+            };
+            tied |= row_bit(tie);
+        }
+        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
+        // A sliding contact's `sigma` closes its friction row: `w_r = (M z + q)_r + M_rs sigma`;
+        // `sigma` is its slip's speed, and one below zero by no more than the step's velocity
+        // round-off (`slip_tolerance`: a contact at the edge of sticking) is zero.
+        for &(row, sigma) in sigmas.iter().take(slides) {
+            let rest =
+                (0..N).fold(lcp.q.get(row).copied().unwrap_or(zero), |acc, j| acc + entry(row, j) * z[j]);
+            let coefficient = entry(row, sigma);
+            if coefficient <= zero {
+                return None;
+            }
+            if let Some(slot) = z.get_mut(sigma) {
+                let speed = -rest / coefficient;
+                *slot = if speed < zero && speed >= -self.slip_tolerance {
+                    // Its other friction row, `w = 2 sigma`, is then nil in exact arithmetic.
+                    let other = if row + 1 == sigma { row - 1 } else { row + 1 };
+                    tied |= row_bit(other);
+                    zero
+                } else {
+                    speed
+                };
+            }
+        }
+        Some((z, tied, basis))
+    }
+
+    /// `z` of [`Self::basis_solution`]'s reduced system, its `m` unknowns and the rows they close
+    /// (`None` as [`Self::reduced`]).
+    fn solved_reduced<const N: usize>(
+        lcp: &Lcp<T, N>,
+        unknowns: &[Unknown<T>],
+        rows: &[usize],
+        m: usize,
+    ) -> Option<SVector<T, N>> {
         // The system in an array of its own size: its elimination's loops run over the array's
         // rows and columns, so `m <= 8` unknowns (at most two a contact: always, up to four
         // contacts) go in an `8 x 8` array, not the problem's `N x N`, and up to 16 or 32 in
@@ -259,51 +320,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             _ if 2 * K <= 32 || m <= 32 => spread(&Self::reduced::<N, 32>(lcp, unknowns, rows, m)?),
             _ => spread(&Self::reduced::<N, N>(lcp, unknowns, rows, m)?),
         }
-        // A sticking contact's friction along its line holds either way: one that came out
-        // negative is the other friction's, positive (its column and row are the first's negated,
-        // but for `sigma`, which is zero: the mirrored basis' own answer, to the bit).
-        let mut basis = basis;
-        for &(friction, other) in sticks.iter().take(sticking) {
-            let value = z.get(friction).copied().unwrap_or(zero);
-            let tie = if value < zero {
-                if let Some(p) = z.get_mut(friction) {
-                    *p = zero;
-                }
-                if let Some(q) = z.get_mut(other) {
-                    *q = -value;
-                }
-                basis.set_z_basic(friction, false);
-                basis.set_z_basic(other, true);
-                friction
-            } else {
-                other
-            };
-            tied |= 1u64.checked_shl(u32::try_from(tie).unwrap_or(u32::MAX)).unwrap_or(0);
-        }
-        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
-        // A sliding contact's `sigma` closes its friction row: `w_r = (M z + q)_r + M_rs sigma`;
-        // `sigma` is its slip's speed, and one below zero by no more than the step's velocity
-        // round-off (`slip_tolerance`: a contact at the edge of sticking) is zero.
-        for &(row, sigma) in sigmas.iter().take(slides) {
-            let rest =
-                (0..N).fold(lcp.q.get(row).copied().unwrap_or(zero), |acc, j| acc + entry(row, j) * z[j]);
-            let coefficient = entry(row, sigma);
-            if coefficient <= zero {
-                return None;
-            }
-            if let Some(slot) = z.get_mut(sigma) {
-                let speed = -rest / coefficient;
-                *slot = if speed < zero && speed >= -self.slip_tolerance {
-                    // Its other friction row, `w = 2 sigma`, is then nil in exact arithmetic.
-                    let other = if row + 1 == sigma { row - 1 } else { row + 1 };
-                    tied |= 1u64.checked_shl(u32::try_from(other).unwrap_or(u32::MAX)).unwrap_or(0);
-                    zero
-                } else {
-                    speed
-                };
-            }
-        }
-        Some((z, tied, basis))
+        Some(z)
     }
 
     /// The reduced system of [`Self::basis_solution`]'s `m <= D` unknowns (each unknown's `z`
