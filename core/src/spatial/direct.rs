@@ -310,9 +310,11 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             }
         };
         match m {
-            0..=2 => spread(&Self::reduced::<N, 2>(lcp, unknowns, rows, m)?),
-            3..=4 => spread(&Self::reduced::<N, 4>(lcp, unknowns, rows, m)?),
-            5..=6 => spread(&Self::reduced::<N, 6>(lcp, unknowns, rows, m)?),
+            // Sizes below 8 for one body on up to four points (the boards' scenes) only: elsewhere
+            // they would be code for systems that are seldom that small.
+            0..=2 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 2>(lcp, unknowns, rows, m)?),
+            3..=4 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 4>(lcp, unknowns, rows, m)?),
+            5..=6 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 6>(lcp, unknowns, rows, m)?),
             _ if 2 * K <= SMALL_SYSTEM || m <= SMALL_SYSTEM => {
                 spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, unknowns, rows, m)?);
             }
