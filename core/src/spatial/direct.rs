@@ -11,8 +11,10 @@
 //! `4 K`: on the meter stick's pad and point, five or six where it had up to twelve), and Lemke's
 //! verification ([`Lemke::accept`]) judges it on the whole problem as it judges its own warm answer
 //! ([`Lemke::solve_warm`]), but for the rows zero in exact arithmetic, which may miss zero by the
-//! step's velocity round-off ([`Contacts::slack`]). A basis of any other pattern goes to
-//! [`Lemke::solve_warm`], one whose answer this path's check refuses to
+//! step's velocity round-off ([`Contacts::slack`]). For one body, a basis whose answer this check
+//! refuses is followed by the modes the answer says come next ([`Contacts::switched`]), each solved
+//! and verified the same way, up to [`MODE_SWITCHES`] times. A basis of any other pattern goes to
+//! [`Lemke::solve_warm`], one whose answer (and whose switches') this path's check refuses to
 //! [`Lemke::solve_from_basis`] (Lemke's pivoting from its tableau, then the cold start).
 
 use nalgebra::SVector;
@@ -32,14 +34,20 @@ fn row_bit(row: usize) -> u64 {
     1u64.checked_shl(u32::try_from(row).unwrap_or(u32::MAX)).unwrap_or(0)
 }
 
+/// The most times one body's contacts switch modes by their answer's signs before Lemke's pivots
+/// ([`Contacts::switched`]): a slip that reverses sticks, then slides the other way when its
+/// friction leaves the cone.
+const MODE_SWITCHES: u32 = 3;
+
 /// The most unknowns of a reduced system solved in its small array ([`Contacts::reduced`]).
 const SMALL_SYSTEM: usize = 8;
 
 impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The verified answer of the contacts' LCP `lcp` ([`Contacts`]' layout: per contact `(p_n,
     /// p_+d, p_-d, sigma)`, then the padding rows `w = z + 1`) from the basis `basis`: its own
-    /// complementary solution when it verifies (module docs), else Lemke's method's. A lone
-    /// contact's (`K = 1`: a puck, a ball) goes to [`Lemke::solve_warm`] whole.
+    /// complementary solution when it verifies (module docs), else (one body) that of the modes
+    /// its answer switches to ([`Self::switched`]), else Lemke's method's. A lone contact's (`K =
+    /// 1`: a puck, a ball) goes to [`Lemke::solve_warm`] whole.
     ///
     /// # Errors
     /// [`StepError::Solver`].
@@ -52,10 +60,28 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // A lone contact's basis is of at most three unknowns: Lemke's own direct solve of it.
         let reduced = if K > 1 { self.basis_solution(lcp, basis) } else { None };
         let lemke = match reduced {
-            Some((z, tied, own)) => match solver.accept(lcp, &z, own, |i| self.slack(tied, i)) {
-                Some(sol) => return Ok(sol),
-                None => solver.solve_from_basis(lcp, basis),
-            },
+            Some(mut tried) => {
+                // One body: the modes its answer says the contacts switch to, up to
+                // `MODE_SWITCHES` times, before Lemke's pivots.
+                let mut switches = 0;
+                loop {
+                    let (z, tied, own) = tried;
+                    if let Some(sol) = solver.accept(lcp, &z, own, |i| self.slack(tied, i)) {
+                        return Ok(sol);
+                    }
+                    if B > 1 || switches == MODE_SWITCHES {
+                        break;
+                    }
+                    switches += 1;
+                    let switched = self.switched(own, &z, &lcp.w_of(&z));
+                    if switched == own {
+                        break;
+                    }
+                    let Some(next) = self.basis_solution(lcp, switched) else { break };
+                    tried = next;
+                }
+                solver.solve_from_basis(lcp, basis)
+            }
             None => solver.solve_warm(lcp, basis),
         };
         match lemke {
@@ -66,6 +92,61 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             Err(e) if K > 1 && B > 1 => Self::open_load(solver, lcp).ok_or(StepError::Solver(e)),
             Err(e) => Err(StepError::Solver(e)),
         }
+    }
+
+    /// The basis of the modes `basis`' answer `(z, w)` says the contacts switch to: a contact's
+    /// mode changes as its condition that failed says, one condition a contact, all contacts at
+    /// once (a step where one contact starts or stops sliding, or lifts, or a body lands: the
+    /// run's first step starts from no loaded contact). A loaded contact whose normal impulse came
+    /// out negative separates; a sticking one whose friction came out beyond its cone (`w_sigma =
+    /// mu p_n - p_+-d < 0`) slides, the same friction then `mu p_n`; a sliding one whose slip
+    /// speed came out negative (beyond round-off: [`Self::basis_solution`]) sticks along its line;
+    /// one sticking with both frictions basic whose friction along one side came out negative
+    /// (`p_+-d = (mu p_n +- p_t) / 2 < 0`: `|p_t|` beyond the cone) slides, its friction on the
+    /// other side at the cone's edge;
+    /// a separated one whose normal row came out negative (closing) is loaded, sliding against its
+    /// slip along its line when that is beyond the step's round-off (`w_+-d = +-d . u`), else
+    /// sticking. Any other contact keeps its mode. The basis is only a guess: its answer is
+    /// verified as a warm basis' is, and Lemke's method pivots from `basis` when it fails.
+    fn switched<const N: usize, const W: usize>(
+        &self,
+        basis: Basis<N, W>,
+        z: &SVector<T, N>,
+        w: &SVector<T, N>,
+    ) -> Basis<N, W> {
+        let zero = T::zero();
+        let mut switched = basis;
+        for (i, c) in self.touches.iter().enumerate() {
+            let b = 4 * i;
+            let (Some(&p_n), Some(&sigma), Some(&w_n), Some(&w_d)) =
+                (z.get(b), z.get(b + 3), w.get(b), w.get(b + 1))
+            else {
+                continue;
+            };
+            let bits = (0..4).fold(0u32, |bits, k| bits | (u32::from(basis.is_z_basic(b + k)) << k));
+            let friction = |k: usize| z.get(b + k).copied().unwrap_or(zero);
+            let mode = match bits {
+                0b0011 | 0b0101 | 0b1011 | 0b1101 | 0b1111 if p_n < zero => 0b0000,
+                0b0000 if c.active && w_n < zero => {
+                    if w_d > self.slip_tolerance {
+                        0b1101
+                    } else if w_d < -self.slip_tolerance {
+                        0b1011
+                    } else {
+                        0b0011
+                    }
+                }
+                0b0011 | 0b0101 if c.mu * p_n - friction(1) - friction(2) < zero => bits | 0b1000,
+                0b1011 | 0b1101 if sigma < zero => bits & 0b0111,
+                0b1111 if friction(1) < zero => 0b1101,
+                0b1111 if friction(2) < zero => 0b1011,
+                _ => bits,
+            };
+            for k in 0..4 {
+                switched.set_z_basic(b + k, (mode >> k) & 1 == 1);
+            }
+        }
+        switched
     }
 
     /// How far below zero row `row`'s `w` may come out, outside the basis, in a basis' own answer

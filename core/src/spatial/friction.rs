@@ -5,6 +5,7 @@
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::{Frame, Motion};
 use super::report::{MAX_DIRECTIONS, Mode, SpatialContactReport};
+use super::space::Side;
 use crate::StepError;
 use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
 use crate::real::{Real, max, min};
@@ -42,6 +43,19 @@ pub(super) struct Touch<T> {
     /// The body beneath it, pushed back (`-p`), and the point's arm from that body's centre of
     /// mass (`None`: a fixed plane or a support; `super::space`).
     pub beneath: Option<(usize, Vector<T>)>,
+}
+
+/// One unknown of the turn ([`Contacts::turn`]): the impulse's change per unit of it and that
+/// change's sides ([`Contacts::sides`]).
+type Effect<T> = (Vector<T>, [Option<Side<T>>; 2]);
+
+/// The turn's linear system ([`Contacts::turn`]): per row its contact, the direction of its
+/// condition, its residual and its term on its own unknown; per unknown its contact and which of
+/// the contact's unknowns it is; per contact and unknown, the impulse's change and its sides.
+struct System<'a, T, const K: usize> {
+    rows: &'a [(usize, Vector<T>, T, T)],
+    unknowns: &'a [(usize, usize)],
+    effects: &'a [[Effect<T>; 3]; K],
 }
 
 /// One contact's friction line: a unit vector `d` in the plane; friction acts along `+d` or
@@ -424,41 +438,60 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 (true, _) => [zero; 3],
             }
         };
-        let used = |j: usize| match (kept[j], saturated[j]) {
+        let counts: [usize; K] = core::array::from_fn(|j| match (kept[j], saturated[j]) {
             (true, _) => 1,
             (false, true) => 2,
             (false, false) => 3,
-        };
-        let mut jac = [[zero; N]; N];
-        let mut rhs = [zero; N];
-        for row in 0..N {
-            put(&mut jac, row, row, one);
-        }
-        for i in (0..K).filter(|&i| loaded[i]) {
-            let ci = &self.touches[i];
-            // Contact i's conditions: its normal row (closed at the LCP's answer: no residual);
-            // sliding, the slip across its line; sticking, its slip across and along `d`.
-            let conditions: [(usize, Vector<T>, T); 3] = [
-                (3 * i, ci.normal, zero),
-                (3 * i + 1, across[i], -dot(&across[i], &slips[i])),
-                (3 * i + 2, lines[i].d, -dot(&lines[i].d, &slips[i])),
-            ];
-            for &(row, e, r) in conditions.iter().take(used(i)) {
-                put(&mut jac, row, row, zero);
-                put_in(&mut rhs, row, r);
-                if saturated[i] && row == 3 * i + 1 {
-                    put(&mut jac, row, row, -dot(&lines[i].d, &slips[i]));
+        });
+        let used = |j: usize| counts.get(j).copied().unwrap_or(0);
+        // Each unknown's impulse change and its sides ([`Self::sides`]: its turns), once: every
+        // condition's row reads them.
+        let effects: [[Effect<T>; 3]; K] = core::array::from_fn(|j| {
+            core::array::from_fn(|k| {
+                if loaded[j] && k < used(j) {
+                    let f = effect(j, k);
+                    (f, self.sides(&self.touches[j], &f))
+                } else {
+                    ([zero; 3], [None, None])
                 }
-                for j in (0..K).filter(|&j| loaded[j]) {
-                    for k in 0..used(j) {
-                        let f = effect(j, k);
-                        let w = self.delassus(ci, &e, &self.touches[j], &f);
-                        add_to(&mut jac, row, 3 * j + k, w);
-                    }
+            })
+        });
+        // The system over the loaded contacts' unknowns alone, in order (`m <= 3 K`), row for row
+        // the conditions they hold: contact `i`'s normal row (closed at the LCP's answer: no
+        // residual); sliding, the slip across its line; sticking, its slip across and along `d`.
+        // Row `r`: its contact, its direction, its residual and its term on its own unknown (a
+        // sliding contact's condition moves by `-dtheta (d . s)` besides); unknown `r`: `(j, k)`.
+        let mut rows = [(0usize, [zero; 3], zero, zero); N];
+        let mut unknowns = [(0usize, 0usize); N];
+        let mut m = 0;
+        for (i, ci) in self.touches.iter().enumerate().filter(|&(i, _)| loaded.get(i) == Some(&true)) {
+            let (Some(a), Some(line), Some(slip)) = (across.get(i), lines.get(i), slips.get(i)) else {
+                continue;
+            };
+            let own = if saturated.get(i) == Some(&true) { -dot(&line.d, slip) } else { zero };
+            let conditions =
+                [(ci.normal, zero, zero), (*a, -dot(a, slip), own), (line.d, -dot(&line.d, slip), zero)];
+            for (k, &(e, r, own)) in conditions.iter().enumerate().take(used(i)) {
+                if let (Some(row), Some(unknown)) = (rows.get_mut(m), unknowns.get_mut(m)) {
+                    (*row, *unknown) = ((i, e, r, own), (i, k));
+                    m += 1;
                 }
             }
         }
-        let x = solved(jac, rhs);
+        let system = System {
+            rows: rows.get(..m).unwrap_or(&[]),
+            unknowns: unknowns.get(..m).unwrap_or(&[]),
+            effects: &effects,
+        };
+        let solved_x: [T; N] = match m {
+            0..=6 if 3 * K <= 9 => self.turn_solved::<6, N>(&system),
+            _ if 3 * K <= 9 => self.turn_solved::<9, N>(&system),
+            _ => self.turn_solved::<N, N>(&system),
+        };
+        let mut x = [zero; N];
+        for (&(j, k), &value) in unknowns.iter().zip(&solved_x).take(m) {
+            put_in(&mut x, 3 * j + k, value);
+        }
         for i in (0..K).filter(|&i| loaded[i] && !kept[i]) {
             let (d, a) = (lines[i].d, across[i]);
             let next = if saturated[i] {
@@ -472,6 +505,34 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             };
             lines[i].d = direction(&next).unwrap_or(d);
         }
+    }
+
+    /// The turn's linear system ([`Self::turn`]) solved in a `D x D` array (`m <= D` unknowns, the
+    /// rest `x = 0`), its answer by unknown: the elimination's loops run over the array, so the
+    /// meter stick's six or nine unknowns are not solved in the problem's `N x N`; the same
+    /// operations on them either way.
+    fn turn_solved<const D: usize, const N: usize>(&self, system: &System<'_, T, K>) -> [T; N] {
+        let (zero, one) = (T::zero(), T::one());
+        let mut jac = [[zero; D]; D];
+        let mut rhs = [zero; D];
+        for (r, row) in jac.iter_mut().enumerate() {
+            put_row(row, r, one);
+        }
+        for (r, ((row, b), &(i, e, residual, own))) in
+            jac.iter_mut().zip(rhs.iter_mut()).zip(system.rows).enumerate()
+        {
+            let Some(ci) = self.touches.get(i) else { continue };
+            *b = residual;
+            put_row(row, r, own);
+            let levers = Self::levers(ci, &e);
+            for (entry, &(j, k)) in row.iter_mut().zip(system.unknowns) {
+                if let Some((f, sides)) = system.effects.get(j).and_then(|unknowns| unknowns.get(k)) {
+                    *entry += self.coupling(&levers, &e, sides, f);
+                }
+            }
+        }
+        let x = solved(jac, rhs);
+        core::array::from_fn(|c| x.get(c).copied().unwrap_or(zero))
     }
 
     /// The restart (`super`'s module docs, 3): the lines from the circular cone's own problem,
@@ -638,10 +699,10 @@ pub(super) fn put<T: Real, const N: usize>(m: &mut [[T; N]; N], r: usize, c: usi
     }
 }
 
-/// `m[r][c] += v` ([`put`]).
-fn add_to<T: Real, const N: usize>(m: &mut [[T; N]; N], r: usize, c: usize, v: T) {
-    if let Some(e) = m.get_mut(r).and_then(|row| row.get_mut(c)) {
-        *e += v;
+/// `row[c] = v` ([`put`]).
+fn put_row<T: Real, const N: usize>(row: &mut [T; N], c: usize, v: T) {
+    if let Some(e) = row.get_mut(c) {
+        *e = v;
     }
 }
 

@@ -99,17 +99,22 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     }
 
     /// `e . W f` between a unit impulse along `f` at contact `cf` and contact `ce`'s velocity
-    /// along `e` (module docs): [`Self::coupling`] reads `ce`'s levers and `cf`'s turns only.
+    /// along `e` (module docs): [`Self::coupling`] of `ce`'s [`Self::levers`] and `cf`'s
+    /// [`Self::sides`].
     pub(super) fn delassus(&self, ce: &Touch<T>, e: &Vector<T>, cf: &Touch<T>, f: &Vector<T>) -> T {
-        if let (1, Some(frame)) = (B, self.bodies.first()) {
-            let turn = inverse_inertia_times(frame.body, frame.orientation, &cross(&cf.arm, f));
-            return dot(e, f) + self.mass * dot(&cross(&ce.arm, e), &turn);
-        }
+        self.coupling(&Self::levers(ce, e), e, &self.sides(cf, f), f)
+    }
+
+    /// The sides of contact `c` along `e` as [`Self::sides`], but for their turns (zero): all
+    /// [`Self::coupling`] reads of the sides it is given first.
+    pub(super) fn levers(c: &Touch<T>, e: &Vector<T>) -> [Option<Side<T>>; 2] {
         let levers = |body: usize, pushed: bool, arm: &Vector<T>| {
             Some(Side { body, pushed, lever: cross(arm, e), turn: [T::zero(); 3] })
         };
-        let at_e = [levers(ce.body, true, &ce.arm), ce.beneath.and_then(|(b, arm)| levers(b, false, &arm))];
-        self.coupling(&at_e, e, &self.sides(cf, f), f)
+        if B == 1 {
+            return [levers(0, true, &c.arm), None];
+        }
+        [levers(c.body, true, &c.arm), c.beneath.and_then(|(b, arm)| levers(b, false, &arm))]
     }
 
     /// Contact `c`'s velocity in `motion`: its body's point's less the one beneath's less the
