@@ -5,7 +5,6 @@
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
 use super::body::{Frame, Motion};
 use super::report::{MAX_DIRECTIONS, Mode, SpatialContactReport};
-use super::space::Side;
 use crate::StepError;
 use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
 use crate::real::{Real, max, min};
@@ -45,17 +44,14 @@ pub(super) struct Touch<T> {
     pub beneath: Option<(usize, Vector<T>)>,
 }
 
-/// One unknown of the turn ([`Contacts::turn`]): the impulse's change per unit of it and that
-/// change's sides ([`Contacts::sides`]).
-type Effect<T> = (Vector<T>, [Option<Side<T>>; 2]);
-
 /// The turn's linear system ([`Contacts::turn`]): per row its contact, the direction of its
 /// condition, its residual and its term on its own unknown; per unknown its contact and which of
-/// the contact's unknowns it is; per contact and unknown, the impulse's change and its sides.
-struct System<'a, T, const K: usize> {
-    rows: &'a [(usize, Vector<T>, T, T)],
-    unknowns: &'a [(usize, usize)],
-    effects: &'a [[Effect<T>; 3]; K],
+/// the contact's unknowns it is; per contact and unknown, the impulse's change per unit of the
+/// unknown and that change's sides `S` (`super::space`'s `Contacts::sides`).
+pub(super) struct System<'a, T, S, const K: usize> {
+    pub rows: &'a [(usize, Vector<T>, T, T)],
+    pub unknowns: &'a [(usize, usize)],
+    pub effects: &'a [[(Vector<T>, S); 3]; K],
 }
 
 /// One contact's friction line: a unit vector `d` in the plane; friction acts along `+d` or
@@ -446,7 +442,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         let used = |j: usize| counts.get(j).copied().unwrap_or(0);
         // Each unknown's impulse change and its sides ([`Self::sides`]: its turns), once: every
         // condition's row reads them.
-        let effects: [[Effect<T>; 3]; K] = core::array::from_fn(|j| {
+        let effects: [[(Vector<T>, _); 3]; K] = core::array::from_fn(|j| {
             core::array::from_fn(|k| {
                 if loaded[j] && k < used(j) {
                     let f = effect(j, k);
@@ -505,34 +501,6 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             };
             lines[i].d = direction(&next).unwrap_or(d);
         }
-    }
-
-    /// The turn's linear system ([`Self::turn`]) solved in a `D x D` array (`m <= D` unknowns, the
-    /// rest `x = 0`), its answer by unknown: the elimination's loops run over the array, so the
-    /// meter stick's six or nine unknowns are not solved in the problem's `N x N`; the same
-    /// operations on them either way.
-    fn turn_solved<const D: usize, const N: usize>(&self, system: &System<'_, T, K>) -> [T; N] {
-        let (zero, one) = (T::zero(), T::one());
-        let mut jac = [[zero; D]; D];
-        let mut rhs = [zero; D];
-        for (r, row) in jac.iter_mut().enumerate() {
-            put_row(row, r, one);
-        }
-        for (r, ((row, b), &(i, e, residual, own))) in
-            jac.iter_mut().zip(rhs.iter_mut()).zip(system.rows).enumerate()
-        {
-            let Some(ci) = self.touches.get(i) else { continue };
-            *b = residual;
-            put_row(row, r, own);
-            let levers = Self::levers(ci, &e);
-            for (entry, &(j, k)) in row.iter_mut().zip(system.unknowns) {
-                if let Some((f, sides)) = system.effects.get(j).and_then(|unknowns| unknowns.get(k)) {
-                    *entry += self.coupling(&levers, &e, sides, f);
-                }
-            }
-        }
-        let x = solved(jac, rhs);
-        core::array::from_fn(|c| x.get(c).copied().unwrap_or(zero))
     }
 
     /// The restart (`super`'s module docs, 3): the lines from the circular cone's own problem,
@@ -700,7 +668,7 @@ pub(super) fn put<T: Real, const N: usize>(m: &mut [[T; N]; N], r: usize, c: usi
 }
 
 /// `row[c] = v` ([`put`]).
-fn put_row<T: Real, const N: usize>(row: &mut [T; N], c: usize, v: T) {
+pub(super) fn put_row<T: Real, const N: usize>(row: &mut [T; N], c: usize, v: T) {
     if let Some(e) = row.get_mut(c) {
         *e = v;
     }

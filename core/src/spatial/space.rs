@@ -20,7 +20,7 @@
 
 use super::algebra::{Quaternion, Vector, add, cross, dot, scale, sub};
 use super::body::{Body, Motion, inverse_inertia_times};
-use super::friction::{Contacts, Touch};
+use super::friction::{Contacts, System, Touch, put_row, solved};
 use crate::real::Real;
 
 /// One side of a contact along one direction `e` (a body it pushes, `sign` the impulse's on it):
@@ -115,6 +115,37 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             return [levers(0, true, &c.arm), None];
         }
         [levers(c.body, true, &c.arm), c.beneath.and_then(|(b, arm)| levers(b, false, &arm))]
+    }
+
+    /// The turn's linear system (`Contacts::turn`) solved in a `D x D` array (`m <= D` unknowns, the
+    /// rest `x = 0`), its answer by unknown: the elimination's loops run over the array, so the
+    /// meter stick's six or nine unknowns are not solved in the problem's `N x N`; the same
+    /// operations on them either way.
+    pub(super) fn turn_solved<const D: usize, const N: usize>(
+        &self,
+        system: &System<'_, T, [Option<Side<T>>; 2], K>,
+    ) -> [T; N] {
+        let (zero, one) = (T::zero(), T::one());
+        let mut jac = [[zero; D]; D];
+        let mut rhs = [zero; D];
+        for (r, row) in jac.iter_mut().enumerate() {
+            put_row(row, r, one);
+        }
+        for (r, ((row, b), &(i, e, residual, own))) in
+            jac.iter_mut().zip(rhs.iter_mut()).zip(system.rows).enumerate()
+        {
+            let Some(ci) = self.touches.get(i) else { continue };
+            *b = residual;
+            put_row(row, r, own);
+            let levers = Self::levers(ci, &e);
+            for (entry, &(j, k)) in row.iter_mut().zip(system.unknowns) {
+                if let Some((f, sides)) = system.effects.get(j).and_then(|unknowns| unknowns.get(k)) {
+                    *entry += self.coupling(&levers, &e, sides, f);
+                }
+            }
+        }
+        let x = solved(jac, rhs);
+        core::array::from_fn(|c| x.get(c).copied().unwrap_or(zero))
     }
 
     /// Contact `c`'s velocity in `motion`: its body's point's less the one beneath's less the
