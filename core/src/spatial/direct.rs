@@ -58,31 +58,26 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         basis: Basis<N, W>,
     ) -> Result<LcpSolution<T, N, W>, StepError> {
         // A lone contact's basis is of at most three unknowns: Lemke's own direct solve of it.
-        let reduced = if K > 1 { self.basis_solution(lcp, basis) } else { None };
-        let lemke = match reduced {
-            Some(mut tried) => {
-                // One body: the modes its answer says the contacts switch to, up to
-                // `MODE_SWITCHES` times, before Lemke's pivots.
-                let mut switches = 0;
-                loop {
-                    let (z, tied, own) = tried;
-                    if let Some(sol) = solver.accept(lcp, &z, own, |i| self.slack(tied, i)) {
-                        return Ok(sol);
-                    }
-                    if B > 1 || switches == MODE_SWITCHES {
-                        break;
-                    }
-                    switches += 1;
-                    let switched = self.switched(own, &z, &lcp.w_of(&z));
-                    if switched == own {
-                        break;
-                    }
-                    let Some(next) = self.basis_solution(lcp, switched) else { break };
-                    tried = next;
-                }
-                solver.solve_from_basis(lcp, basis)
+        // One body: the modes each answer says the contacts switch to, up to `MODE_SWITCHES`
+        // times, before Lemke's pivots (one call of each piece: one copy of each in flash).
+        let (mut tried, mut switches) = (basis, 0);
+        let lemke = loop {
+            let Some((z, tied, own)) = (if K > 1 { self.basis_solution(lcp, tried) } else { None }) else {
+                break if switches == 0 {
+                    solver.solve_warm(lcp, basis)
+                } else {
+                    solver.solve_from_basis(lcp, basis)
+                };
+            };
+            if let Some(sol) = solver.accept(lcp, &z, own, |i| self.slack(tied, i)) {
+                return Ok(sol);
             }
-            None => solver.solve_warm(lcp, basis),
+            let switched =
+                if B == 1 && switches < MODE_SWITCHES { self.switched(own, &z, &lcp.w_of(&z)) } else { own };
+            if switched == own {
+                break solver.solve_from_basis(lcp, basis);
+            }
+            (tried, switches) = (switched, switches + 1);
         };
         match lemke {
             Ok(sol) => Ok(sol),

@@ -479,9 +479,11 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             unknowns: unknowns.get(..m).unwrap_or(&[]),
             effects: &effects,
         };
-        let solved_x: [T; N] = match m {
-            0..=6 if 3 * K <= 9 => self.turn_solved::<6, N>(&system),
-            _ if 3 * K <= 9 => self.turn_solved::<9, N>(&system),
+        // In an array of `3 K` for up to three contacts (a puck's, the meter stick's), else `N`.
+        let solved_x: [T; N] = match K {
+            1 => self.turn_solved::<3, N>(&system),
+            2 => self.turn_solved::<6, N>(&system),
+            3 => self.turn_solved::<9, N>(&system),
             _ => self.turn_solved::<N, N>(&system),
         };
         let mut x = [zero; N];
