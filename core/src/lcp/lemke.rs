@@ -549,14 +549,30 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         basis: Basis<N, WORDS>,
         slack: impl Fn(usize) -> T,
     ) -> Option<LcpSolution<T, N, WORDS>> {
-        let scales = lcp.scales()?;
+        self.accept_scaled(lcp, &lcp.scales()?, z, basis, slack).ok()
+    }
+
+    /// [`Self::accept`] on `lcp`'s scales `scales` (`Lcp::scales`), computed once by a caller that
+    /// tries several bases of one problem; a refused `z`'s `w = M z + q` is the error, for the
+    /// caller's next try.
+    pub(crate) fn accept_scaled(
+        &self,
+        lcp: &Lcp<T, N>,
+        scales: &Scales<T>,
+        z: &SVector<T, N>,
+        basis: Basis<N, WORDS>,
+        slack: impl Fn(usize) -> T,
+    ) -> Result<LcpSolution<T, N, WORDS>, SVector<T, N>> {
         let w = lcp.w_of(z);
         let mut feasible = true;
         for i in 0..N {
             feasible &= z[i] >= T::zero() && (basis.is_z_basic(i) || w[i] >= T::zero() || w[i] >= -slack(i));
         }
         let check = Verification::of(z, &w, (scales.m_norm, scales.q_norm), self.tolerance);
-        (feasible && check.passed()).then_some(LcpSolution {
+        if !(feasible && check.passed()) {
+            return Err(w);
+        }
+        Ok(LcpSolution {
             z: *z,
             w,
             pivots: 0,

@@ -34,6 +34,12 @@ fn row_bit(row: usize) -> u64 {
     1u64.checked_shl(u32::try_from(row).unwrap_or(u32::MAX)).unwrap_or(0)
 }
 
+/// The basic `z` of the contact whose rows start at `b`, as bits `(p_n, p_+d, p_-d, sigma)` from
+/// the lowest: its mode (module docs).
+fn contact_bits<const N: usize, const W: usize>(basis: Basis<N, W>, b: usize) -> u32 {
+    (0..4).fold(0u32, |bits, k| bits | (u32::from(basis.is_z_basic(b + k)) << k))
+}
+
 /// The most times one body's contacts switch modes by their answer's signs before Lemke's pivots
 /// ([`Contacts::switched`]): a slip that reverses sticks, then slides the other way when its
 /// friction leaves the cone.
@@ -61,19 +67,22 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // One body: the modes each answer says the contacts switch to, up to `MODE_SWITCHES`
         // times, before Lemke's pivots (one call of each piece: one copy of each in flash).
         let (mut tried, mut switches) = (basis, 0);
+        let scales = lcp.scales();
         let lemke = loop {
-            let Some((z, tied, own)) = (if K > 1 { self.basis_solution(lcp, tried) } else { None }) else {
+            let reduced = if K > 1 { self.basis_solution(lcp, tried) } else { None };
+            // Data that are not finite: Lemke's method names them.
+            let (Some((z, tied, own)), Some(scales)) = (reduced, scales.as_ref()) else {
                 break if switches == 0 {
                     solver.solve_warm(lcp, basis)
                 } else {
                     solver.solve_from_basis(lcp, basis)
                 };
             };
-            if let Some(sol) = solver.accept(lcp, &z, own, |i| self.slack(tied, i)) {
-                return Ok(sol);
-            }
-            let switched =
-                if B == 1 && switches < MODE_SWITCHES { self.switched(own, &z, &lcp.w_of(&z)) } else { own };
+            let w = match solver.accept_scaled(lcp, scales, &z, own, |i| self.slack(tied, i)) {
+                Ok(sol) => return Ok(sol),
+                Err(w) => w,
+            };
+            let switched = if B == 1 && switches < MODE_SWITCHES { self.switched(own, &z, &w) } else { own };
             if switched == own {
                 break solver.solve_from_basis(lcp, basis);
             }
@@ -118,7 +127,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             else {
                 continue;
             };
-            let bits = (0..4).fold(0u32, |bits, k| bits | (u32::from(basis.is_z_basic(b + k)) << k));
+            let bits = contact_bits(basis, b);
             let friction = |k: usize| z.get(b + k).copied().unwrap_or(zero);
             let mode = match bits {
                 0b0011 | 0b0101 | 0b1011 | 0b1101 | 0b1111 if p_n < zero => 0b0000,
@@ -285,7 +294,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         };
         for (i, c) in self.touches.iter().enumerate() {
             let b = 4 * i;
-            let bits = (0..4).fold(0u32, |bits, k| bits | (u32::from(basis.is_z_basic(b + k)) << k));
+            let bits = contact_bits(basis, b);
             let plain = |variable| ([(variable, one), (variable, zero), (variable, zero)], 1);
             match (c.active, bits) {
                 (_, 0b0000) => {}

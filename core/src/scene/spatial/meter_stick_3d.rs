@@ -336,9 +336,8 @@ impl<T: Real> MeterStick3d<T> {
     /// the last step.
     #[must_use]
     pub fn finger(&self, i: usize) -> Option<Finger<T>> {
-        let (sin, cos) = self.path;
         let (tip, v) = (*self.tips.get(i)?, *self.velocity.get(i)?);
-        Some(Finger { tip, across: [T::zero(), T::one(), T::zero()], velocity: along_path((sin, cos), v) })
+        Some(Finger { tip, across: [T::zero(), T::one(), T::zero()], velocity: along_path(self.path, v) })
     }
 
     /// Support point `i` (finger 1's two, then finger 2's) against the rod now; `None` past
