@@ -309,3 +309,38 @@ fn the_first_step_takes_the_free_motions_modes() {
         first::<f32>(degrees);
     }
 }
+
+/// Where the fingers meet and stop, the rod's three points stop sliding together: sticking, they
+/// leave the squeeze along the rod between the fingers open (the modes' system singular), and one
+/// point put back at its cone's edge decides it (`crate::spatial::direct`'s tries at the edge), with
+/// no pivot of Lemke's method (which took 4 there). Checked from the fingers' meeting to the step
+/// where every point sticks, at heading 0 in f64 and f32: within 20 steps, no pivot, and then
+/// every point's slip within the stick speed (the rod at rest on the stopped fingers).
+#[test]
+fn the_fingers_meet_without_a_pivot() {
+    fn meet<T: Real>() {
+        let p = MeterStick3dParams::<f64>::default();
+        let mut scene = MeterStick3d::<T>::new(p.cast()).expect("valid");
+        while scene.meeting().is_none() {
+            scene.step().expect("the fingers meet");
+        }
+        let (mut pivots, mut steps) = (0, 0);
+        let report = loop {
+            let r = scene.step().expect("a step");
+            (pivots, steps) = (pivots + r.pivots, steps + 1);
+            if r.contacts.iter().all(|c| c.mode == Mode::Sticking) {
+                break r;
+            }
+            assert!(steps < 20, "f{}: still sliding {steps} steps after the meeting", 8 * T::BYTES);
+        };
+        let slips = report.contacts.map(|c| c.slip.iter().map(|s| s.as_f64().powi(2)).sum::<f64>().sqrt());
+        println!(
+            "f{}: every point sticks {steps} steps after the meeting, pivots {pivots}, slips {slips:?}",
+            8 * T::BYTES
+        );
+        assert_eq!(pivots, 0, "f{}: pivoted", 8 * T::BYTES);
+        assert!(slips.iter().all(|&s| s <= p.stick_speed), "f{}: {slips:?}", 8 * T::BYTES);
+    }
+    meet::<f64>();
+    meet::<f32>();
+}

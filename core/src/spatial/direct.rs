@@ -13,7 +13,9 @@
 //! ([`Lemke::solve_warm`]), but for the rows zero in exact arithmetic, which may miss zero by the
 //! step's velocity round-off ([`Contacts::slack`]). For one body, a basis whose answer this check
 //! refuses is followed by the modes the answer says come next ([`Contacts::switched`]), each solved
-//! and verified the same way, up to [`MODE_SWITCHES`] times. A basis of any other pattern goes to
+//! and verified the same way, up to [`MODE_SWITCHES`] times; a switched basis whose system is
+//! singular (points that stopped sliding together leave a force between them open) is tried with
+//! each of those points in turn back at its cone's edge ([`Contacts::at_edge`]). A basis of any other pattern goes to
 //! [`Lemke::solve_warm`], one whose answer (and whose switches') this path's check refuses to
 //! [`Lemke::solve_from_basis`] (Lemke's pivoting from its tableau, then the cold start).
 
@@ -67,11 +69,23 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // One body: the modes each answer says the contacts switch to, up to `MODE_SWITCHES`
         // times, before Lemke's pivots (one call of each piece: one copy of each in flash).
         let (mut tried, mut switches) = (basis, 0);
+        // The basis before the last switch; a switched basis whose system was singular and the
+        // next contact to try at its cone's edge ([`Self::at_edge`]).
+        let (mut before, mut edge) = (basis, None);
         let scales = lcp.scales();
         let lemke = loop {
             let reduced = if K > 1 { self.basis_solution(lcp, tried) } else { None };
             // Data that are not finite: Lemke's method names them.
             let (Some((z, tied, own)), Some(scales)) = (reduced, scales.as_ref()) else {
+                // A switched basis of no solution (its system singular): its tries at the edge.
+                if B == 1
+                    && switches > 0
+                    && scales.is_some()
+                    && let Some((next, at)) = Self::at_edge(edge.unwrap_or((tried, 0)), before)
+                {
+                    (edge, tried) = (Some(next), at);
+                    continue;
+                }
                 break if switches == 0 {
                     solver.solve_warm(lcp, basis)
                 } else {
@@ -82,11 +96,19 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 Ok(sol) => return Ok(sol),
                 Err(w) => w,
             };
+            // A try at the edge refused: the next one.
+            if let Some(last) = edge {
+                let Some((next, at)) = Self::at_edge(last, before) else {
+                    break solver.solve_from_basis(lcp, basis);
+                };
+                (edge, tried) = (Some(next), at);
+                continue;
+            }
             let switched = if B == 1 && switches < MODE_SWITCHES { self.switched(own, &z, &w) } else { own };
             if switched == own {
                 break solver.solve_from_basis(lcp, basis);
             }
-            (tried, switches) = (switched, switches + 1);
+            (before, tried, switches) = (tried, switched, switches + 1);
         };
         match lemke {
             Ok(sol) => Ok(sol),
@@ -151,6 +173,27 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             }
         }
         switched
+    }
+
+    /// The next of a singular switched basis' contacts, from a given one on (`(singular, from)`),
+    /// that the switch stopped (sliding in `before`, sticking along the same side in `singular`),
+    /// put back at its cone's edge: sliding, its `sigma` basic (its slip speed, zero in the answer
+    /// that holds), its friction `mu p_n`. Three or more sticking points can leave a force between
+    /// them open (a rod on two fingers that stop: the squeeze along the rod), their system
+    /// singular; one point at the edge decides it, as Lemke's method's answer there does. The next
+    /// `(singular, from)` and the basis to try; `None` when no contact is left.
+    fn at_edge<const N: usize, const W: usize>(
+        (singular, from): (Basis<N, W>, usize),
+        before: Basis<N, W>,
+    ) -> Option<((Basis<N, W>, usize), Basis<N, W>)> {
+        (from..K).find_map(|i| {
+            let b = 4 * i;
+            let bits = contact_bits(singular, b);
+            let mut at = singular;
+            at.set_z_basic(b + 3, true);
+            (matches!(bits, 0b0011 | 0b0101) && contact_bits(before, b) == bits | 0b1000)
+                .then_some(((singular, i + 1), at))
+        })
     }
 
     /// How far below zero row `row`'s `w` may come out, outside the basis, in a basis' own answer

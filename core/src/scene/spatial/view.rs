@@ -174,14 +174,9 @@ impl<T: Real, const N: usize, const K: usize, S: SpatialSeen<T, N, K>> SpatialVi
 /// Adds a body's state to `checksum`: its position, orientation `[w, x, y, z]`, velocity and
 /// angular velocity, in that order.
 pub(super) fn add_state<T: Real>(checksum: &mut Checksum, s: &State<T>) {
-    let mut values = [T::zero(); 13];
-    for (slot, v) in values
-        .iter_mut()
-        .zip(s.position.into_iter().chain(s.orientation).chain(s.velocity).chain(s.angular_velocity))
-    {
-        *slot = v;
-    }
-    checksum.add_values(&values);
+    let ([x, y, z], [qw, qx, qy, qz]) = (s.position, s.orientation);
+    let ([vx, vy, vz], [wx, wy, wz]) = (s.velocity, s.angular_velocity);
+    checksum.add_values(&[x, y, z, qw, qx, qy, qz, vx, vy, vz, wx, wy, wz]);
 }
 
 /// A contact's tangent as the view gives it ([`ContactView::tangent`]): the friction impulse's
