@@ -590,14 +590,22 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // `|p_t| <= mu p_n`, is a failure; its residual against the circle is reported.
         // A sliding contact's slip is known to the step's round-off, `slip_tolerance` (the
         // solve's own test of it), so its direction to `slip_tolerance / |s|`: its friction is
-        // held to `-mu p_n` along the slip, and across it to `mu p_n` times that angle besides.
+        // held to `-mu p_n` along the slip, short of it by at most `mu p_n (1 - cos)` of that angle
+        // (at most `mu p_n` times half its square), and across it to `mu p_n` times the angle.
         let excess = if !against_slip {
             max(friction - limit, T::zero()) / max(limit, T::TINY)
         } else if sliding {
             let along = dot(pt, slip) / slip_speed;
             let across = norm(&sub(pt, &scale(along / slip_speed, slip)));
             let angle = self.slip_tolerance / slip_speed;
-            max((along + limit).abs_exact(), max(across - limit * angle, T::zero())) / limit
+            // The part against the slip short of the edge (`>= 0`), or beyond it.
+            let short = along + limit;
+            let along_miss = if short >= T::zero() {
+                max(short - limit * angle * angle * T::of(0.5), T::zero())
+            } else {
+                -short
+            };
+            max(along_miss, max(across - limit * angle, T::zero())) / limit
         } else {
             residual
         };

@@ -15,7 +15,8 @@
 //!
 //! The load moves the body's motion in the plane (every point's friction has its own direction),
 //! so the slips move: the directions are set to the new slips and the load taken again until they
-//! agree within the step's round-off, at most [`LOAD_TRIES`] times.
+//! agree within the step's round-off, at most [`LOAD_TRIES`] times ([`PATIENT_TRIES`], each try
+//! halfway to the slips, when the contacts' LCP did not converge either).
 //!
 //! # Points that stop
 //!
@@ -49,7 +50,14 @@ use crate::real::{Real, max};
 
 /// The most times a flat base's directions are set to its slips, or a stopping point's friction
 /// and the load taken again in turn (module docs), before the step takes another way.
-const LOAD_TRIES: u32 = 16;
+pub(super) const LOAD_TRIES: u32 = 16;
+
+/// The most times a flat base's directions are moved toward its slips when the contacts' LCP did
+/// not converge either ([`Contacts::flat_base`]'s last try), each time halfway (the bisector of
+/// the direction and the slip's): near a base's stop the directions set to the slips close in by
+/// a factor that grows toward one (a curling stone spun at `1e3` rad/s, in f64, two seconds
+/// before it stops: 0.2 a try, 16 tries short of the round-off), or swing between two sets.
+pub(super) const PATIENT_TRIES: u32 = 256;
 
 /// The fewest points touching the plane whose load is left open by the motion: three not in a
 /// line decide theirs.
@@ -77,7 +85,9 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// residual within round-off), then the least-norm load of that motion with every point
     /// sliding, or one point stopping (a pivot), or all (a rest) (module docs). `None` where none
     /// applies: too few points, a point that lifts (a residual) or needs a pull (no load `x >= 0`),
-    /// or none of the three (module docs, "Points that stop"); the step is then the LCP's.
+    /// or none of the three (module docs, "Points that stop"); the step is then the LCP's. The
+    /// directions are set to the slips at most `tries` times: [`LOAD_TRIES`], or, after the LCP's
+    /// lines did not converge, [`PATIENT_TRIES`] each halfway to the slips.
     ///
     /// # Errors
     /// As [`Self::least_norm`].
@@ -88,6 +98,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         pivots: &mut u32,
         v_free: &Vector<T>,
         w_free: &Vector<T>,
+        tries: u32,
     ) -> Result<Option<Solved<T, K>>, StepError> {
         let moving = max(self.slip_tolerance, self.stick_speed);
         let touching: [bool; K] = core::array::from_fn(|i| self.touches[i].active);
@@ -124,8 +135,9 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
             return Ok(None);
         }
         let slips = self.touches.map(|c| c.slip_free);
-        let mut settle =
-            |stop| self.settle(solver, basis, pivots, &touching, slips, &g, v_free, w_free, false, stop);
+        let mut settle = |stop| {
+            self.settle(solver, basis, pivots, &touching, slips, &g, v_free, w_free, (false, tries), stop)
+        };
         if slow == 0
             && let Some(answer) = settle(Stop::None)?
         {
@@ -200,8 +212,18 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let (t1, lever) = self.plane_axes();
         let t2 = cross(&n, &t1);
         let g = [dot(&n, &dv), lever * dot(&t1, &dw), lever * dot(&t2, &dw)];
-        let settled =
-            self.settle(solver, basis, pivots, &touching, slips, &g, v_free, w_free, true, Stop::None)?;
+        let settled = self.settle(
+            solver,
+            basis,
+            pivots,
+            &touching,
+            slips,
+            &g,
+            v_free,
+            w_free,
+            (true, LOAD_TRIES),
+            Stop::None,
+        )?;
         Ok(settled.unwrap_or(path))
     }
 
@@ -217,7 +239,8 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// slip, the slips set again until they agree (module docs); the points `stop` names carry the
     /// friction `held_load` gives them (module docs, "Points that stop"). `None` when a sliding
     /// point would stop or turn back, a point at rest would not, the directions do not settle in
-    /// [`LOAD_TRIES`] tries, or `held_load` gives none.
+    /// `most` tries (beyond [`LOAD_TRIES`], each halfway to the slips), or `held_load` gives none
+    /// (or, unless `feasible`, no load `x >= 0` gives `g`).
     #[allow(clippy::too_many_arguments)]
     fn settle<const N: usize>(
         &self,
@@ -229,7 +252,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         g: &[T; 3],
         v_free: &Vector<T>,
         w_free: &Vector<T>,
-        feasible: bool,
+        (feasible, most): (bool, u32),
         stop: Stop,
     ) -> Result<Option<Solved<T, K>>, StepError> {
         let (n, zero) = (self.normal, T::zero());
@@ -242,7 +265,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         let round_off = T::of(64.0 * K as f64) * T::EPS * size;
         // A point that stops carries the friction `held_load` gives it, along no slip.
         let is_pivot = |i: usize| matches!(stop, Stop::Rest(_)) || stop == Stop::Pivot(i);
-        for tries in 1..=LOAD_TRIES {
+        for tries in 1..=most {
             let unit: [Vector<T>; K] = core::array::from_fn(|i| {
                 if is_pivot(i) { [zero; 3] } else { direction(&slips[i]).unwrap_or([zero; 3]) }
             });
@@ -280,7 +303,12 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                         && dot(&next[i], &unit[i]) > zero
             });
             if !agree {
-                slips = next;
+                // A patient solve's directions go halfway: a swing between two sets damps out.
+                slips = if most > LOAD_TRIES {
+                    core::array::from_fn(|i| add(&unit[i], &direction(&next[i]).unwrap_or([zero; 3])))
+                } else {
+                    next
+                };
                 continue;
             }
             // Verified: the motion out of the plane is `g`, each answer the cone's.

@@ -68,7 +68,8 @@
 //!    units of `mu p_n`, or the LCP's own verification scale where the cone is far smaller than
 //!    it: a light load at the edge of sticking). A sliding slip `s` is known to the step's
 //!    velocity round-off (the `256 eps` above), its direction to that over `|s|`: across the slip
-//!    the friction is held to `mu p_n` times that angle besides.
+//!    the friction is held to `mu p_n` times that angle besides, along it to `mu p_n` times half
+//!    the angle's square (the edge's `1 - cos`).
 //!
 //!    **The baseline** ([`FrictionCone::Pyramid`]): the pyramid of LCP engines, `k` directions
 //!    fixed in the plane, one LCP a step (Stewart & Trinkle). Its friction points at the pyramid's

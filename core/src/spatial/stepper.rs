@@ -4,6 +4,7 @@
 use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
 use super::body::{Body, Frame, Motion, State, advanced, inertia_times, inverse_inertia_times, turned};
 use super::friction::{Contacts, Touch};
+use super::load::{LOAD_TRIES, PATIENT_TRIES};
 use super::report::{Mode, SpatialContactReport, SpatialStepReport};
 use crate::ParamError;
 use crate::StepError;
@@ -439,11 +440,23 @@ impl<T: Real, const N: usize> Solve<T, N> {
             match s.friction {
                 FrictionCone::Circular => {
                     let (solver, load) = (&self.solver, &mut self.load_basis);
-                    if let Some(answer) = contacts.flat_base(solver, load, &mut pivots, v_free, w_free)? {
+                    if let Some(answer) =
+                        contacts.flat_base(solver, load, &mut pivots, v_free, w_free, LOAD_TRIES)?
+                    {
                         answer
                     } else {
-                        let path = contacts.solve(solver, &mut self.basis, &mut pivots, v_free, w_free)?;
-                        contacts.least_norm(solver, load, &mut pivots, path, v_free, w_free)?
+                        match contacts.solve(solver, &mut self.basis, &mut pivots, v_free, w_free) {
+                            Ok(path) => {
+                                contacts.least_norm(solver, load, &mut pivots, path, v_free, w_free)?
+                            }
+                            // A flat base near its stop: its lines' loads may flip between
+                            // vertices of the open load at every try; its own directions,
+                            // given more tries, settle.
+                            Err(StepError::ConeNotConverged) => contacts
+                                .flat_base(solver, load, &mut pivots, v_free, w_free, PATIENT_TRIES)?
+                                .ok_or(StepError::ConeNotConverged)?,
+                            Err(e) => return Err(e),
+                        }
                     }
                 }
                 FrictionCone::Pyramid { directions } => contacts.solve_pyramid(
