@@ -216,3 +216,32 @@ fn held_stack_cost() {
         );
     }
 }
+
+/// The stack at 30 degrees falling (overhang 1.02) at `h = 1e-6` s in f64 (`host-sim stress`'s
+/// case): at its 322nd step the lines' worst slip across them swung from one try to the next,
+/// shrunk fourfold in every fourth try, so that the solve never restarted and ended
+/// `ConeNotConverged` after 32 tries; a solve not restarted by half its tries now restarts. Its
+/// first 330 steps succeed and the top block starts to tip: its angular velocity grows from zero
+/// and its centre drops.
+#[test]
+fn a_solve_whose_worst_slip_swings_restarts() {
+    let p = Stack3dParams::<f64> {
+        heading: 30f64.to_radians(),
+        step: 1e-6,
+        overhang: 1.02,
+        max_time: 1.0,
+        ..Default::default()
+    };
+    let mut scene = Stack3d3::<f64>::new(p).expect("valid");
+    let start = *scene.stepper().states();
+    for step in 1..=330 {
+        assert!(scene.step().is_some(), "step {step}: {:?}", scene.outcome());
+    }
+    let [.., top] = *scene.stepper().states();
+    let spin = top.angular_velocity.iter().map(|w| w * w).sum::<f64>().sqrt();
+    println!(
+        "after 330 steps: the top block turns at {spin:e} rad/s, its centre {:e} m lower",
+        start[2].position[2] - top.position[2]
+    );
+    assert!(spin > 0.0 && top.position[2] < start[2].position[2], "{spin} {:?}", top.position);
+}

@@ -10,7 +10,9 @@ use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
 use crate::real::{Real, max, min};
 
 /// Every this many tries a solve whose worst slip across a line has not shrunk fourfold in the
-/// last try starts its lines again from the cone's own problem ([`Contacts::restart`]).
+/// last try starts its lines again from the cone's own problem ([`Contacts::restart`]); one that
+/// has not restarted by half its tries (its worst slip swinging, shrunk in every fourth try)
+/// restarts then.
 const RESTART_EVERY: u32 = 4;
 
 /// The projected Gauss-Seidel sweeps of a restart ([`Contacts::restart`]).
@@ -167,7 +169,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 .fold(T::zero(), |a, (((c, s), line), _)| {
                     max(a, dot(s, &cross(&c.normal, &line.d)).abs_exact())
                 });
-            let stalled = tries % RESTART_EVERY == 0 && worst * T::of(4.0) > last_worst;
+            let stalled = tries % RESTART_EVERY == 0 && worst * T::of(4.0) > last_worst
+                || tries == MAX_DIRECTIONS / 2 && !restarted;
             last_worst = worst;
             if stalled {
                 restarted = true;
