@@ -89,20 +89,23 @@ pub(crate) fn residual<T: Real, const N: usize>(
     let s_w = m_norm * z_norm + q_norm;
     let inv_s_z = T::one() / max(z_norm, T::TINY);
     let inv_s_w = T::one() / max(s_w, T::TINY);
-    let mut residual = T::zero();
-    let mut finite = s_w.finite();
+    // `max_i (-z_i)` and `max_i (-w_i)` are scaled once: a product by a positive scale keeps the
+    // order of its factors (rounding is monotone), so the largest of the scaled violations is
+    // the scaled largest, to the bit. `0 x` is zero for every finite `x` and NaN otherwise:
+    // their sum says whether all were finite.
+    let zero = T::zero();
+    let (mut neg_z, mut neg_w, mut comp, mut probe) = (zero, zero, zero, zero * s_w);
     for i in 0..N {
         let (zi, wi) = (z[i], w[i]);
-        finite &= zi.finite() & wi.finite();
-        let neg_z = max(-zi, T::zero()) * inv_s_z;
-        let neg_w = max(-wi, T::zero()) * inv_s_w;
-        let comp = min(zi.abs_exact() * inv_s_z, wi.abs_exact() * inv_s_w);
-        residual = max(residual, max(neg_z, max(neg_w, comp)));
+        probe += zero * zi + zero * wi;
+        neg_z = max(neg_z, -zi);
+        neg_w = max(neg_w, -wi);
+        comp = max(comp, min(zi.abs_exact() * inv_s_z, wi.abs_exact() * inv_s_w));
     }
-    if !finite {
+    if probe != T::zero() {
         return (T::of(f64::INFINITY), s_w);
     }
-    (residual, s_w)
+    (max(neg_z * inv_s_z, max(neg_w * inv_s_w, comp)), s_w)
 }
 
 /// `true` when `z` solves `lcp` within the default tolerance ([`default_tolerance`]).

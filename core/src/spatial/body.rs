@@ -110,6 +110,46 @@ pub(super) fn inverse_inertia_times<T: Real>(body: &Body<T>, q: &Quaternion<T>, 
     rotate(q, &[b[0] / body.inertia[0], b[1] / body.inertia[1], b[2] / body.inertia[2]])
 }
 
+/// `I_w^-1 = R diag(1 / I) R^T`: the inverse of a body's inertia in the world frame at one
+/// orientation, symmetric, built once a step for the contacts' many products with it (each then
+/// nine products, not two turns of a quaternion and three divisions). A body whose moments are
+/// equal (a sphere) has `I_w^-1 = I^-1` at every orientation, kept exactly diagonal.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct InverseInertia<T>([[T; 3]; 3]);
+
+impl<T: Real> InverseInertia<T> {
+    /// `body`'s at the orientation `q` (a unit quaternion).
+    #[must_use]
+    pub(super) fn new(body: &Body<T>, q: &Quaternion<T>) -> Self {
+        let (o, two) = (T::zero(), T::of(2.0));
+        let inverse = body.inertia.map(|i| T::one() / i);
+        let [ia, ib, ic] = inverse;
+        if ia == ib && ib == ic {
+            return Self([[ia, o, o], [o, ia, o], [o, o, ia]]);
+        }
+        let [w, x, y, z] = *q;
+        // The rotation's matrix `R` (body axes to world axes), row by row.
+        let r = [
+            [T::one() - two * (y * y + z * z), two * (x * y - w * z), two * (x * z + w * y)],
+            [two * (x * y + w * z), T::one() - two * (x * x + z * z), two * (y * z - w * x)],
+            [two * (x * z - w * y), two * (y * z + w * x), T::one() - two * (x * x + y * y)],
+        ];
+        let entry = |a: usize, b: usize| {
+            r[a][0] * inverse[0] * r[b][0] + r[a][1] * inverse[1] * r[b][1] + r[a][2] * inverse[2] * r[b][2]
+        };
+        let (xx, xy, xz, yy, yz, zz) =
+            (entry(0, 0), entry(0, 1), entry(0, 2), entry(1, 1), entry(1, 2), entry(2, 2));
+        Self([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+    }
+
+    /// `I_w^-1 a`.
+    #[inline]
+    #[must_use]
+    pub(super) fn times(&self, a: &Vector<T>) -> Vector<T> {
+        self.0.map(|row| dot(&row, a))
+    }
+}
+
 /// `I_w a`: the body's inertia in the world frame (orientation `q`) applied to `a`.
 #[must_use]
 pub(super) fn inertia_times<T: Real>(body: &Body<T>, q: &Quaternion<T>, a: &Vector<T>) -> Vector<T> {
@@ -136,14 +176,43 @@ pub(super) fn advanced<T: Real>(a: &Vector<T>, h: T, rate: &Vector<T>) -> Vector
     add(a, &scale(h, rate))
 }
 
-/// A body the contacts push: its inertia, its orientation at the step's start, and its inverse
-/// mass per unit of the reference mass (`m0 / m`; 1 for the reference body itself).
+/// A body the contacts push: its inertia, its inverse in the world frame at the step's start, and
+/// its inverse mass per unit of the reference mass (`m0 / m`; 1 for the reference body itself).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Frame<'a, T> {
     pub body: &'a Body<T>,
-    pub orientation: &'a Quaternion<T>,
+    /// Its `I_w^-1` at the step's start.
+    pub inverse_inertia: InverseInertia<T>,
     pub inverse_mass: T,
 }
 
 /// Each body's velocity and angular velocity, world axes.
 pub(super) type Motion<T, const B: usize> = [(Vector<T>, Vector<T>); B];
+
+#[cfg(test)]
+mod tests {
+    use super::super::algebra::{about, norm, sub};
+    use super::{Body, InverseInertia, inertia_times, inverse_inertia_times};
+
+    #[test]
+    fn the_world_inverse_inertia_undoes_the_inertia_at_any_orientation() {
+        let body = Body::cuboid(2.0_f64, 0.3, 0.7, 1.1);
+        let a = [0.4, -1.3, 2.2];
+        for k in 0..12 {
+            let angle = 0.55 * f64::from(k);
+            let axis = [angle.cos() * 0.6, angle.sin() * 0.6, 0.8];
+            let q = about(&axis, 1.7 * angle);
+            let x = InverseInertia::new(&body, &q).times(&a);
+            // `I_w (I_w^-1 a) = a`, and the quaternion's own product, to round-off.
+            let back = inertia_times(&body, &q, &x);
+            assert!(norm(&sub(&back, &a)) <= 1e-13 * norm(&a), "{k}: {back:?}");
+            let turned = inverse_inertia_times(&body, &q, &a);
+            assert!(norm(&sub(&turned, &x)) <= 1e-13 * norm(&x), "{k}: {turned:?} {x:?}");
+        }
+        // Equal moments: `a / I` exactly, whatever the orientation.
+        let ball = Body::sphere(0.17_f64, 0.028);
+        let x = InverseInertia::new(&ball, &about(&[0.0, 0.6, 0.8], 0.9)).times(&a);
+        let exact = a.map(|c| c * (1.0 / ball.inertia[0]));
+        assert_eq!(x.map(f64::to_bits), exact.map(f64::to_bits), "{x:?}");
+    }
+}

@@ -15,6 +15,11 @@ use crate::real::{Real, max, min};
 /// restarts then.
 const RESTART_EVERY: u32 = 4;
 
+/// A contact's first line is its free slip's direction when that slip exceeds this many times
+/// the step's round-off (its direction then known to about `1 / FREE_LINE` rad), else its rest
+/// line where it has one ([`Touch::rest_line`]): a slip within a few round-offs points anywhere.
+const FREE_LINE: f64 = 16.0;
+
 /// The projected Gauss-Seidel sweeps of a restart ([`Contacts::restart`]).
 const RESTART_SWEEPS: u32 = 256;
 
@@ -32,8 +37,9 @@ pub(super) struct Touch<T> {
     /// The velocity of the support's material at the point (zero on a fixed plane; a moving
     /// finger's): slips are the body point's velocity less this.
     pub carried: Vector<T>,
-    /// The friction line to start from when the free slip is within the step's round-off
-    /// (`None`: the free slip's direction whatever its size, or the plane's `perpendicular`).
+    /// The friction line to start from when the free slip is within [`FREE_LINE`] times the
+    /// step's round-off (`None`: the free slip's direction whatever its size, or the plane's
+    /// `perpendicular`).
     pub rest_line: Option<Vector<T>>,
     /// Its friction coefficient this step.
     pub mu: T,
@@ -107,7 +113,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         let zero = [T::zero(); 3];
         let mut lines = self.touches.map(|c| Line {
             d: match c.rest_line {
-                Some(d) if norm(&c.slip_free) <= self.slip_tolerance => d,
+                Some(d) if norm(&c.slip_free) <= T::of(FREE_LINE) * self.slip_tolerance => d,
                 _ => direction(&c.slip_free).unwrap_or_else(|| perpendicular(&c.normal)),
             },
         });
@@ -303,7 +309,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The LCP of the contacts' lines: per contact the rows of `p_n`, `p_+d`, `p_-d` and
     /// `sigma`; a contact beyond the margin's rows `w = z + 1` (its impulse zero). Each entry is
     /// [`Self::delassus`]'s, its two factors computed once a contact and direction (`r x e` and
-    /// `I_w^-1 (r x f)`: `6 K` turns, not `4 K^2`), in place in the problem's matrix.
+    /// `I_w^-1 (r x f)`: `2 K` products with `I_w^-1`, not `4 K^2`), in place in the problem's matrix.
     ///
     /// Written in place in `lcp`, which starts zero: which entries are written depends on which
     /// contacts are active alone, so the lines' next try writes the same entries again and the

@@ -41,7 +41,6 @@
 //! with its vertex load.
 
 use super::algebra::{Vector, add, cross, direction, dot, norm, perpendicular, scale, sub};
-use super::body::inverse_inertia_times;
 use super::friction::{Contacts, Solved, Touch, pad, put, put_in, solved};
 use super::report::SpatialContactReport;
 use crate::StepError;
@@ -275,11 +274,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
                 if !touching[i] {
                     return [zero; 3];
                 }
-                let turn = inverse_inertia_times(
-                    self.body(),
-                    self.orientation(),
-                    &cross(&self.touches[i].arm, &e[i]),
-                );
+                let turn = self.inverse_inertia().times(&cross(&self.touches[i].arm, &e[i]));
                 out_of_plane(&e[i], &scale(self.body().mass, &turn))
             });
             let Some((x, held)) = self.held_load(
@@ -424,12 +419,7 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
     /// (`lambda >= 0` by bisection: the slip after is `-lambda` times the friction).
     fn pivot_friction(&self, c: &Touch<T>, slip: &Vector<T>, limit: T, axes: [Vector<T>; 2]) -> Vector<T> {
         // `D_ab = t_a . t_b + m (r x t_a) . I_w^-1 (r x t_b)` (`Self::delassus`), each turn once.
-        let turn = axes.map(|t| {
-            scale(
-                self.body().mass,
-                &inverse_inertia_times(self.body(), self.orientation(), &cross(&c.arm, &t)),
-            )
-        });
+        let turn = axes.map(|t| scale(self.body().mass, &self.inverse_inertia().times(&cross(&c.arm, &t))));
         let delassus: [[T; 2]; 2] = core::array::from_fn(|a| {
             core::array::from_fn(|b| dot(&axes[a], &axes[b]) + dot(&cross(&c.arm, &axes[a]), &turn[b]))
         });

@@ -17,7 +17,9 @@
 //! 3. **Friction along the slip.** Coulomb's law in space: `|p_t| <= mu p_n`, and a sliding
 //!    contact's friction opposes its slip, `p_t = -mu p_n s / |s|` (`s` the slip after the step).
 //!    A polyhedral cone (`k` fixed directions) bends a sliding body's path toward them; here each
-//!    contact keeps one friction line `d`, chosen along its slip, and the paper's LCP in the
+//!    contact keeps one friction line `d`, chosen along its slip (its free slip's direction; one
+//!    within 16 times the step's round-off points anywhere, and a support's line then starts along
+//!    the body's axis), and the paper's LCP in the
 //!    unknowns `(p_n, p_+d, p_-d, sigma)` of every contact in turn (`N = 4 K`), one contact's
 //!    block (the blocks between contacts are the same with `W_ij`, and zero in `sigma`):
 //!

@@ -18,8 +18,8 @@
 //! sum has one term: the one-body operator of `super`'s module docs (2), which one body's paths
 //! compute as they did (`B == 1`, folded at compile time: the same operations in the same order).
 
-use super::algebra::{Quaternion, Vector, add, cross, dot, scale, sub};
-use super::body::{Body, Motion, inverse_inertia_times};
+use super::algebra::{Vector, add, cross, dot, scale, sub};
+use super::body::{Body, InverseInertia, Motion};
 use super::friction::{Contacts, System, Touch, put_row, solved};
 use crate::real::Real;
 
@@ -39,12 +39,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         let side = |body: usize, pushed: bool, arm: &Vector<T>| {
             let frame = self.bodies.get(body)?;
             let lever = cross(arm, e);
-            Some(Side {
-                body,
-                pushed,
-                lever,
-                turn: inverse_inertia_times(frame.body, frame.orientation, &lever),
-            })
+            Some(Side { body, pushed, lever, turn: frame.inverse_inertia.times(&lever) })
         };
         if B == 1 {
             return [side(0, true, &c.arm), None];
@@ -180,7 +175,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 push = add(&push, p);
                 twist = add(&twist, &cross(&c.arm, p));
             }
-            let turn = inverse_inertia_times(frame.body, frame.orientation, &twist);
+            let turn = frame.inverse_inertia.times(&twist);
             let mut motion = *free;
             if let Some((v, w)) = motion.first_mut() {
                 (*v, *w) = (add(v, &push), add(w, &scale(self.mass, &turn)));
@@ -202,7 +197,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         }
         let mut motion = *free;
         for (((frame, (v, w)), push), twist) in self.bodies.iter().zip(&mut motion).zip(&push).zip(&twist) {
-            let turn = inverse_inertia_times(frame.body, frame.orientation, twist);
+            let turn = frame.inverse_inertia.times(twist);
             (*v, *w) = (add(v, &scale(frame.inverse_mass, push)), add(w, &scale(self.mass, &turn)));
         }
         motion
@@ -212,14 +207,14 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     pub(super) fn push(&self, motion: &mut Motion<T, B>, c: &Touch<T>, change: &Vector<T>) {
         if let (1, Some(frame), Some((v, w))) = (B, self.bodies.first(), motion.first_mut()) {
             *v = add(v, change);
-            let turn = inverse_inertia_times(frame.body, frame.orientation, &cross(&c.arm, change));
+            let turn = frame.inverse_inertia.times(&cross(&c.arm, change));
             *w = add(w, &scale(self.mass, &turn));
             return;
         }
         let mut apply = |body: usize, arm: &Vector<T>, change: &Vector<T>| {
             if let (Some(frame), Some((v, w))) = (self.bodies.get(body), motion.get_mut(body)) {
                 *v = add(v, &scale(frame.inverse_mass, change));
-                let turn = inverse_inertia_times(frame.body, frame.orientation, &cross(arm, change));
+                let turn = frame.inverse_inertia.times(&cross(arm, change));
                 *w = add(w, &scale(self.mass, &turn));
             }
         };
@@ -237,10 +232,10 @@ impl<T: Real, const K: usize> Contacts<'_, T, K> {
         frame.body
     }
 
-    /// The one body's orientation at the step's start.
-    pub(super) fn orientation(&self) -> &Quaternion<T> {
+    /// The one body's `I_w^-1` at the step's start.
+    pub(super) fn inverse_inertia(&self) -> &InverseInertia<T> {
         let [frame] = &self.bodies;
-        frame.orientation
+        &frame.inverse_inertia
     }
 
     /// The body's velocity and angular velocity after each active contact's impulse `p` (per unit

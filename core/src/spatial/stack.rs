@@ -33,7 +33,7 @@
 //! reference's; at heading 0 the planar engine's stack to `4.4e-14`. In f32 the same outcomes.
 
 use super::algebra::{Vector, add, cross, dot, finite, norm, normalized, scale, sub};
-use super::body::{Body, Frame, Motion, State, advanced};
+use super::body::{Body, Frame, InverseInertia, Motion, State, advanced};
 use super::face_patch::{Beneath, FaceContact, face_patch};
 use super::friction::{Contacts, Touch};
 use super::report::{Mode, SpatialContactReport};
@@ -278,7 +278,7 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
             let contacts = Contacts {
                 bodies: self.states.each_ref().map(|st| Frame {
                     body: &self.body,
-                    orientation: &st.orientation,
+                    inverse_inertia: InverseInertia::new(&self.body, &st.orientation),
                     inverse_mass: T::one(),
                 }),
                 mass: self.body.mass,

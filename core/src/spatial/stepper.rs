@@ -2,7 +2,9 @@
 //! `super`'s module docs (the contacts' impulses: `super::friction`).
 
 use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub};
-use super::body::{Body, Frame, Motion, State, advanced, inertia_times, inverse_inertia_times, turned};
+use super::body::{
+    Body, Frame, InverseInertia, Motion, State, advanced, inertia_times, inverse_inertia_times, turned,
+};
 use super::friction::{Contacts, Touch};
 use super::load::{LOAD_TRIES, PATIENT_TRIES};
 use super::report::{Mode, SpatialContactReport, SpatialStepReport};
@@ -424,7 +426,11 @@ impl<T: Real, const N: usize> Solve<T, N> {
         let mut pivots = 0;
         let (contacts, v, w) = if touches.iter().any(|c: &Touch<T>| c.active) {
             let contacts = Contacts {
-                bodies: [Frame { body, orientation: &st.orientation, inverse_mass: T::one() }],
+                bodies: [Frame {
+                    body,
+                    inverse_inertia: InverseInertia::new(body, &st.orientation),
+                    inverse_mass: T::one(),
+                }],
                 mass: body.mass,
                 normal: n,
                 touches,

@@ -296,26 +296,28 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         let v_free = advanced(&st.velocity, h, &s.gravity);
         let w_free = st.angular_velocity;
         let position_size = st.position.iter().fold(T::zero(), |a, x| a + x.abs_exact());
-        // A support at rest on the body starts its friction along the body's axis (the face's
-        // length): a free slip within round-off has no direction of its own.
+        // A support whose free slip is too small to say its direction starts its friction along
+        // the body's axis (the face's length).
         let axis = rotate(&st.orientation, &[T::one(), T::zero(), T::zero()]);
         let (mut speed, mut terms) = (T::zero(), T::zero());
         let (v_size, w_size) = (norm(&v_free), norm(&w_free));
         let mut finite = true;
-        let touches = core::array::from_fn(|i| {
-            let Some(support) = supports[i] else {
-                return Touch {
-                    active: false,
-                    arm: [T::zero(); 3],
-                    normal_free: T::zero(),
-                    slip_free: [T::zero(); 3],
-                    carried: [T::zero(); 3],
-                    rest_line: None,
-                    mu: T::zero(),
-                    normal: n,
-                    body: 0,
-                    beneath: None,
-                };
+        // Written in place (an array built by a closure is copied out).
+        let mut touches = [Touch {
+            active: false,
+            arm: [T::zero(); 3],
+            normal_free: T::zero(),
+            slip_free: [T::zero(); 3],
+            carried: [T::zero(); 3],
+            rest_line: None,
+            mu: T::zero(),
+            normal: n,
+            body: 0,
+            beneath: None,
+        }; K];
+        for ((touch, support), &mode) in touches.iter_mut().zip(supports).zip(&self.modes) {
+            let Some(support) = support else {
+                continue;
             };
             finite &= super::algebra::finite(&support.position) && super::algebra::finite(&support.velocity);
             let FaceTouch { lever: r, gap, under } = self.touch(&support.position);
@@ -325,8 +327,8 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
             // The slip is summed from `v~`, `omega~ x r` and the support's velocity: its round-off
             // is of their sizes (as on a plane, `super::stepper`).
             terms = max(terms, v_size + w_size * norm(&r) + norm(&support.velocity));
-            let mu = if self.modes[i] == Mode::Sliding { self.mu[1] } else { self.mu[0] };
-            Touch {
+            let mu = if mode == Mode::Sliding { self.mu[1] } else { self.mu[0] };
+            *touch = Touch {
                 active: under && gap <= s.margin,
                 arm: r,
                 normal_free: dot(&n, &u_free) + normal_bias(gap, h, norm(&s.gravity), round_off),
@@ -337,8 +339,8 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
                 normal: n,
                 body: 0,
                 beneath: None,
-            }
-        });
+            };
+        }
         if !finite {
             return Err(StepError::NonFinite);
         }

@@ -425,15 +425,20 @@ impl<T: Real> MeterStick3d<T> {
         // The contacts' geometry is the step's start's: the rod's state and the fingers' places
         // then (the last step's crossings), each moving at its velocity over the step (as the
         // planar stepper's frames).
-        let mut supports = self.crossings;
-        if velocity != self.velocity {
+        let moving;
+        let supports = if velocity == self.velocity {
+            &self.crossings
+        } else {
+            let mut supports = self.crossings;
             for (support, (finger, _)) in supports.iter_mut().zip(FINGER_OF) {
                 if let (Some(point), Some(&v)) = (support.as_mut(), velocity.get(finger)) {
                     point.velocity = along_path(self.path, v);
                 }
             }
-        }
-        let report = match self.stepper.step(&supports) {
+            moving = supports;
+            &moving
+        };
+        let report = match self.stepper.step(supports) {
             Ok(report) => report,
             Err(e) => {
                 self.outcome = Some(Outcome::Failed(e));
@@ -457,20 +462,14 @@ impl<T: Real> MeterStick3d<T> {
         self.modes = modes;
         self.crossings =
             Self::fingers_at(self.stepper.face(), self.stepper.state(), self.path, &tips, velocity);
-        let after = self.crossings;
-        self.judge(stopped, &after, &report);
+        self.judge(stopped, &report);
         Some(report)
     }
 
-    /// The outcome rules (module docs) on the state after a step.
-    fn judge(
-        &mut self,
-        stopped: bool,
-        supports: &[Option<SupportPoint<T>>; ROD_POINTS],
-        report: &SpatialStepReport<T, ROD_POINTS>,
-    ) {
+    /// The outcome rules (module docs) on the state after a step (its crossings `self.crossings`).
+    fn judge(&mut self, stopped: bool, report: &SpatialStepReport<T, ROD_POINTS>) {
         let p = &self.params;
-        let (along, under) = self.along(supports);
+        let (along, under) = self.along(&self.crossings);
         let time = report.time;
         if self.meeting.is_none() && stopped {
             self.meeting = Some(Meeting { time, com_offset: -(along[0] + along[1]) / T::of(2.0) });
