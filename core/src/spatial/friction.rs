@@ -52,6 +52,26 @@ pub(super) struct Touch<T> {
     pub beneath: Option<(usize, Vector<T>)>,
 }
 
+impl<T: Real> Touch<T> {
+    /// A slot that touches nothing this step (its plane's unit normal `normal`): inactive, every
+    /// velocity zero, no rest line, pushing body 0.
+    pub(super) fn idle(normal: Vector<T>) -> Self {
+        let zero = [T::zero(); 3];
+        Self {
+            active: false,
+            arm: zero,
+            normal_free: T::zero(),
+            slip_free: zero,
+            carried: zero,
+            rest_line: None,
+            mu: T::zero(),
+            normal,
+            body: 0,
+            beneath: None,
+        }
+    }
+}
+
 /// The turn's linear system ([`Contacts::turn`]): per row its contact, the direction of its
 /// condition, its residual and its term on its own unknown; per unknown its contact and which of
 /// the contact's unknowns it is; per contact and unknown, the impulse's change per unit of the

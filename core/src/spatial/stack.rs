@@ -198,19 +198,7 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
     fn gather(&self, free: &Motion<T, B>) -> Result<Gathered<T, K>, StepError> {
         let s = &self.settings;
         let zero = [T::zero(); 3];
-        let idle = Touch {
-            active: false,
-            arm: zero,
-            normal_free: T::zero(),
-            slip_free: zero,
-            carried: zero,
-            rest_line: None,
-            mu: T::zero(),
-            normal: [T::zero(), T::zero(), T::one()],
-            body: 0,
-            beneath: None,
-        };
-        let mut touches = [idle; K];
+        let mut touches = [Touch::idle([T::zero(), T::zero(), T::one()]); K];
         let mut points = [None; K];
         let (mut speed, mut terms, mut slot) = (T::zero(), T::zero(), 0usize);
         let gravity = norm(&s.gravity);

@@ -303,18 +303,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
         let (v_size, w_size) = (norm(&v_free), norm(&w_free));
         let mut finite = true;
         // Written in place (an array built by a closure is copied out).
-        let mut touches = [Touch {
-            active: false,
-            arm: [T::zero(); 3],
-            normal_free: T::zero(),
-            slip_free: [T::zero(); 3],
-            carried: [T::zero(); 3],
-            rest_line: None,
-            mu: T::zero(),
-            normal: n,
-            body: 0,
-            beneath: None,
-        }; K];
+        let mut touches = [Touch::idle(n); K];
         for ((touch, support), &mode) in touches.iter_mut().zip(supports).zip(&self.modes) {
             let Some(support) = support else {
                 continue;
