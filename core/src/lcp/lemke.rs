@@ -563,7 +563,21 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         basis: Basis<N, WORDS>,
         slack: impl Fn(usize) -> T,
     ) -> Result<LcpSolution<T, N, WORDS>, SVector<T, N>> {
-        let w = lcp.w_of(z);
+        self.accept_with_w(scales, z, lcp.w_of(z), basis, slack)
+    }
+
+    /// [`Self::accept_scaled`] with `w = M z + q` computed by the caller from its problem's
+    /// structure (the spatial stepper's one body: `w` from the body's velocity change, never
+    /// forming `M`) and `scales` whose `m_norm` is at most `||M||_inf` (a lower bound makes the
+    /// check at least as strict).
+    pub(crate) fn accept_with_w(
+        &self,
+        scales: &Scales<T>,
+        z: &SVector<T, N>,
+        w: SVector<T, N>,
+        basis: Basis<N, WORDS>,
+        slack: impl Fn(usize) -> T,
+    ) -> Result<LcpSolution<T, N, WORDS>, SVector<T, N>> {
         let mut feasible = true;
         for i in 0..N {
             feasible &= z[i] >= T::zero() && (basis.is_z_basic(i) || w[i] >= T::zero() || w[i] >= -slack(i));

@@ -11,7 +11,8 @@
 //! `4 K`: on the meter stick's pad and point, five or six where it had up to twelve), and Lemke's
 //! verification ([`Lemke::accept`]) judges it on the whole problem as it judges its own warm answer
 //! ([`Lemke::solve_warm`]), but for the rows zero in exact arithmetic, which may miss zero by the
-//! step's velocity round-off ([`Contacts::slack`]). For one body, a basis whose answer this check
+//! step's velocity round-off ([`Contacts::slack`]), and, for one body, for `||M||_inf`, bounded
+//! below from the contacts' own blocks (`Contacts::scales`: the check at least as strict). For one body, a basis whose answer this check
 //! refuses is followed by the modes the answer says come next ([`Contacts::switched`]), each solved
 //! and verified the same way, up to [`MODE_SWITCHES`] times; a switched basis whose system is
 //! singular (points that stopped sliding together leave a force between them open) is tried with
@@ -24,8 +25,8 @@ use nalgebra::SVector;
 use super::friction::Contacts;
 use crate::StepError;
 use crate::lcp::elimination::solve_leading;
-use crate::lcp::{Basis, Lcp, LcpSolution, Lemke};
-use crate::real::{Real, max};
+use crate::lcp::{Basis, Lcp, LcpSolution, Lemke, Scales};
+use crate::real::{Real, max, min};
 
 /// One unknown of a basis' reduced system: the variables of `z` it moves, each by a factor, and how
 /// many of them there are (one to three).
@@ -72,7 +73,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         // The basis before the last switch; a switched basis whose system was singular and the
         // next contact to try at its cone's edge ([`Self::at_edge`]).
         let (mut before, mut edge) = (basis, None);
-        let scales = lcp.scales();
+        // One body's scales from its contacts' blocks (a lower bound of `||M||`, [`Self::scales`]:
+        // a twelfth of the reads); several bodies' from the whole problem (their open loads'
+        // answers are held to its norm).
+        let scales = if B == 1 { Some(self.scales(lcp)) } else { lcp.scales() };
         let lemke = loop {
             let reduced = if K > 1 { self.basis_solution(lcp, tried) } else { None };
             // Data that are not finite: Lemke's method names them.
@@ -92,7 +96,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                     solver.solve_from_basis(lcp, basis)
                 };
             };
-            let w = match solver.accept_scaled(lcp, scales, &z, own, |i| self.slack(tied, i)) {
+            let w = match solver.accept_with_w(scales, &z, lcp.w_of(&z), own, |i| self.slack(tied, i)) {
                 Ok(sol) => return Ok(sol),
                 Err(w) => w,
             };
@@ -118,6 +122,36 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             Err(e) if K > 1 && B > 1 => Self::open_load(solver, lcp).ok_or(StepError::Solver(e)),
             Err(e) => Err(StepError::Solver(e)),
         }
+    }
+
+    /// The scales a basis' answer is verified on ([`Lemke::accept_with_w`]) for one body, from
+    /// the contacts' own blocks of `lcp` alone: `||M||_inf` bounded below by the largest row sum
+    /// within them (`|W_nn|` for a normal row, `2 |W_dd| + 1` for a friction row, `mu + 2` for a
+    /// `sigma` row, `1` for a padding row or an inactive contact's: every row's sum over all of
+    /// `M` is at least that), which makes the check at least as strict as on the whole problem's
+    /// norm; `||q||_inf` and `min q` exact. Data that are not finite make `w` so, which the
+    /// residual refuses: Lemke's method then names them.
+    fn scales<const N: usize>(&self, lcp: &Lcp<T, N>) -> Scales<T> {
+        let (zero, one, two) = (T::zero(), T::one(), T::of(2.0));
+        let entry = |r: usize| lcp.m.get((r, r)).copied().unwrap_or(zero).abs_exact();
+        let mut m_norm = if N > 4 * K { one } else { zero };
+        for (i, c) in self.touches.iter().enumerate() {
+            let b = 4 * i;
+            m_norm = if c.active {
+                max(m_norm, max(entry(b), max(two * entry(b + 1) + one, c.mu.abs_exact() + two)))
+            } else {
+                max(m_norm, one)
+            };
+        }
+        let (mut q_norm, mut q_min) = (zero, lcp.q[0]);
+        for i in 0..N {
+            let q = lcp.q[i];
+            q_norm = max(q_norm, q.abs_exact());
+            q_min = min(q_min, q);
+        }
+        // The bound's claim, checked wherever debug assertions are on (every test's run).
+        debug_assert!(!(m_norm > lcp.m_norm_inf()), "{m_norm:?} above ||M||");
+        Scales { m_norm, q_norm, q_min }
     }
 
     /// The basis of the modes `basis`' answer `(z, w)` says the contacts switch to: a contact's
