@@ -566,10 +566,10 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         self.accept_with_w(scales, z, lcp.w_of(z), basis, slack)
     }
 
-    /// [`Self::accept_scaled`] with `w = M z + q` computed by the caller from its problem's
-    /// structure (the spatial stepper's one body: `w` from the body's velocity change, never
-    /// forming `M`) and `scales` whose `m_norm` is at most `||M||_inf` (a lower bound makes the
-    /// check at least as strict).
+    /// [`Self::accept_scaled`] with `w = M z + q` computed by the caller, on `scales` whose
+    /// `m_norm` may be a lower bound of `||M||_inf` (the check is then at least as strict: the
+    /// spatial stepper's one body bounds it from its contacts' own blocks, a pass over `M`
+    /// fewer a try).
     pub(crate) fn accept_with_w(
         &self,
         scales: &Scales<T>,

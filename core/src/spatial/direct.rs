@@ -12,8 +12,9 @@
 //! verification ([`Lemke::accept`]) judges it on the whole problem as it judges its own warm answer
 //! ([`Lemke::solve_warm`]), but for the rows zero in exact arithmetic, which may miss zero by the
 //! step's velocity round-off ([`Contacts::slack`]), and, for one body, for `||M||_inf`, bounded
-//! below from the contacts' own blocks (`Contacts::scales`: the check at least as strict). For one body, a basis whose answer this check
-//! refuses is followed by the modes the answer says come next ([`Contacts::switched`]), each solved
+//! below from the contacts' own blocks (`Contacts::scales`: the check at least as strict). For one
+//! body, a basis whose answer this check refuses is followed by the modes the answer says come
+//! next ([`Contacts::switched`]), each solved
 //! and verified the same way, up to [`MODE_SWITCHES`] times; a switched basis whose system is
 //! singular (points that stopped sliding together leave a force between them open) is tried with
 //! each of those points in turn back at its cone's edge ([`Contacts::at_edge`]). A basis of any other pattern goes to
@@ -150,7 +151,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             q_min = min(q_min, q);
         }
         // The bound's claim, checked wherever debug assertions are on (every test's run).
-        debug_assert!(!(m_norm > lcp.m_norm_inf()), "{m_norm:?} above ||M||");
+        debug_assert!(
+            m_norm.partial_cmp(&lcp.m_norm_inf()) != Some(core::cmp::Ordering::Greater),
+            "{m_norm:?} above ||M||"
+        );
         Scales { m_norm, q_norm, q_min }
     }
 
