@@ -82,6 +82,7 @@ pub use basis::Basis;
 pub use error::LcpError;
 pub use lemke::{LcpSolution, Lemke, default_max_pivots};
 pub use problem::Lcp;
+#[cfg(feature = "spatial")]
 pub(crate) use problem::Scales;
 pub use verify::{Verification, default_tolerance, is_solution, verify};
 
