@@ -76,6 +76,7 @@ mod error;
 mod lemke;
 mod problem;
 mod rows;
+mod tableau;
 mod verify;
 
 pub use basis::Basis;

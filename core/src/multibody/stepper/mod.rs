@@ -93,7 +93,7 @@ impl<T, const B: usize, const P: usize> System<T, B, P> {
 /// solutions. A singular basis (both corners sticking) is declined by the factored solve; the
 /// regular one in which one corner carries the interface's friction and the other only its
 /// normal is what the first step's guess, the candidates and Lemke's method (with its
-/// lexicographic rule, `core/src/lcp/lemke.rs`) leave, and the warm path keeps it (it is the
+/// lexicographic rule, `core/src/lcp/tableau.rs`) leave, and the warm path keeps it (it is the
 /// next step's warm basis). What is reported is the load of least 2-norm with the step's motion
 /// (`docs/formulation.md`, "The load: the least norm"; each corner's share in
 /// [`SystemStepReport::corner_loads`], their sum per pair in [`SystemStepReport::interface_forces`]). Where
