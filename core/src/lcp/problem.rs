@@ -125,4 +125,25 @@ impl<T: Real, const N: usize> Lcp<T, N> {
         }
         w
     }
+
+    /// [`Self::w_of`] with the terms of `z`'s zero entries left out, the others added in the
+    /// same order: the same `w` but for the sign of a zero `w_i` and for a non-finite `M_ij`
+    /// against a zero `z_j` (whose `0 M_ij` is a NaN there), for a `z` with few entries not zero
+    /// (a basis' answer: one column read for each) from data whose finiteness the caller knows
+    /// otherwise.
+    #[cfg(feature = "spatial")]
+    #[must_use]
+    #[inline]
+    pub(crate) fn w_of_sparse(&self, z: &SVector<T, N>) -> SVector<T, N> {
+        let mut w = self.q;
+        for (column, &zj) in self.m.as_slice().chunks_exact(N).zip(z.as_slice()) {
+            if zj == T::zero() {
+                continue;
+            }
+            for (wi, &m) in w.as_mut_slice().iter_mut().zip(column) {
+                *wi += m * zj;
+            }
+        }
+        w
+    }
 }

@@ -336,3 +336,24 @@ fn sets_of_60_rows_match_a_set_of_booleans() {
         assert_eq!(rows.first(), model.iter().position(|&b| b).unwrap_or(N - 1));
     }
 }
+
+/// `w` summed over `z`'s entries that are not zero is `w` summed over all of them, entry for entry
+/// (a zero of either sign equal), on a problem whose columns against a zero `z_j` are not zero.
+#[cfg(feature = "spatial")]
+#[test]
+#[allow(clippy::float_cmp)] // the point of it: the same sums, to the bit
+fn sparse_w_is_the_whole_sum() {
+    let m = [[4.0, -1.0, 0.5, 2.0], [-1.0, 3.0, -0.25, 1.0], [0.5, -0.25, 2.0, -3.0], [2.0, 1.0, -3.0, 5.0]];
+    let lcp = Lcp::from_rows(&m, &[-1.0, 0.5, -0.125, 3.0]);
+    for z in [
+        [0.0, 0.0, 0.0, 0.0],
+        [0.7, 0.0, 0.0, 0.0],
+        [0.0, 1.3, 0.0, 0.2],
+        [0.3, 0.0, 2.5, 0.0],
+        [1.0, 2.0, 3.0, 4.0],
+    ] {
+        let z = SVector::from(z);
+        let (sparse, whole) = (lcp.w_of_sparse(&z), lcp.w_of(&z));
+        assert!(sparse.iter().zip(&whole).all(|(a, b)| a == b), "{sparse:?} against {whole:?}");
+    }
+}

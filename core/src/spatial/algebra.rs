@@ -101,6 +101,48 @@ pub fn rotate<T: Real>(q: &Quaternion<T>, v: &Vector<T>) -> Vector<T> {
     add(&add(v, &scale(q[0], &t)), &cross(&u, &t))
 }
 
+/// The matrix `R` of a unit quaternion's rotation (body axes to world axes), row by row: built
+/// once for several turns by one orientation, each then nine products (`R v`, `R^T v`) where
+/// [`rotate`] takes two cross products, and its columns, the body's axes in the world, free.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Rotation<T>(pub(crate) [[T; 3]; 3]);
+
+impl<T: Real> Rotation<T> {
+    /// The rotation `q` (unit).
+    #[must_use]
+    pub(crate) fn of(q: &Quaternion<T>) -> Self {
+        let (one, two) = (T::one(), T::of(2.0));
+        let [w, x, y, z] = *q;
+        Self([
+            [one - two * (y * y + z * z), two * (x * y - w * z), two * (x * z + w * y)],
+            [two * (x * y + w * z), one - two * (x * x + z * z), two * (y * z - w * x)],
+            [two * (x * z - w * y), two * (y * z + w * x), one - two * (x * x + y * y)],
+        ])
+    }
+
+    /// `R v`: `v` in the body's frame turned into the world's.
+    #[inline]
+    #[must_use]
+    pub(crate) fn apply(&self, v: &Vector<T>) -> Vector<T> {
+        self.0.map(|row| dot(&row, v))
+    }
+
+    /// `R^T v`: `v` in the world's frame turned into the body's.
+    #[inline]
+    #[must_use]
+    pub(crate) fn unapply(&self, v: &Vector<T>) -> Vector<T> {
+        let r = &self.0;
+        core::array::from_fn(|i| r[0][i] * v[0] + r[1][i] * v[1] + r[2][i] * v[2])
+    }
+
+    /// The body's axis `i` (0, 1, 2: its x, y, z) in the world: `R`'s column `i`.
+    #[inline]
+    #[must_use]
+    pub(crate) fn axis(&self, i: usize) -> Vector<T> {
+        self.0.map(|row| row.get(i).copied().unwrap_or(T::zero()))
+    }
+}
+
 /// `q* v q`: `v` in the world's frame turned into the body's.
 #[must_use]
 pub fn unrotate<T: Real>(q: &Quaternion<T>, v: &Vector<T>) -> Vector<T> {
@@ -145,5 +187,24 @@ mod tests {
         assert!((y[1] + 1.0).abs() < 1e-15, "{y:?}");
         let p = perpendicular(&[0.0_f64, 0.6, 0.8]);
         assert!(dot(&p, &[0.0, 0.6, 0.8]).abs() < 1e-15 && (norm(&p) - 1.0).abs() < 1e-15);
+    }
+
+    /// The rotation's matrix turns vectors as the quaternion does, both ways, and its columns are
+    /// the body's axes turned, at orientations about several axes.
+    #[test]
+    fn rotation_matrix_agrees_with_the_quaternion() {
+        let v = [0.3, -1.7, 2.2];
+        for (k, axis) in [[0.0, 0.0, 1.0], [0.6, 0.0, 0.8], [1.0, 2.0, -2.0]].iter().enumerate() {
+            let unit = scale(1.0 / norm(axis), axis);
+            let q = mul(&about(&unit, 0.4 + 1.1 * k as f64), &about(&[1.0, 0.0, 0.0], -0.7));
+            let r = Rotation::of(&q);
+            let close = |a: Vector<f64>, b: Vector<f64>| norm(&sub(&a, &b)) < 1e-14;
+            assert!(close(r.apply(&v), rotate(&q, &v)), "{k}: {:?} {:?}", r.apply(&v), rotate(&q, &v));
+            assert!(close(r.unapply(&v), unrotate(&q, &v)), "{k}");
+            for (i, e) in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].iter().enumerate() {
+                assert!(close(r.axis(i), rotate(&q, e)), "{k}, axis {i}");
+            }
+            assert!(close(r.unapply(&r.apply(&v)), v), "{k}");
+        }
     }
 }

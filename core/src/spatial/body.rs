@@ -1,7 +1,7 @@
 //! A rigid body with six degrees of freedom: its mass and principal moments, its state, and the
 //! inertia in the world frame, the turn of a step.
 
-use super::algebra::{Quaternion, Vector, add, dot, finite, normalized, rotate, scale, unrotate};
+use super::algebra::{Quaternion, Rotation, Vector, add, dot, finite, normalized, rotate, scale, unrotate};
 use crate::ParamError;
 use crate::real::Real;
 
@@ -121,19 +121,13 @@ impl<T: Real> InverseInertia<T> {
     /// `body`'s at the orientation `q` (a unit quaternion).
     #[must_use]
     pub(super) fn new(body: &Body<T>, q: &Quaternion<T>) -> Self {
-        let (o, two) = (T::zero(), T::of(2.0));
+        let o = T::zero();
         let inverse = body.inertia.map(|i| T::one() / i);
         let [ia, ib, ic] = inverse;
         if ia == ib && ib == ic {
             return Self([[ia, o, o], [o, ia, o], [o, o, ia]]);
         }
-        let [w, x, y, z] = *q;
-        // The rotation's matrix `R` (body axes to world axes), row by row.
-        let r = [
-            [T::one() - two * (y * y + z * z), two * (x * y - w * z), two * (x * z + w * y)],
-            [two * (x * y + w * z), T::one() - two * (x * x + z * z), two * (y * z - w * x)],
-            [two * (x * z - w * y), two * (y * z + w * x), T::one() - two * (x * x + y * y)],
-        ];
+        let Rotation(r) = Rotation::of(q);
         let entry = |a: usize, b: usize| {
             r[a][0] * inverse[0] * r[b][0] + r[a][1] * inverse[1] * r[b][1] + r[a][2] * inverse[2] * r[b][2]
         };

@@ -97,7 +97,8 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                     solver.solve_from_basis(lcp, basis)
                 };
             };
-            let w = match solver.accept_with_w(scales, &z, lcp.w_of(&z), own, |i| self.slack(tied, i)) {
+            let w = match solver.accept_with_w(scales, &z, lcp.w_of_sparse(&z), own, |i| self.slack(tied, i))
+            {
                 Ok(sol) => return Ok(sol),
                 Err(w) => w,
             };
@@ -130,8 +131,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// within them (`|W_nn|` for a normal row, `2 |W_dd| + 1` for a friction row, `mu + 2` for a
     /// `sigma` row, `1` for a padding row or an inactive contact's: every row's sum over all of
     /// `M` is at least that), which makes the check at least as strict as on the whole problem's
-    /// norm; `||q||_inf` and `min q` exact. Data that are not finite make `w` so, which the
-    /// residual refuses: Lemke's method then names them.
+    /// norm; `||q||_inf` and `min q` exact. Data that are not finite where the answer's `w` reads
+    /// them (`q`, and `M`'s columns of the answer's non-zero `z`: [`Lcp::w_of_sparse`]) make `w`
+    /// so, which the residual refuses, and Lemke's method then names them; a contact's other
+    /// entries are of its arm, normal and line, which its rows of `q` are of too.
     fn scales<const N: usize>(&self, lcp: &Lcp<T, N>) -> Scales<T> {
         let (zero, one, two) = (T::zero(), T::one(), T::of(2.0));
         let entry = |r: usize| lcp.m.get((r, r)).copied().unwrap_or(zero).abs_exact();
@@ -479,8 +482,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             // Sizes below 8 for one body on up to four points (the boards' scenes) only: elsewhere
             // they would be code for systems that are seldom that small.
             0..=2 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 2>(lcp, unknowns, rows, m)?),
-            3..=4 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 4>(lcp, unknowns, rows, m)?),
-            5..=6 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 6>(lcp, unknowns, rows, m)?),
+            3 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 3>(lcp, unknowns, rows, m)?),
+            4 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 4>(lcp, unknowns, rows, m)?),
+            5 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 5>(lcp, unknowns, rows, m)?),
+            6 if 2 * K <= SMALL_SYSTEM => spread(&Self::reduced::<N, 6>(lcp, unknowns, rows, m)?),
             _ if 2 * K <= SMALL_SYSTEM || m <= SMALL_SYSTEM => {
                 spread(&Self::reduced::<N, SMALL_SYSTEM>(lcp, unknowns, rows, m)?);
             }
@@ -495,6 +500,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// moves, row for row the LCP's row it closes) solved in a `D x D` array: `None` when it is
     /// numerically singular (a pivot within `N eps` of its largest entry) for one body; for
     /// several, its solution of least norm ([`least_norm`]).
+    #[inline(never)]
     fn reduced<const N: usize, const D: usize>(
         lcp: &Lcp<T, N>,
         unknowns: &[Unknown<T>],
@@ -502,15 +508,29 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
         m: usize,
     ) -> Option<[T; D]> {
         let zero = T::zero();
-        let entry = |r: usize, c: usize| lcp.m.get((r, c)).copied().unwrap_or(zero);
-        // The system into `a` and `x`, its largest entry's size returned.
+        // The system into `a` and `x`, its largest entry's size returned: unknown by unknown, its
+        // variables' columns of `M` (storage order) read at the rows, each entry its first
+        // variable's term plus the others' (of a sum from zero, the same but for a zero's sign).
         let system = |a: &mut [[T; D]; D], x: &mut [T; D]| {
+            let columns = lcp.m.as_slice();
+            let column = |v: usize| columns.get(v * N..v * N + N).unwrap_or(&[]);
             let mut largest = zero;
-            for ((a_row, x_k), &row) in a.iter_mut().zip(x.iter_mut()).zip(rows).take(m) {
-                for (slot, u) in a_row.iter_mut().zip(unknowns).take(m) {
-                    *slot = u.0.iter().take(u.1).fold(zero, |acc, &(v, factor)| acc + factor * entry(row, v));
-                    largest = max(largest, slot.abs_exact());
+            for (l, &([(v0, f0), (v1, f1), (v2, f2)], count)) in unknowns.iter().enumerate().take(m) {
+                let (c0, c1, c2) = (column(v0), column(v1), column(v2));
+                for (a_row, &row) in a.iter_mut().zip(rows).take(m) {
+                    let at = |c: &[T]| c.get(row).copied().unwrap_or(zero);
+                    let value = match count {
+                        1 => f0 * at(c0),
+                        2 => f0 * at(c0) + f1 * at(c1),
+                        _ => f0 * at(c0) + f1 * at(c1) + f2 * at(c2),
+                    };
+                    if let Some(slot) = a_row.get_mut(l) {
+                        *slot = value;
+                    }
+                    largest = max(largest, value.abs_exact());
                 }
+            }
+            for (x_k, &row) in x.iter_mut().zip(rows).take(m) {
                 *x_k = -lcp.q.get(row).copied().unwrap_or(zero);
             }
             largest

@@ -156,18 +156,19 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                 }
             }
             let motion = self.moved_all(&full, free);
-            let slip = |c: &Touch<T>| Self::slip_in(&motion, c);
+            // Each contact's slip after the impulses, once a try.
+            let slips: [Vector<T>; K] = core::array::from_fn(|i| Self::slip_in(&motion, &self.touches[i]));
             // After a restart, a contact slipping within the stick speed reads sticking, as its
             // report does: the cone alone holds it (its slip's direction is not asked for).
             let resting: [bool; K] = core::array::from_fn(|i| {
-                restarted && norm(&slip(&self.touches[i])) <= max(self.slip_tolerance, self.stick_speed)
+                restarted && norm(&slips[i]) <= max(self.slip_tolerance, self.stick_speed)
             });
             let held: [bool; K] = core::array::from_fn(|i| {
                 let c = &self.touches[i];
                 // An unloaded contact carries no friction on any line.
                 !c.active
                     || impulses[i].0 <= T::zero()
-                    || dot(&slip(c), &cross(&c.normal, &lines[i].d)).abs_exact() <= self.slip_tolerance
+                    || dot(&slips[i], &cross(&c.normal, &lines[i].d)).abs_exact() <= self.slip_tolerance
                     || resting[i]
             });
             if held.iter().all(|&h| h) {
@@ -179,12 +180,11 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                     if c.active {
                         let (pn, pt) = impulses[i];
                         reports[i] =
-                            self.report(pn, &scale(pt, &lines[i].d), &slip(c), c.mu, (tries, bound, true))?;
+                            self.report(pn, &scale(pt, &lines[i].d), &slips[i], c.mu, (tries, bound, true))?;
                     }
                 }
                 return Ok((reports, motion));
             }
-            let slips: [Vector<T>; K] = core::array::from_fn(|i| slip(&self.touches[i]));
             let worst = self
                 .touches
                 .iter()
@@ -341,7 +341,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             let c = &self.touches[i];
             [self.sides(c, &c.normal), self.sides(c, &lines[i].d)]
         });
-        let mut set = |r: usize, c: usize, v: T| {
+        let set = |lcp: &mut Lcp<T, N>, r: usize, c: usize, v: T| {
             if let Some(e) = lcp.m.get_mut((r, c)) {
                 *e = v;
             }
@@ -350,7 +350,7 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             let b = 4 * i;
             if !ci.active {
                 for k in b..b + 4 {
-                    set(k, k, one);
+                    set(lcp, k, k, one);
                 }
                 continue;
             }
@@ -359,37 +359,49 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
                     continue;
                 }
                 let c = 4 * j;
+                // `W` is symmetric (`e . W f = f . W e`): a block below the diagonal is the
+                // transpose of the one above it, written already, each coupling computed once.
+                if j < i {
+                    for k in 0..3 {
+                        for l in 0..3 {
+                            let v = lcp.m.get((c + l, b + k)).copied().unwrap_or(o);
+                            set(lcp, b + k, c + l, v);
+                        }
+                    }
+                    continue;
+                }
                 let (ni, nj, di, dj) = (&ci.normal, &cj.normal, &li.d, &lj.d);
                 // Two contacts on no common body do not couple: every entry `+0`, as the
                 // coupling's empty sum.
                 let (wnn, wnd, wdn, wdd) = if B == 1 || Self::share_a_body(ci, cj) {
+                    let wnd = self.coupling(sn_i, ni, sd_j, dj);
                     (
                         self.coupling(sn_i, ni, sn_j, nj),
-                        self.coupling(sn_i, ni, sd_j, dj),
-                        self.coupling(sd_i, di, sn_j, nj),
+                        wnd,
+                        if i == j { wnd } else { self.coupling(sd_i, di, sn_j, nj) },
                         self.coupling(sd_i, di, sd_j, dj),
                     )
                 } else {
                     (o, o, o, o)
                 };
-                set(b, c, wnn);
-                set(b, c + 1, wnd);
-                set(b, c + 2, -wnd);
-                set(b + 1, c, wdn);
-                set(b + 1, c + 1, wdd);
-                set(b + 1, c + 2, -wdd);
-                set(b + 2, c, -wdn);
-                set(b + 2, c + 1, -wdd);
-                set(b + 2, c + 2, wdd);
+                set(lcp, b, c, wnn);
+                set(lcp, b, c + 1, wnd);
+                set(lcp, b, c + 2, -wnd);
+                set(lcp, b + 1, c, wdn);
+                set(lcp, b + 1, c + 1, wdd);
+                set(lcp, b + 1, c + 2, -wdd);
+                set(lcp, b + 2, c, -wdn);
+                set(lcp, b + 2, c + 1, -wdd);
+                set(lcp, b + 2, c + 2, wdd);
             }
-            set(b + 1, b + 3, one);
-            set(b + 2, b + 3, one);
-            set(b + 3, b, ci.mu);
-            set(b + 3, b + 1, -one);
-            set(b + 3, b + 2, -one);
+            set(lcp, b + 1, b + 3, one);
+            set(lcp, b + 2, b + 3, one);
+            set(lcp, b + 3, b, ci.mu);
+            set(lcp, b + 3, b + 1, -one);
+            set(lcp, b + 3, b + 2, -one);
         }
         for row in 4 * K..N {
-            set(row, row, one);
+            set(lcp, row, row, one);
         }
         for (i, (ci, li)) in self.touches.iter().zip(lines).enumerate() {
             let b = 4 * i;

@@ -30,7 +30,7 @@
 //!
 //! What the finger's width along the rod decides (how close the fingers come) is the scene's.
 
-use super::algebra::{Vector, add, cross, dot, norm, rotate, scale, sub, unrotate};
+use super::algebra::{Rotation, Vector, add, cross, dot, norm, scale, sub, unrotate};
 use super::body::{Body, State, advanced};
 use super::friction::Touch;
 use super::report::{Mode, SpatialStepReport};
@@ -252,7 +252,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
     /// The face's normal now (unit, world axes): the direction the supports push.
     #[must_use]
     pub fn normal(&self) -> Vector<T> {
-        rotate(&self.state.orientation, &[T::zero(), T::zero(), T::one()])
+        Rotation::of(&self.state.orientation).axis(2)
     }
 
     /// A support point at `p` against the face now: `l = R^T (p - x)`, under the face when
@@ -261,9 +261,14 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
     /// half_thickness`, its contact point `R (l.x, l.y, -half_thickness)`.
     #[must_use]
     pub fn touch(&self, p: &Vector<T>) -> FaceTouch<T> {
+        self.touch_turned(&Rotation::of(&self.state.orientation), p)
+    }
+
+    /// [`Self::touch`] with the body's rotation now, `rotation`, built already.
+    fn touch_turned(&self, rotation: &Rotation<T>, p: &Vector<T>) -> FaceTouch<T> {
         let (st, f) = (&self.state, &self.face);
-        let l = unrotate(&st.orientation, &sub(p, &st.position));
-        let lever = rotate(&st.orientation, &[l[0], l[1], -f.half_thickness]);
+        let l = rotation.unapply(&sub(p, &st.position));
+        let lever = rotation.apply(&[l[0], l[1], -f.half_thickness]);
         let size = st.position.iter().fold(norm(&lever), |a, x| a + x.abs_exact());
         let edge = f.half_width + T::of(16.0) * T::EPS * size;
         FaceTouch {
@@ -292,13 +297,15 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
     ) -> Result<SpatialStepReport<T, K>, StepError> {
         let s = self.settings;
         let (h, st) = (s.step, self.state);
-        let n = self.normal();
+        // The body's rotation, once for the step: its normal and axis, every support's touch.
+        let rotation = Rotation::of(&st.orientation);
+        let n = rotation.axis(2);
         let v_free = advanced(&st.velocity, h, &s.gravity);
         let w_free = st.angular_velocity;
         let position_size = st.position.iter().fold(T::zero(), |a, x| a + x.abs_exact());
         // A support whose free slip is too small to say its direction starts its friction along
         // the body's axis (the face's length).
-        let axis = rotate(&st.orientation, &[T::one(), T::zero(), T::zero()]);
+        let axis = rotation.axis(0);
         let (mut speed, mut terms) = (T::zero(), T::zero());
         let (v_size, w_size) = (norm(&v_free), norm(&w_free));
         let mut finite = true;
@@ -309,7 +316,7 @@ impl<T: Real, const K: usize, const N: usize> SupportedStepper<T, K, N> {
                 continue;
             };
             finite &= super::algebra::finite(&support.position) && super::algebra::finite(&support.velocity);
-            let FaceTouch { lever: r, gap, under } = self.touch(&support.position);
+            let FaceTouch { lever: r, gap, under } = self.touch_turned(&rotation, &support.position);
             let round_off = T::of(4.0) * T::EPS * (position_size + norm(&r));
             let u_free = sub(&add(&v_free, &cross(&w_free, &r)), &support.velocity);
             speed = max(speed, norm(&u_free));
