@@ -329,7 +329,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The LCP of the contacts' lines: per contact the rows of `p_n`, `p_+d`, `p_-d` and
     /// `sigma`; a contact beyond the margin's rows `w = z + 1` (its impulse zero). Each entry is
     /// [`Self::delassus`]'s, its two factors computed once a contact and direction (`r x e` and
-    /// `I_w^-1 (r x f)`: `2 K` products with `I_w^-1`, not `4 K^2`), in place in the problem's matrix.
+    /// `I_w^-1 (r x f)`: `2 K` products with `I_w^-1`, not `4 K^2`), in place in the problem's matrix;
+    /// `W` symmetric, each pair's once (`K (2 K + 1)` couplings, not `4 K^2`), the block below the
+    /// diagonal the transpose of the one above.
     ///
     /// Written in place in `lcp`, which starts zero: which entries are written depends on which
     /// contacts are active alone, so the lines' next try writes the same entries again and the
