@@ -110,7 +110,7 @@ pub(super) fn cases(quick: bool) -> Vec<Case> {
 
     // The stack in three dimensions at 30 deg, as the planar stack's grid: held at 0.98 (still),
     // falling at 1.02; steps from 1e-6 to 0.1 s, friction from 0 to 1e4, 2 blocks. Not in the
-    // quick subset: five of its thirteen cases fail today (`docs/scenes.md`, "stack-3d").
+    // quick subset: six of its thirteen cases fail today (`docs/scenes.md`, "stack-3d").
     if !quick {
         let stack =
             |blocks: f64, params: Stack3dParams<f64>| SceneParams::Stack3d(StackSetup { blocks, params });
