@@ -311,7 +311,6 @@ impl<T: Real> FiniteBits<T> {
     }
 }
 
-/// `max(a, b)` for partially ordered scalars (NaN-free inputs).
 /// `q += dq` with Kahan's compensated summation (eq. 14's `q+ = q + h v+`, every engine):
 /// `carry` holds what the last sums lost and is subtracted from this one, so that a `1e-7` m
 /// increment on a 1 m coordinate is not rounded away step after step.
@@ -323,6 +322,7 @@ pub(crate) fn compensated_add<T: Real>(q: &mut T, carry: &mut T, dq: T) {
     *q = sum;
 }
 
+/// `max(a, b)` for partially ordered scalars (NaN-free inputs).
 #[inline]
 pub(crate) fn max<T: Real>(a: T, b: T) -> T {
     if a > b { a } else { b }

@@ -499,7 +499,9 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// The reduced system of [`Self::basis_solution`]'s `m <= D` unknowns (each unknown's `z`
     /// moves, row for row the LCP's row it closes) solved in a `D x D` array: `None` when it is
     /// numerically singular (a pivot within `N eps` of its largest entry) for one body; for
-    /// several, its solution of least norm ([`least_norm`]).
+    /// several, its solution of least norm ([`least_norm`]). Kept out of line: inlined, its arrays
+    /// joined the frame of every instantiation of [`Self::answer`] (the curling stone's, whose
+    /// systems never come here, grew by 8 kB of stack and 3,000 M4F instructions a step).
     #[inline(never)]
     fn reduced<const N: usize, const D: usize>(
         lcp: &Lcp<T, N>,
