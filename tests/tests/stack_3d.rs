@@ -87,6 +87,35 @@ fn the_stack_follows_the_reference_at_every_heading() {
     }
 }
 
+/// Three blocks set well past their tipping point (the blocks' centre of mass beyond the table's
+/// edge: statics alone says they fall) fall in f64, at headings 0 and 0.5 deg; where the
+/// independent reference answers (it stops at a sliding contact), as it does, step for step
+/// ([`follows_the_reference`]). The faces start flush, four points on each leaving their loads
+/// open, and Lemke's method crossed their singular bases into a ray at every one of these (its
+/// pivots' round-off on entries that are zero in exact arithmetic grown past `N eps`); the open
+/// loads' answer now retries with single precision's pivot floor
+/// (`Lemke::single_precision_floor`, core/src/spatial/direct.rs).
+#[test]
+fn in_f64_the_stack_well_past_its_tipping_point_falls() {
+    for (overhang, heading, reference) in [
+        (1.1f64, 0.0f64, true),
+        (1.2, 0.5, true),
+        (1.3, 0.0, false),
+        (1.4, 0.0, false),
+        (1.4, 0.5, false),
+        (1.5, 0.0, false),
+    ] {
+        let p = Stack3dParams::<f64> { overhang, heading: heading.to_radians(), ..Default::default() };
+        if reference {
+            follows_the_reference::<3, 16, 64, 2>(&p, Outcome::Fell);
+        } else {
+            let (outcome, rows) = core_run::<f64, 3, 16, 64, 2>(p);
+            println!("3 blocks at {heading} deg, s = {overhang}: {outcome:?} after {} steps", rows.len() - 1);
+            assert_eq!(outcome, Outcome::Fell, "3 blocks at {heading} deg, s = {overhang}");
+        }
+    }
+}
+
 /// In f32: held at 0.98 and fallen at 1.02 at every heading, 2 and 3 blocks.
 #[test]
 fn in_f32_the_stack_holds_at_098_and_falls_at_102() {

@@ -46,12 +46,20 @@ pub struct LcpSolution<T: Real, const N: usize, const WORDS: usize = 1> {
 pub struct Lemke<T: Real, const N: usize, const WORDS: usize = 1> {
     max_pivots: u32,
     tolerance: T,
+    pivot_floor: T,
 }
 
 impl<T: Real, const N: usize, const WORDS: usize> Default for Lemke<T, N, WORDS> {
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// The default pivot floor, `N eps`: the ratio test pivots only on a column's entries above it
+/// times the column's largest ([`Lemke::with_pivot_floor`]).
+#[must_use]
+pub fn default_pivot_floor<T: Real, const N: usize>() -> T {
+    T::of(N as f64) * T::EPS
 }
 
 /// The default pivot cap: `2^min(N, 10) + 4 N`.
@@ -136,7 +144,11 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
     #[must_use]
     pub fn new() -> Self {
         let () = Self::SIZE_CHECK;
-        Self { max_pivots: default_max_pivots(N), tolerance: default_tolerance::<T, N>() }
+        Self {
+            max_pivots: default_max_pivots(N),
+            tolerance: default_tolerance::<T, N>(),
+            pivot_floor: default_pivot_floor::<T, N>(),
+        }
     }
 
     /// Sets the pivot cap (at least 1).
@@ -151,6 +163,35 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
     pub fn with_tolerance(mut self, tolerance: T) -> Self {
         self.tolerance = tolerance;
         self
+    }
+
+    /// Sets the pivot floor: the ratio test pivots only on a column's entries above `floor`
+    /// times the column's largest (clamped to at least the default, [`default_pivot_floor`]).
+    #[must_use]
+    pub fn with_pivot_floor(mut self, floor: T) -> Self {
+        self.pivot_floor = max(floor, default_pivot_floor::<T, N>());
+        self
+    }
+
+    /// This solver with single precision's pivot floor, `N 2^-23` (the default of `f32`), where
+    /// that is coarser than `T`'s default: `None` in `f32`, which has it already.
+    ///
+    /// For a caller that retries a problem Lemke's method failed on with singular bases on its
+    /// path (the spatial stepper's open loads, `crate::spatial`): there, in `f64`, the round-off
+    /// of the pivots grows past `N eps` on entries that are zero in exact arithmetic, the ratio
+    /// test pivots on them and the run ends in a ray; `f32`'s floor keeps them out (`host-sim
+    /// scene --scene stack-3d --overhang 1.1 --precision f64`, docs/scenes.md). Not the default:
+    /// on other paths the finer pivots are needed (its answers are verified all the same).
+    #[must_use]
+    pub fn single_precision_floor(&self) -> Option<Self> {
+        let floor = T::of(N as f64 * f64::from(f32::EPSILON));
+        (floor > default_pivot_floor::<T, N>()).then(|| self.with_pivot_floor(max(floor, self.pivot_floor)))
+    }
+
+    /// The pivot floor ([`Self::with_pivot_floor`]).
+    #[must_use]
+    pub const fn pivot_floor(&self) -> T {
+        self.pivot_floor
     }
 
     /// The pivot cap.
@@ -260,7 +301,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         if warm != Basis::all_w() {
             tab.warm(warm, max(scales.m_norm, T::TINY))?;
         }
-        tab.run(self.max_pivots).ok()?;
+        tab.run(self.max_pivots, self.pivot_floor).ok()?;
         Some(tab.solution(lcp).1)
     }
 
@@ -336,7 +377,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         }
         let mut tab = Tableau::cold(lcp);
         let budget = self.max_pivots.saturating_sub(spent).max(1);
-        match tab.run(budget) {
+        match tab.run(budget, self.pivot_floor) {
             Ok(pivots) => return self.finish(lcp, &scales, &tab, spent + pivots, eliminations, false, false),
             Err(LcpError::Ray { pivots }) => spent += pivots,
             Err(LcpError::MaxPivots { pivots }) => {
@@ -364,7 +405,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
         let mut tab = Tableau::cold(&regularized);
         let budget = self.max_pivots.saturating_sub(spent).max(1);
         // When the retry does not rescue the solve, the error is the first one: a ray.
-        match tab.run(budget) {
+        match tab.run(budget, self.pivot_floor) {
             Ok(pivots) => self
                 .finish(lcp, &scales, &tab, spent + pivots, eliminations, false, true)
                 .map_err(|_| LcpError::Ray { pivots: spent + pivots }),
@@ -408,7 +449,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Lemke<T, N, WORDS> {
     ) -> Result<LcpSolution<T, N, WORDS>, (u32, u32)> {
         let mut tab = Tableau::cold(lcp);
         let Some(elim) = tab.warm(warm, scale) else { return Err((0, 0)) };
-        match tab.run(self.max_pivots) {
+        match tab.run(self.max_pivots, self.pivot_floor) {
             Ok(pivots) => {
                 self.finish(lcp, scales, &tab, pivots, elim, true, false).map_err(|e| (e.pivots(), elim))
             }

@@ -81,7 +81,7 @@ mod verify;
 
 pub use basis::Basis;
 pub use error::LcpError;
-pub use lemke::{LcpSolution, Lemke, default_max_pivots};
+pub use lemke::{LcpSolution, Lemke, default_max_pivots, default_pivot_floor};
 pub use problem::Lcp;
 #[cfg(feature = "spatial")]
 pub(crate) use problem::Scales;

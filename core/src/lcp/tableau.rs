@@ -240,10 +240,10 @@ impl<T: Real, const N: usize, const WORDS: usize> Tableau<T, N, WORDS> {
         self.lex_min(ties, |_| T::one())
     }
 
-    /// Lexicographic minimum-ratio test for the column of `entering`. `None` means the
-    /// column has no positive entry: ray termination. The artificial variable leaves
-    /// whenever it is among the tied rows.
-    fn leaving_row(&self, entering: Var) -> Option<usize> {
+    /// Lexicographic minimum-ratio test for the column of `entering`, on its entries above
+    /// `floor` times its largest ([`Self::run`]). `None` means the column has no such entry:
+    /// ray termination. The artificial variable leaves whenever it is among the tied rows.
+    fn leaving_row(&self, entering: Var, floor: T) -> Option<usize> {
         let col = self.column(entering);
         let mut col_max = T::zero();
         let mut rhs_max = T::zero();
@@ -252,7 +252,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Tableau<T, N, WORDS> {
             rhs_max = max(rhs_max, self.rhs[i].abs_exact());
         }
         let n_eps = T::of(N as f64) * T::EPS;
-        let piv_tol = n_eps * col_max;
+        let piv_tol = floor * col_max;
         let mut theta: Option<T> = None;
         for i in 0..N {
             if col[i] > piv_tol {
@@ -277,9 +277,10 @@ impl<T: Real, const N: usize, const WORDS: usize> Tableau<T, N, WORDS> {
         Some(self.lex_min(ties, |i| col[i]))
     }
 
-    /// Runs Lemke's pivoting from this tableau. Returns the pivots on success (the
-    /// artificial variable left the basis, or was never needed).
-    pub(super) fn run(&mut self, max_pivots: u32) -> Result<u32, LcpError> {
+    /// Runs Lemke's pivoting from this tableau, pivoting only on a column's entries above
+    /// `floor` times its largest ([`super::Lemke::with_pivot_floor`]). Returns the pivots on
+    /// success (the artificial variable left the basis, or was never needed).
+    pub(super) fn run(&mut self, max_pivots: u32, floor: T) -> Result<u32, LcpError> {
         if self.rhs.iter().all(|&x| x >= T::zero()) {
             return Ok(0);
         }
@@ -294,7 +295,7 @@ impl<T: Real, const N: usize, const WORDS: usize> Tableau<T, N, WORDS> {
             if pivots >= max_pivots {
                 return Err(LcpError::MaxPivots { pivots });
             }
-            let Some(r) = self.leaving_row(entering) else {
+            let Some(r) = self.leaving_row(entering, floor) else {
                 return Err(LcpError::Ray { pivots });
             };
             leaving = self.basis[r];

@@ -113,6 +113,26 @@ fn round_off_ray_on_a_degenerate_friction_lcp_is_rescued() {
     }
 }
 
+/// The pivot floor is a trade. `M = [[1e-9, 0], [1, 1]]`, `q = (-1, 1)` has the one solution
+/// `z = (1e9, 0)`, reached by a pivot on `1e-9` in a column whose largest entry is about 1:
+/// Lemke's method takes it at the default floor (`N eps`); at single precision's
+/// ([`Lemke::single_precision_floor`], `N 2^-23`) it is not pivoted on and the run ends in a
+/// ray. That floor is therefore a retry's (the spatial stepper's open loads), not the default.
+#[test]
+#[allow(clippy::float_cmp)] // the floors are exact: N times a power of two
+fn a_pivot_below_the_floor_is_not_taken() {
+    let lcp = Lcp::from_rows(&[[1e-9, 0.0], [1.0, 1.0]], &[-1.0, 1.0]);
+    let lemke = Lemke::<f64, 2>::new();
+    let sol = lemke.solve(&lcp).unwrap();
+    assert!((sol.z[0] - 1e9).abs() <= 1e-6 && sol.z[1] == 0.0, "{:?}", sol.z);
+    let coarse = lemke.single_precision_floor().unwrap();
+    assert_eq!(coarse.pivot_floor(), 2.0 * f64::from(f32::EPSILON));
+    assert!(matches!(coarse.solve(&lcp), Err(LcpError::Ray { .. })), "{:?}", coarse.solve(&lcp));
+    // f32's default floor is single precision's already.
+    assert!(Lemke::<f32, 2>::new().single_precision_floor().is_none());
+    assert_eq!(Lemke::<f32, 2>::new().pivot_floor(), 2.0 * f32::EPSILON);
+}
+
 #[test]
 fn nonnegative_q_takes_zero_pivots() {
     let sol = solve([[2.0, -7.0], [3.0, 1.0]], [0.0, 4.0]).unwrap();

@@ -57,7 +57,10 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
     /// p_+d, p_-d, sigma)`, then the padding rows `w = z + 1`) from the basis `basis`: its own
     /// complementary solution when it verifies (module docs), else (one body) that of the modes
     /// its answer switches to ([`Self::switched`]), else Lemke's method's. A lone contact's (`K =
-    /// 1`: a puck, a ball) goes to [`Lemke::solve_warm`] whole.
+    /// 1`: a puck, a ball) goes to [`Lemke::solve_warm`] whole. Several bodies' (a face on a face)
+    /// where Lemke's method fails: the open loads' answer ([`Self::open_load`]), else in f64 the
+    /// same again, Lemke's method first, with single precision's pivot floor
+    /// ([`Lemke::single_precision_floor`]): every one verified on `lcp` to its own tolerance.
     ///
     /// # Errors
     /// [`StepError::Solver`].
@@ -121,7 +124,14 @@ impl<T: Real, const K: usize, const B: usize> Contacts<'_, T, K, B> {
             // A face on a face (several bodies: `B > 1`): Lemke's pivots through the open loads'
             // singular bases; the basis of the problem made strictly copositive, then that
             // basis' least-norm solution, verified on the problem itself.
-            Err(e) if K > 1 && B > 1 => Self::open_load(solver, lcp).ok_or(StepError::Solver(e)),
+            // In f64, the same again with single precision's pivot floor
+            // ([`Lemke::single_precision_floor`]).
+            Err(e) if K > 1 && B > 1 => Self::open_load(solver, lcp)
+                .or_else(|| {
+                    let coarse = solver.single_precision_floor()?;
+                    coarse.solve_from_basis(lcp, basis).ok().or_else(|| Self::open_load(&coarse, lcp))
+                })
+                .ok_or(StepError::Solver(e)),
             Err(e) => Err(StepError::Solver(e)),
         }
     }
