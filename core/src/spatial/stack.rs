@@ -80,6 +80,8 @@ pub struct BlockStack<T: Real, const B: usize, const K: usize, const N: usize, c
     mu: [T; 2],
     settings: SpatialSettings<T>,
     states: [State<T>; B],
+    /// Each slot's pair and contact at `states` ([`Self::contacts`]), found once a step.
+    patches: Result<SlotContacts<T, K>, StepError>,
     modes: [Mode; K],
     steps: u64,
     solve: Solve<T, N, W>,
@@ -132,11 +134,13 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
             mu: [mu_static, mu_kinetic],
             settings,
             states,
+            patches: Ok([None; K]),
             modes: [Mode::Sticking; K],
             steps: 0,
             // Verified to `1024 N eps` (module docs, "The load").
             solve: Solve::with_tolerance(T::of(1024.0 * N as f64) * T::EPS),
         };
+        stack.patches = stack.patches_at(&states);
         let free = states.map(|st| (st.velocity, st.angular_velocity));
         let (touches, ..) = stack.gather(&free).map_err(|_| ParamError::OutOfRange("blocks"))?;
         stack.modes = touches.map(|c| match (c.active, norm(&c.slip_free) <= settings.stick_speed) {
@@ -188,12 +192,38 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
     ///
     /// # Errors
     /// [`StepError::TooManyContacts`] when the pairs touch at more points than `K`.
-    pub fn contacts(&self) -> Result<SlotContacts<T, K>, StepError> {
-        let now = self.states.map(|st| (st.velocity, st.angular_velocity));
-        self.gather(&now).map(|(_, points, ..)| points)
+    pub const fn contacts(&self) -> Result<SlotContacts<T, K>, StepError> {
+        self.patches
     }
 
-    /// The contacts of every pair on the motion `free` (module docs), filling the slots in turn.
+    /// Each slot's pair and contact at `states`: the pairs' face patches ([`face_patch`]) filling
+    /// the slots in turn (module docs).
+    ///
+    /// # Errors
+    /// [`StepError::TooManyContacts`] (the count so far) when the pairs touch at more points
+    /// than `K`.
+    fn patches_at(&self, states: &[State<T>; B]) -> Result<SlotContacts<T, K>, StepError> {
+        let mut points = [None; K];
+        let mut slot = 0usize;
+        for (upper, st) in states.iter().enumerate() {
+            let beneath = match upper.checked_sub(1).and_then(|l| states.get(l)) {
+                Some(state) => Beneath::Block { state, half: self.half },
+                None => Beneath::Table,
+            };
+            let patch = face_patch::<T, PATCH_POINTS>(st, &self.half, beneath, self.settings.margin)
+                .map_err(|_| StepError::TooManyContacts(u8::try_from(slot).unwrap_or(u8::MAX)))?;
+            for c in &patch {
+                let Some(point) = points.get_mut(slot) else {
+                    return Err(StepError::TooManyContacts(u8::try_from(slot + 1).unwrap_or(u8::MAX)));
+                };
+                *point = Some((upper, *c));
+                slot += 1;
+            }
+        }
+        Ok(points)
+    }
+
+    /// The contacts of every pair now ([`Self::contacts`]) on the motion `free` (module docs).
     ///
     /// # Errors
     /// [`StepError::TooManyContacts`] (the count so far) when the pairs touch at more points
@@ -201,53 +231,43 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
     fn gather(&self, free: &Motion<T, B>) -> Result<Gathered<T, K>, StepError> {
         let s = &self.settings;
         let zero = [T::zero(); 3];
+        let points = self.patches?;
         let mut touches = [Touch::idle([T::zero(), T::zero(), T::one()]); K];
-        let mut points = [None; K];
-        let (mut speed, mut terms, mut slot) = (T::zero(), T::zero(), 0usize);
+        let (mut speed, mut terms) = (T::zero(), T::zero());
         let gravity = norm(&s.gravity);
-        for (upper, (st, (v, w))) in self.states.iter().zip(free).enumerate() {
+        for (slot, (touch, point)) in touches.iter_mut().zip(&points).enumerate() {
+            let Some((upper, c)) = point else { break };
+            let upper = *upper;
+            let (Some(st), Some((v, w))) = (self.states.get(upper), free.get(upper)) else { break };
             let lower = upper.checked_sub(1).and_then(|l| self.states.get(l).zip(free.get(l)));
-            let beneath = match lower {
-                Some((state, _)) => Beneath::Block { state, half: self.half },
-                None => Beneath::Table,
+            let arm = sub(&c.point, &st.position);
+            let mut u = add(v, &cross(w, &arm));
+            let mut term = norm(v) + norm(w) * norm(&arm);
+            let mut size = st.position.iter().fold(norm(&arm), |a, x| a + x.abs_exact());
+            let under = lower.map(|(state, (vl, wl))| {
+                let arm = sub(&c.point, &state.position);
+                u = sub(&u, &add(vl, &cross(wl, &arm)));
+                term += norm(vl) + norm(wl) * norm(&arm);
+                size += state.position.iter().fold(norm(&arm), |a, x| a + x.abs_exact());
+                (upper - 1, arm)
+            });
+            speed = max(speed, norm(&u));
+            terms = max(terms, term);
+            let n = c.normal;
+            let round_off = T::of(4.0) * T::EPS * size;
+            let slid = self.modes.get(slot) == Some(&Mode::Sliding);
+            *touch = Touch {
+                active: true,
+                arm,
+                normal_free: dot(&n, &u) + normal_bias(c.gap, s.step, gravity, round_off),
+                slip_free: sub(&u, &scale(dot(&n, &u), &n)),
+                carried: zero,
+                rest_line: None,
+                mu: if slid { self.mu[1] } else { self.mu[0] },
+                normal: n,
+                body: upper,
+                beneath: under,
             };
-            let patch = face_patch::<T, PATCH_POINTS>(st, &self.half, beneath, s.margin)
-                .map_err(|_| StepError::TooManyContacts(u8::try_from(slot).unwrap_or(u8::MAX)))?;
-            for c in &patch {
-                let (Some(touch), Some(point)) = (touches.get_mut(slot), points.get_mut(slot)) else {
-                    return Err(StepError::TooManyContacts(u8::try_from(slot + 1).unwrap_or(u8::MAX)));
-                };
-                let arm = sub(&c.point, &st.position);
-                let mut u = add(v, &cross(w, &arm));
-                let mut term = norm(v) + norm(w) * norm(&arm);
-                let mut size = st.position.iter().fold(norm(&arm), |a, x| a + x.abs_exact());
-                let under = lower.map(|(state, (vl, wl))| {
-                    let arm = sub(&c.point, &state.position);
-                    u = sub(&u, &add(vl, &cross(wl, &arm)));
-                    term += norm(vl) + norm(wl) * norm(&arm);
-                    size += state.position.iter().fold(norm(&arm), |a, x| a + x.abs_exact());
-                    (upper - 1, arm)
-                });
-                speed = max(speed, norm(&u));
-                terms = max(terms, term);
-                let n = c.normal;
-                let round_off = T::of(4.0) * T::EPS * size;
-                let slid = self.modes.get(slot) == Some(&Mode::Sliding);
-                *touch = Touch {
-                    active: true,
-                    arm,
-                    normal_free: dot(&n, &u) + normal_bias(c.gap, s.step, gravity, round_off),
-                    slip_free: sub(&u, &scale(dot(&n, &u), &n)),
-                    carried: zero,
-                    rest_line: None,
-                    mu: if slid { self.mu[1] } else { self.mu[0] },
-                    normal: n,
-                    body: upper,
-                    beneath: under,
-                };
-                *point = Some((upper, *c));
-                slot += 1;
-            }
         }
         Ok((touches, points, speed, terms))
     }
@@ -296,6 +316,7 @@ impl<T: Real, const B: usize, const K: usize, const N: usize, const W: usize> Bl
             }
         }
         self.states = states;
+        self.patches = self.patches_at(&states);
         self.modes = contacts.map(|c| c.mode);
         self.steps += 1;
         Ok(StackStepReport { time: self.time(), states, contacts, points, pivots })
