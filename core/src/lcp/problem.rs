@@ -117,13 +117,7 @@ impl<T: Real, const N: usize> Lcp<T, N> {
     #[must_use]
     #[inline]
     pub fn w_of(&self, z: &SVector<T, N>) -> SVector<T, N> {
-        let mut w = self.q;
-        for (column, &zj) in self.m.as_slice().chunks_exact(N).zip(z.as_slice()) {
-            for (wi, &m) in w.as_mut_slice().iter_mut().zip(column) {
-                *wi += m * zj;
-            }
-        }
-        w
+        self.w_over::<false>(z)
     }
 
     /// [`Self::w_of`] with the terms of `z`'s zero entries left out, the others added in the
@@ -135,9 +129,16 @@ impl<T: Real, const N: usize> Lcp<T, N> {
     #[must_use]
     #[inline]
     pub(crate) fn w_of_sparse(&self, z: &SVector<T, N>) -> SVector<T, N> {
+        self.w_over::<true>(z)
+    }
+
+    /// [`Self::w_of`]'s sum, column by column; with `SKIP_ZEROS` the columns of `z`'s zero
+    /// entries left out ([`Self::w_of_sparse`]).
+    #[inline]
+    fn w_over<const SKIP_ZEROS: bool>(&self, z: &SVector<T, N>) -> SVector<T, N> {
         let mut w = self.q;
         for (column, &zj) in self.m.as_slice().chunks_exact(N).zip(z.as_slice()) {
-            if zj == T::zero() {
+            if SKIP_ZEROS && zj == T::zero() {
                 continue;
             }
             for (wi, &m) in w.as_mut_slice().iter_mut().zip(column) {
