@@ -22,8 +22,8 @@
 //! is solved so, and verified on the problem itself (`super::direct`'s open loads); in f64, where
 //! the round-off of its pivots on those bases outgrows its ratio test's floor (`N eps`) and it
 //! pivots into a ray, all of that again with single precision's floor (`N 2^-23`,
-//! [`crate::lcp::Lemke::single_precision_floor`]), whose answers are verified in f64 all the same. The rows the
-//! open loads close (the unloaded fourth point's normal row, the friction rows of a loaded point
+//! [`crate::lcp::Lemke::single_precision_floor`]), whose answers are verified in f64 all the
+//! same. The rows the open loads close (the unloaded fourth point's normal row, the friction rows of a loaded point
 //! that carries none) come out of a basis' answer at zero to round-off, of either sign: they are
 //! held to the step's velocity round-off (`super::direct`'s slack), so a stack at rest keeps its
 //! warm basis without a pivot, and a slip beyond it, a wrong mode, goes to Lemke's pivoting.
